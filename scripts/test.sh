@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Builds ttd and runs every test (the README's test command; .ci/run calls it).
+# Usage: scripts/test.sh            (build folder: build/, or $TTD_BUILD_DIR)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${TTD_BUILD_DIR:-build}
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
+cmake --build "$build" -j "$jobs"
+ctest --test-dir "$build" --output-on-failure -j "$jobs"

@@ -1,0 +1,50 @@
+/* SPDX-License-Identifier: MIT */
+/* The contract between the batch engine and the code that computes distances.
+ *
+ * A kernel computes n pairs of one contiguous block: s and t hold 9n coordinates in the
+ * user's layout (pair i at 9i, no alignment promised). The engine hands a kernel finite
+ * coordinates only (a pair with NaN/inf is replaced by a placeholder and its outputs are
+ * overwritten afterwards), at most TTD_BLOCK_PAIRS pairs at a time. distance and results
+ * may each be NULL (not both); a kernel writes whichever is given, and sets results[i].flags
+ * from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING and TTD_PAIR_NOT_CONVERGED only.
+ *
+ * Each instruction set provides one table row (ttd_isa_kernels). A NULL entry means "not
+ * written for this ISA": the engine then uses the scalar row for that method. */
+#ifndef TTD_ENGINE_KERNELS_H
+#define TTD_ENGINE_KERNELS_H
+
+#include <stddef.h>
+#include "ttd/ttd.h"
+
+/// Pairs per block: bounds per-thread scratch, and is a multiple of every lane count.
+#define TTD_BLOCK_PAIRS 256
+
+/// The iterative methods' parameters, resolved from ttd_options (float kernels convert).
+typedef struct ttd_params {
+    double rho;
+    double tol;
+    int max_iterations;
+} ttd_params;
+
+typedef void (*ttd_kernel_d_fn)(size_t n, const double *s, const double *t, const ttd_params *prm,
+                                double *distance, ttd_result_d *results);
+typedef void (*ttd_kernel_f_fn)(size_t n, const float *s, const float *t, const ttd_params *prm,
+                                float *distance, ttd_result_f *results);
+
+/// One instruction set's kernels, indexed by ttd_method.
+typedef struct ttd_isa_kernels {
+    ttd_isa isa;
+    int lanes_f;                         ///< float lanes per vector
+    int lanes_d;                         ///< double lanes per vector
+    ttd_kernel_d_fn d[TTD_METHOD_COUNT];
+    ttd_kernel_f_fn f[TTD_METHOD_COUNT];
+} ttd_isa_kernels;
+
+/* Rows; the scalar one always exists, the others when CMake defines TTD_HAVE_<ISA>. */
+extern const ttd_isa_kernels ttd_kernels_scalar;
+extern const ttd_isa_kernels ttd_kernels_sse2;
+extern const ttd_isa_kernels ttd_kernels_avx2;
+extern const ttd_isa_kernels ttd_kernels_avx512;
+extern const ttd_isa_kernels ttd_kernels_neon;
+
+#endif /* TTD_ENGINE_KERNELS_H */
