@@ -243,6 +243,19 @@ static int parallel_faces(void)
     return check_distance_d(S, T2, 3.0);
 }
 
+static void rotate(const double in[9], double out[9])
+{
+    /* rotation from the unit quaternion (0.5, 0.3, -0.7, 0.4)/|.| */
+    double w = 0.5, x = 0.3, y = -0.7, z = 0.4, n = sqrt(w * w + x * x + y * y + z * z);
+    w /= n; x /= n; y /= n; z /= n;
+    double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+    for (int i = 0; i < 3; ++i)
+        for (int r = 0; r < 3; ++r)
+            out[3 * i + r] = R[r][0] * in[3 * i] + R[r][1] * in[3 * i + 1] + R[r][2] * in[3 * i + 2];
+}
+
 /* ---- touching and crossing ---- */
 
 static int touching_all(void)
@@ -266,6 +279,19 @@ static int touching_all(void)
             fprintf(stderr, "  touching case %zu\n", i);
             return 1;
         }
+        /* touching is reported as such: exactly 0 and flagged, not a rounding-sized gap */
+        ttd_result_d r;
+        ttd_exact_pair_d(S, cases[i], &r);
+        ENSURE_MSG(r.distance == 0 && (r.flags & TTD_PAIR_INTERSECTING), "case %zu: %g", i, r.distance);
+        ttd_exact_pair_d(cases[i], S, &r);
+        ENSURE_MSG(r.distance == 0 && (r.flags & TTD_PAIR_INTERSECTING), "case %zu swapped", i);
+        /* rotated, the contact holds only to rounding: still reported as touching */
+        double Sr[9], Tr[9];
+        rotate(S, Sr);
+        rotate(cases[i], Tr);
+        if (check_distance_d(Sr, Tr, 0.0)) return 1;
+        ttd_exact_pair_d(Sr, Tr, &r);
+        ENSURE_MSG(r.distance == 0 && (r.flags & TTD_PAIR_INTERSECTING), "rotated case %zu: %g", i, r.distance);
     }
     return 0;
 }
@@ -304,19 +330,6 @@ static int degenerate(void)
 
 /* ---- accuracy: slivers and near-parallel, under a rotation ---- */
 
-static void rotate(const double in[9], double out[9])
-{
-    /* rotation from the unit quaternion (0.5, 0.3, -0.7, 0.4)/|.| */
-    double w = 0.5, x = 0.3, y = -0.7, z = 0.4, n = sqrt(w * w + x * x + y * y + z * z);
-    w /= n; x /= n; y /= n; z /= n;
-    double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-    for (int i = 0; i < 3; ++i)
-        for (int r = 0; r < 3; ++r)
-            out[3 * i + r] = R[r][0] * in[3 * i] + R[r][1] * in[3 * i + 1] + R[r][2] * in[3 * i + 2];
-}
-
 static int sliver_face(void)
 {
     /* T a sliver of width w in z = 0; S's vertex at height h above its middle. The closest
@@ -336,6 +349,12 @@ static int sliver_face(void)
         rotate(N, Tr);
         rotate(P, Sr);
         if (check_distance_d(Sr, Tr, h)) return 1;
+        /* the sliver pierced obliquely at its middle by an edge: distance 0, while the
+         * sliver's boundary is w/2 away, so a crossing lost to a bad normal shows */
+        double X[9] = {0.5 - 0.6, 0.5 * w - 0.3, -0.7, 0.5 + 0.6, 0.5 * w + 0.3, 0.7, 0, 2, 2};
+        rotate(T, Tr);
+        rotate(X, Sr);
+        if (check_distance_d(Sr, Tr, 0.0)) return 1;
     }
     return 0;
 }
@@ -419,6 +438,37 @@ static int offsets(void)
     return 0;
 }
 
+/* Translation invariance on general (tilted) pairs: coordinates on a 2^-30 grid in [-1, 1],
+ * so that adding 1e4 or 1e6 is exact and the true distance is the same. */
+static int offsets_random(void)
+{
+    unsigned long long x = 88172645463325252ull;
+    for (int k = 0; k < 300; ++k) {
+        double s[9], t[9];
+        for (int i = 0; i < 18; ++i) {
+            x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+            double v = ldexp((double)(long long)(x >> 33) - 0x1p30, -30);   /* [-1, 1) */
+            if (i < 9) s[i] = v; else t[i - 9] = v + (k % 3 == 0 ? 0.0 : 0.375);
+        }
+        ttd_result_d r0, r1;
+        ttd_exact_pair_d(s, t, &r0);
+        const double offs[] = {1e4, -1e6, 1e6};
+        for (int o = 0; o < 3; ++o) {
+            double a[9], b[9];
+            for (int i = 0; i < 9; ++i) {
+                a[i] = s[i] + offs[o] * (i % 3 == 1 ? -1.0 : 1.0);
+                b[i] = t[i] + offs[o] * (i % 3 == 1 ? -1.0 : 1.0);
+            }
+            ttd_exact_pair_d(a, b, &r1);
+            double size = pair_size(s, t);
+            ENSURE_MSG(fabs(r1.distance - r0.distance) <= TOL_D * size, "pair %d offset %g: %.17g vs %.17g",
+                       k, offs[o], r1.distance, r0.distance);
+            if (check_invariants_d(a, b, &r1, TOL_D)) return 1;
+        }
+    }
+    return 0;
+}
+
 static int range_ends(void)
 {
     const double S[9] = {0.7, 0.3, 2.1, 1.1, 0.3, 2.1, 0.7, 1.2, 2.1};
@@ -442,6 +492,15 @@ static int range_ends(void)
     ttd_result_d r;
     ttd_exact_pair_d(A, B, &r);
     ENSURE_NEAR(r.distance / 1e308, 1.0, 1e-15);
+    for (int c = 0; c < 3; ++c) ENSURE(isfinite(r.p[c]) && isfinite(r.q[c]));
+    /* a triangle spanning -1e308..1e308 (its edge vectors overflow unless halved first),
+     * T's vertex 1e307 above its interior */
+    const double W[9] = {1e308, 0, 0, -1e308, 0, 0, 0, 0, 1e308};
+    const double V[9] = {0, 1e307, 1e307, 1e307, 2e307, 1e307, 0, 2e307, 2e307};
+    ttd_exact_pair_d(W, V, &r);
+    ENSURE_NEAR(r.distance / 1e307, 1.0, 1e-15);
+    ttd_exact_pair_d(V, W, &r);
+    ENSURE_NEAR(r.distance / 1e307, 1.0, 1e-15);
     for (int c = 0; c < 3; ++c) ENSURE(isfinite(r.p[c]) && isfinite(r.q[c]));
     return 0;
 }
@@ -531,6 +590,13 @@ static int float_subset(void)
     rotate(Sl, a);
     rotate(Tl, b);
     if (check_distance_f(a, b, h)) return 1;
+    /* float sliver pierced obliquely: a bad normal loses the crossing, boundary w/2 away */
+    w = 3e-5;
+    double Tw[9] = {0, 0, 0, 1, 0, 0, 0.5, w, 0};
+    double X[9] = {0.5 - 0.6, 0.5 * w - 0.3, -0.7, 0.5 + 0.6, 0.5 * w + 0.3, 0.7, 0, 2, 2};
+    rotate(Tw, b);
+    rotate(X, a);
+    if (check_distance_f(a, b, 0.0)) return 1;
     double th = 1e-4, D = 1e-5;
     double Se[9] = {-1, 0, D, 1, 0, D, 0, 1, 1};
     double Te[9] = {-cos(th), -sin(th), 0, cos(th), sin(th), 0, 0, -1, -1};
@@ -556,6 +622,7 @@ int main(int argc, char **argv)
     RUN_TEST(nearly_parallel_faces);
     RUN_TEST(scale_sweep);
     RUN_TEST(offsets);
+    RUN_TEST(offsets_random);
     RUN_TEST(range_ends);
     RUN_TEST(float_subset);
     TEST_MAIN_END();
