@@ -182,17 +182,24 @@ static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SF
             for (int c = 0; c < 3; ++c)
                 q[c] = Y->v[j][c] + t * Y->e[j][c];
             TTD_SFX(exact_sub)(X->v[i], q, d);
+            real d2 = TTD_SFX(exact_dot)(d, d);
+            if (!(d2 < best->d2))   /* the common case: skip building the weights */
+                continue;
             real wy[3] = {0, 0, 0};
             wy[j] = (real)1 - t;
             wy[(j + 1) % 3] = t;
-            TTD_SFX(exact_consider)(best, TTD_SFX(exact_dot)(d, d), X->v[i], q, wx, wy, swapped);
+            TTD_SFX(exact_consider)(best, d2, X->v[i], q, wx, wy, swapped);
         }
     }
 }
 
 /* 9 edge-edge interior candidates: the stationary point of the two lines, accepted when
- * both parameters lie in [0,1]. s from the normal n = cross(d1, d2) (accurate for nearly
- * parallel edges), t as the projection of p(s) onto the second line. */
+ * both parameters lie in [0,1]. s from the normal n = cross(d1, d2), t as the projection of
+ * p(s) onto the second line. The plain cross product is enough here: for nearly parallel
+ * edges at gap D its direction error eps/sin moves p(s) along a direction in which the
+ * distance grows only to second order (error ~ eps^2 D / sin^2), and where that is large the
+ * endpoint candidates are within L^2 sin^2 / D; the smaller of the two is below eps L
+ * (docs/exact-method.md, "edge-edge"). */
 static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(exact_tri) *T,
                                      TTD_SFX(exact_best) *best)
 {
@@ -201,7 +208,8 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
         for (int j = 0; j < 3; ++j) {
             const real *Q = T->v[j], *d2 = T->e[j];
             real n[3], w[3], x[3];
-            real nn = TTD_SFX(exact_cross_acc)(d1, d2, S->ee[i], T->ee[j], n);
+            TTD_SFX(exact_cross)(d1, d2, n);
+            real nn = TTD_SFX(exact_dot)(n, n);
             if (!(nn >= TTD_REAL_MIN))   /* parallel or a point: the endpoints cover it */
                 continue;
             TTD_SFX(exact_sub)(Q, P, w);
@@ -217,12 +225,15 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
                 q[c] = Q[c] + t * d2[c];
             }
             TTD_SFX(exact_sub)(p, q, d);
+            real dd = TTD_SFX(exact_dot)(d, d);
+            if (!(dd < best->d2))
+                continue;
             real wp[3] = {0, 0, 0}, wq[3] = {0, 0, 0};
             wp[i] = (real)1 - sc;
             wp[(i + 1) % 3] = sc;
             wq[j] = (real)1 - t;
             wq[(j + 1) % 3] = t;
-            TTD_SFX(exact_consider)(best, TTD_SFX(exact_dot)(d, d), p, q, wp, wq, 0);
+            TTD_SFX(exact_consider)(best, dd, p, q, wp, wq, 0);
         }
     }
 }
@@ -326,13 +337,13 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     TTD_SFX(exact_crossings)(&S, &T, 0, &best, hs);
     TTD_SFX(exact_crossings)(&T, &S, 1, &best, ht);
 
-    /* 3. Touching within rounding counts as touching: a distance below 16 eps of the pair's
+    /* 3. Touching within rounding counts as touching: a distance below 4 eps of the pair's
      * extent (which is ~1 here) is what a contact computes to, not a gap. */
     real d = TTD_SQRT(best.d2);
     uint32_t flags = 0;
     if (!S.has_face) flags |= TTD_PAIR_DEGENERATE_S;
     if (!T.has_face) flags |= TTD_PAIR_DEGENERATE_T;
-    if (d <= (real)16 * TTD_REAL_EPS) {
+    if (d <= (real)4 * TTD_REAL_EPS) {
         d = 0;
         flags |= TTD_PAIR_INTERSECTING;
     }
