@@ -187,6 +187,39 @@ static int edge_edge_all(void)
     return 0;
 }
 
+/* Vertex i of S at (0,0,1) with S opening upwards, vertex j of T at the origin with T opening
+ * downwards: p - q has z >= 1 with equality only at the two vertices. */
+static int vertex_vertex_all(void)
+{
+    const double s0[3] = {0, 0, 1}, s1[3] = {1, 0.5, 3}, s2[3] = {0.5, 1, 3};
+    const double t0[3] = {0, 0, 0}, t1[3] = {-1, -0.5, -2}, t2[3] = {-0.5, -1, -2};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double S[9], T[9];
+            place(s0, s1, s2, i, S);
+            place(t0, t1, t2, j, T);
+            if (check_pair_d(S, T, 1.0, s0, t0, 1u << i, 1u << j)) return 1;
+        }
+    return 0;
+}
+
+/* Vertex i of S at height 1 above the interior of edge j of T (T in z <= 0, only that edge
+ * at z = 0); the swapped call covers a vertex of T against an edge of S. */
+static int vertex_edge_all(void)
+{
+    const double s0[3] = {0.25, 0, 1}, s1[3] = {1, 1, 2}, s2[3] = {-1, 1, 2.5};
+    const double t0[3] = {-1, 0, 0}, t1[3] = {1, 0, 0}, t2[3] = {0, -1, -1};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double S[9], T[9];
+            place(s0, s1, s2, i, S);
+            place(t0, t1, t2, j, T);
+            const double q[3] = {0.25, 0, 0};
+            if (check_pair_d(S, T, 1.0, s0, q, 1u << i, (1u << j) | (1u << ((j + 1) % 3)))) return 1;
+        }
+    return 0;
+}
+
 /* ---- the issue's examples ---- */
 
 static int issue_pierce(void)
@@ -610,6 +643,8 @@ int main(int argc, char **argv)
     RUN_TEST(vertex_face_s);
     RUN_TEST(vertex_face_t);
     RUN_TEST(edge_edge_all);
+    RUN_TEST(vertex_vertex_all);
+    RUN_TEST(vertex_edge_all);
     RUN_TEST(issue_pierce);
     RUN_TEST(issue_fcl_small);
     RUN_TEST(issue_fcl_parallel);
