@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* Precision-generic body of the exact method (included by exact.c once per precision; see
  * common/precision.h). The distance is the minimum over a fixed list of candidate point
- * pairs, each a real point of S and a real point of T, so every candidate is an upper bound
- * and the true minimum is always among them up to rounding:
+ * pairs, each a real point of S and a real point of T, so every candidate but the crossings
+ * (which offer 0 unmeasured, see docs 3.1) is an upper bound, and the true minimum is always
+ * among them up to rounding:
  *   18 vertex-edge (every vertex of one triangle against every edge of the other, clamped),
  *    9 edge-edge interior (line-line stationary point, accepted when inside both segments),
  *    6 vertex-face (a vertex whose projection falls inside the other face),
