@@ -13,7 +13,7 @@
 
 static const char *const family_names[TTD_GEN_COUNT] = {
     "random", "paper", "far", "near_parallel_edges", "near_parallel_faces", "near_touching",
-    "intersecting", "degenerate", "sliver", "scaled", "offset",
+    "intersecting", "degenerate", "sliver", "scaled", "offset", "features",
 };
 
 /* ---- random numbers ------------------------------------------------------------------ */
@@ -411,11 +411,56 @@ static void pair_offset(ttd_gen_rng *r, double *s, double *t)
     for (int k = 0; k < 9; ++k) { s[k] += len * dir[k % 3]; t[k] += len * dir[k % 3]; }
 }
 
+/// Fills tri as a fat triangle in the plane z = 0 around the origin.
+static void fat_triangle_z0(ttd_gen_rng *r, double *tri)
+{
+    set3(tri, uni(r, -0.6, -0.4), uni(r, -0.4, -0.2), 0);
+    set3(tri + 3, uni(r, 0.4, 0.6), uni(r, -0.4, -0.2), 0);
+    set3(tri + 6, uni(r, -0.1, 0.1), uni(r, 0.4, 0.6), 0);
+}
+
+/// Vertex v of apex (the others higher) over the interior of base (in z = 0), at height gap.
+static void vertex_over_face(ttd_gen_rng *r, double *apex, int v, double *base, double gap)
+{
+    double p[3];
+    fat_triangle_z0(r, base);
+    inner_point(r, base, p);
+    for (int k = 0; k < 3; ++k) {
+        if (k == v) set3(apex + 3 * k, p[0], p[1], gap);
+        else set3(apex + 3 * k, p[0] + uni(r, -0.5, 0.5), p[1] + uni(r, -0.5, 0.5), gap + uni(r, 0.3, 1));
+    }
+}
+
+/* Pair i has feature pairing i mod 15 as its unique closest pair, labels preserved:
+ * 0..2 vertex i of S to the face of T; 3..5 vertex i-3 of T to the face of S; 6..14 edge
+ * (m-6)/3 of S (AB, BC, CA) to edge (m-6)%3 of T (DE, EF, FD), crossing. Gap in [1e-3, 1). */
+static void pair_features(ttd_gen_rng *r, double *s, double *t, size_t i)
+{
+    int m = (int)(i % 15);
+    double gap = log_uniform(r, -3, 0);
+    if (m < 3) {
+        vertex_over_face(r, s, m, t, gap);
+    } else if (m < 6) {
+        vertex_over_face(r, t, m - 3, s, gap);
+    } else {
+        int ei = (m - 6) / 3, ej = (m - 6) % 3;
+        double xc = uni(r, -0.3, 0.3), slope = uni(r, -0.5, 0.5);
+        set3(s + 3 * ei, -0.5, 0, 0);
+        set3(s + 3 * ((ei + 1) % 3), 0.5, 0, 0);
+        set3(s + 3 * ((ei + 2) % 3), uni(r, -0.5, 0.5), uni(r, -1, 1), -uni(r, 0.3, 1));
+        set3(t + 3 * ej, xc - 0.5 * slope, -0.5, gap);
+        set3(t + 3 * ((ej + 1) % 3), xc + 0.5 * slope, 0.5, gap);
+        set3(t + 3 * ((ej + 2) % 3), uni(r, -0.5, 0.5), uni(r, -0.5, 0.5), gap + uni(r, 0.3, 1));
+    }
+    rigid_motion(r, s, t, 1.0);
+}
+
 typedef void (*pair_fn)(ttd_gen_rng *r, double *s, double *t);
 
 static const pair_fn family_fns[TTD_GEN_COUNT] = {
     pair_random, pair_paper, pair_far, pair_near_parallel_edges, pair_near_parallel_faces,
     pair_near_touching, pair_intersecting, pair_degenerate, pair_sliver, pair_scaled, pair_offset,
+    NULL, /* features: needs the pair index, called directly */
 };
 
 /* ---- entry points -------------------------------------------------------------------- */
@@ -426,7 +471,8 @@ size_t ttd_gen(ttd_gen_family f, uint64_t seed, size_t n, double *s, double *t)
     for (size_t i = 0; i < n; ++i) {
         /* one stream per (family, seed, pair): prefixes are stable, pairs independent */
         ttd_gen_rng r = ttd_gen_rng_make(seed ^ ((uint64_t)(f + 1) << 56), (uint64_t)i);
-        family_fns[f](&r, s + 9 * i, t + 9 * i);
+        if (f == TTD_GEN_FEATURES) pair_features(&r, s + 9 * i, t + 9 * i, i);
+        else family_fns[f](&r, s + 9 * i, t + 9 * i);
     }
     return n;
 }
@@ -455,3 +501,16 @@ size_t ttd_gen_degenerate(uint64_t seed, size_t n, double *s, double *t) { retur
 size_t ttd_gen_sliver(uint64_t seed, size_t n, double *s, double *t) { return ttd_gen(TTD_GEN_SLIVER, seed, n, s, t); }
 size_t ttd_gen_scaled(uint64_t seed, size_t n, double *s, double *t) { return ttd_gen(TTD_GEN_SCALED, seed, n, s, t); }
 size_t ttd_gen_offset(uint64_t seed, size_t n, double *s, double *t) { return ttd_gen(TTD_GEN_OFFSET, seed, n, s, t); }
+size_t ttd_gen_features(uint64_t seed, size_t n, double *s, double *t) { return ttd_gen(TTD_GEN_FEATURES, seed, n, s, t); }
+
+void ttd_gen_features_expected(size_t i, unsigned *feature_s, unsigned *feature_t)
+{
+    int m = (int)(i % 15);
+    if (m < 3) { *feature_s = 1u << m; *feature_t = 7u; }
+    else if (m < 6) { *feature_s = 7u; *feature_t = 1u << (m - 3); }
+    else {
+        int ei = (m - 6) / 3, ej = (m - 6) % 3;
+        *feature_s = (1u << ei) | (1u << ((ei + 1) % 3));
+        *feature_t = (1u << ej) | (1u << ((ej + 1) % 3));
+    }
+}

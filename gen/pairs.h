@@ -44,6 +44,14 @@
  *                        mantissa uniform).
  *   offset               random pairs, both triangles translated by the same vector of length
  *                        L in [1, 1e6) (as above), random direction.
+ *   features             pair i has feature pairing i mod 15 as its unique closest pair, the
+ *                        vertex labels kept (no shuffling): 0..2 vertex i of S over the face
+ *                        of T; 3..5 vertex i-3 of T over the face of S; 6..14 edge (i-6)/3 of S
+ *                        (AB, BC, CA) crossing over edge (i-6)%3 of T (DE, EF, FD); gap in
+ *                        [1e-3, 1); then a random rotation and translation.
+ *                        ttd_gen_features_expected gives the expected feature masks.
+ *
+ * "Down to 10^-k" above means a value in (10^-k/2, 10^-k] with k uniform in the range.
  */
 #ifndef TTD_GEN_PAIRS_H
 #define TTD_GEN_PAIRS_H
@@ -68,6 +76,7 @@ typedef enum ttd_gen_family {
     TTD_GEN_SLIVER,
     TTD_GEN_SCALED,
     TTD_GEN_OFFSET,
+    TTD_GEN_FEATURES,
     TTD_GEN_COUNT
 } ttd_gen_family;
 
@@ -93,6 +102,11 @@ size_t ttd_gen_degenerate(uint64_t seed, size_t n, double *s, double *t);
 size_t ttd_gen_sliver(uint64_t seed, size_t n, double *s, double *t);
 size_t ttd_gen_scaled(uint64_t seed, size_t n, double *s, double *t);
 size_t ttd_gen_offset(uint64_t seed, size_t n, double *s, double *t);
+size_t ttd_gen_features(uint64_t seed, size_t n, double *s, double *t);
+
+/// The closest features of pair i of the features family, as vertex masks (bit k = vertex
+/// k; 1 bit a vertex, 2 an edge, 7 the face), as in ttd_result_*.feature_p / feature_q.
+void ttd_gen_features_expected(size_t i, unsigned *feature_s, unsigned *feature_t);
 
 /// A small deterministic generator (splitmix64), exposed for tests that need random numbers.
 typedef struct ttd_gen_rng {

@@ -145,6 +145,31 @@ static int exact_vs_reference(void)
     return 0;
 }
 
+/* Each of the 15 feature pairings as the unique closest pair (features family): the exact
+ * method names the constructed features and matches the reference. */
+static int feature_pairings(void)
+{
+    enum { N = 15 * 40 };
+    static double s[9 * N], t[9 * N];
+    ttd_gen(TTD_GEN_FEATURES, 11, N, s, t);
+    for (int i = 0; i < N; ++i) {
+        unsigned es, et;
+        ttd_gen_features_expected((size_t)i, &es, &et);
+        ttd_result_d r;
+        ttd_exact_pair_d(s + 9 * i, t + 9 * i, &r);
+        ttd_ref_result ref;
+        ttd_ref_distance(s + 9 * i, t + 9 * i, &ref);
+        if (r.feature_p != es || r.feature_q != et ||
+            !(fabs(r.distance - ref.distance) <= DOUBLE_TOL * fmax(ref.distance, ttd_ref_size(s + 9 * i, t + 9 * i)))) {
+            fprintf(stderr, "  pairing %d: features %u/%u (want %u/%u), d %.17g ref %.17g\n", i % 15, r.feature_p,
+                    r.feature_q, es, et, r.distance, ref.distance);
+            print_pair("input", s + 9 * i, t + 9 * i);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The core issue's three examples, with their known answers. */
 static int issue_examples(void)
 {
@@ -174,6 +199,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(issue_examples);
+    RUN_TEST(feature_pairings);
     RUN_TEST(exact_vs_reference);
     TEST_MAIN_END();
 }

@@ -228,6 +228,12 @@ static int certificate_on_families(void)
                 ENSURE(r.distance <= sub[k]);
                 m = fmin(m, sub[k]);
             }
+            if (f == TTD_GEN_FEATURES) { /* the constructed closest features, labels kept */
+                unsigned es, et;
+                ttd_gen_features_expected((size_t)i, &es, &et);
+                ENSURE_MSG(r.feature_p == es && r.feature_q == et, "features pair %d: %u %u, want %u %u", i,
+                           r.feature_p, r.feature_q, es, et);
+            }
             if (r.distance > 0)
                 ENSURE_MSG(fabs(m - r.distance) <= 1e-30 * scale, "%s pair %d: min sub %.17g d %.17g",
                            ttd_gen_name((ttd_gen_family)f), i, m, r.distance);
