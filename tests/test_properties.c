@@ -289,12 +289,12 @@ static int float_properties(void)
             double ad[9], bd[9];
             for (int k = 0; k < 9; ++k) {
                 a[k] = (float)s[9 * i + k]; b[k] = (float)t[9 * i + k];
-                ad[k] = a[k]; bd[k] = b[k];
+                ad[k] = (double)a[k]; bd[k] = (double)b[k];
             }
             ttd_result_f r1, r2;
             ttd_exact_pair_f(a, b, &r1);
             ttd_exact_pair_f(b, a, &r2);
-            double scale = pair_scale(ad, bd, r1.distance), mag = 0;
+            double scale = pair_scale(ad, bd, (double)r1.distance), mag = 0;
             for (int k = 0; k < 9; ++k) mag = fmax(mag, fmax(fabs(ad[k]), fabs(bd[k])));
             double tol = 1e-6 * scale + 8 * (double)FLT_EPSILON * mag;
             if (!(fabs((double)r1.distance - (double)r2.distance) <= 1e-5 * scale)) {
@@ -305,7 +305,8 @@ static int float_properties(void)
                 print_pair(ad, bd);
                 return 1;
             }
-            double p[3] = {r1.p[0], r1.p[1], r1.p[2]}, q[3] = {r1.q[0], r1.q[1], r1.q[2]};
+            double p[3] = {(double)r1.p[0], (double)r1.p[1], (double)r1.p[2]};
+            double q[3] = {(double)r1.q[0], (double)r1.q[1], (double)r1.q[2]};
             ENSURE_MSG(ttd_ref_point_triangle(p, ad) <= tol && ttd_ref_point_triangle(q, bd) <= tol,
                        "%s pair %d", ttd_gen_name(families[f]), i);
             for (int k = 0; k < 3; ++k) ENSURE(r1.bary_p[k] >= 0 && r1.bary_q[k] >= 0);

@@ -18,15 +18,17 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#ifdef TTD_HAVE_QUADMATH
-#include <quadmath.h>
-#define QSQRT sqrtq
+#if defined(TTD_REF_FLOAT128) || LDBL_MANT_DIG >= 113
 #define QEPS ((ttd_qreal)0x1p-112)
 #define QWEIGHT_TOL ((ttd_qreal)1e-24)
 #else
-#define QSQRT sqrtl
 #define QEPS ((ttd_qreal)LDBL_EPSILON)
 #define QWEIGHT_TOL ((ttd_qreal)1e-14)
+#endif
+#ifdef TTD_REF_FLOAT128
+#define QSQRT qsqrt
+#else
+#define QSQRT sqrtl
 #endif
 
 /// A system is singular when its determinant is below this multiple of eps times the product
@@ -57,6 +59,25 @@ static qv3 qv_cross(qv3 a, qv3 b)
     qv3 r = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
     return r;
 }
+#ifdef TTD_REF_FLOAT128
+/// sqrt in __float128 without libquadmath: scale by an even power of two into double's
+/// comfortable range, start from the double sqrt (53 bits) and take two Newton steps (each
+/// doubles the correct bits: 106, then past 113); the scaling is exact.
+static ttd_qreal qsqrt(ttd_qreal x)
+{
+    if (!(x > 0)) return x == 0 ? x : (ttd_qreal)NAN;
+    if (x - x != 0) return x; /* infinity */
+    ttd_qreal up = 1;
+    const ttd_qreal big = (ttd_qreal)0x1p600, small = (ttd_qreal)0x1p-600;
+    while (x > big) { x *= small; up *= (ttd_qreal)0x1p300; }
+    while (x < small) { x *= big; up *= (ttd_qreal)0x1p-300; }
+    ttd_qreal y = (ttd_qreal)sqrt((double)x);
+    y = (y + x / y) / 2;
+    y = (y + x / y) / 2;
+    return y * up;
+}
+#endif
+
 static ttd_qreal qv_norm(qv3 a) { return QSQRT(qv_dot(a, a)); }
 static ttd_qreal qabs(ttd_qreal x) { return x < 0 ? -x : x; }
 
@@ -172,12 +193,16 @@ static qv3 combine(const double *tri, const ttd_qreal w[3])
 
 const char *ttd_ref_precision(void)
 {
-#ifdef TTD_HAVE_QUADMATH
+#if defined(TTD_REF_FLOAT128)
     return "__float128";
+#elif LDBL_MANT_DIG >= 113
+    return "long double (IEEE quad)";
 #else
-    return "long double (libquadmath not found: weaker reference)";
+    return "long double (64-bit significand: weaker reference)";
 #endif
 }
+
+double ttd_ref_epsilon(void) { return (double)QEPS / 2; }
 
 void ttd_ref_distance(const double s[9], const double t[9], ttd_ref_result *out)
 {

@@ -14,11 +14,11 @@
  * a lower-dimensional pair that is enumerated too. So no tolerance decides the answer except
  * the singularity test, which is relative and set far below any tested angle.
  *
- * Arithmetic is __float128 (113-bit significand) when TTD_HAVE_QUADMATH is defined: the
+ * Arithmetic is __float128 or an IEEE-quad long double (113-bit significand) where available: the
  * difference of two doubles within 2^60 of each other is then exact, a product of two such is
  * exact, so cross products are correctly rounded and the distance carries ~1e-30 relative
- * error on every family the tests use. Without libquadmath it falls back to long double
- * (64-bit significand on x86), a weaker reference: ttd_ref_precision() says which.
+ * error on every family the tests use. Elsewhere it falls back to long double (64-bit
+ * significand on x86), a weaker reference: ttd_ref_precision() says which.
  *
  * Each result carries a certificate: p - q defines two parallel planes that separate the
  * triangles, and lower_bound is the distance those planes prove. distance - lower_bound is the
@@ -26,7 +26,13 @@
 #ifndef TTD_TESTS_REF_DISTANCE_H
 #define TTD_TESTS_REF_DISTANCE_H
 
-#ifdef TTD_HAVE_QUADMATH
+#include <float.h>
+
+/* The reference's number type: __float128 where the compiler has it (gcc and clang on
+ * x86-64; its + - * / come from the compiler's runtime, sqrt is ours, so libquadmath is not
+ * needed), else long double, which is IEEE quad on aarch64 Linux and 64-bit extended on x86. */
+#if defined(__SIZEOF_FLOAT128__) && !defined(TTD_REF_FORCE_LONG_DOUBLE)
+#define TTD_REF_FLOAT128 1
 __extension__ typedef __float128 ttd_qreal;
 #else
 typedef long double ttd_qreal;
@@ -45,8 +51,12 @@ typedef struct ttd_ref_result {
     ttd_qreal distance_q; ///< the distance in the reference's precision
 } ttd_ref_result;
 
-/// "__float128" or "long double (libquadmath not found: weaker reference)".
+/// "__float128", "long double (IEEE quad)" or "long double (64-bit significand: weaker reference)".
 const char *ttd_ref_precision(void);
+
+/// The reference's unit roundoff (about 1e-34 in quad, 5e-20 in x86 long double), for tests
+/// whose tolerances follow the reference's precision.
+double ttd_ref_epsilon(void);
 
 /// The reference distance between the triangles s and t, with closest points and certificate.
 void ttd_ref_distance(const double s[9], const double t[9], ttd_ref_result *out);
