@@ -76,7 +76,7 @@ static double ref_point_triangle_scaled(const double x[3], const double tri[9], 
 
 /* ---- the hostile pairs -------------------------------------------------------------------- */
 
-enum { NCASES = 12 };
+enum { NCASES = 14 };
 /* Case c of the double cases; e receives a power-of-two exponent that brings it into the
  * reference's comfortable range (0 if none is needed). */
 static void hostile_case_d(int c, double s[9], double t[9], int *e)
@@ -142,6 +142,18 @@ static void hostile_case_d(int c, double s[9], double t[9], int *e)
         t[1] = 3 * 4.9406564584124654e-324, t[4] = t[1], t[6] = 2 * 4.9406564584124654e-324, t[7] = t[1];
         *e = 1070;
         break;
+    case 11: /* a DBL_MAX-size triangle with a unit triangle inside it, coplanar: distance 0 */
+        s[0] = -DBL_MAX, s[1] = -DBL_MAX, s[2] = 0, s[3] = DBL_MAX, s[4] = -DBL_MAX, s[5] = 0;
+        s[6] = 0, s[7] = DBL_MAX, s[8] = 0;
+        t[2] = t[5] = t[8] = 0;
+        *e = -1020;
+        break;
+    case 12: /* a segment from -DBL_MAX to the origin touching a unit triangle there: distance 0 */
+        memset(s, 0, 9 * sizeof(double));
+        s[0] = -DBL_MAX;
+        t[0] = t[1] = t[2] = 0;
+        *e = -1020;
+        break;
     default: /* an ordinary pair, for comparison inside mixed batches */
         break;
     }
@@ -175,14 +187,24 @@ static int check_result_d(const char *what, int m, const double *s, const double
         print_pair(s, t);
         ENSURE_MSG(0, "%s: p or q off its triangle by %g, %g (allowed %g, reference units)", what, off_p, off_q, allow);
     }
-    if (m != TTD_METHOD_EXACT)
-        return 0;
-    /* The exact method: the distance itself. A true distance beyond DBL_MAX may be +inf. */
-    double d = ldexp(r->distance, e);
+    /* Every method: the distance is finite unless the true one is beyond DBL_MAX, and it is
+     * |p - q| (compared in reference units, where |p - q| cannot overflow). */
     if (isinf(r->distance)) {
+        print_pair(s, t);
         ENSURE_MSG(ldexp(ref.distance, -e) > DBL_MAX, "%s: distance inf, reference %g * 2^%d", what, ref.distance, -e);
         return 0;
     }
+    double d = ldexp(r->distance, e), pq = 0;
+    for (int k = 0; k < 3; ++k)
+        pq += (ldexp(r->p[k], e) - ldexp(r->q[k], e)) * (ldexp(r->p[k], e) - ldexp(r->q[k], e));
+    pq = sqrt(pq);
+    if (!(fabs(pq - d) <= allow)) {
+        print_pair(s, t);
+        ENSURE_MSG(0, "%s: distance %.17g but |p - q| %.17g (reference units), allowed %g", what, d, pq, allow);
+    }
+    if (m != TTD_METHOD_EXACT)
+        return 0;
+    /* The exact method: the distance itself. */
     double tol = 1e-12 * scale + ldexp(4 * 4.9406564584124654e-324, e);
     if (!(fabs(d - ref.distance) <= tol)) {
         print_pair(s, t);
@@ -225,7 +247,7 @@ static int hostile_double_cases(void)
 static int hostile_float_cases(void)
 {
     rng_state = 2;
-    for (int c = 0; c < 7; ++c) {
+    for (int c = 0; c < 8; ++c) {
         for (int rep = 0; rep < 8; ++rep) {
             float sf[9], tf[9];
             int e = 0;
@@ -238,7 +260,11 @@ static int hostile_float_cases(void)
                 case 3: sf[k] = a * 0x1p-140f, tf[k] = b * 0x1p-140f, e = 140; break;  /* subnormal */
                 case 4: sf[k] = a * 0x1p-149f * 8, tf[k] = b * 0x1p-149f * 8 + 0x1p-147f, e = 149; break;
                 case 5: sf[k] = 1e30f + a * 1e23f, tf[k] = 1e30f + b * 1e23f, e = -90; break;
-                default: sf[k] = (k % 3) ? 0.0f : -FLT_MAX, tf[k] = (k % 3) ? 0.0f : FLT_MAX, e = -120; break;
+                case 6: sf[k] = (k % 3) ? 0.0f : -FLT_MAX, tf[k] = (k % 3) ? 0.0f : FLT_MAX, e = -120; break;
+                default: /* a FLT_MAX-size triangle with a unit one inside, coplanar */
+                    sf[k] = (float)((const double[]){-1, -1, 0, 1, -1, 0, 0, 1, 0}[k]) * FLT_MAX;
+                    tf[k] = k % 3 == 2 ? 0.0f : b, e = -120;
+                    break;
                 }
             }
             double s[9], t[9];
@@ -279,13 +305,13 @@ static int hostile_float_cases(void)
                         print_pair(s, t);
                         ENSURE_MSG(0, "%s: p or q off by %g, %g (allowed %g)", what, off_p, off_q, allow);
                     }
-                    if (m != TTD_METHOD_EXACT)
-                        continue;
                     if (isinf(r.distance)) {
                         ENSURE_MSG(ldexp(ref.distance, -e) > (double)FLT_MAX, "%s: inf, reference %g", what,
                                    ldexp(ref.distance, -e));
                         continue;
                     }
+                    if (m != TTD_METHOD_EXACT)
+                        continue;
                     double d = ldexp((double)r.distance, e), tol = 1e-5 * scale + 4 * sub;
                     if (!(fabs(d - ref.distance) <= tol)) {
                         print_pair(s, t);
