@@ -14,11 +14,11 @@
 #define TTD_DEFAULT_TOL 1.0e-12
 #define TTD_DEFAULT_MAX_ITERATIONS 99
 
-/* Float kernels clamp the parameters they are given: rho above ~4e3 turns the Hessian's
+/* Float kernels clamp the parameters they are given: rho above ~1e3 turns the Hessian's
  * pivots into rounding noise on nearly degenerate pairs (1/rho^2 also sits below float
  * rounding), and a step tolerance below ~1e-6 of the unit size is below the step's own
  * rounding, so the iteration would never stop. Double kernels use the values as given. */
-#define TTD_FLOAT_RHO_MAX 4096.0
+#define TTD_FLOAT_RHO_MAX 1024.0
 #define TTD_FLOAT_TOL_MIN 1.0e-6
 #define TTD_DOUBLE_RHO_MAX 1.0e300
 #define TTD_DOUBLE_TOL_MIN 0.0

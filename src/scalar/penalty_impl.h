@@ -39,20 +39,26 @@ static real TTD_SFX(pen_norm3)(real x, real y, real z)
     return TTD_LDEXP(TTD_SQRT(x * x + y * y + z * z), e);
 }
 
-/* Clamps the barycentric weights (1 - a - b, a, b) of one triangle into the triangle: negative
- * weights become 0 and the three are renormalised to sum 1 (the sum is >= 1 after clamping,
- * so the division is safe). The penalty iterate violates its constraints by O(1/rho); clamping
+/* Clamps the barycentric weights (c, a, b) of one triangle (c ~ 1 - a - b) into the
+ * triangle: negative weights become 0 and the three are renormalised to sum 1 (the sum is
+ * ~>= 1 after clamping; a zero sum, impossible unless the iterate is garbage, gives vertex 0). The penalty iterate violates its constraints by O(1/rho); clamping
  * moves it back onto the triangle and turns the distance error from O(1/rho) into O(1/rho^2)
  * (docs/penalty-method.md). */
-static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
+static void TTD_SFX(pen_clamp_bary3)(real c, real a, real b, real w[3])
 {
-    real w0 = TTD_SFX(pen_pos)((real)1 - a - b);
-    real w1 = TTD_SFX(pen_pos)(a);
-    real w2 = TTD_SFX(pen_pos)(b);
-    real inv = (real)1 / (w0 + w1 + w2);
-    w[0] = w0 * inv;
+    const real w0 = TTD_SFX(pen_pos)(c);
+    const real w1 = TTD_SFX(pen_pos)(a);
+    const real w2 = TTD_SFX(pen_pos)(b);
+    const real sum = w0 + w1 + w2;
+    const real inv = (real)1 / (sum > 0 ? sum : (real)1);
+    w[0] = sum > 0 ? w0 * inv : (real)1;
     w[1] = w1 * inv;
     w[2] = w2 * inv;
+}
+
+static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
+{
+    TTD_SFX(pen_clamp_bary3)((real)1 - a - b, a, b, w);
 }
 
 /* Fills r from the clamped weights: p and q as convex combinations of the input vertices
@@ -270,7 +276,13 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     const real f23 = 2 * (ED[0] * FD[0] + ED[1] * FD[1] + ED[2] * FD[2]);
     const real f33 = 2 * (FD[0] * FD[0] + FD[1] * FD[1] + FD[2] * FD[2]);
 
-    real a = (real)1 / 3, b = (real)1 / 3, g = (real)1 / 3, d = (real)1 / 3;
+    /* The iterate, with the third barycentric weight of each triangle kept as a variable of
+     * its own (ca = 1 - a - b, cg = 1 - g - d, updated by the same steps). h3 = -ca then has
+     * full precision next to the edge BC: computed as a + b - 1 it is a multiple of the ulp
+     * of 1, and in float a Newton step that should release the constraint (~gradient/rho
+     * long) was rounded away, leaving the iterate stuck on the wrong edge. */
+    real a = (real)1 / 3, b = (real)1 / 3, ca = (real)1 / 3;
+    real g = (real)1 / 3, d = (real)1 / 3, cg = (real)1 / 3;
     real prev_err2 = TTD_REAL_MAX;
     int it = 0, converged = 0;
     while (it < max_it) {
@@ -283,7 +295,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         /* Constraints and their penalty terms; the derivatives of h are the non-zeros +-1
          * only, so they are written into the sums below instead of stored. v_i = max(0,h_i)
          * and m_i = rho when h_i >= 0 (the paper's mask), both by select. */
-        const real h1 = -a, h2 = -b, h3 = a + b - 1, h4 = -g, h5 = -d, h6 = g + d - 1;
+        const real h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
         const real v1 = TTD_SFX(pen_pos)(h1), v2 = TTD_SFX(pen_pos)(h2), v3 = TTD_SFX(pen_pos)(h3);
         const real v4 = TTD_SFX(pen_pos)(h4), v5 = TTD_SFX(pen_pos)(h5), v6 = TTD_SFX(pen_pos)(h6);
         const real m1 = h1 >= 0 ? rho : 0, m2 = h2 >= 0 ? rho : 0, m3 = h3 >= 0 ? rho : 0;
@@ -392,8 +404,10 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         }
         a -= step * d0;
         b -= step * d1;
+        ca += step * (d0 + d1);
         g -= step * d2;
         d -= step * d3;
+        cg += step * (d2 + d3);
         /* A small step does not prove convergence while a penalised constraint is being
          * released: in that direction the Newton step is only ~gradient/rho long, and the
          * long step comes one iteration later. So a small step that releases a constraint
@@ -411,8 +425,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     }
 
     real wp[3], wq[3];
-    TTD_SFX(pen_clamp_bary)(a, b, wp);
-    TTD_SFX(pen_clamp_bary)(g, d, wq);
+    TTD_SFX(pen_clamp_bary3)(ca, a, b, wp);
+    TTD_SFX(pen_clamp_bary3)(cg, g, d, wq);
     /* p - q in the frame, from the clamped weights (A = 0). */
     const real xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const real xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
