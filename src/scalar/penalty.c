@@ -3,6 +3,7 @@
  * and the optimised, safeguarded form (ttd_penalty_pair_*). The code is in penalty_impl.h,
  * written once against common/precision.h. */
 #include <stdint.h>
+#include <string.h>
 
 #include "common/defaults.h"
 #include "scalar/scalar.h"

@@ -18,10 +18,29 @@
  * constraints h = (-a, -b, a+b-1, -g, -d, g+d-1) <= 0. Measurements behind every choice:
  * docs/penalty-method.md. */
 
-/// Branchless max(0, v): a compare and a select, one lane select in the SIMD port.
+/// Branchless max(0, v) as (v + |v|)/2 (exact: doubling and halving are exact, v + |v| is
+/// 2v or 0). The ternary form compiles to a branch in scalar x86 code; the SIMD port uses a
+/// lane max. Arguments are bounded (|v| < REAL_MAX/2) wherever the result is used.
 static inline real TTD_SFX(pen_pos)(real v)
 {
-    return v > 0 ? v : (real)0;
+    return (v + TTD_FABS(v)) * (real)0.5;
+}
+
+/// Branch-free select c ? x : y through the bits (a lane blend in the SIMD port). Scalar x86
+/// without SSE4.1 has no blend, and the compiler turns a ternary on reals into a branch,
+/// which mispredicts on the line search's data.
+static inline real TTD_SFX(pen_sel)(int c, real x, real y)
+{
+#ifdef TTD_PRECISION_DOUBLE
+    uint64_t bx, by, m = (uint64_t)0 - (uint64_t)(c != 0);
+#else
+    uint32_t bx, by, m = (uint32_t)0 - (uint32_t)(c != 0);
+#endif
+    memcpy(&bx, &x, sizeof bx);
+    memcpy(&by, &y, sizeof by);
+    bx = (bx & m) | (by & ~m);
+    memcpy(&x, &bx, sizeof x);
+    return x;
 }
 
 /// |v| of a 3-vector without overflow or underflow in the squares (power-of-two scaling).
@@ -62,12 +81,10 @@ static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
 }
 
 /* Fills r from the clamped weights: p and q as convex combinations of the input vertices
- * (no overflow, on the triangle up to rounding), the feature bits, and the distance
- * computed from xy = p - q given by the caller in its own (possibly scaled) frame, times
- * unscale (an exact power of two). */
+ * (no overflow, on the triangle up to rounding), the feature bits, and the distance the
+ * caller computed from p - q in its own frame. */
 static void TTD_SFX(pen_finish)(const real s[9], const real t[9], const real wp[3],
-                                const real wq[3], real xy0, real xy1, real xy2, real unscale,
-                                ttd_result *r)
+                                const real wq[3], real distance, ttd_result *r)
 {
     for (int k = 0; k < 3; ++k) {
         r->p[k] = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
@@ -75,7 +92,7 @@ static void TTD_SFX(pen_finish)(const real s[9], const real t[9], const real wp[
         r->bary_p[k] = wp[k];
         r->bary_q[k] = wq[k];
     }
-    r->distance = TTD_SFX(pen_norm3)(xy0, xy1, xy2) * unscale;
+    r->distance = distance;
     r->feature_p = (uint8_t)((wp[0] > 0) | ((wp[1] > 0) << 1) | ((wp[2] > 0) << 2));
     r->feature_q = (uint8_t)((wq[0] > 0) | ((wq[1] > 0) << 1) | ((wq[2] > 0) << 2));
 }
@@ -199,7 +216,7 @@ void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_p
     for (int k = 0; k < 3; ++k)
         xy[k] = (wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k]) -
                 (wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k]);
-    TTD_SFX(pen_finish)(s, t, wp, wq, xy[0], xy[1], xy[2], 1, r);
+    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_SFX(pen_norm3)(xy[0], xy[1], xy[2]), r);
     r->iterations = (uint16_t)used;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }
@@ -256,6 +273,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         if (e < emin) e = emin;
     }
     const real scale = TTD_LDEXP((real)1, -e);
+    const real unscale = TTD_LDEXP((real)1, e) / pre; /* exact powers of two */
     for (int k = 0; k < 3; ++k) {
         BA[k] *= scale;
         CA[k] *= scale;
@@ -298,8 +316,10 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         const real h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
         const real v1 = TTD_SFX(pen_pos)(h1), v2 = TTD_SFX(pen_pos)(h2), v3 = TTD_SFX(pen_pos)(h3);
         const real v4 = TTD_SFX(pen_pos)(h4), v5 = TTD_SFX(pen_pos)(h5), v6 = TTD_SFX(pen_pos)(h6);
-        const real m1 = h1 >= 0 ? rho : 0, m2 = h2 >= 0 ? rho : 0, m3 = h3 >= 0 ? rho : 0;
-        const real m4 = h4 >= 0 ? rho : 0, m5 = h5 >= 0 ? rho : 0, m6 = h6 >= 0 ? rho : 0;
+        const real m1 = TTD_SFX(pen_sel)(h1 >= 0, rho, 0), m2 = TTD_SFX(pen_sel)(h2 >= 0, rho, 0);
+        const real m3 = TTD_SFX(pen_sel)(h3 >= 0, rho, 0);
+        const real m4 = TTD_SFX(pen_sel)(h4 >= 0, rho, 0), m5 = TTD_SFX(pen_sel)(h5 >= 0, rho, 0);
+        const real m6 = TTD_SFX(pen_sel)(h6 >= 0, rho, 0);
 
         /* Gradient and Hessian assembled row by row into a symmetric Gaussian elimination
          * (only the upper triangle is formed; row k is eliminated as soon as it exists).
@@ -314,7 +334,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real g0 = gf0 + rho * (v3 - v1);
         real H00 = f00 + m1 + m3 + eps;
         const real H01 = f01 + m3, H02 = f02, H03 = f03;
-        H00 = H00 > eps ? H00 : eps;
+        H00 = TTD_SFX(pen_sel)(H00 > eps, H00, eps);
         const real i0 = (real)1 / H00;
         const real l10 = H01 * i0, l20 = H02 * i0, l30 = H03 * i0;
 
@@ -323,7 +343,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real H11 = f11 + m2 + m3 + eps - l10 * H01;
         real H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
         g1 -= l10 * g0;
-        H11 = H11 > eps ? H11 : eps;
+        H11 = TTD_SFX(pen_sel)(H11 > eps, H11, eps);
         const real i1 = (real)1 / H11;
         const real l21 = H12 * i1, l31 = H13 * i1;
 
@@ -332,7 +352,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real H22 = f22 + m4 + m6 + eps - l20 * H02 - l21 * H12;
         real H23 = f23 + m6 - l20 * H03 - l21 * H13;
         g2 -= l20 * g0 + l21 * g1;
-        H22 = H22 > eps ? H22 : eps;
+        H22 = TTD_SFX(pen_sel)(H22 > eps, H22, eps);
         const real i2 = (real)1 / H22;
         const real l32 = H23 * i2;
 
@@ -340,7 +360,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real g3 = gf3 + rho * (v6 - v5);
         real H33 = f33 + m5 + m6 + eps - l30 * H03 - l31 * H13 - l32 * H23;
         g3 -= l30 * g0 + l31 * g1 + l32 * g2;
-        H33 = H33 > eps ? H33 : eps;
+        H33 = TTD_SFX(pen_sel)(H33 > eps, H33, eps);
 
         /* Back substitution: the Newton step dx = H^-1 grad. */
         const real d3 = g3 / H33;
@@ -378,29 +398,37 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
             s5 * TTD_SFX(pen_pos)(h5 - (t) * s5) + s6 * TTD_SFX(pen_pos)(h6 - (t) * s6)))
             const real p0 = TTD_PEN_SLOPE((real)0);
             const real p1 = TTD_PEN_SLOPE((real)1);
-            real lo = 0, plo = p0, hi = 1, phi = p1;
+            step = 1;
+            /* The only branch besides the convergence test: the bracket is needed on a
+             * minority of iterations (docs/penalty-method.md), and it is cheap to skip.
+             * In the SIMD port it becomes "if any active lane has phi'(1) > 0", with the
+             * selects below per lane. A breakpoint outside (0, 1), or inf/NaN from s_i = 0,
+             * fails the "in" test. */
+            if (p1 > 0) {
+                real lo = 0, plo = p0, hi = 1, phi = p1;
 #define TTD_PEN_BREAK(hh, ss)                                                                \
     {                                                                                        \
-        const real tb = (ss) != 0 ? (hh) / (ss) : (real)0;                                   \
-        const int in = tb > 0 && tb < 1;                                                     \
+        const real tb = (hh) / (ss);                                                         \
+        const int in = (tb > 0) & (tb < 1);                                                  \
         const real pb = TTD_PEN_SLOPE(tb);                                                   \
-        const int to_lo = in && pb <= 0 && tb > lo, to_hi = in && pb > 0 && tb < hi;         \
-        lo = to_lo ? tb : lo;                                                                \
-        plo = to_lo ? pb : plo;                                                              \
-        hi = to_hi ? tb : hi;                                                                \
-        phi = to_hi ? pb : phi;                                                              \
+        const int to_lo = in & (pb <= 0) & (tb > lo), to_hi = in & (pb > 0) & (tb < hi);     \
+        lo = TTD_SFX(pen_sel)(to_lo, tb, lo);                                                \
+        plo = TTD_SFX(pen_sel)(to_lo, pb, plo);                                              \
+        hi = TTD_SFX(pen_sel)(to_hi, tb, hi);                                                \
+        phi = TTD_SFX(pen_sel)(to_hi, pb, phi);                                              \
     }
-            TTD_PEN_BREAK(h1, s1) TTD_PEN_BREAK(h2, s2) TTD_PEN_BREAK(h3, s3)
-            TTD_PEN_BREAK(h4, s4) TTD_PEN_BREAK(h5, s5) TTD_PEN_BREAK(h6, s6)
+                TTD_PEN_BREAK(h1, s1) TTD_PEN_BREAK(h2, s2) TTD_PEN_BREAK(h3, s3)
+                TTD_PEN_BREAK(h4, s4) TTD_PEN_BREAK(h5, s5) TTD_PEN_BREAK(h6, s6)
 #undef TTD_PEN_BREAK
+                /* plo <= 0 < phi in exact arithmetic; near convergence both are rounding
+                 * noise, so the fraction is guarded (no 0/0) and clamped into [0, 1]. */
+                const real den = phi - plo;
+                real fr = TTD_SFX(pen_sel)(den > 0, -plo / den, 0);
+                fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
+                fr = TTD_SFX(pen_sel)(fr < 1, fr, 1);
+                step = lo + (hi - lo) * fr;
+            }
 #undef TTD_PEN_SLOPE
-            /* plo <= 0 < phi in exact arithmetic; near convergence both are rounding noise,
-             * so the fraction is guarded (no 0/0) and clamped into [0, 1]. */
-            const real den = phi - plo;
-            real fr = den > 0 ? -plo / den : (real)0;
-            fr = fr > 0 ? fr : (real)0;
-            fr = fr < 1 ? fr : (real)1;
-            step = p1 > 0 ? lo + (hi - lo) * fr : (real)1;
         }
         a -= step * d0;
         b -= step * d1;
@@ -413,12 +441,12 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * long step comes one iteration later. So a small step that releases a constraint
          * (h_i >= 0 before, < 0 after) converges only when the step before it was small
          * too (a constraint whose multiplier is ~0 may flip on rounding noise). */
-        const int released = (h1 >= 0 && h1 + step * d0 < 0) | (h2 >= 0 && h2 + step * d1 < 0) |
-                             (h3 >= 0 && h3 - step * (d0 + d1) < 0) | (h4 >= 0 && h4 + step * d2 < 0) |
-                             (h5 >= 0 && h5 + step * d3 < 0) | (h6 >= 0 && h6 - step * (d2 + d3) < 0);
+        const int released = ((h1 >= 0) & (h1 + step * d0 < 0)) | ((h2 >= 0) & (h2 + step * d1 < 0)) |
+                             ((h3 >= 0) & (h3 - step * (d0 + d1) < 0)) | ((h4 >= 0) & (h4 + step * d2 < 0)) |
+                             ((h5 >= 0) & (h5 + step * d3 < 0)) | ((h6 >= 0) & (h6 - step * (d2 + d3) < 0));
         const int small_prev = prev_err2 < tol2;
         prev_err2 = err2;
-        if (err2 < tol2 && (!released || small_prev)) {
+        if ((err2 < tol2) & ((!released) | small_prev)) {
             converged = 1;
             break;
         }
@@ -431,7 +459,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     const real xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const real xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
     const real xy2 = wp[1] * BA[2] + wp[2] * CA[2] - DA[2] - wq[1] * ED[2] - wq[2] * FD[2];
-    TTD_SFX(pen_finish)(s, t, wp, wq, xy0, xy1, xy2, TTD_LDEXP((real)1, e) / pre, r);
+    /* |p - q| in the frame (unit size: no overflow), back to the input's scale exactly. */
+    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_SQRT(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * unscale, r);
     r->iterations = (uint16_t)it;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }
