@@ -289,6 +289,13 @@ static int penalty_extreme_magnitudes(void)
     ENSURE(!isnan(r.distance) && !isnan(r.p[0]) && !isnan(r.q[2]) && !isnan(r.bary_p[1]));
     ttd_penalty_ref_pair_d(s, t, &default_params, &r);
     ENSURE(!isnan(r.distance) && !isnan(r.p[0]) && !isnan(r.q[2]) && !isnan(r.bary_p[1]));
+    /* float coordinates next to FLT_MAX, the same triangle twice: distance 0, not 0 * inf */
+    const float big[9] = {0x1p127f, 0, 0x1p126f, 0, 0, 0x1p127f, 0, 0x1p126f, 0};
+    ttd_result_f rb;
+    ttd_penalty_pair_f(big, big, &default_params, &rb);
+    ENSURE(rb.distance == 0 && !isnan(rb.p[0]));
+    ttd_barrier_pair_f(big, big, &default_params, &rb);
+    ENSURE(rb.distance == 0 && !isnan(rb.p[0]));
     const float sf[9] = {1e-40f, 0, 0, 3e-40f, 0, 0, 0, 2e-40f, 0};
     const float tf[9] = {0, 0, 1e-40f, 1e-40f, 1e-40f, 2e-40f, 0, 1e-40f, 3e-40f};
     ttd_result_f rf;

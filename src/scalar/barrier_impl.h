@@ -193,7 +193,7 @@ void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_param
         r->bary_q[k] = wq[k];
         xy[k] = wp[1] * u[0][k] + wp[2] * u[1][k] + wq[1] * u[2][k] + wq[2] * u[3][k] - da[k];
     }
-    r->distance = TTD_SFX(bar_norm3)(xy[0], xy[1], xy[2]) * (TTD_LDEXP((real)1, e) / pre);
+    r->distance = TTD_LDEXP(TTD_SFX(bar_norm3)(xy[0], xy[1], xy[2]), e) / pre; /* no 0 * inf */
     r->feature_p = (uint8_t)((wp[0] > 0) | ((wp[1] > 0) << 1) | ((wp[2] > 0) << 2));
     r->feature_q = (uint8_t)((wq[0] > 0) | ((wq[1] > 0) << 1) | ((wq[2] > 0) << 2));
     r->iterations = (uint16_t)it;

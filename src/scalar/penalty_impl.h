@@ -273,7 +273,6 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         if (e < emin) e = emin;
     }
     const real scale = TTD_LDEXP((real)1, -e);
-    const real unscale = TTD_LDEXP((real)1, e) / pre; /* exact powers of two */
     for (int k = 0; k < 3; ++k) {
         BA[k] *= scale;
         CA[k] *= scale;
@@ -459,8 +458,11 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     const real xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const real xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
     const real xy2 = wp[1] * BA[2] + wp[2] * CA[2] - DA[2] - wq[1] * ED[2] - wq[2] * FD[2];
-    /* |p - q| in the frame (unit size: no overflow), back to the input's scale exactly. */
-    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_SQRT(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * unscale, r);
+    /* |p - q| in the frame (unit size: no overflow), back to the input's scale exactly: by
+     * 2^e first, then by 1/pre (2^(e+4) alone can overflow next to REAL_MAX, and 0 * inf
+     * would be NaN; a distance beyond REAL_MAX is inf, honestly). */
+    const real dist_frame = TTD_SQRT(xy0 * xy0 + xy1 * xy1 + xy2 * xy2);
+    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_LDEXP(dist_frame, e) / pre, r);
     r->iterations = (uint16_t)it;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }
