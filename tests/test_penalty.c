@@ -86,6 +86,9 @@ static int check_result_d(const double s[9], const double t[9], const ttd_result
     }
     ENSURE_NEAR(sp, 1.0, 4 * DBL_EPSILON);
     ENSURE_NEAR(sq, 1.0, 4 * DBL_EPSILON);
+    /* feature bits: vertex i is set exactly when its weight is non-zero */
+    ENSURE(r->feature_p == ((r->bary_p[0] > 0) | ((r->bary_p[1] > 0) << 1) | ((r->bary_p[2] > 0) << 2)));
+    ENSURE(r->feature_q == ((r->bary_q[0] > 0) | ((r->bary_q[1] > 0) << 1) | ((r->bary_q[2] > 0) << 2)));
     double dx = r->p[0] - r->q[0], dy = r->p[1] - r->q[1], dz = r->p[2] - r->q[2];
     ENSURE_NEAR(sqrt(dx * dx + dy * dy + dz * dz), r->distance, tol * mag + tol * r->distance);
     return 0;
