@@ -76,7 +76,7 @@ static double ref_point_triangle_scaled(const double x[3], const double tri[9], 
 
 /* ---- the hostile pairs -------------------------------------------------------------------- */
 
-enum { NCASES = 14 };
+enum { NCASES = 15 };
 /* Case c of the double cases; e receives a power-of-two exponent that brings it into the
  * reference's comfortable range (0 if none is needed). */
 static void hostile_case_d(int c, double s[9], double t[9], int *e)
@@ -152,6 +152,13 @@ static void hostile_case_d(int c, double s[9], double t[9], int *e)
         memset(s, 0, 9 * sizeof(double));
         s[0] = -DBL_MAX;
         t[0] = t[1] = t[2] = 0;
+        *e = -1020;
+        break;
+    case 13: /* a segment at DBL_MAX height (found by fuzz_batch): q rounded past DBL_MAX to inf */
+        for (int k = 0; k < 9; ++k)
+            t[k] = DBL_MAX;
+        t[0] = 0;
+        s[2] = -0x1p1022;
         *e = -1020;
         break;
     default: /* an ordinary pair, for comparison inside mixed batches */
