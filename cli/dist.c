@@ -265,7 +265,7 @@ int ttd_cli_dist(int argc, char **argv)
                 for (int k = 0; k < 18; ++k)
                     if (fabs(v[k]) > (double)FLT_MAX) {
                         kind = TTD_LINE_ERROR;
-                        snprintf(err, sizeof err, "number %d is out of float range: %g", k + 1, v[k]);
+                        snprintf(err, sizeof err, "field %d is out of float range: %g", k + 1, v[k]);
                         break;
                     }
             }

@@ -123,12 +123,12 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], 
         double v = strtod(p, &stop);
         if (stop == p || (stop < end && !ttd_is_blank(*stop))) {
             ttd_quote(p, end, tok, sizeof tok);
-            snprintf(err, errsize, "number %d is not a number: '%s'", count + 1, tok);
+            snprintf(err, errsize, "field %d is not a number: '%s'", count + 1, tok);
             return TTD_LINE_ERROR;
         }
         if (!isfinite(v)) {
             ttd_quote(p, end, tok, sizeof tok);
-            snprintf(err, errsize, "number %d is %s: '%s'", count + 1,
+            snprintf(err, errsize, "field %d is %s: '%s'", count + 1,
                      errno == ERANGE ? "out of range" : "not finite", tok);
             return TTD_LINE_ERROR;
         }
