@@ -278,7 +278,7 @@ int ttd_cli_dist(int argc, char **argv)
                 ++bad_lines;
                 /* A NaN pair: the engine flags it and its output line reads nan. */
                 for (int k = 0; k < 18; ++k)
-                    v[k] = NAN;
+                    v[k] = (double)NAN;
             }
             for (int k = 0; k < 9; ++k) {
                 b->s[9 * n + k] = v[k];
