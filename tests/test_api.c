@@ -440,6 +440,27 @@ static int nonfinite_pairs_flagged(void)
     return 0;
 }
 
+/* The largest and smallest finite values are finite: never flagged as NaN/inf. */
+static int finite_extremes_not_flagged(void)
+{
+    static const double edge[] = {DBL_MAX, -DBL_MAX, DBL_MIN, 4.9406564584124654e-324, -0.0};
+    for (size_t c = 0; c < sizeof edge / sizeof edge[0]; ++c) {
+        random_pairs(3, S, T);
+        S[9 + 4] = edge[c];
+        T[18 + 8] = edge[c];
+        ENSURE(computed(ttd_batch_d(NULL, 3, S, T, NULL, R)));
+        for (int i = 0; i < 3; ++i)
+            ENSURE(!(R[i].flags & TTD_PAIR_NONFINITE));
+        to_float(27, S, Sf);
+        to_float(27, T, Tf);
+        Sf[9 + 4] = Tf[18 + 8] = c < 2 ? (c ? -FLT_MAX : FLT_MAX) : (float)edge[c];
+        ENSURE(computed(ttd_batch_f(NULL, 3, Sf, Tf, NULL, Rf)));
+        for (int i = 0; i < 3; ++i)
+            ENSURE(!(Rf[i].flags & TTD_PAIR_NONFINITE));
+    }
+    return 0;
+}
+
 /* Huge and tiny coordinates: finite results (squared distances would overflow/underflow). */
 static int extreme_magnitudes(void)
 {
@@ -665,6 +686,7 @@ int main(int argc, char **argv)
     RUN_TEST(names_and_version);
     RUN_TEST(batch_matches_pairs);
     RUN_TEST(nonfinite_pairs_flagged);
+    RUN_TEST(finite_extremes_not_flagged);
     RUN_TEST(extreme_magnitudes);
     RUN_TEST(unaligned_pointers);
     RUN_TEST(threads_identical);
