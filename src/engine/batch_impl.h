@@ -202,7 +202,8 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
         memcpy(j->results + i0 * sizeof(ttd_result), sc->res, m * sizeof(ttd_result));
 }
 
-/* Runs the blocks and turns the bits into a status. */
+/* Runs the blocks and turns the bits into a status. The caller set n, the inputs (s/t or
+ * m1/m2/pairs) and the outputs; everything else is set here. */
 static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjob) *j)
 {
     j->fn = cfg->row->TTD_ROW_COL[cfg->method];
@@ -210,21 +211,23 @@ static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjo
         j->fn = ttd_kernels_scalar.TTD_ROW_COL[cfg->method];
     j->prm = &cfg->params;
     j->need_flags = cfg->method != TTD_METHOD_EXACT;
+    j->mesh_check = 0;
     j->dist_aligned = ((uintptr_t)j->distance % _Alignof(real)) == 0;
     j->res_aligned = ((uintptr_t)j->results % _Alignof(ttd_result)) == 0;
     atomic_init(&j->bits, 0u);
-    for (int w = 0; w < TTD_MAX_WORKERS; ++w)
-        j->scratch[w] = NULL;
 
     const size_t nblocks = (j->n + TTD_BLOCK_PAIRS - 1) / TTD_BLOCK_PAIRS;
+    const int workers = ttd_parallel_workers(nblocks, cfg->threads);
+    for (int w = 0; w < workers; ++w)
+        j->scratch[w] = NULL;
     if (j->m1 != NULL) {
         j->mesh_check = 1;
-        ttd_parallel_for(nblocks, cfg->threads, TTD_SFX(ttd_block), j);
+        ttd_parallel_for(nblocks, workers, TTD_SFX(ttd_block), j);
         j->mesh_check = 0;
     }
     if (!(atomic_load(&j->bits) & TTD_BATCH_BAD_INDEX))
-        ttd_parallel_for(nblocks, cfg->threads, TTD_SFX(ttd_block), j);
-    for (int w = 0; w < TTD_MAX_WORKERS; ++w)
+        ttd_parallel_for(nblocks, workers, TTD_SFX(ttd_block), j);
+    for (int w = 0; w < workers; ++w)
         free(j->scratch[w]);
     return ttd_batch_status(atomic_load(&j->bits));
 }
@@ -232,11 +235,13 @@ static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjo
 ttd_status TTD_SFX(ttd_engine_batch)(const ttd_engine_config *cfg, size_t n, const real *s,
                                      const real *t, real *distance, ttd_result *results)
 {
-    TTD_SFX(ttd_bjob) j = {0};
+    TTD_SFX(ttd_bjob) j;
     j.n = n;
     j.s = (const unsigned char *)s;
     j.t = (const unsigned char *)t;
     j.in_aligned = ((uintptr_t)s % _Alignof(real)) == 0 && ((uintptr_t)t % _Alignof(real)) == 0;
+    j.m1 = j.m2 = NULL;
+    j.pairs = NULL;
     j.distance = (unsigned char *)distance;
     j.results = (unsigned char *)results;
     return TTD_SFX(ttd_run)(cfg, &j);
@@ -246,8 +251,10 @@ ttd_status TTD_SFX(ttd_engine_mesh)(const ttd_engine_config *cfg, const TTD_SFX(
                                     const TTD_SFX(ttd_mesh) *m2, size_t n, const uint32_t *pairs,
                                     real *distance, ttd_result *results)
 {
-    TTD_SFX(ttd_bjob) j = {0};
+    TTD_SFX(ttd_bjob) j;
     j.n = n;
+    j.s = j.t = NULL;
+    j.in_aligned = 1;
     j.m1 = m1;
     j.m2 = m2;
     j.pairs = (const unsigned char *)pairs;

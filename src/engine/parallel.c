@@ -46,13 +46,14 @@ int ttd_parallel_cores(void)
 
 int ttd_parallel_workers(size_t nblocks, int threads)
 {
+    /* Small batches first: they never ask the OS for the core count (a file read on Linux). */
+    size_t by_work = nblocks / TTD_MIN_BLOCKS_PER_WORKER;
+    if (by_work < 2 || threads == 1)
+        return 1;
     size_t w = threads > 0 ? (size_t)threads : (size_t)ttd_parallel_cores();
     if (w > TTD_MAX_WORKERS)
         w = TTD_MAX_WORKERS;
-    size_t by_work = nblocks / TTD_MIN_BLOCKS_PER_WORKER;
-    if (w > by_work)
-        w = by_work;
-    return w < 1 ? 1 : (int)w;
+    return (int)(w < by_work ? w : by_work);
 }
 
 void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx)
