@@ -19,7 +19,7 @@
 
 /* Accepted ranges of the iterative methods' parameters (wide: the methods run on the pair
  * scaled to unit size, so these bound nonsense, not taste). */
-#define TTD_RHO_MAX 1e30
+#define TTD_RHO_MAX 1e300
 #define TTD_TOL_MAX 1.0
 
 #define TTD_STR2(x) #x
