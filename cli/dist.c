@@ -46,8 +46,9 @@ static const char ttd_dist_usage[] =
     "  --threads N       worker threads, 0 = every core (default)\n"
     "\n"
     "A bad line (not 18 finite numbers) gets a message FILE:LINE on standard error and the output\n"
-    "line 'nan'; reading goes on. Exit status: 0 all pairs computed, 1 some line bad or an I/O\n"
-    "error, 2 bad options.\n";
+    "line 'nan'; reading goes on. Pairs an iterative method did not converge on are printed as\n"
+    "computed (points on their triangles) with one warning at the end. Exit status: 0 all pairs\n"
+    "computed, 1 some line bad or an I/O error, 2 bad options.\n";
 
 typedef struct ttd_dist_args {
     ttd_options opt;
