@@ -311,7 +311,7 @@ int ttd_cli_dist(int argc, char **argv)
     if (progress && last_report > t0)
         fputs("\r\033[K", stderr);
     if (reader->error) {
-        ttd_cli_error("%s: read error", name);
+        ttd_cli_error("%s: read error: %s", name, strerror(reader->error));
         failed = 1;
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {

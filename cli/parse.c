@@ -2,6 +2,8 @@
 /* The line reader and the pair-line parser of cli/parse.h. Everything is bounded: a line
  * is at most TTD_CLI_MAX_LINE bytes in memory however long it is in the file, and bytes that
  * are not part of a number (binary garbage, NUL) end the parse with a message naming them. */
+#define _POSIX_C_SOURCE 200809L
+
 #include "parse.h"
 
 #include <errno.h>
@@ -26,11 +28,12 @@ static int ttd_reader_fill(ttd_line_reader *r)
     if (r->eof)
         return 0;
     r->pos = 0;
+    errno = 0;
     r->len = fread(r->buf, 1, sizeof r->buf, r->f);
     if (r->len == 0) {
         r->eof = 1;
         if (ferror(r->f))
-            r->error = 1;
+            r->error = errno != 0 ? errno : EIO;
         return 0;
     }
     return 1;

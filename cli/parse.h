@@ -17,7 +17,7 @@ typedef struct ttd_line_reader {
     FILE *f;
     size_t pos, len;                       ///< unread bytes of buf are [pos, len)
     int eof;
-    int error;                             ///< a read error happened (ferror)
+    int error;                             ///< errno of a read error (ferror), else 0
     unsigned long long line_no;            ///< number of the line last returned, from 1
     char buf[1 << 16];
     char line[TTD_CLI_MAX_LINE + 1];       ///< the line last returned, NUL-terminated

@@ -81,6 +81,11 @@ pass binary_garbage
 [ $? -eq 1 ] && grep -q "no-such-file" "$DIR/err" || fail "missing file"
 pass missing_file
 
+# A directory opens but does not read: status 1 and a read error, not a crash or a hang.
+"$TTD" dist "$DIR" > /dev/null 2> "$DIR/err"
+[ $? -eq 1 ] && grep -q "read error" "$DIR/err" || fail "directory: $(cat "$DIR/err")"
+pass directory_as_file
+
 # Bad options: status 2 and a message, before any input is read.
 printf '%s\n' "$GOOD" > "$DIR/good.txt"
 for opts in "--method nope" "--precision half" "--isa nope" "--threads -1" "--threads x" \
