@@ -61,6 +61,18 @@ rc=$?
 grep -q '^ttd: <stdin>:4: expected 18 numbers, found 3' "$DIR/err" || fail "stdin: $(cat "$DIR/err")"
 pass stdin_line_numbers
 
+# Bad lines at the streaming block boundary (4096 pairs): each keeps its place in the output
+# and its own line number (comments in between shift line numbers, not output lines).
+awk 'BEGIN { print "# head"; for (i = 1; i <= 9000; i++) {
+       if (i == 4096 || i == 4097 || i == 8192) print "1 2 3"; else printf "0 0 0 1 0 0 0 1 0 0 0 %d 1 0 %d 0 1 %d\n", i, i, i
+       if (i % 1000 == 0) print "# every thousand" } }' > "$DIR/blocks.txt"
+"$TTD" dist --threads 2 "$DIR/blocks.txt" > "$DIR/out" 2> "$DIR/err"
+[ $? -eq 1 ] || fail "block boundary: exit status"
+awk '{ want = (NR == 4096 || NR == 4097 || NR == 8192) ? "nan" : NR; if ($1 != want) { print NR ": " $1; exit 1 } }
+     END { if (NR != 9000) { print NR " lines"; exit 1 } }' "$DIR/out" || fail "block boundary output"
+for l in 4101 4102 8201; do grep -q "blocks.txt:$l: expected 18 numbers, found 3" "$DIR/err" || fail "block boundary: no line $l in $(cat "$DIR/err")"; done
+pass block_boundary
+
 # A truncated last line without newline.
 printf '%s\n0 0 0 1 0' "$GOOD" > "$DIR/trunc.txt"
 "$TTD" dist "$DIR/trunc.txt" > "$DIR/out" 2> "$DIR/err"
