@@ -282,10 +282,13 @@ int ttd_cli_dist(int argc, char **argv)
                     v[k] = (double)NAN;
             }
             for (int k = 0; k < 9; ++k) {
-                b->s[9 * n + k] = v[k];
-                b->t[9 * n + k] = v[9 + k];
-                b->sf[9 * n + k] = (float)v[k];
-                b->tf[9 * n + k] = (float)v[9 + k];
+                if (a.use_float) {
+                    b->sf[9 * n + k] = (float)v[k];
+                    b->tf[9 * n + k] = (float)v[9 + k];
+                } else {
+                    b->s[9 * n + k] = v[k];
+                    b->t[9 * n + k] = v[9 + k];
+                }
             }
             ++n;
         }
