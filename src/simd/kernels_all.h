@@ -9,6 +9,8 @@
 #include "common/precision.h"
 #include "simd/lanes_precision.h"
 
+#include "simd/kernel_common.h"
+#include "simd/kernel_penalty_ref.h"
 #include "simd/probe_impl.h"
 
 #include "simd/lanes_precision_end.h"
@@ -20,6 +22,7 @@
 #define TTD_ISA_ROW(isa_enum)                                                                  \
     {                                                                                          \
         .isa = (isa_enum), .lanes_f = TTDW_LANES_F, .lanes_d = TTDW_LANES_D,                   \
-        .d = {NULL}, .f = {NULL},                                                              \
+        .d = {[TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d},                          \
+        .f = {[TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f},                          \
     }
 #endif
