@@ -182,3 +182,23 @@ static int TTD_SFX(check_transpose)(const char *isa, TTD_SFX(probe_fn) probe, ui
     }
     return 0;
 }
+
+#ifdef TTD_PRECISION_FLOAT
+/* f2d_lo/f2d_hi/d2f: every float lane goes to double and comes back in its own lane; the
+ * probe multiplies by 2^100 and 2^-100 in between, which would overflow in float. */
+static int check_widen_f(const char *isa, TTD_SFX(probe_fn) probe, uint64_t *st)
+{
+    real z[LANES_MAXW] = {0}, out[LANES_MAXW];
+    const int W = probe(TTDW_OP_ZERO, z, z, z, out);
+    for (int trial = 0; trial < 200; ++trial) {
+        real a[LANES_MAXW];
+        for (int i = 0; i < W; ++i)
+            a[i] = TTD_SFX(interesting)(st);
+        ENSURE(probe(TTDW_OP_WIDEN, a, z, z, out) == W);
+        for (int i = 0; i < W; ++i)
+            ENSURE_MSG(TTD_SFX(same)(out[i], a[i]), "%s widen: lane %d: %.9g came back as %.9g", isa, i,
+                       (double)a[i], (double)out[i]);
+    }
+    return 0;
+}
+#endif

@@ -99,6 +99,7 @@ static int lanes_every_isa(void)
             continue;
         }
         uint64_t st = 0x1234u + (uint64_t)ran;
+        double z[16] = {0}, zo[16];
         char name[32];
         snprintf(name, sizeof name, "%s double", p->name);
         ENSURE(check_lane_ops_d(name, p->d, p->has_fma, &st, 400) == 0);
@@ -108,6 +109,8 @@ static int lanes_every_isa(void)
         ENSURE(check_lane_ops_f(name, p->f, p->has_fma, &st, 400) == 0);
         ENSURE(check_reductions_f(name, p->f, &st, 200) == 0);
         ENSURE(check_transpose_f(name, p->f, &st) == 0);
+        ENSURE(check_widen_f(name, p->f, &st) == 0);
+        ENSURE(p->d(TTDW_OP_WIDEN, z, z, z, zo) == -1);
         printf("  %s: every lane op, both precisions\n", p->name);
         ++ran;
     }

@@ -11,6 +11,7 @@
 
 #include "simd/kernel_common.h"
 #include "simd/kernel_penalty_ref.h"
+#include "simd/kernel_exact.h"
 #include "simd/probe_impl.h"
 
 #include "simd/lanes_precision_end.h"
@@ -22,7 +23,9 @@
 #define TTD_ISA_ROW(isa_enum)                                                                  \
     {                                                                                          \
         .isa = (isa_enum), .lanes_f = TTDW_LANES_F, .lanes_d = TTDW_LANES_D,                   \
-        .d = {[TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d},                          \
-        .f = {[TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f},                          \
+        .d = {[TTD_METHOD_EXACT] = kernel_exact_d,                                             \
+              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d},                          \
+        .f = {[TTD_METHOD_EXACT] = kernel_exact_f,                                             \
+              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f},                          \
     }
 #endif

@@ -32,6 +32,8 @@
  *   sel(m, a, b)       lane i = m_i ? a_i : b_i
  *   mand mor mandnot(a, b) (= a & ~b) mnot(a); mtrue(); mfirst(k) = lanes 0..k-1 set
  *   any(m) all(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
+ *   f2d_lo(vf), f2d_hi(vf) -> vd   float lanes 0..W_d-1 / W_d..W_f-1 widened (W_f = 2 W_d
+ *                      on every ISA); d2f(lo, hi) -> vf narrows back, rounding to nearest
  *   load_aos9(p, out[9])  transposition: p holds W triangles of 9 reals each, the user's
  *                      layout (triangle i at p + 9i, any alignment); out[k] lane i = p[9i + k]
  *   store_soa(in, k, out)  the reverse for k <= 16 vectors: out[k*i + j] = in[j] lane i

@@ -77,6 +77,14 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)_mm256_movemas
 static inline int ttdw_any_f(ttdw_mf m) { return !_mm256_testz_si256(m, m); }
 static inline int ttdw_all_f(ttdw_mf m) { return ttdw_mbits_f(m) == 0xFFu; }
 
+/* ---- precision conversion (float lanes = 2 x double lanes) ---- */
+static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm256_cvtps_pd(_mm256_castps256_ps128(a)); }
+static inline ttdw_vd ttdw_f2d_hi(ttdw_vf a) { return _mm256_cvtps_pd(_mm256_extractf128_ps(a, 1)); }
+static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi)
+{
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(lo)), _mm256_cvtpd_ps(hi), 1);
+}
+
 /* ---- transposition ---- */
 
 /* 4x4 transpose of rows r0..r3 (in place). */

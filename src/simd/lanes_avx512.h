@@ -80,6 +80,14 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)m; }
 static inline int ttdw_any_f(ttdw_mf m) { return m != 0; }
 static inline int ttdw_all_f(ttdw_mf m) { return m == 0xFFFFu; }
 
+/* ---- precision conversion (float lanes = 2 x double lanes) ---- */
+static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm512_cvtps_pd(_mm512_castps512_ps256(a)); }
+static inline ttdw_vd ttdw_f2d_hi(ttdw_vf a) { return _mm512_cvtps_pd(_mm512_extractf32x8_ps(a, 1)); }
+static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi)
+{
+    return _mm512_insertf32x8(_mm512_castps256_ps512(_mm512_cvtpd_ps(lo)), _mm512_cvtpd_ps(hi), 1);
+}
+
 /* ---- transposition ---- */
 #define TTDW_HAVE_LOAD_AOS9_D 1
 static inline void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])

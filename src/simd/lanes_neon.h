@@ -92,6 +92,11 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m)
 static inline int ttdw_any_f(ttdw_mf m) { return vmaxvq_u32(m) != 0; }
 static inline int ttdw_all_f(ttdw_mf m) { return vminvq_u32(m) != 0; }
 
+/* ---- precision conversion (float lanes = 2 x double lanes) ---- */
+static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return vcvt_f64_f32(vget_low_f32(a)); }
+static inline ttdw_vd ttdw_f2d_hi(ttdw_vf a) { return vcvt_high_f64_f32(a); }
+static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi) { return vcvt_high_f32_f64(vcvt_f32_f64(lo), hi); }
+
 /* ---- transposition ---- */
 #define TTDW_HAVE_LOAD_AOS9_F 1
 static inline void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])

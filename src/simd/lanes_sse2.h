@@ -88,6 +88,11 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)_mm_movemask_p
 static inline int ttdw_any_f(ttdw_mf m) { return ttdw_mbits_f(m) != 0u; }
 static inline int ttdw_all_f(ttdw_mf m) { return ttdw_mbits_f(m) == 0xFu; }
 
+/* ---- precision conversion (float lanes = 2 x double lanes) ---- */
+static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm_cvtps_pd(a); }
+static inline ttdw_vd ttdw_f2d_hi(ttdw_vf a) { return _mm_cvtps_pd(_mm_movehl_ps(a, a)); }
+static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi) { return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi)); }
+
 /* ---- transposition ---- */
 #define TTDW_HAVE_LOAD_AOS9_D 1
 static inline void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])

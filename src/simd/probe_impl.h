@@ -49,6 +49,17 @@ int TTD_PROBE_NAME(int op, const real *a, const real *b, const real *c, real *ou
             tr[k] = vloadu(a + k * TTDW_LANES);
         vstore_soa(tr, 9, out);
         return TTDW_LANES;
+    case TTDW_OP_WIDEN:
+#ifdef TTD_PRECISION_FLOAT
+    {
+        /* x 2^100 x 2^-100 is the identity in double and overflows in float */
+        const ttdw_vd up = ttdw_set1_d(0x1p100), down = ttdw_set1_d(0x1p-100);
+        vstoreu(out, ttdw_d2f(ttdw_f2d_lo(va) * up * down, ttdw_f2d_hi(va) * up * down));
+        return TTDW_LANES;
+    }
+#else
+        return -1;
+#endif
     default: return -1;
     }
     vstoreu(out, r);
