@@ -19,18 +19,29 @@ static inline vreal TTD_SFX(kpr_pos)(vreal v)
     return vsel(vgt(v, zero), v, zero);
 }
 
-/* scalar: pen_clamp_bary. Negative weights of (1 - a - b, a, b) become 0, the three are
- * renormalised to sum 1. */
-static inline void TTD_SFX(kpr_clamp_bary)(vreal a, vreal b, vreal w[3])
+/* scalar: pen_pos, (v + |v|) / 2, and pen_clamp_bary3: negative weights of (c, a, b)
+ * become 0 and the three are renormalised to sum 1 (a zero sum gives vertex 0). */
+static inline vreal TTD_SFX(kpr_pos2)(vreal v)
 {
-    const vreal one = vset1((real)1);
-    const vreal w0 = TTD_SFX(kpr_pos)(one - a - b);
-    const vreal w1 = TTD_SFX(kpr_pos)(a);
-    const vreal w2 = TTD_SFX(kpr_pos)(b);
-    const vreal inv = one / (w0 + w1 + w2);
-    w[0] = w0 * inv;
+    return (v + vabs(v)) * vset1((real)0.5);
+}
+
+static inline void TTD_SFX(kpr_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3])
+{
+    const vreal zero = vzero(), one = vset1((real)1);
+    const vreal w0 = TTD_SFX(kpr_pos2)(c), w1 = TTD_SFX(kpr_pos2)(a), w2 = TTD_SFX(kpr_pos2)(b);
+    const vreal sum = w0 + w1 + w2;
+    const vmask pos = vgt(sum, zero);
+    const vreal inv = one / vsel(pos, sum, one);
+    w[0] = vsel(pos, w0 * inv, one);
     w[1] = w1 * inv;
     w[2] = w2 * inv;
+}
+
+/* scalar: pen_clamp_bary(a, b) = pen_clamp_bary3(1 - a - b, a, b) */
+static inline void TTD_SFX(kpr_clamp_bary)(vreal a, vreal b, vreal w[3])
+{
+    TTD_SFX(kpr_clamp_bary3)(vset1((real)1) - a - b, a, b, w);
 }
 
 /* scalar: pen_ref_solve. hes \ gra by Gaussian elimination with partial pivoting, the row
