@@ -183,6 +183,28 @@ static int TTD_SFX(check_transpose)(const char *isa, TTD_SFX(probe_fn) probe, ui
     return 0;
 }
 
+/* expand: the lanes selected by c < 0, in ascending order, take b[0], b[1], ...; the others keep a. */
+static int TTD_SFX(check_expand)(const char *isa, TTD_SFX(probe_fn) probe, uint64_t *st)
+{
+    real z[LANES_MAXW] = {0}, out[LANES_MAXW];
+    const int W = probe(TTDW_OP_ZERO, z, z, z, out);
+    for (int trial = 0; trial < 200; ++trial) {
+        real a[LANES_MAXW], b[LANES_MAXW], c[LANES_MAXW];
+        for (int i = 0; i < W; ++i) {
+            a[i] = TTD_SFX(interesting)(st);
+            b[i] = TTD_SFX(interesting)(st);
+            c[i] = (lanes_rng(st) & 1) ? (real)-1 : (real)1;
+        }
+        ENSURE(probe(TTDW_OP_EXPAND, a, b, c, out) == W);
+        for (int i = 0, j = 0; i < W; ++i) {
+            const real want = c[i] < 0 ? b[j++] : a[i];
+            ENSURE_MSG(TTD_SFX(same)(out[i], want), "%s expand: lane %d got %.9g want %.9g", isa, i,
+                       (double)out[i], (double)want);
+        }
+    }
+    return 0;
+}
+
 #ifdef TTD_PRECISION_FLOAT
 /* f2d_lo/f2d_hi/d2f: every float lane goes to double and comes back in its own lane; the
  * probe multiplies by 2^100 and 2^-100 in between, which would overflow in float. */

@@ -2,13 +2,23 @@
 /* The optimised penalty method, one pair per lane: scalar/penalty_impl.h's ttd_penalty_pair
  * step for step (same operations, same order, so each lane rounds as the scalar code does).
  * Read the two side by side; the scalar code was written to be ported this way (one loop,
- * selects instead of branches).
+ * selects instead of branches). The scalar function is cut in three here: kp_frame (the
+ * frame and hf, before the loop), kp_step (one pass of the loop body) and kp_finish (after
+ * the loop).
  *
- * SPMD shape: the Newton loop runs while any lane is active; a lane leaves when it converges
- * (after its update, as in the scalar `break`) or at max_iterations, and from then on its
- * iterate is frozen by select. The line-search bracket, which the scalar code runs only when
- * phi'(1) > 0, runs here when any active lane has phi'(1) > 0, and its result is selected
- * per lane. */
+ * SPMD shape. A lane's iterate is frozen by select once it has converged (after its update,
+ * as in the scalar `break`) or reached max_iterations. The line-search bracket, which the
+ * scalar code runs only when phi'(1) > 0, runs here when any active lane has phi'(1) > 0, and
+ * its result is selected per lane.
+ *
+ * Lane refill (kernel_penalty). Iteration counts differ between pairs (mean ~4.8, tail to the
+ * cap), and a group of W pairs iterating together runs as long as its slowest pair: lane
+ * occupancy 0.70 at 16 lanes (docs/simd.md). So the block is not cut into fixed groups:
+ * every pair's frame is computed first (full vectors), then each lane takes the next pair of
+ * the block as soon as its own is done (vexpand of the frame into the finished lanes), and the
+ * results are written back by pair index. Each lane still computes exactly what the scalar
+ * code computes for its pair. TTD_PENALTY_REFILL=0 builds the simple fixed-group form
+ * instead, for comparison. */
 
 /* scalar: pen_pos. max(0, v) as (v + |v|) / 2 */
 static inline vreal TTD_SFX(kp_pos)(vreal v)
@@ -29,10 +39,36 @@ static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3]
     w[2] = w2 * inv;
 }
 
-static inline void TTD_SFX(kp_group)(const vreal S[9], const vreal T[9], const ttd_params *prm, vmask active,
-                                     TTD_SFX(kw_out) *o)
+#ifndef TTD_FLOAT_RHO_MAX
+/* Until common/defaults.h carries these (branch penalty): the same values. */
+#define TTD_FLOAT_RHO_MAX 4096.0
+#define TTD_FLOAT_TOL_MIN 1.0e-6
+#define TTD_DOUBLE_RHO_MAX 1.0e300
+#define TTD_DOUBLE_TOL_MIN 0.0
+#endif
+
+/* Per-lane data that does not change during the iteration (scalar: before the loop). */
+typedef struct TTD_SFX(kp_frame) {
+    vreal BA[3], CA[3], DA[3], ED[3], FD[3]; /* the pair in the frame: A at 0, unit size */
+    vreal unscale;                           /* 2^e / pre: back to the input's scale */
+} TTD_SFX(kp_frame);
+#define TTD_KP_FRAME_REALS 16
+
+typedef struct TTD_SFX(kp_hf) {
+    vreal f00, f01, f02, f03, f11, f12, f13, f22, f23, f33;
+} TTD_SFX(kp_hf);
+
+/* The iterate (scalar: a, b, ca, g, d, cg, prev_err2). */
+typedef struct TTD_SFX(kp_state) {
+    vreal a, b, ca, g, d, cg, prev_err2;
+} TTD_SFX(kp_state);
+
+typedef struct TTD_SFX(kp_consts) {
+    vreal rho, tol2, eps;
+} TTD_SFX(kp_consts);
+
+static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
 {
-    const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);
     /* scalar: rho capped and tol floored in float (common/defaults.h) */
 #ifdef TTD_PRECISION_DOUBLE
     const double rho_max = TTD_DOUBLE_RHO_MAX, tol_min = TTD_DOUBLE_TOL_MIN;
@@ -44,25 +80,32 @@ static inline void TTD_SFX(kp_group)(const vreal S[9], const vreal T[9], const t
     const real rho_s = (real)rho_d;
     real eps_s = (real)1 / (rho_s * rho_s);
     eps_s = eps_s > 4 * TTD_REAL_EPS ? eps_s : 4 * TTD_REAL_EPS;
-    const vreal rho = vset1(rho_s), tol2 = vset1((real)(tol_d * tol_d)), eps = vset1(eps_s);
+    TTD_SFX(kp_consts) c;
+    c.rho = vset1(rho_s);
+    c.tol2 = vset1((real)(tol_d * tol_d));
+    c.eps = vset1(eps_s);
+    return c;
+}
 
-    /* Frame: origin at A, scaled by 2^-e (e from frexp of the largest relative coordinate,
-     * at least emin); pre guards the differences near REAL_MAX. */
+/* scalar: the frame. Origin at A, scaled by 2^-e (e from frexp of the largest relative
+ * coordinate, at least emin); pre guards the differences near REAL_MAX. */
+static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_SFX(kp_frame) *F)
+{
+    const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2);
     vreal m0 = zero;
     for (int k = 0; k < 9; ++k)
         m0 = vmax(m0, vmax(vabs(S[k]), vabs(T[k])));
     const vreal pre = vsel(vgt(m0, vset1(TTD_REAL_MAX * (real)0.125)), vset1((real)0.0625), one);
-    vreal BA[3], CA[3], DA[3], ED[3], FD[3];
     vreal size = zero;
     for (int k = 0; k < 3; ++k) {
         const vreal a = S[k] * pre;
-        BA[k] = S[3 + k] * pre - a;
-        CA[k] = S[6 + k] * pre - a;
-        DA[k] = T[k] * pre - a;
-        ED[k] = T[3 + k] * pre - T[k] * pre;
-        FD[k] = T[6 + k] * pre - T[k] * pre;
+        F->BA[k] = S[3 + k] * pre - a;
+        F->CA[k] = S[6 + k] * pre - a;
+        F->DA[k] = T[k] * pre - a;
+        F->ED[k] = T[3 + k] * pre - T[k] * pre;
+        F->FD[k] = T[6 + k] * pre - T[k] * pre;
         const vreal ea = T[3 + k] * pre - a, fa = T[6 + k] * pre - a;
-        size = vmax(size, vmax(vmax(vabs(BA[k]), vabs(CA[k])), vmax(vabs(DA[k]), vmax(vabs(ea), vabs(fa)))));
+        size = vmax(size, vmax(vmax(vabs(F->BA[k]), vabs(F->CA[k])), vmax(vabs(F->DA[k]), vmax(vabs(ea), vabs(fa)))));
     }
     /* e < emin is raised to emin: the same as raising size to 2^(emin-1). For size = 0 the
      * scalar code keeps e = 0; every scaled difference is 0 either way and so is the
@@ -74,182 +117,395 @@ static inline void TTD_SFX(kp_group)(const vreal S[9], const vreal T[9], const t
 #endif
     const vreal half = vpow2(vmax(size, vset1(size_floor))); /* 2^(e-1) */
     const vreal scale = vset1((real)0.5) / half;              /* 2^-e */
-    const vreal unscale = half * two / pre;                   /* 2^e / pre */
+    F->unscale = half * two / pre;                            /* 2^e / pre */
     for (int k = 0; k < 3; ++k) {
-        BA[k] = BA[k] * scale;
-        CA[k] = CA[k] * scale;
-        DA[k] = DA[k] * scale;
-        ED[k] = ED[k] * scale;
-        FD[k] = FD[k] * scale;
+        F->BA[k] = F->BA[k] * scale;
+        F->CA[k] = F->CA[k] * scale;
+        F->DA[k] = F->DA[k] * scale;
+        F->ED[k] = F->ED[k] * scale;
+        F->FD[k] = F->FD[k] * scale;
     }
+}
 
-    /* Hessian of f, symmetric: hf(i,j) = 2 u_i . u_j with u = (BA, CA, -ED, -FD). */
-    const vreal f00 = two * (BA[0] * BA[0] + BA[1] * BA[1] + BA[2] * BA[2]);
-    const vreal f01 = two * (BA[0] * CA[0] + BA[1] * CA[1] + BA[2] * CA[2]);
-    const vreal f02 = mtwo * (BA[0] * ED[0] + BA[1] * ED[1] + BA[2] * ED[2]);
-    const vreal f03 = mtwo * (BA[0] * FD[0] + BA[1] * FD[1] + BA[2] * FD[2]);
-    const vreal f11 = two * (CA[0] * CA[0] + CA[1] * CA[1] + CA[2] * CA[2]);
-    const vreal f12 = mtwo * (CA[0] * ED[0] + CA[1] * ED[1] + CA[2] * ED[2]);
-    const vreal f13 = mtwo * (CA[0] * FD[0] + CA[1] * FD[1] + CA[2] * FD[2]);
-    const vreal f22 = two * (ED[0] * ED[0] + ED[1] * ED[1] + ED[2] * ED[2]);
-    const vreal f23 = two * (ED[0] * FD[0] + ED[1] * FD[1] + ED[2] * FD[2]);
-    const vreal f33 = two * (FD[0] * FD[0] + FD[1] * FD[1] + FD[2] * FD[2]);
+/* scalar: hf, the Hessian of f, symmetric: hf(i,j) = 2 u_i . u_j, u = (BA, CA, -ED, -FD). */
+static inline void TTD_SFX(kp_hf_of)(const TTD_SFX(kp_frame) *F, TTD_SFX(kp_hf) *H)
+{
+    const vreal two = vset1((real)2), mtwo = vset1((real)-2);
+    const vreal *BA = F->BA, *CA = F->CA, *ED = F->ED, *FD = F->FD;
+    H->f00 = two * (BA[0] * BA[0] + BA[1] * BA[1] + BA[2] * BA[2]);
+    H->f01 = two * (BA[0] * CA[0] + BA[1] * CA[1] + BA[2] * CA[2]);
+    H->f02 = mtwo * (BA[0] * ED[0] + BA[1] * ED[1] + BA[2] * ED[2]);
+    H->f03 = mtwo * (BA[0] * FD[0] + BA[1] * FD[1] + BA[2] * FD[2]);
+    H->f11 = two * (CA[0] * CA[0] + CA[1] * CA[1] + CA[2] * CA[2]);
+    H->f12 = mtwo * (CA[0] * ED[0] + CA[1] * ED[1] + CA[2] * ED[2]);
+    H->f13 = mtwo * (CA[0] * FD[0] + CA[1] * FD[1] + CA[2] * FD[2]);
+    H->f22 = two * (ED[0] * ED[0] + ED[1] * ED[1] + ED[2] * ED[2]);
+    H->f23 = two * (ED[0] * FD[0] + ED[1] * FD[1] + ED[2] * FD[2]);
+    H->f33 = two * (FD[0] * FD[0] + FD[1] * FD[1] + FD[2] * FD[2]);
+}
 
-    /* The iterate, third weights kept as variables of their own (scalar: ca, cg). */
+/* scalar: the iterate's start, 1/3 each, and prev_err2 = REAL_MAX (in the lanes of m). */
+static inline void TTD_SFX(kp_init)(TTD_SFX(kp_state) *X)
+{
     const vreal third = vset1((real)1 / 3);
-    vreal a = third, b = third, ca = third, g = third, d = third, cg = third;
-    vreal prev_err2 = vset1(TTD_REAL_MAX);
-    vreal its = zero;
-    vmask converged = mnot(mtrue());
-    for (int it = 1; it <= prm->max_iterations && many(active); ++it) {
-        its = vsel(active, vset1((real)it), its);
-        /* XY = X - Y in the frame (A = 0). */
-        const vreal xy0 = a * BA[0] + b * CA[0] - DA[0] - g * ED[0] - d * FD[0];
-        const vreal xy1 = a * BA[1] + b * CA[1] - DA[1] - g * ED[1] - d * FD[1];
-        const vreal xy2 = a * BA[2] + b * CA[2] - DA[2] - g * ED[2] - d * FD[2];
+    X->a = X->b = X->ca = X->g = X->d = X->cg = third;
+    X->prev_err2 = vset1(TTD_REAL_MAX);
+}
 
-        /* Constraints, penalty terms v_i = max(0, h_i), m_i = rho where h_i >= 0. */
-        const vreal h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
-        const vreal v1 = TTD_SFX(kp_pos)(h1), v2 = TTD_SFX(kp_pos)(h2), v3 = TTD_SFX(kp_pos)(h3);
-        const vreal v4 = TTD_SFX(kp_pos)(h4), v5 = TTD_SFX(kp_pos)(h5), v6 = TTD_SFX(kp_pos)(h6);
-        const vmask a1 = vge(h1, zero), a2 = vge(h2, zero), a3 = vge(h3, zero);
-        const vmask a4 = vge(h4, zero), a5 = vge(h5, zero), a6 = vge(h6, zero);
-        const vreal m1 = vsel(a1, rho, zero), m2 = vsel(a2, rho, zero), m3 = vsel(a3, rho, zero);
-        const vreal m4 = vsel(a4, rho, zero), m5 = vsel(a5, rho, zero), m6 = vsel(a6, rho, zero);
+static inline void TTD_SFX(kp_start)(TTD_SFX(kp_state) *X, vmask m)
+{
+    const vreal third = vset1((real)1 / 3);
+    X->a = vsel(m, third, X->a);
+    X->b = vsel(m, third, X->b);
+    X->ca = vsel(m, third, X->ca);
+    X->g = vsel(m, third, X->g);
+    X->d = vsel(m, third, X->d);
+    X->cg = vsel(m, third, X->cg);
+    X->prev_err2 = vsel(m, vset1(TTD_REAL_MAX), X->prev_err2);
+}
 
-        /* Gradient and Hessian fused into a symmetric elimination without pivoting (SPD);
-         * a pivot that rounding made <= eps is raised to eps. */
-        const vreal gf0 = two * (BA[0] * xy0 + BA[1] * xy1 + BA[2] * xy2);
-        vreal g0 = gf0 + rho * (v3 - v1);
-        vreal H00 = f00 + m1 + m3 + eps;
-        const vreal H01 = f01 + m3, H02 = f02, H03 = f03;
-        H00 = vsel(vgt(H00, eps), H00, eps);
-        const vreal i0 = one / H00;
-        const vreal l10 = H01 * i0, l20 = H02 * i0, l30 = H03 * i0;
+#ifndef TTD_KP_NOINLINE
+#define TTD_KP_NOINLINE __attribute__((noinline))
+#endif
 
-        const vreal gf1 = two * (CA[0] * xy0 + CA[1] * xy1 + CA[2] * xy2);
-        vreal g1 = gf1 + rho * (v3 - v2);
-        vreal H11 = f11 + m2 + m3 + eps - l10 * H01;
-        const vreal H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
-        g1 = g1 - l10 * g0;
-        H11 = vsel(vgt(H11, eps), H11, eps);
-        const vreal i1 = one / H11;
-        const vreal l21 = H12 * i1, l31 = H13 * i1;
+/* scalar: one pass of the loop body. Updates the active lanes' iterate; returns the active
+ * lanes that converged. */
+static TTD_KP_NOINLINE vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(kp_frame) *F,
+                                     const TTD_SFX(kp_hf) *Hf, TTD_SFX(kp_state) *X, vmask active)
+{
+    const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);
+    const vreal rho = K->rho, tol2 = K->tol2, eps = K->eps;
+    const vreal *BA = F->BA, *CA = F->CA, *DA = F->DA, *ED = F->ED, *FD = F->FD;
+    const vreal f00 = Hf->f00, f01 = Hf->f01, f02 = Hf->f02, f03 = Hf->f03, f11 = Hf->f11;
+    const vreal f12 = Hf->f12, f13 = Hf->f13, f22 = Hf->f22, f23 = Hf->f23, f33 = Hf->f33;
+    vreal a = X->a, b = X->b, ca = X->ca, g = X->g, d = X->d, cg = X->cg;
+    /* XY = X - Y in the frame (A = 0). */
+    const vreal xy0 = a * BA[0] + b * CA[0] - DA[0] - g * ED[0] - d * FD[0];
+    const vreal xy1 = a * BA[1] + b * CA[1] - DA[1] - g * ED[1] - d * FD[1];
+    const vreal xy2 = a * BA[2] + b * CA[2] - DA[2] - g * ED[2] - d * FD[2];
 
-        const vreal gf2 = mtwo * (ED[0] * xy0 + ED[1] * xy1 + ED[2] * xy2);
-        vreal g2 = gf2 + rho * (v6 - v4);
-        vreal H22 = f22 + m4 + m6 + eps - l20 * H02 - l21 * H12;
-        const vreal H23 = f23 + m6 - l20 * H03 - l21 * H13;
-        g2 = g2 - (l20 * g0 + l21 * g1);
-        H22 = vsel(vgt(H22, eps), H22, eps);
-        const vreal i2 = one / H22;
-        const vreal l32 = H23 * i2;
+    /* Constraints, penalty terms v_i = max(0, h_i), m_i = rho where h_i >= 0. */
+    const vreal h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
+    const vreal v1 = TTD_SFX(kp_pos)(h1), v2 = TTD_SFX(kp_pos)(h2), v3 = TTD_SFX(kp_pos)(h3);
+    const vreal v4 = TTD_SFX(kp_pos)(h4), v5 = TTD_SFX(kp_pos)(h5), v6 = TTD_SFX(kp_pos)(h6);
+    const vmask a1 = vge(h1, zero), a2 = vge(h2, zero), a3 = vge(h3, zero);
+    const vmask a4 = vge(h4, zero), a5 = vge(h5, zero), a6 = vge(h6, zero);
+    const vreal m1 = vsel(a1, rho, zero), m2 = vsel(a2, rho, zero), m3 = vsel(a3, rho, zero);
+    const vreal m4 = vsel(a4, rho, zero), m5 = vsel(a5, rho, zero), m6 = vsel(a6, rho, zero);
 
-        const vreal gf3 = mtwo * (FD[0] * xy0 + FD[1] * xy1 + FD[2] * xy2);
-        vreal g3 = gf3 + rho * (v6 - v5);
-        vreal H33 = f33 + m5 + m6 + eps - l30 * H03 - l31 * H13 - l32 * H23;
-        g3 = g3 - (l30 * g0 + l31 * g1 + l32 * g2);
-        H33 = vsel(vgt(H33, eps), H33, eps);
+    /* Gradient and Hessian fused into a symmetric elimination without pivoting (SPD);
+     * a pivot that rounding made <= eps is raised to eps. */
+    const vreal gf0 = two * (BA[0] * xy0 + BA[1] * xy1 + BA[2] * xy2);
+    vreal g0 = gf0 + rho * (v3 - v1);
+    vreal H00 = f00 + m1 + m3 + eps;
+    const vreal H01 = f01 + m3, H02 = f02, H03 = f03;
+    H00 = vsel(vgt(H00, eps), H00, eps);
+    const vreal i0 = one / H00;
+    const vreal l10 = H01 * i0, l20 = H02 * i0, l30 = H03 * i0;
 
-        /* Back substitution: the Newton step dx = H^-1 grad. */
-        const vreal d3 = g3 / H33;
-        const vreal d2 = (g2 - H23 * d3) * i2;
-        const vreal d1 = (g1 - H12 * d2 - H13 * d3) * i1;
-        const vreal d0 = (g0 - H01 * d1 - H02 * d2 - H03 * d3) * i0;
+    const vreal gf1 = two * (CA[0] * xy0 + CA[1] * xy1 + CA[2] * xy2);
+    vreal g1 = gf1 + rho * (v3 - v2);
+    vreal H11 = f11 + m2 + m3 + eps - l10 * H01;
+    const vreal H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
+    g1 = g1 - l10 * g0;
+    H11 = vsel(vgt(H11, eps), H11, eps);
+    const vreal i1 = one / H11;
+    const vreal l21 = H12 * i1, l31 = H13 * i1;
 
-        /* The step measured on the geometry (paper lines 19-21), squared. */
-        const vreal DX0 = BA[0] * d0 + CA[0] * d1, DX1 = BA[1] * d0 + CA[1] * d1, DX2 = BA[2] * d0 + CA[2] * d1;
-        const vreal DY0 = ED[0] * d2 + FD[0] * d3, DY1 = ED[1] * d2 + FD[1] * d3, DY2 = ED[2] * d2 + FD[2] * d3;
-        const vreal err2 = DX0 * DX0 + DX1 * DX1 + DX2 * DX2 + DY0 * DY0 + DY1 * DY1 + DY2 * DY2;
+    const vreal gf2 = mtwo * (ED[0] * xy0 + ED[1] * xy1 + ED[2] * xy2);
+    vreal g2 = gf2 + rho * (v6 - v4);
+    vreal H22 = f22 + m4 + m6 + eps - l20 * H02 - l21 * H12;
+    const vreal H23 = f23 + m6 - l20 * H03 - l21 * H13;
+    g2 = g2 - (l20 * g0 + l21 * g1);
+    H22 = vsel(vgt(H22, eps), H22, eps);
+    const vreal i2 = one / H22;
+    const vreal l32 = H23 * i2;
 
-        /* Exact line search along -dx (scalar: the phi'(t) bracket). */
-        const vreal s1 = -d0, s2 = -d1, s3 = d0 + d1, s4 = -d2, s5 = -d3, s6 = d2 + d3;
-        const vreal jd0 = DX0 - DY0, jd1 = DX1 - DY1, jd2 = DX2 - DY2;
-        const vreal q = two * (jd0 * jd0 + jd1 * jd1 + jd2 * jd2);
-        const vreal gfd = gf0 * d0 + gf1 * d1 + gf2 * d2 + gf3 * d3;
+    const vreal gf3 = mtwo * (FD[0] * xy0 + FD[1] * xy1 + FD[2] * xy2);
+    vreal g3 = gf3 + rho * (v6 - v5);
+    vreal H33 = f33 + m5 + m6 + eps - l30 * H03 - l31 * H13 - l32 * H23;
+    g3 = g3 - (l30 * g0 + l31 * g1 + l32 * g2);
+    H33 = vsel(vgt(H33, eps), H33, eps);
+
+    /* Back substitution: the Newton step dx = H^-1 grad. */
+    const vreal d3 = g3 / H33;
+    const vreal d2 = (g2 - H23 * d3) * i2;
+    const vreal d1 = (g1 - H12 * d2 - H13 * d3) * i1;
+    const vreal d0 = (g0 - H01 * d1 - H02 * d2 - H03 * d3) * i0;
+
+    /* The step measured on the geometry (paper lines 19-21), squared. */
+    const vreal DX0 = BA[0] * d0 + CA[0] * d1, DX1 = BA[1] * d0 + CA[1] * d1, DX2 = BA[2] * d0 + CA[2] * d1;
+    const vreal DY0 = ED[0] * d2 + FD[0] * d3, DY1 = ED[1] * d2 + FD[1] * d3, DY2 = ED[2] * d2 + FD[2] * d3;
+    const vreal err2 = DX0 * DX0 + DX1 * DX1 + DX2 * DX2 + DY0 * DY0 + DY1 * DY1 + DY2 * DY2;
+
+    /* Exact line search along -dx (scalar: the phi'(t) bracket). */
+    const vreal s1 = -d0, s2 = -d1, s3 = d0 + d1, s4 = -d2, s5 = -d3, s6 = d2 + d3;
+    const vreal jd0 = DX0 - DY0, jd1 = DX1 - DY1, jd2 = DX2 - DY2;
+    const vreal q = two * (jd0 * jd0 + jd1 * jd1 + jd2 * jd2);
+    const vreal gfd = gf0 * d0 + gf1 * d1 + gf2 * d2 + gf3 * d3;
 #define TTD_KP_SLOPE(t)                                                                         \
-    (-gfd + (t) * q -                                                                           \
-     rho * (s1 * TTD_SFX(kp_pos)(h1 - (t) * s1) + s2 * TTD_SFX(kp_pos)(h2 - (t) * s2) +         \
-            s3 * TTD_SFX(kp_pos)(h3 - (t) * s3) + s4 * TTD_SFX(kp_pos)(h4 - (t) * s4) +         \
-            s5 * TTD_SFX(kp_pos)(h5 - (t) * s5) + s6 * TTD_SFX(kp_pos)(h6 - (t) * s6)))
-        const vreal p0 = TTD_KP_SLOPE(zero);
-        const vreal p1 = TTD_KP_SLOPE(one);
-        vreal step = one;
-        const vmask bracket = vgt(p1, zero);
-        if (many(mand(active, bracket))) {
-            vreal lo = zero, plo = p0, hi = one, phi = p1;
+(-gfd + (t) * q -                                                                           \
+ rho * (s1 * TTD_SFX(kp_pos)(h1 - (t) * s1) + s2 * TTD_SFX(kp_pos)(h2 - (t) * s2) +         \
+        s3 * TTD_SFX(kp_pos)(h3 - (t) * s3) + s4 * TTD_SFX(kp_pos)(h4 - (t) * s4) +         \
+        s5 * TTD_SFX(kp_pos)(h5 - (t) * s5) + s6 * TTD_SFX(kp_pos)(h6 - (t) * s6)))
+    const vreal p0 = TTD_KP_SLOPE(zero);
+    const vreal p1 = TTD_KP_SLOPE(one);
+    vreal step = one;
+    const vmask bracket = vgt(p1, zero);
+    if (many(mand(active, bracket))) {
+        vreal lo = zero, plo = p0, hi = one, phi = p1;
 #define TTD_KP_BREAK(hh, ss)                                                                    \
-    {                                                                                           \
-        const vreal tb = (hh) / (ss);                                                           \
-        const vmask in = mand(vgt(tb, zero), vlt(tb, one));                                     \
-        const vreal pb = TTD_KP_SLOPE(tb);                                                      \
-        const vmask to_lo = mand(in, mand(vle(pb, zero), vgt(tb, lo)));                        \
-        const vmask to_hi = mand(in, mand(vgt(pb, zero), vlt(tb, hi)));                         \
-        lo = vsel(to_lo, tb, lo);                                                               \
-        plo = vsel(to_lo, pb, plo);                                                             \
-        hi = vsel(to_hi, tb, hi);                                                               \
-        phi = vsel(to_hi, pb, phi);                                                             \
-    }
-            TTD_KP_BREAK(h1, s1) TTD_KP_BREAK(h2, s2) TTD_KP_BREAK(h3, s3)
-            TTD_KP_BREAK(h4, s4) TTD_KP_BREAK(h5, s5) TTD_KP_BREAK(h6, s6)
+{                                                                                           \
+    const vreal tb = (hh) / (ss);                                                           \
+    const vmask in = mand(vgt(tb, zero), vlt(tb, one));                                     \
+    const vreal pb = TTD_KP_SLOPE(tb);                                                      \
+    const vmask to_lo = mand(in, mand(vle(pb, zero), vgt(tb, lo)));                        \
+    const vmask to_hi = mand(in, mand(vgt(pb, zero), vlt(tb, hi)));                         \
+    lo = vsel(to_lo, tb, lo);                                                               \
+    plo = vsel(to_lo, pb, plo);                                                             \
+    hi = vsel(to_hi, tb, hi);                                                               \
+    phi = vsel(to_hi, pb, phi);                                                             \
+}
+        TTD_KP_BREAK(h1, s1) TTD_KP_BREAK(h2, s2) TTD_KP_BREAK(h3, s3)
+        TTD_KP_BREAK(h4, s4) TTD_KP_BREAK(h5, s5) TTD_KP_BREAK(h6, s6)
 #undef TTD_KP_BREAK
-            const vreal den = phi - plo;
-            vreal fr = vsel(vgt(den, zero), -plo / den, zero);
-            fr = vsel(vgt(fr, zero), fr, zero);
-            fr = vsel(vlt(fr, one), fr, one);
-            step = vsel(bracket, lo + (hi - lo) * fr, one);
-        }
-#undef TTD_KP_SLOPE
-        /* The update, in active lanes only. */
-        a = vsel(active, a - step * d0, a);
-        b = vsel(active, b - step * d1, b);
-        ca = vsel(active, ca + step * (d0 + d1), ca);
-        g = vsel(active, g - step * d2, g);
-        d = vsel(active, d - step * d3, d);
-        cg = vsel(active, cg + step * (d2 + d3), cg);
-        /* Convergence: a small step, unless it releases a constraint right after a large one. */
-        const vmask released =
-            mor(mor(mor(mand(a1, vlt(h1 + step * d0, zero)), mand(a2, vlt(h2 + step * d1, zero))),
-                    mor(mand(a3, vlt(h3 - step * (d0 + d1), zero)), mand(a4, vlt(h4 + step * d2, zero)))),
-                mor(mand(a5, vlt(h5 + step * d3, zero)), mand(a6, vlt(h6 - step * (d2 + d3), zero))));
-        const vmask small_prev = vlt(prev_err2, tol2);
-        prev_err2 = err2;
-        const vmask done = mand(active, mand(vlt(err2, tol2), mor(mnot(released), small_prev)));
-        converged = mor(converged, done);
-        active = mandnot(active, done);
+        const vreal den = phi - plo;
+        vreal fr = vsel(vgt(den, zero), -plo / den, zero);
+        fr = vsel(vgt(fr, zero), fr, zero);
+        fr = vsel(vlt(fr, one), fr, one);
+        step = vsel(bracket, lo + (hi - lo) * fr, one);
     }
+#undef TTD_KP_SLOPE
+    /* The update, in active lanes only. */
+    a = vsel(active, a - step * d0, a);
+    b = vsel(active, b - step * d1, b);
+    ca = vsel(active, ca + step * (d0 + d1), ca);
+    g = vsel(active, g - step * d2, g);
+    d = vsel(active, d - step * d3, d);
+    cg = vsel(active, cg + step * (d2 + d3), cg);
+    X->a = a;
+    X->b = b;
+    X->ca = ca;
+    X->g = g;
+    X->d = d;
+    X->cg = cg;
+    /* Convergence: a small step, unless it releases a constraint right after a large one. */
+    const vmask released =
+        mor(mor(mor(mand(a1, vlt(h1 + step * d0, zero)), mand(a2, vlt(h2 + step * d1, zero))),
+                mor(mand(a3, vlt(h3 - step * (d0 + d1), zero)), mand(a4, vlt(h4 + step * d2, zero)))),
+            mor(mand(a5, vlt(h5 + step * d3, zero)), mand(a6, vlt(h6 - step * (d2 + d3), zero))));
+    const vmask small_prev = vlt(X->prev_err2, tol2);
+    X->prev_err2 = vsel(active, err2, X->prev_err2);
+    return mand(active, mand(vlt(err2, tol2), mor(mnot(released), small_prev)));
+}
 
-    vreal wp[3], wq[3];
-    TTD_SFX(kp_clamp_bary3)(ca, a, b, wp);
-    TTD_SFX(kp_clamp_bary3)(cg, g, d, wq);
+/* scalar: after the loop. Clamped weights and the distance |p - q| (in the frame, scaled back). */
+static inline vreal TTD_SFX(kp_finish)(const TTD_SFX(kp_frame) *F, const TTD_SFX(kp_state) *X, vreal wp[3],
+                                       vreal wq[3])
+{
+    const vreal *BA = F->BA, *CA = F->CA, *DA = F->DA, *ED = F->ED, *FD = F->FD;
+    TTD_SFX(kp_clamp_bary3)(X->ca, X->a, X->b, wp);
+    TTD_SFX(kp_clamp_bary3)(X->cg, X->g, X->d, wq);
     /* p - q in the frame, from the clamped weights (A = 0). */
     const vreal xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const vreal xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
     const vreal xy2 = wp[1] * BA[2] + wp[2] * CA[2] - DA[2] - wq[1] * ED[2] - wq[2] * FD[2];
-    /* scalar: pen_finish */
+    return vsqrt(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * F->unscale;
+}
+
+/* scalar: pen_finish's points, p and q as convex combinations of the input vertices. */
+static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const vreal wp[3], const vreal wq[3],
+                                      TTD_SFX(kw_out) *o)
+{
     for (int k = 0; k < 3; ++k) {
         o->p[k] = wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k];
         o->q[k] = wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k];
         o->bary_p[k] = wp[k];
         o->bary_q[k] = wq[k];
     }
-    o->distance = vsqrt(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * unscale;
-    o->iterations = its;
-    o->flags_nc = ~mbits(converged);
     o->flags_int = 0;
     o->flags_ds = 0;
     o->flags_dt = 0;
 }
 
+#ifndef TTD_PENALTY_REFILL
+#define TTD_PENALTY_REFILL 1 /* 0: fixed groups, for comparison (docs/simd.md) */
+#endif
+
+#if !TTD_PENALTY_REFILL
+/* Fixed groups of W pairs: every lane of a group iterates until the slowest has finished. */
 static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                    real *distance, ttd_result *results)
+                                           real *distance, ttd_result *results)
 {
+    const TTD_SFX(kp_consts) K = TTD_SFX(kp_consts_of)(prm);
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
         TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
+        TTD_SFX(kp_frame) F;
+        TTD_SFX(kp_hf) H;
+        TTD_SFX(kp_state) X;
+        TTD_SFX(kp_frame_of)(S, T, &F);
+        TTD_SFX(kp_hf_of)(&F, &H);
+        TTD_SFX(kp_init)(&X);
+        vmask active = mfirst(live), converged = mnot(mtrue());
+        vreal its = vzero();
+        for (int it = 1; it <= prm->max_iterations && many(active); ++it) {
+            its = vsel(active, vset1((real)it), its);
+            const vmask done = TTD_SFX(kp_step)(&K, &F, &H, &X, active);
+            converged = mor(converged, done);
+            active = mandnot(active, done);
+        }
         TTD_SFX(kw_out) o;
-        TTD_SFX(kp_group)(S, T, prm, mfirst(live), &o);
+        vreal wp[3], wq[3];
+        o.distance = TTD_SFX(kp_finish)(&F, &X, wp, wq);
+        TTD_SFX(kp_points)(S, T, wp, wq, &o);
+        o.iterations = its;
+        o.flags_nc = ~mbits(converged);
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }
+
+#else
+/* With lane refill (see the top of the file). Scratch: the block's frames and outputs in SoA,
+ * (16 + 9) x (TTD_BLOCK_PAIRS + W) reals on the stack (51 KB in double). */
+static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, const ttd_params *prm,
+                                    real *distance, ttd_result *results)
+{
+    enum { CAP = TTD_BLOCK_PAIRS + TTDW_LANES, OUT_WP = 0, OUT_WQ = 3, OUT_DIST = 6, OUT_ITS = 7, OUT_CONV = 8, OUTS = 9 };
+    if (n == 0)
+        return;
+    if (n > TTD_BLOCK_PAIRS) { /* the engine never does this; stay correct anyway */
+        for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS)
+            TTD_SFX(kernel_penalty)(n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS, s + 9 * i0, t + 9 * i0, prm,
+                                    distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        return;
+    }
+    real fr[TTD_KP_FRAME_REALS][CAP] TTDW_ALIGN(64);
+    real out[OUTS][CAP] TTDW_ALIGN(64);
+    real ids[CAP] TTDW_ALIGN(64);
+    const TTD_SFX(kp_consts) K = TTD_SFX(kp_consts_of)(prm);
+
+    /* 1. Every pair's frame, in full groups (the tail group padded). */
+    size_t end = 0;
+    for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
+        const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
+        vreal S[9], T[9];
+        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
+        TTD_SFX(kp_frame) F;
+        TTD_SFX(kp_frame_of)(S, T, &F);
+        for (int k = 0; k < 3; ++k) {
+            vstoreu(&fr[k][i0], F.BA[k]);
+            vstoreu(&fr[3 + k][i0], F.CA[k]);
+            vstoreu(&fr[6 + k][i0], F.DA[k]);
+            vstoreu(&fr[9 + k][i0], F.ED[k]);
+            vstoreu(&fr[12 + k][i0], F.FD[k]);
+        }
+        vstoreu(&fr[15][i0], F.unscale);
+        end = i0 + TTDW_LANES;
+    }
+    for (size_t i = 0; i < CAP; ++i)
+        ids[i] = (real)i;
+    for (int c = 0; c < OUTS; ++c) /* read (not stored) by the tail group of step 3 */
+        for (size_t i = n; i < CAP; ++i)
+            out[c][i] = 0;
+    for (int c = 0; c < TTD_KP_FRAME_REALS; ++c) /* lanes past the block read a zero frame */
+        for (size_t i = end; i < CAP; ++i)
+            fr[c][i] = (real)(c == 15);
+
+    /* 2. Lanes take pairs 0..W-1, then the next one whenever theirs is done. */
+    TTD_SFX(kp_frame) F;
+    for (int k = 0; k < 3; ++k) {
+        F.BA[k] = vloadu(&fr[k][0]);
+        F.CA[k] = vloadu(&fr[3 + k][0]);
+        F.DA[k] = vloadu(&fr[6 + k][0]);
+        F.ED[k] = vloadu(&fr[9 + k][0]);
+        F.FD[k] = vloadu(&fr[12 + k][0]);
+    }
+    F.unscale = vloadu(&fr[15][0]);
+    TTD_SFX(kp_hf) H;
+    TTD_SFX(kp_hf_of)(&F, &H);
+    TTD_SFX(kp_state) X;
+    TTD_SFX(kp_init)(&X);
+    const vreal one = vset1((real)1), zero = vzero(), vn = vset1((real)n), vmax_it = vset1((real)prm->max_iterations);
+    vreal idx = vloadu(ids), its = zero;
+    vmask active = vlt(idx, vn), converged = mnot(mtrue());
+    if (prm->max_iterations < 1)
+        active = mnot(mtrue());
+    size_t next = TTDW_LANES;
+    /* Finished lanes wait (frozen) until half the lanes have finished, or none is left
+     * iterating: a refill costs about an iteration (measured, docs/simd.md), so it is
+     * batched. */
+    vmask pending = mnot(mtrue());
+    const int refill_at = TTDW_LANES / 2 > 0 ? TTDW_LANES / 2 : 1;
+    while (many(active) || many(pending)) {
+        if (many(active)) {
+            its = its + vsel(active, one, zero);
+            const vmask conv = TTD_SFX(kp_step)(&K, &F, &H, &X, active);
+            const vmask done = mor(conv, mand(active, vge(its, vmax_it)));
+            converged = mor(converged, conv);
+            active = mandnot(active, done);
+            pending = mor(pending, done);
+            if (__builtin_popcount(mbits(pending)) < refill_at && many(active))
+                continue;
+        }
+        /* write the finished lanes' results at their pair's index */
+        vreal wp[3], wq[3];
+        const vreal dist = TTD_SFX(kp_finish)(&F, &X, wp, wq);
+        real lanes[OUTS][TTDW_LANES] TTDW_ALIGN(64), li[TTDW_LANES] TTDW_ALIGN(64);
+        for (int k = 0; k < 3; ++k) {
+            vstoreu(lanes[OUT_WP + k], wp[k]);
+            vstoreu(lanes[OUT_WQ + k], wq[k]);
+        }
+        vstoreu(lanes[OUT_DIST], dist);
+        vstoreu(lanes[OUT_ITS], its);
+        vstoreu(lanes[OUT_CONV], vsel(converged, one, zero));
+        vstoreu(li, idx);
+        const unsigned bits = mbits(pending);
+        for (int i = 0; i < TTDW_LANES; ++i)
+            if ((bits >> i) & 1u) {
+                const size_t j = (size_t)li[i];
+                for (int c = 0; c < OUTS; ++c)
+                    out[c][j] = lanes[c][i];
+            }
+        /* refill: the finished lanes take pairs next, next+1, ... in lane order */
+        for (int k = 0; k < 3; ++k) {
+            F.BA[k] = vexpand(F.BA[k], pending, &fr[k][next]);
+            F.CA[k] = vexpand(F.CA[k], pending, &fr[3 + k][next]);
+            F.DA[k] = vexpand(F.DA[k], pending, &fr[6 + k][next]);
+            F.ED[k] = vexpand(F.ED[k], pending, &fr[9 + k][next]);
+            F.FD[k] = vexpand(F.FD[k], pending, &fr[12 + k][next]);
+        }
+        F.unscale = vexpand(F.unscale, pending, &fr[15][next]);
+        idx = vexpand(idx, pending, &ids[next]);
+        next += (size_t)__builtin_popcount(bits);
+        if (next > n)
+            next = n; /* lanes past n get a zero frame and stay idle */
+        TTD_SFX(kp_hf_of)(&F, &H);
+        TTD_SFX(kp_start)(&X, pending);
+        its = vsel(pending, zero, its);
+        converged = mandnot(converged, pending);
+        active = mor(active, mand(pending, vlt(idx, vn)));
+        pending = mnot(mtrue());
+    }
+
+    /* 3. Points from the weights, and the caller's arrays, in groups. */
+    for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
+        const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
+        TTD_SFX(kw_out) o;
+        o.distance = vloadu(&out[OUT_DIST][i0]);
+        if (results) {
+            vreal S[9], T[9], wp[3], wq[3];
+            TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
+            for (int k = 0; k < 3; ++k) {
+                wp[k] = vloadu(&out[OUT_WP + k][i0]);
+                wq[k] = vloadu(&out[OUT_WQ + k][i0]);
+            }
+            TTD_SFX(kp_points)(S, T, wp, wq, &o);
+            o.iterations = vloadu(&out[OUT_ITS][i0]);
+            o.flags_nc = ~mbits(vgt(vloadu(&out[OUT_CONV][i0]), zero));
+        }
+        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+    }
+}
+#endif /* TTD_PENALTY_REFILL */

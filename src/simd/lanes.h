@@ -34,6 +34,8 @@
  *   any(m) all(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
  *   f2d_lo(vf), f2d_hi(vf) -> vd   float lanes 0..W_d-1 / W_d..W_f-1 widened (W_f = 2 W_d
  *                      on every ISA); d2f(lo, hi) -> vf narrows back, rounding to nearest
+ *   expand(v, m, p)    the lanes set in m, in ascending order, take p[0], p[1], ... (popcount(m)
+ *                      reals are read); the other lanes keep v (AVX-512 vexpandpd)
  *   load_aos9(p, out[9])  transposition: p holds W triangles of 9 reals each, the user's
  *                      layout (triangle i at p + 9i, any alignment); out[k] lane i = p[9i + k]
  *   store_soa(in, k, out)  the reverse for k <= 16 vectors: out[k*i + j] = in[j] lane i
@@ -86,6 +88,31 @@ static inline void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])
             buf[k][i] = p[9 * i + k];
     for (int k = 0; k < 9; ++k)
         out[k] = ttdw_loadu_f(buf[k]);
+}
+#endif
+
+#ifndef TTDW_HAVE_EXPAND_D
+static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p)
+{
+    double buf[TTDW_LANES_D] TTDW_ALIGN(64);
+    const unsigned bits = ttdw_mbits_d(m);
+    ttdw_storeu_d(buf, v);
+    for (int i = 0, j = 0; i < TTDW_LANES_D; ++i)
+        if ((bits >> i) & 1u)
+            buf[i] = p[j++];
+    return ttdw_loadu_d(buf);
+}
+#endif
+#ifndef TTDW_HAVE_EXPAND_F
+static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p)
+{
+    float buf[TTDW_LANES_F] TTDW_ALIGN(64);
+    const unsigned bits = ttdw_mbits_f(m);
+    ttdw_storeu_f(buf, v);
+    for (int i = 0, j = 0; i < TTDW_LANES_F; ++i)
+        if ((bits >> i) & 1u)
+            buf[i] = p[j++];
+    return ttdw_loadu_f(buf);
 }
 #endif
 

@@ -88,6 +88,12 @@ static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi)
     return _mm512_insertf32x8(_mm512_castps256_ps512(_mm512_cvtpd_ps(lo)), _mm512_cvtpd_ps(hi), 1);
 }
 
+/* ---- expand ---- */
+#define TTDW_HAVE_EXPAND_D 1
+static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p) { return _mm512_mask_expand_pd(v, m, _mm512_loadu_pd(p)); }
+#define TTDW_HAVE_EXPAND_F 1
+static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p) { return _mm512_mask_expand_ps(v, m, _mm512_loadu_ps(p)); }
+
 /* ---- transposition ---- */
 #define TTDW_HAVE_LOAD_AOS9_D 1
 static inline void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])

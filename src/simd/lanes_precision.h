@@ -38,6 +38,7 @@
 #define mall ttdw_all_d
 #define mnone ttdw_none_d
 #define vload_aos9 ttdw_load_aos9_d
+#define vexpand ttdw_expand_d
 #define vstore_soa ttdw_store_soa_d
 #else
 #define vreal ttdw_vf
@@ -71,5 +72,6 @@
 #define mall ttdw_all_f
 #define mnone ttdw_none_f
 #define vload_aos9 ttdw_load_aos9_f
+#define vexpand ttdw_expand_f
 #define vstore_soa ttdw_store_soa_f
 #endif

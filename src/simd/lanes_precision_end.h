@@ -31,4 +31,5 @@
 #undef mall
 #undef mnone
 #undef vload_aos9
+#undef vexpand
 #undef vstore_soa

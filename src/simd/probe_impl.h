@@ -60,6 +60,7 @@ int TTD_PROBE_NAME(int op, const real *a, const real *b, const real *c, real *ou
 #else
         return -1;
 #endif
+    case TTDW_OP_EXPAND: r = vexpand(va, vlt(vc, zero), b); break;
     default: return -1;
     }
     vstoreu(out, r);
