@@ -11,14 +11,10 @@
  * scalar code runs only when phi'(1) > 0, runs here when any active lane has phi'(1) > 0, and
  * its result is selected per lane.
  *
- * Lane refill (kernel_penalty). Iteration counts differ between pairs (mean ~4.8, tail to the
- * cap), and a group of W pairs iterating together runs as long as its slowest pair: lane
- * occupancy 0.70 at 16 lanes (docs/simd.md). So the block is not cut into fixed groups:
- * every pair's frame is computed first (full vectors), then each lane takes the next pair of
- * the block as soon as its own is done (vexpand of the frame into the finished lanes), and the
- * results are written back by pair index. Each lane still computes exactly what the scalar
- * code computes for its pair. TTD_PENALTY_REFILL=0 builds the simple fixed-group form
- * instead, for comparison. */
+ * Groups of W consecutive pairs iterate together, so a group runs as long as its slowest
+ * pair: lane occupancy 0.75 at 8 lanes and 0.70 at 16 on random pairs (docs/simd.md). A
+ * version where finished lanes take the next pair of the block (commit 67cfaf5) raised
+ * occupancy to 0.78 at 16 lanes but ran 20-25% slower per pair, measured: not kept. */
 
 /* scalar: pen_pos. max(0, v) as (v + |v|) / 2 */
 static inline vreal TTD_SFX(kp_pos)(vreal v)
@@ -164,13 +160,9 @@ static inline void TTD_SFX(kp_start)(TTD_SFX(kp_state) *X, vmask m)
     X->prev_err2 = vsel(m, vset1(TTD_REAL_MAX), X->prev_err2);
 }
 
-#ifndef TTD_KP_NOINLINE
-#define TTD_KP_NOINLINE __attribute__((noinline))
-#endif
-
 /* scalar: one pass of the loop body. Updates the active lanes' iterate; returns the active
  * lanes that converged. */
-static TTD_KP_NOINLINE vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(kp_frame) *F,
+static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(kp_frame) *F,
                                      const TTD_SFX(kp_hf) *Hf, TTD_SFX(kp_state) *X, vmask active)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);
@@ -328,12 +320,7 @@ static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const 
     o->flags_dt = 0;
 }
 
-#ifndef TTD_PENALTY_REFILL
-#define TTD_PENALTY_REFILL 1 /* 0: fixed groups, for comparison (docs/simd.md) */
-#endif
-
-#if !TTD_PENALTY_REFILL
-/* Fixed groups of W pairs: every lane of a group iterates until the slowest has finished. */
+/* Groups of W pairs: every lane of a group iterates until the slowest has finished. */
 static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, const ttd_params *prm,
                                            real *distance, ttd_result *results)
 {
@@ -365,147 +352,3 @@ static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, cons
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }
-
-#else
-/* With lane refill (see the top of the file). Scratch: the block's frames and outputs in SoA,
- * (16 + 9) x (TTD_BLOCK_PAIRS + W) reals on the stack (51 KB in double). */
-static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                    real *distance, ttd_result *results)
-{
-    enum { CAP = TTD_BLOCK_PAIRS + TTDW_LANES, OUT_WP = 0, OUT_WQ = 3, OUT_DIST = 6, OUT_ITS = 7, OUT_CONV = 8, OUTS = 9 };
-    if (n == 0)
-        return;
-    if (n > TTD_BLOCK_PAIRS) { /* the engine never does this; stay correct anyway */
-        for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS)
-            TTD_SFX(kernel_penalty)(n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS, s + 9 * i0, t + 9 * i0, prm,
-                                    distance ? distance + i0 : NULL, results ? results + i0 : NULL);
-        return;
-    }
-    real fr[TTD_KP_FRAME_REALS][CAP] TTDW_ALIGN(64);
-    real out[OUTS][CAP] TTDW_ALIGN(64);
-    real ids[CAP] TTDW_ALIGN(64);
-    const TTD_SFX(kp_consts) K = TTD_SFX(kp_consts_of)(prm);
-
-    /* 1. Every pair's frame, in full groups (the tail group padded). */
-    size_t end = 0;
-    for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
-        const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
-        vreal S[9], T[9];
-        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
-        TTD_SFX(kp_frame) F;
-        TTD_SFX(kp_frame_of)(S, T, &F);
-        for (int k = 0; k < 3; ++k) {
-            vstoreu(&fr[k][i0], F.BA[k]);
-            vstoreu(&fr[3 + k][i0], F.CA[k]);
-            vstoreu(&fr[6 + k][i0], F.DA[k]);
-            vstoreu(&fr[9 + k][i0], F.ED[k]);
-            vstoreu(&fr[12 + k][i0], F.FD[k]);
-        }
-        vstoreu(&fr[15][i0], F.unscale);
-        end = i0 + TTDW_LANES;
-    }
-    for (size_t i = 0; i < CAP; ++i)
-        ids[i] = (real)i;
-    for (int c = 0; c < OUTS; ++c) /* read (not stored) by the tail group of step 3 */
-        for (size_t i = n; i < CAP; ++i)
-            out[c][i] = 0;
-    for (int c = 0; c < TTD_KP_FRAME_REALS; ++c) /* lanes past the block read a zero frame */
-        for (size_t i = end; i < CAP; ++i)
-            fr[c][i] = (real)(c == 15);
-
-    /* 2. Lanes take pairs 0..W-1, then the next one whenever theirs is done. */
-    TTD_SFX(kp_frame) F;
-    for (int k = 0; k < 3; ++k) {
-        F.BA[k] = vloadu(&fr[k][0]);
-        F.CA[k] = vloadu(&fr[3 + k][0]);
-        F.DA[k] = vloadu(&fr[6 + k][0]);
-        F.ED[k] = vloadu(&fr[9 + k][0]);
-        F.FD[k] = vloadu(&fr[12 + k][0]);
-    }
-    F.unscale = vloadu(&fr[15][0]);
-    TTD_SFX(kp_hf) H;
-    TTD_SFX(kp_hf_of)(&F, &H);
-    TTD_SFX(kp_state) X;
-    TTD_SFX(kp_init)(&X);
-    const vreal one = vset1((real)1), zero = vzero(), vn = vset1((real)n), vmax_it = vset1((real)prm->max_iterations);
-    vreal idx = vloadu(ids), its = zero;
-    vmask active = vlt(idx, vn), converged = mnot(mtrue());
-    if (prm->max_iterations < 1)
-        active = mnot(mtrue());
-    size_t next = TTDW_LANES;
-    /* Finished lanes wait (frozen) until half the lanes have finished, or none is left
-     * iterating: a refill costs about an iteration (measured, docs/simd.md), so it is
-     * batched. */
-    vmask pending = mnot(mtrue());
-    const int refill_at = TTDW_LANES / 2 > 0 ? TTDW_LANES / 2 : 1;
-    while (many(active) || many(pending)) {
-        if (many(active)) {
-            its = its + vsel(active, one, zero);
-            const vmask conv = TTD_SFX(kp_step)(&K, &F, &H, &X, active);
-            const vmask done = mor(conv, mand(active, vge(its, vmax_it)));
-            converged = mor(converged, conv);
-            active = mandnot(active, done);
-            pending = mor(pending, done);
-            if (__builtin_popcount(mbits(pending)) < refill_at && many(active))
-                continue;
-        }
-        /* write the finished lanes' results at their pair's index */
-        vreal wp[3], wq[3];
-        const vreal dist = TTD_SFX(kp_finish)(&F, &X, wp, wq);
-        real lanes[OUTS][TTDW_LANES] TTDW_ALIGN(64), li[TTDW_LANES] TTDW_ALIGN(64);
-        for (int k = 0; k < 3; ++k) {
-            vstoreu(lanes[OUT_WP + k], wp[k]);
-            vstoreu(lanes[OUT_WQ + k], wq[k]);
-        }
-        vstoreu(lanes[OUT_DIST], dist);
-        vstoreu(lanes[OUT_ITS], its);
-        vstoreu(lanes[OUT_CONV], vsel(converged, one, zero));
-        vstoreu(li, idx);
-        const unsigned bits = mbits(pending);
-        for (int i = 0; i < TTDW_LANES; ++i)
-            if ((bits >> i) & 1u) {
-                const size_t j = (size_t)li[i];
-                for (int c = 0; c < OUTS; ++c)
-                    out[c][j] = lanes[c][i];
-            }
-        /* refill: the finished lanes take pairs next, next+1, ... in lane order */
-        for (int k = 0; k < 3; ++k) {
-            F.BA[k] = vexpand(F.BA[k], pending, &fr[k][next]);
-            F.CA[k] = vexpand(F.CA[k], pending, &fr[3 + k][next]);
-            F.DA[k] = vexpand(F.DA[k], pending, &fr[6 + k][next]);
-            F.ED[k] = vexpand(F.ED[k], pending, &fr[9 + k][next]);
-            F.FD[k] = vexpand(F.FD[k], pending, &fr[12 + k][next]);
-        }
-        F.unscale = vexpand(F.unscale, pending, &fr[15][next]);
-        idx = vexpand(idx, pending, &ids[next]);
-        next += (size_t)__builtin_popcount(bits);
-        if (next > n)
-            next = n; /* lanes past n get a zero frame and stay idle */
-        TTD_SFX(kp_hf_of)(&F, &H);
-        TTD_SFX(kp_start)(&X, pending);
-        its = vsel(pending, zero, its);
-        converged = mandnot(converged, pending);
-        active = mor(active, mand(pending, vlt(idx, vn)));
-        pending = mnot(mtrue());
-    }
-
-    /* 3. Points from the weights, and the caller's arrays, in groups. */
-    for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
-        const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
-        TTD_SFX(kw_out) o;
-        o.distance = vloadu(&out[OUT_DIST][i0]);
-        if (results) {
-            vreal S[9], T[9], wp[3], wq[3];
-            TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
-            for (int k = 0; k < 3; ++k) {
-                wp[k] = vloadu(&out[OUT_WP + k][i0]);
-                wq[k] = vloadu(&out[OUT_WQ + k][i0]);
-            }
-            TTD_SFX(kp_points)(S, T, wp, wq, &o);
-            o.iterations = vloadu(&out[OUT_ITS][i0]);
-            o.flags_nc = ~mbits(vgt(vloadu(&out[OUT_CONV][i0]), zero));
-        }
-        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
-    }
-}
-#endif /* TTD_PENALTY_REFILL */

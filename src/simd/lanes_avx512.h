@@ -90,9 +90,9 @@ static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi)
 
 /* ---- expand ---- */
 #define TTDW_HAVE_EXPAND_D 1
-static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p) { return _mm512_mask_expand_pd(v, m, _mm512_loadu_pd(p)); }
+static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p) { return _mm512_mask_expandloadu_pd(v, m, p); }
 #define TTDW_HAVE_EXPAND_F 1
-static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p) { return _mm512_mask_expand_ps(v, m, _mm512_loadu_ps(p)); }
+static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p) { return _mm512_mask_expandloadu_ps(v, m, p); }
 
 /* ---- transposition ---- */
 #define TTDW_HAVE_LOAD_AOS9_D 1
