@@ -50,15 +50,27 @@ static real TTD_SFX(pair_size)(const real *s, const real *t)
     return m > 0 ? m : 1;
 }
 
-/* Fills n pairs of a generated set (see gen_pair in test_isa_kernels.c), rounded to real. */
+/* Fills n pairs of a generated set (see gen_pair in test_isa_kernels.c), rounded to real.
+ * The "extreme" family is a random pair scaled by 2^k, k across this precision's whole
+ * exponent range: subnormal-sized pairs up to pairs near REAL_MAX. */
 static void TTD_SFX(fill)(int family, uint64_t seed, size_t n, real *s, real *t)
 {
     double ds[9], dt[9];
+#ifdef TTD_PRECISION_DOUBLE
+    const int kmin = DBL_MIN_EXP - 40, kmax = DBL_MAX_EXP - 3;
+#else
+    const int kmin = FLT_MIN_EXP - 15, kmax = FLT_MAX_EXP - 3;
+#endif
     for (size_t i = 0; i < n; ++i) {
-        gen_pair(family, seed, i, ds, dt);
-        for (int k = 0; k < 9; ++k) {
-            s[9 * i + k] = (real)ds[k];
-            t[9 * i + k] = (real)dt[k];
+        gen_pair(family == GEN_EXTREME ? 0 : family, seed, i, ds, dt);
+        const int k = kmin + (int)((i * 2654435761u) % (size_t)(kmax - kmin + 1));
+        for (int c = 0; c < 9; ++c) {
+            s[9 * i + c] = (real)ds[c];
+            t[9 * i + c] = (real)dt[c];
+            if (family == GEN_EXTREME) {
+                s[9 * i + c] = TTD_LDEXP(s[9 * i + c], k);
+                t[9 * i + c] = TTD_LDEXP(t[9 * i + c], k);
+            }
         }
     }
 }
@@ -87,8 +99,15 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
             ttd_result want;
             ref(s + 9 * i, t + 9 * i, prm, &want);
             const ttd_result *got = &res[i];
-            const double tol = ulps * (double)TTD_REAL_EPS * (double)TTD_SFX(pair_size)(s + 9 * i, t + 9 * i);
-            int ok = fabs((double)got->distance - (double)want.distance) <= tol &&
+            /* a few ulps of the pair's size, and at least a few units of the smallest
+             * subnormal (the size itself may be subnormal) */
+            double tol = ulps * (double)TTD_REAL_EPS * (double)TTD_SFX(pair_size)(s + 9 * i, t + 9 * i);
+#ifdef TTD_PRECISION_DOUBLE
+            tol = tol > 4 * 0x1p-1074 ? tol : 4 * 0x1p-1074;
+#else
+            tol = tol > 4 * 0x1p-149 ? tol : 4 * 0x1p-149;
+#endif
+            int ok = isfinite((double)got->distance) && fabs((double)got->distance - (double)want.distance) <= tol &&
                      memcmp(&dist[i], &got->distance, sizeof(real)) == 0 &&
                      got->iterations == want.iterations && got->flags == want.flags;
             for (int k = 0; k < 3; ++k) {

@@ -5,6 +5,7 @@
  * bits alone and in any lane among any neighbours (NaN ones too), tails (n = 0, 1, W-1, W+1,
  * a full block), unaligned arrays, and nothing written past n. Rows the CPU cannot run are
  * skipped with a printed reason. The rows are called directly, as the engine calls them. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -30,11 +31,12 @@ static double gen_u01(uint64_t *st)
     return (double)(gen_rng(st) >> 11) * 0x1p-53;
 }
 
-enum { GEN_FAMILIES = 6 };
+enum { GEN_EXTREME = 6, GEN_FAMILIES = 7 };
 
 static const char *gen_family_name(int f)
 {
-    static const char *names[GEN_FAMILIES] = {"random", "overlapping", "degenerate", "scaled", "far", "paper"};
+    static const char *names[GEN_FAMILIES] = {"random", "overlapping", "degenerate", "scaled", "far", "paper",
+                                              "extreme"};
     return f >= 0 && f < GEN_FAMILIES ? names[f] : "?";
 }
 
@@ -46,7 +48,9 @@ static const char *gen_family_name(int f)
  *                or a point, the second random
  *   scaled       random pairs times 2^k, k in [-20, 20]
  *   far          random pairs 1000 apart
- *   paper        the paper's one pair, distance 0.5 */
+ *   paper        the paper's one pair, distance 0.5
+ *   extreme      random pairs scaled by 2^k over the whole exponent range of the precision,
+ *                subnormal to near REAL_MAX (applied by fill_d/fill_f after rounding) */
 static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[9])
 {
     uint64_t st = seed * 0x100000001B3ull + (uint64_t)family * 0x9E3779B9ull + (uint64_t)i * 0x2545F4914F6CDD1Dull;
