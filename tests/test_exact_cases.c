@@ -187,6 +187,39 @@ static int edge_edge_all(void)
     return 0;
 }
 
+/* Vertex i of S at (0,0,1) with S opening upwards, vertex j of T at the origin with T opening
+ * downwards: p - q has z >= 1 with equality only at the two vertices. */
+static int vertex_vertex_all(void)
+{
+    const double s0[3] = {0, 0, 1}, s1[3] = {1, 0.5, 3}, s2[3] = {0.5, 1, 3};
+    const double t0[3] = {0, 0, 0}, t1[3] = {-1, -0.5, -2}, t2[3] = {-0.5, -1, -2};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double S[9], T[9];
+            place(s0, s1, s2, i, S);
+            place(t0, t1, t2, j, T);
+            if (check_pair_d(S, T, 1.0, s0, t0, 1u << i, 1u << j)) return 1;
+        }
+    return 0;
+}
+
+/* Vertex i of S at height 1 above the interior of edge j of T (T in z <= 0, only that edge
+ * at z = 0); the swapped call covers a vertex of T against an edge of S. */
+static int vertex_edge_all(void)
+{
+    const double s0[3] = {0.25, 0, 1}, s1[3] = {1, 1, 2}, s2[3] = {-1, 1, 2.5};
+    const double t0[3] = {-1, 0, 0}, t1[3] = {1, 0, 0}, t2[3] = {0, -1, -1};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double S[9], T[9];
+            place(s0, s1, s2, i, S);
+            place(t0, t1, t2, j, T);
+            const double q[3] = {0.25, 0, 0};
+            if (check_pair_d(S, T, 1.0, s0, q, 1u << i, (1u << j) | (1u << ((j + 1) % 3)))) return 1;
+        }
+    return 0;
+}
+
 /* ---- the issue's examples ---- */
 
 static int issue_pierce(void)
@@ -243,10 +276,10 @@ static int parallel_faces(void)
     return check_distance_d(S, T2, 3.0);
 }
 
-static void rotate(const double in[9], double out[9])
+/* Rotation by the unit quaternion (w, x, y, z)/|.|. */
+static void rotate_q(const double in[9], double out[9], double w, double x, double y, double z)
 {
-    /* rotation from the unit quaternion (0.5, 0.3, -0.7, 0.4)/|.| */
-    double w = 0.5, x = 0.3, y = -0.7, z = 0.4, n = sqrt(w * w + x * x + y * y + z * z);
+    double n = sqrt(w * w + x * x + y * y + z * z);
     w /= n; x /= n; y /= n; z /= n;
     double R[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
                       {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
@@ -254,6 +287,11 @@ static void rotate(const double in[9], double out[9])
     for (int i = 0; i < 3; ++i)
         for (int r = 0; r < 3; ++r)
             out[3 * i + r] = R[r][0] * in[3 * i] + R[r][1] * in[3 * i + 1] + R[r][2] * in[3 * i + 2];
+}
+
+static void rotate(const double in[9], double out[9])
+{
+    rotate_q(in, out, 0.5, 0.3, -0.7, 0.4);
 }
 
 /* ---- touching and crossing ---- */
@@ -356,6 +394,37 @@ static int sliver_face(void)
         rotate(X, Sr);
         if (check_distance_d(Sr, Tr, 0.0)) return 1;
     }
+    return 0;
+}
+
+/* An edge of S passing a sliver T of width w at distance delta beyond its apex, at 45
+ * degrees: S = (P0, P1, far vertex) with S's plane at 45 degrees to T's, so the distance is
+ * delta / sqrt(2), from T's apex to S's edge P0P1. With a face normal computed naively
+ * (direction error eps / w) the crossing test accepts this edge as piercing T and returns 0. */
+static int sliver_near_miss_case(double w, double delta, int rot, double out_s[9], double out_t[9])
+{
+    double y0 = w + delta;
+    double T[9] = {0, 0, 0, 1, 0, 0, 0.5, w, 0};
+    double S[9] = {0.5, y0 - 0.7, -0.7, 0.5, y0 + 0.7, 0.7, 2.5, y0, 0};
+    double a = sin(1.3 * rot + 0.2), b = cos(0.7 * rot), c = sin(2.1 * rot + 1), d = cos(0.3 * rot + 2);
+    rotate_q(S, out_s, a, b, c, d);
+    rotate_q(T, out_t, a, b, c, d);
+    return 0;
+}
+
+static int sliver_near_miss(void)
+{
+    const double ws[] = {1e-6, 1e-8, 1e-9, 1e-10};
+    for (size_t k = 0; k < sizeof ws / sizeof ws[0]; ++k)
+        for (int rot = 0; rot < 20; ++rot) {
+            double S[9], T[9], delta = 0.5 * ws[k];
+            sliver_near_miss_case(ws[k], delta, rot, S, T);
+            ttd_result_d r;
+            ttd_exact_pair_d(S, T, &r);
+            ENSURE_MSG(fabs(r.distance - delta / sqrt(2.0)) <= TOL_D, "w %g rot %d: %.17g vs %.17g",
+                       ws[k], rot, r.distance, delta / sqrt(2.0));
+            if (check_invariants_d(S, T, &r, TOL_D)) return 1;
+        }
     return 0;
 }
 
@@ -597,6 +666,13 @@ static int float_subset(void)
     rotate(Tw, b);
     rotate(X, a);
     if (check_distance_f(a, b, 0.0)) return 1;
+    /* float sliver passed at a small distance: a float-naive normal reports 0 */
+    for (int rot = 0; rot < 20; ++rot)
+        for (int f = 0; f < 3; ++f) {
+            double wn = 3e-5, delta = wn * (f == 0 ? 2.0 : f == 1 ? 1.0 : 0.5);
+            sliver_near_miss_case(wn, delta, rot, a, b);
+            if (check_distance_f(a, b, delta / sqrt(2.0))) return 1;
+        }
     double th = 1e-4, D = 1e-5;
     double Se[9] = {-1, 0, D, 1, 0, D, 0, 1, 1};
     double Te[9] = {-cos(th), -sin(th), 0, cos(th), sin(th), 0, 0, -1, -1};
@@ -610,6 +686,8 @@ int main(int argc, char **argv)
     RUN_TEST(vertex_face_s);
     RUN_TEST(vertex_face_t);
     RUN_TEST(edge_edge_all);
+    RUN_TEST(vertex_vertex_all);
+    RUN_TEST(vertex_edge_all);
     RUN_TEST(issue_pierce);
     RUN_TEST(issue_fcl_small);
     RUN_TEST(issue_fcl_parallel);
@@ -618,6 +696,7 @@ int main(int argc, char **argv)
     RUN_TEST(touching_all);
     RUN_TEST(degenerate);
     RUN_TEST(sliver_face);
+    RUN_TEST(sliver_near_miss);
     RUN_TEST(nearly_parallel_edges);
     RUN_TEST(nearly_parallel_faces);
     RUN_TEST(scale_sweep);

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* Precision-generic body of the exact method (included by exact.c once per precision; see
  * common/precision.h). The distance is the minimum over a fixed list of candidate point
- * pairs, each a real point of S and a real point of T, so every candidate is an upper bound
- * and the true minimum is always among them up to rounding:
+ * pairs, each a real point of S and a real point of T, so every candidate but the crossings
+ * (which offer 0 unmeasured, see docs 3.1) is an upper bound, and the true minimum is always
+ * among them up to rounding:
  *   18 vertex-edge (every vertex of one triangle against every edge of the other, clamped),
  *    9 edge-edge interior (line-line stationary point, accepted when inside both segments),
  *    6 vertex-face (a vertex whose projection falls inside the other face),
@@ -30,13 +31,6 @@ typedef struct TTD_SFX(exact_tri) {
     real ML;          /* dot(M, L) */
     int has_face;     /* nn is a normal number: the triangle has an area we can divide by */
 } TTD_SFX(exact_tri);
-
-/* The best candidate so far. */
-typedef struct TTD_SFX(exact_best) {
-    real d2;
-    real p[3], q[3];
-    real wp[3], wq[3];
-} TTD_SFX(exact_best);
 
 static real TTD_SFX(exact_dot)(const real a[3], const real b[3])
 {
@@ -127,70 +121,98 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
     T->ML = TTD_SFX(exact_dot)(T->M, T->L);
 }
 
-/* Projects point P onto the face of T. Writes the barycentric weights w (in T's vertex
- * order), the projected point q = v[k] + b L + c M (the same weights, so q lies on T up to
- * rounding) and the signed height h = dot(n, P - v[k]) (unnormalised; its sign is the side).
- * Returns whether the projection is inside or on the face. */
-static int TTD_SFX(exact_face_project)(const TTD_SFX(exact_tri) *T, const real P[3], real w[3],
-                                       real q[3], real *h)
+/* Projects point P onto the face of T: the weights b (of v[k+1]) and c (of v[k+2]) against
+ * the longest edge, the signed height h = dot(n, P - v[k]) (unnormalised; its sign is the
+ * side), and whether the projection is inside or on the face. The point itself is
+ * exact_face_point(T, b, c), rebuilt from these weights so that it lies on T up to rounding. */
+static int TTD_SFX(exact_face_project)(const TTD_SFX(exact_tri) *T, const real P[3], real *b,
+                                       real *c, real *h)
 {
     const int k = T->k;
     real r[3], x[3];
     TTD_SFX(exact_sub)(P, T->v[k], r);
     TTD_SFX(exact_cross)(T->L, r, x);
-    /* c: across the longest edge; b: along it, corrected by c so that errors in c move q
-     * only by c's error times the height over L (docs: consistent reconstruction). */
-    real c = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
-    real b = (TTD_SFX(exact_dot)(r, T->L) - c * T->ML) * T->inv_ee[k];
-    real a = (real)1 - b - c;
-    w[k] = a;
-    w[(k + 1) % 3] = b;
-    w[(k + 2) % 3] = c;
-    for (int i = 0; i < 3; ++i)
-        q[i] = T->v[k][i] + b * T->L[i] + c * T->M[i];
+    /* c: across the longest edge; b: along it, corrected by c so that an error in c moves the
+     * point only by that error times the height over L (docs: consistent reconstruction). */
+    real cc = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
+    real bb = (TTD_SFX(exact_dot)(r, T->L) - cc * T->ML) * T->inv_ee[k];
+    real aa = (real)1 - bb - cc;
+    *b = bb;
+    *c = cc;
     *h = TTD_SFX(exact_dot)(T->n, r);
-    return T->has_face && a >= (real)0 && b >= (real)0 && c >= (real)0;
+    return T->has_face && aa >= (real)0 && bb >= (real)0 && cc >= (real)0;
 }
 
-/* Keeps the candidate when strictly closer. x/wx belong to the triangle whose role is
- * `first` (0: x is on S; 1: x is on T, so the pair is stored swapped). */
-static void TTD_SFX(exact_consider)(TTD_SFX(exact_best) *best, real d2, const real x[3],
-                                    const real y[3], const real wx[3], const real wy[3], int swapped)
+static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real c, real q[3],
+                                      real w[3])
 {
-    if (!(d2 < best->d2))
-        return;
-    best->d2 = d2;
-    for (int i = 0; i < 3; ++i) {
-        best->p[i] = swapped ? y[i] : x[i];
-        best->q[i] = swapped ? x[i] : y[i];
-        best->wp[i] = swapped ? wy[i] : wx[i];
-        best->wq[i] = swapped ? wx[i] : wy[i];
+    const int k = T->k;
+    for (int i = 0; i < 3; ++i)
+        q[i] = T->v[k][i] + b * T->L[i] + c * T->M[i];
+    w[k] = (real)1 - b - c;
+    w[(k + 1) % 3] = b;
+    w[(k + 2) % 3] = c;
+}
+
+/* The point X.v[i] + t X.e[i] of edge i, and its weights. */
+static void TTD_SFX(exact_edge_point)(const TTD_SFX(exact_tri) *X, int i, real t, real p[3],
+                                      real w[3])
+{
+    for (int c = 0; c < 3; ++c)
+        p[c] = X->v[i][c] + t * X->e[i][c];
+    w[0] = w[1] = w[2] = 0;
+    w[i] = (real)1 - t;
+    w[(i + 1) % 3] = t;
+}
+
+/* The selection: the smallest d2 so far, which candidate gave it (id, numbered in the order
+ * below) and that candidate's parameters. Points and weights are rebuilt once at the end
+ * from these (exact_rebuild), with the same expressions, so they are the same bits. A
+ * rejected candidate offers REAL_MAX, which never wins against the initial value. */
+typedef struct TTD_SFX(exact_best) {
+    real d2;
+    int id;
+    real u, v, w;
+} TTD_SFX(exact_best);
+
+#ifndef TTD_EXACT_IDS   /* precision-independent: defined on the first inclusion only */
+#define TTD_EXACT_IDS
+enum {
+    TTD_EXACT_VE_S = 0,     /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
+    TTD_EXACT_VE_T = 9,     /* 9: vertex j of T against edge i of S: id = 9 + 3j + i, u = t */
+    TTD_EXACT_EE = 18,      /* 9: edge i of S, edge j of T: id = 18 + 3i + j, u = s, v = t */
+    TTD_EXACT_VF_S = 27,    /* 3: vertex i of S on T's face: u = b, v = c */
+    TTD_EXACT_VF_T = 30,    /* 3: vertex j of T on S's face */
+    TTD_EXACT_X_S = 33,     /* 3: edge i of S through T's face: u = tau, v = b, w = c */
+    TTD_EXACT_X_T = 36,     /* 3: edge j of T through S's face */
+    TTD_EXACT_COUNT = 39
+};
+#endif
+
+static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real u, real v, real w)
+{
+    if (d2 < best->d2) {   /* strict: the first of equal candidates wins */
+        best->d2 = d2;
+        best->id = id;
+        best->u = u;
+        best->v = v;
+        best->w = w;
     }
 }
 
 /* 9 vertex-edge candidates: each vertex of X against each edge of Y, t clamped to [0,1]. */
 static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                       int swapped, TTD_SFX(exact_best) *best)
+                                       int id0, TTD_SFX(exact_best) *best)
 {
-    for (int i = 0; i < 3; ++i) {
-        real wx[3] = {0, 0, 0};
-        wx[i] = 1;
+    for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-            real r[3], q[3], d[3];
+            real r[3], d[3];
             TTD_SFX(exact_sub)(X->v[i], Y->v[j], r);
             real t = TTD_SFX(exact_clamp01)(TTD_SFX(exact_dot)(r, Y->e[j]) * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
-                q[c] = Y->v[j][c] + t * Y->e[j][c];
-            TTD_SFX(exact_sub)(X->v[i], q, d);
-            real d2 = TTD_SFX(exact_dot)(d, d);
-            if (!(d2 < best->d2))   /* the common case: skip building the weights */
-                continue;
-            real wy[3] = {0, 0, 0};
-            wy[j] = (real)1 - t;
-            wy[(j + 1) % 3] = t;
-            TTD_SFX(exact_consider)(best, d2, X->v[i], q, wx, wy, swapped);
+                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+            TTD_SFX(exact_keep)(best, TTD_SFX(exact_dot)(d, d), id0 + 3 * i + j, t, 0, 0);
         }
-    }
 }
 
 /* 9 edge-edge interior candidates: the stationary point of the two lines, accepted when
@@ -199,7 +221,8 @@ static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SF
  * edges at gap D its direction error eps/sin moves p(s) along a direction in which the
  * distance grows only to second order (error ~ eps^2 D / sin^2), and where that is large the
  * endpoint candidates are within L^2 sin^2 / D; the smaller of the two is below eps L
- * (docs/exact-method.md, "edge-edge"). */
+ * (docs/exact-method.md, "edge-edge"). Parallel edges (nn below REAL_MIN) are rejected:
+ * their endpoints cover them. */
 static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(exact_tri) *T,
                                      TTD_SFX(exact_best) *best)
 {
@@ -207,73 +230,106 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
         const real *P = S->v[i], *d1 = S->e[i];
         for (int j = 0; j < 3; ++j) {
             const real *Q = T->v[j], *d2 = T->e[j];
-            real n[3], w[3], x[3];
+            real n[3], w[3], x[3], d[3];
             TTD_SFX(exact_cross)(d1, d2, n);
             real nn = TTD_SFX(exact_dot)(n, n);
-            if (!(nn >= TTD_REAL_MIN))   /* parallel or a point: the endpoints cover it */
-                continue;
+            int ok = nn >= TTD_REAL_MIN;
             TTD_SFX(exact_sub)(Q, P, w);
             TTD_SFX(exact_cross)(w, d2, x);
-            real s = TTD_SFX(exact_dot)(x, n) / nn;
+            real s = ok ? TTD_SFX(exact_dot)(x, n) / nn : (real)-1;
             real sc = TTD_SFX(exact_clamp01)(s);
             real t = (sc * TTD_SFX(exact_dot)(d1, d2) - TTD_SFX(exact_dot)(w, d2)) * T->inv_ee[j];
-            if (!(s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1))
-                continue;
-            real p[3], q[3], d[3];
-            for (int c = 0; c < 3; ++c) {
-                p[c] = P[c] + sc * d1[c];
-                q[c] = Q[c] + t * d2[c];
-            }
-            TTD_SFX(exact_sub)(p, q, d);
-            real dd = TTD_SFX(exact_dot)(d, d);
-            if (!(dd < best->d2))
-                continue;
-            real wp[3] = {0, 0, 0}, wq[3] = {0, 0, 0};
-            wp[i] = (real)1 - sc;
-            wp[(i + 1) % 3] = sc;
-            wq[j] = (real)1 - t;
-            wq[(j + 1) % 3] = t;
-            TTD_SFX(exact_consider)(best, dd, p, q, wp, wq, 0);
+            real tc = TTD_SFX(exact_clamp01)(t);
+            int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
+            for (int c = 0; c < 3; ++c)
+                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+            real dd = accept ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX;
+            TTD_SFX(exact_keep)(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
         }
     }
 }
 
-/* 3 vertex-face candidates (vertices of X against the face of Y), then 3 edge-face crossings
- * (edges of X through the face of Y), sharing the vertices' signed heights. */
-static void TTD_SFX(exact_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                int swapped, TTD_SFX(exact_best) *best, real h[3])
+/* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
+ * signed heights over Y's plane, which the crossings reuse. */
+static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
+                                       int id0, TTD_SFX(exact_best) *best, real h[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real wy[3], q[3], d[3];
-        int inside = TTD_SFX(exact_face_project)(Y, X->v[i], wy, q, &h[i]);
-        if (!inside)
-            continue;
-        real wx[3] = {0, 0, 0};
-        wx[i] = 1;
+        real b, c, q[3], w[3], d[3];
+        int inside = TTD_SFX(exact_face_project)(Y, X->v[i], &b, &c, &h[i]);
+        TTD_SFX(exact_face_point)(Y, b, c, q, w);
         TTD_SFX(exact_sub)(X->v[i], q, d);
-        TTD_SFX(exact_consider)(best, TTD_SFX(exact_dot)(d, d), X->v[i], q, wx, wy, swapped);
+        TTD_SFX(exact_keep)(best, inside ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
 
+/* 3 edge-face crossings: edge i of X whose ends lie strictly on opposite sides of Y's plane
+ * crosses it at X = P0 + tau (P1 - P0); when that point is inside Y's face the distance is 0.
+ * The `continue` is a guard that only saves time: a lane port computes every crossing and
+ * masks (or skips the block when no lane has opposite signs). */
 static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                     int swapped, TTD_SFX(exact_best) *best, const real h[3])
+                                     int id0, TTD_SFX(exact_best) *best, const real h[3])
 {
-    if (!Y->has_face)
-        return;
     for (int i = 0; i < 3; ++i) {
         real h0 = h[i], h1 = h[(i + 1) % 3];
-        if (!((h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0)))
+        int opposite = (h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0);
+        if (!opposite || !Y->has_face)
             continue;
         real tau = h0 / (h0 - h1);   /* no cancellation: opposite signs */
-        real xp[3], wy[3], q[3], hx;
+        real xp[3], wx[3], b, c, hx;
+        TTD_SFX(exact_edge_point)(X, i, tau, xp, wx);
+        int inside = TTD_SFX(exact_face_project)(Y, xp, &b, &c, &hx);
+        TTD_SFX(exact_keep)(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
+    }
+}
+
+/* Rebuilds p, q and their weights from the winning candidate, with the expressions that
+ * computed its d2. */
+static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SFX(exact_tri) *S,
+                                   const TTD_SFX(exact_tri) *T, real p[3], real q[3], real wp[3],
+                                   real wq[3])
+{
+    const int id = best->id;
+    /* x/wx: the point of triangle X (the one whose vertex or edge the candidate names),
+     * y/wy: the point of the other one; swapped when X is T. */
+    const TTD_SFX(exact_tri) *X = S, *Y = T;
+    real x[3], y[3], wx[3], wy[3];
+    int swapped = 0;
+    if (id < TTD_EXACT_EE) {
+        int k = id < TTD_EXACT_VE_T ? id : id - TTD_EXACT_VE_T;
+        if (id >= TTD_EXACT_VE_T) { X = T; Y = S; swapped = 1; }
+        int i = k / 3, j = k % 3;
+        for (int c = 0; c < 3; ++c) {
+            x[c] = X->v[i][c];
+            wx[c] = (real)(c == i);
+        }
+        TTD_SFX(exact_edge_point)(Y, j, best->u, y, wy);
+    } else if (id < TTD_EXACT_VF_S) {
+        int i = (id - TTD_EXACT_EE) / 3, j = (id - TTD_EXACT_EE) % 3;
+        TTD_SFX(exact_edge_point)(S, i, best->u, x, wx);
+        TTD_SFX(exact_edge_point)(T, j, best->v, y, wy);
+    } else if (id < TTD_EXACT_X_S) {
+        int i = (id - TTD_EXACT_VF_S) % 3;
+        if (id >= TTD_EXACT_VF_T) { X = T; Y = S; swapped = 1; }
+        for (int c = 0; c < 3; ++c) {
+            x[c] = X->v[i][c];
+            wx[c] = (real)(c == i);
+        }
+        TTD_SFX(exact_face_point)(Y, best->u, best->v, y, wy);
+    } else {
+        int i = (id - TTD_EXACT_X_S) % 3;
+        if (id >= TTD_EXACT_X_T) { X = T; Y = S; swapped = 1; }
+        TTD_SFX(exact_edge_point)(X, i, best->u, x, wx);
+        real yq[3];
+        TTD_SFX(exact_face_point)(Y, best->v, best->w, yq, wy);
         for (int c = 0; c < 3; ++c)
-            xp[c] = X->v[i][c] + tau * X->e[i][c];
-        if (!TTD_SFX(exact_face_project)(Y, xp, wy, q, &hx))
-            continue;
-        real wx[3] = {0, 0, 0};
-        wx[i] = (real)1 - tau;
-        wx[(i + 1) % 3] = tau;
-        TTD_SFX(exact_consider)(best, (real)0, xp, xp, wx, wy, swapped);
+            y[c] = x[c];   /* the crossing point, common to both: p == q exactly */
+    }
+    for (int c = 0; c < 3; ++c) {
+        p[c] = swapped ? y[c] : x[c];
+        q[c] = swapped ? x[c] : y[c];
+        wp[c] = swapped ? wy[c] : wx[c];
+        wq[c] = swapped ? wx[c] : wy[c];
     }
 }
 
@@ -321,21 +377,18 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     TTD_SFX(exact_tri_init)(&S);
     TTD_SFX(exact_tri_init)(&T);
 
-    /* 2. Candidates, in the fixed order that breaks ties. */
-    TTD_SFX(exact_best) best;
-    best.d2 = TTD_REAL_MAX;
-    for (int i = 0; i < 3; ++i) {   /* placeholder, always beaten by the first candidate */
-        best.p[i] = best.q[i] = S.v[0][i];
-        best.wp[i] = best.wq[i] = (real)(i == 0);
-    }
-    TTD_SFX(exact_vertex_edge)(&S, &T, 0, &best);
-    TTD_SFX(exact_vertex_edge)(&T, &S, 1, &best);
-    TTD_SFX(exact_edge_edge)(&S, &T, &best);
+    /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
+    TTD_SFX(exact_best) best = {TTD_REAL_MAX, 0, 0, 0, 0};
     real hs[3], ht[3];   /* heights of S's vertices over T's plane, and of T's over S's */
-    TTD_SFX(exact_face)(&S, &T, 0, &best, hs);
-    TTD_SFX(exact_face)(&T, &S, 1, &best, ht);
-    TTD_SFX(exact_crossings)(&S, &T, 0, &best, hs);
-    TTD_SFX(exact_crossings)(&T, &S, 1, &best, ht);
+    TTD_SFX(exact_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
+    TTD_SFX(exact_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
+    TTD_SFX(exact_edge_edge)(&S, &T, &best);
+    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
+    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
+    TTD_SFX(exact_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
+    TTD_SFX(exact_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
+    real bp[3], bq[3], wp[3], wq[3];
+    TTD_SFX(exact_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 
     /* 3. Touching within rounding counts as touching: a distance below 4 eps of the pair's
      * extent (which is ~1 here) is what a contact computes to, not a gap. */
@@ -353,13 +406,13 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     const real unpre = (real)1 / pre;
     r->distance = d * g1 * g2 * unpre;
     for (int c = 0; c < 3; ++c) {
-        r->p[c] = (best.p[c] * g1 * g2 + o[c]) * unpre;
-        r->q[c] = (best.q[c] * g1 * g2 + o[c]) * unpre;
-        r->bary_p[c] = best.wp[c];
-        r->bary_q[c] = best.wq[c];
+        r->p[c] = (bp[c] * g1 * g2 + o[c]) * unpre;
+        r->q[c] = (bq[c] * g1 * g2 + o[c]) * unpre;
+        r->bary_p[c] = wp[c];
+        r->bary_q[c] = wq[c];
     }
     r->flags = flags;
-    r->feature_p = TTD_SFX(exact_features)(best.wp);
-    r->feature_q = TTD_SFX(exact_features)(best.wq);
+    r->feature_p = TTD_SFX(exact_features)(wp);
+    r->feature_q = TTD_SFX(exact_features)(wq);
     r->iterations = 0;
 }
