@@ -11,9 +11,13 @@
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
  *    depend on it are selected; the rebuild's data-dependent choices (which vertex, edge or
  *    face, which triangle) are selects on the id.
- *  - A pass whose candidates are rejected in every lane is skipped (Embree's
- *    `if (none(valid)) return`): on random pairs most edge-edge interiors, vertex-face
- *    projections and crossings are rejected by every lane of a group.
+ *  - No branch on the data. Keeping a candidate only in groups where some lane improves, and
+ *    skipping edge-edge, vertex-face and crossing candidates that no lane accepts (Embree's
+ *    `if (none(valid)) return`), was tried first and was 1.6-1.9x slower: those branches are
+ *    unpredictable on random pairs, and each misprediction also empties the out-of-order
+ *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains: the
+ *    crossings when no lane's other triangle has a face (degenerate input), and the FMA cross
+ *    product for nearly parallel face frames (double; rare).
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
@@ -207,8 +211,6 @@ static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, 
                                     vreal w)
 {
     const vmask m = mand(ok, vlt(d2, best->d2));
-    if (mnone(m))
-        return;
     best->d2 = vsel(m, d2, best->d2);
     best->id = vsel(m, vset1((real)id), best->id);
     best->u = vsel(m, u, best->u);
@@ -256,8 +258,6 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
             const vreal sc = TTD_SFX(kx_clamp01)(s);
             const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * T->inv_ee[j];
             const vmask accept = mand(live, mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one))));
-            if (mnone(accept))
-                continue;
             const vreal tc = TTD_SFX(kx_clamp01)(t);
             for (int c = 0; c < 3; ++c)
                 d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
@@ -274,8 +274,6 @@ static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_S
     for (int i = 0; i < 3; ++i) {
         vreal b, c, q[3], w[3], d[3];
         const vmask inside = mand(live, TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]));
-        if (mnone(inside))
-            continue;
         TTD_SFX(kx_face_point)(Y, b, c, q, w);
         for (int k = 0; k < 3; ++k)
             d[k] = X->v[i][k] - q[k];
@@ -296,8 +294,6 @@ static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *X, const TTD_SFX
         const vreal h0 = h[i], h1 = h[(i + 1) % 3];
         const vmask opposite = mor(mand(vlt(h0, zero), vgt(h1, zero)), mand(vgt(h0, zero), vlt(h1, zero)));
         const vmask ok = mand(face, opposite);
-        if (mnone(ok))
-            continue;
         const vreal tau = h0 / (h0 - h1); /* no cancellation: opposite signs */
         vreal xp[3], b, c, hx;
         for (int k = 0; k < 3; ++k)
