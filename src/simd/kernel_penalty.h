@@ -35,14 +35,6 @@ static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3]
     w[2] = w2 * inv;
 }
 
-#ifndef TTD_FLOAT_RHO_MAX
-/* Until common/defaults.h carries these (branch penalty): the same values. */
-#define TTD_FLOAT_RHO_MAX 4096.0
-#define TTD_FLOAT_TOL_MIN 1.0e-6
-#define TTD_DOUBLE_RHO_MAX 1.0e300
-#define TTD_DOUBLE_TOL_MIN 0.0
-#endif
-
 /* Per-lane data that does not change during the iteration (scalar: before the loop). */
 typedef struct TTD_SFX(kp_frame) {
     vreal BA[3], CA[3], DA[3], ED[3], FD[3]; /* the pair in the frame: A at 0, unit size */
