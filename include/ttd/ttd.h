@@ -104,9 +104,14 @@ typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
     ttd_isa isa;        ///< default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA may force one
     int threads;        ///< worker threads for batches; 0 (default) = all online cores
-    double rho;         ///< penalty/barrier parameter (penalty weight; barrier weight is 1/rho); see docs
-    double tol;         ///< step tolerance, measured on the geometry of the pair scaled to unit size
-    int max_iterations; ///< Newton iteration cap, 1..65535
+    /// Penalty weight (default 1e6). The barrier method lowers its weight to 1/rho^2.
+    /// Float kernels use min(rho, 256): a larger weight loses sliver pivots to rounding.
+    double rho;
+    /// Newton step length below which an iteration stops (default 1e-12), measured on the
+    /// pair translated and scaled to unit size (the paper's ttd1 reference: raw coordinates).
+    /// Float kernels use max(tol, 1e-6).
+    double tol;
+    int max_iterations; ///< Newton iteration cap, 1..65535 (default 99, the paper's)
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
 } ttd_options;
 
