@@ -35,20 +35,34 @@ static const char ttd_dist_usage[] =
     "second, x y z each. Blank lines and lines starting with '#' are skipped. Writes one line\n"
     "per pair: the distance, or with --points the distance, p (3 numbers) and q (3 numbers).\n"
     "\n"
-    "  --method M        exact (default), penalty, penalty-ref or barrier\n"
-    "  --precision P     double (default, printed with %.17g) or float (input rounded to float,\n"
-    "                    printed with %.9g)\n"
+    "  --method M        %s (default exact)\n"
+    "  --precision P     double (default, printed with %%.17g) or float (input rounded to float,\n"
+    "                    printed with %%.9g)\n"
     "  --points          also print the closest points p and q\n"
-    "  --rho R           penalty weight of the iterative methods (default 1e4)\n"
-    "  --tol T           step tolerance of the iterative methods (default 1e-10)\n"
-    "  --max-iter N      iteration cap of the iterative methods, 1..65535 (default 99)\n"
-    "  --isa I           scalar, sse2, avx2, avx512, neon or auto (default; TTD_ISA may force one)\n"
+    "  --rho R           penalty weight of the iterative methods (default %g)\n"
+    "  --tol T           step tolerance of the iterative methods (default %g)\n"
+    "  --max-iter N      iteration cap of the iterative methods, 1..65535 (default %d)\n"
+    "  --isa I           %s (default auto; TTD_ISA may force one)\n"
     "  --threads N       worker threads, 0 = every core (default)\n"
     "\n"
     "A bad line (not 18 finite numbers) gets a message FILE:LINE on standard error and the output\n"
     "line 'nan'; reading goes on. Pairs an iterative method did not converge on are printed as\n"
     "computed (points on their triangles) with one warning at the end. Exit status: 0 all pairs\n"
     "computed, 1 some line bad or an I/O error, 2 bad options.\n";
+
+/* The usage text, with the method and ISA names the library knows. */
+static void ttd_dist_print_usage(FILE *f)
+{
+    char methods[256] = "", isas[256] = "";
+    for (int m = 0; m < TTD_METHOD_COUNT; ++m)
+        snprintf(methods + strlen(methods), sizeof methods - strlen(methods), "%s%s", m ? "|" : "",
+                 ttd_method_name((ttd_method)m));
+    for (int i = 0; i < TTD_ISA_COUNT; ++i)
+        snprintf(isas + strlen(isas), sizeof isas - strlen(isas), "%s%s", i ? "|" : "",
+                 ttd_isa_name((ttd_isa)i));
+    const ttd_options o = ttd_default_options();
+    fprintf(f, ttd_dist_usage, methods, o.rho, o.tol, o.max_iterations, isas);
+}
 
 typedef struct ttd_dist_args {
     ttd_options opt;
@@ -80,7 +94,7 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
             continue;
         }
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            fputs(ttd_dist_usage, stdout);
+            ttd_dist_print_usage(stdout);
             return 1;
         }
         if (strcmp(arg, "--points") == 0) {
