@@ -17,9 +17,10 @@
 /* Set by ttd_default_options(); options built any other way lack it (Box2D's def cookie). */
 #define TTD_OPTIONS_COOKIE 0x74746431u /* "ttd1" */
 
-/* Accepted ranges of the iterative methods' parameters (wide: the methods run on the pair
- * scaled to unit size, so these bound nonsense, not taste). */
-#define TTD_RHO_MAX 1e300
+/* Accepted ranges of the iterative methods' parameters: what the double kernels take
+ * (common/defaults.h; float kernels clamp further themselves). The methods run on the pair
+ * scaled to unit size, so a step tolerance above 1 means nothing. */
+#define TTD_RHO_MAX TTD_DOUBLE_RHO_MAX
 #define TTD_TOL_MAX 1.0
 
 #define TTD_STR2(x) #x
