@@ -454,9 +454,11 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
     /* 4. Scale back and add the origin back. */
     const vreal unpre = one / pre;
     out->distance = d * g * unpre;
+    /* a point within rounding of REAL_MAX can round past it: clamp, as the scalar code does */
+    const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX);
     for (int c = 0; c < 3; ++c) {
-        out->p[c] = (bp[c] * g + o[c]) * unpre;
-        out->q[c] = (bq[c] * g + o[c]) * unpre;
+        out->p[c] = vmin(vmax((bp[c] * g + o[c]) * unpre, mbig), big);
+        out->q[c] = vmin(vmax((bq[c] * g + o[c]) * unpre, mbig), big);
         out->bary_p[c] = wp[c];
         out->bary_q[c] = wq[c];
     }
