@@ -12,4 +12,7 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_SANITIZE=ON ${TTD
 cmake --build "$build" -j "$jobs"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1:abort_on_error=1}
-ctest --test-dir "$build" --output-on-failure -j "$jobs"
+# ttd.install is left out: it links a plain downstream project against the installed library,
+# whose sanitized objects need the sanitizer runtimes that project does not link (scripts/test.sh
+# runs it on the plain build).
+ctest --test-dir "$build" --output-on-failure -j "$jobs" -E '^ttd[.]install$'
