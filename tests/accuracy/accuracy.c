@@ -185,8 +185,9 @@ static row run_one(const family_data *fd, config c, int threads, int check, doub
     o.threads = threads;
     const int pr = c.is_float;
     w.status = pr ? ttd_batch_f(&o, fd->n, fd->sf, fd->tf, NULL, rf) : ttd_batch_d(&o, fd->n, fd->s, fd->t, NULL, rd);
-    if (w.status >= TTD_ERR_FIRST_FATAL) {
+    if (w.status >= TTD_ERR_FIRST_FATAL) { /* nothing computed: no numbers to show */
         w.failures = fd->n;
+        w.max_err = w.p999 = w.max_off = w.max_pq = (double)NAN;
         return w;
     }
     const double eps = pr ? (double)FLT_EPSILON / 2 : DBL_EPSILON / 2;
@@ -391,6 +392,10 @@ int main(int argc, char **argv)
                 ++i;
             if (i == TTD_ISA_COUNT)
                 goto bad;
+            if (!ttd_isa_available((ttd_isa)i)) {
+                fprintf(stderr, "ttd_accuracy: --isa %s: not built in or not supported by this CPU\n", val);
+                return 2;
+            }
             isa_mask |= 1u << i;
             ++a;
         } else if (val && !strcmp(arg, "--precision")) {
