@@ -6,15 +6,18 @@
  *     and a non-finite pair in the middle; a second call gives the same bits again;
  *   - across instruction sets the distances agree within the method's accuracy target
  *     (1e-12 of max(d, size) in double, 1e-5 in float; size from the quad reference's helper),
- *     so do the closest points (plus the rounding at the coordinates' magnitude: the SIMD rows
- *     form p from the weights with FMA and differ from the scalar row by an ulp), and the
+ *     so do the closest points (plus the rounding at the coordinates' magnitude, which an FMA
+ *     in a row's rebuild of p would change), and the
  *     intersecting flag agrees wherever the distance is not within that tolerance of 0.
+ *   - six callers at once (each with 2 worker threads, each on its own ISA and precision) get
+ *     the same bits as one caller alone: the library keeps no mutable state between calls.
  * (tests/test_api.c checks thread counts for every method on the default instruction set; this
  * file pins the exact method on every one.) The number of pairs that are bit-identical across
  * instruction sets is printed, not asserted. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,7 +136,7 @@ static int isas_agree(void)
             ENSURE_MSG(ef <= 1e-5, "%s vs scalar, float, pair %zu: %.9g vs %.9g", ttd_isa_name((ttd_isa)isa), i,
                        (double)bf->distance, (double)af->distance);
             /* closest points: within the same tolerance plus the rounding at the coordinates'
-             * magnitude (an FMA in the weighted sum moves them by an ulp) */
+             * magnitude (an FMA in the weighted sum would move them by an ulp) */
             double mag = 0;
             for (int k = 0; k < 9; ++k)
                 mag = fmax(mag, fmax(fabs(S[9 * i + k]), fabs(T[9 * i + k])));
@@ -158,6 +161,55 @@ static int isas_agree(void)
     return 0;
 }
 
+/* One concurrent caller: its ISA and precision, its own output, and whether it matched. */
+typedef struct caller {
+    ttd_isa isa;
+    int is_float, rounds, ok;
+    ttd_result_d *rd;
+    ttd_result_f *rf;
+} caller;
+
+static void *caller_run(void *arg)
+{
+    caller *c = arg;
+    ttd_options o = opts(c->isa, 2);
+    c->ok = 1;
+    for (int k = 0; k < c->rounds && c->ok; ++k) {
+        if (c->is_float) {
+            c->ok = ttd_batch_f(&o, N, Sf, Tf, NULL, c->rf) == TTD_ERR_NONFINITE_INPUT &&
+                    memcmp(c->rf, RFISA[c->isa], sizeof RF1) == 0;
+        } else {
+            c->ok = ttd_batch_d(&o, N, S, T, NULL, c->rd) == TTD_ERR_NONFINITE_INPUT &&
+                    memcmp(c->rd, RISA[c->isa], sizeof R1) == 0;
+        }
+    }
+    return NULL;
+}
+
+static int concurrent_callers(void)
+{
+    enum { NC = 6 };
+    static ttd_result_d rd[NC][N];
+    static ttd_result_f rf[NC][N];
+    ttd_isa isas[TTD_ISA_COUNT];
+    int nisa = 0;
+    for (int isa = TTD_ISA_SCALAR; isa < TTD_ISA_COUNT; ++isa)
+        if (ttd_isa_available((ttd_isa)isa))
+            isas[nisa++] = (ttd_isa)isa;
+    caller c[NC];
+    pthread_t tid[NC];
+    for (int k = 0; k < NC; ++k) {
+        c[k] = (caller){isas[k % nisa], k & 1, 3, 0, rd[k], rf[k]};
+        ENSURE(pthread_create(&tid[k], NULL, caller_run, &c[k]) == 0);
+    }
+    for (int k = 0; k < NC; ++k)
+        ENSURE(pthread_join(tid[k], NULL) == 0);
+    for (int k = 0; k < NC; ++k)
+        ENSURE_MSG(c[k].ok, "caller %d (%s, %s) got different results", k, ttd_isa_name(c[k].isa),
+                   c[k].is_float ? "float" : "double");
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -168,5 +220,6 @@ int main(int argc, char **argv)
     }
     RUN_TEST(threads_bit_identical);
     RUN_TEST(isas_agree);
+    RUN_TEST(concurrent_callers);
     TEST_MAIN_END();
 }
