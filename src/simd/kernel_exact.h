@@ -70,11 +70,13 @@ static inline void TTD_SFX(kx_cross)(const vreal a[3], const vreal b[3], vreal o
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/* scalar: exact_clamp01 */
+/* scalar: exact_clamp01, x < 0 ? 0 : (x > 1 ? 1 : x). With x86's min(a, b) = a < b ? a : b and
+ * max(a, b) = a > b ? a : b this is the same expression, signed zeros included (NEON's
+ * min/max may turn a -0 into +0 here, nothing else); x is never NaN. Two instructions instead
+ * of two compares and two selects. */
 static inline vreal TTD_SFX(kx_clamp01)(vreal x)
 {
-    const vreal zero = vzero(), one = vset1((real)1);
-    return vsel(vlt(x, zero), zero, vsel(vgt(x, one), one, x));
+    return vmax(vzero(), vmin(vset1((real)1), x));
 }
 
 /* k-indexed selection: x[k] */
@@ -207,10 +209,9 @@ static inline void TTD_SFX(kx_face_point)(const TTD_SFX(kx_tri) *T, vreal b, vre
 
 /* scalar: exact_keep. In the lanes of ok where d2 is strictly smaller, keep (d2, id, and the
  * first np of u, v, w); the others are never read for this id. */
-static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
-                                    vreal w)
+static inline void TTD_SFX(kx_keep_m)(TTD_SFX(kx_best) *best, vmask m, vreal d2, int id, int np, vreal u, vreal v,
+                                      vreal w)
 {
-    const vmask m = mand(ok, vlt(d2, best->d2));
     best->d2 = vsel(m, d2, best->d2);
     best->id = vsel(m, vset1((real)id), best->id);
     best->u = vsel(m, u, best->u);
@@ -220,9 +221,21 @@ static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, 
         best->w = vsel(m, w, best->w);
 }
 
+static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
+                                    vreal w)
+{
+    TTD_SFX(kx_keep_m)(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
+}
+
+/* kx_keep for a candidate that every lane offers (vertex-edge) */
+static inline void TTD_SFX(kx_keep_all)(TTD_SFX(kx_best) *best, vreal d2, int id, int np, vreal u, vreal v, vreal w)
+{
+    TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
+}
+
 /* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. */
 static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vmask live)
+                                           TTD_SFX(kx_best) *best)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -233,14 +246,14 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
             const vreal t = TTD_SFX(kx_clamp01)(TTD_SFX(kx_dot)(r, Y->e[j]) * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
                 d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
-            TTD_SFX(kx_keep)(best, live, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
+            TTD_SFX(kx_keep_all)(best, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
         }
 }
 
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
 static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX(kx_tri) *T,
-                                         TTD_SFX(kx_best) *best, vmask live)
+                                         TTD_SFX(kx_best) *best)
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -257,7 +270,7 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
             const vreal s = vsel(ok, TTD_SFX(kx_dot)(x, n) / nn, -one);
             const vreal sc = TTD_SFX(kx_clamp01)(s);
             const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * T->inv_ee[j];
-            const vmask accept = mand(live, mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one))));
+            const vmask accept = mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one)));
             const vreal tc = TTD_SFX(kx_clamp01)(t);
             for (int c = 0; c < 3; ++c)
                 d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
@@ -269,11 +282,11 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
 /* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; h gets the
  * vertices' heights for the crossings. */
 static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vreal h[3], vmask live)
+                                           TTD_SFX(kx_best) *best, vreal h[3])
 {
     for (int i = 0; i < 3; ++i) {
         vreal b, c, q[3], w[3], d[3];
-        const vmask inside = mand(live, TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]));
+        const vmask inside = TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]);
         TTD_SFX(kx_face_point)(Y, b, c, q, w);
         for (int k = 0; k < 3; ++k)
             d[k] = X->v[i][k] - q[k];
@@ -284,10 +297,10 @@ static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_S
 /* scalar: exact_crossings. 3 candidates: edges of X whose ends lie strictly on opposite sides
  * of Y's plane and cross it inside the face (distance 0). */
 static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                         TTD_SFX(kx_best) *best, const vreal h[3], vmask live)
+                                         TTD_SFX(kx_best) *best, const vreal h[3])
 {
     const vreal zero = vzero();
-    const vmask face = mand(live, Y->has_face);
+    const vmask face = Y->has_face;
     if (mnone(face))
         return;
     for (int i = 0; i < 3; ++i) {
@@ -390,7 +403,7 @@ static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_S
 }
 
 /* One group of W pairs: scalar ttd_exact_pair, steps 1-4. */
-static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vmask live, TTD_SFX(kw_out) *out)
+static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD_SFX(kw_out) *out)
 {
     const vreal zero = vzero(), one = vset1((real)1);
     /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
@@ -436,13 +449,13 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
     vreal hs[3], ht[3]; /* heights of S's vertices over T's plane, and of T's over S's */
-    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, live);
-    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, live);
-    TTD_SFX(kx_edge_edge)(&S, &T, &best, live);
-    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs, live);
-    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht, live);
-    TTD_SFX(kx_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs, live);
-    TTD_SFX(kx_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht, live);
+    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
+    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
+    TTD_SFX(kx_edge_edge)(&S, &T, &best);
+    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
+    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
+    TTD_SFX(kx_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
+    TTD_SFX(kx_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
     vreal bp[3], bq[3], wp[3], wq[3];
     TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 
@@ -476,7 +489,7 @@ static void TTD_SFX(kernel_exact)(size_t n, const real *s, const real *t, const 
         vreal S[9], T[9];
         TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
         TTD_SFX(kw_out) o;
-        TTD_SFX(kx_group)(S, T, mfirst(live), &o);
+        TTD_SFX(kx_group)(S, T, &o); /* pad lanes compute a harmless pair, never stored */
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }
