@@ -121,26 +121,37 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
     T->ML = TTD_SFX(exact_dot)(T->M, T->L);
 }
 
-/* Projects point P onto the face of T: the weights b (of v[k+1]) and c (of v[k+2]) against
- * the longest edge, the signed height h = dot(n, P - v[k]) (unnormalised; its sign is the
- * side), and whether the projection is inside or on the face. The point itself is
- * exact_face_point(T, b, c), rebuilt from these weights so that it lies on T up to rounding. */
-static int TTD_SFX(exact_face_project)(const TTD_SFX(exact_tri) *T, const real P[3], real *b,
-                                       real *c, real *h)
+/* The face coordinates of a point P relative to T: c = the weight of v[k+2] (across the
+ * longest edge), g = dot(P - v[k], L) (along it, before the correction by c) and the signed
+ * height h = dot(n, P - v[k]) (unnormalised; its sign is the side). All three are affine in
+ * P, which is what lets a crossing interpolate them (exact_crossings). */
+typedef struct TTD_SFX(exact_fc) {
+    real c, g, h;
+} TTD_SFX(exact_fc);
+
+static TTD_SFX(exact_fc) TTD_SFX(exact_face_coords)(const TTD_SFX(exact_tri) *T, const real P[3])
 {
-    const int k = T->k;
     real r[3], x[3];
-    TTD_SFX(exact_sub)(P, T->v[k], r);
+    TTD_SFX(exact_sub)(P, T->v[T->k], r);
     TTD_SFX(exact_cross)(T->L, r, x);
-    /* c: across the longest edge; b: along it, corrected by c so that an error in c moves the
-     * point only by that error times the height over L (docs: consistent reconstruction). */
-    real cc = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
-    real bb = (TTD_SFX(exact_dot)(r, T->L) - cc * T->ML) * T->inv_ee[k];
-    real aa = (real)1 - bb - cc;
+    TTD_SFX(exact_fc) f;
+    f.c = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
+    f.g = TTD_SFX(exact_dot)(r, T->L);
+    f.h = TTD_SFX(exact_dot)(T->n, r);
+    return f;
+}
+
+/* The weights b (of v[k+1]) and c (of v[k+2]) of a point with face coordinates (c, g), and
+ * whether it is inside or on the face. b is computed after c and corrected by it, so that an
+ * error in c moves the point only by that error times the height over L (docs: consistent
+ * reconstruction). The point itself is exact_face_point(T, b, c), rebuilt from these weights
+ * so that it lies on T up to rounding. */
+static int TTD_SFX(exact_face_weights)(const TTD_SFX(exact_tri) *T, real c, real g, real *b)
+{
+    real bb = (g - c * T->ML) * T->inv_ee[T->k];
+    real aa = (real)1 - bb - c;
     *b = bb;
-    *c = cc;
-    *h = TTD_SFX(exact_dot)(T->n, r);
-    return T->has_face && aa >= (real)0 && bb >= (real)0 && cc >= (real)0;
+    return T->has_face && aa >= (real)0 && bb >= (real)0 && c >= (real)0;
 }
 
 static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real c, real q[3],
@@ -250,35 +261,41 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
 }
 
 /* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
- * signed heights over Y's plane, which the crossings reuse. */
+ * face coordinates over Y (c, g and the height h), which the crossings reuse. */
 static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                       int id0, TTD_SFX(exact_best) *best, real h[3])
+                                       int id0, TTD_SFX(exact_best) *best, TTD_SFX(exact_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real b, c, q[3], w[3], d[3];
-        int inside = TTD_SFX(exact_face_project)(Y, X->v[i], &b, &c, &h[i]);
+        real b, q[3], w[3], d[3];
+        f[i] = TTD_SFX(exact_face_coords)(Y, X->v[i]);
+        const real c = f[i].c;
+        int inside = TTD_SFX(exact_face_weights)(Y, c, f[i].g, &b);
         TTD_SFX(exact_face_point)(Y, b, c, q, w);
         TTD_SFX(exact_sub)(X->v[i], q, d);
         TTD_SFX(exact_keep)(best, inside ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
 
-/* 3 edge-face crossings: edge i of X whose ends lie strictly on opposite sides of Y's plane
+/* 3 edge-face crossings: edge i of X (the triangle whose vertices f describes) whose ends lie strictly on opposite sides of Y's plane
  * crosses it at X = P0 + tau (P1 - P0); when that point is inside Y's face the distance is 0.
- * The `continue` is a guard that only saves time: a lane port computes every crossing and
- * masks (or skips the block when no lane has opposite signs). */
-static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                     int id0, TTD_SFX(exact_best) *best, const real h[3])
+ * The crossing's face coordinates are those of its ends interpolated with tau: c, g and h are
+ * affine in the point, so this is the projection of X itself up to rounding, and h(X) = 0 by
+ * the choice of tau (docs 3.5). The `continue` is a guard that only saves time: a lane port
+ * computes every crossing and masks (or skips the block when no lane has opposite signs). */
+static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_SFX(exact_best) *best,
+                                     const TTD_SFX(exact_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real h0 = h[i], h1 = h[(i + 1) % 3];
+        const TTD_SFX(exact_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        real h0 = f0.h, h1 = f1.h;
         int opposite = (h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0);
         if (!opposite || !Y->has_face)
             continue;
         real tau = h0 / (h0 - h1);   /* no cancellation: opposite signs */
-        real xp[3], wx[3], b, c, hx;
-        TTD_SFX(exact_edge_point)(X, i, tau, xp, wx);
-        int inside = TTD_SFX(exact_face_project)(Y, xp, &b, &c, &hx);
+        real c = f0.c + tau * (f1.c - f0.c);
+        real g = f0.g + tau * (f1.g - f0.g);
+        real b;
+        int inside = TTD_SFX(exact_face_weights)(Y, c, g, &b);
         TTD_SFX(exact_keep)(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
     }
 }
@@ -379,14 +396,14 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
 
     /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
     TTD_SFX(exact_best) best = {TTD_REAL_MAX, 0, 0, 0, 0};
-    real hs[3], ht[3];   /* heights of S's vertices over T's plane, and of T's over S's */
+    TTD_SFX(exact_fc) fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
     TTD_SFX(exact_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
     TTD_SFX(exact_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
     TTD_SFX(exact_edge_edge)(&S, &T, &best);
-    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
-    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
-    TTD_SFX(exact_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
-    TTD_SFX(exact_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
+    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    TTD_SFX(exact_crossings)(&T, TTD_EXACT_X_S, &best, fs);
+    TTD_SFX(exact_crossings)(&S, TTD_EXACT_X_T, &best, ft);
     real bp[3], bq[3], wp[3], wq[3];
     TTD_SFX(exact_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 

@@ -177,23 +177,34 @@ static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
     T->ML = TTD_SFX(kx_dot)(T->M, T->L);
 }
 
-/* scalar: exact_face_project. The weights b (of v[k+1]) and c (of v[k+2]) of P's projection
- * onto T's face, the height h; returns the lanes whose projection is inside or on the face. */
-static inline vmask TTD_SFX(kx_face_project)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal *b, vreal *c,
-                                              vreal *h)
+/* scalar: exact_fc, exact_face_coords. P's face coordinates over T: c (weight of v[k+2]),
+ * g = dot(P - v[k], L) and the height h. */
+typedef struct TTD_SFX(kx_fc) {
+    vreal c, g, h;
+} TTD_SFX(kx_fc);
+
+static inline TTD_SFX(kx_fc) TTD_SFX(kx_face_coords)(const TTD_SFX(kx_tri) *T, const vreal P[3])
 {
-    const vreal zero = vzero();
     vreal r[3], x[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->vk[i];
     TTD_SFX(kx_cross)(T->L, r, x);
-    const vreal cc = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
-    const vreal bb = (TTD_SFX(kx_dot)(r, T->L) - cc * T->ML) * T->inv_eek;
-    const vreal aa = vset1((real)1) - bb - cc;
+    TTD_SFX(kx_fc) f;
+    f.c = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
+    f.g = TTD_SFX(kx_dot)(r, T->L);
+    f.h = TTD_SFX(kx_dot)(T->n, r);
+    return f;
+}
+
+/* scalar: exact_face_weights. b from (c, g), and the lanes whose point is inside or on the
+ * face. */
+static inline vmask TTD_SFX(kx_face_weights)(const TTD_SFX(kx_tri) *T, vreal c, vreal g, vreal *b)
+{
+    const vreal zero = vzero();
+    const vreal bb = (g - c * T->ML) * T->inv_eek;
+    const vreal aa = vset1((real)1) - bb - c;
     *b = bb;
-    *c = cc;
-    *h = TTD_SFX(kx_dot)(T->n, r);
-    return mand(mand(T->has_face, vge(aa, zero)), mand(vge(bb, zero), vge(cc, zero)));
+    return mand(mand(T->has_face, vge(aa, zero)), mand(vge(bb, zero), vge(c, zero)));
 }
 
 /* scalar: exact_face_point. q = v[k] + b L + c M and its weights (w[k] = 1 - b - c). */
@@ -279,14 +290,16 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
     }
 }
 
-/* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; h gets the
- * vertices' heights for the crossings. */
+/* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; f gets the
+ * vertices' face coordinates for the crossings. */
 static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vreal h[3])
+                                           TTD_SFX(kx_best) *best, TTD_SFX(kx_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        vreal b, c, q[3], w[3], d[3];
-        const vmask inside = TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]);
+        vreal b, q[3], w[3], d[3];
+        f[i] = TTD_SFX(kx_face_coords)(Y, X->v[i]);
+        const vreal c = f[i].c;
+        const vmask inside = TTD_SFX(kx_face_weights)(Y, c, f[i].g, &b);
         TTD_SFX(kx_face_point)(Y, b, c, q, w);
         for (int k = 0; k < 3; ++k)
             d[k] = X->v[i][k] - q[k];
@@ -294,24 +307,25 @@ static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_S
     }
 }
 
-/* scalar: exact_crossings. 3 candidates: edges of X whose ends lie strictly on opposite sides
- * of Y's plane and cross it inside the face (distance 0). */
-static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                         TTD_SFX(kx_best) *best, const vreal h[3])
+/* scalar: exact_crossings. 3 candidates: edges of X (whose vertices' face coordinates over Y
+ * are f) with ends strictly on opposite sides of Y's plane, crossing it inside the face
+ * (distance 0). The crossing's coordinates are the ends' interpolated with tau. */
+static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *Y, int id0, TTD_SFX(kx_best) *best,
+                                         const TTD_SFX(kx_fc) f[3])
 {
     const vreal zero = vzero();
     const vmask face = Y->has_face;
     if (mnone(face))
         return;
     for (int i = 0; i < 3; ++i) {
-        const vreal h0 = h[i], h1 = h[(i + 1) % 3];
+        const TTD_SFX(kx_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        const vreal h0 = f0.h, h1 = f1.h;
         const vmask opposite = mor(mand(vlt(h0, zero), vgt(h1, zero)), mand(vgt(h0, zero), vlt(h1, zero)));
-        const vmask ok = mand(face, opposite);
         const vreal tau = h0 / (h0 - h1); /* no cancellation: opposite signs */
-        vreal xp[3], b, c, hx;
-        for (int k = 0; k < 3; ++k)
-            xp[k] = X->v[i][k] + tau * X->e[i][k]; /* scalar: exact_edge_point */
-        const vmask inside = mand(ok, TTD_SFX(kx_face_project)(Y, xp, &b, &c, &hx));
+        const vreal c = f0.c + tau * (f1.c - f0.c);
+        const vreal g = f0.g + tau * (f1.g - f0.g);
+        vreal b;
+        const vmask inside = mand(opposite, TTD_SFX(kx_face_weights)(Y, c, g, &b));
         TTD_SFX(kx_keep)(best, inside, zero, id0 + i, 3, tau, b, c);
     }
 }
@@ -448,14 +462,14 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
     TTD_SFX(kx_best) best;
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
-    vreal hs[3], ht[3]; /* heights of S's vertices over T's plane, and of T's over S's */
+    TTD_SFX(kx_fc) fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
     TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
     TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
     TTD_SFX(kx_edge_edge)(&S, &T, &best);
-    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
-    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
-    TTD_SFX(kx_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
-    TTD_SFX(kx_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
+    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    TTD_SFX(kx_crossings)(&T, TTD_EXACT_X_S, &best, fs);
+    TTD_SFX(kx_crossings)(&S, TTD_EXACT_X_T, &best, ft);
     vreal bp[3], bq[3], wp[3], wq[3];
     TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 
