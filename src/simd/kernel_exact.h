@@ -244,9 +244,10 @@ static inline void TTD_SFX(kx_keep_all)(TTD_SFX(kx_best) *best, vreal d2, int id
     TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
 }
 
-/* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. */
+/* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. When
+ * rdot is given, rdot[3i + j] keeps dot(X.v[i] - Y.v[j], Y.e[j]) for the edge-edge pass. */
 static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best)
+                                           TTD_SFX(kx_best) *best, vreal *rdot)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -254,7 +255,10 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
             vreal r[3], d[3];
             for (int c = 0; c < 3; ++c)
                 r[c] = X->v[i][c] - Y->v[j][c];
-            const vreal t = TTD_SFX(kx_clamp01)(TTD_SFX(kx_dot)(r, Y->e[j]) * Y->inv_ee[j]);
+            const vreal re = TTD_SFX(kx_dot)(r, Y->e[j]);
+            if (rdot)
+                rdot[3 * i + j] = re;
+            const vreal t = TTD_SFX(kx_clamp01)(re * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
                 d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
             TTD_SFX(kx_keep_all)(best, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
@@ -264,7 +268,7 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
 static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX(kx_tri) *T,
-                                         TTD_SFX(kx_best) *best)
+                                         TTD_SFX(kx_best) *best, const vreal rdot[9])
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -280,9 +284,12 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
             TTD_SFX(kx_cross)(w, d2, x);
             const vreal s = vsel(ok, TTD_SFX(kx_dot)(x, n) / nn, -one);
             const vreal sc = TTD_SFX(kx_clamp01)(s);
-            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * T->inv_ee[j];
-            const vmask accept = mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one)));
+            /* scalar: sc dot(d1, d2) - dot(w, d2). dot(w, d2) is minus the vertex-edge dot of
+             * S.v[i] on T's edge j, kept from that pass (w = -r, and negation is exact) */
+            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) + rdot[3 * i + j]) * T->inv_ee[j];
             const vreal tc = TTD_SFX(kx_clamp01)(t);
+            /* s and t in [0, 1]: exactly when clamping leaves them unchanged (-0 included) */
+            const vmask accept = mand(veq(s, sc), veq(t, tc));
             for (int c = 0; c < 3; ++c)
                 d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
             TTD_SFX(kx_keep)(best, accept, TTD_SFX(kx_dot)(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
@@ -463,9 +470,10 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
     TTD_SFX(kx_fc) fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
-    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
-    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
-    TTD_SFX(kx_edge_edge)(&S, &T, &best);
+    vreal rdot[9];               /* vertex-edge dots of S's vertices on T's edges */
+    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, rdot);
+    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, NULL);
+    TTD_SFX(kx_edge_edge)(&S, &T, &best, rdot);
     TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
     TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
     TTD_SFX(kx_crossings)(&T, TTD_EXACT_X_S, &best, fs);
