@@ -221,7 +221,7 @@ static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SF
             TTD_SFX(exact_sub)(X->v[i], Y->v[j], r);
             real t = TTD_SFX(exact_clamp01)(TTD_SFX(exact_dot)(r, Y->e[j]) * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
-                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+                d[c] = r[c] - t * Y->e[j][c];   /* X.v[i] - (Y.v[j] + t e[j]) */
             TTD_SFX(exact_keep)(best, TTD_SFX(exact_dot)(d, d), id0 + 3 * i + j, t, 0, 0);
         }
 }
@@ -253,7 +253,7 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
             real tc = TTD_SFX(exact_clamp01)(t);
             int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
             for (int c = 0; c < 3; ++c)
-                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+                d[c] = (sc * d1[c] - w[c]) - tc * d2[c];   /* (P + sc d1) - (Q + tc d2) */
             real dd = accept ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX;
             TTD_SFX(exact_keep)(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
         }
@@ -266,22 +266,24 @@ static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SF
                                        int id0, TTD_SFX(exact_best) *best, TTD_SFX(exact_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real b, q[3], w[3], d[3];
+        real b;
         f[i] = TTD_SFX(exact_face_coords)(Y, X->v[i]);
-        const real c = f[i].c;
+        const real c = f[i].c, h = f[i].h;
         int inside = TTD_SFX(exact_face_weights)(Y, c, f[i].g, &b);
-        TTD_SFX(exact_face_point)(Y, b, c, q, w);
-        TTD_SFX(exact_sub)(X->v[i], q, d);
-        TTD_SFX(exact_keep)(best, inside ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX, id0 + i, b, c, 0);
+        /* The squared distance to the plane, h^2 / |n|^2, which is the distance to the face
+         * point exact_face_point(Y, b, c) up to its in-plane rounding (eps |r|, docs 3.3).
+         * h / nn first: h^2 alone may underflow for a face near REAL_MIN in area. */
+        TTD_SFX(exact_keep)(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
 
-/* 3 edge-face crossings: edge i of X (the triangle whose vertices f describes) whose ends lie strictly on opposite sides of Y's plane
- * crosses it at X = P0 + tau (P1 - P0); when that point is inside Y's face the distance is 0.
- * The crossing's face coordinates are those of its ends interpolated with tau: c, g and h are
- * affine in the point, so this is the projection of X itself up to rounding, and h(X) = 0 by
- * the choice of tau (docs 3.5). The `continue` is a guard that only saves time: a lane port
- * computes every crossing and masks (or skips the block when no lane has opposite signs). */
+/* 3 edge-face crossings: edge i of X (the triangle whose vertices f describes) whose ends
+ * lie strictly on opposite sides of Y's plane crosses it at X = P0 + tau (P1 - P0); when that
+ * point is inside Y's face the distance is 0. The crossing's face coordinates are those of
+ * its ends interpolated with tau: c, g and h are affine in the point, so this is the
+ * projection of X itself up to rounding, and h(X) = 0 by the choice of tau (docs 3.5). The
+ * `continue` is a guard that only saves time: a lane port computes every crossing and masks
+ * (or skips the block when no lane has opposite signs). */
 static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_SFX(exact_best) *best,
                                      const TTD_SFX(exact_fc) f[3])
 {

@@ -260,7 +260,7 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
                 rdot[3 * i + j] = re;
             const vreal t = TTD_SFX(kx_clamp01)(re * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
-                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+                d[c] = r[c] - t * Y->e[j][c]; /* X.v[i] - (Y.v[j] + t e[j]) */
             TTD_SFX(kx_keep_all)(best, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
         }
 }
@@ -291,7 +291,7 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
             /* s and t in [0, 1]: exactly when clamping leaves them unchanged (-0 included) */
             const vmask accept = mand(veq(s, sc), veq(t, tc));
             for (int c = 0; c < 3; ++c)
-                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+                d[c] = (sc * d1[c] - w[c]) - tc * d2[c]; /* (P + sc d1) - (Q + tc d2) */
             TTD_SFX(kx_keep)(best, accept, TTD_SFX(kx_dot)(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
         }
     }
@@ -303,14 +303,12 @@ static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_S
                                            TTD_SFX(kx_best) *best, TTD_SFX(kx_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        vreal b, q[3], w[3], d[3];
+        vreal b;
         f[i] = TTD_SFX(kx_face_coords)(Y, X->v[i]);
-        const vreal c = f[i].c;
+        const vreal c = f[i].c, h = f[i].h;
         const vmask inside = TTD_SFX(kx_face_weights)(Y, c, f[i].g, &b);
-        TTD_SFX(kx_face_point)(Y, b, c, q, w);
-        for (int k = 0; k < 3; ++k)
-            d[k] = X->v[i][k] - q[k];
-        TTD_SFX(kx_keep)(best, inside, TTD_SFX(kx_dot)(d, d), id0 + i, 2, b, c, b);
+        /* the squared distance to the plane, h^2 / |n|^2 */
+        TTD_SFX(kx_keep)(best, inside, (h * Y->inv_nn) * h, id0 + i, 2, b, c, b);
     }
 }
 
