@@ -35,6 +35,16 @@ enum {
 };
 #endif
 
+#ifndef KX_GROUP_INLINE
+/* kx_group is inlined into both of kernel_exact's calls, so that each is specialised on its
+ * constant `full` (gcc 12 otherwise keeps one out-of-line copy and tests full at run time). */
+#if defined(__GNUC__)
+#define KX_GROUP_INLINE static inline __attribute__((always_inline))
+#else
+#define KX_GROUP_INLINE static inline
+#endif
+#endif
+
 #ifndef TTD_EXACT_TOUCH_EPS
 /* scalar: "a distance below 4 eps of the pair's extent is a contact" */
 #define TTD_EXACT_TOUCH_EPS 4
@@ -421,8 +431,11 @@ static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_S
     }
 }
 
-/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. */
-static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD_SFX(kw_out) *out)
+/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. full is a constant at each call:
+ * when 0 (the caller wants distances only) the winner is not rebuilt, and the compiler drops
+ * the selection's id and parameters with it, leaving a running minimum of d2; the distance is
+ * the same bits either way (the minimum does not depend on which candidate attains it). */
+KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD_SFX(kw_out) *out, const int full)
 {
     const vreal zero = vzero(), one = vset1((real)1);
     /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
@@ -434,14 +447,27 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
         m0 = vmax(m0, vabs(Sin[i]));
         m0 = vmax(m0, vabs(Tin[i]));
     }
-    const vreal pre = vsel(vgt(m0, vset1(TTD_REAL_MAX * (real)0.25)), vset1((real)0.25), one);
+    const vmask huge = vgt(m0, vset1(TTD_REAL_MAX * (real)0.25));
+    const vreal pre = vsel(huge, vset1((real)0.25), one);
+    /* Multiplying by pre = 1 is exact, so it is skipped when no lane needs the pre-scale (a
+     * branch that real data never takes, hence predicted); likewise the lift below. */
+    vreal sp[9], tp[9];
+    for (int i = 0; i < 9; ++i) {
+        sp[i] = Sin[i];
+        tp[i] = Tin[i];
+    }
+    if (many(huge))
+        for (int i = 0; i < 9; ++i) {
+            sp[i] = Sin[i] * pre;
+            tp[i] = Tin[i] * pre;
+        }
     vreal o[3], rel[18];
     for (int c = 0; c < 3; ++c)
-        o[c] = Sin[c] * pre;
+        o[c] = sp[c];
     vreal m = zero;
     for (int i = 0; i < 9; ++i) {
-        rel[i] = Sin[i] * pre - o[i % 3];
-        rel[9 + i] = Tin[i] * pre - o[i % 3];
+        rel[i] = sp[i] - o[i % 3];
+        rel[9 + i] = tp[i] - o[i % 3];
         m = vmax(m, vmax(vabs(rel[i]), vabs(rel[9 + i])));
     }
 #ifdef TTD_PRECISION_DOUBLE
@@ -454,11 +480,14 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
     const vreal half = vpow2(m * up);                                   /* 2^(e-1) (lifted) */
     const vreal inv = vsel(isz, one, vset1((real)0.5) / half);          /* 2^-e (lifted) */
     const vreal g = vsel(isz, one, half * vset1((real)2) * vsel(tiny, vset1(unlift), one)); /* 2^e */
+    if (many(tiny))
+        for (int i = 0; i < 18; ++i)
+            rel[i] = rel[i] * up;
     TTD_SFX(kx_tri) S, T;
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
-            S.v[i][c] = rel[3 * i + c] * up * inv;
-            T.v[i][c] = rel[9 + 3 * i + c] * up * inv;
+            S.v[i][c] = rel[3 * i + c] * inv;
+            T.v[i][c] = rel[9 + 3 * i + c] * inv;
         }
     TTD_SFX(kx_tri_init)(&S);
     TTD_SFX(kx_tri_init)(&T);
@@ -476,8 +505,6 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
     TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
     TTD_SFX(kx_crossings)(&T, TTD_EXACT_X_S, &best, fs);
     TTD_SFX(kx_crossings)(&S, TTD_EXACT_X_T, &best, ft);
-    vreal bp[3], bq[3], wp[3], wq[3];
-    TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 
     /* 3. A distance within rounding of 0 is a contact. */
     vreal d = vsqrt(best.d2);
@@ -487,11 +514,15 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD
     /* 4. Scale back and add the origin back. */
     const vreal unpre = one / pre;
     out->distance = d * g * unpre;
-    for (int c = 0; c < 3; ++c) {
-        out->p[c] = (bp[c] * g + o[c]) * unpre;
-        out->q[c] = (bq[c] * g + o[c]) * unpre;
-        out->bary_p[c] = wp[c];
-        out->bary_q[c] = wq[c];
+    if (full) {
+        vreal bp[3], bq[3], wp[3], wq[3];
+        TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+        for (int c = 0; c < 3; ++c) {
+            out->p[c] = (bp[c] * g + o[c]) * unpre;
+            out->q[c] = (bq[c] * g + o[c]) * unpre;
+            out->bary_p[c] = wp[c];
+            out->bary_q[c] = wq[c];
+        }
     }
     out->iterations = zero;
     out->flags_nc = 0;
@@ -509,7 +540,11 @@ static void TTD_SFX(kernel_exact)(size_t n, const real *s, const real *t, const 
         vreal S[9], T[9];
         TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
         TTD_SFX(kw_out) o;
-        TTD_SFX(kx_group)(S, T, &o); /* pad lanes compute a harmless pair, never stored */
+        /* pad lanes compute a harmless pair, never stored */
+        if (results)
+            TTD_SFX(kx_group)(S, T, &o, 1);
+        else
+            TTD_SFX(kx_group)(S, T, &o, 0);
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }
