@@ -63,9 +63,11 @@ typedef struct TTD_SFX(kx_tri) {
 } TTD_SFX(kx_tri);
 
 /* scalar: exact_best. The smallest d2 so far, the id of its candidate (TTD_EXACT_* in
- * scalar/exact_impl.h, as a real) and its parameters. */
+ * scalar/exact_impl.h, as a real) and its parameters. full (a constant once kx_group is
+ * inlined) says whether id, u, v, w are wanted; without them d2 is a plain running minimum. */
 typedef struct TTD_SFX(kx_best) {
     vreal d2, id, u, v, w;
+    int full;
 } TTD_SFX(kx_best);
 
 static inline vreal TTD_SFX(kx_dot)(const vreal a[3], const vreal b[3])
@@ -242,16 +244,25 @@ static inline void TTD_SFX(kx_keep_m)(TTD_SFX(kx_best) *best, vmask m, vreal d2,
         best->w = vsel(m, w, best->w);
 }
 
+/* Distances only: min(d2, best) is d2 < best ? d2 : best on x86 (NEON differs only for
+ * signed zeros and NaN, and d2 is a sum of squares or a square), so the compare folds into
+ * the min. */
 static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
                                     vreal w)
 {
-    TTD_SFX(kx_keep_m)(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
+    if (best->full)
+        TTD_SFX(kx_keep_m)(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
+    else
+        best->d2 = vmin(vsel(ok, d2, best->d2), best->d2);
 }
 
 /* kx_keep for a candidate that every lane offers (vertex-edge) */
 static inline void TTD_SFX(kx_keep_all)(TTD_SFX(kx_best) *best, vreal d2, int id, int np, vreal u, vreal v, vreal w)
 {
-    TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
+    if (best->full)
+        TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
+    else
+        best->d2 = vmin(d2, best->d2);
 }
 
 /* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. When
@@ -496,6 +507,7 @@ KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], T
     TTD_SFX(kx_best) best;
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
+    best.full = full;
     TTD_SFX(kx_fc) fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
     vreal rdot[9];               /* vertex-edge dots of S's vertices on T's edges */
     TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, rdot);
