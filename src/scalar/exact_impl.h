@@ -29,6 +29,8 @@ typedef struct TTD_SFX(exact_tri) {
     real nn;          /* |n|^2 */
     real inv_nn;      /* 1/nn, 0 when there is no face */
     real ML;          /* dot(M, L) */
+    real u[3];        /* cross(n, L) / nn (0 without a face): the across-weight c of a point P
+                       * is dot(P - v[k], u) = dot(n, cross(L, P - v[k])) / nn */
     int has_face;     /* nn is a normal number: the triangle has an area we can divide by */
 } TTD_SFX(exact_tri);
 
@@ -119,6 +121,9 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
     T->has_face = T->nn >= TTD_REAL_MIN;
     T->inv_nn = T->has_face ? (real)1 / T->nn : (real)0;
     T->ML = TTD_SFX(exact_dot)(T->M, T->L);
+    TTD_SFX(exact_cross)(T->n, T->L, T->u);
+    for (int c = 0; c < 3; ++c)
+        T->u[c] *= T->inv_nn;
 }
 
 /* The face coordinates of a point P relative to T: c = the weight of v[k+2] (across the
@@ -131,11 +136,12 @@ typedef struct TTD_SFX(exact_fc) {
 
 static TTD_SFX(exact_fc) TTD_SFX(exact_face_coords)(const TTD_SFX(exact_tri) *T, const real P[3])
 {
-    real r[3], x[3];
+    real r[3];
     TTD_SFX(exact_sub)(P, T->v[T->k], r);
-    TTD_SFX(exact_cross)(T->L, r, x);
     TTD_SFX(exact_fc) f;
-    f.c = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
+    /* n . (L x r) / nn as r . u: the same triple product, one cross product per triangle
+     * instead of one per point; its rounding is as small relative to |L| |r| / |n| (docs 3.3) */
+    f.c = TTD_SFX(exact_dot)(r, T->u);
     f.g = TTD_SFX(exact_dot)(r, T->L);
     f.h = TTD_SFX(exact_dot)(T->n, r);
     return f;

@@ -59,6 +59,7 @@ typedef struct TTD_SFX(kx_tri) {
     vreal vk[3];     /* v[k] */
     vreal L[3], M[3], n[3];
     vreal nn, inv_nn, ML, inv_eek; /* |n|^2, 1/nn or 0, dot(M, L), inv_ee[k] */
+    vreal u[3];                    /* cross(n, L) / nn */
     vmask has_face;
 } TTD_SFX(kx_tri);
 
@@ -187,6 +188,9 @@ static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
     T->has_face = vge(T->nn, rmin);
     T->inv_nn = vsel(T->has_face, one / T->nn, zero);
     T->ML = TTD_SFX(kx_dot)(T->M, T->L);
+    TTD_SFX(kx_cross)(T->n, T->L, T->u);
+    for (int c = 0; c < 3; ++c)
+        T->u[c] = T->u[c] * T->inv_nn;
 }
 
 /* scalar: exact_fc, exact_face_coords. P's face coordinates over T: c (weight of v[k+2]),
@@ -197,12 +201,11 @@ typedef struct TTD_SFX(kx_fc) {
 
 static inline TTD_SFX(kx_fc) TTD_SFX(kx_face_coords)(const TTD_SFX(kx_tri) *T, const vreal P[3])
 {
-    vreal r[3], x[3];
+    vreal r[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->vk[i];
-    TTD_SFX(kx_cross)(T->L, r, x);
     TTD_SFX(kx_fc) f;
-    f.c = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
+    f.c = TTD_SFX(kx_dot)(r, T->u); /* n . (L x r) / nn */
     f.g = TTD_SFX(kx_dot)(r, T->L);
     f.h = TTD_SFX(kx_dot)(T->n, r);
     return f;
