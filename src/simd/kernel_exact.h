@@ -16,8 +16,14 @@
  *    `if (none(valid)) return`), was tried first and was 1.6-1.9x slower: those branches are
  *    unpredictable on random pairs, and each misprediction also empties the out-of-order
  *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains: the
- *    crossings when no lane's other triangle has a face (degenerate input), and the FMA cross
- *    product for nearly parallel face frames (double; rare).
+ *    crossings when no lane's other triangle has a face (degenerate input), the FMA cross
+ *    product for nearly parallel face frames (double; rare), and the products by the pre-scale
+ *    and the lift, skipped when no lane needs them (inputs near REAL_MAX or a subnormal
+ *    extent; never on real data).
+ *  - Shared work the scalar code recomputes: edge-edge takes dot(Q - P, d2) from the
+ *    vertex-edge pass (an exact negation).
+ *  - Distances only (results == NULL): no rebuild, and the selection is a running minimum of
+ *    d2 (the same bits; docs/simd.md 7.1a).
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
