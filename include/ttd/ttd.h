@@ -40,14 +40,17 @@ typedef enum ttd_status {
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
     TTD_ERR_ISA_UNAVAILABLE = 19, ///< the forced instruction set is not built in or not supported here
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range
-    TTD_ERR_OUT_OF_MEMORY = 21    ///< a per-thread scratch allocation failed
+    TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed
+    TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
 } ttd_status;
 
 /// How the distance is computed.
 typedef enum ttd_method {
     TTD_METHOD_EXACT = 0,             ///< 6 vertex-face, 9 edge-edge and 6 edge-face crossing tests; exact to rounding
     TTD_METHOD_PENALTY = 1,           ///< the paper's quasi-Newton penalty method, optimised and safeguarded
-    TTD_METHOD_PENALTY_REFERENCE = 2, ///< the paper's MATLAB ttd1 step for step (for comparison)
+    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol
+    /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
+    TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
     TTD_METHOD_COUNT = 4
 } ttd_method;
