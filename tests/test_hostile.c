@@ -154,13 +154,15 @@ static void hostile_case_d(int c, double s[9], double t[9], int *e)
         t[0] = t[1] = t[2] = 0;
         *e = -1020;
         break;
-    case 13: /* a segment at DBL_MAX height (found by fuzz_batch): q rounded past DBL_MAX to inf */
+    case 13: { /* a segment at DBL_MAX height (found by fuzz_batch): q rounded past DBL_MAX to inf */
+        static const double s13[9] = {0.3, 0.3, -0x1p1023, 3.433227539062499e-05, 1.0, 0.5, 1.2, 0.4, 4.010117110756019e-304};
+        memcpy(s, s13, sizeof s13);
         for (int k = 0; k < 9; ++k)
             t[k] = DBL_MAX;
         t[0] = 0;
-        s[2] = -0x1p1022;
         *e = -1020;
         break;
+    }
     default: /* an ordinary pair, for comparison inside mixed batches */
         break;
     }
@@ -254,7 +256,7 @@ static int hostile_double_cases(void)
 static int hostile_float_cases(void)
 {
     rng_state = 2;
-    for (int c = 0; c < 8; ++c) {
+    for (int c = 0; c < 9; ++c) {
         for (int rep = 0; rep < 8; ++rep) {
             float sf[9], tf[9];
             int e = 0;
@@ -268,6 +270,10 @@ static int hostile_float_cases(void)
                 case 4: sf[k] = a * 0x1p-149f * 8, tf[k] = b * 0x1p-149f * 8 + 0x1p-147f, e = 149; break;
                 case 5: sf[k] = 1e30f + a * 1e23f, tf[k] = 1e30f + b * 1e23f, e = -90; break;
                 case 6: sf[k] = (k % 3) ? 0.0f : -FLT_MAX, tf[k] = (k % 3) ? 0.0f : FLT_MAX, e = -120; break;
+                case 8: /* a unit triangle against one at FLT_MAX height: q rounded to inf */
+                    sf[k] = (float)((const double[]){0, 0, 0, 1, 0, 0, 0, 1, 0}[k]);
+                    tf[k] = k == 0 ? 0.0f : (k == 6 ? 1e38f : FLT_MAX), e = -120;
+                    break;
                 default: /* a FLT_MAX-size triangle with a unit one inside, coplanar */
                     sf[k] = (float)((const double[]){-1, -1, 0, 1, -1, 0, 0, 1, 0}[k]) * FLT_MAX;
                     tf[k] = k % 3 == 2 ? 0.0f : b, e = -120;
