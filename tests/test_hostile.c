@@ -76,7 +76,7 @@ static double ref_point_triangle_scaled(const double x[3], const double tri[9], 
 
 /* ---- the hostile pairs -------------------------------------------------------------------- */
 
-enum { NCASES = 15 };
+enum { NCASES = 16 };
 /* Case c of the double cases; e receives a power-of-two exponent that brings it into the
  * reference's comfortable range (0 if none is needed). */
 static void hostile_case_d(int c, double s[9], double t[9], int *e)
@@ -160,6 +160,16 @@ static void hostile_case_d(int c, double s[9], double t[9], int *e)
         for (int k = 0; k < 9; ++k)
             t[k] = DBL_MAX;
         t[0] = 0;
+        *e = -1020;
+        break;
+    }
+    case 14: { /* a unit triangle against one near (DBL_MAX, DBL_MAX, DBL_MAX) (fuzz_batch): the
+                * penalty method's q rounded past DBL_MAX */
+        static const double s14[9] = {0.00029296875, 0.2999389654258266, 0.5, 1, 0.5, 1.2, 0.4, 1.1, 0.9};
+        static const double t14[9] = {DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, 1.797254241588399e+308,
+                                      DBL_MAX, -1.3605594387537141e+306, 1.7976926024339806e+308};
+        memcpy(s, s14, sizeof s14);
+        memcpy(t, t14, sizeof t14);
         *e = -1020;
         break;
     }
