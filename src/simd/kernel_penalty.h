@@ -309,9 +309,10 @@ static inline vreal TTD_SFX(kp_finish)(const TTD_SFX(kp_frame) *F, const TTD_SFX
 static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const vreal wp[3], const vreal wq[3],
                                       TTD_SFX(kw_out) *o)
 {
+    const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX); /* scalar: pen_clamp_max */
     for (int k = 0; k < 3; ++k) {
-        o->p[k] = wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k];
-        o->q[k] = wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k];
+        o->p[k] = vmin(vmax(wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k], mbig), big);
+        o->q[k] = vmin(vmax(wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k], mbig), big);
         o->bary_p[k] = wp[k];
         o->bary_q[k] = wq[k];
     }
