@@ -184,7 +184,7 @@ static void accuracy(bench_data *d, int bytes, const double *dist, bench_row *ro
         double scale = fmax(fmax(ref[i], size[i]), 1e-300);
         double rel = abs_err / scale;
         if (!(rel == rel)) /* NaN counts as the worst possible */
-            rel = abs_err = INFINITY;
+            rel = abs_err = BENCH_INF;
         d->scratch[i] = rel;
         if (rel > max_rel)
             max_rel = rel;
@@ -233,9 +233,9 @@ static bench_row *new_row(bench_ctx *cx, const bench_data *d, const char *method
     r->lanes = lanes;
     r->threads = threads;
     r->pairs = d->n;
-    r->speedup_vs_scalar = r->lane_fraction = r->thread_speedup = r->speedup_vs_fcl = NAN;
-    r->max_rel_err = r->p999_rel_err = r->max_abs_err = NAN;
-    r->mean_iterations = r->occupancy = NAN;
+    r->speedup_vs_scalar = r->lane_fraction = r->thread_speedup = r->speedup_vs_fcl = BENCH_NAN;
+    r->max_rel_err = r->p999_rel_err = r->max_abs_err = BENCH_NAN;
+    r->mean_iterations = r->occupancy = BENCH_NAN;
     return r;
 }
 
@@ -318,7 +318,7 @@ static int measure(bench_ctx *cx, bench_data *d, int bytes, ttd_method m, ttd_is
         if (m != TTD_METHOD_EXACT) {
             r->has_iterations = 1;
             r->mean_iterations = it_sum / (double)d->n;
-            r->occupancy = lanes > 1 && blockmax_sum > 0.0 ? it_sum / blockmax_sum : (double)NAN;
+            r->occupancy = lanes > 1 && blockmax_sum > 0.0 ? it_sum / blockmax_sum : BENCH_NAN;
         }
     }
     progress(cx, "%s %s %s %s %dt: %.2f ns/pair", d->spec->name, ttd_method_name(m), prec_name(bytes),
@@ -328,7 +328,7 @@ static int measure(bench_ctx *cx, bench_data *d, int bytes, ttd_method m, ttd_is
 
 static void measure_fcl(bench_ctx *cx, bench_data *d, int bytes)
 {
-    double ns = NAN, ns_min = NAN;
+    double ns = BENCH_NAN, ns_min = BENCH_NAN;
     const void *s = bytes == 8 ? (const void *)d->sd : (const void *)d->sf;
     const void *t = bytes == 8 ? (const void *)d->td : (const void *)d->tf;
     if (bench_fcl_run(cx->fcl_path, bytes, d->n, s, t, cx->st.min_sample_s, cx->st.samples, d->dist, &ns,
@@ -785,6 +785,7 @@ int ttd_bench_main(int argc, char **argv)
             run_workload(cx, ws, n);
     }
     derive_ratios(cx);
+    bench_load_average(machine.load_end, sizeof machine.load_end);
 
     if (want_json)
         bench_write_json(stdout, &machine, &cx->st, cx->rows, cx->nrows);

@@ -5,9 +5,14 @@
 #ifndef TTD_BENCH_INTERNAL_H
 #define TTD_BENCH_INTERNAL_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include "ttd/ttd.h"
+
+/// NaN and infinity as doubles (the <math.h> macros are floats, which -Wdouble-promotion flags).
+#define BENCH_NAN ((double)NAN)
+#define BENCH_INF ((double)INFINITY)
 
 /// One line of the results: a workload timed with one method, precision, ISA and thread count.
 typedef struct bench_row {
@@ -45,6 +50,8 @@ typedef struct bench_machine {
     char ttd_isas[64];        ///< instruction sets built into ttd and runnable here
     char isa_auto[16];        ///< what TTD_ISA_AUTO picks
     char os[200];
+    char load_start[64];      ///< /proc/loadavg when the run began
+    char load_end[64];        ///< and when it ended (other work on the machine skews timings)
     int cores;
     double mem_gib;
     double ghz;               ///< core clock estimated from a dependent add chain
@@ -55,6 +62,8 @@ typedef struct bench_machine {
 
 /// Fills everything but the probes (which are set to NaN).
 void bench_machine_describe(bench_machine *m);
+/// The 1, 5 and 15-minute load averages, "?" where unknown.
+void bench_load_average(char *out, size_t size);
 /// Runs the probes; seconds is roughly how long each one runs.
 void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes);
 

@@ -89,6 +89,18 @@ static void simd_flags(const char *flags, char *out, size_t size)
     }
 }
 
+void bench_load_average(char *out, size_t size)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double a = 0.0, b = 0.0, c = 0.0;
+    if (f && fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3)
+        snprintf(out, size, "%.2f %.2f %.2f", a, b, c);
+    else
+        snprintf(out, size, "?");
+    if (f)
+        fclose(f);
+}
+
 void bench_machine_describe(bench_machine *m)
 {
     char flags[8192];
@@ -102,7 +114,7 @@ void bench_machine_describe(bench_machine *m)
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     m->cores = cores > 0 ? (int)cores : 1;
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    m->mem_gib = pages > 0 && page > 0 ? (double)pages * (double)page / (1024.0 * 1024.0 * 1024.0) : (double)NAN;
+    m->mem_gib = pages > 0 && page > 0 ? (double)pages * (double)page / (1024.0 * 1024.0 * 1024.0) : BENCH_NAN;
     if (uname(&u) == 0)
         snprintf(m->os, sizeof m->os, "%s %s %s", u.sysname, u.release, u.machine);
     size_t used = 0;
@@ -114,12 +126,13 @@ void bench_machine_describe(bench_machine *m)
         if (k > 0 && (size_t)k < sizeof m->ttd_isas - used)
             used += (size_t)k;
     }
+    bench_load_average(m->load_start, sizeof m->load_start);
     const char *a = ttd_isa_name(ttd_isa_selected(NULL));
     snprintf(m->isa_auto, sizeof m->isa_auto, "%s", a ? a : "?");
-    m->ghz = NAN;
+    m->ghz = BENCH_NAN;
     for (int i = 0; i < TTD_ISA_COUNT; ++i)
-        m->peak_gflops_d[i] = NAN;
-    m->copy_gbs[0] = m->copy_gbs[1] = m->read_gbs[0] = m->read_gbs[1] = NAN;
+        m->peak_gflops_d[i] = BENCH_NAN;
+    m->copy_gbs[0] = m->copy_gbs[1] = m->read_gbs[0] = m->read_gbs[1] = BENCH_NAN;
 }
 
 /* ---- clock ---------------------------------------------------------------------------- */
@@ -297,7 +310,7 @@ static double stream_gbs(const uint64_t *src, uint64_t *dst, size_t count, int t
 {
     pthread_t tid[64];
     stream_job jobs[64];
-    double best = INFINITY;
+    double best = BENCH_INF;
     if (threads > 64)
         threads = 64;
     for (int r = 0; r < runs; ++r) {
@@ -319,7 +332,7 @@ static double stream_gbs(const uint64_t *src, uint64_t *dst, size_t count, int t
             best = t;
     }
     double bytes = (double)count * 8.0 * (dst ? 2.0 : 1.0);
-    return isfinite(best) ? bytes / best * 1e-9 : (double)NAN;
+    return isfinite(best) ? bytes / best * 1e-9 : BENCH_NAN;
 }
 
 void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes)

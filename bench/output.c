@@ -36,6 +36,8 @@ static void header_lines(FILE *f, const char *prefix, const bench_machine *m, co
     fprintf(f, "%scommand: %s\n", prefix, st->command);
     fprintf(f, "%sCPU: %s, %d cores, %.1f GiB; %s\n", prefix, m->cpu, m->cores, m->mem_gib, m->os);
     fprintf(f, "%sCPU SIMD flags: %s\n", prefix, m->cpu_isas);
+    fprintf(f, "%sload average (1, 5, 15 min): %s at the start, %s at the end\n", prefix, m->load_start,
+            m->load_end);
     fprintf(f, "%sttd instruction sets built and runnable: %s (auto picks %s)\n", prefix, m->ttd_isas, m->isa_auto);
     fprintf(f, "%scompiler: %s; flags: %s; plus %s\n", prefix, TTD_C_COMPILER, TTD_C_FLAGS, BENCH_EXTRA_FLAGS);
     fprintf(f, "%sprobes: clock ~%s GHz (dependent adds); peak double GFLOP/s on one core: scalar %s, sse2 %s, "
@@ -76,8 +78,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
                 r->workload, r->method, prec_name(r->bytes), r->isa, r->threads, r->pairs,
                 num(b[0], 32, r->ns_per_pair, r->ns_per_pair < 100 ? "%.2f" : "%.1f"),
                 num(b[1], 32, r->pairs_per_s * 1e-6, "%.2f"), num(b[2], 32, r->speedup_vs_scalar, "%.2f"),
-                num(b[3], 32, r->lanes > 1 || r->threads > 1 ? 100.0 * r->lane_fraction : (double)NAN, "%.0f%%"),
-                num(b[4], 32, strcmp(r->method, "fcl") ? r->speedup_vs_fcl : (double)NAN, "%.2f"),
+                num(b[3], 32, r->lanes > 1 || r->threads > 1 ? 100.0 * r->lane_fraction : BENCH_NAN, "%.0f%%"),
+                num(b[4], 32, strcmp(r->method, "fcl") ? r->speedup_vs_fcl : BENCH_NAN, "%.2f"),
                 num(b[5], 32, r->max_rel_err, "%.2g"), num(b[6], 32, r->p999_rel_err, "%.2g"), dis, nc,
                 num(b[7], 32, r->mean_iterations, "%.2f"), num(b[8], 32, r->occupancy, "%.2f"));
     }
@@ -147,6 +149,10 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
     json_string(f, m->cpu);
     fprintf(f, ", \"cores\": %d, \"memory_gib\": %.1f, \"os\": ", m->cores, m->mem_gib);
     json_string(f, m->os);
+    fprintf(f, ", \"load_average_start\": ");
+    json_string(f, m->load_start);
+    fprintf(f, ", \"load_average_end\": ");
+    json_string(f, m->load_end);
     fprintf(f, ", \"cpu_simd_flags\": ");
     json_string(f, m->cpu_isas);
     fprintf(f, ", \"ttd_isas\": ");
@@ -194,9 +200,9 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
         json_num(f, "lane_fraction", r->lane_fraction);
         json_num(f, "thread_speedup", r->thread_speedup);
         json_num(f, "speedup_vs_fcl", r->speedup_vs_fcl);
-        json_num(f, "max_rel_err", r->has_accuracy ? r->max_rel_err : (double)NAN);
-        json_num(f, "p999_rel_err", r->has_accuracy ? r->p999_rel_err : (double)NAN);
-        json_num(f, "max_abs_err", r->has_accuracy ? r->max_abs_err : (double)NAN);
+        json_num(f, "max_rel_err", r->has_accuracy ? r->max_rel_err : BENCH_NAN);
+        json_num(f, "p999_rel_err", r->has_accuracy ? r->p999_rel_err : BENCH_NAN);
+        json_num(f, "max_abs_err", r->has_accuracy ? r->max_abs_err : BENCH_NAN);
         if (r->has_accuracy)
             fprintf(f, ", \"disagree\": %zu, \"not_converged\": %zu", r->disagree, r->not_converged);
         else
@@ -232,9 +238,9 @@ void bench_write_csv(FILE *f, const bench_row *rows, size_t n)
         csv_num(f, r->lane_fraction);
         csv_num(f, r->thread_speedup);
         csv_num(f, r->speedup_vs_fcl);
-        csv_num(f, r->has_accuracy ? r->max_rel_err : (double)NAN);
-        csv_num(f, r->has_accuracy ? r->p999_rel_err : (double)NAN);
-        csv_num(f, r->has_accuracy ? r->max_abs_err : (double)NAN);
+        csv_num(f, r->has_accuracy ? r->max_rel_err : BENCH_NAN);
+        csv_num(f, r->has_accuracy ? r->p999_rel_err : BENCH_NAN);
+        csv_num(f, r->has_accuracy ? r->max_abs_err : BENCH_NAN);
         if (r->has_accuracy)
             fprintf(f, ",%zu,%zu", r->disagree, r->not_converged);
         else
