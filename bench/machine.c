@@ -158,11 +158,14 @@ static double adds_per_second(double seconds)
 
 /* Each probe runs `reps` rounds of 12 independent multiply-add chains (enough to cover a
  * 4-cycle latency on 2 ports) and returns a value so that the work cannot be dropped. The
- * chains converge to a fixed point, so no value overflows or goes subnormal. */
+ * chains converge to a fixed point, so no value overflows or goes subnormal. The factor is
+ * read from a volatile: otherwise the compiler may find the probe free of side effects and
+ * move the call past the clock that times it. */
+static volatile double probe_factor = 0.999;
 #ifdef BENCH_X86
 __attribute__((target("avx512f"))) static double chains_avx512(long reps)
 {
-    __m512d a[12], x = _mm512_set1_pd(0.999), y = _mm512_set1_pd(1e-3);
+    __m512d a[12], x = _mm512_set1_pd(probe_factor), y = _mm512_set1_pd(1e-3);
     for (int k = 0; k < 12; ++k)
         a[k] = _mm512_set1_pd(1.0 + k);
     for (long r = 0; r < reps; ++r) {
@@ -179,7 +182,7 @@ __attribute__((target("avx512f"))) static double chains_avx512(long reps)
 
 __attribute__((target("avx2,fma"))) static double chains_avx2(long reps)
 {
-    __m256d a[12], x = _mm256_set1_pd(0.999), y = _mm256_set1_pd(1e-3);
+    __m256d a[12], x = _mm256_set1_pd(probe_factor), y = _mm256_set1_pd(1e-3);
     for (int k = 0; k < 12; ++k)
         a[k] = _mm256_set1_pd(1.0 + k);
     for (long r = 0; r < reps; ++r) {
@@ -196,7 +199,7 @@ __attribute__((target("avx2,fma"))) static double chains_avx2(long reps)
 
 static double chains_sse2(long reps)
 {
-    __m128d a[12], x = _mm_set1_pd(0.999), y = _mm_set1_pd(1e-3);
+    __m128d a[12], x = _mm_set1_pd(probe_factor), y = _mm_set1_pd(1e-3);
     for (int k = 0; k < 12; ++k)
         a[k] = _mm_set1_pd(1.0 + k);
     for (long r = 0; r < reps; ++r) {
@@ -216,7 +219,7 @@ static double chains_sse2(long reps)
  * the compiler cannot pack the twelve chains into vectors). */
 static double chains_scalar(long reps)
 {
-    __m128d a[12], x = _mm_set_sd(0.999), y = _mm_set_sd(1e-3);
+    __m128d a[12], x = _mm_set_sd(probe_factor), y = _mm_set_sd(1e-3);
     for (int k = 0; k < 12; ++k)
         a[k] = _mm_set_sd(1.0 + k);
     for (long r = 0; r < reps; ++r) {
@@ -232,7 +235,7 @@ static double chains_scalar(long reps)
 /* Portable scalar chains (mul then add). */
 static double chains_scalar(long reps)
 {
-    double a[12], x = 0.999, y = 1e-3, s = 0.0;
+    double a[12], x = probe_factor, y = 1e-3, s = 0.0;
     for (int k = 0; k < 12; ++k)
         a[k] = 1.0 + k;
     for (long r = 0; r < reps; ++r) {
