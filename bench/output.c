@@ -101,7 +101,7 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
                        "disagree = relative difference > %g (double) / %g (float):\n",
                     bench_disagree_tol(8), bench_disagree_tol(4));
         any = 1;
-        fprintf(f, "  %-20s %-6s FCL %8s ns/pair, ttd %8s ns/pair (%s): %sx faster; FCL disagrees on %zu of %zu "
+        fprintf(f, "  %-20s %-6s FCL %8s ns/pair, ttd %8s ns/pair (%s): speedup over FCL %sx; FCL disagrees on %zu of %zu "
                    "pairs, worst relative %s, absolute %s\n",
                 fcl->workload, prec_name(fcl->bytes), num(b[0], 32, fcl->ns_per_pair, "%.1f"),
                 best ? num(b[1], 32, best->ns_per_pair, "%.2f") : "-", best ? best->isa : "-",
