@@ -1,0 +1,418 @@
+/* SPDX-License-Identifier: MIT */
+/* Precision-generic body of the exact method (included by exact.c once per precision; see
+ * common/precision.h). The distance is the minimum over a fixed list of candidate point
+ * pairs, each a real point of S and a real point of T, so every candidate but the crossings
+ * (which offer 0 unmeasured, see docs 3.1) is an upper bound, and the true minimum is always
+ * among them up to rounding:
+ *   18 vertex-edge (every vertex of one triangle against every edge of the other, clamped),
+ *    9 edge-edge interior (line-line stationary point, accepted when inside both segments),
+ *    6 vertex-face (a vertex whose projection falls inside the other face),
+ *    6 edge-face crossings (an edge crossing the other face: distance 0).
+ * Ties go to the earliest candidate in that order. Everything runs on coordinates
+ * translated to A and scaled by a power of two to magnitude ~1, so no threshold below is
+ * absolute. The method, the accuracy argument and notes for the SIMD port are in
+ * docs/exact-method.md. Every name here carries TTD_SFX because this file is compiled twice
+ * in one translation unit. */
+
+/* One triangle in normalised coordinates, with what every candidate shares. */
+typedef struct TTD_SFX(exact_tri) {
+    real v[3][3];     /* vertices */
+    real e[3][3];     /* edges e[i] = v[i+1] - v[i] */
+    real ee[3];       /* |e[i]|^2 */
+    real inv_ee[3];   /* 1/ee[i], 0 for an edge too short to divide by (a point) */
+    /* Face frame: base vertex k = start of the longest edge, L = e[k], M = v[k+2] - v[k].
+     * Barycentrics are solved against the longest edge so that a sliver's ill-conditioned
+     * across-coordinate is compensated along L (see docs, "vertex-face"). */
+    int k;
+    real L[3], M[3];
+    real n[3];        /* cross(L, M), computed accurately */
+    real nn;          /* |n|^2 */
+    real inv_nn;      /* 1/nn, 0 when there is no face */
+    real ML;          /* dot(M, L) */
+    int has_face;     /* nn is a normal number: the triangle has an area we can divide by */
+} TTD_SFX(exact_tri);
+
+static real TTD_SFX(exact_dot)(const real a[3], const real b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void TTD_SFX(exact_sub)(const real a[3], const real b[3], real out[3])
+{
+    out[0] = a[0] - b[0];
+    out[1] = a[1] - b[1];
+    out[2] = a[2] - b[2];
+}
+
+static void TTD_SFX(exact_cross)(const real a[3], const real b[3], real out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static real TTD_SFX(exact_clamp01)(real x)
+{
+    return x < (real)0 ? (real)0 : (x > (real)1 ? (real)1 : x);
+}
+
+#ifdef TTD_PRECISION_DOUBLE
+/* a*b - c*d with Kahan's FMA trick: error within 1.5 ulp of the result even when the two
+ * products nearly cancel (the normal of a sliver or of nearly parallel edges). */
+static double exact_dop_d(double a, double b, double c, double d)
+{
+    double w = c * d;
+    double err = fma(c, d, -w);   /* c*d - w, exact */
+    double f = fma(a, b, -w);     /* a*b - w, rounded once */
+    return f - err;
+}
+
+/* cross(a, b) to within a few ulps per component. Cheap path first: the naive cross product
+ * is accurate in direction to about eps/sin(angle); only when the angle is small (|n|^2 below
+ * 2^-20 |a|^2 |b|^2) is it redone with FMA. Returns |n|^2. */
+static double exact_cross_acc_d(const double a[3], const double b[3], double aa, double bb,
+                                    double out[3])
+{
+    exact_cross_d(a, b, out);
+    double nn = exact_dot_d(out, out);
+    if (nn < 0x1p-20 * aa * bb) {
+        out[0] = exact_dop_d(a[1], b[2], a[2], b[1]);
+        out[1] = exact_dop_d(a[2], b[0], a[0], b[2]);
+        out[2] = exact_dop_d(a[0], b[1], a[1], b[0]);
+        nn = exact_dot_d(out, out);
+    }
+    return nn;
+}
+#else
+/* Float: products of floats are exact in double, so one double difference per component,
+ * rounded to float, is accurate to 1 ulp whatever the angle. Returns |n|^2. */
+static float exact_cross_acc_f(const float a[3], const float b[3], float aa, float bb,
+                                   float out[3])
+{
+    (void)aa;
+    (void)bb;
+    out[0] = (float)((double)a[1] * (double)b[2] - (double)a[2] * (double)b[1]);
+    out[1] = (float)((double)a[2] * (double)b[0] - (double)a[0] * (double)b[2]);
+    out[2] = (float)((double)a[0] * (double)b[1] - (double)a[1] * (double)b[0]);
+    return exact_dot_f(out, out);
+}
+#endif
+
+static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
+{
+    for (int i = 0; i < 3; ++i) {
+        TTD_SFX(exact_sub)(T->v[(i + 1) % 3], T->v[i], T->e[i]);
+        T->ee[i] = TTD_SFX(exact_dot)(T->e[i], T->e[i]);
+        /* Guard: an edge shorter than sqrt(REAL_MIN) of the pair's extent is a point. */
+        T->inv_ee[i] = T->ee[i] >= TTD_REAL_MIN ? (real)1 / T->ee[i] : (real)0;
+    }
+    int k = 0;   /* longest edge, first on ties (a selection, not a decision tree) */
+    if (T->ee[1] > T->ee[k]) k = 1;
+    if (T->ee[2] > T->ee[k]) k = 2;
+    T->k = k;
+    int km = (k + 2) % 3;
+    for (int c = 0; c < 3; ++c) {
+        T->L[c] = T->e[k][c];
+        T->M[c] = -T->e[km][c];   /* v[k+2] - v[k], exact negation */
+    }
+    T->nn = TTD_SFX(exact_cross_acc)(T->L, T->M, T->ee[k], T->ee[km], T->n);
+    T->has_face = T->nn >= TTD_REAL_MIN;
+    T->inv_nn = T->has_face ? (real)1 / T->nn : (real)0;
+    T->ML = TTD_SFX(exact_dot)(T->M, T->L);
+}
+
+/* Projects point P onto the face of T: the weights b (of v[k+1]) and c (of v[k+2]) against
+ * the longest edge, the signed height h = dot(n, P - v[k]) (unnormalised; its sign is the
+ * side), and whether the projection is inside or on the face. The point itself is
+ * exact_face_point(T, b, c), rebuilt from these weights so that it lies on T up to rounding. */
+static int TTD_SFX(exact_face_project)(const TTD_SFX(exact_tri) *T, const real P[3], real *b,
+                                       real *c, real *h)
+{
+    const int k = T->k;
+    real r[3], x[3];
+    TTD_SFX(exact_sub)(P, T->v[k], r);
+    TTD_SFX(exact_cross)(T->L, r, x);
+    /* c: across the longest edge; b: along it, corrected by c so that an error in c moves the
+     * point only by that error times the height over L (docs: consistent reconstruction). */
+    real cc = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
+    real bb = (TTD_SFX(exact_dot)(r, T->L) - cc * T->ML) * T->inv_ee[k];
+    real aa = (real)1 - bb - cc;
+    *b = bb;
+    *c = cc;
+    *h = TTD_SFX(exact_dot)(T->n, r);
+    return T->has_face && aa >= (real)0 && bb >= (real)0 && cc >= (real)0;
+}
+
+static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real c, real q[3],
+                                      real w[3])
+{
+    const int k = T->k;
+    for (int i = 0; i < 3; ++i)
+        q[i] = T->v[k][i] + b * T->L[i] + c * T->M[i];
+    w[k] = (real)1 - b - c;
+    w[(k + 1) % 3] = b;
+    w[(k + 2) % 3] = c;
+}
+
+/* The point X.v[i] + t X.e[i] of edge i, and its weights. */
+static void TTD_SFX(exact_edge_point)(const TTD_SFX(exact_tri) *X, int i, real t, real p[3],
+                                      real w[3])
+{
+    for (int c = 0; c < 3; ++c)
+        p[c] = X->v[i][c] + t * X->e[i][c];
+    w[0] = w[1] = w[2] = 0;
+    w[i] = (real)1 - t;
+    w[(i + 1) % 3] = t;
+}
+
+/* The selection: the smallest d2 so far, which candidate gave it (id, numbered in the order
+ * below) and that candidate's parameters. Points and weights are rebuilt once at the end
+ * from these (exact_rebuild), with the same expressions, so they are the same bits. A
+ * rejected candidate offers REAL_MAX, which never wins against the initial value. */
+typedef struct TTD_SFX(exact_best) {
+    real d2;
+    int id;
+    real u, v, w;
+} TTD_SFX(exact_best);
+
+#ifndef TTD_EXACT_IDS   /* precision-independent: defined on the first inclusion only */
+#define TTD_EXACT_IDS
+enum {
+    TTD_EXACT_VE_S = 0,     /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
+    TTD_EXACT_VE_T = 9,     /* 9: vertex j of T against edge i of S: id = 9 + 3j + i, u = t */
+    TTD_EXACT_EE = 18,      /* 9: edge i of S, edge j of T: id = 18 + 3i + j, u = s, v = t */
+    TTD_EXACT_VF_S = 27,    /* 3: vertex i of S on T's face: u = b, v = c */
+    TTD_EXACT_VF_T = 30,    /* 3: vertex j of T on S's face */
+    TTD_EXACT_X_S = 33,     /* 3: edge i of S through T's face: u = tau, v = b, w = c */
+    TTD_EXACT_X_T = 36,     /* 3: edge j of T through S's face */
+    TTD_EXACT_COUNT = 39
+};
+#endif
+
+static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real u, real v, real w)
+{
+    if (d2 < best->d2) {   /* strict: the first of equal candidates wins */
+        best->d2 = d2;
+        best->id = id;
+        best->u = u;
+        best->v = v;
+        best->w = w;
+    }
+}
+
+/* 9 vertex-edge candidates: each vertex of X against each edge of Y, t clamped to [0,1]. */
+static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
+                                       int id0, TTD_SFX(exact_best) *best)
+{
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            real r[3], d[3];
+            TTD_SFX(exact_sub)(X->v[i], Y->v[j], r);
+            real t = TTD_SFX(exact_clamp01)(TTD_SFX(exact_dot)(r, Y->e[j]) * Y->inv_ee[j]);
+            for (int c = 0; c < 3; ++c)
+                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+            TTD_SFX(exact_keep)(best, TTD_SFX(exact_dot)(d, d), id0 + 3 * i + j, t, 0, 0);
+        }
+}
+
+/* 9 edge-edge interior candidates: the stationary point of the two lines, accepted when
+ * both parameters lie in [0,1]. s from the normal n = cross(d1, d2), t as the projection of
+ * p(s) onto the second line. The plain cross product is enough here: for nearly parallel
+ * edges at gap D its direction error eps/sin moves p(s) along a direction in which the
+ * distance grows only to second order (error ~ eps^2 D / sin^2), and where that is large the
+ * endpoint candidates are within L^2 sin^2 / D; the smaller of the two is below eps L
+ * (docs/exact-method.md, "edge-edge"). Parallel edges (nn below REAL_MIN) are rejected:
+ * their endpoints cover them. */
+static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(exact_tri) *T,
+                                     TTD_SFX(exact_best) *best)
+{
+    for (int i = 0; i < 3; ++i) {
+        const real *P = S->v[i], *d1 = S->e[i];
+        for (int j = 0; j < 3; ++j) {
+            const real *Q = T->v[j], *d2 = T->e[j];
+            real n[3], w[3], x[3], d[3];
+            TTD_SFX(exact_cross)(d1, d2, n);
+            real nn = TTD_SFX(exact_dot)(n, n);
+            int ok = nn >= TTD_REAL_MIN;
+            TTD_SFX(exact_sub)(Q, P, w);
+            TTD_SFX(exact_cross)(w, d2, x);
+            real s = ok ? TTD_SFX(exact_dot)(x, n) / nn : (real)-1;
+            real sc = TTD_SFX(exact_clamp01)(s);
+            real t = (sc * TTD_SFX(exact_dot)(d1, d2) - TTD_SFX(exact_dot)(w, d2)) * T->inv_ee[j];
+            real tc = TTD_SFX(exact_clamp01)(t);
+            int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
+            for (int c = 0; c < 3; ++c)
+                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+            real dd = accept ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX;
+            TTD_SFX(exact_keep)(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
+        }
+    }
+}
+
+/* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
+ * signed heights over Y's plane, which the crossings reuse. */
+static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
+                                       int id0, TTD_SFX(exact_best) *best, real h[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        real b, c, q[3], w[3], d[3];
+        int inside = TTD_SFX(exact_face_project)(Y, X->v[i], &b, &c, &h[i]);
+        TTD_SFX(exact_face_point)(Y, b, c, q, w);
+        TTD_SFX(exact_sub)(X->v[i], q, d);
+        TTD_SFX(exact_keep)(best, inside ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX, id0 + i, b, c, 0);
+    }
+}
+
+/* 3 edge-face crossings: edge i of X whose ends lie strictly on opposite sides of Y's plane
+ * crosses it at X = P0 + tau (P1 - P0); when that point is inside Y's face the distance is 0.
+ * The `continue` is a guard that only saves time: a lane port computes every crossing and
+ * masks (or skips the block when no lane has opposite signs). */
+static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
+                                     int id0, TTD_SFX(exact_best) *best, const real h[3])
+{
+    for (int i = 0; i < 3; ++i) {
+        real h0 = h[i], h1 = h[(i + 1) % 3];
+        int opposite = (h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0);
+        if (!opposite || !Y->has_face)
+            continue;
+        real tau = h0 / (h0 - h1);   /* no cancellation: opposite signs */
+        real xp[3], wx[3], b, c, hx;
+        TTD_SFX(exact_edge_point)(X, i, tau, xp, wx);
+        int inside = TTD_SFX(exact_face_project)(Y, xp, &b, &c, &hx);
+        TTD_SFX(exact_keep)(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
+    }
+}
+
+/* Rebuilds p, q and their weights from the winning candidate, with the expressions that
+ * computed its d2. */
+static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SFX(exact_tri) *S,
+                                   const TTD_SFX(exact_tri) *T, real p[3], real q[3], real wp[3],
+                                   real wq[3])
+{
+    const int id = best->id;
+    /* x/wx: the point of triangle X (the one whose vertex or edge the candidate names),
+     * y/wy: the point of the other one; swapped when X is T. */
+    const TTD_SFX(exact_tri) *X = S, *Y = T;
+    real x[3], y[3], wx[3], wy[3];
+    int swapped = 0;
+    if (id < TTD_EXACT_EE) {
+        int k = id < TTD_EXACT_VE_T ? id : id - TTD_EXACT_VE_T;
+        if (id >= TTD_EXACT_VE_T) { X = T; Y = S; swapped = 1; }
+        int i = k / 3, j = k % 3;
+        for (int c = 0; c < 3; ++c) {
+            x[c] = X->v[i][c];
+            wx[c] = (real)(c == i);
+        }
+        TTD_SFX(exact_edge_point)(Y, j, best->u, y, wy);
+    } else if (id < TTD_EXACT_VF_S) {
+        int i = (id - TTD_EXACT_EE) / 3, j = (id - TTD_EXACT_EE) % 3;
+        TTD_SFX(exact_edge_point)(S, i, best->u, x, wx);
+        TTD_SFX(exact_edge_point)(T, j, best->v, y, wy);
+    } else if (id < TTD_EXACT_X_S) {
+        int i = (id - TTD_EXACT_VF_S) % 3;
+        if (id >= TTD_EXACT_VF_T) { X = T; Y = S; swapped = 1; }
+        for (int c = 0; c < 3; ++c) {
+            x[c] = X->v[i][c];
+            wx[c] = (real)(c == i);
+        }
+        TTD_SFX(exact_face_point)(Y, best->u, best->v, y, wy);
+    } else {
+        int i = (id - TTD_EXACT_X_S) % 3;
+        if (id >= TTD_EXACT_X_T) { X = T; Y = S; swapped = 1; }
+        TTD_SFX(exact_edge_point)(X, i, best->u, x, wx);
+        real yq[3];
+        TTD_SFX(exact_face_point)(Y, best->v, best->w, yq, wy);
+        for (int c = 0; c < 3; ++c)
+            y[c] = x[c];   /* the crossing point, common to both: p == q exactly */
+    }
+    for (int c = 0; c < 3; ++c) {
+        p[c] = swapped ? y[c] : x[c];
+        q[c] = swapped ? x[c] : y[c];
+        wp[c] = swapped ? wy[c] : wx[c];
+        wq[c] = swapped ? wx[c] : wy[c];
+    }
+}
+
+static uint8_t TTD_SFX(exact_features)(const real w[3])
+{
+    return (uint8_t)((w[0] > (real)0 ? 1u : 0u) | (w[1] > (real)0 ? 2u : 0u) |
+                     (w[2] > (real)0 ? 4u : 0u));
+}
+
+void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
+{
+    /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
+     * differences cannot overflow; then translate to A and scale by 2^-e so the largest
+     * relative coordinate lies in [0.5, 1). The power is applied as two factors because
+     * 2^-e alone may not be representable (e down to the subnormal range). */
+    real m0 = 0;
+    for (int i = 0; i < 9; ++i) {
+        real a = TTD_FABS(s[i]), b = TTD_FABS(t[i]);
+        m0 = a > m0 ? a : m0;
+        m0 = b > m0 ? b : m0;
+    }
+    const real pre = m0 > TTD_REAL_MAX * (real)0.25 ? (real)0.25 : (real)1;
+    const real o[3] = {s[0] * pre, s[1] * pre, s[2] * pre};
+    real rel[18];
+    real m = 0;
+    for (int i = 0; i < 9; ++i) {
+        rel[i] = s[i] * pre - o[i % 3];
+        rel[9 + i] = t[i] * pre - o[i % 3];
+    }
+    for (int i = 0; i < 18; ++i) {
+        real a = TTD_FABS(rel[i]);
+        m = a > m ? a : m;
+    }
+    int e = 0;
+    (void)TTD_FREXP(m, &e);   /* m == 0 gives e == 0: all vertices equal, still handled */
+    const int e1 = e / 2, e2 = e - e / 2;
+    const real f1 = TTD_LDEXP((real)1, -e1), f2 = TTD_LDEXP((real)1, -e2);
+
+    TTD_SFX(exact_tri) S, T;
+    for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) {
+            S.v[i][c] = rel[3 * i + c] * f1 * f2;
+            T.v[i][c] = rel[9 + 3 * i + c] * f1 * f2;
+        }
+    TTD_SFX(exact_tri_init)(&S);
+    TTD_SFX(exact_tri_init)(&T);
+
+    /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
+    TTD_SFX(exact_best) best = {TTD_REAL_MAX, 0, 0, 0, 0};
+    real hs[3], ht[3];   /* heights of S's vertices over T's plane, and of T's over S's */
+    TTD_SFX(exact_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
+    TTD_SFX(exact_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
+    TTD_SFX(exact_edge_edge)(&S, &T, &best);
+    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
+    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
+    TTD_SFX(exact_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
+    TTD_SFX(exact_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
+    real bp[3], bq[3], wp[3], wq[3];
+    TTD_SFX(exact_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+
+    /* 3. Touching within rounding counts as touching: a distance below 4 eps of the pair's
+     * extent (which is ~1 here) is what a contact computes to, not a gap. */
+    real d = TTD_SQRT(best.d2);
+    uint32_t flags = 0;
+    if (!S.has_face) flags |= TTD_PAIR_DEGENERATE_S;
+    if (!T.has_face) flags |= TTD_PAIR_DEGENERATE_T;
+    if (d <= (real)4 * TTD_REAL_EPS) {
+        d = 0;
+        flags |= TTD_PAIR_INTERSECTING;
+    }
+
+    /* 4. Scale back and add the origin back. */
+    const real g1 = TTD_LDEXP((real)1, e1), g2 = TTD_LDEXP((real)1, e2);
+    const real unpre = (real)1 / pre;
+    r->distance = d * g1 * g2 * unpre;
+    for (int c = 0; c < 3; ++c) {
+        r->p[c] = (bp[c] * g1 * g2 + o[c]) * unpre;
+        r->q[c] = (bq[c] * g1 * g2 + o[c]) * unpre;
+        r->bary_p[c] = wp[c];
+        r->bary_q[c] = wq[c];
+    }
+    r->flags = flags;
+    r->feature_p = TTD_SFX(exact_features)(wp);
+    r->feature_q = TTD_SFX(exact_features)(wq);
+    r->iterations = 0;
+}
