@@ -66,7 +66,7 @@ awk -v n="$n" -v isa="$isa" -v method="$method" -v prec="$prec" '
     else if (m ~ /^v?mov/) cls = "move"
     else if (m ~ /^(j|call|ret|cmp|test|add|sub|inc|dec|lea|shl|shr|sar|and|or|xor|set|cmov|imul|nop|push|pop|xchg|endbr|cs|data)/) cls = "integer/control"
     k[cls] += c
-    if (ops ~ /\(/) {
+    if (ops ~ /\(/ && m !~ /^(lea|nop|prefetch)/ && line !~ /^cs nop/) {
       n_ops = split(ops, parts, ",")
       store = (parts[n_ops] ~ /\(/)
       stack = (ops ~ /\(%rsp|\(%rbp/)
