@@ -82,20 +82,29 @@ best_isa = system(sprintf("awk -F, 'NR==1{for(i=1;i<=NF;i++)c[$i]=i;next} $c[\"w
 max_threads = int(system(sprintf("awk -F, 'NR==1{for(i=1;i<=NF;i++)c[$i]=i;next} $c[\"workload\"] ~ /^random-/ && $c[\"threads\"]>t{t=$c[\"threads\"]} END{print t+0}' '%s'", csv)))
 
 if (strlen(best_isa) > 0 && sweep_n("exact", "double", best_isa, 1) >= 2) {
-  unset style
   set style data linespoints
   set logscale xy
   set xtics norotate
   set xlabel "pairs in the batch (input: 144 bytes per pair in double, 72 in float)"
   set ylabel "time per pair (ns)"
   set key top left
+  # blue double, orange float; solid exact, dashed penalty; filled points 1 thread, open all
+  set style line 1 lc rgb "#2b8cbe" lw 2 dt 1 pt 7
+  set style line 2 lc rgb "#2b8cbe" lw 2 dt 1 pt 6
+  set style line 3 lc rgb "#e6550d" lw 2 dt 1 pt 7
+  set style line 4 lc rgb "#e6550d" lw 2 dt 1 pt 6
+  set style line 5 lc rgb "#2b8cbe" lw 2 dt 2 pt 5
+  set style line 6 lc rgb "#2b8cbe" lw 2 dt 2 pt 4
+  set style line 7 lc rgb "#e6550d" lw 2 dt 2 pt 5
+  set style line 8 lc rgb "#e6550d" lw 2 dt 2 pt 4
   do for [fmt in "svg png"] {
     if (fmt eq "svg") { set terminal svg size 900,520 dynamic font "sans,11" } \
     else { set terminal pngcairo size 900,520 font "sans,10" }
     set output sprintf("%s-sizes.%s", out, fmt)
     set title sprintf("ttd: time per pair against working-set size (random pairs, %s)", best_isa)
     plot for [m in "exact penalty"] for [p in "double float"] for [t in sprintf("1 %d", max_threads)] \
-         sweep(m, p, best_isa, int(t)) using 1:2 title sprintf("%s %s, %s thread%s", m, p, t, (t eq "1") ? "" : "s") lw 2
+         sweep(m, p, best_isa, int(t)) using 1:2 title sprintf("%s %s, %s thread%s", m, p, t, (t eq "1") ? "" : "s") \
+         ls 1 + 4 * (m eq "penalty") + 2 * (p eq "float") + (t ne "1")
     unset output
   }
 }
