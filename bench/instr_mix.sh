@@ -12,8 +12,23 @@
 # Prints, per pair: instructions; floating-point operations (FMA = 2, counted over every lane
 # of each vector instruction, active or not); the instruction classes; memory operations,
 # with those on the stack (%rsp/%rbp: spills and reloads under register pressure) apart.
+#
+# bench/instr_mix.sh --static TTD
+# Prints, for every copy of every lane kernel in the binary (one per ISA and precision), its
+# static instruction count and the share that touches the stack: a register-pressure measure
+# that also covers AVX-512, which valgrind cannot run.
 set -euo pipefail
-[ $# -ge 4 ] || { sed -n '2,15p' "$0" >&2; exit 2; }
+if [ "${1:-}" = "--static" ] && [ $# -eq 2 ]; then
+  objdump -d --no-show-raw-insn "$2" | awk '
+    /^[0-9a-f]+ <kernel_[a-z_]+>:$/ { name = $2; gsub(/[<>:]/, "", name); infn = 1; n = 0; st = 0; z = 0; y = 0; next }
+    infn && /^$/ { isa = z ? "avx512" : (y ? "avx2" : "sse2 or other")
+      printf "%-22s %-13s static instructions %5d, touching the stack %5d (%.0f%%)\n", name, isa, n, st, n ? 100 * st / n : 0
+      infn = 0; next }
+    infn && /^ *[0-9a-f]+:\t/ { n++; if ($0 ~ /\(%rsp|\(%rbp/ && $0 !~ /\tlea/) st++
+      if ($0 ~ /%zmm|%k[0-7]/) z = 1; if ($0 ~ /%ymm/) y = 1 }'
+  exit 0
+fi
+[ $# -ge 4 ] || { sed -n '2,21p' "$0" >&2; exit 2; }
 ttd=$1 isa=$2 method=$3 prec=$4 n=${5:-4000}
 command -v valgrind >/dev/null || { echo "instr_mix.sh: valgrind is not installed (apt-get install valgrind)" >&2; exit 1; }
 tmp=$(mktemp -d)
