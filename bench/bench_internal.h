@@ -52,6 +52,7 @@ typedef struct bench_machine {
     char os[200];
     char load_start[64];      ///< /proc/loadavg when the run began
     char load_end[64];        ///< and when it ended (other work on the machine skews timings)
+    char priority[96];        ///< this process's nice value and its scheduler autogroup's
     int cores;
     double mem_gib;
     double ghz;               ///< core clock estimated from a dependent add chain

@@ -13,11 +13,13 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench_internal.h"
 
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/utsname.h>
 #include <time.h>
 #include <unistd.h>
@@ -127,6 +129,19 @@ void bench_machine_describe(bench_machine *m)
             used += (size_t)k;
     }
     bench_load_average(m->load_start, sizeof m->load_start);
+    {
+        char group[64] = "";
+        FILE *f = fopen("/proc/self/autogroup", "r");
+        if (f) {
+            if (fgets(group, sizeof group, f))
+                trim(group);
+            fclose(f);
+        }
+        errno = 0;
+        int nice_value = getpriority(PRIO_PROCESS, 0);
+        snprintf(m->priority, sizeof m->priority, "nice %d%s%s", errno ? 0 : nice_value, group[0] ? ", " : "",
+                 group);
+    }
     const char *a = ttd_isa_name(ttd_isa_selected(NULL));
     snprintf(m->isa_auto, sizeof m->isa_auto, "%s", a ? a : "?");
     m->ghz = BENCH_NAN;

@@ -36,8 +36,8 @@ static void header_lines(FILE *f, const char *prefix, const bench_machine *m, co
     fprintf(f, "%scommand: %s\n", prefix, st->command);
     fprintf(f, "%sCPU: %s, %d cores, %.1f GiB; %s\n", prefix, m->cpu, m->cores, m->mem_gib, m->os);
     fprintf(f, "%sCPU SIMD flags: %s\n", prefix, m->cpu_isas);
-    fprintf(f, "%sload average (1, 5, 15 min): %s at the start, %s at the end\n", prefix, m->load_start,
-            m->load_end);
+    fprintf(f, "%sload average (1, 5, 15 min): %s at the start, %s at the end; priority: %s\n", prefix,
+            m->load_start, m->load_end, m->priority);
     fprintf(f, "%sttd instruction sets built and runnable: %s (auto picks %s)\n", prefix, m->ttd_isas, m->isa_auto);
     fprintf(f, "%scompiler: %s; flags: %s; plus %s\n", prefix, TTD_C_COMPILER, TTD_C_FLAGS, BENCH_EXTRA_FLAGS);
     fprintf(f, "%sprobes: clock ~%s GHz (dependent adds); peak double GFLOP/s on one core: scalar %s, sse2 %s, "
@@ -153,6 +153,8 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
     json_string(f, m->load_start);
     fprintf(f, ", \"load_average_end\": ");
     json_string(f, m->load_end);
+    fprintf(f, ", \"priority\": ");
+    json_string(f, m->priority);
     fprintf(f, ", \"cpu_simd_flags\": ");
     json_string(f, m->cpu_isas);
     fprintf(f, ", \"ttd_isas\": ");

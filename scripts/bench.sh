@@ -4,6 +4,7 @@
 # `ttd bench`, and writes results/ (or $TTD_RESULTS_DIR): bench.txt (the table), bench.json,
 # bench.csv, figure.svg/.png and figure-sizes.svg/.png. The table is printed as it is run.
 # Usage: scripts/bench.sh [ttd bench options]     e.g. scripts/bench.sh --quick
+#        TTD_BENCH_NICE=-15 scripts/bench.sh       (raise the benchmark's priority, see below)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -40,7 +41,15 @@ ttd="$build/cli/ttd"
 [ -x "$ttd" ] || { echo "bench.sh: $ttd was not built" >&2; exit 1; }
 
 mkdir -p "$out"
-"$ttd" bench --out "$out" "$@"
+# On a shared machine other work inflates the timings. TTD_BENCH_NICE=-15 (root only) runs the
+# benchmark in its own scheduler autogroup at that priority: with autogroups on, nice alone
+# only ranks processes within one session, not against other sessions' processes.
+if [ -n "${TTD_BENCH_NICE:-}" ]; then
+  setsid bash -c 'if [ -w /proc/self/autogroup ]; then echo "$1" > /proc/self/autogroup; fi; shift; exec nice -n "$0" "$@"' \
+    "$TTD_BENCH_NICE" "$TTD_BENCH_NICE" "$ttd" bench --out "$out" "$@"
+else
+  "$ttd" bench --out "$out" "$@"
+fi
 
 if command -v gnuplot >/dev/null 2>&1; then
   if gnuplot -e "csv='$out/bench.csv'; out='$out/figure'" bench/plot.gp; then
