@@ -7,8 +7,13 @@
 # call), and classifies them from the disassembly. AVX-512 code cannot run under valgrind
 # 3.19; use avx2, sse2 or scalar.
 #
-# Usage: bench/instr_mix.sh TTD ISA METHOD PRECISION [PAIRS]
+# Usage: bench/instr_mix.sh TTD ISA METHOD PRECISION [PAIRS [FAMILY]]
 #   e.g. bench/instr_mix.sh build/cli/ttd avx2 exact double 4000
+#   FAMILY is random (default) or paper (the paper's workload: gen/pairs.h's fixed pair,
+#   S = (0,0,0) (1,0,0) (0,1,0), T = (0.3,0.3,0.5) (1,0.5,1.2) (0.4,1.1,0.9), replicated).
+# Also prints callgrind's simulated branch predictor: conditional and indirect branches per
+# pair and how many it mispredicts (a model, not the CPU's predictor, but it separates
+# data-dependent branching from predictable loops).
 # Prints, per pair: instructions; floating-point operations (FMA = 2, counted over every lane
 # of each vector instruction, active or not); the instruction classes; memory operations,
 # with those on the stack (%rsp/%rbp: spills and reloads under register pressure) apart.
@@ -29,33 +34,41 @@ if [ "${1:-}" = "--static" ] && [ $# -eq 2 ]; then
   exit 0
 fi
 [ $# -ge 4 ] || { sed -n '2,21p' "$0" >&2; exit 2; }
-ttd=$1 isa=$2 method=$3 prec=$4 n=${5:-4000}
+ttd=$1 isa=$2 method=$3 prec=$4 n=${5:-4000} family=${6:-random}
 command -v valgrind >/dev/null || { echo "instr_mix.sh: valgrind is not installed (apt-get install valgrind)" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-awk -v n="$n" 'BEGIN { srand(12345)
-  for (i = 0; i < n; ++i) { l = ""
-    for (k = 0; k < 9; ++k) l = l sprintf("%.17g ", rand())
-    o[0] = rand() - 0.5; o[1] = rand() - 0.5; o[2] = rand() - 0.5
-    for (k = 0; k < 9; ++k) l = l sprintf("%.17g ", rand() + o[k % 3])
-    print l } }' > "$tmp/pairs.txt"
+case $family in
+  random) awk -v n="$n" 'BEGIN { srand(12345)
+            for (i = 0; i < n; ++i) { l = ""
+              for (k = 0; k < 9; ++k) l = l sprintf("%.17g ", rand())
+              o[0] = rand() - 0.5; o[1] = rand() - 0.5; o[2] = rand() - 0.5
+              for (k = 0; k < 9; ++k) l = l sprintf("%.17g ", rand() + o[k % 3])
+              print l } }' > "$tmp/pairs.txt" ;;
+  paper) awk -v n="$n" 'BEGIN { for (i = 0; i < n; ++i)
+            print "0 0 0 1 0 0 0 1 0 0.3 0.3 0.5 1 0.5 1.2 0.4 1.1 0.9" }' > "$tmp/pairs.txt" ;;
+  *) echo "instr_mix.sh: FAMILY is random or paper" >&2; exit 2 ;;
+esac
 
 case $isa in scalar) pattern='ttd_scalar_*' ;; *) pattern='kernel_*' ;; esac
-valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" --dump-instr=yes --compress-pos=no \
+valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" --dump-instr=yes --compress-pos=no --branch-sim=yes \
   --compress-strings=no --toggle-collect="$pattern" \
   "$ttd" dist --isa "$isa" --method "$method" --precision "$prec" --threads 1 "$tmp/pairs.txt" \
   > /dev/null 2> "$tmp/vg.err" || { cat "$tmp/vg.err" >&2; exit 1; }
 
 # Self cost per instruction address in the whole collected range (kernels and their callees);
 # the line after calls= is the inclusive cost of a call, counted where it is spent instead.
+# Columns after the address and line: Ir Bc Bcm Bi Bim (missing trailing ones are zero).
 awk '/^calls=/ { skip = 1; next }
-     /^0x/ { if (skip) { skip = 0; next } c[$1] += $3 }
-     END { for (a in c) if (c[a] > 0) print a, c[a] }' "$tmp/cg.out" > "$tmp/counts"
+     /^0x/ { if (skip) { skip = 0; next } c[$1] += $3; bc += $4; bcm += $5; bi += $6; bim += $7 }
+     END { for (a in c) if (c[a] > 0) print a, c[a]; print "branches", bc + 0, bcm + 0, bi + 0, bim + 0 }' \
+  "$tmp/cg.out" > "$tmp/counts"
 objdump -d --no-show-raw-insn "$ttd" > "$tmp/dis"
 # Shared objects (libm's sqrt, memcpy) have no lines in the disassembly: counted as "other".
 
-awk -v n="$n" -v isa="$isa" -v method="$method" -v prec="$prec" '
+awk -v n="$n" -v isa="$isa" -v method="$method" -v prec="$prec" -v family="$family" '
+  FNR == NR && $1 == "branches" { bc = $2; bcm = $3; bi = $4; bim = $5; next }
   FNR == NR { sub(/^0x0*/, "", $1); cnt[$1] = $2; total += $2; next }
   /^ *[0-9a-f]+:\t/ {
     addr = $1; sub(/:$/, "", addr); sub(/^0*/, "", addr)
@@ -89,8 +102,9 @@ awk -v n="$n" -v isa="$isa" -v method="$method" -v prec="$prec" '
     }
   }
   END {
-    printf "%s %s %s, %d pairs: %.1f instructions per pair in the kernels (%.0f%% of them mapped to the disassembly)\n", method, prec, isa, n, total / n, total ? 100 * seen / total : 0
+    printf "%s %s %s, %d %s pairs: %.1f instructions per pair in the kernels (%.0f%% of them mapped to the disassembly)\n", method, prec, isa, n, family, total / n, total ? 100 * seen / total : 0
     printf "  floating-point operations per pair (every lane counted): %.1f\n", fl / n
     for (x in k) printf "  %-18s %9.1f per pair  %5.1f%%\n", x, k[x] / n, 100 * k[x] / total
+    printf "  branches per pair (callgrind model): conditional %.1f, mispredicted %.2f; indirect %.1f, mispredicted %.2f\n", bc / n, bcm / n, bi / n, bim / n
     printf "  memory: loads %.1f, stores %.1f per pair; on the stack (spills/reloads): loads %.1f, stores %.1f per pair (%.1f%% of instructions)\n", ml / n, ms / n, sl / n, ss / n, 100 * (sl + ss) / total
   }' "$tmp/counts" "$tmp/dis"
