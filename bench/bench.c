@@ -733,13 +733,13 @@ int ttd_bench_main(int argc, char **argv)
             cx->st.seed = strtoull(v, NULL, 0);
         } else {
             fprintf(stderr, "ttd bench: unknown option %s (see ttd bench --help)\n", a);
-            rc = 2;
+            rc = 3;
         }
         if (rc) {
             if (rc == 2 && takes && v)
                 fprintf(stderr, "ttd bench: bad value for %s: %s\n", a, v);
             free(cx);
-            return rc;
+            return 2;
         }
         i += takes;
     }
