@@ -85,6 +85,8 @@ if (strlen(best_isa) > 0 && sweep_n("exact", "double", best_isa, 1) >= 2) {
   set style data linespoints
   set logscale xy
   set xtics norotate
+  set format x "10^{%L}"
+  set format y "%g"
   set xlabel "pairs in the batch (input: 144 bytes per pair in double, 72 in float)"
   set ylabel "time per pair (ns)"
   set key top left
