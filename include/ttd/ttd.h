@@ -40,14 +40,17 @@ typedef enum ttd_status {
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
     TTD_ERR_ISA_UNAVAILABLE = 19, ///< the forced instruction set is not built in or not supported here
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range
-    TTD_ERR_OUT_OF_MEMORY = 21    ///< a per-thread scratch allocation failed
+    TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed
+    TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
 } ttd_status;
 
 /// How the distance is computed.
 typedef enum ttd_method {
     TTD_METHOD_EXACT = 0,             ///< 6 vertex-face, 9 edge-edge and 6 edge-face crossing tests; exact to rounding
     TTD_METHOD_PENALTY = 1,           ///< the paper's quasi-Newton penalty method, optimised and safeguarded
-    TTD_METHOD_PENALTY_REFERENCE = 2, ///< the paper's MATLAB ttd1 step for step (for comparison)
+    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol
+    /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
+    TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
     TTD_METHOD_COUNT = 4
 } ttd_method;
@@ -103,9 +106,14 @@ typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
     ttd_isa isa;        ///< default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA may force one
     int threads;        ///< worker threads for batches; 0 (default) = all online cores
-    double rho;         ///< penalty/barrier parameter (penalty weight; barrier weight is 1/rho); see docs
-    double tol;         ///< step tolerance, measured on the geometry of the pair scaled to unit size
-    int max_iterations; ///< Newton iteration cap, 1..65535
+    /// Penalty weight (default 1e6). The barrier method lowers its weight to 1/rho^2.
+    /// Float kernels use min(rho, 256): a larger weight loses sliver pivots to rounding.
+    double rho;
+    /// Newton step length below which an iteration stops (default 1e-12), measured on the
+    /// pair translated and scaled to unit size (the paper's ttd1 reference: raw coordinates).
+    /// Float kernels use max(tol, 1e-6).
+    double tol;
+    int max_iterations; ///< Newton iteration cap, 1..65535 (default 99, the paper's)
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
 } ttd_options;
 

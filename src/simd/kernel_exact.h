@@ -1,0 +1,482 @@
+/* SPDX-License-Identifier: MIT */
+/* The exact method, one pair per lane: scalar/exact_impl.h's ttd_exact_pair with every
+ * candidate computed in every lane and the closest kept by compare and select. Read it next
+ * to the scalar file: the helpers carry the same names with kx_ for exact_, the candidates
+ * come in the same order with the same ids (so ties go to the same, earliest, candidate),
+ * every d2 is computed with the same operations in the same order, and the winner's points
+ * and weights are rebuilt from (id, u, v, w) with the scalar expressions: each lane's result
+ * is the scalar code's to the bit.
+ *
+ * What differs, and why:
+ *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
+ *    depend on it are selected; the rebuild's data-dependent choices (which vertex, edge or
+ *    face, which triangle) are selects on the id.
+ *  - No branch on the data. Keeping a candidate only in groups where some lane improves, and
+ *    skipping edge-edge, vertex-face and crossing candidates that no lane accepts (Embree's
+ *    `if (none(valid)) return`), was tried first and was 1.6-1.9x slower: those branches are
+ *    unpredictable on random pairs, and each misprediction also empties the out-of-order
+ *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains: the
+ *    crossings when no lane's other triangle has a face (degenerate input), and the FMA cross
+ *    product for nearly parallel face frames (double; rare).
+ *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
+ *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
+
+#ifndef TTD_EXACT_IDS /* the candidate ids of scalar/exact_impl.h, same values */
+#define TTD_EXACT_IDS
+enum {
+    TTD_EXACT_VE_S = 0,  /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
+    TTD_EXACT_VE_T = 9,  /* 9: vertex j of T against edge i of S: id = 9 + 3j + i, u = t */
+    TTD_EXACT_EE = 18,   /* 9: edge i of S, edge j of T: id = 18 + 3i + j, u = s, v = t */
+    TTD_EXACT_VF_S = 27, /* 3: vertex i of S on T's face: u = b, v = c */
+    TTD_EXACT_VF_T = 30, /* 3: vertex j of T on S's face */
+    TTD_EXACT_X_S = 33,  /* 3: edge i of S through T's face: u = tau, v = b, w = c */
+    TTD_EXACT_X_T = 36,  /* 3: edge j of T through S's face */
+    TTD_EXACT_COUNT = 39
+};
+#endif
+
+#ifndef TTD_EXACT_TOUCH_EPS
+/* scalar: "a distance below 4 eps of the pair's extent is a contact" */
+#define TTD_EXACT_TOUCH_EPS 4
+#endif
+
+typedef struct TTD_SFX(kx_tri) {
+    vreal v[3][3];   /* vertices, normalised */
+    vreal e[3][3];   /* e[i] = v[i+1] - v[i] */
+    vreal ee[3];     /* |e[i]|^2 */
+    vreal inv_ee[3]; /* 1/ee[i], 0 for a point-like edge */
+    vmask is0, is1;  /* k == 0, k == 1 (k == 2 otherwise): the longest edge, first on ties */
+    vreal vk[3];     /* v[k] */
+    vreal L[3], M[3], n[3];
+    vreal nn, inv_nn, ML, inv_eek; /* |n|^2, 1/nn or 0, dot(M, L), inv_ee[k] */
+    vmask has_face;
+} TTD_SFX(kx_tri);
+
+/* scalar: exact_best. The smallest d2 so far, the id of its candidate (TTD_EXACT_* in
+ * scalar/exact_impl.h, as a real) and its parameters. */
+typedef struct TTD_SFX(kx_best) {
+    vreal d2, id, u, v, w;
+} TTD_SFX(kx_best);
+
+static inline vreal TTD_SFX(kx_dot)(const vreal a[3], const vreal b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void TTD_SFX(kx_cross)(const vreal a[3], const vreal b[3], vreal out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* scalar: exact_clamp01 */
+static inline vreal TTD_SFX(kx_clamp01)(vreal x)
+{
+    const vreal zero = vzero(), one = vset1((real)1);
+    return vsel(vlt(x, zero), zero, vsel(vgt(x, one), one, x));
+}
+
+/* k-indexed selection: x[k] */
+static inline vreal TTD_SFX(kx_pick)(const TTD_SFX(kx_tri) *T, vreal x0, vreal x1, vreal x2)
+{
+    return vsel(T->is0, x0, vsel(T->is1, x1, x2));
+}
+
+#ifdef TTD_PRECISION_DOUBLE
+/* scalar: exact_dop_d. a*b - c*d with Kahan's FMA trick. Without FMA (SSE2) the product
+ * error comes from Dekker's split instead: the same value in all but rare last bits. */
+static inline vreal TTD_SFX(kx_dop)(vreal a, vreal b, vreal c, vreal d)
+{
+    const vreal w = c * d;
+#if TTDW_HAVE_FMA
+    const vreal err = vfma(c, d, -w);
+    const vreal f = vfma(a, b, -w);
+    return f - err;
+#else
+    const vreal split = vset1(134217729.0); /* 2^27 + 1 */
+    vreal t = c * split;
+    const vreal ch = t - (t - c), cl = c - ch;
+    t = d * split;
+    const vreal dh = t - (t - d), dl = d - dh;
+    const vreal err = ((ch * dh - w) + ch * dl + cl * dh) + cl * dl; /* c*d - w, exact */
+    const vreal p = a * b;
+    t = a * split;
+    const vreal ah = t - (t - a), al = a - ah;
+    t = b * split;
+    const vreal bh = t - (t - b), bl = b - bh;
+    const vreal perr = ((ah * bh - p) + ah * bl + al * bh) + al * bl; /* a*b - p, exact */
+    return ((p - w) + perr) - err;
+#endif
+}
+
+/* scalar: exact_cross_acc_d. Naive cross product; lanes whose |n|^2 is below 2^-20 |a|^2 |b|^2
+ * (nearly parallel) take the FMA-compensated one. Returns |n|^2. */
+static inline vreal TTD_SFX(kx_cross_acc)(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+{
+    TTD_SFX(kx_cross)(a, b, out);
+    vreal nn = TTD_SFX(kx_dot)(out, out);
+    const vmask need = vlt(nn, vset1(0x1p-20) * aa * bb);
+    if (many(need)) {
+        out[0] = vsel(need, TTD_SFX(kx_dop)(a[1], b[2], a[2], b[1]), out[0]);
+        out[1] = vsel(need, TTD_SFX(kx_dop)(a[2], b[0], a[0], b[2]), out[1]);
+        out[2] = vsel(need, TTD_SFX(kx_dop)(a[0], b[1], a[1], b[0]), out[2]);
+        nn = TTD_SFX(kx_dot)(out, out);
+    }
+    return nn;
+}
+#else
+/* scalar: exact_cross_acc_f. Products of floats are exact in double: one double difference
+ * per component, rounded to float. The float lanes are widened in two halves. */
+static inline vreal TTD_SFX(kx_cross_acc)(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+{
+    (void)aa;
+    (void)bb;
+    ttdw_vd al[3], ah[3], bl[3], bh[3];
+    for (int c = 0; c < 3; ++c) {
+        al[c] = ttdw_f2d_lo(a[c]);
+        ah[c] = ttdw_f2d_hi(a[c]);
+        bl[c] = ttdw_f2d_lo(b[c]);
+        bh[c] = ttdw_f2d_hi(b[c]);
+    }
+    out[0] = ttdw_d2f(al[1] * bl[2] - al[2] * bl[1], ah[1] * bh[2] - ah[2] * bh[1]);
+    out[1] = ttdw_d2f(al[2] * bl[0] - al[0] * bl[2], ah[2] * bh[0] - ah[0] * bh[2]);
+    out[2] = ttdw_d2f(al[0] * bl[1] - al[1] * bl[0], ah[0] * bh[1] - ah[1] * bh[0]);
+    return TTD_SFX(kx_dot)(out, out);
+}
+#endif
+
+/* scalar: exact_tri_init. v[][] is filled by the caller. */
+static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
+{
+    const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
+    for (int i = 0; i < 3; ++i) {
+        for (int c = 0; c < 3; ++c)
+            T->e[i][c] = T->v[(i + 1) % 3][c] - T->v[i][c];
+        T->ee[i] = TTD_SFX(kx_dot)(T->e[i], T->e[i]);
+        T->inv_ee[i] = vsel(vge(T->ee[i], rmin), one / T->ee[i], zero);
+    }
+    /* k = 0; if (ee[1] > ee[k]) k = 1; if (ee[2] > ee[k]) k = 2; */
+    const vmask k1 = vgt(T->ee[1], T->ee[0]);
+    const vmask k2 = vgt(T->ee[2], vsel(k1, T->ee[1], T->ee[0]));
+    T->is1 = mandnot(k1, k2);
+    T->is0 = mnot(mor(k1, k2));
+    for (int c = 0; c < 3; ++c) {
+        T->L[c] = TTD_SFX(kx_pick)(T, T->e[0][c], T->e[1][c], T->e[2][c]);
+        T->M[c] = -TTD_SFX(kx_pick)(T, T->e[2][c], T->e[0][c], T->e[1][c]); /* v[k+2] - v[k] */
+        T->vk[c] = TTD_SFX(kx_pick)(T, T->v[0][c], T->v[1][c], T->v[2][c]);
+    }
+    const vreal eek = TTD_SFX(kx_pick)(T, T->ee[0], T->ee[1], T->ee[2]);
+    const vreal eekm = TTD_SFX(kx_pick)(T, T->ee[2], T->ee[0], T->ee[1]);
+    T->inv_eek = TTD_SFX(kx_pick)(T, T->inv_ee[0], T->inv_ee[1], T->inv_ee[2]);
+    T->nn = TTD_SFX(kx_cross_acc)(T->L, T->M, eek, eekm, T->n);
+    T->has_face = vge(T->nn, rmin);
+    T->inv_nn = vsel(T->has_face, one / T->nn, zero);
+    T->ML = TTD_SFX(kx_dot)(T->M, T->L);
+}
+
+/* scalar: exact_face_project. The weights b (of v[k+1]) and c (of v[k+2]) of P's projection
+ * onto T's face, the height h; returns the lanes whose projection is inside or on the face. */
+static inline vmask TTD_SFX(kx_face_project)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal *b, vreal *c,
+                                              vreal *h)
+{
+    const vreal zero = vzero();
+    vreal r[3], x[3];
+    for (int i = 0; i < 3; ++i)
+        r[i] = P[i] - T->vk[i];
+    TTD_SFX(kx_cross)(T->L, r, x);
+    const vreal cc = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
+    const vreal bb = (TTD_SFX(kx_dot)(r, T->L) - cc * T->ML) * T->inv_eek;
+    const vreal aa = vset1((real)1) - bb - cc;
+    *b = bb;
+    *c = cc;
+    *h = TTD_SFX(kx_dot)(T->n, r);
+    return mand(mand(T->has_face, vge(aa, zero)), mand(vge(bb, zero), vge(cc, zero)));
+}
+
+/* scalar: exact_face_point. q = v[k] + b L + c M and its weights (w[k] = 1 - b - c). */
+static inline void TTD_SFX(kx_face_point)(const TTD_SFX(kx_tri) *T, vreal b, vreal c, vreal q[3], vreal w[3])
+{
+    for (int i = 0; i < 3; ++i)
+        q[i] = T->vk[i] + b * T->L[i] + c * T->M[i];
+    const vreal a = vset1((real)1) - b - c;
+    w[0] = TTD_SFX(kx_pick)(T, a, c, b);
+    w[1] = TTD_SFX(kx_pick)(T, b, a, c);
+    w[2] = TTD_SFX(kx_pick)(T, c, b, a);
+}
+
+/* scalar: exact_keep. In the lanes of ok where d2 is strictly smaller, keep (d2, id, and the
+ * first np of u, v, w); the others are never read for this id. */
+static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
+                                    vreal w)
+{
+    const vmask m = mand(ok, vlt(d2, best->d2));
+    best->d2 = vsel(m, d2, best->d2);
+    best->id = vsel(m, vset1((real)id), best->id);
+    best->u = vsel(m, u, best->u);
+    if (np > 1)
+        best->v = vsel(m, v, best->v);
+    if (np > 2)
+        best->w = vsel(m, w, best->w);
+}
+
+/* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. */
+static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
+                                           TTD_SFX(kx_best) *best, vmask live)
+{
+    const vreal zero = vzero();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            vreal r[3], d[3];
+            for (int c = 0; c < 3; ++c)
+                r[c] = X->v[i][c] - Y->v[j][c];
+            const vreal t = TTD_SFX(kx_clamp01)(TTD_SFX(kx_dot)(r, Y->e[j]) * Y->inv_ee[j]);
+            for (int c = 0; c < 3; ++c)
+                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+            TTD_SFX(kx_keep)(best, live, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
+        }
+}
+
+/* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
+ * lies inside both segments (plain cross product for the normal, as in the scalar code). */
+static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX(kx_tri) *T,
+                                         TTD_SFX(kx_best) *best, vmask live)
+{
+    const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
+    for (int i = 0; i < 3; ++i) {
+        const vreal *P = S->v[i], *d1 = S->e[i];
+        for (int j = 0; j < 3; ++j) {
+            const vreal *Q = T->v[j], *d2 = T->e[j];
+            vreal n[3], w[3], x[3], d[3];
+            TTD_SFX(kx_cross)(d1, d2, n);
+            const vreal nn = TTD_SFX(kx_dot)(n, n);
+            const vmask ok = vge(nn, rmin); /* parallel or a point: the endpoints cover it */
+            for (int c = 0; c < 3; ++c)
+                w[c] = Q[c] - P[c];
+            TTD_SFX(kx_cross)(w, d2, x);
+            const vreal s = vsel(ok, TTD_SFX(kx_dot)(x, n) / nn, -one);
+            const vreal sc = TTD_SFX(kx_clamp01)(s);
+            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * T->inv_ee[j];
+            const vmask accept = mand(live, mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one))));
+            const vreal tc = TTD_SFX(kx_clamp01)(t);
+            for (int c = 0; c < 3; ++c)
+                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+            TTD_SFX(kx_keep)(best, accept, TTD_SFX(kx_dot)(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
+        }
+    }
+}
+
+/* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; h gets the
+ * vertices' heights for the crossings. */
+static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
+                                           TTD_SFX(kx_best) *best, vreal h[3], vmask live)
+{
+    for (int i = 0; i < 3; ++i) {
+        vreal b, c, q[3], w[3], d[3];
+        const vmask inside = mand(live, TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]));
+        TTD_SFX(kx_face_point)(Y, b, c, q, w);
+        for (int k = 0; k < 3; ++k)
+            d[k] = X->v[i][k] - q[k];
+        TTD_SFX(kx_keep)(best, inside, TTD_SFX(kx_dot)(d, d), id0 + i, 2, b, c, b);
+    }
+}
+
+/* scalar: exact_crossings. 3 candidates: edges of X whose ends lie strictly on opposite sides
+ * of Y's plane and cross it inside the face (distance 0). */
+static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
+                                         TTD_SFX(kx_best) *best, const vreal h[3], vmask live)
+{
+    const vreal zero = vzero();
+    const vmask face = mand(live, Y->has_face);
+    if (mnone(face))
+        return;
+    for (int i = 0; i < 3; ++i) {
+        const vreal h0 = h[i], h1 = h[(i + 1) % 3];
+        const vmask opposite = mor(mand(vlt(h0, zero), vgt(h1, zero)), mand(vgt(h0, zero), vlt(h1, zero)));
+        const vmask ok = mand(face, opposite);
+        const vreal tau = h0 / (h0 - h1); /* no cancellation: opposite signs */
+        vreal xp[3], b, c, hx;
+        for (int k = 0; k < 3; ++k)
+            xp[k] = X->v[i][k] + tau * X->e[i][k]; /* scalar: exact_edge_point */
+        const vmask inside = mand(ok, TTD_SFX(kx_face_project)(Y, xp, &b, &c, &hx));
+        TTD_SFX(kx_keep)(best, inside, zero, id0 + i, 3, tau, b, c);
+    }
+}
+
+/* scalar: exact_edge_point, for the edge picked per lane by the masks e0, e1 (else edge 2). */
+static inline void TTD_SFX(kx_edge_point_sel)(const TTD_SFX(kx_tri) *X, vmask e0, vmask e1, vreal t, vreal p[3],
+                                              vreal w[3])
+{
+    const vreal zero = vzero(), one = vset1((real)1);
+    for (int c = 0; c < 3; ++c) {
+        const vreal p0 = X->v[0][c] + t * X->e[0][c];
+        const vreal p1 = X->v[1][c] + t * X->e[1][c];
+        const vreal p2 = X->v[2][c] + t * X->e[2][c];
+        p[c] = vsel(e0, p0, vsel(e1, p1, p2));
+    }
+    const vreal a = one - t;
+    /* edge i: w[i] = 1 - t, w[i+1] = t */
+    w[0] = vsel(e0, a, vsel(e1, zero, t));
+    w[1] = vsel(e0, t, vsel(e1, a, zero));
+    w[2] = vsel(e0, zero, vsel(e1, t, a));
+}
+
+/* scalar: exact_rebuild. p, q and their weights from (id, u, v, w), the scalar expressions
+ * chosen per lane: for each side, a vertex, an edge point or a face point. */
+static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_SFX(kx_tri) *S,
+                                       const TTD_SFX(kx_tri) *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
+{
+    const vreal zero = vzero(), one = vset1((real)1), id = best->id;
+#define KX_IN(lo, hi) mand(vge(id, vset1((real)(lo))), vlt(id, vset1((real)(hi))))
+#define KX_IS(v_) veq(id, vset1((real)(v_)))
+    const vmask ve_s = KX_IN(TTD_EXACT_VE_S, TTD_EXACT_VE_T), ve_t = KX_IN(TTD_EXACT_VE_T, TTD_EXACT_EE);
+    const vmask ee = KX_IN(TTD_EXACT_EE, TTD_EXACT_VF_S), vf_s = KX_IN(TTD_EXACT_VF_S, TTD_EXACT_VF_T);
+    const vmask vf_t = KX_IN(TTD_EXACT_VF_T, TTD_EXACT_X_S), x_s = KX_IN(TTD_EXACT_X_S, TTD_EXACT_X_T);
+    /* Which vertex or edge of S (sv, se) and of T (tv, te) the id names:
+     *   VE_S 3i+j: vertex i of S, edge j of T     VE_T 9+3j+i: vertex j of T, edge i of S
+     *   EE 18+3i+j: edge i of S, edge j of T       VF_S 27+i: vertex i of S   VF_T 30+j: vertex j of T
+     *   X_S 33+i: edge i of S                      X_T 36+j: edge j of T */
+    vmask s0 = mnot(mtrue()), s1 = s0, t0 = s0, t1 = s0;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            const vmask m_ve_s = KX_IS(TTD_EXACT_VE_S + 3 * a + b), m_ve_t = KX_IS(TTD_EXACT_VE_T + 3 * a + b);
+            const vmask m_ee = KX_IS(TTD_EXACT_EE + 3 * a + b);
+            /* S index: a for VE_S and EE, b for VE_T; T index: b for VE_S and EE, a for VE_T */
+            const vmask sa = mor(m_ve_s, m_ee), sb = m_ve_t, ta = m_ve_t, tb = mor(m_ve_s, m_ee);
+            if (a == 0) { s0 = mor(s0, sa); t0 = mor(t0, ta); }
+            if (a == 1) { s1 = mor(s1, sa); t1 = mor(t1, ta); }
+            if (b == 0) { s0 = mor(s0, sb); t0 = mor(t0, tb); }
+            if (b == 1) { s1 = mor(s1, sb); t1 = mor(t1, tb); }
+        }
+    for (int a = 0; a < 2; ++a) {
+        if (a == 0) {
+            s0 = mor(s0, mor(KX_IS(TTD_EXACT_VF_S), KX_IS(TTD_EXACT_X_S)));
+            t0 = mor(t0, mor(KX_IS(TTD_EXACT_VF_T), KX_IS(TTD_EXACT_X_T)));
+        } else {
+            s1 = mor(s1, mor(KX_IS(TTD_EXACT_VF_S + 1), KX_IS(TTD_EXACT_X_S + 1)));
+            t1 = mor(t1, mor(KX_IS(TTD_EXACT_VF_T + 1), KX_IS(TTD_EXACT_X_T + 1)));
+        }
+    }
+#undef KX_IN
+#undef KX_IS
+    const vmask x_t = vge(id, vset1((real)TTD_EXACT_X_T));
+    /* the candidate points on each side */
+    vreal sv[3], se[3], sf[3], tv[3], te[3], tf[3], wsv[3], wse[3], wsf[3], wtv[3], wte[3], wtf[3];
+    for (int c = 0; c < 3; ++c) {
+        sv[c] = vsel(s0, S->v[0][c], vsel(s1, S->v[1][c], S->v[2][c]));
+        tv[c] = vsel(t0, T->v[0][c], vsel(t1, T->v[1][c], T->v[2][c]));
+        wsv[c] = vsel(c == 0 ? s0 : c == 1 ? mandnot(s1, s0) : mnot(mor(s0, s1)), one, zero);
+        wtv[c] = vsel(c == 0 ? t0 : c == 1 ? mandnot(t1, t0) : mnot(mor(t0, t1)), one, zero);
+    }
+    /* edge parameters: u for VE (on Y), EE on S, and the crossings; v for EE on T */
+    TTD_SFX(kx_edge_point_sel)(S, s0, s1, best->u, se, wse);
+    TTD_SFX(kx_edge_point_sel)(T, t0, t1, vsel(ee, best->v, best->u), te, wte);
+    /* face points: VF_T lands on S's face with (u, v), VF_S on T's with (u, v), a crossing of
+     * S's edge on T's face with (v, w), of T's edge on S's face with (v, w) */
+    const vmask face_uv_s = vf_t, face_uv_t = vf_s;
+    TTD_SFX(kx_face_point)(S, vsel(face_uv_s, best->u, best->v), vsel(face_uv_s, best->v, best->w), sf, wsf);
+    TTD_SFX(kx_face_point)(T, vsel(face_uv_t, best->u, best->v), vsel(face_uv_t, best->v, best->w), tf, wtf);
+    /* p: vertex (VE_S, VF_S), edge point of S (VE_T, EE, X_S), face point of S (VF_T), the
+     * crossing point on T's edge (X_T); q likewise, mirrored */
+    const vmask p_vertex = mor(ve_s, vf_s), p_edge = mor(ve_t, mor(ee, x_s)), p_face = vf_t;
+    const vmask q_vertex = mor(ve_t, vf_t), q_edge = mor(ve_s, mor(ee, x_t)), q_face = vf_s;
+    for (int c = 0; c < 3; ++c) {
+        p[c] = vsel(p_vertex, sv[c], vsel(p_edge, se[c], vsel(p_face, sf[c], te[c])));
+        q[c] = vsel(q_vertex, tv[c], vsel(q_edge, te[c], vsel(q_face, tf[c], se[c])));
+        /* weights: a crossing's other side has the face weights of the crossing point */
+        wp[c] = vsel(p_vertex, wsv[c], vsel(p_edge, wse[c], wsf[c]));
+        wq[c] = vsel(q_vertex, wtv[c], vsel(q_edge, wte[c], wtf[c]));
+    }
+}
+
+/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. */
+static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vmask live, TTD_SFX(kw_out) *out)
+{
+    const vreal zero = vzero(), one = vset1((real)1);
+    /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
+     * max |relative coordinate| = f 2^e, f in [0.5, 1). 2^-e is 0.5 / (m with its mantissa
+     * cleared); the one product equals the scalar's two (f1, f2) wherever neither rounds,
+     * i.e. except for coordinates below REAL_MIN of the pair's extent. */
+    vreal m0 = zero;
+    for (int i = 0; i < 9; ++i) {
+        m0 = vmax(m0, vabs(Sin[i]));
+        m0 = vmax(m0, vabs(Tin[i]));
+    }
+    const vreal pre = vsel(vgt(m0, vset1(TTD_REAL_MAX * (real)0.25)), vset1((real)0.25), one);
+    vreal o[3], rel[18];
+    for (int c = 0; c < 3; ++c)
+        o[c] = Sin[c] * pre;
+    vreal m = zero;
+    for (int i = 0; i < 9; ++i) {
+        rel[i] = Sin[i] * pre - o[i % 3];
+        rel[9 + i] = Tin[i] * pre - o[i % 3];
+        m = vmax(m, vmax(vabs(rel[i]), vabs(rel[9 + i])));
+    }
+#ifdef TTD_PRECISION_DOUBLE
+    const real lift = 0x1p54, unlift = 0x1p-54;
+#else
+    const real lift = 0x1p25f, unlift = 0x1p-25f;
+#endif
+    const vmask tiny = vlt(m, vset1(TTD_REAL_MIN)), isz = veq(m, zero);
+    const vreal up = vsel(tiny, vset1(lift), one);
+    const vreal half = vpow2(m * up);                                   /* 2^(e-1) (lifted) */
+    const vreal inv = vsel(isz, one, vset1((real)0.5) / half);          /* 2^-e (lifted) */
+    const vreal g = vsel(isz, one, half * vset1((real)2) * vsel(tiny, vset1(unlift), one)); /* 2^e */
+    TTD_SFX(kx_tri) S, T;
+    for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) {
+            S.v[i][c] = rel[3 * i + c] * up * inv;
+            T.v[i][c] = rel[9 + 3 * i + c] * up * inv;
+        }
+    TTD_SFX(kx_tri_init)(&S);
+    TTD_SFX(kx_tri_init)(&T);
+
+    /* 2. Candidates, in the scalar code's order and with its ids. */
+    TTD_SFX(kx_best) best;
+    best.d2 = vset1(TTD_REAL_MAX);
+    best.id = best.u = best.v = best.w = zero;
+    vreal hs[3], ht[3]; /* heights of S's vertices over T's plane, and of T's over S's */
+    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, live);
+    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, live);
+    TTD_SFX(kx_edge_edge)(&S, &T, &best, live);
+    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs, live);
+    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht, live);
+    TTD_SFX(kx_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs, live);
+    TTD_SFX(kx_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht, live);
+    vreal bp[3], bq[3], wp[3], wq[3];
+    TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+
+    /* 3. A distance within rounding of 0 is a contact. */
+    vreal d = vsqrt(best.d2);
+    const vmask touch = vle(d, vset1((real)TTD_EXACT_TOUCH_EPS * TTD_REAL_EPS));
+    d = vsel(touch, zero, d);
+
+    /* 4. Scale back and add the origin back. */
+    const vreal unpre = one / pre;
+    out->distance = d * g * unpre;
+    for (int c = 0; c < 3; ++c) {
+        out->p[c] = (bp[c] * g + o[c]) * unpre;
+        out->q[c] = (bq[c] * g + o[c]) * unpre;
+        out->bary_p[c] = wp[c];
+        out->bary_q[c] = wq[c];
+    }
+    out->iterations = zero;
+    out->flags_nc = 0;
+    out->flags_int = mbits(touch);
+    out->flags_ds = mbits(mnot(S.has_face));
+    out->flags_dt = mbits(mnot(T.has_face));
+}
+
+static void TTD_SFX(kernel_exact)(size_t n, const real *s, const real *t, const ttd_params *prm,
+                                  real *distance, ttd_result *results)
+{
+    (void)prm;
+    for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
+        const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
+        vreal S[9], T[9];
+        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
+        TTD_SFX(kw_out) o;
+        TTD_SFX(kx_group)(S, T, mfirst(live), &o);
+        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+    }
+}

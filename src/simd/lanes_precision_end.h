@@ -1,0 +1,35 @@
+/* SPDX-License-Identifier: MIT */
+/* Closes a section opened by simd/lanes_precision.h. */
+#undef vreal
+#undef vmask
+#undef TTDW_LANES
+#undef vset1
+#undef vzero
+#undef viota
+#undef vloadu
+#undef vstoreu
+#undef vfma
+#undef vmin
+#undef vmax
+#undef vsqrt
+#undef vabs
+#undef vpow2
+#undef vlt
+#undef vle
+#undef vgt
+#undef vge
+#undef veq
+#undef vsel
+#undef mand
+#undef mor
+#undef mandnot
+#undef mtrue
+#undef mnot
+#undef mfirst
+#undef mbits
+#undef many
+#undef mall
+#undef mnone
+#undef vload_aos9
+#undef vexpand
+#undef vstore_soa

@@ -1,0 +1,222 @@
+/* SPDX-License-Identifier: MIT */
+/* The body of tests/test_isa_kernels.c for one precision (included after common/precision.h).
+ * A lane kernel is checked against the scalar function of its method, pair by pair, and
+ * against itself: a pair alone, in any lane, among any neighbours (NaN ones included) gives
+ * the same bits. */
+
+typedef void (*TTD_SFX(kern_fn))(size_t n, const real *s, const real *t, const ttd_params *prm,
+                                 real *distance, ttd_result *results);
+typedef void (*TTD_SFX(pair_fn))(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r);
+
+/* The scalar reference of a method (the exact method has no parameters). */
+static void TTD_SFX(exact_adapter)(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
+{
+    (void)prm;
+    TTD_SFX(ttd_exact_pair)(s, t, r);
+}
+
+static TTD_SFX(pair_fn) TTD_SFX(scalar_of)(int method)
+{
+    switch (method) {
+    case TTD_METHOD_EXACT: return TTD_SFX(exact_adapter);
+    case TTD_METHOD_PENALTY: return TTD_SFX(ttd_penalty_pair);
+    case TTD_METHOD_PENALTY_REFERENCE: return TTD_SFX(ttd_penalty_ref_pair);
+    case TTD_METHOD_BARRIER: return TTD_SFX(ttd_barrier_pair);
+    default: return NULL;
+    }
+}
+
+static int TTD_SFX(same_result)(const ttd_result *a, const ttd_result *b)
+{
+    int same = memcmp(&a->distance, &b->distance, sizeof a->distance) == 0;
+    for (int k = 0; k < 3; ++k) {
+        same &= memcmp(&a->p[k], &b->p[k], sizeof(real)) == 0;
+        same &= memcmp(&a->q[k], &b->q[k], sizeof(real)) == 0;
+        same &= memcmp(&a->bary_p[k], &b->bary_p[k], sizeof(real)) == 0;
+        same &= memcmp(&a->bary_q[k], &b->bary_q[k], sizeof(real)) == 0;
+    }
+    return same && a->flags == b->flags && a->feature_p == b->feature_p &&
+           a->feature_q == b->feature_q && a->iterations == b->iterations;
+}
+
+/* Largest |coordinate| of a pair: the scale that "a few ulps" is relative to. */
+static real TTD_SFX(pair_size)(const real *s, const real *t)
+{
+    real m = 0;
+    for (int k = 0; k < 9; ++k) {
+        if (TTD_FABS(s[k]) > m) m = TTD_FABS(s[k]);
+        if (TTD_FABS(t[k]) > m) m = TTD_FABS(t[k]);
+    }
+    return m > 0 ? m : 1;
+}
+
+/* Fills n pairs of a generated set (see gen_pair in test_isa_kernels.c), rounded to real.
+ * The "extreme" family is a random pair scaled by 2^k, k across this precision's whole
+ * exponent range: subnormal-sized pairs up to pairs near REAL_MAX. */
+static void TTD_SFX(fill)(int family, uint64_t seed, size_t n, real *s, real *t)
+{
+    double ds[9], dt[9];
+#ifdef TTD_PRECISION_DOUBLE
+    const int kmin = DBL_MIN_EXP - 40, kmax = DBL_MAX_EXP - 3;
+#else
+    const int kmin = FLT_MIN_EXP - 15, kmax = FLT_MAX_EXP - 3;
+#endif
+    for (size_t i = 0; i < n; ++i) {
+        gen_pair(family == GEN_EXTREME ? 0 : family, seed, i, ds, dt);
+        const int k = kmin + (int)((i * 2654435761u) % (size_t)(kmax - kmin + 1));
+        for (int c = 0; c < 9; ++c) {
+            s[9 * i + c] = (real)ds[c];
+            t[9 * i + c] = (real)dt[c];
+            if (family == GEN_EXTREME) {
+                s[9 * i + c] = TTD_LDEXP(s[9 * i + c], k);
+                t[9 * i + c] = TTD_LDEXP(t[9 * i + c], k);
+            }
+        }
+    }
+}
+
+/* Every pair of `n` from each family, through the kernel in blocks of TTD_BLOCK_PAIRS, vs
+ * the scalar function. Distance, points and weights within `ulps` of the pair's size,
+ * iterations and flags equal; also counts bit-identical results. */
+static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int method,
+                                    const ttd_params *prm, size_t n, double ulps)
+{
+    TTD_SFX(pair_fn) ref = TTD_SFX(scalar_of)(method);
+    ENSURE(ref != NULL);
+    real *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
+    real *dist = malloc(n * sizeof *dist);
+    ttd_result *res = malloc(n * sizeof *res);
+    ENSURE(s && t && dist && res);
+    size_t identical = 0, same_distance = 0, total = 0;
+    int rc = 0;
+    for (int fam = 0; fam < GEN_FAMILIES && !rc; ++fam) {
+        TTD_SFX(fill)(fam, 77u + (uint64_t)fam, n, s, t);
+        for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS) {
+            const size_t m = n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS;
+            kern(m, s + 9 * i0, t + 9 * i0, prm, dist + i0, res + i0);
+        }
+        for (size_t i = 0; i < n && !rc; ++i) {
+            ttd_result want;
+            ref(s + 9 * i, t + 9 * i, prm, &want);
+            const ttd_result *got = &res[i];
+            /* a few ulps of the pair's size, and at least a few units of the smallest
+             * subnormal (the size itself may be subnormal) */
+            double tol = ulps * (double)TTD_REAL_EPS * (double)TTD_SFX(pair_size)(s + 9 * i, t + 9 * i);
+#ifdef TTD_PRECISION_DOUBLE
+            tol = tol > 4 * 0x1p-1074 ? tol : 4 * 0x1p-1074;
+#else
+            tol = tol > 4 * 0x1p-149 ? tol : 4 * 0x1p-149;
+#endif
+            int ok = isfinite((double)got->distance) && fabs((double)got->distance - (double)want.distance) <= tol &&
+                     memcmp(&dist[i], &got->distance, sizeof(real)) == 0 &&
+                     got->iterations == want.iterations && got->flags == want.flags;
+            for (int k = 0; k < 3; ++k) {
+                ok &= fabs((double)got->p[k] - (double)want.p[k]) <= tol;
+                ok &= fabs((double)got->q[k] - (double)want.q[k]) <= tol;
+                ok &= fabs((double)got->bary_p[k] - (double)want.bary_p[k]) <= ulps * (double)TTD_REAL_EPS;
+                ok &= fabs((double)got->bary_q[k] - (double)want.bary_q[k]) <= ulps * (double)TTD_REAL_EPS;
+            }
+            if (!ok) {
+                for (int k = 0; k < 3; ++k)
+                    fprintf(stderr, "    p %.9g/%.9g q %.9g/%.9g bary_p %.9g/%.9g bary_q %.9g/%.9g\n",
+                            (double)got->p[k], (double)want.p[k], (double)got->q[k], (double)want.q[k],
+                            (double)got->bary_p[k], (double)want.bary_p[k], (double)got->bary_q[k],
+                            (double)want.bary_q[k]);
+                fprintf(stderr, "  %s, %s pair %zu: distance %.17g want %.17g (tol %.3g), iterations %u want %u, flags %x want %x\n",
+                        what, gen_family_name(fam), i, (double)got->distance, (double)want.distance, tol,
+                        (unsigned)got->iterations, (unsigned)want.iterations, got->flags, want.flags);
+                rc = 1;
+            }
+            identical += (size_t)TTD_SFX(same_result)(got, &want);
+            same_distance += (size_t)(memcmp(&got->distance, &want.distance, sizeof(real)) == 0);
+            ++total;
+        }
+    }
+    printf("  %s: %zu pairs; bit-identical to the scalar code: %zu distances, %zu whole results\n", what,
+           total, same_distance, identical);
+    free(s);
+    free(t);
+    free(dist);
+    free(res);
+    return rc;
+}
+
+/* A pair alone (n = 1) and the same pair in a random lane of a block among random neighbours
+ * (some of them NaN) give the same bits; the NaN neighbours disturb nobody else either. */
+static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) kern, int lanes,
+                                            const ttd_params *prm, uint64_t *st)
+{
+    enum { N = 64 };
+    real s[9 * N], t[9 * N], ps[9 * N], pt[9 * N];
+    ttd_result alone[N], mixed[N];
+    TTD_SFX(fill)(0, 991u, N, s, t);
+    for (int i = 0; i < N; ++i)
+        kern(1, s + 9 * i, t + 9 * i, prm, NULL, &alone[i]);
+    for (int trial = 0; trial < 40; ++trial) {
+        /* a random permutation-with-repeats of the pairs, a few replaced by NaN */
+        int src[N];
+        for (int i = 0; i < N; ++i) {
+            src[i] = (int)(gen_rng(st) % N);
+            if (gen_rng(st) % 8 == 0)
+                src[i] = -1;
+            for (int k = 0; k < 9; ++k) {
+                ps[9 * i + k] = src[i] < 0 ? (real)NAN : s[9 * src[i] + k];
+                pt[9 * i + k] = src[i] < 0 ? (real)(k + 1) : t[9 * src[i] + k];
+            }
+        }
+        const size_t n = (size_t)(lanes + 1 + (int)(gen_rng(st) % (uint64_t)(N - lanes)));
+        kern(n, ps, pt, prm, NULL, mixed);
+        for (size_t i = 0; i < n; ++i) {
+            if (src[i] < 0)
+                continue;
+            ENSURE_MSG(TTD_SFX(same_result)(&mixed[i], &alone[src[i]]),
+                       "%s: pair %d in lane %zu of %zu differs from the pair alone (distance %.17g vs %.17g)",
+                       what, src[i], i % (size_t)lanes, n, (double)mixed[i].distance,
+                       (double)alone[src[i]].distance);
+        }
+    }
+    return 0;
+}
+
+/* n = 0, 1, W-1, W+1, a full block; unaligned real arrays; distance-only and results-only
+ * calls; nothing written past n. */
+static int TTD_SFX(check_sizes)(const char *what, TTD_SFX(kern_fn) kern, int lanes, const ttd_params *prm)
+{
+    enum { N = TTD_BLOCK_PAIRS };
+    real *sbuf = malloc((9 * N + 1) * sizeof(real)), *tbuf = malloc((9 * N + 1) * sizeof(real));
+    real *dbuf = malloc((N + 2) * sizeof(real));
+    ttd_result *res = malloc((N + 1) * sizeof *res), *ref = malloc(N * sizeof *ref);
+    ENSURE(sbuf && tbuf && dbuf && res && ref);
+    real *s = sbuf + 1, *t = tbuf + 1, *d = dbuf + 1; /* misaligned for every vector width */
+    TTD_SFX(fill)(0, 4242u, N, s, t);
+    kern(N, s, t, prm, NULL, ref);
+    const size_t sizes[] = {0, 1, (size_t)lanes - 1, (size_t)lanes, (size_t)lanes + 1,
+                            2 * (size_t)lanes + 3, N - 1, N};
+    for (size_t z = 0; z < sizeof sizes / sizeof sizes[0]; ++z) {
+        const size_t n = sizes[z];
+        for (size_t i = 0; i < N + 2; ++i)
+            dbuf[i] = (real)-7;
+        memset(res, 0xA5, (N + 1) * sizeof *res);
+        const ttd_result sentinel = res[n];
+        kern(n, s, t, prm, d, res);
+        for (size_t i = 0; i < n; ++i) {
+            ENSURE_MSG(TTD_SFX(same_result)(&res[i], &ref[i]), "%s n=%zu: pair %zu differs from the full block", what, n, i);
+            ENSURE_MSG(memcmp(&d[i], &ref[i].distance, sizeof(real)) == 0, "%s n=%zu: distance[%zu]", what, n, i);
+        }
+        ENSURE_MSG(dbuf[0] == (real)-7 && d[n] == (real)-7, "%s n=%zu: distance written out of bounds", what, n);
+        ENSURE_MSG(memcmp(&res[n], &sentinel, sizeof sentinel) == 0, "%s n=%zu: results written out of bounds", what, n);
+        /* distance only */
+        for (size_t i = 0; i < N + 2; ++i)
+            dbuf[i] = (real)-7;
+        kern(n, s, t, prm, d, NULL);
+        for (size_t i = 0; i < n; ++i)
+            ENSURE_MSG(memcmp(&d[i], &ref[i].distance, sizeof(real)) == 0, "%s n=%zu: distance-only [%zu]", what, n, i);
+        ENSURE(d[n] == (real)-7);
+    }
+    free(sbuf);
+    free(tbuf);
+    free(dbuf);
+    free(res);
+    free(ref);
+    return 0;
+}

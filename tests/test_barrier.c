@@ -1,0 +1,134 @@
+/* SPDX-License-Identifier: MIT */
+/* The log-barrier method (ttd_barrier_pair_*) against the exact method on random separated
+ * pairs, within its documented accuracy (docs/penalty-method.md), plus its outputs' basic
+ * properties and degenerate triangles. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "common/defaults.h"
+#include "scalar/scalar.h"
+#include "test_macros.h"
+
+/* With the final barrier weight mu = 1/rho^2 the squared distance is within 6 mu of its
+ * minimum, so for a separation d the distance is within ~3 mu / d (relative to unit size):
+ * 6e-11 at d >= 0.05 in double. The bounds leave margin. */
+#define BAR_REL_TOL_D 1e-8
+#define BAR_REL_TOL_F 2e-5
+
+static const ttd_params default_params = {TTD_DEFAULT_RHO, TTD_DEFAULT_TOL, TTD_DEFAULT_MAX_ITERATIONS};
+
+static uint64_t rng_state;
+static double urand(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static void random_pair(double s[9], double t[9])
+{
+    for (int i = 0; i < 9; ++i) s[i] = urand();
+    for (int i = 0; i < 9; ++i) t[i] = urand();
+    for (int k = 0; k < 3; ++k) {
+        double o = urand() - 0.5;
+        t[k] += o;
+        t[3 + k] += o;
+        t[6 + k] += o;
+    }
+}
+
+static double pair_size(const double s[9], const double t[9])
+{
+    double m = 0;
+    const double *v[2] = {s, t};
+    for (int w = 0; w < 2; ++w)
+        for (int i = 0; i < 3; ++i) {
+            int j = (i + 1) % 3;
+            double dx = v[w][3 * i] - v[w][3 * j], dy = v[w][3 * i + 1] - v[w][3 * j + 1];
+            double dz = v[w][3 * i + 2] - v[w][3 * j + 2];
+            double l = sqrt(dx * dx + dy * dy + dz * dz);
+            if (l > m) m = l;
+        }
+    return m;
+}
+
+static int barrier_separated_vs_exact(void)
+{
+    rng_state = 0x452821E638D01377ull;
+    int tested = 0, not_converged = 0;
+    double worst = 0, worst_f = 0;
+    while (tested < 1500) {
+        double s[9], t[9];
+        random_pair(s, t);
+        ttd_result_d ex, r;
+        ttd_exact_pair_d(s, t, &ex);
+        if (ex.distance < 0.05) continue;
+        ++tested;
+        ttd_barrier_pair_d(s, t, &default_params, &r);
+        double scale = fmax(ex.distance, pair_size(s, t));
+        double err = fabs(r.distance - ex.distance) / scale;
+        if (err > worst) worst = err;
+        ENSURE_MSG(err <= BAR_REL_TOL_D, "pair %d: barrier %.17g exact %.17g", tested, r.distance, ex.distance);
+        not_converged += (r.flags & TTD_PAIR_NOT_CONVERGED) != 0;
+        /* feasible iterates: weights in the triangles, |p - q| = distance */
+        double sp = 0, sq = 0;
+        for (int k = 0; k < 3; ++k) {
+            ENSURE(r.bary_p[k] >= 0 && r.bary_q[k] >= 0);
+            sp += r.bary_p[k];
+            sq += r.bary_q[k];
+        }
+        ENSURE_NEAR(sp, 1, 4 * DBL_EPSILON);
+        ENSURE_NEAR(sq, 1, 4 * DBL_EPSILON);
+        double dx = r.p[0] - r.q[0], dy = r.p[1] - r.q[1], dz = r.p[2] - r.q[2];
+        ENSURE_NEAR(sqrt(dx * dx + dy * dy + dz * dz), r.distance, 1e-14);
+        ENSURE(r.distance >= ex.distance - 1e-14);
+
+        float sf[9], tf[9];
+        double sd[9], td[9];
+        for (int k = 0; k < 9; ++k) {
+            sf[k] = (float)s[k];
+            tf[k] = (float)t[k];
+            sd[k] = sf[k];
+            td[k] = tf[k];
+        }
+        ttd_result_f rf;
+        ttd_barrier_pair_f(sf, tf, &default_params, &rf);
+        ttd_exact_pair_d(sd, td, &ex);
+        double errf = fabs((double)rf.distance - ex.distance) / scale;
+        if (errf > worst_f) worst_f = errf;
+        ENSURE_MSG(errf <= BAR_REL_TOL_F, "pair %d: float barrier %.9g exact %.17g", tested, (double)rf.distance, ex.distance);
+    }
+    printf("  worst relative error %.3g (double), %.3g (float); %d double not converged\n", worst, worst_f, not_converged);
+    ENSURE(not_converged == 0);
+    return 0;
+}
+
+/* A segment and a point: the barrier Hessian keeps the system regular, outputs finite. */
+static int barrier_degenerate(void)
+{
+    static const double cases[][18] = {
+        {0, 0, 0, 1, 0, 0, 2, 0, 0, 0.5, 1, 0, 1.5, 1, 1, 0.5, 2, -1},
+        {0.2, 0.2, 0.7, 0.2, 0.2, 0.7, 0.2, 0.2, 0.7, 0, 0, 0, 1, 0, 0, 0, 1, 0},
+        {1, 2, 3, 1, 2, 3, 1, 2, 3, 4, 6, 3, 4, 6, 3, 4, 6, 3},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        const double *s = cases[c], *t = cases[c] + 9;
+        ttd_result_d ex, r;
+        ttd_exact_pair_d(s, t, &ex);
+        ttd_barrier_pair_d(s, t, &default_params, &r);
+        ENSURE_MSG(isfinite(r.distance) && fabs(r.distance - ex.distance) <= 1e-6 * fmax(1, ex.distance),
+                   "case %zu: barrier %.17g exact %.17g", c, r.distance, ex.distance);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(barrier_separated_vs_exact);
+    RUN_TEST(barrier_degenerate);
+    TEST_MAIN_END();
+}

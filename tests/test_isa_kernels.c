@@ -1,0 +1,251 @@
+/* SPDX-License-Identifier: MIT */
+/* Every SIMD row (src/isa/<isa>.c) that is built and that this CPU runs, for every method it
+ * implements and both precisions, against the scalar function of the same method
+ * (src/scalar/scalar.h) on generated sets; plus the SPMD properties: a pair gives the same
+ * bits alone and in any lane among any neighbours (NaN ones too), tails (n = 0, 1, W-1, W+1,
+ * a full block), unaligned arrays, and nothing written past n. Rows the CPU cannot run are
+ * skipped with a printed reason. The rows are called directly, as the engine calls them. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/defaults.h"
+#include "engine/kernels.h"
+#include "scalar/scalar.h"
+#include "test_macros.h"
+
+static uint64_t gen_rng(uint64_t *st)
+{
+    /* splitmix64 */
+    uint64_t z = (*st += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static double gen_u01(uint64_t *st)
+{
+    return (double)(gen_rng(st) >> 11) * 0x1p-53;
+}
+
+enum { GEN_EXTREME = 6, GEN_FAMILIES = 7 };
+
+static const char *gen_family_name(int f)
+{
+    static const char *names[GEN_FAMILIES] = {"random", "overlapping", "degenerate", "scaled", "far", "paper",
+                                              "extreme"};
+    return f >= 0 && f < GEN_FAMILIES ? names[f] : "?";
+}
+
+/* Pair i of a family; depends only on (family, seed, i).
+ *   random       vertices uniform in [0,1)^3, the second triangle shifted by [-0.5,0.5)^3
+ *                (the benchmark's set; about 10% intersect)
+ *   overlapping  the second triangle is the first moved by up to 1e-3: touching or crossing
+ *   degenerate   the first triangle is a segment (C the exact midpoint of A and B, dyadic)
+ *                or a point, the second random
+ *   scaled       random pairs times 2^k, k in [-20, 20]
+ *   far          random pairs 1000 apart
+ *   paper        the paper's one pair, distance 0.5
+ *   extreme      random pairs scaled by 2^k over the whole exponent range of the precision,
+ *                subnormal to near REAL_MAX (applied by fill_d/fill_f after rounding) */
+static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[9])
+{
+    uint64_t st = seed * 0x100000001B3ull + (uint64_t)family * 0x9E3779B9ull + (uint64_t)i * 0x2545F4914F6CDD1Dull;
+    for (int k = 0; k < 9; ++k) {
+        s[k] = gen_u01(&st);
+        t[k] = gen_u01(&st);
+    }
+    double off[3];
+    for (int k = 0; k < 3; ++k)
+        off[k] = gen_u01(&st) - 0.5;
+    switch (family) {
+    case 1:
+        for (int k = 0; k < 9; ++k)
+            t[k] = s[(k + 3) % 9] + 1e-3 * (gen_u01(&st) - 0.5);
+        return;
+    case 2:
+        for (int k = 0; k < 6; ++k)
+            s[k] = floor(s[k] * 64.0) / 64.0;
+        for (int k = 0; k < 3; ++k)
+            s[6 + k] = (i % 3 == 0) ? s[k] : 0.5 * (s[k] + s[3 + k]);
+        if (i % 3 == 0)
+            for (int k = 0; k < 3; ++k)
+                s[3 + k] = s[k];
+        break;
+    case 3: {
+        const double f = ldexp(1.0, (int)(gen_rng(&st) % 41) - 20);
+        for (int k = 0; k < 9; ++k) {
+            s[k] *= f;
+            t[k] = (t[k] + off[k % 3]) * f;
+        }
+        return;
+    }
+    case 4:
+        for (int k = 0; k < 9; ++k)
+            t[k] += 1000.0 * (k % 3 == 0);
+        return;
+    case 5: {
+        static const double ps[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        static const double pt[9] = {0.3, 0.3, 0.5, 1, 0.5, 1.2, 0.4, 1.1, 0.9};
+        memcpy(s, ps, sizeof ps);
+        memcpy(t, pt, sizeof pt);
+        return;
+    }
+    default:
+        break;
+    }
+    for (int k = 0; k < 9; ++k)
+        t[k] += off[k % 3];
+}
+
+#define TTD_PRECISION_DOUBLE
+#include "common/precision.h"
+#include "isa_kernels_impl.h"
+#include "common/precision_end.h"
+#define TTD_PRECISION_FLOAT
+#include "common/precision.h"
+#include "isa_kernels_impl.h"
+#include "common/precision_end.h"
+
+typedef struct isa_row {
+    const char *name;
+    const ttd_isa_kernels *row;
+} isa_row;
+
+static const isa_row rows[] = {
+#ifdef TTD_HAVE_SSE2
+    {"sse2", &ttd_kernels_sse2},
+#endif
+#ifdef TTD_HAVE_AVX2
+    {"avx2", &ttd_kernels_avx2},
+#endif
+#ifdef TTD_HAVE_AVX512
+    {"avx512", &ttd_kernels_avx512},
+#endif
+#ifdef TTD_HAVE_NEON
+    {"neon", &ttd_kernels_neon},
+#endif
+    {NULL, NULL},
+};
+
+static int cpu_runs(const char *isa, const char **why)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_cpu_init();
+    if (!strcmp(isa, "sse2")) {
+        *why = "no SSE2";
+        return __builtin_cpu_supports("sse2");
+    }
+    if (!strcmp(isa, "avx2")) {
+        *why = "no AVX2+FMA";
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    }
+    if (!strcmp(isa, "avx512")) {
+        *why = "no AVX-512F/DQ/VL";
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
+               __builtin_cpu_supports("fma");
+    }
+#endif
+#if defined(__aarch64__)
+    if (!strcmp(isa, "neon"))
+        return 1;
+#endif
+    *why = "not this architecture";
+    return 0;
+}
+
+static const char *method_names[TTD_METHOD_COUNT] = {"exact", "penalty", "penalty-ref", "barrier"};
+
+/* How far a row may be from the scalar code, in units of eps times the pair's size. The
+ * kernels repeat the scalar operations in the same order (no FMA where the scalar has none),
+ * so they are expected to match to the bit; the margin only allows for a libm sqrt/fma that
+ * is not correctly rounded. */
+static const double method_ulps[TTD_METHOD_COUNT] = {8, 8, 8, 8};
+
+static ttd_params test_params(void)
+{
+    ttd_params p = {TTD_DEFAULT_RHO, TTD_DEFAULT_TOL, TTD_DEFAULT_MAX_ITERATIONS};
+    return p;
+}
+
+static int rows_vs_scalar(void)
+{
+    const ttd_params prm = test_params();
+    int checked = 0;
+    for (const isa_row *r = rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why)) {
+            printf("  skip %s: %s\n", r->name, why);
+            continue;
+        }
+        for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
+            char what[64];
+            if (r->row->d[m]) {
+                snprintf(what, sizeof what, "%s %s double", r->name, method_names[m]);
+                ENSURE(check_vs_scalar_d(what, r->row->d[m], m, &prm, 3000, method_ulps[m]) == 0);
+                ++checked;
+            }
+            if (r->row->f[m]) {
+                snprintf(what, sizeof what, "%s %s float", r->name, method_names[m]);
+                ENSURE(check_vs_scalar_f(what, r->row->f[m], m, &prm, 3000, method_ulps[m]) == 0);
+                ++checked;
+            }
+        }
+    }
+    printf("  %d row x method x precision combinations checked\n", checked);
+    return 0;
+}
+
+static int rows_lane_independence(void)
+{
+    const ttd_params prm = test_params();
+    uint64_t st = 5;
+    for (const isa_row *r = rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why))
+            continue;
+        for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
+            char what[64];
+            snprintf(what, sizeof what, "%s %s", r->name, method_names[m]);
+            if (r->row->d[m])
+                ENSURE(check_lane_independence_d(what, r->row->d[m], r->row->lanes_d, &prm, &st) == 0);
+            if (r->row->f[m])
+                ENSURE(check_lane_independence_f(what, r->row->f[m], r->row->lanes_f, &prm, &st) == 0);
+        }
+    }
+    return 0;
+}
+
+static int rows_sizes_and_alignment(void)
+{
+    const ttd_params prm = test_params();
+    for (const isa_row *r = rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why))
+            continue;
+        ENSURE(r->row->lanes_d >= 1 && TTD_BLOCK_PAIRS % r->row->lanes_d == 0);
+        ENSURE(r->row->lanes_f >= 1 && TTD_BLOCK_PAIRS % r->row->lanes_f == 0);
+        for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
+            char what[64];
+            snprintf(what, sizeof what, "%s %s", r->name, method_names[m]);
+            if (r->row->d[m])
+                ENSURE(check_sizes_d(what, r->row->d[m], r->row->lanes_d, &prm) == 0);
+            if (r->row->f[m])
+                ENSURE(check_sizes_f(what, r->row->f[m], r->row->lanes_f, &prm) == 0);
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(rows_vs_scalar);
+    RUN_TEST(rows_lane_independence);
+    RUN_TEST(rows_sizes_and_alignment);
+    TEST_MAIN_END();
+}
