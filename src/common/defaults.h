@@ -21,6 +21,16 @@
  * below the step's own rounding, so the iteration would never stop. Double kernels use
  * the values as given (rho 1e8 would be more accurate on random pairs but loses slivers
  * the same way; 1e6 keeps them to 1e-8 edge/size). */
+/* The optimised penalty method's regularisation eps*I (also its pivot floor) is
+ * TTD_PENALTY_EPS_ULPS * REAL_EPS of the unit-size frame, whatever rho: the paper's 1/rho^2
+ * (1e-12 at rho 1e6) is larger than the curvature along nearly parallel edges and faces and
+ * made the iteration crawl (11% of near_parallel_edges pairs hit the cap). A step also
+ * counts as small when grad.dx (twice its promised decrease of the objective) is below
+ * tol^2 or below TTD_PENALTY_FLAT_ULPS * REAL_EPS * |X - Y|^2. Measurements:
+ * docs/penalty-method.md, "Near-parallel families". */
+#define TTD_PENALTY_EPS_ULPS 4
+#define TTD_PENALTY_FLAT_ULPS 16
+
 #define TTD_FLOAT_RHO_MAX 256.0
 #define TTD_FLOAT_TOL_MIN 1.0e-6
 #define TTD_DOUBLE_RHO_MAX 1.0e300
