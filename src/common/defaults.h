@@ -24,11 +24,12 @@
 /* The optimised penalty method's regularisation eps*I (also its pivot floor) is
  * TTD_PENALTY_EPS_ULPS * REAL_EPS of the unit-size frame, whatever rho: the paper's 1/rho^2
  * (1e-12 at rho 1e6) is larger than the curvature along nearly parallel edges and faces and
- * made the iteration crawl (11% of near_parallel_edges pairs hit the cap). A step also
+ * made the iteration crawl (11% of near_parallel_edges pairs hit the cap); at 4 ulps the
+ * steps along hf's null space (noise/eps) made a few pairs cycle. A step also
  * counts as small when grad.dx (twice its promised decrease of the objective) is below
  * tol^2 or below TTD_PENALTY_FLAT_ULPS * REAL_EPS * |X - Y|^2. Measurements:
  * docs/penalty-method.md, "Near-parallel families". */
-#define TTD_PENALTY_EPS_ULPS 4
+#define TTD_PENALTY_EPS_ULPS 16
 #define TTD_PENALTY_FLAT_ULPS 16
 
 #define TTD_FLOAT_RHO_MAX 256.0
