@@ -458,6 +458,43 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
                 fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
                 fr = TTD_SFX(pen_sel)(fr < 1, fr, 1);
                 step = lo + (hi - lo) * fr;
+            } else if (p1 < p0 * (real)TTD_PENALTY_EXTEND) {
+                /* The full step still descends almost as steeply as t = 0 did: the
+                 * curvature along dx is far below the pivot that made the step (a valley
+                 * flatter than the eps floor, e.g. nearly parallel edges), and Newton would
+                 * crawl along it. The exact line search goes on beyond t = 1: breakpoints
+                 * t_i > 1 bracket the root as above; when none has phi' > 0, phi' is linear
+                 * beyond the last one (lo) and a probe at 2*lo gives its root. Rare (the
+                 * SIMD port runs it when any lane needs it). */
+                real lo = 1, plo = p1, hi = 1, phi = 0;
+                int found = 0;
+#define TTD_PEN_BEYOND(hh, ss)                                                               \
+    {                                                                                        \
+        const real tb = (hh) / (ss);                                                         \
+        const int in = (tb > 1) & (tb <= TTD_REAL_MAX);                                      \
+        const real pb = TTD_PEN_SLOPE(tb);                                                   \
+        const int to_lo = in & (pb <= 0) & (tb > lo);                                        \
+        const int to_hi = in & (pb > 0) & ((!found) | (tb < hi));                            \
+        lo = TTD_SFX(pen_sel)(to_lo, tb, lo);                                                \
+        plo = TTD_SFX(pen_sel)(to_lo, pb, plo);                                              \
+        hi = TTD_SFX(pen_sel)(to_hi, tb, hi);                                                \
+        phi = TTD_SFX(pen_sel)(to_hi, pb, phi);                                              \
+        found |= to_hi;                                                                      \
+    }
+                TTD_PEN_BEYOND(h1, s1) TTD_PEN_BEYOND(h2, s2) TTD_PEN_BEYOND(h3, s3)
+                TTD_PEN_BEYOND(h4, s4) TTD_PEN_BEYOND(h5, s5) TTD_PEN_BEYOND(h6, s6)
+#undef TTD_PEN_BEYOND
+                const real t2 = 2 * lo;
+                const real p2 = TTD_PEN_SLOPE(t2);
+                hi = TTD_SFX(pen_sel)(found, hi, t2);
+                phi = TTD_SFX(pen_sel)(found, phi, p2);
+                const real den = phi - plo;
+                real fr = TTD_SFX(pen_sel)(den > 0, -plo / den, 0);
+                fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
+                /* past hi only when hi is the probe (phi' is linear beyond lo) */
+                fr = TTD_SFX(pen_sel)((fr < 1) | !found, fr, 1);
+                step = lo + (hi - lo) * fr;
+                step = TTD_SFX(pen_sel)(step <= TTD_REAL_MAX, step, lo);
             }
 #undef TTD_PEN_SLOPE
         }

@@ -273,6 +273,40 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
         fr = vsel(vlt(fr, one), fr, one);
         step = vsel(bracket, lo + (hi - lo) * fr, one);
     }
+    /* scalar: the `else if (p1 < p0 * TTD_PENALTY_EXTEND)` search beyond t = 1 */
+    const vmask extend = mand(mnot(bracket), vlt(p1, p0 * vset1((real)TTD_PENALTY_EXTEND)));
+    if (many(mand(active, extend))) {
+        const vreal rmax = vset1(TTD_REAL_MAX);
+        vreal lo = one, plo = p1, hi = one, phi = zero;
+        vmask found = vlt(one, zero); /* all false */
+#define TTD_KP_BEYOND(hh, ss)                                                                   \
+{                                                                                           \
+    const vreal tb = (hh) / (ss);                                                           \
+    const vmask in = mand(vgt(tb, one), vle(tb, rmax));                                     \
+    const vreal pb = TTD_KP_SLOPE(tb);                                                      \
+    const vmask to_lo = mand(in, mand(vle(pb, zero), vgt(tb, lo)));                        \
+    const vmask to_hi = mand(in, mand(vgt(pb, zero), mor(mnot(found), vlt(tb, hi))));      \
+    lo = vsel(to_lo, tb, lo);                                                               \
+    plo = vsel(to_lo, pb, plo);                                                             \
+    hi = vsel(to_hi, tb, hi);                                                               \
+    phi = vsel(to_hi, pb, phi);                                                             \
+    found = mor(found, to_hi);                                                              \
+}
+        TTD_KP_BEYOND(h1, s1) TTD_KP_BEYOND(h2, s2) TTD_KP_BEYOND(h3, s3)
+        TTD_KP_BEYOND(h4, s4) TTD_KP_BEYOND(h5, s5) TTD_KP_BEYOND(h6, s6)
+#undef TTD_KP_BEYOND
+        const vreal t2 = two * lo;
+        const vreal p2 = TTD_KP_SLOPE(t2);
+        hi = vsel(found, hi, t2);
+        phi = vsel(found, phi, p2);
+        const vreal den = phi - plo;
+        vreal fr = vsel(vgt(den, zero), -plo / den, zero);
+        fr = vsel(vgt(fr, zero), fr, zero);
+        fr = vsel(mor(vlt(fr, one), mnot(found)), fr, one);
+        vreal st = lo + (hi - lo) * fr;
+        st = vsel(vle(st, rmax), st, lo);
+        step = vsel(extend, st, step);
+    }
 #undef TTD_KP_SLOPE
     /* The update, in active lanes only. */
     const vreal a_o = a, b_o = b, ca_o = ca, g_o = g, d_o = d, cg_o = cg;
