@@ -221,7 +221,7 @@ static int penalty_near_parallel(void)
     return 0;
 }
 
-/* Segments and points: the Hessian of f is singular, the I/rho^2 term (and the pivot floor)
+/* Segments and points: the Hessian of f is singular, the eps*I term (and the pivot floor)
  * must keep every output finite and the distance right. */
 static int penalty_degenerate(void)
 {

@@ -5,7 +5,7 @@
  * random pairs against an exact reference): docs/penalty-method.md.
  *
  * rho 1e6 with the final clamping gives a distance error ~2/rho^2 = 2e-12 of the pair's
- * size in double, in ~4.8 Newton iterations on average; tol 1e-12 is the step length, on
+ * size in double, in ~4.6 Newton iterations on average; tol 1e-12 is the step length, on
  * the unit-size geometry, below which the iteration stops. The cap is the paper's. */
 #ifndef TTD_COMMON_DEFAULTS_H
 #define TTD_COMMON_DEFAULTS_H
