@@ -1,0 +1,29 @@
+/* SPDX-License-Identifier: MIT */
+/* The thresholds of the certified mode's optimality check, shared by the scalar code
+ * (scalar/certified_impl.h) and the lane kernel (simd/kernel_certified.h) so that both take
+ * the same decisions. All are in the frame's units: the pair translated to A and scaled by a
+ * power of two so that its largest coordinate lies in [0.5, 1), which is at most 3x
+ * max(distance, size) of the pair (docs/certified-mode.md). Why each value:
+ *
+ *   GAP    accept only when the distance |p - q| exceeds the lower bound proved by the
+ *          separating planes normal to p - q by at most this (the KKT multipliers' deficit);
+ *          far above the check's own rounding (~30 eps) and far below the accuracy targets
+ *          (1e-12 double, 1e-5 float, relative to max(distance, size)).
+ *   TOUCH  the proved lower bound must exceed this, or the pair goes to the exact method:
+ *          whether a pair touches is the exact method's decision (a distance within 4 eps of
+ *          the extent is snapped to 0 and flagged), and a certificate this close to 0 cannot
+ *          tell a contact from a near miss.
+ *   FEAS   the weights solved on the active set may be below 0 by this much (rounding at a
+ *          vertex or edge end); they are then clamped onto the triangle, and the gap check
+ *          above judges the clamped points, so this decides nothing about correctness. */
+#ifndef TTD_SCALAR_CERTIFIED_TOL_H
+#define TTD_SCALAR_CERTIFIED_TOL_H
+
+#define TTD_CERT_GAP_D 0x1p-46
+#define TTD_CERT_TOUCH_D 0x1p-42
+#define TTD_CERT_FEAS_D 0x1p-40
+#define TTD_CERT_GAP_F 0x1p-20f
+#define TTD_CERT_TOUCH_F 0x1p-16f
+#define TTD_CERT_FEAS_F 0x1p-18f
+
+#endif /* TTD_SCALAR_CERTIFIED_TOL_H */
