@@ -184,6 +184,11 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     const real *P = S->v[ei], *d1 = S->e[ei], *Q = T->v[ej], *d2 = T->e[ej];
     const real pen_s = pw[(ei + 1) % 3], pen_t = qw[(ej + 1) % 3];
     real s = 0, t = 0;
+    /* a side whose point was not solved for but taken from the penalty (edge-face, face-face,
+     * parallel edges): the stationarity of its feature is not given by construction, so the
+     * check includes its feature's vertices too */
+    int free_s = ns >= 2 && nt == 3;
+    const int free_t = ns == 3 && nt == 2;
     if (ns == 2 && nt == 2) {
         /* edge-edge: exact_edge_edge's stationary point (s unclamped); parallel lines keep
          * the penalty's s */
@@ -194,6 +199,7 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
             w[c] = Q[c] - P[c];
         TTD_SFX(cert_cross)(w, d2, x);
         s = nn >= TTD_REAL_MIN ? TTD_SFX(cert_dot)(x, n) / nn : pen_s;
+        free_s = !(nn >= TTD_REAL_MIN);
         t = (s * TTD_SFX(cert_dot)(d1, d2) - TTD_SFX(cert_dot)(w, d2)) * T->inv_ee[ej];
     } else {
         if (ns == 2) {
@@ -254,14 +260,25 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         ds[i] = TTD_SFX(cert_dot)(w, a); /* half the multiplier of S's vertex i */
         dt[i] = TTD_SFX(cert_dot)(w, b); /* half the multiplier of T's vertex i */
     }
-    real ms = ds[0] < ds[1] ? ds[0] : ds[1];
-    ms = ms < ds[2] ? ms : ds[2];
-    real mt = dt[0] < dt[1] ? dt[0] : dt[1];
-    mt = mt < dt[2] ? mt : dt[2];
+    /* the multipliers of the active constraints: the vertices outside the solved features
+     * (a solved feature's own vertices give 0 up to the solve's rounding) */
+    real es[3], et[3];
+    for (int i = 0; i < 3; ++i) {
+        es[i] = (wp[i] > 0) & !free_s ? TTD_REAL_MAX : ds[i];
+        et[i] = (wq[i] > 0) & !free_t ? TTD_REAL_MAX : dt[i];
+    }
+    real ms = es[0] < es[1] ? es[0] : es[1];
+    ms = ms < es[2] ? ms : es[2];
+    real mt = et[0] < et[1] ? et[0] : et[1];
+    mt = mt < et[2] ? mt : et[2];
+    /* the separation proved by the planes normal to w through all six vertices */
+    real ls = ds[0] < ds[1] ? ds[0] : ds[1];
+    ls = ls < ds[2] ? ls : ds[2];
+    real lt = dt[0] < dt[1] ? dt[0] : dt[1];
+    lt = lt < dt[2] ? lt : dt[2];
     const real ww = TTD_SFX(cert_dot)(w, w);
     const real nw = TTD_SQRT(ww);
-    const real msum = ms + mt;
-    ok &= (msum >= -gap * nw) & (ww + msum > touch * nw);
+    ok &= (ms >= -gap * nw) & (mt >= -gap * nw) & (ww + (ls + lt) > touch * nw);
     *dist = nw;
     return ok;
 }

@@ -21,9 +21,9 @@
 
 #define TTD_CERT_GAP_D 0x1p-46
 #define TTD_CERT_TOUCH_D 0x1p-42
-#define TTD_CERT_FEAS_D 0x1p-40
+#define TTD_CERT_FEAS_D 0x1p-46
 #define TTD_CERT_GAP_F 0x1p-20f
 #define TTD_CERT_TOUCH_F 0x1p-16f
-#define TTD_CERT_FEAS_F 0x1p-18f
+#define TTD_CERT_FEAS_F 0x1p-20f
 
 #endif /* TTD_SCALAR_CERTIFIED_TOL_H */
