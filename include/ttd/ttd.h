@@ -40,7 +40,8 @@ typedef enum ttd_status {
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
     TTD_ERR_ISA_UNAVAILABLE = 19, ///< the forced instruction set is not built in or not supported here
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range
-    TTD_ERR_OUT_OF_MEMORY = 21    ///< a per-thread scratch allocation failed
+    TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed
+    TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
 } ttd_status;
 
 /// How the distance is computed.

@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: MIT */
+/* The ttd program's commands and the helpers they share (option values, messages).
+ *
+ * Hook for `ttd bench` (the .c files of bench/ are compiled into this program by cli/CMakeLists.txt): define
+ *     int ttd_bench_main(int argc, char **argv);
+ * in bench/, with argv[0] == "bench" and the rest its arguments; return the exit status. It is
+ * declared weak here, so the program links and says "not built" without it. The helpers below
+ * (ttd_cli_parse_*, ttd_cli_print_isas) are there for it to use too. */
+#ifndef TTD_CLI_CLI_H
+#define TTD_CLI_CLI_H
+
+#include <stdio.h>
+#include "ttd/ttd.h"
+
+/// Exit statuses of every command.
+enum {
+    TTD_EXIT_OK = 0,    ///< everything computed
+    TTD_EXIT_INPUT = 1, ///< some input line was bad, or reading/writing failed
+    TTD_EXIT_USAGE = 2  ///< bad command line (unknown option, value out of range, ISA unavailable)
+};
+
+/// `ttd dist [options] [FILE]`.
+int ttd_cli_dist(int argc, char **argv);
+/// `ttd bench ...`, defined in bench/ when it exists.
+int ttd_bench_main(int argc, char **argv) __attribute__((weak));
+
+/// Prints "ttd: " and the message to stderr.
+void ttd_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/// A ttd_method_name, e.g. "penalty-ref"; 0 on success, -1 when unknown.
+int ttd_cli_parse_method(const char *s, ttd_method *out);
+/// A ttd_isa_name, e.g. "avx2" or "auto"; 0 on success, -1 when unknown.
+int ttd_cli_parse_isa(const char *s, ttd_isa *out);
+/// A whole decimal integer in [lo, hi]; 0 on success, -1 otherwise.
+int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
+/// A finite number (strtod syntax, the whole string); 0 on success, -1 otherwise.
+int ttd_cli_parse_real(const char *s, double *out);
+/// Lines "built: ...", "cpu:   ...", "auto:  ..." (the instruction sets).
+void ttd_cli_print_isas(FILE *f);
+
+#endif /* TTD_CLI_CLI_H */

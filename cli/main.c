@@ -1,0 +1,82 @@
+/* SPDX-License-Identifier: MIT */
+/* The ttd program: `ttd dist`, `ttd info`, `ttd bench` (when built), --help, --version. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "engine/parallel.h"
+
+#ifndef TTD_C_COMPILER
+#define TTD_C_COMPILER "unknown"
+#endif
+#ifndef TTD_C_FLAGS
+#define TTD_C_FLAGS ""
+#endif
+
+static const char ttd_usage[] =
+    "usage: ttd COMMAND [options]\n"
+    "Minimum distance between 3D triangles, many pairs at a time, on SIMD hardware.\n"
+    "\n"
+    "commands:\n"
+    "  dist [options] [FILE]   distances of the triangle pairs in FILE or standard input\n"
+    "                          (ttd dist --help for the format and options)\n"
+    "  info                    version, instruction sets built and supported, the one chosen\n"
+    "  bench [options]         the benchmark (ttd bench --help), when built in\n"
+    "  --help                  this text\n"
+    "  --version               version and instruction sets\n"
+    "\n"
+    "The environment variable TTD_ISA (scalar, sse2, avx2, avx512, neon) forces an instruction\n"
+    "set wherever the options say auto.\n";
+
+static void ttd_print_version(FILE *f)
+{
+    fprintf(f, "ttd %s\n", ttd_version_string());
+    ttd_cli_print_isas(f);
+}
+
+static int ttd_info(void)
+{
+    ttd_print_version(stdout);
+    printf("lanes (float/double):");
+    for (int i = 1; i < TTD_ISA_COUNT; ++i)
+        if (ttd_isa_available((ttd_isa)i))
+            printf(" %s %d/%d", ttd_isa_name((ttd_isa)i), ttd_isa_lanes((ttd_isa)i, 4),
+                   ttd_isa_lanes((ttd_isa)i, 8));
+    printf("\nmethods:");
+    for (int m = 0; m < TTD_METHOD_COUNT; ++m)
+        printf(" %s", ttd_method_name((ttd_method)m));
+    printf("\nthreads: %d online cores\n", ttd_parallel_cores());
+    printf("compiler: %s\nflags: %s\n", TTD_C_COMPILER, TTD_C_FLAGS);
+    printf("bench: %s\n", ttd_bench_main ? "built" : "not built");
+    return fflush(stdout) == 0 ? TTD_EXIT_OK : TTD_EXIT_INPUT;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(ttd_usage, stderr);
+        return TTD_EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        fputs(ttd_usage, stdout);
+        return TTD_EXIT_OK;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        ttd_print_version(stdout);
+        return TTD_EXIT_OK;
+    }
+    if (strcmp(cmd, "info") == 0)
+        return ttd_info();
+    if (strcmp(cmd, "dist") == 0)
+        return ttd_cli_dist(argc - 1, argv + 1);
+    if (strcmp(cmd, "bench") == 0) {
+        if (ttd_bench_main == NULL) {
+            ttd_cli_error("bench: not built into this program");
+            return TTD_EXIT_USAGE;
+        }
+        return ttd_bench_main(argc - 1, argv + 1);
+    }
+    ttd_cli_error("unknown command '%s' (see ttd --help)", cmd);
+    return TTD_EXIT_USAGE;
+}

@@ -1,0 +1,148 @@
+/* SPDX-License-Identifier: MIT */
+/* The line reader and the pair-line parser of cli/parse.h. Everything is bounded: a line
+ * is at most TTD_CLI_MAX_LINE bytes in memory however long it is in the file, and bytes that
+ * are not part of a number (binary garbage, NUL) end the parse with a message naming them. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "parse.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void ttd_reader_init(ttd_line_reader *r, FILE *f)
+{
+    r->f = f;
+    r->pos = r->len = 0;
+    r->eof = r->error = 0;
+    r->line_no = 0;
+    r->line[0] = '\0';
+}
+
+/* Refills buf when empty; 0 when the input is exhausted. */
+static int ttd_reader_fill(ttd_line_reader *r)
+{
+    if (r->pos < r->len)
+        return 1;
+    if (r->eof)
+        return 0;
+    r->pos = 0;
+    errno = 0;
+    r->len = fread(r->buf, 1, sizeof r->buf, r->f);
+    if (r->len == 0) {
+        r->eof = 1;
+        if (ferror(r->f))
+            r->error = errno != 0 ? errno : EIO;
+        return 0;
+    }
+    return 1;
+}
+
+int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
+{
+    size_t n = 0;
+    int got = 0;
+    *overlong = 0;
+    while (ttd_reader_fill(r)) {
+        got = 1;
+        const char *start = r->buf + r->pos;
+        size_t avail = r->len - r->pos;
+        const char *nl = memchr(start, '\n', avail);
+        size_t take = nl ? (size_t)(nl - start) : avail;
+        size_t room = TTD_CLI_MAX_LINE - n;
+        if (take > room) {
+            *overlong = 1;
+            memcpy(r->line + n, start, room);
+            n += room;
+        } else {
+            memcpy(r->line + n, start, take);
+            n += take;
+        }
+        r->pos += take + (nl != NULL);
+        if (nl)
+            break;
+    }
+    if (!got)
+        return 0;
+    if (n > 0 && r->line[n - 1] == '\r' && !*overlong)
+        --n;
+    r->line[n] = '\0';
+    *len = n;
+    ++r->line_no;
+    return 1;
+}
+
+static int ttd_is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* Quotes up to 24 bytes of a token for a message: printable ASCII as is, others as \xHH. */
+static void ttd_quote(const char *p, const char *end, char *out, size_t outsize)
+{
+    size_t o = 0;
+    int k = 0;
+    for (; p < end && !ttd_is_blank(*p) && k < 24 && o + 5 < outsize; ++p, ++k) {
+        unsigned char c = (unsigned char)*p;
+        if (c >= 0x20 && c < 0x7f)
+            out[o++] = (char)c;
+        else
+            o += (size_t)snprintf(out + o, outsize - o, "\\x%02x", c);
+    }
+    if (p < end && !ttd_is_blank(*p) && o + 4 < outsize) {
+        memcpy(out + o, "...", 3);
+        o += 3;
+    }
+    out[o] = '\0';
+}
+
+ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], char *err,
+                                  size_t errsize)
+{
+    const char *p = line, *end = line + len;
+    while (p < end && ttd_is_blank(*p))
+        ++p;
+    if (p == end || *p == '#')
+        return TTD_LINE_SKIP;
+
+    int count = 0;
+    while (p < end) {
+        char tok[128];
+        if (count == 18) {
+            int extra = 0;
+            while (p < end) {
+                ++extra;
+                while (p < end && !ttd_is_blank(*p))
+                    ++p;
+                while (p < end && ttd_is_blank(*p))
+                    ++p;
+            }
+            snprintf(err, errsize, "expected 18 numbers, found %d or more", 18 + extra);
+            return TTD_LINE_ERROR;
+        }
+        char *stop;
+        errno = 0;
+        double v = strtod(p, &stop);
+        if (stop == p || (stop < end && !ttd_is_blank(*stop))) {
+            ttd_quote(p, end, tok, sizeof tok);
+            snprintf(err, errsize, "field %d is not a number: '%s'", count + 1, tok);
+            return TTD_LINE_ERROR;
+        }
+        if (!isfinite(v)) {
+            ttd_quote(p, end, tok, sizeof tok);
+            snprintf(err, errsize, "field %d is %s: '%s'", count + 1,
+                     errno == ERANGE ? "out of range" : "not finite", tok);
+            return TTD_LINE_ERROR;
+        }
+        out[count++] = v;
+        p = stop;
+        while (p < end && ttd_is_blank(*p))
+            ++p;
+    }
+    if (count != 18) {
+        snprintf(err, errsize, "expected 18 numbers, found %d", count);
+        return TTD_LINE_ERROR;
+    }
+    return TTD_LINE_PAIR;
+}

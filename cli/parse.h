@@ -1,0 +1,45 @@
+/* SPDX-License-Identifier: MIT */
+/* Input of `ttd dist`: a line reader with bounded memory, and the parser of one line. Kept
+ * apart from the command so that a fuzz target can drive the parser alone. */
+#ifndef TTD_CLI_PARSE_H
+#define TTD_CLI_PARSE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+/// Longest accepted line in bytes (without its newline); 18 numbers at full precision need
+/// about 450, so this leaves room for wide padding and long comments.
+#define TTD_CLI_MAX_LINE 4096
+
+/// Reads lines of any length from a FILE in bounded memory: a line longer than
+/// TTD_CLI_MAX_LINE is reported as overlong (its start kept, the rest skipped).
+typedef struct ttd_line_reader {
+    FILE *f;
+    size_t pos, len;                       ///< unread bytes of buf are [pos, len)
+    int eof;
+    int error;                             ///< errno of a read error (ferror), else 0
+    unsigned long long line_no;            ///< number of the line last returned, from 1
+    char buf[1 << 16];
+    char line[TTD_CLI_MAX_LINE + 1];       ///< the line last returned, NUL-terminated
+} ttd_line_reader;
+
+/// Starts reading f.
+void ttd_reader_init(ttd_line_reader *r, FILE *f);
+/// Next line (without "\n" or "\r\n") in r->line, its length in *len (NUL bytes may occur
+/// inside); *overlong set when the line was cut. Returns 0 at the end of input (a missing final
+/// newline still gives the last line), 1 otherwise.
+int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong);
+
+/// What one line holds.
+typedef enum ttd_line_kind {
+    TTD_LINE_SKIP = 0,  ///< blank, or a comment (first non-blank character '#')
+    TTD_LINE_PAIR = 1,  ///< 18 finite numbers, in out
+    TTD_LINE_ERROR = 2  ///< anything else; err says what
+} ttd_line_kind;
+
+/// Parses line[0..len) (line[len] must be '\0'): 18 numbers separated by blanks (space, tab,
+/// CR, VT, FF), in strtod's syntax, all finite. On TTD_LINE_ERROR err holds a message.
+ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], char *err,
+                                  size_t errsize);
+
+#endif /* TTD_CLI_PARSE_H */

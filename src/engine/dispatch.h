@@ -1,0 +1,23 @@
+/* SPDX-License-Identifier: MIT */
+/* Run-time choice of an instruction set: what the CPU and the operating system support, which
+ * rows were built in, and how ttd_options (and the TTD_ISA environment variable) pick one. */
+#ifndef TTD_ENGINE_DISPATCH_H
+#define TTD_ENGINE_DISPATCH_H
+
+#include "engine/kernels.h"
+
+/// Non-zero when the row of isa was compiled into this library (scalar: always).
+int ttd_dispatch_isa_built(ttd_isa isa);
+/// Non-zero when this CPU and OS can run isa (scalar: always; AUTO: never).
+int ttd_dispatch_cpu_supports(ttd_isa isa);
+/// The best instruction set that is built and supported (never AUTO).
+ttd_isa ttd_dispatch_best(void);
+/// The table row of isa, or NULL when it was not built.
+const ttd_isa_kernels *ttd_dispatch_row(ttd_isa isa);
+/// Resolves requested (AUTO, or a forced one) to a runnable instruction set. With AUTO the
+/// environment variable TTD_ISA (a ttd_isa_name, or "auto"/empty) may force one.
+/// Returns TTD_OK, or TTD_ERR_ISA_UNAVAILABLE when the forced one (or an unknown TTD_ISA
+/// name) cannot run here; *out is set only on TTD_OK.
+ttd_status ttd_dispatch_resolve(ttd_isa requested, ttd_isa *out);
+
+#endif /* TTD_ENGINE_DISPATCH_H */

@@ -1,0 +1,32 @@
+/* SPDX-License-Identifier: MIT */
+/* A small parallel-for over blocks (Box2D's b2ParallelFor idea, on pthreads).
+ *
+ * ttd_parallel_for(nblocks, threads, fn, ctx) calls fn(ctx, block, worker) once for every
+ * block in [0, nblocks). Workers claim blocks one at a time from an atomic counter, so a slow
+ * block does not hold up the others; the calling thread is worker 0 and returns when every
+ * block is done. worker is in [0, ttd_parallel_workers(nblocks, threads)) and stable for the
+ * thread that runs it, so fn may keep per-worker scratch indexed by it. Which worker runs
+ * which block varies from run to run: fn must make each block's result depend on the block
+ * alone, and then the output does not depend on the thread count. Threads are started per
+ * call (no pool, no global state); if one cannot be started the others do its share. */
+#ifndef TTD_ENGINE_PARALLEL_H
+#define TTD_ENGINE_PARALLEL_H
+
+#include <stddef.h>
+
+/// Most workers one call uses.
+#define TTD_MAX_WORKERS 256
+/// Fewest blocks per worker: a thread costs tens of microseconds to start, a block a few.
+#define TTD_MIN_BLOCKS_PER_WORKER 8
+
+typedef void (*ttd_block_fn)(void *ctx, size_t block, int worker);
+
+/// Online cores (at least 1).
+int ttd_parallel_cores(void);
+/// Workers a call with these arguments uses: threads (0 = every online core), capped by
+/// TTD_MAX_WORKERS and by nblocks / TTD_MIN_BLOCKS_PER_WORKER, at least 1.
+int ttd_parallel_workers(size_t nblocks, int threads);
+/// Runs fn on every block; see the top of this file.
+void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx);
+
+#endif /* TTD_ENGINE_PARALLEL_H */

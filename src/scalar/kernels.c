@@ -1,0 +1,45 @@
+/* SPDX-License-Identifier: MIT */
+/* The scalar ISA row: each kernel is a loop over the per-pair functions of scalar/scalar.h.
+ * It is the reference every SIMD row is tested against, and the fallback for entries an ISA
+ * does not provide. */
+#include "scalar/scalar.h"
+
+/* One loop per (method, precision). The per-pair functions fill a whole result; the loop
+ * copies out what the engine asked for. */
+#define TTD_SCALAR_LOOP(name, real, result, call)                                             \
+    static void name(size_t n, const real *s, const real *t, const ttd_params *prm,           \
+                     real *distance, result *results)                                         \
+    {                                                                                         \
+        (void)prm;                                                                            \
+        for (size_t i = 0; i < n; ++i) {                                                      \
+            result r;                                                                         \
+            call;                                                                             \
+            if (distance)                                                                     \
+                distance[i] = r.distance;                                                     \
+            if (results)                                                                      \
+                results[i] = r;                                                               \
+        }                                                                                     \
+    }
+
+TTD_SCALAR_LOOP(ttd_scalar_exact_d, double, ttd_result_d, ttd_exact_pair_d(s + 9 * i, t + 9 * i, &r))
+TTD_SCALAR_LOOP(ttd_scalar_exact_f, float, ttd_result_f, ttd_exact_pair_f(s + 9 * i, t + 9 * i, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_d, double, ttd_result_d, ttd_penalty_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_f, float, ttd_result_f, ttd_penalty_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_d, double, ttd_result_d, ttd_penalty_ref_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_f, float, ttd_result_f, ttd_penalty_ref_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_barrier_d, double, ttd_result_d, ttd_barrier_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_barrier_f, float, ttd_result_f, ttd_barrier_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+
+const ttd_isa_kernels ttd_kernels_scalar = {
+    .isa = TTD_ISA_SCALAR,
+    .lanes_f = 1,
+    .lanes_d = 1,
+    .d = {[TTD_METHOD_EXACT] = ttd_scalar_exact_d,
+          [TTD_METHOD_PENALTY] = ttd_scalar_penalty_d,
+          [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_d,
+          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d},
+    .f = {[TTD_METHOD_EXACT] = ttd_scalar_exact_f,
+          [TTD_METHOD_PENALTY] = ttd_scalar_penalty_f,
+          [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_f,
+          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f},
+};
