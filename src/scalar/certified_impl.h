@@ -10,8 +10,10 @@
  *      vertex-vertex   the two vertices;
  *      vertex-edge     the vertex projected onto the edge's line;
  *      vertex-face     the vertex projected onto the face's plane;
- *      edge-edge       the stationary point of the two lines (parallel lines: the penalty's
- *                      point on the first edge, projected onto the second);
+ *      edge-edge       the stationary point of the two lines, then clamped to the segments
+ *                      (the segments' closest pair, for answers at an end of an edge);
+ *                      parallel lines: the penalty's point on the first edge, projected
+ *                      onto the second and back;
  *      edge-face, face-face: in 3D the closest pair of two features of total dimension >= 3 is
  *                      either not unique (parallel) or a crossing; the penalty's point on S
  *                      (on T for face-edge) is kept and projected onto the other face.
@@ -51,6 +53,12 @@ static void TTD_SFX(cert_cross)(const real a[3], const real b[3], real out[3])
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
     out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* exact_clamp01 */
+static real TTD_SFX(cert_clamp01)(real x)
+{
+    return x < (real)0 ? (real)0 : (x > (real)1 ? (real)1 : x);
 }
 
 static real TTD_SFX(cert_pos)(real v)
@@ -175,6 +183,15 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     int ns, vi, ei, nt, vj, ej;
     TTD_SFX(cert_feature)(pw, &ns, &vi, &ei);
     TTD_SFX(cert_feature)(qw, &nt, &vj, &ej);
+    /* A triangle without a face (collinear to far below rounding) is its longest edge. */
+    if (ns == 3 && !S->has_face) {
+        ns = 2;
+        ei = S->k;
+    }
+    if (nt == 3 && !T->has_face) {
+        nt = 2;
+        ej = T->k;
+    }
     real ppen[3], qpen[3], rp[3] = {0, 0, 0}, rq[3] = {0, 0, 0};
     TTD_SFX(cert_combine)(S, pw, ppen);
     TTD_SFX(cert_combine)(T, qw, qpen);
@@ -182,12 +199,20 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     const real *Xs = ns == 1 ? S->v[vi] : ppen;
     const real *Xt = nt == 1 ? T->v[vj] : qpen;
     const real *P = S->v[ei], *d1 = S->e[ei], *Q = T->v[ej], *d2 = T->e[ej];
-    const real pen_s = pw[(ei + 1) % 3], pen_t = qw[(ej + 1) % 3];
+    /* the penalty's points as parameters on the edges (their weights, up to rounding; for a
+     * triangle taken as its longest edge, the projection) */
+    real r0[3], r1[3];
+    for (int c = 0; c < 3; ++c) {
+        r0[c] = ppen[c] - P[c];
+        r1[c] = qpen[c] - Q[c];
+    }
+    const real pen_s = TTD_SFX(cert_dot)(r0, d1) * S->inv_ee[ei];
+    const real pen_t = TTD_SFX(cert_dot)(r1, d2) * T->inv_ee[ej];
     real s = 0, t = 0;
-    /* a side whose point was not solved for but taken from the penalty (edge-face, face-face,
-     * parallel edges): the stationarity of its feature is not given by construction, so the
-     * check includes its feature's vertices too */
-    int free_s = ns >= 2 && nt == 3;
+    /* a side whose point was not solved for but taken from the penalty (edge-face,
+     * face-face): the stationarity of its feature is not given by construction, so the check
+     * includes its feature's vertices too */
+    const int free_s = ns >= 2 && nt == 3;
     const int free_t = ns == 3 && nt == 2;
     if (ns == 2 && nt == 2) {
         /* edge-edge: exact_edge_edge's stationary point (s unclamped); parallel lines keep
@@ -198,9 +223,18 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         for (int c = 0; c < 3; ++c)
             w[c] = Q[c] - P[c];
         TTD_SFX(cert_cross)(w, d2, x);
+        const real d12 = TTD_SFX(cert_dot)(d1, d2), wd1 = TTD_SFX(cert_dot)(w, d1), wd2 = TTD_SFX(cert_dot)(w, d2);
         s = nn >= TTD_REAL_MIN ? TTD_SFX(cert_dot)(x, n) / nn : pen_s;
-        free_s = !(nn >= TTD_REAL_MIN);
-        t = (s * TTD_SFX(cert_dot)(d1, d2) - TTD_SFX(cert_dot)(w, d2)) * T->inv_ee[ej];
+        /* The two segments' closest pair when the penalty's edges are right but the answer
+         * sits at an end (nearly parallel edges, where the penalty cannot tell): s onto
+         * [0, 1]; t, the projection of p(s), onto [0, 1]; when t was clamped or the lines are
+         * parallel, s again as the projection of q(t) (for parallel lines p - q is then
+         * normal to both). The check then tests the vertices left out. */
+        const real sc = TTD_SFX(cert_clamp01)(s);
+        const real tt = (sc * d12 - wd2) * T->inv_ee[ej];
+        t = TTD_SFX(cert_clamp01)(tt);
+        s = (tt >= 0) & (tt <= 1) & (nn >= TTD_REAL_MIN) ? sc
+                                                         : TTD_SFX(cert_clamp01)((t * d12 + wd1) * S->inv_ee[ei]);
     } else {
         if (ns == 2) {
             real r[3];

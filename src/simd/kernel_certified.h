@@ -49,6 +49,16 @@ static inline TTD_SFX(kc_feat) TTD_SFX(kc_feature_of)(const vreal w[3])
     return f;
 }
 
+/* scalar: the feature of a triangle without a face becomes its longest edge (k). */
+static inline void TTD_SFX(kc_as_edge)(TTD_SFX(kc_feat) *f, const TTD_SFX(kx_tri) *T)
+{
+    const vmask conv = mandnot(f->three, T->has_face);
+    f->three = mandnot(f->three, conv);
+    f->two = mor(f->two, conv);
+    f->e0 = mor(mand(conv, T->is0), mandnot(f->e0, conv));
+    f->e1 = mor(mand(conv, T->is1), mandnot(f->e1, conv));
+}
+
 /* scalar: cert_face_weights. P projected onto T's plane, as three barycentric weights. */
 static inline void TTD_SFX(kc_face_weights)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal w[3])
 {
@@ -130,7 +140,10 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     TTD_SFX(kx_tri_init)(&T);
 
     /* features and the penalty's points */
-    const TTD_SFX(kc_feat) fs = TTD_SFX(kc_feature_of)(pw), ft = TTD_SFX(kc_feature_of)(qw);
+    TTD_SFX(kc_feat) fs = TTD_SFX(kc_feature_of)(pw), ft = TTD_SFX(kc_feature_of)(qw);
+    /* a triangle without a face is its longest edge */
+    TTD_SFX(kc_as_edge)(&fs, &S);
+    TTD_SFX(kc_as_edge)(&ft, &T);
     vreal ppen[3], qpen[3], Xs[3], Xt[3], P[3], d1[3], Q[3], d2[3];
     TTD_SFX(kc_combine)(&S, pw, ppen);
     TTD_SFX(kc_combine)(&T, qw, qpen);
@@ -144,8 +157,14 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     }
     const vreal ie1 = TTD_SFX(kc_sel3)(fs.e0, fs.e1, S.inv_ee[0], S.inv_ee[1], S.inv_ee[2]);
     const vreal ie2 = TTD_SFX(kc_sel3)(ft.e0, ft.e1, T.inv_ee[0], T.inv_ee[1], T.inv_ee[2]);
-    const vreal pen_s = TTD_SFX(kc_sel3)(fs.e0, fs.e1, pw[1], pw[2], pw[0]);
-    const vreal pen_t = TTD_SFX(kc_sel3)(ft.e0, ft.e1, qw[1], qw[2], qw[0]);
+    /* the penalty's points as parameters on the edges */
+    vreal r0[3], r1[3];
+    for (int c = 0; c < 3; ++c) {
+        r0[c] = ppen[c] - P[c];
+        r1[c] = qpen[c] - Q[c];
+    }
+    const vreal pen_s = TTD_SFX(kx_dot)(r0, d1) * ie1;
+    const vreal pen_t = TTD_SFX(kx_dot)(r1, d2) * ie2;
 
     /* edge-edge: the lines' stationary point; parallel lines keep the penalty's s */
     vreal n[3], w[3], x[3], r[3];
@@ -154,9 +173,15 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     for (int c = 0; c < 3; ++c)
         w[c] = Q[c] - P[c];
     TTD_SFX(kx_cross)(w, d2, x);
+    const vreal d12 = TTD_SFX(kx_dot)(d1, d2), wd1 = TTD_SFX(kx_dot)(w, d1), wd2 = TTD_SFX(kx_dot)(w, d2);
     const vmask nonpar = vge(nn, vset1(TTD_REAL_MIN));
-    const vreal s_ll = vsel(nonpar, TTD_SFX(kx_dot)(x, n) / nn, pen_s);
-    const vreal t_ll = (s_ll * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * ie2;
+    /* then the segments' closest pair: s clamped, t = projection of p(s) clamped, and s
+     * again as the projection of q(t) where t was clamped or the lines are parallel */
+    const vreal sc = TTD_SFX(kx_clamp01)(vsel(nonpar, TTD_SFX(kx_dot)(x, n) / nn, pen_s));
+    const vreal tt = (sc * d12 - wd2) * ie2;
+    const vreal t_ll = TTD_SFX(kx_clamp01)(tt);
+    const vmask tin = mand(vge(tt, zero), vle(tt, one));
+    const vreal s_ll = vsel(mand(tin, nonpar), sc, TTD_SFX(kx_clamp01)((t_ll * d12 + wd1) * ie1));
     /* vertex-edge both ways */
     for (int c = 0; c < 3; ++c)
         r[c] = Xt[c] - P[c];
@@ -201,8 +226,8 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
         dt[i] = TTD_SFX(kx_dot)(w, b);
     }
     /* multipliers of the active constraints: vertices outside the solved features; a side
-     * taken from the penalty (edge-face, face-face, parallel edges) counts all its vertices */
-    const vmask free_s = mor(mand(mnot(fs.one), ft.three), mand(mand(fs.two, ft.two), mnot(nonpar)));
+     * taken from the penalty (edge-face, face-face) counts all its vertices */
+    const vmask free_s = mand(mnot(fs.one), ft.three);
     const vmask free_t = mand(fs.three, ft.two);
     vreal es[3], et[3];
     for (int i = 0; i < 3; ++i) {
