@@ -180,6 +180,55 @@ static int certified_vs_reference(void)
     return 0;
 }
 
+/* The error bound of a certified (not fallen back) pair follows from the check's gap
+ * (scalar/certified_tol.h): GAP plus ~25 eps of the frame, whose extent is at most
+ * 3 max(d, size). On nearly parallel edges and faces the objective is flat along the pair of
+ * features, where a check that trusted the solve's stationarity let 4e-13 through (pair 3347
+ * of near_parallel_faces, seed 7). */
+static int certified_error_bound(void)
+{
+    enum { N = 4000 };
+    const ttd_params prm = default_params();
+    /* double: 3 (GAP + 32 eps); float: the target itself (3 (GAP + 25 eps) is 1.2e-5) */
+    const double bound_d = 3.0 * (0x1p-43 + 32 * DBL_EPSILON), bound_f = FLOAT_TOL;
+    double *s = malloc(9 * sizeof(double) * N), *t = malloc(9 * sizeof(double) * N);
+    ENSURE(s && t);
+    const ttd_gen_family fams[] = {TTD_GEN_NEAR_PARALLEL_FACES, TTD_GEN_NEAR_PARALLEL_EDGES};
+    for (int f = 0; f < 2; ++f) {
+        ttd_gen(fams[f], 7, N, s, t);
+        double worst_d = 0, worst_f = 0;
+        for (int i = 0; i < N; ++i) {
+            const double *a = s + 9 * i, *b = t + 9 * i;
+            ttd_result_d r;
+            ttd_certified_pair_d(a, b, &prm, &r);
+            if (!(r.flags & TTD_PAIR_FALLBACK)) {
+                ttd_ref_result ref;
+                ttd_ref_distance(a, b, &ref);
+                const double e = fabs(r.distance - ref.distance) / fmax(ref.distance, ttd_ref_size(a, b));
+                worst_d = fmax(worst_d, e);
+                ENSURE_MSG(e <= bound_d, "%s double pair %d: error %.3g > %.3g", ttd_gen_name(fams[f]), i, e, bound_d);
+            }
+            float af[9], bf[9];
+            double ar[9], br[9];
+            round_pair(a, b, af, bf, ar, br);
+            ttd_result_f rf;
+            ttd_certified_pair_f(af, bf, &prm, &rf);
+            if (!(rf.flags & TTD_PAIR_FALLBACK)) {
+                ttd_ref_result ref;
+                ttd_ref_distance(ar, br, &ref);
+                const double e = fabs((double)rf.distance - ref.distance) / fmax(ref.distance, ttd_ref_size(ar, br));
+                worst_f = fmax(worst_f, e);
+                ENSURE_MSG(e <= bound_f, "%s float pair %d: error %.3g > %.3g", ttd_gen_name(fams[f]), i, e, bound_f);
+            }
+        }
+        printf("  %s: worst certified error %.2e double (bound %.2e), %.2e float (bound %.2e)\n",
+               ttd_gen_name(fams[f]), worst_d, bound_d, worst_f, bound_f);
+    }
+    free(s);
+    free(t);
+    return 0;
+}
+
 /* The penalty stopped after one Newton step: its active set is mostly wrong, so the check
  * must fail on most pairs, and every answer must still be exact (through the fallback). */
 static int forced_fallback_one_iteration(void)
@@ -419,6 +468,7 @@ int main(int argc, char **argv)
     RUN_TEST(contacts_fall_back);
     RUN_TEST(extreme_magnitudes);
     RUN_TEST(certified_vs_reference);
+    RUN_TEST(certified_error_bound);
     RUN_TEST(forced_fallback_one_iteration);
     RUN_TEST(forced_fallback_weak_penalty);
     RUN_TEST(rows_vs_scalar);

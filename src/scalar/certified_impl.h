@@ -18,17 +18,22 @@
  *                      either not unique (parallel) or a crossing; the penalty's point on S
  *                      (on T for face-edge) is kept and projected onto the other face.
  * 4. The check. The solved weights must be feasible (>= -FEAS, then clamped onto the
- *    triangle). With w = p - q, the KKT multiplier of "weight of vertex V_i of S >= 0" is
- *    2 w.(V_i - p) and that of T's vertex W_j is 2 w.(q - W_j); the multipliers of inactive
- *    constraints are 0 at the solution of step 3. They must be non-negative. Their minima
- *    m_S, m_T give the certificate directly: the planes normal to w through the extreme
- *    vertices separate the triangles, so
+ *    triangle). With w = p - q, the KKT multiplier of the active constraint "weight of
+ *    vertex V_i of S >= 0" is 2 w.(V_i - p), that of T's vertex W_j is 2 w.(q - W_j); for the
+ *    vertices inside the features the same expressions are the stationarity residuals (0 at
+ *    an exact solution of step 3). The minima m_S, m_T over all six vertices give the
+ *    certificate: the planes normal to w through the extreme vertices separate the
+ *    triangles, so for ANY w
  *        true distance >= LB = (|w|^2 + m_S + m_T) / |w|,     true distance <= |w|,
- *    both up to the rounding of these few dot products (~30 eps of the frame). The pair is
- *    accepted when |w| - LB <= GAP (multipliers non-negative up to GAP |w|) and LB > TOUCH
- *    (certainly apart: contacts are the exact method's to decide). Everything else goes to
- *    ttd_exact_pair and is flagged TTD_PAIR_FALLBACK. Correctness rests on the check alone:
- *    a wrong active set or an inaccurate solve only costs a fallback.
+ *    both up to the rounding of these few dot products and of p and q (~25 eps of the frame). The pair is
+ *    accepted when |w| - LB <= GAP (the multipliers are non-negative and the residuals 0, up
+ *    to GAP |w| together) and LB > TOUCH (certainly apart: contacts are the exact method's
+ *    to decide). Everything else goes to ttd_exact_pair and is flagged TTD_PAIR_FALLBACK.
+ *    Correctness rests on the check alone: a wrong active set or an inaccurate solve only
+ *    costs a fallback. (Checking only the active constraints' multipliers, trusting the
+ *    solve for the rest, is not enough: for an edge nearly parallel to a face the objective
+ *    is flat along the pair of features, and a residual below rounding let a point 4e-13 off
+ *    pass; docs/certified-mode.md.)
  *
  * The lane kernel (simd/kernel_certified.h) computes every case in every lane and selects;
  * this file computes only the lane's case, with the same expressions in the same order, so
@@ -209,11 +214,6 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     const real pen_s = TTD_SFX(cert_dot)(r0, d1) * S->inv_ee[ei];
     const real pen_t = TTD_SFX(cert_dot)(r1, d2) * T->inv_ee[ej];
     real s = 0, t = 0;
-    /* a side whose point was not solved for but taken from the penalty (edge-face,
-     * face-face): the stationarity of its feature is not given by construction, so the check
-     * includes its feature's vertices too */
-    const int free_s = ns >= 2 && nt == 3;
-    const int free_t = ns == 3 && nt == 2;
     if (ns == 2 && nt == 2) {
         /* edge-edge: exact_edge_edge's stationary point (s unclamped); parallel lines keep
          * the penalty's s */
@@ -294,25 +294,19 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         ds[i] = TTD_SFX(cert_dot)(w, a); /* half the multiplier of S's vertex i */
         dt[i] = TTD_SFX(cert_dot)(w, b); /* half the multiplier of T's vertex i */
     }
-    /* the multipliers of the active constraints: the vertices outside the solved features
-     * (a solved feature's own vertices give 0 up to the solve's rounding) */
-    real es[3], et[3];
-    for (int i = 0; i < 3; ++i) {
-        es[i] = (wp[i] > 0) & !free_s ? TTD_REAL_MAX : ds[i];
-        et[i] = (wq[i] > 0) & !free_t ? TTD_REAL_MAX : dt[i];
-    }
-    real ms = es[0] < es[1] ? es[0] : es[1];
-    ms = ms < es[2] ? ms : es[2];
-    real mt = et[0] < et[1] ? et[0] : et[1];
-    mt = mt < et[2] ? mt : et[2];
-    /* the separation proved by the planes normal to w through all six vertices */
+    /* ds, dt: half the KKT multipliers of the constraints "weight of this vertex >= 0" for
+     * the vertices outside the features (active), the stationarity residuals for those inside
+     * (0 up to rounding when the solve is right). Their minima over all six vertices give
+     * the separation that the planes normal to w through p and q prove:
+     *     true distance >= (|w|^2 + min ds + min dt) / |w|. */
     real ls = ds[0] < ds[1] ? ds[0] : ds[1];
     ls = ls < ds[2] ? ls : ds[2];
     real lt = dt[0] < dt[1] ? dt[0] : dt[1];
     lt = lt < dt[2] ? lt : dt[2];
     const real ww = TTD_SFX(cert_dot)(w, w);
     const real nw = TTD_SQRT(ww);
-    ok &= (ms >= -gap * nw) & (mt >= -gap * nw) & (ww + (ls + lt) > touch * nw);
+    const real msum = ls + lt;
+    ok &= (msum >= -gap * nw) & (ww + msum > touch * nw);
     *dist = nw;
     return ok;
 }

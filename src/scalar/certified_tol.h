@@ -5,10 +5,13 @@
  * power of two so that its largest coordinate lies in [0.5, 1), which is at most 3x
  * max(distance, size) of the pair (docs/certified-mode.md). Why each value:
  *
- *   GAP    accept only when the distance |p - q| exceeds the lower bound proved by the
- *          separating planes normal to p - q by at most this (the KKT multipliers' deficit);
- *          far above the check's own rounding (~30 eps) and far below the accuracy targets
- *          (1e-12 double, 1e-5 float, relative to max(distance, size)).
+ *   GAP    accept only when |p - q| exceeds the lower bound proved by the separating planes
+ *          normal to p - q by at most this (the KKT multipliers' deficit, over |p - q|). The
+ *          error of an accepted pair is then at most GAP plus the rounding of the check
+ *          (at most ~25 eps of the frame: the dot products and the rounding of p and q),
+ *          i.e. 3.6e-13 (double) and, in the worst case, 1.2e-5 (float) of max(distance,
+ *          size); measured far below (docs/certified-mode.md). Smaller values send more
+ *          pairs to the exact method.
  *   TOUCH  the proved lower bound must exceed this, or the pair goes to the exact method:
  *          whether a pair touches is the exact method's decision (a distance within 4 eps of
  *          the extent is snapped to 0 and flagged), and a certificate this close to 0 cannot
@@ -19,9 +22,9 @@
 #ifndef TTD_SCALAR_CERTIFIED_TOL_H
 #define TTD_SCALAR_CERTIFIED_TOL_H
 
-#define TTD_CERT_GAP_D 0x1p-46
+#define TTD_CERT_GAP_D 0x1p-43
 #define TTD_CERT_TOUCH_D 0x1p-42
-#define TTD_CERT_FEAS_D 0x1p-46
+#define TTD_CERT_FEAS_D 0x1p-43
 #define TTD_CERT_GAP_F 0x1p-20f
 #define TTD_CERT_TOUCH_F 0x1p-16f
 #define TTD_CERT_FEAS_F 0x1p-20f

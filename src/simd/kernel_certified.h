@@ -225,24 +225,14 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
         ds[i] = TTD_SFX(kx_dot)(w, a);
         dt[i] = TTD_SFX(kx_dot)(w, b);
     }
-    /* multipliers of the active constraints: vertices outside the solved features; a side
-     * taken from the penalty (edge-face, face-face) counts all its vertices */
-    const vmask free_s = mand(mnot(fs.one), ft.three);
-    const vmask free_t = mand(fs.three, ft.two);
-    vreal es[3], et[3];
-    for (int i = 0; i < 3; ++i) {
-        es[i] = vsel(mandnot(vgt(wp[i], zero), free_s), vset1(TTD_REAL_MAX), ds[i]);
-        et[i] = vsel(mandnot(vgt(wq[i], zero), free_t), vset1(TTD_REAL_MAX), dt[i]);
-    }
-    const vreal ms = TTD_SFX(kc_min)(TTD_SFX(kc_min)(es[0], es[1]), es[2]);
-    const vreal mt = TTD_SFX(kc_min)(TTD_SFX(kc_min)(et[0], et[1]), et[2]);
-    /* the separation proved by the planes normal to w through all six vertices */
+    /* half the multipliers of the active constraints and the residuals of the inactive
+     * ones; the separation the planes normal to w prove is (|w|^2 + min ds + min dt) / |w| */
     const vreal ls = TTD_SFX(kc_min)(TTD_SFX(kc_min)(ds[0], ds[1]), ds[2]);
     const vreal lt = TTD_SFX(kc_min)(TTD_SFX(kc_min)(dt[0], dt[1]), dt[2]);
     const vreal ww = TTD_SFX(kx_dot)(w, w);
     const vreal nw = vsqrt(ww);
-    const vreal mgap = -vset1(gap) * nw;
-    ok = mand(ok, mand(mand(vge(ms, mgap), vge(mt, mgap)), vgt(ww + (ls + lt), vset1(touch) * nw)));
+    const vreal msum = ls + lt;
+    ok = mand(ok, mand(vge(msum, -vset1(gap) * nw), vgt(ww + msum, vset1(touch) * nw)));
     o->distance = nw * unscale / pre;
     o->flags_ds = mbits(mnot(S.has_face));
     o->flags_dt = mbits(mnot(T.has_face));
