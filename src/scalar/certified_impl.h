@@ -233,7 +233,7 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         const real sc = TTD_SFX(cert_clamp01)(s);
         const real tt = (sc * d12 - wd2) * T->inv_ee[ej];
         t = TTD_SFX(cert_clamp01)(tt);
-        s = (tt >= 0) & (tt <= 1) & (nn >= TTD_REAL_MIN) ? sc
+        s = ((tt >= 0) & (tt <= 1) & (nn >= TTD_REAL_MIN)) ? sc
                                                          : TTD_SFX(cert_clamp01)((t * d12 + wd1) * S->inv_ee[ei]);
     } else {
         if (ns == 2) {
