@@ -9,7 +9,8 @@
  *  3. Per lane, the feature of each side from the penalty's clamped weights (masks), its
  *     vertex or edge picked by select; the closed-form solutions for vertex-edge, edge-vertex,
  *     edge-edge and the two face projections are all computed, and each lane selects its own.
- *  4. The check (feasible weights, KKT multipliers >= 0 up to the gap, far from contact).
+ *  4. The check: feasible weights; the separating-plane bound from the six vertices' KKT
+ *     multipliers and stationarity residuals within GAP of |p - q|; clear of contact.
  *  5. Lanes that fail are not recomputed in place: their indices are collected over the block
  *     and the pairs are gathered, KC_CHUNK at a time, into a contiguous buffer that goes
  *     through kernel_exact (full vectors), then scattered back with TTD_PAIR_FALLBACK. Running
@@ -166,7 +167,7 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     const vreal pen_s = TTD_SFX(kx_dot)(r0, d1) * ie1;
     const vreal pen_t = TTD_SFX(kx_dot)(r1, d2) * ie2;
 
-    /* edge-edge: the lines' stationary point; parallel lines keep the penalty's s */
+    /* edge-edge: the lines' stationary point; parallel lines start from the penalty's s */
     vreal n[3], w[3], x[3], r[3];
     TTD_SFX(kx_cross)(d1, d2, n);
     const vreal nn = TTD_SFX(kx_dot)(n, n);
