@@ -5,7 +5,8 @@
  * max(d, size), float within 1e-5 (reference of the float-rounded input). Prints the fraction
  * of pairs that fell back to the exact method per family. Also: pairs built so that the check
  * must fail (the penalty stopped after one iteration, a penalty weight far too small) are
- * still exact, through the fallback; contacts always fall back; extreme magnitudes give
+ * still exact, through the fallback; only clear crossings are certified as contacts, the
+ * other contacts and the nearest misses go to the exact method; extreme magnitudes give
  * finite results. */
 #include <float.h>
 #include <math.h>
@@ -100,7 +101,7 @@ static void check_one(const char *family, const char *prec, int i, const double 
     st->bary = fmax(st->bary, bary);
     const int bad = !(err <= tol) || !(off <= tol + round_allow) || !(pq <= tol + round_allow) ||
                     !(bary <= tol + round_allow) || ((flags & TTD_PAIR_INTERSECTING) && d != 0) ||
-                    (!fell && ((flags & TTD_PAIR_INTERSECTING) || !(d > 0)));
+                    (!fell && !(flags & TTD_PAIR_INTERSECTING) && !(d > 0));
     if (bad) {
         if (st->fails < MAX_REPORTS) {
             fprintf(stderr,
@@ -259,27 +260,61 @@ static int forced_fallback_weak_penalty(void)
     return 0;
 }
 
-/* Contacts are never certified: the exact method decides them (and flags them). */
-static int contacts_fall_back(void)
+/* Contacts: a clear crossing is certified (distance 0, flagged, no fallback); touching, a
+ * crossing near the other triangle's boundary and near misses closer than the check can
+ * resolve go to the exact method. */
+static int contacts(void)
 {
     const ttd_params prm = default_params();
-    const double pierce_s[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    const double pierce_t[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.2, 0.3, 1};
+    const double S0[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     ttd_result_d r;
-    ttd_certified_pair_d(pierce_s, pierce_t, &prm, &r);
-    ENSURE(r.distance == 0.0);
-    ENSURE(r.flags & TTD_PAIR_INTERSECTING);
-    ENSURE(r.flags & TTD_PAIR_FALLBACK);
+    /* the piercing pair: edge DE crosses S at (0.25, 0.2, 0), clearly inside */
+    const double pierce[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.2, 0.3, 1};
+    ttd_certified_pair_d(S0, pierce, &prm, &r);
+    ENSURE(r.distance == 0.0 && (r.flags & TTD_PAIR_INTERSECTING) && !(r.flags & TTD_PAIR_FALLBACK));
+    ENSURE_NEAR(r.p[0], 0.25, 1e-15);
+    ENSURE_NEAR(r.p[1], 0.2, 1e-15);
+    ENSURE_NEAR(r.q[2], 0.0, 1e-15);
+    ttd_result_f rf;
+    float sf[9], tf[9];
+    for (int k = 0; k < 9; ++k) {
+        sf[k] = (float)S0[k];
+        tf[k] = (float)pierce[k];
+    }
+    ttd_certified_pair_f(sf, tf, &prm, &rf);
+    ENSURE(rf.distance == 0.0f && (rf.flags & TTD_PAIR_INTERSECTING) && !(rf.flags & TTD_PAIR_FALLBACK));
+    /* vertex D exactly on S's face, the rest above: touching, for the exact method */
+    const double touch[9] = {0.2, 0.2, 0, 0.9, 0.3, 0.7, 0.3, 0.8, 0.6};
+    ttd_certified_pair_d(S0, touch, &prm, &r);
+    ENSURE(r.distance == 0.0 && (r.flags & TTD_PAIR_INTERSECTING) && (r.flags & TTD_PAIR_FALLBACK));
+    /* an edge crossing S 1e-9 inside its edge AB: not clear, for the exact method */
+    const double graze[9] = {0.5, 1e-9, -1, 0.5, 1e-9, 1, 0.5, -1, 0.5};
+    ttd_certified_pair_d(S0, graze, &prm, &r);
+    ENSURE(r.distance == 0.0 && (r.flags & TTD_PAIR_INTERSECTING) && (r.flags & TTD_PAIR_FALLBACK));
+    /* near misses above the face: 1e-14 (below TOUCH: exact method) and 1e-8 (either way,
+     * but right and not flagged) */
+    const double miss14[9] = {0.2, 0.2, 1e-14, 0.9, 0.3, 0.7, 0.3, 0.8, 0.6};
+    ttd_certified_pair_d(S0, miss14, &prm, &r);
+    ENSURE((r.flags & TTD_PAIR_FALLBACK) && !(r.flags & TTD_PAIR_INTERSECTING));
+    ENSURE_NEAR(r.distance, 1e-14, 1e-16);
+    const double miss8[9] = {0.2, 0.2, 1e-8, 0.9, 0.3, 0.7, 0.3, 0.8, 0.6};
+    ttd_certified_pair_d(S0, miss8, &prm, &r);
+    ENSURE(!(r.flags & TTD_PAIR_INTERSECTING));
+    ENSURE_NEAR(r.distance, 1e-8, 1e-16);
+    /* the intersecting family: every pair 0 and flagged, by either path */
     double s[9 * 300], t[9 * 300];
     ttd_gen(TTD_GEN_INTERSECTING, 9, 300, s, t);
+    int certified = 0;
     for (int i = 0; i < 300; ++i) {
         ttd_certified_pair_d(s + 9 * i, t + 9 * i, &prm, &r);
-        ENSURE_MSG((r.flags & TTD_PAIR_FALLBACK) && (r.flags & TTD_PAIR_INTERSECTING) && r.distance == 0.0,
-                   "intersecting pair %d: d %g flags 0x%x", i, r.distance, (unsigned)r.flags);
+        ENSURE_MSG((r.flags & TTD_PAIR_INTERSECTING) && r.distance == 0.0, "intersecting pair %d: d %g flags 0x%x", i,
+                   r.distance, (unsigned)r.flags);
+        certified += !(r.flags & TTD_PAIR_FALLBACK);
     }
+    printf("  intersecting family: %d of 300 certified as clear crossings\n", certified);
     /* the paper's pair: vertex D over S's face at 0.5, certified */
-    const double ps[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, pt[9] = {0.3, 0.3, 0.5, 1, 0.5, 1.2, 0.4, 1.1, 0.9};
-    ttd_certified_pair_d(ps, pt, &prm, &r);
+    const double pt[9] = {0.3, 0.3, 0.5, 1, 0.5, 1.2, 0.4, 1.1, 0.9};
+    ttd_certified_pair_d(S0, pt, &prm, &r);
     ENSURE(!(r.flags & TTD_PAIR_FALLBACK));
     ENSURE_NEAR(r.distance, 0.5, 1e-16);
     ENSURE(r.feature_p == 7 && r.feature_q == 1);
@@ -465,7 +500,7 @@ static int rows_vs_scalar(void)
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
-    RUN_TEST(contacts_fall_back);
+    RUN_TEST(contacts);
     RUN_TEST(extreme_magnitudes);
     RUN_TEST(certified_vs_reference);
     RUN_TEST(certified_error_bound);

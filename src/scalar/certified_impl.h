@@ -311,6 +311,51 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     return ok;
 }
 
+/* A clear crossing of an edge of X through Y's face (certified_tol.h, CROSS): the first of
+ * X's edges, in order, whose ends lie at least CROSS from Y's plane on opposite sides and
+ * whose crossing point lies at least CROSS inside each edge line of Y. Returns 1 with the
+ * edge's weights in wx and the crossing point's weights in wy. */
+static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert_tri) *Y, real wx[3], real wy[3])
+{
+#ifdef TTD_PRECISION_DOUBLE
+    const real margin = TTD_CERT_CROSS_D;
+#else
+    const real margin = TTD_CERT_CROSS_F;
+#endif
+    const int k = Y->k;
+    real h[3];
+    for (int i = 0; i < 3; ++i) {
+        real r[3];
+        for (int c = 0; c < 3; ++c)
+            r[c] = X->v[i][c] - Y->v[k][c];
+        h[i] = TTD_SFX(cert_dot)(Y->n, r);
+    }
+    const real mh = margin * TTD_SQRT(Y->nn);       /* distance CROSS from the plane, times |n| */
+    const real mw = margin * TTD_SQRT(Y->ee[k]);    /* weight w_j |n| / |L| >= CROSS */
+    for (int i = 0; i < 3; ++i) {
+        const real h0 = h[i], h1 = h[(i + 1) % 3];
+        const int opposite = ((h0 >= mh) & (h1 <= -mh)) | ((h0 <= -mh) & (h1 >= mh));
+        if (!opposite || !Y->has_face)
+            continue;
+        const real tau = h0 / (h0 - h1);
+        real xp[3], w[3];
+        for (int c = 0; c < 3; ++c)
+            xp[c] = X->v[i][c] + tau * X->e[i][c];
+        TTD_SFX(cert_face_weights)(Y, xp, w);
+        const real nrm = TTD_SQRT(Y->nn);
+        if ((w[0] * nrm >= mw) & (w[1] * nrm >= mw) & (w[2] * nrm >= mw)) {
+            wx[0] = wx[1] = wx[2] = 0;
+            wx[i] = (real)1 - tau;
+            wx[(i + 1) % 3] = tau;
+            wy[0] = w[0];
+            wy[1] = w[1];
+            wy[2] = w[2];
+            return 1;
+        }
+    }
+    return 0;
+}
+
 void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
 {
     ttd_result pen;
@@ -352,7 +397,15 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
     TTD_SFX(cert_tri_init)(&T);
 
     real wp[3], wq[3], dist;
-    if (TTD_SFX(cert_solve_check)(&S, &T, pen.bary_p, pen.bary_q, wp, wq, &dist)) {
+    int ok = TTD_SFX(cert_solve_check)(&S, &T, pen.bary_p, pen.bary_q, wp, wq, &dist);
+    int crossing = 0;
+    if (!ok) {
+        /* a clear crossing is a certified contact: distance 0, p and q the crossing point */
+        crossing = TTD_SFX(cert_crossing)(&S, &T, wp, wq) || TTD_SFX(cert_crossing)(&T, &S, wq, wp);
+        ok = crossing;
+        dist = 0;
+    }
+    if (ok) {
         for (int k = 0; k < 3; ++k) {
             r->p[k] = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
             r->q[k] = wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k];
@@ -363,7 +416,8 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
         r->feature_p = (uint8_t)((wp[0] > 0) | ((wp[1] > 0) << 1) | ((wp[2] > 0) << 2));
         r->feature_q = (uint8_t)((wq[0] > 0) | ((wq[1] > 0) << 1) | ((wq[2] > 0) << 2));
         r->flags = (S.has_face ? 0u : (uint32_t)TTD_PAIR_DEGENERATE_S) |
-                   (T.has_face ? 0u : (uint32_t)TTD_PAIR_DEGENERATE_T);
+                   (T.has_face ? 0u : (uint32_t)TTD_PAIR_DEGENERATE_T) |
+                   (crossing ? (uint32_t)TTD_PAIR_INTERSECTING : 0u);
     } else {
         TTD_SFX(ttd_exact_pair)(s, t, r);
         r->flags |= (uint32_t)TTD_PAIR_FALLBACK;

@@ -16,6 +16,13 @@
  *          whether a pair touches is the exact method's decision (a distance within 4 eps of
  *          the extent is snapped to 0 and flagged), and a certificate this close to 0 cannot
  *          tell a contact from a near miss.
+ *   CROSS  a contact is certified without the exact method only as a clear crossing: an edge
+ *          whose ends lie at least CROSS of the extent on opposite sides of the other
+ *          triangle's plane, crossing it at least CROSS inside each of that triangle's edge
+ *          lines. The heights' rounding (~14 eps) then moves the crossing point by at most
+ *          ~30 eps / CROSS of the extent (1.6e-9 double, 2e-4 float), well inside CROSS, so
+ *          the triangles certainly intersect (distance 0, flagged). Every other contact
+ *          (touching, coplanar, grazing) goes to the exact method.
  *   FEAS   the weights solved on the active set may be below 0 by this much (rounding at a
  *          vertex or edge end); they are then clamped onto the triangle, and the gap check
  *          above judges the clamped points, so this decides nothing about correctness. */
@@ -28,5 +35,7 @@
 #define TTD_CERT_GAP_F 0x1p-20f
 #define TTD_CERT_TOUCH_F 0x1p-16f
 #define TTD_CERT_FEAS_F 0x1p-20f
+#define TTD_CERT_CROSS_D 0x1p-20
+#define TTD_CERT_CROSS_F 0x1p-8f
 
 #endif /* TTD_SCALAR_CERTIFIED_TOL_H */

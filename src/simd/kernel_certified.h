@@ -10,7 +10,8 @@
  *     vertex or edge picked by select; the closed-form solutions for vertex-edge, edge-vertex,
  *     edge-edge and the two face projections are all computed, and each lane selects its own.
  *  4. The check: feasible weights; the separating-plane bound from the six vertices' KKT
- *     multipliers and stationarity residuals within GAP of |p - q|; clear of contact.
+ *     multipliers and stationarity residuals within GAP of |p - q|; clear of contact. Where
+ *     it fails in some lane, the clear crossings (certified contacts) are tried.
  *  5. Lanes that fail are not recomputed in place: their indices are collected over the block
  *     and the pairs are gathered, KC_CHUNK at a time, into a contiguous buffer that goes
  *     through kernel_exact (full vectors), then scattered back with TTD_PAIR_FALLBACK. Running
@@ -99,6 +100,52 @@ static inline void TTD_SFX(kc_vertex_weights)(vmask v0, vmask v1, vreal w[3])
 static inline vreal TTD_SFX(kc_min)(vreal a, vreal b)
 {
     return vsel(vlt(a, b), a, b);
+}
+
+/* scalar: cert_crossing. The lanes where an edge of X crosses Y's face clearly (CROSS in
+ * certified_tol.h); the first such edge's weights in wx, the crossing point's in wy. */
+static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, vreal wx[3], vreal wy[3])
+{
+    const vreal zero = vzero(), one = vset1((real)1);
+#ifdef TTD_PRECISION_DOUBLE
+    const vreal margin = vset1((real)TTD_CERT_CROSS_D);
+#else
+    const vreal margin = vset1((real)TTD_CERT_CROSS_F);
+#endif
+    vreal h[3];
+    for (int i = 0; i < 3; ++i) {
+        vreal r[3];
+        for (int c = 0; c < 3; ++c)
+            r[c] = X->v[i][c] - Y->vk[c];
+        h[i] = TTD_SFX(kx_dot)(Y->n, r);
+    }
+    const vreal mh = margin * vsqrt(Y->nn);
+    const vreal mw = margin * vsqrt(TTD_SFX(kx_pick)(Y, Y->ee[0], Y->ee[1], Y->ee[2]));
+    const vreal nrm = vsqrt(Y->nn);
+    vmask found = mnot(mtrue());
+    for (int i = 0; i < 3; ++i) {
+        const vreal h0 = h[i], h1 = h[(i + 1) % 3];
+        const vreal mmh = -mh;
+        const vmask opposite = mor(mand(vge(h0, mh), vle(h1, mmh)), mand(vle(h0, mmh), vge(h1, mh)));
+        const vreal tau = h0 / (h0 - h1);
+        vreal xp[3], w[3];
+        for (int c = 0; c < 3; ++c)
+            xp[c] = X->v[i][c] + tau * X->e[i][c];
+        TTD_SFX(kc_face_weights)(Y, xp, w);
+        const vmask inside = mand(mand(vge(w[0] * nrm, mw), vge(w[1] * nrm, mw)), vge(w[2] * nrm, mw));
+        const vmask hit = mandnot(mand(mand(opposite, inside), Y->has_face), found);
+        for (int c = 0; c < 3; ++c) {
+            vreal e = zero;
+            if (c == i)
+                e = one - tau;
+            else if (c == (i + 1) % 3)
+                e = tau;
+            wx[c] = vsel(hit, e, wx[c]);
+            wy[c] = vsel(hit, w[c], wy[c]);
+        }
+        found = mor(found, hit);
+    }
+    return found;
 }
 
 /* scalar: the frame of ttd_certified_pair and cert_solve_check. From the group's input and
@@ -234,7 +281,23 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     const vreal nw = vsqrt(ww);
     const vreal msum = ls + lt;
     ok = mand(ok, mand(vge(msum, -vset1(gap) * nw), vgt(ww + msum, vset1(touch) * nw)));
-    o->distance = nw * unscale / pre;
+    /* where the check failed, a clear crossing is a certified contact (S's edges first) */
+    vmask crossing = mnot(mtrue());
+    if (many(mnot(ok))) {
+        vreal xs_p[3], xs_q[3], xt_p[3], xt_q[3];
+        for (int c = 0; c < 3; ++c)
+            xs_p[c] = xs_q[c] = xt_p[c] = xt_q[c] = zero;
+        const vmask cs = mandnot(TTD_SFX(kc_crossing)(&S, &T, xs_p, xs_q), ok);
+        const vmask ct = mandnot(mandnot(TTD_SFX(kc_crossing)(&T, &S, xt_q, xt_p), ok), cs);
+        for (int c = 0; c < 3; ++c) {
+            wp[c] = vsel(cs, xs_p[c], vsel(ct, xt_p[c], wp[c]));
+            wq[c] = vsel(cs, xs_q[c], vsel(ct, xt_q[c], wq[c]));
+        }
+        crossing = mor(cs, ct);
+        ok = mor(ok, crossing);
+    }
+    o->distance = vsel(crossing, zero, nw) * unscale / pre;
+    o->flags_int = mbits(crossing);
     o->flags_ds = mbits(mnot(S.has_face));
     o->flags_dt = mbits(mnot(T.has_face));
     return ok;
@@ -295,11 +358,12 @@ static void TTD_SFX(kernel_certified)(size_t n, const real *s, const real *t, co
         TTD_SFX(kw_out) o;
         const vmask ok = TTD_SFX(kc_certify)(S, T, pw, pq, wp, wq, &o);
         const vreal dist = o.distance;
-        const unsigned ds = o.flags_ds, dt = o.flags_dt;
+        const unsigned ds = o.flags_ds, dt = o.flags_dt, in = o.flags_int;
         TTD_SFX(kp_points)(S, T, wp, wq, &o);
         o.distance = dist;
         o.flags_ds = ds;
         o.flags_dt = dt;
+        o.flags_int = in;
         o.iterations = its;
         o.flags_nc = 0;
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
