@@ -311,10 +311,33 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     return ok;
 }
 
-/* A clear crossing of an edge of X through Y's face (certified_tol.h, CROSS): the first of
- * X's edges, in order, whose ends lie at least CROSS from Y's plane on opposite sides and
- * whose crossing point lies at least CROSS inside each edge line of Y. Returns 1 with the
- * edge's weights in wx and the crossing point's weights in wy. */
+/* Edge i of X crossing Y's plane at tau = h0 / (h0 - h1): 1 when the crossing point lies
+ * at least CROSS inside each edge line of Y, with the edge's weights in wx and the point's
+ * in wy. */
+static int TTD_SFX(cert_cross_edge)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert_tri) *Y, int i, const real h[3],
+                                    real nrm, real mw, real wx[3], real wy[3])
+{
+    const real h0 = h[i], h1 = h[(i + 1) % 3];
+    const real tau = h0 / (h0 - h1);
+    real xp[3], w[3];
+    for (int c = 0; c < 3; ++c)
+        xp[c] = X->v[i][c] + tau * X->e[i][c];
+    TTD_SFX(cert_face_weights)(Y, xp, w);
+    if (!((w[0] * nrm >= mw) & (w[1] * nrm >= mw) & (w[2] * nrm >= mw)))
+        return 0;
+    wx[0] = wx[1] = wx[2] = 0;
+    wx[i] = (real)1 - tau;
+    wx[(i + 1) % 3] = tau;
+    wy[0] = w[0];
+    wy[1] = w[1];
+    wy[2] = w[2];
+    return 1;
+}
+
+/* A clear crossing of an edge of X through Y's face (certified_tol.h, CROSS). The edges whose
+ * ends lie at least CROSS from Y's plane on opposite sides are at most two: the first and the
+ * last of them in edge order are tried, in that order. Returns 1 with the edge's weights in
+ * wx and the crossing point's weights in wy. */
 static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert_tri) *Y, real wx[3], real wy[3])
 {
 #ifdef TTD_PRECISION_DOUBLE
@@ -330,30 +353,19 @@ static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert
             r[c] = X->v[i][c] - Y->v[k][c];
         h[i] = TTD_SFX(cert_dot)(Y->n, r);
     }
-    const real mh = margin * TTD_SQRT(Y->nn);       /* distance CROSS from the plane, times |n| */
-    const real mw = margin * TTD_SQRT(Y->ee[k]);    /* weight w_j |n| / |L| >= CROSS */
+    const real nrm = TTD_SQRT(Y->nn);
+    const real mh = margin * nrm;                /* distance CROSS from the plane, times |n| */
+    const real mw = margin * TTD_SQRT(Y->ee[k]); /* weight w_j |n| / |L| >= CROSS */
+    int opp[3];
     for (int i = 0; i < 3; ++i) {
         const real h0 = h[i], h1 = h[(i + 1) % 3];
-        const int opposite = ((h0 >= mh) & (h1 <= -mh)) | ((h0 <= -mh) & (h1 >= mh));
-        if (!opposite || !Y->has_face)
-            continue;
-        const real tau = h0 / (h0 - h1);
-        real xp[3], w[3];
-        for (int c = 0; c < 3; ++c)
-            xp[c] = X->v[i][c] + tau * X->e[i][c];
-        TTD_SFX(cert_face_weights)(Y, xp, w);
-        const real nrm = TTD_SQRT(Y->nn);
-        if ((w[0] * nrm >= mw) & (w[1] * nrm >= mw) & (w[2] * nrm >= mw)) {
-            wx[0] = wx[1] = wx[2] = 0;
-            wx[i] = (real)1 - tau;
-            wx[(i + 1) % 3] = tau;
-            wy[0] = w[0];
-            wy[1] = w[1];
-            wy[2] = w[2];
-            return 1;
-        }
+        opp[i] = ((h0 >= mh) & (h1 <= -mh)) | ((h0 <= -mh) & (h1 >= mh));
     }
-    return 0;
+    if (!(opp[0] | opp[1] | opp[2]) || !Y->has_face)
+        return 0;
+    const int first = opp[0] ? 0 : (opp[1] ? 1 : 2), last = opp[2] ? 2 : (opp[1] ? 1 : 0);
+    return TTD_SFX(cert_cross_edge)(X, Y, first, h, nrm, mw, wx, wy) ||
+           TTD_SFX(cert_cross_edge)(X, Y, last, h, nrm, mw, wx, wy);
 }
 
 void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)

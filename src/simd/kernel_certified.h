@@ -102,11 +102,27 @@ static inline vreal TTD_SFX(kc_min)(vreal a, vreal b)
     return vsel(vlt(a, b), a, b);
 }
 
+/* scalar: cert_cross_edge, for the edge picked per lane by e0, e1 (else 2). */
+static inline vmask TTD_SFX(kc_cross_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, vmask e0, vmask e1,
+                                           const vreal h[3], vreal nrm, vreal mw, vreal wx[3], vreal wy[3])
+{
+    const vreal h0 = TTD_SFX(kc_sel3)(e0, e1, h[0], h[1], h[2]);
+    const vreal h1 = TTD_SFX(kc_sel3)(e0, e1, h[1], h[2], h[0]);
+    const vreal tau = h0 / (h0 - h1);
+    vreal xp[3];
+    for (int c = 0; c < 3; ++c)
+        xp[c] = TTD_SFX(kc_sel3)(e0, e1, X->v[0][c], X->v[1][c], X->v[2][c]) +
+                tau * TTD_SFX(kc_sel3)(e0, e1, X->e[0][c], X->e[1][c], X->e[2][c]);
+    TTD_SFX(kc_face_weights)(Y, xp, wy);
+    TTD_SFX(kc_edge_weights)(e0, e1, tau, wx);
+    return mand(mand(vge(wy[0] * nrm, mw), vge(wy[1] * nrm, mw)), vge(wy[2] * nrm, mw));
+}
+
 /* scalar: cert_crossing. The lanes where an edge of X crosses Y's face clearly (CROSS in
- * certified_tol.h); the first such edge's weights in wx, the crossing point's in wy. */
+ * certified_tol.h): of the edges with clearly opposite heights, the first, else the last;
+ * its weights in wx, the crossing point's in wy (lanes without a hit: unspecified). */
 static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, vreal wx[3], vreal wy[3])
 {
-    const vreal zero = vzero(), one = vset1((real)1);
 #ifdef TTD_PRECISION_DOUBLE
     const vreal margin = vset1((real)TTD_CERT_CROSS_D);
 #else
@@ -119,33 +135,26 @@ static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX
             r[c] = X->v[i][c] - Y->vk[c];
         h[i] = TTD_SFX(kx_dot)(Y->n, r);
     }
-    const vreal mh = margin * vsqrt(Y->nn);
-    const vreal mw = margin * vsqrt(TTD_SFX(kx_pick)(Y, Y->ee[0], Y->ee[1], Y->ee[2]));
     const vreal nrm = vsqrt(Y->nn);
-    vmask found = mnot(mtrue());
+    const vreal mh = margin * nrm, mmh = -mh;
+    const vreal mw = margin * vsqrt(TTD_SFX(kx_pick)(Y, Y->ee[0], Y->ee[1], Y->ee[2]));
+    vmask opp[3];
     for (int i = 0; i < 3; ++i) {
         const vreal h0 = h[i], h1 = h[(i + 1) % 3];
-        const vreal mmh = -mh;
-        const vmask opposite = mor(mand(vge(h0, mh), vle(h1, mmh)), mand(vle(h0, mmh), vge(h1, mh)));
-        const vreal tau = h0 / (h0 - h1);
-        vreal xp[3], w[3];
-        for (int c = 0; c < 3; ++c)
-            xp[c] = X->v[i][c] + tau * X->e[i][c];
-        TTD_SFX(kc_face_weights)(Y, xp, w);
-        const vmask inside = mand(mand(vge(w[0] * nrm, mw), vge(w[1] * nrm, mw)), vge(w[2] * nrm, mw));
-        const vmask hit = mandnot(mand(mand(opposite, inside), Y->has_face), found);
-        for (int c = 0; c < 3; ++c) {
-            vreal e = zero;
-            if (c == i)
-                e = one - tau;
-            else if (c == (i + 1) % 3)
-                e = tau;
-            wx[c] = vsel(hit, e, wx[c]);
-            wy[c] = vsel(hit, w[c], wy[c]);
-        }
-        found = mor(found, hit);
+        opp[i] = mor(mand(vge(h0, mh), vle(h1, mmh)), mand(vle(h0, mmh), vge(h1, mh)));
     }
-    return found;
+    const vmask any_edge = mand(mor(opp[0], mor(opp[1], opp[2])), Y->has_face);
+    /* first: 0 if opp0, else 1 if opp1, else 2; last: 2 if opp2, else 1 if opp1, else 0 */
+    const vmask f0 = opp[0], f1 = mandnot(opp[1], opp[0]);
+    const vmask l1 = mandnot(opp[1], opp[2]), l0 = mnot(mor(opp[2], opp[1]));
+    vreal wx2[3], wy2[3];
+    const vmask hit1 = TTD_SFX(kc_cross_edge)(X, Y, f0, f1, h, nrm, mw, wx, wy);
+    const vmask hit2 = TTD_SFX(kc_cross_edge)(X, Y, l0, l1, h, nrm, mw, wx2, wy2);
+    for (int c = 0; c < 3; ++c) {
+        wx[c] = vsel(hit1, wx[c], wx2[c]);
+        wy[c] = vsel(hit1, wy[c], wy2[c]);
+    }
+    return mand(any_edge, mor(hit1, hit2));
 }
 
 /* scalar: the frame of ttd_certified_pair and cert_solve_check. From the group's input and
@@ -285,8 +294,6 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     vmask crossing = mnot(mtrue());
     if (many(mnot(ok))) {
         vreal xs_p[3], xs_q[3], xt_p[3], xt_q[3];
-        for (int c = 0; c < 3; ++c)
-            xs_p[c] = xs_q[c] = xt_p[c] = xt_q[c] = zero;
         const vmask cs = mandnot(TTD_SFX(kc_crossing)(&S, &T, xs_p, xs_q), ok);
         const vmask ct = mandnot(mandnot(TTD_SFX(kc_crossing)(&T, &S, xt_q, xt_p), ok), cs);
         for (int c = 0; c < 3; ++c) {
