@@ -20,7 +20,7 @@
  *          whose ends lie at least CROSS of the extent on opposite sides of the other
  *          triangle's plane, crossing it at least CROSS inside each of that triangle's edge
  *          lines. The heights' rounding (~14 eps) then moves the crossing point by at most
- *          ~30 eps / CROSS of the extent (1.6e-9 double, 2e-4 float), well inside CROSS, so
+ *          ~30 eps / CROSS of the extent (7e-9 double, 2.3e-4 float), far inside CROSS, so
  *          the triangles certainly intersect (distance 0, flagged). Every other contact
  *          (touching, coplanar, grazing) goes to the exact method.
  *   FEAS   the weights solved on the active set may be below 0 by this much (rounding at a
@@ -36,6 +36,6 @@
 #define TTD_CERT_TOUCH_F 0x1p-16f
 #define TTD_CERT_FEAS_F 0x1p-20f
 #define TTD_CERT_CROSS_D 0x1p-20
-#define TTD_CERT_CROSS_F 0x1p-8f
+#define TTD_CERT_CROSS_F 0x1p-6f
 
 #endif /* TTD_SCALAR_CERTIFIED_TOL_H */
