@@ -48,7 +48,9 @@ typedef enum ttd_status {
 typedef enum ttd_method {
     TTD_METHOD_EXACT = 0,             ///< 6 vertex-face, 9 edge-edge and 6 edge-face crossing tests; exact to rounding
     TTD_METHOD_PENALTY = 1,           ///< the paper's quasi-Newton penalty method, optimised and safeguarded
-    TTD_METHOD_PENALTY_REFERENCE = 2, ///< the paper's MATLAB ttd1 step for step (for comparison)
+    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol
+    /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
+    TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
     /// the penalty method, its answer checked for optimality on the final active set and
     /// solved there exactly; pairs that fail the check are computed by the exact method

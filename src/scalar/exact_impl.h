@@ -29,6 +29,8 @@ typedef struct TTD_SFX(exact_tri) {
     real nn;          /* |n|^2 */
     real inv_nn;      /* 1/nn, 0 when there is no face */
     real ML;          /* dot(M, L) */
+    real u[3];        /* cross(n, L) / nn (0 without a face): the across-weight c of a point P
+                       * is dot(P - v[k], u) = dot(n, cross(L, P - v[k])) / nn */
     int has_face;     /* nn is a normal number: the triangle has an area we can divide by */
 } TTD_SFX(exact_tri);
 
@@ -119,28 +121,43 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
     T->has_face = T->nn >= TTD_REAL_MIN;
     T->inv_nn = T->has_face ? (real)1 / T->nn : (real)0;
     T->ML = TTD_SFX(exact_dot)(T->M, T->L);
+    TTD_SFX(exact_cross)(T->n, T->L, T->u);
+    for (int c = 0; c < 3; ++c)
+        T->u[c] *= T->inv_nn;
 }
 
-/* Projects point P onto the face of T: the weights b (of v[k+1]) and c (of v[k+2]) against
- * the longest edge, the signed height h = dot(n, P - v[k]) (unnormalised; its sign is the
- * side), and whether the projection is inside or on the face. The point itself is
- * exact_face_point(T, b, c), rebuilt from these weights so that it lies on T up to rounding. */
-static int TTD_SFX(exact_face_project)(const TTD_SFX(exact_tri) *T, const real P[3], real *b,
-                                       real *c, real *h)
+/* The face coordinates of a point P relative to T: c = the weight of v[k+2] (across the
+ * longest edge), g = dot(P - v[k], L) (along it, before the correction by c) and the signed
+ * height h = dot(n, P - v[k]) (unnormalised; its sign is the side). All three are affine in
+ * P, which is what lets a crossing interpolate them (exact_crossings). */
+typedef struct TTD_SFX(exact_fc) {
+    real c, g, h;
+} TTD_SFX(exact_fc);
+
+static TTD_SFX(exact_fc) TTD_SFX(exact_face_coords)(const TTD_SFX(exact_tri) *T, const real P[3])
 {
-    const int k = T->k;
-    real r[3], x[3];
-    TTD_SFX(exact_sub)(P, T->v[k], r);
-    TTD_SFX(exact_cross)(T->L, r, x);
-    /* c: across the longest edge; b: along it, corrected by c so that an error in c moves the
-     * point only by that error times the height over L (docs: consistent reconstruction). */
-    real cc = TTD_SFX(exact_dot)(T->n, x) * T->inv_nn;
-    real bb = (TTD_SFX(exact_dot)(r, T->L) - cc * T->ML) * T->inv_ee[k];
-    real aa = (real)1 - bb - cc;
+    real r[3];
+    TTD_SFX(exact_sub)(P, T->v[T->k], r);
+    TTD_SFX(exact_fc) f;
+    /* n . (L x r) / nn as r . u: the same triple product, one cross product per triangle
+     * instead of one per point; its rounding is as small relative to |L| |r| / |n| (docs 3.3) */
+    f.c = TTD_SFX(exact_dot)(r, T->u);
+    f.g = TTD_SFX(exact_dot)(r, T->L);
+    f.h = TTD_SFX(exact_dot)(T->n, r);
+    return f;
+}
+
+/* The weights b (of v[k+1]) and c (of v[k+2]) of a point with face coordinates (c, g), and
+ * whether it is inside or on the face. b is computed after c and corrected by it, so that an
+ * error in c moves the point only by that error times the height over L (docs: consistent
+ * reconstruction). The point itself is exact_face_point(T, b, c), rebuilt from these weights
+ * so that it lies on T up to rounding. */
+static int TTD_SFX(exact_face_weights)(const TTD_SFX(exact_tri) *T, real c, real g, real *b)
+{
+    real bb = (g - c * T->ML) * T->inv_ee[T->k];
+    real aa = (real)1 - bb - c;
     *b = bb;
-    *c = cc;
-    *h = TTD_SFX(exact_dot)(T->n, r);
-    return T->has_face && aa >= (real)0 && bb >= (real)0 && cc >= (real)0;
+    return T->has_face && aa >= (real)0 && bb >= (real)0 && c >= (real)0;
 }
 
 static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real c, real q[3],
@@ -210,7 +227,7 @@ static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SF
             TTD_SFX(exact_sub)(X->v[i], Y->v[j], r);
             real t = TTD_SFX(exact_clamp01)(TTD_SFX(exact_dot)(r, Y->e[j]) * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
-                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
+                d[c] = r[c] - t * Y->e[j][c];   /* X.v[i] - (Y.v[j] + t e[j]) */
             TTD_SFX(exact_keep)(best, TTD_SFX(exact_dot)(d, d), id0 + 3 * i + j, t, 0, 0);
         }
 }
@@ -242,7 +259,7 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
             real tc = TTD_SFX(exact_clamp01)(t);
             int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
             for (int c = 0; c < 3; ++c)
-                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+                d[c] = (sc * d1[c] - w[c]) - tc * d2[c];   /* (P + sc d1) - (Q + tc d2) */
             real dd = accept ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX;
             TTD_SFX(exact_keep)(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
         }
@@ -250,35 +267,43 @@ static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(
 }
 
 /* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
- * signed heights over Y's plane, which the crossings reuse. */
+ * face coordinates over Y (c, g and the height h), which the crossings reuse. */
 static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                       int id0, TTD_SFX(exact_best) *best, real h[3])
+                                       int id0, TTD_SFX(exact_best) *best, TTD_SFX(exact_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real b, c, q[3], w[3], d[3];
-        int inside = TTD_SFX(exact_face_project)(Y, X->v[i], &b, &c, &h[i]);
-        TTD_SFX(exact_face_point)(Y, b, c, q, w);
-        TTD_SFX(exact_sub)(X->v[i], q, d);
-        TTD_SFX(exact_keep)(best, inside ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX, id0 + i, b, c, 0);
+        real b;
+        f[i] = TTD_SFX(exact_face_coords)(Y, X->v[i]);
+        const real c = f[i].c, h = f[i].h;
+        int inside = TTD_SFX(exact_face_weights)(Y, c, f[i].g, &b);
+        /* The squared distance to the plane, h^2 / |n|^2, which is the distance to the face
+         * point exact_face_point(Y, b, c) up to its in-plane rounding (eps |r|, docs 3.3).
+         * h / nn first: h^2 alone may underflow for a face near REAL_MIN in area. */
+        TTD_SFX(exact_keep)(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
 
-/* 3 edge-face crossings: edge i of X whose ends lie strictly on opposite sides of Y's plane
- * crosses it at X = P0 + tau (P1 - P0); when that point is inside Y's face the distance is 0.
- * The `continue` is a guard that only saves time: a lane port computes every crossing and
- * masks (or skips the block when no lane has opposite signs). */
-static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                     int id0, TTD_SFX(exact_best) *best, const real h[3])
+/* 3 edge-face crossings: edge i of X (the triangle whose vertices f describes) whose ends
+ * lie strictly on opposite sides of Y's plane crosses it at X = P0 + tau (P1 - P0); when that
+ * point is inside Y's face the distance is 0. The crossing's face coordinates are those of
+ * its ends interpolated with tau: c, g and h are affine in the point, so this is the
+ * projection of X itself up to rounding, and h(X) = 0 by the choice of tau (docs 3.5). The
+ * `continue` is a guard that only saves time: a lane port computes every crossing and masks
+ * (or skips the block when no lane has opposite signs). */
+static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_SFX(exact_best) *best,
+                                     const TTD_SFX(exact_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        real h0 = h[i], h1 = h[(i + 1) % 3];
+        const TTD_SFX(exact_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        real h0 = f0.h, h1 = f1.h;
         int opposite = (h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0);
         if (!opposite || !Y->has_face)
             continue;
         real tau = h0 / (h0 - h1);   /* no cancellation: opposite signs */
-        real xp[3], wx[3], b, c, hx;
-        TTD_SFX(exact_edge_point)(X, i, tau, xp, wx);
-        int inside = TTD_SFX(exact_face_project)(Y, xp, &b, &c, &hx);
+        real c = f0.c + tau * (f1.c - f0.c);
+        real g = f0.g + tau * (f1.g - f0.g);
+        real b;
+        int inside = TTD_SFX(exact_face_weights)(Y, c, g, &b);
         TTD_SFX(exact_keep)(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
     }
 }
@@ -379,14 +404,14 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
 
     /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
     TTD_SFX(exact_best) best = {TTD_REAL_MAX, 0, 0, 0, 0};
-    real hs[3], ht[3];   /* heights of S's vertices over T's plane, and of T's over S's */
+    TTD_SFX(exact_fc) fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
     TTD_SFX(exact_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
     TTD_SFX(exact_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
     TTD_SFX(exact_edge_edge)(&S, &T, &best);
-    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs);
-    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht);
-    TTD_SFX(exact_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs);
-    TTD_SFX(exact_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht);
+    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    TTD_SFX(exact_crossings)(&T, TTD_EXACT_X_S, &best, fs);
+    TTD_SFX(exact_crossings)(&S, TTD_EXACT_X_T, &best, ft);
     real bp[3], bq[3], wp[3], wq[3];
     TTD_SFX(exact_rebuild)(&best, &S, &T, bp, bq, wp, wq);
 

@@ -265,6 +265,24 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         if (TTD_FABS(fa) > mk) mk = TTD_FABS(fa);
         if (mk > size) size = mk;
     }
+    /* A pair of subnormal size is lifted by an exact 2^lift first: 2^-e alone would not be
+     * representable, and a frame left far below unit size changes what rho and tol mean. */
+#ifdef TTD_PRECISION_DOUBLE
+    const int lift = size < 0x1p-900 ? 600 : 0;
+#else
+    const int lift = size < 0x1p-100f ? 60 : 0;
+#endif
+    if (lift) {
+        const real up = TTD_LDEXP((real)1, lift);
+        size *= up;
+        for (int k = 0; k < 3; ++k) {
+            BA[k] *= up;
+            CA[k] *= up;
+            DA[k] *= up;
+            ED[k] *= up;
+            FD[k] *= up;
+        }
+    }
     int e = 0;
     (void)TTD_FREXP(size, &e);
     {
@@ -462,7 +480,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
      * 2^e first, then by 1/pre (2^(e+4) alone can overflow next to REAL_MAX, and 0 * inf
      * would be NaN; a distance beyond REAL_MAX is inf, honestly). */
     const real dist_frame = TTD_SQRT(xy0 * xy0 + xy1 * xy1 + xy2 * xy2);
-    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_LDEXP(dist_frame, e) / pre, r);
+    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_LDEXP(dist_frame, e - lift) / pre, r);
     r->iterations = (uint16_t)it;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }

@@ -16,8 +16,14 @@
  *    `if (none(valid)) return`), was tried first and was 1.6-1.9x slower: those branches are
  *    unpredictable on random pairs, and each misprediction also empties the out-of-order
  *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains: the
- *    crossings when no lane's other triangle has a face (degenerate input), and the FMA cross
- *    product for nearly parallel face frames (double; rare).
+ *    crossings when no lane's other triangle has a face (degenerate input), the FMA cross
+ *    product for nearly parallel face frames (double; rare), and the products by the pre-scale
+ *    and the lift, skipped when no lane needs them (inputs near REAL_MAX or a subnormal
+ *    extent; never on real data).
+ *  - Shared work the scalar code recomputes: edge-edge takes dot(Q - P, d2) from the
+ *    vertex-edge pass (an exact negation).
+ *  - Distances only (results == NULL): no rebuild, and the selection is a running minimum of
+ *    d2 (the same bits; docs/simd.md 7.1a).
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
@@ -35,6 +41,16 @@ enum {
 };
 #endif
 
+#ifndef KX_GROUP_INLINE
+/* kx_group is inlined into both of kernel_exact's calls, so that each is specialised on its
+ * constant `full` (gcc 12 otherwise keeps one out-of-line copy and tests full at run time). */
+#if defined(__GNUC__)
+#define KX_GROUP_INLINE static inline __attribute__((always_inline))
+#else
+#define KX_GROUP_INLINE static inline
+#endif
+#endif
+
 #ifndef TTD_EXACT_TOUCH_EPS
 /* scalar: "a distance below 4 eps of the pair's extent is a contact" */
 #define TTD_EXACT_TOUCH_EPS 4
@@ -49,13 +65,16 @@ typedef struct TTD_SFX(kx_tri) {
     vreal vk[3];     /* v[k] */
     vreal L[3], M[3], n[3];
     vreal nn, inv_nn, ML, inv_eek; /* |n|^2, 1/nn or 0, dot(M, L), inv_ee[k] */
+    vreal u[3];                    /* cross(n, L) / nn */
     vmask has_face;
 } TTD_SFX(kx_tri);
 
 /* scalar: exact_best. The smallest d2 so far, the id of its candidate (TTD_EXACT_* in
- * scalar/exact_impl.h, as a real) and its parameters. */
+ * scalar/exact_impl.h, as a real) and its parameters. full (a constant once kx_group is
+ * inlined) says whether id, u, v, w are wanted; without them d2 is a plain running minimum. */
 typedef struct TTD_SFX(kx_best) {
     vreal d2, id, u, v, w;
+    int full;
 } TTD_SFX(kx_best);
 
 static inline vreal TTD_SFX(kx_dot)(const vreal a[3], const vreal b[3])
@@ -70,11 +89,13 @@ static inline void TTD_SFX(kx_cross)(const vreal a[3], const vreal b[3], vreal o
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/* scalar: exact_clamp01 */
+/* scalar: exact_clamp01, x < 0 ? 0 : (x > 1 ? 1 : x). With x86's min(a, b) = a < b ? a : b and
+ * max(a, b) = a > b ? a : b this is the same expression, signed zeros included (NEON's
+ * min/max may turn a -0 into +0 here, nothing else); x is never NaN. Two instructions instead
+ * of two compares and two selects. */
 static inline vreal TTD_SFX(kx_clamp01)(vreal x)
 {
-    const vreal zero = vzero(), one = vset1((real)1);
-    return vsel(vlt(x, zero), zero, vsel(vgt(x, one), one, x));
+    return vmax(vzero(), vmin(vset1((real)1), x));
 }
 
 /* k-indexed selection: x[k] */
@@ -173,25 +194,38 @@ static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
     T->has_face = vge(T->nn, rmin);
     T->inv_nn = vsel(T->has_face, one / T->nn, zero);
     T->ML = TTD_SFX(kx_dot)(T->M, T->L);
+    TTD_SFX(kx_cross)(T->n, T->L, T->u);
+    for (int c = 0; c < 3; ++c)
+        T->u[c] = T->u[c] * T->inv_nn;
 }
 
-/* scalar: exact_face_project. The weights b (of v[k+1]) and c (of v[k+2]) of P's projection
- * onto T's face, the height h; returns the lanes whose projection is inside or on the face. */
-static inline vmask TTD_SFX(kx_face_project)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal *b, vreal *c,
-                                              vreal *h)
+/* scalar: exact_fc, exact_face_coords. P's face coordinates over T: c (weight of v[k+2]),
+ * g = dot(P - v[k], L) and the height h. */
+typedef struct TTD_SFX(kx_fc) {
+    vreal c, g, h;
+} TTD_SFX(kx_fc);
+
+static inline TTD_SFX(kx_fc) TTD_SFX(kx_face_coords)(const TTD_SFX(kx_tri) *T, const vreal P[3])
 {
-    const vreal zero = vzero();
-    vreal r[3], x[3];
+    vreal r[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->vk[i];
-    TTD_SFX(kx_cross)(T->L, r, x);
-    const vreal cc = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
-    const vreal bb = (TTD_SFX(kx_dot)(r, T->L) - cc * T->ML) * T->inv_eek;
-    const vreal aa = vset1((real)1) - bb - cc;
+    TTD_SFX(kx_fc) f;
+    f.c = TTD_SFX(kx_dot)(r, T->u); /* n . (L x r) / nn */
+    f.g = TTD_SFX(kx_dot)(r, T->L);
+    f.h = TTD_SFX(kx_dot)(T->n, r);
+    return f;
+}
+
+/* scalar: exact_face_weights. b from (c, g), and the lanes whose point is inside or on the
+ * face. */
+static inline vmask TTD_SFX(kx_face_weights)(const TTD_SFX(kx_tri) *T, vreal c, vreal g, vreal *b)
+{
+    const vreal zero = vzero();
+    const vreal bb = (g - c * T->ML) * T->inv_eek;
+    const vreal aa = vset1((real)1) - bb - c;
     *b = bb;
-    *c = cc;
-    *h = TTD_SFX(kx_dot)(T->n, r);
-    return mand(mand(T->has_face, vge(aa, zero)), mand(vge(bb, zero), vge(cc, zero)));
+    return mand(mand(T->has_face, vge(aa, zero)), mand(vge(bb, zero), vge(c, zero)));
 }
 
 /* scalar: exact_face_point. q = v[k] + b L + c M and its weights (w[k] = 1 - b - c). */
@@ -207,10 +241,9 @@ static inline void TTD_SFX(kx_face_point)(const TTD_SFX(kx_tri) *T, vreal b, vre
 
 /* scalar: exact_keep. In the lanes of ok where d2 is strictly smaller, keep (d2, id, and the
  * first np of u, v, w); the others are never read for this id. */
-static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
-                                    vreal w)
+static inline void TTD_SFX(kx_keep_m)(TTD_SFX(kx_best) *best, vmask m, vreal d2, int id, int np, vreal u, vreal v,
+                                      vreal w)
 {
-    const vmask m = mand(ok, vlt(d2, best->d2));
     best->d2 = vsel(m, d2, best->d2);
     best->id = vsel(m, vset1((real)id), best->id);
     best->u = vsel(m, u, best->u);
@@ -220,9 +253,31 @@ static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, 
         best->w = vsel(m, w, best->w);
 }
 
-/* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. */
+/* Distances only: min(d2, best) is d2 < best ? d2 : best on x86 (NEON differs only for
+ * signed zeros and NaN, and d2 is a sum of squares or a square), so the compare folds into
+ * the min. */
+static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
+                                    vreal w)
+{
+    if (best->full)
+        TTD_SFX(kx_keep_m)(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
+    else
+        best->d2 = vmin(vsel(ok, d2, best->d2), best->d2);
+}
+
+/* kx_keep for a candidate that every lane offers (vertex-edge) */
+static inline void TTD_SFX(kx_keep_all)(TTD_SFX(kx_best) *best, vreal d2, int id, int np, vreal u, vreal v, vreal w)
+{
+    if (best->full)
+        TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
+    else
+        best->d2 = vmin(d2, best->d2);
+}
+
+/* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. When
+ * rdot is given, rdot[3i + j] keeps dot(X.v[i] - Y.v[j], Y.e[j]) for the edge-edge pass. */
 static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vmask live)
+                                           TTD_SFX(kx_best) *best, vreal *rdot)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -230,17 +285,20 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
             vreal r[3], d[3];
             for (int c = 0; c < 3; ++c)
                 r[c] = X->v[i][c] - Y->v[j][c];
-            const vreal t = TTD_SFX(kx_clamp01)(TTD_SFX(kx_dot)(r, Y->e[j]) * Y->inv_ee[j]);
+            const vreal re = TTD_SFX(kx_dot)(r, Y->e[j]);
+            if (rdot)
+                rdot[3 * i + j] = re;
+            const vreal t = TTD_SFX(kx_clamp01)(re * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
-                d[c] = X->v[i][c] - (Y->v[j][c] + t * Y->e[j][c]);
-            TTD_SFX(kx_keep)(best, live, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
+                d[c] = r[c] - t * Y->e[j][c]; /* X.v[i] - (Y.v[j] + t e[j]) */
+            TTD_SFX(kx_keep_all)(best, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
         }
 }
 
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
 static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX(kx_tri) *T,
-                                         TTD_SFX(kx_best) *best, vmask live)
+                                         TTD_SFX(kx_best) *best, const vreal rdot[9])
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -256,49 +314,53 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
             TTD_SFX(kx_cross)(w, d2, x);
             const vreal s = vsel(ok, TTD_SFX(kx_dot)(x, n) / nn, -one);
             const vreal sc = TTD_SFX(kx_clamp01)(s);
-            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) - TTD_SFX(kx_dot)(w, d2)) * T->inv_ee[j];
-            const vmask accept = mand(live, mand(mand(vge(s, zero), vle(s, one)), mand(vge(t, zero), vle(t, one))));
+            /* scalar: sc dot(d1, d2) - dot(w, d2). dot(w, d2) is minus the vertex-edge dot of
+             * S.v[i] on T's edge j, kept from that pass (w = -r, and negation is exact) */
+            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) + rdot[3 * i + j]) * T->inv_ee[j];
             const vreal tc = TTD_SFX(kx_clamp01)(t);
+            /* s and t in [0, 1]: exactly when clamping leaves them unchanged (-0 included) */
+            const vmask accept = mand(veq(s, sc), veq(t, tc));
             for (int c = 0; c < 3; ++c)
-                d[c] = (P[c] + sc * d1[c]) - (Q[c] + tc * d2[c]);
+                d[c] = (sc * d1[c] - w[c]) - tc * d2[c]; /* (P + sc d1) - (Q + tc d2) */
             TTD_SFX(kx_keep)(best, accept, TTD_SFX(kx_dot)(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
         }
     }
 }
 
-/* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; h gets the
- * vertices' heights for the crossings. */
+/* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; f gets the
+ * vertices' face coordinates for the crossings. */
 static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vreal h[3], vmask live)
+                                           TTD_SFX(kx_best) *best, TTD_SFX(kx_fc) f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        vreal b, c, q[3], w[3], d[3];
-        const vmask inside = mand(live, TTD_SFX(kx_face_project)(Y, X->v[i], &b, &c, &h[i]));
-        TTD_SFX(kx_face_point)(Y, b, c, q, w);
-        for (int k = 0; k < 3; ++k)
-            d[k] = X->v[i][k] - q[k];
-        TTD_SFX(kx_keep)(best, inside, TTD_SFX(kx_dot)(d, d), id0 + i, 2, b, c, b);
+        vreal b;
+        f[i] = TTD_SFX(kx_face_coords)(Y, X->v[i]);
+        const vreal c = f[i].c, h = f[i].h;
+        const vmask inside = TTD_SFX(kx_face_weights)(Y, c, f[i].g, &b);
+        /* the squared distance to the plane, h^2 / |n|^2 */
+        TTD_SFX(kx_keep)(best, inside, (h * Y->inv_nn) * h, id0 + i, 2, b, c, b);
     }
 }
 
-/* scalar: exact_crossings. 3 candidates: edges of X whose ends lie strictly on opposite sides
- * of Y's plane and cross it inside the face (distance 0). */
-static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                         TTD_SFX(kx_best) *best, const vreal h[3], vmask live)
+/* scalar: exact_crossings. 3 candidates: edges of X (whose vertices' face coordinates over Y
+ * are f) with ends strictly on opposite sides of Y's plane, crossing it inside the face
+ * (distance 0). The crossing's coordinates are the ends' interpolated with tau. */
+static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *Y, int id0, TTD_SFX(kx_best) *best,
+                                         const TTD_SFX(kx_fc) f[3])
 {
     const vreal zero = vzero();
-    const vmask face = mand(live, Y->has_face);
+    const vmask face = Y->has_face;
     if (mnone(face))
         return;
     for (int i = 0; i < 3; ++i) {
-        const vreal h0 = h[i], h1 = h[(i + 1) % 3];
+        const TTD_SFX(kx_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        const vreal h0 = f0.h, h1 = f1.h;
         const vmask opposite = mor(mand(vlt(h0, zero), vgt(h1, zero)), mand(vgt(h0, zero), vlt(h1, zero)));
-        const vmask ok = mand(face, opposite);
         const vreal tau = h0 / (h0 - h1); /* no cancellation: opposite signs */
-        vreal xp[3], b, c, hx;
-        for (int k = 0; k < 3; ++k)
-            xp[k] = X->v[i][k] + tau * X->e[i][k]; /* scalar: exact_edge_point */
-        const vmask inside = mand(ok, TTD_SFX(kx_face_project)(Y, xp, &b, &c, &hx));
+        const vreal c = f0.c + tau * (f1.c - f0.c);
+        const vreal g = f0.g + tau * (f1.g - f0.g);
+        vreal b;
+        const vmask inside = mand(opposite, TTD_SFX(kx_face_weights)(Y, c, g, &b));
         TTD_SFX(kx_keep)(best, inside, zero, id0 + i, 3, tau, b, c);
     }
 }
@@ -389,8 +451,11 @@ static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_S
     }
 }
 
-/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. */
-static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vmask live, TTD_SFX(kw_out) *out)
+/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. full is a constant at each call:
+ * when 0 (the caller wants distances only) the winner is not rebuilt, and the compiler drops
+ * the selection's id and parameters with it, leaving a running minimum of d2; the distance is
+ * the same bits either way (the minimum does not depend on which candidate attains it). */
+KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD_SFX(kw_out) *out, const int full)
 {
     const vreal zero = vzero(), one = vset1((real)1);
     /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
@@ -402,14 +467,27 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
         m0 = vmax(m0, vabs(Sin[i]));
         m0 = vmax(m0, vabs(Tin[i]));
     }
-    const vreal pre = vsel(vgt(m0, vset1(TTD_REAL_MAX * (real)0.25)), vset1((real)0.25), one);
+    const vmask huge = vgt(m0, vset1(TTD_REAL_MAX * (real)0.25));
+    const vreal pre = vsel(huge, vset1((real)0.25), one);
+    /* Multiplying by pre = 1 is exact, so it is skipped when no lane needs the pre-scale (a
+     * branch that real data never takes, hence predicted); likewise the lift below. */
+    vreal sp[9], tp[9];
+    for (int i = 0; i < 9; ++i) {
+        sp[i] = Sin[i];
+        tp[i] = Tin[i];
+    }
+    if (many(huge))
+        for (int i = 0; i < 9; ++i) {
+            sp[i] = Sin[i] * pre;
+            tp[i] = Tin[i] * pre;
+        }
     vreal o[3], rel[18];
     for (int c = 0; c < 3; ++c)
-        o[c] = Sin[c] * pre;
+        o[c] = sp[c];
     vreal m = zero;
     for (int i = 0; i < 9; ++i) {
-        rel[i] = Sin[i] * pre - o[i % 3];
-        rel[9 + i] = Tin[i] * pre - o[i % 3];
+        rel[i] = sp[i] - o[i % 3];
+        rel[9 + i] = tp[i] - o[i % 3];
         m = vmax(m, vmax(vabs(rel[i]), vabs(rel[9 + i])));
     }
 #ifdef TTD_PRECISION_DOUBLE
@@ -422,11 +500,14 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
     const vreal half = vpow2(m * up);                                   /* 2^(e-1) (lifted) */
     const vreal inv = vsel(isz, one, vset1((real)0.5) / half);          /* 2^-e (lifted) */
     const vreal g = vsel(isz, one, half * vset1((real)2) * vsel(tiny, vset1(unlift), one)); /* 2^e */
+    if (many(tiny))
+        for (int i = 0; i < 18; ++i)
+            rel[i] = rel[i] * up;
     TTD_SFX(kx_tri) S, T;
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
-            S.v[i][c] = rel[3 * i + c] * up * inv;
-            T.v[i][c] = rel[9 + 3 * i + c] * up * inv;
+            S.v[i][c] = rel[3 * i + c] * inv;
+            T.v[i][c] = rel[9 + 3 * i + c] * inv;
         }
     TTD_SFX(kx_tri_init)(&S);
     TTD_SFX(kx_tri_init)(&T);
@@ -435,16 +516,16 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
     TTD_SFX(kx_best) best;
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
-    vreal hs[3], ht[3]; /* heights of S's vertices over T's plane, and of T's over S's */
-    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, live);
-    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, live);
-    TTD_SFX(kx_edge_edge)(&S, &T, &best, live);
-    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, hs, live);
-    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ht, live);
-    TTD_SFX(kx_crossings)(&S, &T, TTD_EXACT_X_S, &best, hs, live);
-    TTD_SFX(kx_crossings)(&T, &S, TTD_EXACT_X_T, &best, ht, live);
-    vreal bp[3], bq[3], wp[3], wq[3];
-    TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+    best.full = full;
+    TTD_SFX(kx_fc) fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
+    vreal rdot[9];               /* vertex-edge dots of S's vertices on T's edges */
+    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, rdot);
+    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, NULL);
+    TTD_SFX(kx_edge_edge)(&S, &T, &best, rdot);
+    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    TTD_SFX(kx_crossings)(&T, TTD_EXACT_X_S, &best, fs);
+    TTD_SFX(kx_crossings)(&S, TTD_EXACT_X_T, &best, ft);
 
     /* 3. A distance within rounding of 0 is a contact. */
     vreal d = vsqrt(best.d2);
@@ -454,11 +535,15 @@ static inline void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], vma
     /* 4. Scale back and add the origin back. */
     const vreal unpre = one / pre;
     out->distance = d * g * unpre;
-    for (int c = 0; c < 3; ++c) {
-        out->p[c] = (bp[c] * g + o[c]) * unpre;
-        out->q[c] = (bq[c] * g + o[c]) * unpre;
-        out->bary_p[c] = wp[c];
-        out->bary_q[c] = wq[c];
+    if (full) {
+        vreal bp[3], bq[3], wp[3], wq[3];
+        TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+        for (int c = 0; c < 3; ++c) {
+            out->p[c] = (bp[c] * g + o[c]) * unpre;
+            out->q[c] = (bq[c] * g + o[c]) * unpre;
+            out->bary_p[c] = wp[c];
+            out->bary_q[c] = wq[c];
+        }
     }
     out->iterations = zero;
     out->flags_nc = 0;
@@ -476,7 +561,11 @@ static void TTD_SFX(kernel_exact)(size_t n, const real *s, const real *t, const 
         vreal S[9], T[9];
         TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
         TTD_SFX(kw_out) o;
-        TTD_SFX(kx_group)(S, T, mfirst(live), &o);
+        /* pad lanes compute a harmless pair, never stored */
+        if (results)
+            TTD_SFX(kx_group)(S, T, &o, 1);
+        else
+            TTD_SFX(kx_group)(S, T, &o, 0);
         TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }

@@ -100,18 +100,24 @@ static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_
      * distance. */
 #ifdef TTD_PRECISION_DOUBLE
     const real size_floor = 0x1p-1020; /* 2^(DBL_MIN_EXP + 2 - 1) */
+    const real tiny = 0x1p-900, lift_up = 0x1p600, lift_down = 0x1p-600;
 #else
     const real size_floor = 0x1p-124f; /* 2^(FLT_MIN_EXP + 2 - 1) */
+    const real tiny = 0x1p-100f, lift_up = 0x1p60f, lift_down = 0x1p-60f;
 #endif
+    /* scalar: a pair of subnormal size is lifted by an exact power of two first. */
+    const vmask is_tiny = vlt(size, vset1(tiny));
+    const vreal lift = vsel(is_tiny, vset1(lift_up), one);
+    size = size * lift;
     const vreal half = vpow2(vmax(size, vset1(size_floor))); /* 2^(e-1) */
     const vreal scale = vset1((real)0.5) / half;              /* 2^-e */
-    F->unscale = half * two / pre;                            /* 2^e / pre */
+    F->unscale = half * two / pre * vsel(is_tiny, vset1(lift_down), one); /* 2^(e-lift) / pre */
     for (int k = 0; k < 3; ++k) {
-        F->BA[k] = F->BA[k] * scale;
-        F->CA[k] = F->CA[k] * scale;
-        F->DA[k] = F->DA[k] * scale;
-        F->ED[k] = F->ED[k] * scale;
-        F->FD[k] = F->FD[k] * scale;
+        F->BA[k] = F->BA[k] * lift * scale;
+        F->CA[k] = F->CA[k] * lift * scale;
+        F->DA[k] = F->DA[k] * lift * scale;
+        F->ED[k] = F->ED[k] * lift * scale;
+        F->FD[k] = F->FD[k] * lift * scale;
     }
 }
 

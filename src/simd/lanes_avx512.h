@@ -95,8 +95,12 @@ static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p) { ret
 static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p) { return _mm512_mask_expandloadu_ps(v, m, p); }
 
 /* ---- transposition ---- */
+/* Forced inline: gcc 12 keeps these two out of line in the exact kernel (too big to inline by
+ * its heuristics). The call then passes 9 zmm through the stack, with a vzeroupper each way,
+ * and the exact float kernel ran at 15 or at 23-25 ns per pair depending on unrelated code
+ * changes (docs/simd.md 7.1a). Inlined, it stays at 15. */
 #define TTDW_HAVE_LOAD_AOS9_D 1
-static inline void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])
+static inline __attribute__((always_inline)) void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])
 {
     __m512d r[8], t[8], u[8];
     for (int i = 0; i < 8; ++i)
@@ -122,7 +126,7 @@ static inline void ttdw_load_aos9_d(const double *p, ttdw_vd out[9])
 }
 
 #define TTDW_HAVE_LOAD_AOS9_F 1
-static inline void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])
+static inline __attribute__((always_inline)) void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])
 {
     /* Row i holds coordinates 0-7 of triangle i in its low half and of triangle i+8 in its
      * high half; the 8x8 transpose then runs in both halves at once. */

@@ -1,0 +1,101 @@
+/* SPDX-License-Identifier: MIT */
+/* What the files of `ttd bench` share: one measured row, the machine description, the
+ * probes of peak arithmetic and memory bandwidth, the FCL side program and the writers.
+ * Times are medians of several samples; ratios are formed only between rows of one run. */
+#ifndef TTD_BENCH_INTERNAL_H
+#define TTD_BENCH_INTERNAL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include "ttd/ttd.h"
+
+/// NaN and infinity as doubles (the <math.h> macros are floats, which -Wdouble-promotion flags).
+#define BENCH_NAN ((double)NAN)
+#define BENCH_INF ((double)INFINITY)
+
+/// One line of the results: a workload timed with one method, precision, ISA and thread count.
+typedef struct bench_row {
+    char workload[32];
+    char method[16];          ///< ttd_method_name(), or "fcl"
+    int bytes;                ///< 8 = double, 4 = float
+    char isa[8];              ///< ttd_isa_name(); FCL rows say "scalar"
+    int lanes;                ///< pairs per vector for this ISA and precision
+    int threads;
+    size_t pairs;
+    int samples;              ///< timed samples (after the warm-up)
+    long passes;              ///< passes over the data per sample
+    double ns_per_pair;       ///< median sample
+    double ns_min;            ///< fastest sample
+    double pairs_per_s;
+    double speedup_vs_scalar; ///< scalar row (same workload, method, precision, 1 thread) / this; NaN if none
+    double lane_fraction;     ///< speedup_vs_scalar / (lanes * threads)
+    double thread_speedup;    ///< same ISA on 1 thread / this; NaN if none
+    double speedup_vs_fcl;    ///< FCL (same workload, precision) / this; NaN if none
+    int has_accuracy;         ///< the next five fields are set
+    double max_rel_err;       ///< max |d - d_exact| / max(d_exact, size)
+    double p999_rel_err;      ///< its 99.9th percentile
+    double max_abs_err;       ///< max |d - d_exact|
+    size_t disagree;          ///< pairs whose relative error exceeds bench_disagree_tol()
+    size_t not_converged;     ///< pairs flagged TTD_PAIR_NOT_CONVERGED
+    int has_iterations;       ///< the next two fields are set
+    double mean_iterations;   ///< mean Newton iterations per pair
+    double occupancy;         ///< mean iterations / mean over lane-blocks of the block's maximum
+} bench_row;
+
+/// The machine and the build, for the header; NaN where a probe was not run.
+typedef struct bench_machine {
+    char cpu[128];
+    char cpu_isas[256];       ///< the x86/arm SIMD flags the kernel reports
+    char ttd_isas[64];        ///< instruction sets built into ttd and runnable here
+    char isa_auto[16];        ///< what TTD_ISA_AUTO picks
+    char os[200];
+    char load_start[64];      ///< /proc/loadavg when the run began
+    char load_end[64];        ///< and when it ended (other work on the machine skews timings)
+    char priority[96];        ///< this process's nice value and its scheduler autogroup's
+    int cores;
+    double mem_gib;
+    double ghz;               ///< core clock estimated from a dependent add chain
+    double peak_gflops_d[TTD_ISA_COUNT]; ///< one core, double, per ISA (FMA where it has one)
+    double copy_gbs[2];       ///< stream copy, bytes read + written: 1 thread, all cores
+    double read_gbs[2];       ///< stream read: 1 thread, all cores
+} bench_machine;
+
+/// Fills everything but the probes (which are set to NaN).
+void bench_machine_describe(bench_machine *m);
+/// The 1, 5 and 15-minute load averages, "?" where unknown.
+void bench_load_average(char *out, size_t size);
+/// Runs the probes; seconds is roughly how long each one runs.
+void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes);
+
+/// Monotonic time in seconds.
+double bench_now(void);
+
+/// Relative error above which a pair counts as a disagreement with the exact method.
+double bench_disagree_tol(int bytes);
+
+/// Path of ttd_fcl_bench: explicit (may be NULL), $TTD_FCL_BENCH, or next to this program.
+/// Returns 0 and writes path when found and executable.
+int bench_fcl_find(const char *explicit_path, char *path, size_t size);
+/// Runs FCL on n pairs (9n reals each in s and t, precision bytes); writes the distances
+/// (as double) to dist and the median and fastest ns per pair. Returns 0 on success.
+int bench_fcl_run(const char *program, int bytes, size_t n, const void *s, const void *t,
+                  double min_sample_s, int samples, double *dist, double *ns_median, double *ns_min);
+
+/// Output settings echoed into the JSON and the table header.
+typedef struct bench_settings {
+    int quick;
+    int samples;
+    double min_sample_s;
+    unsigned long long seed;
+    char fcl[512];            ///< path of the FCL program, or a reason it is absent
+    char command[512];        ///< the command line
+} bench_settings;
+
+void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st,
+                       const bench_row *rows, size_t n);
+void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
+                      const bench_row *rows, size_t n);
+void bench_write_csv(FILE *f, const bench_row *rows, size_t n);
+
+#endif /* TTD_BENCH_INTERNAL_H */
