@@ -61,11 +61,18 @@ static inline void TTD_SFX(kc_as_edge)(TTD_SFX(kc_feat) *f, const TTD_SFX(kx_tri
     f->e1 = mor(mand(conv, T->is1), mandnot(f->e1, conv));
 }
 
-/* scalar: cert_face_weights. P projected onto T's plane, as three barycentric weights. */
+/* scalar: cert_face_weights. P projected onto T's plane, as three barycentric weights:
+ * c across the longest edge L, b along it corrected by c (the exact method's compensated
+ * form, exact-method.md 3.3), a = 1 - b - c. Written here rather than taken from
+ * kernel_exact.h so that it stays the scalar code's expression. */
 static inline void TTD_SFX(kc_face_weights)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal w[3])
 {
-    vreal b, c, h;
-    (void)TTD_SFX(kx_face_project)(T, P, &b, &c, &h);
+    vreal r[3], x[3];
+    for (int i = 0; i < 3; ++i)
+        r[i] = P[i] - T->vk[i];
+    TTD_SFX(kx_cross)(T->L, r, x);
+    const vreal c = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
+    const vreal b = (TTD_SFX(kx_dot)(r, T->L) - c * T->ML) * T->inv_eek;
     const vreal a = vset1((real)1) - b - c;
     w[0] = TTD_SFX(kx_pick)(T, a, c, b);
     w[1] = TTD_SFX(kx_pick)(T, b, a, c);
