@@ -25,12 +25,14 @@
  *    certificate: the planes normal to w through the extreme vertices separate the
  *    triangles, so for ANY w
  *        true distance >= LB = (|w|^2 + m_S + m_T) / |w|,     true distance <= |w|,
- *    both up to the rounding of these few dot products and of p and q (~25 eps of the frame). The pair is
+ *    both up to the rounding of these few dot products and of p and q (~18 eps of double in the
+ *    frame: this part runs in double for both precisions). The pair is
  *    accepted when |w| - LB <= GAP (the multipliers are non-negative and the residuals 0, up
- *    to GAP |w| together) and LB > TOUCH (certainly apart: contacts are the exact method's
- *    to decide). Everything else goes to ttd_exact_pair and is flagged TTD_PAIR_FALLBACK.
- *    Correctness rests on the check alone: a wrong active set or an inaccurate solve only
- *    costs a fallback. (Checking only the active constraints' multipliers, trusting the
+ *    to GAP |w| together) and LB > TOUCH (certainly apart).
+ * 5. Where the check fails, a clear crossing (cert_crossing, CROSS in certified_tol.h) is a
+ *    certified contact: distance 0, flagged intersecting. Every other pair, touching ones
+ *    included, goes to ttd_exact_pair and is flagged TTD_PAIR_FALLBACK. Correctness rests on
+ *    the check alone: a wrong active set or an inaccurate solve only costs a fallback. (Checking only the active constraints' multipliers, trusting the
  *    solve for the rest, is not enough: for an edge nearly parallel to a face the objective
  *    is flat along the pair of features, and a residual below rounding let a point 4e-13 off
  *    pass; docs/certified-mode.md.)
@@ -280,34 +282,40 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
              (rq[2] >= feas);
     TTD_SFX(cert_clamp)(rp, wp);
     TTD_SFX(cert_clamp)(rq, wq);
-    real p[3], q[3], w[3], ds[3], dt[3];
-    TTD_SFX(cert_combine)(S, wp, p);
-    TTD_SFX(cert_combine)(T, wq, q);
-    for (int c = 0; c < 3; ++c)
+    /* The check's arithmetic is in double for both precisions: in float, the rounding of p
+     * and q and of these dot products (~18 float eps of the frame) would otherwise be most of
+     * the error budget. The weights and vertices convert exactly. */
+    double p[3], q[3], w[3], ds[3], dt[3];
+    for (int c = 0; c < 3; ++c) {
+        p[c] = (double)wp[0] * (double)S->v[0][c] + (double)wp[1] * (double)S->v[1][c] +
+               (double)wp[2] * (double)S->v[2][c];
+        q[c] = (double)wq[0] * (double)T->v[0][c] + (double)wq[1] * (double)T->v[1][c] +
+               (double)wq[2] * (double)T->v[2][c];
         w[c] = p[c] - q[c];
+    }
     for (int i = 0; i < 3; ++i) {
-        real a[3], b[3];
+        double a[3], b[3];
         for (int c = 0; c < 3; ++c) {
-            a[c] = S->v[i][c] - p[c];
-            b[c] = q[c] - T->v[i][c];
+            a[c] = (double)S->v[i][c] - p[c];
+            b[c] = q[c] - (double)T->v[i][c];
         }
-        ds[i] = TTD_SFX(cert_dot)(w, a); /* half the multiplier of S's vertex i */
-        dt[i] = TTD_SFX(cert_dot)(w, b); /* half the multiplier of T's vertex i */
+        ds[i] = w[0] * a[0] + w[1] * a[1] + w[2] * a[2]; /* half the multiplier of S's vertex i */
+        dt[i] = w[0] * b[0] + w[1] * b[1] + w[2] * b[2]; /* half the multiplier of T's vertex i */
     }
     /* ds, dt: half the KKT multipliers of the constraints "weight of this vertex >= 0" for
      * the vertices outside the features (active), the stationarity residuals for those inside
      * (0 up to rounding when the solve is right). Their minima over all six vertices give
      * the separation that the planes normal to w through p and q prove:
      *     true distance >= (|w|^2 + min ds + min dt) / |w|. */
-    real ls = ds[0] < ds[1] ? ds[0] : ds[1];
+    double ls = ds[0] < ds[1] ? ds[0] : ds[1];
     ls = ls < ds[2] ? ls : ds[2];
-    real lt = dt[0] < dt[1] ? dt[0] : dt[1];
+    double lt = dt[0] < dt[1] ? dt[0] : dt[1];
     lt = lt < dt[2] ? lt : dt[2];
-    const real ww = TTD_SFX(cert_dot)(w, w);
-    const real nw = TTD_SQRT(ww);
-    const real msum = ls + lt;
-    ok &= (msum >= -gap * nw) & (ww + msum > touch * nw);
-    *dist = nw;
+    const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    const double nw = sqrt(ww);
+    const double msum = ls + lt;
+    ok &= (msum >= -(double)gap * nw) & (ww + msum > (double)touch * nw);
+    *dist = (real)nw;
     return ok;
 }
 

@@ -8,10 +8,12 @@
  *   GAP    accept only when |p - q| exceeds the lower bound proved by the separating planes
  *          normal to p - q by at most this (the KKT multipliers' deficit, over |p - q|). The
  *          error of an accepted pair is then at most GAP plus the rounding of the check
- *          (at most ~25 eps of the frame: the dot products and the rounding of p and q),
- *          i.e. 3.6e-13 (double) and, in the worst case, 1.2e-5 (float) of max(distance,
- *          size); measured far below (docs/certified-mode.md). Smaller values send more
- *          pairs to the exact method.
+ *          (~18 eps of double: the check runs in double for both precisions), in frame
+ *          units. A frame unit is at most twice the extent, and the extent at most
+ *          3 max(distance, size), so the error is below 7.2e-13 (double) and 5.8e-6 (float,
+ *          with the rounding of the returned distance) of max(distance, size): inside the
+ *          targets, 1e-12 and 1e-5. Smaller values send more pairs to the exact method
+ *          (docs/certified-mode.md).
  *   TOUCH  the proved lower bound must exceed this, or the pair goes to the exact method:
  *          whether a pair touches is the exact method's decision (a distance within 4 eps of
  *          the extent is snapped to 0 and flagged), and a certificate this close to 0 cannot

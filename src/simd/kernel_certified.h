@@ -164,6 +164,39 @@ static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX
     return mand(any_edge, mor(hit1, hit2));
 }
 
+#ifdef TTD_PRECISION_DOUBLE
+/* scalar: the end of cert_solve_check, in double for both precisions (the float kernel widens
+ * its lanes into two halves). From the frame's vertices and the clamped weights: |p - q| in
+ * nw, and the lanes where the separating-plane bound is within gap of it and above touch. */
+static inline ttdw_md kc_check_d(ttdw_vd Sv[3][3], ttdw_vd Tv[3][3], const ttdw_vd wp[3],
+                                 const ttdw_vd wq[3], double gap, double touch, ttdw_vd *nw)
+{
+    ttdw_vd p[3], q[3], w[3], ds[3], dt[3];
+    for (int c = 0; c < 3; ++c) {
+        p[c] = wp[0] * Sv[0][c] + wp[1] * Sv[1][c] + wp[2] * Sv[2][c];
+        q[c] = wq[0] * Tv[0][c] + wq[1] * Tv[1][c] + wq[2] * Tv[2][c];
+        w[c] = p[c] - q[c];
+    }
+    for (int i = 0; i < 3; ++i) {
+        ttdw_vd a[3], b[3];
+        for (int c = 0; c < 3; ++c) {
+            a[c] = Sv[i][c] - p[c];
+            b[c] = q[c] - Tv[i][c];
+        }
+        ds[i] = w[0] * a[0] + w[1] * a[1] + w[2] * a[2];
+        dt[i] = w[0] * b[0] + w[1] * b[1] + w[2] * b[2];
+    }
+    /* half the multipliers of the active constraints and the residuals of the inactive
+     * ones; the separation the planes normal to w prove is (|w|^2 + min ds + min dt) / |w| */
+    const ttdw_vd ls = kc_min_d(kc_min_d(ds[0], ds[1]), ds[2]);
+    const ttdw_vd lt = kc_min_d(kc_min_d(dt[0], dt[1]), dt[2]);
+    const ttdw_vd ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    *nw = ttdw_sqrt_d(ww);
+    const ttdw_vd msum = ls + lt;
+    return ttdw_mand_d(ttdw_ge_d(msum, ttdw_set1_d(-gap) * *nw), ttdw_gt_d(ww + msum, ttdw_set1_d(touch) * *nw));
+}
+#endif
+
 /* scalar: the frame of ttd_certified_pair and cert_solve_check. From the group's input and
  * the penalty's clamped weights pw, qw: the certified weights wp, wq, the distance (input
  * scale) and the degenerate masks in o; returns the lanes that passed the check. */
@@ -275,28 +308,31 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     ok = mand(ok, mand(mand(vge(rq[0], vfeas), vge(rq[1], vfeas)), vge(rq[2], vfeas)));
     TTD_SFX(kp_clamp_bary3)(rp[0], rp[1], rp[2], wp);
     TTD_SFX(kp_clamp_bary3)(rq[0], rq[1], rq[2], wq);
-    vreal p[3], q[3], ds[3], dt[3];
-    TTD_SFX(kc_combine)(&S, wp, p);
-    TTD_SFX(kc_combine)(&T, wq, q);
-    for (int c = 0; c < 3; ++c)
-        w[c] = p[c] - q[c];
+#ifdef TTD_PRECISION_DOUBLE
+    vreal nw;
+    ok = mand(ok, kc_check_d(S.v, T.v, wp, wq, gap, touch, &nw));
+#else
+    /* the check in double: each half of the float lanes widened (exactly) */
+    ttdw_vd svl[3][3], svh[3][3], tvl[3][3], tvh[3][3], wpl[3], wph[3], wql[3], wqh[3], nwl, nwh;
     for (int i = 0; i < 3; ++i) {
-        vreal a[3], b[3];
         for (int c = 0; c < 3; ++c) {
-            a[c] = S.v[i][c] - p[c];
-            b[c] = q[c] - T.v[i][c];
+            svl[i][c] = ttdw_f2d_lo(S.v[i][c]);
+            svh[i][c] = ttdw_f2d_hi(S.v[i][c]);
+            tvl[i][c] = ttdw_f2d_lo(T.v[i][c]);
+            tvh[i][c] = ttdw_f2d_hi(T.v[i][c]);
         }
-        ds[i] = TTD_SFX(kx_dot)(w, a);
-        dt[i] = TTD_SFX(kx_dot)(w, b);
+        wpl[i] = ttdw_f2d_lo(wp[i]);
+        wph[i] = ttdw_f2d_hi(wp[i]);
+        wql[i] = ttdw_f2d_lo(wq[i]);
+        wqh[i] = ttdw_f2d_hi(wq[i]);
     }
-    /* half the multipliers of the active constraints and the residuals of the inactive
-     * ones; the separation the planes normal to w prove is (|w|^2 + min ds + min dt) / |w| */
-    const vreal ls = TTD_SFX(kc_min)(TTD_SFX(kc_min)(ds[0], ds[1]), ds[2]);
-    const vreal lt = TTD_SFX(kc_min)(TTD_SFX(kc_min)(dt[0], dt[1]), dt[2]);
-    const vreal ww = TTD_SFX(kx_dot)(w, w);
-    const vreal nw = vsqrt(ww);
-    const vreal msum = ls + lt;
-    ok = mand(ok, mand(vge(msum, -vset1(gap) * nw), vgt(ww + msum, vset1(touch) * nw)));
+    const ttdw_md okl = kc_check_d(svl, tvl, wpl, wql, (double)gap, (double)touch, &nwl);
+    const ttdw_md okh = kc_check_d(svh, tvh, wph, wqh, (double)gap, (double)touch, &nwh);
+    const ttdw_vd one_d = ttdw_set1_d(1.0), zero_d = ttdw_zero_d();
+    const vreal okf = ttdw_d2f(ttdw_sel_d(okl, one_d, zero_d), ttdw_sel_d(okh, one_d, zero_d));
+    ok = mand(ok, vgt(okf, vset1(0.5f)));
+    const vreal nw = ttdw_d2f(nwl, nwh);
+#endif
     /* where the check failed, a clear crossing is a certified contact (S's edges first) */
     vmask crossing = mnot(mtrue());
     if (many(mnot(ok))) {
