@@ -25,17 +25,17 @@
  *    certificate: the planes normal to w through the extreme vertices separate the
  *    triangles, so for ANY w
  *        true distance >= LB = (|w|^2 + m_S + m_T) / |w|,     true distance <= |w|,
- *    both up to the rounding of these few dot products and of p and q (~18 eps of double in the
- *    frame: this part runs in double for both precisions). The pair is
- *    accepted when |w| - LB <= GAP (the multipliers are non-negative and the residuals 0, up
- *    to GAP |w| together) and LB > TOUCH (certainly apart).
+ *    both up to the rounding of these few dot products and of p and q (~18 eps of double in
+ *    the frame: this part runs in double for both precisions). The pair is accepted when
+ *    |w| - LB <= GAP (the multipliers are non-negative and the residuals 0, up to GAP |w|
+ *    together) and LB > TOUCH (certainly apart). Checking only the active constraints'
+ *    multipliers and trusting the solve for the rest is not enough: for an edge nearly
+ *    parallel to a face the objective is flat along the pair of features, and a residual
+ *    below rounding let a point 4e-13 off pass (docs/certified-mode.md).
  * 5. Where the check fails, a clear crossing (cert_crossing, CROSS in certified_tol.h) is a
  *    certified contact: distance 0, flagged intersecting. Every other pair, touching ones
  *    included, goes to ttd_exact_pair and is flagged TTD_PAIR_FALLBACK. Correctness rests on
- *    the check alone: a wrong active set or an inaccurate solve only costs a fallback. (Checking only the active constraints' multipliers, trusting the
- *    solve for the rest, is not enough: for an edge nearly parallel to a face the objective
- *    is flat along the pair of features, and a residual below rounding let a point 4e-13 off
- *    pass; docs/certified-mode.md.)
+ *    the check alone: a wrong active set or an inaccurate solve only costs a fallback.
  *
  * The lane kernel (simd/kernel_certified.h) computes every case in every lane and selects;
  * this file computes only the lane's case, with the same expressions in the same order, so
