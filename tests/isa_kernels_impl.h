@@ -22,6 +22,7 @@ static TTD_SFX(pair_fn) TTD_SFX(scalar_of)(int method)
     case TTD_METHOD_PENALTY: return TTD_SFX(ttd_penalty_pair);
     case TTD_METHOD_PENALTY_REFERENCE: return TTD_SFX(ttd_penalty_ref_pair);
     case TTD_METHOD_BARRIER: return TTD_SFX(ttd_barrier_pair);
+    case TTD_METHOD_CERTIFIED: return TTD_SFX(ttd_certified_pair);
     default: return NULL;
     }
 }
