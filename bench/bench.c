@@ -27,7 +27,7 @@
 
 /* What is run on a workload. */
 enum {
-    W_ALL_METHODS = 1u << 0, /* every method (else exact and penalty) */
+    W_ALL_METHODS = 1u << 0, /* every method (else exact, penalty and certified) */
     W_ALL_ISAS = 1u << 1,    /* every SIMD ISA (else the best one) */
     W_SCALAR = 1u << 2,      /* scalar rows (the speedup baseline) */
     W_FCL = 1u << 3,         /* FCL beside */
@@ -49,7 +49,7 @@ static const workload_spec workloads[] = {
     {"paper", TTD_GEN_PAPER, 1000, 1000, W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
     {"random", TTD_GEN_RANDOM, 1000000, 10000,
      W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY | W_THREADS},
-    /* The other families: exact and penalty only (penalty-ref and barrier are there for the
+    /* The other families: exact, penalty and certified (penalty-ref and barrier are there for the
      * comparison with the paper, on its workload and on random pairs). */
     {"far", TTD_GEN_FAR, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
     {"near_parallel_edges", TTD_GEN_NEAR_PARALLEL_EDGES, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
@@ -297,7 +297,7 @@ static int measure(bench_ctx *cx, bench_data *d, int bytes, ttd_method m, ttd_is
     if ((d->spec->flags & W_ACCURACY) && d->results) {
         run_batch(d, bytes, &o, d->n, NULL, d->results);
         double *dist = (double *)d->dist;
-        size_t nc = 0;
+        size_t nc = 0, fb = 0;
         double it_sum = 0.0, blockmax_sum = 0.0;
         int lanes = r->lanes > 0 ? r->lanes : 1;
         for (size_t b = 0; b < d->n; b += (size_t)lanes) {
@@ -317,6 +317,7 @@ static int measure(bench_ctx *cx, bench_data *d, int bytes, ttd_method m, ttd_is
                     flags = x->flags;
                 }
                 nc += (flags & TTD_PAIR_NOT_CONVERGED) != 0;
+                fb += (flags & TTD_PAIR_FALLBACK) != 0;
                 it_sum += it;
                 mx = it > mx ? it : mx;
             }
@@ -324,6 +325,7 @@ static int measure(bench_ctx *cx, bench_data *d, int bytes, ttd_method m, ttd_is
         }
         accuracy(d, bytes, dist, r);
         r->not_converged = nc;
+        r->fallback = fb;
         if (m != TTD_METHOD_EXACT) {
             r->has_iterations = 1;
             r->mean_iterations = it_sum / (double)d->n;
@@ -488,7 +490,8 @@ static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
         for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
             if (!(cx->method_mask & (1u << m)))
                 continue;
-            if (!(w->flags & W_ALL_METHODS) && m != TTD_METHOD_EXACT && m != TTD_METHOD_PENALTY)
+            if (!(w->flags & W_ALL_METHODS) && m != TTD_METHOD_EXACT && m != TTD_METHOD_PENALTY &&
+                m != TTD_METHOD_CERTIFIED)
                 continue;
             for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i) {
                 ttd_isa isa = (ttd_isa)i;
@@ -551,7 +554,7 @@ static void derive_ratios(bench_ctx *cx)
 static void usage(FILE *f)
 {
     fputs("usage: ttd bench [options]\n"
-          "Times ttd's methods (exact, penalty, penalty-ref, barrier) in double and float, scalar\n"
+          "Times ttd's methods (exact, penalty, penalty-ref, barrier, certified) in double and float, scalar\n"
           "and on every SIMD instruction set this machine runs, on the paper's workload (one pair\n"
           "x1000) and on generated families, with FCL beside it when ttd_fcl_bench is built.\n"
           "\n"

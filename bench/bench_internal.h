@@ -38,6 +38,7 @@ typedef struct bench_row {
     double max_abs_err;       ///< max |d - d_exact|
     size_t disagree;          ///< pairs whose relative error exceeds bench_disagree_tol()
     size_t not_converged;     ///< pairs flagged TTD_PAIR_NOT_CONVERGED
+    size_t fallback;          ///< certified method: pairs flagged TTD_PAIR_FALLBACK (sent to the exact method)
     int has_iterations;       ///< the next two fields are set
     double mean_iterations;   ///< mean Newton iterations per pair
     double occupancy;         ///< mean iterations / mean over lane-blocks of the block's maximum

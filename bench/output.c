@@ -60,27 +60,29 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
 {
     char b[12][32];
     header_lines(f, "", m, st);
-    fprintf(f, "\n%-20s %-11s %-6s %-6s %3s %9s %9s %8s %8s %6s %7s %9s %9s %8s %8s %6s %5s\n", "workload", "method",
+    fprintf(f, "\n%-20s %-11s %-6s %-6s %3s %9s %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n", "workload", "method",
             "prec", "isa", "thr", "pairs", "ns/pair", "Mpairs/s", "x_scalar", "lanes%", "x_fcl", "max_rel",
-            "p99.9_rel", "disagree", "not_conv", "iters", "occ");
+            "p99.9_rel", "disagree", "not_conv", "fallbk", "iters", "occ");
     const char *last = "";
     for (size_t i = 0; i < n; ++i) {
         const bench_row *r = &rows[i];
         if (strcmp(last, r->workload) != 0 && i > 0)
             fputc('\n', f);
         last = r->workload;
-        char dis[24] = "-", nc[24] = "-";
+        char dis[24] = "-", nc[24] = "-", fb[24] = "-";
         if (r->has_accuracy) {
             snprintf(dis, sizeof dis, "%zu", r->disagree);
             snprintf(nc, sizeof nc, "%zu", r->not_converged);
+            if (strcmp(r->method, "certified") == 0)
+                snprintf(fb, sizeof fb, "%zu", r->fallback);
         }
-        fprintf(f, "%-20s %-11s %-6s %-6s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %6s %5s\n",
+        fprintf(f, "%-20s %-11s %-6s %-6s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n",
                 r->workload, r->method, prec_name(r->bytes), r->isa, r->threads, r->pairs,
                 num(b[0], 32, r->ns_per_pair, r->ns_per_pair < 100 ? "%.2f" : "%.1f"),
                 num(b[1], 32, r->pairs_per_s * 1e-6, "%.2f"), num(b[2], 32, r->speedup_vs_scalar, "%.2f"),
                 num(b[3], 32, r->lanes > 1 || r->threads > 1 ? 100.0 * r->lane_fraction : BENCH_NAN, "%.0f%%"),
                 num(b[4], 32, strcmp(r->method, "fcl") ? r->speedup_vs_fcl : BENCH_NAN, "%.2f"),
-                num(b[5], 32, r->max_rel_err, "%.2g"), num(b[6], 32, r->p999_rel_err, "%.2g"), dis, nc,
+                num(b[5], 32, r->max_rel_err, "%.2g"), num(b[6], 32, r->p999_rel_err, "%.2g"), dis, nc, fb,
                 num(b[7], 32, r->mean_iterations, "%.2f"), num(b[8], 32, r->occupancy, "%.2f"));
     }
 
@@ -112,7 +114,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
     fprintf(f, "\ncolumns: x_scalar = time of the scalar row (same workload, method, precision, 1 thread) / this "
                "row; lanes%% = x_scalar / (lanes x threads); x_fcl = FCL time / this row; max_rel, p99.9_rel = "
                "error against the exact method in double on the same input, relative to max(distance, longest "
-               "edge); not_conv = pairs flagged not converged; iters = mean iterations; occ = lane occupancy "
+               "edge); not_conv = pairs flagged not converged; fallbk = certified pairs that failed the check and "
+               "were computed by the exact method; iters = mean iterations; occ = lane occupancy "
                "(mean iterations / mean of each lane-block's maximum).\n");
 }
 
@@ -206,9 +209,10 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
         json_num(f, "p999_rel_err", r->has_accuracy ? r->p999_rel_err : BENCH_NAN);
         json_num(f, "max_abs_err", r->has_accuracy ? r->max_abs_err : BENCH_NAN);
         if (r->has_accuracy)
-            fprintf(f, ", \"disagree\": %zu, \"not_converged\": %zu", r->disagree, r->not_converged);
+            fprintf(f, ", \"disagree\": %zu, \"not_converged\": %zu, \"fallback\": %zu", r->disagree,
+                    r->not_converged, r->fallback);
         else
-            fprintf(f, ", \"disagree\": null, \"not_converged\": null");
+            fprintf(f, ", \"disagree\": null, \"not_converged\": null, \"fallback\": null");
         json_num(f, "mean_iterations", r->mean_iterations);
         json_num(f, "occupancy", r->occupancy);
         fprintf(f, "}%s\n", i + 1 < n ? "," : "");
@@ -228,7 +232,7 @@ void bench_write_csv(FILE *f, const bench_row *rows, size_t n)
 {
     fprintf(f, "workload,method,precision,isa,lanes,threads,pairs,samples,ns_per_pair,ns_per_pair_min,pairs_per_s,"
                "speedup_vs_scalar,lane_fraction,thread_speedup,speedup_vs_fcl,max_rel_err,p999_rel_err,"
-               "max_abs_err,disagree,not_converged,mean_iterations,occupancy\n");
+               "max_abs_err,disagree,not_converged,fallback,mean_iterations,occupancy\n");
     for (size_t i = 0; i < n; ++i) {
         const bench_row *r = &rows[i];
         fprintf(f, "%s,%s,%s,%s,%d,%d,%zu,%d", r->workload, r->method, prec_name(r->bytes), r->isa, r->lanes,
@@ -244,9 +248,9 @@ void bench_write_csv(FILE *f, const bench_row *rows, size_t n)
         csv_num(f, r->has_accuracy ? r->p999_rel_err : BENCH_NAN);
         csv_num(f, r->has_accuracy ? r->max_abs_err : BENCH_NAN);
         if (r->has_accuracy)
-            fprintf(f, ",%zu,%zu", r->disagree, r->not_converged);
+            fprintf(f, ",%zu,%zu,%zu", r->disagree, r->not_converged, r->fallback);
         else
-            fputs(",,", f);
+            fputs(",,,", f);
         csv_num(f, r->mean_iterations);
         csv_num(f, r->occupancy);
         fputc('\n', f);

@@ -22,6 +22,7 @@ static TTD_SFX(pair_fn) TTD_SFX(scalar_of)(int method)
     case TTD_METHOD_PENALTY: return TTD_SFX(ttd_penalty_pair);
     case TTD_METHOD_PENALTY_REFERENCE: return TTD_SFX(ttd_penalty_ref_pair);
     case TTD_METHOD_BARRIER: return TTD_SFX(ttd_barrier_pair);
+    case TTD_METHOD_CERTIFIED: return TTD_SFX(ttd_certified_pair);
     default: return NULL;
     }
 }
@@ -56,6 +57,18 @@ static real TTD_SFX(pair_size)(const real *s, const real *t)
 static void TTD_SFX(fill)(int family, uint64_t seed, size_t n, real *s, real *t)
 {
     double ds[9], dt[9];
+    if (family >= GEN_LIBRARY_FIRST) {
+        double *gs = malloc(9 * n * sizeof *gs), *gt = malloc(9 * n * sizeof *gt);
+        if (!gs || !gt) abort();
+        ttd_gen(gen_library_family[family - GEN_LIBRARY_FIRST], seed, n, gs, gt);
+        for (size_t i = 0; i < 9 * n; ++i) {
+            s[i] = (real)gs[i];
+            t[i] = (real)gt[i];
+        }
+        free(gs);
+        free(gt);
+        return;
+    }
 #ifdef TTD_PRECISION_DOUBLE
     const int kmin = DBL_MIN_EXP - 40, kmax = DBL_MAX_EXP - 3;
 #else

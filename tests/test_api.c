@@ -60,6 +60,7 @@ static void ref_pair_d(ttd_method m, const double *s, const double *t, const ttd
     case TTD_METHOD_EXACT: ttd_exact_pair_d(s, t, r); break;
     case TTD_METHOD_PENALTY: ttd_penalty_pair_d(s, t, prm, r); break;
     case TTD_METHOD_PENALTY_REFERENCE: ttd_penalty_ref_pair_d(s, t, prm, r); break;
+    case TTD_METHOD_CERTIFIED: ttd_certified_pair_d(s, t, prm, r); break;
     default: ttd_barrier_pair_d(s, t, prm, r); break;
     }
 }
@@ -70,6 +71,7 @@ static void ref_pair_f(ttd_method m, const float *s, const float *t, const ttd_p
     case TTD_METHOD_EXACT: ttd_exact_pair_f(s, t, r); break;
     case TTD_METHOD_PENALTY: ttd_penalty_pair_f(s, t, prm, r); break;
     case TTD_METHOD_PENALTY_REFERENCE: ttd_penalty_ref_pair_f(s, t, prm, r); break;
+    case TTD_METHOD_CERTIFIED: ttd_certified_pair_f(s, t, prm, r); break;
     default: ttd_barrier_pair_f(s, t, prm, r); break;
     }
 }
@@ -337,6 +339,7 @@ static int names_and_version(void)
     ENSURE(strcmp(ttd_method_name(TTD_METHOD_PENALTY), "penalty") == 0);
     ENSURE(strcmp(ttd_method_name(TTD_METHOD_PENALTY_REFERENCE), "penalty-ref") == 0);
     ENSURE(strcmp(ttd_method_name(TTD_METHOD_BARRIER), "barrier") == 0);
+    ENSURE(strcmp(ttd_method_name(TTD_METHOD_CERTIFIED), "certified") == 0);
     ENSURE(ttd_method_name(TTD_METHOD_COUNT) == NULL && ttd_method_name((ttd_method)-1) == NULL);
     static const char *const isas[] = {"auto", "scalar", "sse2", "avx2", "avx512", "neon"};
     for (int i = 0; i < TTD_ISA_COUNT; ++i)
@@ -680,8 +683,9 @@ static int not_converged_reported(void)
             ENSURE_MSG((with == TTD_WARN_NOT_CONVERGED) == (flagged > 0), "method %s isa %s: %zu flagged",
                        ttd_method_name((ttd_method)m), ttd_isa_name((ttd_isa)isa), flagged);
             /* One Newton step cannot settle every random pair (the penalty forms; the
-             * barrier method's stopping rule is its own). */
-            ENSURE_MSG(flagged > 0 || m == TTD_METHOD_BARRIER, "method %s isa %s", ttd_method_name((ttd_method)m),
+             * barrier method's stopping rule is its own; the certified mode falls back to the
+             * exact method instead and never flags). */
+            ENSURE_MSG(m == TTD_METHOD_CERTIFIED ? flagged == 0 : (flagged > 0 || m == TTD_METHOD_BARRIER), "method %s isa %s", ttd_method_name((ttd_method)m),
                        ttd_isa_name((ttd_isa)isa));
             if (isa == TTD_ISA_SCALAR) {
                 ttd_params prm = params_of(&o);

@@ -52,7 +52,10 @@ typedef enum ttd_method {
     /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
     TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
-    TTD_METHOD_COUNT = 4
+    /// the penalty method, its answer checked for optimality on the final active set and
+    /// solved there exactly; pairs that fail the check are computed by the exact method
+    TTD_METHOD_CERTIFIED = 4,
+    TTD_METHOD_COUNT = 5
 } ttd_method;
 
 /// Instruction sets; TTD_ISA_AUTO picks the best one that is built and that the CPU and OS support.
@@ -72,7 +75,8 @@ enum {
     TTD_PAIR_DEGENERATE_S = 1u << 1,  ///< the first triangle has zero area (a segment or a point)
     TTD_PAIR_DEGENERATE_T = 1u << 2,  ///< the second triangle has zero area
     TTD_PAIR_INTERSECTING = 1u << 3,  ///< the triangles touch or cross: distance 0
-    TTD_PAIR_NOT_CONVERGED = 1u << 4  ///< iterative method: hit max_iterations; points still lie on their triangles
+    TTD_PAIR_NOT_CONVERGED = 1u << 4, ///< iterative method: hit max_iterations; points still lie on their triangles
+    TTD_PAIR_FALLBACK = 1u << 5       ///< certified mode: this pair failed the optimality check and was computed by the exact method
 };
 
 /// Everything known about one pair (double precision).
@@ -152,7 +156,7 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 
 /// A short English sentence for a status.
 TTD_API const char *ttd_status_string(ttd_status status);
-/// "exact", "penalty", "penalty-ref", "barrier"; NULL when out of range.
+/// "exact", "penalty", "penalty-ref", "barrier", "certified"; NULL when out of range.
 TTD_API const char *ttd_method_name(ttd_method method);
 /// "auto", "scalar", "sse2", "avx2", "avx512", "neon"; NULL when out of range.
 TTD_API const char *ttd_isa_name(ttd_isa isa);

@@ -210,6 +210,7 @@ const char *ttd_method_name(ttd_method method)
         [TTD_METHOD_PENALTY] = "penalty",
         [TTD_METHOD_PENALTY_REFERENCE] = "penalty-ref",
         [TTD_METHOD_BARRIER] = "barrier",
+        [TTD_METHOD_CERTIFIED] = "certified",
     };
     return (int)method >= 0 && (int)method < TTD_METHOD_COUNT ? names[method] : NULL;
 }

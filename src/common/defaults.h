@@ -5,7 +5,7 @@
  * random pairs against an exact reference): docs/penalty-method.md.
  *
  * rho 1e6 with the final clamping gives a distance error ~2/rho^2 = 2e-12 of the pair's
- * size in double, in ~4.8 Newton iterations on average; tol 1e-12 is the step length, on
+ * size in double, in ~4.6 Newton iterations on average; tol 1e-12 is the step length, on
  * the unit-size geometry, below which the iteration stops. The cap is the paper's. */
 #ifndef TTD_COMMON_DEFAULTS_H
 #define TTD_COMMON_DEFAULTS_H
@@ -21,6 +21,22 @@
  * below the step's own rounding, so the iteration would never stop. Double kernels use
  * the values as given (rho 1e8 would be more accurate on random pairs but loses slivers
  * the same way; 1e6 keeps them to 1e-8 edge/size). */
+/* The optimised penalty method's regularisation eps*I (also its pivot floor) is
+ * TTD_PENALTY_EPS_ULPS * REAL_EPS of the unit-size frame, whatever rho: the paper's 1/rho^2
+ * (1e-12 at rho 1e6) is larger than the curvature along nearly parallel edges and faces and
+ * made the iteration crawl (11% of near_parallel_edges pairs hit the cap); at 4 ulps the
+ * steps along hf's null space (noise/eps) made a few pairs cycle. A step also
+ * counts as small when grad.dx (twice its promised decrease of the objective) is below
+ * tol^2 or below TTD_PENALTY_FLAT_ULPS * REAL_EPS * |X - Y|^2. Measurements:
+ * docs/penalty-method.md, "Near-parallel families". */
+#define TTD_PENALTY_EPS_ULPS 16
+#define TTD_PENALTY_FLAT_ULPS 16
+/* The exact line search continues beyond the Newton step (t > 1) when phi'(1) is still below
+ * TTD_PENALTY_EXTEND * phi'(0) (< 0): the step was made by a pivot far above the curvature
+ * along it (a valley flatter than eps). Without it 0.9% of near_parallel_edges pairs crawled
+ * to the cap; with it none (250k pairs, both precisions). */
+#define TTD_PENALTY_EXTEND 0.5
+
 #define TTD_FLOAT_RHO_MAX 256.0
 #define TTD_FLOAT_TOL_MIN 1.0e-6
 #define TTD_DOUBLE_RHO_MAX 1.0e300

@@ -210,7 +210,8 @@ static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjo
     if (j->fn == NULL)
         j->fn = ttd_kernels_scalar.TTD_ROW_COL[cfg->method];
     j->prm = &cfg->params;
-    j->need_flags = cfg->method != TTD_METHOD_EXACT;
+    /* the certified mode never leaves a pair unconverged (it falls back instead) */
+    j->need_flags = cfg->method != TTD_METHOD_EXACT && cfg->method != TTD_METHOD_CERTIFIED;
     j->mesh_check = 0;
     j->dist_aligned = ((uintptr_t)j->distance % _Alignof(real)) == 0;
     j->res_aligned = ((uintptr_t)j->results % _Alignof(ttd_result)) == 0;

@@ -6,7 +6,8 @@
  * coordinates only (a pair with NaN/inf is replaced by a placeholder and its outputs are
  * overwritten afterwards), at most TTD_BLOCK_PAIRS pairs at a time. distance and results
  * may each be NULL (not both); a kernel writes whichever is given, and sets results[i].flags
- * from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING and TTD_PAIR_NOT_CONVERGED only.
+ * from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING, TTD_PAIR_NOT_CONVERGED and
+ * TTD_PAIR_FALLBACK (certified mode) only.
  *
  * Each instruction set provides one table row (ttd_isa_kernels). A NULL entry means "not
  * written for this ISA": the engine then uses the scalar row for that method. */

@@ -29,6 +29,8 @@ TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_d, double, ttd_result_d, ttd_penalty_ref_
 TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_f, float, ttd_result_f, ttd_penalty_ref_pair_f(s + 9 * i, t + 9 * i, prm, &r))
 TTD_SCALAR_LOOP(ttd_scalar_barrier_d, double, ttd_result_d, ttd_barrier_pair_d(s + 9 * i, t + 9 * i, prm, &r))
 TTD_SCALAR_LOOP(ttd_scalar_barrier_f, float, ttd_result_f, ttd_barrier_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_certified_d, double, ttd_result_d, ttd_certified_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_certified_f, float, ttd_result_f, ttd_certified_pair_f(s + 9 * i, t + 9 * i, prm, &r))
 
 const ttd_isa_kernels ttd_kernels_scalar = {
     .isa = TTD_ISA_SCALAR,
@@ -37,9 +39,11 @@ const ttd_isa_kernels ttd_kernels_scalar = {
     .d = {[TTD_METHOD_EXACT] = ttd_scalar_exact_d,
           [TTD_METHOD_PENALTY] = ttd_scalar_penalty_d,
           [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_d,
-          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d},
+          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d,
+          [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_d},
     .f = {[TTD_METHOD_EXACT] = ttd_scalar_exact_f,
           [TTD_METHOD_PENALTY] = ttd_scalar_penalty_f,
           [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_f,
-          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f},
+          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f,
+          [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
 };

@@ -240,10 +240,11 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     const double tol_d = prm->tol > TTD_REAL_TOL_MIN ? prm->tol : TTD_REAL_TOL_MIN;
     const real rho = (real)rho_d;
     const real tol2 = (real)(tol_d * tol_d);
-    /* The paper's I/rho^2 regularisation, kept above rounding of the unit-size Hessian
-     * (in float 1/rho^2 would vanish next to entries ~1). */
-    real eps = (real)1 / (rho * rho);
-    eps = eps > 4 * TTD_REAL_EPS ? eps : 4 * TTD_REAL_EPS;
+    /* Regularisation eps*I and pivot floor: a few ulps of the unit-size Hessian, not the
+     * paper's 1/rho^2. On nearly parallel edges or faces the valley's curvature (~angle^2)
+     * lies below 1/rho^2 = 1e-12, and the regularised step then crawled along the valley
+     * (grad/eps per iteration) to the cap (docs/penalty-method.md, Near-parallel families). */
+    const real eps = (real)TTD_PENALTY_EPS_ULPS * TTD_REAL_EPS;
     const int max_it = prm->max_iterations;
 
     /* Frame: origin at A, scaled by 2^-e so that the largest coordinate of B, C, D, E, F
@@ -364,7 +365,13 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
 
         const real gf1 = 2 * (CA[0] * xy0 + CA[1] * xy1 + CA[2] * xy2);
         real g1 = gf1 + rho * (v3 - v2);
-        real H11 = f11 + m2 + m3 + eps - l10 * H01;
+        /* The pivot H11 - H01^2/H00 as det/H00, with det = H00*H11 - H01^2 expanded so that
+         * the rho^2 and rho*f terms of a penalised a+b <= 1 cancel exactly instead of in
+         * rounding (that left noise ~rho*REAL_EPS in the pivot, far above the curvature
+         * along the edge of a nearly parallel pair). */
+        const real e00 = f00 + eps, e11 = f11 + eps;
+        real H11 = ((e00 * e11 - f01 * f01) + m3 * (e00 + e11 - 2 * f01) + m1 * (e11 + m2 + m3) +
+                    m2 * (e00 + m3)) * i0;
         real H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
         g1 -= l10 * g0;
         H11 = TTD_SFX(pen_sel)(H11 > eps, H11, eps);
@@ -373,8 +380,13 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
 
         const real gf2 = -2 * (ED[0] * xy0 + ED[1] * xy1 + ED[2] * xy2);
         real g2 = gf2 + rho * (v6 - v4);
-        real H22 = f22 + m4 + m6 + eps - l20 * H02 - l21 * H12;
-        real H23 = f23 + m6 - l20 * H03 - l21 * H13;
+        /* Rows 2 and 3 reduced by rows 0 and 1 without their penalty terms (T), which rows
+         * 0 and 1 do not touch; the last pivot is then a 2x2 determinant expanded as above. */
+        const real T22 = f22 + eps - l20 * H02 - l21 * H12;
+        const real T23 = f23 - l20 * H03 - l21 * H13;
+        const real T33 = f33 + eps - l30 * H03 - l31 * H13;
+        real H22 = T22 + m4 + m6;
+        const real H23 = T23 + m6;
         g2 -= l20 * g0 + l21 * g1;
         H22 = TTD_SFX(pen_sel)(H22 > eps, H22, eps);
         const real i2 = (real)1 / H22;
@@ -382,7 +394,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
 
         const real gf3 = -2 * (FD[0] * xy0 + FD[1] * xy1 + FD[2] * xy2);
         real g3 = gf3 + rho * (v6 - v5);
-        real H33 = f33 + m5 + m6 + eps - l30 * H03 - l31 * H13 - l32 * H23;
+        real H33 = ((T22 * T33 - T23 * T23) + m6 * (T22 + T33 - 2 * T23) + m4 * (T33 + m5 + m6) +
+                    m5 * (T22 + m6)) * i2;
         g3 -= l30 * g0 + l31 * g1 + l32 * g2;
         H33 = TTD_SFX(pen_sel)(H33 > eps, H33, eps);
 
@@ -409,7 +422,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * between them, so phi' is linear there) and found by one interpolation. Every
          * decision is a select; the SIMD port may skip the block when no lane has
          * phi'(1) > 0. */
-        real step;
+        real step, dec;
         {
             const real s1 = -d0, s2 = -d1, s3 = d0 + d1, s4 = -d2, s5 = -d3, s6 = d2 + d3;
             const real jd0 = DX0 - DY0, jd1 = DX1 - DY1, jd2 = DX2 - DY2;
@@ -422,6 +435,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
             s5 * TTD_SFX(pen_pos)(h5 - (t) * s5) + s6 * TTD_SFX(pen_pos)(h6 - (t) * s6)))
             const real p0 = TTD_PEN_SLOPE((real)0);
             const real p1 = TTD_PEN_SLOPE((real)1);
+            dec = -p0; /* grad.dx: twice the decrease the full step promises */
             step = 1;
             /* The only branch besides the convergence test: the bracket is needed on a
              * minority of iterations (docs/penalty-method.md), and it is cheap to skip.
@@ -451,9 +465,47 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
                 fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
                 fr = TTD_SFX(pen_sel)(fr < 1, fr, 1);
                 step = lo + (hi - lo) * fr;
+            } else if (p1 < p0 * (real)TTD_PENALTY_EXTEND) {
+                /* The full step still descends almost as steeply as t = 0 did: the
+                 * curvature along dx is far below the pivot that made the step (a valley
+                 * flatter than the eps floor, e.g. nearly parallel edges), and Newton would
+                 * crawl along it. The exact line search goes on beyond t = 1: breakpoints
+                 * t_i > 1 bracket the root as above; when none has phi' > 0, phi' is linear
+                 * beyond the last one (lo) and a probe at 2*lo gives its root. Rare (the
+                 * SIMD port runs it when any lane needs it). */
+                real lo = 1, plo = p1, hi = 1, phi = 0;
+                int found = 0;
+#define TTD_PEN_BEYOND(hh, ss)                                                               \
+    {                                                                                        \
+        const real tb = (hh) / (ss);                                                         \
+        const int in = (tb > 1) & (tb <= TTD_REAL_MAX);                                      \
+        const real pb = TTD_PEN_SLOPE(tb);                                                   \
+        const int to_lo = in & (pb <= 0) & (tb > lo);                                        \
+        const int to_hi = in & (pb > 0) & ((!found) | (tb < hi));                            \
+        lo = TTD_SFX(pen_sel)(to_lo, tb, lo);                                                \
+        plo = TTD_SFX(pen_sel)(to_lo, pb, plo);                                              \
+        hi = TTD_SFX(pen_sel)(to_hi, tb, hi);                                                \
+        phi = TTD_SFX(pen_sel)(to_hi, pb, phi);                                              \
+        found |= to_hi;                                                                      \
+    }
+                TTD_PEN_BEYOND(h1, s1) TTD_PEN_BEYOND(h2, s2) TTD_PEN_BEYOND(h3, s3)
+                TTD_PEN_BEYOND(h4, s4) TTD_PEN_BEYOND(h5, s5) TTD_PEN_BEYOND(h6, s6)
+#undef TTD_PEN_BEYOND
+                const real t2 = 2 * lo;
+                const real p2 = TTD_PEN_SLOPE(t2);
+                hi = TTD_SFX(pen_sel)(found, hi, t2);
+                phi = TTD_SFX(pen_sel)(found, phi, p2);
+                const real den = phi - plo;
+                real fr = TTD_SFX(pen_sel)(den > 0, -plo / den, 0);
+                fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
+                /* past hi only when hi is the probe (phi' is linear beyond lo) */
+                fr = TTD_SFX(pen_sel)((fr < 1) | !found, fr, 1);
+                step = lo + (hi - lo) * fr;
+                step = TTD_SFX(pen_sel)(step <= TTD_REAL_MAX, step, lo);
             }
 #undef TTD_PEN_SLOPE
         }
+        const real a_o = a, b_o = b, ca_o = ca, g_o = g, d_o = d, cg_o = cg;
         a -= step * d0;
         b -= step * d1;
         ca += step * (d0 + d1);
@@ -468,9 +520,18 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         const int released = ((h1 >= 0) & (h1 + step * d0 < 0)) | ((h2 >= 0) & (h2 + step * d1 < 0)) |
                              ((h3 >= 0) & (h3 - step * (d0 + d1) < 0)) | ((h4 >= 0) & (h4 + step * d2 < 0)) |
                              ((h5 >= 0) & (h5 + step * d3 < 0)) | ((h6 >= 0) & (h6 - step * (d2 + d3) < 0));
+        /* A step also counts as small when its effect on the objective is below tol^2 or
+         * below rounding of f = |X - Y|^2 (a flat valley: the step is long, the distance does
+         * not change). And an iterate the update left unchanged is a fixed point of this
+         * iteration (the line search found no decrease along dx): it has converged as far
+         * as it can. */
+        const real fx = xy0 * xy0 + xy1 * xy1 + xy2 * xy2;
+        const int flat = (dec < tol2) | (dec < (real)TTD_PENALTY_FLAT_ULPS * TTD_REAL_EPS * fx);
+        const real errc = TTD_SFX(pen_sel)(flat, 0, err2);
+        const int stuck = (a == a_o) & (b == b_o) & (ca == ca_o) & (g == g_o) & (d == d_o) & (cg == cg_o);
         const int small_prev = prev_err2 < tol2;
-        prev_err2 = err2;
-        if ((err2 < tol2) & ((!released) | small_prev)) {
+        prev_err2 = errc;
+        if (((errc < tol2) & ((!released) | small_prev)) | stuck) {
             converged = 1;
             break;
         }

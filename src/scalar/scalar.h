@@ -20,4 +20,10 @@ void ttd_penalty_ref_pair_f(const float s[9], const float t[9], const ttd_params
 void ttd_barrier_pair_d(const double s[9], const double t[9], const ttd_params *prm, ttd_result_d *r);
 void ttd_barrier_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
 
+/* The certified mode: the penalty iterations, then the exact solution on the final active
+ * set, checked for optimality; a pair that fails the check is computed by ttd_exact_pair and
+ * flagged TTD_PAIR_FALLBACK (docs/certified-mode.md). */
+void ttd_certified_pair_d(const double s[9], const double t[9], const ttd_params *prm, ttd_result_d *r);
+void ttd_certified_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
+
 #endif /* TTD_SCALAR_SCALAR_H */

@@ -67,8 +67,8 @@ static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
     const double rho_d = prm->rho < rho_max ? prm->rho : rho_max;
     const double tol_d = prm->tol > tol_min ? prm->tol : tol_min;
     const real rho_s = (real)rho_d;
-    real eps_s = (real)1 / (rho_s * rho_s);
-    eps_s = eps_s > 4 * TTD_REAL_EPS ? eps_s : 4 * TTD_REAL_EPS;
+    /* scalar: eps, a few ulps of the unit frame (not 1/rho^2) */
+    const real eps_s = (real)TTD_PENALTY_EPS_ULPS * TTD_REAL_EPS;
     TTD_SFX(kp_consts) c;
     c.rho = vset1(rho_s);
     c.tol2 = vset1((real)(tol_d * tol_d));
@@ -197,7 +197,10 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
 
     const vreal gf1 = two * (CA[0] * xy0 + CA[1] * xy1 + CA[2] * xy2);
     vreal g1 = gf1 + rho * (v3 - v2);
-    vreal H11 = f11 + m2 + m3 + eps - l10 * H01;
+    /* scalar: H11 as det/H00, the rho terms of det cancelled exactly */
+    const vreal e00 = f00 + eps, e11 = f11 + eps;
+    vreal H11 = ((e00 * e11 - f01 * f01) + m3 * (e00 + e11 - two * f01) + m1 * (e11 + m2 + m3) +
+                 m2 * (e00 + m3)) * i0;
     const vreal H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
     g1 = g1 - l10 * g0;
     H11 = vsel(vgt(H11, eps), H11, eps);
@@ -206,8 +209,12 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
 
     const vreal gf2 = mtwo * (ED[0] * xy0 + ED[1] * xy1 + ED[2] * xy2);
     vreal g2 = gf2 + rho * (v6 - v4);
-    vreal H22 = f22 + m4 + m6 + eps - l20 * H02 - l21 * H12;
-    const vreal H23 = f23 + m6 - l20 * H03 - l21 * H13;
+    /* scalar: rows 2, 3 reduced without their penalty terms (T); last pivot as a 2x2 det */
+    const vreal T22 = f22 + eps - l20 * H02 - l21 * H12;
+    const vreal T23 = f23 - l20 * H03 - l21 * H13;
+    const vreal T33 = f33 + eps - l30 * H03 - l31 * H13;
+    vreal H22 = T22 + m4 + m6;
+    const vreal H23 = T23 + m6;
     g2 = g2 - (l20 * g0 + l21 * g1);
     H22 = vsel(vgt(H22, eps), H22, eps);
     const vreal i2 = one / H22;
@@ -215,7 +222,8 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
 
     const vreal gf3 = mtwo * (FD[0] * xy0 + FD[1] * xy1 + FD[2] * xy2);
     vreal g3 = gf3 + rho * (v6 - v5);
-    vreal H33 = f33 + m5 + m6 + eps - l30 * H03 - l31 * H13 - l32 * H23;
+    vreal H33 = ((T22 * T33 - T23 * T23) + m6 * (T22 + T33 - two * T23) + m4 * (T33 + m5 + m6) +
+                 m5 * (T22 + m6)) * i2;
     g3 = g3 - (l30 * g0 + l31 * g1 + l32 * g2);
     H33 = vsel(vgt(H33, eps), H33, eps);
 
@@ -267,8 +275,43 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
         fr = vsel(vlt(fr, one), fr, one);
         step = vsel(bracket, lo + (hi - lo) * fr, one);
     }
+    /* scalar: the `else if (p1 < p0 * TTD_PENALTY_EXTEND)` search beyond t = 1 */
+    const vmask extend = mand(mnot(bracket), vlt(p1, p0 * vset1((real)TTD_PENALTY_EXTEND)));
+    if (many(mand(active, extend))) {
+        const vreal rmax = vset1(TTD_REAL_MAX);
+        vreal lo = one, plo = p1, hi = one, phi = zero;
+        vmask found = vlt(one, zero); /* all false */
+#define TTD_KP_BEYOND(hh, ss)                                                                   \
+{                                                                                           \
+    const vreal tb = (hh) / (ss);                                                           \
+    const vmask in = mand(vgt(tb, one), vle(tb, rmax));                                     \
+    const vreal pb = TTD_KP_SLOPE(tb);                                                      \
+    const vmask to_lo = mand(in, mand(vle(pb, zero), vgt(tb, lo)));                        \
+    const vmask to_hi = mand(in, mand(vgt(pb, zero), mor(mnot(found), vlt(tb, hi))));      \
+    lo = vsel(to_lo, tb, lo);                                                               \
+    plo = vsel(to_lo, pb, plo);                                                             \
+    hi = vsel(to_hi, tb, hi);                                                               \
+    phi = vsel(to_hi, pb, phi);                                                             \
+    found = mor(found, to_hi);                                                              \
+}
+        TTD_KP_BEYOND(h1, s1) TTD_KP_BEYOND(h2, s2) TTD_KP_BEYOND(h3, s3)
+        TTD_KP_BEYOND(h4, s4) TTD_KP_BEYOND(h5, s5) TTD_KP_BEYOND(h6, s6)
+#undef TTD_KP_BEYOND
+        const vreal t2 = two * lo;
+        const vreal p2 = TTD_KP_SLOPE(t2);
+        hi = vsel(found, hi, t2);
+        phi = vsel(found, phi, p2);
+        const vreal den = phi - plo;
+        vreal fr = vsel(vgt(den, zero), -plo / den, zero);
+        fr = vsel(vgt(fr, zero), fr, zero);
+        fr = vsel(mor(vlt(fr, one), mnot(found)), fr, one);
+        vreal st = lo + (hi - lo) * fr;
+        st = vsel(vle(st, rmax), st, lo);
+        step = vsel(extend, st, step);
+    }
 #undef TTD_KP_SLOPE
     /* The update, in active lanes only. */
+    const vreal a_o = a, b_o = b, ca_o = ca, g_o = g, d_o = d, cg_o = cg;
     a = vsel(active, a - step * d0, a);
     b = vsel(active, b - step * d1, b);
     ca = vsel(active, ca + step * (d0 + d1), ca);
@@ -286,9 +329,17 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
         mor(mor(mor(mand(a1, vlt(h1 + step * d0, zero)), mand(a2, vlt(h2 + step * d1, zero))),
                 mor(mand(a3, vlt(h3 - step * (d0 + d1), zero)), mand(a4, vlt(h4 + step * d2, zero)))),
             mor(mand(a5, vlt(h5 + step * d3, zero)), mand(a6, vlt(h6 - step * (d2 + d3), zero))));
+    /* scalar: a step with grad.dx below tol^2 or below rounding of |X - Y|^2 counts as
+     * small; an iterate the update left unchanged has converged. */
+    const vreal fx = xy0 * xy0 + xy1 * xy1 + xy2 * xy2;
+    const vreal dec = -p0;
+    const vmask flat = mor(vlt(dec, tol2), vlt(dec, vset1((real)TTD_PENALTY_FLAT_ULPS * TTD_REAL_EPS) * fx));
+    const vreal errc = vsel(flat, zero, err2);
+    const vmask stuck = mand(mand(mand(veq(a, a_o), veq(b, b_o)), mand(veq(ca, ca_o), veq(g, g_o))),
+                             mand(veq(d, d_o), veq(cg, cg_o)));
     const vmask small_prev = vlt(X->prev_err2, tol2);
-    X->prev_err2 = vsel(active, err2, X->prev_err2);
-    return mand(active, mand(vlt(err2, tol2), mor(mnot(released), small_prev)));
+    X->prev_err2 = vsel(active, errc, X->prev_err2);
+    return mand(active, mor(mand(vlt(errc, tol2), mor(mnot(released), small_prev)), stuck));
 }
 
 /* scalar: after the loop. Clamped weights and the distance |p - q| (in the frame, scaled back). */

@@ -4,6 +4,7 @@
  * TTD_PROBE_NAME ttd_lanes_probe_<isa>_d, then the same for float. TTD_ISA_ROW(isa) then
  * builds the table row from the static kernels. */
 #include "common/defaults.h"
+#include "scalar/certified_tol.h"
 #include "engine/kernels.h"
 #include "simd/probe.h"
 #include <stdint.h>
@@ -14,6 +15,7 @@
 #include "simd/kernel_penalty_ref.h"
 #include "simd/kernel_penalty.h"
 #include "simd/kernel_exact.h"
+#include "simd/kernel_certified.h"
 #include "simd/probe_impl.h"
 
 #include "simd/lanes_precision_end.h"
@@ -27,9 +29,11 @@
         .isa = (isa_enum), .lanes_f = TTDW_LANES_F, .lanes_d = TTDW_LANES_D,                   \
         .d = {[TTD_METHOD_EXACT] = kernel_exact_d,                                             \
               [TTD_METHOD_PENALTY] = kernel_penalty_d,                                         \
-              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d},                          \
+              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d,                           \
+              [TTD_METHOD_CERTIFIED] = kernel_certified_d},                                    \
         .f = {[TTD_METHOD_EXACT] = kernel_exact_f,                                             \
               [TTD_METHOD_PENALTY] = kernel_penalty_f,                                         \
-              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f},                          \
+              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f,                           \
+              [TTD_METHOD_CERTIFIED] = kernel_certified_f},                                    \
     }
 #endif

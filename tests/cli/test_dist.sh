@@ -70,7 +70,7 @@ awk '{ for (k = 1; k <= NF; k++) if (sprintf("%.9g", $k + 0) != $k) { print "lin
 pass float_precision
 
 # Every method gives a finite, non-negative distance on the known pair.
-for m in exact penalty penalty-ref barrier; do
+for m in exact penalty penalty-ref barrier certified; do
     out=$("$TTD" dist --method "$m" "$DIR/one.txt") || fail "--method $m: exit status $?"
     awk -v d="$out" 'BEGIN { exit !(d + 0 > 1.99 && d + 0 < 2.01) }' || fail "--method $m: '$out'"
 done
