@@ -189,6 +189,9 @@ void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_param
     for (int k = 0; k < 3; ++k) {
         r->p[k] = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
         r->q[k] = wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k];
+        /* vertices at +-REAL_MAX: the weighted sum can round past it */
+        r->p[k] = r->p[k] > TTD_REAL_MAX ? TTD_REAL_MAX : (r->p[k] < -TTD_REAL_MAX ? -TTD_REAL_MAX : r->p[k]);
+        r->q[k] = r->q[k] > TTD_REAL_MAX ? TTD_REAL_MAX : (r->q[k] < -TTD_REAL_MAX ? -TTD_REAL_MAX : r->q[k]);
         r->bary_p[k] = wp[k];
         r->bary_q[k] = wq[k];
         xy[k] = wp[1] * u[0][k] + wp[2] * u[1][k] + wq[1] * u[2][k] + wq[2] * u[3][k] - da[k];

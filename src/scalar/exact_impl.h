@@ -364,6 +364,14 @@ static uint8_t TTD_SFX(exact_features)(const real w[3])
                      (w[2] > (real)0 ? 4u : 0u));
 }
 
+/* A closest point with a coordinate within rounding of REAL_MAX (a vertex there) can round
+ * past it when it is rebuilt; the point lies in its triangle's bounding box, so REAL_MAX is
+ * right to that rounding and keeps it finite. */
+static real TTD_SFX(exact_clamp_max)(real x)
+{
+    return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
+}
+
 void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
 {
     /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
@@ -431,8 +439,8 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     const real unpre = (real)1 / pre;
     r->distance = d * g1 * g2 * unpre;
     for (int c = 0; c < 3; ++c) {
-        r->p[c] = (bp[c] * g1 * g2 + o[c]) * unpre;
-        r->q[c] = (bq[c] * g1 * g2 + o[c]) * unpre;
+        r->p[c] = TTD_SFX(exact_clamp_max)((bp[c] * g1 * g2 + o[c]) * unpre);
+        r->q[c] = TTD_SFX(exact_clamp_max)((bq[c] * g1 * g2 + o[c]) * unpre);
         r->bary_p[c] = wp[c];
         r->bary_q[c] = wq[c];
     }

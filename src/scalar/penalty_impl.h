@@ -83,12 +83,19 @@ static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
 /* Fills r from the clamped weights: p and q as convex combinations of the input vertices
  * (no overflow, on the triangle up to rounding), the feature bits, and the distance the
  * caller computed from p - q in its own frame. */
+/* Vertices near +-REAL_MAX: a convex combination can round past it; REAL_MAX is then right
+ * to that rounding and finite. */
+static real TTD_SFX(pen_clamp_max)(real x)
+{
+    return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
+}
+
 static void TTD_SFX(pen_finish)(const real s[9], const real t[9], const real wp[3],
                                 const real wq[3], real distance, ttd_result *r)
 {
     for (int k = 0; k < 3; ++k) {
-        r->p[k] = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
-        r->q[k] = wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k];
+        r->p[k] = TTD_SFX(pen_clamp_max)(wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k]);
+        r->q[k] = TTD_SFX(pen_clamp_max)(wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k]);
         r->bary_p[k] = wp[k];
         r->bary_q[k] = wq[k];
     }

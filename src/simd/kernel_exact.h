@@ -538,9 +538,11 @@ KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], T
     if (full) {
         vreal bp[3], bq[3], wp[3], wq[3];
         TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+        /* a point within rounding of REAL_MAX can round past it: clamp, as the scalar code does */
+        const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX);
         for (int c = 0; c < 3; ++c) {
-            out->p[c] = (bp[c] * g + o[c]) * unpre;
-            out->q[c] = (bq[c] * g + o[c]) * unpre;
+            out->p[c] = vmin(vmax((bp[c] * g + o[c]) * unpre, mbig), big);
+            out->q[c] = vmin(vmax((bq[c] * g + o[c]) * unpre, mbig), big);
             out->bary_p[c] = wp[c];
             out->bary_q[c] = wq[c];
         }

@@ -38,9 +38,10 @@ static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3]
 /* Per-lane data that does not change during the iteration (scalar: before the loop). */
 typedef struct TTD_SFX(kp_frame) {
     vreal BA[3], CA[3], DA[3], ED[3], FD[3]; /* the pair in the frame: A at 0, unit size */
-    vreal unscale;                           /* 2^e / pre: back to the input's scale */
+    vreal unscale;                           /* 2^(e-lift), then */
+    vreal unpre;                             /* 1 / pre: back to the input's scale (2^e / pre can overflow) */
 } TTD_SFX(kp_frame);
-#define TTD_KP_FRAME_REALS 16
+#define TTD_KP_FRAME_REALS 17
 
 typedef struct TTD_SFX(kp_hf) {
     vreal f00, f01, f02, f03, f11, f12, f13, f22, f23, f33;
@@ -111,7 +112,8 @@ static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_
     size = size * lift;
     const vreal half = vpow2(vmax(size, vset1(size_floor))); /* 2^(e-1) */
     const vreal scale = vset1((real)0.5) / half;              /* 2^-e */
-    F->unscale = half * two / pre * vsel(is_tiny, vset1(lift_down), one); /* 2^(e-lift) / pre */
+    F->unscale = half * two * vsel(is_tiny, vset1(lift_down), one); /* 2^(e-lift) */
+    F->unpre = one / pre;                                            /* 1 or 16, exact */
     for (int k = 0; k < 3; ++k) {
         F->BA[k] = F->BA[k] * lift * scale;
         F->CA[k] = F->CA[k] * lift * scale;
@@ -351,16 +353,17 @@ static inline vreal TTD_SFX(kp_finish)(const TTD_SFX(kp_frame) *F, const TTD_SFX
     const vreal xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const vreal xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
     const vreal xy2 = wp[1] * BA[2] + wp[2] * CA[2] - DA[2] - wq[1] * ED[2] - wq[2] * FD[2];
-    return vsqrt(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * F->unscale;
+    return vsqrt(xy0 * xy0 + xy1 * xy1 + xy2 * xy2) * F->unscale * F->unpre;
 }
 
 /* scalar: pen_finish's points, p and q as convex combinations of the input vertices. */
 static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const vreal wp[3], const vreal wq[3],
                                       TTD_SFX(kw_out) *o)
 {
+    const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX); /* scalar: pen_clamp_max */
     for (int k = 0; k < 3; ++k) {
-        o->p[k] = wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k];
-        o->q[k] = wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k];
+        o->p[k] = vmin(vmax(wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k], mbig), big);
+        o->q[k] = vmin(vmax(wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k], mbig), big);
         o->bary_p[k] = wp[k];
         o->bary_q[k] = wq[k];
     }

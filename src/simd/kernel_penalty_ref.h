@@ -205,10 +205,13 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
     TTD_SFX(kpr_clamp_bary)(x[0], x[1], wp);
     TTD_SFX(kpr_clamp_bary)(x[2], x[3], wq);
     vreal xy[3];
+    const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX); /* scalar: pen_clamp_max */
     for (int k = 0; k < 3; ++k) {
         o->p[k] = wp[0] * S[k] + wp[1] * S[3 + k] + wp[2] * S[6 + k];
         o->q[k] = wq[0] * T[k] + wq[1] * T[3 + k] + wq[2] * T[6 + k];
         xy[k] = o->p[k] - o->q[k];
+        o->p[k] = vmin(vmax(o->p[k], mbig), big);
+        o->q[k] = vmin(vmax(o->q[k], mbig), big);
         o->bary_p[k] = wp[k];
         o->bary_q[k] = wq[k];
     }

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Builds the two tests that call the library from several threads (test_determinism: six
+# concurrent callers with worker threads; test_api: threads_identical) with ThreadSanitizer
+# and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
+# space layouts make its runtime refuse to start).
+# Usage: scripts/test-tsan.sh      (build folder: build-tsan/, or $TTD_TSAN_BUILD_DIR)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${TTD_TSAN_BUILD_DIR:-build-tsan}
+jobs=$(nproc 2>/dev/null || echo 2)
+probe_dir=$(mktemp -d)
+trap 'rm -rf "$probe_dir"' EXIT
+printf '#include <pthread.h>\nstatic void *f(void *a) { return a; }\nint main(void) { pthread_t t; pthread_create(&t, 0, f, 0); return pthread_join(t, 0); }\n' > "$probe_dir/p.c"
+if ! { cc -fsanitize=thread -pthread "$probe_dir/p.c" -o "$probe_dir/p" && "$probe_dir/p"; } > /dev/null 2>&1; then
+    echo "test-tsan.sh: SKIPPED: ThreadSanitizer programs do not build or run on this machine"
+    exit 0
+fi
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
+    -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
+cmake --build "$build" -j "$jobs" --target test_determinism test_api
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
+"$build/tests/test_determinism"
+"$build/tests/test_api" threads
