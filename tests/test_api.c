@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/defaults.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
@@ -231,6 +232,7 @@ static int bad_options(void)
     BAD_FIELD(rho, -1.0);
     BAD_FIELD(rho, (double)NAN);
     BAD_FIELD(rho, (double)INFINITY);
+    BAD_FIELD(rho, 2 * TTD_DOUBLE_RHO_MAX);
     BAD_FIELD(tol, -1e-3);
     BAD_FIELD(tol, (double)NAN);
     BAD_FIELD(max_iterations, 0);

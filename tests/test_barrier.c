@@ -10,6 +10,7 @@
 #include "common/defaults.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"
+#include "random_pairs.h"
 
 /* With the final barrier weight mu = 1/rho^2 the squared distance is within 6 mu of its
  * minimum, so for a separation d the distance is within ~3 mu / d (relative to unit size):
@@ -18,42 +19,6 @@
 #define BAR_REL_TOL_F 2e-5
 
 static const ttd_params default_params = {TTD_DEFAULT_RHO, TTD_DEFAULT_TOL, TTD_DEFAULT_MAX_ITERATIONS};
-
-static uint64_t rng_state;
-static double urand(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static void random_pair(double s[9], double t[9])
-{
-    for (int i = 0; i < 9; ++i) s[i] = urand();
-    for (int i = 0; i < 9; ++i) t[i] = urand();
-    for (int k = 0; k < 3; ++k) {
-        double o = urand() - 0.5;
-        t[k] += o;
-        t[3 + k] += o;
-        t[6 + k] += o;
-    }
-}
-
-static double pair_size(const double s[9], const double t[9])
-{
-    double m = 0;
-    const double *v[2] = {s, t};
-    for (int w = 0; w < 2; ++w)
-        for (int i = 0; i < 3; ++i) {
-            int j = (i + 1) % 3;
-            double dx = v[w][3 * i] - v[w][3 * j], dy = v[w][3 * i + 1] - v[w][3 * j + 1];
-            double dz = v[w][3 * i + 2] - v[w][3 * j + 2];
-            double l = sqrt(dx * dx + dy * dy + dz * dz);
-            if (l > m) m = l;
-        }
-    return m;
-}
 
 static int barrier_separated_vs_exact(void)
 {

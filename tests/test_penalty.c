@@ -12,6 +12,7 @@
 #include "pairs.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"
+#include "random_pairs.h"
 
 /* Documented accuracy of the defaults, relative to max(distance, size): measured maxima on
  * 10^6 random pairs are ~2e-12 (double) and ~3e-5 (float, rho capped at 256); the bounds
@@ -20,44 +21,6 @@
 #define PEN_REL_TOL_F 2e-4
 
 static const ttd_params default_params = {TTD_DEFAULT_RHO, TTD_DEFAULT_TOL, TTD_DEFAULT_MAX_ITERATIONS};
-
-static uint64_t rng_state;
-static double urand(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
-}
-
-/* Vertices in the unit cube, the second triangle shifted by a uniform offset in [-0.5,0.5]^3. */
-static void random_pair(double s[9], double t[9])
-{
-    for (int i = 0; i < 9; ++i) s[i] = urand();
-    for (int i = 0; i < 9; ++i) t[i] = urand();
-    for (int k = 0; k < 3; ++k) {
-        double o = urand() - 0.5;
-        t[k] += o;
-        t[3 + k] += o;
-        t[6 + k] += o;
-    }
-}
-
-/* Longest edge of the two triangles. */
-static double pair_size(const double s[9], const double t[9])
-{
-    double m = 0;
-    const double *v[2] = {s, t};
-    for (int w = 0; w < 2; ++w)
-        for (int i = 0; i < 3; ++i) {
-            int j = (i + 1) % 3;
-            double dx = v[w][3 * i] - v[w][3 * j], dy = v[w][3 * i + 1] - v[w][3 * j + 1];
-            double dz = v[w][3 * i + 2] - v[w][3 * j + 2];
-            double l = sqrt(dx * dx + dy * dy + dz * dz);
-            if (l > m) m = l;
-        }
-    return m;
-}
 
 static double max_abs(const double s[9], const double t[9])
 {
@@ -427,6 +390,51 @@ static int penalty_subnormal_pairs(void)
     return 0;
 }
 
+/* The largest rho the API accepts (TTD_DOUBLE_RHO_MAX) through every ISA, in float and double.
+ * Every output must be finite and the points on their triangles, whatever the accuracy at
+ * such a weight; and the float ttd1 reference must still iterate: rho used to overflow to inf
+ * in float, inf * 0 made the first step NaN, and the reference stopped there on every pair
+ * (one iteration, the starting point clamped). */
+static int penalty_extreme_rho_every_isa(void)
+{
+    enum { N = 64 };
+    double s[9 * N], t[9 * N];
+    float sf[9 * N], tf[9 * N];
+    rng_state = 0x3C6EF372FE94F82Bull;
+    for (int i = 0; i < N; ++i) random_pair(s + 9 * i, t + 9 * i);
+    for (int k = 0; k < 9 * N; ++k) {
+        sf[k] = (float)s[k];
+        tf[k] = (float)t[k];
+    }
+    const ttd_method methods[] = {TTD_METHOD_PENALTY_REFERENCE, TTD_METHOD_PENALTY, TTD_METHOD_CERTIFIED};
+    for (int isa = TTD_ISA_SCALAR; isa < TTD_ISA_COUNT; ++isa) {
+        if (!ttd_isa_available((ttd_isa)isa)) continue;
+        for (size_t m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+            ttd_options o = ttd_default_options();
+            o.isa = (ttd_isa)isa;
+            o.method = methods[m];
+            o.rho = TTD_DOUBLE_RHO_MAX;
+            ttd_result_d rd[N];
+            ttd_result_f rf[N];
+            ttd_status sd = ttd_batch_d(&o, N, s, t, NULL, rd);
+            ttd_status sf_ = ttd_batch_f(&o, N, sf, tf, NULL, rf);
+            ENSURE(sd == TTD_OK || sd == TTD_WARN_NOT_CONVERGED);
+            ENSURE(sf_ == TTD_OK || sf_ == TTD_WARN_NOT_CONVERGED);
+            long iterations = 0;
+            for (int i = 0; i < N; ++i) iterations += rf[i].iterations;
+            ENSURE_MSG(iterations > 2 * N, "%s %s: %ld float iterations for %d pairs", ttd_isa_name((ttd_isa)isa),
+                       ttd_method_name(methods[m]), iterations, N);
+            for (int i = 0; i < N; ++i) {
+                ENSURE_MSG(isfinite(rd[i].distance) && isfinite(rf[i].distance), "%s %s pair %d: %g / %g",
+                           ttd_isa_name((ttd_isa)isa), ttd_method_name(methods[m]), i, rd[i].distance,
+                           (double)rf[i].distance);
+                if (check_result_d(s + 9 * i, t + 9 * i, &rd[i], 1e-14)) return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 static int penalty_reference_first_step(void)
 {
     const double s[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
@@ -509,6 +517,7 @@ int main(int argc, char **argv)
     RUN_TEST(penalty_scale_invariance);
     RUN_TEST(penalty_extreme_magnitudes);
     RUN_TEST(penalty_subnormal_pairs);
+    RUN_TEST(penalty_extreme_rho_every_isa);
     RUN_TEST(penalty_reference_first_step);
     RUN_TEST(penalty_reference_random);
     TEST_MAIN_END();

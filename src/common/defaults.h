@@ -39,7 +39,13 @@
 
 #define TTD_FLOAT_RHO_MAX 256.0
 #define TTD_FLOAT_TOL_MIN 1.0e-6
-#define TTD_DOUBLE_RHO_MAX 1.0e300
+/* The largest rho accepted at all: the optimised step's expanded 2x2 pivots hold rho^2, which
+ * must stay finite (above ~1.3e154 it did not, and a coordinate's step was silently zeroed). */
+#define TTD_DOUBLE_RHO_MAX 1.0e150
+
+/* The paper's ttd1 reference keeps rho as given, except that in float it must stay finite
+ * with its square (the I/rho^2 term): rho = 1e150 became inf, and inf * 0 gave NaN. */
+#define TTD_FLOAT_REF_RHO_MAX 1.0e18
 #define TTD_DOUBLE_TOL_MIN 0.0
 
 #endif /* TTD_COMMON_DEFAULTS_H */

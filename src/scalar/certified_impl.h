@@ -426,9 +426,13 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
         dist = 0;
     }
     if (ok) {
+        /* Vertices near +-REAL_MAX: the convex combination can round past it; clamped as
+         * the lanes do (kp_points) and as the other methods do. */
         for (int k = 0; k < 3; ++k) {
-            r->p[k] = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
-            r->q[k] = wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k];
+            const real pk = wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k];
+            const real qk = wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k];
+            r->p[k] = pk > TTD_REAL_MAX ? TTD_REAL_MAX : (pk < -TTD_REAL_MAX ? -TTD_REAL_MAX : pk);
+            r->q[k] = qk > TTD_REAL_MAX ? TTD_REAL_MAX : (qk < -TTD_REAL_MAX ? -TTD_REAL_MAX : qk);
             r->bary_p[k] = wp[k];
             r->bary_q[k] = wq[k];
         }

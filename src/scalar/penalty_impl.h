@@ -149,7 +149,11 @@ static void TTD_SFX(pen_ref_solve)(real m[4][4], real rhs[4], real x[4])
 void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_params *prm,
                                    ttd_result *r)
 {
-    const real rho = (real)prm->rho, tol = (real)prm->tol;
+#ifdef TTD_PRECISION_DOUBLE
+    const real rho = prm->rho, tol = prm->tol;
+#else
+    const real rho = (real)fmin(prm->rho, TTD_FLOAT_REF_RHO_MAX), tol = (real)prm->tol;
+#endif
     const real *A = s, *D = t;
     real BA[3], CA[3], ED[3], FD[3];
     for (int k = 0; k < 3; ++k) {

@@ -38,10 +38,9 @@ static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3]
 /* Per-lane data that does not change during the iteration (scalar: before the loop). */
 typedef struct TTD_SFX(kp_frame) {
     vreal BA[3], CA[3], DA[3], ED[3], FD[3]; /* the pair in the frame: A at 0, unit size */
-    vreal unscale;                           /* 2^(e-lift), then */
-    vreal unpre;                             /* 1 / pre: back to the input's scale (2^e / pre can overflow) */
+    vreal unscale;                           /* 2^(e-lift), then ... */
+    vreal unpre;                             /* ... 1 / pre: back to the input's scale (2^e / pre can overflow) */
 } TTD_SFX(kp_frame);
-#define TTD_KP_FRAME_REALS 17
 
 typedef struct TTD_SFX(kp_hf) {
     vreal f00, f01, f02, f03, f11, f12, f13, f22, f23, f33;
@@ -146,18 +145,6 @@ static inline void TTD_SFX(kp_init)(TTD_SFX(kp_state) *X)
     const vreal third = vset1((real)1 / 3);
     X->a = X->b = X->ca = X->g = X->d = X->cg = third;
     X->prev_err2 = vset1(TTD_REAL_MAX);
-}
-
-static inline void TTD_SFX(kp_start)(TTD_SFX(kp_state) *X, vmask m)
-{
-    const vreal third = vset1((real)1 / 3);
-    X->a = vsel(m, third, X->a);
-    X->b = vsel(m, third, X->b);
-    X->ca = vsel(m, third, X->ca);
-    X->g = vsel(m, third, X->g);
-    X->d = vsel(m, third, X->d);
-    X->cg = vsel(m, third, X->cg);
-    X->prev_err2 = vsel(m, vset1(TTD_REAL_MAX), X->prev_err2);
 }
 
 /* scalar: one pass of the loop body. Updates the active lanes' iterate; returns the active

@@ -100,7 +100,12 @@ static inline void TTD_SFX(kpr_solve)(vreal m[4][4], vreal rhs[4], vreal x[4])
 static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const ttd_params *prm,
                                       vmask active, TTD_SFX(kw_out) *o)
 {
-    const vreal rho = vset1((real)prm->rho), tol = vset1((real)prm->tol);
+#ifdef TTD_PRECISION_DOUBLE
+    const vreal rho = vset1(prm->rho), tol = vset1(prm->tol);
+#else
+    /* scalar: rho capped so that rho^2 stays finite in float (common/defaults.h) */
+    const vreal rho = vset1((real)fmin(prm->rho, TTD_FLOAT_REF_RHO_MAX)), tol = vset1((real)prm->tol);
+#endif
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);
     /* ttd1 1: BA = B-A; CA = C-A; ED = E-D; FD = F-D */
     vreal BA[3], CA[3], ED[3], FD[3];
