@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "common/defaults.h"
 #include "parse.h"
 
 /// Pairs read, computed and written at a time.
@@ -39,16 +40,16 @@ static const char ttd_dist_usage[] =
     "  --precision P     double (default, printed with %%.17g) or float (input rounded to float,\n"
     "                    printed with %%.9g)\n"
     "  --points          also print the closest points p and q\n"
-    "  --rho R           penalty weight of the iterative methods (default %g)\n"
-    "  --tol T           step tolerance of the iterative methods (default %g)\n"
+    "  --rho R           penalty weight of the iterative methods, (0, 1e150] (default %g)\n"
+    "  --tol T           step tolerance of the iterative methods, [0, 1] (default %g)\n"
     "  --max-iter N      iteration cap of the iterative methods, 1..65535 (default %d)\n"
     "  --isa I           %s (default auto; TTD_ISA may force one)\n"
     "  --threads N       worker threads, 0 = every core (default)\n"
     "\n"
-    "A bad line (not 18 finite numbers) gets a message FILE:LINE on standard error and the output\n"
-    "line 'nan'; reading goes on. Pairs an iterative method did not converge on are printed as\n"
+    "A bad line (not 18 finite numbers) gets a message FILE:LINE on standard error and an output\n"
+    "line of nan (seven with --points); reading goes on. Pairs an iterative method did not converge on are printed as\n"
     "computed (points on their triangles) with one warning at the end. Exit status: 0 all pairs\n"
-    "computed, 1 some line bad or an I/O error, 2 bad options.\n";
+    "computed, 1 some line bad, an I/O error or a library error, 2 bad options.\n";
 
 /* The usage text, with the method and ISA names the library knows. */
 static void ttd_dist_print_usage(FILE *f)
@@ -134,9 +135,9 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
             bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
             a->use_float = strcmp(val, "float") == 0;
         } else if (strcmp(name, "--rho") == 0)
-            bad = ttd_cli_parse_real(val, &a->opt.rho) || !(a->opt.rho > 0);
+            bad = ttd_cli_parse_real(val, &a->opt.rho) || !(a->opt.rho > 0 && a->opt.rho <= TTD_DOUBLE_RHO_MAX);
         else if (strcmp(name, "--tol") == 0)
-            bad = ttd_cli_parse_real(val, &a->opt.tol) || !(a->opt.tol >= 0);
+            bad = ttd_cli_parse_real(val, &a->opt.tol) || !(a->opt.tol >= 0 && a->opt.tol <= 1);
         else if (strcmp(name, "--max-iter") == 0) {
             bad = ttd_cli_parse_int(val, 1, 65535, &iv);
             a->opt.max_iterations = (int)iv;
@@ -170,16 +171,22 @@ typedef struct ttd_dist_block {
     ttd_result_f resf[TTD_DIST_BLOCK];
 } ttd_dist_block;
 
-/* Computes and writes pairs [0, n) of the block. Returns the batch status. */
-static ttd_status ttd_dist_flush(const ttd_dist_args *a, ttd_dist_block *b, size_t n, FILE *out)
+/* Computes and writes pairs [0, n) of the block. Returns the batch status, and sets
+ * *not_converged when a pair was flagged so: from the per-pair flags, because a bad line's
+ * TTD_ERR_NONFINITE_INPUT takes precedence over TTD_WARN_NOT_CONVERGED in the status. */
+static ttd_status ttd_dist_flush(const ttd_dist_args *a, ttd_dist_block *b, size_t n, FILE *out,
+                                 int *not_converged)
 {
     ttd_status st;
+    const int want_results = a->points || a->opt.method != TTD_METHOD_EXACT;
     if (a->use_float)
-        st = ttd_batch_f(&a->opt, n, b->sf, b->tf, b->distf, a->points ? b->resf : NULL);
+        st = ttd_batch_f(&a->opt, n, b->sf, b->tf, b->distf, want_results ? b->resf : NULL);
     else
-        st = ttd_batch_d(&a->opt, n, b->s, b->t, b->dist, a->points ? b->res : NULL);
+        st = ttd_batch_d(&a->opt, n, b->s, b->t, b->dist, want_results ? b->res : NULL);
     if (st >= TTD_ERR_FIRST_FATAL)
         return st;
+    for (size_t i = 0; i < n && want_results; ++i)
+        *not_converged |= ((a->use_float ? b->resf[i].flags : b->res[i].flags) & TTD_PAIR_NOT_CONVERGED) != 0;
     for (size_t i = 0; i < n; ++i) {
         if (!a->points) {
             ttd_put(out, a->use_float ? (double)b->distf[i] : b->dist[i], a->use_float, '\n');
@@ -307,7 +314,7 @@ int ttd_cli_dist(int argc, char **argv)
             ++n;
         }
         if (n == TTD_DIST_BLOCK || (!more && n > 0)) {
-            ttd_status st = ttd_dist_flush(&a, b, n, stdout);
+            ttd_status st = ttd_dist_flush(&a, b, n, stdout, &not_converged);
             pairs += n;
             n = 0;
             if (st >= TTD_ERR_FIRST_FATAL) {
@@ -315,7 +322,6 @@ int ttd_cli_dist(int argc, char **argv)
                 failed = 1;
                 break;
             }
-            not_converged |= st == TTD_WARN_NOT_CONVERGED;
             if (progress) {
                 double now = ttd_now();
                 if (now - last_report > 0.5) {

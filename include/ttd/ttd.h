@@ -25,22 +25,27 @@ extern "C" {
 /** @defgroup ttd ttd public API
  * A triangle is 9 coordinates: vertices A, B, C (first triangle, "S") or D, E, F (second,
  * "T"), x y z each. A batch of n pairs is two arrays of 9n numbers, pair i at offset 9i.
- * Every entry returns a ttd_status; the library never aborts, keeps no global mutable state,
- * and may be called from many threads at once.
+ * Every entry returns a ttd_status; the library never aborts, keeps no global mutable state
+ * (beyond a cached word of CPU features that every thread computes alike), and may be called
+ * from many threads at once.
  * @{ */
 
 /// What a call did. Values below TTD_ERR_FIRST_FATAL still computed every finite pair.
 typedef enum ttd_status {
     TTD_OK = 0,                   ///< every pair computed
     TTD_WARN_NOT_CONVERGED = 1,   ///< an iterative method hit its cap on some pairs (flagged)
-    TTD_ERR_NONFINITE_INPUT = 2,  ///< some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed
-    TTD_ERR_FIRST_FATAL = 16,     ///< marker: from here on nothing was computed
+    /// Some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed. Takes
+    /// precedence over TTD_WARN_NOT_CONVERGED: check the per-pair flags for that too.
+    TTD_ERR_NONFINITE_INPUT = 2,
+    TTD_ERR_FIRST_FATAL = 16,     ///< marker: from here on nothing was computed (but see OUT_OF_MEMORY)
     TTD_ERR_NULL_POINTER = 16,    ///< a required pointer was NULL
     TTD_ERR_EMPTY = 17,           ///< n == 0: nothing to compute
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
-    TTD_ERR_ISA_UNAVAILABLE = 19, ///< the forced instruction set is not built in or not supported here
-    TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range
-    TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed
+    /// The forced instruction set (options.isa, or TTD_ISA with AUTO) is not built in, not
+    /// supported here, or (TTD_ISA) not a name that ttd_isa_name() gives.
+    TTD_ERR_ISA_UNAVAILABLE = 19,
+    TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range; nothing written
+    TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed; outputs partly written, indeterminate
     TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
 } ttd_status;
 
@@ -64,7 +69,7 @@ typedef enum ttd_isa {
     TTD_ISA_SCALAR = 1, ///< the plain C reference, one pair at a time
     TTD_ISA_SSE2 = 2,
     TTD_ISA_AVX2 = 3,   ///< AVX2 with FMA
-    TTD_ISA_AVX512 = 4, ///< AVX-512F (+DQ)
+    TTD_ISA_AVX512 = 4, ///< AVX-512 F, DQ and VL
     TTD_ISA_NEON = 5,
     TTD_ISA_COUNT = 6
 } ttd_isa;
@@ -108,14 +113,17 @@ typedef struct ttd_result_f {
 /// Options for every call. Get them from ttd_default_options(), then change fields.
 typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
-    ttd_isa isa;        ///< default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA may force one
-    int threads;        ///< worker threads for batches; 0 (default) = all online cores
-    /// Penalty weight (default 1e6). The barrier method lowers its weight to 1/rho^2.
-    /// Float kernels use min(rho, 256): a larger weight loses sliver pivots to rounding.
+    /// Default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA (a name from
+    /// ttd_isa_name(); empty or "auto" = best) may force one.
+    ttd_isa isa;
+    int threads;        ///< worker threads for batches, >= 0; 0 (default) = all online cores; at most 256 used
+    /// Penalty weight, in (0, 1e150] (default 1e6). The barrier method lowers its weight to
+    /// 1/rho^2. The float penalty and certified kernels use min(rho, 256) (a larger weight
+    /// loses sliver pivots to rounding); the float ttd1 reference min(rho, 1e18).
     double rho;
-    /// Newton step length below which an iteration stops (default 1e-12), measured on the
-    /// pair translated and scaled to unit size (the paper's ttd1 reference: raw coordinates).
-    /// Float kernels use max(tol, 1e-6).
+    /// Newton step length below which an iteration stops, in [0, 1] (default 1e-12), measured
+    /// on the pair translated and scaled to unit size (the paper's ttd1 reference: raw
+    /// coordinates). The float penalty and certified kernels use max(tol, 1e-6).
     double tol;
     int max_iterations; ///< Newton iteration cap, 1..65535 (default 99, the paper's)
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
@@ -133,6 +141,7 @@ TTD_API ttd_status ttd_distance_f(const ttd_options *opt, const float s[9], cons
 
 /// Distances of n pairs: s and t hold 9n coordinates each (pair i at 9i; any alignment).
 /// distance (n values) and results (n structs) are outputs; either may be NULL, not both.
+/// opt may be NULL (defaults), here and in every entry below.
 TTD_API ttd_status ttd_batch_d(const ttd_options *opt, size_t n, const double *s, const double *t,
                                double *distance, ttd_result_d *results);
 /// Single-precision ttd_batch_d.
@@ -142,6 +151,8 @@ TTD_API ttd_status ttd_batch_f(const ttd_options *opt, size_t n, const float *s,
 /// Distances of candidate pairs between two indexed meshes, without copying triangles out.
 /// Mesh k has nv_k vertices (3 coordinates each) and nt_k triangles (3 vertex indices each).
 /// pairs holds 2n indices: triangle pairs[2i] of mesh 1 against triangle pairs[2i+1] of mesh 2.
+/// Outputs as in ttd_batch_d (either may be NULL, not both). Every index is checked first:
+/// one out of range gives TTD_ERR_INDEX_OUT_OF_RANGE and nothing is written.
 TTD_API ttd_status ttd_mesh_batch_d(const ttd_options *opt,
                                     const double *verts1, size_t nv1, const uint32_t *tris1, size_t nt1,
                                     const double *verts2, size_t nv2, const uint32_t *tris2, size_t nt2,
@@ -164,7 +175,8 @@ TTD_API const char *ttd_isa_name(ttd_isa isa);
 TTD_API int ttd_isa_available(ttd_isa isa);
 /// The instruction set a call with these options would use (opt may be NULL); TTD_ISA_AUTO on error.
 TTD_API ttd_isa ttd_isa_selected(const ttd_options *opt);
-/// SIMD lanes of an instruction set for one precision (4 = float, 8 = double bytes); 1 for scalar.
+/// SIMD lanes of an instruction set for one precision (bytes_per_real 4 = float, 8 = double);
+/// 1 for scalar; AUTO means the one ttd_isa_selected(NULL) gives; 0 for anything invalid.
 TTD_API int ttd_isa_lanes(ttd_isa isa, int bytes_per_real);
 /// "0.1.0".
 TTD_API const char *ttd_version_string(void);
