@@ -192,19 +192,7 @@ typedef struct TTD_SFX(exact_best) {
     real u, v, w;
 } TTD_SFX(exact_best);
 
-#ifndef TTD_EXACT_IDS   /* precision-independent: defined on the first inclusion only */
-#define TTD_EXACT_IDS
-enum {
-    TTD_EXACT_VE_S = 0,     /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
-    TTD_EXACT_VE_T = 9,     /* 9: vertex j of T against edge i of S: id = 9 + 3j + i, u = t */
-    TTD_EXACT_EE = 18,      /* 9: edge i of S, edge j of T: id = 18 + 3i + j, u = s, v = t */
-    TTD_EXACT_VF_S = 27,    /* 3: vertex i of S on T's face: u = b, v = c */
-    TTD_EXACT_VF_T = 30,    /* 3: vertex j of T on S's face */
-    TTD_EXACT_X_S = 33,     /* 3: edge i of S through T's face: u = tau, v = b, w = c */
-    TTD_EXACT_X_T = 36,     /* 3: edge j of T through S's face */
-    TTD_EXACT_COUNT = 39
-};
-#endif
+#include "common/exact_ids.h" /* candidate ids and the contact threshold, shared with the lanes */
 
 static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real u, real v, real w)
 {
@@ -429,7 +417,7 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     uint32_t flags = 0;
     if (!S.has_face) flags |= TTD_PAIR_DEGENERATE_S;
     if (!T.has_face) flags |= TTD_PAIR_DEGENERATE_T;
-    if (d <= (real)4 * TTD_REAL_EPS) {
+    if (d <= (real)TTD_EXACT_TOUCH_EPS * TTD_REAL_EPS) {
         d = 0;
         flags |= TTD_PAIR_INTERSECTING;
     }

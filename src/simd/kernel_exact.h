@@ -27,19 +27,7 @@
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
-#ifndef TTD_EXACT_IDS /* the candidate ids of scalar/exact_impl.h, same values */
-#define TTD_EXACT_IDS
-enum {
-    TTD_EXACT_VE_S = 0,  /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
-    TTD_EXACT_VE_T = 9,  /* 9: vertex j of T against edge i of S: id = 9 + 3j + i, u = t */
-    TTD_EXACT_EE = 18,   /* 9: edge i of S, edge j of T: id = 18 + 3i + j, u = s, v = t */
-    TTD_EXACT_VF_S = 27, /* 3: vertex i of S on T's face: u = b, v = c */
-    TTD_EXACT_VF_T = 30, /* 3: vertex j of T on S's face */
-    TTD_EXACT_X_S = 33,  /* 3: edge i of S through T's face: u = tau, v = b, w = c */
-    TTD_EXACT_X_T = 36,  /* 3: edge j of T through S's face */
-    TTD_EXACT_COUNT = 39
-};
-#endif
+#include "common/exact_ids.h" /* candidate ids and the contact threshold, shared with the scalar code */
 
 #ifndef KX_GROUP_INLINE
 /* kx_group is inlined into both of kernel_exact's calls, so that each is specialised on its
@@ -49,11 +37,6 @@ enum {
 #else
 #define KX_GROUP_INLINE static inline
 #endif
-#endif
-
-#ifndef TTD_EXACT_TOUCH_EPS
-/* scalar: "a distance below 4 eps of the pair's extent is a contact" */
-#define TTD_EXACT_TOUCH_EPS 4
 #endif
 
 typedef struct TTD_SFX(kx_tri) {
