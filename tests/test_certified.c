@@ -18,6 +18,7 @@
 #include "pairs.h"
 #include "ref_distance.h"
 #include "scalar/scalar.h"
+#include "isa_rows.h"
 #include "test_macros.h"
 
 enum { PAIRS_PER_FAMILY = 1000, FORCED_PAIRS = 300, MAX_REPORTS = 3 };
@@ -362,45 +363,7 @@ static int extreme_magnitudes(void)
 /* ---------------------------------------------------------------------------------------- */
 /* Every ISA row the CPU runs against the scalar certified code on the generator families.   */
 
-typedef struct isa_row {
-    const char *name;
-    const ttd_isa_kernels *row;
-} isa_row;
 
-static const isa_row rows[] = {
-#ifdef TTD_HAVE_SSE2
-    {"sse2", &ttd_kernels_sse2},
-#endif
-#ifdef TTD_HAVE_AVX2
-    {"avx2", &ttd_kernels_avx2},
-#endif
-#ifdef TTD_HAVE_AVX512
-    {"avx512", &ttd_kernels_avx512},
-#endif
-#ifdef TTD_HAVE_NEON
-    {"neon", &ttd_kernels_neon},
-#endif
-    {NULL, NULL},
-};
-
-static int cpu_runs(const char *isa)
-{
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_cpu_init();
-    if (!strcmp(isa, "sse2"))
-        return __builtin_cpu_supports("sse2");
-    if (!strcmp(isa, "avx2"))
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    if (!strcmp(isa, "avx512"))
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#endif
-#if defined(__aarch64__)
-    if (!strcmp(isa, "neon"))
-        return 1;
-#endif
-    return 0;
-}
 
 static int same_d(const ttd_result_d *a, const ttd_result_d *b)
 {
@@ -433,9 +396,10 @@ static int rows_vs_scalar(void)
     float *df = malloc(N * sizeof *df);
     ENSURE(s && t && sf && tf && rd && rf && dd && df);
     int checked = 0;
-    for (const isa_row *r = rows; r->name; ++r) {
-        if (!cpu_runs(r->name)) {
-            printf("  skip %s: not supported by this CPU\n", r->name);
+    for (const isa_row *r = isa_rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why)) {
+            printf("  skip %s: %s\n", r->name, why);
             continue;
         }
         ENSURE(r->row->d[TTD_METHOD_CERTIFIED] != NULL && r->row->f[TTD_METHOD_CERTIFIED] != NULL);

@@ -16,6 +16,7 @@
 #include "pairs.h"
 #include "engine/kernels.h"
 #include "scalar/scalar.h"
+#include "isa_rows.h"
 #include "test_macros.h"
 
 static uint64_t gen_rng(uint64_t *st)
@@ -117,53 +118,7 @@ static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[
 #include "isa_kernels_impl.h"
 #include "common/precision_end.h"
 
-typedef struct isa_row {
-    const char *name;
-    const ttd_isa_kernels *row;
-} isa_row;
 
-static const isa_row rows[] = {
-#ifdef TTD_HAVE_SSE2
-    {"sse2", &ttd_kernels_sse2},
-#endif
-#ifdef TTD_HAVE_AVX2
-    {"avx2", &ttd_kernels_avx2},
-#endif
-#ifdef TTD_HAVE_AVX512
-    {"avx512", &ttd_kernels_avx512},
-#endif
-#ifdef TTD_HAVE_NEON
-    {"neon", &ttd_kernels_neon},
-#endif
-    {NULL, NULL},
-};
-
-static int cpu_runs(const char *isa, const char **why)
-{
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_cpu_init();
-    if (!strcmp(isa, "sse2")) {
-        *why = "no SSE2";
-        return __builtin_cpu_supports("sse2");
-    }
-    if (!strcmp(isa, "avx2")) {
-        *why = "no AVX2+FMA";
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    }
-    if (!strcmp(isa, "avx512")) {
-        *why = "no AVX-512F/DQ/VL";
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
-               __builtin_cpu_supports("fma");
-    }
-#endif
-#if defined(__aarch64__)
-    if (!strcmp(isa, "neon"))
-        return 1;
-#endif
-    *why = "not this architecture";
-    return 0;
-}
 
 static const char *method_names[TTD_METHOD_COUNT] = {"exact", "penalty", "penalty-ref", "barrier", "certified"};
 
@@ -183,7 +138,7 @@ static int rows_vs_scalar(void)
 {
     const ttd_params prm = test_params();
     int checked = 0;
-    for (const isa_row *r = rows; r->name; ++r) {
+    for (const isa_row *r = isa_rows; r->name; ++r) {
         const char *why = "";
         if (!cpu_runs(r->name, &why)) {
             printf("  skip %s: %s\n", r->name, why);
@@ -211,7 +166,7 @@ static int rows_lane_independence(void)
 {
     const ttd_params prm = test_params();
     uint64_t st = 5;
-    for (const isa_row *r = rows; r->name; ++r) {
+    for (const isa_row *r = isa_rows; r->name; ++r) {
         const char *why = "";
         if (!cpu_runs(r->name, &why))
             continue;
@@ -230,7 +185,7 @@ static int rows_lane_independence(void)
 static int rows_sizes_and_alignment(void)
 {
     const ttd_params prm = test_params();
-    for (const isa_row *r = rows; r->name; ++r) {
+    for (const isa_row *r = isa_rows; r->name; ++r) {
         const char *why = "";
         if (!cpu_runs(r->name, &why))
             continue;

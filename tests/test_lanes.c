@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "simd/probe.h"
+#include "isa_rows.h"
 #include "test_macros.h"
 
 static uint64_t lanes_rng(uint64_t *st)
@@ -61,33 +62,6 @@ static const isa_probe probes[] = {
     {NULL, 0, NULL, NULL},
 };
 
-/* Non-zero when this CPU runs isa; otherwise *why says what is missing. */
-static int cpu_runs(const char *isa, const char **why)
-{
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_cpu_init();
-    if (!strcmp(isa, "sse2")) {
-        *why = "no SSE2";
-        return __builtin_cpu_supports("sse2");
-    }
-    if (!strcmp(isa, "avx2")) {
-        *why = "no AVX2+FMA";
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    }
-    if (!strcmp(isa, "avx512")) {
-        *why = "no AVX-512F/DQ/VL";
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
-               __builtin_cpu_supports("fma");
-    }
-#endif
-#if defined(__aarch64__)
-    if (!strcmp(isa, "neon"))
-        return 1;
-#endif
-    *why = "not this architecture";
-    return 0;
-}
 
 static int lanes_every_isa(void)
 {

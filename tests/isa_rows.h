@@ -1,0 +1,62 @@
+/* SPDX-License-Identifier: MIT */
+/* The ISA rows this build has, and whether this CPU runs each, for the tests that call the
+ * rows directly (test_isa_kernels.c, test_certified.c, test_lanes.c). Checked here with the
+ * compiler's own CPU test, independently of the library's dispatcher. */
+#ifndef TTD_TEST_ISA_ROWS_H
+#define TTD_TEST_ISA_ROWS_H
+
+#include <string.h>
+
+#include "engine/kernels.h"
+
+/* Non-zero when this CPU runs isa; otherwise *why says what is missing. */
+static inline int cpu_runs(const char *isa, const char **why)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_cpu_init();
+    if (!strcmp(isa, "sse2")) {
+        *why = "no SSE2";
+        return __builtin_cpu_supports("sse2");
+    }
+    if (!strcmp(isa, "avx2")) {
+        *why = "no AVX2+FMA";
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    }
+    if (!strcmp(isa, "avx512")) {
+        *why = "no AVX-512F/DQ/VL";
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
+               __builtin_cpu_supports("fma");
+    }
+#endif
+#if defined(__aarch64__)
+    if (!strcmp(isa, "neon"))
+        return 1;
+#endif
+    *why = "not this architecture";
+    return 0;
+}
+
+/* Every SIMD row built in (TTD_HAVE_<ISA>), ended by a NULL name. */
+typedef struct isa_row {
+    const char *name;
+    const ttd_isa_kernels *row;
+} isa_row;
+
+static const isa_row isa_rows[] = {
+#ifdef TTD_HAVE_SSE2
+    {"sse2", &ttd_kernels_sse2},
+#endif
+#ifdef TTD_HAVE_AVX2
+    {"avx2", &ttd_kernels_avx2},
+#endif
+#ifdef TTD_HAVE_AVX512
+    {"avx512", &ttd_kernels_avx512},
+#endif
+#ifdef TTD_HAVE_NEON
+    {"neon", &ttd_kernels_neon},
+#endif
+    {NULL, NULL},
+};
+
+#endif /* TTD_TEST_ISA_ROWS_H */
