@@ -266,7 +266,7 @@ static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SF
         int inside = TTD_SFX(exact_face_weights)(Y, c, f[i].g, &b);
         /* The squared distance to the plane, h^2 / |n|^2, which is the distance to the face
          * point exact_face_point(Y, b, c) up to its in-plane rounding (eps |r|, docs 3.3).
-         * h / nn first: h^2 alone may underflow for a face near REAL_MIN in area. */
+         * h * inv_nn first: h^2 alone may underflow for a face near REAL_MIN in area. */
         TTD_SFX(exact_keep)(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
@@ -277,7 +277,7 @@ static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SF
  * its ends interpolated with tau: c, g and h are affine in the point, so this is the
  * projection of X itself up to rounding, and h(X) = 0 by the choice of tau (docs 3.5). The
  * `continue` is a guard that only saves time: a lane port computes every crossing and masks
- * (or skips the block when no lane has opposite signs). */
+ * (kernel_exact.h skips the pass only when no lane's Y has a face). */
 static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_SFX(exact_best) *best,
                                      const TTD_SFX(exact_fc) f[3])
 {

@@ -11,7 +11,10 @@
  *    run on the pair translated to A and scaled by a power of two to unit size, with a
  *    one-dimensional line search that stops Newton from cycling between active sets, and the
  *    same final clamping. It is written to be ported line for line to one-pair-per-lane SIMD:
- *    one loop, no data-dependent branch inside it except the convergence test.
+ *    one loop whose only data-dependent branches are the convergence test and the line
+ *    search's two rarely taken blocks (the bracket when phi'(1) > 0, the search beyond the
+ *    Newton step when phi'(1) stays steep), which a lane port runs when any lane needs them;
+ *    every other decision is a select.
  *
  * Both minimise P(x) = |X(a,b) - Y(g,d)|^2 + (rho/2) sum_i max(0, h_i(x))^2 over
  * x = (a, b, g, d), with X = A + a(B-A) + b(C-A), Y = D + g(E-D) + d(F-D) and the six
@@ -253,7 +256,12 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
 
     /* Frame: origin at A, scaled by 2^-e so that the largest coordinate of B, C, D, E, F
      * relative to A lies in [0.5, 1). rho and tol then mean the same at every scale and
-     * position. pre guards the differences against overflow near REAL_MAX. */
+     * position. pre guards the differences against overflow near REAL_MAX, with margin:
+     * without it the differences stay below REAL_MAX/4 (e <= 1022 in double, 126 in float),
+     * with it below REAL_MAX/8 (e <= 1021, 125). As |p - q| < 2 sqrt(3) < 4 in the frame,
+     * dist * 2^e then stays finite before the division by pre (the lanes form 2^e as one
+     * number). The exact method's 1/4 at REAL_MAX/4 only has to keep its differences
+     * finite: it scales back by two factors. */
     real m0 = 0;
     for (int k = 0; k < 9; ++k) {
         if (TTD_FABS(s[k]) > m0) m0 = TTD_FABS(s[k]);
@@ -278,7 +286,11 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         if (mk > size) size = mk;
     }
     /* A pair of subnormal size is lifted by an exact 2^lift first: 2^-e alone would not be
-     * representable, and a frame left far below unit size changes what rho and tol mean. */
+     * representable, and a frame left far below unit size changes what rho and tol mean.
+     * The constants: a nonzero size below 2^-900 (float 2^-100) is at least 2^-1074
+     * (2^-149), so lifted by 2^600 (2^60) it is at least 2^-474 (2^-89), e >= -473 (-88),
+     * far above the emin clamp below (-1019, -123); the lifted size stays below 2^-300
+     * (2^-40); and the scale back 2^(e-lift) >= 2^-1073 (2^-148) is representable. */
 #ifdef TTD_PRECISION_DOUBLE
     const int lift = size < 0x1p-900 ? 600 : 0;
 #else
@@ -298,7 +310,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     int e = 0;
     (void)TTD_FREXP(size, &e);
     {
-        /* keep 2^-e representable (subnormal-sized float triangles) */
+        /* Keeps 2^-e representable; since the lift it cannot trigger (a nonzero size gives
+         * e >= -473 in double, -88 in float; size 0 gives e = 0). Kept as a guard. */
         const int emin = (int)sizeof(real) == (int)sizeof(double) ? DBL_MIN_EXP + 2 : FLT_MIN_EXP + 2;
         if (e < emin) e = emin;
     }
@@ -357,8 +370,10 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * without pivoting on an SPD matrix has positive pivots (they are the D of H = LDL')
          * that are >= the smallest eigenvalue >= eps. When rounding swallows eps (float, or a
          * degenerate triangle) a pivot can still come out ~0 or negative: it is raised to
-         * eps, a select, so that the step stays finite. Four reciprocals are the only
-         * divisions. */
+         * eps, a select, so that the step stays finite. The elimination and the back
+         * substitution divide four times: the pivot reciprocals i0, i1, i2 and g3 / H33.
+         * The line search adds one division per breakpoint (h_i / s_i) and one for the
+         * interpolation, in each of its blocks that runs. */
         const real gf0 = 2 * (BA[0] * xy0 + BA[1] * xy1 + BA[2] * xy2);
         real g0 = gf0 + rho * (v3 - v1);
         real H00 = f00 + m1 + m3 + eps;
@@ -420,12 +435,13 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * and piecewise quadratic in t, so its slope is piecewise linear and increasing:
          *   phi'(t) = -gf.dx + t dx'hf dx - rho sum_i s_i max(0, h_i - t s_i),
          * with s_i = h_i'.dx (the non-zeros of dh again) and dx'hf dx = 2|DX - DY|^2 since
-         * J dx = DX - DY. phi'(0) = -grad.dx < 0. When phi'(1) <= 0 the full step is taken;
-         * otherwise the root of phi' is bracketed between the breakpoints t_i = h_i/s_i
-         * (the largest with phi' <= 0, the smallest with phi' > 0; no breakpoint lies
-         * between them, so phi' is linear there) and found by one interpolation. Every
-         * decision is a select; the SIMD port may skip the block when no lane has
-         * phi'(1) > 0. */
+         * J dx = DX - DY. phi'(0) = -grad.dx < 0. When phi'(1) > 0 the root of phi' is
+         * bracketed between the breakpoints t_i = h_i/s_i in (0, 1) (the largest with
+         * phi' <= 0, the smallest with phi' > 0; no breakpoint lies between them, so phi' is
+         * linear there) and found by one interpolation. When phi'(1) <= 0 the full step is
+         * taken, unless phi'(1) < TTD_PENALTY_EXTEND * phi'(0): then the search goes on
+         * beyond t = 1 (the `else if` block below). Inside each block every decision is a
+         * select; the SIMD port skips a block when no active lane needs it. */
         real step, dec;
         {
             const real s1 = -d0, s2 = -d1, s3 = d0 + d1, s4 = -d2, s5 = -d3, s6 = d2 + d3;
@@ -441,7 +457,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
             const real p1 = TTD_PEN_SLOPE((real)1);
             dec = -p0; /* grad.dx: twice the decrease the full step promises */
             step = 1;
-            /* The only branch besides the convergence test: the bracket is needed on a
+            /* One of the two branches besides the convergence test (the other is the
+             * `else if` below, the search beyond t = 1): the bracket is needed on a
              * minority of iterations (docs/penalty-method.md), and it is cheap to skip.
              * In the SIMD port it becomes "if any active lane has phi'(1) > 0", with the
              * selects below per lane. A breakpoint outside (0, 1), or inf/NaN from s_i = 0,

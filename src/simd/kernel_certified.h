@@ -5,7 +5,8 @@
  * the method and why its check certifies are in certified_impl.h and docs/certified-mode.md.
  *
  *  1. The penalty loop of kernel_penalty.h (kp_frame_of, kp_step, kp_finish), unchanged.
- *  2. The frame's six vertices and the exact kernel's per-triangle data (kx_tri_init).
+ *  2. The frame's six vertices (the penalty frame without its subnormal lift) and the exact
+ *     kernel's per-triangle data (kx_tri_init).
  *  3. Per lane, the feature of each side from the penalty's clamped weights (masks), its
  *     vertex or edge picked by select; the closed-form solutions for vertex-edge, edge-vertex,
  *     edge-edge and the two face projections are all computed, and each lane selects its own.
@@ -204,7 +205,9 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
                                         const vreal qw[3], vreal wp[3], vreal wq[3], TTD_SFX(kw_out) *o)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2);
-    /* the frame (penalty's, all six vertices) */
+    /* the penalty's frame without its subnormal lift (size_floor clamps e at emin, as the
+     * scalar code does), all six vertices: for a pair of subnormal size the frame stays below
+     * unit size, and such pairs, once small enough, fail the check and fall back */
     vreal m0 = zero;
     for (int k = 0; k < 9; ++k)
         m0 = vmax(m0, vmax(vabs(Sin[k]), vabs(Tin[k])));

@@ -5,7 +5,11 @@
  * come in the same order with the same ids (so ties go to the same, earliest, candidate),
  * every d2 is computed with the same operations in the same order, and the winner's points
  * and weights are rebuilt from (id, u, v, w) with the scalar expressions: each lane's result
- * is the scalar code's to the bit.
+ * is meant to be the scalar code's to the bit. One known exception: SSE2 double has no FMA,
+ * and kx_dop's Dekker split may differ from the scalar fma() in rare last bits (nearly
+ * parallel face frames only). The tests allow 8 eps of the pair's size (test_isa_kernels.c,
+ * which prints the bit-identical counts; measured: all 33,000 results of every row, SSE2
+ * double included).
  *
  * What differs, and why:
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that

@@ -9,7 +9,7 @@
  * SPMD shape. A lane's iterate is frozen by select once it has converged (after its update,
  * as in the scalar `break`) or reached max_iterations. The line-search bracket, which the
  * scalar code runs only when phi'(1) > 0, runs here when any active lane has phi'(1) > 0, and
- * its result is selected per lane.
+ * likewise the search beyond t = 1; their results are selected per lane.
  *
  * Groups of W consecutive pairs iterate together, so a group runs as long as its slowest
  * pair: lane occupancy 0.75 at 8 lanes and 0.70 at 16 on random pairs (docs/simd.md). A
@@ -76,7 +76,8 @@ static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
 }
 
 /* scalar: the frame. Origin at A, scaled by 2^-e (e from frexp of the largest relative
- * coordinate, at least emin); pre guards the differences near REAL_MAX. */
+ * coordinate, at least emin); pre guards the differences near REAL_MAX. Why pre's threshold
+ * and factor and the lift's constants are what they are: scalar/penalty_impl.h. */
 static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_SFX(kp_frame) *F)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2);
@@ -95,9 +96,10 @@ static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_
         const vreal ea = T[3 + k] * pre - a, fa = T[6 + k] * pre - a;
         size = vmax(size, vmax(vmax(vabs(F->BA[k]), vabs(F->CA[k])), vmax(vabs(F->DA[k]), vmax(vabs(ea), vabs(fa)))));
     }
-    /* e < emin is raised to emin: the same as raising size to 2^(emin-1). For size = 0 the
-     * scalar code keeps e = 0; every scaled difference is 0 either way and so is the
-     * distance. */
+    /* e < emin is raised to emin: the same as raising size to 2^(emin-1). Since the lift a
+     * nonzero size is at least 2^-474 (float 2^-89), so the floor acts only at size = 0, where
+     * it keeps vpow2's argument normal and 0.5 / half finite (the scalar code keeps e = 0
+     * there; every scaled difference is 0 either way and so is the distance). */
 #ifdef TTD_PRECISION_DOUBLE
     const real size_floor = 0x1p-1020; /* 2^(DBL_MIN_EXP + 2 - 1) */
     const real tiny = 0x1p-900, lift_up = 0x1p600, lift_down = 0x1p-600;
@@ -139,7 +141,7 @@ static inline void TTD_SFX(kp_hf_of)(const TTD_SFX(kp_frame) *F, TTD_SFX(kp_hf) 
     H->f33 = two * (FD[0] * FD[0] + FD[1] * FD[1] + FD[2] * FD[2]);
 }
 
-/* scalar: the iterate's start, 1/3 each, and prev_err2 = REAL_MAX (in the lanes of m). */
+/* scalar: the iterate's start, 1/3 each, and prev_err2 = REAL_MAX (in every lane). */
 static inline void TTD_SFX(kp_init)(TTD_SFX(kp_state) *X)
 {
     const vreal third = vset1((real)1 / 3);

@@ -12,20 +12,22 @@
  * outputs depend only on its own pair. The scalar code's data-dependent branches (pivot
  * choice and row swaps in the 4x4 solve, the pivot floor) become compares and selects. */
 
-/* scalar: pen_pos. max(0, v) as a compare and a select (v > 0 ? v : 0). */
+/* scalar: the ternary h[j] > 0 ? h[j] : 0 in ttd_penalty_ref_pair's gradient sum (ttd1 12),
+ * max(0, v) as a compare and a select. */
 static inline vreal TTD_SFX(kpr_pos)(vreal v)
 {
     const vreal zero = vzero();
     return vsel(vgt(v, zero), v, zero);
 }
 
-/* scalar: pen_pos, (v + |v|) / 2, and pen_clamp_bary3: negative weights of (c, a, b)
- * become 0 and the three are renormalised to sum 1 (a zero sum gives vertex 0). */
+/* scalar: pen_pos, (v + |v|) / 2, as pen_clamp_bary3 uses it. */
 static inline vreal TTD_SFX(kpr_pos2)(vreal v)
 {
     return (v + vabs(v)) * vset1((real)0.5);
 }
 
+/* scalar: pen_clamp_bary3. Negative weights of (c, a, b) become 0 and the three are
+ * renormalised to sum 1 (a zero sum gives vertex 0). */
 static inline void TTD_SFX(kpr_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
