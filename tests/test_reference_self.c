@@ -265,7 +265,9 @@ static int certificate_on_families(void)
 }
 
 /* Sampling both triangles on a barycentric grid: the sampled minimum is an upper bound that
- * must lie between d and d + the grid's spacing. Independent of everything above. */
+ * must lie between d and d + 2h, h = size / STEPS the grid's spacing: each triangle's closest
+ * point is within h of a grid point of its triangle, and both triangles are sampled.
+ * Independent of everything above. */
 static int sampling_bounds(void)
 {
     enum { NP = 24, STEPS = 30 };
