@@ -45,7 +45,7 @@ bad float_range '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 1e39' --precision float
 { printf '# pairs\n%s\n' "$GOOD"; printf '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2\000 5\n'; printf '%s\n' "$GOOD"; } > "$DIR/nul.txt"
 check nul_byte "$DIR/nul.txt"
 
-# An overlong line (100000 digits): reported, skipped in bounded memory; reading goes on.
+# An overlong line (2^17 = 131072 digits): reported, skipped in bounded memory; reading goes on.
 { printf '# pairs\n%s\n' "$GOOD"; awk 'BEGIN { s = "1"; for (i = 0; i < 17; i++) s = s s; print s }'; printf '%s\n' "$GOOD"; } > "$DIR/long.txt"
 check overlong "$DIR/long.txt"
 # A long comment is still a comment.
