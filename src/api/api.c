@@ -91,42 +91,43 @@ static int ttd_too_large(size_t count, size_t per, size_t size)
     return count > (size_t)PTRDIFF_MAX / per / size;
 }
 
-ttd_status ttd_batch_d(const ttd_options *opt, size_t n, const double *s, const double *t,
-                       double *distance, ttd_result_d *results)
+/* The checks every batch entry makes, in this order: pointers, options, n, sizes, then the
+ * instruction set. The caller says whether its pointers are there and whether its arrays could
+ * exist; on TTD_OK, cfg is ready for the engine. */
+static ttd_status ttd_prepare(const ttd_options *opt, int pointers_ok, size_t n, int too_large,
+                              ttd_engine_config *cfg)
 {
     ttd_options o;
-    ttd_engine_config cfg;
     ttd_status st;
-    if (s == NULL || t == NULL || (distance == NULL && results == NULL))
+    if (!pointers_ok)
         return TTD_ERR_NULL_POINTER;
     if ((st = ttd_check_options(opt, &o)) != TTD_OK)
         return st;
     if (n == 0)
         return TTD_ERR_EMPTY;
-    if (ttd_too_large(n, 9, sizeof(double)) || ttd_too_large(n, 1, sizeof(ttd_result_d)))
+    if (too_large)
         return TTD_ERR_TOO_LARGE;
-    if ((st = ttd_configure(&o, &cfg)) != TTD_OK)
-        return st;
-    return ttd_engine_batch_d(&cfg, n, s, t, distance, results);
+    return ttd_configure(&o, cfg);
+}
+
+ttd_status ttd_batch_d(const ttd_options *opt, size_t n, const double *s, const double *t,
+                       double *distance, ttd_result_d *results)
+{
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, s && t && (distance || results), n,
+                                ttd_too_large(n, 9, sizeof(double)) || ttd_too_large(n, 1, sizeof(ttd_result_d)),
+                                &cfg);
+    return st != TTD_OK ? st : ttd_engine_batch_d(&cfg, n, s, t, distance, results);
 }
 
 ttd_status ttd_batch_f(const ttd_options *opt, size_t n, const float *s, const float *t,
                        float *distance, ttd_result_f *results)
 {
-    ttd_options o;
     ttd_engine_config cfg;
-    ttd_status st;
-    if (s == NULL || t == NULL || (distance == NULL && results == NULL))
-        return TTD_ERR_NULL_POINTER;
-    if ((st = ttd_check_options(opt, &o)) != TTD_OK)
-        return st;
-    if (n == 0)
-        return TTD_ERR_EMPTY;
-    if (ttd_too_large(n, 9, sizeof(float)) || ttd_too_large(n, 1, sizeof(ttd_result_f)))
-        return TTD_ERR_TOO_LARGE;
-    if ((st = ttd_configure(&o, &cfg)) != TTD_OK)
-        return st;
-    return ttd_engine_batch_f(&cfg, n, s, t, distance, results);
+    ttd_status st = ttd_prepare(opt, s && t && (distance || results), n,
+                                ttd_too_large(n, 9, sizeof(float)) || ttd_too_large(n, 1, sizeof(ttd_result_f)),
+                                &cfg);
+    return st != TTD_OK ? st : ttd_engine_batch_f(&cfg, n, s, t, distance, results);
 }
 
 ttd_status ttd_distance_d(const ttd_options *opt, const double s[9], const double t[9],
@@ -145,24 +146,12 @@ ttd_status ttd_distance_f(const ttd_options *opt, const float s[9], const float 
     return ttd_batch_f(opt, 1, s, t, NULL, out);
 }
 
-/* The mesh entries: the same checks, plus the mesh sizes. */
-#define TTD_MESH_CHECKS(real, result)                                                          \
-    ttd_options o;                                                                             \
-    ttd_engine_config cfg;                                                                     \
-    ttd_status st;                                                                             \
-    if (verts1 == NULL || tris1 == NULL || verts2 == NULL || tris2 == NULL || pairs == NULL || \
-        (distance == NULL && results == NULL))                                                 \
-        return TTD_ERR_NULL_POINTER;                                                           \
-    if ((st = ttd_check_options(opt, &o)) != TTD_OK)                                          \
-        return st;                                                                             \
-    if (n == 0)                                                                                \
-        return TTD_ERR_EMPTY;                                                                  \
-    if (ttd_too_large(n, 2, sizeof(uint32_t)) || ttd_too_large(n, 1, sizeof(result)) ||       \
-        ttd_too_large(nv1, 3, sizeof(real)) || ttd_too_large(nv2, 3, sizeof(real)) ||          \
-        ttd_too_large(nt1, 3, sizeof(uint32_t)) || ttd_too_large(nt2, 3, sizeof(uint32_t)))    \
-        return TTD_ERR_TOO_LARGE;                                                              \
-    if ((st = ttd_configure(&o, &cfg)) != TTD_OK)                                              \
-        return st
+/* The mesh entries' pointers, and whether their arrays could exist. */
+#define TTD_MESH_POINTERS_OK (verts1 && tris1 && verts2 && tris2 && pairs && (distance || results))
+#define TTD_MESH_TOO_LARGE(real, result)                                                       \
+    (ttd_too_large(n, 2, sizeof(uint32_t)) || ttd_too_large(n, 1, sizeof(result)) ||          \
+     ttd_too_large(nv1, 3, sizeof(real)) || ttd_too_large(nv2, 3, sizeof(real)) ||             \
+     ttd_too_large(nt1, 3, sizeof(uint32_t)) || ttd_too_large(nt2, 3, sizeof(uint32_t)))
 
 ttd_status ttd_mesh_batch_d(const ttd_options *opt,
                             const double *verts1, size_t nv1, const uint32_t *tris1, size_t nt1,
@@ -170,7 +159,10 @@ ttd_status ttd_mesh_batch_d(const ttd_options *opt,
                             size_t n, const uint32_t *pairs,
                             double *distance, ttd_result_d *results)
 {
-    TTD_MESH_CHECKS(double, ttd_result_d);
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, TTD_MESH_POINTERS_OK, n, TTD_MESH_TOO_LARGE(double, ttd_result_d), &cfg);
+    if (st != TTD_OK)
+        return st;
     const ttd_mesh_d m1 = {verts1, nv1, tris1, nt1}, m2 = {verts2, nv2, tris2, nt2};
     return ttd_engine_mesh_d(&cfg, &m1, &m2, n, pairs, distance, results);
 }
@@ -181,7 +173,10 @@ ttd_status ttd_mesh_batch_f(const ttd_options *opt,
                             size_t n, const uint32_t *pairs,
                             float *distance, ttd_result_f *results)
 {
-    TTD_MESH_CHECKS(float, ttd_result_f);
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, TTD_MESH_POINTERS_OK, n, TTD_MESH_TOO_LARGE(float, ttd_result_f), &cfg);
+    if (st != TTD_OK)
+        return st;
     const ttd_mesh_f m1 = {verts1, nv1, tris1, nt1}, m2 = {verts2, nv2, tris2, nt2};
     return ttd_engine_mesh_f(&cfg, &m1, &m2, n, pairs, distance, results);
 }
