@@ -157,7 +157,7 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
 /* A pair alone (n = 1) and the same pair in a random lane of a block among random neighbours
  * (some of them NaN) give the same bits; the NaN neighbours disturb nobody else either. */
 static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) kern, int lanes,
-                                            const ttd_params *prm, uint64_t *st)
+                                            const ttd_params *prm, ttd_gen_rng *st)
 {
     enum { N = 64 };
     real s[9 * N], t[9 * N], ps[9 * N], pt[9 * N];
@@ -169,15 +169,15 @@ static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) k
         /* a random permutation-with-repeats of the pairs, a few replaced by NaN */
         int src[N];
         for (int i = 0; i < N; ++i) {
-            src[i] = (int)(gen_rng(st) % N);
-            if (gen_rng(st) % 8 == 0)
+            src[i] = (int)(ttd_gen_rng_u64(st) % N);
+            if (ttd_gen_rng_u64(st) % 8 == 0)
                 src[i] = -1;
             for (int k = 0; k < 9; ++k) {
                 ps[9 * i + k] = src[i] < 0 ? (real)NAN : s[9 * src[i] + k];
                 pt[9 * i + k] = src[i] < 0 ? (real)(k + 1) : t[9 * src[i] + k];
             }
         }
-        const size_t n = (size_t)(lanes + 1 + (int)(gen_rng(st) % (uint64_t)(N - lanes)));
+        const size_t n = (size_t)(lanes + 1 + (int)(ttd_gen_rng_u64(st) % (uint64_t)(N - lanes)));
         kern(n, ps, pt, prm, NULL, mixed);
         for (size_t i = 0; i < n; ++i) {
             if (src[i] < 0)

@@ -19,20 +19,6 @@
 #include "isa_rows.h"
 #include "test_macros.h"
 
-static uint64_t gen_rng(uint64_t *st)
-{
-    /* splitmix64 */
-    uint64_t z = (*st += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-static double gen_u01(uint64_t *st)
-{
-    return (double)(gen_rng(st) >> 11) * 0x1p-53;
-}
-
 /* Families 0..6 are generated here; from GEN_LIBRARY_FIRST on they come from gen/pairs.h,
  * for the hard cases of the iterative methods (nearly flat valleys, contacts, slivers). */
 enum { GEN_EXTREME = 6, GEN_LIBRARY_FIRST = 7, GEN_FAMILIES = 11 };
@@ -61,18 +47,18 @@ static const char *gen_family_name(int f)
  *                subnormal to near REAL_MAX (applied by fill_d/fill_f after rounding) */
 static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[9])
 {
-    uint64_t st = seed * 0x100000001B3ull + (uint64_t)family * 0x9E3779B9ull + (uint64_t)i * 0x2545F4914F6CDD1Dull;
+    ttd_gen_rng st = ttd_gen_rng_make(seed ^ ((uint64_t)family << 56), (uint64_t)i); /* one stream per pair */
     for (int k = 0; k < 9; ++k) {
-        s[k] = gen_u01(&st);
-        t[k] = gen_u01(&st);
+        s[k] = ttd_gen_rng_uniform(&st);
+        t[k] = ttd_gen_rng_uniform(&st);
     }
     double off[3];
     for (int k = 0; k < 3; ++k)
-        off[k] = gen_u01(&st) - 0.5;
+        off[k] = ttd_gen_rng_uniform(&st) - 0.5;
     switch (family) {
     case 1:
         for (int k = 0; k < 9; ++k)
-            t[k] = s[(k + 3) % 9] + 1e-3 * (gen_u01(&st) - 0.5);
+            t[k] = s[(k + 3) % 9] + 1e-3 * (ttd_gen_rng_uniform(&st) - 0.5);
         return;
     case 2:
         for (int k = 0; k < 6; ++k)
@@ -84,7 +70,7 @@ static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[
                 s[3 + k] = s[k];
         break;
     case 3: {
-        const double f = ldexp(1.0, (int)(gen_rng(&st) % 41) - 20);
+        const double f = ldexp(1.0, (int)(ttd_gen_rng_u64(&st) % 41) - 20);
         for (int k = 0; k < 9; ++k) {
             s[k] *= f;
             t[k] = (t[k] + off[k % 3]) * f;
@@ -165,7 +151,7 @@ static int rows_vs_scalar(void)
 static int rows_lane_independence(void)
 {
     const ttd_params prm = test_params();
-    uint64_t st = 5;
+    ttd_gen_rng st = ttd_gen_rng_make(5, 0);
     for (const isa_row *r = isa_rows; r->name; ++r) {
         const char *why = "";
         if (!cpu_runs(r->name, &why))
