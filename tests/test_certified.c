@@ -32,14 +32,6 @@ static ttd_params default_params(void)
     return p;
 }
 
-static void print_pair(const char *what, const double *s, const double *t)
-{
-    fprintf(stderr, "    %s S = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n", what,
-            s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8]);
-    fprintf(stderr, "    %*s T = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n",
-            (int)strlen(what), "", t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]);
-}
-
 static double max_abs9(const double *s, const double *t)
 {
     double m = 0;

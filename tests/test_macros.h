@@ -45,6 +45,15 @@
         }                                                                           \
     } while (0)
 
+/// Prints a failing pair (what: a label, e.g. "input") to stderr, all 17 digits, ready to paste.
+static inline void print_pair(const char *what, const double *s, const double *t)
+{
+    fprintf(stderr, "    %s S = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n", what,
+            s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8]);
+    fprintf(stderr, "    %*s T = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n",
+            (int)strlen(what), "", t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]);
+}
+
 #define TEST_MAIN_BEGIN(argc, argv)                                                 \
     const char *test_filter_ = (argc) > 1 ? (argv)[1] : NULL;                       \
     int test_passed_ = 0, test_failed_ = 0

@@ -55,14 +55,6 @@ static double pair_scale(const double *s, const double *t, double d)
     return fmax(ttd_ref_size(s, t), d);
 }
 
-static void print_pair(const double *s, const double *t)
-{
-    fprintf(stderr, "    S = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n",
-            s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8]);
-    fprintf(stderr, "    T = (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g) (%.17g, %.17g, %.17g)\n",
-            t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8]);
-}
-
 /// Runs check(s, t, family) on PAIRS pairs of every family; reports the first failing pair.
 static int for_each_pair(int (*check)(const double *s, const double *t), const char *what)
 {
@@ -74,7 +66,7 @@ static int for_each_pair(int (*check)(const double *s, const double *t), const c
         for (int i = 0; i < PAIRS; ++i)
             if (check(s + 9 * i, t + 9 * i)) {
                 fprintf(stderr, "  %s fails on %s pair %d:\n", what, ttd_gen_name(families[f]), i);
-                print_pair(s + 9 * i, t + 9 * i);
+                print_pair("input", s + 9 * i, t + 9 * i);
                 failed = 1;
                 break;
             }
@@ -256,7 +248,7 @@ static int translation_exact(void)
             if (!(fabs(d1 - d0) <= tol)) {
                 fprintf(stderr, "  translation by 2^20 of %s pair %d: %.17g vs %.17g\n", ttd_gen_name(grid_families[f]),
                         i, d1, d0);
-                print_pair(a, b);
+                print_pair("input", a, b);
                 return 1;
             }
         }
@@ -374,7 +366,7 @@ static int float_properties(void)
                 ttd_ref_distance(ad, bd, &ref);
                 fprintf(stderr, "  float symmetry, %s pair %d: d(S,T) %.9g d(T,S) %.9g reference %.17g size %.3g\n",
                         ttd_gen_name(families[f]), i, (double)r1.distance, (double)r2.distance, ref.distance, scale);
-                print_pair(ad, bd);
+                print_pair("input", ad, bd);
                 return 1;
             }
             double p[3] = {(double)r1.p[0], (double)r1.p[1], (double)r1.p[2]};
