@@ -60,8 +60,8 @@ static int barrier_separated_vs_exact(void)
         for (int k = 0; k < 9; ++k) {
             sf[k] = (float)s[k];
             tf[k] = (float)t[k];
-            sd[k] = sf[k];
-            td[k] = tf[k];
+            sd[k] = (double)sf[k];
+            td[k] = (double)tf[k];
         }
         ttd_result_f rf;
         ttd_barrier_pair_f(sf, tf, &default_params, &rf);

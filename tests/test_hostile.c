@@ -377,7 +377,7 @@ static int nonfinite_every_position(void)
                 for (int k = 0; k < 9 * N; ++k)
                     sf[k] = (float)s[k], tf[k] = (float)t[k];
                 for (int k = 0; k < N + 4; ++k)
-                    d[k] = df[k] = 12345.0f, r[k].distance = rf[k].distance = 6789.0f;
+                    df[k] = 12345.0f, d[k] = 12345.0, rf[k].distance = 6789.0f, r[k].distance = 6789.0;
                 ENSURE(ttd_batch_d(&o, N, s, t, d, r) == TTD_ERR_NONFINITE_INPUT);
                 ENSURE(ttd_batch_f(&o, N, sf, tf, df, rf) == TTD_ERR_NONFINITE_INPUT);
                 for (int k = N; k < N + 4; ++k) /* nothing written past n */

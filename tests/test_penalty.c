@@ -101,8 +101,8 @@ static int penalty_random_vs_exact_float(void)
         for (int k = 0; k < 9; ++k) {
             sf[k] = (float)s[k];
             tf[k] = (float)t[k];
-            s[k] = sf[k]; /* the exact distance of the float input */
-            t[k] = tf[k];
+            s[k] = (double)sf[k]; /* the exact distance of the float input */
+            t[k] = (double)tf[k];
         }
         ttd_result_d ex;
         ttd_result_f r;
@@ -160,8 +160,8 @@ static int penalty_near_parallel(void)
             for (int k = 0; k < 9; ++k) {
                 sf[k] = (float)s[k];
                 tf[k] = (float)t[k];
-                sd[k] = sf[k];
-                td[k] = tf[k];
+                sd[k] = (double)sf[k];
+                td[k] = (double)tf[k];
             }
             ttd_result_f rf;
             ttd_exact_pair_d(sd, td, &ex);
@@ -255,8 +255,8 @@ static int penalty_slivers(void)
             for (int k = 0; k < 9; ++k) {
                 sf[k] = (float)s[k];
                 tf[k] = (float)t[k];
-                s[k] = sf[k];
-                t[k] = tf[k];
+                s[k] = (double)sf[k];
+                t[k] = (double)tf[k];
             }
             ttd_result_f rf;
             ttd_exact_pair_d(s, t, &ex);

@@ -99,7 +99,7 @@ static int closest_pair_kind(const double *s, const double *t, double scale)
         v[k] = ref.p[k] - ref.q[k], n += v[k] * v[k];
     n = sqrt(n);
     const double tau = 1e-6 * scale;
-    double hs[3], ht[3], smin = INFINITY, tmax = -INFINITY;
+    double hs[3], ht[3], smin = (double)INFINITY, tmax = -(double)INFINITY;
     for (int i = 0; i < 3; ++i) {
         hs[i] = (s[3 * i] * v[0] + s[3 * i + 1] * v[1] + s[3 * i + 2] * v[2]) / n;
         ht[i] = (t[3 * i] * v[0] + t[3 * i + 1] * v[1] + t[3 * i + 2] * v[2]) / n;

@@ -112,7 +112,7 @@ static int issue_examples(void)
     double s1[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, t1[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.2, 0.3, 1};
     ENSURE(ref_d(s1, t1) == 0.0);
     ENSURE(ttd_ref_intersection_margin(s1, t1) > 1e-3);
-    double sub[15], m = INFINITY;
+    double sub[15], m = (double)INFINITY;
     ttd_ref_sub_distances(s1, t1, sub);
     for (int i = 0; i < 15; ++i) m = fmin(m, sub[i]);
     ENSURE_NEAR(m, 0.2, 1e-15);
@@ -240,7 +240,7 @@ static int certificate_on_families(void)
             double round_tol = 4 * DBL_EPSILON * (scale + mag) / scale;
             if (ttd_ref_epsilon() >= 1e-30) round_tol = fmax(round_tol, 1e-6); /* weak fallback */
             ENSURE_MSG(off <= round_tol && pq <= round_tol, "%s pair %d: off %g pq %g", ttd_gen_name((ttd_gen_family)f), i, off, pq);
-            double sub[15], m = INFINITY;
+            double sub[15], m = (double)INFINITY;
             ttd_ref_sub_distances(a, b, sub);
             for (int k = 0; k < 15; ++k) {
                 ENSURE(r.distance <= sub[k]);
@@ -285,7 +285,7 @@ static int sampling_bounds(void)
                     qs[n][k] = ww * b[k] + wu * b[3 + k] + wv * b[6 + k];
                 }
             }
-        double m = INFINITY;
+        double m = (double)INFINITY;
         for (int x = 0; x < n; ++x)
             for (int y = 0; y < n; ++y) {
                 double dx = ps[x][0] - qs[y][0], dy = ps[x][1] - qs[y][1], dz = ps[x][2] - qs[y][2];

@@ -219,9 +219,9 @@ static row run_one(const family_data *fd, config c, int threads, int check, doub
         double err, off, pq;
         if (!finite) {
             w.nonfinite++;
-            err = off = pq = INFINITY;
+            err = off = pq = (double)INFINITY;
         } else if (scale == 0) { /* both triangles one and the same point */
-            err = d == 0 ? 0 : INFINITY;
+            err = d == 0 ? 0 : (double)INFINITY;
             off = pq = err;
         } else {
             err = fabs(d - ref) / scale;
