@@ -21,7 +21,7 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "parse.h"
 
 /// Pairs read, computed and written at a time.

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The body of tests/test_isa_kernels.c for one precision (included after common/precision.h).
+/* The body of tests/test_isa_kernels.c for one precision (included after core/precision.h).
  * A lane kernel is checked against the scalar function of its method, pair by pair, and
  * against itself: a pair alone, in any lane, among any neighbours (NaN ones included) gives
  * the same bits. */

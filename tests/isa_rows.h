@@ -7,7 +7,7 @@
 
 #include <string.h>
 
-#include "engine/kernels.h"
+#include "core/kernels.h"
 
 /* Non-zero when this CPU runs isa; otherwise *why says what is missing. */
 static inline int cpu_runs(const char *isa, const char **why)

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The body of tests/test_lanes.c for one precision (included after common/precision.h).
+/* The body of tests/test_lanes.c for one precision (included after core/precision.h).
  * Every lane operation is run through an ISA's probe (src/simd/probe.h) and compared lane by
  * lane with the same operation in scalar C. The value under test sits in a random lane among
  * random neighbours (SLEEF's tester3 idea), so a lane mix-up or a wrong constant for one lane

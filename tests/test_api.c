@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "pairs.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"

@@ -7,7 +7,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"
 #include "random_pairs.h"

@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/defaults.h"
-#include "engine/kernels.h"
+#include "core/defaults.h"
+#include "core/kernels.h"
 #include "pairs.h"
 #include "ref_distance.h"
 #include "scalar/scalar.h"
@@ -175,7 +175,7 @@ static int certified_vs_reference(void)
 }
 
 /* The error bound of a certified (not fallen back) pair follows from the check's gap
- * (scalar/certified_tol.h): GAP plus ~18 double eps of the frame, whose unit is at most twice
+ * (core/certified_tol.h): GAP plus ~18 double eps of the frame, whose unit is at most twice
  * the extent, which is at most 3 max(d, size). On nearly parallel edges and faces the objective is flat along the pair of
  * features, where a check that trusted the solve's stationarity let 4e-13 through (pair 3347
  * of near_parallel_faces, seed 7). */

@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "pairs.h"
-#include "engine/kernels.h"
+#include "core/kernels.h"
 #include "scalar/scalar.h"
 #include "isa_rows.h"
 #include "test_macros.h"
@@ -96,13 +96,13 @@ static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[
 }
 
 #define TTD_PRECISION_DOUBLE
-#include "common/precision.h"
+#include "core/precision.h"
 #include "isa_kernels_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 #define TTD_PRECISION_FLOAT
-#include "common/precision.h"
+#include "core/precision.h"
 #include "isa_kernels_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 
 
 

@@ -29,13 +29,13 @@ static double lanes_uniform(uint64_t *st, double lo, double hi)
 }
 
 #define TTD_PRECISION_DOUBLE
-#include "common/precision.h"
+#include "core/precision.h"
 #include "lanes_check_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 #define TTD_PRECISION_FLOAT
-#include "common/precision.h"
+#include "core/precision.h"
 #include "lanes_check_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 
 /* The rows built into the library (src/CMakeLists.txt defines TTD_HAVE_<ISA> for internal
  * users), with what the CPU must support to run them. */

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "pairs.h"
 #include "scalar/scalar.h"
 #include "test_macros.h"

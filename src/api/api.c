@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "common/defaults.h"
+#include "core/defaults.h"
 #include "engine/batch.h"
 #include "engine/dispatch.h"
 #include "ttd/ttd.h"
@@ -18,7 +18,7 @@
 #define TTD_OPTIONS_COOKIE 0x74746431u /* "ttd1" */
 
 /* Accepted ranges of the iterative methods' parameters: what the double kernels take
- * (common/defaults.h; float kernels clamp further themselves). The methods run on the pair
+ * (core/defaults.h; float kernels clamp further themselves). The methods run on the pair
  * scaled to unit size, so a step tolerance above 1 means nothing. */
 #define TTD_RHO_MAX TTD_DOUBLE_RHO_MAX
 #define TTD_TOL_MAX 1.0
@@ -179,44 +179,6 @@ ttd_status ttd_mesh_batch_f(const ttd_options *opt,
         return st;
     const ttd_mesh_f m1 = {verts1, nv1, tris1, nt1}, m2 = {verts2, nv2, tris2, nt2};
     return ttd_engine_mesh_f(&cfg, &m1, &m2, n, pairs, distance, results);
-}
-
-const char *ttd_status_string(ttd_status status)
-{
-    switch (status) {
-    case TTD_OK: return "ok";
-    case TTD_WARN_NOT_CONVERGED: return "some pairs did not converge within max_iterations (flagged)";
-    case TTD_ERR_NONFINITE_INPUT: return "some pairs had NaN or infinite coordinates (flagged, outputs NaN)";
-    case TTD_ERR_NULL_POINTER: return "a required pointer was NULL";
-    case TTD_ERR_EMPTY: return "n is 0: nothing to compute";
-    case TTD_ERR_BAD_OPTIONS: return "options not from ttd_default_options(), or a field out of range";
-    case TTD_ERR_ISA_UNAVAILABLE: return "the requested instruction set is not built in or not supported by this CPU";
-    case TTD_ERR_INDEX_OUT_OF_RANGE: return "a mesh triangle or vertex index is out of range";
-    case TTD_ERR_OUT_OF_MEMORY: return "out of memory for per-thread scratch";
-    case TTD_ERR_TOO_LARGE: return "a count is too large for its arrays to exist";
-    }
-    return "unknown status";
-}
-
-const char *ttd_method_name(ttd_method method)
-{
-    static const char *const names[TTD_METHOD_COUNT] = {
-        [TTD_METHOD_EXACT] = "exact",
-        [TTD_METHOD_PENALTY] = "penalty",
-        [TTD_METHOD_PENALTY_REFERENCE] = "penalty-ref",
-        [TTD_METHOD_BARRIER] = "barrier",
-        [TTD_METHOD_CERTIFIED] = "certified",
-    };
-    return (int)method >= 0 && (int)method < TTD_METHOD_COUNT ? names[method] : NULL;
-}
-
-const char *ttd_isa_name(ttd_isa isa)
-{
-    static const char *const names[TTD_ISA_COUNT] = {
-        [TTD_ISA_AUTO] = "auto",   [TTD_ISA_SCALAR] = "scalar", [TTD_ISA_SSE2] = "sse2",
-        [TTD_ISA_AVX2] = "avx2",   [TTD_ISA_AVX512] = "avx512", [TTD_ISA_NEON] = "neon",
-    };
-    return (int)isa >= 0 && (int)isa < TTD_ISA_COUNT ? names[isa] : NULL;
 }
 
 int ttd_isa_available(ttd_isa isa)

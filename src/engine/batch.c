@@ -38,7 +38,7 @@ static uint32_t ttd_load_u32(const unsigned char *p, size_t k)
 }
 
 #define TTD_PRECISION_DOUBLE
-#include "common/precision.h"
+#include "core/precision.h"
 #define TTD_UBITS uint64_t
 #define TTD_EXP_BITS UINT64_C(0x7ff0000000000000)
 #define TTD_KERNEL_FN ttd_kernel_d_fn
@@ -48,10 +48,10 @@ static uint32_t ttd_load_u32(const unsigned char *p, size_t k)
 #undef TTD_EXP_BITS
 #undef TTD_KERNEL_FN
 #undef TTD_ROW_COL
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 
 #define TTD_PRECISION_FLOAT
-#include "common/precision.h"
+#include "core/precision.h"
 #define TTD_UBITS uint32_t
 #define TTD_EXP_BITS UINT32_C(0x7f800000)
 #define TTD_KERNEL_FN ttd_kernel_f_fn
@@ -61,4 +61,4 @@ static uint32_t ttd_load_u32(const unsigned char *p, size_t k)
 #undef TTD_EXP_BITS
 #undef TTD_KERNEL_FN
 #undef TTD_ROW_COL
-#include "common/precision_end.h"
+#include "core/precision_end.h"

@@ -6,7 +6,7 @@
 #define TTD_ENGINE_BATCH_H
 
 #include <stdint.h>
-#include "engine/kernels.h"
+#include "core/kernels.h"
 
 /// What a batch runs, resolved from ttd_options by the API.
 typedef struct ttd_engine_config {

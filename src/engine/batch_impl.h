@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The batch engine, written once for both precisions (included twice by engine/batch.c with
- * common/precision.h open; see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_ROW_COL).
+ * core/precision.h open; see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_ROW_COL).
  *
  * Each block of TTD_BLOCK_PAIRS pairs goes one of two ways. The fast way, taken by almost
  * every block: all 18n coordinates finite, every pointer aligned for its type, and no flags

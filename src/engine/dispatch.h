@@ -4,7 +4,7 @@
 #ifndef TTD_ENGINE_DISPATCH_H
 #define TTD_ENGINE_DISPATCH_H
 
-#include "engine/kernels.h"
+#include "core/kernels.h"
 
 /// Non-zero when the row of isa was compiled into this library (scalar: always).
 int ttd_dispatch_isa_built(ttd_isa isa);

@@ -6,15 +6,15 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "scalar/certified_tol.h"
+#include "core/certified_tol.h"
 #include "scalar/scalar.h"
 
 #define TTD_PRECISION_DOUBLE
-#include "common/precision.h"
+#include "core/precision.h"
 #include "scalar/certified_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 
 #define TTD_PRECISION_FLOAT
-#include "common/precision.h"
+#include "core/precision.h"
 #include "scalar/certified_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"

@@ -39,7 +39,7 @@
  *
  * The lane kernel (simd/kernel_certified.h) computes every case in every lane and selects;
  * this file computes only the lane's case, with the same expressions in the same order, so
- * that the two agree to the bit. Thresholds: scalar/certified_tol.h. */
+ * that the two agree to the bit. Thresholds: core/certified_tol.h. */
 
 /* One triangle in the frame with the exact method's per-triangle data (exact_tri_init). */
 typedef struct TTD_SFX(cert_tri) {

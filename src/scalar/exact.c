@@ -7,11 +7,11 @@
 #include "scalar/scalar.h"
 
 #define TTD_PRECISION_DOUBLE
-#include "common/precision.h"
+#include "core/precision.h"
 #include "scalar/exact_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 
 #define TTD_PRECISION_FLOAT
-#include "common/precision.h"
+#include "core/precision.h"
 #include "scalar/exact_impl.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Precision-generic body of the exact method (included by exact.c once per precision; see
- * common/precision.h). The distance is the minimum over a fixed list of candidate point
+ * core/precision.h). The distance is the minimum over a fixed list of candidate point
  * pairs, each a real point of S and a real point of T, so every candidate but the crossings
  * (which offer 0 unmeasured, see docs 3.1) is an upper bound, and the true minimum is always
  * among them up to rounding:
@@ -192,7 +192,7 @@ typedef struct TTD_SFX(exact_best) {
     real u, v, w;
 } TTD_SFX(exact_best);
 
-#include "common/exact_ids.h" /* candidate ids and the contact threshold, shared with the lanes */
+#include "core/exact_ids.h" /* candidate ids and the contact threshold, shared with the lanes */
 
 static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real u, real v, real w)
 {

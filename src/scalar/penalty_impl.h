@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The penalty method (paper, sections 2 and 3), precision-generic; penalty.c includes this
- * once per precision (common/precision.h). Two forms:
+ * once per precision (core/precision.h). Two forms:
  *
  *  - ttd_penalty_ref_pair: the paper's MATLAB ttd1 step for step (raw coordinates, start at
  *    0.33, dense 6x4 constraint Jacobian, separate pivoting 4x4 solve). Only the outputs

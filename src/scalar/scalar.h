@@ -2,11 +2,11 @@
 /* The scalar reference methods, one pair at a time, plain C. Every SIMD kernel is tested
  * against these, and these against independent references (tests/). s and t are 9
  * coordinates each; r receives every field of the result (flags only from the kernel set
- * listed in engine/kernels.h). Inputs must be finite; any magnitude is fine. */
+ * listed in core/kernels.h). Inputs must be finite; any magnitude is fine. */
 #ifndef TTD_SCALAR_SCALAR_H
 #define TTD_SCALAR_SCALAR_H
 
-#include "engine/kernels.h"
+#include "core/kernels.h"
 
 void ttd_exact_pair_d(const double s[9], const double t[9], ttd_result_d *r);
 void ttd_exact_pair_f(const float s[9], const float t[9], ttd_result_f *r);

@@ -31,7 +31,7 @@
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
-#include "common/exact_ids.h" /* candidate ids and the contact threshold, shared with the scalar code */
+#include "core/exact_ids.h" /* candidate ids and the contact threshold, shared with the scalar code */
 
 #ifndef KX_GROUP_INLINE
 /* kx_group is inlined into both of kernel_exact's calls, so that each is specialised on its

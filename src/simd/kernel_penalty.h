@@ -57,7 +57,7 @@ typedef struct TTD_SFX(kp_consts) {
 
 static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
 {
-    /* scalar: rho capped and tol floored in float (common/defaults.h) */
+    /* scalar: rho capped and tol floored in float (core/defaults.h) */
 #ifdef TTD_PRECISION_DOUBLE
     const double rho_max = TTD_DOUBLE_RHO_MAX, tol_min = TTD_DOUBLE_TOL_MIN;
 #else

@@ -105,7 +105,7 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
 #ifdef TTD_PRECISION_DOUBLE
     const vreal rho = vset1(prm->rho), tol = vset1(prm->tol);
 #else
-    /* scalar: rho capped so that rho^2 stays finite in float (common/defaults.h) */
+    /* scalar: rho capped so that rho^2 stays finite in float (core/defaults.h) */
     const vreal rho = vset1((real)fmin(prm->rho, TTD_FLOAT_REF_RHO_MAX)), tol = vset1((real)prm->tol);
 #endif
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);

@@ -3,12 +3,12 @@
  * includes simd/lanes.h once, then this file twice: with TTD_PRECISION_DOUBLE and
  * TTD_PROBE_NAME ttd_lanes_probe_<isa>_d, then the same for float. TTD_ISA_ROW(isa) then
  * builds the table row from the static kernels. */
-#include "common/defaults.h"
-#include "scalar/certified_tol.h"
-#include "engine/kernels.h"
+#include "core/defaults.h"
+#include "core/certified_tol.h"
+#include "core/kernels.h"
 #include "simd/probe.h"
 #include <stdint.h>
-#include "common/precision.h"
+#include "core/precision.h"
 #include "simd/lanes_precision.h"
 
 #include "simd/kernel_common.h"
@@ -19,7 +19,7 @@
 #include "simd/probe_impl.h"
 
 #include "simd/lanes_precision_end.h"
-#include "common/precision_end.h"
+#include "core/precision_end.h"
 #undef TTD_PROBE_NAME
 
 #ifndef TTD_ISA_ROW

@@ -42,7 +42,7 @@
  *
  * Vector types never cross a translation unit (their ABI depends on -m flags): kernels take
  * and return plain arrays. lanes_precision.h maps the short names kernels use (vreal, vmask,
- * vfma, vsel, ...) onto one precision, in the same way as common/precision.h. */
+ * vfma, vsel, ...) onto one precision, in the same way as core/precision.h. */
 #ifndef TTD_SIMD_LANES_H
 #define TTD_SIMD_LANES_H
 

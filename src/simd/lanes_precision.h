@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Maps the short lane names a kernel uses onto one precision: after common/precision.h,
+/* Maps the short lane names a kernel uses onto one precision: after core/precision.h,
  * `vreal` is ttdw_vd or ttdw_vf, `vfma` is ttdw_fma_d or ttdw_fma_f, and so on (see lanes.h
  * for what each does). Close the section with lanes_precision_end.h. */
 #ifndef TTD_SIMD_LANES_H

@@ -3,9 +3,9 @@
  * (foo_impl.h) is included once per precision by its .c file:
  *
  *     #define TTD_PRECISION_DOUBLE
- *     #include "common/precision.h"
+ *     #include "core/precision.h"
  *     #include "foo_impl.h"
- *     #include "common/precision_end.h"
+ *     #include "core/precision_end.h"
  *     #define TTD_PRECISION_FLOAT
  *     ... the same again
  *

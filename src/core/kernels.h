@@ -11,8 +11,8 @@
  *
  * Each instruction set provides one table row (ttd_isa_kernels). A NULL entry means "not
  * written for this ISA": the engine then uses the scalar row for that method. */
-#ifndef TTD_ENGINE_KERNELS_H
-#define TTD_ENGINE_KERNELS_H
+#ifndef TTD_CORE_KERNELS_H
+#define TTD_CORE_KERNELS_H
 
 #include <stddef.h>
 #include "ttd/ttd.h"
@@ -48,4 +48,4 @@ extern const ttd_isa_kernels ttd_kernels_avx2;
 extern const ttd_isa_kernels ttd_kernels_avx512;
 extern const ttd_isa_kernels ttd_kernels_neon;
 
-#endif /* TTD_ENGINE_KERNELS_H */
+#endif /* TTD_CORE_KERNELS_H */

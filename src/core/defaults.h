@@ -9,8 +9,8 @@
  * (1,000,000 random pairs, ttd bench: docs/benchmark/bench.txt); tol 1e-12 is the step
  * length, on the unit-size geometry, below which the iteration stops. The cap is the
  * paper's. */
-#ifndef TTD_COMMON_DEFAULTS_H
-#define TTD_COMMON_DEFAULTS_H
+#ifndef TTD_CORE_DEFAULTS_H
+#define TTD_CORE_DEFAULTS_H
 
 #define TTD_DEFAULT_RHO 1.0e6
 #define TTD_DEFAULT_TOL 1.0e-12
@@ -58,4 +58,4 @@
  * choice. The name exists so that both precisions share one max(). */
 #define TTD_DOUBLE_TOL_MIN 0.0
 
-#endif /* TTD_COMMON_DEFAULTS_H */
+#endif /* TTD_CORE_DEFAULTS_H */

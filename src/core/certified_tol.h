@@ -28,8 +28,8 @@
  *   FEAS   the weights solved on the active set may be below 0 by this much (rounding at a
  *          vertex or edge end); they are then clamped onto the triangle, and the gap check
  *          above judges the clamped points, so this decides nothing about correctness. */
-#ifndef TTD_SCALAR_CERTIFIED_TOL_H
-#define TTD_SCALAR_CERTIFIED_TOL_H
+#ifndef TTD_CORE_CERTIFIED_TOL_H
+#define TTD_CORE_CERTIFIED_TOL_H
 
 #define TTD_CERT_GAP_D 0x1p-43
 #define TTD_CERT_TOUCH_D 0x1p-42
@@ -40,4 +40,4 @@
 #define TTD_CERT_CROSS_D 0x1p-20
 #define TTD_CERT_CROSS_F 0x1p-6f
 
-#endif /* TTD_SCALAR_CERTIFIED_TOL_H */
+#endif /* TTD_CORE_CERTIFIED_TOL_H */

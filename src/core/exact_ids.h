@@ -2,8 +2,8 @@
 /* What the scalar exact method (scalar/exact_impl.h) and its lane kernel (simd/kernel_exact.h)
  * must agree on, in one place: the numbering of the 39 candidates (the winner is rebuilt from
  * its id and up to three parameters) and the contact threshold. */
-#ifndef TTD_COMMON_EXACT_IDS_H
-#define TTD_COMMON_EXACT_IDS_H
+#ifndef TTD_CORE_EXACT_IDS_H
+#define TTD_CORE_EXACT_IDS_H
 
 enum {
     TTD_EXACT_VE_S = 0,  /* 9: vertex i of S against edge j of T: id = 3i + j, u = t */
@@ -20,4 +20,4 @@ enum {
  * contact computes to, not a gap: it is reported as 0 and flagged intersecting. */
 #define TTD_EXACT_TOUCH_EPS 4
 
-#endif /* TTD_COMMON_EXACT_IDS_H */
+#endif /* TTD_CORE_EXACT_IDS_H */
