@@ -22,7 +22,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "engine/dispatch.h"
 #include "pairs.h"
 
 /* What is run on a workload. */
@@ -171,8 +170,6 @@ static double pair_size(const double *s, const double *t)
     return m;
 }
 
-double bench_disagree_tol(int bytes) { return bytes == 8 ? 1e-9 : 1e-4; }
-
 /* Errors of dist (n values, as double) against the reference of precision bytes. */
 static void accuracy(bench_data *d, int bytes, const double *dist, bench_row *row)
 {
@@ -212,12 +209,7 @@ static ttd_status run_batch(const bench_data *d, int bytes, const ttd_options *o
 
 static int simd_kernel_exists(ttd_isa isa, ttd_method m, int bytes)
 {
-    if (isa == TTD_ISA_SCALAR)
-        return 1;
-    const ttd_isa_kernels *row = ttd_dispatch_row(isa);
-    if (!row)
-        return 0;
-    return bytes == 8 ? row->d[m] != NULL : row->f[m] != NULL;
+    return isa == TTD_ISA_SCALAR || ttd_method_lanes(m, isa, bytes) > 1;
 }
 
 static bench_row *new_row(bench_ctx *cx, const bench_data *d, const char *method, int bytes,

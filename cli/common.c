@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "engine/dispatch.h"
 
 void ttd_cli_error(const char *fmt, ...)
 {
@@ -70,11 +69,11 @@ void ttd_cli_print_isas(FILE *f)
 {
     fputs("built:", f);
     for (int i = 1; i < TTD_ISA_COUNT; ++i)
-        if (ttd_dispatch_isa_built((ttd_isa)i))
+        if (ttd_isa_built((ttd_isa)i))
             fprintf(f, " %s", ttd_isa_name((ttd_isa)i));
     fputs("\ncpu:  ", f);
     for (int i = 1; i < TTD_ISA_COUNT; ++i)
-        if (ttd_dispatch_cpu_supports((ttd_isa)i))
+        if (ttd_isa_supported((ttd_isa)i))
             fprintf(f, " %s", ttd_isa_name((ttd_isa)i));
     const char *env = getenv("TTD_ISA");
     ttd_isa sel = ttd_isa_selected(NULL);

@@ -21,7 +21,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "core/defaults.h"
 #include "parse.h"
 
 /// Pairs read, computed and written at a time.
@@ -135,7 +134,7 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
             bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
             a->use_float = strcmp(val, "float") == 0;
         } else if (strcmp(name, "--rho") == 0)
-            bad = ttd_cli_parse_real(val, &a->opt.rho) || !(a->opt.rho > 0 && a->opt.rho <= TTD_DOUBLE_RHO_MAX);
+            bad = ttd_cli_parse_real(val, &a->opt.rho) || !(a->opt.rho > 0 && a->opt.rho <= TTD_RHO_MAX);
         else if (strcmp(name, "--tol") == 0)
             bad = ttd_cli_parse_real(val, &a->opt.tol) || !(a->opt.tol >= 0 && a->opt.tol <= 1);
         else if (strcmp(name, "--max-iter") == 0) {

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* The ttd program: `ttd dist`, `ttd info`, `ttd bench` (when built), --help, --version. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
-#include "engine/parallel.h"
 
 #ifndef TTD_C_COMPILER
 #define TTD_C_COMPILER "unknown"
@@ -45,7 +46,7 @@ static int ttd_info(void)
     printf("\nmethods:");
     for (int m = 0; m < TTD_METHOD_COUNT; ++m)
         printf(" %s", ttd_method_name((ttd_method)m));
-    printf("\nthreads: %d online cores\n", ttd_parallel_cores());
+    printf("\nthreads: %ld online cores\n", sysconf(_SC_NPROCESSORS_ONLN));
     printf("compiler: %s\nflags: %s\n", TTD_C_COMPILER, TTD_C_FLAGS);
     printf("bench: %s\n", ttd_bench_main ? "built" : "not built");
     return fflush(stdout) == 0 ? TTD_EXIT_OK : TTD_EXIT_INPUT;

@@ -354,6 +354,30 @@ static int names_and_version(void)
     return 0;
 }
 
+/* ttd_isa_built / ttd_isa_supported / ttd_method_lanes agree with ttd_isa_available and
+ * ttd_isa_lanes: the barrier method has no lane kernel anywhere, the exact method one on
+ * every built SIMD row; invalid arguments give 0. */
+static int isa_queries(void)
+{
+    for (int i = 0; i < TTD_ISA_COUNT; ++i) {
+        const ttd_isa isa = (ttd_isa)i;
+        ENSURE(ttd_isa_available(isa) == (ttd_isa_built(isa) && ttd_isa_supported(isa)));
+        for (int bytes = 4; bytes <= 8; bytes += 4) {
+            if (!ttd_isa_built(isa)) {
+                ENSURE(ttd_method_lanes(TTD_METHOD_EXACT, isa, bytes) == 0);
+                continue;
+            }
+            ENSURE(ttd_method_lanes(TTD_METHOD_EXACT, isa, bytes) == ttd_isa_lanes(isa, bytes));
+            ENSURE(ttd_method_lanes(TTD_METHOD_BARRIER, isa, bytes) == 1);
+        }
+    }
+    ENSURE(ttd_isa_built(TTD_ISA_SCALAR) && ttd_isa_supported(TTD_ISA_SCALAR));
+    ENSURE(!ttd_isa_built(TTD_ISA_AUTO) && !ttd_isa_built(TTD_ISA_COUNT) && !ttd_isa_supported(TTD_ISA_COUNT));
+    ENSURE(ttd_method_lanes(TTD_METHOD_COUNT, TTD_ISA_SCALAR, 8) == 0);
+    ENSURE(ttd_method_lanes(TTD_METHOD_EXACT, TTD_ISA_SCALAR, 2) == 0);
+    return 0;
+}
+
 /* ---- results ---------------------------------------------------------------------------- */
 
 /* Batch == per-pair scalar functions (scalar ISA, bit for bit) and == single-pair calls on
@@ -730,6 +754,7 @@ int main(int argc, char **argv)
     RUN_TEST(isa_unavailable);
     RUN_TEST(mesh_index_out_of_range);
     RUN_TEST(names_and_version);
+    RUN_TEST(isa_queries);
     RUN_TEST(batch_matches_pairs);
     RUN_TEST(nonfinite_pairs_flagged);
     RUN_TEST(finite_extremes_not_flagged);

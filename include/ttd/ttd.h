@@ -110,6 +110,11 @@ typedef struct ttd_result_f {
     uint16_t iterations; ///< Newton iterations used (0 for the exact method)
 } ttd_result_f;
 
+/// The largest penalty weight ttd_options.rho accepts (its expanded pivots hold rho^2).
+#define TTD_RHO_MAX 1.0e150
+/// The largest step tolerance ttd_options.tol accepts (the methods work in a unit-size frame).
+#define TTD_TOL_MAX 1.0
+
 /// Options for every call. Get them from ttd_default_options(), then change fields.
 typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
@@ -173,11 +178,19 @@ TTD_API const char *ttd_method_name(ttd_method method);
 TTD_API const char *ttd_isa_name(ttd_isa isa);
 /// Non-zero when isa is built into this library and supported by this CPU and OS.
 TTD_API int ttd_isa_available(ttd_isa isa);
+/// Non-zero when the kernels of isa are compiled into this library (scalar: always).
+TTD_API int ttd_isa_built(ttd_isa isa);
+/// Non-zero when this CPU and operating system can run isa, built or not (scalar: always).
+TTD_API int ttd_isa_supported(ttd_isa isa);
 /// The instruction set a call with these options would use (opt may be NULL); TTD_ISA_AUTO on error.
 TTD_API ttd_isa ttd_isa_selected(const ttd_options *opt);
 /// SIMD lanes of an instruction set for one precision (bytes_per_real 4 = float, 8 = double);
 /// 1 for scalar; AUTO means the one ttd_isa_selected(NULL) gives; 0 for anything invalid.
 TTD_API int ttd_isa_lanes(ttd_isa isa, int bytes_per_real);
+/// Lanes that method uses on isa for one precision (bytes_per_real 4 or 8): the ISA's lane count
+/// where the method has a lane kernel there, 1 where it runs the scalar code (the barrier
+/// method everywhere); 0 when isa is not built or an argument is invalid.
+TTD_API int ttd_method_lanes(ttd_method method, ttd_isa isa, int bytes_per_real);
 /// "0.1.0".
 TTD_API const char *ttd_version_string(void);
 

@@ -17,12 +17,6 @@
 /* Set by ttd_default_options(); options built any other way lack it (Box2D's def cookie). */
 #define TTD_OPTIONS_COOKIE 0x74746431u /* "ttd1" */
 
-/* Accepted ranges of the iterative methods' parameters: what the double kernels take
- * (core/defaults.h; float kernels clamp further themselves). The methods run on the pair
- * scaled to unit size, so a step tolerance above 1 means nothing. */
-#define TTD_RHO_MAX TTD_DOUBLE_RHO_MAX
-#define TTD_TOL_MAX 1.0
-
 #define TTD_STR2(x) #x
 #define TTD_STR(x) TTD_STR2(x)
 
@@ -184,6 +178,28 @@ ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 int ttd_isa_available(ttd_isa isa)
 {
     return ttd_dispatch_isa_built(isa) && ttd_dispatch_cpu_supports(isa);
+}
+
+int ttd_isa_built(ttd_isa isa)
+{
+    return ttd_dispatch_isa_built(isa);
+}
+
+int ttd_isa_supported(ttd_isa isa)
+{
+    return ttd_dispatch_cpu_supports(isa);
+}
+
+int ttd_method_lanes(ttd_method method, ttd_isa isa, int bytes_per_real)
+{
+    if ((int)method < 0 || (int)method >= TTD_METHOD_COUNT || (bytes_per_real != 4 && bytes_per_real != 8))
+        return 0;
+    const ttd_isa_kernels *row = ttd_dispatch_row(isa);
+    if (row == NULL)
+        return 0;
+    if (bytes_per_real == 4)
+        return row->f[method] != NULL ? row->lanes_f : 1;
+    return row->d[method] != NULL ? row->lanes_d : 1;
 }
 
 ttd_isa ttd_isa_selected(const ttd_options *opt)

@@ -12,6 +12,8 @@
 #ifndef TTD_CORE_DEFAULTS_H
 #define TTD_CORE_DEFAULTS_H
 
+#include "ttd/ttd.h"
+
 #define TTD_DEFAULT_RHO 1.0e6
 #define TTD_DEFAULT_TOL 1.0e-12
 #define TTD_DEFAULT_MAX_ITERATIONS 99
@@ -47,7 +49,7 @@
 #define TTD_FLOAT_TOL_MIN 1.0e-6
 /* The largest rho accepted at all: the optimised step's expanded 2x2 pivots hold rho^2, which
  * must stay finite (above ~1.3e154 it did not, and a coordinate's step was silently zeroed). */
-#define TTD_DOUBLE_RHO_MAX 1.0e150
+#define TTD_DOUBLE_RHO_MAX TTD_RHO_MAX /* ttd/ttd.h */
 
 /* The paper's ttd1 reference keeps rho as given, except that in float it must stay finite
  * with its square (the I/rho^2 term): rho = 1e150 became inf, and inf * 0 gave NaN. */
