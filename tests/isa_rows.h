@@ -40,23 +40,24 @@ static inline int cpu_runs(const char *isa, const char **why)
 /* Every SIMD row built in (TTD_HAVE_<ISA>), ended by a NULL name. */
 typedef struct isa_row {
     const char *name;
-    const ttd_isa_kernels *row;
+    const ttd_kernels_d *d;
+    const ttd_kernels_f *f;
 } isa_row;
 
 static const isa_row isa_rows[] = {
 #ifdef TTD_HAVE_SSE2
-    {"sse2", &ttd_kernels_sse2},
+    {"sse2", &ttd_kernels_sse2_d, &ttd_kernels_sse2_f},
 #endif
 #ifdef TTD_HAVE_AVX2
-    {"avx2", &ttd_kernels_avx2},
+    {"avx2", &ttd_kernels_avx2_d, &ttd_kernels_avx2_f},
 #endif
 #ifdef TTD_HAVE_AVX512
-    {"avx512", &ttd_kernels_avx512},
+    {"avx512", &ttd_kernels_avx512_d, &ttd_kernels_avx512_f},
 #endif
 #ifdef TTD_HAVE_NEON
-    {"neon", &ttd_kernels_neon},
+    {"neon", &ttd_kernels_neon_d, &ttd_kernels_neon_f},
 #endif
-    {NULL, NULL},
+    {NULL, NULL, NULL},
 };
 
 #endif /* TTD_TEST_ISA_ROWS_H */

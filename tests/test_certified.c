@@ -394,7 +394,7 @@ static int rows_vs_scalar(void)
             printf("  skip %s: %s\n", r->name, why);
             continue;
         }
-        ENSURE(r->row->d[TTD_METHOD_CERTIFIED] != NULL && r->row->f[TTD_METHOD_CERTIFIED] != NULL);
+        ENSURE(r->d->fn[TTD_METHOD_CERTIFIED] != NULL && r->f->fn[TTD_METHOD_CERTIFIED] != NULL);
         for (int pass = 0; pass < 2; ++pass) {
             ttd_params prm = default_params();
             if (pass == 1)
@@ -408,8 +408,8 @@ static int rows_vs_scalar(void)
                 }
                 for (size_t i0 = 0; i0 < N; i0 += TTD_BLOCK_PAIRS) {
                     const size_t m = N - i0 < TTD_BLOCK_PAIRS ? N - i0 : TTD_BLOCK_PAIRS;
-                    r->row->d[TTD_METHOD_CERTIFIED](m, s + 9 * i0, t + 9 * i0, &prm, dd + i0, rd + i0);
-                    r->row->f[TTD_METHOD_CERTIFIED](m, sf + 9 * i0, tf + 9 * i0, &prm, df + i0, rf + i0);
+                    r->d->fn[TTD_METHOD_CERTIFIED](m, s + 9 * i0, t + 9 * i0, &prm, dd + i0, rd + i0);
+                    r->f->fn[TTD_METHOD_CERTIFIED](m, sf + 9 * i0, tf + 9 * i0, &prm, df + i0, rf + i0);
                 }
                 for (int i = 0; i < N; ++i) {
                     ttd_result_d wd;

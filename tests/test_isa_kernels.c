@@ -96,13 +96,13 @@ static void gen_pair(int family, uint64_t seed, size_t i, double s[9], double t[
 }
 
 #define TTD_PRECISION_DOUBLE
-#include "core/precision.h"
+#include "precision_open.h"
 #include "isa_kernels_impl.h"
-#include "core/precision_end.h"
+#include "precision_close.h"
 #define TTD_PRECISION_FLOAT
-#include "core/precision.h"
+#include "precision_open.h"
 #include "isa_kernels_impl.h"
-#include "core/precision_end.h"
+#include "precision_close.h"
 
 
 
@@ -132,14 +132,14 @@ static int rows_vs_scalar(void)
         }
         for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
             char what[64];
-            if (r->row->d[m]) {
+            if (r->d->fn[m]) {
                 snprintf(what, sizeof what, "%s %s double", r->name, method_names[m]);
-                ENSURE(check_vs_scalar_d(what, r->row->d[m], m, &prm, 3000, method_ulps[m]) == 0);
+                ENSURE(check_vs_scalar_d(what, r->d->fn[m], m, &prm, 3000, method_ulps[m]) == 0);
                 ++checked;
             }
-            if (r->row->f[m]) {
+            if (r->f->fn[m]) {
                 snprintf(what, sizeof what, "%s %s float", r->name, method_names[m]);
-                ENSURE(check_vs_scalar_f(what, r->row->f[m], m, &prm, 3000, method_ulps[m]) == 0);
+                ENSURE(check_vs_scalar_f(what, r->f->fn[m], m, &prm, 3000, method_ulps[m]) == 0);
                 ++checked;
             }
         }
@@ -159,10 +159,10 @@ static int rows_lane_independence(void)
         for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
             char what[64];
             snprintf(what, sizeof what, "%s %s", r->name, method_names[m]);
-            if (r->row->d[m])
-                ENSURE(check_lane_independence_d(what, r->row->d[m], r->row->lanes_d, &prm, &st) == 0);
-            if (r->row->f[m])
-                ENSURE(check_lane_independence_f(what, r->row->f[m], r->row->lanes_f, &prm, &st) == 0);
+            if (r->d->fn[m])
+                ENSURE(check_lane_independence_d(what, r->d->fn[m], r->d->lanes, &prm, &st) == 0);
+            if (r->f->fn[m])
+                ENSURE(check_lane_independence_f(what, r->f->fn[m], r->f->lanes, &prm, &st) == 0);
         }
     }
     return 0;
@@ -175,15 +175,15 @@ static int rows_sizes_and_alignment(void)
         const char *why = "";
         if (!cpu_runs(r->name, &why))
             continue;
-        ENSURE(r->row->lanes_d >= 1 && TTD_BLOCK_PAIRS % r->row->lanes_d == 0);
-        ENSURE(r->row->lanes_f >= 1 && TTD_BLOCK_PAIRS % r->row->lanes_f == 0);
+        ENSURE(r->d->lanes >= 1 && TTD_BLOCK_PAIRS % r->d->lanes == 0);
+        ENSURE(r->f->lanes >= 1 && TTD_BLOCK_PAIRS % r->f->lanes == 0);
         for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
             char what[64];
             snprintf(what, sizeof what, "%s %s", r->name, method_names[m]);
-            if (r->row->d[m])
-                ENSURE(check_sizes_d(what, r->row->d[m], r->row->lanes_d, &prm) == 0);
-            if (r->row->f[m])
-                ENSURE(check_sizes_f(what, r->row->f[m], r->row->lanes_f, &prm) == 0);
+            if (r->d->fn[m])
+                ENSURE(check_sizes_d(what, r->d->fn[m], r->d->lanes, &prm) == 0);
+            if (r->f->fn[m])
+                ENSURE(check_sizes_f(what, r->f->fn[m], r->f->lanes, &prm) == 0);
         }
     }
     return 0;

@@ -29,13 +29,13 @@ static double lanes_uniform(uint64_t *st, double lo, double hi)
 }
 
 #define TTD_PRECISION_DOUBLE
-#include "core/precision.h"
+#include "precision_open.h"
 #include "lanes_check_impl.h"
-#include "core/precision_end.h"
+#include "precision_close.h"
 #define TTD_PRECISION_FLOAT
-#include "core/precision.h"
+#include "precision_open.h"
 #include "lanes_check_impl.h"
-#include "core/precision_end.h"
+#include "precision_close.h"
 
 /* The rows built into the library (src/CMakeLists.txt defines TTD_HAVE_<ISA> for internal
  * users), with what the CPU must support to run them. */

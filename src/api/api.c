@@ -68,9 +68,7 @@ static ttd_status ttd_configure(const ttd_options *o, ttd_engine_config *cfg)
     ttd_status st = ttd_dispatch_resolve(o->isa, &isa);
     if (st != TTD_OK)
         return st;
-    cfg->row = ttd_dispatch_row(isa);
-    if (cfg->row == NULL)
-        return TTD_ERR_ISA_UNAVAILABLE;
+    cfg->isa = isa;
     cfg->method = o->method;
     cfg->params.rho = o->rho;
     cfg->params.tol = o->tol;
@@ -194,12 +192,11 @@ int ttd_method_lanes(ttd_method method, ttd_isa isa, int bytes_per_real)
 {
     if ((int)method < 0 || (int)method >= TTD_METHOD_COUNT || (bytes_per_real != 4 && bytes_per_real != 8))
         return 0;
-    const ttd_isa_kernels *row = ttd_dispatch_row(isa);
-    if (row == NULL)
+    if (!ttd_dispatch_isa_built(isa))
         return 0;
     if (bytes_per_real == 4)
-        return row->f[method] != NULL ? row->lanes_f : 1;
-    return row->d[method] != NULL ? row->lanes_d : 1;
+        return ttd_dispatch_row_f(isa)->fn[method] != NULL ? ttd_dispatch_row_f(isa)->lanes : 1;
+    return ttd_dispatch_row_d(isa)->fn[method] != NULL ? ttd_dispatch_row_d(isa)->lanes : 1;
 }
 
 ttd_isa ttd_isa_selected(const ttd_options *opt)
@@ -217,9 +214,8 @@ int ttd_isa_lanes(ttd_isa isa, int bytes_per_real)
         return 0;
     if (isa == TTD_ISA_AUTO)
         isa = ttd_isa_selected(NULL);
-    const ttd_isa_kernels *row = ttd_dispatch_row(isa);
-    if (row != NULL)
-        return bytes_per_real == 4 ? row->lanes_f : row->lanes_d;
+    if (ttd_dispatch_isa_built(isa))
+        return bytes_per_real == 4 ? ttd_dispatch_row_f(isa)->lanes : ttd_dispatch_row_d(isa)->lanes;
     /* Not built here: the register width says what it would be. */
     switch (isa) {
     case TTD_ISA_SSE2:

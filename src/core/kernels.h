@@ -9,8 +9,9 @@
  * from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING, TTD_PAIR_NOT_CONVERGED and
  * TTD_PAIR_FALLBACK (certified mode) only.
  *
- * Each instruction set provides one table row (ttd_isa_kernels). A NULL entry means "not
- * written for this ISA": the engine then uses the scalar row for that method. */
+ * Each instruction set provides one table row per precision (ttd_kernels_d, ttd_kernels_f). A
+ * NULL entry means "not written for this ISA": the engine then uses the scalar row for that
+ * method. */
 #ifndef TTD_CORE_KERNELS_H
 #define TTD_CORE_KERNELS_H
 
@@ -32,20 +33,31 @@ typedef void (*ttd_kernel_d_fn)(size_t n, const double *s, const double *t, cons
 typedef void (*ttd_kernel_f_fn)(size_t n, const float *s, const float *t, const ttd_params *prm,
                                 float *distance, ttd_result_f *results);
 
-/// One instruction set's kernels, indexed by ttd_method.
-typedef struct ttd_isa_kernels {
+/// One instruction set's kernels for one precision, indexed by ttd_method (one translation
+/// unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c; scalar/kernels.c).
+typedef struct ttd_kernels_d {
     ttd_isa isa;
-    int lanes_f;                         ///< float lanes per vector
-    int lanes_d;                         ///< double lanes per vector
-    ttd_kernel_d_fn d[TTD_METHOD_COUNT];
-    ttd_kernel_f_fn f[TTD_METHOD_COUNT];
-} ttd_isa_kernels;
+    int lanes;                          ///< double lanes per vector (1 for scalar)
+    ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
+} ttd_kernels_d;
 
-/* Rows; the scalar one always exists, the others when CMake defines TTD_HAVE_<ISA>. */
-extern const ttd_isa_kernels ttd_kernels_scalar;
-extern const ttd_isa_kernels ttd_kernels_sse2;
-extern const ttd_isa_kernels ttd_kernels_avx2;
-extern const ttd_isa_kernels ttd_kernels_avx512;
-extern const ttd_isa_kernels ttd_kernels_neon;
+/// ttd_kernels_d for float.
+typedef struct ttd_kernels_f {
+    ttd_isa isa;
+    int lanes;                          ///< float lanes per vector (1 for scalar)
+    ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
+} ttd_kernels_f;
+
+/* Rows; the scalar ones always exist, the others when CMake defines TTD_HAVE_<ISA>. */
+extern const ttd_kernels_d ttd_kernels_scalar_d;
+extern const ttd_kernels_f ttd_kernels_scalar_f;
+extern const ttd_kernels_d ttd_kernels_sse2_d;
+extern const ttd_kernels_f ttd_kernels_sse2_f;
+extern const ttd_kernels_d ttd_kernels_avx2_d;
+extern const ttd_kernels_f ttd_kernels_avx2_f;
+extern const ttd_kernels_d ttd_kernels_avx512_d;
+extern const ttd_kernels_f ttd_kernels_avx512_f;
+extern const ttd_kernels_d ttd_kernels_neon_d;
+extern const ttd_kernels_f ttd_kernels_neon_f;
 
 #endif /* TTD_CORE_KERNELS_H */

@@ -1,27 +1,31 @@
 /* SPDX-License-Identifier: MIT */
-/* One source, two precisions (FFTW's X() idea). A file that holds precision-generic code
- * (foo_impl.h) is included once per precision by its .c file:
+/* One source, two precisions, one precision per translation unit (SLEEF's sleefsimddp.c /
+ * sleefsimdsp.c arrangement). Precision-generic code (foo_impl.h) is compiled by two thin
+ * files, foo_d.c and foo_f.c, each of which says
  *
- *     #define TTD_PRECISION_DOUBLE
+ *     #define TTD_PRECISION_DOUBLE            (or TTD_PRECISION_FLOAT)
  *     #include "core/precision.h"
  *     #include "foo_impl.h"
- *     #include "core/precision_end.h"
- *     #define TTD_PRECISION_FLOAT
- *     ... the same again
  *
- * Inside, write `real`, `TTD_SFX(name)` (-> name_d / name_f), `ttd_result` and the math
- * wrappers below, never double/float directly. */
+ * and then defines the exported names by hand (ttd_foo_d calls the file's static foo), so
+ * every exported symbol is written out where it is defined. Inside foo_impl.h, write `real`,
+ * `ttd_result` and the math wrappers below, never double/float directly. These names exist
+ * only in ttd's own translation units: no public or shared header includes this file. */
+#ifndef TTD_CORE_PRECISION_H
+#define TTD_CORE_PRECISION_H
+
 #if defined(TTD_PRECISION_DOUBLE) == defined(TTD_PRECISION_FLOAT)
-#error "define exactly one of TTD_PRECISION_DOUBLE and TTD_PRECISION_FLOAT"
+#error "define exactly one of TTD_PRECISION_DOUBLE and TTD_PRECISION_FLOAT before core/precision.h"
 #endif
 
 #include <float.h>
 #include <math.h>
 
+#include "ttd/ttd.h"
+
 #ifdef TTD_PRECISION_DOUBLE
-#define real double
-#define TTD_SFX(name) name##_d
-#define ttd_result ttd_result_d
+typedef double real;
+typedef ttd_result_d ttd_result;
 #define TTD_REAL_EPS DBL_EPSILON
 #define TTD_REAL_MIN DBL_MIN
 #define TTD_REAL_MAX DBL_MAX
@@ -31,9 +35,8 @@
 #define TTD_FREXP frexp
 #define TTD_LDEXP ldexp
 #else
-#define real float
-#define TTD_SFX(name) name##_f
-#define ttd_result ttd_result_f
+typedef float real;
+typedef ttd_result_f ttd_result;
 #define TTD_REAL_EPS FLT_EPSILON
 #define TTD_REAL_MIN FLT_MIN
 #define TTD_REAL_MAX FLT_MAX
@@ -43,3 +46,5 @@
 #define TTD_FREXP frexpf
 #define TTD_LDEXP ldexpf
 #endif
+
+#endif /* TTD_CORE_PRECISION_H */

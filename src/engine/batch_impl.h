@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* The batch engine, written once for both precisions (included twice by engine/batch.c with
- * core/precision.h open; see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_ROW_COL).
+/* The batch engine, precision-generic: engine/batch_d.c and engine/batch_f.c compile it once
+ * each (see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_ROW, TTD_SCALAR_ROW).
  *
  * Each block of TTD_BLOCK_PAIRS pairs goes one of two ways. The fast way, taken by almost
  * every block: all 18n coordinates finite, every pointer aligned for its type, and no flags
@@ -11,15 +11,15 @@
  * placeholder's outputs are overwritten with NaN and TTD_PAIR_NONFINITE. The block boundaries
  * do not depend on the thread count, so neither do the results. */
 
-typedef struct TTD_SFX(ttd_scratch) {
+typedef struct ttd_scratch {
     real s[9 * TTD_BLOCK_PAIRS];
     real t[9 * TTD_BLOCK_PAIRS];
     real dist[TTD_BLOCK_PAIRS];
     ttd_result res[TTD_BLOCK_PAIRS];
     unsigned char bad[TTD_BLOCK_PAIRS];
-} TTD_SFX(ttd_scratch);
+} ttd_scratch;
 
-typedef struct TTD_SFX(ttd_bjob) {
+typedef struct ttd_bjob {
     TTD_KERNEL_FN fn;
     const ttd_params *prm;
     size_t n;
@@ -27,19 +27,19 @@ typedef struct TTD_SFX(ttd_bjob) {
     int mesh_check;                /* mesh: this pass only checks indices */
     const unsigned char *s, *t;    /* plain batch: the caller's coordinates, as bytes */
     int in_aligned;
-    const TTD_SFX(ttd_mesh) *m1, *m2; /* mesh batch */
+    const engine_mesh *m1, *m2; /* mesh batch */
     const unsigned char *pairs;
     unsigned char *distance, *results; /* the caller's outputs, as bytes; either may be NULL */
     int dist_aligned, res_aligned;
     atomic_uint bits;              /* TTD_BATCH_* seen by any block */
-    TTD_SFX(ttd_scratch) *scratch[TTD_MAX_WORKERS];
-} TTD_SFX(ttd_bjob);
+    ttd_scratch *scratch[TTD_MAX_WORKERS];
+} ttd_bjob;
 
 /* Non-zero when any of count reals at p (any alignment) is NaN or inf. The exponent field
  * of such a value is all ones, so adding one to it carries into the sign bit of the masked
  * word: an OR of and-add words, without compares, that compilers vectorise with baseline
  * SSE2. Eight accumulators keep the loop from waiting on one OR chain. */
-static int TTD_SFX(ttd_any_nonfinite)(const unsigned char *p, size_t count)
+static int ttd_any_nonfinite(const unsigned char *p, size_t count)
 {
     const TTD_UBITS exp_bits = TTD_EXP_BITS, exp_lsb = TTD_EXP_BITS & (TTD_UBITS)(~TTD_EXP_BITS + 1);
     TTD_UBITS acc[8] = {0}, u[8], all = 0;
@@ -58,10 +58,10 @@ static int TTD_SFX(ttd_any_nonfinite)(const unsigned char *p, size_t count)
     return (int)(all >> (8 * sizeof all - 1));
 }
 
-static TTD_SFX(ttd_scratch) *TTD_SFX(ttd_get_scratch)(TTD_SFX(ttd_bjob) *j, int worker)
+static ttd_scratch *ttd_get_scratch(ttd_bjob *j, int worker)
 {
     if (j->scratch[worker] == NULL) {
-        j->scratch[worker] = malloc(sizeof(TTD_SFX(ttd_scratch)));
+        j->scratch[worker] = malloc(sizeof(ttd_scratch));
         if (j->scratch[worker] == NULL)
             atomic_fetch_or(&j->bits, TTD_BATCH_NOMEM);
     }
@@ -69,7 +69,7 @@ static TTD_SFX(ttd_scratch) *TTD_SFX(ttd_get_scratch)(TTD_SFX(ttd_bjob) *j, int 
 }
 
 /* Mesh check pass: every pair's triangle indices and their vertex indices in range. */
-static int TTD_SFX(ttd_mesh_block_ok)(const TTD_SFX(ttd_bjob) *j, size_t i0, size_t m)
+static int ttd_mesh_block_ok(const ttd_bjob *j, size_t i0, size_t m)
 {
     const unsigned char *tris1 = (const unsigned char *)j->m1->tris;
     const unsigned char *tris2 = (const unsigned char *)j->m2->tris;
@@ -86,7 +86,7 @@ static int TTD_SFX(ttd_mesh_block_ok)(const TTD_SFX(ttd_bjob) *j, size_t i0, siz
 }
 
 /* Copies the 9 coordinates of triangle tri of mesh into out (indices already checked). */
-static void TTD_SFX(ttd_gather)(const TTD_SFX(ttd_mesh) *mesh, uint32_t tri, real *out)
+static void ttd_gather(const engine_mesh *mesh, uint32_t tri, real *out)
 {
     const unsigned char *tris = (const unsigned char *)mesh->tris;
     const unsigned char *verts = (const unsigned char *)mesh->verts;
@@ -96,16 +96,16 @@ static void TTD_SFX(ttd_gather)(const TTD_SFX(ttd_mesh) *mesh, uint32_t tri, rea
     }
 }
 
-static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
+static void ttd_block(void *ctx, size_t block, int worker)
 {
-    TTD_SFX(ttd_bjob) *j = ctx;
+    ttd_bjob *j = ctx;
     const unsigned stop = TTD_BATCH_NOMEM | TTD_BATCH_BAD_INDEX;
     if (atomic_load_explicit(&j->bits, memory_order_relaxed) & stop)
         return;
     const size_t i0 = block * TTD_BLOCK_PAIRS;
     const size_t m = j->n - i0 < TTD_BLOCK_PAIRS ? j->n - i0 : TTD_BLOCK_PAIRS;
     if (j->mesh_check) {
-        if (!TTD_SFX(ttd_mesh_block_ok)(j, i0, m))
+        if (!ttd_mesh_block_ok(j, i0, m))
             atomic_fetch_or(&j->bits, TTD_BATCH_BAD_INDEX);
         return;
     }
@@ -113,8 +113,8 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
     const size_t in_off = 9 * i0 * sizeof(real);
     int any_bad = 0;
     if (j->m1 == NULL)
-        any_bad = TTD_SFX(ttd_any_nonfinite)(j->s + in_off, 9 * m) ||
-                  TTD_SFX(ttd_any_nonfinite)(j->t + in_off, 9 * m);
+        any_bad = ttd_any_nonfinite(j->s + in_off, 9 * m) ||
+                  ttd_any_nonfinite(j->t + in_off, 9 * m);
     const int fast = j->m1 == NULL && !any_bad && j->in_aligned &&
                      (j->distance == NULL || j->dist_aligned) &&
                      (j->results != NULL ? j->res_aligned : !j->need_flags);
@@ -133,7 +133,7 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
         return;
     }
 
-    TTD_SFX(ttd_scratch) *sc = TTD_SFX(ttd_get_scratch)(j, worker);
+    ttd_scratch *sc = ttd_get_scratch(j, worker);
     if (sc == NULL)
         return;
     if (j->m1 == NULL) {
@@ -141,11 +141,11 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
         memcpy(sc->t, j->t + in_off, 9 * m * sizeof(real));
     } else {
         for (size_t i = 0; i < m; ++i) {
-            TTD_SFX(ttd_gather)(j->m1, ttd_load_u32(j->pairs, 2 * (i0 + i)), sc->s + 9 * i);
-            TTD_SFX(ttd_gather)(j->m2, ttd_load_u32(j->pairs, 2 * (i0 + i) + 1), sc->t + 9 * i);
+            ttd_gather(j->m1, ttd_load_u32(j->pairs, 2 * (i0 + i)), sc->s + 9 * i);
+            ttd_gather(j->m2, ttd_load_u32(j->pairs, 2 * (i0 + i) + 1), sc->t + 9 * i);
         }
-        any_bad = TTD_SFX(ttd_any_nonfinite)((const unsigned char *)sc->s, 9 * m) ||
-                  TTD_SFX(ttd_any_nonfinite)((const unsigned char *)sc->t, 9 * m);
+        any_bad = ttd_any_nonfinite((const unsigned char *)sc->s, 9 * m) ||
+                  ttd_any_nonfinite((const unsigned char *)sc->t, 9 * m);
     }
     if (any_bad) {
         /* A pair far from degenerate and from touching, so that every method handles it
@@ -153,8 +153,8 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
         static const real ph_s[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
         static const real ph_t[9] = {(real)0.25, (real)0.25, 1, 1, (real)0.25, 2, (real)0.25, 1, 2};
         for (size_t i = 0; i < m; ++i) {
-            sc->bad[i] = (unsigned char)(TTD_SFX(ttd_any_nonfinite)((const unsigned char *)(sc->s + 9 * i), 9) ||
-                                         TTD_SFX(ttd_any_nonfinite)((const unsigned char *)(sc->t + 9 * i), 9));
+            sc->bad[i] = (unsigned char)(ttd_any_nonfinite((const unsigned char *)(sc->s + 9 * i), 9) ||
+                                         ttd_any_nonfinite((const unsigned char *)(sc->t + 9 * i), 9));
             if (sc->bad[i]) {
                 memcpy(sc->s + 9 * i, ph_s, sizeof ph_s);
                 memcpy(sc->t + 9 * i, ph_t, sizeof ph_t);
@@ -204,11 +204,11 @@ static void TTD_SFX(ttd_block)(void *ctx, size_t block, int worker)
 
 /* Runs the blocks and turns the bits into a status. The caller set n, the inputs (s/t or
  * m1/m2/pairs) and the outputs; everything else is set here. */
-static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjob) *j)
+static ttd_status ttd_run(const ttd_engine_config *cfg, ttd_bjob *j)
 {
-    j->fn = cfg->row->TTD_ROW_COL[cfg->method];
+    j->fn = TTD_ROW(cfg->isa)->fn[cfg->method];
     if (j->fn == NULL)
-        j->fn = ttd_kernels_scalar.TTD_ROW_COL[cfg->method];
+        j->fn = TTD_SCALAR_ROW.fn[cfg->method];
     j->prm = &cfg->params;
     /* the certified mode never leaves a pair unconverged (it falls back instead) */
     j->need_flags = cfg->method != TTD_METHOD_EXACT && cfg->method != TTD_METHOD_CERTIFIED;
@@ -223,20 +223,20 @@ static ttd_status TTD_SFX(ttd_run)(const ttd_engine_config *cfg, TTD_SFX(ttd_bjo
         j->scratch[w] = NULL;
     if (j->m1 != NULL) {
         j->mesh_check = 1;
-        ttd_parallel_for(nblocks, workers, TTD_SFX(ttd_block), j);
+        ttd_parallel_for(nblocks, workers, ttd_block, j);
         j->mesh_check = 0;
     }
     if (!(atomic_load(&j->bits) & TTD_BATCH_BAD_INDEX))
-        ttd_parallel_for(nblocks, workers, TTD_SFX(ttd_block), j);
+        ttd_parallel_for(nblocks, workers, ttd_block, j);
     for (int w = 0; w < workers; ++w)
         free(j->scratch[w]);
     return ttd_batch_status(atomic_load(&j->bits));
 }
 
-ttd_status TTD_SFX(ttd_engine_batch)(const ttd_engine_config *cfg, size_t n, const real *s,
+static ttd_status engine_batch(const ttd_engine_config *cfg, size_t n, const real *s,
                                      const real *t, real *distance, ttd_result *results)
 {
-    TTD_SFX(ttd_bjob) j;
+    ttd_bjob j;
     j.n = n;
     j.s = (const unsigned char *)s;
     j.t = (const unsigned char *)t;
@@ -245,14 +245,14 @@ ttd_status TTD_SFX(ttd_engine_batch)(const ttd_engine_config *cfg, size_t n, con
     j.pairs = NULL;
     j.distance = (unsigned char *)distance;
     j.results = (unsigned char *)results;
-    return TTD_SFX(ttd_run)(cfg, &j);
+    return ttd_run(cfg, &j);
 }
 
-ttd_status TTD_SFX(ttd_engine_mesh)(const ttd_engine_config *cfg, const TTD_SFX(ttd_mesh) *m1,
-                                    const TTD_SFX(ttd_mesh) *m2, size_t n, const uint32_t *pairs,
+static ttd_status engine_mesh_run(const ttd_engine_config *cfg, const engine_mesh *m1,
+                                    const engine_mesh *m2, size_t n, const uint32_t *pairs,
                                     real *distance, ttd_result *results)
 {
-    TTD_SFX(ttd_bjob) j;
+    ttd_bjob j;
     j.n = n;
     j.s = j.t = NULL;
     j.in_aligned = 1;
@@ -261,5 +261,5 @@ ttd_status TTD_SFX(ttd_engine_mesh)(const ttd_engine_config *cfg, const TTD_SFX(
     j.pairs = (const unsigned char *)pairs;
     j.distance = (unsigned char *)distance;
     j.results = (unsigned char *)results;
-    return TTD_SFX(ttd_run)(cfg, &j);
+    return ttd_run(cfg, &j);
 }

@@ -24,25 +24,42 @@
 #include <cpuid.h>
 #endif
 
-/* The table, indexed by ttd_isa; NULL where a row was not built. */
-static const ttd_isa_kernels *const ttd_rows[TTD_ISA_COUNT] = {
+/* The tables, indexed by ttd_isa; NULL where a row was not built. */
+static const ttd_kernels_d *const ttd_rows_d[TTD_ISA_COUNT] = {
     [TTD_ISA_AUTO] = NULL,
-    [TTD_ISA_SCALAR] = &ttd_kernels_scalar,
+    [TTD_ISA_SCALAR] = &ttd_kernels_scalar_d,
 #ifdef TTD_HAVE_SSE2
-    [TTD_ISA_SSE2] = &ttd_kernels_sse2,
+    [TTD_ISA_SSE2] = &ttd_kernels_sse2_d,
 #endif
 #ifdef TTD_HAVE_AVX2
-    [TTD_ISA_AVX2] = &ttd_kernels_avx2,
+    [TTD_ISA_AVX2] = &ttd_kernels_avx2_d,
 #endif
 #ifdef TTD_HAVE_AVX512
-    [TTD_ISA_AVX512] = &ttd_kernels_avx512,
+    [TTD_ISA_AVX512] = &ttd_kernels_avx512_d,
 #endif
 #ifdef TTD_HAVE_NEON
-    [TTD_ISA_NEON] = &ttd_kernels_neon,
+    [TTD_ISA_NEON] = &ttd_kernels_neon_d,
 #endif
 };
 
-_Static_assert(TTD_ISA_NEON == TTD_ISA_COUNT - 1, "update ttd_rows and ttd_preference with ttd_isa");
+static const ttd_kernels_f *const ttd_rows_f[TTD_ISA_COUNT] = {
+    [TTD_ISA_AUTO] = NULL,
+    [TTD_ISA_SCALAR] = &ttd_kernels_scalar_f,
+#ifdef TTD_HAVE_SSE2
+    [TTD_ISA_SSE2] = &ttd_kernels_sse2_f,
+#endif
+#ifdef TTD_HAVE_AVX2
+    [TTD_ISA_AVX2] = &ttd_kernels_avx2_f,
+#endif
+#ifdef TTD_HAVE_AVX512
+    [TTD_ISA_AVX512] = &ttd_kernels_avx512_f,
+#endif
+#ifdef TTD_HAVE_NEON
+    [TTD_ISA_NEON] = &ttd_kernels_neon_f,
+#endif
+};
+
+_Static_assert(TTD_ISA_NEON == TTD_ISA_COUNT - 1, "update ttd_rows_d, ttd_rows_f and ttd_preference with ttd_isa");
 
 /* Auto picks the first of these that is built and supported. */
 static const ttd_isa ttd_preference[] = {TTD_ISA_AVX512, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_NEON,
@@ -86,7 +103,7 @@ static int ttd_x86_supports(ttd_isa isa)
 
 int ttd_dispatch_isa_built(ttd_isa isa)
 {
-    return (int)isa > 0 && (int)isa < TTD_ISA_COUNT && ttd_rows[isa] != NULL;
+    return (int)isa > 0 && (int)isa < TTD_ISA_COUNT && ttd_rows_d[isa] != NULL;
 }
 
 static int ttd_detect(ttd_isa isa)
@@ -135,9 +152,14 @@ ttd_isa ttd_dispatch_best(void)
     return TTD_ISA_SCALAR;
 }
 
-const ttd_isa_kernels *ttd_dispatch_row(ttd_isa isa)
+const ttd_kernels_d *ttd_dispatch_row_d(ttd_isa isa)
 {
-    return ttd_dispatch_isa_built(isa) ? ttd_rows[isa] : NULL;
+    return ttd_dispatch_isa_built(isa) ? ttd_rows_d[isa] : NULL;
+}
+
+const ttd_kernels_f *ttd_dispatch_row_f(ttd_isa isa)
+{
+    return ttd_dispatch_isa_built(isa) ? ttd_rows_f[isa] : NULL;
 }
 
 /* TTD_ISA: "" or "auto" -> AUTO; a ttd_isa_name -> that ISA; anything else -> COUNT (invalid). */

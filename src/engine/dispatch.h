@@ -12,8 +12,9 @@ int ttd_dispatch_isa_built(ttd_isa isa);
 int ttd_dispatch_cpu_supports(ttd_isa isa);
 /// The best instruction set that is built and supported (never AUTO).
 ttd_isa ttd_dispatch_best(void);
-/// The table row of isa, or NULL when it was not built.
-const ttd_isa_kernels *ttd_dispatch_row(ttd_isa isa);
+/// The table rows of isa (double, float), or NULL when it was not built.
+const ttd_kernels_d *ttd_dispatch_row_d(ttd_isa isa);
+const ttd_kernels_f *ttd_dispatch_row_f(ttd_isa isa);
 /// Resolves requested (AUTO, or a forced one) to a runnable instruction set. With AUTO the
 /// environment variable TTD_ISA (a ttd_isa_name, or "auto"/empty) may force one.
 /// Returns TTD_OK, or TTD_ERR_ISA_UNAVAILABLE when the forced one (or an unknown TTD_ISA

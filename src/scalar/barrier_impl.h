@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* The log-barrier method (paper, section 2: its first attempt), precision-generic; barrier.c
- * includes this once per precision. For comparison with the penalty method only: correct,
+/* The log-barrier method (paper, section 2: its first attempt), precision-generic; barrier_d.c
+ * and barrier_f.c compile it once each. For comparison with the penalty method only: correct,
  * not tuned for speed.
  *
  * It minimises B(x) = f(x) - mu sum_i log(s_i) over x = (a, b, g, d), where f is the squared
@@ -16,7 +16,7 @@
  * Accuracy and iteration counts: docs/penalty-method.md. */
 
 /* Squared distance, gradient and Hessian of f in the frame; x = (a, b, g, d). */
-static real TTD_SFX(bar_f)(real u[4][3], const real da[3], const real x[4])
+static real bar_f(real u[4][3], const real da[3], const real x[4])
 {
     real f = 0;
     for (int k = 0; k < 3; ++k) {
@@ -27,19 +27,19 @@ static real TTD_SFX(bar_f)(real u[4][3], const real da[3], const real x[4])
 }
 
 /* B at x with slacks sl[6]; +inf outside (any slack <= 0). */
-static real TTD_SFX(bar_value)(real u[4][3], const real da[3], const real x[4], const real sl[6], real mu)
+static real bar_value(real u[4][3], const real da[3], const real x[4], const real sl[6], real mu)
 {
     real logs = 0;
     for (int i = 0; i < 6; ++i) {
         if (!(sl[i] > 0)) return TTD_REAL_MAX;
         logs += (real)log((double)sl[i]);
     }
-    return TTD_SFX(bar_f)(u, da, x) - mu * logs;
+    return bar_f(u, da, x) - mu * logs;
 }
 
 /* Solves the symmetric positive definite m x = r by elimination without pivoting; a pivot
  * below floor_ (rounding on a degenerate pair) is raised to it. */
-static void TTD_SFX(bar_solve)(real m[4][4], real r[4], real x[4], real floor_)
+static void bar_solve(real m[4][4], real r[4], real x[4], real floor_)
 {
     for (int c = 0; c < 4; ++c) {
         if (!(m[c][c] > floor_)) m[c][c] = floor_;
@@ -56,7 +56,7 @@ static void TTD_SFX(bar_solve)(real m[4][4], real r[4], real x[4], real floor_)
     }
 }
 
-static real TTD_SFX(bar_norm3)(real x, real y, real z)
+static real bar_norm3(real x, real y, real z)
 {
     real m = TTD_FABS(x);
     if (TTD_FABS(y) > m) m = TTD_FABS(y);
@@ -70,7 +70,7 @@ static real TTD_SFX(bar_norm3)(real x, real y, real z)
     return TTD_LDEXP(TTD_SQRT(x * x + y * y + z * z), e);
 }
 
-void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
+static void barrier_pair(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
 {
     /* Final barrier weight 1/rho^2 (the penalty method's error scale), not below what the
      * precision resolves. rho is not capped in float here: the barrier Hessian has no rho
@@ -150,7 +150,7 @@ void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_param
         H[2][3] += inv2[5];
         H[3][2] += inv2[5];
         real rhs[4] = {g[0], g[1], g[2], g[3]}, dx[4];
-        TTD_SFX(bar_solve)(H, rhs, dx, mu * TTD_REAL_EPS);
+        bar_solve(H, rhs, dx, mu * TTD_REAL_EPS);
         const real dec = g[0] * dx[0] + g[1] * dx[1] + g[2] * dx[2] + g[3] * dx[3];
 
         /* Step x - t dx: slack changes ds_i = s_i' . dx; stay inside (99% of the way to the
@@ -159,15 +159,15 @@ void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_param
         real step = 1;
         for (int i = 0; i < 6; ++i)
             if (ds[i] > 0 && (real)0.99 * sl[i] < step * ds[i]) step = (real)0.99 * sl[i] / ds[i];
-        const real b0 = TTD_SFX(bar_value)(u, da, x, sl, mu);
+        const real b0 = bar_value(u, da, x, sl, mu);
         real xn[4], sn[6];
         for (int tries = 0; tries < 40; ++tries) {
             for (int i = 0; i < 4; ++i) xn[i] = x[i] - step * dx[i];
             for (int i = 0; i < 6; ++i) sn[i] = sl[i] - step * ds[i];
-            if (TTD_SFX(bar_value)(u, da, xn, sn, mu) <= b0) break;
+            if (bar_value(u, da, xn, sn, mu) <= b0) break;
             step *= (real)0.5;
         }
-        if (TTD_SFX(bar_value)(u, da, xn, sn, mu) <= b0) {
+        if (bar_value(u, da, xn, sn, mu) <= b0) {
             for (int i = 0; i < 4; ++i) x[i] = xn[i];
             for (int i = 0; i < 6; ++i) sl[i] = sn[i];
         }
@@ -202,7 +202,7 @@ void TTD_SFX(ttd_barrier_pair)(const real s[9], const real t[9], const ttd_param
         r->bary_q[k] = wq[k];
         xy[k] = wp[1] * u[0][k] + wp[2] * u[1][k] + wq[1] * u[2][k] + wq[2] * u[3][k] - da[k];
     }
-    r->distance = TTD_LDEXP(TTD_SFX(bar_norm3)(xy[0], xy[1], xy[2]), e) / pre; /* no 0 * inf */
+    r->distance = TTD_LDEXP(bar_norm3(xy[0], xy[1], xy[2]), e) / pre; /* no 0 * inf */
     r->feature_p = (uint8_t)((wp[0] > 0) | ((wp[1] > 0) << 1) | ((wp[2] > 0) << 2));
     r->feature_q = (uint8_t)((wq[0] > 0) | ((wq[1] > 0) << 1) | ((wq[2] > 0) << 2));
     r->iterations = (uint16_t)it;

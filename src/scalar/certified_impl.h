@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* The certified mode, precision-generic (certified.c includes it once per precision).
+/* The certified mode, precision-generic (certified_d.c and certified_f.c compile
+ * it once each).
  *
- * 1. The optimised penalty method (ttd_penalty_pair) runs as usual.
+ * 1. The optimised penalty method (ttd_penalty_pair_d/f) runs as usual.
  * 2. Its final weights say which of the six constraints a, b, c >= 0 (S) and g, d, f >= 0 (T)
  *    are active: a weight clamped to 0 is an active constraint. The vertices with a positive
  *    weight are the feature of each triangle (vertex, edge or face).
@@ -34,7 +35,7 @@
  *    below rounding let a point 4e-13 off pass (docs/certified-mode.md).
  * 5. Where the check fails, a clear crossing (cert_crossing, CROSS in certified_tol.h) is a
  *    certified contact: distance 0, flagged intersecting. Every other pair, touching ones
- *    included, goes to ttd_exact_pair and is flagged TTD_PAIR_FALLBACK. Correctness rests on
+ *    included, goes to the exact method (ttd_exact_pair_d/f) and is flagged TTD_PAIR_FALLBACK. Correctness rests on
  *    the check alone: a wrong active set or an inaccurate solve only costs a fallback.
  *
  * The lane kernel (simd/kernel_certified.h) computes every case in every lane and selects;
@@ -42,20 +43,20 @@
  * that the two agree to the bit. Thresholds: core/certified_tol.h. */
 
 /* One triangle in the frame with the exact method's per-triangle data (exact_tri_init). */
-typedef struct TTD_SFX(cert_tri) {
+typedef struct cert_tri {
     real v[3][3], e[3][3], ee[3], inv_ee[3];
     int k;
     real L[3], M[3], n[3];
     real nn, inv_nn, ML;
     int has_face;
-} TTD_SFX(cert_tri);
+} cert_tri;
 
-static real TTD_SFX(cert_dot)(const real a[3], const real b[3])
+static real cert_dot(const real a[3], const real b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void TTD_SFX(cert_cross)(const real a[3], const real b[3], real out[3])
+static void cert_cross(const real a[3], const real b[3], real out[3])
 {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
@@ -63,12 +64,12 @@ static void TTD_SFX(cert_cross)(const real a[3], const real b[3], real out[3])
 }
 
 /* exact_clamp01 */
-static real TTD_SFX(cert_clamp01)(real x)
+static real cert_clamp01(real x)
 {
     return x < (real)0 ? (real)0 : (x > (real)1 ? (real)1 : x);
 }
 
-static real TTD_SFX(cert_pos)(real v)
+static real cert_pos(real v)
 {
     return (v + TTD_FABS(v)) * (real)0.5;
 }
@@ -76,7 +77,7 @@ static real TTD_SFX(cert_pos)(real v)
 #ifdef TTD_PRECISION_DOUBLE
 /* exact_impl.h's exact_dop_d and exact_cross_acc_d: the face normal accurate in direction
  * for slivers (Kahan's FMA difference of products when the naive one is unreliable). */
-static double cert_dop_d(double a, double b, double c, double d)
+static double cert_dop(double a, double b, double c, double d)
 {
     double w = c * d;
     double err = fma(c, d, -w);
@@ -84,38 +85,38 @@ static double cert_dop_d(double a, double b, double c, double d)
     return f - err;
 }
 
-static double cert_cross_acc_d(const double a[3], const double b[3], double aa, double bb, double out[3])
+static double cert_cross_acc(const double a[3], const double b[3], double aa, double bb, double out[3])
 {
-    cert_cross_d(a, b, out);
-    double nn = cert_dot_d(out, out);
+    cert_cross(a, b, out);
+    double nn = cert_dot(out, out);
     if (nn < 0x1p-20 * aa * bb) {
-        out[0] = cert_dop_d(a[1], b[2], a[2], b[1]);
-        out[1] = cert_dop_d(a[2], b[0], a[0], b[2]);
-        out[2] = cert_dop_d(a[0], b[1], a[1], b[0]);
-        nn = cert_dot_d(out, out);
+        out[0] = cert_dop(a[1], b[2], a[2], b[1]);
+        out[1] = cert_dop(a[2], b[0], a[0], b[2]);
+        out[2] = cert_dop(a[0], b[1], a[1], b[0]);
+        nn = cert_dot(out, out);
     }
     return nn;
 }
 #else
 /* exact_cross_acc_f: float products are exact in double. */
-static float cert_cross_acc_f(const float a[3], const float b[3], float aa, float bb, float out[3])
+static float cert_cross_acc(const float a[3], const float b[3], float aa, float bb, float out[3])
 {
     (void)aa;
     (void)bb;
     out[0] = (float)((double)a[1] * (double)b[2] - (double)a[2] * (double)b[1]);
     out[1] = (float)((double)a[2] * (double)b[0] - (double)a[0] * (double)b[2]);
     out[2] = (float)((double)a[0] * (double)b[1] - (double)a[1] * (double)b[0]);
-    return cert_dot_f(out, out);
+    return cert_dot(out, out);
 }
 #endif
 
 /* exact_tri_init, on vertices already in the frame. */
-static void TTD_SFX(cert_tri_init)(TTD_SFX(cert_tri) *T)
+static void cert_tri_init(cert_tri *T)
 {
     for (int i = 0; i < 3; ++i) {
         for (int c = 0; c < 3; ++c)
             T->e[i][c] = T->v[(i + 1) % 3][c] - T->v[i][c];
-        T->ee[i] = TTD_SFX(cert_dot)(T->e[i], T->e[i]);
+        T->ee[i] = cert_dot(T->e[i], T->e[i]);
         T->inv_ee[i] = T->ee[i] >= TTD_REAL_MIN ? (real)1 / T->ee[i] : (real)0;
     }
     int k = 0;
@@ -127,10 +128,10 @@ static void TTD_SFX(cert_tri_init)(TTD_SFX(cert_tri) *T)
         T->L[c] = T->e[k][c];
         T->M[c] = -T->e[km][c];
     }
-    T->nn = TTD_SFX(cert_cross_acc)(T->L, T->M, T->ee[k], T->ee[km], T->n);
+    T->nn = cert_cross_acc(T->L, T->M, T->ee[k], T->ee[km], T->n);
     T->has_face = T->nn >= TTD_REAL_MIN;
     T->inv_nn = T->has_face ? (real)1 / T->nn : (real)0;
-    T->ML = TTD_SFX(cert_dot)(T->M, T->L);
+    T->ML = cert_dot(T->M, T->L);
 }
 
 /* The exact method's face projection (exact_face_coords, then exact_face_weights): the
@@ -141,15 +142,15 @@ static void TTD_SFX(cert_tri_init)(TTD_SFX(cert_tri) *T)
  * same triple product, rounded differently; cert_tri has no u). A triangle without a face has
  * inv_nn = 0: c = 0 and the point lands on the longest edge's line, which the check then
  * judges like any other. */
-static void TTD_SFX(cert_face_weights)(const TTD_SFX(cert_tri) *T, const real P[3], real w[3])
+static void cert_face_weights(const cert_tri *T, const real P[3], real w[3])
 {
     const int k = T->k;
     real r[3], x[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->v[k][i];
-    TTD_SFX(cert_cross)(T->L, r, x);
-    const real cc = TTD_SFX(cert_dot)(T->n, x) * T->inv_nn;
-    const real bb = (TTD_SFX(cert_dot)(r, T->L) - cc * T->ML) * T->inv_ee[k];
+    cert_cross(T->L, r, x);
+    const real cc = cert_dot(T->n, x) * T->inv_nn;
+    const real bb = (cert_dot(r, T->L) - cc * T->ML) * T->inv_ee[k];
     const real aa = (real)1 - bb - cc;
     w[k] = aa;
     w[(k + 1) % 3] = bb;
@@ -157,16 +158,16 @@ static void TTD_SFX(cert_face_weights)(const TTD_SFX(cert_tri) *T, const real P[
 }
 
 /* Sum of weights times vertices, in the order w0 v0 + w1 v1 + w2 v2. */
-static void TTD_SFX(cert_combine)(const TTD_SFX(cert_tri) *T, const real w[3], real p[3])
+static void cert_combine(const cert_tri *T, const real w[3], real p[3])
 {
     for (int c = 0; c < 3; ++c)
         p[c] = w[0] * T->v[0][c] + w[1] * T->v[1][c] + w[2] * T->v[2][c];
 }
 
 /* kp_clamp_bary3's order: negative weights to 0, renormalised to sum 1. */
-static void TTD_SFX(cert_clamp)(const real x[3], real w[3])
+static void cert_clamp(const real x[3], real w[3])
 {
-    const real w0 = TTD_SFX(cert_pos)(x[0]), w1 = TTD_SFX(cert_pos)(x[1]), w2 = TTD_SFX(cert_pos)(x[2]);
+    const real w0 = cert_pos(x[0]), w1 = cert_pos(x[1]), w2 = cert_pos(x[2]);
     const real sum = w0 + w1 + w2;
     const int pos = sum > 0;
     const real inv = (real)1 / (pos ? sum : (real)1);
@@ -178,7 +179,7 @@ static void TTD_SFX(cert_clamp)(const real x[3], real w[3])
 /* The feature of a weight triple: popcount of the positive weights, the vertex (1 bit) or the
  * edge (2 bits: edge i runs from v[i] to v[i+1], so the edge is the one after the missing
  * vertex). */
-static void TTD_SFX(cert_feature)(const real w[3], int *count, int *vertex, int *edge)
+static void cert_feature(const real w[3], int *count, int *vertex, int *edge)
 {
     const int z0 = w[0] > 0, z1 = w[1] > 0, z2 = w[2] > 0;
     *count = z0 + z1 + z2;
@@ -188,12 +189,12 @@ static void TTD_SFX(cert_feature)(const real w[3], int *count, int *vertex, int 
 
 /* Steps 3 and 4 for one pair in the frame: from the penalty's clamped weights pw, qw to the
  * solved, clamped weights wp, wq and |p - q| in the frame. Returns 1 when certified. */
-static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(cert_tri) *T, const real pw[3],
+static int cert_solve_check(const cert_tri *S, const cert_tri *T, const real pw[3],
                                      const real qw[3], real wp[3], real wq[3], real *dist)
 {
     int ns, vi, ei, nt, vj, ej;
-    TTD_SFX(cert_feature)(pw, &ns, &vi, &ei);
-    TTD_SFX(cert_feature)(qw, &nt, &vj, &ej);
+    cert_feature(pw, &ns, &vi, &ei);
+    cert_feature(qw, &nt, &vj, &ej);
     /* A triangle without a face (collinear to far below rounding) is its longest edge. */
     if (ns == 3 && !S->has_face) {
         ns = 2;
@@ -204,8 +205,8 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         ej = T->k;
     }
     real ppen[3], qpen[3], rp[3] = {0, 0, 0}, rq[3] = {0, 0, 0};
-    TTD_SFX(cert_combine)(S, pw, ppen);
-    TTD_SFX(cert_combine)(T, qw, qpen);
+    cert_combine(S, pw, ppen);
+    cert_combine(T, qw, qpen);
     /* the point of S projected onto T's face (a vertex, or the penalty's point), and back */
     const real *Xs = ns == 1 ? S->v[vi] : ppen;
     const real *Xt = nt == 1 ? T->v[vj] : qpen;
@@ -217,42 +218,42 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         r0[c] = ppen[c] - P[c];
         r1[c] = qpen[c] - Q[c];
     }
-    const real pen_s = TTD_SFX(cert_dot)(r0, d1) * S->inv_ee[ei];
-    const real pen_t = TTD_SFX(cert_dot)(r1, d2) * T->inv_ee[ej];
+    const real pen_s = cert_dot(r0, d1) * S->inv_ee[ei];
+    const real pen_t = cert_dot(r1, d2) * T->inv_ee[ej];
     real s = 0, t = 0;
     if (ns == 2 && nt == 2) {
         /* edge-edge: exact_edge_edge's stationary point (s unclamped); parallel lines keep
          * the penalty's s */
         real n[3], w[3], x[3];
-        TTD_SFX(cert_cross)(d1, d2, n);
-        const real nn = TTD_SFX(cert_dot)(n, n);
+        cert_cross(d1, d2, n);
+        const real nn = cert_dot(n, n);
         for (int c = 0; c < 3; ++c)
             w[c] = Q[c] - P[c];
-        TTD_SFX(cert_cross)(w, d2, x);
-        const real d12 = TTD_SFX(cert_dot)(d1, d2), wd1 = TTD_SFX(cert_dot)(w, d1), wd2 = TTD_SFX(cert_dot)(w, d2);
-        s = nn >= TTD_REAL_MIN ? TTD_SFX(cert_dot)(x, n) / nn : pen_s;
+        cert_cross(w, d2, x);
+        const real d12 = cert_dot(d1, d2), wd1 = cert_dot(w, d1), wd2 = cert_dot(w, d2);
+        s = nn >= TTD_REAL_MIN ? cert_dot(x, n) / nn : pen_s;
         /* The two segments' closest pair when the penalty's edges are right but the answer
          * sits at an end (nearly parallel edges, where the penalty cannot tell): s onto
          * [0, 1]; t, the projection of p(s), onto [0, 1]; when t was clamped or the lines are
          * parallel, s again as the projection of q(t) (for parallel lines p - q is then
          * normal to both). The check then tests the vertices left out. */
-        const real sc = TTD_SFX(cert_clamp01)(s);
+        const real sc = cert_clamp01(s);
         const real tt = (sc * d12 - wd2) * T->inv_ee[ej];
-        t = TTD_SFX(cert_clamp01)(tt);
+        t = cert_clamp01(tt);
         s = ((tt >= 0) & (tt <= 1) & (nn >= TTD_REAL_MIN)) ? sc
-                                                         : TTD_SFX(cert_clamp01)((t * d12 + wd1) * S->inv_ee[ei]);
+                                                         : cert_clamp01((t * d12 + wd1) * S->inv_ee[ei]);
     } else {
         if (ns == 2) {
             real r[3];
             for (int c = 0; c < 3; ++c)
                 r[c] = Xt[c] - P[c];
-            s = nt == 1 ? TTD_SFX(cert_dot)(r, d1) * S->inv_ee[ei] : pen_s;
+            s = nt == 1 ? cert_dot(r, d1) * S->inv_ee[ei] : pen_s;
         }
         if (nt == 2) {
             real r[3];
             for (int c = 0; c < 3; ++c)
                 r[c] = Xs[c] - Q[c];
-            t = ns == 1 ? TTD_SFX(cert_dot)(r, d2) * T->inv_ee[ej] : pen_t;
+            t = ns == 1 ? cert_dot(r, d2) * T->inv_ee[ej] : pen_t;
         }
     }
     /* raw weights of each side */
@@ -266,7 +267,7 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         rp[1] = pw[1];
         rp[2] = pw[2];
     } else {
-        TTD_SFX(cert_face_weights)(S, Xt, rp);
+        cert_face_weights(S, Xt, rp);
     }
     if (nt == 1) {
         rq[vj] = 1;
@@ -274,7 +275,7 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
         rq[ej] = (real)1 - t;
         rq[(ej + 1) % 3] = t;
     } else {
-        TTD_SFX(cert_face_weights)(T, Xs, rq);
+        cert_face_weights(T, Xs, rq);
     }
 #ifdef TTD_PRECISION_DOUBLE
     const real feas = -TTD_CERT_FEAS_D, gap = TTD_CERT_GAP_D, touch = TTD_CERT_TOUCH_D;
@@ -284,8 +285,8 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
     /* feasible (a NaN fails every compare) */
     int ok = (rp[0] >= feas) & (rp[1] >= feas) & (rp[2] >= feas) & (rq[0] >= feas) & (rq[1] >= feas) &
              (rq[2] >= feas);
-    TTD_SFX(cert_clamp)(rp, wp);
-    TTD_SFX(cert_clamp)(rq, wq);
+    cert_clamp(rp, wp);
+    cert_clamp(rq, wq);
     /* The check's arithmetic is in double for both precisions: in float, the rounding of p
      * and q and of these dot products (~18 float eps of the frame) would otherwise be most of
      * the error budget. The weights and vertices convert exactly. */
@@ -326,7 +327,7 @@ static int TTD_SFX(cert_solve_check)(const TTD_SFX(cert_tri) *S, const TTD_SFX(c
 /* Edge i of X crossing Y's plane at tau = h0 / (h0 - h1): 1 when the crossing point lies
  * at least CROSS inside each edge line of Y, with the edge's weights in wx and the point's
  * in wy. */
-static int TTD_SFX(cert_cross_edge)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert_tri) *Y, int i, const real h[3],
+static int cert_cross_edge(const cert_tri *X, const cert_tri *Y, int i, const real h[3],
                                     real nrm, real mw, real wx[3], real wy[3])
 {
     const real h0 = h[i], h1 = h[(i + 1) % 3];
@@ -334,7 +335,7 @@ static int TTD_SFX(cert_cross_edge)(const TTD_SFX(cert_tri) *X, const TTD_SFX(ce
     real xp[3], w[3];
     for (int c = 0; c < 3; ++c)
         xp[c] = X->v[i][c] + tau * X->e[i][c];
-    TTD_SFX(cert_face_weights)(Y, xp, w);
+    cert_face_weights(Y, xp, w);
     if (!((w[0] * nrm >= mw) & (w[1] * nrm >= mw) & (w[2] * nrm >= mw)))
         return 0;
     wx[0] = wx[1] = wx[2] = 0;
@@ -350,7 +351,7 @@ static int TTD_SFX(cert_cross_edge)(const TTD_SFX(cert_tri) *X, const TTD_SFX(ce
  * ends lie at least CROSS from Y's plane on opposite sides are at most two: the first and the
  * last of them in edge order are tried, in that order. Returns 1 with the edge's weights in
  * wx and the crossing point's weights in wy. */
-static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert_tri) *Y, real wx[3], real wy[3])
+static int cert_crossing(const cert_tri *X, const cert_tri *Y, real wx[3], real wy[3])
 {
 #ifdef TTD_PRECISION_DOUBLE
     const real margin = TTD_CERT_CROSS_D;
@@ -363,7 +364,7 @@ static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert
         real r[3];
         for (int c = 0; c < 3; ++c)
             r[c] = X->v[i][c] - Y->v[k][c];
-        h[i] = TTD_SFX(cert_dot)(Y->n, r);
+        h[i] = cert_dot(Y->n, r);
     }
     const real nrm = TTD_SQRT(Y->nn);
     const real mh = margin * nrm;                /* distance CROSS from the plane, times |n| */
@@ -376,14 +377,14 @@ static int TTD_SFX(cert_crossing)(const TTD_SFX(cert_tri) *X, const TTD_SFX(cert
     if (!(opp[0] | opp[1] | opp[2]) || !Y->has_face)
         return 0;
     const int first = opp[0] ? 0 : (opp[1] ? 1 : 2), last = opp[2] ? 2 : (opp[1] ? 1 : 0);
-    return TTD_SFX(cert_cross_edge)(X, Y, first, h, nrm, mw, wx, wy) ||
-           TTD_SFX(cert_cross_edge)(X, Y, last, h, nrm, mw, wx, wy);
+    return cert_cross_edge(X, Y, first, h, nrm, mw, wx, wy) ||
+           cert_cross_edge(X, Y, last, h, nrm, mw, wx, wy);
 }
 
-void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
+static void certified_pair(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r)
 {
     ttd_result pen;
-    TTD_SFX(ttd_penalty_pair)(s, t, prm, &pen);
+    scalar_penalty_pair(s, t, prm, &pen);
 
     /* The penalty method's frame (penalty_impl.h) without its subnormal lift, all six
      * vertices: A at 0, scaled by 2^-e (e from frexp of the largest relative coordinate,
@@ -400,7 +401,7 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
         if (TTD_FABS(t[k]) > m0) m0 = TTD_FABS(t[k]);
     }
     const real pre = m0 > TTD_REAL_MAX * (real)0.125 ? (real)0.0625 : (real)1;
-    TTD_SFX(cert_tri) S, T;
+    cert_tri S, T;
     real size = 0;
     for (int k = 0; k < 3; ++k) {
         const real a = s[k] * pre;
@@ -423,15 +424,15 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
             S.v[i][k] *= scale;
             T.v[i][k] *= scale;
         }
-    TTD_SFX(cert_tri_init)(&S);
-    TTD_SFX(cert_tri_init)(&T);
+    cert_tri_init(&S);
+    cert_tri_init(&T);
 
     real wp[3], wq[3], dist;
-    int ok = TTD_SFX(cert_solve_check)(&S, &T, pen.bary_p, pen.bary_q, wp, wq, &dist);
+    int ok = cert_solve_check(&S, &T, pen.bary_p, pen.bary_q, wp, wq, &dist);
     int crossing = 0;
     if (!ok) {
         /* a clear crossing is a certified contact: distance 0, p and q the crossing point */
-        crossing = TTD_SFX(cert_crossing)(&S, &T, wp, wq) || TTD_SFX(cert_crossing)(&T, &S, wq, wp);
+        crossing = cert_crossing(&S, &T, wp, wq) || cert_crossing(&T, &S, wq, wp);
         ok = crossing;
         dist = 0;
     }
@@ -453,7 +454,7 @@ void TTD_SFX(ttd_certified_pair)(const real s[9], const real t[9], const ttd_par
                    (T.has_face ? 0u : (uint32_t)TTD_PAIR_DEGENERATE_T) |
                    (crossing ? (uint32_t)TTD_PAIR_INTERSECTING : 0u);
     } else {
-        TTD_SFX(ttd_exact_pair)(s, t, r);
+        scalar_exact_pair(s, t, r);
         r->flags |= (uint32_t)TTD_PAIR_FALLBACK;
     }
     r->iterations = pen.iterations;

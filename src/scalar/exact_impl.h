@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* Precision-generic body of the exact method (included by exact.c once per precision; see
- * core/precision.h). The distance is the minimum over a fixed list of candidate point
+/* Precision-generic body of the exact method (exact_d.c and exact_f.c compile it once each;
+ * see core/precision.h). The distance is the minimum over a fixed list of candidate point
  * pairs, each a real point of S and a real point of T, so every candidate but the crossings
  * (which offer 0 unmeasured, see docs 3.1) is an upper bound, and the true minimum is always
  * among them up to rounding:
@@ -11,11 +11,10 @@
  * Ties go to the earliest candidate in that order. Everything runs on coordinates
  * translated to A and scaled by a power of two to magnitude ~1, so no threshold below is
  * absolute. The method, the accuracy argument and notes for the SIMD port are in
- * docs/exact-method.md. Every name here carries TTD_SFX because this file is compiled twice
- * in one translation unit. */
+ * docs/exact-method.md. */
 
 /* One triangle in normalised coordinates, with what every candidate shares. */
-typedef struct TTD_SFX(exact_tri) {
+typedef struct exact_tri {
     real v[3][3];     /* vertices */
     real e[3][3];     /* edges e[i] = v[i+1] - v[i] */
     real ee[3];       /* |e[i]|^2 */
@@ -32,28 +31,28 @@ typedef struct TTD_SFX(exact_tri) {
     real u[3];        /* cross(n, L) / nn (0 without a face): the across-weight c of a point P
                        * is dot(P - v[k], u) = dot(n, cross(L, P - v[k])) / nn */
     int has_face;     /* nn is a normal number: the triangle has an area we can divide by */
-} TTD_SFX(exact_tri);
+} exact_tri;
 
-static real TTD_SFX(exact_dot)(const real a[3], const real b[3])
+static real exact_dot(const real a[3], const real b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void TTD_SFX(exact_sub)(const real a[3], const real b[3], real out[3])
+static void exact_sub(const real a[3], const real b[3], real out[3])
 {
     out[0] = a[0] - b[0];
     out[1] = a[1] - b[1];
     out[2] = a[2] - b[2];
 }
 
-static void TTD_SFX(exact_cross)(const real a[3], const real b[3], real out[3])
+static void exact_cross(const real a[3], const real b[3], real out[3])
 {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-static real TTD_SFX(exact_clamp01)(real x)
+static real exact_clamp01(real x)
 {
     return x < (real)0 ? (real)0 : (x > (real)1 ? (real)1 : x);
 }
@@ -61,7 +60,7 @@ static real TTD_SFX(exact_clamp01)(real x)
 #ifdef TTD_PRECISION_DOUBLE
 /* a*b - c*d with Kahan's FMA trick: error within 1.5 ulp of the result even when the two
  * products nearly cancel (the normal of a sliver or of nearly parallel edges). */
-static double exact_dop_d(double a, double b, double c, double d)
+static double exact_dop(double a, double b, double c, double d)
 {
     double w = c * d;
     double err = fma(c, d, -w);   /* c*d - w, exact */
@@ -72,23 +71,23 @@ static double exact_dop_d(double a, double b, double c, double d)
 /* cross(a, b) to within a few ulps per component. Cheap path first: the naive cross product
  * is accurate in direction to about eps/sin(angle); only when the angle is small (|n|^2 below
  * 2^-20 |a|^2 |b|^2) is it redone with FMA. Returns |n|^2. */
-static double exact_cross_acc_d(const double a[3], const double b[3], double aa, double bb,
+static double exact_cross_acc(const double a[3], const double b[3], double aa, double bb,
                                     double out[3])
 {
-    exact_cross_d(a, b, out);
-    double nn = exact_dot_d(out, out);
+    exact_cross(a, b, out);
+    double nn = exact_dot(out, out);
     if (nn < 0x1p-20 * aa * bb) {
-        out[0] = exact_dop_d(a[1], b[2], a[2], b[1]);
-        out[1] = exact_dop_d(a[2], b[0], a[0], b[2]);
-        out[2] = exact_dop_d(a[0], b[1], a[1], b[0]);
-        nn = exact_dot_d(out, out);
+        out[0] = exact_dop(a[1], b[2], a[2], b[1]);
+        out[1] = exact_dop(a[2], b[0], a[0], b[2]);
+        out[2] = exact_dop(a[0], b[1], a[1], b[0]);
+        nn = exact_dot(out, out);
     }
     return nn;
 }
 #else
 /* Float: products of floats are exact in double, so one double difference per component,
  * rounded to float, is accurate to 1 ulp whatever the angle. Returns |n|^2. */
-static float exact_cross_acc_f(const float a[3], const float b[3], float aa, float bb,
+static float exact_cross_acc(const float a[3], const float b[3], float aa, float bb,
                                    float out[3])
 {
     (void)aa;
@@ -96,15 +95,15 @@ static float exact_cross_acc_f(const float a[3], const float b[3], float aa, flo
     out[0] = (float)((double)a[1] * (double)b[2] - (double)a[2] * (double)b[1]);
     out[1] = (float)((double)a[2] * (double)b[0] - (double)a[0] * (double)b[2]);
     out[2] = (float)((double)a[0] * (double)b[1] - (double)a[1] * (double)b[0]);
-    return exact_dot_f(out, out);
+    return exact_dot(out, out);
 }
 #endif
 
-static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
+static void exact_tri_init(exact_tri *T)
 {
     for (int i = 0; i < 3; ++i) {
-        TTD_SFX(exact_sub)(T->v[(i + 1) % 3], T->v[i], T->e[i]);
-        T->ee[i] = TTD_SFX(exact_dot)(T->e[i], T->e[i]);
+        exact_sub(T->v[(i + 1) % 3], T->v[i], T->e[i]);
+        T->ee[i] = exact_dot(T->e[i], T->e[i]);
         /* Guard: an edge shorter than sqrt(REAL_MIN) of the pair's extent is a point. */
         T->inv_ee[i] = T->ee[i] >= TTD_REAL_MIN ? (real)1 / T->ee[i] : (real)0;
     }
@@ -117,11 +116,11 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
         T->L[c] = T->e[k][c];
         T->M[c] = -T->e[km][c];   /* v[k+2] - v[k], exact negation */
     }
-    T->nn = TTD_SFX(exact_cross_acc)(T->L, T->M, T->ee[k], T->ee[km], T->n);
+    T->nn = exact_cross_acc(T->L, T->M, T->ee[k], T->ee[km], T->n);
     T->has_face = T->nn >= TTD_REAL_MIN;
     T->inv_nn = T->has_face ? (real)1 / T->nn : (real)0;
-    T->ML = TTD_SFX(exact_dot)(T->M, T->L);
-    TTD_SFX(exact_cross)(T->n, T->L, T->u);
+    T->ML = exact_dot(T->M, T->L);
+    exact_cross(T->n, T->L, T->u);
     for (int c = 0; c < 3; ++c)
         T->u[c] *= T->inv_nn;
 }
@@ -130,20 +129,20 @@ static void TTD_SFX(exact_tri_init)(TTD_SFX(exact_tri) *T)
  * longest edge), g = dot(P - v[k], L) (along it, before the correction by c) and the signed
  * height h = dot(n, P - v[k]) (unnormalised; its sign is the side). All three are affine in
  * P, which is what lets a crossing interpolate them (exact_crossings). */
-typedef struct TTD_SFX(exact_fc) {
+typedef struct exact_fc {
     real c, g, h;
-} TTD_SFX(exact_fc);
+} exact_fc;
 
-static TTD_SFX(exact_fc) TTD_SFX(exact_face_coords)(const TTD_SFX(exact_tri) *T, const real P[3])
+static exact_fc exact_face_coords(const exact_tri *T, const real P[3])
 {
     real r[3];
-    TTD_SFX(exact_sub)(P, T->v[T->k], r);
-    TTD_SFX(exact_fc) f;
+    exact_sub(P, T->v[T->k], r);
+    exact_fc f;
     /* n . (L x r) / nn as r . u: the same triple product, one cross product per triangle
      * instead of one per point; its rounding is as small relative to |L| |r| / |n| (docs 3.3) */
-    f.c = TTD_SFX(exact_dot)(r, T->u);
-    f.g = TTD_SFX(exact_dot)(r, T->L);
-    f.h = TTD_SFX(exact_dot)(T->n, r);
+    f.c = exact_dot(r, T->u);
+    f.g = exact_dot(r, T->L);
+    f.h = exact_dot(T->n, r);
     return f;
 }
 
@@ -152,7 +151,7 @@ static TTD_SFX(exact_fc) TTD_SFX(exact_face_coords)(const TTD_SFX(exact_tri) *T,
  * error in c moves the point only by that error times the height over L (docs: consistent
  * reconstruction). The point itself is exact_face_point(T, b, c), rebuilt from these weights
  * so that it lies on T up to rounding. */
-static int TTD_SFX(exact_face_weights)(const TTD_SFX(exact_tri) *T, real c, real g, real *b)
+static int exact_face_weights(const exact_tri *T, real c, real g, real *b)
 {
     real bb = (g - c * T->ML) * T->inv_ee[T->k];
     real aa = (real)1 - bb - c;
@@ -160,7 +159,7 @@ static int TTD_SFX(exact_face_weights)(const TTD_SFX(exact_tri) *T, real c, real
     return T->has_face && aa >= (real)0 && bb >= (real)0 && c >= (real)0;
 }
 
-static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real c, real q[3],
+static void exact_face_point(const exact_tri *T, real b, real c, real q[3],
                                       real w[3])
 {
     const int k = T->k;
@@ -172,7 +171,7 @@ static void TTD_SFX(exact_face_point)(const TTD_SFX(exact_tri) *T, real b, real 
 }
 
 /* The point X.v[i] + t X.e[i] of edge i, and its weights. */
-static void TTD_SFX(exact_edge_point)(const TTD_SFX(exact_tri) *X, int i, real t, real p[3],
+static void exact_edge_point(const exact_tri *X, int i, real t, real p[3],
                                       real w[3])
 {
     for (int c = 0; c < 3; ++c)
@@ -186,15 +185,15 @@ static void TTD_SFX(exact_edge_point)(const TTD_SFX(exact_tri) *X, int i, real t
  * below) and that candidate's parameters. Points and weights are rebuilt once at the end
  * from these (exact_rebuild), with the same expressions, so they are the same bits. A
  * rejected candidate offers REAL_MAX, which never wins against the initial value. */
-typedef struct TTD_SFX(exact_best) {
+typedef struct exact_best {
     real d2;
     int id;
     real u, v, w;
-} TTD_SFX(exact_best);
+} exact_best;
 
 #include "core/exact_ids.h" /* candidate ids and the contact threshold, shared with the lanes */
 
-static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real u, real v, real w)
+static void exact_keep(exact_best *best, real d2, int id, real u, real v, real w)
 {
     if (d2 < best->d2) {   /* strict: the first of equal candidates wins */
         best->d2 = d2;
@@ -206,17 +205,17 @@ static void TTD_SFX(exact_keep)(TTD_SFX(exact_best) *best, real d2, int id, real
 }
 
 /* 9 vertex-edge candidates: each vertex of X against each edge of Y, t clamped to [0,1]. */
-static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                       int id0, TTD_SFX(exact_best) *best)
+static void exact_vertex_edge(const exact_tri *X, const exact_tri *Y,
+                                       int id0, exact_best *best)
 {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
             real r[3], d[3];
-            TTD_SFX(exact_sub)(X->v[i], Y->v[j], r);
-            real t = TTD_SFX(exact_clamp01)(TTD_SFX(exact_dot)(r, Y->e[j]) * Y->inv_ee[j]);
+            exact_sub(X->v[i], Y->v[j], r);
+            real t = exact_clamp01(exact_dot(r, Y->e[j]) * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
                 d[c] = r[c] - t * Y->e[j][c];   /* X.v[i] - (Y.v[j] + t e[j]) */
-            TTD_SFX(exact_keep)(best, TTD_SFX(exact_dot)(d, d), id0 + 3 * i + j, t, 0, 0);
+            exact_keep(best, exact_dot(d, d), id0 + 3 * i + j, t, 0, 0);
         }
 }
 
@@ -228,46 +227,46 @@ static void TTD_SFX(exact_vertex_edge)(const TTD_SFX(exact_tri) *X, const TTD_SF
  * endpoint candidates are within L^2 sin^2 / D; the smaller of the two is below eps L
  * (docs/exact-method.md, "edge-edge"). Parallel edges (nn below REAL_MIN) are rejected:
  * their endpoints cover them. */
-static void TTD_SFX(exact_edge_edge)(const TTD_SFX(exact_tri) *S, const TTD_SFX(exact_tri) *T,
-                                     TTD_SFX(exact_best) *best)
+static void exact_edge_edge(const exact_tri *S, const exact_tri *T,
+                                     exact_best *best)
 {
     for (int i = 0; i < 3; ++i) {
         const real *P = S->v[i], *d1 = S->e[i];
         for (int j = 0; j < 3; ++j) {
             const real *Q = T->v[j], *d2 = T->e[j];
             real n[3], w[3], x[3], d[3];
-            TTD_SFX(exact_cross)(d1, d2, n);
-            real nn = TTD_SFX(exact_dot)(n, n);
+            exact_cross(d1, d2, n);
+            real nn = exact_dot(n, n);
             int ok = nn >= TTD_REAL_MIN;
-            TTD_SFX(exact_sub)(Q, P, w);
-            TTD_SFX(exact_cross)(w, d2, x);
-            real s = ok ? TTD_SFX(exact_dot)(x, n) / nn : (real)-1;
-            real sc = TTD_SFX(exact_clamp01)(s);
-            real t = (sc * TTD_SFX(exact_dot)(d1, d2) - TTD_SFX(exact_dot)(w, d2)) * T->inv_ee[j];
-            real tc = TTD_SFX(exact_clamp01)(t);
+            exact_sub(Q, P, w);
+            exact_cross(w, d2, x);
+            real s = ok ? exact_dot(x, n) / nn : (real)-1;
+            real sc = exact_clamp01(s);
+            real t = (sc * exact_dot(d1, d2) - exact_dot(w, d2)) * T->inv_ee[j];
+            real tc = exact_clamp01(t);
             int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
             for (int c = 0; c < 3; ++c)
                 d[c] = (sc * d1[c] - w[c]) - tc * d2[c];   /* (P + sc d1) - (Q + tc d2) */
-            real dd = accept ? TTD_SFX(exact_dot)(d, d) : TTD_REAL_MAX;
-            TTD_SFX(exact_keep)(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
+            real dd = accept ? exact_dot(d, d) : TTD_REAL_MAX;
+            exact_keep(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
         }
     }
 }
 
 /* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
  * face coordinates over Y (c, g and the height h), which the crossings reuse. */
-static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SFX(exact_tri) *Y,
-                                       int id0, TTD_SFX(exact_best) *best, TTD_SFX(exact_fc) f[3])
+static void exact_vertex_face(const exact_tri *X, const exact_tri *Y,
+                                       int id0, exact_best *best, exact_fc f[3])
 {
     for (int i = 0; i < 3; ++i) {
         real b;
-        f[i] = TTD_SFX(exact_face_coords)(Y, X->v[i]);
+        f[i] = exact_face_coords(Y, X->v[i]);
         const real c = f[i].c, h = f[i].h;
-        int inside = TTD_SFX(exact_face_weights)(Y, c, f[i].g, &b);
+        int inside = exact_face_weights(Y, c, f[i].g, &b);
         /* The squared distance to the plane, h^2 / |n|^2, which is the distance to the face
          * point exact_face_point(Y, b, c) up to its in-plane rounding (eps |r|, docs 3.3).
          * h * inv_nn first: h^2 alone may underflow for a face near REAL_MIN in area. */
-        TTD_SFX(exact_keep)(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
+        exact_keep(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
     }
 }
 
@@ -278,11 +277,11 @@ static void TTD_SFX(exact_vertex_face)(const TTD_SFX(exact_tri) *X, const TTD_SF
  * projection of X itself up to rounding, and h(X) = 0 by the choice of tau (docs 3.5). The
  * `continue` is a guard that only saves time: a lane port computes every crossing and masks
  * (kernel_exact.h skips the pass only when no lane's Y has a face). */
-static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_SFX(exact_best) *best,
-                                     const TTD_SFX(exact_fc) f[3])
+static void exact_crossings(const exact_tri *Y, int id0, exact_best *best,
+                                     const exact_fc f[3])
 {
     for (int i = 0; i < 3; ++i) {
-        const TTD_SFX(exact_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        const exact_fc f0 = f[i], f1 = f[(i + 1) % 3];
         real h0 = f0.h, h1 = f1.h;
         int opposite = (h0 < (real)0 && h1 > (real)0) || (h0 > (real)0 && h1 < (real)0);
         if (!opposite || !Y->has_face)
@@ -291,21 +290,21 @@ static void TTD_SFX(exact_crossings)(const TTD_SFX(exact_tri) *Y, int id0, TTD_S
         real c = f0.c + tau * (f1.c - f0.c);
         real g = f0.g + tau * (f1.g - f0.g);
         real b;
-        int inside = TTD_SFX(exact_face_weights)(Y, c, g, &b);
-        TTD_SFX(exact_keep)(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
+        int inside = exact_face_weights(Y, c, g, &b);
+        exact_keep(best, inside ? (real)0 : TTD_REAL_MAX, id0 + i, tau, b, c);
     }
 }
 
 /* Rebuilds p, q and their weights from the winning candidate, with the expressions that
  * computed its d2. */
-static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SFX(exact_tri) *S,
-                                   const TTD_SFX(exact_tri) *T, real p[3], real q[3], real wp[3],
+static void exact_rebuild(const exact_best *best, const exact_tri *S,
+                                   const exact_tri *T, real p[3], real q[3], real wp[3],
                                    real wq[3])
 {
     const int id = best->id;
     /* x/wx: the point of triangle X (the one whose vertex or edge the candidate names),
      * y/wy: the point of the other one; swapped when X is T. */
-    const TTD_SFX(exact_tri) *X = S, *Y = T;
+    const exact_tri *X = S, *Y = T;
     real x[3], y[3], wx[3], wy[3];
     int swapped = 0;
     if (id < TTD_EXACT_EE) {
@@ -316,11 +315,11 @@ static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SF
             x[c] = X->v[i][c];
             wx[c] = (real)(c == i);
         }
-        TTD_SFX(exact_edge_point)(Y, j, best->u, y, wy);
+        exact_edge_point(Y, j, best->u, y, wy);
     } else if (id < TTD_EXACT_VF_S) {
         int i = (id - TTD_EXACT_EE) / 3, j = (id - TTD_EXACT_EE) % 3;
-        TTD_SFX(exact_edge_point)(S, i, best->u, x, wx);
-        TTD_SFX(exact_edge_point)(T, j, best->v, y, wy);
+        exact_edge_point(S, i, best->u, x, wx);
+        exact_edge_point(T, j, best->v, y, wy);
     } else if (id < TTD_EXACT_X_S) {
         int i = (id - TTD_EXACT_VF_S) % 3;
         if (id >= TTD_EXACT_VF_T) { X = T; Y = S; swapped = 1; }
@@ -328,13 +327,13 @@ static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SF
             x[c] = X->v[i][c];
             wx[c] = (real)(c == i);
         }
-        TTD_SFX(exact_face_point)(Y, best->u, best->v, y, wy);
+        exact_face_point(Y, best->u, best->v, y, wy);
     } else {
         int i = (id - TTD_EXACT_X_S) % 3;
         if (id >= TTD_EXACT_X_T) { X = T; Y = S; swapped = 1; }
-        TTD_SFX(exact_edge_point)(X, i, best->u, x, wx);
+        exact_edge_point(X, i, best->u, x, wx);
         real yq[3];
-        TTD_SFX(exact_face_point)(Y, best->v, best->w, yq, wy);
+        exact_face_point(Y, best->v, best->w, yq, wy);
         for (int c = 0; c < 3; ++c)
             y[c] = x[c];   /* the crossing point, common to both: p == q exactly */
     }
@@ -346,7 +345,7 @@ static void TTD_SFX(exact_rebuild)(const TTD_SFX(exact_best) *best, const TTD_SF
     }
 }
 
-static uint8_t TTD_SFX(exact_features)(const real w[3])
+static uint8_t exact_features(const real w[3])
 {
     return (uint8_t)((w[0] > (real)0 ? 1u : 0u) | (w[1] > (real)0 ? 2u : 0u) |
                      (w[2] > (real)0 ? 4u : 0u));
@@ -355,12 +354,12 @@ static uint8_t TTD_SFX(exact_features)(const real w[3])
 /* A closest point with a coordinate within rounding of REAL_MAX (a vertex there) can round
  * past it when it is rebuilt; the point lies in its triangle's bounding box, so REAL_MAX is
  * right to that rounding and keeps it finite. */
-static real TTD_SFX(exact_clamp_max)(real x)
+static real exact_clamp_max(real x)
 {
     return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
 }
 
-void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
+static void exact_pair(const real s[9], const real t[9], ttd_result *r)
 {
     /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
      * differences cannot overflow; then translate to A and scale by 2^-e so the largest
@@ -389,27 +388,27 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     const int e1 = e / 2, e2 = e - e / 2;
     const real f1 = TTD_LDEXP((real)1, -e1), f2 = TTD_LDEXP((real)1, -e2);
 
-    TTD_SFX(exact_tri) S, T;
+    exact_tri S, T;
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
             S.v[i][c] = rel[3 * i + c] * f1 * f2;
             T.v[i][c] = rel[9 + 3 * i + c] * f1 * f2;
         }
-    TTD_SFX(exact_tri_init)(&S);
-    TTD_SFX(exact_tri_init)(&T);
+    exact_tri_init(&S);
+    exact_tri_init(&T);
 
     /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
-    TTD_SFX(exact_best) best = {TTD_REAL_MAX, 0, 0, 0, 0};
-    TTD_SFX(exact_fc) fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
-    TTD_SFX(exact_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best);
-    TTD_SFX(exact_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best);
-    TTD_SFX(exact_edge_edge)(&S, &T, &best);
-    TTD_SFX(exact_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
-    TTD_SFX(exact_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
-    TTD_SFX(exact_crossings)(&T, TTD_EXACT_X_S, &best, fs);
-    TTD_SFX(exact_crossings)(&S, TTD_EXACT_X_T, &best, ft);
+    exact_best best = {TTD_REAL_MAX, 0, 0, 0, 0};
+    exact_fc fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
+    exact_vertex_edge(&S, &T, TTD_EXACT_VE_S, &best);
+    exact_vertex_edge(&T, &S, TTD_EXACT_VE_T, &best);
+    exact_edge_edge(&S, &T, &best);
+    exact_vertex_face(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    exact_vertex_face(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    exact_crossings(&T, TTD_EXACT_X_S, &best, fs);
+    exact_crossings(&S, TTD_EXACT_X_T, &best, ft);
     real bp[3], bq[3], wp[3], wq[3];
-    TTD_SFX(exact_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+    exact_rebuild(&best, &S, &T, bp, bq, wp, wq);
 
     /* 3. Touching within rounding counts as touching: a distance below 4 eps of the pair's
      * extent (which is ~1 here) is what a contact computes to, not a gap. */
@@ -427,13 +426,13 @@ void TTD_SFX(ttd_exact_pair)(const real s[9], const real t[9], ttd_result *r)
     const real unpre = (real)1 / pre;
     r->distance = d * g1 * g2 * unpre;
     for (int c = 0; c < 3; ++c) {
-        r->p[c] = TTD_SFX(exact_clamp_max)((bp[c] * g1 * g2 + o[c]) * unpre);
-        r->q[c] = TTD_SFX(exact_clamp_max)((bq[c] * g1 * g2 + o[c]) * unpre);
+        r->p[c] = exact_clamp_max((bp[c] * g1 * g2 + o[c]) * unpre);
+        r->q[c] = exact_clamp_max((bq[c] * g1 * g2 + o[c]) * unpre);
         r->bary_p[c] = wp[c];
         r->bary_q[c] = wq[c];
     }
     r->flags = flags;
-    r->feature_p = TTD_SFX(exact_features)(wp);
-    r->feature_q = TTD_SFX(exact_features)(wq);
+    r->feature_p = exact_features(wp);
+    r->feature_q = exact_features(wq);
     r->iterations = 0;
 }

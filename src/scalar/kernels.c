@@ -32,18 +32,22 @@ TTD_SCALAR_LOOP(ttd_scalar_barrier_f, float, ttd_result_f, ttd_barrier_pair_f(s 
 TTD_SCALAR_LOOP(ttd_scalar_certified_d, double, ttd_result_d, ttd_certified_pair_d(s + 9 * i, t + 9 * i, prm, &r))
 TTD_SCALAR_LOOP(ttd_scalar_certified_f, float, ttd_result_f, ttd_certified_pair_f(s + 9 * i, t + 9 * i, prm, &r))
 
-const ttd_isa_kernels ttd_kernels_scalar = {
+const ttd_kernels_d ttd_kernels_scalar_d = {
     .isa = TTD_ISA_SCALAR,
-    .lanes_f = 1,
-    .lanes_d = 1,
-    .d = {[TTD_METHOD_EXACT] = ttd_scalar_exact_d,
-          [TTD_METHOD_PENALTY] = ttd_scalar_penalty_d,
-          [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_d,
-          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d,
-          [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_d},
-    .f = {[TTD_METHOD_EXACT] = ttd_scalar_exact_f,
-          [TTD_METHOD_PENALTY] = ttd_scalar_penalty_f,
-          [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_f,
-          [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f,
-          [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
+    .lanes = 1,
+    .fn = {[TTD_METHOD_EXACT] = ttd_scalar_exact_d,
+           [TTD_METHOD_PENALTY] = ttd_scalar_penalty_d,
+           [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_d,
+           [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d,
+           [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_d},
+};
+
+const ttd_kernels_f ttd_kernels_scalar_f = {
+    .isa = TTD_ISA_SCALAR,
+    .lanes = 1,
+    .fn = {[TTD_METHOD_EXACT] = ttd_scalar_exact_f,
+           [TTD_METHOD_PENALTY] = ttd_scalar_penalty_f,
+           [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_f,
+           [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f,
+           [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
 };

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* The penalty method (paper, sections 2 and 3), precision-generic; penalty.c includes this
- * once per precision (core/precision.h). Two forms:
+/* The penalty method (paper, sections 2 and 3), precision-generic; penalty_d.c and
+ * penalty_f.c compile it once each (core/precision.h). Two forms:
  *
- *  - ttd_penalty_ref_pair: the paper's MATLAB ttd1 step for step (raw coordinates, start at
+ *  - penalty_ref_pair (ttd_penalty_ref_pair_d/f): the paper's MATLAB ttd1 step for step (raw coordinates, start at
  *    0.33, dense 6x4 constraint Jacobian, separate pivoting 4x4 solve). Only the outputs
  *    differ: the final parameters are clamped onto their triangles so that p and q lie on
  *    them and distance = |p - q|.
- *  - ttd_penalty_pair: the optimised form the paper describes (symmetric Hessian, constraint
+ *  - penalty_pair (ttd_penalty_pair_d/f): the optimised form the paper describes (symmetric Hessian, constraint
  *    derivatives kept as their non-zeros, branchless max, elimination fused with assembly),
  *    run on the pair translated to A and scaled by a power of two to unit size, with a
  *    one-dimensional line search that stops Newton from cycling between active sets, and the
@@ -24,7 +24,7 @@
 /// Branchless max(0, v) as (v + |v|)/2 (exact: doubling and halving are exact, v + |v| is
 /// 2v or 0). The ternary form compiles to a branch in scalar x86 code; the SIMD port uses a
 /// lane max. Arguments are bounded (|v| < REAL_MAX/2) wherever the result is used.
-static inline real TTD_SFX(pen_pos)(real v)
+static inline real pen_pos(real v)
 {
     return (v + TTD_FABS(v)) * (real)0.5;
 }
@@ -32,7 +32,7 @@ static inline real TTD_SFX(pen_pos)(real v)
 /// Branch-free select c ? x : y through the bits (a lane blend in the SIMD port). Scalar x86
 /// without SSE4.1 has no blend, and the compiler turns a ternary on reals into a branch,
 /// which mispredicts on the line search's data.
-static inline real TTD_SFX(pen_sel)(int c, real x, real y)
+static inline real pen_sel(int c, real x, real y)
 {
 #ifdef TTD_PRECISION_DOUBLE
     uint64_t bx, by, m = (uint64_t)0 - (uint64_t)(c != 0);
@@ -47,7 +47,7 @@ static inline real TTD_SFX(pen_sel)(int c, real x, real y)
 }
 
 /// |v| of a 3-vector without overflow or underflow in the squares (power-of-two scaling).
-static real TTD_SFX(pen_norm3)(real x, real y, real z)
+static real pen_norm3(real x, real y, real z)
 {
     real m = TTD_FABS(x);
     if (TTD_FABS(y) > m) m = TTD_FABS(y);
@@ -66,11 +66,11 @@ static real TTD_SFX(pen_norm3)(real x, real y, real z)
  * ~>= 1 after clamping; a zero sum, impossible unless the iterate is garbage, gives vertex 0). The penalty iterate violates its constraints by O(1/rho); clamping
  * moves it back onto the triangle and turns the distance error from O(1/rho) into O(1/rho^2)
  * (docs/penalty-method.md). */
-static void TTD_SFX(pen_clamp_bary3)(real c, real a, real b, real w[3])
+static void pen_clamp_bary3(real c, real a, real b, real w[3])
 {
-    const real w0 = TTD_SFX(pen_pos)(c);
-    const real w1 = TTD_SFX(pen_pos)(a);
-    const real w2 = TTD_SFX(pen_pos)(b);
+    const real w0 = pen_pos(c);
+    const real w1 = pen_pos(a);
+    const real w2 = pen_pos(b);
     const real sum = w0 + w1 + w2;
     const real inv = (real)1 / (sum > 0 ? sum : (real)1);
     w[0] = sum > 0 ? w0 * inv : (real)1;
@@ -78,9 +78,9 @@ static void TTD_SFX(pen_clamp_bary3)(real c, real a, real b, real w[3])
     w[2] = w2 * inv;
 }
 
-static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
+static void pen_clamp_bary(real a, real b, real w[3])
 {
-    TTD_SFX(pen_clamp_bary3)((real)1 - a - b, a, b, w);
+    pen_clamp_bary3((real)1 - a - b, a, b, w);
 }
 
 /* Fills r from the clamped weights: p and q as convex combinations of the input vertices
@@ -88,17 +88,17 @@ static void TTD_SFX(pen_clamp_bary)(real a, real b, real w[3])
  * caller computed from p - q in its own frame. */
 /* Vertices near +-REAL_MAX: a convex combination can round past it; REAL_MAX is then right
  * to that rounding and finite. */
-static real TTD_SFX(pen_clamp_max)(real x)
+static real pen_clamp_max(real x)
 {
     return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
 }
 
-static void TTD_SFX(pen_finish)(const real s[9], const real t[9], const real wp[3],
+static void pen_finish(const real s[9], const real t[9], const real wp[3],
                                 const real wq[3], real distance, ttd_result *r)
 {
     for (int k = 0; k < 3; ++k) {
-        r->p[k] = TTD_SFX(pen_clamp_max)(wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k]);
-        r->q[k] = TTD_SFX(pen_clamp_max)(wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k]);
+        r->p[k] = pen_clamp_max(wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k]);
+        r->q[k] = pen_clamp_max(wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k]);
         r->bary_p[k] = wp[k];
         r->bary_q[k] = wq[k];
     }
@@ -114,7 +114,7 @@ static void TTD_SFX(pen_finish)(const real s[9], const real t[9], const real wp[
  * with partial pivoting. A pivot below eps * max|diag| (only possible when rounding has
  * swallowed the I/rho^2 regularisation, e.g. a degenerate triangle in float or at large
  * coordinates) is raised to that floor so that the step stays finite. */
-static void TTD_SFX(pen_ref_solve)(real m[4][4], real rhs[4], real x[4])
+static void pen_ref_solve(real m[4][4], real rhs[4], real x[4])
 {
     real dmax = 0;
     for (int i = 0; i < 4; ++i)
@@ -149,7 +149,7 @@ static void TTD_SFX(pen_ref_solve)(real m[4][4], real rhs[4], real x[4])
     }
 }
 
-void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_params *prm,
+static void penalty_ref_pair(const real s[9], const real t[9], const ttd_params *prm,
                                    ttd_result *r)
 {
 #ifdef TTD_PRECISION_DOUBLE
@@ -205,7 +205,7 @@ void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_p
             }
         }
         real dx[4];
-        TTD_SFX(pen_ref_solve)(hes, gra, dx);
+        pen_ref_solve(hes, gra, dx);
         real e2 = 0;
         for (int k = 0; k < 3; ++k) {
             real DX = BA[k] * dx[0] + CA[k] * dx[1];
@@ -224,13 +224,13 @@ void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_p
         for (int i = 0; i < 4; ++i) x[i] -= dx[i];
     }
     real wp[3], wq[3];
-    TTD_SFX(pen_clamp_bary)(x[0], x[1], wp);
-    TTD_SFX(pen_clamp_bary)(x[2], x[3], wq);
+    pen_clamp_bary(x[0], x[1], wp);
+    pen_clamp_bary(x[2], x[3], wq);
     real xy[3];
     for (int k = 0; k < 3; ++k)
         xy[k] = (wp[0] * s[k] + wp[1] * s[3 + k] + wp[2] * s[6 + k]) -
                 (wq[0] * t[k] + wq[1] * t[3 + k] + wq[2] * t[6 + k]);
-    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_SFX(pen_norm3)(xy[0], xy[1], xy[2]), r);
+    pen_finish(s, t, wp, wq, pen_norm3(xy[0], xy[1], xy[2]), r);
     r->iterations = (uint16_t)used;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }
@@ -238,7 +238,7 @@ void TTD_SFX(ttd_penalty_ref_pair)(const real s[9], const real t[9], const ttd_p
 /* ---------------------------------------------------------------------------------------- */
 /* The optimised form.                                                                        */
 
-void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_params *prm,
+static void penalty_pair(const real s[9], const real t[9], const ttd_params *prm,
                                ttd_result *r)
 {
     /* In float, rho is capped and tol floored (defaults.h): a larger rho makes the pivots
@@ -356,12 +356,12 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * only, so they are written into the sums below instead of stored. v_i = max(0,h_i)
          * and m_i = rho when h_i >= 0 (the paper's mask), both by select. */
         const real h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
-        const real v1 = TTD_SFX(pen_pos)(h1), v2 = TTD_SFX(pen_pos)(h2), v3 = TTD_SFX(pen_pos)(h3);
-        const real v4 = TTD_SFX(pen_pos)(h4), v5 = TTD_SFX(pen_pos)(h5), v6 = TTD_SFX(pen_pos)(h6);
-        const real m1 = TTD_SFX(pen_sel)(h1 >= 0, rho, 0), m2 = TTD_SFX(pen_sel)(h2 >= 0, rho, 0);
-        const real m3 = TTD_SFX(pen_sel)(h3 >= 0, rho, 0);
-        const real m4 = TTD_SFX(pen_sel)(h4 >= 0, rho, 0), m5 = TTD_SFX(pen_sel)(h5 >= 0, rho, 0);
-        const real m6 = TTD_SFX(pen_sel)(h6 >= 0, rho, 0);
+        const real v1 = pen_pos(h1), v2 = pen_pos(h2), v3 = pen_pos(h3);
+        const real v4 = pen_pos(h4), v5 = pen_pos(h5), v6 = pen_pos(h6);
+        const real m1 = pen_sel(h1 >= 0, rho, 0), m2 = pen_sel(h2 >= 0, rho, 0);
+        const real m3 = pen_sel(h3 >= 0, rho, 0);
+        const real m4 = pen_sel(h4 >= 0, rho, 0), m5 = pen_sel(h5 >= 0, rho, 0);
+        const real m6 = pen_sel(h6 >= 0, rho, 0);
 
         /* Gradient and Hessian assembled row by row into a symmetric Gaussian elimination
          * (only the upper triangle is formed; row k is eliminated as soon as it exists).
@@ -378,7 +378,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real g0 = gf0 + rho * (v3 - v1);
         real H00 = f00 + m1 + m3 + eps;
         const real H01 = f01 + m3, H02 = f02, H03 = f03;
-        H00 = TTD_SFX(pen_sel)(H00 > eps, H00, eps);
+        H00 = pen_sel(H00 > eps, H00, eps);
         const real i0 = (real)1 / H00;
         const real l10 = H01 * i0, l20 = H02 * i0, l30 = H03 * i0;
 
@@ -393,7 +393,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
                     m2 * (e00 + m3)) * i0;
         real H12 = f12 - l10 * H02, H13 = f13 - l10 * H03;
         g1 -= l10 * g0;
-        H11 = TTD_SFX(pen_sel)(H11 > eps, H11, eps);
+        H11 = pen_sel(H11 > eps, H11, eps);
         const real i1 = (real)1 / H11;
         const real l21 = H12 * i1, l31 = H13 * i1;
 
@@ -407,7 +407,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real H22 = T22 + m4 + m6;
         const real H23 = T23 + m6;
         g2 -= l20 * g0 + l21 * g1;
-        H22 = TTD_SFX(pen_sel)(H22 > eps, H22, eps);
+        H22 = pen_sel(H22 > eps, H22, eps);
         const real i2 = (real)1 / H22;
         const real l32 = H23 * i2;
 
@@ -416,7 +416,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         real H33 = ((T22 * T33 - T23 * T23) + m6 * (T22 + T33 - 2 * T23) + m4 * (T33 + m5 + m6) +
                     m5 * (T22 + m6)) * i2;
         g3 -= l30 * g0 + l31 * g1 + l32 * g2;
-        H33 = TTD_SFX(pen_sel)(H33 > eps, H33, eps);
+        H33 = pen_sel(H33 > eps, H33, eps);
 
         /* Back substitution: the Newton step dx = H^-1 grad. */
         const real d3 = g3 / H33;
@@ -450,9 +450,9 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
             const real gfd = gf0 * d0 + gf1 * d1 + gf2 * d2 + gf3 * d3;
 #define TTD_PEN_SLOPE(t)                                                                     \
     (-gfd + (t) * q -                                                                        \
-     rho * (s1 * TTD_SFX(pen_pos)(h1 - (t) * s1) + s2 * TTD_SFX(pen_pos)(h2 - (t) * s2) +    \
-            s3 * TTD_SFX(pen_pos)(h3 - (t) * s3) + s4 * TTD_SFX(pen_pos)(h4 - (t) * s4) +    \
-            s5 * TTD_SFX(pen_pos)(h5 - (t) * s5) + s6 * TTD_SFX(pen_pos)(h6 - (t) * s6)))
+     rho * (s1 * pen_pos(h1 - (t) * s1) + s2 * pen_pos(h2 - (t) * s2) +    \
+            s3 * pen_pos(h3 - (t) * s3) + s4 * pen_pos(h4 - (t) * s4) +    \
+            s5 * pen_pos(h5 - (t) * s5) + s6 * pen_pos(h6 - (t) * s6)))
             const real p0 = TTD_PEN_SLOPE((real)0);
             const real p1 = TTD_PEN_SLOPE((real)1);
             dec = -p0; /* grad.dx: twice the decrease the full step promises */
@@ -471,10 +471,10 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         const int in = (tb > 0) & (tb < 1);                                                  \
         const real pb = TTD_PEN_SLOPE(tb);                                                   \
         const int to_lo = in & (pb <= 0) & (tb > lo), to_hi = in & (pb > 0) & (tb < hi);     \
-        lo = TTD_SFX(pen_sel)(to_lo, tb, lo);                                                \
-        plo = TTD_SFX(pen_sel)(to_lo, pb, plo);                                              \
-        hi = TTD_SFX(pen_sel)(to_hi, tb, hi);                                                \
-        phi = TTD_SFX(pen_sel)(to_hi, pb, phi);                                              \
+        lo = pen_sel(to_lo, tb, lo);                                                \
+        plo = pen_sel(to_lo, pb, plo);                                              \
+        hi = pen_sel(to_hi, tb, hi);                                                \
+        phi = pen_sel(to_hi, pb, phi);                                              \
     }
                 TTD_PEN_BREAK(h1, s1) TTD_PEN_BREAK(h2, s2) TTD_PEN_BREAK(h3, s3)
                 TTD_PEN_BREAK(h4, s4) TTD_PEN_BREAK(h5, s5) TTD_PEN_BREAK(h6, s6)
@@ -482,9 +482,9 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
                 /* plo <= 0 < phi in exact arithmetic; near convergence both are rounding
                  * noise, so the fraction is guarded (no 0/0) and clamped into [0, 1]. */
                 const real den = phi - plo;
-                real fr = TTD_SFX(pen_sel)(den > 0, -plo / den, 0);
-                fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
-                fr = TTD_SFX(pen_sel)(fr < 1, fr, 1);
+                real fr = pen_sel(den > 0, -plo / den, 0);
+                fr = pen_sel(fr > 0, fr, 0);
+                fr = pen_sel(fr < 1, fr, 1);
                 step = lo + (hi - lo) * fr;
             } else if (p1 < p0 * (real)TTD_PENALTY_EXTEND) {
                 /* The full step still descends almost as steeply as t = 0 did: the
@@ -503,10 +503,10 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
         const real pb = TTD_PEN_SLOPE(tb);                                                   \
         const int to_lo = in & (pb <= 0) & (tb > lo);                                        \
         const int to_hi = in & (pb > 0) & ((!found) | (tb < hi));                            \
-        lo = TTD_SFX(pen_sel)(to_lo, tb, lo);                                                \
-        plo = TTD_SFX(pen_sel)(to_lo, pb, plo);                                              \
-        hi = TTD_SFX(pen_sel)(to_hi, tb, hi);                                                \
-        phi = TTD_SFX(pen_sel)(to_hi, pb, phi);                                              \
+        lo = pen_sel(to_lo, tb, lo);                                                \
+        plo = pen_sel(to_lo, pb, plo);                                              \
+        hi = pen_sel(to_hi, tb, hi);                                                \
+        phi = pen_sel(to_hi, pb, phi);                                              \
         found |= to_hi;                                                                      \
     }
                 TTD_PEN_BEYOND(h1, s1) TTD_PEN_BEYOND(h2, s2) TTD_PEN_BEYOND(h3, s3)
@@ -514,15 +514,15 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
 #undef TTD_PEN_BEYOND
                 const real t2 = 2 * lo;
                 const real p2 = TTD_PEN_SLOPE(t2);
-                hi = TTD_SFX(pen_sel)(found, hi, t2);
-                phi = TTD_SFX(pen_sel)(found, phi, p2);
+                hi = pen_sel(found, hi, t2);
+                phi = pen_sel(found, phi, p2);
                 const real den = phi - plo;
-                real fr = TTD_SFX(pen_sel)(den > 0, -plo / den, 0);
-                fr = TTD_SFX(pen_sel)(fr > 0, fr, 0);
+                real fr = pen_sel(den > 0, -plo / den, 0);
+                fr = pen_sel(fr > 0, fr, 0);
                 /* past hi only when hi is the probe (phi' is linear beyond lo) */
-                fr = TTD_SFX(pen_sel)((fr < 1) | !found, fr, 1);
+                fr = pen_sel((fr < 1) | !found, fr, 1);
                 step = lo + (hi - lo) * fr;
-                step = TTD_SFX(pen_sel)(step <= TTD_REAL_MAX, step, lo);
+                step = pen_sel(step <= TTD_REAL_MAX, step, lo);
             }
 #undef TTD_PEN_SLOPE
         }
@@ -548,7 +548,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
          * as it can. */
         const real fx = xy0 * xy0 + xy1 * xy1 + xy2 * xy2;
         const int flat = (dec < tol2) | (dec < (real)TTD_PENALTY_FLAT_ULPS * TTD_REAL_EPS * fx);
-        const real errc = TTD_SFX(pen_sel)(flat, 0, err2);
+        const real errc = pen_sel(flat, 0, err2);
         const int stuck = (a == a_o) & (b == b_o) & (ca == ca_o) & (g == g_o) & (d == d_o) & (cg == cg_o);
         const int small_prev = prev_err2 < tol2;
         prev_err2 = errc;
@@ -559,8 +559,8 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
     }
 
     real wp[3], wq[3];
-    TTD_SFX(pen_clamp_bary3)(ca, a, b, wp);
-    TTD_SFX(pen_clamp_bary3)(cg, g, d, wq);
+    pen_clamp_bary3(ca, a, b, wp);
+    pen_clamp_bary3(cg, g, d, wq);
     /* p - q in the frame, from the clamped weights (A = 0). */
     const real xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const real xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
@@ -569,7 +569,7 @@ void TTD_SFX(ttd_penalty_pair)(const real s[9], const real t[9], const ttd_param
      * 2^e first, then by 1/pre (2^(e+4) alone can overflow next to REAL_MAX, and 0 * inf
      * would be NaN; a distance beyond REAL_MAX is inf, honestly). */
     const real dist_frame = TTD_SQRT(xy0 * xy0 + xy1 * xy1 + xy2 * xy2);
-    TTD_SFX(pen_finish)(s, t, wp, wq, TTD_LDEXP(dist_frame, e - lift) / pre, r);
+    pen_finish(s, t, wp, wq, TTD_LDEXP(dist_frame, e - lift) / pre, r);
     r->iterations = (uint16_t)it;
     r->flags = converged ? 0u : (uint32_t)TTD_PAIR_NOT_CONVERGED;
 }

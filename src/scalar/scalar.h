@@ -21,9 +21,19 @@ void ttd_barrier_pair_d(const double s[9], const double t[9], const ttd_params *
 void ttd_barrier_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
 
 /* The certified mode: the penalty iterations, then the exact solution on the final active
- * set, checked for optimality; a pair that fails the check is computed by ttd_exact_pair and
+ * set, checked for optimality; a pair that fails the check is computed by ttd_exact_pair_d/f and
  * flagged TTD_PAIR_FALLBACK (docs/certified-mode.md). */
 void ttd_certified_pair_d(const double s[9], const double t[9], const ttd_params *prm, ttd_result_d *r);
 void ttd_certified_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
+
+/* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other
+ * methods of its own precision by these names. */
+#if defined(TTD_PRECISION_DOUBLE)
+#define scalar_exact_pair ttd_exact_pair_d
+#define scalar_penalty_pair ttd_penalty_pair_d
+#elif defined(TTD_PRECISION_FLOAT)
+#define scalar_exact_pair ttd_exact_pair_f
+#define scalar_penalty_pair ttd_penalty_pair_f
+#endif
 
 #endif /* TTD_SCALAR_SCALAR_H */

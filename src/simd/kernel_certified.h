@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The certified mode, one pair per lane: scalar/certified_impl.h's ttd_certified_pair with
+/* The certified mode, one pair per lane: scalar/certified_impl.h's certified_pair with
  * every case computed in every lane and chosen by select, so that each lane performs the
  * scalar operations in the scalar order and rounds the same way. Read the two side by side;
  * the method and why its check certifies are in certified_impl.h and docs/certified-mode.md.
@@ -24,22 +24,22 @@
 #endif
 
 /* x[i] with i picked per lane by the masks is0, is1 (else 2). */
-static inline vreal TTD_SFX(kc_sel3)(vmask is0, vmask is1, vreal x0, vreal x1, vreal x2)
+static inline vreal kc_sel3(vmask is0, vmask is1, vreal x0, vreal x1, vreal x2)
 {
     return vsel(is0, x0, vsel(is1, x1, x2));
 }
 
 /* scalar: cert_feature. The positive weights of w: exactly one (one), two (two) or three;
  * the vertex (v0, v1, else 2) of one, the edge (e0, e1, else 2) of two. */
-typedef struct TTD_SFX(kc_feat) {
+typedef struct kc_feat {
     vmask one, two, three, v0, v1, e0, e1;
-} TTD_SFX(kc_feat);
+} kc_feat;
 
-static inline TTD_SFX(kc_feat) TTD_SFX(kc_feature_of)(const vreal w[3])
+static inline kc_feat kc_feature_of(const vreal w[3])
 {
     const vreal zero = vzero();
     const vmask z0 = vgt(w[0], zero), z1 = vgt(w[1], zero), z2 = vgt(w[2], zero);
-    TTD_SFX(kc_feat) f;
+    kc_feat f;
     f.three = mand(z0, mand(z1, z2));
     const vmask only0 = mandnot(mandnot(z0, z1), z2), only1 = mandnot(mandnot(z1, z0), z2);
     const vmask only2 = mandnot(mandnot(z2, z0), z1);
@@ -53,7 +53,7 @@ static inline TTD_SFX(kc_feat) TTD_SFX(kc_feature_of)(const vreal w[3])
 }
 
 /* scalar: the feature of a triangle without a face becomes its longest edge (k). */
-static inline void TTD_SFX(kc_as_edge)(TTD_SFX(kc_feat) *f, const TTD_SFX(kx_tri) *T)
+static inline void kc_as_edge(kc_feat *f, const kx_tri *T)
 {
     const vmask conv = mandnot(f->three, T->has_face);
     f->three = mandnot(f->three, conv);
@@ -66,29 +66,29 @@ static inline void TTD_SFX(kc_as_edge)(TTD_SFX(kc_feat) *f, const TTD_SFX(kx_tri
  * c across the longest edge L, b along it corrected by c (the exact method's compensated
  * form, exact-method.md 3.3), a = 1 - b - c. Written here rather than taken from
  * kernel_exact.h so that it stays the scalar code's expression. */
-static inline void TTD_SFX(kc_face_weights)(const TTD_SFX(kx_tri) *T, const vreal P[3], vreal w[3])
+static inline void kc_face_weights(const kx_tri *T, const vreal P[3], vreal w[3])
 {
     vreal r[3], x[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->vk[i];
-    TTD_SFX(kx_cross)(T->L, r, x);
-    const vreal c = TTD_SFX(kx_dot)(T->n, x) * T->inv_nn;
-    const vreal b = (TTD_SFX(kx_dot)(r, T->L) - c * T->ML) * T->inv_eek;
+    kx_cross(T->L, r, x);
+    const vreal c = kx_dot(T->n, x) * T->inv_nn;
+    const vreal b = (kx_dot(r, T->L) - c * T->ML) * T->inv_eek;
     const vreal a = vset1((real)1) - b - c;
-    w[0] = TTD_SFX(kx_pick)(T, a, c, b);
-    w[1] = TTD_SFX(kx_pick)(T, b, a, c);
-    w[2] = TTD_SFX(kx_pick)(T, c, b, a);
+    w[0] = kx_pick(T, a, c, b);
+    w[1] = kx_pick(T, b, a, c);
+    w[2] = kx_pick(T, c, b, a);
 }
 
 /* scalar: cert_combine. w0 v0 + w1 v1 + w2 v2. */
-static inline void TTD_SFX(kc_combine)(const TTD_SFX(kx_tri) *T, const vreal w[3], vreal p[3])
+static inline void kc_combine(const kx_tri *T, const vreal w[3], vreal p[3])
 {
     for (int c = 0; c < 3; ++c)
         p[c] = w[0] * T->v[0][c] + w[1] * T->v[1][c] + w[2] * T->v[2][c];
 }
 
 /* Edge weights (1 - s at the edge's start, s at its end), the edge picked by e0, e1. */
-static inline void TTD_SFX(kc_edge_weights)(vmask e0, vmask e1, vreal s, vreal w[3])
+static inline void kc_edge_weights(vmask e0, vmask e1, vreal s, vreal w[3])
 {
     const vreal zero = vzero(), a = vset1((real)1) - s;
     w[0] = vsel(e0, a, vsel(e1, zero, s));
@@ -97,7 +97,7 @@ static inline void TTD_SFX(kc_edge_weights)(vmask e0, vmask e1, vreal s, vreal w
 }
 
 /* Unit weight on the vertex picked by v0, v1. */
-static inline void TTD_SFX(kc_vertex_weights)(vmask v0, vmask v1, vreal w[3])
+static inline void kc_vertex_weights(vmask v0, vmask v1, vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
     w[0] = vsel(v0, one, zero);
@@ -105,31 +105,31 @@ static inline void TTD_SFX(kc_vertex_weights)(vmask v0, vmask v1, vreal w[3])
     w[2] = vsel(mor(v0, v1), zero, one);
 }
 
-static inline vreal TTD_SFX(kc_min)(vreal a, vreal b)
+static inline vreal kc_min(vreal a, vreal b)
 {
     return vsel(vlt(a, b), a, b);
 }
 
 /* scalar: cert_cross_edge, for the edge picked per lane by e0, e1 (else 2). */
-static inline vmask TTD_SFX(kc_cross_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, vmask e0, vmask e1,
+static inline vmask kc_cross_edge(const kx_tri *X, const kx_tri *Y, vmask e0, vmask e1,
                                            const vreal h[3], vreal nrm, vreal mw, vreal wx[3], vreal wy[3])
 {
-    const vreal h0 = TTD_SFX(kc_sel3)(e0, e1, h[0], h[1], h[2]);
-    const vreal h1 = TTD_SFX(kc_sel3)(e0, e1, h[1], h[2], h[0]);
+    const vreal h0 = kc_sel3(e0, e1, h[0], h[1], h[2]);
+    const vreal h1 = kc_sel3(e0, e1, h[1], h[2], h[0]);
     const vreal tau = h0 / (h0 - h1);
     vreal xp[3];
     for (int c = 0; c < 3; ++c)
-        xp[c] = TTD_SFX(kc_sel3)(e0, e1, X->v[0][c], X->v[1][c], X->v[2][c]) +
-                tau * TTD_SFX(kc_sel3)(e0, e1, X->e[0][c], X->e[1][c], X->e[2][c]);
-    TTD_SFX(kc_face_weights)(Y, xp, wy);
-    TTD_SFX(kc_edge_weights)(e0, e1, tau, wx);
+        xp[c] = kc_sel3(e0, e1, X->v[0][c], X->v[1][c], X->v[2][c]) +
+                tau * kc_sel3(e0, e1, X->e[0][c], X->e[1][c], X->e[2][c]);
+    kc_face_weights(Y, xp, wy);
+    kc_edge_weights(e0, e1, tau, wx);
     return mand(mand(vge(wy[0] * nrm, mw), vge(wy[1] * nrm, mw)), vge(wy[2] * nrm, mw));
 }
 
 /* scalar: cert_crossing. The lanes where an edge of X crosses Y's face clearly (CROSS in
  * certified_tol.h): of the edges with clearly opposite heights, the first, else the last;
  * its weights in wx, the crossing point's in wy (lanes without a hit: unspecified). */
-static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, vreal wx[3], vreal wy[3])
+static inline vmask kc_crossing(const kx_tri *X, const kx_tri *Y, vreal wx[3], vreal wy[3])
 {
 #ifdef TTD_PRECISION_DOUBLE
     const vreal margin = vset1((real)TTD_CERT_CROSS_D);
@@ -141,11 +141,11 @@ static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX
         vreal r[3];
         for (int c = 0; c < 3; ++c)
             r[c] = X->v[i][c] - Y->vk[c];
-        h[i] = TTD_SFX(kx_dot)(Y->n, r);
+        h[i] = kx_dot(Y->n, r);
     }
     const vreal nrm = vsqrt(Y->nn);
     const vreal mh = margin * nrm, mmh = -mh;
-    const vreal mw = margin * vsqrt(TTD_SFX(kx_pick)(Y, Y->ee[0], Y->ee[1], Y->ee[2]));
+    const vreal mw = margin * vsqrt(kx_pick(Y, Y->ee[0], Y->ee[1], Y->ee[2]));
     vmask opp[3];
     for (int i = 0; i < 3; ++i) {
         const vreal h0 = h[i], h1 = h[(i + 1) % 3];
@@ -156,8 +156,8 @@ static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX
     const vmask f0 = opp[0], f1 = mandnot(opp[1], opp[0]);
     const vmask l1 = mandnot(opp[1], opp[2]), l0 = mnot(mor(opp[2], opp[1]));
     vreal wx2[3], wy2[3];
-    const vmask hit1 = TTD_SFX(kc_cross_edge)(X, Y, f0, f1, h, nrm, mw, wx, wy);
-    const vmask hit2 = TTD_SFX(kc_cross_edge)(X, Y, l0, l1, h, nrm, mw, wx2, wy2);
+    const vmask hit1 = kc_cross_edge(X, Y, f0, f1, h, nrm, mw, wx, wy);
+    const vmask hit2 = kc_cross_edge(X, Y, l0, l1, h, nrm, mw, wx2, wy2);
     for (int c = 0; c < 3; ++c) {
         wx[c] = vsel(hit1, wx[c], wx2[c]);
         wy[c] = vsel(hit1, wy[c], wy2[c]);
@@ -165,7 +165,12 @@ static inline vmask TTD_SFX(kc_crossing)(const TTD_SFX(kx_tri) *X, const TTD_SFX
     return mand(any_edge, mor(hit1, hit2));
 }
 
-#ifdef TTD_PRECISION_DOUBLE
+/* kc_min on double lanes, for kc_check_d in both precisions */
+static inline ttdw_vd kc_min_d(ttdw_vd a, ttdw_vd b)
+{
+    return ttdw_sel_d(ttdw_lt_d(a, b), a, b);
+}
+
 /* scalar: the end of cert_solve_check, in double for both precisions (the float kernel widens
  * its lanes into two halves). From the frame's vertices and the clamped weights: |p - q| in
  * nw, and the lanes where the separating-plane bound is within gap of it and above touch. */
@@ -196,13 +201,12 @@ static inline ttdw_md kc_check_d(ttdw_vd Sv[3][3], ttdw_vd Tv[3][3], const ttdw_
     const ttdw_vd msum = ls + lt;
     return ttdw_mand_d(ttdw_ge_d(msum, ttdw_set1_d(-gap) * *nw), ttdw_gt_d(ww + msum, ttdw_set1_d(touch) * *nw));
 }
-#endif
 
-/* scalar: the frame of ttd_certified_pair and cert_solve_check. From the group's input and
+/* scalar: the frame of certified_pair and cert_solve_check. From the group's input and
  * the penalty's clamped weights pw, qw: the certified weights wp, wq, the distance (input
  * scale) and the degenerate masks in o; returns the lanes that passed the check. */
-static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], const vreal pw[3],
-                                        const vreal qw[3], vreal wp[3], vreal wq[3], TTD_SFX(kw_out) *o)
+static inline vmask kc_certify(const vreal Sin[9], const vreal Tin[9], const vreal pw[3],
+                                        const vreal qw[3], vreal wp[3], vreal wq[3], kw_out *o)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2);
     /* the penalty's frame without its subnormal lift (size_floor clamps e at emin, as the
@@ -212,7 +216,7 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     for (int k = 0; k < 9; ++k)
         m0 = vmax(m0, vmax(vabs(Sin[k]), vabs(Tin[k])));
     const vreal pre = vsel(vgt(m0, vset1(TTD_REAL_MAX * (real)0.125)), vset1((real)0.0625), one);
-    TTD_SFX(kx_tri) S, T;
+    kx_tri S, T;
     vreal size = zero;
     for (int k = 0; k < 3; ++k) {
         const vreal a = Sin[k] * pre;
@@ -236,72 +240,72 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
             S.v[i][k] = S.v[i][k] * scale;
             T.v[i][k] = T.v[i][k] * scale;
         }
-    TTD_SFX(kx_tri_init)(&S);
-    TTD_SFX(kx_tri_init)(&T);
+    kx_tri_init(&S);
+    kx_tri_init(&T);
 
     /* features and the penalty's points */
-    TTD_SFX(kc_feat) fs = TTD_SFX(kc_feature_of)(pw), ft = TTD_SFX(kc_feature_of)(qw);
+    kc_feat fs = kc_feature_of(pw), ft = kc_feature_of(qw);
     /* a triangle without a face is its longest edge */
-    TTD_SFX(kc_as_edge)(&fs, &S);
-    TTD_SFX(kc_as_edge)(&ft, &T);
+    kc_as_edge(&fs, &S);
+    kc_as_edge(&ft, &T);
     vreal ppen[3], qpen[3], Xs[3], Xt[3], P[3], d1[3], Q[3], d2[3];
-    TTD_SFX(kc_combine)(&S, pw, ppen);
-    TTD_SFX(kc_combine)(&T, qw, qpen);
+    kc_combine(&S, pw, ppen);
+    kc_combine(&T, qw, qpen);
     for (int c = 0; c < 3; ++c) {
-        Xs[c] = vsel(fs.one, TTD_SFX(kc_sel3)(fs.v0, fs.v1, S.v[0][c], S.v[1][c], S.v[2][c]), ppen[c]);
-        Xt[c] = vsel(ft.one, TTD_SFX(kc_sel3)(ft.v0, ft.v1, T.v[0][c], T.v[1][c], T.v[2][c]), qpen[c]);
-        P[c] = TTD_SFX(kc_sel3)(fs.e0, fs.e1, S.v[0][c], S.v[1][c], S.v[2][c]);
-        d1[c] = TTD_SFX(kc_sel3)(fs.e0, fs.e1, S.e[0][c], S.e[1][c], S.e[2][c]);
-        Q[c] = TTD_SFX(kc_sel3)(ft.e0, ft.e1, T.v[0][c], T.v[1][c], T.v[2][c]);
-        d2[c] = TTD_SFX(kc_sel3)(ft.e0, ft.e1, T.e[0][c], T.e[1][c], T.e[2][c]);
+        Xs[c] = vsel(fs.one, kc_sel3(fs.v0, fs.v1, S.v[0][c], S.v[1][c], S.v[2][c]), ppen[c]);
+        Xt[c] = vsel(ft.one, kc_sel3(ft.v0, ft.v1, T.v[0][c], T.v[1][c], T.v[2][c]), qpen[c]);
+        P[c] = kc_sel3(fs.e0, fs.e1, S.v[0][c], S.v[1][c], S.v[2][c]);
+        d1[c] = kc_sel3(fs.e0, fs.e1, S.e[0][c], S.e[1][c], S.e[2][c]);
+        Q[c] = kc_sel3(ft.e0, ft.e1, T.v[0][c], T.v[1][c], T.v[2][c]);
+        d2[c] = kc_sel3(ft.e0, ft.e1, T.e[0][c], T.e[1][c], T.e[2][c]);
     }
-    const vreal ie1 = TTD_SFX(kc_sel3)(fs.e0, fs.e1, S.inv_ee[0], S.inv_ee[1], S.inv_ee[2]);
-    const vreal ie2 = TTD_SFX(kc_sel3)(ft.e0, ft.e1, T.inv_ee[0], T.inv_ee[1], T.inv_ee[2]);
+    const vreal ie1 = kc_sel3(fs.e0, fs.e1, S.inv_ee[0], S.inv_ee[1], S.inv_ee[2]);
+    const vreal ie2 = kc_sel3(ft.e0, ft.e1, T.inv_ee[0], T.inv_ee[1], T.inv_ee[2]);
     /* the penalty's points as parameters on the edges */
     vreal r0[3], r1[3];
     for (int c = 0; c < 3; ++c) {
         r0[c] = ppen[c] - P[c];
         r1[c] = qpen[c] - Q[c];
     }
-    const vreal pen_s = TTD_SFX(kx_dot)(r0, d1) * ie1;
-    const vreal pen_t = TTD_SFX(kx_dot)(r1, d2) * ie2;
+    const vreal pen_s = kx_dot(r0, d1) * ie1;
+    const vreal pen_t = kx_dot(r1, d2) * ie2;
 
     /* edge-edge: the lines' stationary point; parallel lines start from the penalty's s */
     vreal n[3], w[3], x[3], r[3];
-    TTD_SFX(kx_cross)(d1, d2, n);
-    const vreal nn = TTD_SFX(kx_dot)(n, n);
+    kx_cross(d1, d2, n);
+    const vreal nn = kx_dot(n, n);
     for (int c = 0; c < 3; ++c)
         w[c] = Q[c] - P[c];
-    TTD_SFX(kx_cross)(w, d2, x);
-    const vreal d12 = TTD_SFX(kx_dot)(d1, d2), wd1 = TTD_SFX(kx_dot)(w, d1), wd2 = TTD_SFX(kx_dot)(w, d2);
+    kx_cross(w, d2, x);
+    const vreal d12 = kx_dot(d1, d2), wd1 = kx_dot(w, d1), wd2 = kx_dot(w, d2);
     const vmask nonpar = vge(nn, vset1(TTD_REAL_MIN));
     /* then the segments' closest pair: s clamped, t = projection of p(s) clamped, and s
      * again as the projection of q(t) where t was clamped or the lines are parallel */
-    const vreal sc = TTD_SFX(kx_clamp01)(vsel(nonpar, TTD_SFX(kx_dot)(x, n) / nn, pen_s));
+    const vreal sc = kx_clamp01(vsel(nonpar, kx_dot(x, n) / nn, pen_s));
     const vreal tt = (sc * d12 - wd2) * ie2;
-    const vreal t_ll = TTD_SFX(kx_clamp01)(tt);
+    const vreal t_ll = kx_clamp01(tt);
     const vmask tin = mand(vge(tt, zero), vle(tt, one));
-    const vreal s_ll = vsel(mand(tin, nonpar), sc, TTD_SFX(kx_clamp01)((t_ll * d12 + wd1) * ie1));
+    const vreal s_ll = vsel(mand(tin, nonpar), sc, kx_clamp01((t_ll * d12 + wd1) * ie1));
     /* vertex-edge both ways */
     for (int c = 0; c < 3; ++c)
         r[c] = Xt[c] - P[c];
-    const vreal s_ve = TTD_SFX(kx_dot)(r, d1) * ie1;
+    const vreal s_ve = kx_dot(r, d1) * ie1;
     for (int c = 0; c < 3; ++c)
         r[c] = Xs[c] - Q[c];
-    const vreal t_ve = TTD_SFX(kx_dot)(r, d2) * ie2;
+    const vreal t_ve = kx_dot(r, d2) * ie2;
     const vreal s = vsel(ft.two, s_ll, vsel(ft.one, s_ve, pen_s));
     const vreal t = vsel(fs.two, t_ll, vsel(fs.one, t_ve, pen_t));
 
     /* raw weights of each side */
     vreal vw[3], ew[3], fw[3], rp[3], rq[3];
-    TTD_SFX(kc_vertex_weights)(fs.v0, fs.v1, vw);
-    TTD_SFX(kc_edge_weights)(fs.e0, fs.e1, s, ew);
-    TTD_SFX(kc_face_weights)(&S, Xt, fw);
+    kc_vertex_weights(fs.v0, fs.v1, vw);
+    kc_edge_weights(fs.e0, fs.e1, s, ew);
+    kc_face_weights(&S, Xt, fw);
     for (int c = 0; c < 3; ++c)
         rp[c] = vsel(fs.one, vw[c], vsel(fs.two, ew[c], vsel(ft.three, pw[c], fw[c])));
-    TTD_SFX(kc_vertex_weights)(ft.v0, ft.v1, vw);
-    TTD_SFX(kc_edge_weights)(ft.e0, ft.e1, t, ew);
-    TTD_SFX(kc_face_weights)(&T, Xs, fw);
+    kc_vertex_weights(ft.v0, ft.v1, vw);
+    kc_edge_weights(ft.e0, ft.e1, t, ew);
+    kc_face_weights(&T, Xs, fw);
     for (int c = 0; c < 3; ++c)
         rq[c] = vsel(ft.one, vw[c], vsel(ft.two, ew[c], fw[c]));
 
@@ -309,8 +313,8 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     const vreal vfeas = vset1(feas);
     vmask ok = mand(mand(vge(rp[0], vfeas), vge(rp[1], vfeas)), vge(rp[2], vfeas));
     ok = mand(ok, mand(mand(vge(rq[0], vfeas), vge(rq[1], vfeas)), vge(rq[2], vfeas)));
-    TTD_SFX(kp_clamp_bary3)(rp[0], rp[1], rp[2], wp);
-    TTD_SFX(kp_clamp_bary3)(rq[0], rq[1], rq[2], wq);
+    kp_clamp_bary3(rp[0], rp[1], rp[2], wp);
+    kp_clamp_bary3(rq[0], rq[1], rq[2], wq);
 #ifdef TTD_PRECISION_DOUBLE
     vreal nw;
     ok = mand(ok, kc_check_d(S.v, T.v, wp, wq, gap, touch, &nw));
@@ -340,8 +344,8 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
     vmask crossing = mnot(mtrue());
     if (many(mnot(ok))) {
         vreal xs_p[3], xs_q[3], xt_p[3], xt_q[3];
-        const vmask cs = mandnot(TTD_SFX(kc_crossing)(&S, &T, xs_p, xs_q), ok);
-        const vmask ct = mandnot(mandnot(TTD_SFX(kc_crossing)(&T, &S, xt_q, xt_p), ok), cs);
+        const vmask cs = mandnot(kc_crossing(&S, &T, xs_p, xs_q), ok);
+        const vmask ct = mandnot(mandnot(kc_crossing(&T, &S, xt_q, xt_p), ok), cs);
         for (int c = 0; c < 3; ++c) {
             wp[c] = vsel(cs, xs_p[c], vsel(ct, xt_p[c], wp[c]));
             wq[c] = vsel(cs, xs_q[c], vsel(ct, xt_q[c], wq[c]));
@@ -358,7 +362,7 @@ static inline vmask TTD_SFX(kc_certify)(const vreal Sin[9], const vreal Tin[9], 
 
 /* The failing pairs idx[0..nf) of the block through the exact kernel, their outputs written
  * over the certified ones, flagged, with the penalty's iteration count kept. */
-static void TTD_SFX(kc_fallback)(const size_t *idx, int nf, const real *s, const real *t, const ttd_params *prm,
+static void kc_fallback(const size_t *idx, int nf, const real *s, const real *t, const ttd_params *prm,
                                  real *distance, ttd_result *results)
 {
     real bs[9 * KC_CHUNK], bt[9 * KC_CHUNK], bd[KC_CHUNK];
@@ -374,7 +378,7 @@ static void TTD_SFX(kc_fallback)(const size_t *idx, int nf, const real *s, const
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-    TTD_SFX(kernel_exact)((size_t)nf, bs, bt, prm, bd, results ? br : NULL);
+    kernel_exact((size_t)nf, bs, bt, prm, bd, results ? br : NULL);
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
@@ -390,45 +394,45 @@ static void TTD_SFX(kc_fallback)(const size_t *idx, int nf, const real *s, const
     }
 }
 
-static void TTD_SFX(kernel_certified)(size_t n, const real *s, const real *t, const ttd_params *prm,
+static void kernel_certified(size_t n, const real *s, const real *t, const ttd_params *prm,
                                       real *distance, ttd_result *results)
 {
-    const TTD_SFX(kp_consts) K = TTD_SFX(kp_consts_of)(prm);
+    const kp_consts K = kp_consts_of(prm);
     size_t idx[KC_CHUNK];
     int nf = 0;
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
-        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
+        kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
         /* 1. the penalty loop (kernel_penalty) */
-        TTD_SFX(kp_frame) F;
-        TTD_SFX(kp_hf) H;
-        TTD_SFX(kp_state) X;
-        TTD_SFX(kp_frame_of)(S, T, &F);
-        TTD_SFX(kp_hf_of)(&F, &H);
-        TTD_SFX(kp_init)(&X);
+        kp_frame F;
+        kp_hf H;
+        kp_state X;
+        kp_frame_of(S, T, &F);
+        kp_hf_of(&F, &H);
+        kp_init(&X);
         vmask active = mfirst(live);
         vreal its = vzero();
         for (int it = 1; it <= prm->max_iterations && many(active); ++it) {
             its = vsel(active, vset1((real)it), its);
-            const vmask done = TTD_SFX(kp_step)(&K, &F, &H, &X, active);
+            const vmask done = kp_step(&K, &F, &H, &X, active);
             active = mandnot(active, done);
         }
         vreal pw[3], pq[3], wp[3], wq[3];
-        (void)TTD_SFX(kp_finish)(&F, &X, pw, pq);
+        (void)kp_finish(&F, &X, pw, pq);
         /* 2-4. solve on the active set and check */
-        TTD_SFX(kw_out) o;
-        const vmask ok = TTD_SFX(kc_certify)(S, T, pw, pq, wp, wq, &o);
+        kw_out o;
+        const vmask ok = kc_certify(S, T, pw, pq, wp, wq, &o);
         const vreal dist = o.distance;
         const unsigned ds = o.flags_ds, dt = o.flags_dt, in = o.flags_int;
-        TTD_SFX(kp_points)(S, T, wp, wq, &o);
+        kp_points(S, T, wp, wq, &o);
         o.distance = dist;
         o.flags_ds = ds;
         o.flags_dt = dt;
         o.flags_int = in;
         o.iterations = its;
         o.flags_nc = 0;
-        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
         /* 5. the failures of this group join the block's fallback list */
         const unsigned bad = ~mbits(ok);
         for (int i = 0; i < live; ++i) {
@@ -436,11 +440,11 @@ static void TTD_SFX(kernel_certified)(size_t n, const real *s, const real *t, co
                 continue;
             idx[nf++] = i0 + (size_t)i;
             if (nf == KC_CHUNK) {
-                TTD_SFX(kc_fallback)(idx, nf, s, t, prm, distance, results);
+                kc_fallback(idx, nf, s, t, prm, distance, results);
                 nf = 0;
             }
         }
     }
     if (nf)
-        TTD_SFX(kc_fallback)(idx, nf, s, t, prm, distance, results);
+        kc_fallback(idx, nf, s, t, prm, distance, results);
 }

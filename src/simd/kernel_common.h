@@ -8,12 +8,12 @@
 
 /* A harmless pair for the lanes past the end of a block: two unit right triangles one apart
  * in z. Every method converges on it in a few iterations, and its outputs are never stored. */
-static const real TTD_SFX(kw_pad_s)[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-static const real TTD_SFX(kw_pad_t)[9] = {0, 0, 1, 1, 0, 1, 0, 1, 1};
+static const real kw_pad_s[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+static const real kw_pad_t[9] = {0, 0, 1, 1, 0, 1, 0, 1, 1};
 
 /* S[k], T[k] lane i = coordinate k of pair i of the group starting at s, t; live pairs are
  * 1..W. Full groups are transposed straight from the caller's arrays. */
-static inline void TTD_SFX(kw_load_group)(const real *s, const real *t, int live, vreal S[9], vreal T[9])
+static inline void kw_load_group(const real *s, const real *t, int live, vreal S[9], vreal T[9])
 {
     if (live == TTDW_LANES) {
         vload_aos9(s, S);
@@ -23,8 +23,8 @@ static inline void TTD_SFX(kw_load_group)(const real *s, const real *t, int live
     real bs[9 * TTDW_LANES], bt[9 * TTDW_LANES];
     for (int i = 0; i < TTDW_LANES; ++i)
         for (int k = 0; k < 9; ++k) {
-            bs[9 * i + k] = i < live ? s[9 * i + k] : TTD_SFX(kw_pad_s)[k];
-            bt[9 * i + k] = i < live ? t[9 * i + k] : TTD_SFX(kw_pad_t)[k];
+            bs[9 * i + k] = i < live ? s[9 * i + k] : kw_pad_s[k];
+            bt[9 * i + k] = i < live ? t[9 * i + k] : kw_pad_t[k];
         }
     vload_aos9(bs, S);
     vload_aos9(bt, T);
@@ -35,7 +35,7 @@ static inline void TTD_SFX(kw_load_group)(const real *s, const real *t, int live
  * mantissa bits cleared; the divisions and products by it are exact except where a result
  * is subnormal, which only touches components whose squares vanish anyway (and distances
  * below REAL_MIN). m = 0 and m = inf come back unchanged, as in the scalar code. */
-static inline vreal TTD_SFX(kw_norm3)(vreal x, vreal y, vreal z)
+static inline vreal kw_norm3(vreal x, vreal y, vreal z)
 {
     const vreal zero = vzero();
     vreal ax = vabs(x), ay = vabs(y), az = vabs(z);
@@ -68,7 +68,7 @@ static inline vreal TTD_SFX(kw_norm3)(vreal x, vreal y, vreal z)
 }
 
 /* The outputs of one group, lane by lane, before they are written to the caller's arrays. */
-typedef struct TTD_SFX(kw_out) {
+typedef struct kw_out {
     vreal distance;
     vreal p[3], q[3];
     vreal bary_p[3], bary_q[3];
@@ -77,11 +77,11 @@ typedef struct TTD_SFX(kw_out) {
     unsigned flags_int;     /* lane bits: TTD_PAIR_INTERSECTING */
     unsigned flags_ds;      /* lane bits: TTD_PAIR_DEGENERATE_S */
     unsigned flags_dt;      /* lane bits: TTD_PAIR_DEGENERATE_T */
-} TTD_SFX(kw_out);
+} kw_out;
 
 /* Writes the first `live` lanes of o to distance[0..live) and results[0..live) (either may
  * be NULL). feature bits follow the scalar code: bit i when weight i > 0. */
-static inline void TTD_SFX(kw_store_group)(const TTD_SFX(kw_out) *o, int live, real *distance,
+static inline void kw_store_group(const kw_out *o, int live, real *distance,
                                            ttd_result *results)
 {
     if (distance) {

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The exact method, one pair per lane: scalar/exact_impl.h's ttd_exact_pair with every
+/* The exact method, one pair per lane: scalar/exact_impl.h's exact_pair with every
  * candidate computed in every lane and the closest kept by compare and select. Read it next
  * to the scalar file: the helpers carry the same names with kx_ for exact_, the candidates
  * come in the same order with the same ids (so ties go to the same, earliest, candidate),
@@ -43,7 +43,7 @@
 #endif
 #endif
 
-typedef struct TTD_SFX(kx_tri) {
+typedef struct kx_tri {
     vreal v[3][3];   /* vertices, normalised */
     vreal e[3][3];   /* e[i] = v[i+1] - v[i] */
     vreal ee[3];     /* |e[i]|^2 */
@@ -54,22 +54,22 @@ typedef struct TTD_SFX(kx_tri) {
     vreal nn, inv_nn, ML, inv_eek; /* |n|^2, 1/nn or 0, dot(M, L), inv_ee[k] */
     vreal u[3];                    /* cross(n, L) / nn */
     vmask has_face;
-} TTD_SFX(kx_tri);
+} kx_tri;
 
 /* scalar: exact_best. The smallest d2 so far, the id of its candidate (TTD_EXACT_* in
  * scalar/exact_impl.h, as a real) and its parameters. full (a constant once kx_group is
  * inlined) says whether id, u, v, w are wanted; without them d2 is a plain running minimum. */
-typedef struct TTD_SFX(kx_best) {
+typedef struct kx_best {
     vreal d2, id, u, v, w;
     int full;
-} TTD_SFX(kx_best);
+} kx_best;
 
-static inline vreal TTD_SFX(kx_dot)(const vreal a[3], const vreal b[3])
+static inline vreal kx_dot(const vreal a[3], const vreal b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static inline void TTD_SFX(kx_cross)(const vreal a[3], const vreal b[3], vreal out[3])
+static inline void kx_cross(const vreal a[3], const vreal b[3], vreal out[3])
 {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
@@ -80,13 +80,13 @@ static inline void TTD_SFX(kx_cross)(const vreal a[3], const vreal b[3], vreal o
  * max(a, b) = a > b ? a : b this is the same expression, signed zeros included (NEON's
  * min/max may turn a -0 into +0 here, nothing else); x is never NaN. Two instructions instead
  * of two compares and two selects. */
-static inline vreal TTD_SFX(kx_clamp01)(vreal x)
+static inline vreal kx_clamp01(vreal x)
 {
     return vmax(vzero(), vmin(vset1((real)1), x));
 }
 
 /* k-indexed selection: x[k] */
-static inline vreal TTD_SFX(kx_pick)(const TTD_SFX(kx_tri) *T, vreal x0, vreal x1, vreal x2)
+static inline vreal kx_pick(const kx_tri *T, vreal x0, vreal x1, vreal x2)
 {
     return vsel(T->is0, x0, vsel(T->is1, x1, x2));
 }
@@ -94,7 +94,7 @@ static inline vreal TTD_SFX(kx_pick)(const TTD_SFX(kx_tri) *T, vreal x0, vreal x
 #ifdef TTD_PRECISION_DOUBLE
 /* scalar: exact_dop_d. a*b - c*d with Kahan's FMA trick. Without FMA (SSE2) the product
  * error comes from Dekker's split instead: the same value in all but rare last bits. */
-static inline vreal TTD_SFX(kx_dop)(vreal a, vreal b, vreal c, vreal d)
+static inline vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
 {
     const vreal w = c * d;
 #if TTDW_HAVE_FMA
@@ -120,23 +120,23 @@ static inline vreal TTD_SFX(kx_dop)(vreal a, vreal b, vreal c, vreal d)
 
 /* scalar: exact_cross_acc_d. Naive cross product; lanes whose |n|^2 is below 2^-20 |a|^2 |b|^2
  * (nearly parallel) take the FMA-compensated one. Returns |n|^2. */
-static inline vreal TTD_SFX(kx_cross_acc)(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
 {
-    TTD_SFX(kx_cross)(a, b, out);
-    vreal nn = TTD_SFX(kx_dot)(out, out);
+    kx_cross(a, b, out);
+    vreal nn = kx_dot(out, out);
     const vmask need = vlt(nn, vset1(0x1p-20) * aa * bb);
     if (many(need)) {
-        out[0] = vsel(need, TTD_SFX(kx_dop)(a[1], b[2], a[2], b[1]), out[0]);
-        out[1] = vsel(need, TTD_SFX(kx_dop)(a[2], b[0], a[0], b[2]), out[1]);
-        out[2] = vsel(need, TTD_SFX(kx_dop)(a[0], b[1], a[1], b[0]), out[2]);
-        nn = TTD_SFX(kx_dot)(out, out);
+        out[0] = vsel(need, kx_dop(a[1], b[2], a[2], b[1]), out[0]);
+        out[1] = vsel(need, kx_dop(a[2], b[0], a[0], b[2]), out[1]);
+        out[2] = vsel(need, kx_dop(a[0], b[1], a[1], b[0]), out[2]);
+        nn = kx_dot(out, out);
     }
     return nn;
 }
 #else
 /* scalar: exact_cross_acc_f. Products of floats are exact in double: one double difference
  * per component, rounded to float. The float lanes are widened in two halves. */
-static inline vreal TTD_SFX(kx_cross_acc)(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
 {
     (void)aa;
     (void)bb;
@@ -150,18 +150,18 @@ static inline vreal TTD_SFX(kx_cross_acc)(const vreal a[3], const vreal b[3], vr
     out[0] = ttdw_d2f(al[1] * bl[2] - al[2] * bl[1], ah[1] * bh[2] - ah[2] * bh[1]);
     out[1] = ttdw_d2f(al[2] * bl[0] - al[0] * bl[2], ah[2] * bh[0] - ah[0] * bh[2]);
     out[2] = ttdw_d2f(al[0] * bl[1] - al[1] * bl[0], ah[0] * bh[1] - ah[1] * bh[0]);
-    return TTD_SFX(kx_dot)(out, out);
+    return kx_dot(out, out);
 }
 #endif
 
 /* scalar: exact_tri_init. v[][] is filled by the caller. */
-static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
+static inline void kx_tri_init(kx_tri *T)
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
         for (int c = 0; c < 3; ++c)
             T->e[i][c] = T->v[(i + 1) % 3][c] - T->v[i][c];
-        T->ee[i] = TTD_SFX(kx_dot)(T->e[i], T->e[i]);
+        T->ee[i] = kx_dot(T->e[i], T->e[i]);
         T->inv_ee[i] = vsel(vge(T->ee[i], rmin), one / T->ee[i], zero);
     }
     /* k = 0; if (ee[1] > ee[k]) k = 1; if (ee[2] > ee[k]) k = 2; */
@@ -170,43 +170,43 @@ static inline void TTD_SFX(kx_tri_init)(TTD_SFX(kx_tri) *T)
     T->is1 = mandnot(k1, k2);
     T->is0 = mnot(mor(k1, k2));
     for (int c = 0; c < 3; ++c) {
-        T->L[c] = TTD_SFX(kx_pick)(T, T->e[0][c], T->e[1][c], T->e[2][c]);
-        T->M[c] = -TTD_SFX(kx_pick)(T, T->e[2][c], T->e[0][c], T->e[1][c]); /* v[k+2] - v[k] */
-        T->vk[c] = TTD_SFX(kx_pick)(T, T->v[0][c], T->v[1][c], T->v[2][c]);
+        T->L[c] = kx_pick(T, T->e[0][c], T->e[1][c], T->e[2][c]);
+        T->M[c] = -kx_pick(T, T->e[2][c], T->e[0][c], T->e[1][c]); /* v[k+2] - v[k] */
+        T->vk[c] = kx_pick(T, T->v[0][c], T->v[1][c], T->v[2][c]);
     }
-    const vreal eek = TTD_SFX(kx_pick)(T, T->ee[0], T->ee[1], T->ee[2]);
-    const vreal eekm = TTD_SFX(kx_pick)(T, T->ee[2], T->ee[0], T->ee[1]);
-    T->inv_eek = TTD_SFX(kx_pick)(T, T->inv_ee[0], T->inv_ee[1], T->inv_ee[2]);
-    T->nn = TTD_SFX(kx_cross_acc)(T->L, T->M, eek, eekm, T->n);
+    const vreal eek = kx_pick(T, T->ee[0], T->ee[1], T->ee[2]);
+    const vreal eekm = kx_pick(T, T->ee[2], T->ee[0], T->ee[1]);
+    T->inv_eek = kx_pick(T, T->inv_ee[0], T->inv_ee[1], T->inv_ee[2]);
+    T->nn = kx_cross_acc(T->L, T->M, eek, eekm, T->n);
     T->has_face = vge(T->nn, rmin);
     T->inv_nn = vsel(T->has_face, one / T->nn, zero);
-    T->ML = TTD_SFX(kx_dot)(T->M, T->L);
-    TTD_SFX(kx_cross)(T->n, T->L, T->u);
+    T->ML = kx_dot(T->M, T->L);
+    kx_cross(T->n, T->L, T->u);
     for (int c = 0; c < 3; ++c)
         T->u[c] = T->u[c] * T->inv_nn;
 }
 
 /* scalar: exact_fc, exact_face_coords. P's face coordinates over T: c (weight of v[k+2]),
  * g = dot(P - v[k], L) and the height h. */
-typedef struct TTD_SFX(kx_fc) {
+typedef struct kx_fc {
     vreal c, g, h;
-} TTD_SFX(kx_fc);
+} kx_fc;
 
-static inline TTD_SFX(kx_fc) TTD_SFX(kx_face_coords)(const TTD_SFX(kx_tri) *T, const vreal P[3])
+static inline kx_fc kx_face_coords(const kx_tri *T, const vreal P[3])
 {
     vreal r[3];
     for (int i = 0; i < 3; ++i)
         r[i] = P[i] - T->vk[i];
-    TTD_SFX(kx_fc) f;
-    f.c = TTD_SFX(kx_dot)(r, T->u); /* n . (L x r) / nn */
-    f.g = TTD_SFX(kx_dot)(r, T->L);
-    f.h = TTD_SFX(kx_dot)(T->n, r);
+    kx_fc f;
+    f.c = kx_dot(r, T->u); /* n . (L x r) / nn */
+    f.g = kx_dot(r, T->L);
+    f.h = kx_dot(T->n, r);
     return f;
 }
 
 /* scalar: exact_face_weights. b from (c, g), and the lanes whose point is inside or on the
  * face. */
-static inline vmask TTD_SFX(kx_face_weights)(const TTD_SFX(kx_tri) *T, vreal c, vreal g, vreal *b)
+static inline vmask kx_face_weights(const kx_tri *T, vreal c, vreal g, vreal *b)
 {
     const vreal zero = vzero();
     const vreal bb = (g - c * T->ML) * T->inv_eek;
@@ -216,19 +216,19 @@ static inline vmask TTD_SFX(kx_face_weights)(const TTD_SFX(kx_tri) *T, vreal c, 
 }
 
 /* scalar: exact_face_point. q = v[k] + b L + c M and its weights (w[k] = 1 - b - c). */
-static inline void TTD_SFX(kx_face_point)(const TTD_SFX(kx_tri) *T, vreal b, vreal c, vreal q[3], vreal w[3])
+static inline void kx_face_point(const kx_tri *T, vreal b, vreal c, vreal q[3], vreal w[3])
 {
     for (int i = 0; i < 3; ++i)
         q[i] = T->vk[i] + b * T->L[i] + c * T->M[i];
     const vreal a = vset1((real)1) - b - c;
-    w[0] = TTD_SFX(kx_pick)(T, a, c, b);
-    w[1] = TTD_SFX(kx_pick)(T, b, a, c);
-    w[2] = TTD_SFX(kx_pick)(T, c, b, a);
+    w[0] = kx_pick(T, a, c, b);
+    w[1] = kx_pick(T, b, a, c);
+    w[2] = kx_pick(T, c, b, a);
 }
 
 /* scalar: exact_keep. In the lanes of ok where d2 is strictly smaller, keep (d2, id, and the
  * first np of u, v, w); the others are never read for this id. */
-static inline void TTD_SFX(kx_keep_m)(TTD_SFX(kx_best) *best, vmask m, vreal d2, int id, int np, vreal u, vreal v,
+static inline void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int np, vreal u, vreal v,
                                       vreal w)
 {
     best->d2 = vsel(m, d2, best->d2);
@@ -243,28 +243,28 @@ static inline void TTD_SFX(kx_keep_m)(TTD_SFX(kx_best) *best, vmask m, vreal d2,
 /* Distances only: min(d2, best) is d2 < best ? d2 : best on x86 (NEON differs only for
  * signed zeros and NaN, and d2 is a sum of squares or a square), so the compare folds into
  * the min. */
-static inline void TTD_SFX(kx_keep)(TTD_SFX(kx_best) *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
+static inline void kx_keep(kx_best *best, vmask ok, vreal d2, int id, int np, vreal u, vreal v,
                                     vreal w)
 {
     if (best->full)
-        TTD_SFX(kx_keep_m)(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
+        kx_keep_m(best, mand(ok, vlt(d2, best->d2)), d2, id, np, u, v, w);
     else
         best->d2 = vmin(vsel(ok, d2, best->d2), best->d2);
 }
 
 /* kx_keep for a candidate that every lane offers (vertex-edge) */
-static inline void TTD_SFX(kx_keep_all)(TTD_SFX(kx_best) *best, vreal d2, int id, int np, vreal u, vreal v, vreal w)
+static inline void kx_keep_all(kx_best *best, vreal d2, int id, int np, vreal u, vreal v, vreal w)
 {
     if (best->full)
-        TTD_SFX(kx_keep_m)(best, vlt(d2, best->d2), d2, id, np, u, v, w);
+        kx_keep_m(best, vlt(d2, best->d2), d2, id, np, u, v, w);
     else
         best->d2 = vmin(d2, best->d2);
 }
 
 /* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y. When
  * rdot is given, rdot[3i + j] keeps dot(X.v[i] - Y.v[j], Y.e[j]) for the edge-edge pass. */
-static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, vreal *rdot)
+static inline void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
+                                           kx_best *best, vreal *rdot)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -272,20 +272,20 @@ static inline void TTD_SFX(kx_vertex_edge)(const TTD_SFX(kx_tri) *X, const TTD_S
             vreal r[3], d[3];
             for (int c = 0; c < 3; ++c)
                 r[c] = X->v[i][c] - Y->v[j][c];
-            const vreal re = TTD_SFX(kx_dot)(r, Y->e[j]);
+            const vreal re = kx_dot(r, Y->e[j]);
             if (rdot)
                 rdot[3 * i + j] = re;
-            const vreal t = TTD_SFX(kx_clamp01)(re * Y->inv_ee[j]);
+            const vreal t = kx_clamp01(re * Y->inv_ee[j]);
             for (int c = 0; c < 3; ++c)
                 d[c] = r[c] - t * Y->e[j][c]; /* X.v[i] - (Y.v[j] + t e[j]) */
-            TTD_SFX(kx_keep_all)(best, TTD_SFX(kx_dot)(d, d), id0 + 3 * i + j, 1, t, zero, zero);
+            kx_keep_all(best, kx_dot(d, d), id0 + 3 * i + j, 1, t, zero, zero);
         }
 }
 
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
-static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX(kx_tri) *T,
-                                         TTD_SFX(kx_best) *best, const vreal rdot[9])
+static inline void kx_edge_edge(const kx_tri *S, const kx_tri *T,
+                                         kx_best *best, const vreal rdot[9])
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -293,67 +293,67 @@ static inline void TTD_SFX(kx_edge_edge)(const TTD_SFX(kx_tri) *S, const TTD_SFX
         for (int j = 0; j < 3; ++j) {
             const vreal *Q = T->v[j], *d2 = T->e[j];
             vreal n[3], w[3], x[3], d[3];
-            TTD_SFX(kx_cross)(d1, d2, n);
-            const vreal nn = TTD_SFX(kx_dot)(n, n);
+            kx_cross(d1, d2, n);
+            const vreal nn = kx_dot(n, n);
             const vmask ok = vge(nn, rmin); /* parallel or a point: the endpoints cover it */
             for (int c = 0; c < 3; ++c)
                 w[c] = Q[c] - P[c];
-            TTD_SFX(kx_cross)(w, d2, x);
-            const vreal s = vsel(ok, TTD_SFX(kx_dot)(x, n) / nn, -one);
-            const vreal sc = TTD_SFX(kx_clamp01)(s);
+            kx_cross(w, d2, x);
+            const vreal s = vsel(ok, kx_dot(x, n) / nn, -one);
+            const vreal sc = kx_clamp01(s);
             /* scalar: sc dot(d1, d2) - dot(w, d2). dot(w, d2) is minus the vertex-edge dot of
              * S.v[i] on T's edge j, kept from that pass (w = -r, and negation is exact) */
-            const vreal t = (sc * TTD_SFX(kx_dot)(d1, d2) + rdot[3 * i + j]) * T->inv_ee[j];
-            const vreal tc = TTD_SFX(kx_clamp01)(t);
+            const vreal t = (sc * kx_dot(d1, d2) + rdot[3 * i + j]) * T->inv_ee[j];
+            const vreal tc = kx_clamp01(t);
             /* s and t in [0, 1]: exactly when clamping leaves them unchanged (-0 included) */
             const vmask accept = mand(veq(s, sc), veq(t, tc));
             for (int c = 0; c < 3; ++c)
                 d[c] = (sc * d1[c] - w[c]) - tc * d2[c]; /* (P + sc d1) - (Q + tc d2) */
-            TTD_SFX(kx_keep)(best, accept, TTD_SFX(kx_dot)(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
+            kx_keep(best, accept, kx_dot(d, d), TTD_EXACT_EE + 3 * i + j, 2, sc, tc, zero);
         }
     }
 }
 
 /* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; f gets the
  * vertices' face coordinates for the crossings. */
-static inline void TTD_SFX(kx_vertex_face)(const TTD_SFX(kx_tri) *X, const TTD_SFX(kx_tri) *Y, int id0,
-                                           TTD_SFX(kx_best) *best, TTD_SFX(kx_fc) f[3])
+static inline void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
+                                           kx_best *best, kx_fc f[3])
 {
     for (int i = 0; i < 3; ++i) {
         vreal b;
-        f[i] = TTD_SFX(kx_face_coords)(Y, X->v[i]);
+        f[i] = kx_face_coords(Y, X->v[i]);
         const vreal c = f[i].c, h = f[i].h;
-        const vmask inside = TTD_SFX(kx_face_weights)(Y, c, f[i].g, &b);
+        const vmask inside = kx_face_weights(Y, c, f[i].g, &b);
         /* the squared distance to the plane, h^2 / |n|^2 */
-        TTD_SFX(kx_keep)(best, inside, (h * Y->inv_nn) * h, id0 + i, 2, b, c, b);
+        kx_keep(best, inside, (h * Y->inv_nn) * h, id0 + i, 2, b, c, b);
     }
 }
 
 /* scalar: exact_crossings. 3 candidates: edges of X (whose vertices' face coordinates over Y
  * are f) with ends strictly on opposite sides of Y's plane, crossing it inside the face
  * (distance 0). The crossing's coordinates are the ends' interpolated with tau. */
-static inline void TTD_SFX(kx_crossings)(const TTD_SFX(kx_tri) *Y, int id0, TTD_SFX(kx_best) *best,
-                                         const TTD_SFX(kx_fc) f[3])
+static inline void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
+                                         const kx_fc f[3])
 {
     const vreal zero = vzero();
     const vmask face = Y->has_face;
     if (mnone(face))
         return;
     for (int i = 0; i < 3; ++i) {
-        const TTD_SFX(kx_fc) f0 = f[i], f1 = f[(i + 1) % 3];
+        const kx_fc f0 = f[i], f1 = f[(i + 1) % 3];
         const vreal h0 = f0.h, h1 = f1.h;
         const vmask opposite = mor(mand(vlt(h0, zero), vgt(h1, zero)), mand(vgt(h0, zero), vlt(h1, zero)));
         const vreal tau = h0 / (h0 - h1); /* no cancellation: opposite signs */
         const vreal c = f0.c + tau * (f1.c - f0.c);
         const vreal g = f0.g + tau * (f1.g - f0.g);
         vreal b;
-        const vmask inside = mand(opposite, TTD_SFX(kx_face_weights)(Y, c, g, &b));
-        TTD_SFX(kx_keep)(best, inside, zero, id0 + i, 3, tau, b, c);
+        const vmask inside = mand(opposite, kx_face_weights(Y, c, g, &b));
+        kx_keep(best, inside, zero, id0 + i, 3, tau, b, c);
     }
 }
 
 /* scalar: exact_edge_point, for the edge picked per lane by the masks e0, e1 (else edge 2). */
-static inline void TTD_SFX(kx_edge_point_sel)(const TTD_SFX(kx_tri) *X, vmask e0, vmask e1, vreal t, vreal p[3],
+static inline void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal t, vreal p[3],
                                               vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
@@ -372,8 +372,8 @@ static inline void TTD_SFX(kx_edge_point_sel)(const TTD_SFX(kx_tri) *X, vmask e0
 
 /* scalar: exact_rebuild. p, q and their weights from (id, u, v, w), the scalar expressions
  * chosen per lane: for each side, a vertex, an edge point or a face point. */
-static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_SFX(kx_tri) *S,
-                                       const TTD_SFX(kx_tri) *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
+static inline void kx_rebuild(const kx_best *best, const kx_tri *S,
+                                       const kx_tri *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
 {
     const vreal zero = vzero(), one = vset1((real)1), id = best->id;
 #define KX_IN(lo, hi) mand(vge(id, vset1((real)(lo))), vlt(id, vset1((real)(hi))))
@@ -418,13 +418,13 @@ static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_S
         wtv[c] = vsel(c == 0 ? t0 : c == 1 ? mandnot(t1, t0) : mnot(mor(t0, t1)), one, zero);
     }
     /* edge parameters: u for VE (on Y), EE on S, and the crossings; v for EE on T */
-    TTD_SFX(kx_edge_point_sel)(S, s0, s1, best->u, se, wse);
-    TTD_SFX(kx_edge_point_sel)(T, t0, t1, vsel(ee, best->v, best->u), te, wte);
+    kx_edge_point_sel(S, s0, s1, best->u, se, wse);
+    kx_edge_point_sel(T, t0, t1, vsel(ee, best->v, best->u), te, wte);
     /* face points: VF_T lands on S's face with (u, v), VF_S on T's with (u, v), a crossing of
      * S's edge on T's face with (v, w), of T's edge on S's face with (v, w) */
     const vmask face_uv_s = vf_t, face_uv_t = vf_s;
-    TTD_SFX(kx_face_point)(S, vsel(face_uv_s, best->u, best->v), vsel(face_uv_s, best->v, best->w), sf, wsf);
-    TTD_SFX(kx_face_point)(T, vsel(face_uv_t, best->u, best->v), vsel(face_uv_t, best->v, best->w), tf, wtf);
+    kx_face_point(S, vsel(face_uv_s, best->u, best->v), vsel(face_uv_s, best->v, best->w), sf, wsf);
+    kx_face_point(T, vsel(face_uv_t, best->u, best->v), vsel(face_uv_t, best->v, best->w), tf, wtf);
     /* p: vertex (VE_S, VF_S), edge point of S (VE_T, EE, X_S), face point of S (VF_T), the
      * crossing point on T's edge (X_T); q likewise, mirrored */
     const vmask p_vertex = mor(ve_s, vf_s), p_edge = mor(ve_t, mor(ee, x_s)), p_face = vf_t;
@@ -438,11 +438,11 @@ static inline void TTD_SFX(kx_rebuild)(const TTD_SFX(kx_best) *best, const TTD_S
     }
 }
 
-/* One group of W pairs: scalar ttd_exact_pair, steps 1-4. full is a constant at each call:
+/* One group of W pairs: scalar exact_pair, steps 1-4. full is a constant at each call:
  * when 0 (the caller wants distances only) the winner is not rebuilt, and the compiler drops
  * the selection's id and parameters with it, leaving a running minimum of d2; the distance is
  * the same bits either way (the minimum does not depend on which candidate attains it). */
-KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], TTD_SFX(kw_out) *out, const int full)
+KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *out, const int full)
 {
     const vreal zero = vzero(), one = vset1((real)1);
     /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
@@ -490,29 +490,29 @@ KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], T
     if (many(tiny))
         for (int i = 0; i < 18; ++i)
             rel[i] = rel[i] * up;
-    TTD_SFX(kx_tri) S, T;
+    kx_tri S, T;
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
             S.v[i][c] = rel[3 * i + c] * inv;
             T.v[i][c] = rel[9 + 3 * i + c] * inv;
         }
-    TTD_SFX(kx_tri_init)(&S);
-    TTD_SFX(kx_tri_init)(&T);
+    kx_tri_init(&S);
+    kx_tri_init(&T);
 
     /* 2. Candidates, in the scalar code's order and with its ids. */
-    TTD_SFX(kx_best) best;
+    kx_best best;
     best.d2 = vset1(TTD_REAL_MAX);
     best.id = best.u = best.v = best.w = zero;
     best.full = full;
-    TTD_SFX(kx_fc) fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
+    kx_fc fs[3], ft[3]; /* S's vertices over T's face, and T's over S's */
     vreal rdot[9];               /* vertex-edge dots of S's vertices on T's edges */
-    TTD_SFX(kx_vertex_edge)(&S, &T, TTD_EXACT_VE_S, &best, rdot);
-    TTD_SFX(kx_vertex_edge)(&T, &S, TTD_EXACT_VE_T, &best, NULL);
-    TTD_SFX(kx_edge_edge)(&S, &T, &best, rdot);
-    TTD_SFX(kx_vertex_face)(&S, &T, TTD_EXACT_VF_S, &best, fs);
-    TTD_SFX(kx_vertex_face)(&T, &S, TTD_EXACT_VF_T, &best, ft);
-    TTD_SFX(kx_crossings)(&T, TTD_EXACT_X_S, &best, fs);
-    TTD_SFX(kx_crossings)(&S, TTD_EXACT_X_T, &best, ft);
+    kx_vertex_edge(&S, &T, TTD_EXACT_VE_S, &best, rdot);
+    kx_vertex_edge(&T, &S, TTD_EXACT_VE_T, &best, NULL);
+    kx_edge_edge(&S, &T, &best, rdot);
+    kx_vertex_face(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    kx_vertex_face(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    kx_crossings(&T, TTD_EXACT_X_S, &best, fs);
+    kx_crossings(&S, TTD_EXACT_X_T, &best, ft);
 
     /* 3. A distance within rounding of 0 is a contact. */
     vreal d = vsqrt(best.d2);
@@ -524,7 +524,7 @@ KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], T
     out->distance = d * g * unpre;
     if (full) {
         vreal bp[3], bq[3], wp[3], wq[3];
-        TTD_SFX(kx_rebuild)(&best, &S, &T, bp, bq, wp, wq);
+        kx_rebuild(&best, &S, &T, bp, bq, wp, wq);
         /* a point within rounding of REAL_MAX can round past it: clamp, as the scalar code does */
         const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX);
         for (int c = 0; c < 3; ++c) {
@@ -541,20 +541,20 @@ KX_GROUP_INLINE void TTD_SFX(kx_group)(const vreal Sin[9], const vreal Tin[9], T
     out->flags_dt = mbits(mnot(T.has_face));
 }
 
-static void TTD_SFX(kernel_exact)(size_t n, const real *s, const real *t, const ttd_params *prm,
+static void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm,
                                   real *distance, ttd_result *results)
 {
     (void)prm;
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
-        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
-        TTD_SFX(kw_out) o;
+        kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
+        kw_out o;
         /* pad lanes compute a harmless pair, never stored */
         if (results)
-            TTD_SFX(kx_group)(S, T, &o, 1);
+            kx_group(S, T, &o, 1);
         else
-            TTD_SFX(kx_group)(S, T, &o, 0);
-        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+            kx_group(S, T, &o, 0);
+        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }

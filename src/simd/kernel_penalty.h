@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The optimised penalty method, one pair per lane: scalar/penalty_impl.h's ttd_penalty_pair
+/* The optimised penalty method, one pair per lane: scalar/penalty_impl.h's penalty_pair
  * step for step (same operations, same order, so each lane rounds as the scalar code does).
  * Read the two side by side; the scalar code was written to be ported this way (one loop,
  * selects instead of branches). The scalar function is cut in three here: kp_frame (the
@@ -17,16 +17,16 @@
  * occupancy to 0.78 at 16 lanes but ran 20-25% slower per pair, measured: not kept. */
 
 /* scalar: pen_pos. max(0, v) as (v + |v|) / 2 */
-static inline vreal TTD_SFX(kp_pos)(vreal v)
+static inline vreal kp_pos(vreal v)
 {
     return (v + vabs(v)) * vset1((real)0.5);
 }
 
 /* scalar: pen_clamp_bary3. Negative weights of (c, a, b) become 0, renormalised to sum 1. */
-static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3])
+static inline void kp_clamp_bary3(vreal c, vreal a, vreal b, vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
-    const vreal w0 = TTD_SFX(kp_pos)(c), w1 = TTD_SFX(kp_pos)(a), w2 = TTD_SFX(kp_pos)(b);
+    const vreal w0 = kp_pos(c), w1 = kp_pos(a), w2 = kp_pos(b);
     const vreal sum = w0 + w1 + w2;
     const vmask pos = vgt(sum, zero);
     const vreal inv = one / vsel(pos, sum, one);
@@ -36,26 +36,26 @@ static inline void TTD_SFX(kp_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3]
 }
 
 /* Per-lane data that does not change during the iteration (scalar: before the loop). */
-typedef struct TTD_SFX(kp_frame) {
+typedef struct kp_frame {
     vreal BA[3], CA[3], DA[3], ED[3], FD[3]; /* the pair in the frame: A at 0, unit size */
     vreal unscale;                           /* 2^(e-lift), then ... */
     vreal unpre;                             /* ... 1 / pre: back to the input's scale (2^e / pre can overflow) */
-} TTD_SFX(kp_frame);
+} kp_frame;
 
-typedef struct TTD_SFX(kp_hf) {
+typedef struct kp_hf {
     vreal f00, f01, f02, f03, f11, f12, f13, f22, f23, f33;
-} TTD_SFX(kp_hf);
+} kp_hf;
 
 /* The iterate (scalar: a, b, ca, g, d, cg, prev_err2). */
-typedef struct TTD_SFX(kp_state) {
+typedef struct kp_state {
     vreal a, b, ca, g, d, cg, prev_err2;
-} TTD_SFX(kp_state);
+} kp_state;
 
-typedef struct TTD_SFX(kp_consts) {
+typedef struct kp_consts {
     vreal rho, tol2, eps;
-} TTD_SFX(kp_consts);
+} kp_consts;
 
-static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
+static inline kp_consts kp_consts_of(const ttd_params *prm)
 {
     /* scalar: rho capped and tol floored in float (core/defaults.h) */
 #ifdef TTD_PRECISION_DOUBLE
@@ -68,7 +68,7 @@ static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
     const real rho_s = (real)rho_d;
     /* scalar: eps, a few ulps of the unit frame (not 1/rho^2) */
     const real eps_s = (real)TTD_PENALTY_EPS_ULPS * TTD_REAL_EPS;
-    TTD_SFX(kp_consts) c;
+    kp_consts c;
     c.rho = vset1(rho_s);
     c.tol2 = vset1((real)(tol_d * tol_d));
     c.eps = vset1(eps_s);
@@ -78,7 +78,7 @@ static inline TTD_SFX(kp_consts) TTD_SFX(kp_consts_of)(const ttd_params *prm)
 /* scalar: the frame. Origin at A, scaled by 2^-e (e from frexp of the largest relative
  * coordinate, at least emin); pre guards the differences near REAL_MAX. Why pre's threshold
  * and factor and the lift's constants are what they are: scalar/penalty_impl.h. */
-static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_SFX(kp_frame) *F)
+static inline void kp_frame_of(const vreal S[9], const vreal T[9], kp_frame *F)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2);
     vreal m0 = zero;
@@ -125,7 +125,7 @@ static inline void TTD_SFX(kp_frame_of)(const vreal S[9], const vreal T[9], TTD_
 }
 
 /* scalar: hf, the Hessian of f, symmetric: hf(i,j) = 2 u_i . u_j, u = (BA, CA, -ED, -FD). */
-static inline void TTD_SFX(kp_hf_of)(const TTD_SFX(kp_frame) *F, TTD_SFX(kp_hf) *H)
+static inline void kp_hf_of(const kp_frame *F, kp_hf *H)
 {
     const vreal two = vset1((real)2), mtwo = vset1((real)-2);
     const vreal *BA = F->BA, *CA = F->CA, *ED = F->ED, *FD = F->FD;
@@ -142,7 +142,7 @@ static inline void TTD_SFX(kp_hf_of)(const TTD_SFX(kp_frame) *F, TTD_SFX(kp_hf) 
 }
 
 /* scalar: the iterate's start, 1/3 each, and prev_err2 = REAL_MAX (in every lane). */
-static inline void TTD_SFX(kp_init)(TTD_SFX(kp_state) *X)
+static inline void kp_init(kp_state *X)
 {
     const vreal third = vset1((real)1 / 3);
     X->a = X->b = X->ca = X->g = X->d = X->cg = third;
@@ -151,8 +151,8 @@ static inline void TTD_SFX(kp_init)(TTD_SFX(kp_state) *X)
 
 /* scalar: one pass of the loop body. Updates the active lanes' iterate; returns the active
  * lanes that converged. */
-static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(kp_frame) *F,
-                                     const TTD_SFX(kp_hf) *Hf, TTD_SFX(kp_state) *X, vmask active)
+static inline vmask kp_step(const kp_consts *K, const kp_frame *F,
+                                     const kp_hf *Hf, kp_state *X, vmask active)
 {
     const vreal zero = vzero(), one = vset1((real)1), two = vset1((real)2), mtwo = vset1((real)-2);
     const vreal rho = K->rho, tol2 = K->tol2, eps = K->eps;
@@ -167,8 +167,8 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
 
     /* Constraints, penalty terms v_i = max(0, h_i), m_i = rho where h_i >= 0. */
     const vreal h1 = -a, h2 = -b, h3 = -ca, h4 = -g, h5 = -d, h6 = -cg;
-    const vreal v1 = TTD_SFX(kp_pos)(h1), v2 = TTD_SFX(kp_pos)(h2), v3 = TTD_SFX(kp_pos)(h3);
-    const vreal v4 = TTD_SFX(kp_pos)(h4), v5 = TTD_SFX(kp_pos)(h5), v6 = TTD_SFX(kp_pos)(h6);
+    const vreal v1 = kp_pos(h1), v2 = kp_pos(h2), v3 = kp_pos(h3);
+    const vreal v4 = kp_pos(h4), v5 = kp_pos(h5), v6 = kp_pos(h6);
     const vmask a1 = vge(h1, zero), a2 = vge(h2, zero), a3 = vge(h3, zero);
     const vmask a4 = vge(h4, zero), a5 = vge(h5, zero), a6 = vge(h6, zero);
     const vreal m1 = vsel(a1, rho, zero), m2 = vsel(a2, rho, zero), m3 = vsel(a3, rho, zero);
@@ -234,9 +234,9 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
     const vreal gfd = gf0 * d0 + gf1 * d1 + gf2 * d2 + gf3 * d3;
 #define TTD_KP_SLOPE(t)                                                                         \
 (-gfd + (t) * q -                                                                           \
- rho * (s1 * TTD_SFX(kp_pos)(h1 - (t) * s1) + s2 * TTD_SFX(kp_pos)(h2 - (t) * s2) +         \
-        s3 * TTD_SFX(kp_pos)(h3 - (t) * s3) + s4 * TTD_SFX(kp_pos)(h4 - (t) * s4) +         \
-        s5 * TTD_SFX(kp_pos)(h5 - (t) * s5) + s6 * TTD_SFX(kp_pos)(h6 - (t) * s6)))
+ rho * (s1 * kp_pos(h1 - (t) * s1) + s2 * kp_pos(h2 - (t) * s2) +         \
+        s3 * kp_pos(h3 - (t) * s3) + s4 * kp_pos(h4 - (t) * s4) +         \
+        s5 * kp_pos(h5 - (t) * s5) + s6 * kp_pos(h6 - (t) * s6)))
     const vreal p0 = TTD_KP_SLOPE(zero);
     const vreal p1 = TTD_KP_SLOPE(one);
     vreal step = one;
@@ -332,12 +332,12 @@ static inline vmask TTD_SFX(kp_step)(const TTD_SFX(kp_consts) *K, const TTD_SFX(
 }
 
 /* scalar: after the loop. Clamped weights and the distance |p - q| (in the frame, scaled back). */
-static inline vreal TTD_SFX(kp_finish)(const TTD_SFX(kp_frame) *F, const TTD_SFX(kp_state) *X, vreal wp[3],
+static inline vreal kp_finish(const kp_frame *F, const kp_state *X, vreal wp[3],
                                        vreal wq[3])
 {
     const vreal *BA = F->BA, *CA = F->CA, *DA = F->DA, *ED = F->ED, *FD = F->FD;
-    TTD_SFX(kp_clamp_bary3)(X->ca, X->a, X->b, wp);
-    TTD_SFX(kp_clamp_bary3)(X->cg, X->g, X->d, wq);
+    kp_clamp_bary3(X->ca, X->a, X->b, wp);
+    kp_clamp_bary3(X->cg, X->g, X->d, wq);
     /* p - q in the frame, from the clamped weights (A = 0). */
     const vreal xy0 = wp[1] * BA[0] + wp[2] * CA[0] - DA[0] - wq[1] * ED[0] - wq[2] * FD[0];
     const vreal xy1 = wp[1] * BA[1] + wp[2] * CA[1] - DA[1] - wq[1] * ED[1] - wq[2] * FD[1];
@@ -346,8 +346,8 @@ static inline vreal TTD_SFX(kp_finish)(const TTD_SFX(kp_frame) *F, const TTD_SFX
 }
 
 /* scalar: pen_finish's points, p and q as convex combinations of the input vertices. */
-static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const vreal wp[3], const vreal wq[3],
-                                      TTD_SFX(kw_out) *o)
+static inline void kp_points(const vreal S[9], const vreal T[9], const vreal wp[3], const vreal wq[3],
+                                      kw_out *o)
 {
     const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX); /* scalar: pen_clamp_max */
     for (int k = 0; k < 3; ++k) {
@@ -362,34 +362,34 @@ static inline void TTD_SFX(kp_points)(const vreal S[9], const vreal T[9], const 
 }
 
 /* Groups of W pairs: every lane of a group iterates until the slowest has finished. */
-static void TTD_SFX(kernel_penalty)(size_t n, const real *s, const real *t, const ttd_params *prm,
+static void kernel_penalty(size_t n, const real *s, const real *t, const ttd_params *prm,
                                            real *distance, ttd_result *results)
 {
-    const TTD_SFX(kp_consts) K = TTD_SFX(kp_consts_of)(prm);
+    const kp_consts K = kp_consts_of(prm);
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
-        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
-        TTD_SFX(kp_frame) F;
-        TTD_SFX(kp_hf) H;
-        TTD_SFX(kp_state) X;
-        TTD_SFX(kp_frame_of)(S, T, &F);
-        TTD_SFX(kp_hf_of)(&F, &H);
-        TTD_SFX(kp_init)(&X);
+        kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
+        kp_frame F;
+        kp_hf H;
+        kp_state X;
+        kp_frame_of(S, T, &F);
+        kp_hf_of(&F, &H);
+        kp_init(&X);
         vmask active = mfirst(live), converged = mnot(mtrue());
         vreal its = vzero();
         for (int it = 1; it <= prm->max_iterations && many(active); ++it) {
             its = vsel(active, vset1((real)it), its);
-            const vmask done = TTD_SFX(kp_step)(&K, &F, &H, &X, active);
+            const vmask done = kp_step(&K, &F, &H, &X, active);
             converged = mor(converged, done);
             active = mandnot(active, done);
         }
-        TTD_SFX(kw_out) o;
+        kw_out o;
         vreal wp[3], wq[3];
-        o.distance = TTD_SFX(kp_finish)(&F, &X, wp, wq);
-        TTD_SFX(kp_points)(S, T, wp, wq, &o);
+        o.distance = kp_finish(&F, &X, wp, wq);
+        kp_points(S, T, wp, wq, &o);
         o.iterations = its;
         o.flags_nc = ~mbits(converged);
-        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }

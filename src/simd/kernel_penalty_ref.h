@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The paper's reference penalty method (MATLAB ttd1, Algorithm 1), one pair per lane. It is
- * scalar/penalty_impl.h's ttd_penalty_ref_pair step for step, with the same operations in
+ * scalar/penalty_impl.h's penalty_ref_pair step for step, with the same operations in
  * the same order, so that each lane rounds exactly as the scalar code does: read the two
  * side by side. Comments "ttd1 n" point to the paper's line numbers, "scalar:" to the
  * scalar function.
@@ -12,26 +12,26 @@
  * outputs depend only on its own pair. The scalar code's data-dependent branches (pivot
  * choice and row swaps in the 4x4 solve, the pivot floor) become compares and selects. */
 
-/* scalar: the ternary h[j] > 0 ? h[j] : 0 in ttd_penalty_ref_pair's gradient sum (ttd1 12),
+/* scalar: the ternary h[j] > 0 ? h[j] : 0 in penalty_ref_pair's gradient sum (ttd1 12),
  * max(0, v) as a compare and a select. */
-static inline vreal TTD_SFX(kpr_pos)(vreal v)
+static inline vreal kpr_pos(vreal v)
 {
     const vreal zero = vzero();
     return vsel(vgt(v, zero), v, zero);
 }
 
 /* scalar: pen_pos, (v + |v|) / 2, as pen_clamp_bary3 uses it. */
-static inline vreal TTD_SFX(kpr_pos2)(vreal v)
+static inline vreal kpr_pos2(vreal v)
 {
     return (v + vabs(v)) * vset1((real)0.5);
 }
 
 /* scalar: pen_clamp_bary3. Negative weights of (c, a, b) become 0 and the three are
  * renormalised to sum 1 (a zero sum gives vertex 0). */
-static inline void TTD_SFX(kpr_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3])
+static inline void kpr_clamp_bary3(vreal c, vreal a, vreal b, vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
-    const vreal w0 = TTD_SFX(kpr_pos2)(c), w1 = TTD_SFX(kpr_pos2)(a), w2 = TTD_SFX(kpr_pos2)(b);
+    const vreal w0 = kpr_pos2(c), w1 = kpr_pos2(a), w2 = kpr_pos2(b);
     const vreal sum = w0 + w1 + w2;
     const vmask pos = vgt(sum, zero);
     const vreal inv = one / vsel(pos, sum, one);
@@ -41,14 +41,14 @@ static inline void TTD_SFX(kpr_clamp_bary3)(vreal c, vreal a, vreal b, vreal w[3
 }
 
 /* scalar: pen_clamp_bary(a, b) = pen_clamp_bary3(1 - a - b, a, b) */
-static inline void TTD_SFX(kpr_clamp_bary)(vreal a, vreal b, vreal w[3])
+static inline void kpr_clamp_bary(vreal a, vreal b, vreal w[3])
 {
-    TTD_SFX(kpr_clamp_bary3)(vset1((real)1) - a - b, a, b, w);
+    kpr_clamp_bary3(vset1((real)1) - a - b, a, b, w);
 }
 
 /* scalar: pen_ref_solve. hes \ gra by Gaussian elimination with partial pivoting, the row
  * swaps done by select in every lane. m and rhs are overwritten. */
-static inline void TTD_SFX(kpr_solve)(vreal m[4][4], vreal rhs[4], vreal x[4])
+static inline void kpr_solve(vreal m[4][4], vreal rhs[4], vreal x[4])
 {
     const vreal zero = vzero();
     vreal dmax = zero;
@@ -99,8 +99,8 @@ static inline void TTD_SFX(kpr_solve)(vreal m[4][4], vreal rhs[4], vreal x[4])
 }
 
 /* One group of W pairs (S, T transposed: S[k] lane i = s[9i + k]). active: the live lanes. */
-static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const ttd_params *prm,
-                                      vmask active, TTD_SFX(kw_out) *o)
+static inline void kpr_group(const vreal S[9], const vreal T[9], const ttd_params *prm,
+                                      vmask active, kw_out *o)
 {
 #ifdef TTD_PRECISION_DOUBLE
     const vreal rho = vset1(prm->rho), tol = vset1(prm->tol);
@@ -155,7 +155,7 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
         vreal hp[6];
         for (int j = 0; j < 6; ++j) {
             mk[j] = vge(h[j], zero);
-            hp[j] = TTD_SFX(kpr_pos)(h[j]);
+            hp[j] = kpr_pos(h[j]);
         }
         /* ttd1 12: gra = gf + rho * dmax * max(0, h). The scalar sum over j adds exact zeros
          * for the absent terms; what remains is (-hp_a) + hp_b in this order. */
@@ -187,7 +187,7 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
         hes[3][2] = hf[3][2] + rho * c6;
         /* ttd1 18: dx = hes \ gra */
         vreal dx[4];
-        TTD_SFX(kpr_solve)(hes, gra, dx);
+        kpr_solve(hes, gra, dx);
         /* ttd1 19-21: error = |(DX, DY)| on the geometry */
         vreal e2 = zero;
         for (int k = 0; k < 3; ++k) {
@@ -209,8 +209,8 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
     }
     /* scalar: clamp onto the triangles, p and q as convex combinations, distance |p - q| */
     vreal wp[3], wq[3];
-    TTD_SFX(kpr_clamp_bary)(x[0], x[1], wp);
-    TTD_SFX(kpr_clamp_bary)(x[2], x[3], wq);
+    kpr_clamp_bary(x[0], x[1], wp);
+    kpr_clamp_bary(x[2], x[3], wq);
     vreal xy[3];
     const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX); /* scalar: pen_clamp_max */
     for (int k = 0; k < 3; ++k) {
@@ -222,7 +222,7 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
         o->bary_p[k] = wp[k];
         o->bary_q[k] = wq[k];
     }
-    o->distance = TTD_SFX(kw_norm3)(xy[0], xy[1], xy[2]);
+    o->distance = kw_norm3(xy[0], xy[1], xy[2]);
     o->iterations = used;
     o->flags_nc = ~mbits(converged);
     o->flags_int = 0;
@@ -230,15 +230,15 @@ static inline void TTD_SFX(kpr_group)(const vreal S[9], const vreal T[9], const 
     o->flags_dt = 0;
 }
 
-static void TTD_SFX(kernel_penalty_ref)(size_t n, const real *s, const real *t, const ttd_params *prm,
+static void kernel_penalty_ref(size_t n, const real *s, const real *t, const ttd_params *prm,
                                         real *distance, ttd_result *results)
 {
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
-        TTD_SFX(kw_load_group)(s + 9 * i0, t + 9 * i0, live, S, T);
-        TTD_SFX(kw_out) o;
-        TTD_SFX(kpr_group)(S, T, prm, mfirst(live), &o);
-        TTD_SFX(kw_store_group)(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
+        kw_out o;
+        kpr_group(S, T, prm, mfirst(live), &o);
+        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
     }
 }

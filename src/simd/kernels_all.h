@@ -1,15 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* Every lane kernel and the lane probe for one precision. An ISA file (src/isa/<isa>.c)
- * includes simd/lanes.h once, then this file twice: with TTD_PRECISION_DOUBLE and
- * TTD_PROBE_NAME ttd_lanes_probe_<isa>_d, then the same for float. TTD_ISA_ROW(isa) then
- * builds the table row from the static kernels. */
-#include "core/defaults.h"
-#include "core/certified_tol.h"
-#include "core/kernels.h"
-#include "simd/probe.h"
+/* Every lane kernel and the lane probe, for one instruction set and one precision. A row file
+ * (src/isa/<isa>_d.c or <isa>_f.c) defines TTDW_USE_<ISA> and TTD_PRECISION_<DOUBLE|FLOAT>,
+ * includes this file once, and then writes out its two exported names: the table row
+ * ttd_kernels_<isa>_<p> = TTD_LANE_ROW(TTD_ISA_<ISA>) and the probe ttd_lanes_probe_<isa>_<p>,
+ * a call of lanes_probe. */
 #include <stdint.h>
+
 #include "core/precision.h"
+#include "core/certified_tol.h"
+#include "core/defaults.h"
+#include "core/kernels.h"
+#include "simd/lanes.h"
 #include "simd/lanes_precision.h"
+#include "simd/probe.h"
 
 #include "simd/kernel_common.h"
 #include "simd/kernel_penalty_ref.h"
@@ -18,22 +21,13 @@
 #include "simd/kernel_certified.h"
 #include "simd/probe_impl.h"
 
-#include "simd/lanes_precision_end.h"
-#include "core/precision_end.h"
-#undef TTD_PROBE_NAME
-
-#ifndef TTD_ISA_ROW
-/* Methods without a lane kernel here are NULL: the engine uses the scalar row for them. */
-#define TTD_ISA_ROW(isa_enum)                                                                  \
+/* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
+ * for them. */
+#define TTD_LANE_ROW(isa_enum)                                                                 \
     {                                                                                          \
-        .isa = (isa_enum), .lanes_f = TTDW_LANES_F, .lanes_d = TTDW_LANES_D,                   \
-        .d = {[TTD_METHOD_EXACT] = kernel_exact_d,                                             \
-              [TTD_METHOD_PENALTY] = kernel_penalty_d,                                         \
-              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_d,                           \
-              [TTD_METHOD_CERTIFIED] = kernel_certified_d},                                    \
-        .f = {[TTD_METHOD_EXACT] = kernel_exact_f,                                             \
-              [TTD_METHOD_PENALTY] = kernel_penalty_f,                                         \
-              [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref_f,                           \
-              [TTD_METHOD_CERTIFIED] = kernel_certified_f},                                    \
+        .isa = (isa_enum), .lanes = TTDW_LANES,                                                \
+        .fn = {[TTD_METHOD_EXACT] = kernel_exact,                                              \
+               [TTD_METHOD_PENALTY] = kernel_penalty,                                          \
+               [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref,                            \
+               [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
     }
-#endif

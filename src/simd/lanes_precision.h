@@ -1,14 +1,17 @@
 /* SPDX-License-Identifier: MIT */
-/* Maps the short lane names a kernel uses onto one precision: after core/precision.h,
- * `vreal` is ttdw_vd or ttdw_vf, `vfma` is ttdw_fma_d or ttdw_fma_f, and so on (see lanes.h
- * for what each does). Close the section with lanes_precision_end.h. */
+/* Maps the short lane names a kernel uses onto the translation unit's precision: after
+ * core/precision.h, `vreal` is ttdw_vd or ttdw_vf, `vfma` is ttdw_fma_d or ttdw_fma_f, and so
+ * on (see lanes.h for what each does). */
+#ifndef TTD_SIMD_LANES_PRECISION_H
+#define TTD_SIMD_LANES_PRECISION_H
+
 #ifndef TTD_SIMD_LANES_H
 #error "include simd/lanes.h first"
 #endif
 
 #ifdef TTD_PRECISION_DOUBLE
-#define vreal ttdw_vd
-#define vmask ttdw_md
+typedef ttdw_vd vreal;
+typedef ttdw_md vmask;
 #define TTDW_LANES TTDW_LANES_D
 #define vset1 ttdw_set1_d
 #define vzero ttdw_zero_d
@@ -41,8 +44,8 @@
 #define vexpand ttdw_expand_d
 #define vstore_soa ttdw_store_soa_d
 #else
-#define vreal ttdw_vf
-#define vmask ttdw_mf
+typedef ttdw_vf vreal;
+typedef ttdw_mf vmask;
 #define TTDW_LANES TTDW_LANES_F
 #define vset1 ttdw_set1_f
 #define vzero ttdw_zero_f
@@ -75,3 +78,5 @@
 #define vexpand ttdw_expand_f
 #define vstore_soa ttdw_store_soa_f
 #endif
+
+#endif /* TTD_SIMD_LANES_PRECISION_H */

@@ -1,8 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* The body of ttd_lanes_probe_<isa>_d/f (simd/probe.h), included once per precision by each
- * ISA file after lanes_precision.h, with TTD_PROBE_NAME set to the function's name. */
-int TTD_PROBE_NAME(int op, const real *a, const real *b, const real *c, real *out);
-int TTD_PROBE_NAME(int op, const real *a, const real *b, const real *c, real *out)
+/* The body of ttd_lanes_probe_<isa>_d/f (simd/probe.h) for the translation unit's ISA and
+ * precision: each row file (src/isa/<isa>_<p>.c) exports it under its own name. */
+static int lanes_probe(int op, const real *a, const real *b, const real *c, real *out)
 {
     const vreal one = vset1((real)1), zero = vzero();
     vreal va = vloadu(a), vb = vloadu(b), vc = vloadu(c), r = zero;

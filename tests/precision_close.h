@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Closes a precision section opened by core/precision.h. */
+/* Closes a section opened by tests/precision_open.h. */
 #undef TTD_PRECISION_DOUBLE
 #undef TTD_PRECISION_FLOAT
 #undef real
