@@ -48,6 +48,14 @@ typedef struct ttd_kernels_f {
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
 } ttd_kernels_f;
 
+/// What the engine must know of a method beyond its kernels (ttd_method_traits in core/traits.c).
+typedef struct ttd_method_traits {
+    unsigned char may_not_converge;    ///< may flag TTD_PAIR_NOT_CONVERGED, which the engine reports in the call's status
+} ttd_method_traits;
+
+/// The traits of method (a valid ttd_method).
+const ttd_method_traits *ttd_method_traits_of(ttd_method method);
+
 /* Rows; the scalar ones always exist, the others when CMake defines TTD_HAVE_<ISA>. */
 extern const ttd_kernels_d ttd_kernels_scalar_d;
 extern const ttd_kernels_f ttd_kernels_scalar_f;

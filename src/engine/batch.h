@@ -10,7 +10,7 @@
 
 /// What a batch runs, resolved from ttd_options by the API.
 typedef struct ttd_engine_config {
-    ttd_isa isa;                ///< the chosen instruction set, built and supported; its rows' NULL entries fall back to the scalar rows
+    ttd_isa isa;                ///< the chosen instruction set, built and supported
     ttd_method method;
     ttd_params params;
     int threads;                ///< 0 = every online core

@@ -18,8 +18,7 @@ typedef ttd_mesh_d engine_mesh;
 #define TTD_UBITS uint64_t
 #define TTD_EXP_BITS UINT64_C(0x7ff0000000000000)
 #define TTD_KERNEL_FN ttd_kernel_d_fn
-#define TTD_ROW ttd_dispatch_row_d
-#define TTD_SCALAR_ROW ttd_kernels_scalar_d
+#define TTD_DISPATCH_KERNEL ttd_dispatch_kernel_d
 #include "engine/batch_impl.h"
 
 ttd_status ttd_engine_batch_d(const ttd_engine_config *cfg, size_t n, const double *s, const double *t,

@@ -18,8 +18,7 @@ typedef ttd_mesh_f engine_mesh;
 #define TTD_UBITS uint32_t
 #define TTD_EXP_BITS UINT32_C(0x7f800000)
 #define TTD_KERNEL_FN ttd_kernel_f_fn
-#define TTD_ROW ttd_dispatch_row_f
-#define TTD_SCALAR_ROW ttd_kernels_scalar_f
+#define TTD_DISPATCH_KERNEL ttd_dispatch_kernel_f
 #include "engine/batch_impl.h"
 
 ttd_status ttd_engine_batch_f(const ttd_engine_config *cfg, size_t n, const float *s, const float *t,

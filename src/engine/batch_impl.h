@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The batch engine, precision-generic: engine/batch_d.c and engine/batch_f.c compile it once
- * each (see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_ROW, TTD_SCALAR_ROW).
+ * each (see there for TTD_UBITS, TTD_EXP_BITS, TTD_KERNEL_FN, TTD_DISPATCH_KERNEL).
  *
  * Each block of TTD_BLOCK_PAIRS pairs goes one of two ways. The fast way, taken by almost
  * every block: all 18n coordinates finite, every pointer aligned for its type, and no flags
@@ -206,12 +206,9 @@ static void ttd_block(void *ctx, size_t block, int worker)
  * m1/m2/pairs) and the outputs; everything else is set here. */
 static ttd_status ttd_run(const ttd_engine_config *cfg, ttd_bjob *j)
 {
-    j->fn = TTD_ROW(cfg->isa)->fn[cfg->method];
-    if (j->fn == NULL)
-        j->fn = TTD_SCALAR_ROW.fn[cfg->method];
+    j->fn = TTD_DISPATCH_KERNEL(cfg->isa, cfg->method);
     j->prm = &cfg->params;
-    /* the certified mode never leaves a pair unconverged (it falls back instead) */
-    j->need_flags = cfg->method != TTD_METHOD_EXACT && cfg->method != TTD_METHOD_CERTIFIED;
+    j->need_flags = ttd_method_traits_of(cfg->method)->may_not_converge;
     j->mesh_check = 0;
     j->dist_aligned = ((uintptr_t)j->distance % _Alignof(real)) == 0;
     j->res_aligned = ((uintptr_t)j->results % _Alignof(ttd_result)) == 0;

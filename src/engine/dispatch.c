@@ -162,6 +162,18 @@ const ttd_kernels_f *ttd_dispatch_row_f(ttd_isa isa)
     return ttd_dispatch_isa_built(isa) ? ttd_rows_f[isa] : NULL;
 }
 
+ttd_kernel_d_fn ttd_dispatch_kernel_d(ttd_isa isa, ttd_method method)
+{
+    ttd_kernel_d_fn fn = ttd_rows_d[isa]->fn[method];
+    return fn != NULL ? fn : ttd_kernels_scalar_d.fn[method];
+}
+
+ttd_kernel_f_fn ttd_dispatch_kernel_f(ttd_isa isa, ttd_method method)
+{
+    ttd_kernel_f_fn fn = ttd_rows_f[isa]->fn[method];
+    return fn != NULL ? fn : ttd_kernels_scalar_f.fn[method];
+}
+
 /* TTD_ISA: "" or "auto" -> AUTO; a ttd_isa_name -> that ISA; anything else -> COUNT (invalid). */
 static ttd_isa ttd_isa_from_env(void)
 {

@@ -15,6 +15,10 @@ ttd_isa ttd_dispatch_best(void);
 /// The table rows of isa (double, float), or NULL when it was not built.
 const ttd_kernels_d *ttd_dispatch_row_d(ttd_isa isa);
 const ttd_kernels_f *ttd_dispatch_row_f(ttd_isa isa);
+/// The kernel that runs method on isa (built): the row's entry, or the scalar row's where the
+/// method has no lane kernel on that ISA.
+ttd_kernel_d_fn ttd_dispatch_kernel_d(ttd_isa isa, ttd_method method);
+ttd_kernel_f_fn ttd_dispatch_kernel_f(ttd_isa isa, ttd_method method);
 /// Resolves requested (AUTO, or a forced one) to a runnable instruction set. With AUTO the
 /// environment variable TTD_ISA (a ttd_isa_name, or "auto"/empty) may force one.
 /// Returns TTD_OK, or TTD_ERR_ISA_UNAVAILABLE when the forced one (or an unknown TTD_ISA
