@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* The batch engine: splits n pairs into blocks of TTD_BLOCK_PAIRS, runs them on the worker
- * threads, keeps NaN/inf away from the kernels, and gathers mesh triangles. The public entry
- * points (src/api/) check the arguments and options and then call these. */
+/* The batch engine: splits n pairs into blocks of TTD_BLOCK_PAIRS and sends each block from a
+ * pair source (the caller's arrays, or indexed meshes) through the block runner (runner.h) to
+ * the caller's outputs, on the worker threads (parallel.h); keeps NaN/inf away from the
+ * kernels. The public entry points (src/api/) check the arguments and options and then call
+ * these. The code is engine/batch_impl.h. */
 #ifndef TTD_ENGINE_BATCH_H
 #define TTD_ENGINE_BATCH_H
 

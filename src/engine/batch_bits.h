@@ -13,12 +13,9 @@
 #define TTD_BATCH_NONFINITE 1u
 #define TTD_BATCH_NOT_CONVERGED 2u
 #define TTD_BATCH_NOMEM 4u
-#define TTD_BATCH_BAD_INDEX 8u
 
 static inline ttd_status ttd_batch_status(unsigned bits)
 {
-    if (bits & TTD_BATCH_BAD_INDEX)
-        return TTD_ERR_INDEX_OUT_OF_RANGE;
     if (bits & TTD_BATCH_NOMEM)
         return TTD_ERR_OUT_OF_MEMORY;
     if (bits & TTD_BATCH_NONFINITE)

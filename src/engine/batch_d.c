@@ -11,14 +11,14 @@
 #include "core/precision.h"
 #include "engine/batch.h"
 #include "engine/batch_bits.h"
-#include "engine/dispatch.h"
+#include "engine/runner.h"
 #include "engine/parallel.h"
 
 typedef ttd_mesh_d engine_mesh;
 #define TTD_UBITS uint64_t
 #define TTD_EXP_BITS UINT64_C(0x7ff0000000000000)
-#define TTD_KERNEL_FN ttd_kernel_d_fn
-#define TTD_DISPATCH_KERNEL ttd_dispatch_kernel_d
+#define TTD_RUNNER ttd_runner_d
+#define TTD_RUNNER_MAKE ttd_runner_make_d
 #include "engine/batch_impl.h"
 
 ttd_status ttd_engine_batch_d(const ttd_engine_config *cfg, size_t n, const double *s, const double *t,
@@ -30,5 +30,5 @@ ttd_status ttd_engine_batch_d(const ttd_engine_config *cfg, size_t n, const doub
 ttd_status ttd_engine_mesh_d(const ttd_engine_config *cfg, const ttd_mesh_d *m1, const ttd_mesh_d *m2,
                              size_t n, const uint32_t *pairs, double *distance, ttd_result_d *results)
 {
-    return engine_mesh_run(cfg, m1, m2, n, pairs, distance, results);
+    return engine_indexed(cfg, m1, m2, n, pairs, distance, results);
 }

@@ -11,14 +11,14 @@
 #include "core/precision.h"
 #include "engine/batch.h"
 #include "engine/batch_bits.h"
-#include "engine/dispatch.h"
+#include "engine/runner.h"
 #include "engine/parallel.h"
 
 typedef ttd_mesh_f engine_mesh;
 #define TTD_UBITS uint32_t
 #define TTD_EXP_BITS UINT32_C(0x7f800000)
-#define TTD_KERNEL_FN ttd_kernel_f_fn
-#define TTD_DISPATCH_KERNEL ttd_dispatch_kernel_f
+#define TTD_RUNNER ttd_runner_f
+#define TTD_RUNNER_MAKE ttd_runner_make_f
 #include "engine/batch_impl.h"
 
 ttd_status ttd_engine_batch_f(const ttd_engine_config *cfg, size_t n, const float *s, const float *t,
@@ -30,5 +30,5 @@ ttd_status ttd_engine_batch_f(const ttd_engine_config *cfg, size_t n, const floa
 ttd_status ttd_engine_mesh_f(const ttd_engine_config *cfg, const ttd_mesh_f *m1, const ttd_mesh_f *m2,
                              size_t n, const uint32_t *pairs, float *distance, ttd_result_f *results)
 {
-    return engine_mesh_run(cfg, m1, m2, n, pairs, distance, results);
+    return engine_indexed(cfg, m1, m2, n, pairs, distance, results);
 }
