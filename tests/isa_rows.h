@@ -33,6 +33,8 @@ static inline int cpu_runs(const char *isa, const char **why)
     if (!strcmp(isa, "neon"))
         return 1;
 #endif
+    if (!strcmp(isa, "portable")) /* baseline code of this target */
+        return 1;
     *why = "not this architecture";
     return 0;
 }
@@ -56,6 +58,9 @@ static const isa_row isa_rows[] = {
 #endif
 #ifdef TTD_HAVE_NEON
     {"neon", &ttd_kernels_neon_d, &ttd_kernels_neon_f},
+#endif
+#ifdef TTD_HAVE_PORTABLE
+    {"portable", &ttd_kernels_portable_d, &ttd_kernels_portable_f},
 #endif
     {NULL, NULL, NULL},
 };

@@ -340,7 +340,7 @@ static int names_and_version(void)
     ENSURE(strcmp(ttd_method_name(TTD_METHOD_BARRIER), "barrier") == 0);
     ENSURE(strcmp(ttd_method_name(TTD_METHOD_CERTIFIED), "certified") == 0);
     ENSURE(ttd_method_name(TTD_METHOD_COUNT) == NULL && ttd_method_name((ttd_method)-1) == NULL);
-    static const char *const isas[] = {"auto", "scalar", "sse2", "avx2", "avx512", "neon"};
+    static const char *const isas[] = {"auto", "scalar", "sse2", "avx2", "avx512", "neon", "portable"};
     for (int i = 0; i < TTD_ISA_COUNT; ++i)
         ENSURE(strcmp(ttd_isa_name((ttd_isa)i), isas[i]) == 0);
     ENSURE(ttd_isa_name(TTD_ISA_COUNT) == NULL && ttd_isa_name((ttd_isa)-1) == NULL);

@@ -59,6 +59,9 @@ static const isa_probe probes[] = {
 #ifdef TTD_HAVE_NEON
     {"neon", 1, ttd_lanes_probe_neon_d, ttd_lanes_probe_neon_f},
 #endif
+#ifdef TTD_HAVE_PORTABLE
+    {"portable", 0, ttd_lanes_probe_portable_d, ttd_lanes_probe_portable_f},
+#endif
     {NULL, 0, NULL, NULL},
 };
 

@@ -71,7 +71,10 @@ typedef enum ttd_isa {
     TTD_ISA_AVX2 = 3,   ///< AVX2 with FMA
     TTD_ISA_AVX512 = 4, ///< AVX-512 F, DQ and VL
     TTD_ISA_NEON = 5,
-    TTD_ISA_COUNT = 6
+    /// GCC/clang vector extensions, 4 doubles or 8 floats per vector, on any target: the row
+    /// for machines without a hand-written one (after them in the automatic choice)
+    TTD_ISA_PORTABLE = 6,
+    TTD_ISA_COUNT = 7
 } ttd_isa;
 
 /// Per-pair flags, in ttd_result_*.flags.
@@ -174,7 +177,7 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 TTD_API const char *ttd_status_string(ttd_status status);
 /// "exact", "penalty", "penalty-ref", "barrier", "certified"; NULL when out of range.
 TTD_API const char *ttd_method_name(ttd_method method);
-/// "auto", "scalar", "sse2", "avx2", "avx512", "neon"; NULL when out of range.
+/// "auto", "scalar", "sse2", "avx2", "avx512", "neon", "portable"; NULL when out of range.
 TTD_API const char *ttd_isa_name(ttd_isa isa);
 /// Non-zero when isa is built into this library and supported by this CPU and OS.
 TTD_API int ttd_isa_available(ttd_isa isa);

@@ -220,7 +220,8 @@ int ttd_isa_lanes(ttd_isa isa, int bytes_per_real)
     switch (isa) {
     case TTD_ISA_SSE2:
     case TTD_ISA_NEON: return 16 / bytes_per_real;
-    case TTD_ISA_AVX2: return 32 / bytes_per_real;
+    case TTD_ISA_AVX2:
+    case TTD_ISA_PORTABLE: return 32 / bytes_per_real;
     case TTD_ISA_AVX512: return 64 / bytes_per_real;
     default: return 0;
     }

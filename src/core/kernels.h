@@ -67,5 +67,7 @@ extern const ttd_kernels_d ttd_kernels_avx512_d;
 extern const ttd_kernels_f ttd_kernels_avx512_f;
 extern const ttd_kernels_d ttd_kernels_neon_d;
 extern const ttd_kernels_f ttd_kernels_neon_f;
+extern const ttd_kernels_d ttd_kernels_portable_d;
+extern const ttd_kernels_f ttd_kernels_portable_f;
 
 #endif /* TTD_CORE_KERNELS_H */

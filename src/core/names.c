@@ -38,6 +38,7 @@ const char *ttd_isa_name(ttd_isa isa)
     static const char *const names[TTD_ISA_COUNT] = {
         [TTD_ISA_AUTO] = "auto",   [TTD_ISA_SCALAR] = "scalar", [TTD_ISA_SSE2] = "sse2",
         [TTD_ISA_AVX2] = "avx2",   [TTD_ISA_AVX512] = "avx512", [TTD_ISA_NEON] = "neon",
+        [TTD_ISA_PORTABLE] = "portable",
     };
     return (int)isa >= 0 && (int)isa < TTD_ISA_COUNT ? names[isa] : NULL;
 }

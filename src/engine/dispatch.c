@@ -40,6 +40,9 @@ static const ttd_kernels_d *const ttd_rows_d[TTD_ISA_COUNT] = {
 #ifdef TTD_HAVE_NEON
     [TTD_ISA_NEON] = &ttd_kernels_neon_d,
 #endif
+#ifdef TTD_HAVE_PORTABLE
+    [TTD_ISA_PORTABLE] = &ttd_kernels_portable_d,
+#endif
 };
 
 static const ttd_kernels_f *const ttd_rows_f[TTD_ISA_COUNT] = {
@@ -57,13 +60,16 @@ static const ttd_kernels_f *const ttd_rows_f[TTD_ISA_COUNT] = {
 #ifdef TTD_HAVE_NEON
     [TTD_ISA_NEON] = &ttd_kernels_neon_f,
 #endif
+#ifdef TTD_HAVE_PORTABLE
+    [TTD_ISA_PORTABLE] = &ttd_kernels_portable_f,
+#endif
 };
 
-_Static_assert(TTD_ISA_NEON == TTD_ISA_COUNT - 1, "update ttd_rows_d, ttd_rows_f and ttd_preference with ttd_isa");
+_Static_assert(TTD_ISA_PORTABLE == TTD_ISA_COUNT - 1, "update ttd_rows_d, ttd_rows_f and ttd_preference with ttd_isa");
 
 /* Auto picks the first of these that is built and supported. */
-static const ttd_isa ttd_preference[] = {TTD_ISA_AVX512, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_NEON,
-                                         TTD_ISA_SCALAR};
+static const ttd_isa ttd_preference[] = {TTD_ISA_AVX512, TTD_ISA_AVX2,     TTD_ISA_SSE2,
+                                         TTD_ISA_NEON,   TTD_ISA_PORTABLE, TTD_ISA_SCALAR};
 
 #ifdef TTD_DISPATCH_X86
 /* XCR0: which register states the OS saves. Inline asm, so that no -mxsave is needed. */
@@ -110,6 +116,7 @@ static int ttd_detect(ttd_isa isa)
 {
     switch (isa) {
     case TTD_ISA_SCALAR:
+    case TTD_ISA_PORTABLE: /* baseline code of whatever target it was built for */
         return 1;
 #ifdef TTD_DISPATCH_X86
     case TTD_ISA_SSE2:

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* The lane vocabulary: what a lane-generic kernel (src/simd/kernel_*.h) may use, written once
  * and implemented per instruction set (lanes_sse2.h, lanes_avx2.h, lanes_avx512.h,
- * lanes_neon.h). A kernel is ISPC's SPMD model written in C: one triangle pair per lane,
- * both sides of every branch computed and merged with a mask, loops that run while any lane
- * is still active.
+ * lanes_neon.h), and once for any target on compiler vector extensions (lanes_portable.h). A
+ * kernel is ISPC's SPMD model written in C: one triangle pair per lane, both sides of every
+ * branch computed and merged with a mask, loops that run while any lane is still active.
  *
  * Include this file once per translation unit after defining exactly one of TTDW_USE_SSE2,
- * TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON (src/isa/<isa>.c does). It defines, for
- * both precisions (suffix _d = double, _f = float):
+ * TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON, TTDW_USE_PORTABLE (src/isa/<isa>_<p>.c
+ * does). It defines, for both precisions (suffix _d = double, _f = float):
  *
  *   TTDW_LANES_D / TTDW_LANES_F    lanes per vector (compile-time constants)
  *   ttdw_vd / ttdw_vf              a vector of reals. + - * / and unary - work as operators,
@@ -56,8 +56,10 @@
 #include "simd/lanes_avx512.h"
 #elif defined(TTDW_USE_NEON)
 #include "simd/lanes_neon.h"
+#elif defined(TTDW_USE_PORTABLE)
+#include "simd/lanes_portable.h"
 #else
-#error "define one of TTDW_USE_SSE2, TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON before lanes.h"
+#error "define one of TTDW_USE_SSE2, TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON, TTDW_USE_PORTABLE before lanes.h"
 #endif
 
 #if defined(__GNUC__)

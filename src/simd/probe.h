@@ -35,5 +35,7 @@ int ttd_lanes_probe_avx512_d(int op, const double *a, const double *b, const dou
 int ttd_lanes_probe_avx512_f(int op, const float *a, const float *b, const float *c, float *out);
 int ttd_lanes_probe_neon_d(int op, const double *a, const double *b, const double *c, double *out);
 int ttd_lanes_probe_neon_f(int op, const float *a, const float *b, const float *c, float *out);
+int ttd_lanes_probe_portable_d(int op, const double *a, const double *b, const double *c, double *out);
+int ttd_lanes_probe_portable_f(int op, const float *a, const float *b, const float *c, float *out);
 
 #endif /* TTD_SIMD_PROBE_H */
