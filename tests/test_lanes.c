@@ -82,12 +82,10 @@ static int lanes_every_isa(void)
         ENSURE(check_lane_ops_d(name, p->d, p->has_fma, &st, 400) == 0);
         ENSURE(check_reductions_d(name, p->d, &st, 200) == 0);
         ENSURE(check_transpose_d(name, p->d, &st) == 0);
-        ENSURE(check_expand_d(name, p->d, &st) == 0);
         snprintf(name, sizeof name, "%s float", p->name);
         ENSURE(check_lane_ops_f(name, p->f, p->has_fma, &st, 400) == 0);
         ENSURE(check_reductions_f(name, p->f, &st, 200) == 0);
         ENSURE(check_transpose_f(name, p->f, &st) == 0);
-        ENSURE(check_expand_f(name, p->f, &st) == 0);
         ENSURE(check_widen_f(name, p->f, &st) == 0);
         ENSURE(p->d(TTDW_OP_WIDEN, z, z, z, zo) == -1);
         printf("  %s: every lane op, both precisions\n", p->name);

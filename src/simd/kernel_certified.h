@@ -19,9 +19,7 @@
  *     the exact kernel on a whole group whenever one lane of it failed would cost a full exact
  *     group per failing lane at ~10% failures (random pairs that intersect). */
 
-#ifndef KC_CHUNK
 #define KC_CHUNK 64 /* fallback pairs gathered per exact-kernel call (stack: ~18 KB in double) */
-#endif
 
 /* x[i] with i picked per lane by the masks is0, is1 (else 2). */
 static inline vreal kc_sel3(vmask is0, vmask is1, vreal x0, vreal x1, vreal x2)

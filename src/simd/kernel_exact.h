@@ -33,14 +33,12 @@
 
 #include "core/exact_ids.h" /* candidate ids and the contact threshold, shared with the scalar code */
 
-#ifndef KX_GROUP_INLINE
 /* kx_group is inlined into both of kernel_exact's calls, so that each is specialised on its
  * constant `full` (gcc 12 otherwise keeps one out-of-line copy and tests full at run time). */
 #if defined(__GNUC__)
 #define KX_GROUP_INLINE static inline __attribute__((always_inline))
 #else
 #define KX_GROUP_INLINE static inline
-#endif
 #endif
 
 typedef struct kx_tri {

@@ -21,7 +21,7 @@
  * and these static inline functions (shown for _d; _f is the same with float):
  *
  *   set1(x)            every lane = x                 zero()          every lane = +0
- *   iota()             lane i = i                     loadu(p)/storeu(p, v)  W reals, any alignment
+ *   loadu(p)/storeu(p, v)  W reals, any alignment
  *   fma(a, b, c)       a*b + c; one rounding where the ISA has FMA (TTDW_HAVE_FMA = 1),
  *                      two roundings otherwise (SSE2): kernels use it only where either is fine
  *   min(a, b), max(a, b)   a < b ? a : b and a > b ? a : b for non-NaN input (NaN: unspecified)
@@ -31,14 +31,11 @@
  *   lt le gt ge eq(a, b) -> mask   ordered compares: false when either lane is NaN
  *   sel(m, a, b)       lane i = m_i ? a_i : b_i
  *   mand mor mandnot(a, b) (= a & ~b) mnot(a); mtrue(); mfirst(k) = lanes 0..k-1 set
- *   any(m) all(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
+ *   any(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
  *   f2d_lo(vf), f2d_hi(vf) -> vd   float lanes 0..W_d-1 / W_d..W_f-1 widened (W_f = 2 W_d
  *                      on every ISA); d2f(lo, hi) -> vf narrows back, rounding to nearest
- *   expand(v, m, p)    the lanes set in m, in ascending order, take p[0], p[1], ... (popcount(m)
- *                      reals are read); the other lanes keep v (AVX-512 vexpandpd)
  *   load_aos9(p, out[9])  transposition: p holds W triangles of 9 reals each, the user's
  *                      layout (triangle i at p + 9i, any alignment); out[k] lane i = p[9i + k]
- *   store_soa(in, k, out)  the reverse for k <= 16 vectors: out[k*i + j] = in[j] lane i
  *
  * Vector types never cross a translation unit (their ABI depends on -m flags): kernels take
  * and return plain arrays. lanes_precision.h maps the short names kernels use (vreal, vmask,
@@ -92,51 +89,6 @@ static inline void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])
         out[k] = ttdw_loadu_f(buf[k]);
 }
 #endif
-
-#ifndef TTDW_HAVE_EXPAND_D
-static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p)
-{
-    double buf[TTDW_LANES_D] TTDW_ALIGN(64);
-    const unsigned bits = ttdw_mbits_d(m);
-    ttdw_storeu_d(buf, v);
-    for (int i = 0, j = 0; i < TTDW_LANES_D; ++i)
-        if ((bits >> i) & 1u)
-            buf[i] = p[j++];
-    return ttdw_loadu_d(buf);
-}
-#endif
-#ifndef TTDW_HAVE_EXPAND_F
-static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p)
-{
-    float buf[TTDW_LANES_F] TTDW_ALIGN(64);
-    const unsigned bits = ttdw_mbits_f(m);
-    ttdw_storeu_f(buf, v);
-    for (int i = 0, j = 0; i < TTDW_LANES_F; ++i)
-        if ((bits >> i) & 1u)
-            buf[i] = p[j++];
-    return ttdw_loadu_f(buf);
-}
-#endif
-
-static inline void ttdw_store_soa_d(const ttdw_vd *in, int k, double *out)
-{
-    double buf[16][TTDW_LANES_D] TTDW_ALIGN(64);
-    for (int j = 0; j < k; ++j)
-        ttdw_storeu_d(buf[j], in[j]);
-    for (int i = 0; i < TTDW_LANES_D; ++i)
-        for (int j = 0; j < k; ++j)
-            out[k * i + j] = buf[j][i];
-}
-
-static inline void ttdw_store_soa_f(const ttdw_vf *in, int k, float *out)
-{
-    float buf[16][TTDW_LANES_F] TTDW_ALIGN(64);
-    for (int j = 0; j < k; ++j)
-        ttdw_storeu_f(buf[j], in[j]);
-    for (int i = 0; i < TTDW_LANES_F; ++i)
-        for (int j = 0; j < k; ++j)
-            out[k * i + j] = buf[j][i];
-}
 
 static inline int ttdw_none_d(ttdw_md m) { return !ttdw_any_d(m); }
 static inline int ttdw_none_f(ttdw_mf m) { return !ttdw_any_f(m); }

@@ -14,7 +14,6 @@
 #define TTDW_LANES_D 4
 #define TTDW_LANES_F 8
 #define TTDW_HAVE_FMA 1
-#define TTDW_ISA_NAME "avx2"
 
 typedef __m256d ttdw_vd;
 typedef __m256 ttdw_vf;
@@ -24,7 +23,6 @@ typedef __m256i ttdw_mf;
 /* ---- double ---- */
 static inline ttdw_vd ttdw_set1_d(double x) { return _mm256_set1_pd(x); }
 static inline ttdw_vd ttdw_zero_d(void) { return _mm256_setzero_pd(); }
-static inline ttdw_vd ttdw_iota_d(void) { return _mm256_setr_pd(0.0, 1.0, 2.0, 3.0); }
 static inline ttdw_vd ttdw_loadu_d(const double *p) { return _mm256_loadu_pd(p); }
 static inline void ttdw_storeu_d(double *p, ttdw_vd v) { _mm256_storeu_pd(p, v); }
 static inline ttdw_vd ttdw_fma_d(ttdw_vd a, ttdw_vd b, ttdw_vd c) { return _mm256_fmadd_pd(a, b, c); }
@@ -47,12 +45,10 @@ static inline ttdw_md ttdw_mnot_d(ttdw_md a) { return _mm256_xor_si256(a, _mm256
 static inline ttdw_md ttdw_mfirst_d(int k) { return _mm256_cmpgt_epi64(_mm256_set1_epi64x(k), _mm256_setr_epi64x(0, 1, 2, 3)); }
 static inline unsigned ttdw_mbits_d(ttdw_md m) { return (unsigned)_mm256_movemask_pd(_mm256_castsi256_pd(m)); }
 static inline int ttdw_any_d(ttdw_md m) { return !_mm256_testz_si256(m, m); }
-static inline int ttdw_all_d(ttdw_md m) { return ttdw_mbits_d(m) == 0xFu; }
 
 /* ---- float ---- */
 static inline ttdw_vf ttdw_set1_f(float x) { return _mm256_set1_ps(x); }
 static inline ttdw_vf ttdw_zero_f(void) { return _mm256_setzero_ps(); }
-static inline ttdw_vf ttdw_iota_f(void) { return _mm256_setr_ps(0.f, 1.f, 2.f, 3.f, 4.f, 5.f, 6.f, 7.f); }
 static inline ttdw_vf ttdw_loadu_f(const float *p) { return _mm256_loadu_ps(p); }
 static inline void ttdw_storeu_f(float *p, ttdw_vf v) { _mm256_storeu_ps(p, v); }
 static inline ttdw_vf ttdw_fma_f(ttdw_vf a, ttdw_vf b, ttdw_vf c) { return _mm256_fmadd_ps(a, b, c); }
@@ -75,7 +71,6 @@ static inline ttdw_mf ttdw_mnot_f(ttdw_mf a) { return _mm256_xor_si256(a, _mm256
 static inline ttdw_mf ttdw_mfirst_f(int k) { return _mm256_cmpgt_epi32(_mm256_set1_epi32(k), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)); }
 static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(m)); }
 static inline int ttdw_any_f(ttdw_mf m) { return !_mm256_testz_si256(m, m); }
-static inline int ttdw_all_f(ttdw_mf m) { return ttdw_mbits_f(m) == 0xFFu; }
 
 /* ---- precision conversion (float lanes = 2 x double lanes) ---- */
 static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm256_cvtps_pd(_mm256_castps256_ps128(a)); }

@@ -14,7 +14,6 @@
 #define TTDW_LANES_D 8
 #define TTDW_LANES_F 16
 #define TTDW_HAVE_FMA 1
-#define TTDW_ISA_NAME "avx512"
 
 typedef __m512d ttdw_vd;
 typedef __m512 ttdw_vf;
@@ -24,7 +23,6 @@ typedef __mmask16 ttdw_mf;
 /* ---- double ---- */
 static inline ttdw_vd ttdw_set1_d(double x) { return _mm512_set1_pd(x); }
 static inline ttdw_vd ttdw_zero_d(void) { return _mm512_setzero_pd(); }
-static inline ttdw_vd ttdw_iota_d(void) { return _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0); }
 static inline ttdw_vd ttdw_loadu_d(const double *p) { return _mm512_loadu_pd(p); }
 static inline void ttdw_storeu_d(double *p, ttdw_vd v) { _mm512_storeu_pd(p, v); }
 static inline ttdw_vd ttdw_fma_d(ttdw_vd a, ttdw_vd b, ttdw_vd c) { return _mm512_fmadd_pd(a, b, c); }
@@ -47,15 +45,10 @@ static inline ttdw_md ttdw_mnot_d(ttdw_md a) { return (ttdw_md)~a; }
 static inline ttdw_md ttdw_mfirst_d(int k) { return k <= 0 ? (ttdw_md)0 : k >= 8 ? (ttdw_md)0xFFu : (ttdw_md)((1u << k) - 1u); }
 static inline unsigned ttdw_mbits_d(ttdw_md m) { return (unsigned)m; }
 static inline int ttdw_any_d(ttdw_md m) { return m != 0; }
-static inline int ttdw_all_d(ttdw_md m) { return m == 0xFFu; }
 
 /* ---- float ---- */
 static inline ttdw_vf ttdw_set1_f(float x) { return _mm512_set1_ps(x); }
 static inline ttdw_vf ttdw_zero_f(void) { return _mm512_setzero_ps(); }
-static inline ttdw_vf ttdw_iota_f(void)
-{
-    return _mm512_setr_ps(0.f, 1.f, 2.f, 3.f, 4.f, 5.f, 6.f, 7.f, 8.f, 9.f, 10.f, 11.f, 12.f, 13.f, 14.f, 15.f);
-}
 static inline ttdw_vf ttdw_loadu_f(const float *p) { return _mm512_loadu_ps(p); }
 static inline void ttdw_storeu_f(float *p, ttdw_vf v) { _mm512_storeu_ps(p, v); }
 static inline ttdw_vf ttdw_fma_f(ttdw_vf a, ttdw_vf b, ttdw_vf c) { return _mm512_fmadd_ps(a, b, c); }
@@ -78,7 +71,6 @@ static inline ttdw_mf ttdw_mnot_f(ttdw_mf a) { return (ttdw_mf)~a; }
 static inline ttdw_mf ttdw_mfirst_f(int k) { return k <= 0 ? (ttdw_mf)0 : k >= 16 ? (ttdw_mf)0xFFFFu : (ttdw_mf)((1u << k) - 1u); }
 static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)m; }
 static inline int ttdw_any_f(ttdw_mf m) { return m != 0; }
-static inline int ttdw_all_f(ttdw_mf m) { return m == 0xFFFFu; }
 
 /* ---- precision conversion (float lanes = 2 x double lanes) ---- */
 static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm512_cvtps_pd(_mm512_castps512_ps256(a)); }
@@ -87,12 +79,6 @@ static inline ttdw_vf ttdw_d2f(ttdw_vd lo, ttdw_vd hi)
 {
     return _mm512_insertf32x8(_mm512_castps256_ps512(_mm512_cvtpd_ps(lo)), _mm512_cvtpd_ps(hi), 1);
 }
-
-/* ---- expand ---- */
-#define TTDW_HAVE_EXPAND_D 1
-static inline ttdw_vd ttdw_expand_d(ttdw_vd v, ttdw_md m, const double *p) { return _mm512_mask_expandloadu_pd(v, m, p); }
-#define TTDW_HAVE_EXPAND_F 1
-static inline ttdw_vf ttdw_expand_f(ttdw_vf v, ttdw_mf m, const float *p) { return _mm512_mask_expandloadu_ps(v, m, p); }
 
 /* ---- transposition ---- */
 /* Forced inline: gcc 12 keeps these two out of line in the exact kernel (too big to inline by

@@ -14,7 +14,6 @@
 #define TTDW_LANES_D 2
 #define TTDW_LANES_F 4
 #define TTDW_HAVE_FMA 1
-#define TTDW_ISA_NAME "neon"
 
 typedef float64x2_t ttdw_vd;
 typedef float32x4_t ttdw_vf;
@@ -24,7 +23,6 @@ typedef uint32x4_t ttdw_mf;
 /* ---- double ---- */
 static inline ttdw_vd ttdw_set1_d(double x) { return vdupq_n_f64(x); }
 static inline ttdw_vd ttdw_zero_d(void) { return vdupq_n_f64(0.0); }
-static inline ttdw_vd ttdw_iota_d(void) { const double v[2] = {0.0, 1.0}; return vld1q_f64(v); }
 static inline ttdw_vd ttdw_loadu_d(const double *p) { return vld1q_f64(p); }
 static inline void ttdw_storeu_d(double *p, ttdw_vd v) { vst1q_f64(p, v); }
 static inline ttdw_vd ttdw_fma_d(ttdw_vd a, ttdw_vd b, ttdw_vd c) { return vfmaq_f64(c, a, b); }
@@ -54,12 +52,10 @@ static inline unsigned ttdw_mbits_d(ttdw_md m)
     return (unsigned)(vgetq_lane_u64(m, 0) & 1u) | (unsigned)((vgetq_lane_u64(m, 1) & 1u) << 1);
 }
 static inline int ttdw_any_d(ttdw_md m) { return vmaxvq_u32(vreinterpretq_u32_u64(m)) != 0; }
-static inline int ttdw_all_d(ttdw_md m) { return vminvq_u32(vreinterpretq_u32_u64(m)) != 0; }
 
 /* ---- float ---- */
 static inline ttdw_vf ttdw_set1_f(float x) { return vdupq_n_f32(x); }
 static inline ttdw_vf ttdw_zero_f(void) { return vdupq_n_f32(0.0f); }
-static inline ttdw_vf ttdw_iota_f(void) { const float v[4] = {0.f, 1.f, 2.f, 3.f}; return vld1q_f32(v); }
 static inline ttdw_vf ttdw_loadu_f(const float *p) { return vld1q_f32(p); }
 static inline void ttdw_storeu_f(float *p, ttdw_vf v) { vst1q_f32(p, v); }
 static inline ttdw_vf ttdw_fma_f(ttdw_vf a, ttdw_vf b, ttdw_vf c) { return vfmaq_f32(c, a, b); }
@@ -90,7 +86,6 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m)
     return (unsigned)vaddvq_u32(vandq_u32(m, vld1q_u32(w)));
 }
 static inline int ttdw_any_f(ttdw_mf m) { return vmaxvq_u32(m) != 0; }
-static inline int ttdw_all_f(ttdw_mf m) { return vminvq_u32(m) != 0; }
 
 /* ---- precision conversion (float lanes = 2 x double lanes) ---- */
 static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return vcvt_f64_f32(vget_low_f32(a)); }

@@ -30,7 +30,6 @@ typedef int32_t ttdw_mf __attribute__((vector_size(32)));
 /* ---- double ---- */
 static inline ttdw_vd ttdw_set1_d(double x) { return (ttdw_vd){x, x, x, x}; }
 static inline ttdw_vd ttdw_zero_d(void) { return (ttdw_vd){0, 0, 0, 0}; }
-static inline ttdw_vd ttdw_iota_d(void) { return (ttdw_vd){0, 1, 2, 3}; }
 static inline ttdw_vd ttdw_loadu_d(const double *p) { ttdw_vd v; memcpy(&v, p, sizeof v); return v; }
 static inline void ttdw_storeu_d(double *p, ttdw_vd v) { memcpy(p, &v, sizeof v); }
 static inline ttdw_vd ttdw_fma_d(ttdw_vd a, ttdw_vd b, ttdw_vd c) { return a * b + c; }
@@ -56,7 +55,7 @@ static inline ttdw_md ttdw_mor_d(ttdw_md a, ttdw_md b) { return a | b; }
 static inline ttdw_md ttdw_mandnot_d(ttdw_md a, ttdw_md b) { return a & ~b; }
 static inline ttdw_md ttdw_mtrue_d(void) { return (ttdw_md){-1, -1, -1, -1}; }
 static inline ttdw_md ttdw_mnot_d(ttdw_md a) { return ~a; }
-static inline ttdw_md ttdw_mfirst_d(int k) { return (ttdw_md)(ttdw_iota_d() < (double)k); }
+static inline ttdw_md ttdw_mfirst_d(int k) { return (ttdw_md)((ttdw_vd){0, 1, 2, 3} < (double)k); }
 static inline unsigned ttdw_mbits_d(ttdw_md m)
 {
     unsigned bits = 0;
@@ -65,12 +64,10 @@ static inline unsigned ttdw_mbits_d(ttdw_md m)
     return bits;
 }
 static inline int ttdw_any_d(ttdw_md m) { return ttdw_mbits_d(m) != 0u; }
-static inline int ttdw_all_d(ttdw_md m) { return ttdw_mbits_d(m) == 0xFu; }
 
 /* ---- float ---- */
 static inline ttdw_vf ttdw_set1_f(float x) { return (ttdw_vf){x, x, x, x, x, x, x, x}; }
 static inline ttdw_vf ttdw_zero_f(void) { return (ttdw_vf){0, 0, 0, 0, 0, 0, 0, 0}; }
-static inline ttdw_vf ttdw_iota_f(void) { return (ttdw_vf){0, 1, 2, 3, 4, 5, 6, 7}; }
 static inline ttdw_vf ttdw_loadu_f(const float *p) { ttdw_vf v; memcpy(&v, p, sizeof v); return v; }
 static inline void ttdw_storeu_f(float *p, ttdw_vf v) { memcpy(p, &v, sizeof v); }
 static inline ttdw_vf ttdw_fma_f(ttdw_vf a, ttdw_vf b, ttdw_vf c) { return a * b + c; }
@@ -95,7 +92,7 @@ static inline ttdw_mf ttdw_mor_f(ttdw_mf a, ttdw_mf b) { return a | b; }
 static inline ttdw_mf ttdw_mandnot_f(ttdw_mf a, ttdw_mf b) { return a & ~b; }
 static inline ttdw_mf ttdw_mtrue_f(void) { return (ttdw_mf){-1, -1, -1, -1, -1, -1, -1, -1}; }
 static inline ttdw_mf ttdw_mnot_f(ttdw_mf a) { return ~a; }
-static inline ttdw_mf ttdw_mfirst_f(int k) { return (ttdw_mf)(ttdw_iota_f() < (float)k); }
+static inline ttdw_mf ttdw_mfirst_f(int k) { return (ttdw_mf)((ttdw_vf){0, 1, 2, 3, 4, 5, 6, 7} < (float)k); }
 static inline unsigned ttdw_mbits_f(ttdw_mf m)
 {
     unsigned bits = 0;
@@ -104,7 +101,6 @@ static inline unsigned ttdw_mbits_f(ttdw_mf m)
     return bits;
 }
 static inline int ttdw_any_f(ttdw_mf m) { return ttdw_mbits_f(m) != 0u; }
-static inline int ttdw_all_f(ttdw_mf m) { return ttdw_mbits_f(m) == 0xFFu; }
 
 /* ---- precision conversion (float lanes = 2 x double lanes) ---- */
 static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return (ttdw_vd){(double)a[0], (double)a[1], (double)a[2], (double)a[3]}; }

@@ -15,7 +15,6 @@ typedef ttdw_md vmask;
 #define TTDW_LANES TTDW_LANES_D
 #define vset1 ttdw_set1_d
 #define vzero ttdw_zero_d
-#define viota ttdw_iota_d
 #define vloadu ttdw_loadu_d
 #define vstoreu ttdw_storeu_d
 #define vfma ttdw_fma_d
@@ -38,18 +37,14 @@ typedef ttdw_md vmask;
 #define mfirst ttdw_mfirst_d
 #define mbits ttdw_mbits_d
 #define many ttdw_any_d
-#define mall ttdw_all_d
 #define mnone ttdw_none_d
 #define vload_aos9 ttdw_load_aos9_d
-#define vexpand ttdw_expand_d
-#define vstore_soa ttdw_store_soa_d
 #else
 typedef ttdw_vf vreal;
 typedef ttdw_mf vmask;
 #define TTDW_LANES TTDW_LANES_F
 #define vset1 ttdw_set1_f
 #define vzero ttdw_zero_f
-#define viota ttdw_iota_f
 #define vloadu ttdw_loadu_f
 #define vstoreu ttdw_storeu_f
 #define vfma ttdw_fma_f
@@ -72,11 +67,8 @@ typedef ttdw_mf vmask;
 #define mfirst ttdw_mfirst_f
 #define mbits ttdw_mbits_f
 #define many ttdw_any_f
-#define mall ttdw_all_f
 #define mnone ttdw_none_f
 #define vload_aos9 ttdw_load_aos9_f
-#define vexpand ttdw_expand_f
-#define vstore_soa ttdw_store_soa_f
 #endif
 
 #endif /* TTD_SIMD_LANES_PRECISION_H */

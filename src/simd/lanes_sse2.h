@@ -13,7 +13,6 @@
 #define TTDW_LANES_D 2
 #define TTDW_LANES_F 4
 #define TTDW_HAVE_FMA 0
-#define TTDW_ISA_NAME "sse2"
 
 typedef __m128d ttdw_vd;
 typedef __m128 ttdw_vf;
@@ -23,7 +22,6 @@ typedef __m128i ttdw_mf;
 /* ---- double ---- */
 static inline ttdw_vd ttdw_set1_d(double x) { return _mm_set1_pd(x); }
 static inline ttdw_vd ttdw_zero_d(void) { return _mm_setzero_pd(); }
-static inline ttdw_vd ttdw_iota_d(void) { return _mm_setr_pd(0.0, 1.0); }
 static inline ttdw_vd ttdw_loadu_d(const double *p) { return _mm_loadu_pd(p); }
 static inline void ttdw_storeu_d(double *p, ttdw_vd v) { _mm_storeu_pd(p, v); }
 static inline ttdw_vd ttdw_fma_d(ttdw_vd a, ttdw_vd b, ttdw_vd c) { return _mm_add_pd(_mm_mul_pd(a, b), c); }
@@ -54,12 +52,10 @@ static inline ttdw_md ttdw_mfirst_d(int k)
 }
 static inline unsigned ttdw_mbits_d(ttdw_md m) { return (unsigned)_mm_movemask_pd(_mm_castsi128_pd(m)); }
 static inline int ttdw_any_d(ttdw_md m) { return ttdw_mbits_d(m) != 0u; }
-static inline int ttdw_all_d(ttdw_md m) { return ttdw_mbits_d(m) == 0x3u; }
 
 /* ---- float ---- */
 static inline ttdw_vf ttdw_set1_f(float x) { return _mm_set1_ps(x); }
 static inline ttdw_vf ttdw_zero_f(void) { return _mm_setzero_ps(); }
-static inline ttdw_vf ttdw_iota_f(void) { return _mm_setr_ps(0.f, 1.f, 2.f, 3.f); }
 static inline ttdw_vf ttdw_loadu_f(const float *p) { return _mm_loadu_ps(p); }
 static inline void ttdw_storeu_f(float *p, ttdw_vf v) { _mm_storeu_ps(p, v); }
 static inline ttdw_vf ttdw_fma_f(ttdw_vf a, ttdw_vf b, ttdw_vf c) { return _mm_add_ps(_mm_mul_ps(a, b), c); }
@@ -86,7 +82,6 @@ static inline ttdw_mf ttdw_mnot_f(ttdw_mf a) { return _mm_xor_si128(a, _mm_set1_
 static inline ttdw_mf ttdw_mfirst_f(int k) { return _mm_cmpgt_epi32(_mm_set1_epi32(k), _mm_setr_epi32(0, 1, 2, 3)); }
 static inline unsigned ttdw_mbits_f(ttdw_mf m) { return (unsigned)_mm_movemask_ps(_mm_castsi128_ps(m)); }
 static inline int ttdw_any_f(ttdw_mf m) { return ttdw_mbits_f(m) != 0u; }
-static inline int ttdw_all_f(ttdw_mf m) { return ttdw_mbits_f(m) == 0xFu; }
 
 /* ---- precision conversion (float lanes = 2 x double lanes) ---- */
 static inline ttdw_vd ttdw_f2d_lo(ttdw_vf a) { return _mm_cvtps_pd(a); }

@@ -7,18 +7,16 @@
 #define TTD_SIMD_PROBE_H
 
 /* Inputs a, b, c hold one vector each (W reals); out receives one vector; masks come back as
- * 1.0 / 0.0 per lane; any/all/none/mbits come back in out[0]. LOAD_AOS9 reads 9W reals from a
- * (the user's layout) and writes 9 vectors to out; STORE_SOA reads 9 vectors from a and writes
- * 9W reals to out. MFIRST uses k = (int)a[0]. WIDEN (float only; -1 for double) rounds each
+ * 1.0 / 0.0 per lane; any/none/mbits come back in out[0]. LOAD_AOS9 reads 9W reals from a
+ * (the user's layout) and writes 9 vectors to out. MFIRST uses k = (int)a[0]. WIDEN (float only; -1 for double) rounds each
  * lane of a through double and back: d2f(f2d_lo(a) * 2^100 * 2^-100, the same for hi), which
- * is a in every lane only if the widening, the lane order and the narrowing are right.
- * EXPAND: out = expand(a, lanes where c < 0, b). */
+ * is a in every lane only if the widening, the lane order and the narrowing are right. */
 enum {
     TTDW_OP_ADD, TTDW_OP_SUB, TTDW_OP_MUL, TTDW_OP_DIV, TTDW_OP_NEG, TTDW_OP_FMA, TTDW_OP_MIN,
     TTDW_OP_MAX, TTDW_OP_SQRT, TTDW_OP_ABS, TTDW_OP_POW2, TTDW_OP_LT, TTDW_OP_LE, TTDW_OP_GT, TTDW_OP_GE,
     TTDW_OP_EQ, TTDW_OP_SEL, TTDW_OP_MAND, TTDW_OP_MOR, TTDW_OP_MANDNOT, TTDW_OP_MNOT,
-    TTDW_OP_MTRUE, TTDW_OP_MFIRST, TTDW_OP_MBITS, TTDW_OP_ANY, TTDW_OP_ALL, TTDW_OP_NONE,
-    TTDW_OP_SET1, TTDW_OP_ZERO, TTDW_OP_IOTA, TTDW_OP_LOAD_AOS9, TTDW_OP_STORE_SOA, TTDW_OP_WIDEN, TTDW_OP_EXPAND,
+    TTDW_OP_MTRUE, TTDW_OP_MFIRST, TTDW_OP_MBITS, TTDW_OP_ANY, TTDW_OP_NONE,
+    TTDW_OP_SET1, TTDW_OP_ZERO, TTDW_OP_LOAD_AOS9, TTDW_OP_WIDEN,
     TTDW_OP_COUNT
 };
 

@@ -33,20 +33,13 @@ static int lanes_probe(int op, const real *a, const real *b, const real *c, real
     case TTDW_OP_MFIRST: r = vsel(mfirst((int)a[0]), one, zero); break;
     case TTDW_OP_MBITS: vstoreu(out, zero); out[0] = (real)mbits(ma); return TTDW_LANES;
     case TTDW_OP_ANY: vstoreu(out, zero); out[0] = (real)many(ma); return TTDW_LANES;
-    case TTDW_OP_ALL: vstoreu(out, zero); out[0] = (real)mall(ma); return TTDW_LANES;
     case TTDW_OP_NONE: vstoreu(out, zero); out[0] = (real)mnone(ma); return TTDW_LANES;
     case TTDW_OP_SET1: r = vset1(a[0]); break;
     case TTDW_OP_ZERO: r = vzero(); break;
-    case TTDW_OP_IOTA: r = viota(); break;
     case TTDW_OP_LOAD_AOS9:
         vload_aos9(a, tr);
         for (int k = 0; k < 9; ++k)
             vstoreu(out + k * TTDW_LANES, tr[k]);
-        return TTDW_LANES;
-    case TTDW_OP_STORE_SOA:
-        for (int k = 0; k < 9; ++k)
-            tr[k] = vloadu(a + k * TTDW_LANES);
-        vstore_soa(tr, 9, out);
         return TTDW_LANES;
     case TTDW_OP_WIDEN:
 #ifdef TTD_PRECISION_FLOAT
@@ -59,7 +52,6 @@ static int lanes_probe(int op, const real *a, const real *b, const real *c, real
 #else
         return -1;
 #endif
-    case TTDW_OP_EXPAND: r = vexpand(va, vlt(vc, zero), b); break;
     default: return -1;
     }
     vstoreu(out, r);
