@@ -22,6 +22,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cli.h"
 #include "engine/dispatch.h"
 #include "pairs.h"
 
@@ -568,7 +569,8 @@ static void usage(FILE *f)
           "  --big N              pairs in random-big (default 24000000, less if memory is short)\n"
           "  --methods LIST       comma-separated method names (default: all)\n"
           "  --precision LIST     double,float (default both)\n"
-          "  --isa LIST           scalar,sse2,avx2,avx512,neon (default: every one available)\n"
+          "  --isa LIST           scalar,sse2,avx2,avx512,neon (default: every one available); one this\n"
+          "                       machine cannot run is an error (exit status 2)\n"
           "  --threads N          most threads in the scaling rows (default: all cores)\n"
           "  --samples N          timed samples per row, median reported (default 5; --quick 3)\n"
           "  --min-time S         seconds per sample at least (default 0.1; --quick 0.005)\n"
@@ -576,7 +578,12 @@ static void usage(FILE *f)
           "  --fcl PATH           the ttd_fcl_bench program (default: next to ttd, or $TTD_FCL_BENCH)\n"
           "  --no-fcl             leave FCL out\n"
           "  --no-probes          skip the clock, peak-arithmetic and bandwidth probes\n"
-          "  --quiet              no progress on standard error\n",
+          "  --quiet              no progress on standard error\n"
+          "\n"
+          "When the 1-minute load average exceeds the online cores at the start or the end, a warning goes\n"
+          "to standard error and into the header (other work competed for the CPU: do not trust the\n"
+          "timings). TTD_BENCH_LOADAVG=FILE reads the load averages from FILE instead of /proc/loadavg\n"
+          "(for tests). Exit status: 0 done, 1 nothing measured or a file not written, 2 bad options.\n",
           f);
 }
 
@@ -746,10 +753,25 @@ int ttd_bench_main(int argc, char **argv)
         }
         i += takes;
     }
+    /* An instruction set named in --isa that this machine cannot run is an error, as in
+     * `ttd dist --isa`: its rows would silently be missing. */
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT && cx->isa_mask != ~0u; ++i) {
+        if ((cx->isa_mask & (1u << i)) && !ttd_isa_available((ttd_isa)i)) {
+            fprintf(stderr, "ttd bench: --isa %s is not available here; this machine has:\n",
+                    ttd_isa_name((ttd_isa)i));
+            ttd_cli_print_isas(stderr);
+            free(cx);
+            return 2;
+        }
+    }
     cx->st.samples = samples ? samples : (cx->st.quick ? 3 : 5);
     cx->st.min_sample_s = min_time >= 0.0 ? min_time : (cx->st.quick ? 0.005 : 0.1);
     cx->max_row_s = cx->st.quick ? 0.5 : 8.0;
     cx->t_start = bench_now();
+    if (bench_load_exceeds_cores(&machine))
+        fprintf(stderr, "ttd bench: warning: the 1-minute load average (%.2f) exceeds the %d online cores: other "
+                        "work competes for the CPU, the timings are not to be trusted\n",
+                machine.load1_start, machine.cores);
 
     if (no_fcl) {
         snprintf(cx->st.fcl, sizeof cx->st.fcl, "left out (--no-fcl)");
@@ -797,7 +819,11 @@ int ttd_bench_main(int argc, char **argv)
             run_workload(cx, ws, n);
     }
     derive_ratios(cx);
-    bench_load_average(machine.load_end, sizeof machine.load_end);
+    machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
+    if (machine.load1_end > (double)machine.cores)
+        fprintf(stderr, "ttd bench: warning: the 1-minute load average at the end (%.2f, with this benchmark's "
+                        "own threads) exceeds the %d online cores: the timings are not to be trusted\n",
+                machine.load1_end, machine.cores);
 
     if (want_json)
         bench_write_json(stdout, &machine, &cx->st, cx->rows, cx->nrows);
@@ -813,6 +839,11 @@ int ttd_bench_main(int argc, char **argv)
                    write_file(out_dir, "bench.csv", cx, &machine, 2)) {
             rc = 1;
         }
+    }
+    if (cx->nrows == 0) {
+        fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
+                        "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
+        rc = 1;
     }
     progress(cx, "done: %zu rows", cx->nrows);
     free(cx);

@@ -53,6 +53,8 @@ typedef struct bench_machine {
     char os[200];
     char load_start[64];      ///< /proc/loadavg when the run began
     char load_end[64];        ///< and when it ended (other work on the machine skews timings)
+    double load1_start;       ///< the 1-minute load average at the start, NaN if unknown
+    double load1_end;         ///< and at the end (it includes the benchmark's own threads)
     char priority[96];        ///< this process's nice value and its scheduler autogroup's
     int cores;
     double mem_gib;
@@ -64,8 +66,12 @@ typedef struct bench_machine {
 
 /// Fills everything but the probes (which are set to NaN).
 void bench_machine_describe(bench_machine *m);
-/// The 1, 5 and 15-minute load averages, "?" where unknown.
-void bench_load_average(char *out, size_t size);
+/// Writes the 1, 5 and 15-minute load averages ("?" where unknown) and returns the 1-minute
+/// one (NaN where unknown). Read from /proc/loadavg, or from the file $TTD_BENCH_LOADAVG names.
+double bench_load_average(char *out, size_t size);
+/// 1 when the 1-minute load average at the start or the end exceeds the online cores: other
+/// work then competed for the CPU and the timings are not to be trusted.
+int bench_load_exceeds_cores(const bench_machine *m);
 /// Runs the probes; seconds is roughly how long each one runs.
 void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes);
 
