@@ -13,6 +13,12 @@ out=$("$TTD" --help) || fail "--help exit status $?"
 case "$out" in *"usage: ttd"*dist*info*) ;; *) fail "--help: $out" ;; esac
 out=$("$TTD" dist --help) || fail "dist --help exit status $?"
 case "$out" in *"--method"*"--precision"*"--points"*"--isa"*"--threads"*) ;; *) fail "dist --help: $out" ;; esac
+# It documents the line limit, the comment and byte-order-mark rules, --detail's columns, the
+# binary formats, and that penalty-ref and barrier are for comparison.
+for key in 4096 "byte-order mark" "'#'" "--detail" "17 columns" "--binary-in" "--binary-out" "little-endian" \
+           "penalty-ref (the paper's MATLAB ttd1" "for comparison, not for use"; do
+    case "$out" in *"$key"*) ;; *) fail "dist --help lacks '$key'" ;; esac
+done
 out=$("$TTD" --version) || fail "--version exit status $?"
 echo "$out" | grep -q '^ttd [0-9][0-9]*\.[0-9][0-9]*\.[0-9][0-9]*$' || fail "--version: $out"
 echo "$out" | grep -q '^auto: ' || fail "--version lacks the chosen ISA: $out"
