@@ -34,7 +34,8 @@ enum {
     W_FCL = 1u << 3,         /* FCL beside */
     W_ACCURACY = 1u << 4,    /* untimed pass with results: errors, iterations, occupancy */
     W_THREADS = 1u << 5,     /* 1..all threads for exact and penalty (scalar and best ISA) */
-    W_MULTI = 1u << 6        /* best ISA also on all threads */
+    W_MULTI = 1u << 6,       /* best ISA also on all threads */
+    W_CLI = 1u << 7          /* `ttd dist` itself, text and binary (bench/cli_io.c) */
 };
 
 typedef struct workload_spec {
@@ -61,6 +62,10 @@ static const workload_spec workloads[] = {
     {"random-32k", TTD_GEN_RANDOM, 32000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
     {"random-256k", TTD_GEN_RANDOM, 256000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
     {"random-big", TTD_GEN_RANDOM, BENCH_BIG_DEFAULT, 0, W_MULTI},
+    /* The command line's own cost: random pairs through `ttd dist` as text and as binary
+     * (rows cli-text and cli-binary; the random workload's exact rows are the same work
+     * without the input and output). About a second in all. */
+    {"cli", TTD_GEN_RANDOM, 50000, 10000, W_CLI | W_ACCURACY},
 };
 #define N_WORKLOADS (sizeof workloads / sizeof workloads[0])
 
@@ -470,6 +475,44 @@ static ttd_isa best_simd(void)
     return best;
 }
 
+/* Rows cli-text and cli-binary: `ttd dist` on the workload's pairs, exact method, one thread,
+ * the best instruction set --isa allows; the distances it printed are checked against the
+ * reference like any other row's. */
+static void measure_cli(bench_ctx *cx, bench_data *d)
+{
+    ttd_isa isa = TTD_ISA_SCALAR;
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i)
+        if ((cx->isa_mask & (1u << i)) && ttd_isa_available((ttd_isa)i))
+            isa = (ttd_isa)i;
+    if (!(cx->isa_mask & (1u << isa)) || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
+        return;
+    const int samples = cx->st.samples < 3 ? cx->st.samples : 3;
+    for (int form_p = 0; form_p < 4; ++form_p) {
+        const int binary = form_p / 2, bytes = cx->precisions[form_p % 2];
+        if (!bytes)
+            continue;
+        const void *s = bytes == 8 ? (const void *)d->sd : (const void *)d->sf;
+        const void *t = bytes == 8 ? (const void *)d->td : (const void *)d->tf;
+        double ns = BENCH_NAN, ns_min = BENCH_NAN;
+        const char *form = binary ? "cli-binary" : "cli-text";
+        if (bench_cli_run(bytes, binary, ttd_isa_name(isa), d->n, s, t, samples, d->dist, &ns, &ns_min) != 0) {
+            fprintf(stderr, "ttd bench: %s %s failed; its row is left out\n", form, prec_name(bytes));
+            continue;
+        }
+        bench_row *r = new_row(cx, d, "exact", bytes, ttd_isa_name(isa), ttd_isa_lanes(isa, bytes), 1);
+        if (!r)
+            return;
+        snprintf(r->workload, sizeof r->workload, "%s", form);
+        r->samples = samples;
+        r->passes = 1;
+        r->ns_per_pair = ns;
+        r->ns_min = ns_min;
+        r->pairs_per_s = 1e9 / ns;
+        accuracy(d, bytes, d->dist, r);
+        progress(cx, "%s exact %s %s 1t: %.2f ns/pair", form, prec_name(bytes), ttd_isa_name(isa), ns);
+    }
+}
+
 static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
 {
     bench_data d;
@@ -482,6 +525,11 @@ static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
     }
     progress(cx, "%s: data and reference ready in %.2f s", w->name, bench_now() - t0);
     ttd_isa best = best_simd();
+    if (w->flags & W_CLI) {
+        measure_cli(cx, &d);
+        free_data(&d);
+        return;
+    }
     for (int p = 0; p < 2; ++p) {
         int bytes = cx->precisions[p];
         if (!bytes)
@@ -559,12 +607,14 @@ static void usage(FILE *f)
           "and on every SIMD instruction set this machine runs, on the paper's workload (one pair\n"
           "x1000) and on generated families, with FCL beside it when ttd_fcl_bench is built.\n"
           "\n"
-          "  --quick              a run of a few seconds (CI smoke test): paper and 10k random pairs\n"
+          "  --quick              a run of a few seconds (CI smoke test): paper, 10k random pairs, cli\n"
           "  --json               write JSON to standard output instead of the table\n"
           "  --csv                write CSV to standard output instead of the table\n"
           "  --out DIR            also write DIR/bench.txt, DIR/bench.json and DIR/bench.csv\n"
           "  --workloads LIST     comma-separated, from: paper random far near_parallel_edges\n"
           "                       near_parallel_faces random-1k random-32k random-256k random-big\n"
+          "                       cli (ttd dist itself on random pairs, text and binary: rows\n"
+          "                       cli-text and cli-binary)\n"
           "  --pairs N            pairs in the random workload (default 1000000; --quick 10000)\n"
           "  --big N              pairs in random-big (default 24000000, less if memory is short)\n"
           "  --methods LIST       comma-separated method names (default: all)\n"

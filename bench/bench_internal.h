@@ -89,6 +89,14 @@ int bench_fcl_find(const char *explicit_path, char *path, size_t size);
 int bench_fcl_run(const char *program, int bytes, size_t n, const void *s, const void *t,
                   double min_sample_s, int samples, double *dist, double *ns_median, double *ns_min);
 
+/// Times `ttd dist` in-process on n pairs (9n reals each in s and t, precision bytes), text or
+/// binary (--binary-in --binary-out), distances only, one thread on instruction set isa:
+/// one pass whose output is read back into dist (n doubles), then `samples` timed passes.
+/// Writes the median and fastest ns per pair. Returns 0, or -1 when a pass failed or its
+/// output did not hold n distances.
+int bench_cli_run(int bytes, int binary, const char *isa, size_t n, const void *s, const void *t, int samples,
+                  double *dist, double *ns_median, double *ns_min);
+
 /// Output settings echoed into the JSON and the table header.
 typedef struct bench_settings {
     int quick;

@@ -2,7 +2,8 @@
 # Smoke test of the benchmark (CI runs it through CTest): `ttd bench --quick --json` must
 # finish, produce rows with the required fields and positive times for the exact method on
 # the scalar code, include FCL rows when ttd_fcl_bench sits next to ttd, and `--csv` must
-# start with its header. An instruction set the machine cannot run is an error (exit 2) that
+# start with its header; the rows of `ttd dist` itself (cli-text, cli-binary) must be there and
+# their printed distances right. An instruction set the machine cannot run is an error (exit 2) that
 # names it and lists the machine's; a run that measures nothing exits 1; a load average above
 # the core count (from a file given in TTD_BENCH_LOADAVG) gives a warning on standard error and
 # in the table's header. Timings are not checked: they belong to the benchmark, not to tests.
@@ -35,6 +36,18 @@ for w in paper random; do
     ns=$(printf '%s\n' "$line" | sed 's/.*"ns_per_pair": \([^,]*\),.*/\1/')
     awk -v x="$ns" 'BEGIN { exit !(x + 0 > 0) }' || fail "ns_per_pair '$ns' for $w $p"
     printf '%s\n' "$line" | grep -q '"speedup_vs_scalar": 1,' || fail "scalar row's speedup is not 1 ($w $p)"
+  done
+done
+
+# The command line's own rows: `ttd dist` as text and as binary, both precisions, a positive
+# time, and the distances it printed agree with the exact method (disagree 0).
+for w in cli-text cli-binary; do
+  for p in double float; do
+    line=$(grep "\"workload\": \"$w\", \"method\": \"exact\", \"precision\": \"$p\"" "$tmp/out.json" | head -n 1)
+    [ -n "$line" ] || fail "no $w $p row"
+    ns=$(printf '%s\n' "$line" | sed 's/.*"ns_per_pair": \([^,]*\),.*/\1/')
+    awk -v x="$ns" 'BEGIN { exit !(x + 0 > 0) }' || fail "ns_per_pair '$ns' for $w $p"
+    printf '%s\n' "$line" | grep -q '"disagree": 0,' || fail "$w $p: the printed distances disagree with the exact method"
   done
 done
 
