@@ -22,6 +22,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cli.h"
 #include "pairs.h"
 
 /* What is run on a workload. */
@@ -32,7 +33,8 @@ enum {
     W_FCL = 1u << 3,         /* FCL beside */
     W_ACCURACY = 1u << 4,    /* untimed pass with results: errors, iterations, occupancy */
     W_THREADS = 1u << 5,     /* 1..all threads for exact and penalty (scalar and best ISA) */
-    W_MULTI = 1u << 6        /* best ISA also on all threads */
+    W_MULTI = 1u << 6,       /* best ISA also on all threads */
+    W_CLI = 1u << 7          /* `ttd dist` itself, text and binary (bench/cli_io.c) */
 };
 
 typedef struct workload_spec {
@@ -59,6 +61,10 @@ static const workload_spec workloads[] = {
     {"random-32k", TTD_GEN_RANDOM, 32000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
     {"random-256k", TTD_GEN_RANDOM, 256000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
     {"random-big", TTD_GEN_RANDOM, BENCH_BIG_DEFAULT, 0, W_MULTI},
+    /* The command line's own cost: random pairs through `ttd dist` as text and as binary
+     * (rows cli-text and cli-binary; the random workload's exact rows are the same work
+     * without the input and output). About a second in all. */
+    {"cli", TTD_GEN_RANDOM, 50000, 10000, W_CLI | W_ACCURACY},
 };
 #define N_WORKLOADS (sizeof workloads / sizeof workloads[0])
 
@@ -461,6 +467,44 @@ static ttd_isa best_simd(void)
     return best;
 }
 
+/* Rows cli-text and cli-binary: `ttd dist` on the workload's pairs, exact method, one thread,
+ * the best instruction set --isa allows; the distances it printed are checked against the
+ * reference like any other row's. */
+static void measure_cli(bench_ctx *cx, bench_data *d)
+{
+    ttd_isa isa = TTD_ISA_SCALAR;
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i)
+        if ((cx->isa_mask & (1u << i)) && ttd_isa_available((ttd_isa)i))
+            isa = (ttd_isa)i;
+    if (!(cx->isa_mask & (1u << isa)) || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
+        return;
+    const int samples = cx->st.samples < 3 ? cx->st.samples : 3;
+    for (int form_p = 0; form_p < 4; ++form_p) {
+        const int binary = form_p / 2, bytes = cx->precisions[form_p % 2];
+        if (!bytes)
+            continue;
+        const void *s = bytes == 8 ? (const void *)d->sd : (const void *)d->sf;
+        const void *t = bytes == 8 ? (const void *)d->td : (const void *)d->tf;
+        double ns = BENCH_NAN, ns_min = BENCH_NAN;
+        const char *form = binary ? "cli-binary" : "cli-text";
+        if (bench_cli_run(bytes, binary, ttd_isa_name(isa), d->n, s, t, samples, d->dist, &ns, &ns_min) != 0) {
+            fprintf(stderr, "ttd bench: %s %s failed; its row is left out\n", form, prec_name(bytes));
+            continue;
+        }
+        bench_row *r = new_row(cx, d, "exact", bytes, ttd_isa_name(isa), ttd_isa_lanes(isa, bytes), 1);
+        if (!r)
+            return;
+        snprintf(r->workload, sizeof r->workload, "%s", form);
+        r->samples = samples;
+        r->passes = 1;
+        r->ns_per_pair = ns;
+        r->ns_min = ns_min;
+        r->pairs_per_s = 1e9 / ns;
+        accuracy(d, bytes, d->dist, r);
+        progress(cx, "%s exact %s %s 1t: %.2f ns/pair", form, prec_name(bytes), ttd_isa_name(isa), ns);
+    }
+}
+
 static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
 {
     bench_data d;
@@ -473,6 +517,11 @@ static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
     }
     progress(cx, "%s: data and reference ready in %.2f s", w->name, bench_now() - t0);
     ttd_isa best = best_simd();
+    if (w->flags & W_CLI) {
+        measure_cli(cx, &d);
+        free_data(&d);
+        return;
+    }
     for (int p = 0; p < 2; ++p) {
         int bytes = cx->precisions[p];
         if (!bytes)
@@ -550,17 +599,20 @@ static void usage(FILE *f)
           "and on every SIMD instruction set this machine runs, on the paper's workload (one pair\n"
           "x1000) and on generated families, with FCL beside it when ttd_fcl_bench is built.\n"
           "\n"
-          "  --quick              a run of a few seconds (CI smoke test): paper and 10k random pairs\n"
+          "  --quick              a run of a few seconds (CI smoke test): paper, 10k random pairs, cli\n"
           "  --json               write JSON to standard output instead of the table\n"
           "  --csv                write CSV to standard output instead of the table\n"
           "  --out DIR            also write DIR/bench.txt, DIR/bench.json and DIR/bench.csv\n"
           "  --workloads LIST     comma-separated, from: paper random far near_parallel_edges\n"
           "                       near_parallel_faces random-1k random-32k random-256k random-big\n"
+          "                       cli (ttd dist itself on random pairs, text and binary: rows\n"
+          "                       cli-text and cli-binary)\n"
           "  --pairs N            pairs in the random workload (default 1000000; --quick 10000)\n"
           "  --big N              pairs in random-big (default 24000000, less if memory is short)\n"
           "  --methods LIST       comma-separated method names (default: all)\n"
           "  --precision LIST     double,float (default both)\n"
-          "  --isa LIST           scalar,sse2,avx2,avx512,neon (default: every one available)\n"
+          "  --isa LIST           scalar,sse2,avx2,avx512,neon (default: every one available); one this\n"
+          "                       machine cannot run is an error (exit status 2)\n"
           "  --threads N          most threads in the scaling rows (default: all cores)\n"
           "  --samples N          timed samples per row, median reported (default 5; --quick 3)\n"
           "  --min-time S         seconds per sample at least (default 0.1; --quick 0.005)\n"
@@ -568,7 +620,12 @@ static void usage(FILE *f)
           "  --fcl PATH           the ttd_fcl_bench program (default: next to ttd, or $TTD_FCL_BENCH)\n"
           "  --no-fcl             leave FCL out\n"
           "  --no-probes          skip the clock, peak-arithmetic and bandwidth probes\n"
-          "  --quiet              no progress on standard error\n",
+          "  --quiet              no progress on standard error\n"
+          "\n"
+          "When the 1-minute load average exceeds the online cores at the start or the end, a warning goes\n"
+          "to standard error and into the header (other work competed for the CPU: do not trust the\n"
+          "timings). TTD_BENCH_LOADAVG=FILE reads the load averages from FILE instead of /proc/loadavg\n"
+          "(for tests). Exit status: 0 done, 1 nothing measured or a file not written, 2 bad options.\n",
           f);
 }
 
@@ -738,10 +795,25 @@ int ttd_bench_main(int argc, char **argv)
         }
         i += takes;
     }
+    /* An instruction set named in --isa that this machine cannot run is an error, as in
+     * `ttd dist --isa`: its rows would silently be missing. */
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT && cx->isa_mask != ~0u; ++i) {
+        if ((cx->isa_mask & (1u << i)) && !ttd_isa_available((ttd_isa)i)) {
+            fprintf(stderr, "ttd bench: --isa %s is not available here; this machine has:\n",
+                    ttd_isa_name((ttd_isa)i));
+            ttd_cli_print_isas(stderr);
+            free(cx);
+            return 2;
+        }
+    }
     cx->st.samples = samples ? samples : (cx->st.quick ? 3 : 5);
     cx->st.min_sample_s = min_time >= 0.0 ? min_time : (cx->st.quick ? 0.005 : 0.1);
     cx->max_row_s = cx->st.quick ? 0.5 : 8.0;
     cx->t_start = bench_now();
+    if (bench_load_exceeds_cores(&machine))
+        fprintf(stderr, "ttd bench: warning: the 1-minute load average (%.2f) exceeds the %d online cores: other "
+                        "work competes for the CPU, the timings are not to be trusted\n",
+                machine.load1_start, machine.cores);
 
     if (no_fcl) {
         snprintf(cx->st.fcl, sizeof cx->st.fcl, "left out (--no-fcl)");
@@ -789,7 +861,11 @@ int ttd_bench_main(int argc, char **argv)
             run_workload(cx, ws, n);
     }
     derive_ratios(cx);
-    bench_load_average(machine.load_end, sizeof machine.load_end);
+    machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
+    if (machine.load1_end > (double)machine.cores)
+        fprintf(stderr, "ttd bench: warning: the 1-minute load average at the end (%.2f, with this benchmark's "
+                        "own threads) exceeds the %d online cores: the timings are not to be trusted\n",
+                machine.load1_end, machine.cores);
 
     if (want_json)
         bench_write_json(stdout, &machine, &cx->st, cx->rows, cx->nrows);
@@ -805,6 +881,11 @@ int ttd_bench_main(int argc, char **argv)
                    write_file(out_dir, "bench.csv", cx, &machine, 2)) {
             rc = 1;
         }
+    }
+    if (cx->nrows == 0) {
+        fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
+                        "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
+        rc = 1;
     }
     progress(cx, "done: %zu rows", cx->nrows);
     free(cx);

@@ -53,6 +53,8 @@ typedef struct bench_machine {
     char os[200];
     char load_start[64];      ///< /proc/loadavg when the run began
     char load_end[64];        ///< and when it ended (other work on the machine skews timings)
+    double load1_start;       ///< the 1-minute load average at the start, NaN if unknown
+    double load1_end;         ///< and at the end (it includes the benchmark's own threads)
     char priority[96];        ///< this process's nice value and its scheduler autogroup's
     int cores;
     double mem_gib;
@@ -64,8 +66,12 @@ typedef struct bench_machine {
 
 /// Fills everything but the probes (which are set to NaN).
 void bench_machine_describe(bench_machine *m);
-/// The 1, 5 and 15-minute load averages, "?" where unknown.
-void bench_load_average(char *out, size_t size);
+/// Writes the 1, 5 and 15-minute load averages ("?" where unknown) and returns the 1-minute
+/// one (NaN where unknown). Read from /proc/loadavg, or from the file $TTD_BENCH_LOADAVG names.
+double bench_load_average(char *out, size_t size);
+/// 1 when the 1-minute load average at the start or the end exceeds the online cores: other
+/// work then competed for the CPU and the timings are not to be trusted.
+int bench_load_exceeds_cores(const bench_machine *m);
 /// Runs the probes; seconds is roughly how long each one runs.
 void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes);
 
@@ -82,6 +88,14 @@ int bench_fcl_find(const char *explicit_path, char *path, size_t size);
 /// (as double) to dist and the median and fastest ns per pair. Returns 0 on success.
 int bench_fcl_run(const char *program, int bytes, size_t n, const void *s, const void *t,
                   double min_sample_s, int samples, double *dist, double *ns_median, double *ns_min);
+
+/// Times `ttd dist` in-process on n pairs (9n reals each in s and t, precision bytes), text or
+/// binary (--binary-in --binary-out), distances only, one thread on instruction set isa:
+/// one pass whose output is read back into dist (n doubles), then `samples` timed passes.
+/// Writes the median and fastest ns per pair. Returns 0, or -1 when a pass failed or its
+/// output did not hold n distances.
+int bench_cli_run(int bytes, int binary, const char *isa, size_t n, const void *s, const void *t, int samples,
+                  double *dist, double *ns_median, double *ns_min);
 
 /// Output settings echoed into the JSON and the table header.
 typedef struct bench_settings {

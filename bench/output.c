@@ -38,6 +38,10 @@ static void header_lines(FILE *f, const char *prefix, const bench_machine *m, co
     fprintf(f, "%sCPU SIMD flags: %s\n", prefix, m->cpu_isas);
     fprintf(f, "%sload average (1, 5, 15 min): %s at the start, %s at the end; priority: %s\n", prefix,
             m->load_start, m->load_end, m->priority);
+    if (bench_load_exceeds_cores(m))
+        fprintf(f, "%sWARNING: the 1-minute load average (%s at the start, %s at the end) exceeds the %d online "
+                   "cores: other work competed for the CPU, the timings are not to be trusted\n",
+                prefix, num(a, sizeof a, m->load1_start, "%.2f"), num(b, sizeof b, m->load1_end, "%.2f"), m->cores);
     fprintf(f, "%sttd instruction sets built and runnable: %s (auto picks %s)\n", prefix, m->ttd_isas, m->isa_auto);
     fprintf(f, "%scompiler: %s; flags: %s; plus %s\n", prefix, TTD_C_COMPILER, TTD_C_FLAGS, BENCH_EXTRA_FLAGS);
     fprintf(f, "%sprobes: clock ~%s GHz (dependent adds); peak double GFLOP/s on one core: scalar %s, sse2 %s, "
@@ -156,6 +160,7 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
     json_string(f, m->load_start);
     fprintf(f, ", \"load_average_end\": ");
     json_string(f, m->load_end);
+    fprintf(f, ", \"load_exceeds_cores\": %s", bench_load_exceeds_cores(m) ? "true" : "false");
     fprintf(f, ", \"priority\": ");
     json_string(f, m->priority);
     fprintf(f, ", \"cpu_simd_flags\": ");

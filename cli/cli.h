@@ -21,6 +21,10 @@ enum {
 
 /// `ttd dist [options] [FILE]`.
 int ttd_cli_dist(int argc, char **argv);
+/// `ttd dist` on given streams (for `ttd bench`, which times the command's input and output
+/// paths in-process): argv holds "dist" and options only, no FILE; no progress line. Returns
+/// the exit status.
+int ttd_cli_dist_run(int argc, char **argv, FILE *in, FILE *out);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

@@ -22,6 +22,7 @@ static const char ttd_usage[] =
     "  dist [options] [FILE]   distances of the triangle pairs in FILE or standard input\n"
     "                          (ttd dist --help for the format and options)\n"
     "  info                    version, instruction sets built and supported, the one chosen\n"
+    "                          (ttd info --help)\n"
     "  bench [options]         the benchmark (ttd bench --help), when built in\n"
     "  --help                  this text\n"
     "  --version               version and instruction sets\n"
@@ -35,8 +36,24 @@ static void ttd_print_version(FILE *f)
     ttd_cli_print_isas(f);
 }
 
-static int ttd_info(void)
+static const char ttd_info_usage[] =
+    "usage: ttd info\n"
+    "Prints the version, the instruction sets built in, those this CPU and OS support, the one\n"
+    "auto picks (and TTD_ISA when set), lanes per instruction set, the methods, the online cores,\n"
+    "the compiler and flags, and whether `ttd bench` is built in. Takes no operands.\n";
+
+static int ttd_info(int argc, char **argv)
 {
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            fputs(ttd_info_usage, stdout);
+            return TTD_EXIT_OK;
+        }
+    }
+    if (argc > 1) {
+        ttd_cli_error("info: unexpected argument '%s' (see ttd info --help)", argv[1]);
+        return TTD_EXIT_USAGE;
+    }
     ttd_print_version(stdout);
     printf("lanes (float/double):");
     for (int i = 1; i < TTD_ISA_COUNT; ++i)
@@ -68,7 +85,7 @@ int main(int argc, char **argv)
         return TTD_EXIT_OK;
     }
     if (strcmp(cmd, "info") == 0)
-        return ttd_info();
+        return ttd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "dist") == 0)
         return ttd_cli_dist(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {

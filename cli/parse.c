@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* The line reader and the pair-line parser of cli/parse.h. Everything is bounded: a line
  * is at most TTD_CLI_MAX_LINE bytes in memory however long it is in the file, and bytes that
- * are not part of a number (binary garbage, NUL) end the parse with a message naming them. */
+ * are not part of a number or a comment (binary garbage, NUL) end the parse with a message
+ * naming them. */
 #define _POSIX_C_SOURCE 200809L
 
 #include "parse.h"
@@ -43,6 +44,8 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
 {
     size_t n = 0;
     int got = 0;
+    /* The first line may carry a 3-byte byte-order mark on top of the limit. */
+    const size_t cap = TTD_CLI_MAX_LINE + (r->line_no == 0 ? 3 : 0);
     *overlong = 0;
     while (ttd_reader_fill(r)) {
         got = 1;
@@ -50,7 +53,7 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
         size_t avail = r->len - r->pos;
         const char *nl = memchr(start, '\n', avail);
         size_t take = nl ? (size_t)(nl - start) : avail;
-        size_t room = TTD_CLI_MAX_LINE - n;
+        size_t room = cap - n;
         if (take > room) {
             *overlong = 1;
             memcpy(r->line + n, start, room);
@@ -65,6 +68,15 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
     }
     if (!got)
         return 0;
+    /* A UTF-8 byte-order mark (what some editors put first) is not part of the data. */
+    if (r->line_no == 0 && n >= 3 && memcmp(r->line, "\xef\xbb\xbf", 3) == 0) {
+        memmove(r->line, r->line + 3, n - 3);
+        n -= 3;
+    }
+    if (n > TTD_CLI_MAX_LINE) {
+        n = TTD_CLI_MAX_LINE;
+        *overlong = 1;
+    }
     if (n > 0 && r->line[n - 1] == '\r' && !*overlong)
         --n;
     r->line[n] = '\0';
@@ -97,8 +109,8 @@ static void ttd_quote(const char *p, const char *end, char *out, size_t outsize)
     out[o] = '\0';
 }
 
-ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], char *err,
-                                  size_t errsize)
+ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, double out[18],
+                                  char *err, size_t errsize)
 {
     const char *p = line, *end = line + len;
     while (p < end && ttd_is_blank(*p))
@@ -107,13 +119,13 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], 
         return TTD_LINE_SKIP;
 
     int count = 0;
-    while (p < end) {
+    while (p < end && *p != '#') {
         char tok[128];
         if (count == 18) {
             int extra = 0;
-            while (p < end) {
+            while (p < end && *p != '#') {
                 ++extra;
-                while (p < end && !ttd_is_blank(*p))
+                while (p < end && !ttd_is_blank(*p) && *p != '#')
                     ++p;
                 while (p < end && ttd_is_blank(*p))
                     ++p;
@@ -123,8 +135,10 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], 
         }
         char *stop;
         errno = 0;
-        double v = strtod(p, &stop);
-        if (stop == p || (stop < end && !ttd_is_blank(*stop))) {
+        /* In float each number is rounded once, decimal to float: through double it would be
+         * rounded twice, and a decimal just above a midpoint between floats can land on it. */
+        double v = as_float ? (double)strtof(p, &stop) : strtod(p, &stop);
+        if (stop == p || (stop < end && !ttd_is_blank(*stop) && *stop != '#')) {
             ttd_quote(p, end, tok, sizeof tok);
             snprintf(err, errsize, "field %d is not a number: '%s'", count + 1, tok);
             return TTD_LINE_ERROR;
@@ -132,7 +146,7 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], 
         if (!isfinite(v)) {
             ttd_quote(p, end, tok, sizeof tok);
             snprintf(err, errsize, "field %d is %s: '%s'", count + 1,
-                     errno == ERANGE ? "out of range" : "not finite", tok);
+                     errno != ERANGE ? "not finite" : as_float ? "out of float range" : "out of range", tok);
             return TTD_LINE_ERROR;
         }
         out[count++] = v;

@@ -12,7 +12,8 @@
 #define TTD_CLI_MAX_LINE 4096
 
 /// Reads lines of any length from a FILE in bounded memory: a line longer than
-/// TTD_CLI_MAX_LINE is reported as overlong (its start kept, the rest skipped).
+/// TTD_CLI_MAX_LINE is reported as overlong (its start kept, the rest skipped). A UTF-8
+/// byte-order mark at the start of the input is dropped (and does not count to the limit).
 typedef struct ttd_line_reader {
     FILE *f;
     size_t pos, len;                       ///< unread bytes of buf are [pos, len)
@@ -20,7 +21,7 @@ typedef struct ttd_line_reader {
     int error;                             ///< errno of a read error (ferror), else 0
     unsigned long long line_no;            ///< number of the line last returned, from 1
     char buf[1 << 16];
-    char line[TTD_CLI_MAX_LINE + 1];       ///< the line last returned, NUL-terminated
+    char line[TTD_CLI_MAX_LINE + 4];       ///< the line last returned, NUL-terminated (+3: a first line's byte-order mark)
 } ttd_line_reader;
 
 /// Starts reading f.
@@ -38,8 +39,11 @@ typedef enum ttd_line_kind {
 } ttd_line_kind;
 
 /// Parses line[0..len) (line[len] must be '\0'): 18 numbers separated by blanks (space, tab,
-/// CR, VT, FF), in strtod's syntax, all finite. On TTD_LINE_ERROR err holds a message.
-ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, double out[18], char *err,
-                                  size_t errsize);
+/// CR, VT, FF), in strtod's syntax, all finite, optionally followed by a comment ('#' to the
+/// end of the line, with or without a blank before it). With as_float each number is parsed
+/// by strtof (rounded once, decimal to float; beyond float range is an error) and out holds the
+/// floats, exactly. On TTD_LINE_ERROR err holds a message.
+ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, double out[18],
+                                  char *err, size_t errsize);
 
 #endif /* TTD_CLI_PARSE_H */

@@ -2,7 +2,11 @@
 # Smoke test of the benchmark (CI runs it through CTest): `ttd bench --quick --json` must
 # finish, produce rows with the required fields and positive times for the exact method on
 # the scalar code, include FCL rows when ttd_fcl_bench sits next to ttd, and `--csv` must
-# start with its header. Timings are not checked: they belong to the benchmark, not to tests.
+# start with its header; the rows of `ttd dist` itself (cli-text, cli-binary) must be there and
+# their printed distances right. An instruction set the machine cannot run is an error (exit 2) that
+# names it and lists the machine's; a run that measures nothing exits 1; a load average above
+# the core count (from a file given in TTD_BENCH_LOADAVG) gives a warning on standard error and
+# in the table's header. Timings are not checked: they belong to the benchmark, not to tests.
 # Usage: sh tests/cli/test_bench.sh path/to/ttd
 set -eu
 ttd=$1
@@ -35,6 +39,18 @@ for w in paper random; do
   done
 done
 
+# The command line's own rows: `ttd dist` as text and as binary, both precisions, a positive
+# time, and the distances it printed agree with the exact method (disagree 0).
+for w in cli-text cli-binary; do
+  for p in double float; do
+    line=$(grep "\"workload\": \"$w\", \"method\": \"exact\", \"precision\": \"$p\"" "$tmp/out.json" | head -n 1)
+    [ -n "$line" ] || fail "no $w $p row"
+    ns=$(printf '%s\n' "$line" | sed 's/.*"ns_per_pair": \([^,]*\),.*/\1/')
+    awk -v x="$ns" 'BEGIN { exit !(x + 0 > 0) }' || fail "ns_per_pair '$ns' for $w $p"
+    printf '%s\n' "$line" | grep -q '"disagree": 0,' || fail "$w $p: the printed distances disagree with the exact method"
+  done
+done
+
 # FCL rows when the FCL program was built next to ttd.
 if [ -x "$(dirname "$ttd")/ttd_fcl_bench" ]; then
   grep -q '"method": "fcl"' "$tmp/out.json" || fail "ttd_fcl_bench exists but there are no fcl rows"
@@ -50,4 +66,48 @@ fi
   fail "ttd bench --csv exited with $?"
 head -n 1 "$tmp/out.csv" | grep -q '^workload,method,precision,isa,lanes,threads,pairs,' || fail "CSV header"
 [ "$(wc -l < "$tmp/out.csv")" -ge 3 ] || fail "CSV has no rows"
+# An instruction set this machine cannot run: exit 2 before anything is timed, naming the one
+# asked for and listing what the machine has (the "cpu:" line of ttd info).
+built=$("$ttd" info | sed -n 's/^built://p')
+cpu=$("$ttd" info | sed -n 's/^cpu://p')
+unavailable=0
+for isa in sse2 avx2 avx512 neon; do
+  case " $built " in *" $isa "*) case " $cpu " in *" $isa "*) continue ;; esac ;; esac
+  unavailable=$((unavailable + 1))
+  rc=0
+  "$ttd" bench --quick --no-probes --no-fcl --workloads paper --methods exact --isa "$isa" > "$tmp/out.txt" 2> "$tmp/err.txt" || rc=$?
+  [ "$rc" -eq 2 ] || fail "--isa $isa (unavailable): exit status $rc, want 2"
+  grep -q "$isa" "$tmp/err.txt" || fail "--isa $isa: the message does not name it: $(cat "$tmp/err.txt")"
+  grep -q "^cpu: *scalar" "$tmp/err.txt" || fail "--isa $isa: the message does not list the machine's: $(cat "$tmp/err.txt")"
+  [ ! -s "$tmp/out.txt" ] || fail "--isa $isa: a table was written"
+  rc=0
+  "$ttd" bench --quick --no-probes --no-fcl --workloads paper --methods exact --isa "scalar,$isa" > /dev/null 2>&1 || rc=$?
+  [ "$rc" -eq 2 ] || fail "--isa scalar,$isa: exit status $rc, want 2"
+done
+[ "$unavailable" -gt 0 ] || echo "test_bench: every ISA is available here; unavailable --isa not exercised"
+
+# Nothing to measure (the barrier method has no SIMD kernel): an error, not "done: 0 rows".
+auto=$("$ttd" info | sed -n 's/^auto: *\([a-z0-9]*\).*/\1/p')
+if [ "$auto" != scalar ]; then
+  rc=0
+  "$ttd" bench --quick --no-probes --no-fcl --workloads paper --methods barrier --isa "$auto" > /dev/null 2> "$tmp/err.txt" || rc=$?
+  [ "$rc" -eq 1 ] || fail "no rows: exit status $rc, want 1"
+  grep -q "no rows" "$tmp/err.txt" || fail "no rows: message '$(cat "$tmp/err.txt")'"
+fi
+
+# Load average above the online cores (read from TTD_BENCH_LOADAVG in place of /proc/loadavg):
+# a warning on standard error and in the table's header; none when the load is 0.
+"$ttd" info > "$tmp/info.txt"
+cores=$(sed -n 's/^threads: \([0-9]*\) online cores.*/\1/p' "$tmp/info.txt")
+[ -n "$cores" ] || fail "no core count in ttd info"
+printf '%d.50 1.00 1.00 3/200 12345\n' "$cores" > "$tmp/loadavg"
+TTD_BENCH_LOADAVG="$tmp/loadavg" "$ttd" bench --quick --no-probes --no-fcl --workloads paper --methods exact \
+  --precision double --isa scalar > "$tmp/table.txt" 2> "$tmp/err.txt" || fail "loaded run exited with $?"
+grep -q "warning: .*load average" "$tmp/err.txt" || fail "no load warning on stderr: $(cat "$tmp/err.txt")"
+sed -n '1,/^workload /p' "$tmp/table.txt" | grep -q "WARNING: .*load average" || fail "no load warning in the table header"
+printf '0.00 0.00 0.00 1/200 12345\n' > "$tmp/loadavg"
+TTD_BENCH_LOADAVG="$tmp/loadavg" "$ttd" bench --quick --no-probes --no-fcl --workloads paper --methods exact \
+  --precision double --isa scalar > "$tmp/table.txt" 2> "$tmp/err.txt" || fail "quiet run exited with $?"
+grep -qi "load average .*exceeds" "$tmp/err.txt" "$tmp/table.txt" && fail "load warning at load 0"
+
 echo "test_bench: ok ($rows rows)"

@@ -1,7 +1,9 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # `ttd dist` on good input: known distances, comments and blank lines, --points round trip,
-# float precision, empty input, no final newline, a 100000-line stream, threads, methods.
+# float precision, empty input, no final newline, a 100000-line stream, threads, methods,
+# --detail (flags, features, weights), the count of unconverged pairs, a byte-order mark and
+# trailing comments, float input rounded once.
 # Usage: sh test_dist.sh path/to/ttd
 set -u
 TTD=${1:?usage: test_dist.sh path/to/ttd}
@@ -109,4 +111,82 @@ for isa in sse2 avx2 avx512 neon; do
     awk -v d="$out" 'BEGIN { exit !(d == 2) }' || fail "TTD_ISA=$isa: '$out'"
 done
 pass isa_option
+# --detail: 17 columns (distance, p, q, weights of A B C, weights of D E F, feature_p,
+# feature_q, iterations, flags), on pairs whose answer is known by construction:
+#  1. vertex D = (1,1,1) above the face of ABC (z = 0): p = (1,1,0) = 0.5 A + 0.25 B + 0.25 C,
+#     q = D, distance 1;
+#  2. edge AB (z = 0, the rest of ABC below) against edge DE (z = 1, the rest of DEF above),
+#     crossing at x = y = 0: p = (0,0,0), q = (0,0,1), both midpoints, distance 1;
+#  3. DEF pierces ABC: distance 0, flagged intersecting;
+#  4. ABC collinear (a segment), DEF a unit away: flagged degenerate_s.
+printf '%s\n' '0 0 0 4 0 0 0 4 0  1 1 1 2 1 3 1 2 3' \
+              '-1 0 0 1 0 0 0 -1 -1  0 -1 1 0 1 1 0 0 2' \
+              '0 0 0 2 0 0 0 2 0  0.5 0.5 -1 0.5 0.5 1 0.7 0.6 1' \
+              '0 0 0 1 0 0 2 0 0  0 1 0 1 1 0 0 1 1' > "$DIR/known.txt"
+"$TTD" dist --detail "$DIR/known.txt" > "$DIR/detail.txt" || fail "--detail exit status $?"
+awk 'function near(a, b) { d = a - b; if (d < 0) d = -d; return d <= 1e-15 }
+     function want(k, v) { if (!near($k, v)) { print "line " NR " field " k ": " $k " want " v; bad = 1 } }
+     NF != 17 { print "line " NR ": " NF " fields"; bad = 1; next }
+     NR == 1 { want(1, 1); want(2, 1); want(3, 1); want(4, 0); want(5, 1); want(6, 1); want(7, 1)
+               want(8, 0.5); want(9, 0.25); want(10, 0.25); want(11, 1); want(12, 0); want(13, 0)
+               if ($14 != "ABC" || $15 != "D" || $16 != 0 || $17 != "-") { print "line 1: " $0; bad = 1 } }
+     NR == 2 { want(1, 1); for (k = 2; k <= 6; k++) want(k, 0); want(7, 1)
+               want(8, 0.5); want(9, 0.5); want(10, 0); want(11, 0.5); want(12, 0.5); want(13, 0)
+               if ($14 != "AB" || $15 != "DE" || $17 != "-") { print "line 2: " $0; bad = 1 } }
+     NR == 3 { want(1, 0); if ($17 != "intersecting") { print "line 3: " $0; bad = 1 } }
+     NR == 4 { want(1, 1); if ($17 != "degenerate_s") { print "line 4: " $0; bad = 1 } }
+     END { if (NR != 4) { print NR " lines"; bad = 1 } exit bad }' "$DIR/detail.txt" || fail "--detail on known pairs"
+# On random pairs: the first 7 columns are those of --points; the weights are non-negative,
+# sum to 1 and rebuild p and q from the input vertices; a feature letter is present exactly
+# when its weight is non-zero.
+"$TTD" dist --detail "$DIR/rand.txt" > "$DIR/rdetail.txt" || fail "--detail random: exit status $?"
+cut -d' ' -f1-7 "$DIR/rdetail.txt" | cmp -s - "$DIR/points.txt" || fail "--detail: columns 1-7 differ from --points"
+paste -d' ' "$DIR/rand.txt" "$DIR/rdetail.txt" |
+    awk 'function abs(x) { return x < 0 ? -x : x }
+         { for (t = 0; t < 2; t++) { o = 18 + 1 + 1 + 3 * t; w = 18 + 8 + 3 * t; sum = 0
+             for (k = 0; k < 3; k++) { if ($(w + k) < 0) { print NR ": negative weight"; exit 1 } sum += $(w + k) }
+             if (abs(sum - 1) > 1e-15) { print NR ": weights sum to " sum; exit 1 }
+             for (c = 0; c < 3; c++) { x = 0
+                 for (k = 0; k < 3; k++) x += $(w + k) * $(9 * t + 3 * k + c + 1)
+                 if (abs(x - $(o + c)) > 1e-14) { print NR ": weights rebuild " x " not " $(o + c); exit 1 } }
+             f = $(18 + 14 + t); letters = t ? "DEF" : "ABC"
+             for (k = 0; k < 3; k++) if ((index(f, substr(letters, k + 1, 1)) > 0) != ($(w + k) > 0)) {
+                 print NR ": feature " f " against weight " $(w + k); exit 1 } } }' || fail "--detail weights and features"
+pass detail
+
+# Iterative methods: the warning counts the pairs that did not converge, and the count is the
+# number of pairs --detail flags not_converged (penalty with one iteration leaves many).
+"$TTD" dist --method penalty --max-iter 1 --detail "$DIR/rand.txt" > "$DIR/nc.txt" 2> "$DIR/nc.err" ||
+    fail "not converged: exit status $?"
+flagged=$(grep -c 'not_converged' "$DIR/nc.txt")
+[ "$flagged" -gt 0 ] || fail "not converged: no pair flagged with --max-iter 1"
+grep -q "warning: $flagged of 2000 pairs did not converge" "$DIR/nc.err" ||
+    fail "not converged: want a count of $flagged in: $(cat "$DIR/nc.err")"
+"$TTD" dist --method penalty "$DIR/rand.txt" > /dev/null 2> "$DIR/nc.err" || fail "penalty: exit status $?"
+[ ! -s "$DIR/nc.err" ] || fail "penalty at the defaults warns: $(cat "$DIR/nc.err")"
+pass not_converged_count
+
+# A UTF-8 byte-order mark at the start of the input is skipped; a '#' comment after the 18
+# numbers is accepted (with or without a blank before it); comment-only and blank lines still
+# give no output line.
+printf '\357\273\277# made by an editor\n%s # first\n\n  # only a comment\n%s#second\n' \
+    '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2' '0 0 0 1 0 0 0 1 0 0 0 3 1 0 3 0 1 3' > "$DIR/bom.txt"
+out=$("$TTD" dist "$DIR/bom.txt") || fail "bom and trailing comments: exit status $?"
+[ "$out" = "$(printf '2\n3')" ] || fail "bom and trailing comments: got '$out'"
+printf '\357\273\277%s\n' '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2' | "$TTD" dist > "$DIR/out" || fail "bom on stdin"
+[ "$(cat "$DIR/out")" = 2 ] || fail "bom on stdin: $(cat "$DIR/out")"
+pass bom_and_trailing_comment
+
+# Float input is rounded once, decimal to float: 1 + 2^-24 + 1e-32 lies just above the midpoint
+# between 1 and the next float 1 + 2^-23, so it is 1.00000012 (through double it would be the
+# midpoint exactly, and tie to 1). Parallel faces at that height give it as the distance.
+X=1.00000005960464477539062500000001
+out=$(printf '0 0 0 1 0 0 0 1 0  0 0 %s 1 0 %s 0 1 %s\n' $X $X $X | "$TTD" dist --precision float) ||
+    fail "float rounding: exit status $?"
+[ "$out" = 1.00000012 ] || fail "float rounding: got '$out', want 1.00000012"
+H=1.000000059604644775390625
+out=$(printf '0 0 0 1 0 0 0 1 0  0 0 %s 1 0 %s 0 1 %s\n' $H $H $H | "$TTD" dist --precision float) ||
+    fail "float midpoint: exit status $?"
+[ "$out" = 1 ] || fail "float midpoint: got '$out', want 1 (ties to even)"
+pass float_rounded_once
 exit 0

@@ -31,6 +31,8 @@ bad() { # bad NAME BAD-LINE-BYTES [options]
 
 bad too_few   '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1'
 bad too_many  '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2 7'
+bad comment_after_17 '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 # 2'
+bad too_many_then_comment '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2 7 # c'
 bad junk      '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 abc'
 bad glued     '0 0 0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2.0x'
 bad comma     '0,0,0 1 0 0 0 1 0 0 0 2 1 0 2 0 1 2'

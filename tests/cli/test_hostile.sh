@@ -54,9 +54,15 @@ printf '\n\n# only comments\n   \n#\n' > "$DIR/blank.txt"
 run only_blank 0 "$DIR/blank.txt"; want_out "" only_blank
 pass empty_inputs
 
-# A UTF-8 byte-order mark before the first number: an error naming line 1, then reading goes on.
+# A UTF-8 byte-order mark at the start of the input is skipped; one at the start of a later line
+# is an error naming that line (it is not white space), and reading goes on.
 printf '\357\273\277%s\n%s\n' "$GOOD" "$GOOD" > "$DIR/bom.txt"
-run bom 1 "$DIR/bom.txt"; want_out "$(printf 'nan\n2')" bom; want_err "bom.txt:1: " bom; pass byte_order_mark
+run bom 0 "$DIR/bom.txt"; want_out "$(printf '2\n2')" bom
+printf '%s\n\357\273\277%s\n%s\n' "$GOOD" "$GOOD" "$GOOD" > "$DIR/bom2.txt"
+run bom_line_2 1 "$DIR/bom2.txt"; want_out "$(printf '2\nnan\n2')" bom_line_2; want_err "bom2.txt:2: " bom_line_2
+printf '\357\273\277' > "$DIR/bomonly.txt"
+run bom_only 0 "$DIR/bomonly.txt"; want_out "" bom_only
+pass byte_order_mark
 
 # A 1 MB line between good ones, with and without its newline, and a 1 MB comment.
 mb() { head -c 1048576 /dev/zero | tr '\0' "$1"; }
@@ -78,6 +84,11 @@ run line_limit 0 "$DIR/limit.txt"; want_out 2 line_limit
 printf '%s%s \n%s\n' "$GOOD" "$pad" "$GOOD" > "$DIR/limit1.txt"
 run line_limit_plus_one 1 "$DIR/limit1.txt"; want_out "$(printf 'nan\n2')" line_limit_plus_one
 want_err "limit1.txt:1: line longer than 4096" line_limit_plus_one
+# A byte-order mark does not count towards the first line's limit.
+printf '\357\273\277%s%s\n' "$GOOD" "$pad" > "$DIR/limitbom.txt"
+run line_limit_bom 0 "$DIR/limitbom.txt"; want_out 2 line_limit_bom
+printf '\357\273\277%s%s \n' "$GOOD" "$pad" > "$DIR/limitbom1.txt"
+run line_limit_bom_plus_one 1 "$DIR/limitbom1.txt"; want_err "limitbom1.txt:1: line longer than 4096" line_limit_bom_plus_one
 pass line_limit
 
 # NUL bytes only (one long line), NUL at the start of a line, NUL inside a comment.

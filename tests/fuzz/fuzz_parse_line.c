@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the CLI's input path (cli/parse.h) on arbitrary bytes. The bytes are read
  * as a file through the line reader (any length, NUL bytes, CR, missing final newline), and
- * every line is parsed; the whole input is also parsed as one line. Checked: no crash or
- * out-of-bounds access (AddressSanitizer, buffers sized exactly), lines never longer than
- * TTD_CLI_MAX_LINE, line numbers counting up by one, a pair line holding 18 finite numbers,
- * an error line carrying a non-empty message. Build and run: scripts/fuzz.sh. */
+ * every line is parsed, in double and in float; the whole input is also parsed as one line.
+ * Checked: no crash or out-of-bounds access (AddressSanitizer, buffers sized exactly), lines
+ * never longer than TTD_CLI_MAX_LINE (a leading byte-order mark dropped), line numbers counting
+ * up by one, a pair line holding 18 finite numbers (floats, exactly, in float), an error line
+ * carrying a non-empty message, both precisions agreeing on what is blank or a comment and a
+ * line that is bad in double being bad in float too. Build and run: scripts/fuzz.sh. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
@@ -17,15 +19,15 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void check_line(const char *line, size_t len)
+static ttd_line_kind check_line_as(const char *line, size_t len, int as_float)
 {
     double v[18];
     char err[256];
     err[0] = '\0';
-    ttd_line_kind k = ttd_parse_pair_line(line, len, v, err, sizeof err);
+    ttd_line_kind k = ttd_parse_pair_line(line, len, as_float, v, err, sizeof err);
     if (k == TTD_LINE_PAIR) {
         for (int i = 0; i < 18; ++i)
-            if (!isfinite(v[i]))
+            if (!isfinite(v[i]) || (as_float && (double)(float)v[i] != v[i]))
                 abort();
     } else if (k == TTD_LINE_ERROR) {
         size_t n = strnlen(err, sizeof err);
@@ -34,6 +36,16 @@ static void check_line(const char *line, size_t len)
     } else if (k != TTD_LINE_SKIP) {
         abort();
     }
+    return k;
+}
+
+/* Both precisions see the same lines as blank, comment, pair or error, except that a number
+ * beyond float range is an error in float only. */
+static void check_line(const char *line, size_t len)
+{
+    ttd_line_kind kd = check_line_as(line, len, 0), kf = check_line_as(line, len, 1);
+    if ((kd == TTD_LINE_SKIP) != (kf == TTD_LINE_SKIP) || (kd == TTD_LINE_ERROR && kf == TTD_LINE_PAIR))
+        abort();
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
