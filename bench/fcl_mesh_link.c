@@ -61,8 +61,8 @@ static int check_mesh(const bench_fcl_mesh *m, char name, char *err, size_t size
         }
     for (size_t i = 0; i < 3 * m->nt; ++i)
         if (m->triangles[i] >= m->nv) {
-            set_error(err, size, "mesh %c: triangle %zu uses vertex %" PRIu32 " of %zu", name, i / 3,
-                      m->triangles[i], m->nv);
+            set_error(err, size, "mesh %c: triangle %zu uses vertex %" PRIu32 ", out of range (%zu vertices)", name,
+                      i / 3, m->triangles[i], m->nv);
             return -1;
         }
     return 0;
@@ -286,7 +286,7 @@ static int parse_int(const char *s, long long lo, int64_t *x)
 
 static int parse_row(char *line, bench_fcl_mesh_query query, size_t k, bench_fcl_mesh_pose *r)
 {
-    static const int nfields[BENCH_FCL_MESH_QUERY_COUNT] = {15, 9, 6};
+    static const int nfields[BENCH_FCL_MESH_QUERY_COUNT] = {14, 9, 6};
     char *f[16];
     if (split(line, f, 16) != nfields[query])
         return -1;
