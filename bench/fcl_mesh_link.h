@@ -16,7 +16,8 @@
  * Each pose is the 3x4 matrix [R | t] row by row: x_A = R x_B + t, with A at the identity.
  *
  * Output (text on stdout; numbers %.17g, fields separated by single spaces):
- *   build_ms A B                      milliseconds to build each BVHModel<OBBRSS> from arrays
+ *   build_ms A B                      ms to build each BVHModel<OBBRSS> from the arrays (a build
+ *                                     under 1 s: median of up to 5 after an untimed warm-up)
  *   # ttd_fcl_mesh_bench fcl VERSION query NAME repetitions N margin M poses K
  *   # FIELD FIELD ...                 the names of the row fields, as below
  *   one row per pose, in pose order:
