@@ -84,6 +84,10 @@ static inline double bench_disagree_tol(int bytes) { return bytes == 8 ? 1e-9 : 
 /// Path of ttd_fcl_bench: explicit (may be NULL), $TTD_FCL_BENCH, or next to this program.
 /// Returns 0 and writes path when found and executable.
 int bench_fcl_find(const char *explicit_path, char *path, size_t size);
+/// The same search for any of the FCL side programs: explicit, $env_var, or name next to this
+/// program (bench/fcl_mesh_link.c finds ttd_fcl_mesh_bench with it).
+int bench_fcl_find_program(const char *name, const char *env_var, const char *explicit_path, char *path,
+                           size_t size);
 /// Runs FCL on n pairs (9n reals each in s and t, precision bytes); writes the distances
 /// (as double) to dist and the median and fastest ns per pair. Returns 0 on success.
 int bench_fcl_run(const char *program, int bytes, size_t n, const void *s, const void *t,

@@ -25,9 +25,10 @@ static int executable(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
 }
 
-int bench_fcl_find(const char *explicit_path, char *path, size_t size)
+int bench_fcl_find_program(const char *name, const char *env_var, const char *explicit_path, char *path,
+                           size_t size)
 {
-    const char *env = getenv("TTD_FCL_BENCH");
+    const char *env = getenv(env_var);
     if (explicit_path && *explicit_path) {
         snprintf(path, size, "%s", explicit_path);
         return executable(path) ? 0 : -1;
@@ -45,9 +46,14 @@ int bench_fcl_find(const char *explicit_path, char *path, size_t size)
     if (!slash)
         return -1;
     slash[1] = '\0';
-    if ((size_t)snprintf(path, size, "%s%s", self, FCL_PROGRAM) >= size)
+    if ((size_t)snprintf(path, size, "%s%s", self, name) >= size)
         return -1;
     return executable(path) ? 0 : -1;
+}
+
+int bench_fcl_find(const char *explicit_path, char *path, size_t size)
+{
+    return bench_fcl_find_program(FCL_PROGRAM, "TTD_FCL_BENCH", explicit_path, path, size);
 }
 
 static int temp_file(char *name, size_t size, const char *tag)
