@@ -5,7 +5,7 @@
  * the same bits. */
 
 typedef void (*TTD_SFX(kern_fn))(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                 real *distance, ttd_result *results);
+                                 real bound, const TTD_SFX(ttd_out) *out);
 typedef void (*TTD_SFX(pair_fn))(const real s[9], const real t[9], const ttd_params *prm, ttd_result *r);
 
 /* The scalar reference of a method (the exact method has no parameters). */
@@ -106,7 +106,7 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
         TTD_SFX(fill)(fam, 77u + (uint64_t)fam, n, s, t);
         for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS) {
             const size_t m = n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS;
-            kern(m, s + 9 * i0, t + 9 * i0, prm, dist + i0, res + i0);
+            TTD_SFX(run_kernel)(kern, m, s + 9 * i0, t + 9 * i0, prm, dist + i0, res + i0);
         }
         for (size_t i = 0; i < n && !rc; ++i) {
             ttd_result want;
@@ -164,7 +164,7 @@ static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) k
     ttd_result alone[N], mixed[N];
     TTD_SFX(fill)(0, 991u, N, s, t);
     for (int i = 0; i < N; ++i)
-        kern(1, s + 9 * i, t + 9 * i, prm, NULL, &alone[i]);
+        TTD_SFX(run_kernel)(kern, 1, s + 9 * i, t + 9 * i, prm, NULL, &alone[i]);
     for (int trial = 0; trial < 40; ++trial) {
         /* a random permutation-with-repeats of the pairs, a few replaced by NaN */
         int src[N];
@@ -178,7 +178,7 @@ static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) k
             }
         }
         const size_t n = (size_t)(lanes + 1 + (int)(ttd_gen_rng_u64(st) % (uint64_t)(N - lanes)));
-        kern(n, ps, pt, prm, NULL, mixed);
+        TTD_SFX(run_kernel)(kern, n, ps, pt, prm, NULL, mixed);
         for (size_t i = 0; i < n; ++i) {
             if (src[i] < 0)
                 continue;
@@ -191,18 +191,18 @@ static int TTD_SFX(check_lane_independence)(const char *what, TTD_SFX(kern_fn) k
     return 0;
 }
 
-/* n = 0, 1, W-1, W+1, a full block; unaligned real arrays; distance-only and results-only
- * calls; nothing written past n. */
+/* n = 0, 1, W-1, W+1, a full block; unaligned real arrays; distance-only, results-only and
+ * points calls; nothing written past n. */
 static int TTD_SFX(check_sizes)(const char *what, TTD_SFX(kern_fn) kern, int lanes, const ttd_params *prm)
 {
     enum { N = TTD_BLOCK_PAIRS };
     real *sbuf = malloc((9 * N + 1) * sizeof(real)), *tbuf = malloc((9 * N + 1) * sizeof(real));
-    real *dbuf = malloc((N + 2) * sizeof(real));
+    real *dbuf = malloc((N + 2) * sizeof(real)), *pbuf = malloc((6 * N + 8) * sizeof(real));
     ttd_result *res = malloc((N + 1) * sizeof *res), *ref = malloc(N * sizeof *ref);
-    ENSURE(sbuf && tbuf && dbuf && res && ref);
+    ENSURE(sbuf && tbuf && dbuf && pbuf && res && ref);
     real *s = sbuf + 1, *t = tbuf + 1, *d = dbuf + 1; /* misaligned for every vector width */
     TTD_SFX(fill)(0, 4242u, N, s, t);
-    kern(N, s, t, prm, NULL, ref);
+    TTD_SFX(run_kernel)(kern, N, s, t, prm, NULL, ref);
     const size_t sizes[] = {0, 1, (size_t)lanes - 1, (size_t)lanes, (size_t)lanes + 1,
                             2 * (size_t)lanes + 3, N - 1, N};
     for (size_t z = 0; z < sizeof sizes / sizeof sizes[0]; ++z) {
@@ -211,7 +211,7 @@ static int TTD_SFX(check_sizes)(const char *what, TTD_SFX(kern_fn) kern, int lan
             dbuf[i] = (real)-7;
         memset(res, 0xA5, (N + 1) * sizeof *res);
         const ttd_result sentinel = res[n];
-        kern(n, s, t, prm, d, res);
+        TTD_SFX(run_kernel)(kern, n, s, t, prm, d, res);
         for (size_t i = 0; i < n; ++i) {
             ENSURE_MSG(TTD_SFX(same_result)(&res[i], &ref[i]), "%s n=%zu: pair %zu differs from the full block", what, n, i);
             ENSURE_MSG(memcmp(&d[i], &ref[i].distance, sizeof(real)) == 0, "%s n=%zu: distance[%zu]", what, n, i);
@@ -221,14 +221,34 @@ static int TTD_SFX(check_sizes)(const char *what, TTD_SFX(kern_fn) kern, int lan
         /* distance only */
         for (size_t i = 0; i < N + 2; ++i)
             dbuf[i] = (real)-7;
-        kern(n, s, t, prm, d, NULL);
+        TTD_SFX(run_kernel)(kern, n, s, t, prm, d, NULL);
         for (size_t i = 0; i < n; ++i)
             ENSURE_MSG(memcmp(&d[i], &ref[i].distance, sizeof(real)) == 0, "%s n=%zu: distance-only [%zu]", what, n, i);
         ENSURE(d[n] == (real)-7);
+        /* points alone, then with distances: p and q of the full results, bit for bit */
+        for (int with_d = 0; with_d < 2; ++with_d) {
+            real *pts = pbuf + 1;
+            for (size_t i = 0; i < 6 * N + 8; ++i)
+                pbuf[i] = (real)-7;
+            for (size_t i = 0; i < N + 2; ++i)
+                dbuf[i] = (real)-7;
+            const TTD_SFX(ttd_out) out = {with_d ? d : NULL, pts, NULL};
+            kern(n, s, t, prm, (real)INFINITY, &out);
+            for (size_t i = 0; i < n; ++i) {
+                ENSURE_MSG(memcmp(pts + 6 * i, ref[i].p, 3 * sizeof(real)) == 0 &&
+                               memcmp(pts + 6 * i + 3, ref[i].q, 3 * sizeof(real)) == 0,
+                           "%s n=%zu: points of pair %zu differ from the full results", what, n, i);
+                if (with_d)
+                    ENSURE_MSG(memcmp(&d[i], &ref[i].distance, sizeof(real)) == 0, "%s n=%zu: distance with points [%zu]", what, n, i);
+            }
+            ENSURE_MSG(pbuf[0] == (real)-7 && pts[6 * n] == (real)-7, "%s n=%zu: points written out of bounds", what, n);
+            ENSURE(with_d ? d[n] == (real)-7 : dbuf[1] == (real)-7);
+        }
     }
     free(sbuf);
     free(tbuf);
     free(dbuf);
+    free(pbuf);
     free(res);
     free(ref);
     return 0;

@@ -5,9 +5,25 @@
 #ifndef TTD_TEST_ISA_ROWS_H
 #define TTD_TEST_ISA_ROWS_H
 
+#include <math.h>
 #include <string.h>
 
 #include "core/kernels.h"
+
+/* A row's kernel called as the batch engine calls it: distances and/or results, no bound. */
+static inline void run_kernel_d(ttd_kernel_d_fn fn, size_t n, const double *s, const double *t,
+                                const ttd_params *prm, double *distance, ttd_result_d *results)
+{
+    const ttd_out_d out = {distance, NULL, results};
+    fn(n, s, t, prm, (double)INFINITY, &out);
+}
+
+static inline void run_kernel_f(ttd_kernel_f_fn fn, size_t n, const float *s, const float *t,
+                                const ttd_params *prm, float *distance, ttd_result_f *results)
+{
+    const ttd_out_f out = {distance, NULL, results};
+    fn(n, s, t, prm, INFINITY, &out);
+}
 
 /* Non-zero when this CPU runs isa; otherwise *why says what is missing. */
 static inline int cpu_runs(const char *isa, const char **why)

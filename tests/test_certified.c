@@ -408,8 +408,8 @@ static int rows_vs_scalar(void)
                 }
                 for (size_t i0 = 0; i0 < N; i0 += TTD_BLOCK_PAIRS) {
                     const size_t m = N - i0 < TTD_BLOCK_PAIRS ? N - i0 : TTD_BLOCK_PAIRS;
-                    r->d->fn[TTD_METHOD_CERTIFIED](m, s + 9 * i0, t + 9 * i0, &prm, dd + i0, rd + i0);
-                    r->f->fn[TTD_METHOD_CERTIFIED](m, sf + 9 * i0, tf + 9 * i0, &prm, df + i0, rf + i0);
+                    run_kernel_d(r->d->fn[TTD_METHOD_CERTIFIED], m, s + 9 * i0, t + 9 * i0, &prm, dd + i0, rd + i0);
+                    run_kernel_f(r->f->fn[TTD_METHOD_CERTIFIED], m, sf + 9 * i0, tf + 9 * i0, &prm, df + i0, rf + i0);
                 }
                 for (int i = 0; i < N; ++i) {
                     ttd_result_d wd;

@@ -1,13 +1,20 @@
 /* SPDX-License-Identifier: MIT */
-/* The contract between the batch engine and the code that computes distances.
+/* The contract between the code that feeds pairs (the batch engine, mesh traversals) and the
+ * code that computes distances.
  *
  * A kernel computes n pairs of one contiguous block: s and t hold 9n coordinates in the
- * user's layout (pair i at 9i, no alignment promised). The engine hands a kernel finite
- * coordinates only (a pair with NaN/inf is replaced by a placeholder and its outputs are
- * overwritten afterwards), at most TTD_BLOCK_PAIRS pairs at a time. distance and results
- * may each be NULL (not both); a kernel writes whichever is given, and sets results[i].flags
- * from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING, TTD_PAIR_NOT_CONVERGED and
- * TTD_PAIR_FALLBACK (certified mode) only.
+ * user's layout (pair i at 9i, no alignment promised). It is handed finite coordinates only
+ * (the batch engine replaces a pair with NaN/inf by a placeholder and overwrites its outputs
+ * afterwards), at most TTD_BLOCK_PAIRS pairs at a time. It writes the outputs that out names
+ * (ttd_out_d/_f: distances, points, full results; any may be NULL, not all), and sets
+ * results[i].flags from TTD_PAIR_DEGENERATE_*, TTD_PAIR_INTERSECTING, TTD_PAIR_NOT_CONVERGED
+ * and TTD_PAIR_FALLBACK (certified mode) only.
+ *
+ * bound says which pairs the caller cares about: those at distance <= bound (INFINITY: all of
+ * them). For a pair farther apart than bound a kernel may write any distance above bound, in
+ * distance[i] and results[i].distance, and leave that pair's points and other result fields
+ * unspecified; every pair at distance <= bound gets its exact outputs. A kernel may also ignore
+ * bound and compute everything.
  *
  * Each instruction set provides one table row per precision (ttd_kernels_d, ttd_kernels_f). A
  * NULL entry means "not written for this ISA": the engine then uses the scalar row for that
@@ -28,10 +35,24 @@ typedef struct ttd_params {
     int max_iterations;
 } ttd_params;
 
+/// Where a kernel writes one block's outputs; each may be NULL, not all three.
+typedef struct ttd_out_d {
+    double *distance;      ///< n distances
+    double *points;        ///< 6n reals: p (3) then q (3) of each pair, the record a margin query keeps
+    ttd_result_d *results; ///< n full results
+} ttd_out_d;
+
+/// ttd_out_d in single precision.
+typedef struct ttd_out_f {
+    float *distance;
+    float *points;
+    ttd_result_f *results;
+} ttd_out_f;
+
 typedef void (*ttd_kernel_d_fn)(size_t n, const double *s, const double *t, const ttd_params *prm,
-                                double *distance, ttd_result_d *results);
+                                double bound, const ttd_out_d *out);
 typedef void (*ttd_kernel_f_fn)(size_t n, const float *s, const float *t, const ttd_params *prm,
-                                float *distance, ttd_result_f *results);
+                                float bound, const ttd_out_f *out);
 
 /// One instruction set's kernels for one precision, indexed by ttd_method (one translation
 /// unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c; scalar/kernels.c).

@@ -9,7 +9,7 @@
  *
  * and then defines the exported names by hand (ttd_foo_d calls the file's static foo), so
  * every exported symbol is written out where it is defined. Inside foo_impl.h, write `real`,
- * `ttd_result` and the math wrappers below, never double/float directly. These names exist
+ * `ttd_result`, `ttd_out` and the math wrappers below, never double/float directly. These names exist
  * only in ttd's own translation units: no public or shared header includes this file. */
 #ifndef TTD_CORE_PRECISION_H
 #define TTD_CORE_PRECISION_H
@@ -21,11 +21,13 @@
 #include <float.h>
 #include <math.h>
 
+#include "core/kernels.h"
 #include "ttd/ttd.h"
 
 #ifdef TTD_PRECISION_DOUBLE
 typedef double real;
 typedef ttd_result_d ttd_result;
+typedef ttd_out_d ttd_out;
 #define TTD_REAL_EPS DBL_EPSILON
 #define TTD_REAL_MIN DBL_MIN
 #define TTD_REAL_MAX DBL_MAX
@@ -37,6 +39,7 @@ typedef ttd_result_d ttd_result;
 #else
 typedef float real;
 typedef ttd_result_f ttd_result;
+typedef ttd_out_f ttd_out;
 #define TTD_REAL_EPS FLT_EPSILON
 #define TTD_REAL_MIN FLT_MIN
 #define TTD_REAL_MAX FLT_MAX

@@ -237,7 +237,8 @@ static void run_block(void *ctx, size_t blockno, int worker)
     scratch **slot = &j->scratch[worker];
     if (!j->fill(j->src, &b, slot, &j->bits) || !sink_prepare(&j->sink, &b, slot, &j->bits))
         return;
-    j->run.fn(b.m, b.s, b.t, &j->run.params, b.d, b.r);
+    const ttd_out out = {b.d, NULL, b.r};
+    j->run.fn(b.m, b.s, b.t, &j->run.params, (real)INFINITY, &out);
     sink_finish(&j->sink, &b, *slot, &j->bits);
 }
 

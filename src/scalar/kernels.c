@@ -6,31 +6,37 @@
 
 /* One loop per (method, precision). The per-pair functions fill a whole result; the loop
  * copies out what the engine asked for. */
-#define TTD_SCALAR_LOOP(name, real, result, call)                                             \
-    static void name(size_t n, const real *s, const real *t, const ttd_params *prm,           \
-                     real *distance, result *results)                                         \
+#define TTD_SCALAR_LOOP(name, real, result, out_t, call)                                      \
+    static void name(size_t n, const real *s, const real *t, const ttd_params *prm, real bound, \
+                     const out_t *out)                                                        \
     {                                                                                         \
         (void)prm;                                                                            \
+        (void)bound;                                                                          \
         for (size_t i = 0; i < n; ++i) {                                                      \
             result r;                                                                         \
             call;                                                                             \
-            if (distance)                                                                     \
-                distance[i] = r.distance;                                                     \
-            if (results)                                                                      \
-                results[i] = r;                                                               \
+            if (out->distance)                                                                \
+                out->distance[i] = r.distance;                                                \
+            if (out->points)                                                                  \
+                for (int k = 0; k < 3; ++k) {                                                 \
+                    out->points[6 * i + k] = r.p[k];                                          \
+                    out->points[6 * i + 3 + k] = r.q[k];                                      \
+                }                                                                             \
+            if (out->results)                                                                 \
+                out->results[i] = r;                                                          \
         }                                                                                     \
     }
 
-TTD_SCALAR_LOOP(ttd_scalar_exact_d, double, ttd_result_d, ttd_exact_pair_d(s + 9 * i, t + 9 * i, &r))
-TTD_SCALAR_LOOP(ttd_scalar_exact_f, float, ttd_result_f, ttd_exact_pair_f(s + 9 * i, t + 9 * i, &r))
-TTD_SCALAR_LOOP(ttd_scalar_penalty_d, double, ttd_result_d, ttd_penalty_pair_d(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_penalty_f, float, ttd_result_f, ttd_penalty_pair_f(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_d, double, ttd_result_d, ttd_penalty_ref_pair_d(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_f, float, ttd_result_f, ttd_penalty_ref_pair_f(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_barrier_d, double, ttd_result_d, ttd_barrier_pair_d(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_barrier_f, float, ttd_result_f, ttd_barrier_pair_f(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_certified_d, double, ttd_result_d, ttd_certified_pair_d(s + 9 * i, t + 9 * i, prm, &r))
-TTD_SCALAR_LOOP(ttd_scalar_certified_f, float, ttd_result_f, ttd_certified_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_exact_d, double, ttd_result_d, ttd_out_d, ttd_exact_pair_d(s + 9 * i, t + 9 * i, &r))
+TTD_SCALAR_LOOP(ttd_scalar_exact_f, float, ttd_result_f, ttd_out_f, ttd_exact_pair_f(s + 9 * i, t + 9 * i, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_d, double, ttd_result_d, ttd_out_d, ttd_penalty_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_f, float, ttd_result_f, ttd_out_f, ttd_penalty_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_d, double, ttd_result_d, ttd_out_d, ttd_penalty_ref_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_penalty_ref_f, float, ttd_result_f, ttd_out_f, ttd_penalty_ref_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_barrier_d, double, ttd_result_d, ttd_out_d, ttd_barrier_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_barrier_f, float, ttd_result_f, ttd_out_f, ttd_barrier_pair_f(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_certified_d, double, ttd_result_d, ttd_out_d, ttd_certified_pair_d(s + 9 * i, t + 9 * i, prm, &r))
+TTD_SCALAR_LOOP(ttd_scalar_certified_f, float, ttd_result_f, ttd_out_f, ttd_certified_pair_f(s + 9 * i, t + 9 * i, prm, &r))
 
 const ttd_kernels_d ttd_kernels_scalar_d = {
     .isa = TTD_ISA_SCALAR,

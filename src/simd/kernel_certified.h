@@ -361,10 +361,11 @@ static inline vmask kc_certify(const vreal Sin[9], const vreal Tin[9], const vre
 /* The failing pairs idx[0..nf) of the block through the exact kernel, their outputs written
  * over the certified ones, flagged, with the penalty's iteration count kept. */
 static void kc_fallback(const size_t *idx, int nf, const real *s, const real *t, const ttd_params *prm,
-                                 real *distance, ttd_result *results)
+                        const ttd_out *out)
 {
-    real bs[9 * KC_CHUNK], bt[9 * KC_CHUNK], bd[KC_CHUNK];
+    real bs[9 * KC_CHUNK], bt[9 * KC_CHUNK], bd[KC_CHUNK], bp[6 * KC_CHUNK];
     ttd_result br[KC_CHUNK];
+    const ttd_out bout = {bd, out->points ? bp : NULL, out->results ? br : NULL};
     for (int j = 0; j < nf; ++j)
         for (int k = 0; k < 9; ++k) {
             bs[9 * j + k] = s[9 * idx[j] + k];
@@ -376,25 +377,29 @@ static void kc_fallback(const size_t *idx, int nf, const real *s, const real *t,
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-    kernel_exact((size_t)nf, bs, bt, prm, bd, results ? br : NULL);
+    kernel_exact((size_t)nf, bs, bt, prm, (real)INFINITY, &bout);
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
     for (int j = 0; j < nf; ++j) {
-        if (distance)
-            distance[idx[j]] = bd[j];
-        if (results) {
-            const uint16_t its = results[idx[j]].iterations;
-            results[idx[j]] = br[j];
-            results[idx[j]].flags |= (uint32_t)TTD_PAIR_FALLBACK;
-            results[idx[j]].iterations = its;
+        if (out->distance)
+            out->distance[idx[j]] = bd[j];
+        if (out->points)
+            memcpy(out->points + 6 * idx[j], bp + 6 * j, 6 * sizeof(real));
+        if (out->results) {
+            ttd_result *r = &out->results[idx[j]];
+            const uint16_t its = r->iterations;
+            *r = br[j];
+            r->flags |= (uint32_t)TTD_PAIR_FALLBACK;
+            r->iterations = its;
         }
     }
 }
 
-static void kernel_certified(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                      real *distance, ttd_result *results)
+static void kernel_certified(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
+                             const ttd_out *out)
 {
+    (void)bound;
     const kp_consts K = kp_consts_of(prm);
     size_t idx[KC_CHUNK];
     int nf = 0;
@@ -430,7 +435,7 @@ static void kernel_certified(size_t n, const real *s, const real *t, const ttd_p
         o.flags_int = in;
         o.iterations = its;
         o.flags_nc = 0;
-        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_store_group(&o, live, out, i0);
         /* 5. the failures of this group join the block's fallback list */
         const unsigned bad = ~mbits(ok);
         for (int i = 0; i < live; ++i) {
@@ -438,11 +443,11 @@ static void kernel_certified(size_t n, const real *s, const real *t, const ttd_p
                 continue;
             idx[nf++] = i0 + (size_t)i;
             if (nf == KC_CHUNK) {
-                kc_fallback(idx, nf, s, t, prm, distance, results);
+                kc_fallback(idx, nf, s, t, prm, out);
                 nf = 0;
             }
         }
     }
     if (nf)
-        kc_fallback(idx, nf, s, t, prm, distance, results);
+        kc_fallback(idx, nf, s, t, prm, out);
 }

@@ -79,21 +79,38 @@ typedef struct kw_out {
     unsigned flags_dt;      /* lane bits: TTD_PAIR_DEGENERATE_T */
 } kw_out;
 
-/* Writes the first `live` lanes of o to distance[0..live) and results[0..live) (either may
- * be NULL). feature bits follow the scalar code: bit i when weight i > 0. */
-static inline void kw_store_group(const kw_out *o, int live, real *distance,
-                                           ttd_result *results)
+/* Writes the first `live` lanes of d to distance[0..live). */
+static inline void kw_store_distance(vreal d, int live, real *distance)
 {
-    if (distance) {
-        if (live == TTDW_LANES) {
-            vstoreu(distance, o->distance);
-        } else {
-            real buf[TTDW_LANES];
-            vstoreu(buf, o->distance);
-            for (int i = 0; i < live; ++i)
-                distance[i] = buf[i];
-        }
+    if (live == TTDW_LANES) {
+        vstoreu(distance, d);
+        return;
     }
+    real buf[TTDW_LANES];
+    vstoreu(buf, d);
+    for (int i = 0; i < live; ++i)
+        distance[i] = buf[i];
+}
+
+/* Writes the first `live` lanes of o to the outputs out names, at pair offset i0: distances,
+ * points (p then q, 6 reals a pair) and results. feature bits follow the scalar code: bit i
+ * when weight i > 0. */
+static inline void kw_store_group(const kw_out *o, int live, const ttd_out *out, size_t i0)
+{
+    ttd_result *results = out->results ? out->results + i0 : NULL;
+    if (out->points) {
+        real buf[6][TTDW_LANES] TTDW_ALIGN(64);
+        for (int k = 0; k < 3; ++k) {
+            vstoreu(buf[k], o->p[k]);
+            vstoreu(buf[3 + k], o->q[k]);
+        }
+        real *pts = out->points + 6 * i0;
+        for (int i = 0; i < live; ++i)
+            for (int k = 0; k < 6; ++k)
+                pts[6 * i + k] = buf[k][i];
+    }
+    if (out->distance)
+        kw_store_distance(o->distance, live, out->distance + i0);
     if (!results)
         return;
     real buf[14][TTDW_LANES] TTDW_ALIGN(64);

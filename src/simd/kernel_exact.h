@@ -539,20 +539,24 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
     out->flags_dt = mbits(mnot(T.has_face));
 }
 
-static void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                  real *distance, ttd_result *results)
+static void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
+                         const ttd_out *out)
 {
     (void)prm;
+    (void)bound;
+    const int full = out->results != NULL || out->points != NULL;
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
         kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
         kw_out o;
         /* pad lanes compute a harmless pair, never stored */
-        if (results)
+        if (full) {
             kx_group(S, T, &o, 1);
-        else
+            kw_store_group(&o, live, out, i0);
+        } else {
             kx_group(S, T, &o, 0);
-        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+            kw_store_distance(o.distance, live, out->distance + i0);
+        }
     }
 }

@@ -362,9 +362,10 @@ static inline void kp_points(const vreal S[9], const vreal T[9], const vreal wp[
 }
 
 /* Groups of W pairs: every lane of a group iterates until the slowest has finished. */
-static void kernel_penalty(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                           real *distance, ttd_result *results)
+static void kernel_penalty(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
+                           const ttd_out *out)
 {
+    (void)bound;
     const kp_consts K = kp_consts_of(prm);
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
@@ -390,6 +391,6 @@ static void kernel_penalty(size_t n, const real *s, const real *t, const ttd_par
         kp_points(S, T, wp, wq, &o);
         o.iterations = its;
         o.flags_nc = ~mbits(converged);
-        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_store_group(&o, live, out, i0);
     }
 }

@@ -230,15 +230,16 @@ static inline void kpr_group(const vreal S[9], const vreal T[9], const ttd_param
     o->flags_dt = 0;
 }
 
-static void kernel_penalty_ref(size_t n, const real *s, const real *t, const ttd_params *prm,
-                                        real *distance, ttd_result *results)
+static void kernel_penalty_ref(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
+                               const ttd_out *out)
 {
+    (void)bound;
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
         vreal S[9], T[9];
         kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
         kw_out o;
         kpr_group(S, T, prm, mfirst(live), &o);
-        kw_store_group(&o, live, distance ? distance + i0 : NULL, results ? results + i0 : NULL);
+        kw_store_group(&o, live, out, i0);
     }
 }

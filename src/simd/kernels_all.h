@@ -5,6 +5,7 @@
  * ttd_kernels_<isa>_<p> = TTD_LANE_ROW(TTD_ISA_<ISA>) and the probe ttd_lanes_probe_<isa>_<p>,
  * a call of lanes_probe. */
 #include <stdint.h>
+#include <string.h>
 
 #include "core/precision.h"
 #include "core/certified_tol.h"
