@@ -586,8 +586,8 @@ int ttd_gen_pose_gap(const ttd_gen_mesh *a, const ttd_gen_mesh *b, uint64_t seed
         }
     }
     /* a's box centre and its support along u */
-    double alo[3], ahi[3], blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    double h = -INFINITY;
+    const double inf = (double)INFINITY;
+    double alo[3], ahi[3], blo[3] = {inf, inf, inf}, bhi[3] = {-inf, -inf, -inf}, h = -inf;
     if (ttd_gen_mesh_bounds(a, alo, ahi) != 0)
         return -1;
     for (size_t k = 0; k < a->nv; ++k) {
@@ -607,7 +607,7 @@ int ttd_gen_pose_gap(const ttd_gen_mesh *a, const ttd_gen_mesh *b, uint64_t seed
     }
     for (int d = 0; d < 3; ++d)
         p[4 * d + 3] = (0.5 * alo[d] + 0.5 * ahi[d]) - (0.5 * blo[d] + 0.5 * bhi[d]);
-    double l = INFINITY;
+    double l = inf;
     for (size_t k = 0; k < b->nv; ++k) {
         double y[3];
         apply_pose(p, b->verts + 3 * k, y);

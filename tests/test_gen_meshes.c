@@ -437,7 +437,7 @@ static int normalize_box(void)
     /* refused: a point, a NaN, an overflowing box */
     for (size_t k = 0; k < 3 * m.nv; ++k) m.verts[k] = 2.0;
     ENSURE(ttd_gen_normalize(&m) == -1 && m.verts[0] == 2.0);
-    m.verts[4] = NAN;
+    m.verts[4] = (double)NAN;
     ENSURE(ttd_gen_normalize(&m) == -1);
     m.verts[4] = 2.0;
     m.verts[0] = -1e308; m.verts[3] = 1e308; /* the x extent overflows */
@@ -514,7 +514,7 @@ static double mesh_distance(const ttd_gen_mesh *a, const ttd_gen_mesh *b)
 {
     size_t n = a->nt * b->nt;
     double *s = malloc(9 * n * sizeof(double)), *t = malloc(9 * n * sizeof(double)), *d = malloc(n * sizeof(double));
-    double best = NAN;
+    double best = (double)NAN;
     if (s && t && d) {
         for (size_t i = 0; i < a->nt; ++i)
             for (size_t j = 0; j < b->nt; ++j)
@@ -524,7 +524,7 @@ static double mesh_distance(const ttd_gen_mesh *a, const ttd_gen_mesh *b)
                 }
         ttd_options opt = ttd_default_options();
         if (ttd_batch_d(&opt, n, s, t, d, NULL) == TTD_OK) {
-            best = INFINITY;
+            best = (double)INFINITY;
             for (size_t k = 0; k < n; ++k)
                 best = fmin(best, d[k]);
         }
@@ -573,7 +573,7 @@ static int pose_at_gap(void)
                 ENSURE(n2 > 0);
                 for (int d = 0; d < 3; ++d) u[d] /= sqrt(n2);
             }
-            double h = -INFINITY, l = INFINITY;
+            double h = -(double)INFINITY, l = (double)INFINITY;
             for (size_t k = 0; k < a.nv; ++k)
                 h = fmax(h, u[0] * a.verts[3 * k] + u[1] * a.verts[3 * k + 1] + u[2] * a.verts[3 * k + 2]);
             for (size_t k = 0; k < moved.nv; ++k)
@@ -587,7 +587,7 @@ static int pose_at_gap(void)
         }
     double pose[12];
     ENSURE(ttd_gen_pose_gap(&a, &b, 1, 2, (const double[3]){0, 0, 0}, 0.1, pose) == -1);
-    ENSURE(ttd_gen_pose_gap(&a, &b, 1, 2, NULL, NAN, pose) == -1);
+    ENSURE(ttd_gen_pose_gap(&a, &b, 1, 2, NULL, (double)NAN, pose) == -1);
     ttd_gen_mesh_free(&a);
     ttd_gen_mesh_free(&b);
     return 0;
@@ -601,7 +601,7 @@ static int bad_arguments(void)
     ENSURE(ttd_gen_icosphere(0, NULL) == -1);
     ENSURE(ttd_gen_torus(1.0, 1.0, 10, 10, &m) == -1);
     ENSURE(ttd_gen_torus(1.0, 0.0, 10, 10, &m) == -1);
-    ENSURE(ttd_gen_torus(NAN, 0.5, 10, 10, &m) == -1);
+    ENSURE(ttd_gen_torus((double)NAN, 0.5, 10, 10, &m) == -1);
     ENSURE(ttd_gen_torus(1.0, 0.5, 2, 10, &m) == -1);
     ENSURE(ttd_gen_torus(1.0, 0.5, (size_t)1 << 20, (size_t)1 << 20, &m) == -1);
     ENSURE(ttd_gen_grid(0, &m) == -1 && ttd_gen_grid(70000, &m) == -1);
