@@ -174,9 +174,12 @@ static int push_t(ctx *c, uint32_t a, uint32_t b, uint32_t d)
     return 0;
 }
 
-/* ---- STL's vertex merging: bitwise-identical coordinates become one vertex ------------- */
+/* ---- STL's vertex merging: bitwise-identical double coordinates become one vertex ------ */
+/* The key is the doubles alone, so the vertex numbering does not depend on want_float. Two
+ * tokens can round to the same double and yet to neighbouring floats only when that double is
+ * exactly halfway between two floats; the merged vertex then keeps its first float. */
 
-static size_t merge_hash(const ctx *c, const double *x, const float *f)
+static size_t merge_hash(const ctx *c, const double *x)
 {
     uint64_t h = 0x9E3779B97F4A7C15ull;
     for (int k = 0; k < 3; ++k) {
@@ -185,20 +188,7 @@ static size_t merge_hash(const ctx *c, const double *x, const float *f)
         h = (h ^ b) * 0xBF58476D1CE4E5B9ull;
         h ^= h >> 29;
     }
-    if (c->want_float)
-        for (int k = 0; k < 3; ++k) {
-            uint32_t b;
-            memcpy(&b, f + k, sizeof b);
-            h = (h ^ b) * 0x94D049BB133111EBull;
-            h ^= h >> 31;
-        }
     return (size_t)(h ^ (h >> 32)) & c->merge_mask;
-}
-
-static int same_vertex(const ctx *c, uint32_t i, const double *x, const float *f)
-{
-    return memcmp(c->v + 3 * (size_t)i, x, 3 * sizeof(double)) == 0 &&
-           (!c->want_float || memcmp(c->vf + 3 * (size_t)i, f, 3 * sizeof(float)) == 0);
 }
 
 /// A table of at least 2 slots per vertex expected (expect counts the vertices, not slots).
@@ -219,7 +209,7 @@ static int merge_init(ctx *c, size_t expect)
     c->merge = m;
     c->merge_mask = cap - 1;
     for (size_t i = 0; i < c->nv; ++i) { /* rehash what is there */
-        size_t h = merge_hash(c, c->v + 3 * i, c->want_float ? c->vf + 3 * i : NULL);
+        size_t h = merge_hash(c, c->v + 3 * i);
         while (c->merge[h] != UINT32_MAX)
             h = (h + 1) & c->merge_mask;
         c->merge[h] = (uint32_t)i;
@@ -232,9 +222,9 @@ static int merged_vertex(ctx *c, const double *x, const float *f, uint32_t *idx)
 {
     if (2 * (c->nv + 1) > c->merge_mask + 1 && merge_init(c, 2 * (c->nv + 1)) != 0)
         return -1;
-    size_t h = merge_hash(c, x, f);
+    size_t h = merge_hash(c, x);
     while (c->merge[h] != UINT32_MAX) {
-        if (same_vertex(c, c->merge[h], x, f)) {
+        if (memcmp(c->v + 3 * (size_t)c->merge[h], x, 3 * sizeof(double)) == 0) {
             *idx = c->merge[h];
             return 0;
         }
