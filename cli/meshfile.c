@@ -1020,7 +1020,7 @@ static int ply_body(ctx *c, const uchar *data, size_t size, const ply_header *h)
     }
     if (h->binary) {
         if (off != size)
-            return fail_at(c, off, "%zu bytes of data after the last element", size - off);
+            return fail_at(c, off, "%zu byte%s of data after the last element", size - off, size - off == 1 ? "" : "s");
     } else {
         const uchar *tk;
         size_t tl, line;

@@ -664,7 +664,7 @@ static int ply_errors(void)
     snprintf(want, sizeof want, "b.ply: byte %zu: truncated: file ends inside face 1 of 4", fstart + 20);
     ENSURE_ERROR(parse("b.ply", &t, 0, &bad_), want);
     put(&b, "z", 1);
-    snprintf(want, sizeof want, "b.ply: byte %zu: 1 bytes of data after the last element", b.n - 1);
+    snprintf(want, sizeof want, "b.ply: byte %zu: 1 byte of data after the last element", b.n - 1);
     ENSURE_ERROR(parse("b.ply", &b, 0, &bad_), want);
     free(b.p);
     ttd_gen_mesh_free(&tet);
