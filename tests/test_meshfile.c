@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+#include <dirent.h>
 #include <unistd.h>
 
 #include "meshes.h"
@@ -744,9 +744,19 @@ static int io_and_arguments(void)
 
 static int remove_tmpdir(void)
 {
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-    return system(cmd) == 0 ? 0 : 1;
+    DIR *d = opendir(tmpdir);
+    ENSURE(d != NULL);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        char path[600];
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", tmpdir, e->d_name);
+        ENSURE(unlink(path) == 0);
+    }
+    closedir(d);
+    ENSURE(rmdir(tmpdir) == 0);
+    return 0;
 }
 
 int main(int argc, char **argv)
