@@ -357,8 +357,8 @@ static int float_correctly_rounded(void)
 
 static int stl_ascii_variants(void)
 {
-    ttd_gen_mesh ref;
-    ENSURE(ttd_gen_icosphere(1, &ref) == 0);
+    ttd_gen_mesh ref; /* 642 vertices: the merge table grows on the way */
+    ENSURE(ttd_gen_icosphere(3, &ref) == 0);
     for (int variant = 0; variant < 3; ++variant) {
         buf b = {0};
         if (variant == 0)
@@ -366,8 +366,8 @@ static int stl_ascii_variants(void)
         else if (variant == 1)
             stl_ascii(&b, &ref, 0, ref.nt, 1); /* keywords in capitals */
         else {                                 /* two solids, the second in capitals */
-            stl_ascii(&b, &ref, 0, 30, 0);
-            stl_ascii(&b, &ref, 30, ref.nt, 1);
+            stl_ascii(&b, &ref, 0, 300, 0);
+            stl_ascii(&b, &ref, 300, ref.nt, 1);
         }
         ttd_meshfile m;
         ENSURE_MSG(roundtrip("sphere.stl", &b, variant == 2, &m) == 0, "%s", err);
@@ -602,6 +602,7 @@ static int ply_errors(void)
         {"ply\nformat ascii 1.0\nproperty float x\n", "", "", "", "a.ply:3: property before any element"},
         {head, face, verts, "3 0 1 3\n", "a.ply:13: face 0: vertex index 3 out of range (the file has 3 vertices)"},
         {head, face, verts, "2 0 1\n", "a.ply:13: face 0 has 2 vertices, at least 3 needed"},
+        {head, "element face 1\nproperty list int int vertex_indices\nend_header\n", verts, "-3 0 1 2\n", "a.ply:13: face 0: negative list count -3"},
         {head, face, "0 0 0\n1 nan 0\n0 1 0\n", "3 0 1 2\n", "a.ply:11: coordinate 'nan' is not finite"},
         {head, face, "0    0    0\n1    0    0\n", "", "a.ply:11: truncated: file ends inside vertex 2 of 3"},
         {head, face, verts, "3 0 1 2\n7\n", "a.ply:14: data after the last element: '7'"},
