@@ -30,6 +30,8 @@ typedef struct buf {
 
 static void put(buf *b, const void *data, size_t n)
 {
+    if (n == 0)
+        return;
     if (b->n + n > b->cap) {
         size_t cap = b->cap ? b->cap : 4096;
         while (cap < b->n + n) cap *= 2;
