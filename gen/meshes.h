@@ -86,7 +86,7 @@ int ttd_gen_grid(size_t n, ttd_gen_mesh *out);
 /// (ca, bc, c), (ab, bc, ca), where ab = 0.5 a + 0.5 b is one new vertex per distinct edge
 /// (shared by every triangle on that edge). The surface does not change (up to the rounding of
 /// the midpoints); triangles multiply by 4 per level, vertices grow by the number of edges.
-/// The old vertices keep their indices. levels >= 0 (0 copies); out may be the same as in.
+/// The old vertices keep their indices. levels in 0..16 (0 copies); out may be the same as in.
 /// Fails when an index is out of range or the result would need 2^32 vertices or more.
 int ttd_gen_subdivide(const ttd_gen_mesh *in, int levels, ttd_gen_mesh *out);
 
