@@ -46,20 +46,20 @@ mkdir -p "$build"
 CC="$CC_FUZZ" cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_FUZZ=ON -DTTD_SANITIZE=ON \
     -DTTD_BUILD_CLI=OFF -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link" > "$build/cmake.log" 2>&1 ||
     { cat "$build/cmake.log"; exit 1; }
-cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch
+cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 mkdir -p "$build/artifacts"
 status=0
-for target in parse_line batch; do
+for target in parse_line batch meshfile; do
     work="$build/corpus/$target"
     rm -rf "$work"
     mkdir -p "$work"
     cp tests/fuzz/corpus/$target/* "$work/"
     exe=$(find "$build" -name "fuzz_$target" -type f -perm -u+x | head -n 1)
     echo "fuzz.sh: fuzz_$target for $seconds s from $(ls "$work" | wc -l) corpus files"
-    # -max_len: long enough for the CLI's 4096-byte lines and 64 double pairs
+    # -max_len: long enough for the CLI's 4096-byte lines, 64 double pairs, and small meshes
     if ! "$exe" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=10000 \
             -artifact_prefix="$build/artifacts/$target-" -print_final_stats=1 2> "$build/fuzz_$target.log"; then
         echo "fuzz.sh: fuzz_$target FAILED (input saved under $build/artifacts/):"

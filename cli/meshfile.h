@@ -1,0 +1,69 @@
+/* SPDX-License-Identifier: MIT */
+/* Reading triangle meshes from files: OBJ, STL (ASCII and binary) and PLY (ASCII and binary
+ * little-endian) into one indexed mesh, for `ttd mesh ...`, the tests and a fuzz target. The
+ * format is recognised by content, never by the file name; docs/mesh-files.md has the rules
+ * (what is accepted, merged, skipped, and the error messages).
+ *
+ * One read gives double coordinates always and, when asked, float coordinates that are
+ * correctly rounded from the file's text (strtof on the token, not double then float) or exact
+ * from binary float32 (binary double: rounded once to float).
+ *
+ * Triangles: 0-based indices in file order, polygons fan-triangulated (v0 v1 v2), (v0 v2 v3),
+ * .... Every index is below nv; nv and nt are at least 1 on success.
+ *
+ * Errors: -1 and a message "NAME:LINE: problem" (text) or "NAME: byte OFFSET: problem"
+ * (binary) or "NAME: problem" in err; *out is then empty (ttd_meshfile_free on it is
+ * harmless). No input makes the reader crash, hang or read outside the buffer; counts larger
+ * than the file can hold are refused before anything of that size is allocated. Numbers are
+ * read with strtod/strtof, so the C locale (the default of a program that never calls
+ * setlocale) is assumed. */
+#ifndef TTD_CLI_MESHFILE_H
+#define TTD_CLI_MESHFILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// The format a mesh was read as.
+typedef enum ttd_meshfile_format {
+    TTD_MESHFILE_OBJ = 0,
+    TTD_MESHFILE_STL_ASCII,
+    TTD_MESHFILE_STL_BINARY,
+    TTD_MESHFILE_PLY_ASCII,
+    TTD_MESHFILE_PLY_BINARY,
+    TTD_MESHFILE_FORMAT_COUNT
+} ttd_meshfile_format;
+
+/// An indexed mesh read from a file.
+typedef struct ttd_meshfile {
+    double *verts;              ///< 3 nv coordinates (x y z per vertex)
+    float *verts_f;             ///< 3 nv float coordinates when asked for, else NULL
+    size_t nv;
+    uint32_t *tris;             ///< 3 nt vertex indices, each below nv
+    size_t nt;
+    ttd_meshfile_format format; ///< what the content was recognised as
+} ttd_meshfile;
+
+/// Reads the file at path ("-": standard input, named "<stdin>" in messages). want_float
+/// non-zero also fills verts_f. Returns 0, or -1 with a message in err (errsize bytes,
+/// always NUL-terminated when errsize > 0; err may be NULL).
+int ttd_meshfile_read(const char *path, int want_float, ttd_meshfile *out, char *err, size_t errsize);
+
+/// The same on size bytes in memory (data need not be NUL-terminated); name is used in
+/// messages only (NULL: "<input>").
+int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int want_float,
+                       ttd_meshfile *out, char *err, size_t errsize);
+
+/// Frees the arrays and zeroes *m (NULL is allowed).
+void ttd_meshfile_free(ttd_meshfile *m);
+
+/// "obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary"; NULL when out of range.
+const char *ttd_meshfile_format_name(ttd_meshfile_format f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* TTD_CLI_MESHFILE_H */
