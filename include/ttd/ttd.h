@@ -46,7 +46,11 @@ typedef enum ttd_status {
     TTD_ERR_ISA_UNAVAILABLE = 19,
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range; nothing written
     TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed; outputs partly written, indeterminate
-    TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
+    TTD_ERR_TOO_LARGE = 22,       ///< n (or a mesh size) so large that its arrays cannot exist in memory
+    TTD_ERR_NONFINITE_MESH = 23,  ///< mesh build: a vertex coordinate is NaN or infinite; nothing built
+    /// mesh queries: a pose is not a finite rotation and translation (see the mesh queries below)
+    TTD_ERR_BAD_POSE = 24,
+    TTD_ERR_PRECISION_MISMATCH = 25 ///< mesh queries: a mesh was built in the other precision
 } ttd_status;
 
 /// How the distance is computed.
@@ -172,6 +176,190 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
                                     const float *verts2, size_t nv2, const uint32_t *tris2, size_t nt2,
                                     size_t n, const uint32_t *pairs,
                                     float *distance, ttd_result_f *results);
+
+/** @} */
+
+/** @defgroup mesh Mesh queries
+ * A ttd_mesh is a triangle mesh with a bounding-volume hierarchy over its triangles (oriented
+ * boxes, 8 children per node), built once and immutable afterwards: it may be queried from many
+ * threads at once. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
+ * a. A pose is 12 reals, the 3x4 matrix [R | t] row by row (r00 r01 r02 t0 r10 r11 r12 t1 r20
+ * r21 r22 t2), mapping b's coordinates into a's frame: x_a = R x_b + t, computed per coordinate
+ * as ((r0*x + r1*y) + r2*z) + t, so that a brute force can reproduce it to the bit. R must be a
+ * rotation: finite, with every entry of R^T R - I within 1e-6 and det R > 0; otherwise the call
+ * returns TTD_ERR_BAD_POSE before computing anything. Results are in a's frame.
+ *
+ * Every query is exact to the pair kernel's accuracy: it returns what the exact method over all
+ * triangle pairs would (the tree only skips pairs it proves cannot matter, with a margin for the
+ * rounding of its own bounds). Results do not depend on the thread count or the instruction
+ * set. A query in double needs meshes built with ttd_mesh_create_d, in float with
+ * ttd_mesh_create_f (TTD_ERR_PRECISION_MISMATCH otherwise). opt may be NULL; its method must be
+ * TTD_METHOD_EXACT (the default) and its isa and threads apply; k poses are spread over the
+ * threads.
+ * @{ */
+
+/// An immutable triangle mesh and its hierarchy (opaque).
+typedef struct ttd_mesh ttd_mesh;
+
+/// Builds a mesh from nv vertices (3 coordinates each) and nt triangles (3 vertex indices each,
+/// 0-based). The arrays are copied. Degenerate triangles, repeated vertices and non-manifold
+/// meshes are fine. nv or nt of 0: TTD_ERR_EMPTY; an index >= nv: TTD_ERR_INDEX_OUT_OF_RANGE; a
+/// NaN/inf coordinate: TTD_ERR_NONFINITE_MESH; *out is NULL on any error. opt's threads apply.
+TTD_API ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv,
+                                     const uint32_t *triangles, size_t nt, ttd_mesh **out);
+/// ttd_mesh_create_d with float vertices; the mesh is then queried in float.
+TTD_API ttd_status ttd_mesh_create_f(const ttd_options *opt, const float *vertices, size_t nv,
+                                     const uint32_t *triangles, size_t nt, ttd_mesh **out);
+/// Frees a mesh (NULL is fine).
+TTD_API void ttd_mesh_destroy(ttd_mesh *mesh);
+/// Triangles of a mesh (0 for NULL).
+TTD_API size_t ttd_mesh_triangle_count(const ttd_mesh *mesh);
+/// Vertices of a mesh (0 for NULL).
+TTD_API size_t ttd_mesh_vertex_count(const ttd_mesh *mesh);
+/// Nodes of its hierarchy (0 for NULL).
+TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
+
+/// Flags of a mesh distance result.
+enum {
+    TTD_MESH_INTERSECTING = 1u << 0, ///< the meshes touch or cross: distance 0, p == q on both
+    TTD_MESH_ABOVE_BOUND = 1u << 1   ///< no pair within upper_bound: distance is +inf, no points or triangles
+};
+
+/// The minimum distance between two meshes under one pose (double precision).
+typedef struct ttd_mesh_result_d {
+    double distance;      ///< the minimum over all triangle pairs; 0 when they intersect
+    double p[3];          ///< closest point on a, in a's frame
+    double q[3];          ///< closest point on b, in a's frame; equal to p when the distance is 0
+    uint32_t tri_a;       ///< the triangle of a that realises it (UINT32_MAX with TTD_MESH_ABOVE_BOUND)
+    uint32_t tri_b;       ///< the triangle of b
+    uint8_t feature_a;    ///< vertex bits of tri_a that p lies on, as ttd_result_d.feature_p
+    uint8_t feature_b;    ///< vertex bits of tri_b that q lies on
+    uint16_t flags;       ///< TTD_MESH_* bits
+    uint32_t node_tests;  ///< box-against-node tests made (each against up to 8 boxes)
+    uint64_t pair_tests;  ///< triangle pairs given to the exact method
+} ttd_mesh_result_d;
+
+/// ttd_mesh_result_d in single precision.
+typedef struct ttd_mesh_result_f {
+    float distance;
+    float p[3];
+    float q[3];
+    uint32_t tri_a;
+    uint32_t tri_b;
+    uint8_t feature_a;
+    uint8_t feature_b;
+    uint16_t flags;
+    uint32_t node_tests;
+    uint64_t pair_tests;
+} ttd_mesh_result_f;
+
+/// Minimum distance between a and b under each of k poses (12k reals): out[i] for pose i.
+/// upper_bound >= 0 (INFINITY for none): a pose whose distance exceeds it may stop early and
+/// reports +inf with TTD_MESH_ABOVE_BOUND. rel_tol >= 0 (0 for exact): the reported pair may be
+/// up to a factor 1 + rel_tol farther than the minimum (fewer pairs tested). NaN or negative
+/// upper_bound or rel_tol: TTD_ERR_BAD_OPTIONS.
+TTD_API ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const double *poses, double upper_bound, double rel_tol,
+                                       ttd_mesh_result_d *out);
+/// ttd_mesh_distance_d in single precision (meshes from ttd_mesh_create_f).
+TTD_API ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const float *poses, float upper_bound, float rel_tol,
+                                       ttd_mesh_result_f *out);
+
+/// One triangle pair within the margin: its distance and closest points (in a's frame).
+typedef struct ttd_contact_d {
+    uint32_t tri_a, tri_b;
+    double distance;
+    double p[3], q[3];
+} ttd_contact_d;
+
+/// ttd_contact_d in single precision.
+typedef struct ttd_contact_f {
+    uint32_t tri_a, tri_b;
+    float distance;
+    float p[3], q[3];
+} ttd_contact_f;
+
+/// The pairs a contact query found, in memory the library owns: start from {0} (or a set from an
+/// earlier call, whose memory is reused), free with ttd_contacts_free_d. Pairs of pose i are
+/// pairs[pose_start[i] .. pose_start[i + 1]); within a pose they come in an order that depends
+/// only on the meshes and the pose (not on threads or instruction set).
+typedef struct ttd_contacts_d {
+    ttd_contact_d *pairs;
+    size_t count;         ///< pairs in all
+    size_t *pose_start;   ///< k + 1 offsets
+    size_t poses;         ///< k of the last call
+    size_t capacity;      ///< allocated pairs (library's business)
+    size_t pose_capacity; ///< allocated offsets (library's business)
+} ttd_contacts_d;
+
+/// ttd_contacts_d in single precision.
+typedef struct ttd_contacts_f {
+    ttd_contact_f *pairs;
+    size_t count;
+    size_t *pose_start;
+    size_t poses;
+    size_t capacity;
+    size_t pose_capacity;
+} ttd_contacts_f;
+
+/// Every triangle pair of a and b at distance <= margin (>= 0, finite) under each of k poses,
+/// into out (see ttd_contacts_d). On an error out->count is 0.
+TTD_API ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const double *poses, double margin, ttd_contacts_d *out);
+/// ttd_mesh_contacts_d in single precision.
+TTD_API ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const float *poses, float margin, ttd_contacts_f *out);
+/// Frees what a contact query allocated and zeroes the set (NULL is fine).
+TTD_API void ttd_contacts_free_d(ttd_contacts_d *contacts);
+TTD_API void ttd_contacts_free_f(ttd_contacts_f *contacts);
+
+/// For one triangle, its closest partner within the margin (Hauser's per-triangle reduction).
+typedef struct ttd_closest_d {
+    uint32_t partner;    ///< triangle of the other mesh, UINT32_MAX when none is within the margin
+    double distance;     ///< +inf when none
+    double p[3], q[3];   ///< p on this triangle, q on the partner, in a's frame
+} ttd_closest_d;
+
+/// ttd_closest_d in single precision.
+typedef struct ttd_closest_f {
+    uint32_t partner;
+    float distance;
+    float p[3], q[3];
+} ttd_closest_f;
+
+/// For every triangle of a and of b, its closest partner in the other mesh within margin under
+/// each of k poses: for_a holds k * (triangles of a) records (pose-major), for_b k * (triangles
+/// of b); either may be NULL, not both. Ties go to the smaller partner index.
+TTD_API ttd_status ttd_mesh_closest_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const double *poses, double margin, ttd_closest_d *for_a,
+                                      ttd_closest_d *for_b);
+/// ttd_mesh_closest_d in single precision.
+TTD_API ttd_status ttd_mesh_closest_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const float *poses, float margin, ttd_closest_f *for_a,
+                                      ttd_closest_f *for_b);
+
+/// Whether two meshes come within a margin of each other.
+typedef struct ttd_collision {
+    uint32_t hit;         ///< 1 when some pair is at distance <= margin (0 = touching or crossing)
+    uint32_t tri_a;       ///< the first such pair found (UINT32_MAX when none)
+    uint32_t tri_b;
+    uint32_t node_tests;  ///< as in ttd_mesh_result_d
+    uint64_t pair_tests;
+} ttd_collision;
+
+/// Collision of a and b with a margin >= 0 (0: do they touch or cross?) under each of k poses;
+/// each pose stops at its first witness pair.
+TTD_API ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const double *poses, double margin, ttd_collision *out);
+/// ttd_mesh_collide_d in single precision.
+TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const float *poses, float margin, ttd_collision *out);
+
+/** @} */
+
+/** @addtogroup ttd
+ * @{ */
 
 /// A short English sentence for a status.
 TTD_API const char *ttd_status_string(ttd_status status);
