@@ -13,7 +13,8 @@ Where the library is built:
     passes its own build folder, so the library is built once.
   - otherwise: a private Release build of the library alone in setuptools' temporary folder
     (python/build/temp.*/libttd), configured on the first build and reused after.
-TTD_SOURCE_DIR may name the repository when this folder is not its python/ folder.
+TTD_SOURCE_DIR may name the repository when this folder is not its python/ folder, and
+TTD_PYTHON_BUILD_BASE moves setuptools' build folder (default python/build) elsewhere.
 """
 import os
 import re
@@ -107,6 +108,7 @@ setup(
     packages=["ttd"],
     package_data={"ttd": ["py.typed", "*.pyi"]},
     zip_safe=False,
+    options={"build": {"build_base": os.environ.get("TTD_PYTHON_BUILD_BASE", "build")}},
     ext_modules=[
         extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c"], numpy_api=True),
         # The benchmark's C-side timer (bench/python_overhead.py); not part of the API.

@@ -25,8 +25,9 @@ PyDoc_STRVAR(ttd_ct_time_calls_doc,
 "time_calls(S, T, calls, method='exact', threads=0, points=False)\n--\n\n"
 "Seconds taken by `calls` back-to-back ttd_batch_d (float64 buffers) or ttd_batch_f\n"
 "(float32) calls on the pairs of S and T (C-contiguous buffers of 9 numbers per triangle),\n"
-"with the options ttd.distance builds for the same arguments. Outputs go to a buffer\n"
-"allocated once: distances, or result structs with points=True. The interpreter lock is\n"
+"with the options ttd.distance builds for the same arguments. Outputs go to one buffer,\n"
+"allocated and written once before the clock starts (a C caller's reused buffer: no page\n"
+"faults are timed): distances, or result structs with points=True. The interpreter lock is\n"
 "released while it runs. Raises RuntimeError on a library error.");
 
 static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwargs)
@@ -74,6 +75,7 @@ static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwa
         PyErr_NoMemory();
         goto done;
     }
+    memset(out, 0, n * per);
     ttd_status st = TTD_OK;
     double t0, t1;
     Py_BEGIN_ALLOW_THREADS

@@ -24,12 +24,12 @@ def client():
 @pytest.mark.parametrize("method,dtype", [("exact", np.float64), ("exact", np.float32),
                                           ("penalty", np.float64), ("certified", np.float32)])
 def test_chunks_on_a_cluster_equal_one_call(client, method, dtype):
-    S, T = random_pairs(120_001, seed=51, dtype=dtype)
+    S, T = random_pairs(60_001, seed=51, dtype=dtype)
     one_call = ttd.distance(S, T, method=method)
-    dS = da.from_array(S, chunks=(9_973, 3, 3))  # a prime chunk length
-    dT = da.from_array(T.reshape(-1, 9), chunks=(20_000, 9))  # other chunks: rechunked to S's
+    dS = da.from_array(S, chunks=(4_993, 3, 3))  # a prime chunk length
+    dT = da.from_array(T.reshape(-1, 9), chunks=(10_000, 9))  # other chunks: rechunked to S's
     d = ttd.dask.distance(dS, dT, method=method, threads=1)
-    assert d.dtype == dtype and d.shape == (120_001,) and d.numblocks == (13,)
+    assert d.dtype == dtype and d.shape == (60_001,) and d.numblocks == (13,)
     got = client.compute(d).result()
     assert got.dtype == dtype
     np.testing.assert_array_equal(got, one_call)
