@@ -80,7 +80,10 @@ class BuildWithLibrary(build_ext):
 
 
 ROOT = repository()
-COMPILE_ARGS = ["-std=c11", "-Wall", "-Wextra", "-Wshadow", "-Wstrict-prototypes", "-Wmissing-prototypes"]
+# The project's warnings (TTD_WARNINGS in CMakeLists.txt) but -Wpedantic and -Wcast-qual, which
+# numpy's own headers trip (function pointers from its API table, const casts in its inlines).
+COMPILE_ARGS = ["-std=c11", "-Wall", "-Wextra", "-Wshadow", "-Wmissing-prototypes", "-Wstrict-prototypes",
+                "-Wpointer-arith", "-Wvla", "-Wdouble-promotion"]
 # Keep the archive's symbols out of the extension's dynamic symbol table (no clash with another
 # copy of ttd loaded into the same process).
 LINK_ARGS = ["-pthread"] + (["-Wl,--exclude-libs,ALL"] if sys.platform.startswith("linux") else [])

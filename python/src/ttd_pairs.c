@@ -169,12 +169,15 @@ static int ttd_py_pair_warnings(ttd_status st, const ttd_options *opt, npy_intp 
     return 0;
 }
 
-/* Distances only: one contiguous array of the pair shape (a numpy scalar for one pair). */
+/* Distances only: one contiguous array of the pair shape (a numpy scalar for one pair), or
+ * the caller's array out (checked by ttd_py_check_out), returned as it is. */
 static PyObject *ttd_py_distances(const ttd_options *opt, int type, int lead, PyArrayObject *s, PyArrayObject *t,
-                                  npy_intp n)
+                                  npy_intp n, PyArrayObject *out)
 {
-    PyArrayObject *d = (PyArrayObject *)PyArray_SimpleNew(lead, PyArray_DIMS(s), type);
-    if (d == NULL)
+    PyArrayObject *d = out;
+    if (d != NULL)
+        Py_INCREF(d);
+    else if ((d = (PyArrayObject *)PyArray_SimpleNew(lead, PyArray_DIMS(s), type)) == NULL)
         return NULL;
     ttd_status st = ttd_py_batch(opt, type, n, PyArray_DATA(s), PyArray_DATA(t), PyArray_DATA(d), NULL);
     if (ttd_py_raise_fatal(st, opt) < 0) {
@@ -193,19 +196,24 @@ static PyObject *ttd_py_distances(const ttd_options *opt, int type, int lead, Py
         Py_DECREF(d);
         return NULL;
     }
-    return PyArray_Return(d);
+    return out != NULL ? (PyObject *)d : PyArray_Return(d);
 }
 
-/* Everything: the record array the library fills, and PairResult's views of it. */
+/* Everything: the record array the library fills (new, or the caller's out), and PairResult's
+ * views of it. */
 static PyObject *ttd_py_full(const ttd_options *opt, int type, int lead, PyArrayObject *s, PyArrayObject *t,
-                             npy_intp n)
+                             npy_intp n, PyArrayObject *out)
 {
     PyArray_Descr *descr = type == NPY_DOUBLE ? ttd_py_record_d : ttd_py_record_f;
-    Py_INCREF(descr);
-    PyArrayObject *rec = (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, descr, lead, PyArray_DIMS(s), NULL,
-                                                               NULL, 0, NULL);
-    if (rec == NULL)
-        return NULL;
+    PyArrayObject *rec = out;
+    if (rec != NULL) {
+        Py_INCREF(rec);
+    } else {
+        Py_INCREF(descr);
+        rec = (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, descr, lead, PyArray_DIMS(s), NULL, NULL, 0, NULL);
+        if (rec == NULL)
+            return NULL;
+    }
     PyObject *result = NULL;
     ttd_status st = ttd_py_batch(opt, type, n, PyArray_DATA(s), PyArray_DATA(t), NULL, PyArray_DATA(rec));
     if (ttd_py_raise_fatal(st, opt) < 0)
@@ -242,8 +250,53 @@ done:
     return result;
 }
 
+/* Non-zero when the bytes of two arrays (contiguous, so one range each) overlap. */
+static int ttd_py_overlap(PyArrayObject *a, PyArrayObject *b)
+{
+    const char *pa = PyArray_DATA(a), *pb = PyArray_DATA(b);
+    return PyArray_NBYTES(a) > 0 && PyArray_NBYTES(b) > 0 && pa < pb + PyArray_NBYTES(b) &&
+           pb < pa + PyArray_NBYTES(a);
+}
+
+/* out= must be what the call writes: an ndarray of the pair shape (s's first lead dims) and
+ * dtype want, C-contiguous, writeable, sharing no memory with the inputs that the library
+ * reads while it writes. -1 with an exception naming the problem otherwise. */
+static int ttd_py_check_out(PyObject *obj, PyArray_Descr *want, const char *want_name, int lead, PyArrayObject *s,
+                            PyArrayObject *t)
+{
+    if (!PyArray_Check(obj)) {
+        PyErr_Format(PyExc_TypeError, "out must be a numpy array, not %.100s", Py_TYPE(obj)->tp_name);
+        return -1;
+    }
+    PyArrayObject *out = (PyArrayObject *)obj;
+    if (!PyArray_EquivTypes(PyArray_DESCR(out), want)) {
+        PyErr_Format(PyExc_TypeError, "out has dtype %S: this call writes %s", (PyObject *)PyArray_DESCR(out),
+                     want_name);
+        return -1;
+    }
+    if (PyArray_NDIM(out) != lead || !PyArray_CompareLists(PyArray_DIMS(out), PyArray_DIMS(s), lead)) {
+        PyObject *shape = PyTuple_New(lead);
+        for (int i = 0; shape != NULL && i < lead; ++i)
+            PyTuple_SET_ITEM(shape, i, PyLong_FromSsize_t(PyArray_DIM(s, i)));
+        if (shape != NULL)
+            PyErr_Format(PyExc_ValueError, "out has %d dimension(s) where the pairs have shape %R", PyArray_NDIM(out),
+                         shape);
+        Py_XDECREF(shape);
+        return -1;
+    }
+    if (!PyArray_IS_C_CONTIGUOUS(out) || !PyArray_ISWRITEABLE(out) || !PyArray_ISALIGNED(out)) {
+        PyErr_SetString(PyExc_ValueError, "out must be C-contiguous, aligned and writeable");
+        return -1;
+    }
+    if (ttd_py_overlap(out, s) || ttd_py_overlap(out, t)) {
+        PyErr_SetString(PyExc_ValueError, "out shares memory with S or T, which are read while it is written");
+        return -1;
+    }
+    return 0;
+}
+
 PyDoc_STRVAR(ttd_py_distance_doc,
-"distance(S, T, *, method='exact', precision=None, points=False, isa='auto', threads=0, rho=None, tol=None, max_iterations=None)\n"
+"distance(S, T, *, method='exact', precision=None, points=False, isa='auto', threads=0, rho=None, tol=None, max_iterations=None, out=None)\n"
 "--\n\n"
 "Minimum distance between the triangles of S and T, pair by pair.\n\n"
 "S, T : array_like, shape (..., 3, 3) or (..., 9)\n"
@@ -274,11 +327,17 @@ PyDoc_STRVAR(ttd_py_distance_doc,
 "rho, tol, max_iterations : iterative methods only; None keeps the library's default\n"
 "    rho in (0, 1e150] (penalty weight, default 1e6), tol in [0, 1] (step length at which\n"
 "    Newton stops, on the pair scaled to unit size; default 1e-12), max_iterations in\n"
-"    1..65535 (default 99).\n\n"
+"    1..65535 (default 99).\n"
+"out : numpy.ndarray, optional\n"
+"    Where to write, instead of a new array (a reused buffer saves allocating and\n"
+"    zeroing fresh memory on every call): C-contiguous, writeable, of the pair shape, and\n"
+"    of the computed dtype (points=False) or ttd.RESULT_DTYPE_FLOAT64 / FLOAT32\n"
+"    (points=True); it may not share memory with S or T.\n\n"
 "Returns\n"
 "    points=False: a numpy array of the pair shape and the computed dtype, or a numpy\n"
-"    scalar (numpy.float64 or numpy.float32) for a single pair. points=True: a\n"
-"    ttd.PairResult of such arrays (p, q, bary_p, bary_q with a trailing 3).\n\n"
+"    scalar (numpy.float64 or numpy.float32) for a single pair; out itself when given.\n"
+"    points=True: a ttd.PairResult of such arrays (p, q, bary_p, bary_q with a trailing 3),\n"
+"    views of one record array (out when given).\n\n"
 "Pairs with NaN or infinite coordinates get NaN outputs and the flag ttd.Flag.NONFINITE;\n"
 "the other pairs are computed, and a ttd.NonFiniteInputWarning says how many there were\n"
 "(warnings.simplefilter('error', ttd.NonFiniteInputWarning) makes it an exception). An\n"
@@ -293,13 +352,15 @@ static PyObject *ttd_py_distance(PyObject *self, PyObject *args, PyObject *kwarg
 {
     (void)self;
     static char *kwlist[] = {"S", "T", "method", "precision", "points", "isa", "threads", "rho", "tol",
-                             "max_iterations", NULL};
+                             "max_iterations", "out", NULL};
     PyObject *s_obj, *t_obj, *method = NULL, *precision = NULL, *isa = NULL, *threads = NULL, *rho = NULL,
-             *tol = NULL, *max_iterations = NULL;
+             *tol = NULL, *max_iterations = NULL, *out_obj = NULL;
     int points = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$OOpOOOOO:distance", kwlist, &s_obj, &t_obj, &method,
-                                     &precision, &points, &isa, &threads, &rho, &tol, &max_iterations))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$OOpOOOOOO:distance", kwlist, &s_obj, &t_obj, &method,
+                                     &precision, &points, &isa, &threads, &rho, &tol, &max_iterations, &out_obj))
         return NULL;
+    if (out_obj == Py_None)
+        out_obj = NULL;
     ttd_options opt;
     int type;
     if (ttd_py_options(method, isa, threads, rho, tol, max_iterations, &opt) < 0 ||
@@ -329,10 +390,22 @@ static PyObject *ttd_py_distance(PyObject *self, PyObject *args, PyObject *kwarg
         }
         type = ts;
     }
-    if ((s = ttd_py_as_real(s0, type)) == NULL || (t = ttd_py_as_real(t0, type)) == NULL)
+    if ((s = ttd_py_as_real(s0, "S", type)) == NULL || (t = ttd_py_as_real(t0, "T", type)) == NULL)
         goto done;
+    if (out_obj != NULL) {
+        PyArray_Descr *want = points ? (type == NPY_DOUBLE ? ttd_py_record_d : ttd_py_record_f)
+                                     : PyArray_DescrFromType(type);
+        const char *want_name = points ? (type == NPY_DOUBLE ? "ttd.RESULT_DTYPE_FLOAT64" : "ttd.RESULT_DTYPE_FLOAT32")
+                                       : (type == NPY_DOUBLE ? "float64" : "float32");
+        int bad = ttd_py_check_out(out_obj, want, want_name, lead_s, s, t);
+        if (!points)
+            Py_DECREF(want);
+        if (bad < 0)
+            goto done;
+    }
     npy_intp n = PyArray_MultiplyList(PyArray_DIMS(s), lead_s);
-    out = points ? ttd_py_full(&opt, type, lead_s, s, t, n) : ttd_py_distances(&opt, type, lead_s, s, t, n);
+    out = points ? ttd_py_full(&opt, type, lead_s, s, t, n, (PyArrayObject *)out_obj)
+                 : ttd_py_distances(&opt, type, lead_s, s, t, n, (PyArrayObject *)out_obj);
 done:
     Py_XDECREF(s0);
     Py_XDECREF(t0);

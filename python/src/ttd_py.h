@@ -48,8 +48,9 @@ int ttd_py_natural_type(PyArrayObject *a, const char *name);
 PyArrayObject *ttd_py_as_array(PyObject *obj, const char *name);
 
 /* a converted to a C-contiguous, aligned, native-order array of type_num (a itself when it
- * already is one; a copy otherwise). a's dtype must be real (bool, integer or float). */
-PyArrayObject *ttd_py_as_real(PyArrayObject *a, int type_num);
+ * already is one; a copy otherwise); TypeError naming the argument when a's dtype is not real
+ * (bool, integer or float). */
+PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num);
 
 /* For a fatal status (>= TTD_ERR_FIRST_FATAL) of a call made with opt: raises the Python
  * exception that names the problem and returns -1. Returns 0 for TTD_OK and the two non-fatal

@@ -218,15 +218,15 @@ PyArrayObject *ttd_py_as_array(PyObject *obj, const char *name)
     return (PyArrayObject *)a;
 }
 
-PyArrayObject *ttd_py_as_real(PyArrayObject *a, int type_num)
+PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num)
 {
     if (PyArray_TYPE(a) == type_num && PyArray_ISCARRAY_RO(a) && PyArray_ISNOTSWAPPED(a)) {
         Py_INCREF(a);
         return a;
     }
     if (!ttd_py_real_kind(PyArray_DESCR(a)->kind)) {
-        PyErr_Format(PyExc_TypeError, "cannot compute on dtype %S: ttd takes real coordinates",
-                     (PyObject *)PyArray_DESCR(a));
+        PyErr_Format(PyExc_TypeError, "%s has dtype %S: ttd takes real coordinates (bool, integer or float)",
+                     name, (PyObject *)PyArray_DESCR(a));
         return NULL;
     }
     return (PyArrayObject *)PyArray_FromArray(a, PyArray_DescrFromType(type_num),

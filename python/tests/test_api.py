@@ -135,7 +135,7 @@ def test_unsupported_dtypes(sT, dtype):
     if dtype is not np.complex128:  # an explicit precision converts real dtypes
         assert ttd.distance(S.astype(dtype), T.astype(dtype), precision="float64").dtype == np.float64
     else:
-        with pytest.raises(TypeError, match="complex"):
+        with pytest.raises(TypeError, match="S has dtype complex128: ttd takes real coordinates"):
             ttd.distance(S.astype(dtype), T.astype(dtype), precision="float64")
 
 
@@ -166,6 +166,57 @@ def test_awkward_layouts_are_copied(sT):
     S0 = S.copy()
     ttd.distance(S, T, points=True)
     np.testing.assert_array_equal(S, S0)
+
+
+# ---- out= ----------------------------------------------------------------------------------
+
+def test_out_is_written_and_returned(sT):
+    S, T = sT
+    d = ttd.distance(S, T)
+    out = np.full(12, -1.0)
+    assert ttd.distance(S, T, out=out) is out
+    np.testing.assert_array_equal(out, d)
+    out32 = np.empty((3, 4), np.float32)
+    assert ttd.distance(S.reshape(3, 4, 9).astype(np.float32), T.reshape(3, 4, 9).astype(np.float32),
+                        out=out32) is out32
+    one = np.empty((), np.float64)
+    assert ttd.distance(S[0], T[0], out=one) is one and one == d[0]
+    rec = np.empty(12, ttd.RESULT_DTYPE_FLOAT64)
+    r = ttd.distance(S, T, points=True, out=rec)
+    ref = ttd.distance(S, T, points=True)
+    assert r.p.base is rec or np.may_share_memory(r.p, rec)
+    for a, b in zip(r, ref):
+        np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(rec["q"], ref.q)
+    assert ttd.distance(S, T, out=None).shape == (12,)
+
+
+def test_out_errors(sT):
+    S, T = sT
+    with pytest.raises(TypeError, match="out has dtype float32: this call writes float64"):
+        ttd.distance(S, T, out=np.empty(12, np.float32))
+    with pytest.raises(TypeError, match="this call writes ttd.RESULT_DTYPE_FLOAT64"):
+        ttd.distance(S, T, points=True, out=np.empty(12, ttd.RESULT_DTYPE_FLOAT32))
+    with pytest.raises(TypeError, match="this call writes ttd.RESULT_DTYPE_FLOAT32"):
+        ttd.distance(S.astype(np.float32), T.astype(np.float32), points=True, out=np.empty(12))
+    with pytest.raises(ValueError, match=r"out has 1 dimension\(s\) where the pairs have shape \(3, 4\)"):
+        ttd.distance(S.reshape(3, 4, 9), T.reshape(3, 4, 9), out=np.empty(12))
+    with pytest.raises(ValueError, match="out has 1 dimension"):
+        ttd.distance(S, T, out=np.empty(11))
+    with pytest.raises(ValueError, match="C-contiguous"):
+        ttd.distance(S, T, out=np.empty(24)[::2])
+    ro = np.empty(12)
+    ro.flags.writeable = False
+    with pytest.raises(ValueError, match="writeable"):
+        ttd.distance(S, T, out=ro)
+    with pytest.raises(TypeError, match="out must be a numpy array, not list"):
+        ttd.distance(S, T, out=[0.0] * 12)
+    buf = np.zeros(12 * 9 + 12)
+    Sb = buf[:108].reshape(12, 9)
+    Sb[...] = S.reshape(12, 9)
+    with pytest.raises(ValueError, match="shares memory with S or T"):
+        ttd.distance(Sb, T, out=buf[100:112])
+    np.testing.assert_array_equal(ttd.distance(Sb, T, out=buf[108:]), ttd.distance(S, T))
 
 
 # ---- empty input ------------------------------------------------------------------------

@@ -29,7 +29,9 @@ def test_lock_is_released_during_the_call(long_switch_interval, points, dtype):
     # woken by `started`, can only get the lock when the caller gives it up: inside ttd if the
     # call releases it, otherwise only after the call has returned and `returned` is set.
     # So the observer sees `returned` unset exactly when the lock was released in the call.
-    S, T = random_pairs(300_000, seed=41, dtype=dtype)  # tens of milliseconds on one thread
+    # The call lasts tens of milliseconds (the penalty method, one thread), far longer than
+    # the observer needs to be woken and scheduled even on a busy machine.
+    S, T = random_pairs(600_000, seed=41, dtype=dtype)
     started, returned = threading.Event(), threading.Event()
     seen = []
 
@@ -39,7 +41,7 @@ def test_lock_is_released_during_the_call(long_switch_interval, points, dtype):
 
     def caller():
         started.set()
-        ttd.distance(S, T, threads=1, points=points)
+        ttd.distance(S, T, method="penalty", threads=1, points=points)
         returned.set()
 
     threads = [threading.Thread(target=observer), threading.Thread(target=caller)]

@@ -55,6 +55,7 @@ def distance(
     rho: Optional[float] = None,
     tol: Optional[float] = None,
     max_iterations: Optional[int] = None,
+    out: Optional[npt.NDArray[np.floating]] = None,
 ) -> Union[npt.NDArray[np.floating], Real]: ...
 @overload
 def distance(
@@ -69,6 +70,7 @@ def distance(
     rho: Optional[float] = None,
     tol: Optional[float] = None,
     max_iterations: Optional[int] = None,
+    out: Optional[npt.NDArray[np.void]] = None,
 ) -> PairResult: ...
 def isa_available(isa: Union[IsaName, str]) -> bool: ...
 def isa_selected(isa: Union[IsaName, str] = "auto") -> str: ...
