@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The Python package's overhead against the C calls it makes, and its thread scaling.
 
-    build/python-venv/bin/python -P bench/python_overhead.py [--quick]
+    build/python-venv/bin/python bench/python_overhead.py [--quick]
 
 (the interpreter of the venv that scripts/test-python.sh makes and installs ttd into; any
 interpreter with ttd installed will do). It measures, in one process:
@@ -13,8 +13,9 @@ interpreter with ttd installed will do). It measures, in one process:
    array and the lock release. (Timing the C call through ctypes instead would charge ctypes'
    own per-call cost, about a microsecond, to the C side.) Target: at most 5 us per call.
 2. a 1,000,000-pair batch: ttd.distance(S, T) against the same C call, one and all threads,
-   returning new arrays and writing into a reused one (out=); the C call writes into a buffer
-   it has written before, so it pays no page faults. Target: at most 5% over the C call.
+   returning new arrays and writing into a reused one (out=); the C call writes into that
+   same reused array, so that the two differ only in the call (no page faults on either side,
+   the same memory written). Target: at most 5% over the C call.
 3. two Python threads each computing a batch with threads=1, against one thread computing
    both: the speedup from releasing the interpreter lock, beside the same measurement made
    with two threads calling the C loop (the most two threads get on this machine).
@@ -79,8 +80,11 @@ def single_pair(dtype, points, calls, repeats):
                 f(s, t)
         return time.perf_counter() - t0
 
+    out = np.empty(1, ttd.RESULT_DTYPE_FLOAT64 if dtype == np.float64 else ttd.RESULT_DTYPE_FLOAT32) \
+        if points else np.empty(1, dtype)
+
     def c():
-        return _ctiming.time_calls(s, t, calls, points=points)
+        return _ctiming.time_calls(s, t, out, calls, points=points)
 
     tp, tc = alternate(py, c, repeats)
     return 1e9 * tp / calls, 1e9 * tc / calls
@@ -101,7 +105,7 @@ def batch(S, T, threads, points, repeats):
     for _ in range(repeats):
         tn.append(timed())
         to.append(timed(out=out))
-        tc.append(_ctiming.time_calls(S, T, 1, threads=threads, points=points))
+        tc.append(_ctiming.time_calls(S, T, out, 1, threads=threads, points=points))
     return statistics.median(tn), statistics.median(to), statistics.median(tc)
 
 
@@ -169,8 +173,9 @@ def main():
     S2, T2 = random_pairs(half, 3, np.float64)
     seq, par = two_threads(lambda: ttd.distance(S, T, threads=1), lambda: ttd.distance(S2, T2, threads=1),
                            args.repeats)
-    cseq, cpar = two_threads(lambda: _ctiming.time_calls(S, T, 1, threads=1),
-                             lambda: _ctiming.time_calls(S2, T2, 1, threads=1), args.repeats)
+    out1, out2 = np.empty(len(S)), np.empty(len(S2))
+    cseq, cpar = two_threads(lambda: _ctiming.time_calls(S, T, out1, 1, threads=1),
+                             lambda: _ctiming.time_calls(S2, T2, out2, 1, threads=1), args.repeats)
     print(f"   Python threads calling ttd.distance: {seq:.4f} s / {par:.4f} s = {seq / par:.2f}x")
     print(f"   Python threads calling the C loop:   {cseq:.4f} s / {cpar:.4f} s = {cseq / cpar:.2f}x "
           f"(what two threads get here)")

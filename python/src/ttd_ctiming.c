@@ -1,14 +1,15 @@
 /* SPDX-License-Identifier: MIT */
 /* ttd._ctiming: the C side of bench/python_overhead.py, and nothing else. It times the
  * library calls that ttd.distance makes (ttd_batch_d / ttd_batch_f with the same options),
- * called back to back from C, so that the benchmark can subtract them from the time of the
- * Python calls in the same process: timing the C call through ctypes instead would add
- * ctypes' own per-call cost (about a microsecond) to the side that should have none. */
+ * called back to back from C on the same input and output buffers, so that the benchmark can
+ * subtract them from the time of the Python calls in the same process: timing the C call
+ * through ctypes instead would add ctypes' own per-call cost (about a microsecond) to the side
+ * that should have none. The output buffer is the caller's, the one the Python call writes
+ * with out=, so that the two sides differ only in the call. */
 #define _POSIX_C_SOURCE 200809L
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -22,25 +23,25 @@ static double ttd_ct_now(void)
 }
 
 PyDoc_STRVAR(ttd_ct_time_calls_doc,
-"time_calls(S, T, calls, method='exact', threads=0, points=False)\n--\n\n"
+"time_calls(S, T, out, calls, method='exact', threads=0, points=False)\n--\n\n"
 "Seconds taken by `calls` back-to-back ttd_batch_d (float64 buffers) or ttd_batch_f\n"
 "(float32) calls on the pairs of S and T (C-contiguous buffers of 9 numbers per triangle),\n"
-"with the options ttd.distance builds for the same arguments. Outputs go to one buffer,\n"
-"allocated and written once before the clock starts (a C caller's reused buffer: no page\n"
-"faults are timed): distances, or result structs with points=True. The interpreter lock is\n"
-"released while it runs. Raises RuntimeError on a library error.");
+"with the options ttd.distance builds for the same arguments, writing into out: a writable\n"
+"C-contiguous buffer of n distances, or of n result structs with points=True (the buffer\n"
+"that ttd.distance(..., out=out) writes, so that both sides store to the same addresses).\n"
+"The interpreter lock is released while it runs. Raises RuntimeError on a library error.");
 
 static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kwlist[] = {"S", "T", "calls", "method", "threads", "points", NULL};
-    PyObject *s_obj, *t_obj;
-    Py_buffer s, t;
+    static char *kwlist[] = {"S", "T", "out", "calls", "method", "threads", "points", NULL};
+    PyObject *s_obj, *t_obj, *out_obj;
+    Py_buffer s, t, o;
     Py_ssize_t calls;
     const char *method = "exact";
     int threads = 0, points = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOn|sip:time_calls", kwlist, &s_obj, &t_obj, &calls, &method,
-                                     &threads, &points))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOn|sip:time_calls", kwlist, &s_obj, &t_obj, &out_obj, &calls,
+                                     &method, &threads, &points))
         return NULL;
     if (PyObject_GetBuffer(s_obj, &s, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0)
         return NULL;
@@ -48,8 +49,13 @@ static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwa
         PyBuffer_Release(&s);
         return NULL;
     }
+    if (PyObject_GetBuffer(out_obj, &o, PyBUF_C_CONTIGUOUS | PyBUF_WRITABLE) < 0) {
+        PyBuffer_Release(&s);
+        PyBuffer_Release(&t);
+        return NULL;
+    }
     PyObject *ret = NULL;
-    void *out = NULL;
+    void *out = o.buf;
     const char fs = s.format ? s.format[strlen(s.format) - 1] : '?';
     const char ft = t.format ? t.format[strlen(t.format) - 1] : '?';
     const int dbl = fs == 'd';
@@ -70,13 +76,10 @@ static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwa
     opt.threads = threads;
     const size_t n = (size_t)s.len / (size_t)(9 * s.itemsize);
     const size_t per = points ? (dbl ? sizeof(ttd_result_d) : sizeof(ttd_result_f)) : (size_t)s.itemsize;
-    out = malloc(n * per);
-    if (out == NULL) {
-        PyErr_NoMemory();
+    if ((size_t)o.len != n * per) {
+        PyErr_SetString(PyExc_ValueError, "time_calls: out must hold n distances, or n result structs with points=True");
         goto done;
     }
-    /* Not zero: the compiler would turn malloc + memset(0) into calloc, which touches nothing. */
-    memset(out, 0xff, n * per);
     ttd_status st = TTD_OK;
     double t0, t1;
     Py_BEGIN_ALLOW_THREADS
@@ -94,9 +97,9 @@ static PyObject *ttd_ct_time_calls(PyObject *self, PyObject *args, PyObject *kwa
     else
         ret = PyFloat_FromDouble(t1 - t0);
 done:
-    free(out);
     PyBuffer_Release(&s);
     PyBuffer_Release(&t);
+    PyBuffer_Release(&o);
     return ret;
 }
 

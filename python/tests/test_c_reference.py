@@ -115,3 +115,20 @@ def test_equals_the_ttd_program(ttd_program, precision):
     np.testing.assert_array_equal(printed[:, 1:4], r.p)
     np.testing.assert_array_equal(printed[:, 4:7], r.q)
     assert printed[3, 0] == 2.0
+
+
+@pytest.mark.parametrize("dtype", PRECISIONS, ids=["float64", "float32"])
+def test_benchmark_timer_makes_the_same_call(dtype):
+    # bench/python_overhead.py subtracts ttd._ctiming's time from ttd.distance's: it must time
+    # the same library call, which writes the same results into the same buffer.
+    from ttd import _ctiming
+
+    S, T = random_pairs(500, seed=26, dtype=dtype)
+    out = np.empty(500, dtype)
+    assert _ctiming.time_calls(S.reshape(500, 9), T.reshape(500, 9), out, 3, threads=1) > 0
+    np.testing.assert_array_equal(out, ttd.distance(S, T))
+    rec = np.empty(500, ttd.RESULT_DTYPE_FLOAT64 if dtype == np.float64 else ttd.RESULT_DTYPE_FLOAT32)
+    _ctiming.time_calls(S, T, rec, 1, method="penalty", points=True)
+    assert_same_records(ttd.distance(S, T, method="penalty", points=True), rec)
+    with pytest.raises(ValueError, match="out must hold n distances"):
+        _ctiming.time_calls(S, T, np.empty(499, dtype), 1)
