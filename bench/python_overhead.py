@@ -20,8 +20,8 @@ interpreter with ttd installed will do). It measures, in one process:
    both: the speedup from releasing the interpreter lock, beside the same measurement made
    with two threads calling the C loop (the most two threads get on this machine).
 
-Timings alternate between the Python and the C side, repeat, and report medians; ratios are
-taken within the run. The machine's load is printed: on a shared machine, read the ratios,
+Timings alternate between the Python and the C side (in rotating order), repeat, and report
+medians; ratios are taken within the run. The machine's load is printed: on a shared machine, read the ratios,
 not the absolute times.
 """
 import argparse
@@ -101,12 +101,14 @@ def batch(S, T, threads, points, repeats):
         ttd.distance(S, T, threads=threads, points=points, **kw)
         return time.perf_counter() - t0
 
-    tn, to, tc = [], [], []
-    for _ in range(repeats):
-        tn.append(timed())
-        to.append(timed(out=out))
-        tc.append(_ctiming.time_calls(S, T, out, 1, threads=threads, points=points))
-    return statistics.median(tn), statistics.median(to), statistics.median(tc)
+    runs = [lambda: timed(), lambda: timed(out=out),
+            lambda: _ctiming.time_calls(S, T, out, 1, threads=threads, points=points)]
+    times = [[], [], []]
+    for k in range(repeats):
+        for i in range(3):  # each one first, second and third in turn: no side always follows another
+            j = (i + k) % 3
+            times[j].append(runs[j]())
+    return tuple(statistics.median(t) for t in times)
 
 
 def two_threads(work_a, work_b, repeats):
@@ -134,7 +136,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pairs", type=int, default=1_000_000, help="batch size (default 1,000,000)")
     ap.add_argument("--calls", type=int, default=200_000, help="single-pair calls per timing (default 200,000)")
-    ap.add_argument("--repeats", type=int, default=7, help="timings per measurement, median taken (default 7)")
+    ap.add_argument("--repeats", type=int, default=15, help="timings per measurement, median taken (default 15)")
     ap.add_argument("--quick", action="store_true", help="a few seconds: 100,000 pairs, 20,000 calls, 3 repeats")
     args = ap.parse_args()
     if args.quick:
@@ -167,20 +169,32 @@ def main():
                       f"{'points' if points else 'distances'}"
                 marks = "/".join("met" if x / tc <= 1.05 else "MISSED" for x in (tn, to))
                 print(f"   {row:36}{tn:9.4f}{to:9.4f}{tc:9.4f}{tn / tc:8.3f}{to / tc:8.3f}  {marks}")
+    # The noise floor: the same C call timed as two sides, as above.
+    out = np.empty(len(S), ttd.RESULT_DTYPE_FLOAT64)
+    a, b = alternate(lambda: _ctiming.time_calls(S, T, out, 1, threads=1, points=True),
+                     lambda: _ctiming.time_calls(S, T, out, 1, threads=1, points=True), args.repeats)
+    print(f"   control: the float64 threads=1 points C call against itself: {a:.4f} / {b:.4f} = {a / b:.3f}")
 
     print(f"\n3. two threads, each {args.pairs:,} pairs with threads=1: one thread doing both / two at once")
-    half = args.pairs
-    S2, T2 = random_pairs(half, 3, np.float64)
-    seq, par = two_threads(lambda: ttd.distance(S, T, threads=1), lambda: ttd.distance(S2, T2, threads=1),
-                           args.repeats)
+    S2, T2 = random_pairs(args.pairs, 3, np.float64)
     out1, out2 = np.empty(len(S)), np.empty(len(S2))
-    cseq, cpar = two_threads(lambda: _ctiming.time_calls(S, T, out1, 1, threads=1),
-                             lambda: _ctiming.time_calls(S2, T2, out2, 1, threads=1), args.repeats)
-    print(f"   Python threads calling ttd.distance: {seq:.4f} s / {par:.4f} s = {seq / par:.2f}x")
-    print(f"   Python threads calling the C loop:   {cseq:.4f} s / {cpar:.4f} s = {cseq / cpar:.2f}x "
-          f"(what two threads get here)")
-    print(f"   ttd.distance's scaling is {(seq / par) / (cseq / cpar):.2f} of the C loop's "
-          f"(1.00 = the lock costs nothing)")
+    rows = [
+        ("ttd.distance, out=", lambda: ttd.distance(S, T, threads=1, out=out1),
+         lambda: ttd.distance(S2, T2, threads=1, out=out2)),
+        ("ttd.distance, new arrays", lambda: ttd.distance(S, T, threads=1),
+         lambda: ttd.distance(S2, T2, threads=1)),
+        ("the C loop (_ctiming)", lambda: _ctiming.time_calls(S, T, out1, 1, threads=1),
+         lambda: _ctiming.time_calls(S2, T2, out2, 1, threads=1)),
+    ]
+    speedups = {}
+    for label, a, b in rows:
+        seq, par = two_threads(a, b, args.repeats)
+        speedups[label] = seq / par
+        print(f"   Python threads calling {label:26}{seq:8.4f} s /{par:8.4f} s = {seq / par:.2f}x")
+    c = speedups["the C loop (_ctiming)"]
+    print(f"   the C loop's speedup is what two threads get here; ttd.distance reaches "
+          f"{speedups['ttd.distance, out='] / c:.2f} of it with out=, "
+          f"{speedups['ttd.distance, new arrays'] / c:.2f} with new arrays (1.00: the lock costs nothing)")
 
     load1 = os.getloadavg()
     print(f"\nload average after: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}; other processes share "

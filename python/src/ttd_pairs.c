@@ -7,6 +7,7 @@
 #include "ttd_py.h"
 
 #include <stddef.h>
+#include <string.h>
 
 static PyTypeObject *ttd_py_PairResult;
 static PyArray_Descr *ttd_py_record_d, *ttd_py_record_f;
