@@ -67,6 +67,7 @@ class Isa(str, enum.Enum):
     AVX2 = "avx2"  #: AVX2 with FMA
     AVX512 = "avx512"  #: AVX-512 F, DQ and VL
     NEON = "neon"
+    PORTABLE = "portable"  #: GCC/clang vector extensions, any target
 
     def __str__(self) -> str:
         return self.value

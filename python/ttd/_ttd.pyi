@@ -6,7 +6,7 @@ import numpy as np
 import numpy.typing as npt
 
 MethodName = Literal["exact", "penalty", "penalty-ref", "barrier", "certified"]
-IsaName = Literal["auto", "scalar", "sse2", "avx2", "avx512", "neon"]
+IsaName = Literal["auto", "scalar", "sse2", "avx2", "avx512", "neon", "portable"]
 Precision = Union[None, Literal["float32", "float64", "single", "double"], type, np.dtype]
 Real = Union[np.float32, np.float64]
 
