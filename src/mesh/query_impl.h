@@ -105,6 +105,8 @@ typedef struct walk {
     uint32_t node_tests;
     uint64_t pair_tests;
     clist *out;        /* contacts */
+    int32_t qkey[2];   /* the box whose node-test view is in q (side, node * 8 + slot); -1: none */
+    ttd_box_query q;   /* consecutive items often keep the same unopened box */
 } walk;
 
 /* The items' limit from the kernel's bound. */
@@ -326,17 +328,21 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
         return 0;
     }
     const int open_b = ca < 0 || (cb >= 0 && box_size(nb, it->bs) > box_size(na, it->as));
-    ttd_box_query q;
     real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
     const ttd_node *y;
+    const int32_t qkey = open_b ? it->an * TTD_NODE_WIDTH + it->as : it->bn * TTD_NODE_WIDTH + it->bs;
     if (open_b) {
         y = P->b.nodes + cb;
-        box_query(na, it->as, P->r, P->t, &q);
+        if (w->qkey[0] != 0 || w->qkey[1] != qkey)
+            box_query(na, it->as, P->r, P->t, &w->q);
     } else {
         y = P->a.nodes + ca;
-        box_query(nb, it->bs, P->ri, P->ti, &q);
+        if (w->qkey[0] != 1 || w->qkey[1] != qkey)
+            box_query(nb, it->bs, P->ri, P->ti, &w->q);
     }
-    C->node_test(&q, y, lb2, sep);
+    w->qkey[0] = open_b ? 0 : 1;
+    w->qkey[1] = qkey;
+    C->node_test(&w->q, y, lb2, sep);
     ++w->node_tests;
     if (!w->cutting && y->child[0] < 0 && (open_b ? ca : cb) < 0) {
         /* a leaf facing a triangle: its pairs within the gate go straight to the queue */
@@ -444,7 +450,13 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
         size_t top = 0;
         for (int j = 0; j < m; ++j) {
             if (item_small(P, &kids[j])) {
-                W->stack[top++] = kids[j];
+                /* nearest last: on top of the stack */
+                size_t at = top++;
+                while (at > 0 && W->stack[at - 1].lb2 < kids[j].lb2) {
+                    W->stack[at] = W->stack[at - 1];
+                    --at;
+                }
+                W->stack[at] = kids[j];
                 continue;
             }
             W->ndef = n;
@@ -532,6 +544,7 @@ static void walk_init(walk *w, int mode, const qpose *P, real limit, real rel_to
     w->ta = w->tb = UINT32_MAX;
     walk_set_limit(w, P, limit);
     w->gate2 = mode == MODE_DISTANCE ? 0 : (real)INFINITY;
+    w->qkey[0] = -1;
 }
 
 static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b)
@@ -645,8 +658,8 @@ static ttd_status query_collide(const ttd_engine_config *cfg, const struct ttd_m
 
 /* ---- contacts: a fixed list of sub-walks per pose ----------------------------------------- */
 
-/* Sub-walks a pose is cut into, at least (when the pairs within the margin allow). */
-#define CONTACT_TASKS 64
+/* Sub-walks a pose is cut into (when the pairs within the margin allow). */
+#define CONTACT_TASKS 256
 
 typedef struct contact_pose {
     qpose P;
@@ -655,42 +668,48 @@ typedef struct contact_pose {
     clist *lists;     /* one per task */
 } contact_pose;
 
-/* Cuts the walk from the root into sub-walks: rounds of opening every item that is not a pair
- * of triangles, in order, until there are CONTACT_TASKS items or nothing left to open. */
+/* The size of item it's boxes: a proxy for the work below it (their children and pairs). */
+static real item_size(const qpose *P, const item *it)
+{
+    return box_size(P->a.nodes + it->an, it->as) + box_size(P->b.nodes + it->bn, it->bs);
+}
+
+/* Cuts the walk from the root into sub-walks: opens the largest item that is not a pair of
+ * triangles, in place (its children replace it, in order), until there are CONTACT_TASKS
+ * items or nothing left to open. The work sits where the meshes come close, a small part of
+ * the top-level pairs: opening the largest first splits it where it is, so that the sub-walks
+ * spread over the threads. The list depends on the meshes and the pose alone. */
 static int contact_tasks(const qctx *C, qwork *W, contact_pose *cp, walk *w)
 {
-    /* a round starts with fewer than CONTACT_TASKS items and opens each into at most a node's
-     * width of them */
-    const size_t cap = CONTACT_TASKS * TTD_NODE_WIDTH;
-    size_t n = 1;
-    item *cur = malloc(cap * sizeof *cur), *next = malloc(cap * sizeof *next);
-    if (!cur || !next) {
-        free(cur);
-        free(next);
+    const size_t cap = CONTACT_TASKS + TTD_NODE_WIDTH;
+    item *list = malloc(cap * sizeof *list);
+    if (list == NULL)
         return 0;
-    }
-    cur[0] = root_item();
-    if (cur[0].lb2 > w->limit2)
-        n = 0;
-    for (int opened = 1; opened && n > 0 && n < CONTACT_TASKS;) {
-        opened = 0;
-        size_t m = 0;
+    size_t n = 0;
+    list[n++] = root_item();
+    while (n < CONTACT_TASKS) {
+        size_t big = SIZE_MAX;
+        real size = -1;
         for (size_t i = 0; i < n; ++i) {
-            const ttd_node *na = cp->P.a.nodes + cur[i].an, *nb = cp->P.b.nodes + cur[i].bn;
-            if (na->child[cur[i].as] < 0 && nb->child[cur[i].bs] < 0) {
-                next[m++] = cur[i];
+            const ttd_node *na = cp->P.a.nodes + list[i].an, *nb = cp->P.b.nodes + list[i].bn;
+            if (na->child[list[i].as] < 0 && nb->child[list[i].bs] < 0)
                 continue;
+            const real si = item_size(&cp->P, &list[i]);
+            if (si > size) {
+                size = si;
+                big = i;
             }
-            m += (size_t)expand(C, &cp->P, W, w, &cur[i], next + m);
-            opened = 1;
         }
-        item *t = cur;
-        cur = next;
-        next = t;
-        n = m;
+        if (big == SIZE_MAX)
+            break;
+        item kids[TTD_NODE_WIDTH];
+        const item it = list[big];
+        const int m = expand(C, &cp->P, W, w, &it, kids);
+        memmove(list + big + m, list + big + 1, (n - big - 1) * sizeof *list);
+        memcpy(list + big, kids, (size_t)m * sizeof *list);
+        n = n - 1 + (size_t)m;
     }
-    free(next);
-    cp->tasks = cur;
+    cp->tasks = list;
     cp->ntasks = n;
     cp->lists = calloc(n ? n : 1, sizeof(clist));
     return cp->lists != NULL;
