@@ -576,8 +576,8 @@ static int ttd_dist_streams(const ttd_dist_args *a, FILE *in, const char *name, 
         ttd_cli_error("%s: %llu bad %s%s (output nan)", name, r.bad, a->binary_in ? "record" : "line",
                       r.bad == 1 ? "" : "s");
     if (r.not_converged > 0)
-        ttd_cli_error("%s: warning: %llu of %llu pairs did not converge within --max-iter (%d): printed as "
-                      "computed, flagged not_converged by --detail",
+        ttd_cli_error("%s: warning: %llu of %llu pairs did not converge (within --max-iter %d, or the barrier "
+                      "method stalled): printed as computed, flagged not_converged by --detail",
                       name, r.not_converged, r.pairs, a->opt.max_iterations);
     free(reader);
     free(r.b);

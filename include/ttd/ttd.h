@@ -87,7 +87,9 @@ enum {
     TTD_PAIR_DEGENERATE_S = 1u << 1,  ///< the first triangle has zero area (a segment or a point)
     TTD_PAIR_DEGENERATE_T = 1u << 2,  ///< the second triangle has zero area
     TTD_PAIR_INTERSECTING = 1u << 3,  ///< the triangles touch or cross: distance 0
-    TTD_PAIR_NOT_CONVERGED = 1u << 4, ///< iterative method: hit max_iterations; points still lie on their triangles
+    /// iterative method: hit max_iterations, or (barrier) stalled on an ill-conditioned step before
+    /// its last barrier weight; outputs are finite and points still lie on their triangles
+    TTD_PAIR_NOT_CONVERGED = 1u << 4,
     TTD_PAIR_FALLBACK = 1u << 5       ///< certified mode: this pair failed the optimality check and was computed by the exact method
 };
 
