@@ -264,22 +264,36 @@ static int isa_unavailable(void)
     /* x86 has no NEON and aarch64 no AVX: at least one is always missing. */
     ENSURE(tested > 0);
 
-    /* TTD_ISA forces one when the options say auto, and a bad name is refused. */
+    /* TTD_ISA forces one when the options say auto, in any letter case; a name that is unknown
+     * or cannot run here is ignored (issue 12: it made every call of every program fail), and
+     * ttd_isa_env_note says so. */
     ttd_options o = ttd_default_options();
     ttd_isa best = ttd_isa_selected(&o);
     ENSURE(best != TTD_ISA_AUTO && ttd_isa_available(best));
     ENSURE(setenv("TTD_ISA", "scalar", 1) == 0);
-    ENSURE(ttd_isa_selected(&o) == TTD_ISA_SCALAR);
+    ENSURE(ttd_isa_selected(&o) == TTD_ISA_SCALAR && ttd_isa_env_note() == NULL);
     ENSURE(ttd_distance_d(&o, s, t, &r) == TTD_OK);
+    ENSURE(setenv("TTD_ISA", "SCALAR", 1) == 0);
+    ENSURE(ttd_isa_selected(&o) == TTD_ISA_SCALAR && ttd_isa_env_note() == NULL);
     ENSURE(setenv("TTD_ISA", "no-such-isa", 1) == 0);
-    ENSURE(ttd_distance_d(&o, s, t, &r) == TTD_ERR_ISA_UNAVAILABLE);
-    ENSURE(ttd_isa_selected(&o) == TTD_ISA_AUTO);
+    ENSURE(ttd_distance_d(&o, s, t, &r) == TTD_OK);
+    ENSURE(ttd_isa_selected(&o) == best && ttd_isa_env_note() != NULL);
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i)
+        if (!ttd_isa_available((ttd_isa)i)) { /* a known name this machine cannot run */
+            ENSURE(setenv("TTD_ISA", ttd_isa_name((ttd_isa)i), 1) == 0);
+            ENSURE(ttd_distance_d(&o, s, t, &r) == TTD_OK);
+            ENSURE(ttd_isa_selected(&o) == best && ttd_isa_env_note() != NULL);
+        }
     o.isa = TTD_ISA_SCALAR; /* a forced ISA wins over the environment */
     ENSURE(ttd_distance_d(&o, s, t, &r) == TTD_OK);
-    ENSURE(setenv("TTD_ISA", "auto", 1) == 0);
-    ENSURE(ttd_isa_selected(NULL) == best);
+    ENSURE(setenv("TTD_ISA", "Auto", 1) == 0);
+    ENSURE(ttd_isa_selected(NULL) == best && ttd_isa_env_note() == NULL);
     ENSURE(unsetenv("TTD_ISA") == 0);
-    ENSURE(ttd_isa_selected(NULL) == best);
+    ENSURE(ttd_isa_selected(NULL) == best && ttd_isa_env_note() == NULL);
+    /* names in any case; NULL and unknown names are TTD_ISA_COUNT */
+    ENSURE(ttd_isa_from_name("AVX512") == TTD_ISA_AVX512 && ttd_isa_from_name("Portable") == TTD_ISA_PORTABLE);
+    ENSURE(ttd_isa_from_name("avx") == TTD_ISA_COUNT && ttd_isa_from_name("avx2 ") == TTD_ISA_COUNT);
+    ENSURE(ttd_isa_from_name(NULL) == TTD_ISA_COUNT && ttd_isa_from_name("") == TTD_ISA_COUNT);
     return 0;
 }
 

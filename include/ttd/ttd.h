@@ -34,15 +34,17 @@ extern "C" {
 typedef enum ttd_status {
     TTD_OK = 0,                   ///< every pair computed
     TTD_WARN_NOT_CONVERGED = 1,   ///< an iterative method hit its cap on some pairs (flagged)
-    /// Some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed. Takes
-    /// precedence over TTD_WARN_NOT_CONVERGED: check the per-pair flags for that too.
+    /// Some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed. Not fatal,
+    /// despite its name (below TTD_ERR_FIRST_FATAL, like the warning above): every finite pair
+    /// has its outputs. Takes precedence over TTD_WARN_NOT_CONVERGED: check the per-pair flags
+    /// for that too.
     TTD_ERR_NONFINITE_INPUT = 2,
     TTD_ERR_FIRST_FATAL = 16,     ///< marker: from here on nothing was computed (but see OUT_OF_MEMORY)
     TTD_ERR_NULL_POINTER = 16,    ///< a required pointer was NULL
     TTD_ERR_EMPTY = 17,           ///< n == 0: nothing to compute
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
-    /// The forced instruction set (options.isa, or TTD_ISA with AUTO) is not built in, not
-    /// supported here, or (TTD_ISA) not a name that ttd_isa_name() gives.
+    /// The instruction set forced by options.isa is not built in or not supported here (a
+    /// TTD_ISA environment variable that cannot be used is ignored instead: ttd_isa_env_note).
     TTD_ERR_ISA_UNAVAILABLE = 19,
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range; nothing written
     TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed; outputs partly written, indeterminate
@@ -57,8 +59,9 @@ typedef enum ttd_status {
 typedef enum ttd_method {
     TTD_METHOD_EXACT = 0,             ///< 6 vertex-face, 9 edge-edge and 6 edge-face crossing tests; exact to rounding
     TTD_METHOD_PENALTY = 1,           ///< the paper's quasi-Newton penalty method, optimised and safeguarded
-    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol
-    /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
+    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol are
+    /// absolute (not scale-invariant; pairs far from unit size may stop early). The paper
+    /// publishes neither: the defaults are ttd's. Off by up to ~1 on a few % of random pairs.
     TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
     /// the penalty method, its answer checked for optimality on the final active set and
@@ -86,7 +89,10 @@ enum {
     TTD_PAIR_NONFINITE = 1u << 0,     ///< input had NaN or inf: every output of the pair is NaN
     TTD_PAIR_DEGENERATE_S = 1u << 1,  ///< the first triangle has zero area (a segment or a point)
     TTD_PAIR_DEGENERATE_T = 1u << 2,  ///< the second triangle has zero area
-    TTD_PAIR_INTERSECTING = 1u << 3,  ///< the triangles touch or cross: distance 0
+    /// the triangles touch or cross: distance 0. "Touch" includes a gap within 4 eps of the
+    /// pair's extent (the coordinates' rounding cannot tell it from contact): p and q may then be
+    /// that far apart, ~1e-15 of the pair's size in double, ~5e-7 in float
+    TTD_PAIR_INTERSECTING = 1u << 3,
     /// iterative method: hit max_iterations, or (barrier) stalled on an ill-conditioned step before
     /// its last barrier weight; outputs are finite and points still lie on their triangles
     TTD_PAIR_NOT_CONVERGED = 1u << 4,
@@ -95,7 +101,7 @@ enum {
 
 /// Everything known about one pair (double precision).
 typedef struct ttd_result_d {
-    double distance;   ///< |p - q|
+    double distance;   ///< |p - q|, or 0 with TTD_PAIR_INTERSECTING (see there)
     double p[3];       ///< closest point on the first triangle
     double q[3];       ///< closest point on the second triangle (== p up to rounding when they intersect)
     double bary_p[3];  ///< weights of A, B, C that give p (non-negative, sum 1)
@@ -108,7 +114,7 @@ typedef struct ttd_result_d {
 
 /// Everything known about one pair (single precision).
 typedef struct ttd_result_f {
-    float distance;    ///< |p - q|
+    float distance;    ///< |p - q|, or 0 with TTD_PAIR_INTERSECTING (see there)
     float p[3];        ///< closest point on the first triangle
     float q[3];        ///< closest point on the second triangle
     float bary_p[3];   ///< weights of A, B, C that give p
@@ -127,11 +133,16 @@ typedef struct ttd_result_f {
 /// Options for every call. Get them from ttd_default_options(), then change fields.
 typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
-    /// Default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA (a name from
-    /// ttd_isa_name(); empty or "auto" = best) may force one.
+    /// Default TTD_ISA_AUTO: the best instruction set built and supported here; with AUTO the
+    /// environment variable TTD_ISA (a name from ttd_isa_name() in any letter case; empty or
+    /// "auto" = best) may force one. A TTD_ISA that is not a name, or names one that cannot run
+    /// here, is ignored (the best one is used) rather than failing every call: ttd_isa_env_note()
+    /// says so, and the ttd program warns. An isa set here explicitly that cannot run gives
+    /// TTD_ERR_ISA_UNAVAILABLE.
     ttd_isa isa;
     int threads;        ///< worker threads for batches, >= 0; 0 (default) = all online cores; at most 256 used
-    /// Penalty weight, in (0, 1e150] (default 1e6). The barrier method lowers its weight to
+    /// Penalty weight, in (0, 1e150] (default 1e6, ttd's choice: the paper publishes no rho or
+    /// tol, only the 0.33 start and the 99-iteration cap). The barrier method lowers its weight to
     /// 1/rho^2. The float penalty and certified kernels use min(rho, 256) (a larger weight
     /// loses sliver pivots to rounding); the float ttd1 reference min(rho, 1e18).
     double rho;
@@ -143,7 +154,7 @@ typedef struct ttd_options {
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
 } ttd_options;
 
-/// The defaults: exact method, best instruction set, all cores, documented penalty parameters.
+/// The defaults: exact method, best instruction set, all cores, ttd's penalty parameters.
 TTD_API ttd_options ttd_default_options(void);
 
 /// Distance between one pair. opt may be NULL (defaults). s and t hold 9 coordinates each.
@@ -369,6 +380,12 @@ TTD_API const char *ttd_status_string(ttd_status status);
 TTD_API const char *ttd_method_name(ttd_method method);
 /// "auto", "scalar", "sse2", "avx2", "avx512", "neon", "portable"; NULL when out of range.
 TTD_API const char *ttd_isa_name(ttd_isa isa);
+/// The instruction set called name, ignoring ASCII case ("AVX512" is avx512, "Auto" is auto);
+/// TTD_ISA_COUNT when none is (or name is NULL).
+TTD_API ttd_isa ttd_isa_from_name(const char *name);
+/// NULL when the environment variable TTD_ISA is unset, empty, "auto" or names an instruction set
+/// that runs here; otherwise a sentence saying why it is being ignored.
+TTD_API const char *ttd_isa_env_note(void);
 /// Non-zero when isa is built into this library and supported by this CPU and OS.
 TTD_API int ttd_isa_available(ttd_isa isa);
 /// Non-zero when the kernels of isa are compiled into this library (scalar: always).

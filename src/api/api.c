@@ -175,6 +175,16 @@ int ttd_isa_available(ttd_isa isa)
     return ttd_dispatch_isa_built(isa) && ttd_dispatch_cpu_supports(isa);
 }
 
+ttd_isa ttd_isa_from_name(const char *name)
+{
+    return ttd_dispatch_isa_from_name(name);
+}
+
+const char *ttd_isa_env_note(void)
+{
+    return ttd_dispatch_env_note();
+}
+
 int ttd_isa_built(ttd_isa isa)
 {
     return ttd_dispatch_isa_built(isa);
