@@ -94,16 +94,22 @@ static double pose_defect(const void *poses, size_t i, int bytes)
     for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
             const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            defect = fmax(defect, fabs(g - (a == b ? 1.0 : 0.0)));
+            const double dev = fabs(g - (a == b ? 1.0 : 0.0));
+            defect = dev > defect ? dev : defect;
         }
     const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
                        r[2] * (r[3] * r[7] - r[4] * r[6]);
     return det > 0 ? defect : -1;
 }
 
-/* The checks of every query. On TTD_OK, *defects holds k pose defects (the caller frees it). */
+/* Poses whose defects fit on the stack (most calls: one pose). */
+#define TTD_DEFECTS_INLINE 32
+
+/* The checks of every query. On TTD_OK, *defects holds k pose defects: inline (TTD_DEFECTS_INLINE
+ * of them) or allocated (the caller frees it when it is not inline). */
 static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
-                                const void *poses, int bytes, int out_ok, ttd_engine_config *cfg, double **defects)
+                                const void *poses, int bytes, int out_ok, ttd_engine_config *cfg, double **defects,
+                                double *inline_defects)
 {
     *defects = NULL;
     ttd_status st = ttd_prepare(opt, a && b && poses && out_ok, k, ttd_too_large(k, 12, (size_t)bytes), cfg);
@@ -113,13 +119,14 @@ static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const
         return TTD_ERR_BAD_OPTIONS;
     if (a->bytes != bytes || b->bytes != bytes)
         return TTD_ERR_PRECISION_MISMATCH;
-    double *d = malloc(k * sizeof *d);
+    double *d = k <= TTD_DEFECTS_INLINE ? inline_defects : malloc(k * sizeof *d);
     if (d == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; i < k; ++i) {
         d[i] = pose_defect(poses, i, bytes);
         if (!(d[i] >= 0 && d[i] <= TTD_POSE_TOLERANCE)) {
-            free(d);
+            if (d != inline_defects)
+                free(d);
             return TTD_ERR_BAD_POSE;
         }
     }
@@ -135,21 +142,28 @@ static int ttd_nonneg(double x, int inf_ok)
 
 #define TTD_QUERY_BEGIN(bytes, out_ok, params_ok)                                                  \
     ttd_engine_config cfg;                                                                     \
-    double *defects;                                                                           \
-    ttd_status st = query_prepare(opt, a, b, k, poses, bytes, out_ok, &cfg, &defects);         \
+    double *defects, inline_defects[TTD_DEFECTS_INLINE];                                      \
+    ttd_status st = query_prepare(opt, a, b, k, poses, bytes, out_ok, &cfg, &defects, inline_defects); \
     if (st != TTD_OK)                                                                          \
         return st;                                                                             \
     if (!(params_ok)) {                                                                        \
-        free(defects);                                                                         \
+        TTD_QUERY_END();                                                                       \
         return TTD_ERR_BAD_OPTIONS;                                                            \
     }
+
+/* Frees what TTD_QUERY_BEGIN allocated. */
+#define TTD_QUERY_END()                                                                            \
+    do {                                                                                       \
+        if (defects != inline_defects)                                                         \
+            free(defects);                                                                     \
+    } while (0)
 
 ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                const double *poses, double upper_bound, double rel_tol, ttd_mesh_result_d *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(upper_bound, 1) && ttd_nonneg(rel_tol, 0))
     st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -158,7 +172,7 @@ ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const 
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)upper_bound, 1) && ttd_nonneg((double)rel_tol, 0))
     st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -167,7 +181,7 @@ ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const t
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
     st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -176,7 +190,7 @@ ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const t
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
     st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -187,7 +201,7 @@ ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const 
         out->count = 0;
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
     st = ttd_mesh_query_contacts_d(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -198,7 +212,7 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
         out->count = 0;
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
     st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -239,7 +253,7 @@ void ttd_contacts_free_f(ttd_contacts_f *contacts)
     TTD_QUERY_BEGIN((int)sizeof(real), for_a != NULL || for_b != NULL, ttd_nonneg((double)margin, 0)) \
     contacts_t set = {0};                                                                      \
     st = query_fn(&cfg, a, b, k, poses, defects, margin, &set);                                \
-    free(defects);                                                                             \
+    TTD_QUERY_END();                                                                           \
     if (st != TTD_OK) {                                                                        \
         free_fn(&set);                                                                         \
         return st;                                                                             \

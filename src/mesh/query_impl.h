@@ -79,9 +79,13 @@ typedef struct clist {
 } clist;
 
 /* A thread's working memory, reused across the walks it runs. */
+/* Items a walk holds without allocating (most walks need fewer). */
+#define STACK_INLINE 256
+
 typedef struct qwork {
-    item *stack;
+    item *stack;                     /* inline, or on the heap once it outgrew it */
     size_t cap;
+    item inline_stack[STACK_INLINE];
     item *deferred;                  /* the minimum's first phase: items left for the second */
     size_t ndef, defcap;
     int nb;                          /* candidates waiting for the kernel */
@@ -118,38 +122,54 @@ static void walk_set_limit(walk *w, const qpose *P, real limit)
 }
 
 /* n workers' memory, its arrays allocated as they are needed. */
-static qwork *qwork_new(int n)
+static void qwork_init(qwork *W)
 {
-    qwork *W = malloc((size_t)n * sizeof *W);
-    for (int i = 0; W != NULL && i < n; ++i) {
-        W[i].stack = W[i].deferred = NULL;
-        W[i].cap = W[i].ndef = W[i].defcap = 0;
-        W[i].nb = W[i].nomem = 0;
-    }
+    W->stack = W->inline_stack;
+    W->cap = STACK_INLINE;
+    W->deferred = NULL;
+    W->ndef = W->defcap = 0;
+    W->nb = W->nomem = 0;
+}
+
+static void qwork_release(qwork *W)
+{
+    if (W->stack != W->inline_stack)
+        free(W->stack);
+    free(W->deferred);
+}
+
+/* n workers' memory; one worker (a single pose, the common call) uses `one`, no allocation. */
+static qwork *qwork_new(int n, qwork *one)
+{
+    qwork *W = n == 1 ? one : malloc((size_t)n * sizeof *W);
+    for (int i = 0; W != NULL && i < n; ++i)
+        qwork_init(&W[i]);
     return W;
 }
 
-static void qwork_free(qwork *W, int n)
+static void qwork_free(qwork *W, int n, qwork *one)
 {
-    for (int i = 0; W != NULL && i < n; ++i) {
-        free(W[i].stack);
-        free(W[i].deferred);
-    }
-    free(W);
+    for (int i = 0; W != NULL && i < n; ++i)
+        qwork_release(&W[i]);
+    if (W != one)
+        free(W);
 }
 
 static int grow_stack(qwork *W, size_t need)
 {
     if (need <= W->cap)
         return 1;
-    size_t cap = W->cap ? 2 * W->cap : 256;
+    size_t cap = 2 * W->cap;
     while (cap < need)
         cap *= 2;
-    item *s = realloc(W->stack, cap * sizeof *s);
+    item *s = malloc(cap * sizeof *s);
     if (s == NULL) {
         W->nomem = 1;
         return 0;
     }
+    memcpy(s, W->stack, W->cap * sizeof *s);
+    if (W->stack != W->inline_stack)
+        free(W->stack);
     W->stack = s;
     W->cap = cap;
     return 1;
@@ -530,6 +550,17 @@ static void qpose_make(const qctx *C, const real pose[12], double defect, qpose 
     P->delta = (real)((64 * (double)TTD_REAL_EPS + 4 * defect) * S);
 }
 
+/* Whether the meshes' bounding spheres are farther apart than the limit: then no pair can be
+ * within it, and the walk is not needed (a far pose of a collision or contact query). */
+static int spheres_apart(const qctx *C, const qpose *P, const walk *w)
+{
+    double t2 = 0;
+    for (int i = 0; i < 3; ++i)
+        t2 += (double)P->t[i] * (double)P->t[i];
+    const double gap = sqrt(t2) - (C->ma->radius + C->mb->radius) - (double)P->delta;
+    return gap > 0 && gap * gap > (double)w->limit2;
+}
+
 static item root_item(void)
 {
     item it = {0, 0, 0, 0, 0};
@@ -612,7 +643,8 @@ static void pose_task(void *ctx, size_t i, int worker)
     walk w;
     walk_init(&w, J->mode, &P, J->limit, J->rel_tol);
     const item root = root_item();
-    walk_run(J->C, &P, W, &w, &root);
+    if (!spheres_apart(J->C, &P, &w))
+        walk_run(J->C, &P, W, &w, &root);
     if (W->nomem) {
         atomic_store(&J->nomem, 1);
         return;
@@ -633,11 +665,12 @@ static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const do
                             real rel_tol, void *out)
 {
     const int workers = ttd_parallel_task_workers(k, C->threads);
-    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers), 0};
+    qwork one;
+    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers, &one), 0};
     atomic_init(&J.nomem, J.work == NULL);
     if (J.work != NULL)
         ttd_parallel_tasks(k, C->threads, pose_task, &J);
-    qwork_free(J.work, workers);
+    qwork_free(J.work, workers, &one);
     return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
 }
 
@@ -820,8 +853,9 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     /* one pose: its tasks over the threads; several: the poses over the threads */
     const size_t ntask_guess = k == 1 ? CONTACT_TASKS : k;
     const int workers = ttd_parallel_task_workers(ntask_guess, C.threads);
+    qwork one;
     contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, defects, margin, SIZE_MAX,
-                     qwork_new(workers), 0};
+                     qwork_new(workers, &one), 0};
     atomic_init(&J.nomem, J.cp == NULL || J.work == NULL);
     if (!atomic_load(&J.nomem)) {
         if (k == 1) {
@@ -841,7 +875,7 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
         free(J.cp[i].lists);
         free(J.cp[i].tasks);
     }
-    qwork_free(J.work, workers);
+    qwork_free(J.work, workers, &one);
     free(J.cp);
     if (!ok) {
         out->count = 0;
