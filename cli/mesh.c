@@ -40,10 +40,12 @@ typedef enum ttd_mesh_cmd { TTD_MESH_DISTANCE, TTD_MESH_CONTACTS, TTD_MESH_COLLI
 
 static const char *const ttd_mesh_cmd_names[] = {"distance", "contacts", "collide"};
 
+static const char *const ttd_mesh_synopsis[] = {
+    "ttd mesh distance A B [--pose P | --poses FILE] [--upper-bound X] [--rel-tol X] [options]\n",
+    "ttd mesh contacts A B --margin M [--pose P | --poses FILE] [--per-triangle] [--count] [options]\n",
+    "ttd mesh collide A B [--margin M] [--pose P | --poses FILE] [options]\n"};
+
 static const char ttd_mesh_usage_head[] =
-    "usage: ttd mesh distance A B [--pose P | --poses FILE] [--upper-bound X] [--rel-tol X] [options]\n"
-    "       ttd mesh contacts A B --margin M [--pose P | --poses FILE] [--per-triangle] [--count] [options]\n"
-    "       ttd mesh collide A B [--margin M] [--pose P | --poses FILE] [options]\n"
     "Queries between two triangle meshes read from the files A and B ('-' for standard input, once\n"
     "for both when A and B are the same path): OBJ, STL (ASCII or binary) or PLY (ASCII or binary\n"
     "little-endian), recognised by content (docs/mesh-files.md). Triangle indices ia (of A) and ib\n"
@@ -104,10 +106,14 @@ static const char ttd_mesh_usage_common[] =
     "                    and the results do not depend on N\n"
     "  --help            this text\n"
     "\n"
+    "\n"
+    "Numbers: a distance beyond the precision's range prints inf; a pose that would move a vertex\n"
+    "of B beyond it is refused (exit 1).\n"
     "Exit status: 0 done; 1 a mesh file or poses file that cannot be read or is malformed (the\n"
     "message names the file and line or byte offset; nothing is printed on standard output), a\n"
-    "library error, or an output error; 2 bad command line (unknown option or command, a missing\n"
-    "or extra operand, a bad value, a --pose that is not 12 finite numbers or not a rotation).\n";
+    "pose moving B out of range, a library error, or an output error; 2 bad command line (unknown\n"
+    "option or command, a missing or extra operand, a bad value, a --pose that is not 12 finite\n"
+    "numbers or not a rotation).\n";
 
 /* The usage of one command, or of all (cmd < 0). */
 static void ttd_mesh_print_usage(FILE *f, int cmd)
@@ -115,6 +121,9 @@ static void ttd_mesh_print_usage(FILE *f, int cmd)
     char isas[256] = "";
     for (int i = 0; i < TTD_ISA_COUNT; ++i)
         snprintf(isas + strlen(isas), sizeof isas - strlen(isas), "%s%s", i ? "|" : "", ttd_isa_name((ttd_isa)i));
+    for (int c = 0; c < 3; ++c)
+        if (cmd < 0 || cmd == c)
+            fprintf(f, "%s%s", c == (cmd < 0 ? 0 : cmd) ? "usage: " : "       ", ttd_mesh_synopsis[c]);
     fputs(ttd_mesh_usage_head, f);
     if (cmd < 0 || cmd == TTD_MESH_DISTANCE)
         fputs(ttd_mesh_usage_distance, f);
