@@ -679,6 +679,8 @@ static int ttd_mesh_run_contacts(const ttd_mesh_run *r)
                 fprintf(r->out, "%zu\n", hi - lo);
                 continue;
             }
+            if (hi == lo) /* pairs may be NULL then */
+                continue;
             if (a->use_float)
                 qsort(sf.pairs + lo, hi - lo, sizeof *sf.pairs, ttd_contact_cmp_f);
             else

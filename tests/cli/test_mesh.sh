@@ -328,19 +328,21 @@ for name in $POSES; do
     pose=$(pose_of $name)
     brute "$pose"
     d=$("$TTD" mesh distance "$A" "$B" --pose "$pose" | cut -d' ' -f1)
-    # Margins: the minimum itself (its pairs included), a little above, and (when d > 0) below.
-    margins="$d $(awk -v d="$d" 'BEGIN { printf "%.17g", d + 0.3 }')"
+    # Margins: a little above the minimum (every format), the minimum itself (its pairs
+    # included), and (when d > 0) below it (OBJ and binary STL, a text and a binary reader).
+    margins="$(awk -v d="$d" 'BEGIN { printf "%.17g", d + 0.3 }') $d"
     [ "$d" = 0 ] || margins="$margins $(awk -v d="$d" 'BEGIN { printf "%.17g", d * 0.99 }')"
+    fmts=$FORMATS
     for m in $margins; do
         brute_contacts "$m" > "$DIR/want"
-        for fmt in $FORMATS; do
+        for fmt in $fmts; do
             run 0 mesh contacts "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --margin "$m"
             same_lines "contacts $name margin $m ($fmt)" "$DIR/out" "$DIR/want"
         done
         run 0 mesh contacts "$A" "$B" --pose "$pose" --margin "$m" --count
         [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want" | tr -d ' ')" ] || fail "contacts $name --count $m: $(cat "$DIR/out")"
         brute_closest "$m" > "$DIR/want"
-        for fmt in $FORMATS; do
+        for fmt in $fmts; do
             run 0 mesh contacts "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --margin "$m" --per-triangle
             same_lines "per-triangle $name margin $m ($fmt)" "$DIR/out" "$DIR/want"
         done
@@ -348,7 +350,7 @@ for name in $POSES; do
         [ "$(cat "$DIR/out")" = "$(awk '$1 == "a" { a++ } $1 == "b" { b++ } END { print a + 0, b + 0 }' "$DIR/want")" ] ||
             fail "per-triangle --count $name $m: $(cat "$DIR/out")"
         # collide: 1 exactly when some pair is within the margin, and the witness pair is.
-        for fmt in $FORMATS; do
+        for fmt in $fmts; do
             run 0 mesh collide "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --margin "$m"
             awk -v l="$(cat "$DIR/out")" -v m="$m" '{ d[NR - 1] = $1 + 0; if ($1 + 0 <= m + 0) hit = 1 }
                 END { n = split(l, r, " ")
@@ -356,13 +358,14 @@ for name in $POSES; do
                       exit !(n == 3 && r[1] == "1" && r[2] >= 0 && r[2] < 12 && r[3] >= 0 && r[3] < 4 && d[r[2] * 4 + r[3]] <= m + 0) }' \
                 "$DIR/brute" || fail "collide $name margin $m ($fmt): $(cat "$DIR/out")"
         done
+        fmts="obj stlb"
     done
     # collide without --margin: do they touch or cross?
     run 0 mesh collide "$A" "$B" --pose "$pose"
     case $name in TOUCH|CROSS) want=1 ;; *) want=0 ;; esac
     [ "$(cut -d' ' -f1 "$DIR/out")" = $want ] || fail "collide $name: $(cat "$DIR/out")"
 done
-pass "contacts, --count, --per-triangle, collide: 7 poses x 2-3 margins x 5 formats, equal to brute force"
+pass "contacts, --count, --per-triangle, collide: 7 poses x 2-3 margins x 2-5 formats, equal to brute force"
 
 # A margin that holds every pair; contact lines sorted by ia then ib, with no duplicates.
 run 0 mesh contacts "$A" "$B" --pose "$P_CROSS" --margin 100
@@ -426,15 +429,22 @@ done
 pass "threads 1, 2, 0, 7 and every available instruction set give identical output"
 
 # ---- a large output: a 64 x 64 grid against itself ---------------------------------------
-# At the identity, margin 0: exactly the pairs of triangles that share a vertex (other
-# triangles of the grid are at least 1/64 apart), built here from the grid's incidence.
-awk 'BEGIN { n = 64; for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) printf "v %.17g %.17g 0\n", i / n, j / n
-     for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i + 1; printf "f %d %d %d %d\n", a, a + 1, a + n + 2, a + n + 1 } }' \
-    > "$DIR/grid.obj"
-awk '$1 == "f" { for (k = 3; k < NF; k++) { t = nt++; c[t] = $2 " " $k " " $(k + 1) } }
-     END { for (t = 0; t < nt; t++) { split(c[t], v, " "); for (k = 1; k <= 3; k++) inc[v[k]] = inc[v[k]] " " t }
-           for (x in inc) { n = split(inc[x], l, " "); for (i = 1; i <= n; i++) for (j = 1; j <= n; j++) pair[l[i] " " l[j]] = 1 }
-           for (p in pair) print p }' "$DIR/grid.obj" | sort -k1,1n -k2,2n > "$DIR/want"
+# grid N: the unit square as N x N quads in the plane z = 0 (OBJ). shared_pairs FILE: the pairs
+# of its triangles that share a vertex, by ia then ib, from the file's own incidence.
+grid() {
+    awk -v n="$1" 'BEGIN { for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) printf "v %.17g %.17g 0\n", i / n, j / n
+        for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i + 1; printf "f %d %d %d %d\n", a, a + 1, a + n + 2, a + n + 1 } }'
+}
+shared_pairs() {
+    awk '$1 == "f" { for (k = 3; k < NF; k++) { t = nt++; c[t] = $2 " " $k " " $(k + 1) } }
+         END { for (t = 0; t < nt; t++) { split(c[t], v, " "); for (k = 1; k <= 3; k++) inc[v[k]] = inc[v[k]] " " t }
+               for (x in inc) { n = split(inc[x], l, " "); for (i = 1; i <= n; i++) for (j = 1; j <= n; j++) pair[l[i] " " l[j]] = 1 }
+               for (p in pair) print p }' "$1" | sort -k1,1n -k2,2n
+}
+# At the identity, margin 0: exactly the pairs of triangles that share a vertex (two triangles
+# without a common vertex are at least 1/64/sqrt(2) apart), all at distance 0 with p = q.
+grid 64 > "$DIR/grid.obj"
+shared_pairs "$DIR/grid.obj" > "$DIR/want"
 run 0 mesh contacts "$DIR/grid.obj" "$DIR/grid.obj" --margin 0
 cut -d' ' -f1,2 "$DIR/out" | cmp -s - "$DIR/want" || fail "grid: the contact pairs differ from the triangles sharing a vertex"
 awk '$3 != 0 || $4 != $7 || $5 != $8 || $6 != $9 { print "line " NR ": " $0; exit 1 }' "$DIR/out" || fail "grid: a pair not at 0 with p = q"
@@ -442,19 +452,22 @@ n=$(wc -l < "$DIR/want" | tr -d ' ')
 [ "$n" -gt 50000 ] || fail "grid: only $n pairs"
 run 0 mesh contacts "$DIR/grid.obj" "$DIR/grid.obj" --margin 0 --count
 [ "$(cat "$DIR/out")" = "$n" ] || fail "grid --count: $(cat "$DIR/out"), want $n"
-# 20 poses 1/2048 .. 20/2048 above, margin 11/1024: the same pairs (now at the gap) in every
-# pose, since triangles without a common vertex are at least 1/64/sqrt(2) > 11/1024 apart in
-# the plane; 20 poses take more than one library call.
+# A 32 x 32 grid under 20 poses 1/2048 .. 20/2048 above, margin 11/1024: the same pairs (now
+# at the gap) in every pose, since triangles without a common vertex are at least 1/32/sqrt(2)
+# apart in the plane; 20 poses take more than one library call.
+grid 32 > "$DIR/grid32.obj"
+n32=$(shared_pairs "$DIR/grid32.obj" | wc -l | tr -d ' ')
 awk 'BEGIN { for (k = 1; k <= 20; k++) printf "1 0 0 0  0 1 0 0  0 0 1 %.17g\n", k / 2048 }' > "$DIR/gposes.txt"
-run 0 mesh contacts "$DIR/grid.obj" "$DIR/grid.obj" --poses "$DIR/gposes.txt" --margin 0.0107421875 --count
-[ "$(sort -u "$DIR/out")" = "$n" ] && [ "$(wc -l < "$DIR/out" | tr -d ' ')" = 20 ] || fail "grid, 20 poses --count: $(cat "$DIR/out")"
-run 0 mesh contacts "$DIR/grid.obj" "$DIR/grid.obj" --poses "$DIR/gposes.txt" --margin 0.0107421875 --count --precision float
-[ "$(sort -u "$DIR/out")" = "$n" ] || fail "grid, float --count: $(sort -u "$DIR/out")"
-pass "grid: $n contact lines equal to the shared-vertex pairs; --count over 20 poses, double and float"
+run 0 mesh contacts "$DIR/grid32.obj" "$DIR/grid32.obj" --poses "$DIR/gposes.txt" --margin 0.0107421875 --count
+[ "$(sort -u "$DIR/out")" = "$n32" ] && [ "$(wc -l < "$DIR/out" | tr -d ' ')" = 20 ] || fail "grid, 20 poses --count: $(cat "$DIR/out"), want $n32"
+run 0 mesh contacts "$DIR/grid32.obj" "$DIR/grid32.obj" --poses "$DIR/gposes.txt" --margin 0.0107421875 --count --precision float
+[ "$(sort -u "$DIR/out")" = "$n32" ] && [ "$(wc -l < "$DIR/out" | tr -d ' ')" = 20 ] || fail "grid, float --count: $(sort -u "$DIR/out")"
+pass "grid: $n contact lines equal to the shared-vertex pairs; $n32 pairs in each of 20 poses (--count), double and float"
 
 # ---- float precision -----------------------------------------------------------------------
 # Against a float brute force on the poses whose transform is exact in float (all but ROTY):
-# distance, contacts and per-triangle lines, in every format, printed with %.9g.
+# the distance line in every format, contacts and per-triangle lines from OBJ and binary STL;
+# printed with %.9g.
 for name in GAP VV ROTZ TOUCH CROSS FAR; do
     pose=$(pose_of $name)
     brute "$pose" float
@@ -470,6 +483,7 @@ for name in GAP VV ROTZ TOUCH CROSS FAR; do
     for fmt in $FORMATS; do
         run 0 mesh distance "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --precision float
         [ "$(cat "$DIR/out")" = "$line" ] || fail "float distance $name ($fmt): $(cat "$DIR/out")"
+        case $fmt in obj|stlb) ;; *) continue ;; esac
         run 0 mesh contacts "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --margin "$m" --precision float
         same_lines "float contacts $name ($fmt)" "$DIR/out" "$DIR/want" 1e-7
         run 0 mesh contacts "$DIR/cube.$fmt" "$DIR/tet.$fmt" --pose "$pose" --margin "$m" --precision float --per-triangle
@@ -478,7 +492,7 @@ for name in GAP VV ROTZ TOUCH CROSS FAR; do
 done
 run 0 mesh distance "$A" "$B" --pose "$P_ROTY" --precision float
 expect "float distance ROTY" "$(cat "$DIR/out")" "$(want_distance ROTY)" 1e-6
-pass "float: distance, contacts, per-triangle against a float brute force, every format"
+pass "float: distance (every format), contacts, per-triangle (OBJ, binary STL) against a float brute force"
 
 # Poses are read with strtof: t_z = 2 + 2^-23 + 1e-32 is just above the midpoint between the
 # floats 2 and 2 + 2^-22, so strtof gives 2 + 2^-22 (d = 1 + 2^-22 over the cube's top), where
