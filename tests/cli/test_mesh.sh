@@ -633,6 +633,13 @@ run 2 mesh distance; err_has "the mesh files A and B are missing" "no operand"
 run 2 mesh distance "$A" "$B" "$A"; err_has "unexpected argument" "three operands"
 run 2 mesh nearest "$A" "$B"; err_has "unknown command 'nearest'" "unknown subcommand"
 run 2 mesh; err_has "usage: ttd mesh" "no subcommand"
+TTD_ISA=nosuch "$TTD" mesh distance "$A" "$B" > "$DIR/out" 2> "$DIR/err"
+[ $? -eq 2 ] || fail "TTD_ISA=nosuch: status not 2"; err_has "TTD_ISA=nosuch is not available" "TTD_ISA"
+run 1 mesh distance "$A" "$B" --poses "$DIR"; err_has "read error" "poses file a directory"
+if [ -w /dev/full ]; then
+    "$TTD" mesh contacts "$A" "$B" --margin 1 > /dev/full 2> "$DIR/err"
+    [ $? -eq 1 ] || fail "output to /dev/full: status not 1"; err_has "error writing the output" "/dev/full"
+fi
 # Usage errors are found before any file is read.
 run 2 mesh distance "$DIR/nothere.obj" "$B" --bogus; err_has "unknown option" "usage before files"
 pass "errors: margins, bounds, unknown and misplaced options, operands, commands (exit 2)"
