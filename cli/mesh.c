@@ -6,9 +6,11 @@
  *
  * Everything that can be checked is checked before anything is computed, so that a run either
  * prints its whole answer or nothing but messages: options and a --pose argument (exit 2), the
- * whole poses file (every bad line named, exit 1), both meshes (the reader's message, exit 1).
- * A pose that is not a rotation is caught here with the library's own test (include/ttd/ttd.h),
- * so the message can say which pose and why.
+ * whole poses file (every bad line named, exit 1), both meshes (the reader's message, exit 1),
+ * every pose against B's extent (exit 1). A pose that is not a rotation is caught here with the
+ * library's own test (include/ttd/ttd.h), so the message can say which pose and why; one that
+ * would move B beyond the precision's range is caught here because the library does not check
+ * that (it would compute with infinities and print a wrong answer).
  *
  * Poses go to the library in chunks, so that memory stays bounded however many poses there are
  * (contacts: chunks sized from the pairs per pose seen so far), and each chunk's lines are
