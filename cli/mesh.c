@@ -7,10 +7,10 @@
  * Everything that can be checked is checked before anything is computed, so that a run either
  * prints its whole answer or nothing but messages: options and a --pose argument (exit 2), the
  * whole poses file (every bad line named, exit 1), both meshes (the reader's message, exit 1),
- * every pose against B's extent (exit 1). A pose that is not a rotation is caught here with the
+ * every pose against the meshes (exit 1). A pose that is not a rotation is caught here with the
  * library's own test (include/ttd/ttd.h), so the message can say which pose and why; one that
- * would move B beyond the precision's range is caught here because the library does not check
- * that (it would compute with infinities and print a wrong answer).
+ * would move B beyond the meshes' coordinate range by ttd_mesh_check_poses, so that the message
+ * names the pose.
  *
  * Poses go to the library in chunks, so that memory stays bounded however many poses there are
  * (contacts: chunks sized from the pairs per pose seen so far), and each chunk's lines are
@@ -109,8 +109,8 @@ static const char ttd_mesh_usage_common[] =
     "  --help            this text\n"
     "\n"
     "\n"
-    "Numbers: a distance beyond the precision's range prints inf; a pose that would move a vertex\n"
-    "of B beyond it is refused (exit 1).\n"
+    "Numbers: the meshes' coordinates, and B's under every pose, must stay within 2^60 (float)\n"
+    "or 2^508 (double) in magnitude; a mesh or a pose beyond that is refused (exit 1).\n"
     "Exit status: 0 done; 1 a mesh file or poses file that cannot be read or is malformed (the\n"
     "message names the file and line or byte offset; nothing is printed on standard output), a\n"
     "pose moving B out of range, a library error, or an output error; 2 bad command line (unknown\n"
@@ -464,54 +464,26 @@ static int ttd_mesh_load(const ttd_mesh_args *a, const char *path, ttd_meshfile 
     return 0;
 }
 
-/* Whether a pose keeps every vertex of B finite in the precision's type. The library applies
- * the pose without checking that, and an overflow there would give a wrong answer, not an
- * error. A bound on |R x + t| decides almost always; only a pose near the end of the range
- * gets the exact test: the library's own arithmetic, ((r0 x + r1 y) + r2 z) + t, on every vertex. */
-static int ttd_mesh_pose_in_range(int use_float, const ttd_meshfile *b, double maxabs, const double p[12])
+/* Every pose checked against the meshes as the library's queries will check it (the coordinate
+ * range: include/ttd/ttd.h), so that a refused pose is named; 0, or the exit status after the
+ * message. */
+static int ttd_mesh_check_range(const ttd_mesh_args *a, const ttd_mesh *ma, const ttd_mesh *mb,
+                                const ttd_mesh_poses *ps)
 {
-    const double lim = use_float ? (double)FLT_MAX : DBL_MAX;
-    int safe = 1;
-    for (int i = 0; i < 3; ++i) {
-        const double bound = (fabs(p[4 * i]) + fabs(p[4 * i + 1]) + fabs(p[4 * i + 2])) * maxabs + fabs(p[4 * i + 3]);
-        safe &= bound <= 0.5 * lim;
-    }
-    if (safe)
-        return 1;
-    for (size_t v = 0; v < b->nv; ++v)
-        for (int i = 0; i < 3; ++i) {
-            double x;
-            if (use_float) {
-                const float *q = b->verts_f + 3 * v;
-                const float r0 = (float)p[4 * i], r1 = (float)p[4 * i + 1], r2 = (float)p[4 * i + 2], t = (float)p[4 * i + 3];
-                x = (double)(((r0 * q[0] + r1 * q[1]) + r2 * q[2]) + t);
-            } else {
-                const double *q = b->verts + 3 * v;
-                x = ((p[4 * i] * q[0] + p[4 * i + 1] * q[1]) + p[4 * i + 2] * q[2]) + p[4 * i + 3];
-            }
-            if (!isfinite(x))
-                return 0;
-        }
-    return 1;
-}
-
-/* Every pose checked against B's extent; 0, or the exit status after the message. */
-static int ttd_mesh_check_range(const ttd_mesh_args *a, const ttd_meshfile *b, const ttd_mesh_poses *ps)
-{
-    double maxabs = 0;
-    for (size_t i = 0; i < 3 * b->nv; ++i)
-        maxabs = fmax(maxabs, fabs(a->use_float ? (double)b->verts_f[i] : b->verts[i]));
-    for (size_t i = 0; i < ps->k; ++i) {
-        if (ttd_mesh_pose_in_range(a->use_float, b, maxabs, ps->d + 12 * i))
-            continue;
-        const char *what = a->use_float ? "float" : "double";
-        if (a->poses_path)
-            ttd_cli_error("%s: pose %zu moves a vertex of B beyond the %s range", a->name, i, what);
-        else
-            ttd_cli_error("%s: --pose moves a vertex of B beyond the %s range", a->name, what);
-        return TTD_EXIT_INPUT;
-    }
-    return 0;
+    if (ps->k == 0)
+        return 0;
+    size_t bad;
+    const ttd_status st = a->use_float ? ttd_mesh_check_poses_f(ma, mb, ps->k, ps->f, &bad)
+                                       : ttd_mesh_check_poses_d(ma, mb, ps->k, ps->d, &bad);
+    if (st == TTD_OK)
+        return 0;
+    if (bad == ps->k)
+        ttd_cli_error("%s: %s", a->name, ttd_status_string(st));
+    else if (a->poses_path)
+        ttd_cli_error("%s: pose %zu: %s", a->name, bad, ttd_status_string(st));
+    else
+        ttd_cli_error("%s: --pose: %s", a->name, ttd_status_string(st));
+    return TTD_EXIT_INPUT;
 }
 
 /* ---- output ------------------------------------------------------------------------------- */
@@ -809,15 +781,13 @@ static int ttd_mesh_run_closest(const ttd_mesh_run *r)
 /* The instruction set is checked before any file is read (as `ttd dist` does); 0 or 2. */
 static int ttd_mesh_check_isa(const ttd_mesh_args *a)
 {
-    if (ttd_isa_selected(&a->opt) != TTD_ISA_AUTO)
-        return 0;
-    const char *env = getenv("TTD_ISA");
-    if (a->opt.isa == TTD_ISA_AUTO && env && env[0])
-        ttd_cli_error("%s: TTD_ISA=%s is not available here", a->name, env);
-    else
-        ttd_cli_error("%s: --isa %s is not available here", a->name, ttd_isa_name(a->opt.isa));
-    ttd_cli_print_isas(stderr);
-    return TTD_EXIT_USAGE;
+    if (ttd_isa_selected(&a->opt) == TTD_ISA_AUTO) {
+        ttd_cli_error("%s: --isa %s is not available here; this machine has:", a->name, ttd_isa_name(a->opt.isa));
+        ttd_cli_print_isas(stderr);
+        return TTD_EXIT_USAGE;
+    }
+    ttd_cli_warn_isa_env(a->name);
+    return 0;
 }
 
 int ttd_cli_mesh(int argc, char **argv)
@@ -860,7 +830,7 @@ int ttd_cli_mesh(int argc, char **argv)
     if (rc == 0 && !same)
         rc = ttd_mesh_load(&a, a.path_b, &fb, &mb);
     if (rc == 0)
-        rc = ttd_mesh_check_range(&a, same ? &fa : &fb, &ps);
+        rc = ttd_mesh_check_range(&a, ma, mb ? mb : ma, &ps);
     if (rc == 0 && ps.k > 0) {
         static char outbuf[1 << 16];
         setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);

@@ -42,6 +42,12 @@ static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *ver
         if (!isfinite(x))
             return TTD_ERR_NONFINITE_MESH;
     }
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (fabs(x) > range)
+            return TTD_ERR_COORDINATE_RANGE;
+    }
     return ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out);
 }
 
@@ -102,6 +108,65 @@ static double pose_defect(const void *poses, size_t i, int bytes)
     return det > 0 ? defect : -1;
 }
 
+/* A bound on |R x + t| over b's vertices x for pose i of defect `defect`: they lie within
+ * b's radius of its origin o, and |R (x - o)| <= sqrt(1 + 3 defect) |x - o| <= (1 + 2 defect)
+ * |x - o|, so within that of R o + t (computed in double, rounded up by a few ulps). */
+static double pose_reach(const ttd_mesh *b, const void *poses, size_t i, int bytes, double defect)
+{
+    double p[12], c2 = 0;
+    for (int j = 0; j < 12; ++j)
+        p[j] = bytes == 8 ? ((const double *)poses)[12 * i + (size_t)j] : (double)((const float *)poses)[12 * i + (size_t)j];
+    for (int r = 0; r < 3; ++r) {
+        const double c = p[4 * r] * b->origin[0] + p[4 * r + 1] * b->origin[1] + p[4 * r + 2] * b->origin[2] + p[4 * r + 3];
+        c2 += c * c;
+    }
+    return (sqrt(c2) + (1 + 2 * defect) * b->radius) * (1 + 8 * DBL_EPSILON);
+}
+
+/* Every pose's check: a rotation within the tolerance, and b moved within the range. Fills
+ * defects[i] (when defects is not NULL); on a refused pose, *bad is its index. */
+static ttd_status check_poses(const ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects, size_t *bad)
+{
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < k; ++i) {
+        const double defect = pose_defect(poses, i, bytes);
+        const ttd_status st = !(defect >= 0 && defect <= TTD_POSE_TOLERANCE)        ? TTD_ERR_BAD_POSE
+                              : pose_reach(b, poses, i, bytes, defect) > range ? TTD_ERR_COORDINATE_RANGE
+                                                                                   : TTD_OK;
+        if (st != TTD_OK) {
+            *bad = i;
+            return st;
+        }
+        if (defects != NULL)
+            defects[i] = defect;
+    }
+    return TTD_OK;
+}
+
+static ttd_status check_poses_entry(const ttd_mesh *a, const ttd_mesh *b, size_t k, const void *poses, int bytes,
+                                    size_t *bad)
+{
+    if (bad != NULL)
+        *bad = k;
+    if (a == NULL || b == NULL || poses == NULL || bad == NULL)
+        return TTD_ERR_NULL_POINTER;
+    if (k == 0)
+        return TTD_ERR_EMPTY;
+    if (a->bytes != bytes || b->bytes != bytes)
+        return TTD_ERR_PRECISION_MISMATCH;
+    return check_poses(b, k, poses, bytes, NULL, bad);
+}
+
+ttd_status ttd_mesh_check_poses_d(const ttd_mesh *a, const ttd_mesh *b, size_t k, const double *poses, size_t *bad)
+{
+    return check_poses_entry(a, b, k, poses, 8, bad);
+}
+
+ttd_status ttd_mesh_check_poses_f(const ttd_mesh *a, const ttd_mesh *b, size_t k, const float *poses, size_t *bad)
+{
+    return check_poses_entry(a, b, k, poses, 4, bad);
+}
+
 /* Poses whose defects fit on the stack (most calls: one pose). */
 #define TTD_DEFECTS_INLINE 32
 
@@ -122,13 +187,12 @@ static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const
     double *d = k <= TTD_DEFECTS_INLINE ? inline_defects : malloc(k * sizeof *d);
     if (d == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < k; ++i) {
-        d[i] = pose_defect(poses, i, bytes);
-        if (!(d[i] >= 0 && d[i] <= TTD_POSE_TOLERANCE)) {
-            if (d != inline_defects)
-                free(d);
-            return TTD_ERR_BAD_POSE;
-        }
+    size_t bad;
+    st = check_poses(b, k, poses, bytes, d, &bad);
+    if (st != TTD_OK) {
+        if (d != inline_defects)
+            free(d);
+        return st;
     }
     *defects = d;
     return TTD_OK;

@@ -118,7 +118,11 @@ static void walk_set_limit(walk *w, const qpose *P, real limit)
 {
     w->limit = limit;
     const real l = (limit + P->delta) / w->rel;
-    w->limit2 = l * l;
+    /* floored: a bound that underflows (tiny meshes) carries an absolute error of a few
+     * subnormals, which the relative margin delta does not cover; below the floor nothing is
+     * dropped */
+    const real floor2 = 64 * TTD_REAL_MIN;
+    w->limit2 = l * l > floor2 ? l * l : floor2;
 }
 
 /* n workers' memory, its arrays allocated as they are needed. */
