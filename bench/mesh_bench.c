@@ -397,18 +397,26 @@ static int cmp_double(const void *a, const void *b)
  * divides the time (poses per call). Fills ms, ms_min, samples and passes of r; -1 when fn failed. */
 static int time_call(const mctx *M, call_fn fn, void *arg, double per_call, mrow *r)
 {
-    if (fn(arg))
-        return -1;
     double t[64];
     int have = 0;
     double t0 = bench_now();
     if (fn(arg))
         return -1;
     double one = bench_now() - t0;
-    long passes = 1;
-    if (one >= M->min_s)
+    /* a call of a second or more is its own warm-up and the first sample (the builds and contacts of
+     * the 1M-triangle torus: a fourth call would add seconds and change nothing) */
+    if (one >= 1.0) {
         t[have++] = one;
-    else
+    } else {
+        t0 = bench_now();
+        if (fn(arg))
+            return -1;
+        one = bench_now() - t0;
+    }
+    long passes = 1;
+    if (have == 0 && one >= M->min_s)
+        t[have++] = one;
+    else if (have == 0)
         passes = (long)fmin(ceil(M->min_s / fmax(one, 1e-9)), 1e7);
     int samples = M->env->st->samples;
     while (samples > 3 && one * (double)passes * samples > M->max_row_s)
@@ -716,75 +724,77 @@ static void build_rows(mctx *M, const char *name, const ttd_gen_mesh *g, size_t 
     }
 }
 
-static void run_mesh(mctx *M, int w)
-{
-    const char *name = mws[w].name;
+/* One mesh workload: the mesh, its two ttd trees (a and a copy b), the placements and what the FCL
+ * runs report about their builds. */
+typedef struct mjob {
+    const char *name;
+    int w;
     ttd_gen_mesh g;
-    double t0 = bench_now();
-    if (w == MW_TORUS_1M)
-        progress(M, "%s: generating the torus (1,000,000 triangles)", name);
-    if (make_mesh(M, w, &g) != 0) {
-        if (w == MW_BUNNY || w == MW_BUNNY_SUB3)
-            fprintf(stderr, "ttd bench: mesh: %s left out: the Stanford bunny is %s\n", name, M->R->bunny);
-        else
-            fprintf(stderr, "ttd bench: mesh: cannot make the %s mesh (out of memory?); left out\n", name);
-        return;
-    }
-    progress(M, "%s: %zu triangles, %zu vertices, made in %.2f s", name, g.nt, g.nv, bench_now() - t0);
-    float *vf = to_float(g.verts, 3 * g.nv);
-    ttd_mesh *a = NULL, *b = NULL, *af = NULL, *bf = NULL;
-    ttd_options ob = options(M, 0);
-    if (!vf || ttd_mesh_create_d(&ob, g.verts, g.nv, g.tris, g.nt, &a) != TTD_OK ||
-        ttd_mesh_create_d(&ob, g.verts, g.nv, g.tris, g.nt, &b) != TTD_OK ||
-        ttd_mesh_create_f(&ob, vf, g.nv, g.tris, g.nt, &af) != TTD_OK ||
-        ttd_mesh_create_f(&ob, vf, g.nv, g.tris, g.nt, &bf) != TTD_OK) {
-        fprintf(stderr, "ttd bench: mesh: cannot build the %s meshes; left out\n", name);
-        goto done;
-    }
-    free(vf);
-    vf = NULL;
-
-    mrow *build[2];
-    int nbuild = 0;
-    build_rows(M, name, &g, ttd_mesh_node_count(a), build, &nbuild);
-    double fcl_builds[8];
-    size_t nfb = 0;
-
-    /* placements */
+    ttd_mesh *a, *b;
     double poses[PL_COUNT][12], pdist[PL_COUNT];
-    const uint64_t stream = (uint64_t)w;
+    mrow *dist[PL_COUNT];     /* the distance rows (the collide+m rows are checked against them) */
+    double fcl_builds[8];     /* every build FCL's runs made of this mesh, ms */
+    size_t nfb;
+} mjob;
+
+static qarg query_arg(const mctx *M, int kind, const ttd_mesh *a, const ttd_mesh *b, size_t k, const double *poses)
+{
+    qarg q;
+    memset(&q, 0, sizeof q);
+    q.kind = kind;
+    q.o = options(M, 1);
+    q.a = a;
+    q.b = b;
+    q.k = k;
+    q.poses = poses;
+    return q;
+}
+
+/* FCL's time and traversal counts for one pose into a row, and the ratio. */
+static void fill_fcl(mrow *r, const bench_fcl_mesh_pose *p)
+{
+    r->fcl = FCL_OK;
+    r->fcl_ms = p->median_ms;
+    r->fcl_ms_min = p->min_ms;
+    r->fcl_bv = (double)p->bv_tests;
+    r->fcl_leaf = (double)p->leaf_tests;
+    set_ratio(r);
+}
+
+static void keep_fcl_builds(mjob *J, const bench_fcl_mesh_result *fr)
+{
+    for (int i = 0; i < 2 && J->nfb < sizeof J->fcl_builds / sizeof J->fcl_builds[0]; ++i)
+        J->fcl_builds[J->nfb++] = fr->build_ms[i];
+}
+
+static void placements(mctx *M, mjob *J)
+{
     for (int pl = 0; pl < PL_COUNT; ++pl) {
         int evals;
-        pdist[pl] = place(M, &g, &g, a, b, stream, pl, poses[pl], &evals);
-        if (!isfinite(pdist[pl]))
-            fprintf(stderr, "ttd bench: mesh: %s: no %s placement found after %d distance queries; its rows use the last "
-                            "pose tried (distance printed)\n",
-                    name, pl_name[pl], evals);
-        progress(M, "%s: %s placement: distance %.6g after %d queries", name, pl_name[pl],
-                 isfinite(pdist[pl]) ? pdist[pl] : ttd_distance(M, a, b, poses[pl]), evals);
-        if (!isfinite(pdist[pl]))
-            pdist[pl] = ttd_distance(M, a, b, poses[pl]);
+        double d = place(M, &J->g, &J->g, J->a, J->b, (uint64_t)J->w, pl, J->poses[pl], &evals);
+        if (!isfinite(d)) {
+            d = ttd_distance(M, J->a, J->b, J->poses[pl]);
+            fprintf(stderr, "ttd bench: mesh: %s: no %s placement found after %d distance queries; its rows use the "
+                            "last pose tried (distance %.6g)\n",
+                    J->name, pl_name[pl], evals, d);
+        }
+        J->pdist[pl] = d;
+        progress(M, "%s: %s placement: distance %.6g after %d queries", J->name, pl_name[pl], d, evals);
     }
+}
 
-    /* minimum distance */
-    mrow *dr[PL_COUNT] = {NULL};
+static void distance_rows(mctx *M, mjob *J)
+{
     double dms[PL_COUNT];
     size_t ndms = 0;
     for (int pl = 0; pl < PL_COUNT; ++pl) {
         ttd_mesh_result_d res;
-        qarg q;
-        memset(&q, 0, sizeof q);
-        q.kind = Q_DISTANCE;
-        q.o = options(M, 1);
-        q.a = a;
-        q.b = b;
-        q.k = 1;
-        q.poses = poses[pl];
+        qarg q = query_arg(M, Q_DISTANCE, J->a, J->b, 1, J->poses[pl]);
         q.dist = &res;
-        mrow *r = dr[pl] = new_row(M, name, g.nt, pl_name[pl], "distance", 8, 1, 1);
+        mrow *r = J->dist[pl] = new_row(M, J->name, J->g.nt, pl_name[pl], "distance", 8, 1, 1);
         if (!r)
-            goto done;
-        r->pose_dist = pdist[pl];
+            return;
+        r->pose_dist = J->pdist[pl];
         if (time_query(M, &q, r) == 0) {
             r->value = res.distance;
             snprintf(r->result, sizeof r->result, "%.9g", res.distance);
@@ -794,20 +804,14 @@ static void run_mesh(mctx *M, int w)
         }
     }
     bench_fcl_mesh_result fr;
-    if (fcl_run(M, &g, &poses[0][0], PL_COUNT, BENCH_FCL_MESH_DISTANCE, fcl_reps(M, ndms ? median_d(dms, ndms) : 1.0),
-                0.0, 0, &fr, name) == 0) {
-        fcl_builds[nfb++] = fr.build_ms[0];
-        fcl_builds[nfb++] = fr.build_ms[1];
+    if (fcl_run(M, &J->g, &J->poses[0][0], PL_COUNT, BENCH_FCL_MESH_DISTANCE,
+                fcl_reps(M, ndms ? median_d(dms, ndms) : 1.0), 0.0, 0, &fr, J->name) == 0) {
+        keep_fcl_builds(J, &fr);
         for (int pl = 0; pl < PL_COUNT; ++pl) {
-            mrow *r = dr[pl];
+            mrow *r = J->dist[pl];
             const bench_fcl_mesh_pose *p = &fr.poses[pl];
-            r->fcl = FCL_OK;
-            r->fcl_ms = p->median_ms;
-            r->fcl_ms_min = p->min_ms;
-            r->fcl_bv = (double)p->bv_tests;
-            r->fcl_leaf = (double)p->leaf_tests;
+            fill_fcl(r, p);
             r->fcl_value = p->distance;
-            set_ratio(r);
             if (isfinite(r->value)) {
                 r->diff = fabs(r->value - p->distance);
                 M->R->compared++;
@@ -819,255 +823,264 @@ static void run_mesh(mctx *M, int w)
         bench_fcl_mesh_result_free(&fr);
     }
     for (int pl = 0; pl < PL_COUNT; ++pl)
-        if (dr[pl])
-            progress(M, "%s %s distance: ttd %.4f ms, FCL %.4f ms", name, pl_name[pl], dr[pl]->ms, dr[pl]->fcl_ms);
+        progress(M, "%s %s distance: ttd %.4f ms, FCL %.4f ms", J->name, pl_name[pl], J->dist[pl]->ms,
+                 J->dist[pl]->fcl_ms);
+}
 
-    /* collision: margin 0 (FCL beside), then with a margin (ttd only) */
+/* Collision with margin 0 (FCL's collide beside) and with COLLIDE_MARGIN (ttd only; its answer is
+ * checked against the minimum distance, FCL's where measured). */
+static void collide_rows(mctx *M, mjob *J)
+{
     mrow *cr[PL_COUNT] = {NULL};
+    double cms[PL_COUNT];
+    size_t ncms = 0;
     for (int withm = 0; withm < 2; ++withm) {
-        double cms[PL_COUNT];
-        size_t ncms = 0;
         for (int pl = 0; pl < PL_COUNT; ++pl) {
             ttd_collision col;
-            qarg q;
-            memset(&q, 0, sizeof q);
-            q.kind = Q_COLLIDE;
-            q.o = options(M, 1);
-            q.a = a;
-            q.b = b;
-            q.k = 1;
-            q.poses = poses[pl];
+            qarg q = query_arg(M, Q_COLLIDE, J->a, J->b, 1, J->poses[pl]);
             q.margin = withm ? COLLIDE_MARGIN : 0.0;
             q.col = &col;
-            mrow *r = new_row(M, name, g.nt, pl_name[pl], withm ? "collide+m" : "collide", 8, 1, 1);
+            mrow *r = new_row(M, J->name, J->g.nt, pl_name[pl], withm ? "collide+m" : "collide", 8, 1, 1);
             if (!r)
-                goto done;
+                return;
+            r->pose_dist = J->pdist[pl];
+            r->margin = q.margin;
             if (!withm)
                 cr[pl] = r;
-            r->pose_dist = pdist[pl];
-            r->margin = q.margin;
+            else
+                r->fcl = FCL_NO_MARGIN;
             if (time_query(M, &q, r) != 0)
                 continue;
             r->value = col.hit;
             snprintf(r->result, sizeof r->result, "%s", col.hit ? "hit" : "no");
             r->pair_tests = (double)col.pair_tests;
             r->node_tests = (double)col.node_tests;
-            cms[ncms++] = r->ms;
-            if (withm) {
-                r->fcl = FCL_NO_MARGIN;
-                snprintf(r->note, sizeof r->note, "FCL 0.7's collide has no margin");
-                /* the answer must match the distance (ttd's, and FCL's where it was measured) */
-                const mrow *d = dr[pl];
-                double ref = d && d->fcl == FCL_OK ? d->fcl_value : d ? d->value : BENCH_NAN;
-                if (isfinite(ref) && fabs(ref - COLLIDE_MARGIN) > TOL_D && (ref <= COLLIDE_MARGIN) != (col.hit != 0))
-                    alarm_(M, r, "collide with margin %g says %s, the minimum distance is %.17g", COLLIDE_MARGIN,
-                           col.hit ? "hit" : "no", ref);
+            if (!withm) {
+                cms[ncms++] = r->ms;
+                continue;
             }
-        }
-        if (withm)
-            break;
-        if (fcl_run(M, &g, &poses[0][0], PL_COUNT, BENCH_FCL_MESH_COLLIDE,
-                    fcl_reps(M, ncms ? median_d(cms, ncms) : 1.0), 0.0, 0, &fr, name) == 0) {
-            fcl_builds[nfb++] = fr.build_ms[0];
-            fcl_builds[nfb++] = fr.build_ms[1];
-            for (int pl = 0; pl < PL_COUNT; ++pl) {
-                mrow *r = cr[pl];
-                const bench_fcl_mesh_pose *p = &fr.poses[pl];
-                r->fcl = FCL_OK;
-                r->fcl_ms = p->median_ms;
-                r->fcl_ms_min = p->min_ms;
-                r->fcl_bv = (double)p->bv_tests;
-                r->fcl_leaf = (double)p->leaf_tests;
-                r->fcl_value = p->collide;
-                set_ratio(r);
-                if (isfinite(r->value) && (r->value != 0.0) != (p->collide != 0))
-                    alarm_(M, r, "ttd says %s, FCL's collide %s", r->value != 0.0 ? "hit" : "no",
-                           p->collide ? "hit" : "no");
-            }
-            bench_fcl_mesh_result_free(&fr);
+            snprintf(r->note, sizeof r->note, "FCL 0.7's collide has no margin");
+            const mrow *d = J->dist[pl];
+            double ref = d && d->fcl == FCL_OK ? d->fcl_value : d ? d->value : BENCH_NAN;
+            if (isfinite(ref) && fabs(ref - COLLIDE_MARGIN) > TOL_D && (ref <= COLLIDE_MARGIN) != (col.hit != 0))
+                alarm_(M, r, "collide with margin %g says %s, the minimum distance is %.17g", COLLIDE_MARGIN,
+                       col.hit ? "hit" : "no", ref);
         }
     }
+    bench_fcl_mesh_result fr;
+    if (fcl_run(M, &J->g, &J->poses[0][0], PL_COUNT, BENCH_FCL_MESH_COLLIDE,
+                fcl_reps(M, ncms ? median_d(cms, ncms) : 1.0), 0.0, 0, &fr, J->name) == 0) {
+        keep_fcl_builds(J, &fr);
+        for (int pl = 0; pl < PL_COUNT; ++pl) {
+            mrow *r = cr[pl];
+            const bench_fcl_mesh_pose *p = &fr.poses[pl];
+            fill_fcl(r, p);
+            r->fcl_value = p->collide;
+            if (isfinite(r->value) && (r->value != 0.0) != (p->collide != 0))
+                alarm_(M, r, "ttd says %s, FCL's collide %s", r->value != 0.0 ? "hit" : "no", p->collide ? "hit" : "no");
+        }
+        bench_fcl_mesh_result_free(&fr);
+    }
+}
 
-    /* contacts within a margin at the near placement, double and float; the per-triangle reduction */
-    {
-        const double margin = mws[w].contact_margin;
-        float pose_f[12];
+/* Contacts within the workload's margin at the near placement in one precision: the timed row,
+ * and the pairs (sorted later) for the comparison with FCL. The float trees are built here and
+ * freed at once, and the contact set is freed as soon as its pairs are copied, so that the
+ * 1M-triangle workload keeps its memory low while FCL runs. */
+static mrow *contact_row(mctx *M, mjob *J, int bytes, tpair **pairs)
+{
+    const double margin = mws[J->w].contact_margin;
+    ttd_mesh *af = NULL, *bf = NULL;
+    float *vf = NULL, pose_f[12];
+    ttd_contacts_d cd = {0};
+    ttd_contacts_f cf = {0};
+    *pairs = NULL;
+    mrow *r = new_row(M, J->name, J->g.nt, "near", "contacts", bytes, 1, 1);
+    if (!r)
+        return NULL;
+    r->pose_dist = J->pdist[PL_NEAR];
+    r->margin = margin;
+    qarg q = query_arg(M, bytes == 8 ? Q_CONTACTS_D : Q_CONTACTS_F, J->a, J->b, 1, J->poses[PL_NEAR]);
+    q.margin = margin;
+    q.cd = &cd;
+    q.cf = &cf;
+    if (bytes == 4) {
+        ttd_options o = options(M, 0);
         for (int i = 0; i < 12; ++i)
-            pose_f[i] = (float)poses[PL_NEAR][i];
-        ttd_contacts_d cd = {0};
-        ttd_contacts_f cf = {0};
-        ttd_closest_d *for_a = malloc(g.nt * sizeof *for_a), *for_b = malloc(g.nt * sizeof *for_b);
-        mrow *rd = NULL, *rf = NULL, *rc = NULL;
-        tpair *td = NULL, *tf = NULL;
-        if (!for_a || !for_b) {
-            fprintf(stderr, "ttd bench: mesh: %s: out of memory for the contact rows\n", name);
-            goto contacts_done;
+            pose_f[i] = (float)J->poses[PL_NEAR][i];
+        q.poses_f = pose_f;
+        if (!(vf = to_float(J->g.verts, 3 * J->g.nv)) ||
+            ttd_mesh_create_f(&o, vf, J->g.nv, J->g.tris, J->g.nt, &af) != TTD_OK ||
+            ttd_mesh_create_f(&o, vf, J->g.nv, J->g.tris, J->g.nt, &bf) != TTD_OK) {
+            snprintf(r->note, sizeof r->note, "failed: cannot build the float trees");
+            goto done;
         }
-        for (int prec = 0; prec < 2; ++prec) {
-            if ((prec == 0 && !M->env->want_double) || (prec == 1 && !M->env->want_float))
-                continue;
-            qarg q;
-            memset(&q, 0, sizeof q);
-            q.kind = prec ? Q_CONTACTS_F : Q_CONTACTS_D;
-            q.o = options(M, 1);
-            q.a = prec ? af : a;
-            q.b = prec ? bf : b;
-            q.k = 1;
-            q.poses = poses[PL_NEAR];
-            q.poses_f = pose_f;
-            q.margin = margin;
-            q.cd = &cd;
-            q.cf = &cf;
-            mrow *r = new_row(M, name, g.nt, "near", "contacts", prec ? 4 : 8, 1, 1);
-            if (!r)
-                goto contacts_done;
-            r->pose_dist = pdist[PL_NEAR];
-            r->margin = margin;
-            if (time_query(M, &q, r) != 0)
-                continue;
-            size_t n = prec ? cf.count : cd.count;
-            r->value = (double)n;
-            snprintf(r->result, sizeof r->result, "%zu pairs", n);
-            tpair *t = malloc((n ? n : 1) * sizeof *t);
-            if (!t)
-                continue;
-            for (size_t i = 0; i < n; ++i) {
-                if (prec) {
-                    t[i].a = cf.pairs[i].tri_a;
-                    t[i].b = cf.pairs[i].tri_b;
-                    t[i].d = (double)cf.pairs[i].distance;
-                } else {
-                    t[i].a = cd.pairs[i].tri_a;
-                    t[i].b = cd.pairs[i].tri_b;
-                    t[i].d = cd.pairs[i].distance;
-                }
-            }
-            if (prec) {
-                rf = r;
-                tf = t;
-            } else {
-                rd = r;
-                td = t;
-            }
-            progress(M, "%s contacts %s: %zu pairs in %.3f ms", name, prec ? "float" : "double", n, r->ms);
-        }
-        if (M->env->want_double) {
-            qarg q;
-            memset(&q, 0, sizeof q);
-            q.kind = Q_CLOSEST;
-            q.o = options(M, 1);
-            q.a = a;
-            q.b = b;
-            q.k = 1;
-            q.poses = poses[PL_NEAR];
-            q.margin = margin;
-            q.for_a = for_a;
-            q.for_b = for_b;
-            rc = new_row(M, name, g.nt, "near", "closest", 8, 1, 1);
-            if (rc) {
-                rc->pose_dist = pdist[PL_NEAR];
-                rc->margin = margin;
-                if (time_query(M, &q, rc) == 0) {
-                    size_t with = 0;
-                    for (size_t i = 0; i < g.nt; ++i)
-                        with += (for_a[i].partner != UINT32_MAX) + (for_b[i].partner != UINT32_MAX);
-                    rc->value = (double)with;
-                    snprintf(rc->result, sizeof rc->result, "%zu tris", with);
-                    snprintf(rc->note, sizeof rc->note, "triangles of a and b with a partner within the margin");
-                    /* the same triangles as the contact set's, with its nearest distances */
-                    if (rd && td) {
-                        double *near_a = malloc(g.nt * sizeof *near_a), *near_b = malloc(g.nt * sizeof *near_b);
-                        if (near_a && near_b) {
-                            for (size_t i = 0; i < g.nt; ++i)
-                                near_a[i] = near_b[i] = BENCH_INF;
-                            for (size_t i = 0; i < (size_t)rd->value; ++i) {
-                                near_a[td[i].a] = fmin(near_a[td[i].a], td[i].d);
-                                near_b[td[i].b] = fmin(near_b[td[i].b], td[i].d);
-                            }
-                            size_t bad = 0;
-                            for (size_t i = 0; i < g.nt; ++i)
-                                bad += (near_a[i] != for_a[i].distance) + (near_b[i] != for_b[i].distance);
-                            if (bad)
-                                alarm_(M, rc, "%zu triangles' closest distance differs from the contact set's", bad);
-                        }
-                        free(near_a);
-                        free(near_b);
-                    }
-                }
-            }
-        }
-        if (fcl_run(M, &g, poses[PL_NEAR], 1, BENCH_FCL_MESH_PAIRS, fcl_reps(M, rd ? rd->ms : rf ? rf->ms : 1.0),
-                    margin, 1, &fr, name) == 0) {
-            fcl_builds[nfb++] = fr.build_ms[0];
-            fcl_builds[nfb++] = fr.build_ms[1];
-            const bench_fcl_mesh_pose *p = &fr.poses[0];
-            mrow *both[2] = {rd, rf};
-            tpair *sets[2] = {td, tf};
-            for (int prec = 0; prec < 2; ++prec) {
-                mrow *r = both[prec];
-                if (!r)
-                    continue;
-                r->fcl = FCL_OK;
-                r->fcl_ms = p->median_ms;
-                r->fcl_ms_min = p->min_ms;
-                r->fcl_bv = (double)p->bv_tests;
-                r->fcl_leaf = (double)p->leaf_tests;
-                r->fcl_value = (double)p->pairs;
-                set_ratio(r);
-                double tol = prec ? TOL_F : TOL_D;
-                setcmp c = compare_sets(sets[prec], (size_t)r->value, fr.pairs, fr.pair_start[1], margin, tol);
-                r->diff = c.worst;
-                if (c.only_ttd || c.only_fcl || !(c.worst <= tol))
-                    alarm_(M, r, "%zu pairs only in ttd's set, %zu only in FCL's (%" PRIu64 "), worst distance "
-                                 "difference %.3g",
-                           c.only_ttd, c.only_fcl, p->pairs, c.worst);
-                else if (c.boundary)
-                    snprintf(r->note, sizeof r->note,
-                             "FCL %" PRIu64 " pairs (double); %zu differ, all within %g of the margin", p->pairs,
-                             c.boundary, tol);
-                else if (prec)
-                    snprintf(r->note, sizeof r->note, "the same pairs as FCL's (double) traversal");
-                else
-                    snprintf(r->note, sizeof r->note, "the same pairs as FCL's traversal");
-            }
-            if (rc) {
-                rc->fcl = FCL_OK;
-                rc->fcl_ms = p->median_ms;
-                rc->fcl_ms_min = p->min_ms;
-                rc->fcl_bv = (double)p->bv_tests;
-                rc->fcl_leaf = (double)p->leaf_tests;
-                set_ratio(rc);
-                snprintf(rc->note, sizeof rc->note,
-                         "triangles with a partner within the margin; FCL: its pair traversal (no reduction)");
-            }
-            bench_fcl_mesh_result_free(&fr);
-        }
-    contacts_done:
-        free(td);
-        free(tf);
-        free(for_a);
-        free(for_b);
-        ttd_contacts_free_d(&cd);
-        ttd_contacts_free_f(&cf);
+        q.a = af;
+        q.b = bf;
     }
-
-    /* FCL's build time: the median of every build its runs made of this mesh */
-    for (int i = 0; i < nbuild && nfb > 0; ++i) {
-        double v[8];
-        memcpy(v, fcl_builds, nfb * sizeof *v);
-        build[i]->fcl = FCL_OK;
-        build[i]->fcl_ms = median_d(v, nfb);
-        build[i]->fcl_ms_min = v[0];
-        set_ratio(build[i]);
-        snprintf(build[i]->note, sizeof build[i]->note, "FCL: BVHModel<OBBRSS>, median of %zu builds", nfb);
+    if (time_query(M, &q, r) != 0)
+        goto done;
+    size_t n = bytes == 8 ? cd.count : cf.count;
+    r->value = (double)n;
+    snprintf(r->result, sizeof r->result, "%zu pairs", n);
+    tpair *t = *pairs = malloc((n ? n : 1) * sizeof *t);
+    for (size_t i = 0; t && i < n; ++i) {
+        t[i].a = bytes == 8 ? cd.pairs[i].tri_a : cf.pairs[i].tri_a;
+        t[i].b = bytes == 8 ? cd.pairs[i].tri_b : cf.pairs[i].tri_b;
+        t[i].d = bytes == 8 ? cd.pairs[i].distance : (double)cf.pairs[i].distance;
     }
+    progress(M, "%s contacts %s: %zu pairs in %.3f ms", J->name, bytes == 8 ? "double" : "float", n, r->ms);
 done:
-    free(vf);
-    ttd_mesh_destroy(a);
-    ttd_mesh_destroy(b);
+    ttd_contacts_free_d(&cd);
+    ttd_contacts_free_f(&cf);
     ttd_mesh_destroy(af);
     ttd_mesh_destroy(bf);
-    ttd_gen_mesh_free(&g);
+    free(vf);
+    return r;
+}
+
+/* The per-triangle reduction at the same pose and margin, checked against the contact set td of
+ * rd's n pairs: each triangle's closest distance is the least of its pairs'. */
+static mrow *closest_row(mctx *M, mjob *J, const tpair *td, size_t n)
+{
+    const size_t nt = J->g.nt;
+    ttd_closest_d *for_a = malloc(nt * sizeof *for_a), *for_b = malloc(nt * sizeof *for_b);
+    double *near_a = NULL, *near_b = NULL;
+    mrow *r = new_row(M, J->name, nt, "near", "closest", 8, 1, 1);
+    if (!r || !for_a || !for_b)
+        goto done;
+    r->pose_dist = J->pdist[PL_NEAR];
+    r->margin = mws[J->w].contact_margin;
+    qarg q = query_arg(M, Q_CLOSEST, J->a, J->b, 1, J->poses[PL_NEAR]);
+    q.margin = r->margin;
+    q.for_a = for_a;
+    q.for_b = for_b;
+    if (time_query(M, &q, r) != 0)
+        goto done;
+    size_t with = 0;
+    for (size_t i = 0; i < nt; ++i)
+        with += (for_a[i].partner != UINT32_MAX) + (for_b[i].partner != UINT32_MAX);
+    r->value = (double)with;
+    snprintf(r->result, sizeof r->result, "%zu tris", with);
+    snprintf(r->note, sizeof r->note, "triangles of a and b with a partner within the margin");
+    if (td && (near_a = malloc(nt * sizeof *near_a)) && (near_b = malloc(nt * sizeof *near_b))) {
+        for (size_t i = 0; i < nt; ++i)
+            near_a[i] = near_b[i] = BENCH_INF;
+        for (size_t i = 0; i < n; ++i) {
+            near_a[td[i].a] = fmin(near_a[td[i].a], td[i].d);
+            near_b[td[i].b] = fmin(near_b[td[i].b], td[i].d);
+        }
+        size_t bad = 0;
+        for (size_t i = 0; i < nt; ++i)
+            bad += (near_a[i] != for_a[i].distance) + (near_b[i] != for_b[i].distance);
+        if (bad)
+            alarm_(M, r, "%zu triangles' closest distance differs from the contact set's", bad);
+    }
+done:
+    free(near_a);
+    free(near_b);
+    free(for_a);
+    free(for_b);
+    return r;
+}
+
+/* Contacts in double and float, the reduction, and FCL's traversal of its own trees collecting
+ * the same pairs, compared set against set. */
+static void contact_rows(mctx *M, mjob *J)
+{
+    const double margin = mws[J->w].contact_margin;
+    tpair *sets[2] = {NULL, NULL};
+    mrow *rows[2] = {NULL, NULL}, *rc = NULL;
+    if (M->env->want_double)
+        rows[0] = contact_row(M, J, 8, &sets[0]);
+    if (M->env->want_float)
+        rows[1] = contact_row(M, J, 4, &sets[1]);
+    if (M->env->want_double)
+        rc = closest_row(M, J, sets[0], rows[0] && isfinite(rows[0]->value) ? (size_t)rows[0]->value : 0);
+    const mrow *timed = rows[0] && isfinite(rows[0]->ms) ? rows[0] : rows[1];
+    bench_fcl_mesh_result fr;
+    if ((rows[0] || rows[1]) && fcl_run(M, &J->g, J->poses[PL_NEAR], 1, BENCH_FCL_MESH_PAIRS,
+                                        fcl_reps(M, timed ? timed->ms : 1.0), margin, 1, &fr, J->name) == 0) {
+        keep_fcl_builds(J, &fr);
+        const bench_fcl_mesh_pose *p = &fr.poses[0];
+        for (int prec = 0; prec < 2; ++prec) {
+            mrow *r = rows[prec];
+            if (!r || !sets[prec])
+                continue;
+            fill_fcl(r, p);
+            r->fcl_value = (double)p->pairs;
+            double tol = prec ? TOL_F : TOL_D;
+            setcmp c = compare_sets(sets[prec], (size_t)r->value, fr.pairs, fr.pair_start[1], margin, tol);
+            r->diff = c.worst;
+            if (c.only_ttd || c.only_fcl || !(c.worst <= tol))
+                alarm_(M, r, "%zu pairs only in ttd's set, %zu only in FCL's (%" PRIu64 "), worst distance "
+                             "difference %.3g",
+                       c.only_ttd, c.only_fcl, p->pairs, c.worst);
+            else if (c.boundary)
+                snprintf(r->note, sizeof r->note, "FCL %" PRIu64 " pairs (double); %zu differ, all within %g of the margin",
+                         p->pairs, c.boundary, tol);
+            else
+                snprintf(r->note, sizeof r->note, "the same pairs as FCL's %straversal", prec ? "(double) " : "");
+        }
+        if (rc && isfinite(rc->ms)) {
+            fill_fcl(rc, p);
+            snprintf(rc->note, sizeof rc->note,
+                     "triangles with a partner within the margin; FCL: its pair traversal (no reduction)");
+        }
+        bench_fcl_mesh_result_free(&fr);
+    }
+    free(sets[0]);
+    free(sets[1]);
+}
+
+static void run_mesh(mctx *M, int w)
+{
+    mjob *J = calloc(1, sizeof *J);
+    if (!J)
+        return;
+    J->name = mws[w].name;
+    J->w = w;
+    double t0 = bench_now();
+    if (w == MW_TORUS_1M)
+        progress(M, "%s: generating the torus (1,000,000 triangles)", J->name);
+    if (make_mesh(M, w, &J->g) != 0) {
+        if (w == MW_BUNNY || w == MW_BUNNY_SUB3)
+            fprintf(stderr, "ttd bench: mesh: %s left out: the Stanford bunny is %s\n", J->name, M->R->bunny);
+        else
+            fprintf(stderr, "ttd bench: mesh: cannot make the %s mesh (out of memory?); left out\n", J->name);
+        free(J);
+        return;
+    }
+    progress(M, "%s: %zu triangles, %zu vertices, made in %.2f s; building ttd's two trees", J->name, J->g.nt,
+             J->g.nv, bench_now() - t0);
+    ttd_options ob = options(M, 0);
+    if (ttd_mesh_create_d(&ob, J->g.verts, J->g.nv, J->g.tris, J->g.nt, &J->a) != TTD_OK ||
+        ttd_mesh_create_d(&ob, J->g.verts, J->g.nv, J->g.tris, J->g.nt, &J->b) != TTD_OK) {
+        fprintf(stderr, "ttd bench: mesh: cannot build the %s trees; left out\n", J->name);
+        goto done;
+    }
+    mrow *build[2];
+    int nbuild = 0;
+    build_rows(M, J->name, &J->g, ttd_mesh_node_count(J->a), build, &nbuild);
+    placements(M, J);
+    distance_rows(M, J);
+    collide_rows(M, J);
+    contact_rows(M, J);
+    /* FCL's build time: the median of every build its runs made of this mesh */
+    for (int i = 0; i < nbuild && J->nfb > 0; ++i) {
+        double v[8];
+        memcpy(v, J->fcl_builds, J->nfb * sizeof *v);
+        build[i]->fcl = FCL_OK;
+        build[i]->fcl_ms = median_d(v, J->nfb);
+        build[i]->fcl_ms_min = v[0];
+        set_ratio(build[i]);
+        snprintf(build[i]->note, sizeof build[i]->note, "FCL: BVHModel<OBBRSS>, median of %zu builds", J->nfb);
+    }
+done:
+    ttd_mesh_destroy(J->a);
+    ttd_mesh_destroy(J->b);
+    ttd_gen_mesh_free(&J->g);
+    free(J);
 }
 
 /* ---- many poses ----------------------------------------------------------------------- */
