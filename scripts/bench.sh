@@ -66,7 +66,9 @@ else
 fi
 
 if command -v gnuplot >/dev/null 2>&1; then
-  if gnuplot -e "csv='$out/bench.csv'; out='$out/figure'" bench/plot.gp; then
+  if [ "$(wc -l < "$out/bench.csv")" -le 1 ]; then
+    echo "bench.sh: no pair rows (only mesh workloads were run): figure.svg/.png not drawn" >&2
+  elif gnuplot -e "csv='$out/bench.csv'; out='$out/figure'" bench/plot.gp; then
     echo "bench.sh: wrote $out/bench.txt, $out/bench.json, $out/bench.csv and the figure $out/figure.svg/.png" >&2
   else
     echo "bench.sh: gnuplot failed; the figure is missing (results are in $out/)" >&2
