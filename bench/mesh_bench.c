@@ -50,12 +50,13 @@ typedef struct mesh_workload {
  * the size as in ../shared/mesh-anchors.md for the big meshes, 5% for the coarse ones, whose
  * triangles are a few percent of the size across. */
 static const mesh_workload mws[MW_COUNT] = {
-    {"icosphere", 1, 1, 0.05, "icosphere, 4 subdivisions of the icosahedron: 1,280 triangles"},
+    {"icosphere", 1, 1, 0.05, "ttd_gen_icosphere(3), the icosahedron split 4:1 three times: 1,280 triangles"},
     {"bunny", 1, 0, 0.05, "the Stanford bunny (npm package bunny 1.0.1): 3,674 triangles"},
     {"bunny-sub3", 1, 0, 0.02, "the bunny subdivided 3 times (flat, 4:1): 235,136 triangles"},
-    {"torus-1m", 1, 0, 0.02, "torus R 1, r 0.35, 1000 x 500 segments: 1,000,000 triangles"},
-    {"torus-small", 0, 1, 0.05, "torus R 1, r 0.35, 40 x 20 segments: 1,600 triangles (--quick)"},
-    {"poses", 1, 1, 0.0, "1,000 random poses of the bunny in one call (--quick: 20 of the icosphere)"},
+    {"torus-1m", 1, 0, 0.02, "ttd_gen_torus(1, 0.35, 1000, 500): 1,000,000 triangles"},
+    {"torus-small", 0, 1, 0.05, "ttd_gen_torus(1, 0.35, 40, 20): 1,600 triangles"},
+    {"poses", 1, 1, 0.0, "1,000 poses ttd_gen_pose(seed, 1000 + i, 0.5) of the bunny in one call (--quick: 20, "
+                         "and with --quick or without the bunny: of the icosphere)"},
 };
 
 /* The placements: target distances (fractions of the size; overlap: intersecting). */
@@ -116,6 +117,7 @@ struct bench_mesh_results {
     size_t n, cap;
     target targets[T_COUNT];
     int quick;
+    unsigned ran;           /* workloads asked for (bit i = mws[i]) */
     char isa[16];
     char bunny[1600];       /* where the bunny came from, or why it is missing */
     char fcl[1200];         /* the FCL program, or why it is absent */
@@ -1329,6 +1331,7 @@ bench_mesh_results *bench_mesh_run(const bench_mesh_config *c, const bench_mesh_
         for (int i = 0; i < MW_COUNT; ++i)
             if (env->st->quick ? mws[i].in_quick : mws[i].in_full)
                 want |= 1u << i;
+    R->ran = want;
 
     if (env->no_fcl) {
         snprintf(R->fcl, sizeof R->fcl, "left out (--no-fcl)");
@@ -1372,7 +1375,6 @@ bench_mesh_results *bench_mesh_run(const bench_mesh_config *c, const bench_mesh_
 }
 
 size_t bench_mesh_row_count(const bench_mesh_results *r) { return r ? r->n : 0; }
-size_t bench_mesh_disagreements(const bench_mesh_results *r) { return r ? r->disagreements : 0; }
 
 void bench_mesh_free(bench_mesh_results *r)
 {
@@ -1421,6 +1423,9 @@ void bench_mesh_write_table(FILE *f, const bench_mesh_results *R)
             R->isa, R->quick ? " (--quick: small generated meshes, few poses)" : "");
     fprintf(f, "meshes normalised to a bounding-box diagonal of 1, each against a copy of itself; times are per query "
                "(per pose), the median of samples as above; FCL: median of its timed runs per pose\n");
+    for (int i = 0; i < MW_COUNT; ++i)
+        if (R->ran & (1u << i))
+            fprintf(f, "  %-12s %s\n", mws[i].name, mws[i].what);
     fprintf(f, "bunny: %s\nFCL mesh program: %s\n", R->bunny, R->fcl);
     fprintf(f, "\n%-12s %7s %-7s %8s %-9s %-6s %3s %6s %-14s %9s %9s %8s %9s %9s %9s %7s %8s  %s\n", "workload", "tris",
             "pose", "d_pose", "query", "prec", "thr", "margin", "result", "ms", "pairs_t", "nodes_t", "fcl_ms", "fcl_bv",

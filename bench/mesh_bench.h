@@ -50,8 +50,6 @@ int bench_mesh_wanted(const bench_mesh_config *c, int pair_workloads_named);
 bench_mesh_results *bench_mesh_run(const bench_mesh_config *c, const bench_mesh_env *env);
 /// Rows measured (0 for NULL).
 size_t bench_mesh_row_count(const bench_mesh_results *r);
-/// Disagreements between ttd and FCL (distances, collision answers, pair sets); 0 for NULL.
-size_t bench_mesh_disagreements(const bench_mesh_results *r);
 
 /// The section of the text table (after the pair rows).
 void bench_mesh_write_table(FILE *f, const bench_mesh_results *r);
