@@ -23,6 +23,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "mesh_bench.h"
 #include "pairs.h"
 
 /* What is run on a workload. */
@@ -627,6 +628,7 @@ static void usage(FILE *f)
           "timings). TTD_BENCH_LOADAVG=FILE reads the load averages from FILE instead of /proc/loadavg\n"
           "(for tests). Exit status: 0 done, 1 nothing measured or a file not written, 2 bad options.\n",
           f);
+    bench_mesh_usage(f);
 }
 
 static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
@@ -680,8 +682,10 @@ static int write_file(const char *dir, const char *name, bench_ctx *cx, const be
         bench_write_table(f, m, &cx->st, cx->rows, cx->nrows);
     else if (kind == 1)
         bench_write_json(f, m, &cx->st, cx->rows, cx->nrows);
-    else
+    else if (kind == 2)
         bench_write_csv(f, cx->rows, cx->nrows);
+    else
+        bench_mesh_write_csv(f, cx->st.mesh);
     if (fclose(f) != 0) {
         fprintf(stderr, "ttd bench: cannot write %s\n", path);
         return -1;
@@ -699,6 +703,9 @@ int ttd_bench_main(int argc, char **argv)
     size_t pairs = 0, big = BENCH_BIG_DEFAULT;
     int samples = 0;
     double min_time = -1.0;
+    bench_mesh_config mesh_cfg;
+    bench_mesh_results *mesh = NULL;
+    memset(&mesh_cfg, 0, sizeof mesh_cfg);
     if (!cx) {
         fprintf(stderr, "ttd bench: out of memory\n");
         return 1;
@@ -724,7 +731,7 @@ int ttd_bench_main(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
+        int takes = 1, took;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             free(cx);
@@ -747,6 +754,9 @@ int ttd_bench_main(int argc, char **argv)
         } else if (strcmp(a, "--quiet") == 0) {
             cx->quiet = 1;
             takes = 0;
+        } else if ((took = bench_mesh_option(&mesh_cfg, a, v)) != 0) {
+            rc = took < 0 ? 3 : rc;
+            takes = took - 1;
         } else if (!v) {
             fprintf(stderr, "ttd bench: unknown option or missing value: %s (see ttd bench --help)\n", a);
             rc = 2;
@@ -837,7 +847,7 @@ int ttd_bench_main(int argc, char **argv)
                             cx->st.quick ? ((size_t)64 << 20) : ((size_t)512 << 20));
     }
 
-    for (size_t w = 0; w < N_WORKLOADS; ++w) {
+    for (size_t w = 0; w < N_WORKLOADS && (workload_mask || !mesh_cfg.named); ++w) {
         const workload_spec *ws = &workloads[w];
         size_t n = cx->st.quick ? ws->n_quick : ws->n_full;
         if (workload_mask) {
@@ -863,6 +873,11 @@ int ttd_bench_main(int argc, char **argv)
         if (n > 0)
             run_workload(cx, ws, n);
     }
+    if (bench_mesh_wanted(&mesh_cfg, workload_mask != 0)) {
+        bench_mesh_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[0] != 0,
+                              cx->precisions[1] != 0, cx->quiet, cx->t_start};
+        cx->st.mesh = mesh = bench_mesh_run(&mesh_cfg, &env);
+    }
     derive_ratios(cx);
     machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
     if (machine.load1_end > (double)machine.cores)
@@ -881,16 +896,18 @@ int ttd_bench_main(int argc, char **argv)
             fprintf(stderr, "ttd bench: cannot create %s: %s\n", out_dir, strerror(errno));
             rc = 1;
         } else if (write_file(out_dir, "bench.txt", cx, &machine, 0) || write_file(out_dir, "bench.json", cx, &machine, 1) ||
-                   write_file(out_dir, "bench.csv", cx, &machine, 2)) {
+                   write_file(out_dir, "bench.csv", cx, &machine, 2) ||
+                   (cx->st.mesh && write_file(out_dir, "bench-mesh.csv", cx, &machine, 3))) {
             rc = 1;
         }
     }
-    if (cx->nrows == 0) {
+    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
                         "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
         rc = 1;
     }
-    progress(cx, "done: %zu rows", cx->nrows);
+    progress(cx, "done: %zu rows", cx->nrows + bench_mesh_row_count(cx->st.mesh));
+    bench_mesh_free(mesh);
     free(cx);
     return rc;
 }

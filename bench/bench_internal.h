@@ -109,6 +109,7 @@ typedef struct bench_settings {
     unsigned long long seed;
     char fcl[512];            ///< path of the FCL program, or a reason it is absent
     char command[512];        ///< the command line
+    const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
 } bench_settings;
 
 void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st,

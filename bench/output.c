@@ -4,6 +4,7 @@
  * line per row, the same fields as the JSON rows). Values that do not apply are "-" in the
  * table, null in the JSON and empty in the CSV. */
 #include "bench_internal.h"
+#include "mesh_bench.h"
 
 #include <math.h>
 #include <string.h>
@@ -121,6 +122,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
                "edge); not_conv = pairs flagged not converged; fallbk = certified pairs that failed the check and "
                "were computed by the exact method; iters = mean iterations; occ = lane occupancy "
                "(mean iterations / mean of each lane-block's maximum).\n");
+    if (st->mesh)
+        bench_mesh_write_table(f, st->mesh);
 }
 
 static void json_string(FILE *f, const char *s)
@@ -222,7 +225,12 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
         json_num(f, "occupancy", r->occupancy);
         fprintf(f, "}%s\n", i + 1 < n ? "," : "");
     }
-    fprintf(f, "  ]\n}\n");
+    fprintf(f, "  ]");
+    if (st->mesh) {
+        fprintf(f, ",\n  \"mesh\": ");
+        bench_mesh_write_json(f, st->mesh);
+    }
+    fprintf(f, "\n}\n");
 }
 
 static void csv_num(FILE *f, double v)
