@@ -459,13 +459,22 @@ static int load_data(bench_ctx *cx, const workload_spec *w, size_t n, bench_data
     return 0;
 }
 
+/* Instruction sets from the fastest down: the portable row is plain C over lane arrays, slower
+ * than any native SIMD row, so it ranks just above scalar (its enum value is the highest). */
+static const ttd_isa isa_preference[] = {TTD_ISA_AVX512, TTD_ISA_NEON, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_PORTABLE,
+                                         TTD_ISA_SCALAR};
+
+ttd_isa bench_best_isa(unsigned mask)
+{
+    for (size_t i = 0; i < sizeof isa_preference / sizeof isa_preference[0]; ++i)
+        if ((mask & (1u << isa_preference[i])) && ttd_isa_available(isa_preference[i]))
+            return isa_preference[i];
+    return TTD_ISA_AUTO;
+}
+
 static ttd_isa best_simd(void)
 {
-    ttd_isa best = TTD_ISA_SCALAR;
-    for (int i = TTD_ISA_SCALAR + 1; i < TTD_ISA_COUNT; ++i)
-        if (ttd_isa_available((ttd_isa)i))
-            best = (ttd_isa)i;
-    return best;
+    return bench_best_isa(~0u);
 }
 
 /* Rows cli-text and cli-binary: `ttd dist` on the workload's pairs, exact method, one thread,
@@ -473,11 +482,8 @@ static ttd_isa best_simd(void)
  * reference like any other row's. */
 static void measure_cli(bench_ctx *cx, bench_data *d)
 {
-    ttd_isa isa = TTD_ISA_SCALAR;
-    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i)
-        if ((cx->isa_mask & (1u << i)) && ttd_isa_available((ttd_isa)i))
-            isa = (ttd_isa)i;
-    if (!(cx->isa_mask & (1u << isa)) || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
+    const ttd_isa isa = bench_best_isa(cx->isa_mask);
+    if (isa == TTD_ISA_AUTO || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
         return;
     const int samples = cx->st.samples < 3 ? cx->st.samples : 3;
     for (int form_p = 0; form_p < 4; ++form_p) {

@@ -19,7 +19,7 @@ typedef struct bench_row {
     char workload[32];
     char method[16];          ///< ttd_method_name(), or "fcl"
     int bytes;                ///< 8 = double, 4 = float
-    char isa[8];              ///< ttd_isa_name(); FCL rows say "scalar"
+    char isa[16];             ///< ttd_isa_name(); FCL rows say "scalar"
     int lanes;                ///< pairs per vector for this ISA and precision
     int threads;
     size_t pairs;
@@ -117,5 +117,9 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
 void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
                       const bench_row *rows, size_t n);
 void bench_write_csv(FILE *f, const bench_row *rows, size_t n);
+
+/// The best instruction set available here among those in mask (bit i: ttd_isa i), the portable
+/// row ranked just above scalar; TTD_ISA_AUTO if none is.
+ttd_isa bench_best_isa(unsigned mask);
 
 #endif /* TTD_BENCH_INTERNAL_H */

@@ -1314,13 +1314,8 @@ bench_mesh_results *bench_mesh_run(const bench_mesh_config *c, const bench_mesh_
     R->quick = env->st->quick;
     /* what the library picks by itself, unless --isa ruled it out: then the best one allowed */
     M.isa = ttd_isa_selected(NULL);
-    if (!(env->isa_mask & (1u << M.isa))) {
-        static const ttd_isa pref[] = {TTD_ISA_AVX512, TTD_ISA_AVX2, TTD_ISA_NEON, TTD_ISA_SSE2, TTD_ISA_PORTABLE};
-        M.isa = TTD_ISA_SCALAR;
-        for (size_t i = sizeof pref / sizeof pref[0]; i-- > 0;)
-            if ((env->isa_mask & (1u << pref[i])) && ttd_isa_available(pref[i]))
-                M.isa = pref[i];
-    }
+    if (!(env->isa_mask & (1u << M.isa)))
+        M.isa = bench_best_isa(env->isa_mask) == TTD_ISA_AUTO ? TTD_ISA_SCALAR : bench_best_isa(env->isa_mask);
     snprintf(R->isa, sizeof R->isa, "%s", ttd_isa_name(M.isa));
     M.min_s = env->st->min_sample_s;
     M.max_row_s = env->st->quick ? 0.2 : 3.0;

@@ -81,7 +81,7 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
             if (strcmp(r->method, "certified") == 0)
                 snprintf(fb, sizeof fb, "%zu", r->fallback);
         }
-        fprintf(f, "%-20s %-11s %-6s %-6s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n",
+        fprintf(f, "%-20s %-11s %-6s %-8s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n",
                 r->workload, r->method, prec_name(r->bytes), r->isa, r->threads, r->pairs,
                 num(b[0], 32, r->ns_per_pair, r->ns_per_pair < 100 ? "%.2f" : "%.1f"),
                 num(b[1], 32, r->pairs_per_s * 1e-6, "%.2f"), num(b[2], 32, r->speedup_vs_scalar, "%.2f"),
