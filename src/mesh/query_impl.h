@@ -240,8 +240,8 @@ static int clist_push(clist *l, const contact *c)
 {
     if (l->n == l->cap) {
         const size_t cap = l->cap ? 2 * l->cap : 64;
-        contact *v = realloc(l->v, cap * sizeof *v);
-        if (v == NULL)
+        void *v = l->v;
+        if (ttd_big_grow(&v, l->n * sizeof *l->v, cap * sizeof *l->v) != 0)
             return 0;
         l->v = v;
         l->cap = cap;
@@ -818,10 +818,11 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
     for (size_t i = 0; i < k; ++i)
         for (size_t t = 0; t < J->cp[i].ntasks; ++t)
             total += J->cp[i].lists[t].n;
-    if (total > out->capacity) {
-        contact *v = realloc(out->pairs, total * sizeof *v);
+    if (total > out->capacity) { /* nothing in it is kept: a new array, on huge pages if large */
+        contact *v = ttd_big_alloc(total * sizeof *v);
         if (v == NULL)
             return 0;
+        free(out->pairs);
         out->pairs = v;
         out->capacity = total;
     }
