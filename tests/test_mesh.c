@@ -468,6 +468,16 @@ static int poses_threads_isas_identical(void)
         }
         ++isas;
     }
+    /* a set far larger than a task's first chunk: the joined chunks of three threads equal the
+     * one thread's set, written in place */
+    for (int threads = 1; threads <= 3; threads += 2) {
+        o.isa = TTD_ISA_AUTO;
+        o.threads = threads;
+        ENSURE(ttd_mesh_contacts_d(&o, a, b, 2, poses, 2.0, threads == 1 ? &sref : &sgot) == TTD_OK);
+    }
+    ENSURE(sref.count == (size_t)2 * ico.nt * torus.nt && sgot.count == sref.count);
+    ENSURE(memcmp(sgot.pairs, sref.pairs, sgot.count * sizeof *sgot.pairs) == 0);
+    ENSURE(memcmp(sgot.pose_start, sref.pose_start, 3 * sizeof(size_t)) == 0);
     printf("  %d instruction sets x 1..3 threads: identical\n", isas);
     ttd_contacts_free_d(&sref);
     ttd_contacts_free_d(&sgot);
