@@ -88,10 +88,11 @@ static int normalize3(const double a[3], double out[3])
     const double m = dmax(fabs(a[0]), dmax(fabs(a[1]), fabs(a[2])));
     if (!(m > 0))
         return 0;
-    const double b[3] = {a[0] / m, a[1] / m, a[2] / m};
-    const double n = sqrt(dot3(b, b));
+    const double im = 1 / m; /* reciprocals: a near-unit vector is all a box axis needs */
+    const double b[3] = {a[0] * im, a[1] * im, a[2] * im};
+    const double in = 1 / sqrt(dot3(b, b));
     for (int i = 0; i < 3; ++i)
-        out[i] = b[i] / n;
+        out[i] = b[i] * in;
     return 1;
 }
 
@@ -147,7 +148,9 @@ static void eigen_sym3(double a[3][3], double u[9])
     for (int sweep = 0; sweep < 50; ++sweep) {
         const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
         const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        if (!(off > 1e-15 * diag))
+        /* axes to 1e-9: a box is fitted to its vertices about whatever axes it gets, so
+         * further sweeps would only tilt it by less than that */
+        if (!(off > 1e-9 * diag))
             break;
         for (int p = 0; p < 2; ++p)
             for (int q = p + 1; q < 3; ++q) {
