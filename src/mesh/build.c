@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Building a mesh's hierarchy (mesh/mesh.h).
+/* Building a mesh's hierarchy (mesh/mesh.h), in two passes over the triangles.
  *
  * Shape: a node with at most TTD_NODE_WIDTH triangles takes them as its children (a leaf); a
  * larger one deals its leaves (ceil(n / 8) of them, full) evenly to up to 8 children, and
@@ -7,17 +7,25 @@
  * at the matching rank of the centroids along the longest side of their bounding box. Each
  * group is a child (a triangle when alone, a node otherwise). As the group sizes depend on the
  * triangle count alone, so does every subtree's node count: node indices are laid out in
- * pre-order before anything is built, and the top subtrees are then built in parallel into
- * their own index ranges, with the same result on any number of threads.
+ * pre-order before anything is built, and the top subtrees are built in parallel into their own
+ * index ranges, with the same result on any number of threads. The splits permute an array of
+ * 32-byte records (centroid, triangle) in place, so that a node's triangles are a contiguous
+ * run of them: every pass reads memory in order.
  *
- * Bounds: an oriented box per child. A triangle's box has its longest edge and its normal as
- * axes, so that it is flat: against a nearly parallel neighbour the node test's bound is then
- * nearly the true distance, which is what keeps the candidate pairs of a query few (a box
- * around a triangle in the mesh's axes is as thick as the triangle is wide). A subtree's box has
- * the principal axes of its triangles' area (the covariance of the surface, Gottschalk's OBB
- * fit), with the extents of every vertex below it. All of this is computed in double; a float
- * mesh rounds the axes and centre to float and then recomputes the extents against the rounded
- * axes, rounded up, so that its boxes still hold every vertex. */
+ * Bounds, once the order is known: each triangle's vertices are copied into that order, one
+ * array per coordinate, and the boxes are fitted bottom-up, each node's over a contiguous run of
+ * those arrays. A triangle's box has its longest edge and its normal as axes, so that it is
+ * flat: against a nearly parallel neighbour the node test's bound is then nearly the true
+ * distance, which is what keeps the candidate pairs of a query few (a box around a triangle in
+ * the mesh's axes is as thick as the triangle is wide). A subtree's box has the principal axes
+ * of its triangles' area (the covariance of the surface, Gottschalk's OBB fit; the area moments
+ * are summed up the tree, children to parent), with the extents of every vertex below it. All
+ * of this is computed in double; a float mesh rounds the axes and centre to float and then
+ * recomputes the extents against the rounded axes, rounded up, so that its boxes still hold
+ * every vertex.
+ *
+ * Measured on the 1M-triangle torus (docs/mesh-queries.md): the build's time is memory, not
+ * arithmetic; hence the contiguous runs, and the large arrays on huge pages (mesh/memory.h). */
 #define _POSIX_C_SOURCE 200809L
 #include <float.h>
 #include <math.h>
@@ -34,32 +42,42 @@ typedef struct obb {
     double c[3], u[9], e[3];
 } obb;
 
+/* A triangle while the shape is decided: its centroid relative to the origin, scaled to the
+ * mesh's radius and rounded to float (the splits only compare centroids; 16 bytes a record
+ * halves the memory they move), and its index, which breaks ties: no two records compare equal. */
+typedef struct trirec {
+    float c[3];
+    uint32_t t;
+} trirec;
+
+/* A triangle's area moments (tri_moments), and sums of them. */
+typedef struct moments {
+    double m[10];
+} moments;
+
 typedef struct builder {
     const struct ttd_mesh *mesh;
     int threads;          /* for the top of the tree (ttd_engine_config.threads) */
-    double *pts;          /* 9 nt: each triangle's vertices relative to the origin, in double */
-    double *cen;          /* 3 nt triangle centroids, relative */
-    float *mom;           /* 10 nt triangle area moments (tri_moments), in float: they only
-                           * choose the axes, and the extents are exact about any axes */
-    uint32_t *idx;        /* the triangles in hierarchy order, as positions in the arrays above */
-    uint32_t *order;      /* the triangle at each position (Morton order of the centroids) */
-    const double *vrel;   /* while preparing: 3 nv vertices relative to the origin */
+    const double *vrel;   /* 3 nv vertices relative to the origin */
+    trirec *rec;          /* shape pass: the triangles, permuted into hierarchy order */
+    double unit;          /* a power of two near 1 / radius: the records' scale */
+    uint32_t *ord;        /* bounds pass: the triangle at each position of that order */
+    double *p[9];         /* bounds pass: p[3k + c][i] = coordinate c of vertex k of ord[i] */
 } builder;
 
-/* A subtree to build: triangles idx[lo, hi) into node `node` (pre-order index). */
+/* A subtree: positions [lo, hi) into node `node` (pre-order index). */
 typedef struct subtree {
     size_t lo, hi;
     int32_t node;
 } subtree;
 
-/* A triangle's vertices. Each level of the build reads every triangle: one contiguous record
- * per triangle instead of three indirect vertex loads keeps that from waiting on memory. */
-static void tri_vertices(const builder *B, uint32_t t, double p[3][3])
+/* Subtrees built in parallel: the top node's (8), or with more than 8 workers one level more
+ * (64). The levels above them are done in the calling thread (their boxes' fits in parallel). */
+static int parallel_depth(int threads)
 {
-    memcpy(p, B->pts + 9 * (size_t)t, 9 * sizeof(double));
+    return ttd_parallel_task_workers(64, threads) > 8 ? 2 : 1;
 }
 
-/* min and max for numbers that are not NaN (libm's fmin/fmax are calls) */
 static double dmin(double a, double b)
 {
     return a < b ? a : b;
@@ -197,45 +215,52 @@ static void eigen_sym3(double a[3][3], double u[9])
 }
 
 /* Upper-triangle entries (xx, xy, xz, yy, yz, zz) of a symmetric 3x3 matrix. */
+
+/* Upper-triangle entries (xx, xy, xz, yy, yz, zz) of a symmetric 3x3 matrix. */
 static const int sym_r[6] = {0, 0, 0, 1, 1, 2}, sym_c[6] = {0, 1, 2, 1, 2, 2};
 
-/* A triangle's area moments, once per build (each level sums them): its area a, a g (g its
- * centroid) and the second moment of a uniform triangle, a (9 g g^T + sum p p^T) / 12, as 6
- * entries. */
-static void tri_moments(double p[3][3], const double g[3], float mom[10])
+/* A triangle's area moments: its area a, a g (g its centroid) and the second moment of a
+ * uniform triangle, a (9 g g^T + sum p p^T) / 12, as 6 entries. */
+static void tri_moments(double p[3][3], moments *mo)
 {
-    double e1[3], e2[3], x[3];
+    double e1[3], e2[3], x[3], g[3];
     for (int c = 0; c < 3; ++c) {
         e1[c] = p[1][c] - p[0][c];
         e2[c] = p[2][c] - p[0][c];
+        g[c] = (p[0][c] + p[1][c] + p[2][c]) / 3;
     }
     cross3(e1, e2, x);
     const double a = 0.5 * sqrt(dot3(x, x));
-    mom[0] = (float)a;
+    double *m = mo->m;
+    m[0] = a;
     for (int c = 0; c < 3; ++c)
-        mom[1 + c] = (float)(a * g[c]);
+        m[1 + c] = a * g[c];
     for (int k = 0; k < 6; ++k) {
         const int r = sym_r[k], c = sym_c[k];
-        mom[4 + k] = (float)(a / 12 * (9 * g[r] * g[c] + p[0][r] * p[0][c] + p[1][r] * p[1][c] + p[2][r] * p[2][c]));
+        m[4 + k] = a / 12 * (9 * g[r] * g[c] + p[0][r] * p[0][c] + p[1][r] * p[1][c] + p[2][r] * p[2][c]);
     }
 }
 
-/* Principal axes of the surface of triangles idx[lo, hi): eigenvectors of the covariance of
- * their area; of their vertices when their area is 0. */
-static void surface_axes(const builder *B, size_t lo, size_t hi, double u[9])
+/* The vertices of the triangle at position i of the hierarchy order. */
+static void pos_vertices(const builder *B, size_t i, double p[3][3])
 {
-    double m[10] = {0};
-    for (size_t i = lo; i < hi; ++i) {
-        const float *t = B->mom + 10 * (size_t)B->idx[i];
-        for (int k = 0; k < 10; ++k)
-            m[k] += (double)t[k];
-    }
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+            p[k][c] = B->p[3 * k + c][i];
+}
+
+/* Principal axes of the surface of positions [lo, hi) from its area moments m: eigenvectors of
+ * the covariance of the area; of the vertices when the area is 0. */
+static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *mo, double u[9])
+{
+    double m[10];
+    memcpy(m, mo->m, sizeof m);
     if (!(m[0] > 0)) { /* no area at all: the vertices' covariance */
         for (int k = 0; k < 10; ++k)
             m[k] = 0;
         for (size_t i = lo; i < hi; ++i) {
             double p[3][3];
-            tri_vertices(B, B->idx[i], p);
+            pos_vertices(B, i, p);
             for (int v = 0; v < 3; ++v) {
                 m[0] += 1;
                 for (int c = 0; c < 3; ++c)
@@ -253,20 +278,19 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, double u[9])
     eigen_sym3(cov, u);
 }
 
-/* The box with axes u around the vertices of triangles idx[lo, hi): centre and extents from
- * the range of their projections. */
+/* The box with axes b->u around the vertices of positions [lo, hi): centre and extents from the
+ * range of their projections. Every level of the tree runs this over every vertex: the
+ * coordinates are read in order, one array each, and the bounds kept in locals. */
 static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
 {
-    /* the bounds in locals, not an array the compiler keeps in memory: this loop is a fifth of
-     * a build (every vertex of every triangle, on every level) */
     const double *u = b->u;
     double mn0 = INFINITY, mn1 = INFINITY, mn2 = INFINITY, mx0 = -INFINITY, mx1 = -INFINITY, mx2 = -INFINITY;
-    for (size_t i = lo; i < hi; ++i) {
-        const double *p = B->pts + 9 * (size_t)B->idx[i];
-        for (int k = 0; k < 9; k += 3) {
-            const double d0 = u[0] * p[k] + u[1] * p[k + 1] + u[2] * p[k + 2];
-            const double d1 = u[3] * p[k] + u[4] * p[k + 1] + u[5] * p[k + 2];
-            const double d2 = u[6] * p[k] + u[7] * p[k + 1] + u[8] * p[k + 2];
+    for (int k = 0; k < 3; ++k) {
+        const double *x = B->p[3 * k], *y = B->p[3 * k + 1], *z = B->p[3 * k + 2];
+        for (size_t i = lo; i < hi; ++i) {
+            const double d0 = u[0] * x[i] + u[1] * y[i] + u[2] * z[i];
+            const double d1 = u[3] * x[i] + u[4] * y[i] + u[5] * z[i];
+            const double d2 = u[6] * x[i] + u[7] * y[i] + u[8] * z[i];
             mn0 = dmin(mn0, d0);
             mx0 = dmax(mx0, d0);
             mn1 = dmin(mn1, d1);
@@ -286,21 +310,20 @@ static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
     }
 }
 
-static void fit_box(const builder *B, size_t lo, size_t hi, obb *b)
+/* The box of the triangle at position i, and its moments. */
+static void triangle_box(const builder *B, size_t i, obb *b, moments *mo)
 {
-    if (hi - lo == 1) {
-        double p[3][3];
-        tri_vertices(B, B->idx[lo], p);
-        triangle_axes(p, b->u);
-    } else {
-        surface_axes(B, lo, hi, b->u);
-    }
-    fit_extents(B, lo, hi, b);
+    double p[3][3];
+    pos_vertices(B, i, p);
+    triangle_axes(p, b->u);
+    fit_extents(B, i, i + 1, b);
+    tri_moments(p, mo);
 }
 
 /* Stores box b in slot j of node n, with child `child`. A double mesh stores it as it is; a
- * float mesh rounds axes and centre to float, then takes the extents of the vertices about the
- * rounded centre along the rounded axes, rounded up, so the stored box still holds them. */
+ * float mesh rounds axes and centre to float, then takes the extents of the vertices of
+ * positions [lo, hi) about the rounded centre along the rounded axes, rounded up, so the stored
+ * box still holds them. */
 static void store_box(const builder *B, int32_t n, int j, const obb *b, int32_t child, size_t lo, size_t hi)
 {
     const struct ttd_mesh *m = B->mesh;
@@ -323,7 +346,7 @@ static void store_box(const builder *B, int32_t n, int j, const obb *b, int32_t 
         cf[i] = (double)(float)b->c[i];
     for (size_t i = lo; i < hi; ++i) {
         double p[3][3];
-        tri_vertices(B, B->idx[i], p);
+        pos_vertices(B, i, p);
         for (int k = 0; k < 3; ++k) {
             const double r[3] = {p[k][0] - cf[0], p[k][1] - cf[1], p[k][2] - cf[2]};
             for (int a = 0; a < 3; ++a)
@@ -378,62 +401,95 @@ static size_t count_nodes(size_t n)
     return total;
 }
 
-/* Reorders idx[lo, hi) so that idx[k] holds the triangle whose centroid coordinate `axis` would
- * be there in sorted order, none larger before it and none smaller after (quickselect with a
- * three-way partition, which keeps runs of equal coordinates, common in grids, linear; the
- * pivot comes from a hash of the range, so the result is deterministic). */
-static void select_kth(builder *B, size_t lo, size_t hi, size_t k, int axis)
+/* Node n over count triangles: its groups' sizes g and, for each group, the node it becomes
+ * (-1: a lone triangle, a child of n itself). Returns the number of groups. */
+static int node_groups(size_t count, int32_t n, size_t g[8], int32_t child[8])
 {
-    uint32_t *idx = B->idx;
-    const double *cen = B->cen;
+    int ng;
+    if (count <= TTD_NODE_WIDTH) {
+        ng = (int)count;
+        for (int j = 0; j < ng; ++j)
+            g[j] = 1;
+    } else {
+        ng = group_sizes(count, g);
+    }
+    int32_t next = n + 1;
+    for (int j = 0; j < ng; ++j) {
+        child[j] = g[j] > 1 ? next : -1;
+        if (g[j] > 1)
+            next += (int32_t)count_nodes(g[j]);
+    }
+    return ng;
+}
+
+/* Whether record a comes before record b along axis: by the coordinate, then the index. */
+static int rec_before(const trirec *a, const trirec *b, int axis)
+{
+    return (a->c[axis] < b->c[axis]) | ((a->c[axis] == b->c[axis]) & (a->t < b->t));
+}
+
+/* A deterministic position in [lo, hi) for pivot sample s (a hash of the range). */
+static size_t sample_at(size_t lo, size_t hi, uint64_t s)
+{
+    uint64_t h = (uint64_t)lo * 0x9E3779B97F4A7C15ull ^ (uint64_t)hi * 0xBF58476D1CE4E5B9ull ^ s * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+    return lo + (size_t)(h % (hi - lo));
+}
+
+/* Reorders rec[lo, hi) so that rec[k] holds the record that sorted order along `axis` would put
+ * there, none after it before it and none before it after (quickselect: the median of three
+ * sampled records as the pivot, and a partition without branches on the data, which on
+ * centroids in no particular order would mispredict every other record). */
+static void select_kth(trirec *rec, size_t lo, size_t hi, size_t k, int axis)
+{
     while (hi - lo > 1) {
-        uint64_t h = (uint64_t)lo * 0x9E3779B97F4A7C15ull ^ (uint64_t)hi * 0xBF58476D1CE4E5B9ull;
-        h ^= h >> 31;
-        const double pivot = cen[3 * (size_t)idx[lo + (size_t)(h % (hi - lo))] + axis];
-        size_t lt = lo, i = lo, gt = hi;
-        while (i < gt) {
-            const double x = cen[3 * (size_t)idx[i] + axis];
-            if (x < pivot) {
-                const uint32_t t = idx[lt];
-                idx[lt++] = idx[i];
-                idx[i++] = t;
-            } else if (x > pivot) {
-                const uint32_t t = idx[--gt];
-                idx[gt] = idx[i];
-                idx[i] = t;
-            } else {
-                ++i;
-            }
+        size_t s0 = sample_at(lo, hi, 0), s1 = sample_at(lo, hi, 1), s2 = sample_at(lo, hi, 2), t;
+        if (rec_before(&rec[s1], &rec[s0], axis))
+            t = s0, s0 = s1, s1 = t;
+        if (rec_before(&rec[s2], &rec[s1], axis))
+            s1 = rec_before(&rec[s2], &rec[s0], axis) ? s0 : s2;
+        /* the pivot to the end; [lo, store) before it, [store, i) not */
+        trirec x = rec[s1];
+        rec[s1] = rec[hi - 1];
+        rec[hi - 1] = x;
+        const trirec pivot = x;
+        size_t store = lo;
+        for (size_t i = lo; i + 1 < hi; ++i) {
+            x = rec[i];
+            rec[i] = rec[store];
+            rec[store] = x;
+            store += (size_t)rec_before(&x, &pivot, axis);
         }
-        /* [lo, lt) < pivot, [lt, gt) == pivot, [gt, hi) > pivot */
-        if (k < lt)
-            hi = lt;
-        else if (k >= gt)
-            lo = gt;
-        else
+        rec[hi - 1] = rec[store];
+        rec[store] = pivot;
+        if (k == store)
             return;
+        if (k < store)
+            hi = store;
+        else
+            lo = store + 1;
     }
 }
 
-/* Splits idx[lo, hi) at rank lo + k along the longest side of its centroids' box. */
-static void split_at(builder *B, size_t lo, size_t hi, size_t k)
+/* Splits rec[lo, hi) at rank lo + k along the longest side of its centroids' box. */
+static void split_at(trirec *rec, size_t lo, size_t hi, size_t k)
 {
-    double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = lo; i < hi; ++i)
         for (int c = 0; c < 3; ++c) {
-            mn[c] = dmin(mn[c], B->cen[3 * (size_t)B->idx[i] + c]);
-            mx[c] = dmax(mx[c], B->cen[3 * (size_t)B->idx[i] + c]);
+            mn[c] = rec[i].c[c] < mn[c] ? rec[i].c[c] : mn[c];
+            mx[c] = rec[i].c[c] > mx[c] ? rec[i].c[c] : mx[c];
         }
     int axis = 0;
     for (int c = 1; c < 3; ++c)
         if (mx[c] - mn[c] > mx[axis] - mn[axis])
             axis = c;
-    select_kth(B, lo, hi, lo + k, axis);
+    select_kth(rec, lo, hi, lo + k, axis);
 }
 
-/* Orders idx[lo, hi) into groups g[0..ng) by halving the list of groups: the first half of the
+/* Orders rec[lo, ...) into groups g[0..ng) by halving the list of groups: the first half of the
  * groups' triangles from the second along the longest side, and again within each half. */
-static void split_groups(builder *B, size_t lo, const size_t *g, int ng)
+static void split_groups(trirec *rec, size_t lo, const size_t *g, int ng)
 {
     if (ng < 2)
         return;
@@ -444,176 +500,200 @@ static void split_groups(builder *B, size_t lo, const size_t *g, int ng)
         if (j < h)
             left += g[j];
     }
-    split_at(B, lo, lo + all, left);
-    split_groups(B, lo, g, h);
-    split_groups(B, lo + left, g + h, ng - h);
+    split_at(rec, lo, lo + all, left);
+    split_groups(rec, lo, g, h);
+    split_groups(rec, lo + left, g + h, ng - h);
 }
 
-/* The boxes of groups g[0..ng) starting at idx[lo]; at the top of the tree (parallel), one
- * group per task. */
-typedef struct group_job {
-    const builder *B;
-    size_t lo[8], hi[8];
-    obb *boxes;
-} group_job;
-
-static void fit_group(void *ctx, size_t j, int worker)
+/* The shape of node n over rec[lo, hi): its groups ordered, then its subtrees', down to
+ * `depth` levels below n, where the subtrees are listed in `defer` instead (depth < 0: to the
+ * leaves). */
+static void shape(builder *B, int32_t n, size_t lo, size_t hi, int depth, subtree *defer, size_t *ndefer)
 {
-    (void)worker;
-    group_job *G = ctx;
-    fit_box(G->B, G->lo[j], G->hi[j], &G->boxes[j]);
-}
-
-static void fit_groups(const builder *B, size_t lo, const size_t *g, int ng, obb *boxes, int parallel)
-{
-    group_job G = {.B = B, .boxes = boxes};
-    for (int j = 0; j < ng; ++j) {
-        G.lo[j] = lo;
-        G.hi[j] = lo + g[j];
-        lo += g[j];
-    }
-    if (parallel)
-        ttd_parallel_tasks((size_t)ng, B->threads, fit_group, &G);
-    else
-        for (int j = 0; j < ng; ++j)
-            fit_group(&G, (size_t)j, 0);
-}
-
-/* Builds node n over idx[lo, hi). Children that are subtrees get the indices after n in
- * pre-order; when `defer` is given, they are listed there instead of being built (the top of
- * the tree, whose subtrees are then built in parallel). Returns the nodes used. */
-static size_t build_node(builder *B, int32_t n, size_t lo, size_t hi, subtree *defer, size_t *ndefer)
-{
-    const size_t count = hi - lo;
-    int32_t next = n + 1;
-    size_t g[8] = {0};
-    int ng = 0;
-    if (count <= TTD_NODE_WIDTH) {
-        for (size_t j = 0; j < count; ++j)
-            g[ng++] = 1;
-    } else {
-        ng = group_sizes(count, g);
-        split_groups(B, lo, g, ng);
-    }
-    obb boxes[8];
-    fit_groups(B, lo, g, ng, boxes, defer != NULL);
+    size_t g[8];
+    int32_t child[8];
+    const int ng = node_groups(hi - lo, n, g, child);
+    if (hi - lo > TTD_NODE_WIDTH)
+        split_groups(B->rec, lo, g, ng);
     size_t at = lo;
     for (int j = 0; j < ng; ++j) {
-        const obb b = boxes[j];
-        if (g[j] == 1) {
-            store_box(B, n, j, &b, -1 - (int32_t)B->order[B->idx[at]], at, at + 1);
-        } else {
-            store_box(B, n, j, &b, next, at, at + g[j]);
-            if (defer) {
-                defer[(*ndefer)++] = (subtree){at, at + g[j], next};
-            } else {
-                build_node(B, next, at, at + g[j], NULL, NULL);
-            }
-            next += (int32_t)count_nodes(g[j]);
+        if (child[j] >= 0) {
+            if (depth == 1)
+                defer[(*ndefer)++] = (subtree){at, at + g[j], child[j]};
+            else
+                shape(B, child[j], at, at + g[j], depth - 1, defer, ndefer);
         }
         at += g[j];
     }
-    /* unused slots hold zeros (the node test reads all of them) */
+}
+
+static void shape_task(void *ctx, size_t i, int worker)
+{
+    (void)worker;
+    void **c = ctx;
+    const subtree *t = (const subtree *)c[1] + i;
+    shape(c[0], t->node, t->lo, t->hi, -1, NULL, NULL);
+}
+
+/* ---- bounds ------------------------------------------------------------------------------ */
+
+/* The box of a group of positions [lo, hi) (two triangles or more) from its moments. */
+static void group_box(const builder *B, size_t lo, size_t hi, const moments *mo, obb *b)
+{
+    surface_axes(B, lo, hi, mo, b->u);
+    fit_extents(B, lo, hi, b);
+}
+
+/* Writes node n's count and zeros in its unused slots (the node test reads all of them). */
+static void finish_node(const builder *B, int32_t n, int ng)
+{
     const obb none = {{0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, {0, 0, 0}};
     for (int j = ng; j < TTD_NODE_WIDTH; ++j)
-        store_box(B, n, j, &none, 0, lo, lo);
+        store_box(B, n, j, &none, 0, 0, 0);
     if (B->mesh->bytes == 8)
         ((ttd_node_d *)B->mesh->nodes)[n].count = (int32_t)ng;
     else
         ((ttd_node_f *)B->mesh->nodes)[n].count = (int32_t)ng;
-    return (size_t)(next - n);
 }
 
-static void build_subtree(void *ctx, size_t i, int worker)
+static void moments_add(moments *sum, const moments *x)
+{
+    for (int k = 0; k < 10; ++k)
+        sum->m[k] += x->m[k];
+}
+
+/* The boxes of node n over positions [lo, hi) and of its whole subtree, children first; *sum
+ * gets the moments of all its triangles. */
+static void bound(const builder *B, int32_t n, size_t lo, size_t hi, moments *sum)
+{
+    size_t g[8];
+    int32_t child[8];
+    const int ng = node_groups(hi - lo, n, g, child);
+    memset(sum, 0, sizeof *sum);
+    size_t at = lo;
+    for (int j = 0; j < ng; ++j) {
+        obb b;
+        moments mo;
+        if (child[j] < 0) {
+            triangle_box(B, at, &b, &mo);
+            store_box(B, n, j, &b, -1 - (int32_t)B->ord[at], at, at + 1);
+        } else {
+            bound(B, child[j], at, at + g[j], &mo);
+            group_box(B, at, at + g[j], &mo, &b);
+            store_box(B, n, j, &b, child[j], at, at + g[j]);
+        }
+        moments_add(sum, &mo);
+        at += g[j];
+    }
+    finish_node(B, n, ng);
+}
+
+/* The parallel bounds pass: the subtrees listed by the shape pass, each with its moments. */
+typedef struct bound_job {
+    const builder *B;
+    const subtree *list;
+    moments *mo;
+} bound_job;
+
+static void bound_task(void *ctx, size_t i, int worker)
 {
     (void)worker;
-    void **c = ctx;
-    builder *B = c[0];
-    const subtree *t = (const subtree *)c[1] + i;
-    build_node(B, t->node, t->lo, t->hi, NULL, NULL);
+    const bound_job *J = ctx;
+    bound(J->B, J->list[i].node, J->list[i].lo, J->list[i].hi, &J->mo[i]);
+}
+
+/* The boxes of one node's groups from their moments, in parallel (the top of the tree, where
+ * each group is a large part of the mesh). */
+typedef struct group_job {
+    const builder *B;
+    size_t lo[8], hi[8];
+    const moments *mo[8];
+    obb box[8];
+} group_job;
+
+static void group_task(void *ctx, size_t j, int worker)
+{
+    (void)worker;
+    group_job *G = ctx;
+    if (G->hi[j] - G->lo[j] == 1) {
+        moments unused;
+        triangle_box(G->B, G->lo[j], &G->box[j], &unused);
+    } else {
+        group_box(G->B, G->lo[j], G->hi[j], G->mo[j], &G->box[j]);
+    }
+}
+
+/* bound() for the levels above the listed subtrees, whose moments come from `done` in list
+ * order (*next counts them), with each node's group boxes fitted in parallel. */
+static void bound_top(const builder *B, int32_t n, size_t lo, size_t hi, int depth, const moments *done,
+                      size_t *next, moments *sum)
+{
+    size_t g[8];
+    int32_t child[8];
+    const int ng = node_groups(hi - lo, n, g, child);
+    moments mo[8];
+    group_job G = {.B = B};
+    memset(sum, 0, sizeof *sum);
+    size_t at = lo;
+    for (int j = 0; j < ng; ++j) {
+        if (child[j] < 0) {
+            double p[3][3];
+            pos_vertices(B, at, p);
+            tri_moments(p, &mo[j]);
+        } else if (depth == 1) {
+            mo[j] = done[(*next)++];
+        } else {
+            bound_top(B, child[j], at, at + g[j], depth - 1, done, next, &mo[j]);
+        }
+        G.lo[j] = at;
+        G.hi[j] = at + g[j];
+        G.mo[j] = &mo[j];
+        moments_add(sum, &mo[j]);
+        at += g[j];
+    }
+    ttd_parallel_tasks((size_t)ng, B->threads, group_task, &G);
+    for (int j = 0; j < ng; ++j)
+        store_box(B, n, j, &G.box[j], child[j] >= 0 ? child[j] : -1 - (int32_t)B->ord[G.lo[j]], G.lo[j], G.hi[j]);
+    finish_node(B, n, ng);
 }
 
 /* ---- the mesh --------------------------------------------------------------------------- */
 
-/* Triangles per block of the preparation pass. */
+/* Triangles per block of the preparation passes. */
 #define PREP_BLOCK 4096
 
-/* Each position's triangle's vertices, centroid and moments, for block b of positions. */
-static void prepare_triangles(void *ctx, size_t b, int worker)
+/* Triangle t's record: its centroid (relative to the origin) and index, for block b. */
+static void prepare_records(void *ctx, size_t b, int worker)
+{
+    (void)worker;
+    builder *B = ctx;
+    const uint32_t *tris = B->mesh->tris;
+    const size_t i1 = (b + 1) * PREP_BLOCK < B->mesh->nt ? (b + 1) * PREP_BLOCK : B->mesh->nt;
+    for (size_t t = b * PREP_BLOCK; t < i1; ++t) {
+        trirec *r = &B->rec[t];
+        for (int c = 0; c < 3; ++c) {
+            double s = 0;
+            for (int k = 0; k < 3; ++k)
+                s += B->vrel[3 * (size_t)tris[3 * t + (size_t)k] + (size_t)c];
+            r->c[c] = (float)(s / 3 * B->unit);
+        }
+        r->t = (uint32_t)t;
+    }
+}
+
+/* The vertices of the triangle at each position, in hierarchy order, for block b. */
+static void prepare_vertices(void *ctx, size_t b, int worker)
 {
     (void)worker;
     builder *B = ctx;
     const uint32_t *tris = B->mesh->tris;
     const size_t i1 = (b + 1) * PREP_BLOCK < B->mesh->nt ? (b + 1) * PREP_BLOCK : B->mesh->nt;
     for (size_t i = b * PREP_BLOCK; i < i1; ++i) {
-        const size_t t = B->order[i];
-        double p[3][3];
-        B->idx[i] = (uint32_t)i;
+        const size_t t = B->ord[i];
         for (int k = 0; k < 3; ++k)
-            memcpy(p[k], B->vrel + 3 * (size_t)tris[3 * t + (size_t)k], 3 * sizeof(double));
-        memcpy(B->pts + 9 * i, p, sizeof p);
-        for (int c = 0; c < 3; ++c)
-            B->cen[3 * i + c] = (p[0][c] + p[1][c] + p[2][c]) / 3;
-        tri_moments(p, B->cen + 3 * i, B->mom + 10 * i);
+            for (int c = 0; c < 3; ++c)
+                B->p[3 * k + c][i] = B->vrel[3 * (size_t)tris[3 * t + (size_t)k] + (size_t)c];
     }
-}
-
-/* 10 bits of x in every third bit. */
-static uint32_t spread3(uint32_t x)
-{
-    x &= 0x3ffu;
-    x = (x | (x << 16)) & 0x030000ffu;
-    x = (x | (x << 8)) & 0x0300f00fu;
-    x = (x | (x << 4)) & 0x030c30c3u;
-    x = (x | (x << 2)) & 0x09249249u;
-    return x;
-}
-
-/* The triangles in Morton order of their centroids (1024 cells per axis of the vertices' box),
- * ties in index order: the splits below then find a node's triangles close together in memory,
- * which at a million triangles decides the build's speed more than its arithmetic. Radix sort
- * of (code, index) pairs. Returns 0 on allocation failure. */
-static int morton_order(builder *B, const double lo[3], const double hi[3])
-{
-    const size_t nt = B->mesh->nt;
-    const uint32_t *tris = B->mesh->tris;
-    uint64_t *key = ttd_big_alloc(nt * sizeof *key), *tmp = ttd_big_alloc(nt * sizeof *tmp);
-    if (!key || !tmp) {
-        free(key);
-        free(tmp);
-        return 0;
-    }
-    double scale[3];
-    for (int c = 0; c < 3; ++c)
-        scale[c] = hi[c] > lo[c] ? 1023.0 / (hi[c] - lo[c]) : 0;
-    for (size_t t = 0; t < nt; ++t) {
-        uint32_t code = 0;
-        for (int c = 0; c < 3; ++c) {
-            double g = 0;
-            for (int k = 0; k < 3; ++k)
-                g += B->vrel[3 * (size_t)tris[3 * t + (size_t)k] + (size_t)c];
-            const double q = (g / 3 - lo[c]) * scale[c];
-            code |= spread3(q > 0 ? (uint32_t)(q < 1023 ? q : 1023) : 0u) << c;
-        }
-        key[t] = (uint64_t)code << 32 | (uint64_t)t;
-    }
-    for (int shift = 32; shift < 64; shift += 8) { /* LSD radix sort on the code's bytes */
-        size_t count[257] = {0};
-        for (size_t t = 0; t < nt; ++t)
-            ++count[((key[t] >> shift) & 0xffu) + 1];
-        for (int d = 0; d < 256; ++d)
-            count[d + 1] += count[d];
-        for (size_t t = 0; t < nt; ++t)
-            tmp[count[(key[t] >> shift) & 0xffu]++] = key[t];
-        uint64_t *sw = key;
-        key = tmp;
-        tmp = sw;
-    }
-    for (size_t t = 0; t < nt; ++t)
-        B->order[t] = (uint32_t)key[t];
-    free(key);
-    free(tmp);
-    return 1;
 }
 
 void ttd_mesh_free(struct ttd_mesh *mesh)
@@ -626,43 +706,14 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh);
 }
 
-ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
-                          const uint32_t *tris, size_t nt, struct ttd_mesh **out)
+/* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
+ * is, rounded up) of a mesh, and its vertices relative to the origin into vrel. */
+static void place(struct ttd_mesh *m, const void *verts, double *vrel)
 {
-    *out = NULL;
-    struct ttd_mesh *m = calloc(1, sizeof *m);
-    builder B = {.mesh = m, .threads = cfg->threads};
-    double *vrel = NULL;
-    subtree *defer = NULL;
-    if (m == NULL)
-        goto nomem;
-    m->bytes = bytes;
-    m->nv = nv;
-    m->nt = nt;
-    /* nodes: the root's box holder (node 0) and the tree from node 1 when there is more than
-     * one triangle */
-    m->nnodes = 1 + (nt > 1 ? count_nodes(nt) : 0);
-    const size_t node_bytes = bytes == 8 ? sizeof(ttd_node_d) : sizeof(ttd_node_f);
-    const size_t nodes_size = (m->nnodes * node_bytes + 63) / 64 * 64;
-    m->verts = ttd_big_alloc(3 * nv * (size_t)bytes);
-    m->tris = ttd_big_alloc(3 * nt * sizeof(uint32_t));
-    m->nodes = ttd_big_alloc(nodes_size);
-    vrel = ttd_big_alloc(3 * nv * sizeof(double));
-    B.cen = ttd_big_alloc(3 * nt * sizeof(double));
-    B.idx = ttd_big_alloc(nt * sizeof(uint32_t));
-    B.pts = ttd_big_alloc(9 * nt * sizeof(double));
-    B.mom = ttd_big_alloc(10 * nt * sizeof(float));
-    B.order = ttd_big_alloc(nt * sizeof(uint32_t));
-    if (!m->verts || !m->tris || !m->nodes || !vrel || !B.cen || !B.idx || !B.pts || !B.mom || !B.order)
-        goto nomem;
-    memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
-    memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
-    memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-
-    /* origin: the centre of the vertices' bounding box; radius: how far the farthest vertex is */
+    const size_t nv = m->nv;
     double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
+        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
         vrel[i] = x;
         mn[i % 3] = dmin(mn[i % 3], x);
         mx[i % 3] = dmax(mx[i % 3], x);
@@ -679,66 +730,99 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
         r2 = dmax(r2, d2);
     }
     m->radius = sqrt(r2) * (1 + 4 * DBL_EPSILON);
-    B.vrel = vrel;
-    double vlo[3], vhi[3];
-    for (int c = 0; c < 3; ++c) {
-        vlo[c] = mn[c] - m->origin[c];
-        vhi[c] = mx[c] - m->origin[c];
-    }
-    if (!morton_order(&B, vlo, vhi))
+}
+
+ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
+                          const uint32_t *tris, size_t nt, struct ttd_mesh **out)
+{
+    *out = NULL;
+    struct ttd_mesh *m = calloc(1, sizeof *m);
+    builder B = {.mesh = m, .threads = cfg->threads};
+    double *vrel = NULL, *pts = NULL;
+    subtree *list = NULL;
+    moments *done = NULL;
+    if (m == NULL)
         goto nomem;
-    ttd_parallel_for((nt + PREP_BLOCK - 1) / PREP_BLOCK, cfg->threads, prepare_triangles, &B);
+    m->bytes = bytes;
+    m->nv = nv;
+    m->nt = nt;
+    /* nodes: the root's box holder (node 0) and the tree from node 1 when there is more than
+     * one triangle */
+    m->nnodes = 1 + (nt > 1 ? count_nodes(nt) : 0);
+    const size_t node_bytes = bytes == 8 ? sizeof(ttd_node_d) : sizeof(ttd_node_f);
+    m->verts = ttd_big_alloc(3 * nv * (size_t)bytes);
+    m->tris = ttd_big_alloc(3 * nt * sizeof(uint32_t));
+    m->nodes = ttd_big_alloc(m->nnodes * node_bytes);
+    vrel = ttd_big_alloc(3 * nv * sizeof(double));
+    B.rec = ttd_big_alloc(nt * sizeof *B.rec);
+    B.ord = ttd_big_alloc(nt * sizeof *B.ord);
+    list = malloc(64 * sizeof *list);
+    done = malloc(64 * sizeof *done);
+    if (!m->verts || !m->tris || !m->nodes || !vrel || !B.rec || !B.ord || !list || !done)
+        goto nomem;
+    memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
+    memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
+    memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
+    place(m, verts, vrel);
+    B.vrel = vrel;
+    int e;
+    frexp(m->radius, &e);
+    B.unit = m->radius > 0 ? ldexp(1.0, -e) : 1.0;
+
+    /* shape: the top levels in this thread, then their subtrees in parallel */
+    const size_t blocks = (nt + PREP_BLOCK - 1) / PREP_BLOCK;
+    ttd_parallel_for(blocks, cfg->threads, prepare_records, &B);
+    const int depth = parallel_depth(cfg->threads);
+    size_t nlist = 0;
+    if (nt > 1) {
+        shape(&B, 1, 0, nt, depth, list, &nlist);
+        void *ctx[2] = {&B, list};
+        ttd_parallel_tasks(nlist, cfg->threads, shape_task, ctx);
+    }
+    for (size_t i = 0; i < nt; ++i)
+        B.ord[i] = B.rec[i].t;
+    free(B.rec);
+    B.rec = NULL;
+
+    /* bounds: the vertices in that order, then the listed subtrees in parallel, then the top */
+    pts = ttd_big_alloc(9 * nt * sizeof(double));
+    if (pts == NULL)
+        goto nomem;
+    for (int k = 0; k < 9; ++k)
+        B.p[k] = pts + (size_t)k * nt;
+    ttd_parallel_for(blocks, cfg->threads, prepare_vertices, &B);
     free(vrel);
     vrel = NULL;
-
-    /* node 0, slot 0: the root's box around everything, with the tree (or the triangle) below */
     obb root;
-    fit_box(&B, 0, nt, &root);
+    moments all;
+    if (nt > 1) {
+        bound_job J = {&B, list, done};
+        ttd_parallel_tasks(nlist, cfg->threads, bound_task, &J);
+        size_t next = 0;
+        bound_top(&B, 1, 0, nt, depth, done, &next, &all);
+        group_box(&B, 0, nt, &all, &root);
+    } else {
+        triangle_box(&B, 0, &root, &all);
+    }
+    /* node 0, slot 0: the root's box around everything, with the tree (or the triangle) below */
     store_box(&B, 0, 0, &root, nt > 1 ? 1 : -1, 0, nt);
     if (bytes == 8)
         ((ttd_node_d *)m->nodes)[0].count = 1;
     else
         ((ttd_node_f *)m->nodes)[0].count = 1;
-    if (nt > 1) {
-        /* The top node's split in this thread and its boxes in parallel, then its subtrees
-         * (8) in parallel; with more than 8 workers, one level more first (64 subtrees). */
-        defer = malloc(64 * sizeof *defer);
-        subtree *level = malloc(8 * sizeof *level);
-        if (!defer || !level) {
-            free(level);
-            goto nomem;
-        }
-        size_t nlevel = 0, ndefer = 0;
-        build_node(&B, 1, 0, nt, level, &nlevel);
-        if (ttd_parallel_task_workers(64, cfg->threads) > 8) {
-            for (size_t i = 0; i < nlevel; ++i)
-                build_node(&B, level[i].node, level[i].lo, level[i].hi, defer, &ndefer);
-        } else {
-            memcpy(defer, level, nlevel * sizeof *level);
-            ndefer = nlevel;
-        }
-        free(level);
-        void *ctx[2] = {&B, defer};
-        ttd_parallel_tasks(ndefer, cfg->threads, build_subtree, ctx);
-    }
-    free(defer);
-    free(B.cen);
-    free(B.idx);
-    free(B.pts);
-    free(B.mom);
-    free(B.order);
+    free(pts);
+    free(B.ord);
+    free(list);
+    free(done);
     *out = m;
     return TTD_OK;
 nomem:
-    free(defer);
     free(vrel);
-    if (m) {
-        free(B.cen);
-        free(B.idx);
-        free(B.pts);
-        free(B.mom);
-        free(B.order);
-    }
+    free(pts);
+    free(list);
+    free(done);
+    free(B.rec);
+    free(B.ord);
     ttd_mesh_free(m);
     return TTD_ERR_OUT_OF_MEMORY;
 }
