@@ -103,6 +103,13 @@ static void cross3(const double a[3], const double b[3], double out[3])
 /* a / |a| into out; 0 when a is 0 (or so small that its square vanishes). */
 static int normalize3(const double a[3], double out[3])
 {
+    const double d = dot3(a, a);
+    if (d > 0x1p-900 && d < 0x1p900) { /* the common case: no scaling needed */
+        const double in = 1 / sqrt(d);
+        for (int i = 0; i < 3; ++i)
+            out[i] = a[i] * in;
+        return 1;
+    }
     const double m = dmax(fabs(a[0]), dmax(fabs(a[1]), fabs(a[2])));
     if (!(m > 0))
         return 0;
@@ -166,9 +173,9 @@ static void eigen_sym3(double a[3][3], double u[9])
     for (int sweep = 0; sweep < 50; ++sweep) {
         const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
         const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        /* axes to 1e-9: a box is fitted to its vertices about whatever axes it gets, so
-         * further sweeps would only tilt it by less than that */
-        if (!(off > 1e-9 * diag))
+        /* axes to about 1e-6: a box is fitted to its vertices about whatever axes it gets,
+         * so further sweeps would only tilt it by less than that */
+        if (!(off > 1e-6 * diag))
             break;
         for (int p = 0; p < 2; ++p)
             for (int q = p + 1; q < 3; ++q) {
