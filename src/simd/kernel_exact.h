@@ -709,11 +709,12 @@ static inline vreal kx_screen(const vreal S[9], const vreal T[9])
 #define KX_CHUNK 64 /* pairs gathered per call of kx_run in the screened path (up to W more) */
 
 /* Writes what a pair ruled out by the screen gets, for the live lanes of a group at pair i0 (the
- * lanes that are not ruled out are overwritten later): its lower bound as the distance, NaN
- * points, and in results the bound, NaN points and weights, no flags. */
+ * lanes that are not ruled out are overwritten later): its lower bound (at least 0) as the
+ * distance, NaN points, and in results the bound, NaN points and weights, no flags. */
 static void kx_write_far(const ttd_out *out, size_t i0, int live, vreal lb)
 {
     const real nan = (real)NAN;
+    lb = vmax(lb, vzero());
     if (out->distance)
         kw_store_distance(lb, live, out->distance + i0);
     if (out->points)
