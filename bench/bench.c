@@ -629,6 +629,9 @@ static void usage(FILE *f)
           f);
 }
 
+static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
+
+/* A comma-separated list of names into a mask (instruction sets in any letter case). */
 static int parse_list(const char *arg, const char *kind, unsigned *mask, const char *(*name_of)(int), int count)
 {
     char buf[256];
@@ -638,7 +641,7 @@ static int parse_list(const char *arg, const char *kind, unsigned *mask, const c
         int found = -1;
         for (int i = 0; i < count; ++i) {
             const char *nm = name_of(i);
-            if (nm && strcmp(nm, tok) == 0)
+            if (nm && (strcmp(nm, tok) == 0 || (name_of == isa_name_of && ttd_isa_from_name(tok) == (ttd_isa)i)))
                 found = i;
         }
         if (found < 0) {
@@ -651,7 +654,6 @@ static int parse_list(const char *arg, const char *kind, unsigned *mask, const c
 }
 
 static const char *method_name_of(int i) { return ttd_method_name((ttd_method)i); }
-static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
 static const char *workload_name_of(int i) { return i < (int)N_WORKLOADS ? workloads[i].name : NULL; }
 
 static int parse_size(const char *s, size_t *out)
@@ -795,6 +797,7 @@ int ttd_bench_main(int argc, char **argv)
         }
         i += takes;
     }
+    ttd_cli_warn_isa_env("bench");
     /* An instruction set named in --isa that this machine cannot run is an error, as in
      * `ttd dist --isa`: its rows would silently be missing. */
     for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT && cx->isa_mask != ~0u; ++i) {

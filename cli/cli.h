@@ -40,5 +40,7 @@ int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
 int ttd_cli_parse_real(const char *s, double *out);
 /// Lines "built: ...", "cpu:   ...", "auto:  ..." (the instruction sets).
 void ttd_cli_print_isas(FILE *f);
+/// Warns on stderr ("COMMAND: warning: ...") when the library is ignoring TTD_ISA.
+void ttd_cli_warn_isa_env(const char *command);
 
 #endif /* TTD_CLI_CLI_H */

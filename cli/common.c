@@ -33,14 +33,11 @@ int ttd_cli_parse_method(const char *s, ttd_method *out)
 
 int ttd_cli_parse_isa(const char *s, ttd_isa *out)
 {
-    for (int i = 0; i < TTD_ISA_COUNT; ++i) {
-        const char *name = ttd_isa_name((ttd_isa)i);
-        if (name && strcmp(s, name) == 0) {
-            *out = (ttd_isa)i;
-            return 0;
-        }
-    }
-    return -1;
+    const ttd_isa isa = ttd_isa_from_name(s);
+    if (isa == TTD_ISA_COUNT)
+        return -1;
+    *out = isa;
+    return 0;
 }
 
 int ttd_cli_parse_int(const char *s, long lo, long hi, long *out)
@@ -75,10 +72,16 @@ void ttd_cli_print_isas(FILE *f)
     for (int i = 1; i < TTD_ISA_COUNT; ++i)
         if (ttd_isa_supported((ttd_isa)i))
             fprintf(f, " %s", ttd_isa_name((ttd_isa)i));
-    const char *env = getenv("TTD_ISA");
-    ttd_isa sel = ttd_isa_selected(NULL);
-    fprintf(f, "\nauto:  %s", sel == TTD_ISA_AUTO ? "(none: TTD_ISA names an unavailable one)" : ttd_isa_name(sel));
+    const char *env = getenv("TTD_ISA"), *note = ttd_isa_env_note();
+    fprintf(f, "\nauto:  %s", ttd_isa_name(ttd_isa_selected(NULL)));
     if (env && env[0])
-        fprintf(f, " (TTD_ISA=%s)", env);
+        fprintf(f, " (TTD_ISA=%s%s)", env, note ? ": ignored, not an instruction set this machine runs" : "");
     fputc('\n', f);
+}
+
+void ttd_cli_warn_isa_env(const char *command)
+{
+    const char *note = ttd_isa_env_note();
+    if (note != NULL)
+        ttd_cli_error("%s: warning: TTD_ISA=%s: %s", command, getenv("TTD_ISA"), note);
 }

@@ -178,6 +178,11 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
             bad = ttd_cli_parse_int(val, 0, 1 << 20, &iv);
             a->opt.threads = (int)iv;
         }
+        if (bad && strcmp(name, "--isa") == 0) {
+            ttd_cli_error("dist: --isa %s: unknown instruction set (auto, scalar, sse2, avx2, avx512, neon, portable; "
+                          "any letter case)", val);
+            return -1;
+        }
         if (bad) {
             ttd_cli_error("dist: bad value for %s: '%s' (see ttd dist --help)", name, val);
             return -1;
@@ -534,14 +539,11 @@ static void ttd_dist_binary(ttd_dist_run *r)
 static int ttd_dist_check(const ttd_dist_args *a, FILE *out)
 {
     if (ttd_isa_selected(&a->opt) == TTD_ISA_AUTO) {
-        const char *env = getenv("TTD_ISA");
-        if (a->opt.isa == TTD_ISA_AUTO && env && env[0])
-            ttd_cli_error("dist: TTD_ISA=%s is not available here", env);
-        else
-            ttd_cli_error("dist: --isa %s is not available here", ttd_isa_name(a->opt.isa));
+        ttd_cli_error("dist: --isa %s is not available here; this machine has:", ttd_isa_name(a->opt.isa));
         ttd_cli_print_isas(stderr);
         return TTD_EXIT_USAGE;
     }
+    ttd_cli_warn_isa_env("dist");
     if (a->binary_out && isatty(fileno(out))) {
         ttd_cli_error("dist: --binary-out: standard output is a terminal; redirect it to a file or a pipe");
         return TTD_EXIT_USAGE;
@@ -576,8 +578,8 @@ static int ttd_dist_streams(const ttd_dist_args *a, FILE *in, const char *name, 
         ttd_cli_error("%s: %llu bad %s%s (output nan)", name, r.bad, a->binary_in ? "record" : "line",
                       r.bad == 1 ? "" : "s");
     if (r.not_converged > 0)
-        ttd_cli_error("%s: warning: %llu of %llu pairs did not converge within --max-iter (%d): printed as "
-                      "computed, flagged not_converged by --detail",
+        ttd_cli_error("%s: warning: %llu of %llu pairs did not converge (within --max-iter %d, or the barrier "
+                      "method stalled): printed as computed, flagged not_converged by --detail",
                       name, r.not_converged, r.pairs, a->opt.max_iterations);
     free(reader);
     free(r.b);

@@ -8,3 +8,6 @@ jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
+# The Python package (python/), built against this build's library and tested with pytest;
+# skipped with a message where Python's Debian packages cannot be had (scripts/test-python.sh).
+scripts/test-python.sh "$build"

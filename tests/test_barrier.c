@@ -97,10 +97,46 @@ static int barrier_degenerate(void)
     return 0;
 }
 
+/* Shallowly crossing triangles (issue 12: the float barrier returned a NaN point and a distance
+ * of 19 for a true 0, unflagged): a slack's update overflowed on a nearly singular Hessian.
+ * Now every output is finite, and the answer is within the barrier's bound for a crossing pair
+ * or flagged not converged. At a crossing the minimum of f is 0, and the log barrier ends within
+ * 6 mu of it: the distance is at most sqrt(6 mu_end) of the unit frame (mu_end = 1/rho^2 =
+ * 1e-12), a frame unit at most twice the pair's size. Measured: double 9.0e-5 (size 88, bound
+ * 4.3e-4), converged; float 2.6e-3, stalled and flagged. */
+static int barrier_shallow_crossing(void)
+{
+    const double s[9] = {8, 27, 0, 42, 30, 0, -46, 22, 0};
+    const double t[9] = {26.729448318481445, 40.253925323486328, 5.3008143652277795e-08,
+                         28.359537124633789, -37.16046142578125, -3.0136664008750813e-07,
+                         -14.166160583496094, 55.158374786376953, 43.888195037841797};
+    float sf[9], tf[9];
+    double size = 0;
+    for (int k = 0; k < 9; ++k) {
+        sf[k] = (float)s[k];
+        tf[k] = (float)t[k];
+        size = fmax(size, fmax(fabs(s[k] - s[k % 3]), fabs(t[k] - s[k % 3])));
+    }
+    ttd_result_d ex, r;
+    ttd_result_f rf;
+    ttd_exact_pair_d(s, t, &ex);
+    ttd_barrier_pair_d(s, t, &default_params, &r);
+    ttd_barrier_pair_f(sf, tf, &default_params, &rf);
+    ENSURE(ex.distance == 0);
+    for (int k = 0; k < 3; ++k)
+        ENSURE(isfinite(r.p[k]) && isfinite(r.q[k]) && isfinite(rf.p[k]) && isfinite(rf.q[k]));
+    ENSURE(isfinite(r.distance) && isfinite(rf.distance));
+    const double bound = 2 * size * sqrt(6 / (default_params.rho * default_params.rho));
+    ENSURE((r.flags & TTD_PAIR_NOT_CONVERGED) || r.distance <= bound);
+    ENSURE((rf.flags & TTD_PAIR_NOT_CONVERGED) || (double)rf.distance <= bound);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(barrier_separated_vs_exact);
     RUN_TEST(barrier_degenerate);
+    RUN_TEST(barrier_shallow_crossing);
     TEST_MAIN_END();
 }

@@ -34,27 +34,34 @@ extern "C" {
 typedef enum ttd_status {
     TTD_OK = 0,                   ///< every pair computed
     TTD_WARN_NOT_CONVERGED = 1,   ///< an iterative method hit its cap on some pairs (flagged)
-    /// Some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed. Takes
-    /// precedence over TTD_WARN_NOT_CONVERGED: check the per-pair flags for that too.
+    /// Some pairs had NaN/inf coordinates: flagged, outputs NaN; the rest computed. Not fatal,
+    /// despite its name (below TTD_ERR_FIRST_FATAL, like the warning above): every finite pair
+    /// has its outputs. Takes precedence over TTD_WARN_NOT_CONVERGED: check the per-pair flags
+    /// for that too.
     TTD_ERR_NONFINITE_INPUT = 2,
     TTD_ERR_FIRST_FATAL = 16,     ///< marker: from here on nothing was computed (but see OUT_OF_MEMORY)
     TTD_ERR_NULL_POINTER = 16,    ///< a required pointer was NULL
     TTD_ERR_EMPTY = 17,           ///< n == 0: nothing to compute
     TTD_ERR_BAD_OPTIONS = 18,     ///< options not from ttd_default_options(), or a field out of range
-    /// The forced instruction set (options.isa, or TTD_ISA with AUTO) is not built in, not
-    /// supported here, or (TTD_ISA) not a name that ttd_isa_name() gives.
+    /// The instruction set forced by options.isa is not built in or not supported here (a
+    /// TTD_ISA environment variable that cannot be used is ignored instead: ttd_isa_env_note).
     TTD_ERR_ISA_UNAVAILABLE = 19,
     TTD_ERR_INDEX_OUT_OF_RANGE = 20, ///< mesh entry: a triangle or vertex index is out of range; nothing written
     TTD_ERR_OUT_OF_MEMORY = 21,   ///< a per-thread scratch allocation failed; outputs partly written, indeterminate
-    TTD_ERR_TOO_LARGE = 22        ///< n (or a mesh size) so large that its arrays cannot exist in memory
+    TTD_ERR_TOO_LARGE = 22,       ///< n (or a mesh size) so large that its arrays cannot exist in memory
+    TTD_ERR_NONFINITE_MESH = 23,  ///< mesh build: a vertex coordinate is NaN or infinite; nothing built
+    /// mesh queries: a pose is not a finite rotation and translation (see the mesh queries below)
+    TTD_ERR_BAD_POSE = 24,
+    TTD_ERR_PRECISION_MISMATCH = 25 ///< mesh queries: a mesh was built in the other precision
 } ttd_status;
 
 /// How the distance is computed.
 typedef enum ttd_method {
     TTD_METHOD_EXACT = 0,             ///< 6 vertex-face, 9 edge-edge and 6 edge-face crossing tests; exact to rounding
     TTD_METHOD_PENALTY = 1,           ///< the paper's quasi-Newton penalty method, optimised and safeguarded
-    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol
-    /// are absolute as published (not scale-invariant; pairs far from unit size may stop early).
+    /// The paper's MATLAB ttd1 step for step, for comparison: raw coordinates, so rho and tol are
+    /// absolute (not scale-invariant; pairs far from unit size may stop early). The paper
+    /// publishes neither: the defaults are ttd's. Off by up to ~1 on a few % of random pairs.
     TTD_METHOD_PENALTY_REFERENCE = 2,
     TTD_METHOD_BARRIER = 3,           ///< log-barrier Newton method, the paper's first attempt (for comparison)
     /// the penalty method, its answer checked for optimality on the final active set and
@@ -82,14 +89,19 @@ enum {
     TTD_PAIR_NONFINITE = 1u << 0,     ///< input had NaN or inf: every output of the pair is NaN
     TTD_PAIR_DEGENERATE_S = 1u << 1,  ///< the first triangle has zero area (a segment or a point)
     TTD_PAIR_DEGENERATE_T = 1u << 2,  ///< the second triangle has zero area
-    TTD_PAIR_INTERSECTING = 1u << 3,  ///< the triangles touch or cross: distance 0
-    TTD_PAIR_NOT_CONVERGED = 1u << 4, ///< iterative method: hit max_iterations; points still lie on their triangles
+    /// the triangles touch or cross: distance 0. "Touch" includes a gap within 4 eps of the
+    /// pair's extent (the coordinates' rounding cannot tell it from contact): p and q may then be
+    /// that far apart, ~1e-15 of the pair's size in double, ~5e-7 in float
+    TTD_PAIR_INTERSECTING = 1u << 3,
+    /// iterative method: hit max_iterations, or (barrier) stalled on an ill-conditioned step before
+    /// its last barrier weight; outputs are finite and points still lie on their triangles
+    TTD_PAIR_NOT_CONVERGED = 1u << 4,
     TTD_PAIR_FALLBACK = 1u << 5       ///< certified mode: this pair failed the optimality check and was computed by the exact method
 };
 
 /// Everything known about one pair (double precision).
 typedef struct ttd_result_d {
-    double distance;   ///< |p - q|
+    double distance;   ///< |p - q|, or 0 with TTD_PAIR_INTERSECTING (see there)
     double p[3];       ///< closest point on the first triangle
     double q[3];       ///< closest point on the second triangle (== p up to rounding when they intersect)
     double bary_p[3];  ///< weights of A, B, C that give p (non-negative, sum 1)
@@ -102,7 +114,7 @@ typedef struct ttd_result_d {
 
 /// Everything known about one pair (single precision).
 typedef struct ttd_result_f {
-    float distance;    ///< |p - q|
+    float distance;    ///< |p - q|, or 0 with TTD_PAIR_INTERSECTING (see there)
     float p[3];        ///< closest point on the first triangle
     float q[3];        ///< closest point on the second triangle
     float bary_p[3];   ///< weights of A, B, C that give p
@@ -121,11 +133,16 @@ typedef struct ttd_result_f {
 /// Options for every call. Get them from ttd_default_options(), then change fields.
 typedef struct ttd_options {
     ttd_method method;  ///< default TTD_METHOD_EXACT
-    /// Default TTD_ISA_AUTO; with AUTO the environment variable TTD_ISA (a name from
-    /// ttd_isa_name(); empty or "auto" = best) may force one.
+    /// Default TTD_ISA_AUTO: the best instruction set built and supported here; with AUTO the
+    /// environment variable TTD_ISA (a name from ttd_isa_name() in any letter case; empty or
+    /// "auto" = best) may force one. A TTD_ISA that is not a name, or names one that cannot run
+    /// here, is ignored (the best one is used) rather than failing every call: ttd_isa_env_note()
+    /// says so, and the ttd program warns. An isa set here explicitly that cannot run gives
+    /// TTD_ERR_ISA_UNAVAILABLE.
     ttd_isa isa;
     int threads;        ///< worker threads for batches, >= 0; 0 (default) = all online cores; at most 256 used
-    /// Penalty weight, in (0, 1e150] (default 1e6). The barrier method lowers its weight to
+    /// Penalty weight, in (0, 1e150] (default 1e6, ttd's choice: the paper publishes no rho or
+    /// tol, only the 0.33 start and the 99-iteration cap). The barrier method lowers its weight to
     /// 1/rho^2. The float penalty and certified kernels use min(rho, 256) (a larger weight
     /// loses sliver pivots to rounding); the float ttd1 reference min(rho, 1e18).
     double rho;
@@ -137,7 +154,7 @@ typedef struct ttd_options {
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
 } ttd_options;
 
-/// The defaults: exact method, best instruction set, all cores, documented penalty parameters.
+/// The defaults: exact method, best instruction set, all cores, ttd's penalty parameters.
 TTD_API ttd_options ttd_default_options(void);
 
 /// Distance between one pair. opt may be NULL (defaults). s and t hold 9 coordinates each.
@@ -173,12 +190,202 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
                                     size_t n, const uint32_t *pairs,
                                     float *distance, ttd_result_f *results);
 
+/** @} */
+
+/** @defgroup mesh Mesh queries
+ * A ttd_mesh is a triangle mesh with a bounding-volume hierarchy over its triangles (oriented
+ * boxes, 8 children per node), built once and immutable afterwards: it may be queried from many
+ * threads at once. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
+ * a. A pose is 12 reals, the 3x4 matrix [R | t] row by row (r00 r01 r02 t0 r10 r11 r12 t1 r20
+ * r21 r22 t2), mapping b's coordinates into a's frame: x_a = R x_b + t, computed per coordinate
+ * as ((r0*x + r1*y) + r2*z) + t, so that a brute force can reproduce it to the bit. R must be a
+ * rotation: finite, with every entry of R^T R - I within 1e-6 and det R > 0; otherwise the call
+ * returns TTD_ERR_BAD_POSE before computing anything. Results are in a's frame.
+ *
+ * Every query is exact to the pair kernel's accuracy: it returns what the exact method over all
+ * triangle pairs would (the tree only skips pairs it proves cannot matter, with a margin for the
+ * rounding of its own bounds). Results do not depend on the thread count or the instruction
+ * set. A query in double needs meshes built with ttd_mesh_create_d, in float with
+ * ttd_mesh_create_f (TTD_ERR_PRECISION_MISMATCH otherwise). opt may be NULL; its method must be
+ * TTD_METHOD_EXACT (the default) and its isa and threads apply; k poses are spread over the
+ * threads.
+ * @{ */
+
+/// An immutable triangle mesh and its hierarchy (opaque).
+typedef struct ttd_mesh ttd_mesh;
+
+/// Builds a mesh from nv vertices (3 coordinates each) and nt triangles (3 vertex indices each,
+/// 0-based). The arrays are copied. Degenerate triangles, repeated vertices and non-manifold
+/// meshes are fine. nv or nt of 0: TTD_ERR_EMPTY; an index >= nv: TTD_ERR_INDEX_OUT_OF_RANGE; a
+/// NaN/inf coordinate: TTD_ERR_NONFINITE_MESH; *out is NULL on any error. opt's threads apply.
+TTD_API ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv,
+                                     const uint32_t *triangles, size_t nt, ttd_mesh **out);
+/// ttd_mesh_create_d with float vertices; the mesh is then queried in float.
+TTD_API ttd_status ttd_mesh_create_f(const ttd_options *opt, const float *vertices, size_t nv,
+                                     const uint32_t *triangles, size_t nt, ttd_mesh **out);
+/// Frees a mesh (NULL is fine).
+TTD_API void ttd_mesh_destroy(ttd_mesh *mesh);
+/// Triangles of a mesh (0 for NULL).
+TTD_API size_t ttd_mesh_triangle_count(const ttd_mesh *mesh);
+/// Vertices of a mesh (0 for NULL).
+TTD_API size_t ttd_mesh_vertex_count(const ttd_mesh *mesh);
+/// Nodes of its hierarchy (0 for NULL).
+TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
+
+/// Flags of a mesh distance result.
+enum {
+    TTD_MESH_INTERSECTING = 1u << 0, ///< the meshes touch or cross: distance 0, p == q on both
+    TTD_MESH_ABOVE_BOUND = 1u << 1   ///< no pair within upper_bound: distance is +inf, no points or triangles
+};
+
+/// The minimum distance between two meshes under one pose (double precision).
+typedef struct ttd_mesh_result_d {
+    double distance;      ///< the minimum over all triangle pairs; 0 when they intersect
+    double p[3];          ///< closest point on a, in a's frame
+    double q[3];          ///< closest point on b, in a's frame; equal to p when the distance is 0
+    uint32_t tri_a;       ///< the triangle of a that realises it (UINT32_MAX with TTD_MESH_ABOVE_BOUND)
+    uint32_t tri_b;       ///< the triangle of b
+    uint8_t feature_a;    ///< vertex bits of tri_a that p lies on, as ttd_result_d.feature_p
+    uint8_t feature_b;    ///< vertex bits of tri_b that q lies on
+    uint16_t flags;       ///< TTD_MESH_* bits
+    uint32_t node_tests;  ///< box-against-node tests made (each against up to 8 boxes)
+    uint64_t pair_tests;  ///< triangle pairs given to the exact method
+} ttd_mesh_result_d;
+
+/// ttd_mesh_result_d in single precision.
+typedef struct ttd_mesh_result_f {
+    float distance;
+    float p[3];
+    float q[3];
+    uint32_t tri_a;
+    uint32_t tri_b;
+    uint8_t feature_a;
+    uint8_t feature_b;
+    uint16_t flags;
+    uint32_t node_tests;
+    uint64_t pair_tests;
+} ttd_mesh_result_f;
+
+/// Minimum distance between a and b under each of k poses (12k reals): out[i] for pose i.
+/// upper_bound >= 0 (INFINITY for none): a pose whose distance exceeds it may stop early and
+/// reports +inf with TTD_MESH_ABOVE_BOUND. rel_tol >= 0 (0 for exact): the reported pair may be
+/// up to a factor 1 + rel_tol farther than the minimum (fewer pairs tested). NaN or negative
+/// upper_bound or rel_tol: TTD_ERR_BAD_OPTIONS.
+TTD_API ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const double *poses, double upper_bound, double rel_tol,
+                                       ttd_mesh_result_d *out);
+/// ttd_mesh_distance_d in single precision (meshes from ttd_mesh_create_f).
+TTD_API ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const float *poses, float upper_bound, float rel_tol,
+                                       ttd_mesh_result_f *out);
+
+/// One triangle pair within the margin: its distance and closest points (in a's frame).
+typedef struct ttd_contact_d {
+    uint32_t tri_a, tri_b;
+    double distance;
+    double p[3], q[3];
+} ttd_contact_d;
+
+/// ttd_contact_d in single precision.
+typedef struct ttd_contact_f {
+    uint32_t tri_a, tri_b;
+    float distance;
+    float p[3], q[3];
+} ttd_contact_f;
+
+/// The pairs a contact query found, in memory the library owns: start from {0} (or a set from an
+/// earlier call, whose memory is reused), free with ttd_contacts_free_d. Pairs of pose i are
+/// pairs[pose_start[i] .. pose_start[i + 1]); within a pose they come in an order that depends
+/// only on the meshes and the pose (not on threads or instruction set).
+typedef struct ttd_contacts_d {
+    ttd_contact_d *pairs;
+    size_t count;         ///< pairs in all
+    size_t *pose_start;   ///< k + 1 offsets
+    size_t poses;         ///< k of the last call
+    size_t capacity;      ///< allocated pairs (library's business)
+    size_t pose_capacity; ///< allocated offsets (library's business)
+} ttd_contacts_d;
+
+/// ttd_contacts_d in single precision.
+typedef struct ttd_contacts_f {
+    ttd_contact_f *pairs;
+    size_t count;
+    size_t *pose_start;
+    size_t poses;
+    size_t capacity;
+    size_t pose_capacity;
+} ttd_contacts_f;
+
+/// Every triangle pair of a and b at distance <= margin (>= 0, finite) under each of k poses,
+/// into out (see ttd_contacts_d). On an error out->count is 0.
+TTD_API ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const double *poses, double margin, ttd_contacts_d *out);
+/// ttd_mesh_contacts_d in single precision.
+TTD_API ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                       const float *poses, float margin, ttd_contacts_f *out);
+/// Frees what a contact query allocated and zeroes the set (NULL is fine).
+TTD_API void ttd_contacts_free_d(ttd_contacts_d *contacts);
+TTD_API void ttd_contacts_free_f(ttd_contacts_f *contacts);
+
+/// For one triangle, its closest partner within the margin (Hauser's per-triangle reduction).
+typedef struct ttd_closest_d {
+    uint32_t partner;    ///< triangle of the other mesh, UINT32_MAX when none is within the margin
+    double distance;     ///< +inf when none
+    double p[3], q[3];   ///< p on this triangle, q on the partner, in a's frame
+} ttd_closest_d;
+
+/// ttd_closest_d in single precision.
+typedef struct ttd_closest_f {
+    uint32_t partner;
+    float distance;
+    float p[3], q[3];
+} ttd_closest_f;
+
+/// For every triangle of a and of b, its closest partner in the other mesh within margin under
+/// each of k poses: for_a holds k * (triangles of a) records (pose-major), for_b k * (triangles
+/// of b); either may be NULL, not both. Ties go to the smaller partner index.
+TTD_API ttd_status ttd_mesh_closest_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const double *poses, double margin, ttd_closest_d *for_a,
+                                      ttd_closest_d *for_b);
+/// ttd_mesh_closest_d in single precision.
+TTD_API ttd_status ttd_mesh_closest_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const float *poses, float margin, ttd_closest_f *for_a,
+                                      ttd_closest_f *for_b);
+
+/// Whether two meshes come within a margin of each other.
+typedef struct ttd_collision {
+    uint32_t hit;         ///< 1 when some pair is at distance <= margin (0 = touching or crossing)
+    uint32_t tri_a;       ///< the first such pair found (UINT32_MAX when none)
+    uint32_t tri_b;
+    uint32_t node_tests;  ///< as in ttd_mesh_result_d
+    uint64_t pair_tests;
+} ttd_collision;
+
+/// Collision of a and b with a margin >= 0 (0: do they touch or cross?) under each of k poses;
+/// each pose stops at its first witness pair.
+TTD_API ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const double *poses, double margin, ttd_collision *out);
+/// ttd_mesh_collide_d in single precision.
+TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                      const float *poses, float margin, ttd_collision *out);
+
+/** @} */
+
+/** @addtogroup ttd
+ * @{ */
+
 /// A short English sentence for a status.
 TTD_API const char *ttd_status_string(ttd_status status);
 /// "exact", "penalty", "penalty-ref", "barrier", "certified"; NULL when out of range.
 TTD_API const char *ttd_method_name(ttd_method method);
 /// "auto", "scalar", "sse2", "avx2", "avx512", "neon", "portable"; NULL when out of range.
 TTD_API const char *ttd_isa_name(ttd_isa isa);
+/// The instruction set called name, ignoring ASCII case ("AVX512" is avx512, "Auto" is auto);
+/// TTD_ISA_COUNT when none is (or name is NULL).
+TTD_API ttd_isa ttd_isa_from_name(const char *name);
+/// NULL when the environment variable TTD_ISA is unset, empty, "auto" or names an instruction set
+/// that runs here; otherwise a sentence saying why it is being ignored.
+TTD_API const char *ttd_isa_env_note(void);
 /// Non-zero when isa is built into this library and supported by this CPU and OS.
 TTD_API int ttd_isa_available(ttd_isa isa);
 /// Non-zero when the kernels of isa are compiled into this library (scalar: always).

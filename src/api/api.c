@@ -11,6 +11,7 @@
 
 #include "core/defaults.h"
 #include "engine/batch.h"
+#include "api/prepare.h"
 #include "engine/dispatch.h"
 #include "ttd/ttd.h"
 
@@ -77,16 +78,12 @@ static ttd_status ttd_configure(const ttd_options *o, ttd_engine_config *cfg)
     return TTD_OK;
 }
 
-/* Non-zero when count elements of size bytes cannot exist in one object. */
-static int ttd_too_large(size_t count, size_t per, size_t size)
+int ttd_too_large(size_t count, size_t per, size_t size)
 {
     return count > (size_t)PTRDIFF_MAX / per / size;
 }
 
-/* The checks every batch entry makes, in this order: pointers, options, n, sizes, then the
- * instruction set. The caller says whether its pointers are there and whether its arrays could
- * exist; on TTD_OK, cfg is ready for the engine. */
-static ttd_status ttd_prepare(const ttd_options *opt, int pointers_ok, size_t n, int too_large,
+ttd_status ttd_prepare(const ttd_options *opt, int pointers_ok, size_t n, int too_large,
                               ttd_engine_config *cfg)
 {
     ttd_options o;
@@ -176,6 +173,16 @@ ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 int ttd_isa_available(ttd_isa isa)
 {
     return ttd_dispatch_isa_built(isa) && ttd_dispatch_cpu_supports(isa);
+}
+
+ttd_isa ttd_isa_from_name(const char *name)
+{
+    return ttd_dispatch_isa_from_name(name);
+}
+
+const char *ttd_isa_env_note(void)
+{
+    return ttd_dispatch_env_note();
 }
 
 int ttd_isa_built(ttd_isa isa)

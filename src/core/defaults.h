@@ -19,7 +19,7 @@
 #define TTD_DEFAULT_MAX_ITERATIONS 99
 
 /* The optimised penalty method's regularisation eps*I (also its pivot floor) is
- * TTD_PENALTY_EPS_ULPS * REAL_EPS of the unit-size frame, whatever rho: the paper's 1/rho^2
+ * TTD_PENALTY_EPS_ULPS * REAL_EPS of the unit-size frame, whatever rho: the listing's 1/rho^2
  * (1e-12 at rho 1e6) is larger than the curvature along nearly parallel edges and faces and
  * made the iteration crawl (11% of near_parallel_edges pairs hit the cap); at 4 ulps the
  * steps along hf's null space (noise/eps) made a few pairs cycle. A step also

@@ -23,6 +23,7 @@
 #define TTD_CORE_KERNELS_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "ttd/ttd.h"
 
 /// Pairs per block: bounds per-thread scratch, and is a multiple of every lane count.
@@ -54,12 +55,72 @@ typedef void (*ttd_kernel_d_fn)(size_t n, const double *s, const double *t, cons
 typedef void (*ttd_kernel_f_fn)(size_t n, const float *s, const float *t, const ttd_params *prm,
                                 float bound, const ttd_out_f *out);
 
-/// One instruction set's kernels for one precision, indexed by ttd_method (one translation
-/// unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c; scalar/kernels.c).
+/* ---- The mesh queries' node test ----------------------------------------------------------
+ * A mesh hierarchy (src/mesh/) is a tree of nodes with up to TTD_NODE_WIDTH children, each
+ * child bounded by an oriented box: centre c, orthonormal axes u (row i = axis i) and half
+ * extents e, in its mesh's frame (relative to the mesh's origin). The node test bounds the
+ * distance between one box X and every child box of a node Y from below. Y's frame is mapped
+ * into X's box frame by the query: x -> M x + v (M = U_X R, v = U_X (t - c_X) for the pose
+ * (R, t) of Y's mesh relative to X's), so the test sees X as the axis-aligned box [-e, e]. For
+ * child j it takes the larger of two separating-axis bounds (simd/kernel_node.h): along X's
+ * faces, and along the direction from X's point nearest the child's centre to that centre; it
+ * returns the square. Both are true lower bounds up to the rounding of this
+ * arithmetic, which the caller covers with a margin. Every row computes it with the same
+ * operations in the same order (no FMA), so every ISA returns the same bits. Lanes past a
+ * node's count hold zeros and their bounds are ignored. */
+
+/// Children per node of a mesh hierarchy.
+#define TTD_NODE_WIDTH 8
+
+/// One node of a mesh hierarchy (double precision): its children's boxes, one array per
+/// coordinate, and what each child is.
+typedef struct ttd_node_d {
+    double c[3][TTD_NODE_WIDTH];   ///< box centres
+    double u[9][TTD_NODE_WIDTH];   ///< box axes: u[3i + k] = component k of axis i
+    double e[3][TTD_NODE_WIDTH];   ///< half extents along the axes
+    int32_t child[TTD_NODE_WIDTH]; ///< >= 0: a node; < 0: triangle -1 - child
+    int32_t count;                 ///< children used (the rest hold zeros)
+} ttd_node_d;
+
+/// ttd_node_d in single precision.
+typedef struct ttd_node_f {
+    float c[3][TTD_NODE_WIDTH];
+    float u[9][TTD_NODE_WIDTH];
+    float e[3][TTD_NODE_WIDTH];
+    int32_t child[TTD_NODE_WIDTH];
+    int32_t count;
+} ttd_node_f;
+
+/// The box X of a node test, with Y's frame mapped into X's box frame (x -> m x + v).
+typedef struct ttd_box_query_d {
+    double m[9];  ///< row-major
+    double v[3];
+    double e[3];  ///< X's half extents
+} ttd_box_query_d;
+
+/// ttd_box_query_d in single precision.
+typedef struct ttd_box_query_f {
+    float m[9];
+    float v[3];
+    float e[3];
+} ttd_box_query_f;
+
+/// lb2[j] = the squared lower bound between box x and child j of node y (j < TTD_NODE_WIDTH);
+/// sep[j] = the largest of the six face axes' gaps, negative when the boxes overlap along all
+/// of them (how deep: a traversal walks the deepest overlaps first, where surfaces likely cross).
+typedef void (*ttd_node_test_d_fn)(const ttd_box_query_d *x, const ttd_node_d *y, double lb2[TTD_NODE_WIDTH],
+                                   double sep[TTD_NODE_WIDTH]);
+typedef void (*ttd_node_test_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y, float lb2[TTD_NODE_WIDTH],
+                                   float sep[TTD_NODE_WIDTH]);
+
+/// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
+/// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
+/// scalar/kernels.c).
 typedef struct ttd_kernels_d {
     ttd_isa isa;
     int lanes;                          ///< double lanes per vector (1 for scalar)
     ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
+    ttd_node_test_d_fn node_test;       ///< never NULL
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.
@@ -67,6 +128,7 @@ typedef struct ttd_kernels_f {
     ttd_isa isa;
     int lanes;                          ///< float lanes per vector (1 for scalar)
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
+    ttd_node_test_f_fn node_test;
 } ttd_kernels_f;
 
 /// What the engine must know of a method beyond its kernels (ttd_method_traits in core/traits.c).

@@ -17,6 +17,9 @@ const char *ttd_status_string(ttd_status status)
     case TTD_ERR_INDEX_OUT_OF_RANGE: return "a mesh triangle or vertex index is out of range";
     case TTD_ERR_OUT_OF_MEMORY: return "out of memory for per-thread scratch";
     case TTD_ERR_TOO_LARGE: return "a count is too large for its arrays to exist";
+    case TTD_ERR_NONFINITE_MESH: return "a mesh vertex coordinate is NaN or infinite";
+    case TTD_ERR_BAD_POSE: return "a pose is not a finite rotation (R^T R = I within 1e-6, det R > 0) and translation";
+    case TTD_ERR_PRECISION_MISMATCH: return "a mesh was built in the other precision";
     }
     return "unknown status";
 }

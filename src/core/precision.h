@@ -28,6 +28,8 @@
 typedef double real;
 typedef ttd_result_d ttd_result;
 typedef ttd_out_d ttd_out;
+typedef ttd_node_d ttd_node;
+typedef ttd_box_query_d ttd_box_query;
 #define TTD_REAL_EPS DBL_EPSILON
 #define TTD_REAL_MIN DBL_MIN
 #define TTD_REAL_MAX DBL_MAX
@@ -40,6 +42,8 @@ typedef ttd_out_d ttd_out;
 typedef float real;
 typedef ttd_result_f ttd_result;
 typedef ttd_out_f ttd_out;
+typedef ttd_node_f ttd_node;
+typedef ttd_box_query_f ttd_box_query;
 #define TTD_REAL_EPS FLT_EPSILON
 #define TTD_REAL_MIN FLT_MIN
 #define TTD_REAL_MAX FLT_MAX

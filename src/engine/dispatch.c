@@ -181,18 +181,49 @@ ttd_kernel_f_fn ttd_dispatch_kernel_f(ttd_isa isa, ttd_method method)
     return fn != NULL ? fn : ttd_kernels_scalar_f.fn[method];
 }
 
-/* TTD_ISA: "" or "auto" -> AUTO; a ttd_isa_name -> that ISA; anything else -> COUNT (invalid). */
+/* Equal ignoring ASCII case. */
+static int ttd_same_name(const char *a, const char *b)
+{
+    for (; *a && *b; ++a, ++b) {
+        const int ca = *a >= 'A' && *a <= 'Z' ? *a - 'A' + 'a' : *a, cb = *b >= 'A' && *b <= 'Z' ? *b - 'A' + 'a' : *b;
+        if (ca != cb)
+            return 0;
+    }
+    return *a == *b;
+}
+
+ttd_isa ttd_dispatch_isa_from_name(const char *name)
+{
+    for (int i = 0; name != NULL && i < TTD_ISA_COUNT; ++i)
+        if (ttd_same_name(name, ttd_isa_name((ttd_isa)i)))
+            return (ttd_isa)i;
+    return TTD_ISA_COUNT;
+}
+
+/* What TTD_ISA asks for: AUTO when unset, empty, "auto", or a name this machine cannot use
+ * (ignored: see ttd_dispatch_env_note); otherwise that ISA. */
 static ttd_isa ttd_isa_from_env(void)
 {
     const char *v = getenv("TTD_ISA");
     if (v == NULL || v[0] == '\0')
         return TTD_ISA_AUTO;
-    for (int i = 0; i < TTD_ISA_COUNT; ++i) {
-        const char *name = ttd_isa_name((ttd_isa)i);
-        if (name != NULL && strcmp(v, name) == 0)
-            return (ttd_isa)i;
-    }
-    return TTD_ISA_COUNT;
+    const ttd_isa isa = ttd_dispatch_isa_from_name(v);
+    if (isa == TTD_ISA_COUNT || !ttd_dispatch_isa_built(isa) || !ttd_dispatch_cpu_supports(isa))
+        return TTD_ISA_AUTO;
+    return isa;
+}
+
+const char *ttd_dispatch_env_note(void)
+{
+    const char *v = getenv("TTD_ISA");
+    if (v == NULL || v[0] == '\0')
+        return NULL;
+    const ttd_isa isa = ttd_dispatch_isa_from_name(v);
+    if (isa == TTD_ISA_COUNT)
+        return "TTD_ISA is not the name of an instruction set: ignored, the best available one is used";
+    if (isa != TTD_ISA_AUTO && !(ttd_dispatch_isa_built(isa) && ttd_dispatch_cpu_supports(isa)))
+        return "TTD_ISA names an instruction set this library or machine cannot run: ignored, the best available one is used";
+    return NULL;
 }
 
 ttd_status ttd_dispatch_resolve(ttd_isa requested, ttd_isa *out)

@@ -20,9 +20,15 @@ const ttd_kernels_f *ttd_dispatch_row_f(ttd_isa isa);
 ttd_kernel_d_fn ttd_dispatch_kernel_d(ttd_isa isa, ttd_method method);
 ttd_kernel_f_fn ttd_dispatch_kernel_f(ttd_isa isa, ttd_method method);
 /// Resolves requested (AUTO, or a forced one) to a runnable instruction set. With AUTO the
-/// environment variable TTD_ISA (a ttd_isa_name, or "auto"/empty) may force one.
-/// Returns TTD_OK, or TTD_ERR_ISA_UNAVAILABLE when the forced one (or an unknown TTD_ISA
-/// name) cannot run here; *out is set only on TTD_OK.
+/// environment variable TTD_ISA (a ttd_isa_name in any case, or "auto"/empty) may force one;
+/// a name that is unknown or cannot run here is ignored (ttd_dispatch_env_note says so).
+/// Returns TTD_OK, or TTD_ERR_ISA_UNAVAILABLE when requested itself cannot run here; *out is
+/// set only on TTD_OK.
 ttd_status ttd_dispatch_resolve(ttd_isa requested, ttd_isa *out);
+/// The instruction set called name, ignoring ASCII case ("AVX2" is avx2); TTD_ISA_COUNT when
+/// none is.
+ttd_isa ttd_dispatch_isa_from_name(const char *name);
+/// NULL, or why TTD_ISA is being ignored (an unknown name, or one that cannot run here).
+const char *ttd_dispatch_env_note(void);
 
 #endif /* TTD_ENGINE_DISPATCH_H */

@@ -56,11 +56,10 @@ int ttd_parallel_workers(size_t nblocks, int threads)
     return (int)(w < by_work ? w : by_work);
 }
 
-void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx)
+static void ttd_parallel_run(size_t nblocks, int workers, ttd_block_fn fn, void *ctx)
 {
     ttd_pfor job = {.nblocks = nblocks, .fn = fn, .ctx = ctx};
     atomic_init(&job.next, 0);
-    const int workers = ttd_parallel_workers(nblocks, threads);
     pthread_t tid[TTD_MAX_WORKERS];
     ttd_pfor_worker args[TTD_MAX_WORKERS];
     int started = 0;
@@ -73,4 +72,24 @@ void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx)
     ttd_pfor_run(&job, 0);
     for (int i = 0; i < started; ++i)
         pthread_join(tid[i], NULL);
+}
+
+void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx)
+{
+    ttd_parallel_run(nblocks, ttd_parallel_workers(nblocks, threads), fn, ctx);
+}
+
+int ttd_parallel_task_workers(size_t ntasks, int threads)
+{
+    if (ntasks < 2 || threads == 1)
+        return 1;
+    size_t w = threads > 0 ? (size_t)threads : (size_t)ttd_parallel_cores();
+    if (w > ntasks)
+        w = ntasks;
+    return (int)(w > TTD_MAX_WORKERS ? TTD_MAX_WORKERS : w);
+}
+
+void ttd_parallel_tasks(size_t ntasks, int threads, ttd_block_fn fn, void *ctx)
+{
+    ttd_parallel_run(ntasks, ttd_parallel_task_workers(ntasks, threads), fn, ctx);
 }

@@ -28,5 +28,11 @@ int ttd_parallel_cores(void);
 int ttd_parallel_workers(size_t nblocks, int threads);
 /// Runs fn on every block; see the top of this file.
 void ttd_parallel_for(size_t nblocks, int threads, ttd_block_fn fn, void *ctx);
+/// Workers ttd_parallel_tasks uses: threads (0 = every online core), capped by ntasks and
+/// TTD_MAX_WORKERS, at least 1.
+int ttd_parallel_task_workers(size_t ntasks, int threads);
+/// ttd_parallel_for for tasks that are each long enough to pay for a thread (a subtree of a mesh
+/// build, a query pose): ttd_parallel_task_workers(ntasks, threads) workers.
+void ttd_parallel_tasks(size_t ntasks, int threads, ttd_block_fn fn, void *ctx);
 
 #endif /* TTD_ENGINE_PARALLEL_H */

@@ -26,12 +26,15 @@ static real bar_f(real u[4][3], const real da[3], const real x[4])
     return f;
 }
 
-/* B at x with slacks sl[6]; +inf outside (any slack <= 0). */
+/* B at x with slacks sl[6]; REAL_MAX outside (any slack <= 0), and for a slack that is not
+ * finite: a nearly singular Hessian (crossing triangles in float) can give a step so long that
+ * a slack's update overflows, and log(inf) would make B -inf, accepted as a decrease (issue 12:
+ * a NaN point and a wrong distance, unflagged). */
 static real bar_value(real u[4][3], const real da[3], const real x[4], const real sl[6], real mu)
 {
     real logs = 0;
     for (int i = 0; i < 6; ++i) {
-        if (!(sl[i] > 0)) return TTD_REAL_MAX;
+        if (!(sl[i] > 0 && sl[i] <= TTD_REAL_MAX)) return TTD_REAL_MAX;
         logs += (real)log((double)sl[i]);
     }
     return bar_f(u, da, x) - mu * logs;
@@ -121,7 +124,7 @@ static void barrier_pair(const real s[9], const real t[9], const ttd_params *prm
     real x[4] = {(real)1 / 3, (real)1 / 3, (real)1 / 3, (real)1 / 3};
     real sl[6] = {x[0], x[1], (real)1 / 3, x[2], x[3], (real)1 / 3}; /* a b 1-a-b g d 1-g-d */
     real mu = 1;
-    int it = 0, converged = 0;
+    int it = 0, converged = 0, stalled = 0;
     while (it < prm->max_iterations) {
         ++it;
         real xy[3];
@@ -171,12 +174,16 @@ static void barrier_pair(const real s[9], const real t[9], const ttd_params *prm
             for (int i = 0; i < 4; ++i) x[i] = xn[i];
             for (int i = 0; i < 6; ++i) sl[i] = sn[i];
         }
-        /* Centred for this mu (decrement below mu, or below the rounding of B's terms, or
-         * no decrease possible): lower mu, or stop at the last one. */
+        /* Centred for this mu (decrement below mu, or below the rounding of B's terms), or
+         * stalled (no step of useful length: a Hessian too ill-conditioned for this
+         * precision, as for shallowly crossing triangles): lower mu, or stop at the last one.
+         * A stall is remembered: an answer reached through one is not a converged one. */
         const real fcur = xy[0] * xy[0] + xy[1] * xy[1] + xy[2] * xy[2];
-        if (!(dec > mu) || !(dec > 16 * TTD_REAL_EPS * (fcur + mu)) || step < TTD_REAL_EPS) {
+        const int centred = !(dec > mu) || !(dec > 16 * TTD_REAL_EPS * (fcur + mu));
+        if (centred || step < TTD_REAL_EPS) {
+            stalled |= !centred;
             if (mu <= mu_end) {
-                converged = 1;
+                converged = !stalled;
                 break;
             }
             mu *= (real)0.1;

@@ -46,6 +46,7 @@ const ttd_kernels_d ttd_kernels_scalar_d = {
            [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_d,
            [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d,
            [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_d},
+    .node_test = ttd_node_test_scalar_d,
 };
 
 const ttd_kernels_f ttd_kernels_scalar_f = {
@@ -56,4 +57,5 @@ const ttd_kernels_f ttd_kernels_scalar_f = {
            [TTD_METHOD_PENALTY_REFERENCE] = ttd_scalar_penalty_ref_f,
            [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f,
            [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
+    .node_test = ttd_node_test_scalar_f,
 };

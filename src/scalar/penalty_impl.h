@@ -110,10 +110,15 @@ static void pen_finish(const real s[9], const real t[9], const real wp[3],
 /* ---------------------------------------------------------------------------------------- */
 /* The reference: the paper's ttd1.                                                          */
 
-/* hes \ gra the way MATLAB's backslash would do it on a general matrix: Gaussian elimination
- * with partial pivoting. A pivot below eps * max|diag| (only possible when rounding has
- * swallowed the I/rho^2 regularisation, e.g. a degenerate triangle in float or at large
- * coordinates) is raised to that floor so that the step stays finite. */
+/* hes \ gra by Gaussian elimination with partial pivoting, ttd's stand-in for MATLAB's
+ * backslash (a Cholesky solve on this symmetric positive definite matrix, with LU and
+ * least-squares fallbacks when it breaks down). A pivot below eps * max|diag| is raised to that
+ * floor so that the step stays finite. With a penalised constraint max|diag| >= rho, so the
+ * floor (>= rho eps) lies far above the listing's I/rho^2, and it fires often: on nearly
+ * parallel, touching, degenerate and sliver pairs (14-57% of such pairs at rho 1e6) and on half
+ * of random pairs at rho 1e8, changing their iterates; without it the step there is NaN or inf
+ * (docs/penalty-method.md, "The pivot floor"). On random pairs at the default rho it never
+ * fires. */
 static void pen_ref_solve(real m[4][4], real rhs[4], real x[4])
 {
     real dmax = 0;
@@ -248,7 +253,8 @@ static void penalty_pair(const real s[9], const real t[9], const ttd_params *prm
     const real rho = (real)rho_d;
     const real tol2 = (real)(tol_d * tol_d);
     /* Regularisation eps*I and pivot floor: a few ulps of the unit-size Hessian, not the
-     * paper's 1/rho^2. On nearly parallel edges or faces the valley's curvature (~angle^2)
+     * listing's 1/rho^2 (the paper's section 2 asks only for eps I, eps "suitably small"). On
+     * nearly parallel edges or faces the valley's curvature (~angle^2)
      * lies below 1/rho^2 = 1e-12, and the regularised step then crawled along the valley
      * (grad/eps per iteration) to the cap (docs/penalty-method.md, Near-parallel families). */
     const real eps = (real)TTD_PENALTY_EPS_ULPS * TTD_REAL_EPS;

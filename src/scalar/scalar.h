@@ -26,6 +26,12 @@ void ttd_barrier_pair_f(const float s[9], const float t[9], const ttd_params *pr
 void ttd_certified_pair_d(const double s[9], const double t[9], const ttd_params *prm, ttd_result_d *r);
 void ttd_certified_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
 
+/* The mesh queries' node test, one child at a time (core/kernels.h). */
+void ttd_node_test_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, double lb2[TTD_NODE_WIDTH],
+                            double sep[TTD_NODE_WIDTH]);
+void ttd_node_test_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float lb2[TTD_NODE_WIDTH],
+                            float sep[TTD_NODE_WIDTH]);
+
 /* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other
  * methods of its own precision by these names. */
 #if defined(TTD_PRECISION_DOUBLE)

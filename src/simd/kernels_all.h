@@ -20,6 +20,7 @@
 #include "simd/kernel_penalty.h"
 #include "simd/kernel_exact.h"
 #include "simd/kernel_certified.h"
+#include "simd/kernel_node.h"
 #include "simd/probe_impl.h"
 
 /* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
@@ -31,4 +32,5 @@
                [TTD_METHOD_PENALTY] = kernel_penalty,                                          \
                [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref,                            \
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
+        .node_test = node_test,                                                                \
     }

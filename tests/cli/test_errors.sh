@@ -120,8 +120,20 @@ for isa in sse2 avx2 avx512 neon; do
     case " $built " in *" $isa "*) case " $cpu " in *" $isa "*) continue ;; esac ;; esac
     "$TTD" dist --isa "$isa" "$DIR/good.txt" > /dev/null 2> "$DIR/err"
     [ $? -eq 2 ] || fail "--isa $isa (unavailable) did not exit 2"
+    # TTD_ISA naming it is ignored with a warning (issue 12: it failed every call)
     TTD_ISA=$isa "$TTD" dist "$DIR/good.txt" > /dev/null 2> "$DIR/err"
-    [ $? -eq 2 ] || fail "TTD_ISA=$isa (unavailable) did not exit 2"
+    [ $? -eq 0 ] || fail "TTD_ISA=$isa (unavailable) was not ignored"
+    grep -q 'warning: TTD_ISA=' "$DIR/err" || fail "TTD_ISA=$isa (unavailable): no warning"
     pass "unavailable_isa $isa"
 done
 exit 0
+
+# Instruction set names in any letter case; an unknown name is "unknown", not "not available".
+"$TTD" dist --isa SCALAR "$DIR/good.txt" > /dev/null || fail "--isa SCALAR refused"
+TTD_ISA=Scalar "$TTD" info | grep -q '^auto: *scalar' || fail "TTD_ISA=Scalar not used"
+"$TTD" dist --isa no-such "$DIR/good.txt" > /dev/null 2> "$DIR/err"
+[ $? -eq 2 ] || fail "--isa no-such did not exit 2"
+grep -q 'unknown instruction set' "$DIR/err" || fail "--isa no-such: not called unknown"
+TTD_ISA=no-such "$TTD" dist "$DIR/good.txt" > /dev/null 2> "$DIR/err" || fail "TTD_ISA=no-such was not ignored"
+grep -q 'not the name of an instruction set' "$DIR/err" || fail "TTD_ISA=no-such: no warning"
+pass isa_names

@@ -1,0 +1,205 @@
+# SPDX-License-Identifier: MIT
+"""The Python package's overhead against the C calls it makes, and its thread scaling.
+
+    build/python-venv/bin/python bench/python_overhead.py [--quick]
+
+(the interpreter of the venv that scripts/test-python.sh makes and installs ttd into; any
+interpreter with ttd installed will do). It measures, in one process:
+
+1. one pair per call: ttd.distance(s, t) in a Python loop against the same library call
+   (ttd_batch_d with n = 1, the same options) in a C loop (ttd._ctiming, built with the
+   package for this benchmark only). The C loop runs in the same process on the same arrays,
+   so the difference is what Python adds per call: argument parsing, array checks, the output
+   array and the lock release. (Timing the C call through ctypes instead would charge ctypes'
+   own per-call cost, about a microsecond, to the C side.) Target: at most 5 us per call.
+2. a 1,000,000-pair batch: ttd.distance(S, T) against the same C call, one and all threads,
+   returning new arrays and writing into a reused one (out=); the C call writes into that
+   same reused array, so that the two differ only in the call (no page faults on either side,
+   the same memory written). Target: at most 5% over the C call.
+3. two Python threads each computing a batch with threads=1, against one thread computing
+   both: the speedup from releasing the interpreter lock, beside the same measurement made
+   with two threads calling the C loop (the most two threads get on this machine).
+
+Timings alternate between the Python and the C side (in rotating order), repeat, and report
+medians; ratios are taken within the run. The machine's load is printed: on a shared machine, read the ratios,
+not the absolute times.
+"""
+import argparse
+import os
+import platform
+import statistics
+import threading
+import time
+
+import numpy as np
+
+import ttd
+from ttd import _ctiming
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown CPU"
+
+
+def random_pairs(n, seed, dtype):
+    """ttd's benchmark workload: vertices uniform in [0,1)^3, T shifted by up to half a unit."""
+    rng = np.random.default_rng(seed)
+    S = rng.random((n, 9))
+    T = rng.random((n, 9)) + np.tile(rng.random((n, 3)) - 0.5, 3)
+    return S.astype(dtype), T.astype(dtype)
+
+
+def alternate(py, c, repeats):
+    """Median seconds of py() and of c(), run alternately `repeats` times each."""
+    tp, tc = [], []
+    for _ in range(repeats):
+        tp.append(py())
+        tc.append(c())
+    return statistics.median(tp), statistics.median(tc)
+
+
+def single_pair(dtype, points, calls, repeats):
+    s, t = random_pairs(1, 1, dtype)
+    s, t = s[0], t[0]
+    f = ttd.distance
+
+    def py():
+        t0 = time.perf_counter()
+        if points:
+            for _ in range(calls):
+                f(s, t, points=True)
+        else:
+            for _ in range(calls):
+                f(s, t)
+        return time.perf_counter() - t0
+
+    out = np.empty(1, ttd.RESULT_DTYPE_FLOAT64 if dtype == np.float64 else ttd.RESULT_DTYPE_FLOAT32) \
+        if points else np.empty(1, dtype)
+
+    def c():
+        return _ctiming.time_calls(s, t, out, calls, points=points)
+
+    tp, tc = alternate(py, c, repeats)
+    return 1e9 * tp / calls, 1e9 * tc / calls
+
+
+def batch(S, T, threads, points, repeats):
+    """Median seconds of the Python call returning new arrays, of the Python call writing into
+    a reused out= array, and of the C call (into a reused buffer), run in turn."""
+    out = np.empty(len(S), ttd.RESULT_DTYPE_FLOAT64 if S.dtype == np.float64 else ttd.RESULT_DTYPE_FLOAT32) \
+        if points else np.empty(len(S), S.dtype)
+
+    def timed(**kw):
+        t0 = time.perf_counter()
+        ttd.distance(S, T, threads=threads, points=points, **kw)
+        return time.perf_counter() - t0
+
+    runs = [lambda: timed(), lambda: timed(out=out),
+            lambda: _ctiming.time_calls(S, T, out, 1, threads=threads, points=points)]
+    times = [[], [], []]
+    for k in range(repeats):
+        for i in range(3):  # each one first, second and third in turn: no side always follows another
+            j = (i + k) % 3
+            times[j].append(runs[j]())
+    return tuple(statistics.median(t) for t in times)
+
+
+def two_threads(work_a, work_b, repeats):
+    """(one thread doing a then b, two threads doing a and b at once): median seconds."""
+
+    def sequential():
+        t0 = time.perf_counter()
+        work_a()
+        work_b()
+        return time.perf_counter() - t0
+
+    def parallel():
+        threads = [threading.Thread(target=work_a), threading.Thread(target=work_b)]
+        t0 = time.perf_counter()
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        return time.perf_counter() - t0
+
+    return alternate(sequential, parallel, repeats)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--pairs", type=int, default=1_000_000, help="batch size (default 1,000,000)")
+    ap.add_argument("--calls", type=int, default=200_000, help="single-pair calls per timing (default 200,000)")
+    ap.add_argument("--repeats", type=int, default=15, help="timings per measurement, median taken (default 15)")
+    ap.add_argument("--quick", action="store_true", help="a few seconds: 100,000 pairs, 20,000 calls, 3 repeats")
+    args = ap.parse_args()
+    if args.quick:
+        args.pairs, args.calls, args.repeats = 100_000, 20_000, 3
+
+    load0 = os.getloadavg()
+    print(f"ttd {ttd.version}, Python {platform.python_version()}, numpy {np.__version__}; "
+          f"{cpu_name()}, {os.cpu_count()} cores, instruction set {ttd.isa_selected()}")
+    print(f"load average before: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f} (1, 5, 15 min)\n")
+
+    print("1. one pair per call (exact method): Python call vs the same C call, ns per call")
+    print(f"   {'':28}{'Python':>10}{'C':>10}{'overhead':>10}  target <= 5000 ns")
+    for dtype in (np.float64, np.float32):
+        for points in (False, True):
+            py, c = single_pair(dtype, points, args.calls, args.repeats)
+            label = f"{np.dtype(dtype).name}, {'points=True' if points else 'distances'}"
+            mark = "met" if py - c <= 5000 else "MISSED"
+            print(f"   {label:28}{py:10.0f}{c:10.0f}{py - c:10.0f}  {mark}")
+
+    print(f"\n2. {args.pairs:,} pairs per call (exact method): Python call / C call, median seconds;")
+    print("   'new': ttd.distance returns new arrays; 'out=': it writes into a reused array, as the C call does")
+    print(f"   {'':36}{'new':>9}{'out=':>9}{'C':>9}{'new/C':>8}{'out=/C':>8}  target <= 1.05")
+    S, T = random_pairs(args.pairs, 2, np.float64)
+    S32, T32 = S.astype(np.float32), T.astype(np.float32)
+    for label, (a, b) in (("float64", (S, T)), ("float32", (S32, T32))):
+        for threads in (1, 0):
+            for points in (False, True):
+                tn, to, tc = batch(a, b, threads, points, args.repeats)
+                row = f"{label}, threads={threads}{' (all)' if threads == 0 else ''}, " \
+                      f"{'points' if points else 'distances'}"
+                marks = "/".join("met" if x / tc <= 1.05 else "MISSED" for x in (tn, to))
+                print(f"   {row:36}{tn:9.4f}{to:9.4f}{tc:9.4f}{tn / tc:8.3f}{to / tc:8.3f}  {marks}")
+    # The noise floor: the same C call timed as two sides, as above.
+    out = np.empty(len(S), ttd.RESULT_DTYPE_FLOAT64)
+    a, b = alternate(lambda: _ctiming.time_calls(S, T, out, 1, threads=1, points=True),
+                     lambda: _ctiming.time_calls(S, T, out, 1, threads=1, points=True), args.repeats)
+    print(f"   control: the float64 threads=1 points C call against itself: {a:.4f} / {b:.4f} = {a / b:.3f}")
+
+    print(f"\n3. two threads, each {args.pairs:,} pairs with threads=1: one thread doing both / two at once")
+    S2, T2 = random_pairs(args.pairs, 3, np.float64)
+    out1, out2 = np.empty(len(S)), np.empty(len(S2))
+    rows = [
+        ("ttd.distance, out=", lambda: ttd.distance(S, T, threads=1, out=out1),
+         lambda: ttd.distance(S2, T2, threads=1, out=out2)),
+        ("ttd.distance, new arrays", lambda: ttd.distance(S, T, threads=1),
+         lambda: ttd.distance(S2, T2, threads=1)),
+        ("the C loop (_ctiming)", lambda: _ctiming.time_calls(S, T, out1, 1, threads=1),
+         lambda: _ctiming.time_calls(S2, T2, out2, 1, threads=1)),
+    ]
+    speedups = {}
+    for label, a, b in rows:
+        seq, par = two_threads(a, b, args.repeats)
+        speedups[label] = seq / par
+        print(f"   Python threads calling {label:26}{seq:8.4f} s /{par:8.4f} s = {seq / par:.2f}x")
+    c = speedups["the C loop (_ctiming)"]
+    print(f"   the C loop's speedup is what two threads get here; ttd.distance reaches "
+          f"{speedups['ttd.distance, out='] / c:.2f} of it with out=, "
+          f"{speedups['ttd.distance, new arrays'] / c:.2f} with new arrays (1.00: the lock costs nothing)")
+
+    load1 = os.getloadavg()
+    print(f"\nload average after: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}; other processes share "
+          f"the cores when it exceeds what this benchmark runs (1 thread, 2 in part 3 and threads=0)")
+
+
+if __name__ == "__main__":
+    main()

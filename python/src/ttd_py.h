@@ -1,0 +1,76 @@
+/* SPDX-License-Identifier: MIT */
+/* What the files of the extension module ttd._ttd share: the numpy C API set-up, the module's
+ * exception and warning classes, and the helpers that turn Python arguments into the C
+ * library's inputs (options, instruction sets, precisions, coordinate arrays) and a C status
+ * into a Python exception or warning. Each query family (pairs now, meshes later) lives in its
+ * own file and uses only these helpers and include/ttd/ttd.h. */
+#ifndef TTD_PY_H
+#define TTD_PY_H
+
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+/* One numpy API table for the whole module: ttd_module.c imports it, the others use it. */
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#define PY_ARRAY_UNIQUE_SYMBOL ttd_py_ARRAY_API
+#ifndef TTD_PY_IMPORTS_NUMPY
+#define NO_IMPORT_ARRAY
+#endif
+#include <numpy/arrayobject.h>
+
+#include <ttd/ttd.h>
+
+/* Classes made by ttd_module.c (strong references held for the module's lifetime). */
+extern PyObject *ttd_py_IsaUnavailableError; /* RuntimeError: the instruction set cannot run here */
+extern PyObject *ttd_py_NonFiniteInputWarning; /* RuntimeWarning: some pairs had NaN/inf */
+extern PyObject *ttd_py_NotConvergedWarning;   /* RuntimeWarning: an iterative method hit its cap */
+
+/* Options from the keyword arguments every query takes; NULL or None means the default.
+ * On error returns -1 with a Python exception set. Ranges are left to the library (see
+ * ttd_py_raise_fatal), so that they are checked in one place. */
+int ttd_py_options(PyObject *method, PyObject *isa, PyObject *threads, PyObject *rho, PyObject *tol,
+                   PyObject *max_iterations, ttd_options *out);
+
+/* An instruction set name (or a str subclass such as ttd.Isa) to its enum; -1 with ValueError
+ * or TypeError set otherwise. */
+int ttd_py_isa_from_name(PyObject *name, ttd_isa *out);
+
+/* precision: None -> NPY_NOTYPE (take it from the arrays), else NPY_FLOAT or NPY_DOUBLE;
+ * -1 with an exception set for anything else. */
+int ttd_py_precision(PyObject *precision, int *type_num);
+
+/* The float type a coordinate array is computed in when no precision is asked for: float32 ->
+ * NPY_FLOAT, float64 -> NPY_DOUBLE, integers and bools -> NPY_DOUBLE (exact up to 2^53); -1
+ * with TypeError (naming the argument) for any other dtype. */
+int ttd_py_natural_type(PyArrayObject *a, const char *name);
+
+/* obj as an array of its own dtype (anything numpy.asarray takes); NULL with an exception. */
+PyArrayObject *ttd_py_as_array(PyObject *obj, const char *name);
+
+/* a converted to a C-contiguous, aligned, native-order array of type_num (a itself when it
+ * already is one; a copy otherwise); TypeError naming the argument when a's dtype is not real
+ * (bool, integer or float). */
+PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num);
+
+/* For a fatal status (>= TTD_ERR_FIRST_FATAL) of a call made with opt: raises the Python
+ * exception that names the problem and returns -1. Returns 0 for TTD_OK and the two non-fatal
+ * statuses, which the caller reports as warnings with the counts only it knows. */
+int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt);
+
+/* The shape (a, b, 3, 3) or (a, b, 9) of triangles: the number of leading dimensions, written
+ * to *lead (0 for a single triangle), or -1 with ValueError naming the argument. */
+int ttd_py_triangle_lead(PyArrayObject *a, const char *name, int *lead);
+
+/* 0 when a (lead_a leading dimensions) and b (lead_b) have the same pair dimensions; -1 with
+ * ValueError naming both ("S and T") otherwise. */
+int ttd_py_same_lead(PyArrayObject *a, int lead_a, PyArrayObject *b, int lead_b, const char *names);
+
+/* The status the library gives a one-pair call with opt: its checks of the options and of the
+ * instruction set, for calls with nothing to compute (so that errors never depend on n). */
+ttd_status ttd_py_check_options(const ttd_options *opt);
+
+/* Query families: each adds its functions and types to the module. */
+int ttd_py_pairs_init(PyObject *module);
+extern PyMethodDef ttd_py_pairs_methods[];
+
+#endif /* TTD_PY_H */

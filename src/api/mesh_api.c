@@ -1,0 +1,274 @@
+/* SPDX-License-Identifier: MIT */
+/* The public mesh entries of include/ttd/ttd.h: every argument is checked here, in the order
+ * the pair entries use (pointers, options, counts, sizes, instruction set; api/prepare.h), then
+ * what only meshes have (indices, finite vertices, the meshes' precision, the poses, the margin
+ * and bounds), before src/mesh/ builds or queries anything. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "api/prepare.h"
+#include "mesh/mesh.h"
+#include "ttd/ttd.h"
+
+/* Poses whose R^T R - I has an entry larger than this are not rotations. */
+#define TTD_POSE_TOLERANCE 1e-6
+
+/* Mesh sizes the hierarchy can index (triangles are children -1 - t of int32 slots). */
+#define TTD_MESH_MAX_TRIANGLES ((size_t)INT32_MAX / 2)
+
+/* ---- building ---------------------------------------------------------------------------- */
+
+static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *vertices, size_t nv,
+                              const uint32_t *triangles, size_t nt, ttd_mesh **out)
+{
+    if (out == NULL)
+        return TTD_ERR_NULL_POINTER;
+    *out = NULL;
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, vertices && triangles, nv == 0 ? 0 : nt,
+                                ttd_too_large(nv, 3, (size_t)bytes) || ttd_too_large(nt, 3, sizeof(uint32_t)) ||
+                                    nt > TTD_MESH_MAX_TRIANGLES,
+                                &cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg.method != TTD_METHOD_EXACT)
+        return TTD_ERR_BAD_OPTIONS;
+    for (size_t i = 0; i < 3 * nt; ++i)
+        if (triangles[i] >= nv)
+            return TTD_ERR_INDEX_OUT_OF_RANGE;
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (!isfinite(x))
+            return TTD_ERR_NONFINITE_MESH;
+    }
+    return ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out);
+}
+
+ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv, const uint32_t *triangles,
+                             size_t nt, ttd_mesh **out)
+{
+    return mesh_create(opt, 8, vertices, nv, triangles, nt, out);
+}
+
+ttd_status ttd_mesh_create_f(const ttd_options *opt, const float *vertices, size_t nv, const uint32_t *triangles,
+                             size_t nt, ttd_mesh **out)
+{
+    return mesh_create(opt, 4, vertices, nv, triangles, nt, out);
+}
+
+void ttd_mesh_destroy(ttd_mesh *mesh)
+{
+    ttd_mesh_free(mesh);
+}
+
+size_t ttd_mesh_triangle_count(const ttd_mesh *mesh)
+{
+    return mesh ? mesh->nt : 0;
+}
+
+size_t ttd_mesh_vertex_count(const ttd_mesh *mesh)
+{
+    return mesh ? mesh->nv : 0;
+}
+
+size_t ttd_mesh_node_count(const ttd_mesh *mesh)
+{
+    return mesh ? mesh->nnodes : 0;
+}
+
+/* ---- queries ----------------------------------------------------------------------------- */
+
+/* How far the 3x3 part of a pose (12 reals of bytes each) is from a rotation: max |R^T R - I|;
+ * -1 when it is not finite or det R <= 0. */
+static double pose_defect(const void *poses, size_t i, int bytes)
+{
+    double p[12];
+    for (int j = 0; j < 12; ++j) {
+        p[j] = bytes == 8 ? ((const double *)poses)[12 * i + (size_t)j] : (double)((const float *)poses)[12 * i + (size_t)j];
+        if (!isfinite(p[j]))
+            return -1;
+    }
+    const double r[9] = {p[0], p[1], p[2], p[4], p[5], p[6], p[8], p[9], p[10]};
+    double defect = 0;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
+            defect = fmax(defect, fabs(g - (a == b ? 1.0 : 0.0)));
+        }
+    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                       r[2] * (r[3] * r[7] - r[4] * r[6]);
+    return det > 0 ? defect : -1;
+}
+
+/* The checks of every query. On TTD_OK, *defects holds k pose defects (the caller frees it). */
+static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                const void *poses, int bytes, int out_ok, ttd_engine_config *cfg, double **defects)
+{
+    *defects = NULL;
+    ttd_status st = ttd_prepare(opt, a && b && poses && out_ok, k, ttd_too_large(k, 12, (size_t)bytes), cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg->method != TTD_METHOD_EXACT)
+        return TTD_ERR_BAD_OPTIONS;
+    if (a->bytes != bytes || b->bytes != bytes)
+        return TTD_ERR_PRECISION_MISMATCH;
+    double *d = malloc(k * sizeof *d);
+    if (d == NULL)
+        return TTD_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < k; ++i) {
+        d[i] = pose_defect(poses, i, bytes);
+        if (!(d[i] >= 0 && d[i] <= TTD_POSE_TOLERANCE)) {
+            free(d);
+            return TTD_ERR_BAD_POSE;
+        }
+    }
+    *defects = d;
+    return TTD_OK;
+}
+
+/* A margin or bound: finite (or, for an upper bound, +inf) and >= 0. */
+static int ttd_nonneg(double x, int inf_ok)
+{
+    return x >= 0 && (inf_ok || x < (double)INFINITY);
+}
+
+#define TTD_QUERY_BEGIN(bytes, out_ok, params_ok)                                                  \
+    ttd_engine_config cfg;                                                                     \
+    double *defects;                                                                           \
+    ttd_status st = query_prepare(opt, a, b, k, poses, bytes, out_ok, &cfg, &defects);         \
+    if (st != TTD_OK)                                                                          \
+        return st;                                                                             \
+    if (!(params_ok)) {                                                                        \
+        free(defects);                                                                         \
+        return TTD_ERR_BAD_OPTIONS;                                                            \
+    }
+
+ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                               const double *poses, double upper_bound, double rel_tol, ttd_mesh_result_d *out)
+{
+    TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(upper_bound, 1) && ttd_nonneg(rel_tol, 0))
+    st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    free(defects);
+    return st;
+}
+
+ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                               const float *poses, float upper_bound, float rel_tol, ttd_mesh_result_f *out)
+{
+    TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)upper_bound, 1) && ttd_nonneg((double)rel_tol, 0))
+    st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    free(defects);
+    return st;
+}
+
+ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                              const double *poses, double margin, ttd_collision *out)
+{
+    TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
+    st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, defects, margin, out);
+    free(defects);
+    return st;
+}
+
+ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                              const float *poses, float margin, ttd_collision *out)
+{
+    TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
+    st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, defects, margin, out);
+    free(defects);
+    return st;
+}
+
+ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                               const double *poses, double margin, ttd_contacts_d *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
+    st = ttd_mesh_query_contacts_d(&cfg, a, b, k, poses, defects, margin, out);
+    free(defects);
+    return st;
+}
+
+ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                               const float *poses, float margin, ttd_contacts_f *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
+    st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, defects, margin, out);
+    free(defects);
+    return st;
+}
+
+void ttd_contacts_free_d(ttd_contacts_d *contacts)
+{
+    if (contacts == NULL)
+        return;
+    free(contacts->pairs);
+    free(contacts->pose_start);
+    *contacts = (ttd_contacts_d){0};
+}
+
+void ttd_contacts_free_f(ttd_contacts_f *contacts)
+{
+    if (contacts == NULL)
+        return;
+    free(contacts->pairs);
+    free(contacts->pose_start);
+    *contacts = (ttd_contacts_f){0};
+}
+
+/* ---- per-triangle closest partners: the contact set reduced ------------------------------- */
+
+/* Keeps contact (partner, d, p, q) in rec when it is nearer, or as near with a smaller partner. */
+#define TTD_CLOSEST_KEEP(rec, partner_, d_, p_, q_)                                                 \
+    do {                                                                                       \
+        if ((d_) < (rec)->distance || ((d_) == (rec)->distance && (partner_) < (rec)->partner)) { \
+            (rec)->partner = (partner_);                                                       \
+            (rec)->distance = (d_);                                                            \
+            for (int c_ = 0; c_ < 3; ++c_) {                                                   \
+                (rec)->p[c_] = (p_)[c_];                                                       \
+                (rec)->q[c_] = (q_)[c_];                                                       \
+            }                                                                                  \
+        }                                                                                      \
+    } while (0)
+
+#define TTD_CLOSEST_BODY(real, contacts_t, closest_t, query_fn, free_fn)                           \
+    TTD_QUERY_BEGIN((int)sizeof(real), for_a != NULL || for_b != NULL, ttd_nonneg((double)margin, 0)) \
+    contacts_t set = {0};                                                                      \
+    st = query_fn(&cfg, a, b, k, poses, defects, margin, &set);                                \
+    free(defects);                                                                             \
+    if (st != TTD_OK) {                                                                        \
+        free_fn(&set);                                                                         \
+        return st;                                                                             \
+    }                                                                                          \
+    const closest_t none = {UINT32_MAX, (real)INFINITY, {(real)NAN, (real)NAN, (real)NAN},      \
+                            {(real)NAN, (real)NAN, (real)NAN}};                                \
+    for (size_t i = 0; for_a && i < k * a->nt; ++i)                                            \
+        for_a[i] = none;                                                                       \
+    for (size_t i = 0; for_b && i < k * b->nt; ++i)                                            \
+        for_b[i] = none;                                                                       \
+    for (size_t i = 0; i < k; ++i)                                                             \
+        for (size_t j = set.pose_start[i]; j < set.pose_start[i + 1]; ++j) {                   \
+            const __typeof__(set.pairs[0]) *c = &set.pairs[j];                                 \
+            if (for_a)                                                                         \
+                TTD_CLOSEST_KEEP(&for_a[i * a->nt + c->tri_a], c->tri_b, c->distance, c->p, c->q); \
+            if (for_b)                                                                         \
+                TTD_CLOSEST_KEEP(&for_b[i * b->nt + c->tri_b], c->tri_a, c->distance, c->q, c->p); \
+        }                                                                                      \
+    free_fn(&set);                                                                             \
+    return TTD_OK;
+
+ttd_status ttd_mesh_closest_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                              const double *poses, double margin, ttd_closest_d *for_a, ttd_closest_d *for_b)
+{
+    TTD_CLOSEST_BODY(double, ttd_contacts_d, ttd_closest_d, ttd_mesh_query_contacts_d, ttd_contacts_free_d)
+}
+
+ttd_status ttd_mesh_closest_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                              const float *poses, float margin, ttd_closest_f *for_a, ttd_closest_f *for_b)
+{
+    TTD_CLOSEST_BODY(float, ttd_contacts_f, ttd_closest_f, ttd_mesh_query_contacts_f, ttd_contacts_free_f)
+}

@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: MIT */
+/* A mesh and its bounding-volume hierarchy (the opaque ttd_mesh of ttd/ttd.h), and the entries
+ * that build and query it. The public entries (src/api/mesh_api.c) check every argument and
+ * call these.
+ *
+ * The hierarchy: nodes of up to TTD_NODE_WIDTH children (core/kernels.h), each child an
+ * oriented box around a triangle or a subtree, stored one array per coordinate so that one node
+ * test bounds all children at once on every instruction set. Boxes live in the mesh's own frame
+ * moved to its origin (the centre of the vertices' bounding box), so that a query's arithmetic
+ * runs on magnitudes of the meshes' sizes and their distance, not of where they sit. Node 0
+ * holds the root's box in slot 0; the tree starts at node 1 (a mesh of one triangle has node 0
+ * only, its slot 0 the triangle). Triangles keep the caller's coordinates and indices: a query
+ * hands the exact kernel the same triangles a brute force over all pairs would. */
+#ifndef TTD_MESH_MESH_H
+#define TTD_MESH_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/kernels.h"
+#include "engine/batch.h"
+
+struct ttd_mesh {
+    int bytes;          /* 8: built from double vertices and queried in double; 4: float */
+    size_t nv, nt;
+    void *verts;        /* 3 nv reals: a copy of the caller's */
+    uint32_t *tris;     /* 3 nt indices: a copy */
+    void *nodes;        /* nnodes ttd_node_d or ttd_node_f, 64-byte aligned */
+    size_t nnodes;
+    double origin[3];   /* the boxes' origin, in the mesh's coordinates */
+    double radius;      /* every vertex is within radius of origin (rounded up) */
+};
+
+/// Builds the mesh from checked arguments (indices in range, coordinates finite, nv, nt > 0):
+/// TTD_OK, or TTD_ERR_OUT_OF_MEMORY (*out NULL). verts holds 3 nv reals of bytes each.
+ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
+                          const uint32_t *tris, size_t nt, struct ttd_mesh **out);
+
+/// Frees a mesh built by ttd_mesh_build.
+void ttd_mesh_free(struct ttd_mesh *mesh);
+
+/* The queries, from checked arguments (meshes of the query's precision, k >= 1 rigid poses,
+ * outputs present); defects[i] is max |R^T R - I| of pose i, which the traversal's rounding
+ * margin covers. Each fills out (k results, or the contact set) and returns TTD_OK or
+ * TTD_ERR_OUT_OF_MEMORY. The double and float entries are written out in mesh/query_d.c and
+ * query_f.c. */
+ttd_status ttd_mesh_query_distance_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                     size_t k, const double *poses, const double *defects, double upper_bound,
+                                     double rel_tol, ttd_mesh_result_d *out);
+ttd_status ttd_mesh_query_distance_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                     size_t k, const float *poses, const double *defects, float upper_bound,
+                                     float rel_tol, ttd_mesh_result_f *out);
+ttd_status ttd_mesh_query_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                    size_t k, const double *poses, const double *defects, double margin,
+                                    ttd_collision *out);
+ttd_status ttd_mesh_query_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                    size_t k, const float *poses, const double *defects, float margin,
+                                    ttd_collision *out);
+ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                     size_t k, const double *poses, const double *defects, double margin,
+                                     ttd_contacts_d *out);
+ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                     size_t k, const float *poses, const double *defects, float margin,
+                                     ttd_contacts_f *out);
+
+#endif /* TTD_MESH_MESH_H */

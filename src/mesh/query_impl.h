@@ -1,0 +1,851 @@
+/* SPDX-License-Identifier: MIT */
+/* The mesh queries, precision-generic: mesh/query_d.c and query_f.c compile this once each and
+ * write out the entries of mesh/mesh.h.
+ *
+ * One traversal serves every query: a depth-first walk over pairs (box of a, box of b), each
+ * pair an item on a stack. An item whose bound exceeds the query's limit is dropped. Otherwise
+ * the larger box is opened (a triangle's box never is): one node test (core/kernels.h) bounds
+ * the other box against all of its children at once, the children within the limit are pushed,
+ * nearest last so that it is walked first. Two triangles make a candidate pair; candidates are
+ * gathered (b's triangle moved into a's frame by the caller's pose, as a brute force would) and
+ * handed to the exact kernel in batches, with the limit as its bound:
+ *   - minimum distance: the limit is the best distance so far (over 1 + rel_tol), falling as
+ *     batches come back; small batches keep it fresh;
+ *   - collision: the margin, and the walk stops at the first pair within it;
+ *   - contacts: the margin; every pair within it is kept, with its points.
+ * Each pose is walked by one thread, in an order fixed by the meshes and the pose; a contact
+ * query on one pose is cut into a fixed list of sub-walks, run on any threads and joined in list
+ * order. So results do not depend on the thread count, and as every row's node test and exact
+ * kernel give the same bits, not on the instruction set either.
+ *
+ * Rounding: a bound is computed from rounded boxes, rotations and products, and the kernel
+ * from b's vertices moved by the caller's pose, rounded. Items are dropped only when their bound
+ * exceeds the limit by delta = (64 eps + 4 d) S, where S bounds every magnitude involved (the
+ * distance between the meshes' origins, twice their radii, and how far from the coordinate
+ * origin the meshes and the pose's translation are) and d is how far the pose's R is from a
+ * rotation. That covers the bounds' rounding, the boxes' own (their extents are rounded), the
+ * pose's and the exact kernel's, so that no pair the exact method would have reported is ever
+ * skipped. */
+
+/* A box of one side: slot `slot` of node `node`. */
+typedef struct item {
+    int32_t an, bn;   /* a's box: nodes_a[an] slot as; b's likewise */
+    int32_t as, bs;
+    real lb2;         /* squared lower bound on the distance between the two boxes */
+} item;
+
+/* One side of a query. */
+typedef struct side {
+    const ttd_node *nodes;
+    const real *verts;
+    const uint32_t *tris;
+} side;
+
+enum { MODE_DISTANCE, MODE_COLLIDE, MODE_CONTACTS };
+
+/* Candidates per kernel call: few for the minimum and collision (the bound falls as they come
+ * back; a leaf's pairs go as soon as they fill a vector of the widest row), many for contacts
+ * (nothing falls; fewer calls). Fixed numbers, not the row's lane count: which pairs are
+ * tested, and so which of equally near pairs is reported, must not depend on the instruction
+ * set. */
+#define BATCH_MIN 16
+#define BATCH_LEAF 8
+#define BATCH_MAX 128
+
+/* What is shared by every walk of one pose. */
+typedef struct qpose {
+    side a, b;
+    real r[9], t[3];   /* b's frame about its origin -> a's frame about its origin */
+    real ri[9], ti[3]; /* and back */
+    real pose[12];     /* the caller's pose: b's coordinates -> a's frame */
+    real delta;        /* the rounding margin of the bounds */
+} qpose;
+
+/* What one query needs beyond its poses. */
+typedef struct qctx {
+    const struct ttd_mesh *ma, *mb;
+    ttd_node_test_fn node_test;
+    TTD_KERNEL_FN kernel;
+    int threads;
+} qctx;
+
+/* A contact found, before it is copied into the caller's set. */
+typedef ttd_contact contact;
+
+/* A growable list of contacts. */
+typedef struct clist {
+    contact *v;
+    size_t n, cap;
+} clist;
+
+/* A thread's working memory, reused across the walks it runs. */
+typedef struct qwork {
+    item *stack;
+    size_t cap;
+    item *deferred;                  /* the minimum's first phase: items left for the second */
+    size_t ndef, defcap;
+    int nb;                          /* candidates waiting for the kernel */
+    uint32_t ta[BATCH_MAX], tb[BATCH_MAX];
+    real s[9 * BATCH_MAX], t[9 * BATCH_MAX];
+    real dist[BATCH_MAX], pts[6 * BATCH_MAX];
+    int nomem;
+} qwork;
+
+/* One walk's state and results. */
+typedef struct walk {
+    int mode;
+    real limit;        /* the kernel's bound: best so far, or the margin */
+    real limit2;       /* an item is dropped when its lb2 exceeds this */
+    real gate2;        /* and deferred to the second phase when it exceeds this (the minimum) */
+    int ordered;       /* children come nearest last (depth-first walks) */
+    int cutting;       /* a contact query's pose being cut into sub-walks: pairs stay items */
+    real rel;          /* 1 + rel_tol (distance) */
+    int found, hit;    /* distance: some pair within the bound; collide: a witness */
+    uint32_t ta, tb;   /* the pair */
+    uint32_t node_tests;
+    uint64_t pair_tests;
+    clist *out;        /* contacts */
+    int32_t qkey[2];   /* the box whose node-test view is in q (side, node * 8 + slot); -1: none */
+    ttd_box_query q;   /* consecutive items often keep the same unopened box */
+} walk;
+
+/* The items' limit from the kernel's bound. */
+static void walk_set_limit(walk *w, const qpose *P, real limit)
+{
+    w->limit = limit;
+    const real l = (limit + P->delta) / w->rel;
+    w->limit2 = l * l;
+}
+
+/* n workers' memory, its arrays allocated as they are needed. */
+static qwork *qwork_new(int n)
+{
+    qwork *W = malloc((size_t)n * sizeof *W);
+    for (int i = 0; W != NULL && i < n; ++i) {
+        W[i].stack = W[i].deferred = NULL;
+        W[i].cap = W[i].ndef = W[i].defcap = 0;
+        W[i].nb = W[i].nomem = 0;
+    }
+    return W;
+}
+
+static void qwork_free(qwork *W, int n)
+{
+    for (int i = 0; W != NULL && i < n; ++i) {
+        free(W[i].stack);
+        free(W[i].deferred);
+    }
+    free(W);
+}
+
+static int grow_stack(qwork *W, size_t need)
+{
+    if (need <= W->cap)
+        return 1;
+    size_t cap = W->cap ? 2 * W->cap : 256;
+    while (cap < need)
+        cap *= 2;
+    item *s = realloc(W->stack, cap * sizeof *s);
+    if (s == NULL) {
+        W->nomem = 1;
+        return 0;
+    }
+    W->stack = s;
+    W->cap = cap;
+    return 1;
+}
+
+static int defer_item(qwork *W, const item *it)
+{
+    if (W->ndef == W->defcap) {
+        const size_t cap = W->defcap ? 2 * W->defcap : 256;
+        item *v = realloc(W->deferred, cap * sizeof *v);
+        if (v == NULL) {
+            W->nomem = 1;
+            return 0;
+        }
+        W->deferred = v;
+        W->defcap = cap;
+    }
+    W->deferred[W->ndef++] = *it;
+    return 1;
+}
+
+/* Whether item a comes before item b in the second phase: the smaller bound first, then by the
+ * boxes, a total order, so that the walk is the same on every platform. */
+static int item_before(const item *a, const item *b)
+{
+    if (a->lb2 != b->lb2)
+        return a->lb2 < b->lb2;
+    const int32_t ka[4] = {a->an, a->as, a->bn, a->bs}, kb[4] = {b->an, b->as, b->bn, b->bs};
+    for (int i = 0; i < 4; ++i)
+        if (ka[i] != kb[i])
+            return ka[i] < kb[i];
+    return 0;
+}
+
+/* A binary heap of n items in h, the first by item_before on top. */
+static void heap_up(item *h, size_t i)
+{
+    const item x = h[i];
+    while (i > 0 && item_before(&x, &h[(i - 1) / 2])) {
+        h[i] = h[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h[i] = x;
+}
+
+static void heap_down(item *h, size_t n, size_t i)
+{
+    const item x = h[i];
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= n)
+            break;
+        if (c + 1 < n && item_before(&h[c + 1], &h[c]))
+            ++c;
+        if (!item_before(&h[c], &x))
+            break;
+        h[i] = h[c];
+        i = c;
+    }
+    h[i] = x;
+}
+
+static int clist_push(clist *l, const contact *c)
+{
+    if (l->n == l->cap) {
+        const size_t cap = l->cap ? 2 * l->cap : 64;
+        contact *v = realloc(l->v, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        l->v = v;
+        l->cap = cap;
+    }
+    l->v[l->n++] = *c;
+    return 1;
+}
+
+/* x -> pose x, per coordinate ((r0 x + r1 y) + r2 z) + t (the order ttd/ttd.h documents). */
+static void pose_apply(const real p[12], const real x[3], real out[3])
+{
+    for (int i = 0; i < 3; ++i)
+        out[i] = ((p[4 * i] * x[0] + p[4 * i + 1] * x[1]) + p[4 * i + 2] * x[2]) + p[4 * i + 3];
+}
+
+/* The node test's view of box (node n, slot j) of side X, with Y's frame mapped in by (r, t). */
+static void box_query(const ttd_node *node, int j, const real r[9], const real t[3], ttd_box_query *q)
+{
+    real u[9], d[3];
+    for (int i = 0; i < 9; ++i)
+        u[i] = node->u[i][j];
+    for (int i = 0; i < 3; ++i) {
+        q->e[i] = node->e[i][j];
+        d[i] = t[i] - node->c[i][j];
+    }
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k)
+            q->m[3 * i + k] = (u[3 * i] * r[k] + u[3 * i + 1] * r[3 + k]) + u[3 * i + 2] * r[6 + k];
+        q->v[i] = (u[3 * i] * d[0] + u[3 * i + 1] * d[1]) + u[3 * i + 2] * d[2];
+    }
+}
+
+static real box_size(const ttd_node *node, int j)
+{
+    return node->e[0][j] + node->e[1][j] + node->e[2][j];
+}
+
+/* Sends the waiting candidates through the kernel and acts on the answers. */
+static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
+{
+    const int n = W->nb;
+    if (n == 0)
+        return;
+    W->nb = 0;
+    for (int i = 0; i < n; ++i) {
+        const uint32_t *ia = P->a.tris + 3 * (size_t)W->ta[i], *ib = P->b.tris + 3 * (size_t)W->tb[i];
+        for (int k = 0; k < 3; ++k) {
+            memcpy(W->s + 9 * i + 3 * k, P->a.verts + 3 * (size_t)ia[k], 3 * sizeof(real));
+            pose_apply(P->pose, P->b.verts + 3 * (size_t)ib[k], W->t + 9 * i + 3 * k);
+        }
+    }
+    const ttd_params prm = {0, 0, 1};
+    const ttd_out out = {W->dist, w->mode == MODE_CONTACTS ? W->pts : NULL, NULL};
+    C->kernel((size_t)n, W->s, W->t, &prm, w->limit, &out);
+    w->pair_tests += (uint64_t)n;
+    for (int i = 0; i < n; ++i) {
+        const real d = W->dist[i];
+        if (w->mode == MODE_DISTANCE) {
+            if (d < w->limit || (!w->found && d <= w->limit)) {
+                w->found = 1;
+                w->ta = W->ta[i];
+                w->tb = W->tb[i];
+                walk_set_limit(w, P, d);
+            }
+        } else if (d <= w->limit) {
+            if (w->mode == MODE_COLLIDE) {
+                w->hit = 1;
+                w->ta = W->ta[i];
+                w->tb = W->tb[i];
+                return;
+            }
+            contact c = {.tri_a = W->ta[i], .tri_b = W->tb[i], .distance = d};
+            for (int k = 0; k < 3; ++k) {
+                c.p[k] = W->pts[6 * i + k];
+                c.q[k] = d == 0 ? c.p[k] : W->pts[6 * i + 3 + k];
+            }
+            if (!clist_push(w->out, &c)) {
+                W->nomem = 1;
+                return;
+            }
+        }
+    }
+}
+
+/* Queues candidate pair (a's triangle ta, b's tb), sending the queue through the kernel when it
+ * is full. */
+static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb)
+{
+    W->ta[W->nb] = (uint32_t)ta;
+    W->tb[W->nb] = (uint32_t)tb;
+    if (++W->nb >= (w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN))
+        flush(C, P, W, w);
+}
+
+/* Opens the larger box of item it (it is within the limit) and writes the children within the
+ * limit to dst; returns how many. A pair of triangles is queued for the kernel instead.
+ * In a depth-first phase the children come nearest last (deepest overlap last among
+ * overlapping ones), so that the nearest is walked first, and those past the gate are set
+ * aside; a leaf facing a triangle queues its pairs at once, and for the minimum and collision
+ * the queue goes to the kernel as soon as it fills a vector, so that the next items meet a
+ * fresh limit. In the best-first phase the children come unordered: the heap orders them. */
+static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
+{
+    const ttd_node *na = P->a.nodes + it->an, *nb = P->b.nodes + it->bn;
+    const int32_t ca = na->child[it->as], cb = nb->child[it->bs];
+    if (ca < 0 && cb < 0) {
+        queue_pair(C, P, W, w, -1 - ca, -1 - cb);
+        return 0;
+    }
+    const int open_b = ca < 0 || (cb >= 0 && box_size(nb, it->bs) > box_size(na, it->as));
+    real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+    const ttd_node *y;
+    const int32_t qkey = open_b ? it->an * TTD_NODE_WIDTH + it->as : it->bn * TTD_NODE_WIDTH + it->bs;
+    if (open_b) {
+        y = P->b.nodes + cb;
+        if (w->qkey[0] != 0 || w->qkey[1] != qkey)
+            box_query(na, it->as, P->r, P->t, &w->q);
+    } else {
+        y = P->a.nodes + ca;
+        if (w->qkey[0] != 1 || w->qkey[1] != qkey)
+            box_query(nb, it->bs, P->ri, P->ti, &w->q);
+    }
+    w->qkey[0] = open_b ? 0 : 1;
+    w->qkey[1] = qkey;
+    C->node_test(&w->q, y, lb2, sep);
+    ++w->node_tests;
+    if (!w->cutting && y->child[0] < 0 && (open_b ? ca : cb) < 0) {
+        /* a leaf facing a triangle: its pairs within the gate go straight to the queue */
+        const int32_t t0 = open_b ? -1 - ca : -1 - cb;
+        for (int j = 0; j < y->count; ++j) {
+            if (lb2[j] > w->limit2)
+                continue;
+            if (lb2[j] > w->gate2) {
+                item c = *it;
+                if (open_b) {
+                    c.bn = cb;
+                    c.bs = j;
+                } else {
+                    c.an = ca;
+                    c.as = j;
+                }
+                c.lb2 = lb2[j];
+                defer_item(W, &c);
+                continue;
+            }
+            const int32_t t = -1 - y->child[j];
+            queue_pair(C, P, W, w, open_b ? t0 : t, open_b ? t : t0);
+        }
+        if (w->mode != MODE_CONTACTS && W->nb >= BATCH_LEAF)
+            flush(C, P, W, w);
+        return 0;
+    }
+    /* walk order: nearest first, and among overlapping boxes the deepest overlap first */
+    real key[TTD_NODE_WIDTH];
+    int n = 0;
+    for (int j = 0; j < y->count; ++j) {
+        if (lb2[j] > w->limit2)
+            continue;
+        item c = *it;
+        if (open_b) {
+            c.bn = cb;
+            c.bs = j;
+        } else {
+            c.an = ca;
+            c.as = j;
+        }
+        c.lb2 = lb2[j];
+        if (!w->ordered) {
+            dst[n++] = c;
+            continue;
+        }
+        if (c.lb2 > w->gate2) {
+            defer_item(W, &c);
+            continue;
+        }
+        /* insertion by decreasing key: the first to walk ends last, on top of the stack */
+        const real kj = lb2[j] > 0 ? lb2[j] : sep[j];
+        int at = n++;
+        while (at > 0 && key[at - 1] < kj) {
+            dst[at] = dst[at - 1];
+            key[at] = key[at - 1];
+            --at;
+        }
+        dst[at] = c;
+        key[at] = kj;
+    }
+    return n;
+}
+
+/* The depth-first walk from the items on the stack, until it is empty (or a collision is found,
+ * or the minimum is 0). */
+static void walk_stack(const qctx *C, const qpose *P, qwork *W, walk *w, size_t top)
+{
+    w->ordered = 1;
+    while (top > 0 && !W->nomem && !w->hit && !(w->found && w->limit == 0)) {
+        const item it = W->stack[--top];
+        if (it.lb2 > w->limit2)
+            continue;
+        if (!grow_stack(W, top + TTD_NODE_WIDTH))
+            return;
+        top += (size_t)expand(C, P, W, w, &it, W->stack + top);
+    }
+    flush(C, P, W, w);
+}
+
+/* Whether both boxes of item it are a triangle or a leaf (a node of triangles). */
+static int item_small(const qpose *P, const item *it)
+{
+    const int32_t ca = P->a.nodes[it->an].child[it->as], cb = P->b.nodes[it->bn].child[it->bs];
+    return (ca < 0 || P->a.nodes[ca].child[0] < 0) && (cb < 0 || P->b.nodes[cb].child[0] < 0);
+}
+
+/* The minimum's second phase: best first. The item with the smallest bound is opened next, so
+ * that no item is opened whose bound exceeds the distance the walk ends with, except while
+ * candidate pairs wait in the queue; the walk ends when the smallest bound left exceeds the
+ * limit. The set-aside items start the heap. */
+static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
+{
+    item *h = W->deferred;
+    size_t n = W->ndef;
+    for (size_t i = 1; i < n; ++i)
+        heap_up(h, i);
+    item kids[TTD_NODE_WIDTH];
+    while (n > 0 && !W->nomem && h[0].lb2 <= w->limit2 && !(w->found && w->limit == 0)) {
+        const item it = h[0];
+        h[0] = h[--n];
+        heap_down(h, n, 0);
+        w->ordered = 0;
+        const int m = expand(C, P, W, w, &it, kids);
+        size_t top = 0;
+        for (int j = 0; j < m; ++j) {
+            if (item_small(P, &kids[j])) {
+                /* nearest last: on top of the stack */
+                size_t at = top++;
+                while (at > 0 && W->stack[at - 1].lb2 < kids[j].lb2) {
+                    W->stack[at] = W->stack[at - 1];
+                    --at;
+                }
+                W->stack[at] = kids[j];
+                continue;
+            }
+            W->ndef = n;
+            if (!defer_item(W, &kids[j]))
+                return;
+            h = W->deferred;
+            heap_up(h, n++);
+        }
+        if (top > 0)
+            walk_stack(C, P, W, w, top);
+    }
+    W->ndef = 0;
+    flush(C, P, W, w);
+}
+
+/* The walk from item root. The minimum walks in two phases: first only boxes that overlap, as a
+ * collision test would (where meshes cross, that finds a crossing pair quickly, and the
+ * distance is 0; otherwise the overlapping region is where the nearest pairs are likely to be),
+ * setting aside every other item within the limit; then those, best first. Both phases
+ * together open no item the plain walk would have dropped. */
+static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const item *root)
+{
+    if (!grow_stack(W, 64))
+        return;
+    W->ndef = 0;
+    W->stack[0] = *root;
+    walk_stack(C, P, W, w, 1);
+    if (w->mode != MODE_DISTANCE || W->nomem || (w->found && w->limit == 0))
+        return;
+    w->gate2 = (real)INFINITY;
+    walk_best_first(C, P, W, w);
+}
+
+/* The pose's frames and rounding margin. */
+static void qpose_make(const qctx *C, const real pose[12], double defect, qpose *P)
+{
+    const struct ttd_mesh *ma = C->ma, *mb = C->mb;
+    P->a = (side){(const ttd_node *)ma->nodes, (const real *)ma->verts, ma->tris};
+    P->b = (side){(const ttd_node *)mb->nodes, (const real *)mb->verts, mb->tris};
+    memcpy(P->pose, pose, sizeof P->pose);
+    /* x_a - o_a = R (x_b - o_b) + (R o_b + t - o_a), in double */
+    double r[9], t[3], tn = 0;
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k)
+            r[3 * i + k] = (double)pose[4 * i + k];
+        t[i] = (double)pose[4 * i + 3] - ma->origin[i];
+        for (int k = 0; k < 3; ++k)
+            t[i] += r[3 * i + k] * mb->origin[k];
+        tn += t[i] * t[i];
+    }
+    for (int i = 0; i < 3; ++i) {
+        P->t[i] = (real)t[i];
+        /* back: x_b - o_b = R^T (x_a - o_a) - R^T t */
+        double ti = 0;
+        for (int k = 0; k < 3; ++k) {
+            P->r[3 * i + k] = (real)r[3 * i + k];
+            P->ri[3 * i + k] = (real)r[3 * k + i];
+            ti -= r[3 * k + i] * t[k];
+        }
+        P->ti[i] = (real)ti;
+    }
+    /* the bounds' magnitudes, and the kernel's: it works on the caller's coordinates, b's moved by
+     * the pose, whose rounding grows with how far from the origin the meshes sit */
+    double oa = 0, ob = 0, tc = 0;
+    for (int i = 0; i < 3; ++i) {
+        oa += ma->origin[i] * ma->origin[i];
+        ob += mb->origin[i] * mb->origin[i];
+        tc += (double)pose[4 * i + 3] * (double)pose[4 * i + 3];
+    }
+    const double S = sqrt(tn) + 2 * (ma->radius + mb->radius) + sqrt(oa) + sqrt(ob) + sqrt(tc);
+    P->delta = (real)((64 * (double)TTD_REAL_EPS + 4 * defect) * S);
+}
+
+static item root_item(void)
+{
+    item it = {0, 0, 0, 0, 0};
+    return it;
+}
+
+static void walk_init(walk *w, int mode, const qpose *P, real limit, real rel_tol)
+{
+    memset(w, 0, sizeof *w);
+    w->mode = mode;
+    w->rel = 1 + rel_tol;
+    w->ta = w->tb = UINT32_MAX;
+    walk_set_limit(w, P, limit);
+    w->gate2 = mode == MODE_DISTANCE ? 0 : (real)INFINITY;
+    w->qkey[0] = -1;
+}
+
+static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b)
+{
+    const TTD_ROW *row = TTD_DISPATCH_ROW(cfg->isa);
+    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads};
+    return C;
+}
+
+/* ---- minimum distance and collision: one walk per pose, poses over the threads ------------ */
+
+typedef struct pose_job {
+    const qctx *C;
+    const real *poses;
+    const double *defects;
+    int mode;
+    real limit, rel_tol;
+    void *out;             /* ttd_mesh_result[] or ttd_collision[] */
+    qwork *work;           /* one per worker */
+    atomic_int nomem;
+} pose_job;
+
+/* The full result of the minimum's pair (the kernel again, with results). */
+static void distance_result(const qctx *C, const qpose *P, const walk *w, ttd_mesh_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->node_tests = w->node_tests;
+    r->pair_tests = w->pair_tests;
+    if (!w->found) {
+        r->distance = (real)INFINITY;
+        r->tri_a = r->tri_b = UINT32_MAX;
+        r->flags = TTD_MESH_ABOVE_BOUND;
+        return;
+    }
+    real s[9], t[9];
+    const uint32_t *ia = P->a.tris + 3 * (size_t)w->ta, *ib = P->b.tris + 3 * (size_t)w->tb;
+    for (int k = 0; k < 3; ++k) {
+        memcpy(s + 3 * k, P->a.verts + 3 * (size_t)ia[k], 3 * sizeof(real));
+        pose_apply(P->pose, P->b.verts + 3 * (size_t)ib[k], t + 3 * k);
+    }
+    ttd_result full;
+    const ttd_params prm = {0, 0, 1};
+    const ttd_out out = {NULL, NULL, &full};
+    C->kernel(1, s, t, &prm, (real)INFINITY, &out);
+    r->distance = full.distance;
+    r->tri_a = w->ta;
+    r->tri_b = w->tb;
+    r->feature_a = full.feature_p;
+    r->feature_b = full.feature_q;
+    for (int k = 0; k < 3; ++k) {
+        r->p[k] = full.p[k];
+        r->q[k] = full.distance == 0 ? full.p[k] : full.q[k];
+    }
+    r->flags = full.distance == 0 ? TTD_MESH_INTERSECTING : 0;
+}
+
+static void pose_task(void *ctx, size_t i, int worker)
+{
+    pose_job *J = ctx;
+    qwork *W = &J->work[worker];
+    if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
+        return;
+    qpose P;
+    qpose_make(J->C, J->poses + 12 * i, J->defects[i], &P);
+    walk w;
+    walk_init(&w, J->mode, &P, J->limit, J->rel_tol);
+    const item root = root_item();
+    walk_run(J->C, &P, W, &w, &root);
+    if (W->nomem) {
+        atomic_store(&J->nomem, 1);
+        return;
+    }
+    if (J->mode == MODE_DISTANCE) {
+        distance_result(J->C, &P, &w, (ttd_mesh_result *)J->out + i);
+    } else {
+        ttd_collision *c = (ttd_collision *)J->out + i;
+        c->hit = (uint32_t)w.hit;
+        c->tri_a = w.ta;
+        c->tri_b = w.tb;
+        c->node_tests = w.node_tests;
+        c->pair_tests = w.pair_tests;
+    }
+}
+
+static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const double *defects, int mode, real limit,
+                            real rel_tol, void *out)
+{
+    const int workers = ttd_parallel_task_workers(k, C->threads);
+    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers), 0};
+    atomic_init(&J.nomem, J.work == NULL);
+    if (J.work != NULL)
+        ttd_parallel_tasks(k, C->threads, pose_task, &J);
+    qwork_free(J.work, workers);
+    return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+}
+
+static ttd_status query_distance(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                 size_t k, const real *poses, const double *defects, real upper_bound, real rel_tol,
+                                 ttd_mesh_result *out)
+{
+    const qctx C = qctx_make(cfg, a, b);
+    return run_poses(&C, k, poses, defects, MODE_DISTANCE, upper_bound, rel_tol, out);
+}
+
+static ttd_status query_collide(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                size_t k, const real *poses, const double *defects, real margin, ttd_collision *out)
+{
+    const qctx C = qctx_make(cfg, a, b);
+    return run_poses(&C, k, poses, defects, MODE_COLLIDE, margin, 0, out);
+}
+
+/* ---- contacts: a fixed list of sub-walks per pose ----------------------------------------- */
+
+/* Sub-walks a pose is cut into (when the pairs within the margin allow). */
+#define CONTACT_TASKS 256
+
+typedef struct contact_pose {
+    qpose P;
+    item *tasks;
+    size_t ntasks;
+    clist *lists;     /* one per task */
+} contact_pose;
+
+/* The size of item it's boxes: a proxy for the work below it (their children and pairs). */
+static real item_size(const qpose *P, const item *it)
+{
+    return box_size(P->a.nodes + it->an, it->as) + box_size(P->b.nodes + it->bn, it->bs);
+}
+
+/* Cuts the walk from the root into sub-walks: opens the largest item that is not a pair of
+ * triangles, in place (its children replace it, in order), until there are CONTACT_TASKS
+ * items or nothing left to open. The work sits where the meshes come close, a small part of
+ * the top-level pairs: opening the largest first splits it where it is, so that the sub-walks
+ * spread over the threads. The list depends on the meshes and the pose alone. */
+static int contact_tasks(const qctx *C, qwork *W, contact_pose *cp, walk *w)
+{
+    const size_t cap = CONTACT_TASKS + TTD_NODE_WIDTH;
+    item *list = malloc(cap * sizeof *list);
+    if (list == NULL)
+        return 0;
+    size_t n = 0;
+    list[n++] = root_item();
+    while (n < CONTACT_TASKS) {
+        size_t big = SIZE_MAX;
+        real size = -1;
+        for (size_t i = 0; i < n; ++i) {
+            const ttd_node *na = cp->P.a.nodes + list[i].an, *nb = cp->P.b.nodes + list[i].bn;
+            if (na->child[list[i].as] < 0 && nb->child[list[i].bs] < 0)
+                continue;
+            const real si = item_size(&cp->P, &list[i]);
+            if (si > size) {
+                size = si;
+                big = i;
+            }
+        }
+        if (big == SIZE_MAX)
+            break;
+        item kids[TTD_NODE_WIDTH];
+        const item it = list[big];
+        const int m = expand(C, &cp->P, W, w, &it, kids);
+        memmove(list + big + m, list + big + 1, (n - big - 1) * sizeof *list);
+        memcpy(list + big, kids, (size_t)m * sizeof *list);
+        n = n - 1 + (size_t)m;
+    }
+    cp->tasks = list;
+    cp->ntasks = n;
+    cp->lists = calloc(n ? n : 1, sizeof(clist));
+    return cp->lists != NULL;
+}
+
+typedef struct contact_job {
+    const qctx *C;
+    contact_pose *cp;      /* one per pose */
+    const real *poses;
+    const double *defects;
+    real margin;
+    size_t pose;           /* the pose whose tasks run in parallel (one pose), or SIZE_MAX */
+    qwork *work;
+    atomic_int nomem;
+} contact_job;
+
+static void contact_task_run(const contact_job *J, contact_pose *cp, size_t i, qwork *W)
+{
+    walk w;
+    walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
+    w.out = &cp->lists[i];
+    walk_run(J->C, &cp->P, W, &w, &cp->tasks[i]);
+}
+
+/* Prepares pose i's tasks (walks nothing else). */
+static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
+{
+    contact_pose *cp = &J->cp[i];
+    qpose_make(J->C, J->poses + 12 * i, J->defects[i], &cp->P);
+    walk w;
+    walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
+    w.cutting = 1;
+    return contact_tasks(J->C, W, cp, &w);
+}
+
+/* One pose per task: prepare it and run its tasks in order. */
+static void contact_pose_task(void *ctx, size_t i, int worker)
+{
+    contact_job *J = ctx;
+    qwork *W = &J->work[worker];
+    if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
+        return;
+    if (!contact_pose_prepare(J, i, W)) {
+        atomic_store(&J->nomem, 1);
+        return;
+    }
+    for (size_t t = 0; t < J->cp[i].ntasks && !W->nomem; ++t)
+        contact_task_run(J, &J->cp[i], t, W);
+    if (W->nomem)
+        atomic_store(&J->nomem, 1);
+}
+
+/* One task of the one pose per task. */
+static void contact_sub_task(void *ctx, size_t t, int worker)
+{
+    contact_job *J = ctx;
+    qwork *W = &J->work[worker];
+    if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
+        return;
+    contact_task_run(J, &J->cp[J->pose], t, W);
+    if (W->nomem)
+        atomic_store(&J->nomem, 1);
+}
+
+/* Copies every pose's lists, in pose and task order, into the caller's set. */
+static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
+{
+    size_t total = 0;
+    for (size_t i = 0; i < k; ++i)
+        for (size_t t = 0; t < J->cp[i].ntasks; ++t)
+            total += J->cp[i].lists[t].n;
+    if (total > out->capacity) {
+        contact *v = realloc(out->pairs, total * sizeof *v);
+        if (v == NULL)
+            return 0;
+        out->pairs = v;
+        out->capacity = total;
+    }
+    if (k + 1 > out->pose_capacity) {
+        size_t *ps = realloc(out->pose_start, (k + 1) * sizeof *ps);
+        if (ps == NULL)
+            return 0;
+        out->pose_start = ps;
+        out->pose_capacity = k + 1;
+    }
+    size_t at = 0;
+    for (size_t i = 0; i < k; ++i) {
+        out->pose_start[i] = at;
+        for (size_t t = 0; t < J->cp[i].ntasks; ++t) {
+            const clist *l = &J->cp[i].lists[t];
+            if (l->n)
+                memcpy(out->pairs + at, l->v, l->n * sizeof *l->v);
+            at += l->n;
+        }
+    }
+    out->pose_start[k] = at;
+    out->count = at;
+    out->poses = k;
+    return 1;
+}
+
+static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                 size_t k, const real *poses, const double *defects, real margin, ttd_contacts *out)
+{
+    const qctx C = qctx_make(cfg, a, b);
+    out->count = 0;
+    out->poses = 0;
+    /* one pose: its tasks over the threads; several: the poses over the threads */
+    const size_t ntask_guess = k == 1 ? CONTACT_TASKS : k;
+    const int workers = ttd_parallel_task_workers(ntask_guess, C.threads);
+    contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, defects, margin, SIZE_MAX,
+                     qwork_new(workers), 0};
+    atomic_init(&J.nomem, J.cp == NULL || J.work == NULL);
+    if (!atomic_load(&J.nomem)) {
+        if (k == 1) {
+            J.pose = 0;
+            if (!contact_pose_prepare(&J, 0, &J.work[0]) || J.work[0].nomem)
+                atomic_store(&J.nomem, 1);
+            else
+                ttd_parallel_tasks(J.cp[0].ntasks, C.threads, contact_sub_task, &J);
+        } else {
+            ttd_parallel_tasks(k, C.threads, contact_pose_task, &J);
+        }
+    }
+    int ok = !atomic_load(&J.nomem) && contacts_join(&J, k, out);
+    for (size_t i = 0; J.cp != NULL && i < k; ++i) {
+        for (size_t t = 0; J.cp[i].lists != NULL && t < J.cp[i].ntasks; ++t)
+            free(J.cp[i].lists[t].v);
+        free(J.cp[i].lists);
+        free(J.cp[i].tasks);
+    }
+    qwork_free(J.work, workers);
+    free(J.cp);
+    if (!ok) {
+        out->count = 0;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    return TTD_OK;
+}
