@@ -108,6 +108,7 @@ typedef struct bench_settings {
     double min_sample_s;
     unsigned long long seed;
     char fcl[512];            ///< path of the FCL program, or a reason it is absent
+    char mesh[200];           ///< the mesh workloads' mesh and margin, or "not run"
     char command[512];        ///< the command line
 } bench_settings;
 
