@@ -354,8 +354,13 @@ static inline void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
                                          const kx_fc f[3])
 {
     const vreal zero = vzero();
-    const vmask face = Y->has_face;
-    if (mnone(face))
+    /* Only a lane whose other triangle has a face and whose vertices lie strictly on both sides
+     * of its plane can have a crossing: when no lane does, every candidate below is rejected
+     * (the scalar code's `continue`), so the pass is skipped. Predictable either way: separated
+     * pairs of a mesh query skip it in 80-95% of the groups, random pairs almost never. */
+    const vmask below = mor(mor(vlt(f[0].h, zero), vlt(f[1].h, zero)), vlt(f[2].h, zero));
+    const vmask above = mor(mor(vgt(f[0].h, zero), vgt(f[1].h, zero)), vgt(f[2].h, zero));
+    if (mnone(mand(Y->has_face, mand(below, above))))
         return;
     for (int i = 0; i < 3; ++i) {
         const kx_fc f0 = f[i], f1 = f[(i + 1) % 3];
