@@ -542,7 +542,8 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
         sp[i] = Sin[i];
         tp[i] = Tin[i];
     }
-    if (many(huge))
+    const int any_huge = many(huge);
+    if (any_huge)
         for (int i = 0; i < 9; ++i) {
             sp[i] = Sin[i] * pre;
             tp[i] = Tin[i] * pre;
@@ -599,15 +600,22 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
     d = vsel(touch, zero, d);
 
     /* 4. Scale back and add the origin back. */
-    const vreal unpre = one / pre;
-    out->distance = d * g * unpre;
+    /* 1/pre is 4 or 1, exact; without a huge lane it is 1 and the clamps below change nothing
+     * (every point lies in its triangle's box, within REAL_MAX/4 up to rounding), so both are
+     * skipped: the same bits */
+    const vreal unpre = vsel(huge, vset1((real)4), one);
+    out->distance = any_huge ? d * g * unpre : d * g;
     if (mode == KX_POINTS) {
         vreal bp[3], bq[3];
         kx_rebuild_points(&best, &S, &T, bp, bq);
         const vreal big = vset1(TTD_REAL_MAX), mbig = vset1(-TTD_REAL_MAX);
         for (int c = 0; c < 3; ++c) {
-            out->p[c] = vmin(vmax((bp[c] * g + o[c]) * unpre, mbig), big);
-            out->q[c] = vmin(vmax((bq[c] * g + o[c]) * unpre, mbig), big);
+            out->p[c] = bp[c] * g + o[c];
+            out->q[c] = bq[c] * g + o[c];
+            if (any_huge) {
+                out->p[c] = vmin(vmax(out->p[c] * unpre, mbig), big);
+                out->q[c] = vmin(vmax(out->q[c] * unpre, mbig), big);
+            }
         }
     } else if (mode == KX_FULL) {
         vreal bp[3], bq[3], wp[3], wq[3];
