@@ -8,8 +8,10 @@
  * is meant to be the scalar code's to the bit. One known exception: SSE2 double has no FMA,
  * and kx_dop's Dekker split may differ from the scalar fma() in rare last bits (nearly
  * parallel face frames only). The tests allow 8 eps of the pair's size (test_isa_kernels.c,
- * which prints the bit-identical counts; measured: all 33,000 results of every row, SSE2
- * double included).
+ * which prints the bit-identical counts; measured: all 36,000 results of every row, SSE2
+ * double included). Every row computes the same operations in the same order (no FMA but
+ * kx_dop's), so the rows agree with each other to the bit, which the mesh queries rely on
+ * (src/mesh/query_impl.h).
  *
  * What differs, and why:
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
@@ -19,15 +21,21 @@
  *    skipping edge-edge, vertex-face and crossing candidates that no lane accepts (Embree's
  *    `if (none(valid)) return`), was tried first and was 1.6-1.9x slower: those branches are
  *    unpredictable on random pairs, and each misprediction also empties the out-of-order
- *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains: the
- *    crossings when no lane's other triangle has a face (degenerate input), the FMA cross
- *    product for nearly parallel face frames (double; rare), and the products by the pre-scale
- *    and the lift, skipped when no lane needs them (inputs near REAL_MAX or a subnormal
- *    extent; never on real data).
+ *    window that overlaps the independent candidates (docs/simd.md, 7.1). What remains are
+ *    branches that are predictable on the data they meet: the crossings when no lane's
+ *    vertices straddle the other face's plane (separated pairs, as a mesh query produces) or
+ *    no lane's other triangle has a face, the FMA cross product for nearly parallel face
+ *    frames (double; rare), and the products by the pre-scale and the lift, skipped when no
+ *    lane needs them (inputs near REAL_MAX or a subnormal extent; never on real data).
  *  - Shared work the scalar code recomputes: edge-edge takes dot(Q - P, d2) from the
  *    vertex-edge pass (an exact negation).
- *  - Distances only (results == NULL): no rebuild, and the selection is a running minimum of
- *    d2 (the same bits; docs/simd.md 7.1a).
+ *  - Three specialisations of the group, for what the call asks for (docs/simd.md 7.1b):
+ *    distances only (no rebuild; the selection is a running minimum of d2, the same bits,
+ *    docs/simd.md 7.1a); distances and points (the selection keeps a label and the
+ *    parameters p and q need, and p and q are rebuilt without weights); full results.
+ *  - A finite bound (core/kernels.h) is used: pairs whose cheap lower bound exceeds it are
+ *    ruled out per lane before the exact work, the others gathered into full vectors
+ *    (kx_screened).
  *  - Passes: vertex-edge, edge-edge, vertex-face, crossings, each reading the per-triangle
  *    data from memory (kx_tri) so that only one candidate's working set is live at a time. */
 
