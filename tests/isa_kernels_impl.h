@@ -292,15 +292,19 @@ static void TTD_SFX(run_bounded)(TTD_SFX(kern_fn) kern, size_t n, const real *s,
  * the same bits as without a bound, and every other pair reports a distance above the bound
  * and not above its distance (within 8 eps of the pair's size): what the kernel writes for a
  * pair it rules out is a lower bound. *ruled_out counts, in the "far" family, the pairs
- * reported with another distance than the unbounded one (pairs the early-out skipped). */
-static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, const ttd_params *prm, size_t *ruled_out)
+ * reported with another distance than the unbounded one (pairs the early-out skipped). With
+ * ref (the scalar row), every bounded call must also give ref's bits: the rows rule out the
+ * same pairs with the same lower bound. */
+static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, TTD_SFX(kern_fn) ref, const ttd_params *prm,
+                                size_t *ruled_out)
 {
     enum { N = 600, PROBES = 12 };
     real *s = malloc(9 * N * sizeof *s), *t = malloc(9 * N * sizeof *t);
     real *d0 = malloc(N * sizeof *d0), *p0 = malloc(6 * N * sizeof *p0), *d = malloc(N * sizeof *d);
     real *p = malloc(6 * N * sizeof *p), *dr = malloc(N * sizeof *dr);
-    ttd_result *r0 = malloc(N * sizeof *r0), *r = malloc(N * sizeof *r);
-    ENSURE(s && t && d0 && p0 && d && p && dr && r0 && r);
+    ttd_result *r0 = malloc(N * sizeof *r0), *r = malloc(N * sizeof *r), *rr = malloc(N * sizeof *rr);
+    real *dref = malloc(N * sizeof *dref), *pref = malloc(6 * N * sizeof *pref);
+    ENSURE(s && t && d0 && p0 && d && p && dr && r0 && r && rr && dref && pref);
     int rc = 0;
     *ruled_out = 0;
     for (int fam = 0; fam < GEN_FAMILIES && !rc; ++fam) {
@@ -321,6 +325,19 @@ static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, const t
             const real bound = bounds[b];
             for (int path = 0; path < 3 && !rc; ++path) {
                 TTD_SFX(run_bounded)(kern, N, s, t, prm, bound, d, path == 1 ? p : NULL, path == 2 ? r : NULL);
+                if (ref) {
+                    TTD_SFX(run_bounded)(ref, N, s, t, prm, bound, dref, path == 1 ? pref : NULL, path == 2 ? rr : NULL);
+                    int same = memcmp(d, dref, N * sizeof *d) == 0;
+                    if (path == 1)
+                        same &= memcmp(p, pref, 6 * N * sizeof *p) == 0;
+                    for (size_t i = 0; i < N && path == 2; ++i)
+                        same &= TTD_SFX(same_result)(&r[i], &rr[i]);
+                    if (!same) {
+                        fprintf(stderr, "  %s, %s, bound %.17g, path %d: differs from the scalar row\n", what,
+                                gen_family_name(fam), (double)bound, path);
+                        rc = 1;
+                    }
+                }
                 for (size_t i = 0; i < N && !rc; ++i) {
                     const real dist = path == 2 ? r[i].distance : d[i];
                     const double size = (double)TTD_SFX(pair_size)(s + 9 * i, t + 9 * i);
@@ -356,5 +373,8 @@ static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, const t
     free(dr);
     free(r0);
     free(r);
+    free(rr);
+    free(dref);
+    free(pref);
     return rc;
 }

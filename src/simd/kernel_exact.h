@@ -701,7 +701,9 @@ static void kx_run(size_t n, const real *s, const real *t, const ttd_out *out)
  * projection c.x rounds by at most 3 eps |c| |x| (and |x| <= sqrt(3) M, M = the largest
  * |coordinate|), so gap/|c| - 32 eps M is below the true gap of the stored axis c (any c
  * gives a valid bound). Lanes where M is outside [2^-500, 2^500] (2^-50, 2^50 in float), where
- * the products could overflow or lose bits to underflow, get -inf (never ruled out). */
+ * the products could overflow or lose bits to underflow, get -inf (never ruled out). The
+ * scalar row uses scalar/exact_impl.h's exact_lower_bound, the same operations in the same
+ * order: the rows rule out the same pairs with the same bits. */
 static inline vreal kx_screen(const vreal S[9], const vreal T[9])
 {
 #ifdef TTD_PRECISION_DOUBLE
