@@ -23,6 +23,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "mesh_bench.h"
 #include "mesh_workload.h"
 #include "pairs.h"
 
@@ -48,9 +49,10 @@ typedef struct workload_spec {
     double mesh_distance;    /* W_MESH: the copies' distance, relative to the mesh's size */
 } workload_spec;
 
-/* The mesh workloads' broad-phase margin and the bound of their bounded rows, relative to the
- * mesh's size (its bounding-box diagonal, 1). */
+/* The mesh pair workloads' broad-phase margin and the bound of their bounded rows, relative to
+ * the mesh's size (its bounding-box diagonal, 1), and the flat subdivisions of their mesh. */
 #define BENCH_MESH_MARGIN 0.01
+#define BENCH_MESH_LEVELS 2
 
 #define BENCH_BIG_DEFAULT ((size_t)24000000)
 
@@ -92,10 +94,9 @@ typedef struct bench_ctx {
     unsigned isa_mask;
     int fcl_ok;
     char fcl_path[512];
-    const char *mesh_file;   /* --mesh; NULL: the generator's icosphere */
-    int mesh_levels;         /* --mesh-levels */
-    ttd_gen_mesh mesh, mesh_coarse;
-    char mesh_desc[160];
+    const char *pair_bunny;  /* the pair workloads' mesh file (the mesh section's bunny); NULL: an icosphere */
+    ttd_gen_mesh pair_mesh, pair_mesh_coarse;
+    char pair_mesh_desc[160];
     bench_row rows[MAX_ROWS];
     size_t nrows;
     double t_start;
@@ -461,18 +462,19 @@ static double mem_available(void)
  * d->sd and d->td, d->n set. */
 static int mesh_pairs(bench_ctx *cx, const workload_spec *w, size_t poses, bench_data *d)
 {
-    if (!cx->mesh.nt) {
-        if (bench_mesh_load(cx->mesh_file, cx->mesh_levels, &cx->mesh, &cx->mesh_coarse, cx->mesh_desc,
-                            sizeof cx->mesh_desc) != 0)
+    if (!cx->pair_mesh.nt) {
+        if (bench_cand_mesh_load(cx->pair_bunny, BENCH_MESH_LEVELS, &cx->pair_mesh, &cx->pair_mesh_coarse,
+                                 cx->pair_mesh_desc, sizeof cx->pair_mesh_desc) != 0)
             return -1;
-        snprintf(cx->st.mesh, sizeof cx->st.mesh, "%s; margin %g of its size", cx->mesh_desc, BENCH_MESH_MARGIN);
-        progress(cx, "mesh workloads: %s", cx->st.mesh);
+        snprintf(cx->st.pair_mesh, sizeof cx->st.pair_mesh, "%s; margin %g of its size", cx->pair_mesh_desc,
+                 BENCH_MESH_MARGIN);
+        progress(cx, "mesh pair workloads: %s", cx->st.pair_mesh);
     }
-    bench_mesh_set set;
-    if (bench_mesh_set_make(&cx->mesh, &cx->mesh_coarse, cx->mesh_desc, w->mesh_distance, BENCH_MESH_MARGIN,
+    bench_cand_set set;
+    if (bench_cand_make(&cx->pair_mesh, &cx->pair_mesh_coarse, cx->pair_mesh_desc, w->mesh_distance, BENCH_MESH_MARGIN,
                             (int)poses, cx->st.seed, (size_t)20000000, &set) != 0 ||
         set.n == 0) {
-        bench_mesh_set_free(&set);
+        bench_cand_free(&set);
         return -1;
     }
     progress(cx, "%s: %zu candidate pairs from %d poses, %zu (%.1f%%) within the margin", w->name, set.n, set.poses,
@@ -481,7 +483,7 @@ static int mesh_pairs(bench_ctx *cx, const workload_spec *w, size_t poses, bench
     d->sd = set.s;
     d->td = set.t;
     set.s = set.t = NULL;
-    bench_mesh_set_free(&set);
+    bench_cand_free(&set);
     return 0;
 }
 
@@ -520,13 +522,22 @@ static int load_data(bench_ctx *cx, const workload_spec *w, size_t n, bench_data
     return 0;
 }
 
+/* Instruction sets from the fastest down: the portable row is plain C over lane arrays, slower
+ * than any native SIMD row, so it ranks just above scalar (its enum value is the highest). */
+static const ttd_isa isa_preference[] = {TTD_ISA_AVX512, TTD_ISA_NEON, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_PORTABLE,
+                                         TTD_ISA_SCALAR};
+
+ttd_isa bench_best_isa(unsigned mask)
+{
+    for (size_t i = 0; i < sizeof isa_preference / sizeof isa_preference[0]; ++i)
+        if ((mask & (1u << isa_preference[i])) && ttd_isa_available(isa_preference[i]))
+            return isa_preference[i];
+    return TTD_ISA_AUTO;
+}
+
 static ttd_isa best_simd(void)
 {
-    ttd_isa best = TTD_ISA_SCALAR;
-    for (int i = TTD_ISA_SCALAR + 1; i < TTD_ISA_COUNT; ++i)
-        if (ttd_isa_available((ttd_isa)i))
-            best = (ttd_isa)i;
-    return best;
+    return bench_best_isa(~0u);
 }
 
 /* Rows cli-text and cli-binary: `ttd dist` on the workload's pairs, exact method, one thread,
@@ -534,11 +545,8 @@ static ttd_isa best_simd(void)
  * reference like any other row's. */
 static void measure_cli(bench_ctx *cx, bench_data *d)
 {
-    ttd_isa isa = TTD_ISA_SCALAR;
-    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i)
-        if ((cx->isa_mask & (1u << i)) && ttd_isa_available((ttd_isa)i))
-            isa = (ttd_isa)i;
-    if (!(cx->isa_mask & (1u << isa)) || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
+    const ttd_isa isa = bench_best_isa(cx->isa_mask);
+    if (isa == TTD_ISA_AUTO || !(cx->method_mask & (1u << TTD_METHOD_EXACT)))
         return;
     const int samples = cx->st.samples < 3 ? cx->st.samples : 3;
     for (int form_p = 0; form_p < 4; ++form_p) {
@@ -574,7 +582,7 @@ static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
 {
     static const struct {
         const char *method;
-        int output;  /* bench_mesh_time: 0 distances, 1 and points, 2 full results */
+        int output;  /* bench_cand_time: 0 distances, 1 and points, 2 full results */
         int bounded; /* the margin as the kernel's bound */
     } variants[] = {{"exact", 0, 0}, {"exact+pts", 1, 0}, {"exact+full", 2, 0}, {"exact@m", 0, 1}, {"exact+pts@m", 1, 1}};
     const void *s = bytes == 8 ? (const void *)d->sd : (const void *)d->sf;
@@ -590,7 +598,7 @@ static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
                 continue;
             const double bound = variants[v].bounded ? BENCH_MESH_MARGIN : BENCH_INF;
             double ns = BENCH_NAN, ns_min = BENCH_NAN;
-            if (bench_mesh_time(d->n, s, t, bytes, isa, variants[v].output, bound, cx->st.samples, cx->st.min_sample_s,
+            if (bench_cand_time(d->n, s, t, bytes, isa, variants[v].output, bound, cx->st.samples, cx->st.min_sample_s,
                                 (double *)d->dist, &ns, &ns_min) != 0) {
                 fprintf(stderr, "ttd bench: %s %s %s %s failed; its row is left out\n", d->spec->name,
                         variants[v].method, prec_name(bytes), ttd_isa_name(isa));
@@ -718,9 +726,8 @@ static void usage(FILE *f)
           "                       cli (ttd dist itself on random pairs, text and binary: rows\n"
           "                       cli-text and cli-binary) mesh-near mesh-contact (candidate pairs of\n"
           "                       a mesh query: rows exact, exact+pts, exact+full, exact@m, exact+pts@m)\n"
-          "  --mesh FILE          the mesh workloads' mesh (OBJ, STL or PLY; scripts/fetch-bunny.sh gets\n"
-          "                       the Stanford bunny); default: an icosphere\n"
-          "  --mesh-levels N      flat subdivisions of that mesh (default 2)\n"
+          "                       (the mesh: the bunny as the mesh section finds it, subdivided twice;\n"
+          "                       an icosphere without it and with --quick)\n"
           "  --pairs N            pairs in the random workload (default 1000000; --quick 10000)\n"
           "  --big N              pairs in random-big (default 24000000, less if memory is short)\n"
           "  --methods LIST       comma-separated method names (default: all)\n"
@@ -741,6 +748,7 @@ static void usage(FILE *f)
           "timings). TTD_BENCH_LOADAVG=FILE reads the load averages from FILE instead of /proc/loadavg\n"
           "(for tests). Exit status: 0 done, 1 nothing measured or a file not written, 2 bad options.\n",
           f);
+    bench_mesh_usage(f);
 }
 
 static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
@@ -794,8 +802,10 @@ static int write_file(const char *dir, const char *name, bench_ctx *cx, const be
         bench_write_table(f, m, &cx->st, cx->rows, cx->nrows);
     else if (kind == 1)
         bench_write_json(f, m, &cx->st, cx->rows, cx->nrows);
-    else
+    else if (kind == 2)
         bench_write_csv(f, cx->rows, cx->nrows);
+    else
+        bench_mesh_write_csv(f, cx->st.mesh);
     if (fclose(f) != 0) {
         fprintf(stderr, "ttd bench: cannot write %s\n", path);
         return -1;
@@ -813,13 +823,15 @@ int ttd_bench_main(int argc, char **argv)
     size_t pairs = 0, big = BENCH_BIG_DEFAULT;
     int samples = 0;
     double min_time = -1.0;
+    bench_mesh_config mesh_cfg;
+    bench_mesh_results *mesh = NULL;
+    memset(&mesh_cfg, 0, sizeof mesh_cfg);
     if (!cx) {
         fprintf(stderr, "ttd bench: out of memory\n");
         return 1;
     }
     cx->st.seed = 1;
-    cx->mesh_levels = 2;
-    snprintf(cx->st.mesh, sizeof cx->st.mesh, "not run");
+    snprintf(cx->st.pair_mesh, sizeof cx->st.pair_mesh, "not run");
     cx->method_mask = (1u << TTD_METHOD_COUNT) - 1;
     cx->isa_mask = ~0u;
     cx->precisions[0] = 8;
@@ -840,7 +852,7 @@ int ttd_bench_main(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
+        int takes = 1, took;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             free(cx);
@@ -863,6 +875,9 @@ int ttd_bench_main(int argc, char **argv)
         } else if (strcmp(a, "--quiet") == 0) {
             cx->quiet = 1;
             takes = 0;
+        } else if ((took = bench_mesh_option(&mesh_cfg, a, v)) != 0) {
+            rc = took < 0 ? 3 : rc;
+            takes = took - 1;
         } else if (!v) {
             fprintf(stderr, "ttd bench: unknown option or missing value: %s (see ttd bench --help)\n", a);
             rc = 2;
@@ -870,12 +885,6 @@ int ttd_bench_main(int argc, char **argv)
             out_dir = v;
         } else if (strcmp(a, "--fcl") == 0) {
             fcl_arg = v;
-        } else if (strcmp(a, "--mesh") == 0) {
-            cx->mesh_file = v;
-        } else if (strcmp(a, "--mesh-levels") == 0) {
-            cx->mesh_levels = atoi(v);
-            if (cx->mesh_levels < 0 || cx->mesh_levels > 4)
-                rc = 2;
         } else if (strcmp(a, "--workloads") == 0) {
             rc = parse_list(v, "workload", &workload_mask, workload_name_of, (int)N_WORKLOADS) ? 2 : rc;
         } else if (strcmp(a, "--methods") == 0) {
@@ -959,7 +968,14 @@ int ttd_bench_main(int argc, char **argv)
                             cx->st.quick ? ((size_t)64 << 20) : ((size_t)512 << 20));
     }
 
-    for (size_t w = 0; w < N_WORKLOADS; ++w) {
+    /* The mesh pair workloads' mesh: the bunny where the mesh section looks for it first
+     * (--bunny, $TTD_BUNNY, build/data/bunny.obj); with --quick, as there, generated meshes only. */
+    if (!cx->st.quick) {
+        const char *env = getenv("TTD_BUNNY");
+        cx->pair_bunny = mesh_cfg.bunny[0] ? mesh_cfg.bunny : (env && *env) ? env : "build/data/bunny.obj";
+    }
+
+    for (size_t w = 0; w < N_WORKLOADS && (workload_mask || !mesh_cfg.named); ++w) {
         const workload_spec *ws = &workloads[w];
         size_t n = cx->st.quick ? ws->n_quick : ws->n_full;
         if (workload_mask) {
@@ -985,6 +1001,11 @@ int ttd_bench_main(int argc, char **argv)
         if (n > 0)
             run_workload(cx, ws, n);
     }
+    if (bench_mesh_wanted(&mesh_cfg, workload_mask != 0)) {
+        bench_mesh_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[0] != 0,
+                              cx->precisions[1] != 0, cx->quiet, cx->t_start};
+        cx->st.mesh = mesh = bench_mesh_run(&mesh_cfg, &env);
+    }
     derive_ratios(cx);
     machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
     if (machine.load1_end > (double)machine.cores)
@@ -1003,18 +1024,20 @@ int ttd_bench_main(int argc, char **argv)
             fprintf(stderr, "ttd bench: cannot create %s: %s\n", out_dir, strerror(errno));
             rc = 1;
         } else if (write_file(out_dir, "bench.txt", cx, &machine, 0) || write_file(out_dir, "bench.json", cx, &machine, 1) ||
-                   write_file(out_dir, "bench.csv", cx, &machine, 2)) {
+                   write_file(out_dir, "bench.csv", cx, &machine, 2) ||
+                   (cx->st.mesh && write_file(out_dir, "bench-mesh.csv", cx, &machine, 3))) {
             rc = 1;
         }
     }
-    if (cx->nrows == 0) {
+    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
                         "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
         rc = 1;
     }
-    progress(cx, "done: %zu rows", cx->nrows);
-    ttd_gen_mesh_free(&cx->mesh);
-    ttd_gen_mesh_free(&cx->mesh_coarse);
+    progress(cx, "done: %zu rows", cx->nrows + bench_mesh_row_count(cx->st.mesh));
+    bench_mesh_free(mesh);
+    ttd_gen_mesh_free(&cx->pair_mesh);
+    ttd_gen_mesh_free(&cx->pair_mesh_coarse);
     free(cx);
     return rc;
 }

@@ -19,7 +19,7 @@ typedef struct bench_row {
     char workload[32];
     char method[16];          ///< ttd_method_name(), or "fcl"
     int bytes;                ///< 8 = double, 4 = float
-    char isa[8];              ///< ttd_isa_name(); FCL rows say "scalar"
+    char isa[16];             ///< ttd_isa_name(); FCL rows say "scalar"
     int lanes;                ///< pairs per vector for this ISA and precision
     int threads;
     size_t pairs;
@@ -108,8 +108,9 @@ typedef struct bench_settings {
     double min_sample_s;
     unsigned long long seed;
     char fcl[512];            ///< path of the FCL program, or a reason it is absent
-    char mesh[200];           ///< the mesh workloads' mesh and margin, or "not run"
+    char pair_mesh[200];      ///< the mesh-near/mesh-contact pair workloads' mesh and margin, or "not run"
     char command[512];        ///< the command line
+    const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
 } bench_settings;
 
 void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st,
@@ -117,5 +118,9 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
 void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
                       const bench_row *rows, size_t n);
 void bench_write_csv(FILE *f, const bench_row *rows, size_t n);
+
+/// The best instruction set available here among those in mask (bit i: ttd_isa i), the portable
+/// row ranked just above scalar; TTD_ISA_AUTO if none is.
+ttd_isa bench_best_isa(unsigned mask);
 
 #endif /* TTD_BENCH_INTERNAL_H */

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The benchmark's mesh workloads (see mesh_workload.h): the mesh, the poses at a chosen distance,
+/* The benchmark's mesh pair workloads (see mesh_workload.h): the mesh, the poses at a chosen distance,
  * the candidate pairs of each pose (gen/mesh_pairs.h), and the timing of the exact kernel on
  * them. The kernel is called through the engine's row table (engine/dispatch.h), block by block
  * as the engine calls it, because the public API asks for neither points alone nor a bound.
@@ -23,8 +23,8 @@
 #include "meshfile.h"
 #include "ttd/ttd.h"
 
-int bench_mesh_load(const char *path, int levels, ttd_gen_mesh *fine, ttd_gen_mesh *coarse, char *desc,
-                    size_t descsize)
+int bench_cand_mesh_load(const char *path, int levels, ttd_gen_mesh *fine, ttd_gen_mesh *coarse, char *desc,
+                         size_t descsize)
 {
     memset(fine, 0, sizeof *fine);
     memset(coarse, 0, sizeof *coarse);
@@ -140,8 +140,8 @@ static int place(const ttd_gen_mesh *m, double distance, uint64_t seed, uint64_t
     return -1;
 }
 
-int bench_mesh_set_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const char *desc, double distance,
-                        double margin, int poses, uint64_t seed, size_t max_pairs, bench_mesh_set *out)
+int bench_cand_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const char *desc, double distance,
+                    double margin, int poses, uint64_t seed, size_t max_pairs, bench_cand_set *out)
 {
     memset(out, 0, sizeof *out);
     snprintf(out->mesh, sizeof out->mesh, "%s", desc ? desc : "mesh");
@@ -156,7 +156,7 @@ int bench_mesh_set_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const
         if (place(coarse, distance, seed, (uint64_t)i, pose) != 0 || ttd_gen_mesh_transform(m, pose, &b) != 0 ||
             ttd_gen_mesh_pairs(m, &b, margin, max_pairs - out->n, &pairs, &n) != 0) {
             ttd_gen_mesh_free(&b);
-            bench_mesh_set_free(out);
+            bench_cand_free(out);
             return -1;
         }
         double *s = realloc(out->s, 9 * (out->n + n) * sizeof *s + 1);
@@ -168,7 +168,7 @@ int bench_mesh_set_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const
         if (!s || !t) {
             free(pairs);
             ttd_gen_mesh_free(&b);
-            bench_mesh_set_free(out);
+            bench_cand_free(out);
             return -1;
         }
         ttd_gen_mesh_pair_coords(m, &b, pairs, n, out->s + 9 * out->n, out->t + 9 * out->n);
@@ -180,7 +180,7 @@ int bench_mesh_set_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const
     ttd_options o = ttd_default_options();
     if (!d || (out->n && ttd_batch_d(&o, out->n, out->s, out->t, d, NULL) != TTD_OK)) {
         free(d);
-        bench_mesh_set_free(out);
+        bench_cand_free(out);
         return -1;
     }
     for (size_t k = 0; k < out->n; ++k)
@@ -189,7 +189,7 @@ int bench_mesh_set_make(const ttd_gen_mesh *m, const ttd_gen_mesh *coarse, const
     return 0;
 }
 
-void bench_mesh_set_free(bench_mesh_set *set)
+void bench_cand_free(bench_cand_set *set)
 {
     free(set->s);
     free(set->t);
@@ -223,7 +223,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int bench_mesh_time(size_t n, const void *s, const void *t, int bytes, ttd_isa isa, int output, double bound,
+int bench_cand_time(size_t n, const void *s, const void *t, int bytes, ttd_isa isa, int output, double bound,
                     int samples, double min_sample_s, double *dist, double *ns_median, double *ns_min)
 {
     const size_t r = bytes == 8 ? sizeof(double) : sizeof(float);

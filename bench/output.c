@@ -4,6 +4,7 @@
  * line per row, the same fields as the JSON rows). Values that do not apply are "-" in the
  * table, null in the JSON and empty in the CSV. */
 #include "bench_internal.h"
+#include "mesh_bench.h"
 
 #include <math.h>
 #include <string.h>
@@ -58,7 +59,7 @@ static void header_lines(FILE *f, const char *prefix, const bench_machine *m, co
                "is between rows of this run\n",
             prefix, st->samples, st->min_sample_s);
     fprintf(f, "%sFCL (fcl::detail::TriangleDistance<S>::triDistance): %s\n", prefix, st->fcl);
-    fprintf(f, "%smesh workloads: %s\n", prefix, st->mesh);
+    fprintf(f, "%smesh pair workloads: %s\n", prefix, st->pair_mesh);
 }
 
 void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st, const bench_row *rows, size_t n)
@@ -81,7 +82,7 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
             if (strcmp(r->method, "certified") == 0)
                 snprintf(fb, sizeof fb, "%zu", r->fallback);
         }
-        fprintf(f, "%-20s %-11s %-6s %-6s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n",
+        fprintf(f, "%-20s %-11s %-6s %-8s %3d %9zu %9s %8s %8s %6s %7s %9s %9s %8s %8s %7s %6s %5s\n",
                 r->workload, r->method, prec_name(r->bytes), r->isa, r->threads, r->pairs,
                 num(b[0], 32, r->ns_per_pair, r->ns_per_pair < 100 ? "%.2f" : "%.1f"),
                 num(b[1], 32, r->pairs_per_s * 1e-6, "%.2f"), num(b[2], 32, r->speedup_vs_scalar, "%.2f"),
@@ -122,6 +123,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
                "edge); not_conv = pairs flagged not converged; fallbk = certified pairs that failed the check and "
                "were computed by the exact method; iters = mean iterations; occ = lane occupancy "
                "(mean iterations / mean of each lane-block's maximum).\n");
+    if (st->mesh)
+        bench_mesh_write_table(f, st->mesh);
 }
 
 static void json_string(FILE *f, const char *s)
@@ -193,8 +196,8 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
             st->quick ? "true" : "false", st->samples, st->min_sample_s, st->seed, bench_disagree_tol(8),
             bench_disagree_tol(4));
     json_string(f, st->fcl);
-    fprintf(f, ", \"mesh\": ");
-    json_string(f, st->mesh);
+    fprintf(f, ", \"pair_mesh\": ");
+    json_string(f, st->pair_mesh);
     fprintf(f, "},\n  \"rows\": [\n");
     for (size_t i = 0; i < n; ++i) {
         const bench_row *r = &rows[i];
@@ -225,7 +228,12 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
         json_num(f, "occupancy", r->occupancy);
         fprintf(f, "}%s\n", i + 1 < n ? "," : "");
     }
-    fprintf(f, "  ]\n}\n");
+    fprintf(f, "  ]");
+    if (st->mesh) {
+        fprintf(f, ",\n  \"mesh\": ");
+        bench_mesh_write_json(f, st->mesh);
+    }
+    fprintf(f, "\n}\n");
 }
 
 static void csv_num(FILE *f, double v)

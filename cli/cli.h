@@ -25,6 +25,8 @@ int ttd_cli_dist(int argc, char **argv);
 /// paths in-process): argv holds "dist" and options only, no FILE; no progress line. Returns
 /// the exit status.
 int ttd_cli_dist_run(int argc, char **argv, FILE *in, FILE *out);
+/// `ttd mesh distance | contacts | collide A B [options]` (cli/mesh.c); argv[0] is "mesh".
+int ttd_cli_mesh(int argc, char **argv);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The ttd program: `ttd dist`, `ttd info`, `ttd bench` (when built), --help, --version. */
+/* The ttd program: `ttd dist`, `ttd mesh`, `ttd info`, `ttd bench` (when built), --help, --version. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -21,6 +21,12 @@ static const char ttd_usage[] =
     "commands:\n"
     "  dist [options] [FILE]   distances of the triangle pairs in FILE or standard input\n"
     "                          (ttd dist --help for the format and options)\n"
+    "  mesh distance A B       minimum distance between the meshes in files A and B (OBJ, STL,\n"
+    "                          PLY), closest points and triangles, under one or many poses of B\n"
+    "  mesh contacts A B       every triangle pair within a margin (--margin M), or per triangle\n"
+    "                          its closest partner (--per-triangle), or their number (--count)\n"
+    "  mesh collide A B        whether the meshes touch, cross or come within --margin M\n"
+    "                          (ttd mesh --help for the formats and options)\n"
     "  info                    version, instruction sets built and supported, the one chosen\n"
     "                          (ttd info --help)\n"
     "  bench [options]         the benchmark (ttd bench --help), when built in\n"
@@ -88,6 +94,8 @@ int main(int argc, char **argv)
         return ttd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "dist") == 0)
         return ttd_cli_dist(argc - 1, argv + 1);
+    if (strcmp(cmd, "mesh") == 0)
+        return ttd_cli_mesh(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {
         if (ttd_bench_main == NULL) {
             ttd_cli_error("bench: not built into this program");

@@ -109,8 +109,8 @@ static void ttd_quote(const char *p, const char *end, char *out, size_t outsize)
     out[o] = '\0';
 }
 
-ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, double out[18],
-                                  char *err, size_t errsize)
+ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float, int want, double *out,
+                                     char *err, size_t errsize)
 {
     const char *p = line, *end = line + len;
     while (p < end && ttd_is_blank(*p))
@@ -121,7 +121,7 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, do
     int count = 0;
     while (p < end && *p != '#') {
         char tok[128];
-        if (count == 18) {
+        if (count == want) {
             int extra = 0;
             while (p < end && *p != '#') {
                 ++extra;
@@ -130,7 +130,7 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, do
                 while (p < end && ttd_is_blank(*p))
                     ++p;
             }
-            snprintf(err, errsize, "expected 18 numbers, found %d or more", 18 + extra);
+            snprintf(err, errsize, "expected %d numbers, found %d or more", want, want + extra);
             return TTD_LINE_ERROR;
         }
         char *stop;
@@ -154,9 +154,15 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, do
         while (p < end && ttd_is_blank(*p))
             ++p;
     }
-    if (count != 18) {
-        snprintf(err, errsize, "expected 18 numbers, found %d", count);
+    if (count != want) {
+        snprintf(err, errsize, "expected %d numbers, found %d", want, count);
         return TTD_LINE_ERROR;
     }
     return TTD_LINE_PAIR;
+}
+
+ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, double out[18],
+                                  char *err, size_t errsize)
+{
+    return ttd_parse_numbers_line(line, len, as_float, 18, out, err, errsize);
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Input of `ttd dist`: a line reader with bounded memory, and the parser of one line. Kept
+/* Input of `ttd dist` (and the poses of `ttd mesh`): a line reader with bounded memory, and the parser of one line. Kept
  * apart from the command so that a fuzz target can drive the parser alone. */
 #ifndef TTD_CLI_PARSE_H
 #define TTD_CLI_PARSE_H
@@ -34,7 +34,7 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong);
 /// What one line holds.
 typedef enum ttd_line_kind {
     TTD_LINE_SKIP = 0,  ///< blank, or a comment (first non-blank character '#')
-    TTD_LINE_PAIR = 1,  ///< 18 finite numbers, in out
+    TTD_LINE_PAIR = 1,  ///< the numbers asked for (18 for a pair), all finite, in out
     TTD_LINE_ERROR = 2  ///< anything else; err says what
 } ttd_line_kind;
 
@@ -45,5 +45,11 @@ typedef enum ttd_line_kind {
 /// floats, exactly. On TTD_LINE_ERROR err holds a message.
 ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, double out[18],
                                   char *err, size_t errsize);
+
+/// ttd_parse_pair_line for want numbers (1..) instead of 18, into out[0..want): the same
+/// syntax, limits and messages; TTD_LINE_PAIR when the line holds exactly want numbers. Used
+/// for the poses of `ttd mesh` (12 numbers a line).
+ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float, int want, double *out,
+                                     char *err, size_t errsize);
 
 #endif /* TTD_CLI_PARSE_H */

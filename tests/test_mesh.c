@@ -15,6 +15,8 @@
  *     pair is within it;
  *   - many poses equal a loop of single poses; 1 and 2 threads and every instruction set give the
  *     same results, bit for bit;
+ *   - tiny meshes and meshes near the coordinate range (where squared bounds underflow or would
+ *     overflow) against brute force; coordinates beyond the range refused;
  *   - bad input at every entry gets its status and never a crash. */
 #include <float.h>
 #include <math.h>
@@ -466,6 +468,16 @@ static int poses_threads_isas_identical(void)
         }
         ++isas;
     }
+    /* a set far larger than a task's first chunk: the joined chunks of three threads equal the
+     * one thread's set, written in place */
+    for (int threads = 1; threads <= 3; threads += 2) {
+        o.isa = TTD_ISA_AUTO;
+        o.threads = threads;
+        ENSURE(ttd_mesh_contacts_d(&o, a, b, 2, poses, 2.0, threads == 1 ? &sref : &sgot) == TTD_OK);
+    }
+    ENSURE(sref.count == (size_t)2 * ico.nt * torus.nt && sgot.count == sref.count);
+    ENSURE(memcmp(sgot.pairs, sref.pairs, sgot.count * sizeof *sgot.pairs) == 0);
+    ENSURE(memcmp(sgot.pose_start, sref.pose_start, 3 * sizeof(size_t)) == 0);
     printf("  %d instruction sets x 1..3 threads: identical\n", isas);
     ttd_contacts_free_d(&sref);
     ttd_contacts_free_d(&sgot);
@@ -565,11 +577,144 @@ static int bad_input(void)
     }
     posef[5] = NAN;
     ENSURE(ttd_mesh_distance_f(NULL, f, f, 1, posef, INFINITY, 0, &rf) == TTD_ERR_BAD_POSE);
+    /* ttd_mesh_check_poses: the first refused pose, or k when no pose is at fault */
+    size_t which = 0;
+    ENSURE(ttd_mesh_check_poses_f(f, f, 1, posef, &which) == TTD_ERR_BAD_POSE && which == 0);
+    ENSURE(ttd_mesh_check_poses_d(f, a, 1, pose, &which) == TTD_ERR_PRECISION_MISMATCH && which == 1);
+    ENSURE(ttd_mesh_check_poses_d(a, a, 0, pose, &which) == TTD_ERR_EMPTY && which == 0);
+    ENSURE(ttd_mesh_check_poses_d(a, NULL, 1, pose, &which) == TTD_ERR_NULL_POINTER && which == 1);
+    ENSURE(ttd_mesh_check_poses_d(a, a, 1, pose, NULL) == TTD_ERR_NULL_POINTER);
     ttd_contacts_free_d(&set);
     ttd_contacts_free_d(NULL);
     ttd_mesh_destroy(a);
     ttd_mesh_destroy(f);
     ttd_gen_mesh_free(&m);
+    return 0;
+}
+
+/* A scaled copy of m. */
+static ttd_gen_mesh scaled(const ttd_gen_mesh *m, double s)
+{
+    ttd_gen_mesh c;
+    if (ttd_gen_mesh_copy(m, &c))
+        abort();
+    scale_mesh(&c, s, NULL);
+    return c;
+}
+
+/* Meshes and distances at the ends of the range (tiny, and just inside the coordinate range),
+ * where a squared bound could underflow or overflow: the minimum equals brute force, and the
+ * collision test agrees with it, in both precisions. */
+static int extreme_scales_match_brute_force(void)
+{
+    ttd_gen_mesh ico, torus;
+    ENSURE(ttd_gen_icosphere(2, &ico) == 0 && ttd_gen_torus(1.0, 0.35, 14, 9, &torus) == 0);
+    /* b reaches 1.35 s from its origin and the pose moves it by about 3 s: 4.4 s in all */
+    const double sd[] = {1e-300, 1e-150, 1e100, 1e152}, sf[] = {1e-30, 1e-15, 1e15, 2e17};
+    for (int i = 0; i < 8; ++i) {
+        const int dbl = i < 4;
+        const double s = dbl ? sd[i] : sf[i - 4];
+        ttd_gen_mesh a = scaled(&ico, s), b = scaled(&torus, s);
+        double pose[12];
+        ttd_gen_pose(21, (uint64_t)i, 0, pose);
+        pose[3] = 3 * s;
+        pose[7] = 0.3 * s;
+        ttd_mesh *ma, *mb;
+        ttd_collision col[2];
+        if (dbl) {
+            ENSURE(ttd_mesh_create_d(NULL, a.verts, a.nv, a.tris, a.nt, &ma) == TTD_OK);
+            ENSURE(ttd_mesh_create_d(NULL, b.verts, b.nv, b.tris, b.nt, &mb) == TTD_OK);
+            ttd_result_d *all = brute_d(&a, &b, pose);
+            double best = INFINITY;
+            for (size_t j = 0; j < a.nt * b.nt; ++j)
+                best = fmin(best, all[j].distance);
+            ttd_mesh_result_d r;
+            ENSURE(ttd_mesh_distance_d(NULL, ma, mb, 1, pose, INFINITY, 0, &r) == TTD_OK);
+            ENSURE_MSG(r.distance == best, "scale %g: %.17g, brute force %.17g", s, r.distance, best);
+            ENSURE(best > 0.5 * s && best < 3 * s);
+            ENSURE(ttd_mesh_collide_d(NULL, ma, mb, 1, pose, nextafter(best, INFINITY), &col[0]) == TTD_OK);
+            ENSURE(ttd_mesh_collide_d(NULL, ma, mb, 1, pose, nextafter(best, 0), &col[1]) == TTD_OK);
+            free(all);
+        } else {
+            mesh_f fa = to_float(&a), fb = to_float(&b);
+            float posef[12];
+            for (int k = 0; k < 12; ++k)
+                posef[k] = (float)pose[k];
+            ENSURE(ttd_mesh_create_f(NULL, fa.verts, fa.nv, fa.tris, fa.nt, &ma) == TTD_OK);
+            ENSURE(ttd_mesh_create_f(NULL, fb.verts, fb.nv, fb.tris, fb.nt, &mb) == TTD_OK);
+            ttd_result_f *all = brute_f(&fa, &fb, posef);
+            float best = INFINITY;
+            for (size_t j = 0; j < fa.nt * fb.nt; ++j)
+                best = fminf(best, all[j].distance);
+            ttd_mesh_result_f r;
+            ENSURE(ttd_mesh_distance_f(NULL, ma, mb, 1, posef, INFINITY, 0, &r) == TTD_OK);
+            ENSURE_MSG(r.distance == best, "float scale %g: %.9g, brute force %.9g", s, (double)r.distance, (double)best);
+            ENSURE((double)best > 0.5 * s && (double)best < 3 * s);
+            ENSURE(ttd_mesh_collide_f(NULL, ma, mb, 1, posef, nextafterf(best, INFINITY), &col[0]) == TTD_OK);
+            ENSURE(ttd_mesh_collide_f(NULL, ma, mb, 1, posef, nextafterf(best, 0), &col[1]) == TTD_OK);
+            free(all);
+            free(fa.verts);
+            free(fb.verts);
+        }
+        ENSURE_MSG(col[0].hit == 1 && col[1].hit == 0, "scale %g: collisions %d %d", s, col[0].hit, col[1].hit);
+        ttd_mesh_destroy(ma);
+        ttd_mesh_destroy(mb);
+        ttd_gen_mesh_free(&a);
+        ttd_gen_mesh_free(&b);
+    }
+    ttd_gen_mesh_free(&ico);
+    ttd_gen_mesh_free(&torus);
+    return 0;
+}
+
+/* Beyond the coordinate range: a vertex at build, or b moved there by a pose, is refused. */
+static int coordinate_range_refused(void)
+{
+    ttd_gen_mesh tri;
+    ENSURE(ttd_gen_mesh_triangle(&tri) == 0);
+    const double lim[2] = {0x1p60, 0x1p508};
+    for (int dbl = 0; dbl < 2; ++dbl) {
+        const double L = lim[dbl];
+        /* a vertex at the limit builds; just beyond, the build is refused */
+        for (int beyond = 0; beyond < 2; ++beyond) {
+            ttd_gen_mesh m;
+            ENSURE(ttd_gen_mesh_copy(&tri, &m) == 0);
+            m.verts[4] = beyond ? (dbl ? nextafter(L, INFINITY) : (double)nextafterf((float)L, INFINITY)) : -L;
+            ttd_mesh *x = NULL;
+            mesh_f f = to_float(&m);
+            const ttd_status st = dbl ? ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &x)
+                                      : ttd_mesh_create_f(NULL, f.verts, f.nv, f.tris, f.nt, &x);
+            ENSURE_MSG(st == (beyond ? TTD_ERR_COORDINATE_RANGE : TTD_OK), "precision %d, beyond %d: %d", dbl, beyond, st);
+            ENSURE((x == NULL) == beyond);
+            ttd_mesh_destroy(x);
+            free(f.verts);
+            ttd_gen_mesh_free(&m);
+        }
+        /* a pose that moves b beyond the range: refused, the other poses of the call too */
+        ttd_mesh *x;
+        mesh_f f = to_float(&tri);
+        ENSURE((dbl ? ttd_mesh_create_d(NULL, tri.verts, tri.nv, tri.tris, tri.nt, &x)
+                    : ttd_mesh_create_f(NULL, f.verts, f.nv, f.tris, f.nt, &x)) == TTD_OK);
+        double pose[24] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        float posef[24];
+        ttd_collision col[2];
+        for (int far = 0; far < 2; ++far) {
+            pose[12 + 11] = far ? 2 * L : L / 4;
+            for (int k = 0; k < 24; ++k)
+                posef[k] = (float)pose[k];
+            const ttd_status want = far ? TTD_ERR_COORDINATE_RANGE : TTD_OK;
+            const ttd_status st = dbl ? ttd_mesh_collide_d(NULL, x, x, 2, pose, 0, col)
+                                      : ttd_mesh_collide_f(NULL, x, x, 2, posef, 0, col);
+            ENSURE_MSG(st == want, "precision %d, far %d: %d", dbl, far, st);
+            /* the check alone names the pose */
+            size_t bad = 99;
+            ENSURE((dbl ? ttd_mesh_check_poses_d(x, x, 2, pose, &bad) : ttd_mesh_check_poses_f(x, x, 2, posef, &bad)) == want);
+            ENSURE(bad == (far ? 1u : 2u));
+        }
+        ttd_mesh_destroy(x);
+        free(f.verts);
+    }
+    ttd_gen_mesh_free(&tri);
     return 0;
 }
 
@@ -582,6 +727,8 @@ int main(int argc, char **argv)
     RUN_TEST(contacts_and_collision_match_brute_force);
     RUN_TEST(poses_threads_isas_identical);
     RUN_TEST(bad_input);
+    RUN_TEST(extreme_scales_match_brute_force);
+    RUN_TEST(coordinate_range_refused);
     for (int i = 0; i < ncases; ++i) {
         ttd_gen_mesh_free(&cases[i].a);
         ttd_gen_mesh_free(&cases[i].b);

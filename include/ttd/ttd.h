@@ -52,7 +52,10 @@ typedef enum ttd_status {
     TTD_ERR_NONFINITE_MESH = 23,  ///< mesh build: a vertex coordinate is NaN or infinite; nothing built
     /// mesh queries: a pose is not a finite rotation and translation (see the mesh queries below)
     TTD_ERR_BAD_POSE = 24,
-    TTD_ERR_PRECISION_MISMATCH = 25 ///< mesh queries: a mesh was built in the other precision
+    TTD_ERR_PRECISION_MISMATCH = 25, ///< mesh queries: a mesh was built in the other precision
+    /// mesh build or query: a vertex coordinate, or a vertex of b moved by a pose, beyond the
+    /// meshes' range (magnitude 2^60 in float, 2^508 in double: see the mesh queries below)
+    TTD_ERR_COORDINATE_RANGE = 26
 } ttd_status;
 
 /// How the distance is computed.
@@ -202,6 +205,11 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
  * rotation: finite, with every entry of R^T R - I within 1e-6 and det R > 0; otherwise the call
  * returns TTD_ERR_BAD_POSE before computing anything. Results are in a's frame.
  *
+ * Coordinates must stay within 2^60 (about 1.2e18) in magnitude in float and 2^508 (about
+ * 8e152) in double: a's vertices, b's, and b's moved by every pose (checked on the sphere
+ * around b's bounding-box centre that holds its vertices); beyond that the tree's squared bounds
+ * could overflow, so the build or the query returns TTD_ERR_COORDINATE_RANGE instead. The pair functions above have no such limit.
+ *
  * Every query is exact to the pair kernel's accuracy: it returns what the exact method over all
  * triangle pairs would (the tree only skips pairs it proves cannot matter, with a margin for the
  * rounding of its own bounds). Results do not depend on the thread count or the instruction
@@ -217,7 +225,8 @@ typedef struct ttd_mesh ttd_mesh;
 /// Builds a mesh from nv vertices (3 coordinates each) and nt triangles (3 vertex indices each,
 /// 0-based). The arrays are copied. Degenerate triangles, repeated vertices and non-manifold
 /// meshes are fine. nv or nt of 0: TTD_ERR_EMPTY; an index >= nv: TTD_ERR_INDEX_OUT_OF_RANGE; a
-/// NaN/inf coordinate: TTD_ERR_NONFINITE_MESH; *out is NULL on any error. opt's threads apply.
+/// NaN/inf coordinate: TTD_ERR_NONFINITE_MESH; one beyond the range above:
+/// TTD_ERR_COORDINATE_RANGE; *out is NULL on any error. opt's threads apply.
 TTD_API ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv,
                                      const uint32_t *triangles, size_t nt, ttd_mesh **out);
 /// ttd_mesh_create_d with float vertices; the mesh is then queried in float.
@@ -231,6 +240,17 @@ TTD_API size_t ttd_mesh_triangle_count(const ttd_mesh *mesh);
 TTD_API size_t ttd_mesh_vertex_count(const ttd_mesh *mesh);
 /// Nodes of its hierarchy (0 for NULL).
 TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
+
+/// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
+/// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
+/// *bad the index of the first pose refused. *bad is k when no pose is at fault (TTD_OK, or
+/// TTD_ERR_NULL_POINTER, TTD_ERR_EMPTY for k = 0, TTD_ERR_PRECISION_MISMATCH for a mesh of the
+/// other precision). For telling a caller which of many poses a query refused.
+TTD_API ttd_status ttd_mesh_check_poses_d(const ttd_mesh *a, const ttd_mesh *b, size_t k, const double *poses,
+                                          size_t *bad);
+/// ttd_mesh_check_poses_d for float poses (meshes from ttd_mesh_create_f).
+TTD_API ttd_status ttd_mesh_check_poses_f(const ttd_mesh *a, const ttd_mesh *b, size_t k, const float *poses,
+                                          size_t *bad);
 
 /// Flags of a mesh distance result.
 enum {

@@ -42,6 +42,12 @@ static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *ver
         if (!isfinite(x))
             return TTD_ERR_NONFINITE_MESH;
     }
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (fabs(x) > range)
+            return TTD_ERR_COORDINATE_RANGE;
+    }
     return ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out);
 }
 
@@ -94,16 +100,81 @@ static double pose_defect(const void *poses, size_t i, int bytes)
     for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
             const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            defect = fmax(defect, fabs(g - (a == b ? 1.0 : 0.0)));
+            const double dev = fabs(g - (a == b ? 1.0 : 0.0));
+            defect = dev > defect ? dev : defect;
         }
     const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
                        r[2] * (r[3] * r[7] - r[4] * r[6]);
     return det > 0 ? defect : -1;
 }
 
-/* The checks of every query. On TTD_OK, *defects holds k pose defects (the caller frees it). */
+/* A bound on |R x + t| over b's vertices x for pose i of defect `defect`: they lie within
+ * b's radius of its origin o, and |R (x - o)| <= sqrt(1 + 3 defect) |x - o| <= (1 + 2 defect)
+ * |x - o|, so within that of R o + t (computed in double, rounded up by a few ulps). */
+static double pose_reach(const ttd_mesh *b, const void *poses, size_t i, int bytes, double defect)
+{
+    double p[12], c2 = 0;
+    for (int j = 0; j < 12; ++j)
+        p[j] = bytes == 8 ? ((const double *)poses)[12 * i + (size_t)j] : (double)((const float *)poses)[12 * i + (size_t)j];
+    for (int r = 0; r < 3; ++r) {
+        const double c = p[4 * r] * b->origin[0] + p[4 * r + 1] * b->origin[1] + p[4 * r + 2] * b->origin[2] + p[4 * r + 3];
+        c2 += c * c;
+    }
+    return (sqrt(c2) + (1 + 2 * defect) * b->radius) * (1 + 8 * DBL_EPSILON);
+}
+
+/* Every pose's check: a rotation within the tolerance, and b moved within the range. Fills
+ * defects[i] (when defects is not NULL); on a refused pose, *bad is its index. */
+static ttd_status check_poses(const ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects, size_t *bad)
+{
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < k; ++i) {
+        const double defect = pose_defect(poses, i, bytes);
+        const ttd_status st = !(defect >= 0 && defect <= TTD_POSE_TOLERANCE)        ? TTD_ERR_BAD_POSE
+                              : pose_reach(b, poses, i, bytes, defect) > range ? TTD_ERR_COORDINATE_RANGE
+                                                                                   : TTD_OK;
+        if (st != TTD_OK) {
+            *bad = i;
+            return st;
+        }
+        if (defects != NULL)
+            defects[i] = defect;
+    }
+    return TTD_OK;
+}
+
+static ttd_status check_poses_entry(const ttd_mesh *a, const ttd_mesh *b, size_t k, const void *poses, int bytes,
+                                    size_t *bad)
+{
+    if (bad != NULL)
+        *bad = k;
+    if (a == NULL || b == NULL || poses == NULL || bad == NULL)
+        return TTD_ERR_NULL_POINTER;
+    if (k == 0)
+        return TTD_ERR_EMPTY;
+    if (a->bytes != bytes || b->bytes != bytes)
+        return TTD_ERR_PRECISION_MISMATCH;
+    return check_poses(b, k, poses, bytes, NULL, bad);
+}
+
+ttd_status ttd_mesh_check_poses_d(const ttd_mesh *a, const ttd_mesh *b, size_t k, const double *poses, size_t *bad)
+{
+    return check_poses_entry(a, b, k, poses, 8, bad);
+}
+
+ttd_status ttd_mesh_check_poses_f(const ttd_mesh *a, const ttd_mesh *b, size_t k, const float *poses, size_t *bad)
+{
+    return check_poses_entry(a, b, k, poses, 4, bad);
+}
+
+/* Poses whose defects fit on the stack (most calls: one pose). */
+#define TTD_DEFECTS_INLINE 32
+
+/* The checks of every query. On TTD_OK, *defects holds k pose defects: inline (TTD_DEFECTS_INLINE
+ * of them) or allocated (the caller frees it when it is not inline). */
 static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
-                                const void *poses, int bytes, int out_ok, ttd_engine_config *cfg, double **defects)
+                                const void *poses, int bytes, int out_ok, ttd_engine_config *cfg, double **defects,
+                                double *inline_defects)
 {
     *defects = NULL;
     ttd_status st = ttd_prepare(opt, a && b && poses && out_ok, k, ttd_too_large(k, 12, (size_t)bytes), cfg);
@@ -113,15 +184,15 @@ static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const
         return TTD_ERR_BAD_OPTIONS;
     if (a->bytes != bytes || b->bytes != bytes)
         return TTD_ERR_PRECISION_MISMATCH;
-    double *d = malloc(k * sizeof *d);
+    double *d = k <= TTD_DEFECTS_INLINE ? inline_defects : malloc(k * sizeof *d);
     if (d == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < k; ++i) {
-        d[i] = pose_defect(poses, i, bytes);
-        if (!(d[i] >= 0 && d[i] <= TTD_POSE_TOLERANCE)) {
+    size_t bad;
+    st = check_poses(b, k, poses, bytes, d, &bad);
+    if (st != TTD_OK) {
+        if (d != inline_defects)
             free(d);
-            return TTD_ERR_BAD_POSE;
-        }
+        return st;
     }
     *defects = d;
     return TTD_OK;
@@ -135,21 +206,28 @@ static int ttd_nonneg(double x, int inf_ok)
 
 #define TTD_QUERY_BEGIN(bytes, out_ok, params_ok)                                                  \
     ttd_engine_config cfg;                                                                     \
-    double *defects;                                                                           \
-    ttd_status st = query_prepare(opt, a, b, k, poses, bytes, out_ok, &cfg, &defects);         \
+    double *defects, inline_defects[TTD_DEFECTS_INLINE];                                      \
+    ttd_status st = query_prepare(opt, a, b, k, poses, bytes, out_ok, &cfg, &defects, inline_defects); \
     if (st != TTD_OK)                                                                          \
         return st;                                                                             \
     if (!(params_ok)) {                                                                        \
-        free(defects);                                                                         \
+        TTD_QUERY_END();                                                                       \
         return TTD_ERR_BAD_OPTIONS;                                                            \
     }
+
+/* Frees what TTD_QUERY_BEGIN allocated. */
+#define TTD_QUERY_END()                                                                            \
+    do {                                                                                       \
+        if (defects != inline_defects)                                                         \
+            free(defects);                                                                     \
+    } while (0)
 
 ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                const double *poses, double upper_bound, double rel_tol, ttd_mesh_result_d *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(upper_bound, 1) && ttd_nonneg(rel_tol, 0))
     st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -158,7 +236,7 @@ ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const 
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)upper_bound, 1) && ttd_nonneg((double)rel_tol, 0))
     st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -167,7 +245,7 @@ ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const t
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
     st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -176,7 +254,7 @@ ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const t
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
     st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -187,7 +265,7 @@ ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const 
         out->count = 0;
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
     st = ttd_mesh_query_contacts_d(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -198,7 +276,7 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
         out->count = 0;
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
     st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, defects, margin, out);
-    free(defects);
+    TTD_QUERY_END();
     return st;
 }
 
@@ -239,7 +317,7 @@ void ttd_contacts_free_f(ttd_contacts_f *contacts)
     TTD_QUERY_BEGIN((int)sizeof(real), for_a != NULL || for_b != NULL, ttd_nonneg((double)margin, 0)) \
     contacts_t set = {0};                                                                      \
     st = query_fn(&cfg, a, b, k, poses, defects, margin, &set);                                \
-    free(defects);                                                                             \
+    TTD_QUERY_END();                                                                           \
     if (st != TTD_OK) {                                                                        \
         free_fn(&set);                                                                         \
         return st;                                                                             \

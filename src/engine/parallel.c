@@ -58,6 +58,11 @@ int ttd_parallel_workers(size_t nblocks, int threads)
 
 static void ttd_parallel_run(size_t nblocks, int workers, ttd_block_fn fn, void *ctx)
 {
+    if (workers <= 1) { /* no counter to share: a single pair or pose pays nothing for threads */
+        for (size_t b = 0; b < nblocks; ++b)
+            fn(ctx, b, 0);
+        return;
+    }
     ttd_pfor job = {.nblocks = nblocks, .fn = fn, .ctx = ctx};
     atomic_init(&job.next, 0);
     pthread_t tid[TTD_MAX_WORKERS];

@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "engine/parallel.h"
+#include "mesh/memory.h"
 #include "mesh/mesh.h"
 
 /* An oriented box in double while building: centre (relative to the mesh origin), axes (row i =
@@ -35,9 +36,14 @@ typedef struct obb {
 
 typedef struct builder {
     const struct ttd_mesh *mesh;
-    const double *v;      /* 3 nv coordinates relative to the origin, in double */
+    int threads;          /* for the top of the tree (ttd_engine_config.threads) */
+    double *pts;          /* 9 nt: each triangle's vertices relative to the origin, in double */
     double *cen;          /* 3 nt triangle centroids, relative */
-    uint32_t *idx;        /* the triangles in hierarchy order */
+    float *mom;           /* 10 nt triangle area moments (tri_moments), in float: they only
+                           * choose the axes, and the extents are exact about any axes */
+    uint32_t *idx;        /* the triangles in hierarchy order, as positions in the arrays above */
+    uint32_t *order;      /* the triangle at each position (Morton order of the centroids) */
+    const double *vrel;   /* while preparing: 3 nv vertices relative to the origin */
 } builder;
 
 /* A subtree to build: triangles idx[lo, hi) into node `node` (pre-order index). */
@@ -46,10 +52,22 @@ typedef struct subtree {
     int32_t node;
 } subtree;
 
+/* A triangle's vertices. Each level of the build reads every triangle: one contiguous record
+ * per triangle instead of three indirect vertex loads keeps that from waiting on memory. */
 static void tri_vertices(const builder *B, uint32_t t, double p[3][3])
 {
-    for (int k = 0; k < 3; ++k)
-        memcpy(p[k], B->v + 3 * (size_t)B->mesh->tris[3 * (size_t)t + k], 3 * sizeof(double));
+    memcpy(p, B->pts + 9 * (size_t)t, 9 * sizeof(double));
+}
+
+/* min and max for numbers that are not NaN (libm's fmin/fmax are calls) */
+static double dmin(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static double dmax(double a, double b)
+{
+    return a > b ? a : b;
 }
 
 static double dot3(const double a[3], const double b[3])
@@ -67,13 +85,14 @@ static void cross3(const double a[3], const double b[3], double out[3])
 /* a / |a| into out; 0 when a is 0 (or so small that its square vanishes). */
 static int normalize3(const double a[3], double out[3])
 {
-    const double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    const double m = dmax(fabs(a[0]), dmax(fabs(a[1]), fabs(a[2])));
     if (!(m > 0))
         return 0;
-    const double b[3] = {a[0] / m, a[1] / m, a[2] / m};
-    const double n = sqrt(dot3(b, b));
+    const double im = 1 / m; /* reciprocals: a near-unit vector is all a box axis needs */
+    const double b[3] = {a[0] * im, a[1] * im, a[2] * im};
+    const double in = 1 / sqrt(dot3(b, b));
     for (int i = 0; i < 3; ++i)
-        out[i] = b[i] / n;
+        out[i] = b[i] * in;
     return 1;
 }
 
@@ -129,7 +148,9 @@ static void eigen_sym3(double a[3][3], double u[9])
     for (int sweep = 0; sweep < 50; ++sweep) {
         const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
         const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        if (!(off > 1e-15 * diag))
+        /* axes to 1e-9: a box is fitted to its vertices about whatever axes it gets, so
+         * further sweeps would only tilt it by less than that */
+        if (!(off > 1e-9 * diag))
             break;
         for (int p = 0; p < 2; ++p)
             for (int q = p + 1; q < 3; ++q) {
@@ -175,44 +196,60 @@ static void eigen_sym3(double a[3][3], double u[9])
     normalize3(u + 3, u + 3);
 }
 
+/* Upper-triangle entries (xx, xy, xz, yy, yz, zz) of a symmetric 3x3 matrix. */
+static const int sym_r[6] = {0, 0, 0, 1, 1, 2}, sym_c[6] = {0, 1, 2, 1, 2, 2};
+
+/* A triangle's area moments, once per build (each level sums them): its area a, a g (g its
+ * centroid) and the second moment of a uniform triangle, a (9 g g^T + sum p p^T) / 12, as 6
+ * entries. */
+static void tri_moments(double p[3][3], const double g[3], float mom[10])
+{
+    double e1[3], e2[3], x[3];
+    for (int c = 0; c < 3; ++c) {
+        e1[c] = p[1][c] - p[0][c];
+        e2[c] = p[2][c] - p[0][c];
+    }
+    cross3(e1, e2, x);
+    const double a = 0.5 * sqrt(dot3(x, x));
+    mom[0] = (float)a;
+    for (int c = 0; c < 3; ++c)
+        mom[1 + c] = (float)(a * g[c]);
+    for (int k = 0; k < 6; ++k) {
+        const int r = sym_r[k], c = sym_c[k];
+        mom[4 + k] = (float)(a / 12 * (9 * g[r] * g[c] + p[0][r] * p[0][c] + p[1][r] * p[1][c] + p[2][r] * p[2][c]));
+    }
+}
+
 /* Principal axes of the surface of triangles idx[lo, hi): eigenvectors of the covariance of
  * their area; of their vertices when their area is 0. */
 static void surface_axes(const builder *B, size_t lo, size_t hi, double u[9])
 {
-    double area = 0, m1[3] = {0, 0, 0}, m2[3][3] = {{0}};
-    double n = 0, v1[3] = {0, 0, 0}, v2[3][3] = {{0}};
+    double m[10] = {0};
     for (size_t i = lo; i < hi; ++i) {
-        double p[3][3], e1[3], e2[3], x[3];
-        tri_vertices(B, B->idx[i], p);
-        for (int c = 0; c < 3; ++c) {
-            e1[c] = p[1][c] - p[0][c];
-            e2[c] = p[2][c] - p[0][c];
-        }
-        cross3(e1, e2, x);
-        const double a = 0.5 * sqrt(dot3(x, x));
-        const double *g = B->cen + 3 * (size_t)B->idx[i];
-        area += a;
-        for (int r = 0; r < 3; ++r) {
-            m1[r] += a * g[r];
-            for (int c = 0; c < 3; ++c)
-                /* the second moment of a uniform triangle: (9 g g^T + sum p p^T) / 12 per unit area */
-                m2[r][c] += a / 12 * (9 * g[r] * g[c] + p[0][r] * p[0][c] + p[1][r] * p[1][c] + p[2][r] * p[2][c]);
-        }
-        for (int k = 0; k < 3; ++k) {
-            n += 1;
-            for (int r = 0; r < 3; ++r) {
-                v1[r] += p[k][r];
+        const float *t = B->mom + 10 * (size_t)B->idx[i];
+        for (int k = 0; k < 10; ++k)
+            m[k] += (double)t[k];
+    }
+    if (!(m[0] > 0)) { /* no area at all: the vertices' covariance */
+        for (int k = 0; k < 10; ++k)
+            m[k] = 0;
+        for (size_t i = lo; i < hi; ++i) {
+            double p[3][3];
+            tri_vertices(B, B->idx[i], p);
+            for (int v = 0; v < 3; ++v) {
+                m[0] += 1;
                 for (int c = 0; c < 3; ++c)
-                    v2[r][c] += p[k][r] * p[k][c];
+                    m[1 + c] += p[v][c];
+                for (int k = 0; k < 6; ++k)
+                    m[4 + k] += p[v][sym_r[k]] * p[v][sym_c[k]];
             }
         }
     }
     double cov[3][3];
-    const double w = area > 0 ? area : n;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            cov[r][c] = area > 0 ? m2[r][c] / w - (m1[r] / w) * (m1[c] / w)
-                                 : v2[r][c] / w - (v1[r] / w) * (v1[c] / w);
+    for (int k = 0; k < 6; ++k) {
+        const int r = sym_r[k], c = sym_c[k];
+        cov[r][c] = cov[c][r] = m[4 + k] / m[0] - (m[1 + r] / m[0]) * (m[1 + c] / m[0]);
+    }
     eigen_sym3(cov, u);
 }
 
@@ -220,17 +257,25 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, double u[9])
  * the range of their projections. */
 static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
 {
-    double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+    /* the bounds in locals, not an array the compiler keeps in memory: this loop is a fifth of
+     * a build (every vertex of every triangle, on every level) */
+    const double *u = b->u;
+    double mn0 = INFINITY, mn1 = INFINITY, mn2 = INFINITY, mx0 = -INFINITY, mx1 = -INFINITY, mx2 = -INFINITY;
     for (size_t i = lo; i < hi; ++i) {
-        double p[3][3];
-        tri_vertices(B, B->idx[i], p);
-        for (int k = 0; k < 3; ++k)
-            for (int a = 0; a < 3; ++a) {
-                const double d = dot3(b->u + 3 * a, p[k]);
-                mn[a] = fmin(mn[a], d);
-                mx[a] = fmax(mx[a], d);
-            }
+        const double *p = B->pts + 9 * (size_t)B->idx[i];
+        for (int k = 0; k < 9; k += 3) {
+            const double d0 = u[0] * p[k] + u[1] * p[k + 1] + u[2] * p[k + 2];
+            const double d1 = u[3] * p[k] + u[4] * p[k + 1] + u[5] * p[k + 2];
+            const double d2 = u[6] * p[k] + u[7] * p[k + 1] + u[8] * p[k + 2];
+            mn0 = dmin(mn0, d0);
+            mx0 = dmax(mx0, d0);
+            mn1 = dmin(mn1, d1);
+            mx1 = dmax(mx1, d1);
+            mn2 = dmin(mn2, d2);
+            mx2 = dmax(mx2, d2);
+        }
     }
+    const double mn[3] = {mn0, mn1, mn2}, mx[3] = {mx0, mx1, mx2};
     for (int c = 0; c < 3; ++c)
         b->c[c] = 0;
     for (int a = 0; a < 3; ++a) {
@@ -282,7 +327,7 @@ static void store_box(const builder *B, int32_t n, int j, const obb *b, int32_t 
         for (int k = 0; k < 3; ++k) {
             const double r[3] = {p[k][0] - cf[0], p[k][1] - cf[1], p[k][2] - cf[2]};
             for (int a = 0; a < 3; ++a)
-                e[a] = fmax(e[a], fabs(dot3(uf + 3 * a, r)));
+                e[a] = dmax(e[a], fabs(dot3(uf + 3 * a, r)));
         }
     }
     for (int i = 0; i < 3; ++i) {
@@ -376,8 +421,8 @@ static void split_at(builder *B, size_t lo, size_t hi, size_t k)
     double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = lo; i < hi; ++i)
         for (int c = 0; c < 3; ++c) {
-            mn[c] = fmin(mn[c], B->cen[3 * (size_t)B->idx[i] + c]);
-            mx[c] = fmax(mx[c], B->cen[3 * (size_t)B->idx[i] + c]);
+            mn[c] = dmin(mn[c], B->cen[3 * (size_t)B->idx[i] + c]);
+            mx[c] = dmax(mx[c], B->cen[3 * (size_t)B->idx[i] + c]);
         }
     int axis = 0;
     for (int c = 1; c < 3; ++c)
@@ -404,6 +449,36 @@ static void split_groups(builder *B, size_t lo, const size_t *g, int ng)
     split_groups(B, lo + left, g + h, ng - h);
 }
 
+/* The boxes of groups g[0..ng) starting at idx[lo]; at the top of the tree (parallel), one
+ * group per task. */
+typedef struct group_job {
+    const builder *B;
+    size_t lo[8], hi[8];
+    obb *boxes;
+} group_job;
+
+static void fit_group(void *ctx, size_t j, int worker)
+{
+    (void)worker;
+    group_job *G = ctx;
+    fit_box(G->B, G->lo[j], G->hi[j], &G->boxes[j]);
+}
+
+static void fit_groups(const builder *B, size_t lo, const size_t *g, int ng, obb *boxes, int parallel)
+{
+    group_job G = {.B = B, .boxes = boxes};
+    for (int j = 0; j < ng; ++j) {
+        G.lo[j] = lo;
+        G.hi[j] = lo + g[j];
+        lo += g[j];
+    }
+    if (parallel)
+        ttd_parallel_tasks((size_t)ng, B->threads, fit_group, &G);
+    else
+        for (int j = 0; j < ng; ++j)
+            fit_group(&G, (size_t)j, 0);
+}
+
 /* Builds node n over idx[lo, hi). Children that are subtrees get the indices after n in
  * pre-order; when `defer` is given, they are listed there instead of being built (the top of
  * the tree, whose subtrees are then built in parallel). Returns the nodes used. */
@@ -420,12 +495,13 @@ static size_t build_node(builder *B, int32_t n, size_t lo, size_t hi, subtree *d
         ng = group_sizes(count, g);
         split_groups(B, lo, g, ng);
     }
+    obb boxes[8];
+    fit_groups(B, lo, g, ng, boxes, defer != NULL);
     size_t at = lo;
     for (int j = 0; j < ng; ++j) {
-        obb b;
-        fit_box(B, at, at + g[j], &b);
+        const obb b = boxes[j];
         if (g[j] == 1) {
-            store_box(B, n, j, &b, -1 - (int32_t)B->idx[at], at, at + 1);
+            store_box(B, n, j, &b, -1 - (int32_t)B->order[B->idx[at]], at, at + 1);
         } else {
             store_box(B, n, j, &b, next, at, at + g[j]);
             if (defer) {
@@ -437,6 +513,10 @@ static size_t build_node(builder *B, int32_t n, size_t lo, size_t hi, subtree *d
         }
         at += g[j];
     }
+    /* unused slots hold zeros (the node test reads all of them) */
+    const obb none = {{0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, {0, 0, 0}};
+    for (int j = ng; j < TTD_NODE_WIDTH; ++j)
+        store_box(B, n, j, &none, 0, lo, lo);
     if (B->mesh->bytes == 8)
         ((ttd_node_d *)B->mesh->nodes)[n].count = (int32_t)ng;
     else
@@ -455,6 +535,87 @@ static void build_subtree(void *ctx, size_t i, int worker)
 
 /* ---- the mesh --------------------------------------------------------------------------- */
 
+/* Triangles per block of the preparation pass. */
+#define PREP_BLOCK 4096
+
+/* Each position's triangle's vertices, centroid and moments, for block b of positions. */
+static void prepare_triangles(void *ctx, size_t b, int worker)
+{
+    (void)worker;
+    builder *B = ctx;
+    const uint32_t *tris = B->mesh->tris;
+    const size_t i1 = (b + 1) * PREP_BLOCK < B->mesh->nt ? (b + 1) * PREP_BLOCK : B->mesh->nt;
+    for (size_t i = b * PREP_BLOCK; i < i1; ++i) {
+        const size_t t = B->order[i];
+        double p[3][3];
+        B->idx[i] = (uint32_t)i;
+        for (int k = 0; k < 3; ++k)
+            memcpy(p[k], B->vrel + 3 * (size_t)tris[3 * t + (size_t)k], 3 * sizeof(double));
+        memcpy(B->pts + 9 * i, p, sizeof p);
+        for (int c = 0; c < 3; ++c)
+            B->cen[3 * i + c] = (p[0][c] + p[1][c] + p[2][c]) / 3;
+        tri_moments(p, B->cen + 3 * i, B->mom + 10 * i);
+    }
+}
+
+/* 10 bits of x in every third bit. */
+static uint32_t spread3(uint32_t x)
+{
+    x &= 0x3ffu;
+    x = (x | (x << 16)) & 0x030000ffu;
+    x = (x | (x << 8)) & 0x0300f00fu;
+    x = (x | (x << 4)) & 0x030c30c3u;
+    x = (x | (x << 2)) & 0x09249249u;
+    return x;
+}
+
+/* The triangles in Morton order of their centroids (1024 cells per axis of the vertices' box),
+ * ties in index order: the splits below then find a node's triangles close together in memory,
+ * which at a million triangles decides the build's speed more than its arithmetic. Radix sort
+ * of (code, index) pairs. Returns 0 on allocation failure. */
+static int morton_order(builder *B, const double lo[3], const double hi[3])
+{
+    const size_t nt = B->mesh->nt;
+    const uint32_t *tris = B->mesh->tris;
+    uint64_t *key = ttd_big_alloc(nt * sizeof *key), *tmp = ttd_big_alloc(nt * sizeof *tmp);
+    if (!key || !tmp) {
+        free(key);
+        free(tmp);
+        return 0;
+    }
+    double scale[3];
+    for (int c = 0; c < 3; ++c)
+        scale[c] = hi[c] > lo[c] ? 1023.0 / (hi[c] - lo[c]) : 0;
+    for (size_t t = 0; t < nt; ++t) {
+        uint32_t code = 0;
+        for (int c = 0; c < 3; ++c) {
+            double g = 0;
+            for (int k = 0; k < 3; ++k)
+                g += B->vrel[3 * (size_t)tris[3 * t + (size_t)k] + (size_t)c];
+            const double q = (g / 3 - lo[c]) * scale[c];
+            code |= spread3(q > 0 ? (uint32_t)(q < 1023 ? q : 1023) : 0u) << c;
+        }
+        key[t] = (uint64_t)code << 32 | (uint64_t)t;
+    }
+    for (int shift = 32; shift < 64; shift += 8) { /* LSD radix sort on the code's bytes */
+        size_t count[257] = {0};
+        for (size_t t = 0; t < nt; ++t)
+            ++count[((key[t] >> shift) & 0xffu) + 1];
+        for (int d = 0; d < 256; ++d)
+            count[d + 1] += count[d];
+        for (size_t t = 0; t < nt; ++t)
+            tmp[count[(key[t] >> shift) & 0xffu]++] = key[t];
+        uint64_t *sw = key;
+        key = tmp;
+        tmp = sw;
+    }
+    for (size_t t = 0; t < nt; ++t)
+        B->order[t] = (uint32_t)key[t];
+    free(key);
+    free(tmp);
+    return 1;
+}
+
 void ttd_mesh_free(struct ttd_mesh *mesh)
 {
     if (mesh == NULL)
@@ -470,7 +631,7 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
 {
     *out = NULL;
     struct ttd_mesh *m = calloc(1, sizeof *m);
-    builder B = {.mesh = m};
+    builder B = {.mesh = m, .threads = cfg->threads};
     double *vrel = NULL;
     subtree *defer = NULL;
     if (m == NULL)
@@ -483,25 +644,28 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     m->nnodes = 1 + (nt > 1 ? count_nodes(nt) : 0);
     const size_t node_bytes = bytes == 8 ? sizeof(ttd_node_d) : sizeof(ttd_node_f);
     const size_t nodes_size = (m->nnodes * node_bytes + 63) / 64 * 64;
-    m->verts = malloc(3 * nv * (size_t)bytes);
-    m->tris = malloc(3 * nt * sizeof(uint32_t));
-    m->nodes = aligned_alloc(64, nodes_size);
-    vrel = malloc(3 * nv * sizeof(double));
-    B.cen = malloc(3 * nt * sizeof(double));
-    B.idx = malloc(nt * sizeof(uint32_t));
-    if (!m->verts || !m->tris || !m->nodes || !vrel || !B.cen || !B.idx)
+    m->verts = ttd_big_alloc(3 * nv * (size_t)bytes);
+    m->tris = ttd_big_alloc(3 * nt * sizeof(uint32_t));
+    m->nodes = ttd_big_alloc(nodes_size);
+    vrel = ttd_big_alloc(3 * nv * sizeof(double));
+    B.cen = ttd_big_alloc(3 * nt * sizeof(double));
+    B.idx = ttd_big_alloc(nt * sizeof(uint32_t));
+    B.pts = ttd_big_alloc(9 * nt * sizeof(double));
+    B.mom = ttd_big_alloc(10 * nt * sizeof(float));
+    B.order = ttd_big_alloc(nt * sizeof(uint32_t));
+    if (!m->verts || !m->tris || !m->nodes || !vrel || !B.cen || !B.idx || !B.pts || !B.mom || !B.order)
         goto nomem;
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
-    memset(m->nodes, 0, nodes_size);
+    memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
 
     /* origin: the centre of the vertices' bounding box; radius: how far the farthest vertex is */
     double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < 3 * nv; ++i) {
         const double x = bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
         vrel[i] = x;
-        mn[i % 3] = fmin(mn[i % 3], x);
-        mx[i % 3] = fmax(mx[i % 3], x);
+        mn[i % 3] = dmin(mn[i % 3], x);
+        mx[i % 3] = dmax(mx[i % 3], x);
     }
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
@@ -512,17 +676,20 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
             vrel[3 * i + c] -= m->origin[c];
             d2 += vrel[3 * i + c] * vrel[3 * i + c];
         }
-        r2 = fmax(r2, d2);
+        r2 = dmax(r2, d2);
     }
     m->radius = sqrt(r2) * (1 + 4 * DBL_EPSILON);
-    B.v = vrel;
-    for (size_t t = 0; t < nt; ++t) {
-        double p[3][3];
-        B.idx[t] = (uint32_t)t;
-        tri_vertices(&B, (uint32_t)t, p);
-        for (int c = 0; c < 3; ++c)
-            B.cen[3 * t + c] = (p[0][c] + p[1][c] + p[2][c]) / 3;
+    B.vrel = vrel;
+    double vlo[3], vhi[3];
+    for (int c = 0; c < 3; ++c) {
+        vlo[c] = mn[c] - m->origin[c];
+        vhi[c] = mx[c] - m->origin[c];
     }
+    if (!morton_order(&B, vlo, vhi))
+        goto nomem;
+    ttd_parallel_for((nt + PREP_BLOCK - 1) / PREP_BLOCK, cfg->threads, prepare_triangles, &B);
+    free(vrel);
+    vrel = NULL;
 
     /* node 0, slot 0: the root's box around everything, with the tree (or the triangle) below */
     obb root;
@@ -533,7 +700,8 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     else
         ((ttd_node_f *)m->nodes)[0].count = 1;
     if (nt > 1) {
-        /* the top two levels in this thread, their subtrees (up to 64) in parallel */
+        /* The top node's split in this thread and its boxes in parallel, then its subtrees
+         * (8) in parallel; with more than 8 workers, one level more first (64 subtrees). */
         defer = malloc(64 * sizeof *defer);
         subtree *level = malloc(8 * sizeof *level);
         if (!defer || !level) {
@@ -542,16 +710,23 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
         }
         size_t nlevel = 0, ndefer = 0;
         build_node(&B, 1, 0, nt, level, &nlevel);
-        for (size_t i = 0; i < nlevel; ++i)
-            build_node(&B, level[i].node, level[i].lo, level[i].hi, defer, &ndefer);
+        if (ttd_parallel_task_workers(64, cfg->threads) > 8) {
+            for (size_t i = 0; i < nlevel; ++i)
+                build_node(&B, level[i].node, level[i].lo, level[i].hi, defer, &ndefer);
+        } else {
+            memcpy(defer, level, nlevel * sizeof *level);
+            ndefer = nlevel;
+        }
         free(level);
         void *ctx[2] = {&B, defer};
         ttd_parallel_tasks(ndefer, cfg->threads, build_subtree, ctx);
     }
     free(defer);
-    free(vrel);
     free(B.cen);
     free(B.idx);
+    free(B.pts);
+    free(B.mom);
+    free(B.order);
     *out = m;
     return TTD_OK;
 nomem:
@@ -560,6 +735,9 @@ nomem:
     if (m) {
         free(B.cen);
         free(B.idx);
+        free(B.pts);
+        free(B.mom);
+        free(B.order);
     }
     ttd_mesh_free(m);
     return TTD_ERR_OUT_OF_MEMORY;

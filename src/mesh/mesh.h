@@ -14,6 +14,8 @@
 #ifndef TTD_MESH_MESH_H
 #define TTD_MESH_MESH_H
 
+#include <float.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -31,7 +33,16 @@ struct ttd_mesh {
     double radius;      /* every vertex is within radius of origin (rounded up) */
 };
 
-/// Builds the mesh from checked arguments (indices in range, coordinates finite, nv, nt > 0):
+/* The largest coordinate magnitude a mesh query works on, a's vertices and b's moved by a pose
+ * alike: 2^60 in float, 2^508 in double. Below it no square or product of a node test or of the
+ * traversal overflows (coordinate differences stay below 2^61 or 2^509, a squared distance below
+ * 3 * 2^122 or 3 * 2^1018); beyond it a lower bound could overflow and prune a pair wrongly. */
+static inline double ttd_mesh_range(int bytes)
+{
+    return bytes == 8 ? 0x1p508 : 0x1p60;
+}
+
+/// Builds the mesh from checked arguments (indices in range, coordinates finite and within ttd_mesh_range, nv, nt > 0):
 /// TTD_OK, or TTD_ERR_OUT_OF_MEMORY (*out NULL). verts holds 3 nv reals of bytes each.
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
                           const uint32_t *tris, size_t nt, struct ttd_mesh **out);

@@ -11,6 +11,7 @@
 #include "core/precision.h"
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
+#include "mesh/memory.h"
 #include "mesh/mesh.h"
 
 typedef ttd_kernels_f ttd_row;

@@ -72,16 +72,29 @@ typedef struct qctx {
 /* A contact found, before it is copied into the caller's set. */
 typedef ttd_contact contact;
 
-/* A growable list of contacts. */
+/* A growable list of contacts: chunks of doubling size, never copied while it grows (a contact
+ * query may find millions of pairs: copying on growth would touch twice the memory, and fresh
+ * memory is what such a query spends its time on), or, with one worker, the caller's set
+ * itself (`direct`), whose memory a caller that reuses its set has already touched. */
+#define CLIST_CHUNKS 40
+#define CLIST_FIRST 256
+
 typedef struct clist {
-    contact *v;
-    size_t n, cap;
+    contact *chunk[CLIST_CHUNKS]; /* chunk c holds CLIST_FIRST << c contacts */
+    int nchunks;
+    size_t n;                     /* contacts in all */
+    size_t in_last;               /* contacts in the last chunk */
+    ttd_contacts *direct;         /* when not NULL: append to this set instead */
 } clist;
 
 /* A thread's working memory, reused across the walks it runs. */
+/* Items a walk holds without allocating (most walks need fewer). */
+#define STACK_INLINE 256
+
 typedef struct qwork {
-    item *stack;
+    item *stack;                     /* inline, or on the heap once it outgrew it */
     size_t cap;
+    item inline_stack[STACK_INLINE];
     item *deferred;                  /* the minimum's first phase: items left for the second */
     size_t ndef, defcap;
     int nb;                          /* candidates waiting for the kernel */
@@ -114,42 +127,62 @@ static void walk_set_limit(walk *w, const qpose *P, real limit)
 {
     w->limit = limit;
     const real l = (limit + P->delta) / w->rel;
-    w->limit2 = l * l;
+    /* floored: a bound that underflows (tiny meshes) carries an absolute error of a few
+     * subnormals, which the relative margin delta does not cover; below the floor nothing is
+     * dropped */
+    const real floor2 = 64 * TTD_REAL_MIN;
+    w->limit2 = l * l > floor2 ? l * l : floor2;
 }
 
 /* n workers' memory, its arrays allocated as they are needed. */
-static qwork *qwork_new(int n)
+static void qwork_init(qwork *W)
 {
-    qwork *W = malloc((size_t)n * sizeof *W);
-    for (int i = 0; W != NULL && i < n; ++i) {
-        W[i].stack = W[i].deferred = NULL;
-        W[i].cap = W[i].ndef = W[i].defcap = 0;
-        W[i].nb = W[i].nomem = 0;
-    }
+    W->stack = W->inline_stack;
+    W->cap = STACK_INLINE;
+    W->deferred = NULL;
+    W->ndef = W->defcap = 0;
+    W->nb = W->nomem = 0;
+}
+
+static void qwork_release(qwork *W)
+{
+    if (W->stack != W->inline_stack)
+        free(W->stack);
+    free(W->deferred);
+}
+
+/* n workers' memory; one worker (a single pose, the common call) uses `one`, no allocation. */
+static qwork *qwork_new(int n, qwork *one)
+{
+    qwork *W = n == 1 ? one : malloc((size_t)n * sizeof *W);
+    for (int i = 0; W != NULL && i < n; ++i)
+        qwork_init(&W[i]);
     return W;
 }
 
-static void qwork_free(qwork *W, int n)
+static void qwork_free(qwork *W, int n, qwork *one)
 {
-    for (int i = 0; W != NULL && i < n; ++i) {
-        free(W[i].stack);
-        free(W[i].deferred);
-    }
-    free(W);
+    for (int i = 0; W != NULL && i < n; ++i)
+        qwork_release(&W[i]);
+    if (W != one)
+        free(W);
 }
 
 static int grow_stack(qwork *W, size_t need)
 {
     if (need <= W->cap)
         return 1;
-    size_t cap = W->cap ? 2 * W->cap : 256;
+    size_t cap = 2 * W->cap;
     while (cap < need)
         cap *= 2;
-    item *s = realloc(W->stack, cap * sizeof *s);
+    item *s = malloc(cap * sizeof *s);
     if (s == NULL) {
         W->nomem = 1;
         return 0;
     }
+    memcpy(s, W->stack, W->cap * sizeof *s);
+    if (W->stack != W->inline_stack)
+        free(W->stack);
     W->stack = s;
     W->cap = cap;
     return 1;
@@ -214,16 +247,45 @@ static void heap_down(item *h, size_t n, size_t i)
 
 static int clist_push(clist *l, const contact *c)
 {
-    if (l->n == l->cap) {
-        const size_t cap = l->cap ? 2 * l->cap : 64;
-        contact *v = realloc(l->v, cap * sizeof *v);
+    if (l->direct != NULL) {
+        ttd_contacts *o = l->direct;
+        if (o->count == o->capacity) {
+            const size_t cap = o->capacity ? 2 * o->capacity : 1024;
+            void *v = o->pairs;
+            if (ttd_big_grow(&v, o->count * sizeof *o->pairs, cap * sizeof *o->pairs) != 0)
+                return 0;
+            o->pairs = v;
+            o->capacity = cap;
+        }
+        o->pairs[o->count++] = *c;
+        return 1;
+    }
+    if (l->nchunks == 0 || l->in_last == (size_t)CLIST_FIRST << (l->nchunks - 1)) {
+        if (l->nchunks == CLIST_CHUNKS)
+            return 0;
+        contact *v = ttd_big_alloc(((size_t)CLIST_FIRST << l->nchunks) * sizeof *v);
         if (v == NULL)
             return 0;
-        l->v = v;
-        l->cap = cap;
+        l->chunk[l->nchunks++] = v;
+        l->in_last = 0;
     }
-    l->v[l->n++] = *c;
+    l->chunk[l->nchunks - 1][l->in_last++] = *c;
+    ++l->n;
     return 1;
+}
+
+/* Copies list l to dst (l->n contacts) and frees its chunks. */
+static void clist_drain(clist *l, contact *dst)
+{
+    for (int c = 0; c < l->nchunks; ++c) {
+        const size_t m = c + 1 < l->nchunks ? (size_t)CLIST_FIRST << c : l->in_last;
+        if (dst != NULL)
+            memcpy(dst, l->chunk[c], m * sizeof *dst);
+        dst += dst != NULL ? m : 0;
+        free(l->chunk[c]);
+    }
+    l->nchunks = 0;
+    l->n = l->in_last = 0;
 }
 
 /* x -> pose x, per coordinate ((r0 x + r1 y) + r2 z) + t (the order ttd/ttd.h documents). */
@@ -530,6 +592,17 @@ static void qpose_make(const qctx *C, const real pose[12], double defect, qpose 
     P->delta = (real)((64 * (double)TTD_REAL_EPS + 4 * defect) * S);
 }
 
+/* Whether the meshes' bounding spheres are farther apart than the limit: then no pair can be
+ * within it, and the walk is not needed (a far pose of a collision or contact query). */
+static int spheres_apart(const qctx *C, const qpose *P, const walk *w)
+{
+    double t2 = 0;
+    for (int i = 0; i < 3; ++i)
+        t2 += (double)P->t[i] * (double)P->t[i];
+    const double gap = sqrt(t2) - (C->ma->radius + C->mb->radius) - (double)P->delta;
+    return gap > 0 && gap * gap > (double)w->limit2;
+}
+
 static item root_item(void)
 {
     item it = {0, 0, 0, 0, 0};
@@ -612,7 +685,8 @@ static void pose_task(void *ctx, size_t i, int worker)
     walk w;
     walk_init(&w, J->mode, &P, J->limit, J->rel_tol);
     const item root = root_item();
-    walk_run(J->C, &P, W, &w, &root);
+    if (!spheres_apart(J->C, &P, &w))
+        walk_run(J->C, &P, W, &w, &root);
     if (W->nomem) {
         atomic_store(&J->nomem, 1);
         return;
@@ -633,11 +707,12 @@ static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const do
                             real rel_tol, void *out)
 {
     const int workers = ttd_parallel_task_workers(k, C->threads);
-    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers), 0};
+    qwork one;
+    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers, &one), 0};
     atomic_init(&J.nomem, J.work == NULL);
     if (J.work != NULL)
         ttd_parallel_tasks(k, C->threads, pose_task, &J);
-    qwork_free(J.work, workers);
+    qwork_free(J.work, workers, &one);
     return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
 }
 
@@ -723,6 +798,7 @@ typedef struct contact_job {
     real margin;
     size_t pose;           /* the pose whose tasks run in parallel (one pose), or SIZE_MAX */
     qwork *work;
+    ttd_contacts *direct;  /* one worker: every task appends to the caller's set, in order */
     atomic_int nomem;
 } contact_job;
 
@@ -742,7 +818,14 @@ static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
     walk w;
     walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
     w.cutting = 1;
-    return contact_tasks(J->C, W, cp, &w);
+    if (!contact_tasks(J->C, W, cp, &w))
+        return 0;
+    if (J->direct != NULL) { /* one worker: the poses come in order */
+        J->direct->pose_start[i] = J->direct->count;
+        for (size_t t = 0; t < cp->ntasks; ++t)
+            cp->lists[t].direct = J->direct;
+    }
+    return 1;
 }
 
 /* One pose per task: prepare it and run its tasks in order. */
@@ -774,20 +857,9 @@ static void contact_sub_task(void *ctx, size_t t, int worker)
         atomic_store(&J->nomem, 1);
 }
 
-/* Copies every pose's lists, in pose and task order, into the caller's set. */
-static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
+/* Room for k + 1 pose offsets in the caller's set. */
+static int contacts_offsets(ttd_contacts *out, size_t k)
 {
-    size_t total = 0;
-    for (size_t i = 0; i < k; ++i)
-        for (size_t t = 0; t < J->cp[i].ntasks; ++t)
-            total += J->cp[i].lists[t].n;
-    if (total > out->capacity) {
-        contact *v = realloc(out->pairs, total * sizeof *v);
-        if (v == NULL)
-            return 0;
-        out->pairs = v;
-        out->capacity = total;
-    }
     if (k + 1 > out->pose_capacity) {
         size_t *ps = realloc(out->pose_start, (k + 1) * sizeof *ps);
         if (ps == NULL)
@@ -795,19 +867,35 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
         out->pose_start = ps;
         out->pose_capacity = k + 1;
     }
+    return 1;
+}
+
+/* Moves every pose's lists, in pose and task order, into the caller's set. */
+static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
+{
+    size_t total = 0;
+    for (size_t i = 0; i < k; ++i)
+        for (size_t t = 0; t < J->cp[i].ntasks; ++t)
+            total += J->cp[i].lists[t].n;
+    if (total > out->capacity) { /* nothing in it is kept: a new array, on huge pages if large */
+        contact *v = ttd_big_alloc(total * sizeof *v);
+        if (v == NULL)
+            return 0;
+        free(out->pairs);
+        out->pairs = v;
+        out->capacity = total;
+    }
     size_t at = 0;
     for (size_t i = 0; i < k; ++i) {
         out->pose_start[i] = at;
         for (size_t t = 0; t < J->cp[i].ntasks; ++t) {
-            const clist *l = &J->cp[i].lists[t];
-            if (l->n)
-                memcpy(out->pairs + at, l->v, l->n * sizeof *l->v);
-            at += l->n;
+            clist *l = &J->cp[i].lists[t];
+            const size_t n = l->n;
+            clist_drain(l, out->pairs + at);
+            at += n;
         }
     }
-    out->pose_start[k] = at;
     out->count = at;
-    out->poses = k;
     return 1;
 }
 
@@ -817,11 +905,14 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     const qctx C = qctx_make(cfg, a, b);
     out->count = 0;
     out->poses = 0;
+    if (!contacts_offsets(out, k))
+        return TTD_ERR_OUT_OF_MEMORY;
     /* one pose: its tasks over the threads; several: the poses over the threads */
     const size_t ntask_guess = k == 1 ? CONTACT_TASKS : k;
     const int workers = ttd_parallel_task_workers(ntask_guess, C.threads);
+    qwork one;
     contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, defects, margin, SIZE_MAX,
-                     qwork_new(workers), 0};
+                     qwork_new(workers, &one), workers == 1 ? out : NULL, 0};
     atomic_init(&J.nomem, J.cp == NULL || J.work == NULL);
     if (!atomic_load(&J.nomem)) {
         if (k == 1) {
@@ -834,18 +925,21 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
             ttd_parallel_tasks(k, C.threads, contact_pose_task, &J);
         }
     }
-    int ok = !atomic_load(&J.nomem) && contacts_join(&J, k, out);
+    /* one worker walked the poses and their tasks in order, into the set; several: join */
+    int ok = !atomic_load(&J.nomem) && (J.direct != NULL || contacts_join(&J, k, out));
     for (size_t i = 0; J.cp != NULL && i < k; ++i) {
         for (size_t t = 0; J.cp[i].lists != NULL && t < J.cp[i].ntasks; ++t)
-            free(J.cp[i].lists[t].v);
+            clist_drain(&J.cp[i].lists[t], NULL);
         free(J.cp[i].lists);
         free(J.cp[i].tasks);
     }
-    qwork_free(J.work, workers);
+    qwork_free(J.work, workers, &one);
     free(J.cp);
     if (!ok) {
         out->count = 0;
         return TTD_ERR_OUT_OF_MEMORY;
     }
+    out->pose_start[k] = out->count;
+    out->poses = k;
     return TTD_OK;
 }

@@ -45,7 +45,7 @@ static void node_test(const ttd_box_query *x, const ttd_node *y, real lb2[TTD_NO
             cn[k] = (C[k] * n[0] + C[3 + k] * n[1]) + C[6 + k] * n[2];
         const real nn = (n[0] * n[0] + n[1] * n[1]) + n[2] * n[2];
         const real gn = node_max(nn - ((e[0] * TTD_FABS(cn[0]) + e[1] * TTD_FABS(cn[1])) + e[2] * TTD_FABS(cn[2])), 0);
-        const real sn = (gn * gn) / node_max(nn, TTD_REAL_MIN);
+        const real sn = gn * (gn / node_max(nn, TTD_REAL_MIN)); /* gn <= nn: no fourth power */
         lb2[j] = node_max(sx, sn);
         sep[j] = gmax;
     }

@@ -72,7 +72,7 @@ static void node_test(const ttd_box_query *x, const ttd_node *y, real lb2[TTD_NO
             cn[k] = (C[k] * n[0] + C[3 + k] * n[1]) + C[6 + k] * n[2];
         const vreal nn = (n[0] * n[0] + n[1] * n[1]) + n[2] * n[2];
         const vreal gn = vmax(nn - ((e[0] * vabs(cn[0]) + e[1] * vabs(cn[1])) + e[2] * vabs(cn[2])), zero);
-        const vreal sn = (gn * gn) / vmax(nn, vset1(TTD_REAL_MIN));
+        const vreal sn = gn * (gn / vmax(nn, vset1(TTD_REAL_MIN))); /* gn <= nn: no fourth power */
         node_store(lb2, j0, vmax(sx, sn));
         node_store(sep, j0, gmax);
     }

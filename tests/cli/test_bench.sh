@@ -6,7 +6,9 @@
 # their printed distances right. An instruction set the machine cannot run is an error (exit 2) that
 # names it and lists the machine's; a run that measures nothing exits 1; a load average above
 # the core count (from a file given in TTD_BENCH_LOADAVG) gives a warning on standard error and
-# in the table's header. Timings are not checked: they belong to the benchmark, not to tests.
+# in the table's header. The mesh section (issue 9) of the quick run is checked too: its rows,
+# placements and targets, and agreement with FCL's mesh program when that is built.
+# Timings are not checked: they belong to the benchmark, not to tests.
 # Usage: sh tests/cli/test_bench.sh path/to/ttd
 set -eu
 ttd=$1
@@ -55,6 +57,65 @@ done
 if [ -x "$(dirname "$ttd")/ttd_fcl_bench" ]; then
   grep -q '"method": "fcl"' "$tmp/out.json" || fail "ttd_fcl_bench exists but there are no fcl rows"
 fi
+
+# The mesh section (issue 9) of the same quick run: generated meshes only (no file, no network),
+# one row per line. Every workload and query is there, every ttd time is positive, the placements
+# are where docs/benchmark.md says (ttd's distance within 1% of 1, 0.01 and 0.002 of the size;
+# overlap: 0) and each distance row found the placement's distance; the eight targets each have a
+# verdict. With FCL's mesh program next to ttd: FCL measured every row that has a counterpart,
+# its distances agree with ttd's within 1e-12, its pair counts equal ttd's (double), and nothing
+# disagrees. No timing is checked.
+grep -q '^  "mesh": {"quick": true, ' "$tmp/out.json" || fail "no mesh section in the quick JSON"
+grep '^      {"workload": ' "$tmp/out.json" > "$tmp/mesh.rows" || fail "no mesh rows"
+for w in icosphere torus-small poses-ico; do
+  for q in build distance collide collide+m contacts closest; do
+    [ "$w" = poses-ico ] && [ "$q" != distance ] && continue
+    grep "\"workload\": \"$w\"" "$tmp/mesh.rows" | grep -q "\"query\": \"$q\"" || fail "no mesh row $w $q"
+  done
+done
+grep '"query": "contacts"' "$tmp/mesh.rows" | grep -q '"precision": "float"' || fail "no float contacts row"
+grep -q '"pose": "random", .*"threads": 2,' "$tmp/mesh.rows" || fail "no 2-thread random-poses row"
+field() { sed "s/.*\"$1\": \([^,]*\),.*/\1/"; }
+bad=$(field ms < "$tmp/mesh.rows" | awk '!($1 + 0 > 0)' | wc -l)
+[ "$bad" -eq 0 ] || fail "$bad mesh rows without a positive time"
+for pl in far:1 near:0.01 contact:0.002 overlap:0; do
+  pose=${pl%%:*}; want=${pl#*:}
+  grep "\"pose\": \"$pose\", \"query\": \"distance\"" "$tmp/mesh.rows" > "$tmp/pl.rows" || fail "no $pose rows"
+  while read -r line; do
+    d=$(printf '%s\n' "$line" | field pose_distance)
+    v=$(printf '%s\n' "$line" | field value)
+    awk -v d="$d" -v v="$v" -v w="$want" 'BEGIN { ok = (w == 0) ? (d == 0) : (d >= 0.99 * w && d <= 1.01 * w); exit !(ok && d == v) }' ||
+      fail "$pose placement: distance $d, query $v, want $want within 1%"
+  done < "$tmp/pl.rows"
+done
+[ "$(grep -c '"verdict": "\(met\|MISSED\|n/a\)"' "$tmp/out.json")" -eq 8 ] || fail "the mesh targets are not 8 with a verdict"
+if [ -x "$(dirname "$ttd")/ttd_fcl_mesh_bench" ]; then
+  grep -q '"disagreements": 0,' "$tmp/out.json" || fail "ttd and FCL disagree in the mesh section"
+  grep -v '"query": "collide+m"' "$tmp/mesh.rows" | grep -v '"fcl": "measured"' | grep -q . &&
+    fail "mesh rows without FCL although ttd_fcl_mesh_bench exists"
+  grep '"query": "distance"' "$tmp/mesh.rows" | field diff | awk '!($1 + 0 <= 1e-12)' | grep -q . &&
+    fail "a distance differs from FCL's by more than 1e-12"
+  grep '"query": "contacts", "precision": "double"' "$tmp/mesh.rows" | while read -r line; do
+    [ "$(printf '%s\n' "$line" | field value)" = "$(printf '%s\n' "$line" | field fcl_value)" ] ||
+      fail "contacts: ttd's pair count differs from FCL's: $line"
+  done
+fi
+
+# The mesh section's table and CSV, without FCL: the section, its target lines (n/a without FCL),
+# and a missing bunny said so, by path, while the other workloads go on. Bad names: exit 2.
+"$ttd" bench --quick --no-probes --no-fcl --mesh-workloads icosphere,bunny --bunny "$tmp/no-bunny.obj" \
+  --out "$tmp/mesh" > "$tmp/mesh.txt" 2> "$tmp/mesh.err" || fail "mesh table run exited with $?"
+grep -q '^Mesh queries (issue 9)' "$tmp/mesh.txt" || fail "no mesh section in the table"
+grep -q '^icosphere .* distance ' "$tmp/mesh.txt" || fail "no icosphere distance row in the table"
+grep -q 'n/a: FCL absent' "$tmp/mesh.txt" || fail "targets without FCL are not n/a"
+grep -q "no-bunny.obj" "$tmp/mesh.err" || fail "the missing bunny is not named: $(cat "$tmp/mesh.err")"
+grep -q '^bunny: missing' "$tmp/mesh.txt" || fail "the table does not say the bunny is missing"
+head -n 1 "$tmp/mesh/bench-mesh.csv" | grep -q '^workload,triangles,pose,' || fail "bench-mesh.csv header"
+[ "$(wc -l < "$tmp/mesh/bench-mesh.csv")" -ge 10 ] || fail "bench-mesh.csv has too few rows"
+rc=0
+"$ttd" bench --quick --mesh-workloads icosphere,nosuch > /dev/null 2> "$tmp/err.txt" || rc=$?
+[ "$rc" -eq 2 ] || fail "--mesh-workloads nosuch: exit status $rc, want 2"
+grep -q "nosuch" "$tmp/err.txt" || fail "--mesh-workloads nosuch: not named"
 
 # The JSON parses, where a parser is at hand.
 if command -v python3 >/dev/null 2>&1; then

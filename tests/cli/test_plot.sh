@@ -5,7 +5,8 @@
 # time and above the largest. Checked on a made-up CSV whose smallest time sits exactly on a
 # decade (100 ns, where autoscaling used to stop), then on a real `ttd bench --quick --csv`;
 # gnuplot's GPVAL_* variables of the last panel drawn (random pairs) give the axis range and
-# the data range. Skipped, with a message, where gnuplot is not installed.
+# the data range. The same for the mesh figure (bench/plot-mesh.gp) on a made-up bench-mesh.csv
+# and on a quick mesh run. Skipped, with a message, where gnuplot is not installed.
 # Usage: sh test_plot.sh path/to/ttd
 set -u
 TTD=${1:?usage: test_plot.sh path/to/ttd}
@@ -45,4 +46,21 @@ check bar_on_a_decade "$DIR/decade.csv"
 "$TTD" bench --quick --csv --quiet --no-probes --no-fcl --workloads paper,random --methods exact,penalty > "$DIR/real.csv" ||
     fail "ttd bench exited with $?"
 check real_quick_run "$DIR/real.csv"
+
+# The mesh figure (bench/plot-mesh.gp) from a quick mesh run's bench-mesh.csv: written, and its
+# last panel (contacts, closest, builds) has room above and below every bar. A made-up CSV whose
+# smallest time is exactly a decade (1 ms) first.
+MH=workload,triangles,pose,pose_distance,query,precision,threads,poses,margin,value,ms,ms_min,pair_tests
+MH=$MH,node_tests,fcl_ms,fcl_ms_min,fcl_bv_tests,fcl_leaf_tests,speedup_vs_fcl,diff,disagree
+{
+    echo "$MH"
+    echo "m,10,-,,build,double,1,1,,5,1,1,,,10,10,,,10,,0"
+    echo "m,10,near,0.01,contacts,double,1,1,0.05,7,2,2,,,100,100,,,50,0,0"
+    echo "m,10,near,0.01,distance,double,1,1,,0.01,0.01,0.01,3,4,0.1,0.1,5,6,10,0,0"
+} > "$DIR/mesh-decade.csv"
+PLOT=$(dirname "$PLOT")/plot-mesh.gp
+check mesh_bar_on_a_decade "$DIR/mesh-decade.csv"
+"$TTD" bench --quick --quiet --no-probes --no-fcl --mesh-workloads icosphere --out "$DIR/mesh" > /dev/null ||
+    fail "ttd bench (mesh) exited with $?"
+check mesh_quick_run "$DIR/mesh/bench-mesh.csv"
 exit 0
