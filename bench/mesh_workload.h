@@ -30,7 +30,7 @@ typedef struct bench_cand_set {
 /// subdivided flat `levels` times (fine: the same surface). desc gets what was used (and why,
 /// for the fallback). Returns 0, or -1 when even the generator failed.
 int bench_cand_mesh_load(const char *path, int levels, ttd_gen_mesh *fine, ttd_gen_mesh *coarse, char *desc,
-                    size_t descsize);
+                         size_t descsize);
 
 /// The pairs of `poses` poses of a copy of m against m: pose i has the rotation of
 /// ttd_gen_pose_gap(coarse, coarse, seed, i, ...) and a translation found so that the copies'
