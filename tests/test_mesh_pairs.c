@@ -15,8 +15,8 @@
 static void box(const ttd_gen_mesh *m, size_t i, double lo[3], double hi[3])
 {
     for (int c = 0; c < 3; ++c) {
-        lo[c] = INFINITY;
-        hi[c] = -INFINITY;
+        lo[c] = (double)INFINITY;
+        hi[c] = -(double)INFINITY;
         for (int v = 0; v < 3; ++v) {
             const double x = m->verts[3 * m->tris[3 * i + (size_t)v] + (size_t)c];
             lo[c] = fmin(lo[c], x);
@@ -109,13 +109,13 @@ static int bad_arguments_and_limit(void)
     size_t n = 7;
     ENSURE(ttd_gen_mesh_pairs(NULL, &s, 0.0, 100, &pairs, &n) == -1 && pairs == NULL && n == 0);
     ENSURE(ttd_gen_mesh_pairs(&s, &s, -1.0, 100, &pairs, &n) == -1 && pairs == NULL);
-    ENSURE(ttd_gen_mesh_pairs(&s, &s, NAN, 100, &pairs, &n) == -1);
-    ENSURE(ttd_gen_mesh_pairs(&s, &s, INFINITY, 100, &pairs, &n) == -1);
+    ENSURE(ttd_gen_mesh_pairs(&s, &s, (double)NAN, 100, &pairs, &n) == -1);
+    ENSURE(ttd_gen_mesh_pairs(&s, &s, (double)INFINITY, 100, &pairs, &n) == -1);
     ENSURE(ttd_gen_mesh_pairs(&s, &s, 0.0, 100, NULL, &n) == -1);
     s.tris[4] = (uint32_t)s.nv; /* an index out of range */
     ENSURE(ttd_gen_mesh_pairs(&s, &s, 0.0, 100, &pairs, &n) == -1 && pairs == NULL);
     s.tris[4] = 0;
-    s.verts[2] = NAN;
+    s.verts[2] = (double)NAN;
     ENSURE(ttd_gen_mesh_pairs(&s, &s, 0.0, 100, &pairs, &n) == -1);
     ttd_gen_mesh_free(&s);
     ENSURE(ttd_gen_icosphere(1, &s) == 0);
