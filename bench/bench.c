@@ -24,6 +24,7 @@
 
 #include "cli.h"
 #include "mesh_bench.h"
+#include "mesh_workload.h"
 #include "pairs.h"
 
 /* What is run on a workload. */
@@ -35,37 +36,49 @@ enum {
     W_ACCURACY = 1u << 4,    /* untimed pass with results: errors, iterations, occupancy */
     W_THREADS = 1u << 5,     /* 1..all threads for exact and penalty (scalar and best ISA) */
     W_MULTI = 1u << 6,       /* best ISA also on all threads */
-    W_CLI = 1u << 7          /* `ttd dist` itself, text and binary (bench/cli_io.c) */
+    W_CLI = 1u << 7,         /* `ttd dist` itself, text and binary (bench/cli_io.c) */
+    W_MESH = 1u << 8         /* candidate pairs of a mesh query (bench/mesh_workload.c): the exact
+                              * kernel's outputs and bound */
 };
 
 typedef struct workload_spec {
     const char *name;
     ttd_gen_family family;
-    size_t n_full, n_quick;  /* 0: not in that mode's default list */
+    size_t n_full, n_quick;  /* 0: not in that mode's default list; W_MESH: poses */
     unsigned flags;
+    double mesh_distance;    /* W_MESH: the copies' distance, relative to the mesh's size */
 } workload_spec;
+
+/* The mesh pair workloads' broad-phase margin and the bound of their bounded rows, relative to
+ * the mesh's size (its bounding-box diagonal, 1), and the flat subdivisions of their mesh. */
+#define BENCH_MESH_MARGIN 0.01
+#define BENCH_MESH_LEVELS 2
 
 #define BENCH_BIG_DEFAULT ((size_t)24000000)
 
 static const workload_spec workloads[] = {
-    {"paper", TTD_GEN_PAPER, 1000, 1000, W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
+    {"paper", TTD_GEN_PAPER, 1000, 1000, W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0},
     {"random", TTD_GEN_RANDOM, 1000000, 10000,
-     W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY | W_THREADS},
+     W_ALL_METHODS | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY | W_THREADS, 0},
     /* The other families: exact, penalty and certified (penalty-ref and barrier are there for the
      * comparison with the paper, on its workload and on random pairs). */
-    {"far", TTD_GEN_FAR, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
-    {"near_parallel_edges", TTD_GEN_NEAR_PARALLEL_EDGES, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
-    {"near_parallel_faces", TTD_GEN_NEAR_PARALLEL_FACES, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY},
+    {"far", TTD_GEN_FAR, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0},
+    {"near_parallel_edges", TTD_GEN_NEAR_PARALLEL_EDGES, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0},
+    {"near_parallel_faces", TTD_GEN_NEAR_PARALLEL_FACES, 250000, 0, W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0},
     /* The working-set sweep: 144 bytes of input per pair in double, so 1k pairs sit in L2,
      * 32k in L3 and 256k just beyond it; "random" is the 1M point and random-big the end. */
-    {"random-1k", TTD_GEN_RANDOM, 1000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
-    {"random-32k", TTD_GEN_RANDOM, 32000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
-    {"random-256k", TTD_GEN_RANDOM, 256000, 0, W_SCALAR | W_ACCURACY | W_MULTI},
-    {"random-big", TTD_GEN_RANDOM, BENCH_BIG_DEFAULT, 0, W_MULTI},
+    {"random-1k", TTD_GEN_RANDOM, 1000, 0, W_SCALAR | W_ACCURACY | W_MULTI, 0},
+    {"random-32k", TTD_GEN_RANDOM, 32000, 0, W_SCALAR | W_ACCURACY | W_MULTI, 0},
+    {"random-256k", TTD_GEN_RANDOM, 256000, 0, W_SCALAR | W_ACCURACY | W_MULTI, 0},
+    {"random-big", TTD_GEN_RANDOM, BENCH_BIG_DEFAULT, 0, W_MULTI, 0},
     /* The command line's own cost: random pairs through `ttd dist` as text and as binary
      * (rows cli-text and cli-binary; the random workload's exact rows are the same work
      * without the input and output). About a second in all. */
-    {"cli", TTD_GEN_RANDOM, 50000, 10000, W_CLI | W_ACCURACY},
+    {"cli", TTD_GEN_RANDOM, 50000, 10000, W_CLI | W_ACCURACY, 0},
+    /* Candidate pairs of a margin query (margin 1% of the mesh's size) between two copies of a
+     * mesh 1% and 0.2% of its size apart (16 and 4 poses; 1 with --quick), docs/benchmark.md. */
+    {"mesh-near", TTD_GEN_RANDOM, 16, 0, W_MESH | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0.01},
+    {"mesh-contact", TTD_GEN_RANDOM, 4, 1, W_MESH | W_ALL_ISAS | W_SCALAR | W_FCL | W_ACCURACY, 0.002},
 };
 #define N_WORKLOADS (sizeof workloads / sizeof workloads[0])
 
@@ -81,6 +94,9 @@ typedef struct bench_ctx {
     unsigned isa_mask;
     int fcl_ok;
     char fcl_path[512];
+    const char *pair_bunny;  /* the pair workloads' mesh file (the mesh section's bunny); NULL: an icosphere */
+    ttd_gen_mesh pair_mesh, pair_mesh_coarse;
+    char pair_mesh_desc[160];
     bench_row rows[MAX_ROWS];
     size_t nrows;
     double t_start;
@@ -177,13 +193,19 @@ static double pair_size(const double *s, const double *t)
     return m;
 }
 
-/* Errors of dist (n values, as double) against the reference of precision bytes. */
-static void accuracy(bench_data *d, int bytes, const double *dist, bench_row *row)
+/* Errors of dist (n values, as double) against the reference of precision bytes. With a finite
+ * bound (a kernel's), a pair that both the reference and dist put above it has no error (the
+ * kernel may report any distance above its bound there); the others are compared as usual. */
+static void accuracy_bounded(bench_data *d, int bytes, const double *dist, double bound, bench_row *row)
 {
     const double *ref = d->ref[prec_slot(bytes)], *size = d->size[prec_slot(bytes)];
     double tol = bench_disagree_tol(bytes), max_rel = 0.0, max_abs = 0.0;
     size_t disagree = 0;
     for (size_t i = 0; i < d->n; ++i) {
+        if (ref[i] > bound && dist[i] > bound) {
+            d->scratch[i] = 0.0;
+            continue;
+        }
         double abs_err = fabs(dist[i] - ref[i]);
         double scale = fmax(fmax(ref[i], size[i]), 1e-300);
         double rel = abs_err / scale;
@@ -202,6 +224,11 @@ static void accuracy(bench_data *d, int bytes, const double *dist, bench_row *ro
     row->max_abs_err = max_abs;
     row->disagree = disagree;
     row->p999_rel_err = select_kth(d->scratch, d->n, k < d->n ? k : d->n - 1);
+}
+
+static void accuracy(bench_data *d, int bytes, const double *dist, bench_row *row)
+{
+    accuracy_bounded(d, bytes, dist, BENCH_INF, row);
 }
 
 /* ---- running ttd ---------------------------------------------------------------------- */
@@ -431,20 +458,56 @@ static double mem_available(void)
     return kb * 1024.0;
 }
 
+/* The mesh workload w with `poses` poses (the mesh is loaded on first need): its pairs into
+ * d->sd and d->td, d->n set. */
+static int mesh_pairs(bench_ctx *cx, const workload_spec *w, size_t poses, bench_data *d)
+{
+    if (!cx->pair_mesh.nt) {
+        if (bench_cand_mesh_load(cx->pair_bunny, BENCH_MESH_LEVELS, &cx->pair_mesh, &cx->pair_mesh_coarse,
+                                 cx->pair_mesh_desc, sizeof cx->pair_mesh_desc) != 0)
+            return -1;
+        snprintf(cx->st.pair_mesh, sizeof cx->st.pair_mesh, "%s; margin %g of its size", cx->pair_mesh_desc,
+                 BENCH_MESH_MARGIN);
+        progress(cx, "mesh pair workloads: %s", cx->st.pair_mesh);
+    }
+    bench_cand_set set;
+    if (bench_cand_make(&cx->pair_mesh, &cx->pair_mesh_coarse, cx->pair_mesh_desc, w->mesh_distance, BENCH_MESH_MARGIN,
+                            (int)poses, cx->st.seed, (size_t)20000000, &set) != 0 ||
+        set.n == 0) {
+        bench_cand_free(&set);
+        return -1;
+    }
+    progress(cx, "%s: %zu candidate pairs from %d poses, %zu (%.1f%%) within the margin", w->name, set.n, set.poses,
+             set.within, 100.0 * (double)set.within / (double)set.n);
+    d->n = set.n;
+    d->sd = set.s;
+    d->td = set.t;
+    set.s = set.t = NULL;
+    bench_cand_free(&set);
+    return 0;
+}
+
 static int load_data(bench_ctx *cx, const workload_spec *w, size_t n, bench_data *d)
 {
     int accuracy_wanted = (w->flags & (W_ACCURACY | W_FCL)) != 0;
     memset(d, 0, sizeof *d);
     d->spec = w;
+    if (w->flags & W_MESH) {
+        if (mesh_pairs(cx, w, n, d) != 0)
+            return -1;
+        n = d->n;
+    }
     d->n = n;
-    d->sd = malloc(9 * n * sizeof *d->sd);
-    d->td = malloc(9 * n * sizeof *d->td);
+    if (!(w->flags & W_MESH)) {
+        d->sd = malloc(9 * n * sizeof *d->sd);
+        d->td = malloc(9 * n * sizeof *d->td);
+    }
     d->sf = malloc(9 * n * sizeof *d->sf);
     d->tf = malloc(9 * n * sizeof *d->tf);
     d->dist = malloc(n * sizeof(double));
     if (!d->sd || !d->td || !d->sf || !d->tf || !d->dist)
         return -1;
-    if (ttd_gen(w->family, cx->st.seed, n, d->sd, d->td) != n)
+    if (!(w->flags & W_MESH) && ttd_gen(w->family, cx->st.seed, n, d->sd, d->td) != n)
         return -1;
     for (size_t i = 0; i < 9 * n; ++i) {
         d->sf[i] = (float)d->sd[i];
@@ -512,6 +575,50 @@ static void measure_cli(bench_ctx *cx, bench_data *d)
     }
 }
 
+/* The rows of a mesh workload, in one precision: ttd's exact kernel called directly (the public
+ * API has neither points alone nor a bound) for each output and with and without the margin as
+ * its bound, on every instruction set (the scalar row: distances only), one thread. */
+static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
+{
+    static const struct {
+        const char *method;
+        int output;  /* bench_cand_time: 0 distances, 1 and points, 2 full results */
+        int bounded; /* the margin as the kernel's bound */
+    } variants[] = {{"exact", 0, 0}, {"exact+pts", 1, 0}, {"exact+full", 2, 0}, {"exact@m", 0, 1}, {"exact+pts@m", 1, 1}};
+    const void *s = bytes == 8 ? (const void *)d->sd : (const void *)d->sf;
+    const void *t = bytes == 8 ? (const void *)d->td : (const void *)d->tf;
+    if (!(cx->method_mask & (1u << TTD_METHOD_EXACT)))
+        return;
+    for (int i = TTD_ISA_SCALAR; i < TTD_ISA_COUNT; ++i) {
+        const ttd_isa isa = (ttd_isa)i;
+        if (!(cx->isa_mask & (1u << i)) || !ttd_isa_available(isa))
+            continue;
+        for (size_t v = 0; v < sizeof variants / sizeof variants[0]; ++v) {
+            if (isa == TTD_ISA_SCALAR && v > 0)
+                continue;
+            const double bound = variants[v].bounded ? BENCH_MESH_MARGIN : BENCH_INF;
+            double ns = BENCH_NAN, ns_min = BENCH_NAN;
+            if (bench_cand_time(d->n, s, t, bytes, isa, variants[v].output, bound, cx->st.samples, cx->st.min_sample_s,
+                                (double *)d->dist, &ns, &ns_min) != 0) {
+                fprintf(stderr, "ttd bench: %s %s %s %s failed; its row is left out\n", d->spec->name,
+                        variants[v].method, prec_name(bytes), ttd_isa_name(isa));
+                continue;
+            }
+            bench_row *r = new_row(cx, d, variants[v].method, bytes, ttd_isa_name(isa), ttd_isa_lanes(isa, bytes), 1);
+            if (!r)
+                return;
+            r->samples = cx->st.samples;
+            r->passes = 0;
+            r->ns_per_pair = ns;
+            r->ns_min = ns_min;
+            r->pairs_per_s = 1e9 / ns;
+            accuracy_bounded(d, bytes, (const double *)d->dist, bytes == 8 ? bound : (double)(float)bound, r);
+            progress(cx, "%s %s %s %s 1t: %.2f ns/pair", d->spec->name, variants[v].method, prec_name(bytes),
+                     ttd_isa_name(isa), ns);
+        }
+    }
+}
+
 static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
 {
     bench_data d;
@@ -535,6 +642,10 @@ static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
             continue;
         if ((w->flags & W_FCL) && cx->fcl_ok)
             measure_fcl(cx, &d, bytes);
+        if (w->flags & W_MESH) {
+            measure_mesh(cx, &d, bytes);
+            continue;
+        }
         for (int m = 0; m < TTD_METHOD_COUNT; ++m) {
             if (!(cx->method_mask & (1u << m)))
                 continue;
@@ -613,7 +724,10 @@ static void usage(FILE *f)
           "  --workloads LIST     comma-separated, from: paper random far near_parallel_edges\n"
           "                       near_parallel_faces random-1k random-32k random-256k random-big\n"
           "                       cli (ttd dist itself on random pairs, text and binary: rows\n"
-          "                       cli-text and cli-binary)\n"
+          "                       cli-text and cli-binary) mesh-near mesh-contact (candidate pairs of\n"
+          "                       a mesh query: rows exact, exact+pts, exact+full, exact@m, exact+pts@m)\n"
+          "                       (the mesh: the bunny as the mesh section finds it, subdivided twice;\n"
+          "                       an icosphere without it and with --quick)\n"
           "  --pairs N            pairs in the random workload (default 1000000; --quick 10000)\n"
           "  --big N              pairs in random-big (default 24000000, less if memory is short)\n"
           "  --methods LIST       comma-separated method names (default: all)\n"
@@ -717,6 +831,7 @@ int ttd_bench_main(int argc, char **argv)
         return 1;
     }
     cx->st.seed = 1;
+    snprintf(cx->st.pair_mesh, sizeof cx->st.pair_mesh, "not run");
     cx->method_mask = (1u << TTD_METHOD_COUNT) - 1;
     cx->isa_mask = ~0u;
     cx->precisions[0] = 8;
@@ -853,6 +968,13 @@ int ttd_bench_main(int argc, char **argv)
                             cx->st.quick ? ((size_t)64 << 20) : ((size_t)512 << 20));
     }
 
+    /* The mesh pair workloads' mesh: the bunny where the mesh section looks for it first
+     * (--bunny, $TTD_BUNNY, build/data/bunny.obj); with --quick, as there, generated meshes only. */
+    if (!cx->st.quick) {
+        const char *env = getenv("TTD_BUNNY");
+        cx->pair_bunny = mesh_cfg.bunny[0] ? mesh_cfg.bunny : (env && *env) ? env : "build/data/bunny.obj";
+    }
+
     for (size_t w = 0; w < N_WORKLOADS && (workload_mask || !mesh_cfg.named); ++w) {
         const workload_spec *ws = &workloads[w];
         size_t n = cx->st.quick ? ws->n_quick : ws->n_full;
@@ -914,6 +1036,8 @@ int ttd_bench_main(int argc, char **argv)
     }
     progress(cx, "done: %zu rows", cx->nrows + bench_mesh_row_count(cx->st.mesh));
     bench_mesh_free(mesh);
+    ttd_gen_mesh_free(&cx->pair_mesh);
+    ttd_gen_mesh_free(&cx->pair_mesh_coarse);
     free(cx);
     return rc;
 }

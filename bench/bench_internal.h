@@ -108,6 +108,7 @@ typedef struct bench_settings {
     double min_sample_s;
     unsigned long long seed;
     char fcl[512];            ///< path of the FCL program, or a reason it is absent
+    char pair_mesh[200];      ///< the mesh-near/mesh-contact pair workloads' mesh and margin, or "not run"
     char command[512];        ///< the command line
     const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
 } bench_settings;

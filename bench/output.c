@@ -59,6 +59,7 @@ static void header_lines(FILE *f, const char *prefix, const bench_machine *m, co
                "is between rows of this run\n",
             prefix, st->samples, st->min_sample_s);
     fprintf(f, "%sFCL (fcl::detail::TriangleDistance<S>::triDistance): %s\n", prefix, st->fcl);
+    fprintf(f, "%smesh pair workloads: %s\n", prefix, st->pair_mesh);
 }
 
 void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st, const bench_row *rows, size_t n)
@@ -195,6 +196,8 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
             st->quick ? "true" : "false", st->samples, st->min_sample_s, st->seed, bench_disagree_tol(8),
             bench_disagree_tol(4));
     json_string(f, st->fcl);
+    fprintf(f, ", \"pair_mesh\": ");
+    json_string(f, st->pair_mesh);
     fprintf(f, "},\n  \"rows\": [\n");
     for (size_t i = 0; i < n; ++i) {
         const bench_row *r = &rows[i];

@@ -60,7 +60,11 @@ static void TTD_SFX(fill)(int family, uint64_t seed, size_t n, real *s, real *t)
     if (family >= GEN_LIBRARY_FIRST) {
         double *gs = malloc(9 * n * sizeof *gs), *gt = malloc(9 * n * sizeof *gt);
         if (!gs || !gt) abort();
-        ttd_gen(gen_library_family[family - GEN_LIBRARY_FIRST], seed, n, gs, gt);
+        if (family == GEN_MESH) {
+            if (mesh_like_pairs(seed, n, gs, gt) != 0) abort();
+        } else {
+            ttd_gen(gen_library_family[family - GEN_LIBRARY_FIRST], seed, n, gs, gt);
+        }
         for (size_t i = 0; i < 9 * n; ++i) {
             s[i] = (real)gs[i];
             t[i] = (real)gt[i];
@@ -90,16 +94,19 @@ static void TTD_SFX(fill)(int family, uint64_t seed, size_t n, real *s, real *t)
 
 /* Every pair of `n` from each family, through the kernel in blocks of TTD_BLOCK_PAIRS, vs
  * the scalar function. Distance, points and weights within `ulps` of the pair's size,
- * iterations and flags equal; also counts bit-identical results. */
+ * iterations and flags equal; also counts bit-identical results. The kernel's three output
+ * paths (distances only; distances and points; full results) must give the same bits for
+ * what they share. */
 static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int method,
                                     const ttd_params *prm, size_t n, double ulps)
 {
     TTD_SFX(pair_fn) ref = TTD_SFX(scalar_of)(method);
     ENSURE(ref != NULL);
     real *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
-    real *dist = malloc(n * sizeof *dist);
+    real *dist = malloc(n * sizeof *dist), *dist1 = malloc(n * sizeof *dist1), *dist2 = malloc(n * sizeof *dist2);
+    real *pts = malloc(6 * n * sizeof *pts);
     ttd_result *res = malloc(n * sizeof *res);
-    ENSURE(s && t && dist && res);
+    ENSURE(s && t && dist && dist1 && dist2 && pts && res);
     size_t identical = 0, same_distance = 0, total = 0;
     int rc = 0;
     for (int fam = 0; fam < GEN_FAMILIES && !rc; ++fam) {
@@ -107,6 +114,9 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
         for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS) {
             const size_t m = n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS;
             TTD_SFX(run_kernel)(kern, m, s + 9 * i0, t + 9 * i0, prm, dist + i0, res + i0);
+            TTD_SFX(run_kernel)(kern, m, s + 9 * i0, t + 9 * i0, prm, dist1 + i0, NULL);
+            const TTD_SFX(ttd_out) po = {dist2 + i0, pts + 6 * i0, NULL};
+            kern(m, s + 9 * i0, t + 9 * i0, prm, (real)INFINITY, &po);
         }
         for (size_t i = 0; i < n && !rc; ++i) {
             ttd_result want;
@@ -123,6 +133,14 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
             int ok = isfinite((double)got->distance) && fabs((double)got->distance - (double)want.distance) <= tol &&
                      memcmp(&dist[i], &got->distance, sizeof(real)) == 0 &&
                      got->iterations == want.iterations && got->flags == want.flags;
+            const int paths = memcmp(&dist1[i], &got->distance, sizeof(real)) == 0 &&
+                              memcmp(&dist2[i], &got->distance, sizeof(real)) == 0 &&
+                              memcmp(pts + 6 * i, got->p, 3 * sizeof(real)) == 0 &&
+                              memcmp(pts + 6 * i + 3, got->q, 3 * sizeof(real)) == 0;
+            if (!paths)
+                fprintf(stderr, "  %s, %s pair %zu: the distance-only or points path differs from the full results\n",
+                        what, gen_family_name(fam), i);
+            ok &= paths;
             for (int k = 0; k < 3; ++k) {
                 ok &= fabs((double)got->p[k] - (double)want.p[k]) <= tol;
                 ok &= fabs((double)got->q[k] - (double)want.q[k]) <= tol;
@@ -150,6 +168,9 @@ static int TTD_SFX(check_vs_scalar)(const char *what, TTD_SFX(kern_fn) kern, int
     free(s);
     free(t);
     free(dist);
+    free(dist1);
+    free(dist2);
+    free(pts);
     free(res);
     return rc;
 }
@@ -252,4 +273,108 @@ static int TTD_SFX(check_sizes)(const char *what, TTD_SFX(kern_fn) kern, int lan
     free(res);
     free(ref);
     return 0;
+}
+
+/* One bounded call of kern on n pairs in blocks, into dist (always), pts and res (may be NULL). */
+static void TTD_SFX(run_bounded)(TTD_SFX(kern_fn) kern, size_t n, const real *s, const real *t, const ttd_params *prm,
+                                 real bound, real *dist, real *pts, ttd_result *res)
+{
+    for (size_t i0 = 0; i0 < n; i0 += TTD_BLOCK_PAIRS) {
+        const size_t m = n - i0 < TTD_BLOCK_PAIRS ? n - i0 : TTD_BLOCK_PAIRS;
+        const TTD_SFX(ttd_out) o = {dist + i0, pts ? pts + 6 * i0 : NULL, res ? res + i0 : NULL};
+        kern(m, s + 9 * i0, t + 9 * i0, prm, bound, &o);
+    }
+}
+
+/* The early-out against a bound never changes a result (kernels.h): for bounds at and just
+ * below the distances of pairs spread over each family (and 0, -1, REAL_MAX/2), in each output
+ * path, every pair whose distance (the unbounded call's) is at most the bound comes out with
+ * the same bits as without a bound, and every other pair reports a distance above the bound
+ * and not above its distance (within 8 eps of the pair's size): what the kernel writes for a
+ * pair it rules out is a lower bound. *ruled_out counts, in the "far" family, the pairs
+ * reported with another distance than the unbounded one (pairs the early-out skipped). With
+ * ref (the scalar row), every bounded call must also give ref's bits: the rows rule out the
+ * same pairs with the same lower bound. */
+static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, TTD_SFX(kern_fn) ref, const ttd_params *prm,
+                                size_t *ruled_out)
+{
+    enum { N = 600, PROBES = 12 };
+    real *s = malloc(9 * N * sizeof *s), *t = malloc(9 * N * sizeof *t);
+    real *d0 = malloc(N * sizeof *d0), *p0 = malloc(6 * N * sizeof *p0), *d = malloc(N * sizeof *d);
+    real *p = malloc(6 * N * sizeof *p), *dr = malloc(N * sizeof *dr);
+    ttd_result *r0 = malloc(N * sizeof *r0), *r = malloc(N * sizeof *r), *rr = malloc(N * sizeof *rr);
+    real *dref = malloc(N * sizeof *dref), *pref = malloc(6 * N * sizeof *pref);
+    ENSURE(s && t && d0 && p0 && d && p && dr && r0 && r && rr && dref && pref);
+    int rc = 0;
+    *ruled_out = 0;
+    for (int fam = 0; fam < GEN_FAMILIES && !rc; ++fam) {
+        TTD_SFX(fill)(fam, 313u + (uint64_t)fam, N, s, t);
+        TTD_SFX(run_bounded)(kern, N, s, t, prm, (real)INFINITY, d0, p0, NULL);
+        TTD_SFX(run_bounded)(kern, N, s, t, prm, (real)INFINITY, dr, NULL, r0);
+        real bounds[2 * PROBES + 3];
+        int nb = 0;
+        for (int k = 0; k < PROBES; ++k) {
+            const real dk = d0[(size_t)k * N / PROBES + (size_t)fam];
+            bounds[nb++] = dk;                                 /* the pair itself is within */
+            bounds[nb++] = TTD_NEXTAFTER(dk, -(real)INFINITY); /* and just outside */
+        }
+        bounds[nb++] = 0;
+        bounds[nb++] = -1;
+        bounds[nb++] = TTD_REAL_MAX / 2;
+        for (int b = 0; b < nb && !rc; ++b) {
+            const real bound = bounds[b];
+            for (int path = 0; path < 3 && !rc; ++path) {
+                TTD_SFX(run_bounded)(kern, N, s, t, prm, bound, d, path == 1 ? p : NULL, path == 2 ? r : NULL);
+                if (ref) {
+                    TTD_SFX(run_bounded)(ref, N, s, t, prm, bound, dref, path == 1 ? pref : NULL, path == 2 ? rr : NULL);
+                    int same = memcmp(d, dref, N * sizeof *d) == 0;
+                    if (path == 1)
+                        same &= memcmp(p, pref, 6 * N * sizeof *p) == 0;
+                    for (size_t i = 0; i < N && path == 2; ++i)
+                        same &= TTD_SFX(same_result)(&r[i], &rr[i]);
+                    if (!same) {
+                        fprintf(stderr, "  %s, %s, bound %.17g, path %d: differs from the scalar row\n", what,
+                                gen_family_name(fam), (double)bound, path);
+                        rc = 1;
+                    }
+                }
+                for (size_t i = 0; i < N && !rc; ++i) {
+                    const real dist = path == 2 ? r[i].distance : d[i];
+                    const double size = (double)TTD_SFX(pair_size)(s + 9 * i, t + 9 * i);
+                    int ok;
+                    if (d0[i] <= bound) {
+                        ok = memcmp(&dist, &d0[i], sizeof(real)) == 0;
+                        if (path == 1)
+                            ok &= memcmp(p + 6 * i, p0 + 6 * i, 6 * sizeof(real)) == 0;
+                        if (path == 2)
+                            ok &= TTD_SFX(same_result)(&r[i], &r0[i]) && memcmp(&d[i], &dist, sizeof(real)) == 0;
+                    } else {
+                        ok = dist > bound && (double)dist <= (double)d0[i] + 8 * (double)TTD_REAL_EPS * size;
+                        if (path == 2)
+                            ok &= memcmp(&d[i], &dist, sizeof(real)) == 0;
+                        if (fam == 4 && path == 0 && memcmp(&dist, &d0[i], sizeof(real)) != 0)
+                            ++*ruled_out;
+                    }
+                    if (!ok) {
+                        fprintf(stderr, "  %s, %s pair %zu, bound %.17g, path %d: distance %.17g, unbounded %.17g\n",
+                                what, gen_family_name(fam), i, (double)bound, path, (double)dist, (double)d0[i]);
+                        rc = 1;
+                    }
+                }
+            }
+        }
+    }
+    free(s);
+    free(t);
+    free(d0);
+    free(p0);
+    free(d);
+    free(p);
+    free(dr);
+    free(r0);
+    free(r);
+    free(rr);
+    free(dref);
+    free(pref);
+    return rc;
 }

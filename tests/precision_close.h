@@ -13,3 +13,4 @@
 #undef TTD_FMA
 #undef TTD_FREXP
 #undef TTD_LDEXP
+#undef TTD_NEXTAFTER

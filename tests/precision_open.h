@@ -23,6 +23,7 @@
 #define TTD_FMA fma
 #define TTD_FREXP frexp
 #define TTD_LDEXP ldexp
+#define TTD_NEXTAFTER nextafter
 #else
 #define real float
 #define TTD_SFX(name) name##_f
@@ -35,4 +36,5 @@
 #define TTD_FMA fmaf
 #define TTD_FREXP frexpf
 #define TTD_LDEXP ldexpf
+#define TTD_NEXTAFTER nextafterf
 #endif

@@ -1,6 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* The exact method (ttd_exact_pair_d / _f, src/scalar/) against the independent __float128
- * reference (tests/reference/) on every generator family (gen/).
+ * reference (tests/reference/) on every generator family (gen/) and on mesh-like pairs (the
+ * candidate pairs of a mesh query, tests/mesh_like_pairs.h); then every SIMD row this machine
+ * runs, in each of its output paths (distances and points; full results), against the same
+ * reference at the same tolerances.
  *
  * Errors are relative to max(reference distance, size of the pair), size = longest edge.
  * Double: |d - d_ref| <= 1e-12 of that. Float: the input is rounded to float first and the
@@ -13,7 +16,11 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "core/kernels.h"
+#include "isa_rows.h"
+#include "mesh_like_pairs.h"
 #include "pairs.h"
 #include "ref_distance.h"
 #include "scalar/scalar.h"
@@ -37,18 +44,18 @@ typedef struct stats {
     int fails, nonfinite;
 } stats;
 
-/// Checks one result (already converted to double) against the reference; eps is the unit
-/// roundoff of the precision under test, tol the distance tolerance.
-static void check_one(const char *family, const char *prec, int i, const double *s, const double *t,
-                      double d, const double p[3], const double q[3], const double bp[3], const double bq[3],
-                      uint32_t flags, double eps, double tol, stats *st)
+/// Checks one result (already converted to double) against the reference ref of the pair; eps
+/// is the unit roundoff of the precision under test, tol the distance tolerance; bp and bq may
+/// be NULL (a path without weights).
+static void check_with_ref(const char *family, const char *prec, int i, const double *s, const double *t,
+                           const ttd_ref_result *refp, double d, const double p[3], const double q[3],
+                           const double *bp, const double *bq, uint32_t flags, double eps, double tol, stats *st)
 {
-    ttd_ref_result ref;
-    ttd_ref_distance(s, t, &ref);
+    const ttd_ref_result ref = *refp;
     double size = ttd_ref_size(s, t), scale = fmax(size, ref.distance);
     double mag = max_abs9(s, t);
     int finite = isfinite(d);
-    for (int k = 0; k < 3; ++k) finite &= isfinite(p[k]) && isfinite(q[k]) && isfinite(bp[k]) && isfinite(bq[k]);
+    for (int k = 0; k < 3; ++k) finite &= isfinite(p[k]) && isfinite(q[k]) && (!bp || (isfinite(bp[k]) && isfinite(bq[k])));
     if (!finite) {
         if (st->nonfinite++ < MAX_REPORTS) {
             fprintf(stderr, "  %s %s pair %d: non-finite output (d = %g)\n", family, prec, i, d);
@@ -71,13 +78,14 @@ static void check_one(const char *family, const char *prec, int i, const double 
     double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     double pq = fabs(sqrt(dx * dx + dy * dy + dz * dz) - d) / scale;
     double bary = 0; /* weights: sign, sum, and agreement with the points */
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && bp; ++k) {
         bary = fmax(bary, fmax(-bp[k], -bq[k]));
         double pk = bp[0] * s[k] + bp[1] * s[3 + k] + bp[2] * s[6 + k];
         double qk = bq[0] * t[k] + bq[1] * t[3 + k] + bq[2] * t[6 + k];
         bary = fmax(bary, fmax(fabs(pk - p[k]), fabs(qk - q[k])) / scale);
     }
-    bary = fmax(bary, fmax(fabs(bp[0] + bp[1] + bp[2] - 1), fabs(bq[0] + bq[1] + bq[2] - 1)));
+    if (bp)
+        bary = fmax(bary, fmax(fabs(bp[0] + bp[1] + bp[2] - 1), fabs(bq[0] + bq[1] + bq[2] - 1)));
     st->dist = fmax(st->dist, err);
     st->off = fmax(st->off, off);
     st->pq = fmax(st->pq, pq);
@@ -95,6 +103,29 @@ static void check_one(const char *family, const char *prec, int i, const double 
     }
 }
 
+/// check_with_ref with the reference computed here.
+static void check_one(const char *family, const char *prec, int i, const double *s, const double *t, double d,
+                      const double p[3], const double q[3], const double bp[3], const double bq[3], uint32_t flags,
+                      double eps, double tol, stats *st)
+{
+    ttd_ref_result ref;
+    ttd_ref_distance(s, t, &ref);
+    check_with_ref(family, prec, i, s, t, &ref, d, p, q, bp, bq, flags, eps, tol, st);
+}
+
+/// The pairs of family f (TTD_GEN_COUNT: the mesh-like pairs).
+static int family_pairs(int f, uint64_t seed, size_t n, double *s, double *t)
+{
+    if (f == TTD_GEN_COUNT)
+        return mesh_like_pairs(seed, n, s, t);
+    return ttd_gen((ttd_gen_family)f, seed, n, s, t) == n ? 0 : -1;
+}
+
+static const char *family_name(int f)
+{
+    return f == TTD_GEN_COUNT ? "mesh_like" : ttd_gen_name((ttd_gen_family)f);
+}
+
 static int exact_vs_reference(void)
 {
     double *s = malloc(9 * sizeof(double) * PAIRS_PER_FAMILY), *t = malloc(9 * sizeof(double) * PAIRS_PER_FAMILY);
@@ -104,9 +135,9 @@ static int exact_vs_reference(void)
            ttd_ref_precision(), PAIRS_PER_FAMILY);
     printf("  %-20s | %9s %9s %9s %9s | %9s %9s %9s %9s | %s\n", "family", "d err", "off tri", "|pq|-d", "weights",
            "f d err", "f off", "f |pq|-d", "f weights", "fails d/f");
-    for (int f = 0; f < TTD_GEN_COUNT; ++f) {
-        const char *name = ttd_gen_name((ttd_gen_family)f);
-        ttd_gen((ttd_gen_family)f, 2024, PAIRS_PER_FAMILY, s, t);
+    for (int f = 0; f <= TTD_GEN_COUNT; ++f) {
+        const char *name = family_name(f);
+        ENSURE(family_pairs(f, 2024, PAIRS_PER_FAMILY, s, t) == 0);
         stats sd = {0, 0, 0, 0, 0, 0}, sf = {0, 0, 0, 0, 0, 0};
         for (int i = 0; i < PAIRS_PER_FAMILY; ++i) {
             const double *a = s + 9 * i, *b = t + 9 * i;
@@ -137,6 +168,106 @@ static int exact_vs_reference(void)
     }
     free(s);
     free(t);
+    ENSURE(!failed);
+    return 0;
+}
+
+enum { ROW_PAIRS = 400 };
+
+/* One row's exact kernel on n pairs in one precision, in its points path (distances and
+ * points) or its full path, each pair checked against refs. */
+static void row_paths_d(ttd_kernel_d_fn fn, const char *family, const char *what, size_t n, const double *s,
+                        const double *t, const ttd_ref_result *refs, stats *st)
+{
+    static double dist[ROW_PAIRS], pts[6 * ROW_PAIRS];
+    static ttd_result_d res[ROW_PAIRS];
+    const ttd_params prm = {0, 0, 0};
+    const ttd_out_d po = {dist, pts, NULL}, fo = {NULL, NULL, res};
+    fn(n, s, t, &prm, (double)INFINITY, &po);
+    fn(n, s, t, &prm, (double)INFINITY, &fo);
+    for (size_t i = 0; i < n; ++i) {
+        check_with_ref(family, what, (int)i, s + 9 * i, t + 9 * i, &refs[i], dist[i], pts + 6 * i, pts + 6 * i + 3,
+                       NULL, NULL, 0, DBL_EPSILON / 2, DOUBLE_TOL, st);
+        check_with_ref(family, what, (int)i, s + 9 * i, t + 9 * i, &refs[i], res[i].distance, res[i].p, res[i].q,
+                       res[i].bary_p, res[i].bary_q, res[i].flags, DBL_EPSILON / 2, DOUBLE_TOL, st);
+    }
+}
+
+static void row_paths_f(ttd_kernel_f_fn fn, const char *family, const char *what, size_t n, const float *s,
+                        const float *t, const double *sr, const double *tr, const ttd_ref_result *refs, stats *st)
+{
+    static float dist[ROW_PAIRS], pts[6 * ROW_PAIRS];
+    static ttd_result_f res[ROW_PAIRS];
+    const ttd_params prm = {0, 0, 0};
+    const ttd_out_f po = {dist, pts, NULL}, fo = {NULL, NULL, res};
+    fn(n, s, t, &prm, INFINITY, &po);
+    fn(n, s, t, &prm, INFINITY, &fo);
+    for (size_t i = 0; i < n; ++i) {
+        double p[3], q[3], bp[3], bq[3], rp[3], rq[3];
+        for (int k = 0; k < 3; ++k) {
+            p[k] = (double)pts[6 * i + (size_t)k];
+            q[k] = (double)pts[6 * i + 3 + (size_t)k];
+            rp[k] = (double)res[i].p[k];
+            rq[k] = (double)res[i].q[k];
+            bp[k] = (double)res[i].bary_p[k];
+            bq[k] = (double)res[i].bary_q[k];
+        }
+        check_with_ref(family, what, (int)i, sr + 9 * i, tr + 9 * i, &refs[i], (double)dist[i], p, q, NULL, NULL, 0,
+                       (double)FLT_EPSILON / 2, FLOAT_TOL, st);
+        check_with_ref(family, what, (int)i, sr + 9 * i, tr + 9 * i, &refs[i], (double)res[i].distance, rp, rq, bp, bq,
+                       res[i].flags, (double)FLT_EPSILON / 2, FLOAT_TOL, st);
+    }
+}
+
+/* Every row this machine runs, both precisions, both output paths that give points, against
+ * the reference on every family and the mesh-like pairs (ROW_PAIRS each; the rows' agreement
+ * with the scalar code on many more pairs is test_isa_kernels'). Prints each row's worst
+ * distance error per precision. */
+static int rows_vs_reference(void)
+{
+    static double s[9 * ROW_PAIRS], t[9 * ROW_PAIRS], sr[9 * ROW_PAIRS], tr[9 * ROW_PAIRS];
+    static float sf[9 * ROW_PAIRS], tf[9 * ROW_PAIRS];
+    static ttd_ref_result refd[ROW_PAIRS], reff[ROW_PAIRS];
+    int failed = 0, rows = 0;
+    stats worst_d[8], worst_f[8];
+    memset(worst_d, 0, sizeof worst_d);
+    memset(worst_f, 0, sizeof worst_f);
+    for (int f = 0; f <= TTD_GEN_COUNT; ++f) {
+        ENSURE(family_pairs(f, 77, ROW_PAIRS, s, t) == 0);
+        for (size_t k = 0; k < 9 * (size_t)ROW_PAIRS; ++k) {
+            sf[k] = (float)s[k];
+            tf[k] = (float)t[k];
+            sr[k] = (double)sf[k];
+            tr[k] = (double)tf[k];
+        }
+        for (size_t i = 0; i < ROW_PAIRS; ++i) {
+            ttd_ref_distance(s + 9 * i, t + 9 * i, &refd[i]);
+            ttd_ref_distance(sr + 9 * i, tr + 9 * i, &reff[i]);
+        }
+        int r = 0;
+        for (const isa_row *row = isa_rows; row->name && r < 8; ++row, ++r) {
+            const char *why = "";
+            if (!cpu_runs(row->name, &why))
+                continue;
+            char what[48];
+            snprintf(what, sizeof what, "%s double", row->name);
+            row_paths_d(row->d->fn[TTD_METHOD_EXACT], family_name(f), what, ROW_PAIRS, s, t, refd, &worst_d[r]);
+            snprintf(what, sizeof what, "%s float", row->name);
+            row_paths_f(row->f->fn[TTD_METHOD_EXACT], family_name(f), what, ROW_PAIRS, sf, tf, sr, tr, reff, &worst_f[r]);
+            if (f == 0)
+                ++rows;
+        }
+    }
+    int r = 0;
+    for (const isa_row *row = isa_rows; row->name && r < 8; ++row, ++r) {
+        const char *why = "";
+        if (!cpu_runs(row->name, &why))
+            continue;
+        printf("  %-8s points and full paths: worst d err %.2e (double), %.2e (float); fails %d/%d\n", row->name,
+               worst_d[r].dist, worst_f[r].dist, worst_d[r].fails, worst_f[r].fails);
+        failed |= worst_d[r].fails || worst_f[r].fails || worst_d[r].nonfinite || worst_f[r].nonfinite;
+    }
+    ENSURE(rows > 0 || isa_rows[0].name == NULL);
     ENSURE(!failed);
     return 0;
 }
@@ -197,5 +328,6 @@ int main(int argc, char **argv)
     RUN_TEST(issue_examples);
     RUN_TEST(feature_pairings);
     RUN_TEST(exact_vs_reference);
+    RUN_TEST(rows_vs_reference);
     TEST_MAIN_END();
 }

@@ -17,19 +17,23 @@
 #include "core/kernels.h"
 #include "scalar/scalar.h"
 #include "isa_rows.h"
+#include "mesh_like_pairs.h"
 #include "test_macros.h"
 
 /* Families 0..6 are generated here; from GEN_LIBRARY_FIRST on they come from gen/pairs.h,
- * for the hard cases of the iterative methods (nearly flat valleys, contacts, slivers). */
-enum { GEN_EXTREME = 6, GEN_LIBRARY_FIRST = 7, GEN_FAMILIES = 11 };
-static const ttd_gen_family gen_library_family[GEN_FAMILIES - GEN_LIBRARY_FIRST] = {
+ * for the hard cases of the iterative methods (nearly flat valleys, contacts, slivers); the
+ * last, GEN_MESH, is the candidate pairs of a mesh query (tests/mesh_like_pairs.h). */
+enum { GEN_EXTREME = 6, GEN_LIBRARY_FIRST = 7, GEN_MESH = 11, GEN_FAMILIES = 12 };
+static const ttd_gen_family gen_library_family[GEN_MESH - GEN_LIBRARY_FIRST] = {
     TTD_GEN_NEAR_PARALLEL_EDGES, TTD_GEN_NEAR_PARALLEL_FACES, TTD_GEN_NEAR_TOUCHING, TTD_GEN_SLIVER};
 
 static const char *gen_family_name(int f)
 {
     static const char *names[GEN_LIBRARY_FIRST] = {"random", "overlapping", "degenerate", "scaled", "far", "paper",
                                                    "extreme"};
-    if (f >= GEN_LIBRARY_FIRST && f < GEN_FAMILIES)
+    if (f == GEN_MESH)
+        return "mesh_like";
+    if (f >= GEN_LIBRARY_FIRST && f < GEN_MESH)
         return ttd_gen_name(gen_library_family[f - GEN_LIBRARY_FIRST]);
     return f >= 0 && f < GEN_LIBRARY_FIRST ? names[f] : "?";
 }
@@ -189,10 +193,42 @@ static int rows_sizes_and_alignment(void)
     return 0;
 }
 
+/* The exact kernel's early-out against the caller's bound (check_bound), on the scalar row and
+ * every SIMD row (which must give the scalar row's bits on every bounded call); and that it does
+ * rule pairs out: in the "far" family most pairs lie far beyond the bounds tried. */
+static int rows_bound(void)
+{
+    const ttd_params prm = test_params();
+    const ttd_kernel_d_fn ref_d = ttd_kernels_scalar_d.fn[TTD_METHOD_EXACT];
+    const ttd_kernel_f_fn ref_f = ttd_kernels_scalar_f.fn[TTD_METHOD_EXACT];
+    size_t out_d = 0, out_f = 0;
+    ENSURE(check_bound_d("scalar exact double", ref_d, NULL, &prm, &out_d) == 0);
+    ENSURE(check_bound_f("scalar exact float", ref_f, NULL, &prm, &out_f) == 0);
+    printf("  scalar exact: bounded calls agree; \"far\" pairs ruled out by the early-out: %zu double, %zu float\n",
+           out_d, out_f);
+    ENSURE(out_d > 0 && out_f > 0);
+    for (const isa_row *r = isa_rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why))
+            continue;
+        char what[64];
+        snprintf(what, sizeof what, "%s exact double", r->name);
+        ENSURE(check_bound_d(what, r->d->fn[TTD_METHOD_EXACT], ref_d, &prm, &out_d) == 0);
+        snprintf(what, sizeof what, "%s exact float", r->name);
+        ENSURE(check_bound_f(what, r->f->fn[TTD_METHOD_EXACT], ref_f, &prm, &out_f) == 0);
+        printf("  %s exact: bounded calls agree, with the scalar row's bits; \"far\" pairs ruled out: %zu double, "
+               "%zu float\n",
+               r->name, out_d, out_f);
+        ENSURE(out_d > 0 && out_f > 0);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(rows_vs_scalar);
+    RUN_TEST(rows_bound);
     RUN_TEST(rows_lane_independence);
     RUN_TEST(rows_sizes_and_alignment);
     TEST_MAIN_END();

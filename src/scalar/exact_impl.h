@@ -52,6 +52,17 @@ static void exact_cross(const real a[3], const real b[3], real out[3])
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* a < b ? a : b and a > b ? a : b, as the lanes' vmin and vmax on x86 */
+static real exact_min(real a, real b)
+{
+    return a < b ? a : b;
+}
+
+static real exact_max(real a, real b)
+{
+    return a > b ? a : b;
+}
+
 static real exact_clamp01(real x)
 {
     return x < (real)0 ? (real)0 : (x > (real)1 ? (real)1 : x);
@@ -435,4 +446,40 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
     r->feature_p = exact_features(wp);
     r->feature_q = exact_features(wq);
     r->iterations = 0;
+}
+
+/* A lower bound on the distance between S and T, for a caller that only cares about pairs
+ * within a bound (core/kernels.h): the gap between the two triangles' projections on the line
+ * through their centroids, gap/|c| - 32 eps M, M the largest |coordinate|. Each projection c.x
+ * rounds by at most 3 eps |c| |x| <= 3 eps |c| sqrt(3) M, so this is below the true gap along
+ * the stored c (any c gives a valid bound). Where M lies outside [2^-500, 2^500] (2^-50, 2^50
+ * in float), products could overflow or lose bits to underflow: -inf, no bound. The lane
+ * kernel's early-out (kx_screen) computes the same operations in the same order. Not part of
+ * exact_pair: the scalar row (kernels.c) calls it before exact_pair when a bound is given. */
+static real exact_lower_bound(const real s[9], const real t[9])
+{
+#ifdef TTD_PRECISION_DOUBLE
+    const real lo = 0x1p-500, hi = 0x1p500;
+#else
+    const real lo = 0x1p-50f, hi = 0x1p50f;
+#endif
+    real c[3], m = 0;
+    for (int k = 0; k < 3; ++k)
+        c[k] = ((t[k] + t[3 + k]) + t[6 + k]) - ((s[k] + s[3 + k]) + s[6 + k]);
+    for (int k = 0; k < 9; ++k) {
+        const real a = TTD_FABS(s[k]), b = TTD_FABS(t[k]);
+        const real ab = a > b ? a : b;
+        m = m > ab ? m : ab;
+    }
+    if (!(m >= lo && m <= hi))
+        return -(real)INFINITY;
+    real ps[3], pt[3];
+    for (int i = 0; i < 3; ++i) {
+        ps[i] = c[0] * s[3 * i] + c[1] * s[3 * i + 1] + c[2] * s[3 * i + 2];
+        pt[i] = c[0] * t[3 * i] + c[1] * t[3 * i + 1] + c[2] * t[3 * i + 2];
+    }
+    const real smin = exact_min(exact_min(ps[0], ps[1]), ps[2]), smax = exact_max(exact_max(ps[0], ps[1]), ps[2]);
+    const real tmin = exact_min(exact_min(pt[0], pt[1]), pt[2]), tmax = exact_max(exact_max(pt[0], pt[1]), pt[2]);
+    const real gap = exact_max(tmin - smax, smin - tmax);
+    return gap / TTD_SQRT(exact_dot(c, c)) - (real)32 * TTD_REAL_EPS * m;
 }

@@ -11,6 +11,11 @@
 void ttd_exact_pair_d(const double s[9], const double t[9], ttd_result_d *r);
 void ttd_exact_pair_f(const float s[9], const float t[9], ttd_result_f *r);
 
+/* A lower bound on the pair's distance (or -inf), cheap next to the exact method: what the exact
+ * kernels rule pairs out with when the caller gives a bound (core/kernels.h; exact_impl.h). */
+double ttd_exact_lower_bound_d(const double s[9], const double t[9]);
+float ttd_exact_lower_bound_f(const float s[9], const float t[9]);
+
 void ttd_penalty_pair_d(const double s[9], const double t[9], const ttd_params *prm, ttd_result_d *r);
 void ttd_penalty_pair_f(const float s[9], const float t[9], const ttd_params *prm, ttd_result_f *r);
 

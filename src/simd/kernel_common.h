@@ -92,23 +92,30 @@ static inline void kw_store_distance(vreal d, int live, real *distance)
         distance[i] = buf[i];
 }
 
+/* Writes the first `live` lanes of o's points (p then q, 6 reals a pair) to points and, when
+ * distance is not NULL, its distances to distance. */
+static inline void kw_store_points(const kw_out *o, int live, real *distance, real *points)
+{
+    real buf[6][TTDW_LANES] TTDW_ALIGN(64);
+    for (int k = 0; k < 3; ++k) {
+        vstoreu(buf[k], o->p[k]);
+        vstoreu(buf[3 + k], o->q[k]);
+    }
+    for (int i = 0; i < live; ++i)
+        for (int k = 0; k < 6; ++k)
+            points[6 * i + k] = buf[k][i];
+    if (distance)
+        kw_store_distance(o->distance, live, distance);
+}
+
 /* Writes the first `live` lanes of o to the outputs out names, at pair offset i0: distances,
  * points (p then q, 6 reals a pair) and results. feature bits follow the scalar code: bit i
  * when weight i > 0. */
 static inline void kw_store_group(const kw_out *o, int live, const ttd_out *out, size_t i0)
 {
     ttd_result *results = out->results ? out->results + i0 : NULL;
-    if (out->points) {
-        real buf[6][TTDW_LANES] TTDW_ALIGN(64);
-        for (int k = 0; k < 3; ++k) {
-            vstoreu(buf[k], o->p[k]);
-            vstoreu(buf[3 + k], o->q[k]);
-        }
-        real *pts = out->points + 6 * i0;
-        for (int i = 0; i < live; ++i)
-            for (int k = 0; k < 6; ++k)
-                pts[6 * i + k] = buf[k][i];
-    }
+    if (out->points)
+        kw_store_points(o, live, NULL, out->points + 6 * i0);
     if (out->distance)
         kw_store_distance(o->distance, live, out->distance + i0);
     if (!results)
