@@ -73,10 +73,13 @@ static PyArrayObject *ttd_py_mesh_vertices(PyObject *obj, int type, int *type_ou
         goto fail;
     if ((v = ttd_py_as_real(a, "vertices", type)) == NULL)
         goto fail;
-    if (v == a) { /* read in place: copy, so that later changes to the caller's array do not reach us */
+    if (v == a) {
+        /* Used in place: copy, so that later changes to the caller's array do not reach the mesh.
+         * (A plain copy: numpy's would hand the interpreter lock to other threads and back.) */
         Py_DECREF(v);
-        if ((v = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER)) == NULL)
+        if ((v = (PyArrayObject *)PyArray_SimpleNew(2, PyArray_DIMS(a), type)) == NULL)
             goto fail;
+        memcpy(PyArray_DATA(v), PyArray_DATA(a), (size_t)PyArray_NBYTES(a));
     }
     const npy_intp n = PyArray_DIM(v, 0);
     if (n == 0) {
