@@ -826,7 +826,7 @@ static PyArrayObject *ttd_py_records(const ttd_py_query *q, PyArray_Descr *descr
 }
 
 PyDoc_STRVAR(ttd_py_mesh_distance_doc,
-"mesh_distance(a, b, poses, *, upper_bound=inf, rel_tol=0, isa='auto', threads=0, out=None)\n"
+"mesh_distance(a, b, poses, *, upper_bound=math.inf, rel_tol=0.0, isa='auto', threads=0, out=None)\n"
 "--\n\n"
 "Minimum distance between meshes a and b under each pose of b, with the closest points and\n"
 "the triangles that realise it.\n\n"

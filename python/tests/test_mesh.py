@@ -552,3 +552,32 @@ def test_bad_ttd_isa_environment(monkeypatch):
         ttd.mesh_distance(A, B, np.eye(4))
     with pytest.raises(ttd.IsaUnavailableError, match="TTD_ISA=nonsense"):
         ttd.mesh_contacts(A, B, np.zeros((0, 4, 4)), 0.1)
+
+
+# ---- documentation and type hints -------------------------------------------------------------
+
+def test_stub_covers_the_extension():
+    import ast
+    import inspect
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(ttd.__file__).parent / "_ttd.pyi").read_text())
+    defined = {}
+    for node in stub.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            defined[node.name] = node
+        elif isinstance(node, ast.AnnAssign):
+            defined[node.target.id] = node
+    public = [n for n in dir(ttd._ttd) if not n.startswith("_")]
+    assert sorted(set(public) - set(defined)) == []
+    for name in ("mesh_distance", "mesh_contacts", "mesh_closest", "mesh_collide"):
+        args = defined[name].args
+        stubbed = [a.arg for a in args.args] + [a.arg for a in args.kwonlyargs]
+        real = inspect.signature(getattr(ttd, name)).parameters
+        assert stubbed == list(real), name
+        assert [a.arg for a in args.kwonlyargs] == [p for p, v in real.items() if v.kind is v.KEYWORD_ONLY], name
+    mesh = [n for n in defined["Mesh"].body if isinstance(n, ast.FunctionDef) and n.name == "__init__"][0]
+    assert [a.arg for a in mesh.args.args + mesh.args.kwonlyargs] == ["self"] + list(inspect.signature(ttd.Mesh).parameters)
+    for obj in (ttd.Mesh, ttd.mesh_distance, ttd.mesh_contacts, ttd.mesh_closest, ttd.mesh_collide, ttd.MeshDistance,
+                ttd.MeshContacts, ttd.MeshCollision, ttd.MeshClosest, ttd.ClosestPartners, ttd.MeshFlag):
+        assert obj.__doc__ and len(obj.__doc__) > 40, obj
