@@ -581,3 +581,32 @@ def test_stub_covers_the_extension():
     for obj in (ttd.Mesh, ttd.mesh_distance, ttd.mesh_contacts, ttd.mesh_closest, ttd.mesh_collide, ttd.MeshDistance,
                 ttd.MeshContacts, ttd.MeshCollision, ttd.MeshClosest, ttd.ClosestPartners, ttd.MeshFlag):
         assert obj.__doc__ and len(obj.__doc__) > 40, obj
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_benchmark_c_timer_makes_the_same_calls(dtype):
+    # bench/python_overhead.py compares ttd's mesh queries with ttd._ctiming.time_mesh_calls: the
+    # same library calls on meshes built from the same arrays must write the same records.
+    from ttd import _ctiming
+
+    A, B = mesh_pair("torus", "icosphere", dtype)
+    P = random_poses(30, seed=12, spread=1.2)[:, :3].astype(dtype).copy()
+    cargs = (A.vertices, A.faces, B.vertices, B.faces, P, 2)
+    f64 = dtype == np.float64
+    out = np.empty(30, ttd.MESH_RESULT_DTYPE_FLOAT64 if f64 else ttd.MESH_RESULT_DTYPE_FLOAT32)
+    assert _ctiming.time_mesh_calls(*cargs, out=out) > 0
+    r = ttd.mesh_distance(A, B, P)
+    for field in DISTANCE_FIELDS:
+        np.testing.assert_array_equal(out[field], getattr(r, field), err_msg=field)
+    col = np.empty(30, ttd.COLLISION_DTYPE)
+    _ctiming.time_mesh_calls(*cargs, query="collide", margin=0.05, out=col)
+    np.testing.assert_array_equal(col["hit"] != 0, ttd.mesh_collide(A, B, P, 0.05).hit)
+    rec = ttd.CLOSEST_DTYPE_FLOAT64 if f64 else ttd.CLOSEST_DTYPE_FLOAT32
+    fa, fb = np.empty((30, A.triangle_count), rec), np.empty((30, B.triangle_count), rec)
+    _ctiming.time_mesh_calls(*cargs, query="closest", margin=0.05, out=fa, out2=fb)
+    cl = ttd.mesh_closest(A, B, P, 0.05)
+    np.testing.assert_array_equal(fa["partner"], cl.for_a.partner)
+    np.testing.assert_array_equal(fb["distance"], cl.for_b.distance)
+    assert _ctiming.time_mesh_calls(*cargs, query="contacts", margin=0.05, fresh=True) > 0
+    with pytest.raises(ValueError, match="query is"):
+        _ctiming.time_mesh_calls(*cargs, query="nope", out=out)
