@@ -206,7 +206,7 @@ static PyObject *ttd_ct_time_mesh_calls(PyObject *self, PyObject *args, PyObject
     for (Py_ssize_t i = 0; i < calls && st == TTD_OK; ++i) {
         switch (q) {
         case 0:
-            st = dbl ? ttd_mesh_distance_d(&opt, a, m, k, poses, INFINITY, 0, out)
+            st = dbl ? ttd_mesh_distance_d(&opt, a, m, k, poses, (double)INFINITY, 0, out)
                      : ttd_mesh_distance_f(&opt, a, m, k, poses, INFINITY, 0, out);
             break;
         case 1:

@@ -865,7 +865,7 @@ static PyObject *ttd_py_mesh_distance(PyObject *self, PyObject *args, PyObject *
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|$OOOOO:mesh_distance", kwlist, &a, &b, &poses, &ub_obj, &rt_obj,
                                      &isa, &threads, &out_obj))
         return NULL;
-    double ub = INFINITY, rt = 0;
+    double ub = (double)INFINITY, rt = 0;
     if (ttd_py_real_arg(ub_obj, "upper_bound", &ub) < 0 || ttd_py_real_arg(rt_obj, "rel_tol", &rt) < 0)
         return NULL;
     ttd_py_query q;
