@@ -807,7 +807,9 @@ static PyArrayObject *ttd_py_records(const ttd_py_query *q, PyArray_Descr *descr
         PyObject *have = ttd_py_shape(o);
         if (have)
             PyErr_Format(PyExc_ValueError, "out has shape %R: this call writes %s", have,
-                         q->single ? "one record, shape ()" : "one record per pose, shape (K,)");
+                         extra > 0 ? (q->single ? "one record per triangle, shape (m,)"
+                                                : "one record per pose and triangle, shape (K, m)")
+                                   : q->single ? "one record, shape ()" : "one record per pose, shape (K,)");
         Py_XDECREF(have);
         return NULL;
     }
@@ -1065,14 +1067,18 @@ done:
 }
 
 PyDoc_STRVAR(ttd_py_mesh_closest_doc,
-"mesh_closest(a, b, poses, margin, *, for_a=True, for_b=True, isa='auto', threads=0)\n"
+"mesh_closest(a, b, poses, margin, *, for_a=True, for_b=True, isa='auto', threads=0, out=None)\n"
 "--\n\n"
 "For every triangle of a and of b, its closest partner in the other mesh within margin,\n"
 "under each pose of b (Hauser's per-triangle reduction of the contact set).\n\n"
 "a, b, poses, isa, threads : as in ttd.mesh_distance.\n"
 "margin : float, finite and >= 0 (converted to the meshes' dtype).\n"
 "for_a, for_b : bool\n"
-"    Which meshes' triangles to report (at least one).\n\n"
+"    Which meshes' triangles to report (at least one).\n"
+"out : (numpy.ndarray or None, numpy.ndarray or None), optional\n"
+"    Where the library writes the records of for_a and for_b instead of new arrays:\n"
+"    ttd.CLOSEST_DTYPE_FLOAT64 (FLOAT32 for float32 meshes), shape (K, m) ((m,) for one pose),\n"
+"    C-contiguous, writeable; None for a side not asked for.\n\n"
 "Returns a ttd.MeshClosest(for_a, for_b): each a ttd.ClosestPartners of arrays of shape\n"
 "(K, m) ((m,) for a single pose; m that mesh's triangle count), or None when not asked for:\n"
 "partner (uint32, ttd.NO_TRIANGLE when no triangle is within the margin), distance (inf\n"
@@ -1091,12 +1097,22 @@ static PyObject *ttd_py_partners(PyArrayObject *rec)
 static PyObject *ttd_py_mesh_closest(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kwlist[] = {"a", "b", "poses", "margin", "for_a", "for_b", "isa", "threads", NULL};
-    PyObject *a, *b, *poses, *margin_obj, *isa = NULL, *threads = NULL;
+    static char *kwlist[] = {"a", "b", "poses", "margin", "for_a", "for_b", "isa", "threads", "out", NULL};
+    PyObject *a, *b, *poses, *margin_obj, *isa = NULL, *threads = NULL, *out_obj = NULL;
     int for_a = 1, for_b = 1;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOO|$ppOO:mesh_closest", kwlist, &a, &b, &poses, &margin_obj, &for_a,
-                                     &for_b, &isa, &threads))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOO|$ppOOO:mesh_closest", kwlist, &a, &b, &poses, &margin_obj,
+                                     &for_a, &for_b, &isa, &threads, &out_obj))
         return NULL;
+    PyObject *out_a = NULL, *out_b = NULL;
+    if (out_obj != NULL && out_obj != Py_None) {
+        if (!PyTuple_Check(out_obj) || PyTuple_GET_SIZE(out_obj) != 2) {
+            PyErr_Format(PyExc_TypeError, "out must be a tuple (out_a, out_b) of record arrays or None, not %.100s",
+                         Py_TYPE(out_obj)->tp_name);
+            return NULL;
+        }
+        out_a = PyTuple_GET_ITEM(out_obj, 0);
+        out_b = PyTuple_GET_ITEM(out_obj, 1);
+    }
     double margin = 0;
     if (ttd_py_real_arg(margin_obj, "margin", &margin) < 0)
         return NULL;
@@ -1114,11 +1130,22 @@ static PyObject *ttd_py_mesh_closest(PyObject *self, PyObject *args, PyObject *k
     const int f = q.type == NPY_FLOAT;
     PyObject *result = NULL, *ra = NULL, *rb = NULL;
     PyArrayObject *reca = NULL, *recb = NULL;
-    if ((for_a && (reca = ttd_py_records(&q, ttd_py_close_rec[f], "", (npy_intp)ttd_mesh_triangle_count(q.a->mesh),
-                                         NULL)) == NULL) ||
-        (for_b && (recb = ttd_py_records(&q, ttd_py_close_rec[f], "", (npy_intp)ttd_mesh_triangle_count(q.b->mesh),
-                                         NULL)) == NULL))
+    const char *rec_name = f ? "ttd.CLOSEST_DTYPE_FLOAT32" : "ttd.CLOSEST_DTYPE_FLOAT64";
+    if ((!for_a && out_a != NULL && out_a != Py_None) || (!for_b && out_b != NULL && out_b != Py_None)) {
+        PyErr_SetString(PyExc_ValueError, "out names an array for a side that is not computed (for_a or for_b False)");
         goto done;
+    }
+    if ((for_a && (reca = ttd_py_records(&q, ttd_py_close_rec[f], rec_name,
+                                         (npy_intp)ttd_mesh_triangle_count(q.a->mesh), out_a)) == NULL) ||
+        (for_b && (recb = ttd_py_records(&q, ttd_py_close_rec[f], rec_name,
+                                         (npy_intp)ttd_mesh_triangle_count(q.b->mesh), out_b)) == NULL))
+        goto done;
+    if (reca != NULL && recb != NULL && PyArray_NBYTES(reca) > 0 && PyArray_NBYTES(recb) > 0 &&
+        (const char *)PyArray_DATA(reca) < (const char *)PyArray_DATA(recb) + PyArray_NBYTES(recb) &&
+        (const char *)PyArray_DATA(recb) < (const char *)PyArray_DATA(reca) + PyArray_NBYTES(reca)) {
+        PyErr_SetString(PyExc_ValueError, "out's two arrays share memory: each side needs its own");
+        goto done;
+    }
     ttd_status st = ttd_py_query_call(TTD_PY_CLOSEST, &q, margin, 0, reca ? PyArray_DATA(reca) : NULL,
                                       recb ? PyArray_DATA(recb) : NULL);
     if (st != TTD_OK) {

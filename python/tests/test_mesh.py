@@ -424,6 +424,27 @@ def test_out(dtype):
         ttd.mesh_distance(A, B, P, out=np.empty(14, rec)[::2])
     with pytest.raises(TypeError, match="numpy array"):
         ttd.mesh_collide(A, B, P, out=[0] * 7)
+    crec = ttd.CLOSEST_DTYPE_FLOAT64 if dtype == np.float64 else ttd.CLOSEST_DTYPE_FLOAT32
+    oa, ob = np.empty((7, A.triangle_count), crec), np.empty((7, B.triangle_count), crec)
+    cl = ttd.mesh_closest(A, B, P, 0.1, out=(oa, ob))
+    assert np.shares_memory(cl.for_a.partner, oa) and np.shares_memory(cl.for_b.distance, ob)
+    fresh = ttd.mesh_closest(A, B, P, 0.1)
+    np.testing.assert_array_equal(oa["partner"], fresh.for_a.partner)
+    np.testing.assert_array_equal(ob["distance"], fresh.for_b.distance)
+    cl = ttd.mesh_closest(A, B, P, 0.1, for_a=False, out=(None, ob))
+    assert cl.for_a is None and np.shares_memory(cl.for_b.p, ob)
+    cl = ttd.mesh_closest(A, B, P, 0.1, out=(oa, None))  # None: a new array for that side
+    np.testing.assert_array_equal(cl.for_b.partner, fresh.for_b.partner)
+    with pytest.raises(ValueError, match="not computed"):
+        ttd.mesh_closest(A, B, P, 0.1, for_b=False, out=(oa, ob))
+    with pytest.raises(ValueError, match=r"out has shape \(7, 12\).*shape \(K, m\)"):
+        ttd.mesh_closest(A, B, P, 0.1, out=(oa[:, :12].copy(), ob))
+    with pytest.raises(ValueError, match="share memory"):
+        m = A.triangle_count
+        big = np.empty(8 * m, crec)
+        ttd.mesh_closest(A, A, P, 0.1, out=(big[:7 * m].reshape(7, m), big[m:].reshape(7, m)))
+    with pytest.raises(TypeError, match="out must be a tuple"):
+        ttd.mesh_closest(A, B, P, 0.1, out=oa)
     # out overlapping the poses it is computed from
     raw = np.zeros(7 * 12 * np.dtype(dtype).itemsize + 64, np.uint8)
     poses = raw[:7 * 12 * np.dtype(dtype).itemsize].view(dtype).reshape(7, 3, 4)

@@ -195,6 +195,7 @@ def mesh_closest(
     for_b: bool = True,
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
+    out: Optional[Tuple[Optional[npt.NDArray[np.void]], Optional[npt.NDArray[np.void]]]] = None,
 ) -> MeshClosest: ...
 def mesh_collide(
     a: Mesh,
