@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* The extension module ttd._ttd: its initialisation (numpy's C API, the exception and warning
  * classes, the constants of include/ttd/ttd.h), the instruction-set queries and the version.
- * The queries themselves live in one file per family (ttd_pairs.c; meshes to come), each
- * adding its functions and types here. The Python package ttd re-exports all of it. */
+ * The queries themselves live in one file per family (ttd_pairs.c, ttd_mesh.c), each adding
+ * its functions and types here. The Python package ttd re-exports all of it. */
 #define TTD_PY_IMPORTS_NUMPY
 #include "ttd_py.h"
 
@@ -141,7 +141,7 @@ PyMODINIT_FUNC PyInit__ttd(void)
     PyObject *m = PyModule_Create(&ttd_py_module);
     if (m == NULL)
         return NULL;
-    if (PyModule_AddFunctions(m, ttd_py_pairs_methods) < 0)
+    if (PyModule_AddFunctions(m, ttd_py_pairs_methods) < 0 || PyModule_AddFunctions(m, ttd_py_mesh_methods) < 0)
         goto fail;
     ttd_py_IsaUnavailableError = ttd_py_new_class(
         m, "ttd.IsaUnavailableError",
@@ -182,7 +182,7 @@ PyMODINIT_FUNC PyInit__ttd(void)
         Py_XDECREF(isas);
         goto fail;
     }
-    if (ttd_py_pairs_init(m) < 0)
+    if (ttd_py_pairs_init(m) < 0 || ttd_py_mesh_init(m) < 0)
         goto fail;
     return m;
 fail:

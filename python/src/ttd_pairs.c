@@ -40,39 +40,13 @@ static PyStructSequence_Desc ttd_py_pair_result_desc = {
     TTD_PY_NFIELDS,
 };
 
-/* A numpy record dtype with the C struct's field offsets and size. */
-static PyArray_Descr *ttd_py_record_descr(const char *real, const size_t offsets[TTD_PY_NFIELDS], size_t size)
+/* A numpy record dtype with the C struct's field offsets and size; real is "f8" or "f4". */
+static PyArray_Descr *ttd_py_record_descr_of(const char *real, const size_t offsets[TTD_PY_NFIELDS], size_t size)
 {
     char vec[16];
     PyOS_snprintf(vec, sizeof vec, "(3,)%s", real);
     const char *formats[TTD_PY_NFIELDS] = {real, vec, vec, vec, vec, "u4", "u1", "u1", "u2"};
-    PyObject *names = PyList_New(TTD_PY_NFIELDS), *fmts = PyList_New(TTD_PY_NFIELDS),
-             *offs = PyList_New(TTD_PY_NFIELDS), *spec = NULL;
-    PyArray_Descr *descr = NULL;
-    if (!names || !fmts || !offs)
-        goto done;
-    for (int i = 0; i < TTD_PY_NFIELDS; ++i) {
-        PyObject *f = PyUnicode_FromString(formats[i]), *o = PyLong_FromSize_t(offsets[i]);
-        if (!f || !o) {
-            Py_XDECREF(f);
-            Py_XDECREF(o);
-            goto done;
-        }
-        Py_INCREF(ttd_py_field_names[i]);
-        PyList_SET_ITEM(names, i, ttd_py_field_names[i]);
-        PyList_SET_ITEM(fmts, i, f);
-        PyList_SET_ITEM(offs, i, o);
-    }
-    spec = Py_BuildValue("{sOsOsOsn}", "names", names, "formats", fmts, "offsets", offs, "itemsize",
-                         (Py_ssize_t)size);
-    if (spec && !PyArray_DescrConverter(spec, &descr))
-        descr = NULL;
-done:
-    Py_XDECREF(names);
-    Py_XDECREF(fmts);
-    Py_XDECREF(offs);
-    Py_XDECREF(spec);
-    return descr;
+    return ttd_py_record_descr(TTD_PY_NFIELDS, ttd_py_field_names, formats, offsets, size);
 }
 
 #define TTD_PY_OFFSETS(T)                                                                        \
@@ -82,15 +56,12 @@ done:
 
 int ttd_py_pairs_init(PyObject *module)
 {
-    for (int i = 0; i < TTD_PY_NFIELDS; ++i) {
-        ttd_py_field_names[i] = PyUnicode_InternFromString(ttd_py_pair_result_fields[i].name);
-        if (ttd_py_field_names[i] == NULL)
-            return -1;
-    }
+    if (ttd_py_intern_fields(ttd_py_pair_result_fields, TTD_PY_NFIELDS, ttd_py_field_names) < 0)
+        return -1;
     static const size_t off_d[TTD_PY_NFIELDS] = TTD_PY_OFFSETS(ttd_result_d);
     static const size_t off_f[TTD_PY_NFIELDS] = TTD_PY_OFFSETS(ttd_result_f);
-    ttd_py_record_d = ttd_py_record_descr("f8", off_d, sizeof(ttd_result_d));
-    ttd_py_record_f = ttd_py_record_descr("f4", off_f, sizeof(ttd_result_f));
+    ttd_py_record_d = ttd_py_record_descr_of("f8", off_d, sizeof(ttd_result_d));
+    ttd_py_record_f = ttd_py_record_descr_of("f4", off_f, sizeof(ttd_result_f));
     if (!ttd_py_record_d || !ttd_py_record_f)
         return -1;
     ttd_py_PairResult = PyStructSequence_NewType(&ttd_py_pair_result_desc);
@@ -234,18 +205,8 @@ static PyObject *ttd_py_full(const ttd_options *opt, int type, int lead, PyArray
     if (st != TTD_OK && ttd_py_pair_warnings(st, opt, n, nonfinite, not_converged) < 0)
         goto done;
     result = PyStructSequence_New(ttd_py_PairResult);
-    if (result == NULL)
-        goto done;
-    for (int i = 0; i < TTD_PY_NFIELDS; ++i) {
-        PyObject *v = PyObject_GetItem((PyObject *)rec, ttd_py_field_names[i]);
-        if (v != NULL && PyArray_Check(v))
-            v = PyArray_Return((PyArrayObject *)v);
-        if (v == NULL) {
-            Py_CLEAR(result);
-            goto done;
-        }
-        PyStructSequence_SET_ITEM(result, i, v);
-    }
+    if (result != NULL && ttd_py_set_views(result, 0, rec, ttd_py_field_names, TTD_PY_NFIELDS) < 0)
+        Py_CLEAR(result);
 done:
     Py_DECREF(rec);
     return result;

@@ -2,8 +2,8 @@
 /* What the files of the extension module ttd._ttd share: the numpy C API set-up, the module's
  * exception and warning classes, and the helpers that turn Python arguments into the C
  * library's inputs (options, instruction sets, precisions, coordinate arrays) and a C status
- * into a Python exception or warning. Each query family (pairs now, meshes later) lives in its
- * own file and uses only these helpers and include/ttd/ttd.h. */
+ * into a Python exception or warning. Each query family (pairs, meshes) lives in its own file
+ * and uses only these helpers and include/ttd/ttd.h. */
 #ifndef TTD_PY_H
 #define TTD_PY_H
 
@@ -31,6 +31,10 @@ extern PyObject *ttd_py_NotConvergedWarning;   /* RuntimeWarning: an iterative m
 int ttd_py_options(PyObject *method, PyObject *isa, PyObject *threads, PyObject *rho, PyObject *tol,
                    PyObject *max_iterations, ttd_options *out);
 
+/* A real-number argument (int, float, numpy scalar; not bool or str) as a double, left as it is
+ * for NULL or None; -1 with TypeError naming it (what) otherwise. Ranges are the caller's. */
+int ttd_py_real_arg(PyObject *obj, const char *what, double *out);
+
 /* An instruction set name (or a str subclass such as ttd.Isa) to its enum; -1 with ValueError
  * or TypeError set otherwise. */
 int ttd_py_isa_from_name(PyObject *name, ttd_isa *out);
@@ -57,6 +61,22 @@ PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num);
  * statuses, which the caller reports as warnings with the counts only it knows. */
 int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt);
 
+/* The array's shape as a tuple, for messages; NULL with an exception on failure. */
+PyObject *ttd_py_shape(PyArrayObject *a);
+
+/* A numpy record dtype laid out as a C struct: n fields with their names, numpy formats ("f8",
+ * "(3,)f4", "u4", ...) and offsetof() offsets, and the struct's size; NULL with an exception. */
+PyArray_Descr *ttd_py_record_descr(int n, PyObject *const names[], const char *const formats[],
+                                   const size_t offsets[], size_t itemsize);
+
+/* Interned names of a struct sequence's n fields, into names (strong references kept for the
+ * module's lifetime); -1 with an exception on failure. */
+int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *names[]);
+
+/* Sets items first .. first + n - 1 of the struct sequence seq to the views rec[names[i]] of a
+ * record array (numpy scalars where a view has no dimensions); -1 with an exception. */
+int ttd_py_set_views(PyObject *seq, int first, PyArrayObject *rec, PyObject *const names[], int n);
+
 /* The shape (a, b, 3, 3) or (a, b, 9) of triangles: the number of leading dimensions, written
  * to *lead (0 for a single triangle), or -1 with ValueError naming the argument. */
 int ttd_py_triangle_lead(PyArrayObject *a, const char *name, int *lead);
@@ -72,5 +92,7 @@ ttd_status ttd_py_check_options(const ttd_options *opt);
 /* Query families: each adds its functions and types to the module. */
 int ttd_py_pairs_init(PyObject *module);
 extern PyMethodDef ttd_py_pairs_methods[];
+int ttd_py_mesh_init(PyObject *module);
+extern PyMethodDef ttd_py_mesh_methods[];
 
 #endif /* TTD_PY_H */

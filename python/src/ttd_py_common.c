@@ -93,8 +93,7 @@ static int ttd_py_int_arg(PyObject *obj, const char *what, int *out)
     return 0;
 }
 
-/* A real-number argument (int, float, numpy scalar); the library checks its range. */
-static int ttd_py_real_arg(PyObject *obj, const char *what, double *out)
+int ttd_py_real_arg(PyObject *obj, const char *what, double *out)
 {
     if (obj == NULL || obj == Py_None)
         return 0;
@@ -233,8 +232,7 @@ PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num)
                                               NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_FORCECAST);
 }
 
-/* The array's shape as a Python tuple, for messages. */
-static PyObject *ttd_py_shape(PyArrayObject *a)
+PyObject *ttd_py_shape(PyArrayObject *a)
 {
     int nd = PyArray_NDIM(a);
     PyObject *t = PyTuple_New(nd);
@@ -247,6 +245,57 @@ static PyObject *ttd_py_shape(PyArrayObject *a)
         PyTuple_SET_ITEM(t, i, v);
     }
     return t;
+}
+
+PyArray_Descr *ttd_py_record_descr(int n, PyObject *const names[], const char *const formats[],
+                                   const size_t offsets[], size_t itemsize)
+{
+    PyObject *nl = PyList_New(n), *fl = PyList_New(n), *ol = PyList_New(n), *spec = NULL;
+    PyArray_Descr *descr = NULL;
+    if (!nl || !fl || !ol)
+        goto done;
+    for (int i = 0; i < n; ++i) {
+        PyObject *f = PyUnicode_FromString(formats[i]), *o = PyLong_FromSize_t(offsets[i]);
+        if (!f || !o) {
+            Py_XDECREF(f);
+            Py_XDECREF(o);
+            goto done;
+        }
+        Py_INCREF(names[i]);
+        PyList_SET_ITEM(nl, i, names[i]);
+        PyList_SET_ITEM(fl, i, f);
+        PyList_SET_ITEM(ol, i, o);
+    }
+    spec = Py_BuildValue("{sOsOsOsn}", "names", nl, "formats", fl, "offsets", ol, "itemsize", (Py_ssize_t)itemsize);
+    if (spec && !PyArray_DescrConverter(spec, &descr))
+        descr = NULL;
+done:
+    Py_XDECREF(nl);
+    Py_XDECREF(fl);
+    Py_XDECREF(ol);
+    Py_XDECREF(spec);
+    return descr;
+}
+
+int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *names[])
+{
+    for (int i = 0; i < n; ++i)
+        if ((names[i] = PyUnicode_InternFromString(fields[i].name)) == NULL)
+            return -1;
+    return 0;
+}
+
+int ttd_py_set_views(PyObject *seq, int first, PyArrayObject *rec, PyObject *const names[], int n)
+{
+    for (int i = 0; i < n; ++i) {
+        PyObject *v = PyObject_GetItem((PyObject *)rec, names[i]);
+        if (v != NULL && PyArray_Check(v))
+            v = PyArray_Return((PyArrayObject *)v);
+        if (v == NULL)
+            return -1;
+        PyStructSequence_SET_ITEM(seq, first + i, v);
+    }
+    return 0;
 }
 
 int ttd_py_triangle_lead(PyArrayObject *a, const char *name, int *lead)
@@ -372,6 +421,17 @@ int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt)
         break;
     case TTD_ERR_INDEX_OUT_OF_RANGE:
         PyErr_SetString(PyExc_IndexError, "ttd: a mesh triangle or vertex index is out of range");
+        break;
+    /* The mesh entries name the culprit before these can arise (ttd_mesh.c); these are the
+     * fallbacks, with the library's own sentence. */
+    case TTD_ERR_EMPTY:
+    case TTD_ERR_NONFINITE_MESH:
+    case TTD_ERR_BAD_POSE:
+    case TTD_ERR_COORDINATE_RANGE:
+        PyErr_Format(PyExc_ValueError, "ttd: %s", ttd_status_string(st));
+        break;
+    case TTD_ERR_PRECISION_MISMATCH:
+        PyErr_Format(PyExc_TypeError, "ttd: %s", ttd_status_string(st));
         break;
     default:
         PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from the C library: %s", (int)st,

@@ -1,12 +1,15 @@
 # SPDX-License-Identifier: MIT
-"""Scale-out on Dask: ttd.dask.distance on a distributed.LocalCluster of two worker processes
-(what a real cluster runs, pickling included) equals one ttd.distance call, bit for bit, with
-chunks that do not align with the library's 256-pair blocks or its SIMD lanes."""
+"""Scale-out on Dask, on a distributed.LocalCluster of two worker processes (what a real cluster
+runs, pickling included): ttd.dask.distance equals one ttd.distance call, bit for bit, with
+chunks that do not align with the library's 256-pair blocks or its SIMD lanes; and the mesh
+queries over 10,000 poses in chunks (the meshes pickled to the workers and rebuilt there) equal
+one call on all the poses, field by field and bit for bit."""
 import numpy as np
 import pytest
 
 import ttd
 from cases import random_pairs
+from meshes import icosphere, random_poses, rotation, torus
 
 da = pytest.importorskip("dask.array", reason="python3-dask is not installed")
 distributed = pytest.importorskip("distributed", reason="python3-distributed is not installed")
@@ -61,3 +64,101 @@ def test_bad_arguments_fail_before_computing():
         ttd.dask.distance(S, S[:99])
     with pytest.raises(ValueError, match="distances only"):
         ttd.dask.distance(S, S, points=True)
+
+
+# ---- meshes over chunks of poses --------------------------------------------------------------
+
+DISTANCE_FIELDS = ("distance", "p", "q", "tri_a", "tri_b", "feature_a", "feature_b", "flags", "node_tests",
+                   "pair_tests")
+
+
+def _meshes(dtype):
+    (va, fa), (vb, fb) = icosphere(2), torus()
+    return ttd.Mesh(va.astype(dtype), fa), ttd.Mesh(vb.astype(dtype), fb)
+
+
+def _mesh_objects(task):
+    """The ttd.Mesh objects written into one task of a graph."""
+    if isinstance(task, ttd.Mesh):
+        return [task]
+    if isinstance(task, (tuple, list)):
+        return [m for t in task for m in _mesh_objects(t)]
+    if isinstance(task, dict):
+        return [m for t in task.values() for m in _mesh_objects(t)]
+    return []
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32], ids=["float64", "float32"])
+def test_mesh_poses_in_chunks_equal_one_call(client, dtype):
+    A, B = _meshes(dtype)
+    P = random_poses(10_000, seed=52, spread=1.3)
+    dP = da.from_array(P, chunks=(997, 4, 4))  # a prime chunk length: 11 chunks
+    r = ttd.dask.mesh_distance(A, B, dP, threads=1)
+    rec = ttd.MESH_RESULT_DTYPE_FLOAT64 if dtype == np.float64 else ttd.MESH_RESULT_DTYPE_FLOAT32
+    assert r.dtype == rec and r.shape == (10_000,) and r.numblocks == (11,)
+    # The meshes are one task of the graph, whatever the number of chunks.
+    graph = dict(r.__dask_graph__())
+    assert sum(1 for task in graph.values() if _mesh_objects(task)) == 1
+    got = client.compute(r).result()
+    one = ttd.mesh_distance(A, B, P)
+    for field in DISTANCE_FIELDS:
+        np.testing.assert_array_equal(got[field], getattr(one, field), err_msg=field)
+    assert client.compute(r["distance"].min()).result() == one.distance.min()
+
+    col = client.compute(ttd.dask.mesh_collide(A, B, dP[:, :3, :], 0.01, threads=1)).result()
+    one_col = ttd.mesh_collide(A, B, P, 0.01)
+    np.testing.assert_array_equal(col["hit"] != 0, one_col.hit)
+    for field in ("tri_a", "tri_b", "node_tests", "pair_tests"):
+        np.testing.assert_array_equal(col[field], getattr(one_col, field), err_msg=field)
+
+    # Contacts cost far more per pose (hundreds of pairs each where the meshes cross): 3,000 poses.
+    parts = ttd.dask.mesh_contacts(A, B, dP[:3000], 0.005, threads=1)
+    assert parts.npartitions == 4
+    one_c = ttd.mesh_contacts(A, B, P[:3000], 0.005)
+    assert client.compute(parts.map(lambda c: c.distance.size).sum()).result() == one_c.distance.size > 1000
+    joined = ttd.dask.concatenate_contacts(client.compute(parts).result())
+    for got_field, want_field in zip(joined, one_c):
+        np.testing.assert_array_equal(got_field, want_field)
+
+
+def _poses_from(q, t):
+    """(n, 3, 4) poses from n quaternions and n translations (a dask block function)."""
+    out = np.empty((len(q), 3, 4))
+    for i in range(len(q)):
+        out[i, :, :3] = rotation(q[i])
+    out[:, :, 3] = t
+    return out
+
+
+def test_mesh_poses_generated_on_the_workers(client):
+    # The example's pattern: poses made chunk by chunk on the workers, never in one place.
+    A, B = _meshes(np.float64)
+    n, chunk = 6_000, 1_000
+    q = da.random.RandomState(9).standard_normal((n, 4), chunks=(chunk, 4))
+    t = 2.6 * da.random.RandomState(10).random_sample((n, 3), chunks=(chunk, 3)) - 1.3
+    P = da.map_blocks(_poses_from, q, t, new_axis=2, chunks=(q.chunks[0], (3,), (4,)), dtype=float)
+    r = ttd.dask.mesh_distance(A, B, P)
+    got, poses = client.compute([r, P], sync=True)
+    one = ttd.mesh_distance(A, B, poses)
+    np.testing.assert_array_equal(got["distance"], one.distance)
+    np.testing.assert_array_equal(got["p"], one.p)
+
+
+def test_mesh_bad_arguments_fail_before_computing():
+    A, B = _meshes(np.float64)
+    A32, _ = _meshes(np.float32)
+    P = da.zeros((100, 4, 4), chunks=10)
+    with pytest.raises(ValueError, match=r"poses has shape \(100, 4\)"):
+        ttd.dask.mesh_distance(A, B, da.zeros((100, 4)))
+    with pytest.raises(TypeError, match="b must be a ttd.Mesh"):
+        ttd.dask.mesh_collide(A, "B", P)
+    with pytest.raises(TypeError, match="a is a float32 mesh and b a float64 mesh"):
+        ttd.dask.mesh_distance(A32, B, P)
+    with pytest.raises(ValueError, match="margin=-1.0 is out of range"):
+        ttd.dask.mesh_contacts(A, B, P, -1.0)
+    with pytest.raises(ValueError, match="upper_bound=-1.0 is out of range"):
+        ttd.dask.mesh_distance(A, B, P, upper_bound=-1.0)
+    with pytest.raises(ValueError, match="out= is not taken"):
+        ttd.dask.mesh_distance(A, B, P, out=np.empty(100, ttd.MESH_RESULT_DTYPE_FLOAT64))
+    with pytest.raises(ValueError, match="at least one"):
+        ttd.dask.concatenate_contacts([])

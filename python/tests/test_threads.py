@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """Python threads and ttd: the interpreter lock is released while the library computes (so
-threads run in parallel), and concurrent calls give the results of sequential ones. Checked
-by what happens, not by timing: the speed ratio is bench/python_overhead.py's job."""
+threads run in parallel), and concurrent calls give the results of sequential ones, for the
+pair API, the mesh queries and the mesh build. Checked by what happens, not by timing: the
+speed ratio is bench/python_overhead.py's job."""
 import sys
 import threading
 
@@ -10,6 +11,7 @@ import pytest
 
 import ttd
 from cases import random_pairs
+from meshes import icosphere, random_poses, torus
 
 
 @pytest.fixture
@@ -20,6 +22,28 @@ def long_switch_interval():
     sys.setswitchinterval(100.0)
     yield
     sys.setswitchinterval(old)
+
+
+def released_during(call):
+    """True when the interpreter lock was released while call() ran (see below)."""
+    started, returned = threading.Event(), threading.Event()
+    seen = []
+
+    def observer():
+        started.wait()
+        seen.append(returned.is_set())
+
+    def caller():
+        started.set()
+        call()
+        returned.set()
+
+    threads = [threading.Thread(target=observer), threading.Thread(target=caller)]
+    threads[0].start()
+    threads[1].start()
+    for t in threads:
+        t.join()
+    return seen == [False]
 
 
 @pytest.mark.parametrize("points", [False, True])
@@ -91,3 +115,65 @@ def test_two_threads_on_one_batch():
         t.join()
     np.testing.assert_array_equal(out[0], expected)
     np.testing.assert_array_equal(out[1], expected)
+
+
+def big_meshes(dtype=np.float64):
+    (va, fa), (vb, fb) = icosphere(3), torus(1.0, 0.3, 40, 20)
+    return ttd.Mesh(va.astype(dtype), fa), ttd.Mesh(vb.astype(dtype), fb)
+
+
+@pytest.mark.parametrize("query", ["distance", "contacts", "closest", "collide"])
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_lock_is_released_during_mesh_queries(long_switch_interval, query, dtype):
+    # As above: each call lasts tens of milliseconds on one thread (1,280 x 1,600 triangles).
+    # The poses are of the meshes' dtype: a conversion by numpy would release the lock itself.
+    A, B = big_meshes(dtype)
+    P = random_poses(4000 if query in ("distance", "collide") else 300, seed=43, spread=1.2).astype(dtype)
+    calls = {"distance": lambda: ttd.mesh_distance(A, B, P, threads=1),
+             "contacts": lambda: ttd.mesh_contacts(A, B, P, 0.02, threads=1),
+             "closest": lambda: ttd.mesh_closest(A, B, P, 0.02, threads=1),
+             "collide": lambda: ttd.mesh_collide(A, B, P, 0.3, threads=1)}
+    assert released_during(calls[query]), "the observer ran only after the query returned: the lock was held"
+
+
+def test_lock_is_released_while_a_mesh_is_built(long_switch_interval):
+    # 200,000 triangles over 100 vertices: hundreds of milliseconds to build on one thread. The
+    # arrays need no conversion by numpy, which would release the lock itself and let the
+    # observer in before the build.
+    rng = np.random.default_rng(47)
+    V = rng.random((100, 3))
+    F = rng.integers(0, 100, (200_000, 3))
+    assert released_during(lambda: ttd.Mesh(V, F, threads=1))
+
+
+def test_concurrent_mesh_queries_give_the_sequential_results():
+    # Two (and four) Python threads query the same meshes at once: the results of one thread alone.
+    A, B = big_meshes()
+    P = [random_poses(150, seed=44 + k, spread=1.2) for k in range(4)]
+    kinds = ["distance", "contacts", "distance", "collide"]
+
+    def run(k, threads):
+        if kinds[k] == "distance":
+            return ttd.mesh_distance(A, B, P[k], threads=threads)
+        if kinds[k] == "contacts":
+            return ttd.mesh_contacts(A, B, P[k], 0.02, threads=threads)
+        return ttd.mesh_collide(A, B, P[k], 0.1, threads=threads)
+
+    expected = [run(k, 1) for k in range(4)]
+    for n in (2, 4):
+        got = [None] * n
+        barrier = threading.Barrier(n)
+
+        def work(k):
+            barrier.wait()
+            for _ in range(2):
+                got[k] = run(k, 2)
+
+        threads = [threading.Thread(target=work, args=(k,)) for k in range(n)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for k in range(n):
+            for a, b in zip(got[k], expected[k]):
+                np.testing.assert_array_equal(a, b)

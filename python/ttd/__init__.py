@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""ttd: minimum distance between 3D triangles, millions of pairs at a time, on SIMD hardware.
+"""ttd: minimum distance between 3D triangles and triangle meshes, on SIMD hardware.
 
 numpy arrays in, numpy arrays out::
 
@@ -10,21 +10,43 @@ numpy arrays in, numpy arrays out::
     r = ttd.distance(Ss, Ts, points=True)   # (n, 3, 3) arrays: a ttd.PairResult of arrays
     r.distance, r.p, r.q, r.flags & ttd.Flag.INTERSECTING
 
-What is here: distance() (the pair API), the enums Method, Isa and Flag, the instruction-set
-queries isa_available(), isa_selected(), isa_lanes(), version, the exception
-IsaUnavailableError and the warnings NonFiniteInputWarning and NotConvergedWarning.
-ttd.dask runs batches larger than memory on a Dask cluster. Mesh objects and mesh queries
-(ttd.Mesh) will join this module as the C library gains them (docs/python.md).
+    A = ttd.Mesh(vertices, faces)           # (n, 3) float32/float64, (m, 3) integers
+    B = ttd.Mesh(vertices2, faces2)
+    d = ttd.mesh_distance(A, B, poses)      # poses (K, 4, 4) or (K, 3, 4): B in A's frame
+    d.distance, d.p, d.q, d.tri_a, d.tri_b  # (K,), (K, 3), (K, 3), (K,), (K,)
+    c = ttd.mesh_contacts(A, B, poses, 0.01)  # every triangle pair within 0.01, all poses
+    ttd.mesh_collide(A, B, poses).hit       # (K,) bool
+
+What is here: distance() (the pair API); Mesh and the mesh queries mesh_distance(),
+mesh_contacts(), mesh_closest(), mesh_collide() with their result types; the enums Method,
+Isa, Flag and MeshFlag; the instruction-set queries isa_available(), isa_selected(),
+isa_lanes(), version; the exception IsaUnavailableError and the warnings NonFiniteInputWarning
+and NotConvergedWarning. ttd.dask runs batches of pairs and of poses larger than memory on a
+Dask cluster.
 """
 import enum
 
 try:
     from ._ttd import (
+        CLOSEST_DTYPE_FLOAT32,
+        CLOSEST_DTYPE_FLOAT64,
+        COLLISION_DTYPE,
+        CONTACT_DTYPE_FLOAT32,
+        CONTACT_DTYPE_FLOAT64,
         ISAS,
+        MESH_RESULT_DTYPE_FLOAT32,
+        MESH_RESULT_DTYPE_FLOAT64,
         METHODS,
+        NO_TRIANGLE,
         RESULT_DTYPE_FLOAT32,
         RESULT_DTYPE_FLOAT64,
+        ClosestPartners,
         IsaUnavailableError,
+        Mesh,
+        MeshClosest,
+        MeshCollision,
+        MeshContacts,
+        MeshDistance,
         NonFiniteInputWarning,
         NotConvergedWarning,
         PairResult,
@@ -32,6 +54,10 @@ try:
         isa_available,
         isa_lanes,
         isa_selected,
+        mesh_closest,
+        mesh_collide,
+        mesh_contacts,
+        mesh_distance,
         version,
     )
     from . import _ttd
@@ -59,7 +85,7 @@ class Method(str, enum.Enum):
 
 
 class Isa(str, enum.Enum):
-    """Instruction sets for ttd.distance(isa=...); each member is also its name as a str."""
+    """Instruction sets for the isa= argument of every call; each member is also its name as a str."""
 
     AUTO = "auto"  #: the best one built and supported (or the one TTD_ISA names)
     SCALAR = "scalar"  #: plain C, one pair at a time
@@ -84,13 +110,35 @@ class Flag(enum.IntFlag):
     FALLBACK = _ttd.PAIR_FALLBACK  #: certified method: computed by the exact method
 
 
+class MeshFlag(enum.IntFlag):
+    """Flag bits of a mesh distance, in MeshDistance.flags (the TTD_MESH_* bits of the C library)."""
+
+    INTERSECTING = _ttd.MESH_INTERSECTING  #: the meshes touch or cross: distance 0, p == q
+    ABOVE_BOUND = _ttd.MESH_ABOVE_BOUND  #: no pair within upper_bound: distance inf, no points or triangles
+
+
 __all__ = [
+    "CLOSEST_DTYPE_FLOAT32",
+    "CLOSEST_DTYPE_FLOAT64",
+    "COLLISION_DTYPE",
+    "CONTACT_DTYPE_FLOAT32",
+    "CONTACT_DTYPE_FLOAT64",
+    "ClosestPartners",
     "Flag",
     "ISAS",
     "Isa",
     "IsaUnavailableError",
+    "MESH_RESULT_DTYPE_FLOAT32",
+    "MESH_RESULT_DTYPE_FLOAT64",
     "METHODS",
+    "Mesh",
+    "MeshClosest",
+    "MeshCollision",
+    "MeshContacts",
+    "MeshDistance",
+    "MeshFlag",
     "Method",
+    "NO_TRIANGLE",
     "NonFiniteInputWarning",
     "NotConvergedWarning",
     "PairResult",
@@ -101,5 +149,9 @@ __all__ = [
     "isa_available",
     "isa_lanes",
     "isa_selected",
+    "mesh_closest",
+    "mesh_collide",
+    "mesh_contacts",
+    "mesh_distance",
     "version",
 ]

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""Batches larger than one machine's memory, on Dask: ttd.distance chunk by chunk.
+"""Batches larger than one machine's memory, on Dask: ttd.distance chunk by chunk, and the mesh
+queries over poses chunk by chunk.
 
     import dask.array as da
     from distributed import Client
@@ -11,15 +12,28 @@
     d = ttd.dask.distance(S, T, threads=1)    # lazy: a dask array of n distances
     d.min().compute(), (d < 0.01).sum().compute()
 
-Each chunk is one ttd.distance call on a worker, so only a chunk of pairs (72 bytes per float32
-triangle pair, 144 per float64, plus its distances) must fit in a worker's memory at once.
-The result equals one ttd.distance call on all the pairs, bit for bit: a pair's result
-depends on that pair alone, not on its neighbours, the chunking or the thread count.
+    A, B = ttd.Mesh(va, fa), ttd.Mesh(vb, fb)
+    poses = da.from_zarr("poses.zarr")        # (K, 4, 4) or (K, 3, 4), chunked along K
+    r = ttd.dask.mesh_distance(A, B, poses)   # lazy: (K,) records of ttd.MESH_RESULT_DTYPE_*
+    r["distance"].min().compute(), r["tri_a"][:10].compute()
+    hit = ttd.dask.mesh_collide(A, B, poses, 0.01)["hit"]   # (K,) uint32, 1 where within 0.01
+    parts = ttd.dask.mesh_contacts(A, B, poses, 0.01)       # a dask.bag: one MeshContacts per chunk
+    contacts = ttd.dask.concatenate_contacts(parts.compute())  # = ttd.mesh_contacts on all poses
 
-ttd.distance's threads option is per call: threads=0 (its default) uses every core of the
-worker's machine in each call, which suits one worker thread per machine; with several worker
-threads (or processes) per machine, threads=1 keeps them from competing for the cores.
-Warnings (non-finite input, non-convergence) are issued on the workers, where Dask logs them.
+Each chunk is one call on a worker, so only a chunk (of pairs, or of poses and their results)
+must fit in a worker's memory at once. The results equal one call on everything, bit for bit:
+a pair's result depends on that pair alone, and a pose's on that pose and the meshes alone,
+not on the chunking or the thread count.
+
+Meshes reach the workers by pickling: a ttd.Mesh pickles as its vertex and face arrays and is
+rebuilt where it is unpickled (the build is deterministic: the same hierarchy, the same
+results). The two meshes are one task of the graph (a dask.delayed), so each worker receives
+and rebuilds them once per computation, not once per chunk.
+
+ttd's threads option is per call: threads=0 (its default) uses every core of the worker's
+machine in each call, which suits one worker thread per machine; with several worker threads
+(or processes) per machine, threads=1 keeps them from competing for the cores. Warnings
+(non-finite input, non-convergence) are issued on the workers, where Dask logs them.
 """
 import functools
 
@@ -27,7 +41,7 @@ import numpy as np
 
 import ttd
 
-__all__ = ["distance"]
+__all__ = ["concatenate_contacts", "distance", "mesh_collide", "mesh_contacts", "mesh_distance"]
 
 
 def _pairs_2d(X, name):
@@ -65,3 +79,117 @@ def distance(S, T, **options):
     T = T.rechunk((S.chunks[0], (9,)))
     return da.map_blocks(functools.partial(ttd.distance, **options), S, T, drop_axis=1, dtype=empty.dtype,
                          meta=empty, chunks=(S.chunks[0],))
+
+
+# ---- meshes over chunks of poses ---------------------------------------------------------------
+
+def _poses_3d(poses):
+    import dask.array as da
+
+    P = da.asarray(poses)
+    if P.ndim != 3 or P.shape[1:] not in ((4, 4), (3, 4)):
+        raise ValueError(f"poses has shape {P.shape}: ttd.dask's mesh queries take (K, 4, 4) or (K, 3, 4) arrays")
+    return P.rechunk({1: -1, 2: -1})
+
+
+def _meshes(a, b):
+    """The two meshes as one task of the graph (see the module's docstring); checked here."""
+    import dask
+
+    for name, m in (("a", a), ("b", b)):
+        if not isinstance(m, ttd.Mesh):
+            raise TypeError(f"{name} must be a ttd.Mesh, not {type(m).__name__}")
+    return dask.delayed((a, b), pure=False)
+
+
+def _records_block(poses, meshes, query, dtype, margin, options):
+    a, b = meshes
+    out = np.empty(len(poses), dtype)
+    if query == "distance":
+        ttd.mesh_distance(a, b, poses, out=out, **options)
+    else:
+        ttd.mesh_collide(a, b, poses, margin, out=out, **options)
+    return out
+
+
+def _records(a, b, poses, query, margin, options):
+    import dask.array as da
+
+    for key in ("out",):
+        if key in options:
+            raise ValueError(f"ttd.dask.mesh_{query} makes its own arrays: {key}= is not taken")
+    P = _poses_3d(poses)
+    empty = np.zeros((0,) + P.shape[1:], P.dtype)
+    # Arguments, options and dtypes are checked now, on no poses.
+    if query == "distance":
+        ttd.mesh_distance(a, b, empty, **options)
+        dtype = ttd.MESH_RESULT_DTYPE_FLOAT64 if a.dtype == np.float64 else ttd.MESH_RESULT_DTYPE_FLOAT32
+    else:
+        ttd.mesh_collide(a, b, empty, margin, **options)
+        dtype = ttd.COLLISION_DTYPE
+    return da.map_blocks(_records_block, P, _meshes(a, b), query, dtype, margin, options, drop_axis=[1, 2],
+                         dtype=dtype, meta=np.empty(0, dtype), chunks=(P.chunks[0],))
+
+
+def mesh_distance(a, b, poses, **options):
+    """ttd.mesh_distance over a dask array of poses, one call per chunk: a lazy dask array.
+
+    a, b: ttd.Mesh (sent to the workers once, pickled); poses: a dask array (or anything
+    dask.array.asarray takes) of shape (K, 4, 4) or (K, 3, 4), chunked along K. options: those
+    of ttd.mesh_distance (upper_bound, rel_tol, isa, threads), checked here before anything
+    is computed, as are the meshes.
+
+    Returns a dask array of shape (K,) of records laid out as the C library's result struct,
+    dtype ttd.MESH_RESULT_DTYPE_FLOAT64 (or FLOAT32 for float32 meshes): r["distance"],
+    r["p"] (K, 3), r["tri_a"], ... are the fields of ttd.MeshDistance. Equal, field by field
+    and bit for bit, to one ttd.mesh_distance call on all the poses.
+    """
+    return _records(a, b, poses, "distance", 0.0, options)
+
+
+def mesh_collide(a, b, poses, margin=0.0, **options):
+    """ttd.mesh_collide over a dask array of poses, one call per chunk: a lazy dask array of
+    shape (K,) of ttd.COLLISION_DTYPE records (r["hit"] is uint32, 1 where the meshes come
+    within margin; r["tri_a"], r["tri_b"], r["node_tests"], r["pair_tests"]). Arguments as in
+    ttd.dask.mesh_distance; equal to one ttd.mesh_collide call on all the poses."""
+    return _records(a, b, poses, "collide", margin, options)
+
+
+def _contacts_block(poses, meshes, margin, first, options):
+    a, b = meshes
+    c = ttd.mesh_contacts(a, b, poses, margin, **options)
+    return [ttd.MeshContacts((c.pose + first,) + tuple(c[1:]))]
+
+
+def mesh_contacts(a, b, poses, margin, **options):
+    """ttd.mesh_contacts over a dask array of poses, one call per chunk: a lazy dask.bag with one
+    item per chunk of poses, that chunk's ttd.MeshContacts, whose pose column holds the global
+    pose indices (its pose_start indexes its own arrays: the chunk's poses).
+
+    Arguments as in ttd.dask.mesh_distance, plus margin. concatenate_contacts() of the items,
+    in order, equals one ttd.mesh_contacts call on all the poses. The bag's own reductions work
+    on the workers, e.g. parts.map(lambda c: c.distance.size).sum().compute() counts them.
+    """
+    import dask
+    import dask.bag as db
+
+    P = _poses_3d(poses)
+    ttd.mesh_contacts(a, b, np.zeros((0,) + P.shape[1:], P.dtype), margin, **options)
+    meshes = _meshes(a, b)
+    firsts = np.cumsum((0,) + P.chunks[0])[:-1]
+    block = dask.delayed(_contacts_block, pure=True)
+    return db.from_delayed([block(chunk, meshes, margin, int(first), options)
+                            for chunk, first in zip(P.to_delayed().ravel(), firsts)])
+
+
+def concatenate_contacts(parts):
+    """One ttd.MeshContacts from those of consecutive chunks of poses (in pose order), as
+    ttd.dask.mesh_contacts gives them: their arrays joined and pose_start rebuilt over all the
+    poses. The arrays are new and contiguous."""
+    parts = list(parts)
+    if not parts:
+        raise ValueError("concatenate_contacts needs at least one ttd.MeshContacts")
+    counts = np.cumsum([0] + [len(c.pose) for c in parts])
+    starts = [c.pose_start[:-1] + n for c, n in zip(parts, counts)] + [np.array([counts[-1]])]
+    joined = [np.concatenate([getattr(c, f) for c in parts]) for f in ("pose", "tri_a", "tri_b", "distance", "p", "q")]
+    return ttd.MeshContacts(tuple(joined) + (np.concatenate(starts).astype(np.intp),))
