@@ -680,6 +680,76 @@ static int float_subset(void)
     return 0;
 }
 
+/* The contact snap (d <= 4 eps of the pair's extent reads 0) decided the same way in every
+ * order of the triangles and of their vertices, on every instruction set. S and T are
+ * parallel at gap g, where every candidate computes exactly; the extent is 5 (2^3 above it),
+ * but max |coordinate - first vertex| is 3 from S's vertex (0,0,0) and 5 from T's first
+ * vertex, so a threshold taken from the first vertex (as it was) read 16 or 32 eps of it by
+ * the order. Gaps from 8 to 56 eps, away from 32 eps, where rounding decides. The issue's
+ * pair: a degenerate S whose edge passes 1 ulp (of 18) from T's vertex. */
+static int snap_case(const double S[9], const double T[9])
+{
+    for (int prec = 0; prec < 2; ++prec)
+        for (int isa = 0; isa < TTD_ISA_COUNT; ++isa) {
+            if (isa != TTD_ISA_AUTO && !ttd_isa_available((ttd_isa)isa))
+                continue;
+            ttd_options opt = ttd_default_options();
+            opt.isa = (ttd_isa)isa; /* AUTO: the scalar exact_pair itself */
+            double first = -1;
+            for (int ps = 0; ps < 6; ++ps)
+                for (int pt = 0; pt < 6; ++pt)
+                    for (int sw = 0; sw < 2; ++sw) {
+                        double a[9], b[9], d;
+                        permute(sw ? T : S, ps, a);
+                        permute(sw ? S : T, pt, b);
+                        if (prec == 0) {
+                            ttd_result_d r;
+                            if (isa == TTD_ISA_AUTO)
+                                ttd_exact_pair_d(a, b, &r);
+                            else
+                                ENSURE(ttd_batch_d(&opt, 1, a, b, NULL, &r) == TTD_OK);
+                            ENSURE(((r.flags & TTD_PAIR_INTERSECTING) != 0) == (r.distance == 0));
+                            d = r.distance;
+                        } else {
+                            float af[9], bf[9];
+                            for (int i = 0; i < 9; ++i) {
+                                af[i] = (float)a[i];
+                                bf[i] = (float)b[i];
+                            }
+                            ttd_result_f r;
+                            if (isa == TTD_ISA_AUTO)
+                                ttd_exact_pair_f(af, bf, &r);
+                            else
+                                ENSURE(ttd_batch_f(&opt, 1, af, bf, NULL, &r) == TTD_OK);
+                            ENSURE(((r.flags & TTD_PAIR_INTERSECTING) != 0) == (r.distance == 0));
+                            d = (double)r.distance;
+                        }
+                        if (first < 0)
+                            first = d;
+                        ENSURE_MSG((d == 0) == (first == 0), "%s isa %d: %.17g in order (%d %d %d), %.17g in the first",
+                                   prec ? "float" : "double", isa, d, ps, pt, sw, first);
+                    }
+        }
+    return 0;
+}
+
+static int snap_order_independent(void)
+{
+    for (int prec = 0; prec < 2; ++prec)
+        for (int k = 8; k <= 56; k += 4) {
+            if (k == 32)
+                continue;
+            const double eps = prec ? (double)FLT_EPSILON : DBL_EPSILON, g = k * eps;
+            const double S[9] = {0, 0, 0, 3, 0, 0, 0, 3, 0};
+            const double T[9] = {-2, -2, g, 1, 0.5, g, 0.5, 1, g};
+            if (snap_case(S, T))
+                return 1;
+        }
+    const double S[9] = {-9, -18, 11, -9, -18, 11, -11, -18, 11};
+    const double T[9] = {-10, -18.000000000000004, 12, -10, -18, 12, -10, -18.000000000000004, 11};
+    return snap_case(S, T);
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -704,5 +774,6 @@ int main(int argc, char **argv)
     RUN_TEST(offsets_random);
     RUN_TEST(range_ends);
     RUN_TEST(float_subset);
+    RUN_TEST(snap_order_independent);
     TEST_MAIN_END();
 }

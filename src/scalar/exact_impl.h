@@ -373,9 +373,12 @@ static real exact_clamp_max(real x)
 static void exact_pair(const real s[9], const real t[9], ttd_result *r)
 {
     /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
-     * differences cannot overflow; then translate to A and scale by 2^-e so the largest
-     * relative coordinate lies in [0.5, 1). The power is applied as two factors because
-     * 2^-e alone may not be representable (e down to the subnormal range). */
+     * differences cannot overflow; then translate to A and scale by 2^-e, 2^e the power of two
+     * above the pair's extent m (the largest side of the box around all six vertices), so
+     * that every relative coordinate lies in (-1, 1) and the largest beyond 1/4. m depends on
+     * neither the order of the triangles nor that of their vertices, and so neither does the
+     * contact snap's threshold (step 3), which is relative to it. The power is applied as two
+     * factors because 2^-e alone may not be representable (e down to the subnormal range). */
     real m0 = 0;
     for (int i = 0; i < 9; ++i) {
         real a = TTD_FABS(s[i]), b = TTD_FABS(t[i]);
@@ -390,9 +393,14 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
         rel[i] = s[i] * pre - o[i % 3];
         rel[9 + i] = t[i] * pre - o[i % 3];
     }
-    for (int i = 0; i < 18; ++i) {
-        real a = TTD_FABS(rel[i]);
-        m = a > m ? a : m;
+    for (int c = 0; c < 3; ++c) {
+        real lo = s[c] * pre, hi = lo;
+        for (int i = 0; i < 6; ++i) {
+            const real x = (i < 3 ? s[3 * i + c] : t[3 * (i - 3) + c]) * pre;
+            lo = exact_min(lo, x);
+            hi = exact_max(hi, x);
+        }
+        m = exact_max(m, hi - lo);
     }
     int e = 0;
     (void)TTD_FREXP(m, &e);   /* m == 0 gives e == 0: all vertices equal, still handled */

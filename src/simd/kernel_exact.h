@@ -533,9 +533,10 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
 {
     const vreal zero = vzero(), one = vset1((real)1);
     /* 1. Normalise: halve twice near the overflow limit, translate to A, scale by 2^-e with
-     * max |relative coordinate| = f 2^e, f in [0.5, 1). 2^-e is 0.5 / (m with its mantissa
-     * cleared); the one product equals the scalar's two (f1, f2) wherever neither rounds,
-     * i.e. except for coordinates below REAL_MIN of the pair's extent. */
+     * the pair's extent m (the largest side of the box around the six vertices, whatever
+     * their order) = f 2^e, f in [0.5, 1). 2^-e is 0.5 / (m with its mantissa cleared); the
+     * one product equals the scalar's two (f1, f2) wherever neither rounds, i.e. except for
+     * coordinates below REAL_MIN of the pair's extent. */
     vreal m0 = zero;
     for (int i = 0; i < 9; ++i) {
         m0 = vmax(m0, vabs(Sin[i]));
@@ -563,7 +564,15 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
     for (int i = 0; i < 9; ++i) {
         rel[i] = sp[i] - o[i % 3];
         rel[9 + i] = tp[i] - o[i % 3];
-        m = vmax(m, vmax(vabs(rel[i]), vabs(rel[9 + i])));
+    }
+    for (int c = 0; c < 3; ++c) {
+        vreal lo = sp[c], hi = sp[c];
+        for (int i = 0; i < 6; ++i) {
+            const vreal x = i < 3 ? sp[3 * i + c] : tp[3 * (i - 3) + c];
+            lo = vmin(lo, x);
+            hi = vmax(hi, x);
+        }
+        m = vmax(m, hi - lo);
     }
 #ifdef TTD_PRECISION_DOUBLE
     const real lift = 0x1p54, unlift = 0x1p-54;
