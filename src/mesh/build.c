@@ -9,7 +9,7 @@
  * triangle count alone, so does every subtree's node count: node indices are laid out in
  * pre-order before anything is built, and the top subtrees are built in parallel into their own
  * index ranges, with the same result on any number of threads. The splits permute an array of
- * 32-byte records (centroid, triangle) in place, so that a node's triangles are a contiguous
+ * 16-byte records (centroid, triangle) in place, so that a node's triangles are a contiguous
  * run of them: every pass reads memory in order.
  *
  * Bounds, once the order is known: each triangle's vertices are copied into that order, one
