@@ -749,42 +749,62 @@ static real item_size(const qpose *P, const item *it)
     return box_size(P->a.nodes + it->an, it->as) + box_size(P->b.nodes + it->bn, it->bs);
 }
 
-/* Cuts the walk from the root into sub-walks: opens the largest item that is not a pair of
- * triangles, in place (its children replace it, in order), until there are CONTACT_TASKS
- * items or nothing left to open. The work sits where the meshes come close, a small part of
- * the top-level pairs: opening the largest first splits it where it is, so that the sub-walks
- * spread over the threads. The list depends on the meshes and the pose alone. */
+/* Cuts the walk from the root into sub-walks: in rounds, opens every item at least half as large
+ * as the largest (in place: its children replace it, in order), until there are CONTACT_TASKS
+ * items or nothing left to open (pairs of triangles are not opened). The work sits where the
+ * meshes come close, a small part of the top-level pairs: opening the largest first splits it
+ * where it is, so that the sub-walks spread over the threads. Rounds keep the cut linear in
+ * the list (picking one largest item at a time took a quarter of a small mesh's contact
+ * query). The list depends on the meshes and the pose alone. */
 static int contact_tasks(const qctx *C, qwork *W, contact_pose *cp, walk *w)
 {
     const size_t cap = CONTACT_TASKS + TTD_NODE_WIDTH;
-    item *list = malloc(cap * sizeof *list);
-    if (list == NULL)
+    item *list = malloc(2 * cap * sizeof *list);
+    real *size = malloc(2 * cap * sizeof *size); /* -1: a pair of triangles */
+    if (list == NULL || size == NULL) {
+        free(list);
+        free(size);
         return 0;
+    }
+    item *next = list + cap;
+    real *nsize = size + cap;
     size_t n = 0;
-    list[n++] = root_item();
+    list[n] = root_item();
+    size[n++] = cp->P.a.nodes[0].child[0] < 0 && cp->P.b.nodes[0].child[0] < 0 ? -1 : 0;
     while (n < CONTACT_TASKS) {
-        size_t big = SIZE_MAX;
-        real size = -1;
+        real largest = -1;
+        for (size_t i = 0; i < n; ++i)
+            largest = size[i] > largest ? size[i] : largest;
+        if (largest < 0)
+            break;
+        size_t m = 0; /* next's items; with the n - i - 1 not yet seen, the list's new length */
         for (size_t i = 0; i < n; ++i) {
-            const ttd_node *na = cp->P.a.nodes + list[i].an, *nb = cp->P.b.nodes + list[i].bn;
-            if (na->child[list[i].as] < 0 && nb->child[list[i].bs] < 0)
+            if (!(size[i] >= largest / 2 && m + (n - i) < CONTACT_TASKS)) {
+                next[m] = list[i];
+                nsize[m++] = size[i];
                 continue;
-            const real si = item_size(&cp->P, &list[i]);
-            if (si > size) {
-                size = si;
-                big = i;
+            }
+            const int k = expand(C, &cp->P, W, w, &list[i], next + m);
+            for (int j = 0; j < k; ++j, ++m) {
+                const item *it = &next[m];
+                const int pair = cp->P.a.nodes[it->an].child[it->as] < 0 && cp->P.b.nodes[it->bn].child[it->bs] < 0;
+                nsize[m] = pair ? -1 : item_size(&cp->P, it);
             }
         }
-        if (big == SIZE_MAX)
-            break;
-        item kids[TTD_NODE_WIDTH];
-        const item it = list[big];
-        const int m = expand(C, &cp->P, W, w, &it, kids);
-        memmove(list + big + m, list + big + 1, (n - big - 1) * sizeof *list);
-        memcpy(list + big, kids, (size_t)m * sizeof *list);
-        n = n - 1 + (size_t)m;
+        item *ti = list;
+        list = next;
+        next = ti;
+        real *ts = size;
+        size = nsize;
+        nsize = ts;
+        n = m;
     }
-    cp->tasks = list;
+    /* list is one of the two halves of the block; keep the block, moving the tasks to its start */
+    item *block = list < next ? list : next;
+    if (list != block)
+        memmove(block, list, n * sizeof *list);
+    free(size < nsize ? size : nsize);
+    cp->tasks = block;
     cp->ntasks = n;
     cp->lists = calloc(n ? n : 1, sizeof(clist));
     return cp->lists != NULL;
