@@ -230,11 +230,11 @@ static int distance_matches_brute_force(void)
         ENSURE(ttd_mesh_create_d(NULL, c->a.verts, c->a.nv, c->a.tris, c->a.nt, &a) == TTD_OK);
         ENSURE(ttd_mesh_create_d(NULL, c->b.verts, c->b.nv, c->b.tris, c->b.nt, &b) == TTD_OK);
         ttd_result_d *all = brute_d(&c->a, &c->b, c->pose);
-        double best = INFINITY;
+        double best = HUGE_VAL;
         for (size_t i = 0; i < c->a.nt * c->b.nt; ++i)
             best = fmin(best, all[i].distance);
         ttd_mesh_result_d r;
-        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, INFINITY, 0, &r) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, HUGE_VAL, 0, &r) == TTD_OK);
         ENSURE_MSG(r.distance == best, "%s (case %d): %.17g, brute force %.17g", c->name, ci, r.distance, best);
         ENSURE(r.tri_a < c->a.nt && r.tri_b < c->b.nt);
         const ttd_result_d *pr = &all[(size_t)r.tri_a * c->b.nt + r.tri_b];
@@ -255,14 +255,14 @@ static int distance_matches_brute_force(void)
         ENSURE(r.feature_a == pr->feature_p && r.feature_b == pr->feature_q);
         /* an upper bound just above the minimum changes nothing; just below, it is exceeded */
         ttd_mesh_result_d u;
-        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, nextafter(best, INFINITY), 0, &u) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, nextafter(best, HUGE_VAL), 0, &u) == TTD_OK);
         ENSURE(u.distance == best && u.tri_a == r.tri_a && u.tri_b == r.tri_b);
         if (best > 0) {
             ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, nextafter(best, 0), 0, &u) == TTD_OK);
             ENSURE(u.flags == TTD_MESH_ABOVE_BOUND && isinf(u.distance) && u.tri_a == UINT32_MAX);
         }
         /* rel_tol: a pair within the promised factor, which brute force confirms */
-        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, INFINITY, 0.25, &u) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(NULL, a, b, 1, c->pose, HUGE_VAL, 0.25, &u) == TTD_OK);
         ENSURE(u.distance >= best && u.distance <= 1.25 * best + 1e-12 * size);
         ENSURE(all[(size_t)u.tri_a * c->b.nt + u.tri_b].distance == u.distance);
         free(all);
@@ -336,7 +336,7 @@ static int contacts_and_collision_match_brute_force(void)
         ENSURE(ttd_mesh_create_d(NULL, c->b.verts, c->b.nv, c->b.tris, c->b.nt, &b) == TTD_OK);
         ttd_result_d *all = brute_d(&c->a, &c->b, c->pose);
         const size_t n = c->a.nt * c->b.nt;
-        double best = INFINITY;
+        double best = HUGE_VAL;
         for (size_t i = 0; i < n; ++i)
             best = fmin(best, all[i].distance);
         const double size = fmax(mesh_size(&c->a), mesh_size(&c->b));
@@ -433,11 +433,11 @@ static int poses_threads_isas_identical(void)
     ttd_options o = ttd_default_options();
     o.isa = TTD_ISA_SCALAR;
     o.threads = 1;
-    ENSURE(ttd_mesh_distance_d(&o, a, b, K, poses, INFINITY, 0, ref) == TTD_OK);
+    ENSURE(ttd_mesh_distance_d(&o, a, b, K, poses, HUGE_VAL, 0, ref) == TTD_OK);
     ENSURE(ttd_mesh_collide_d(&o, a, b, K, poses, 0.01, cref) == TTD_OK);
     ENSURE(ttd_mesh_contacts_d(&o, a, b, K, poses, 0.05, &sref) == TTD_OK);
     for (int i = 0; i < K; ++i) { /* a loop of single poses */
-        ENSURE(ttd_mesh_distance_d(&o, a, b, 1, poses + 12 * i, INFINITY, 0, &got[i]) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(&o, a, b, 1, poses + 12 * i, HUGE_VAL, 0, &got[i]) == TTD_OK);
         ENSURE(memcmp(&got[i], &ref[i], sizeof got[i]) == 0);
         ENSURE(ttd_mesh_contacts_d(&o, a, b, 1, poses + 12 * i, 0.05, &sgot) == TTD_OK);
         ENSURE(sgot.count == sref.pose_start[i + 1] - sref.pose_start[i]);
@@ -450,7 +450,7 @@ static int poses_threads_isas_identical(void)
         for (int threads = 1; threads <= 3; ++threads) {
             o.isa = (ttd_isa)isa;
             o.threads = threads;
-            ENSURE(ttd_mesh_distance_d(&o, a, b, K, poses, INFINITY, 0, got) == TTD_OK);
+            ENSURE(ttd_mesh_distance_d(&o, a, b, K, poses, HUGE_VAL, 0, got) == TTD_OK);
             ENSURE_MSG(memcmp(got, ref, sizeof got) == 0, "%s, %d threads: distances differ", ttd_isa_name((ttd_isa)isa), threads);
             ENSURE(ttd_mesh_collide_d(&o, a, b, K, poses, 0.01, cgot) == TTD_OK);
             ENSURE(memcmp(cgot, cref, sizeof cgot) == 0);
@@ -512,9 +512,9 @@ static int bad_input(void)
     bad.method = TTD_METHOD_PENALTY;
     ENSURE(ttd_mesh_create_d(&bad, m.verts, m.nv, m.tris, m.nt, &a) == TTD_ERR_BAD_OPTIONS);
     const double keep = m.verts[4];
-    m.verts[4] = NAN;
+    m.verts[4] = (double)NAN;
     ENSURE(ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &a) == TTD_ERR_NONFINITE_MESH && a == NULL);
-    m.verts[4] = -INFINITY;
+    m.verts[4] = -HUGE_VAL;
     ENSURE(ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &a) == TTD_ERR_NONFINITE_MESH);
     m.verts[4] = keep;
     vf[7] = INFINITY;
@@ -538,21 +538,21 @@ static int bad_input(void)
     ttd_collision col;
     ttd_contacts_d set = {0};
     ttd_closest_d cl[4];
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, INFINITY, 0, &r) == TTD_OK);
-    ENSURE(ttd_mesh_distance_d(NULL, NULL, a, 1, pose, INFINITY, 0, &r) == TTD_ERR_NULL_POINTER);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, NULL, INFINITY, 0, &r) == TTD_ERR_NULL_POINTER);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, INFINITY, 0, NULL) == TTD_ERR_NULL_POINTER);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 0, pose, INFINITY, 0, &r) == TTD_ERR_EMPTY);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, HUGE_VAL, 0, &r) == TTD_OK);
+    ENSURE(ttd_mesh_distance_d(NULL, NULL, a, 1, pose, HUGE_VAL, 0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, NULL, HUGE_VAL, 0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, HUGE_VAL, 0, NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 0, pose, HUGE_VAL, 0, &r) == TTD_ERR_EMPTY);
     ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, -1, 0, &r) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, NAN, 0, &r) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, INFINITY, -0.5, &r) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, INFINITY, INFINITY, &r) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_distance_d(NULL, a, f, 1, pose, INFINITY, 0, &r) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, (double)NAN, 0, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, HUGE_VAL, -0.5, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_distance_d(NULL, a, a, 1, pose, HUGE_VAL, HUGE_VAL, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_distance_d(NULL, a, f, 1, pose, HUGE_VAL, 0, &r) == TTD_ERR_PRECISION_MISMATCH);
     ENSURE(ttd_mesh_distance_f(NULL, f, a, 1, posef, INFINITY, 0, &rf) == TTD_ERR_PRECISION_MISMATCH);
     ENSURE(ttd_mesh_distance_f(NULL, f, f, 1, posef, INFINITY, 0, &rf) == TTD_OK && rf.distance > 0);
     ENSURE(ttd_mesh_collide_d(NULL, a, a, 1, pose, -0.1, &col) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_collide_d(NULL, a, a, 1, pose, INFINITY, &col) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_contacts_d(NULL, a, a, 1, pose, NAN, &set) == TTD_ERR_BAD_OPTIONS && set.count == 0);
+    ENSURE(ttd_mesh_collide_d(NULL, a, a, 1, pose, HUGE_VAL, &col) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_contacts_d(NULL, a, a, 1, pose, (double)NAN, &set) == TTD_ERR_BAD_OPTIONS && set.count == 0);
     ENSURE(ttd_mesh_contacts_d(NULL, a, a, 1, pose, 1, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_mesh_closest_d(NULL, a, a, 1, pose, 1, NULL, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_mesh_closest_d(NULL, a, a, 1, pose, 1, cl, NULL) == TTD_OK);
@@ -562,7 +562,7 @@ static int bad_input(void)
         double value;
         ttd_status want;
     } bad_poses[] = {
-        {0, NAN, TTD_ERR_BAD_POSE},   {3, INFINITY, TTD_ERR_BAD_POSE}, {0, 1.001, TTD_ERR_BAD_POSE},
+        {0, (double)NAN, TTD_ERR_BAD_POSE},   {3, HUGE_VAL, TTD_ERR_BAD_POSE}, {0, 1.001, TTD_ERR_BAD_POSE},
         {1, 0.01, TTD_ERR_BAD_POSE},  {0, -1, TTD_ERR_BAD_POSE},       {10, 1 + 4e-7, TTD_OK},
         {10, 1 + 2e-6, TTD_ERR_BAD_POSE},
     };
@@ -572,7 +572,7 @@ static int bad_input(void)
         memcpy(p + 12, pose, sizeof pose);
         p[12 + bad_poses[i].entry] = bad_poses[i].value; /* the second of two poses */
         ttd_mesh_result_d r2[2];
-        ENSURE_MSG(ttd_mesh_distance_d(NULL, a, a, 2, p, INFINITY, 0, r2) == bad_poses[i].want, "bad pose %zu", i);
+        ENSURE_MSG(ttd_mesh_distance_d(NULL, a, a, 2, p, HUGE_VAL, 0, r2) == bad_poses[i].want, "bad pose %zu", i);
         ENSURE(ttd_mesh_collide_d(NULL, a, a, 2, p, 0, (ttd_collision[2]){{0}}) == bad_poses[i].want);
     }
     posef[5] = NAN;
@@ -625,14 +625,14 @@ static int extreme_scales_match_brute_force(void)
             ENSURE(ttd_mesh_create_d(NULL, a.verts, a.nv, a.tris, a.nt, &ma) == TTD_OK);
             ENSURE(ttd_mesh_create_d(NULL, b.verts, b.nv, b.tris, b.nt, &mb) == TTD_OK);
             ttd_result_d *all = brute_d(&a, &b, pose);
-            double best = INFINITY;
+            double best = HUGE_VAL;
             for (size_t j = 0; j < a.nt * b.nt; ++j)
                 best = fmin(best, all[j].distance);
             ttd_mesh_result_d r;
-            ENSURE(ttd_mesh_distance_d(NULL, ma, mb, 1, pose, INFINITY, 0, &r) == TTD_OK);
+            ENSURE(ttd_mesh_distance_d(NULL, ma, mb, 1, pose, HUGE_VAL, 0, &r) == TTD_OK);
             ENSURE_MSG(r.distance == best, "scale %g: %.17g, brute force %.17g", s, r.distance, best);
             ENSURE(best > 0.5 * s && best < 3 * s);
-            ENSURE(ttd_mesh_collide_d(NULL, ma, mb, 1, pose, nextafter(best, INFINITY), &col[0]) == TTD_OK);
+            ENSURE(ttd_mesh_collide_d(NULL, ma, mb, 1, pose, nextafter(best, HUGE_VAL), &col[0]) == TTD_OK);
             ENSURE(ttd_mesh_collide_d(NULL, ma, mb, 1, pose, nextafter(best, 0), &col[1]) == TTD_OK);
             free(all);
         } else {
@@ -679,7 +679,7 @@ static int coordinate_range_refused(void)
         for (int beyond = 0; beyond < 2; ++beyond) {
             ttd_gen_mesh m;
             ENSURE(ttd_gen_mesh_copy(&tri, &m) == 0);
-            m.verts[4] = beyond ? (dbl ? nextafter(L, INFINITY) : (double)nextafterf((float)L, INFINITY)) : -L;
+            m.verts[4] = beyond ? (dbl ? nextafter(L, HUGE_VAL) : (double)nextafterf((float)L, INFINITY)) : -L;
             ttd_mesh *x = NULL;
             mesh_f f = to_float(&m);
             const ttd_status st = dbl ? ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &x)

@@ -291,7 +291,7 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *
 static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
 {
     const double *u = b->u;
-    double mn0 = INFINITY, mn1 = INFINITY, mn2 = INFINITY, mx0 = -INFINITY, mx1 = -INFINITY, mx2 = -INFINITY;
+    double mn0 = HUGE_VAL, mn1 = HUGE_VAL, mn2 = HUGE_VAL, mx0 = -HUGE_VAL, mx1 = -HUGE_VAL, mx2 = -HUGE_VAL;
     for (int k = 0; k < 3; ++k) {
         const double *x = B->p[3 * k], *y = B->p[3 * k + 1], *z = B->p[3 * k + 2];
         for (size_t i = lo; i < hi; ++i) {
@@ -718,7 +718,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
 static void place(struct ttd_mesh *m, const void *verts, double *vrel)
 {
     const size_t nv = m->nv;
-    double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (size_t i = 0; i < 3 * nv; ++i) {
         const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
         vrel[i] = x;
