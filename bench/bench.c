@@ -246,6 +246,17 @@ static int simd_kernel_exists(ttd_isa isa, ttd_method m, int bytes)
     return isa == TTD_ISA_SCALAR || ttd_method_lanes(m, isa, bytes) > 1;
 }
 
+/* A row's timing from one measurement: samples, passes per sample (0: not counted), the median
+ * and fastest sample in ns per pair. */
+static void row_times(bench_row *r, int samples, long passes, double ns, double ns_min)
+{
+    r->samples = samples;
+    r->passes = passes;
+    r->ns_per_pair = ns;
+    r->ns_min = ns_min;
+    r->pairs_per_s = 1e9 / ns;
+}
+
 static bench_row *new_row(bench_ctx *cx, const bench_data *d, const char *method, int bytes,
                           const char *isa, int lanes, int threads)
 {
@@ -377,11 +388,7 @@ static void measure_fcl(bench_ctx *cx, bench_data *d, int bytes)
     bench_row *r = new_row(cx, d, "fcl", bytes, "scalar", 1, 1);
     if (!r)
         return;
-    r->samples = cx->st.samples;
-    r->passes = 0;
-    r->ns_per_pair = ns;
-    r->ns_min = ns_min;
-    r->pairs_per_s = 1e9 / ns;
+    row_times(r, cx->st.samples, 0, ns, ns_min);
     if (d->ref[prec_slot(bytes)])
         accuracy(d, bytes, d->dist, r);
     progress(cx, "%s fcl %s: %.2f ns/pair", d->spec->name, prec_name(bytes), ns);
@@ -565,11 +572,7 @@ static void measure_cli(bench_ctx *cx, bench_data *d)
         if (!r)
             return;
         snprintf(r->workload, sizeof r->workload, "%s", form);
-        r->samples = samples;
-        r->passes = 1;
-        r->ns_per_pair = ns;
-        r->ns_min = ns_min;
-        r->pairs_per_s = 1e9 / ns;
+        row_times(r, samples, 1, ns, ns_min);
         accuracy(d, bytes, d->dist, r);
         progress(cx, "%s exact %s %s 1t: %.2f ns/pair", form, prec_name(bytes), ttd_isa_name(isa), ns);
     }
@@ -607,11 +610,7 @@ static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
             bench_row *r = new_row(cx, d, variants[v].method, bytes, ttd_isa_name(isa), ttd_isa_lanes(isa, bytes), 1);
             if (!r)
                 return;
-            r->samples = cx->st.samples;
-            r->passes = 0;
-            r->ns_per_pair = ns;
-            r->ns_min = ns_min;
-            r->pairs_per_s = 1e9 / ns;
+            row_times(r, cx->st.samples, 0, ns, ns_min);
             accuracy_bounded(d, bytes, (const double *)d->dist, bytes == 8 ? bound : (double)(float)bound, r);
             progress(cx, "%s %s %s %s 1t: %.2f ns/pair", d->spec->name, variants[v].method, prec_name(bytes),
                      ttd_isa_name(isa), ns);

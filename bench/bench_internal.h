@@ -123,4 +123,7 @@ void bench_write_csv(FILE *f, const bench_row *rows, size_t n);
 /// row ranked just above scalar; TTD_ISA_AUTO if none is.
 ttd_isa bench_best_isa(unsigned mask);
 
+/// Writes s as a JSON string literal (quotes, backslashes and control characters escaped).
+void bench_json_string(FILE *f, const char *s);
+
 #endif /* TTD_BENCH_INTERNAL_H */

@@ -1460,21 +1460,6 @@ void bench_mesh_write_table(FILE *f, const bench_mesh_results *R)
     }
 }
 
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
 static void json_num(FILE *f, const char *key, double v, const char *fmt)
 {
     fprintf(f, ", \"%s\": ", key);
@@ -1491,28 +1476,28 @@ void bench_mesh_write_json(FILE *f, const bench_mesh_results *R)
         return;
     }
     fprintf(f, "{\"quick\": %s, \"isa\": ", R->quick ? "true" : "false");
-    json_str(f, R->isa);
+    bench_json_string(f, R->isa);
     fputs(", \"bunny\": ", f);
-    json_str(f, R->bunny);
+    bench_json_string(f, R->bunny);
     fputs(", \"fcl\": ", f);
-    json_str(f, R->fcl);
+    bench_json_string(f, R->fcl);
     fprintf(f, ", \"distances_compared\": %zu", R->compared);
     json_num(f, "worst_distance_difference", R->compared ? R->worst_diff : BENCH_NAN, "%.6g");
     fprintf(f, ", \"distance_tolerance\": %g, \"disagreements\": %zu,\n    \"rows\": [\n", TOL_D, R->disagreements);
     for (size_t i = 0; i < R->n; ++i) {
         const mrow *r = &R->rows[i];
         fputs("      {\"workload\": ", f);
-        json_str(f, r->workload);
+        bench_json_string(f, r->workload);
         fprintf(f, ", \"triangles\": %zu, \"pose\": ", r->tris);
-        json_str(f, r->pose);
+        bench_json_string(f, r->pose);
         fputs(", \"query\": ", f);
-        json_str(f, r->query);
+        bench_json_string(f, r->query);
         fprintf(f, ", \"precision\": \"%s\", \"threads\": %d, \"poses\": %zu", r->bytes == 8 ? "double" : "float",
                 r->threads, r->poses);
         json_num(f, "pose_distance", r->pose_dist, "%.17g");
         json_num(f, "margin", r->margin, "%.17g");
         fputs(", \"result\": ", f);
-        json_str(f, r->result);
+        bench_json_string(f, r->result);
         json_num(f, "value", r->value, "%.17g");
         json_num(f, "ms", r->ms, "%.6g");
         json_num(f, "ms_min", r->ms_min, "%.6g");
@@ -1529,20 +1514,20 @@ void bench_mesh_write_json(FILE *f, const bench_mesh_results *R)
         json_num(f, "speedup_vs_fcl", r->x_fcl, "%.6g");
         json_num(f, "diff", r->diff, "%.6g");
         fprintf(f, ", \"disagree\": %s, \"note\": ", r->disagree ? "true" : "false");
-        json_str(f, r->note);
+        bench_json_string(f, r->note);
         fprintf(f, "}%s\n", i + 1 < R->n ? "," : "");
     }
     fputs("    ],\n    \"targets\": [\n", f);
     for (int i = 0; i < T_COUNT; ++i) {
         const target *t = &R->targets[i];
         fputs("      {\"target\": ", f);
-        json_str(f, t->what);
+        bench_json_string(f, t->what);
         fputs(", \"need\": ", f);
-        json_str(f, t->need);
+        bench_json_string(f, t->need);
         json_num(f, "required", t->required, "%.6g");
         json_num(f, "measured", t->measured, "%.6g");
         fprintf(f, ", \"verdict\": \"%s\", \"where\": ", verdict(t));
-        json_str(f, t->where);
+        bench_json_string(f, t->where);
         fprintf(f, "}%s\n", i + 1 < T_COUNT ? "," : "");
     }
     fputs("    ]}", f);

@@ -127,7 +127,7 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
         bench_mesh_write_table(f, st->mesh);
 }
 
-static void json_string(FILE *f, const char *s)
+void bench_json_string(FILE *f, const char *s)
 {
     fputc('"', f);
     for (; *s; ++s) {
@@ -153,30 +153,30 @@ static void json_num(FILE *f, const char *key, double v)
 void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st, const bench_row *rows, size_t n)
 {
     fprintf(f, "{\n  \"tool\": \"ttd bench\",\n  \"version\": ");
-    json_string(f, ttd_version_string());
+    bench_json_string(f, ttd_version_string());
     fprintf(f, ",\n  \"command\": ");
-    json_string(f, st->command);
+    bench_json_string(f, st->command);
     fprintf(f, ",\n  \"machine\": {\"cpu\": ");
-    json_string(f, m->cpu);
+    bench_json_string(f, m->cpu);
     fprintf(f, ", \"cores\": %d, \"memory_gib\": %.1f, \"os\": ", m->cores, m->mem_gib);
-    json_string(f, m->os);
+    bench_json_string(f, m->os);
     fprintf(f, ", \"load_average_start\": ");
-    json_string(f, m->load_start);
+    bench_json_string(f, m->load_start);
     fprintf(f, ", \"load_average_end\": ");
-    json_string(f, m->load_end);
+    bench_json_string(f, m->load_end);
     fprintf(f, ", \"load_exceeds_cores\": %s", bench_load_exceeds_cores(m) ? "true" : "false");
     fprintf(f, ", \"priority\": ");
-    json_string(f, m->priority);
+    bench_json_string(f, m->priority);
     fprintf(f, ", \"cpu_simd_flags\": ");
-    json_string(f, m->cpu_isas);
+    bench_json_string(f, m->cpu_isas);
     fprintf(f, ", \"ttd_isas\": ");
-    json_string(f, m->ttd_isas);
+    bench_json_string(f, m->ttd_isas);
     fprintf(f, ", \"isa_auto\": ");
-    json_string(f, m->isa_auto);
+    bench_json_string(f, m->isa_auto);
     fprintf(f, ",\n              \"compiler\": ");
-    json_string(f, TTD_C_COMPILER);
+    bench_json_string(f, TTD_C_COMPILER);
     fprintf(f, ", \"flags\": ");
-    json_string(f, TTD_C_FLAGS " + " BENCH_EXTRA_FLAGS);
+    bench_json_string(f, TTD_C_FLAGS " + " BENCH_EXTRA_FLAGS);
     fprintf(f, ",\n              \"probes\": {\"clock_ghz\": ");
     if (isfinite(m->ghz))
         fprintf(f, "%.6g", m->ghz);
@@ -195,18 +195,18 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
                "\"disagree_tol_double\": %g, \"disagree_tol_float\": %g, \"fcl\": ",
             st->quick ? "true" : "false", st->samples, st->min_sample_s, st->seed, bench_disagree_tol(8),
             bench_disagree_tol(4));
-    json_string(f, st->fcl);
+    bench_json_string(f, st->fcl);
     fprintf(f, ", \"pair_mesh\": ");
-    json_string(f, st->pair_mesh);
+    bench_json_string(f, st->pair_mesh);
     fprintf(f, "},\n  \"rows\": [\n");
     for (size_t i = 0; i < n; ++i) {
         const bench_row *r = &rows[i];
         fprintf(f, "    {\"workload\": ");
-        json_string(f, r->workload);
+        bench_json_string(f, r->workload);
         fprintf(f, ", \"method\": ");
-        json_string(f, r->method);
+        bench_json_string(f, r->method);
         fprintf(f, ", \"precision\": \"%s\", \"isa\": ", prec_name(r->bytes));
-        json_string(f, r->isa);
+        bench_json_string(f, r->isa);
         fprintf(f, ", \"lanes\": %d, \"threads\": %d, \"pairs\": %zu, \"samples\": %d, \"passes\": %ld", r->lanes,
                 r->threads, r->pairs, r->samples, r->passes);
         json_num(f, "ns_per_pair", r->ns_per_pair);

@@ -374,6 +374,21 @@ static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t
         flush(C, P, W, w);
 }
 
+/* Item it with the opened side's box replaced by child j of node `node`, at bound lb2. */
+static item child_item(const item *it, int open_b, int32_t node, int j, real lb2)
+{
+    item c = *it;
+    if (open_b) {
+        c.bn = node;
+        c.bs = j;
+    } else {
+        c.an = node;
+        c.as = j;
+    }
+    c.lb2 = lb2;
+    return c;
+}
+
 /* Opens the larger box of item it (it is within the limit) and writes the children within the
  * limit to dst; returns how many. A pair of triangles is queued for the kernel instead.
  * In a depth-first phase the children come nearest last (deepest overlap last among
@@ -413,15 +428,7 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
             if (lb2[j] > w->limit2)
                 continue;
             if (lb2[j] > w->gate2) {
-                item c = *it;
-                if (open_b) {
-                    c.bn = cb;
-                    c.bs = j;
-                } else {
-                    c.an = ca;
-                    c.as = j;
-                }
-                c.lb2 = lb2[j];
+                const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
                 defer_item(W, &c);
                 continue;
             }
@@ -438,15 +445,7 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
     for (int j = 0; j < y->count; ++j) {
         if (lb2[j] > w->limit2)
             continue;
-        item c = *it;
-        if (open_b) {
-            c.bn = cb;
-            c.bs = j;
-        } else {
-            c.an = ca;
-            c.as = j;
-        }
-        c.lb2 = lb2[j];
+        const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
         if (!w->ordered) {
             dst[n++] = c;
             continue;
