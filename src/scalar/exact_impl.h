@@ -379,29 +379,27 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
      * neither the order of the triangles nor that of their vertices, and so neither does the
      * contact snap's threshold (step 3), which is relative to it. The power is applied as two
      * factors because 2^-e alone may not be representable (e down to the subnormal range). */
-    real m0 = 0;
-    for (int i = 0; i < 9; ++i) {
-        real a = TTD_FABS(s[i]), b = TTD_FABS(t[i]);
-        m0 = a > m0 ? a : m0;
-        m0 = b > m0 ? b : m0;
+    /* the box around the six vertices; its corners also give the largest |coordinate| */
+    real lo[3], hi[3], m0 = 0;
+    for (int c = 0; c < 3; ++c) {
+        lo[c] = hi[c] = s[c];
+        for (int i = 1; i < 6; ++i) {
+            const real x = i < 3 ? s[3 * i + c] : t[3 * (i - 3) + c];
+            lo[c] = exact_min(lo[c], x);
+            hi[c] = exact_max(hi[c], x);
+        }
+        m0 = exact_max(m0, exact_max(TTD_FABS(lo[c]), TTD_FABS(hi[c])));
     }
     const real pre = m0 > TTD_REAL_MAX * (real)0.25 ? (real)0.25 : (real)1;
     const real o[3] = {s[0] * pre, s[1] * pre, s[2] * pre};
     real rel[18];
-    real m = 0;
     for (int i = 0; i < 9; ++i) {
         rel[i] = s[i] * pre - o[i % 3];
         rel[9 + i] = t[i] * pre - o[i % 3];
     }
-    for (int c = 0; c < 3; ++c) {
-        real lo = s[c] * pre, hi = lo;
-        for (int i = 0; i < 6; ++i) {
-            const real x = (i < 3 ? s[3 * i + c] : t[3 * (i - 3) + c]) * pre;
-            lo = exact_min(lo, x);
-            hi = exact_max(hi, x);
-        }
-        m = exact_max(m, hi - lo);
-    }
+    real m = 0; /* the extent; the pre-scale is monotone, so the box scales with it */
+    for (int c = 0; c < 3; ++c)
+        m = exact_max(m, hi[c] * pre - lo[c] * pre);
     int e = 0;
     (void)TTD_FREXP(m, &e);   /* m == 0 gives e == 0: all vertices equal, still handled */
     const int e1 = e / 2, e2 = e - e / 2;

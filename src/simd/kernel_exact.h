@@ -537,10 +537,16 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
      * their order) = f 2^e, f in [0.5, 1). 2^-e is 0.5 / (m with its mantissa cleared); the
      * one product equals the scalar's two (f1, f2) wherever neither rounds, i.e. except for
      * coordinates below REAL_MIN of the pair's extent. */
-    vreal m0 = zero;
-    for (int i = 0; i < 9; ++i) {
-        m0 = vmax(m0, vabs(Sin[i]));
-        m0 = vmax(m0, vabs(Tin[i]));
+    /* the box around the six vertices; its corners also give the largest |coordinate| */
+    vreal lo[3], hi[3], m0 = zero;
+    for (int c = 0; c < 3; ++c) {
+        lo[c] = hi[c] = Sin[c];
+        for (int i = 1; i < 6; ++i) {
+            const vreal x = i < 3 ? Sin[3 * i + c] : Tin[3 * (i - 3) + c];
+            lo[c] = vmin(lo[c], x);
+            hi[c] = vmax(hi[c], x);
+        }
+        m0 = vmax(m0, vmax(vabs(lo[c]), vabs(hi[c])));
     }
     const vmask huge = vgt(m0, vset1(TTD_REAL_MAX * (real)0.25));
     const vreal pre = vsel(huge, vset1((real)0.25), one);
@@ -560,20 +566,14 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
     vreal o[3], rel[18];
     for (int c = 0; c < 3; ++c)
         o[c] = sp[c];
-    vreal m = zero;
     for (int i = 0; i < 9; ++i) {
         rel[i] = sp[i] - o[i % 3];
         rel[9 + i] = tp[i] - o[i % 3];
     }
-    for (int c = 0; c < 3; ++c) {
-        vreal lo = sp[c], hi = sp[c];
-        for (int i = 0; i < 6; ++i) {
-            const vreal x = i < 3 ? sp[3 * i + c] : tp[3 * (i - 3) + c];
-            lo = vmin(lo, x);
-            hi = vmax(hi, x);
-        }
-        m = vmax(m, hi - lo);
-    }
+    /* the extent; the pre-scale is monotone, so the box scales with it */
+    vreal m = zero;
+    for (int c = 0; c < 3; ++c)
+        m = vmax(m, any_huge ? hi[c] * pre - lo[c] * pre : hi[c] - lo[c]);
 #ifdef TTD_PRECISION_DOUBLE
     const real lift = 0x1p54, unlift = 0x1p-54;
 #else
