@@ -137,8 +137,29 @@ static void complete_frame(double u[9])
     cross3(u, u + 3, u + 6);
 }
 
+/* u[6..8] (unit) made perpendicular to u[0..2] (unit) by Gram-Schmidt, twice: one pass leaves
+ * an error of eps over the sine of their angle, the second brings it to a few eps ("twice is
+ * enough"). Returns 0 when the two are too close to parallel for the result to mean anything
+ * (the normal of a needle or of a collinear triangle can be mostly rounding error). */
+static int orthogonalize(double u[9])
+{
+    for (int pass = 0; pass < 2; ++pass) {
+        const double d = dot3(u, u + 6);
+        double w[3];
+        for (int c = 0; c < 3; ++c)
+            w[c] = u[6 + c] - d * u[c];
+        if (!(dot3(w, w) > 0.0625) || !normalize3(w, u + 6))
+            return 0;
+    }
+    return 1;
+}
+
 /* A triangle's axes: its longest edge and its normal (flat box); a segment's: its direction; a
- * point's: the coordinate axes. */
+ * point's: the coordinate axes. The frame is orthonormal to a few eps whatever the triangle:
+ * the computed normal of a thin triangle is not perpendicular to its edge (its cross product
+ * is mostly rounding), so it is made so, or replaced by any perpendicular direction. A box only
+ * has to hold its triangle (fit_extents sees to that about any axes); orthonormal axes are what
+ * the node test's bound assumes (docs/mesh-queries.md, section 4). */
 static void triangle_axes(double p[3][3], double u[9])
 {
     double e[3][3], len[3];
@@ -157,7 +178,7 @@ static void triangle_axes(double p[3][3], double u[9])
     }
     double n[3];
     cross3(e[k], e[(k + 2) % 3], n);
-    if (normalize3(n, u + 6)) {
+    if (normalize3(n, u + 6) && orthogonalize(u)) {
         cross3(u + 6, u, u + 3);
         normalize3(u + 3, u + 3);
         return;
@@ -287,7 +308,16 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *
 
 /* The box with axes b->u around the vertices of positions [lo, hi): centre and extents from the
  * range of their projections. Every level of the tree runs this over every vertex: the
- * coordinates are read in order, one array each, and the bounds kept in locals. */
+ * coordinates are read in order, one array each, and the bounds kept in locals.
+ *
+ * The box is the set {x : |u_a . (x - c)| <= e_a, a = 0, 1, 2} (three slabs), and it holds every
+ * vertex, and so its triangles, about any axes, once the extents cover the rounding (u = eps/2,
+ * the unit roundoff; docs/mesh-queries.md, section 4): a computed projection u_a . x (three
+ * products, two sums, no FMA, |u_a| within eps of 1) is within gamma_3 (1 + eps) |x|_1 < 3.01 u
+ * |x|_1 of the exact one, with |v|_1 <= sqrt(3) |v|_2 < 2 radius for a vertex and |c|_1 for the
+ * centre; so |u_a . (v - c)| <= max(mx - u_a.c, u_a.c - mn) + 3.01 u (2 radius + |c|_1). The
+ * subtraction and the sum below round by at most u (2 radius + |c|_1) (1 + 9 u) each. The
+ * slack, 8 u (2 radius + |c|_1) computed, covers all three. */
 static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
 {
     const double *u = b->u;
@@ -311,9 +341,14 @@ static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
         b->c[c] = 0;
     for (int a = 0; a < 3; ++a) {
         const double mid = 0.5 * (mn[a] + mx[a]);
-        b->e[a] = 0.5 * (mx[a] - mn[a]);
         for (int c = 0; c < 3; ++c)
             b->c[c] += mid * b->u[3 * a + c];
+    }
+    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
+    const double slack = 4 * DBL_EPSILON * (2 * B->mesh->radius + c1);
+    for (int a = 0; a < 3; ++a) {
+        const double pc = dot3(b->u + 3 * a, b->c);
+        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
     }
 }
 
@@ -327,10 +362,22 @@ static void triangle_box(const builder *B, size_t i, obb *b, moments *mo)
     tri_moments(p, mo);
 }
 
+/* x rounded to float, as a double. Through a volatile: gcc 12.2's SLP vectorizer drops the round
+ * trip (double)(float)x at -O2 and above (store_box fitted a float box about its centre's double
+ * bits, then stored the centre rounded: vertices fell outside by up to half a float ulp;
+ * tests/test_mesh_boxes.c caught it). */
+static double round_to_float(double x)
+{
+    volatile float f = (float)x;
+    return (double)f;
+}
+
 /* Stores box b in slot j of node n, with child `child`. A double mesh stores it as it is; a
  * float mesh rounds axes and centre to float, then takes the extents of the vertices of
- * positions [lo, hi) about the rounded centre along the rounded axes, rounded up, so the stored
- * box still holds them. */
+ * positions [lo, hi) about the rounded centre along the rounded axes, and rounds them up, so
+ * that the stored box still holds them: with r = v - c and s = u_a . r computed in double (u
+ * the unit roundoff of double), |u_a . (v - c)| <= |s| + (gamma_3 + u) |r|_1 (1 + u) <
+ * |s| + 4.1 u |r|_1, and 8 u |r|_1 also covers the rounding of the sum. */
 static void store_box(const builder *B, int32_t n, int j, const obb *b, int32_t child, size_t lo, size_t hi)
 {
     const struct ttd_mesh *m = B->mesh;
@@ -346,24 +393,28 @@ static void store_box(const builder *B, int32_t n, int j, const obb *b, int32_t 
         return;
     }
     ttd_node_f *node = (ttd_node_f *)m->nodes + n;
-    double uf[9], cf[3], e[3] = {0, 0, 0};
+    double uf[9], cf[3], e[3] = {0, 0, 0}, r1 = 0;
     for (int i = 0; i < 9; ++i)
-        uf[i] = (double)(float)b->u[i];
+        uf[i] = round_to_float(b->u[i]);
     for (int i = 0; i < 3; ++i)
-        cf[i] = (double)(float)b->c[i];
+        cf[i] = round_to_float(b->c[i]);
     for (size_t i = lo; i < hi; ++i) {
         double p[3][3];
         pos_vertices(B, i, p);
         for (int k = 0; k < 3; ++k) {
             const double r[3] = {p[k][0] - cf[0], p[k][1] - cf[1], p[k][2] - cf[2]};
+            r1 = dmax(r1, fabs(r[0]) + fabs(r[1]) + fabs(r[2]));
             for (int a = 0; a < 3; ++a)
                 e[a] = dmax(e[a], fabs(dot3(uf + 3 * a, r)));
         }
     }
     for (int i = 0; i < 3; ++i) {
+        const double ed = e[i] + 4 * DBL_EPSILON * r1;
+        float ef = (float)ed;
+        if ((double)ef < ed) /* rounded up */
+            ef = nextafterf(ef, INFINITY);
         node->c[i][j] = (float)cf[i];
-        /* one float ulp up, and a relative double margin for the products above */
-        node->e[i][j] = nextafterf((float)(e[i] * (1 + 8 * DBL_EPSILON)), INFINITY);
+        node->e[i][j] = ef;
     }
     for (int i = 0; i < 9; ++i)
         node->u[i][j] = (float)uf[i];
