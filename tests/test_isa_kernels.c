@@ -224,6 +224,91 @@ static int rows_bound(void)
     return 0;
 }
 
+/* A thin pair i: needles (the third vertex 10^-w of the length off the long edge, w in 3..15,
+ * or exactly on it: c = a + t (b - a) rounded) against needles nearly parallel to them (angles
+ * 10^-4 .. 10^-14) at gaps 10^-1 .. 10^-15, or crossing: the face frames whose normals take the
+ * compensated cross product (kx_dop), where the rows without FMA once rounded differently. */
+static void thin_pair(ttd_gen_rng *st, double s[9], double t[9])
+{
+    double a[3], d[3], side[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = ttd_gen_rng_uniform(st);
+        d[k] = ttd_gen_rng_uniform(st) - 0.5;
+        side[k] = ttd_gen_rng_uniform(st) - 0.5;
+    }
+    const double w = ttd_gen_rng_u64(st) % 4 == 0 ? 0 : pow(10, -(double)(3 + ttd_gen_rng_u64(st) % 13));
+    const double tilt = pow(10, -(double)(4 + ttd_gen_rng_u64(st) % 11));
+    const double gap = ttd_gen_rng_u64(st) % 5 == 0 ? 0 : pow(10, -(double)(1 + ttd_gen_rng_u64(st) % 15));
+    const double f = ttd_gen_rng_uniform(st), g = ttd_gen_rng_uniform(st);
+    for (int k = 0; k < 3; ++k) {
+        s[k] = a[k];
+        s[3 + k] = a[k] + d[k];
+        s[6 + k] = a[k] + f * d[k] + w * side[k];
+        /* the second: the first's long edge tilted, moved along `side` by the gap */
+        t[k] = a[k] + 0.3 * d[k] + gap * side[k];
+        t[3 + k] = t[k] + d[k] + tilt * side[(k + 1) % 3];
+        t[6 + k] = t[k] + g * (t[3 + k] - t[k]) + w * side[(k + 2) % 3];
+    }
+}
+
+/* The exact method through ttd_batch_d/f on every row this CPU runs, on thin pairs: whole
+ * results bit for bit equal to the scalar row's (the promise the mesh queries rest on: rows
+ * agree to the bit, so a query's answer does not depend on the instruction set). */
+static int rows_bit_identical_on_thin_pairs(void)
+{
+    const size_t n = 1000000;
+    double *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
+    float *sf = malloc(9 * n * sizeof *sf), *tf = malloc(9 * n * sizeof *tf);
+    ttd_result_d *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
+    ttd_result_f *want_f = malloc(n * sizeof *want_f), *got_f = malloc(n * sizeof *got_f);
+    ENSURE(s && t && sf && tf && want && got && want_f && got_f);
+    ttd_gen_rng st = ttd_gen_rng_make(2026, 16);
+    for (size_t i = 0; i < n; ++i)
+        thin_pair(&st, s + 9 * i, t + 9 * i);
+    for (size_t i = 0; i < 9 * n; ++i) {
+        sf[i] = (float)s[i];
+        tf[i] = (float)t[i];
+    }
+    ttd_options opt = ttd_default_options();
+    opt.isa = TTD_ISA_SCALAR;
+    ENSURE(ttd_batch_d(&opt, n, s, t, NULL, want) == TTD_OK);
+    ENSURE(ttd_batch_f(&opt, n, sf, tf, NULL, want_f) == TTD_OK);
+    int rows = 0;
+    for (int isa = TTD_ISA_SCALAR + 1; isa < TTD_ISA_COUNT; ++isa) {
+        if (!ttd_isa_available((ttd_isa)isa)) {
+            printf("  %s: not available here\n", ttd_isa_name((ttd_isa)isa));
+            continue;
+        }
+        opt.isa = (ttd_isa)isa;
+        ENSURE(ttd_batch_d(&opt, n, s, t, NULL, got) == TTD_OK);
+        ENSURE(ttd_batch_f(&opt, n, sf, tf, NULL, got_f) == TTD_OK);
+        size_t diff_d = 0, diff_f = 0, first = n;
+        for (size_t i = 0; i < n; ++i) {
+            const int dd = memcmp(&got[i], &want[i], sizeof *got) != 0;
+            diff_d += (size_t)dd;
+            diff_f += (size_t)(memcmp(&got_f[i], &want_f[i], sizeof *got_f) != 0);
+            if (dd && first == n)
+                first = i;
+        }
+        printf("  %s: %zu thin pairs, results differing from the scalar row's bits: %zu double, %zu float\n",
+               ttd_isa_name((ttd_isa)isa), n, diff_d, diff_f);
+        ENSURE_MSG(diff_d == 0 && diff_f == 0, "%s: first double difference at pair %zu: %.17g, scalar %.17g",
+                   ttd_isa_name((ttd_isa)isa), first, first < n ? got[first].distance : 0.0,
+                   first < n ? want[first].distance : 0.0);
+        ++rows;
+    }
+    printf("  %d rows besides the scalar one checked\n", rows);
+    free(s);
+    free(t);
+    free(sf);
+    free(tf);
+    free(want);
+    free(got);
+    free(want_f);
+    free(got_f);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -231,5 +316,6 @@ int main(int argc, char **argv)
     RUN_TEST(rows_bound);
     RUN_TEST(rows_lane_independence);
     RUN_TEST(rows_sizes_and_alignment);
+    RUN_TEST(rows_bit_identical_on_thin_pairs);
     TEST_MAIN_END();
 }

@@ -69,14 +69,22 @@ static real exact_clamp01(real x)
 }
 
 #ifdef TTD_PRECISION_DOUBLE
-/* a*b - c*d with Kahan's FMA trick: error within 1.5 ulp of the result even when the two
- * products nearly cancel (the normal of a sliver or of nearly parallel edges). */
+/* The rounding error of the product p = a*b, exactly (p + error = a*b), where the product is
+ * large enough for it to be representable (|p| > 2^-900; below, 0). The lane rows without FMA
+ * (SSE2, portable) get the same bits from Dekker's split, which is exact over the same range:
+ * so every row computes exact_dop alike, to the bit. */
+static double exact_prod_err(double a, double b, double p)
+{
+    return fabs(p) > 0x1p-900 ? fma(a, b, -p) : 0.0;
+}
+
+/* a*b - c*d with both products' errors restored: within an ulp or two of the result even when
+ * the two products nearly cancel (the normal of a sliver or of nearly parallel edges). (Kahan's
+ * fma(a, b, -w) - err saves an operation, but a row without FMA cannot reproduce its bits.) */
 static double exact_dop(double a, double b, double c, double d)
 {
-    double w = c * d;
-    double err = fma(c, d, -w);   /* c*d - w, exact */
-    double f = fma(a, b, -w);     /* a*b - w, rounded once */
-    return f - err;
+    const double p = a * b, w = c * d;
+    return ((p - w) + exact_prod_err(a, b, p)) - exact_prod_err(c, d, w);
 }
 
 /* cross(a, b) to within a few ulps per component. Cheap path first: the naive cross product

@@ -5,13 +5,11 @@
  * come in the same order with the same ids (so ties go to the same, earliest, candidate),
  * every d2 is computed with the same operations in the same order, and the winner's points
  * and weights are rebuilt from (id, u, v, w) with the scalar expressions: each lane's result
- * is meant to be the scalar code's to the bit. One known exception: SSE2 double has no FMA,
- * and kx_dop's Dekker split may differ from the scalar fma() in rare last bits (nearly
- * parallel face frames only). The tests allow 8 eps of the pair's size (test_isa_kernels.c,
- * which prints the bit-identical counts; measured: all 36,000 results of every row, SSE2
- * double included). Every row computes the same operations in the same order (no FMA but
- * kx_dop's), so the rows agree with each other to the bit, which the mesh queries rely on
- * (src/mesh/query_impl.h).
+ * is meant to be the scalar code's to the bit, on every row: the one FMA, in the products'
+ * errors of kx_dop, is exact, and the rows without FMA (SSE2, portable) compute the same exact
+ * errors by Dekker's split (Kahan's shorter form, fma(a, b, -w) - err, rounded differently from
+ * any FMA-free formula: 26 of 1e6 thin pairs differed on those rows before). The mesh queries
+ * rely on it (src/mesh/query_impl.h); test_isa_kernels.c and the mesh fuzzer check it.
  *
  * What differs, and why:
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
@@ -113,30 +111,29 @@ static inline vreal kx_pick(const kx_tri *T, vreal x0, vreal x1, vreal x2)
 }
 
 #ifdef TTD_PRECISION_DOUBLE
-/* scalar: exact_dop_d. a*b - c*d with Kahan's FMA trick. Without FMA (SSE2) the product
- * error comes from Dekker's split instead: the same value in all but rare last bits. */
-static inline vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
+/* scalar: exact_prod_err_d. The rounding error of p = a*b, exactly, where |p| > 2^-900 (0
+ * below): one FMA, or without FMA (SSE2, portable) Dekker's split, which is exact over the same
+ * range, so every row gets the same bits. */
+static inline vreal kx_prod_err(vreal a, vreal b, vreal p)
 {
-    const vreal w = c * d;
 #if TTDW_HAVE_FMA
-    const vreal err = vfma(c, d, -w);
-    const vreal f = vfma(a, b, -w);
-    return f - err;
+    const vreal err = vfma(a, b, -p);
 #else
     const vreal split = vset1(134217729.0); /* 2^27 + 1 */
-    vreal t = c * split;
-    const vreal ch = t - (t - c), cl = c - ch;
-    t = d * split;
-    const vreal dh = t - (t - d), dl = d - dh;
-    const vreal err = ((ch * dh - w) + ch * dl + cl * dh) + cl * dl; /* c*d - w, exact */
-    const vreal p = a * b;
-    t = a * split;
+    vreal t = a * split;
     const vreal ah = t - (t - a), al = a - ah;
     t = b * split;
     const vreal bh = t - (t - b), bl = b - bh;
-    const vreal perr = ((ah * bh - p) + ah * bl + al * bh) + al * bl; /* a*b - p, exact */
-    return ((p - w) + perr) - err;
+    const vreal err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
 #endif
+    return vsel(vlt(vset1(0x1p-900), vabs(p)), err, vzero());
+}
+
+/* scalar: exact_dop_d. a*b - c*d with both products' errors restored. */
+static inline vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
+{
+    const vreal p = a * b, w = c * d;
+    return ((p - w) + kx_prod_err(a, b, p)) - kx_prod_err(c, d, w);
 }
 
 /* scalar: exact_cross_acc_d. Naive cross product; lanes whose |n|^2 is below 2^-20 |a|^2 |b|^2
