@@ -5,11 +5,13 @@
  * same program does long runs:
  *
  *   test_mesh_fuzz [--seed S] [--cases N | --checks N] [--first I] [--family NAME] [--verbose]
- *                  [--max-printed M]
+ *                  [--max-printed M] [--input FILE...]
  *
  * Case i of seed S depends only on (S, i, family), so a failure's "rerun:" line repeats it
  * alone. Without --family, case i has family i mod (number of families). --checks N runs
- * cases until N checks are done. Exits 1 on any failure. */
+ * cases until N checks are done. --input runs libFuzzer inputs (tests/fuzz/fuzz_mesh.c) with
+ * the small meshes of that target but on every instruction set, one case per file. Exits 1 on any failure. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,10 +21,32 @@
 static void usage(void)
 {
     fprintf(stderr, "usage: test_mesh_fuzz [--seed S] [--cases N | --checks N] [--first I] [--family NAME] "
-                    "[--verbose] [--max-printed M]\nfamilies:");
+                    "[--verbose] [--max-printed M] [--input FILE...]\nfamilies:");
     for (int f = 0; f < MF_COUNT; ++f)
         fprintf(stderr, " %s", mf_family_name(f));
     fputc('\n', stderr);
+}
+
+/* Each file as one libFuzzer input of fuzz_mesh, small meshes, every instruction set. */
+static int run_inputs(mf_run *run, int n, char **files)
+{
+    run->small = 1;
+    run->dump_failures = 1;
+    for (int i = 0; i < n; ++i) {
+        FILE *f = fopen(files[i], "rb");
+        if (!f) {
+            perror(files[i]);
+            return 2;
+        }
+        static uint8_t buf[1 << 16];
+        const size_t len = fread(buf, 1, sizeof buf, f);
+        fclose(f);
+        mf_src src;
+        mf_src_bytes(&src, buf, len);
+        if (mf_run_case(run, &src, -1, 0, (uint64_t)i))
+            printf("input %s failed\n", files[i]);
+    }
+    return mf_summary(run, stdout);
 }
 
 int main(int argc, char **argv)
@@ -37,6 +61,9 @@ int main(int argc, char **argv)
         if (strcmp(a, "--verbose") == 0) {
             run.verbose = 1;
             continue;
+        }
+        if (strcmp(a, "--input") == 0) { /* the rest are files */
+            return run_inputs(&run, argc - i - 1, argv + i + 1);
         }
         if (!v) {
             usage();

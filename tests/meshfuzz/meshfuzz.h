@@ -58,6 +58,8 @@ typedef struct mf_run {
     int max_printed;       ///< failures printed in full (the rest only counted); 0 = 20
     int allow_big;         ///< grids of ~100k triangles may be drawn (seeded runs)
     int one_isa;           ///< check only the scalar row and the automatic choice (fast fuzzing)
+    int small;             ///< at most 24 triangles a mesh (libFuzzer under the sanitizers)
+    int dump_failures;     ///< print a failing case's meshes and poses (--verbose does too)
     FILE *out;             ///< where failures go (NULL: stdout)
     /* counters */
     uint64_t checks, failures, cases, poses;
