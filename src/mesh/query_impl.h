@@ -910,7 +910,8 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
         for (size_t t = 0; t < J->cp[i].ntasks; ++t) {
             clist *l = &J->cp[i].lists[t];
             const size_t n = l->n;
-            clist_drain(l, out->pairs + at);
+            /* an empty set may have no array yet: no pointer arithmetic on NULL */
+            clist_drain(l, n > 0 ? out->pairs + at : NULL);
             at += n;
         }
     }
