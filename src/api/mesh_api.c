@@ -226,7 +226,7 @@ ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const 
                                const double *poses, double upper_bound, double rel_tol, ttd_mesh_result_d *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(upper_bound, 1) && ttd_nonneg(rel_tol, 0))
-    st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
     TTD_QUERY_END();
     return st;
 }
@@ -235,7 +235,7 @@ ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const 
                                const float *poses, float upper_bound, float rel_tol, ttd_mesh_result_f *out)
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)upper_bound, 1) && ttd_nonneg((double)rel_tol, 0))
-    st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
     TTD_QUERY_END();
     return st;
 }
@@ -244,7 +244,7 @@ ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const t
                               const double *poses, double margin, ttd_collision *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
-    st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, defects, margin, out);
+    st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, NULL, defects, margin, out);
     TTD_QUERY_END();
     return st;
 }
@@ -253,7 +253,7 @@ ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const t
                               const float *poses, float margin, ttd_collision *out)
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
-    st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, defects, margin, out);
+    st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, NULL, defects, margin, out);
     TTD_QUERY_END();
     return st;
 }
@@ -264,7 +264,7 @@ ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a, const 
     if (out != NULL)
         out->count = 0;
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
-    st = ttd_mesh_query_contacts_d(&cfg, a, b, k, poses, defects, margin, out);
+    st = ttd_mesh_query_contacts_d(&cfg, a, b, k, poses, NULL, defects, margin, out);
     TTD_QUERY_END();
     return st;
 }
@@ -275,7 +275,7 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
     if (out != NULL)
         out->count = 0;
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
-    st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, defects, margin, out);
+    st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, NULL, defects, margin, out);
     TTD_QUERY_END();
     return st;
 }
@@ -316,7 +316,7 @@ void ttd_contacts_free_f(ttd_contacts_f *contacts)
 #define TTD_CLOSEST_BODY(real, contacts_t, closest_t, query_fn, free_fn)                           \
     TTD_QUERY_BEGIN((int)sizeof(real), for_a != NULL || for_b != NULL, ttd_nonneg((double)margin, 0)) \
     contacts_t set = {0};                                                                      \
-    st = query_fn(&cfg, a, b, k, poses, defects, margin, &set);                                \
+    st = query_fn(&cfg, a, b, k, poses, NULL, defects, margin, &set);                          \
     TTD_QUERY_END();                                                                           \
     if (st != TTD_OK) {                                                                        \
         free_fn(&set);                                                                         \

@@ -52,26 +52,28 @@ void ttd_mesh_free(struct ttd_mesh *mesh);
 
 /* The queries, from checked arguments (meshes of the query's precision, k >= 1 rigid poses,
  * outputs present); defects[i] is max |R^T R - I| of pose i, which the traversal's rounding
- * margin covers. Each fills out (k results, or the contact set) and returns TTD_OK or
+ * margin covers. poses_a is NULL (b's poses map it into a's frame, and results are in a's frame)
+ * or a's k poses (scenes: both map into the world, results are in the world frame, and
+ * defects[i] covers the relative pose of b in a's frame). Each fills out (k results, or the contact set) and returns TTD_OK or
  * TTD_ERR_OUT_OF_MEMORY. The double and float entries are written out in mesh/query_d.c and
  * query_f.c. */
 ttd_status ttd_mesh_query_distance_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const double *poses, const double *defects, double upper_bound,
+                                     size_t k, const double *poses, const double *poses_a, const double *defects, double upper_bound,
                                      double rel_tol, ttd_mesh_result_d *out);
 ttd_status ttd_mesh_query_distance_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const float *poses, const double *defects, float upper_bound,
+                                     size_t k, const float *poses, const float *poses_a, const double *defects, float upper_bound,
                                      float rel_tol, ttd_mesh_result_f *out);
 ttd_status ttd_mesh_query_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                    size_t k, const double *poses, const double *defects, double margin,
+                                    size_t k, const double *poses, const double *poses_a, const double *defects, double margin,
                                     ttd_collision *out);
 ttd_status ttd_mesh_query_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                    size_t k, const float *poses, const double *defects, float margin,
+                                    size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                     ttd_collision *out);
 ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const double *poses, const double *defects, double margin,
+                                     size_t k, const double *poses, const double *poses_a, const double *defects, double margin,
                                      ttd_contacts_d *out);
 ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const float *poses, const double *defects, float margin,
+                                     size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
 
 #endif /* TTD_MESH_MESH_H */

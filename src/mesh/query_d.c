@@ -26,21 +26,21 @@ typedef ttd_contacts_d ttd_contacts;
 #include "mesh/query_impl.h"
 
 ttd_status ttd_mesh_query_distance_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const double *poses, const double *defects, double upper_bound,
+                                     size_t k, const double *poses, const double *poses_a, const double *defects, double upper_bound,
                                      double rel_tol, ttd_mesh_result_d *out)
 {
-    return query_distance(cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    return query_distance(cfg, a, b, k, poses, poses_a, defects, upper_bound, rel_tol, out);
 }
 
 ttd_status ttd_mesh_query_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                    size_t k, const double *poses, const double *defects, double margin, ttd_collision *out)
+                                    size_t k, const double *poses, const double *poses_a, const double *defects, double margin, ttd_collision *out)
 {
-    return query_collide(cfg, a, b, k, poses, defects, margin, out);
+    return query_collide(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }
 
 ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const double *poses, const double *defects, double margin,
+                                     size_t k, const double *poses, const double *poses_a, const double *defects, double margin,
                                      ttd_contacts_d *out)
 {
-    return query_contacts(cfg, a, b, k, poses, defects, margin, out);
+    return query_contacts(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }

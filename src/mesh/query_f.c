@@ -26,21 +26,21 @@ typedef ttd_contacts_f ttd_contacts;
 #include "mesh/query_impl.h"
 
 ttd_status ttd_mesh_query_distance_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const float *poses, const double *defects, float upper_bound,
+                                     size_t k, const float *poses, const float *poses_a, const double *defects, float upper_bound,
                                      float rel_tol, ttd_mesh_result_f *out)
 {
-    return query_distance(cfg, a, b, k, poses, defects, upper_bound, rel_tol, out);
+    return query_distance(cfg, a, b, k, poses, poses_a, defects, upper_bound, rel_tol, out);
 }
 
 ttd_status ttd_mesh_query_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                    size_t k, const float *poses, const double *defects, float margin, ttd_collision *out)
+                                    size_t k, const float *poses, const float *poses_a, const double *defects, float margin, ttd_collision *out)
 {
-    return query_collide(cfg, a, b, k, poses, defects, margin, out);
+    return query_collide(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }
 
 ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                     size_t k, const float *poses, const double *defects, float margin,
+                                     size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out)
 {
-    return query_contacts(cfg, a, b, k, poses, defects, margin, out);
+    return query_contacts(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }

@@ -57,7 +57,9 @@ typedef struct qpose {
     side a, b;
     real r[9], t[3];   /* b's frame about its origin -> a's frame about its origin */
     real ri[9], ti[3]; /* and back */
-    real pose[12];     /* the caller's pose: b's coordinates -> a's frame */
+    real pose[12];     /* the caller's pose: b's coordinates -> a's frame (or the world's) */
+    real pose_a[12];   /* with has_a: a's coordinates -> the world (scenes); else a stays put */
+    int has_a;
     real delta;        /* the rounding margin of the bounds */
 } qpose;
 
@@ -295,6 +297,16 @@ static void pose_apply(const real p[12], const real x[3], real out[3])
         out[i] = ((p[4 * i] * x[0] + p[4 * i + 1] * x[1]) + p[4 * i + 2] * x[2]) + p[4 * i + 3];
 }
 
+/* Vertex v of a as the kernel sees it: the caller's coordinates, or moved by a's pose (scenes),
+ * exactly as a brute force in the world frame would. */
+static void side_vertex(const qpose *P, uint32_t v, real out[3])
+{
+    if (P->has_a)
+        pose_apply(P->pose_a, P->a.verts + 3 * (size_t)v, out);
+    else
+        memcpy(out, P->a.verts + 3 * (size_t)v, 3 * sizeof(real));
+}
+
 /* The node test's view of box (node n, slot j) of side X, with Y's frame mapped in by (r, t). */
 static void box_query(const ttd_node *node, int j, const real r[9], const real t[3], ttd_box_query *q)
 {
@@ -327,7 +339,7 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         const uint32_t *ia = P->a.tris + 3 * (size_t)W->ta[i], *ib = P->b.tris + 3 * (size_t)W->tb[i];
         for (int k = 0; k < 3; ++k) {
-            memcpy(W->s + 9 * i + 3 * k, P->a.verts + 3 * (size_t)ia[k], 3 * sizeof(real));
+            side_vertex(P, ia[k], W->s + 9 * i + 3 * k);
             pose_apply(P->pose, P->b.verts + 3 * (size_t)ib[k], W->t + 9 * i + 3 * k);
         }
     }
@@ -551,19 +563,48 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
     walk_best_first(C, P, W, w);
 }
 
-/* The pose's frames and rounding margin. */
-static void qpose_make(const qctx *C, const real pose[12], double defect, qpose *P)
+/* The pose's frames and rounding margin. pose maps b into a's frame; or, with pose_a (scenes),
+ * both map into the world: then the tree works in a's frame with b's pose relative to a's, R_a^T
+ * R_b and R_a^T (t_b - t_a) in double, and the kernel in the world. defect covers how far from
+ * a rotation the (relative) R is. */
+static void qpose_make(const qctx *C, const real pose[12], const real *pose_a, double defect, qpose *P)
 {
     const struct ttd_mesh *ma = C->ma, *mb = C->mb;
     P->a = (side){(const ttd_node *)ma->nodes, (const real *)ma->verts, ma->tris};
     P->b = (side){(const ttd_node *)mb->nodes, (const real *)mb->verts, mb->tris};
     memcpy(P->pose, pose, sizeof P->pose);
+    P->has_a = pose_a != NULL;
+    /* b's pose in a's frame, [rb | tb] */
+    double rb[9], tb[3], world = 0;
+    for (int i = 0; i < 3; ++i) {
+        tb[i] = (double)pose[4 * i + 3];
+        for (int k = 0; k < 3; ++k)
+            rb[3 * i + k] = (double)pose[4 * i + k];
+    }
+    if (pose_a != NULL) {
+        memcpy(P->pose_a, pose_a, sizeof P->pose_a);
+        double rr[9], tr[3], ta2 = 0;
+        for (int i = 0; i < 3; ++i) {
+            tr[i] = 0;
+            for (int k = 0; k < 3; ++k) {
+                double x = 0;
+                for (int j = 0; j < 3; ++j)
+                    x += (double)pose_a[4 * j + i] * rb[3 * j + k];
+                rr[3 * i + k] = x;
+                tr[i] += (double)pose_a[4 * k + i] * (tb[k] - (double)pose_a[4 * k + 3]);
+            }
+            ta2 += (double)pose_a[4 * i + 3] * (double)pose_a[4 * i + 3];
+        }
+        memcpy(rb, rr, sizeof rb);
+        memcpy(tb, tr, sizeof tb);
+        world = sqrt(ta2); /* the kernel's coordinates are as far out as a's translation more */
+    }
     /* x_a - o_a = R (x_b - o_b) + (R o_b + t - o_a), in double */
     double r[9], t[3], tn = 0;
     for (int i = 0; i < 3; ++i) {
         for (int k = 0; k < 3; ++k)
-            r[3 * i + k] = (double)pose[4 * i + k];
-        t[i] = (double)pose[4 * i + 3] - ma->origin[i];
+            r[3 * i + k] = rb[3 * i + k];
+        t[i] = tb[i] - ma->origin[i];
         for (int k = 0; k < 3; ++k)
             t[i] += r[3 * i + k] * mb->origin[k];
         tn += t[i] * t[i];
@@ -587,7 +628,7 @@ static void qpose_make(const qctx *C, const real pose[12], double defect, qpose 
         ob += mb->origin[i] * mb->origin[i];
         tc += (double)pose[4 * i + 3] * (double)pose[4 * i + 3];
     }
-    const double S = sqrt(tn) + 2 * (ma->radius + mb->radius) + sqrt(oa) + sqrt(ob) + sqrt(tc);
+    const double S = sqrt(tn) + 2 * (ma->radius + mb->radius) + sqrt(oa) + sqrt(ob) + sqrt(tc) + world;
     P->delta = (real)((64 * (double)TTD_REAL_EPS + 4 * defect) * S);
 }
 
@@ -631,6 +672,7 @@ static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, co
 typedef struct pose_job {
     const qctx *C;
     const real *poses;
+    const real *poses_a;   /* NULL, or a's poses too (scenes) */
     const double *defects;
     int mode;
     real limit, rel_tol;
@@ -654,7 +696,7 @@ static void distance_result(const qctx *C, const qpose *P, const walk *w, ttd_me
     real s[9], t[9];
     const uint32_t *ia = P->a.tris + 3 * (size_t)w->ta, *ib = P->b.tris + 3 * (size_t)w->tb;
     for (int k = 0; k < 3; ++k) {
-        memcpy(s + 3 * k, P->a.verts + 3 * (size_t)ia[k], 3 * sizeof(real));
+        side_vertex(P, ia[k], s + 3 * k);
         pose_apply(P->pose, P->b.verts + 3 * (size_t)ib[k], t + 3 * k);
     }
     ttd_result full;
@@ -680,7 +722,7 @@ static void pose_task(void *ctx, size_t i, int worker)
     if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
         return;
     qpose P;
-    qpose_make(J->C, J->poses + 12 * i, J->defects[i], &P);
+    qpose_make(J->C, J->poses + 12 * i, J->poses_a ? J->poses_a + 12 * i : NULL, J->defects[i], &P);
     walk w;
     walk_init(&w, J->mode, &P, J->limit, J->rel_tol);
     const item root = root_item();
@@ -702,12 +744,12 @@ static void pose_task(void *ctx, size_t i, int worker)
     }
 }
 
-static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const double *defects, int mode, real limit,
-                            real rel_tol, void *out)
+static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const real *poses_a, const double *defects,
+                            int mode, real limit, real rel_tol, void *out)
 {
     const int workers = ttd_parallel_task_workers(k, C->threads);
     qwork one;
-    pose_job J = {C, poses, defects, mode, limit, rel_tol, out, qwork_new(workers, &one), 0};
+    pose_job J = {C, poses, poses_a, defects, mode, limit, rel_tol, out, qwork_new(workers, &one), 0};
     atomic_init(&J.nomem, J.work == NULL);
     if (J.work != NULL)
         ttd_parallel_tasks(k, C->threads, pose_task, &J);
@@ -716,18 +758,19 @@ static ttd_status run_poses(const qctx *C, size_t k, const real *poses, const do
 }
 
 static ttd_status query_distance(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                 size_t k, const real *poses, const double *defects, real upper_bound, real rel_tol,
-                                 ttd_mesh_result *out)
+                                 size_t k, const real *poses, const real *poses_a, const double *defects,
+                                 real upper_bound, real rel_tol, ttd_mesh_result *out)
 {
     const qctx C = qctx_make(cfg, a, b);
-    return run_poses(&C, k, poses, defects, MODE_DISTANCE, upper_bound, rel_tol, out);
+    return run_poses(&C, k, poses, poses_a, defects, MODE_DISTANCE, upper_bound, rel_tol, out);
 }
 
 static ttd_status query_collide(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                size_t k, const real *poses, const double *defects, real margin, ttd_collision *out)
+                                size_t k, const real *poses, const real *poses_a, const double *defects, real margin,
+                                ttd_collision *out)
 {
     const qctx C = qctx_make(cfg, a, b);
-    return run_poses(&C, k, poses, defects, MODE_COLLIDE, margin, 0, out);
+    return run_poses(&C, k, poses, poses_a, defects, MODE_COLLIDE, margin, 0, out);
 }
 
 /* ---- contacts: a fixed list of sub-walks per pose ----------------------------------------- */
@@ -813,6 +856,7 @@ typedef struct contact_job {
     const qctx *C;
     contact_pose *cp;      /* one per pose */
     const real *poses;
+    const real *poses_a;   /* NULL, or a's poses too (scenes) */
     const double *defects;
     real margin;
     size_t pose;           /* the pose whose tasks run in parallel (one pose), or SIZE_MAX */
@@ -833,7 +877,7 @@ static void contact_task_run(const contact_job *J, contact_pose *cp, size_t i, q
 static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
 {
     contact_pose *cp = &J->cp[i];
-    qpose_make(J->C, J->poses + 12 * i, J->defects[i], &cp->P);
+    qpose_make(J->C, J->poses + 12 * i, J->poses_a ? J->poses_a + 12 * i : NULL, J->defects[i], &cp->P);
     walk w;
     walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
     w.cutting = 1;
@@ -920,7 +964,8 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
 }
 
 static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                 size_t k, const real *poses, const double *defects, real margin, ttd_contacts *out)
+                                 size_t k, const real *poses, const real *poses_a, const double *defects, real margin,
+                                 ttd_contacts *out)
 {
     const qctx C = qctx_make(cfg, a, b);
     out->count = 0;
@@ -931,7 +976,7 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     const size_t ntask_guess = k == 1 ? CONTACT_TASKS : k;
     const int workers = ttd_parallel_task_workers(ntask_guess, C.threads);
     qwork one;
-    contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, defects, margin, SIZE_MAX,
+    contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, poses_a, defects, margin, SIZE_MAX,
                      qwork_new(workers, &one), workers == 1 ? out : NULL, 0};
     atomic_init(&J.nomem, J.cp == NULL || J.work == NULL);
     if (!atomic_load(&J.nomem)) {
