@@ -231,7 +231,7 @@ def test_result_types():
                            (ttd.mesh_closest(A, B, np.eye(4), 0.1).for_a, PARTNER_FIELDS),
                            (ttd.mesh_collide(A, B, np.eye(4)), ("hit", "tri_a", "tri_b", "node_tests", "pair_tests"))):
         assert tuple(type(result).__doc__ is not None and f for f in fields) == fields
-        assert len(result) == len(fields) == type(result).n_fields
+        assert len(result) == len(fields) and type(result)._fields == fields
         for i, f in enumerate(fields):
             assert result[i] is getattr(result, f)
 

@@ -117,6 +117,8 @@ class MeshFlag(enum.IntFlag):
     ABOVE_BOUND = _ttd.MESH_ABOVE_BOUND  #: no pair within upper_bound: distance inf, no points or triangles
 
 
+del enum  # used above only: not part of the package's namespace
+
 __all__ = [
     "CLOSEST_DTYPE_FLOAT32",
     "CLOSEST_DTYPE_FLOAT64",
