@@ -76,8 +76,9 @@ def test_none_is_a_type_error(args):
     with pytest.raises(TypeError, match="vertices must be an array of coordinates, not None"):
         ttd.Mesh(None, [[0, 1, 2]])
     A = ttd.Mesh(*icosphere(0))
+    # The extension's queries take poses; the package's make None the identity (test_poses.py).
     with pytest.raises(TypeError, match="poses must be an array of coordinates, not None"):
-        ttd.mesh_distance(A, A, None)
+        ttd._ttd.mesh_distance(A, A, None)
 
 
 # ---- the documentation's examples against the stub --------------------------------------------
@@ -108,6 +109,11 @@ col: ttd.MeshCollision = ttd.mesh_collide(A, A, np.eye(4))
 con: ttd.MeshContacts = ttd.mesh_contacts(A, A, np.eye(4), 0.1)
 clo: ttd.MeshClosest = ttd.mesh_closest(A, A, np.eye(4), 0.1)
 part: ttd.ClosestPartners | None = clo.for_a
+T: np.ndarray = ttd.pose(quat=[1, 0, 0, 0], t=[1, 2, 3], order="wxyz")
+T2: np.ndarray = ttd.orthonormalize(T)
+w: ttd.MeshDistance = ttd.mesh_distance(A, A, pose_a=T, pose_b=T2)
+wc: ttd.MeshContacts = ttd.mesh_contacts(A, A, margin=0.1, pose_b=T)
+hit = ttd.mesh_collide(A, A).hit
 """
 
 DOCS = ("README.md", "python/README.md", "docs/python.md")
