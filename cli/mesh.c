@@ -107,6 +107,9 @@ static const char ttd_mesh_usage_common[] =
     "                    are kept in memory, 96 bytes each). Output line i (distance, collide,\n"
     "                    --count) belongs to pose i; a file without poses gives no output.\n"
     "                    Without --pose or --poses, B is used as given (the identity pose).\n"
+    "  --strict          refuse an OBJ line that is not an OBJ statement (such as FCL's header\n"
+    "                    line of two counts); by default such lines are skipped, counted, and\n"
+    "                    reported once on standard error\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
     "                    coordinates rounded once from the file's text, poses, margin and bounds\n"
     "                    parsed with strtof, the queries run in float, printed with %%.9g\n"
@@ -156,6 +159,7 @@ typedef struct ttd_mesh_args {
     double margin, upper, rel;        /* float-rounded values with --precision float */
     int per_triangle, count;
     int orthonormalize;               /* --orthonormalize: R replaced by the nearest rotation */
+    int strict;                       /* --strict: OBJ lines that are not statements refused */
 } ttd_mesh_args;
 
 /* A finite number >= 0 in the precision's type (strtof in float: rounded once); 0 or -1. */
@@ -207,8 +211,8 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             *(arg[2] == 'p' ? &a->per_triangle : &a->count) = 1;
             continue;
         }
-        if (strcmp(arg, "--orthonormalize") == 0) {
-            a->orthonormalize = 1;
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
+            *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
             continue;
         }
         static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
@@ -503,9 +507,17 @@ static int ttd_mesh_get_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
 static int ttd_mesh_load(const ttd_mesh_args *a, const char *path, ttd_meshfile *file, ttd_mesh **out)
 {
     char err[1024];
-    if (ttd_meshfile_read(path, a->use_float, file, err, sizeof err) != 0) {
+    const int flags = (a->use_float ? TTD_MESHFILE_FLOAT : 0) | (a->strict ? TTD_MESHFILE_STRICT : 0);
+    if (ttd_meshfile_read(path, flags, file, err, sizeof err) != 0) {
         ttd_cli_error("%s", err);
         return TTD_EXIT_INPUT;
+    }
+    if (file->skipped_lines > 0) {
+        const char *name = strcmp(path, "-") == 0 ? "<stdin>" : path;
+        const int one = file->skipped_lines == 1;
+        ttd_cli_error("%s: skipped %zu %s, first at %s:%zu (--strict refuses them)", name, file->skipped_lines,
+                      one ? "line that is not an OBJ statement" : "lines that are not OBJ statements", name,
+                      file->first_skipped_line);
     }
     ttd_status st = a->use_float ? ttd_mesh_create_f(&a->opt, file->verts_f, file->nv, file->tris, file->nt, out)
                                  : ttd_mesh_create_d(&a->opt, file->verts, file->nv, file->tris, file->nt, out);

@@ -15,6 +15,8 @@
 #   - float: coordinates and poses rounded once from the text (strtof), not through double;
 #   - poses of 16 numbers (4x4) equal their 12; --orthonormalize repairs a rotation printed
 #     with 5 digits (the exact rotation's answer) and still refuses one far from a rotation;
+#   - OBJ lines that are not statements skipped, counted and said once (--strict refuses them);
+#     text taken for a binary STL says so and why;
 #   - every error path: missing, malformed and truncated files (the message names file and line
 #     or byte offset), bad --pose arguments (exit 2) and poses-file lines (exit 1), poses that are
 #     not rotations, bad margins and bounds, unknown options and commands, missing and extra
@@ -554,6 +556,30 @@ dd if="$TTD" of="$DIR/garbage.bin" bs=1000 count=2 2> /dev/null
 run 1 mesh contacts "$DIR/garbage.bin" "$B" --margin 1; err_has "garbage.bin" "binary garbage"
 pass "errors: missing, malformed, truncated and empty mesh files (exit 1, file and line or offset)"
 
+# OBJ lines that are not OBJ statements (FCL's env.obj begins with "6540 2180"): skipped and
+# counted, said once on standard error with the first one's FILE:LINE; the answer is the file's
+# without them. --strict refuses them (exit 1, nothing printed).
+{ echo "6540 2180"; sed -n '1,3p' "$A"; echo "-12 7"; sed '1,3d' "$A"; echo "@@ not a statement"; } > "$DIR/env.obj"
+run 0 mesh distance "$DIR/env.obj" "$B" --pose "$P_GAP"
+"$TTD" mesh distance "$A" "$B" --pose "$P_GAP" | cmp -s - "$DIR/out" || fail "env.obj: not the answer of the file without its header"
+err_has "env.obj: skipped 3 lines that are not OBJ statements, first at .*env.obj:1 (--strict refuses them)" "skipped lines"
+[ "$(grep -c skipped "$DIR/err")" -eq 1 ] || fail "skipped lines: said more than once: $(cat "$DIR/err")"
+{ sed -n '1,3p' "$A"; echo "12"; sed '1,3d' "$A"; } > "$DIR/one.obj"
+run 0 mesh collide "$DIR/one.obj" "$B" --precision float
+err_has "one.obj: skipped 1 line that is not an OBJ statement, first at .*one.obj:4" "one skipped line"
+run 0 mesh distance "$A" "$B"; [ ! -s "$DIR/err" ] || fail "a clean OBJ file gave messages: $(cat "$DIR/err")"
+run 1 mesh distance "$DIR/env.obj" "$B" --strict; no_output "--strict"
+err_has "env.obj:1: unexpected '6540' (not an OBJ statement)" "--strict"
+run 0 mesh distance "$A" "$B" --strict
+pass "OBJ lines that are not statements: skipped, counted, said once (FILE:LINE of the first); --strict refuses them"
+
+# Text with a byte that text does not hold is taken for a binary STL, and the message says so.
+{ printf 'v 0 0 0\nv 1 0 0 # caf\377\nv 0 1 0\nf 1 2 3\n# '; awk 'BEGIN { while (n++ < 61) printf "H"; print "" }'; } > "$DIR/garbage.obj"
+run 1 mesh distance "$DIR/garbage.obj" "$B"; no_output "garbage.obj"
+err_has "garbage.obj: truncated: 1212696648 facets declared" "garbage.obj"
+err_has "(read as a binary STL: byte 21 is 0xff, which text does not hold)" "garbage.obj: why binary STL"
+pass "text read as a binary STL: the message names the format and the byte that decided it"
+
 # --pose arguments that are not 12 finite numbers, or not a rotation: exit 2, saying why.
 bad_pose() { # bad_pose WHAT POSE PATTERN
     run 2 mesh distance "$A" "$B" --pose "$2"; err_has "$3" "$1"; err_has "--pose" "$1"; no_output "$1"
@@ -709,7 +735,7 @@ pass "operands after --"
 run 0 mesh --help
 for key in "mesh distance A B" "mesh contacts A B --margin M" "mesh collide A B" "d px py pz qx qy qz ia ib" \
            "ia ib d px py pz qx qy qz" "a ia ib d" "b ib ia d" "inf nan nan nan nan nan nan -1 -1" "1 ia ib" \
-           "--poses FILE" "--pose P" "--orthonormalize" "bottom row must be 0 0 0 1" "--precision" "--isa" "--threads" "pose's index" "Exit status"; do
+           "--poses FILE" "--pose P" "--orthonormalize" "--strict" "bottom row must be 0 0 0 1" "--precision" "--isa" "--threads" "pose's index" "Exit status"; do
     grep -q -e "$key" "$DIR/out" || fail "mesh --help lacks '$key'"
 done
 run 0 mesh distance --help
