@@ -37,6 +37,9 @@
 #define TTD_MESH_MAX_MESSAGES 20
 /// The library's tolerance on R^T R - I (include/ttd/ttd.h, "Mesh queries").
 #define TTD_MESH_POSE_TOLERANCE 1e-6
+/// The largest defect (an entry of R^T R - I) that --orthonormalize repairs: poses printed with
+/// 3 or more significant digits; beyond it R is more than rounded and is refused.
+#define TTD_MESH_ORTHONORMALIZE_TOLERANCE 1e-2
 
 typedef enum ttd_mesh_cmd { TTD_MESH_DISTANCE, TTD_MESH_CONTACTS, TTD_MESH_COLLIDE } ttd_mesh_cmd;
 
@@ -92,14 +95,21 @@ static const char ttd_mesh_usage_common[] =
     "options:\n"
     "  --pose P          one argument of 12 numbers separated by blanks, the 3x4 matrix [R | t] row\n"
     "                    by row (r00 r01 r02 t0 r10 r11 r12 t1 r20 r21 r22 t2), mapping B's\n"
-    "                    coordinates into A's frame: x_A = R x_B + t. R must be a rotation: every\n"
+    "                    coordinates into A's frame: x_A = R x_B + t; or 16, the 4x4 matrix row\n"
+    "                    by row, whose bottom row must be 0 0 0 1. R must be a rotation: every\n"
     "                    entry of R^T R - I within 1e-6 and det R > 0. Example:\n"
     "                    --pose \"1 0 0 0  0 1 0 0  0 0 1 5\" (B moved by 5 along z)\n"
+    "  --orthonormalize  replace each pose's R by the nearest rotation (its polar factor) before\n"
+    "                    the check, for poses printed with few digits: R must be within 1e-2 of\n"
+    "                    orthonormal (every entry of R^T R - I) with det R > 0\n"
     "  --poses FILE      one such pose per line ('-': standard input); blank lines and '#'\n"
     "                    comments are skipped. The whole file is read and checked first (its poses\n"
     "                    are kept in memory, 96 bytes each). Output line i (distance, collide,\n"
     "                    --count) belongs to pose i; a file without poses gives no output.\n"
     "                    Without --pose or --poses, B is used as given (the identity pose).\n"
+    "  --strict          refuse an OBJ line that is not an OBJ statement (such as FCL's header\n"
+    "                    line of two counts); by default such lines are skipped, counted, and\n"
+    "                    reported once on standard error\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
     "                    coordinates rounded once from the file's text, poses, margin and bounds\n"
     "                    parsed with strtof, the queries run in float, printed with %%.9g\n"
@@ -114,8 +124,8 @@ static const char ttd_mesh_usage_common[] =
     "Exit status: 0 done; 1 a mesh file or poses file that cannot be read or is malformed (the\n"
     "message names the file and line or byte offset; nothing is printed on standard output), a\n"
     "pose moving B out of range, a library error, or an output error; 2 bad command line (unknown\n"
-    "option or command, a missing or extra operand, a bad value, a --pose that is not 12 finite\n"
-    "numbers or not a rotation).\n";
+    "option or command, a missing or extra operand, a bad value, a --pose that is not 12 or 16\n"
+    "finite numbers or not a rotation).\n";
 
 /* The usage of one command, or of all (cmd < 0). */
 static void ttd_mesh_print_usage(FILE *f, int cmd)
@@ -148,6 +158,8 @@ typedef struct ttd_mesh_args {
     const char *margin_s, *upper_s, *rel_s;
     double margin, upper, rel;        /* float-rounded values with --precision float */
     int per_triangle, count;
+    int orthonormalize;               /* --orthonormalize: R replaced by the nearest rotation */
+    int strict;                       /* --strict: OBJ lines that are not statements refused */
 } ttd_mesh_args;
 
 /* A finite number >= 0 in the precision's type (strtof in float: rounded once); 0 or -1. */
@@ -197,6 +209,10 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
                 return -1;
             }
             *(arg[2] == 'p' ? &a->per_triangle : &a->count) = 1;
+            continue;
+        }
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
+            *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
             continue;
         }
         static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
@@ -289,27 +305,68 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
 
 /* ---- poses -------------------------------------------------------------------------------- */
 
-/* Why 12 finite numbers are not a pose the library takes (its test, include/ttd/ttd.h: every
- * entry of R^T R - I within 1e-6, det R > 0, computed in double), or 0 when they are one. */
-static int ttd_mesh_pose_problem(const double p[12], char *err, size_t errsize)
+/* The defect of R (the largest |entry| of R^T R - I) and det R, of a pose's 12 numbers. */
+static double ttd_mesh_pose_defect(const double p[12], double *det_out)
 {
     const double r[9] = {p[0], p[1], p[2], p[4], p[5], p[6], p[8], p[9], p[10]};
-    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                       r[2] * (r[3] * r[7] - r[4] * r[6]);
+    *det_out = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+               r[2] * (r[3] * r[7] - r[4] * r[6]);
     double defect = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
             const double g = r[i] * r[j] + r[3 + i] * r[3 + j] + r[6 + i] * r[6 + j];
             defect = fmax(defect, fabs(g - (i == j ? 1.0 : 0.0)));
         }
+    return defect;
+}
+
+/* Why 12 finite numbers are not a pose the library takes (its test, include/ttd/ttd.h: every
+ * entry of R^T R - I within 1e-6, det R > 0, computed in double), or 0 when they are one. With
+ * ortho (--orthonormalize), R is first replaced by the nearest rotation when det R > 0 and its
+ * defect is at most TTD_MESH_ORTHONORMALIZE_TOLERANCE: the polar factor of R, by Newton's
+ * iteration R <- (R + R^-T) / 2, which converges quadratically from near a rotation (a handful
+ * of steps from a defect of 1e-2 to rounding). */
+static int ttd_mesh_pose_problem(double p[12], int ortho, char *err, size_t errsize)
+{
+    double det;
+    double defect = ttd_mesh_pose_defect(p, &det);
+    if (ortho && det > 0 && defect > 0 && defect <= TTD_MESH_ORTHONORMALIZE_TOLERANCE) {
+        double r[9] = {p[0], p[1], p[2], p[4], p[5], p[6], p[8], p[9], p[10]};
+        for (int it = 0; it < 30; ++it) {
+            const double c[9] = {r[4] * r[8] - r[5] * r[7], r[5] * r[6] - r[3] * r[8], r[3] * r[7] - r[4] * r[6],
+                                 r[2] * r[7] - r[1] * r[8], r[0] * r[8] - r[2] * r[6], r[1] * r[6] - r[0] * r[7],
+                                 r[1] * r[5] - r[2] * r[4], r[2] * r[3] - r[0] * r[5], r[0] * r[4] - r[1] * r[3]};
+            const double d = r[0] * c[0] + r[1] * c[1] + r[2] * c[2]; /* R^-T = cofactors / det */
+            double change = 0;
+            for (int i = 0; i < 9; ++i) {
+                const double next = 0.5 * (r[i] + c[i] / d);
+                change = fmax(change, fabs(next - r[i]));
+                r[i] = next;
+            }
+            if (change <= 1e-15)
+                break;
+        }
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                p[4 * i + j] = r[3 * i + j];
+        defect = ttd_mesh_pose_defect(p, &det);
+    }
     if (!(det > 0)) {
         snprintf(err, errsize, "not a rotation: det R = %.17g <= 0%s", det,
                  defect <= TTD_MESH_POSE_TOLERANCE ? " (a reflection)" : "");
         return -1;
     }
     if (!(defect <= TTD_MESH_POSE_TOLERANCE)) {
-        snprintf(err, errsize, "not a rotation: R is not orthonormal (an entry of R^T R - I is %.3g, at most 1e-6 allowed)",
-                 defect);
+        if (ortho)
+            snprintf(err, errsize,
+                     "not a rotation: R is not orthonormal (an entry of R^T R - I is %.3g; --orthonormalize "
+                     "repairs at most %g)",
+                     defect, TTD_MESH_ORTHONORMALIZE_TOLERANCE);
+        else
+            snprintf(err, errsize,
+                     "not a rotation: R is not orthonormal (an entry of R^T R - I is %.3g, at most 1e-6 allowed; "
+                     "--orthonormalize replaces R by the nearest rotation)",
+                     defect);
         return -1;
     }
     return 0;
@@ -369,11 +426,11 @@ static int ttd_mesh_read_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
                 kind = TTD_LINE_ERROR;
                 snprintf(err, sizeof err, "line longer than %d bytes", TTD_CLI_MAX_LINE);
             } else {
-                kind = ttd_parse_numbers_line(r->line, len, a->use_float, 12, v, err, sizeof err);
+                kind = ttd_parse_pose_line(r->line, len, a->use_float, v, err, sizeof err);
             }
             if (kind == TTD_LINE_SKIP)
                 continue;
-            if (kind == TTD_LINE_PAIR && ttd_mesh_pose_problem(v, err, sizeof err) != 0)
+            if (kind == TTD_LINE_PAIR && ttd_mesh_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)
                 kind = TTD_LINE_ERROR;
             ++index;
             if (kind == TTD_LINE_ERROR) {
@@ -414,14 +471,14 @@ static int ttd_mesh_get_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
         double v[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
         if (a->pose) {
             char err[256];
-            ttd_line_kind kind = ttd_parse_numbers_line(a->pose, strlen(a->pose), a->use_float, 12, v, err, sizeof err);
+            ttd_line_kind kind = ttd_parse_pose_line(a->pose, strlen(a->pose), a->use_float, v, err, sizeof err);
             if (kind != TTD_LINE_PAIR) {
                 if (kind == TTD_LINE_SKIP) /* blank, or only a comment */
-                    snprintf(err, sizeof err, "expected 12 numbers, found 0");
+                    snprintf(err, sizeof err, "expected 12 numbers ([R | t], 3x4) or 16 (a 4x4 matrix), found 0");
                 ttd_cli_error("%s: --pose '%s': %s", a->name, a->pose, err);
                 return TTD_EXIT_USAGE;
             }
-            if (ttd_mesh_pose_problem(v, err, sizeof err) != 0) {
+            if (ttd_mesh_pose_problem(v, a->orthonormalize, err, sizeof err) != 0) {
                 ttd_cli_error("%s: --pose '%s': %s", a->name, a->pose, err);
                 return TTD_EXIT_USAGE;
             }
@@ -450,9 +507,17 @@ static int ttd_mesh_get_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
 static int ttd_mesh_load(const ttd_mesh_args *a, const char *path, ttd_meshfile *file, ttd_mesh **out)
 {
     char err[1024];
-    if (ttd_meshfile_read(path, a->use_float, file, err, sizeof err) != 0) {
+    const int flags = (a->use_float ? TTD_MESHFILE_FLOAT : 0) | (a->strict ? TTD_MESHFILE_STRICT : 0);
+    if (ttd_meshfile_read(path, flags, file, err, sizeof err) != 0) {
         ttd_cli_error("%s", err);
         return TTD_EXIT_INPUT;
+    }
+    if (file->skipped_lines > 0) {
+        const char *name = strcmp(path, "-") == 0 ? "<stdin>" : path;
+        const int one = file->skipped_lines == 1;
+        ttd_cli_error("%s: skipped %zu %s, first at %s:%zu (--strict refuses them)", name, file->skipped_lines,
+                      one ? "line that is not an OBJ statement" : "lines that are not OBJ statements", name,
+                      file->first_skipped_line);
     }
     ttd_status st = a->use_float ? ttd_mesh_create_f(&a->opt, file->verts_f, file->nv, file->tris, file->nt, out)
                                  : ttd_mesh_create_d(&a->opt, file->verts, file->nv, file->tris, file->nt, out);

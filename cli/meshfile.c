@@ -36,6 +36,9 @@ typedef struct ctx {
     size_t nt, cap_t;
     uint32_t *merge;   /* STL only: open-addressing table of vertex indices, UINT32_MAX empty */
     size_t merge_mask; /* table size - 1 */
+    int strict;        /* TTD_MESHFILE_STRICT */
+    size_t skipped, first_skipped; /* OBJ: lines that are not statements, and the first's number */
+    char why[96];      /* appended to every message: why the format was assumed, or "" */
 } ctx;
 
 static int vfail(ctx *c, const char *where, const char *fmt, va_list ap)
@@ -44,7 +47,7 @@ static int vfail(ctx *c, const char *where, const char *fmt, va_list ap)
         return -1;
     char msg[512];
     vsnprintf(msg, sizeof msg, fmt, ap);
-    snprintf(c->err, c->errsize, "%s%s: %s", c->name, where, msg);
+    snprintf(c->err, c->errsize, "%s%s: %s%s", c->name, where, msg, c->why);
     return -1;
 }
 
@@ -450,7 +453,12 @@ static int parse_obj(ctx *c, const uchar *data, size_t size)
             if (n < 3)
                 return fail_line(c, line, "face has %zu vertices, at least 3 needed", n);
         } else if (!is_identifier(kw, kwlen)) {
-            return fail_line(c, line, "unexpected '%s' (not an OBJ statement)", quote(kw, kwlen, q));
+            /* Not a statement (FCL's test meshes begin with a line of two counts): skipped and
+             * counted, as FCL's loader, tinyobjloader and trimesh skip it; refused when strict. */
+            if (c->strict)
+                return fail_line(c, line, "unexpected '%s' (not an OBJ statement)", quote(kw, kwlen, q));
+            if (c->skipped++ == 0)
+                c->first_skipped = line;
         }
         /* any other statement (vt vn vp l p o g s usemtl mtllib ...) is ignored */
     }
@@ -1045,8 +1053,11 @@ static int parse_ply(ctx *c, const uchar *data, size_t size, ttd_meshfile_format
 
 /* ---- detection and entry points ---------------------------------------------------- */
 
-static ttd_meshfile_format detect(const uchar *data, size_t size)
+/* The format of the content; why receives, for a binary STL assumed from bytes that no text
+ * holds, the words that say so (appended to the parser's messages), else "". */
+static ttd_meshfile_format detect(const uchar *data, size_t size, char *why, size_t whysize)
 {
+    why[0] = '\0';
     size_t s = size >= 3 && data[0] == 0xEF && data[1] == 0xBB && data[2] == 0xBF ? 3 : 0;
     if (size - s >= 4 && memcmp(data + s, "ply", 3) == 0 && (data[s + 3] == '\n' || data[s + 3] == '\r'))
         return TTD_MESHFILE_PLY_ASCII; /* the header says which PLY */
@@ -1057,8 +1068,11 @@ static ttd_meshfile_format detect(const uchar *data, size_t size)
      * parser then says so). */
     for (size_t k = 0; k < size && k < 84; ++k) {
         uchar ch = data[k];
-        if ((ch < 0x20 && !is_space(ch)) || ch == 0x7f || ch == 0xc0 || ch == 0xc1 || ch >= 0xf5)
+        if ((ch < 0x20 && !is_space(ch)) || ch == 0x7f || ch == 0xc0 || ch == 0xc1 || ch >= 0xf5) {
+            snprintf(why, whysize, " (read as a binary STL: byte %zu is 0x%02x, which text does not hold)", k,
+                     (unsigned)ch);
             return TTD_MESHFILE_STL_BINARY;
+        }
     }
     while (s < size && is_space(data[s]))
         ++s;
@@ -1075,7 +1089,7 @@ static void free_ctx(ctx *c)
     free(c->merge);
 }
 
-int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int want_float,
+int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
                        ttd_meshfile *out, char *err, size_t errsize)
 {
     ctx c;
@@ -1083,7 +1097,8 @@ int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size,
     c.name = name ? name : "<input>";
     c.err = err;
     c.errsize = errsize;
-    c.want_float = want_float != 0;
+    c.want_float = (flags & TTD_MESHFILE_FLOAT) != 0;
+    c.strict = (flags & TTD_MESHFILE_STRICT) != 0;
     if (err && errsize)
         err[0] = '\0';
     if (!out)
@@ -1093,7 +1108,7 @@ int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size,
         return fail(&c, "no data given");
     if (size == 0)
         return fail(&c, "empty file");
-    ttd_meshfile_format fmt = detect(data, size);
+    ttd_meshfile_format fmt = detect(data, size, c.why, sizeof c.why);
     int rc;
     switch (fmt) {
     case TTD_MESHFILE_PLY_ASCII: rc = parse_ply(&c, data, size, &fmt); break;
@@ -1114,10 +1129,12 @@ int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size,
     out->tris = c.t;
     out->nt = c.nt;
     out->format = fmt;
+    out->skipped_lines = c.skipped;
+    out->first_skipped_line = c.first_skipped;
     return 0;
 }
 
-int ttd_meshfile_read(const char *path, int want_float, ttd_meshfile *out, char *err, size_t errsize)
+int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err, size_t errsize)
 {
     ctx c;
     memset(&c, 0, sizeof c);
@@ -1171,7 +1188,7 @@ int ttd_meshfile_read(const char *path, int want_float, ttd_meshfile *out, char 
             break;
         }
     }
-    rc = ttd_meshfile_parse(c.name, buf, n, want_float, out, err, errsize);
+    rc = ttd_meshfile_parse(c.name, buf, n, flags, out, err, errsize);
 done:
     free(buf);
     if (!is_stdin)

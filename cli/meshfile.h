@@ -37,6 +37,12 @@ typedef enum ttd_meshfile_format {
     TTD_MESHFILE_FORMAT_COUNT
 } ttd_meshfile_format;
 
+/// Flags of ttd_meshfile_read / ttd_meshfile_parse (bits; 0 for none).
+enum {
+    TTD_MESHFILE_FLOAT = 1,  ///< also fill verts_f
+    TTD_MESHFILE_STRICT = 2  ///< refuse OBJ lines that are not statements instead of skipping them
+};
+
 /// An indexed mesh read from a file.
 typedef struct ttd_meshfile {
     double *verts;              ///< 3 nv coordinates (x y z per vertex)
@@ -45,16 +51,22 @@ typedef struct ttd_meshfile {
     uint32_t *tris;             ///< 3 nt vertex indices, each below nv
     size_t nt;
     ttd_meshfile_format format; ///< what the content was recognised as
+    size_t skipped_lines;       ///< OBJ: lines that are not OBJ statements (not starting with a
+                                ///< keyword, such as FCL's "6540 2180"), skipped; 0 otherwise
+    size_t first_skipped_line;  ///< the first of them (1-based), when skipped_lines > 0
 } ttd_meshfile;
 
-/// Reads the file at path ("-": standard input, named "<stdin>" in messages). want_float
-/// non-zero also fills verts_f. Returns 0, or -1 with a message in err (errsize bytes,
-/// always NUL-terminated when errsize > 0; err may be NULL).
-int ttd_meshfile_read(const char *path, int want_float, ttd_meshfile *out, char *err, size_t errsize);
+/// Reads the file at path ("-": standard input, named "<stdin>" in messages). flags:
+/// TTD_MESHFILE_FLOAT also fills verts_f; TTD_MESHFILE_STRICT refuses an OBJ line that is not
+/// a statement (it is skipped and counted in skipped_lines otherwise). Returns 0, or -1 with a
+/// message in err (errsize bytes, always NUL-terminated when errsize > 0; err may be NULL). A
+/// file taken for a binary STL because of bytes that text does not hold has the reason at the
+/// end of every message: " (read as a binary STL: byte K is 0xNN, which text does not hold)".
+int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err, size_t errsize);
 
 /// The same on size bytes in memory (data need not be NUL-terminated); name is used in
 /// messages only (NULL: "<input>").
-int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int want_float,
+int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
                        ttd_meshfile *out, char *err, size_t errsize);
 
 /// Frees the arrays and zeroes *m (NULL is allowed).

@@ -109,8 +109,10 @@ static void ttd_quote(const char *p, const char *end, char *out, size_t outsize)
     out[o] = '\0';
 }
 
-ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float, int want, double *out,
-                                     char *err, size_t errsize)
+/* Up to max numbers of a line into out, their count in *count; the syntax and messages of
+ * ttd_parse_numbers_line, whose "expected ..." words are expect. */
+static ttd_line_kind ttd_parse_upto(const char *line, size_t len, int as_float, int max, const char *expect,
+                                    double *out, int *count_out, char *err, size_t errsize)
 {
     const char *p = line, *end = line + len;
     while (p < end && ttd_is_blank(*p))
@@ -121,7 +123,7 @@ ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float,
     int count = 0;
     while (p < end && *p != '#') {
         char tok[128];
-        if (count == want) {
+        if (count == max) {
             int extra = 0;
             while (p < end && *p != '#') {
                 ++extra;
@@ -130,7 +132,7 @@ ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float,
                 while (p < end && ttd_is_blank(*p))
                     ++p;
             }
-            snprintf(err, errsize, "expected %d numbers, found %d or more", want, want + extra);
+            snprintf(err, errsize, "expected %s numbers, found %d or more", expect, max + extra);
             return TTD_LINE_ERROR;
         }
         char *stop;
@@ -154,10 +156,42 @@ ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float,
         while (p < end && ttd_is_blank(*p))
             ++p;
     }
-    if (count != want) {
+    *count_out = count;
+    return TTD_LINE_PAIR;
+}
+
+ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float, int want, double *out,
+                                     char *err, size_t errsize)
+{
+    char expect[16];
+    snprintf(expect, sizeof expect, "%d", want);
+    int count = 0;
+    ttd_line_kind kind = ttd_parse_upto(line, len, as_float, want, expect, out, &count, err, errsize);
+    if (kind == TTD_LINE_PAIR && count != want) {
         snprintf(err, errsize, "expected %d numbers, found %d", want, count);
         return TTD_LINE_ERROR;
     }
+    return kind;
+}
+
+ttd_line_kind ttd_parse_pose_line(const char *line, size_t len, int as_float, double out[12], char *err,
+                                  size_t errsize)
+{
+    double v[16];
+    int count = 0;
+    ttd_line_kind kind = ttd_parse_upto(line, len, as_float, 16, "12 or 16", v, &count, err, errsize);
+    if (kind != TTD_LINE_PAIR)
+        return kind;
+    if (count != 12 && count != 16) {
+        snprintf(err, errsize, "expected 12 numbers ([R | t], 3x4) or 16 (a 4x4 matrix), found %d", count);
+        return TTD_LINE_ERROR;
+    }
+    if (count == 16 && !(v[12] == 0 && v[13] == 0 && v[14] == 0 && v[15] == 1)) {
+        snprintf(err, errsize, "the bottom row of a 4x4 pose must be 0 0 0 1, found %.17g %.17g %.17g %.17g", v[12],
+                 v[13], v[14], v[15]);
+        return TTD_LINE_ERROR;
+    }
+    memcpy(out, v, 12 * sizeof *out);
     return TTD_LINE_PAIR;
 }
 

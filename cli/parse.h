@@ -52,4 +52,11 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, do
 ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float, int want, double *out,
                                      char *err, size_t errsize);
 
+/// A pose of `ttd mesh`: 12 numbers (the 3x4 matrix [R | t] row by row) or 16 (the 4x4
+/// homogeneous matrix row by row, whose bottom row must be exactly 0 0 0 1), with the syntax
+/// of ttd_parse_numbers_line; out receives the 12 numbers of [R | t]. Whether R is a rotation
+/// is the caller's check.
+ttd_line_kind ttd_parse_pose_line(const char *line, size_t len, int as_float, double out[12], char *err,
+                                  size_t errsize);
+
 #endif /* TTD_CLI_PARSE_H */

@@ -12,8 +12,9 @@
 #
 # Missing Debian packages are installed with apt-get when this runs as root (or with
 # password-less sudo). Where they cannot be, the Python tests are skipped with a message that
-# names what is missing, and the script exits 0. Dask and distributed are optional: without
-# them only the scale-out tests are skipped (pytest says so).
+# names what is missing, and the script exits 0. Dask, distributed and mypy are optional: without
+# them only the scale-out tests, or the type check of the docs' examples against the stub
+# (python/tests/test_types.py), are skipped (pytest says so).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-${TTD_BUILD_DIR:-build}}
@@ -28,14 +29,14 @@ skip() {
 # What $py lacks, as Debian package names (one line, empty when nothing is).
 missing() {
     if ! command -v "$py" > /dev/null 2>&1; then
-        echo "python3 python3-numpy python3-pytest python3-setuptools python3-pip python3-venv python3-dev python3-dask python3-distributed"
+        echo "python3 python3-numpy python3-pytest python3-setuptools python3-pip python3-venv python3-dev python3-dask python3-distributed python3-mypy"
         return
     fi
     "$py" - << 'EOF'
 import importlib.util, os, sysconfig
 need = [("numpy", "python3-numpy"), ("pytest", "python3-pytest"), ("setuptools", "python3-setuptools"),
         ("pip", "python3-pip"), ("wheel", "python3-wheel"), ("ensurepip", "python3-venv"),
-        ("dask.array", "python3-dask"), ("distributed", "python3-distributed")]
+        ("dask.array", "python3-dask"), ("distributed", "python3-distributed"), ("mypy", "python3-mypy")]
 out = []
 for module, package in need:
     try:
@@ -71,7 +72,7 @@ command -v "$py" > /dev/null 2>&1 || skip "the interpreter $py was not found (TT
 required=""
 for p in $lacking; do
     case $p in
-        python3-dask | python3-distributed) ;;
+        python3-dask | python3-distributed | python3-mypy) ;;
         *) required="$required $p" ;;
     esac
 done
@@ -84,7 +85,7 @@ if [ -n "$required" ]; then
     skip "$py (TTD_PYTHON) lacks$required; unset TTD_PYTHON to use Debian's $debian_py"
 fi
 if [ -n "$lacking" ]; then
-    echo "test-python.sh: $lacking not installed: the Dask tests will be skipped (apt-get install $lacking)" >&2
+    echo "test-python.sh: $lacking not installed: the Dask tests, or the type check of the docs' examples (mypy), will be skipped (apt-get install $lacking)" >&2
 fi
 
 # The library is built here (the package links its static archive); a sanitized build's

@@ -291,7 +291,8 @@ static int obj_errors(void)
         {"v 0 0 0\nv 1e39 0 0\n", "bad.obj:2: coordinate '1e39' is out of range for float", 1},
         {"v 0 0 0\nv 1,5 0 0\n", "bad.obj:2: '1,5' is not a number", 0},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\n", "bad.obj: no triangles (read as obj)", 0},
-        {"v 0 0 0\n@@ 1 2\n", "bad.obj:2: unexpected '@@'", 0},
+        {"v 0 0 0\n@@ 1 2\n", "bad.obj:2: unexpected '@@' (not an OBJ statement)", TTD_MESHFILE_STRICT},
+        {"6540 2180\nv 0 0 0\n", "bad.obj:1: unexpected '6540' (not an OBJ statement)", TTD_MESHFILE_STRICT | TTD_MESHFILE_FLOAT},
         {"", "bad.obj: empty file", 0},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
@@ -299,6 +300,26 @@ static int obj_errors(void)
         put(&b, cases[k].text, strlen(cases[k].text));
         ENSURE_ERROR(roundtrip("bad.obj", &b, cases[k].want_float, &bad_), cases[k].want);
         free(b.p);
+    }
+    /* Lines that are not statements (FCL's env.obj begins with "6540 2180") are skipped and
+     * counted, the first one's number kept; without them the mesh is the same. */
+    {
+        buf with = {0}, without = {0};
+        putf(&with, "6540 2180\nv 0 0 0\nv 1 0 0\n@@ 1 2\nv 0 1 0\n-3 x\nf 1 2 3\nvt 0 0\n");
+        putf(&without, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nvt 0 0\n");
+        ttd_meshfile m1, m2;
+        ENSURE_MSG(roundtrip("env.obj", &with, TTD_MESHFILE_FLOAT, &m1) == 0, "%s", err);
+        ENSURE(m1.skipped_lines == 3 && m1.first_skipped_line == 1 && m1.format == TTD_MESHFILE_OBJ);
+        ENSURE(parse("plain.obj", &without, 0, &m2) == 0 && m2.skipped_lines == 0 && m2.first_skipped_line == 0);
+        ENSURE(m1.nv == 3 && m2.nv == 3 && m1.nt == 1 && m2.nt == 1 && m1.verts_f != NULL);
+        ENSURE(memcmp(m1.verts, m2.verts, 9 * sizeof *m1.verts) == 0 && memcmp(m1.tris, m2.tris, 3 * sizeof *m1.tris) == 0);
+        ttd_meshfile_free(&m1);
+        ttd_meshfile_free(&m2);
+        putf(&without, "12\n"); /* the skipped line's number is the first one's */
+        ENSURE(parse("late.obj", &without, 0, &m2) == 0 && m2.skipped_lines == 1 && m2.first_skipped_line == 6);
+        ttd_meshfile_free(&m2);
+        free(with.p);
+        free(without.p);
     }
     /* 1e39 is a fine double */
     buf b = {0};
@@ -739,6 +760,26 @@ static int io_and_arguments(void)
     b = (buf){0};
     put(&b, "\x01\x02garbage", 9);
     ENSURE_ERROR(parse("g.bin", &b, 0, &bad_), "g.bin: truncated: file ends at byte 9 inside the 84-byte binary STL header");
+    ENSURE_ERROR(parse("g.bin", &b, 0, &bad_), "(read as a binary STL: byte 0 is 0x01, which text does not hold)");
+    free(b.p);
+    /* Text with one byte that text does not hold (Latin-1 0xff) is read as a binary STL, and
+     * the message says so and why. */
+    b = (buf){0};
+    putf(&b, "v 0 0 0\nv 1 0 0 # caf\xff\nv 0 1 0\nf 1 2 3\n# HHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHHH\n");
+    ENSURE_ERROR(parse("garbage.obj", &b, 0, &bad_),
+                 "garbage.obj: truncated: 1212696648 facets declared, file ends at byte");
+    ENSURE_ERROR(parse("garbage.obj", &b, 0, &bad_), "(read as a binary STL: byte 21 is 0xff, which text does not hold)");
+    free(b.p);
+    /* A binary STL recognised by its size gets no such words. */
+    b = (buf){0};
+    ttd_gen_mesh tet;
+    ENSURE(ttd_gen_mesh_tetrahedron(&tet) == 0);
+    stl_binary(&b, &tet, "solid tet");
+    ttd_gen_mesh_free(&tet);
+    float inf = (float)INFINITY;
+    memcpy(b.p + 84 + 12, &inf, 4);
+    ENSURE_ERROR(parse("inf.stl", &b, 0, &bad_), "inf.stl: byte 96: facet 0: vertex 1: coordinate is not finite");
+    ENSURE(strstr(err, "read as") == NULL);
     free(b.p);
     ENSURE(strcmp(ttd_meshfile_format_name(TTD_MESHFILE_PLY_BINARY), "ply-binary") == 0);
     ENSURE(ttd_meshfile_format_name(TTD_MESHFILE_FORMAT_COUNT) == NULL);

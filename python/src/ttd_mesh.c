@@ -473,17 +473,6 @@ static int ttd_py_add(PyObject *module, const char *name, PyObject *obj)
     return 0;
 }
 
-static PyTypeObject *ttd_py_result_type(PyObject *module, const char *name, PyStructSequence_Desc *desc,
-                                        PyObject *names[])
-{
-    if (ttd_py_intern_fields(desc->fields, desc->n_in_sequence, names) < 0)
-        return NULL;
-    PyTypeObject *t = PyStructSequence_NewType(desc);
-    if (t == NULL || ttd_py_add(module, name, (PyObject *)t) < 0)
-        return NULL;
-    return t;
-}
-
 #define TTD_PY_DIST_OFFSETS(T)                                                                   \
     {offsetof(T, distance), offsetof(T, p), offsetof(T, q), offsetof(T, tri_a), offsetof(T, tri_b), \
      offsetof(T, feature_a), offsetof(T, feature_b), offsetof(T, flags), offsetof(T, node_tests), \
@@ -534,11 +523,11 @@ int ttd_py_mesh_init(PyObject *module)
 {
     if (PyType_Ready(&ttd_py_MeshType) < 0 || ttd_py_add(module, "Mesh", (PyObject *)&ttd_py_MeshType) < 0)
         return -1;
-    if (!(ttd_py_MeshDistance = ttd_py_result_type(module, "MeshDistance", &ttd_py_distance_desc, ttd_py_distance_names)) ||
-        !(ttd_py_MeshCollision = ttd_py_result_type(module, "MeshCollision", &ttd_py_collision_desc, ttd_py_collision_names)) ||
-        !(ttd_py_MeshContacts = ttd_py_result_type(module, "MeshContacts", &ttd_py_contacts_desc, ttd_py_contacts_names)) ||
-        !(ttd_py_ClosestPartners = ttd_py_result_type(module, "ClosestPartners", &ttd_py_partners_desc, ttd_py_partners_names)) ||
-        !(ttd_py_MeshClosest = ttd_py_result_type(module, "MeshClosest", &ttd_py_closest_desc, ttd_py_closest_names)))
+    if (!(ttd_py_MeshDistance = ttd_py_named_tuple(module, &ttd_py_distance_desc, ttd_py_distance_names)) ||
+        !(ttd_py_MeshCollision = ttd_py_named_tuple(module, &ttd_py_collision_desc, ttd_py_collision_names)) ||
+        !(ttd_py_MeshContacts = ttd_py_named_tuple(module, &ttd_py_contacts_desc, ttd_py_contacts_names)) ||
+        !(ttd_py_ClosestPartners = ttd_py_named_tuple(module, &ttd_py_partners_desc, ttd_py_partners_names)) ||
+        !(ttd_py_MeshClosest = ttd_py_named_tuple(module, &ttd_py_closest_desc, ttd_py_closest_names)))
         return -1;
     if (ttd_py_make_records(module) < 0)
         return -1;
@@ -941,7 +930,7 @@ static PyObject *ttd_py_mesh_distance(PyObject *self, PyObject *args, PyObject *
         ttd_py_query_raise(st, TTD_PY_DISTANCE, &q, ub, rt);
         goto done;
     }
-    result = PyStructSequence_New(ttd_py_MeshDistance);
+    result = ttd_py_named_new(ttd_py_MeshDistance, TTD_PY_NDIST);
     if (result != NULL && ttd_py_set_views(result, 0, rec, ttd_py_distance_names, TTD_PY_NDIST) < 0)
         Py_CLEAR(result);
 done:
@@ -993,11 +982,11 @@ static PyObject *ttd_py_mesh_collide(PyObject *self, PyObject *args, PyObject *k
     npy_bool *h = PyArray_DATA(hit);
     for (npy_intp i = 0; i < q.k; ++i)
         h[i] = c[i].hit != 0;
-    result = PyStructSequence_New(ttd_py_MeshCollision);
+    result = ttd_py_named_new(ttd_py_MeshCollision, TTD_PY_NCOLL);
     if (result == NULL)
         goto done;
     Py_INCREF(hit);
-    PyStructSequence_SET_ITEM(result, 0, PyArray_Return(hit));
+    PyTuple_SET_ITEM(result, 0, PyArray_Return(hit));
     if (ttd_py_set_views(result, 1, rec, ttd_py_collision_names + 1, TTD_PY_NCOLL - 1) < 0)
         Py_CLEAR(result);
 done:
@@ -1099,11 +1088,11 @@ static PyObject *ttd_py_mesh_contacts(PyObject *self, PyObject *args, PyObject *
         for (npy_intp j = (npy_intp)ps[i]; j < (npy_intp)ps[i + 1]; ++j)
             pc[j] = i;
     }
-    result = PyStructSequence_New(ttd_py_MeshContacts);
+    result = ttd_py_named_new(ttd_py_MeshContacts, TTD_PY_NCONT);
     if (result == NULL)
         goto done;
-    PyStructSequence_SET_ITEM(result, 0, (PyObject *)pose);
-    PyStructSequence_SET_ITEM(result, TTD_PY_NCONT - 1, (PyObject *)start);
+    PyTuple_SET_ITEM(result, 0, (PyObject *)pose);
+    PyTuple_SET_ITEM(result, TTD_PY_NCONT - 1, (PyObject *)start);
     pose = start = NULL;
     if (ttd_py_set_views(result, 1, rec, ttd_py_contacts_names + 1, TTD_PY_NCONT - 2) < 0)
         Py_CLEAR(result);
@@ -1145,7 +1134,7 @@ PyDoc_STRVAR(ttd_py_mesh_closest_doc,
 
 static PyObject *ttd_py_partners(PyArrayObject *rec)
 {
-    PyObject *r = PyStructSequence_New(ttd_py_ClosestPartners);
+    PyObject *r = ttd_py_named_new(ttd_py_ClosestPartners, TTD_PY_NCLOSE);
     if (r != NULL && ttd_py_set_views(r, 0, rec, ttd_py_partners_names, TTD_PY_NCLOSE) < 0)
         Py_CLEAR(r);
     return r;
@@ -1213,7 +1202,7 @@ static PyObject *ttd_py_mesh_closest(PyObject *self, PyObject *args, PyObject *k
         goto done;
     if (recb && (rb = ttd_py_partners(recb)) == NULL)
         goto done;
-    if ((result = PyStructSequence_New(ttd_py_MeshClosest)) == NULL)
+    if ((result = ttd_py_named_new(ttd_py_MeshClosest, TTD_PY_NPAIR)) == NULL)
         goto done;
     if (ra == NULL) {
         ra = Py_None;
@@ -1223,8 +1212,8 @@ static PyObject *ttd_py_mesh_closest(PyObject *self, PyObject *args, PyObject *k
         rb = Py_None;
         Py_INCREF(rb);
     }
-    PyStructSequence_SET_ITEM(result, 0, ra);
-    PyStructSequence_SET_ITEM(result, 1, rb);
+    PyTuple_SET_ITEM(result, 0, ra);
+    PyTuple_SET_ITEM(result, 1, rb);
     ra = rb = NULL;
 done:
     Py_XDECREF(ra);

@@ -56,7 +56,7 @@ static PyArray_Descr *ttd_py_record_descr_of(const char *real, const size_t offs
 
 int ttd_py_pairs_init(PyObject *module)
 {
-    if (ttd_py_intern_fields(ttd_py_pair_result_fields, TTD_PY_NFIELDS, ttd_py_field_names) < 0)
+    if ((ttd_py_PairResult = ttd_py_named_tuple(module, &ttd_py_pair_result_desc, ttd_py_field_names)) == NULL)
         return -1;
     static const size_t off_d[TTD_PY_NFIELDS] = TTD_PY_OFFSETS(ttd_result_d);
     static const size_t off_f[TTD_PY_NFIELDS] = TTD_PY_OFFSETS(ttd_result_f);
@@ -64,14 +64,6 @@ int ttd_py_pairs_init(PyObject *module)
     ttd_py_record_f = ttd_py_record_descr_of("f4", off_f, sizeof(ttd_result_f));
     if (!ttd_py_record_d || !ttd_py_record_f)
         return -1;
-    ttd_py_PairResult = PyStructSequence_NewType(&ttd_py_pair_result_desc);
-    if (ttd_py_PairResult == NULL)
-        return -1;
-    Py_INCREF(ttd_py_PairResult);
-    if (PyModule_AddObject(module, "PairResult", (PyObject *)ttd_py_PairResult) < 0) {
-        Py_DECREF(ttd_py_PairResult);
-        return -1;
-    }
     /* The record dtypes, for tests and for users who want the raw structs. */
     Py_INCREF(ttd_py_record_d);
     if (PyModule_AddObject(module, "RESULT_DTYPE_FLOAT64", (PyObject *)ttd_py_record_d) < 0) {
@@ -204,7 +196,7 @@ static PyObject *ttd_py_full(const ttd_options *opt, int type, int lead, PyArray
     }
     if (st != TTD_OK && ttd_py_pair_warnings(st, opt, n, nonfinite, not_converged) < 0)
         goto done;
-    result = PyStructSequence_New(ttd_py_PairResult);
+    result = ttd_py_named_new(ttd_py_PairResult, TTD_PY_NFIELDS);
     if (result != NULL && ttd_py_set_views(result, 0, rec, ttd_py_field_names, TTD_PY_NFIELDS) < 0)
         Py_CLEAR(result);
 done:

@@ -48,7 +48,8 @@ int ttd_py_precision(PyObject *precision, int *type_num);
  * with TypeError (naming the argument) for any other dtype. */
 int ttd_py_natural_type(PyArrayObject *a, const char *name);
 
-/* obj as an array of its own dtype (anything numpy.asarray takes); NULL with an exception. */
+/* obj as an array of its own dtype (anything numpy.asarray takes); NULL with an exception
+ * (TypeError naming the argument for None). */
 PyArrayObject *ttd_py_as_array(PyObject *obj, const char *name);
 
 /* a converted to a C-contiguous, aligned, native-order array of type_num (a itself when it
@@ -69,13 +70,21 @@ PyObject *ttd_py_shape(PyArrayObject *a);
 PyArray_Descr *ttd_py_record_descr(int n, PyObject *const names[], const char *const formats[],
                                    const size_t offsets[], size_t itemsize);
 
-/* Interned names of a struct sequence's n fields, into names (strong references kept for the
- * module's lifetime); -1 with an exception on failure. */
-int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *names[]);
+/* A result type: a real named tuple, collections.namedtuple(name, fields, module="ttd") (with
+ * _fields, _asdict, _replace; it pickles as ttd.<name>), with desc's docstring on the class
+ * and on each field, added to the module under desc's name without its "ttd." prefix; the
+ * field names are interned into names (a PyStructSequence_Field array serves as the list of
+ * names and docstrings). A new reference kept for the module's lifetime, or
+ * NULL with an exception. */
+PyTypeObject *ttd_py_named_tuple(PyObject *module, const PyStructSequence_Desc *desc, PyObject *names[]);
 
-/* Sets items first .. first + n - 1 of the struct sequence seq to the views rec[names[i]] of a
+/* A new instance of the named tuple type with n items, all NULL until the caller sets them
+ * with PyTuple_SET_ITEM; NULL with an exception. */
+PyObject *ttd_py_named_new(PyTypeObject *type, Py_ssize_t n);
+
+/* Sets items first .. first + n - 1 of the named tuple to the views rec[names[i]] of a
  * record array (numpy scalars where a view has no dimensions); -1 with an exception. */
-int ttd_py_set_views(PyObject *seq, int first, PyArrayObject *rec, PyObject *const names[], int n);
+int ttd_py_set_views(PyObject *tuple, int first, PyArrayObject *rec, PyObject *const names[], int n);
 
 /* The shape (a, b, 3, 3) or (a, b, 9) of triangles: the number of leading dimensions, written
  * to *lead (0 for a single triangle), or -1 with ValueError naming the argument. */

@@ -8,6 +8,7 @@
 
 #include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* "'exact', 'penalty', ..." for messages; NULL with an exception set on failure. */
 static PyObject *ttd_py_name_list(const char *(*name_of)(int), int count)
@@ -202,6 +203,10 @@ PyArrayObject *ttd_py_as_array(PyObject *obj, const char *name)
         Py_INCREF(obj);
         return (PyArrayObject *)obj;
     }
+    if (obj == Py_None) { /* numpy would make a 0-d object array of it, refused for its shape */
+        PyErr_Format(PyExc_TypeError, "%s must be an array of coordinates, not None", name);
+        return NULL;
+    }
     PyObject *a = PyArray_FromAny(obj, NULL, 0, 0, 0, NULL);
     if (a == NULL) {
         /* numpy's own message says what was wrong with the object; add which argument. */
@@ -277,7 +282,7 @@ done:
     return descr;
 }
 
-int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *names[])
+static int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *names[])
 {
     for (int i = 0; i < n; ++i)
         if ((names[i] = PyUnicode_InternFromString(fields[i].name)) == NULL)
@@ -285,7 +290,73 @@ int ttd_py_intern_fields(const PyStructSequence_Field *fields, int n, PyObject *
     return 0;
 }
 
-int ttd_py_set_views(PyObject *seq, int first, PyArrayObject *rec, PyObject *const names[], int n)
+PyTypeObject *ttd_py_named_tuple(PyObject *module, const PyStructSequence_Desc *desc, PyObject *names[])
+{
+    const int n = desc->n_in_sequence;
+    if (ttd_py_intern_fields(desc->fields, n, names) < 0)
+        return NULL;
+    const char *dot = strrchr(desc->name, '.');
+    const char *name = dot ? dot + 1 : desc->name;
+    PyObject *collections = NULL, *factory = NULL, *fields = NULL, *args = NULL, *kwargs = NULL, *type = NULL;
+    if ((collections = PyImport_ImportModule("collections")) == NULL ||
+        (factory = PyObject_GetAttrString(collections, "namedtuple")) == NULL || (fields = PyTuple_New(n)) == NULL)
+        goto fail;
+    for (int i = 0; i < n; ++i) {
+        Py_INCREF(names[i]);
+        PyTuple_SET_ITEM(fields, i, names[i]);
+    }
+    if ((args = Py_BuildValue("(sO)", name, fields)) == NULL || (kwargs = Py_BuildValue("{ss}", "module", "ttd")) == NULL ||
+        (type = PyObject_Call(factory, args, kwargs)) == NULL)
+        goto fail;
+    if (!PyType_Check(type) || !PyType_IsSubtype((PyTypeObject *)type, &PyTuple_Type)) {
+        PyErr_SetString(PyExc_TypeError, "collections.namedtuple did not return a tuple type");
+        goto fail;
+    }
+    /* The class's and each field's docstring (the field properties' docs are writable). */
+    PyObject *doc = PyUnicode_FromString(desc->doc);
+    if (doc == NULL || PyObject_SetAttrString(type, "__doc__", doc) < 0) {
+        Py_XDECREF(doc);
+        goto fail;
+    }
+    Py_DECREF(doc);
+    for (int i = 0; i < n; ++i) {
+        PyObject *getter = PyObject_GetAttr(type, names[i]);
+        PyObject *fdoc = getter ? PyUnicode_FromString(desc->fields[i].doc) : NULL;
+        int bad = fdoc == NULL || PyObject_SetAttrString(getter, "__doc__", fdoc) < 0;
+        Py_XDECREF(getter);
+        Py_XDECREF(fdoc);
+        if (bad)
+            goto fail;
+    }
+    Py_INCREF(type);
+    if (PyModule_AddObject(module, name, type) < 0) {
+        Py_DECREF(type);
+        goto fail;
+    }
+    Py_DECREF(collections);
+    Py_DECREF(factory);
+    Py_DECREF(fields);
+    Py_DECREF(args);
+    Py_DECREF(kwargs);
+    return (PyTypeObject *)type; /* the reference kept for the module's lifetime */
+fail:
+    Py_XDECREF(collections);
+    Py_XDECREF(factory);
+    Py_XDECREF(fields);
+    Py_XDECREF(args);
+    Py_XDECREF(kwargs);
+    Py_XDECREF(type);
+    return NULL;
+}
+
+PyObject *ttd_py_named_new(PyTypeObject *type, Py_ssize_t n)
+{
+    /* What tuple.__new__ does for a subclass: allocate n empty items, which the caller sets
+     * with PyTuple_SET_ITEM (an item left NULL is safe to deallocate). */
+    return type->tp_alloc(type, n);
+}
+
+int ttd_py_set_views(PyObject *tuple, int first, PyArrayObject *rec, PyObject *const names[], int n)
 {
     for (int i = 0; i < n; ++i) {
         PyObject *v = PyObject_GetItem((PyObject *)rec, names[i]);
@@ -293,7 +364,7 @@ int ttd_py_set_views(PyObject *seq, int first, PyArrayObject *rec, PyObject *con
             v = PyArray_Return((PyArrayObject *)v);
         if (v == NULL)
             return -1;
-        PyStructSequence_SET_ITEM(seq, first + i, v);
+        PyTuple_SET_ITEM(tuple, first + i, v);
     }
     return 0;
 }

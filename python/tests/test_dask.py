@@ -107,7 +107,8 @@ def test_mesh_poses_in_chunks_equal_one_call(client, dtype):
 
     col = client.compute(ttd.dask.mesh_collide(A, B, dP[:, :3, :], 0.01, threads=1)).result()
     one_col = ttd.mesh_collide(A, B, P, 0.01)
-    np.testing.assert_array_equal(col["hit"] != 0, one_col.hit)
+    assert col.dtype == ttd.dask.COLLISION_DTYPE and col["hit"].dtype == one_col.hit.dtype == np.bool_
+    np.testing.assert_array_equal(col["hit"], one_col.hit)
     for field in ("tri_a", "tri_b", "node_tests", "pair_tests"):
         np.testing.assert_array_equal(col[field], getattr(one_col, field), err_msg=field)
 

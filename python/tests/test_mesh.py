@@ -231,7 +231,7 @@ def test_result_types():
                            (ttd.mesh_closest(A, B, np.eye(4), 0.1).for_a, PARTNER_FIELDS),
                            (ttd.mesh_collide(A, B, np.eye(4)), ("hit", "tri_a", "tri_b", "node_tests", "pair_tests"))):
         assert tuple(type(result).__doc__ is not None and f for f in fields) == fields
-        assert len(result) == len(fields) == type(result).n_fields
+        assert len(result) == len(fields) and type(result)._fields == fields
         for i, f in enumerate(fields):
             assert result[i] is getattr(result, f)
 
@@ -619,9 +619,14 @@ def test_stub_covers_the_extension():
     for name in ("mesh_distance", "mesh_contacts", "mesh_closest", "mesh_collide"):
         args = defined[name].args
         stubbed = [a.arg for a in args.args] + [a.arg for a in args.kwonlyargs]
-        real = inspect.signature(getattr(ttd, name)).parameters
+        real = inspect.signature(getattr(ttd._ttd, name)).parameters
         assert stubbed == list(real), name
         assert [a.arg for a in args.kwonlyargs] == [p for p, v in real.items() if v.kind is v.KEYWORD_ONLY], name
+        # The package's query (ttd/_poses.py) takes the extension's parameters, poses optional,
+        # and the world poses pose_a and pose_b.
+        wrapped = inspect.signature(getattr(ttd, name)).parameters
+        assert [p for p in wrapped if p not in ("pose_a", "pose_b")] == list(real), name
+        assert wrapped["poses"].default is None and wrapped["pose_a"].kind is wrapped["pose_a"].KEYWORD_ONLY
     mesh = [n for n in defined["Mesh"].body if isinstance(n, ast.FunctionDef) and n.name == "__init__"][0]
     assert [a.arg for a in mesh.args.args + mesh.args.kwonlyargs] == ["self"] + list(inspect.signature(ttd.Mesh).parameters)
     for obj in (ttd.Mesh, ttd.mesh_distance, ttd.mesh_contacts, ttd.mesh_closest, ttd.mesh_collide, ttd.MeshDistance,

@@ -18,7 +18,9 @@ numpy arrays in, numpy arrays out::
     ttd.mesh_collide(A, B, poses).hit       # (K,) bool
 
 What is here: distance() (the pair API); Mesh and the mesh queries mesh_distance(),
-mesh_contacts(), mesh_closest(), mesh_collide() with their result types; the enums Method,
+mesh_contacts(), mesh_closest(), mesh_collide() with their result types (b's poses in a's
+frame, or world poses pose_a= and pose_b= with results in the world frame); pose() and
+orthonormalize() for poses as users hold them (quaternions, matrices printed with few digits); the enums Method,
 Isa, Flag and MeshFlag; the instruction-set queries isa_available(), isa_selected(),
 isa_lanes(), version; the exception IsaUnavailableError and the warnings NonFiniteInputWarning
 and NotConvergedWarning. ttd.dask runs batches of pairs and of poses larger than memory on a
@@ -54,13 +56,10 @@ try:
         isa_available,
         isa_lanes,
         isa_selected,
-        mesh_closest,
-        mesh_collide,
-        mesh_contacts,
-        mesh_distance,
         version,
     )
     from . import _ttd
+    from ._poses import mesh_closest, mesh_collide, mesh_contacts, mesh_distance, orthonormalize, pose
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -117,6 +116,8 @@ class MeshFlag(enum.IntFlag):
     ABOVE_BOUND = _ttd.MESH_ABOVE_BOUND  #: no pair within upper_bound: distance inf, no points or triangles
 
 
+del enum  # used above only: not part of the package's namespace
+
 __all__ = [
     "CLOSEST_DTYPE_FLOAT32",
     "CLOSEST_DTYPE_FLOAT64",
@@ -153,5 +154,7 @@ __all__ = [
     "mesh_collide",
     "mesh_contacts",
     "mesh_distance",
+    "orthonormalize",
+    "pose",
     "version",
 ]

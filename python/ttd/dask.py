@@ -16,7 +16,7 @@ queries over poses chunk by chunk.
     poses = da.from_zarr("poses.zarr")        # (K, 4, 4) or (K, 3, 4), chunked along K
     r = ttd.dask.mesh_distance(A, B, poses)   # lazy: (K,) records of ttd.MESH_RESULT_DTYPE_*
     r["distance"].min().compute(), r["tri_a"][:10].compute()
-    hit = ttd.dask.mesh_collide(A, B, poses, 0.01)["hit"]   # (K,) uint32, 1 where within 0.01
+    hit = ttd.dask.mesh_collide(A, B, poses, 0.01)["hit"]   # (K,) bool, True where within 0.01
     parts = ttd.dask.mesh_contacts(A, B, poses, 0.01)       # a dask.bag: one MeshContacts per chunk
     contacts = ttd.dask.concatenate_contacts(parts.compute())  # = ttd.mesh_contacts on all poses
 
@@ -41,7 +41,12 @@ import numpy as np
 
 import ttd
 
-__all__ = ["concatenate_contacts", "distance", "mesh_collide", "mesh_contacts", "mesh_distance"]
+__all__ = ["COLLISION_DTYPE", "concatenate_contacts", "distance", "mesh_collide", "mesh_contacts", "mesh_distance"]
+
+#: The records of ttd.dask.mesh_collide: ttd.COLLISION_DTYPE's fields with hit as bool (as
+#: ttd.mesh_collide's hit is), packed.
+COLLISION_DTYPE = np.dtype([("hit", np.bool_), ("tri_a", np.uint32), ("tri_b", np.uint32), ("node_tests", np.uint32),
+                            ("pair_tests", np.uint64)])
 
 
 def _pairs_2d(X, name):
@@ -104,11 +109,15 @@ def _meshes(a, b):
 
 def _records_block(poses, meshes, query, dtype, margin, options):
     a, b = meshes
-    out = np.empty(len(poses), dtype)
     if query == "distance":
+        out = np.empty(len(poses), dtype)
         ttd.mesh_distance(a, b, poses, out=out, **options)
-    else:
-        ttd.mesh_collide(a, b, poses, margin, out=out, **options)
+        return out
+    rec = np.empty(len(poses), ttd.COLLISION_DTYPE)
+    ttd.mesh_collide(a, b, poses, margin, out=rec, **options)
+    out = np.empty(len(poses), dtype)
+    for name in dtype.names:
+        out[name] = rec[name] != 0 if name == "hit" else rec[name]
     return out
 
 
@@ -126,7 +135,7 @@ def _records(a, b, poses, query, margin, options):
         dtype = ttd.MESH_RESULT_DTYPE_FLOAT64 if a.dtype == np.float64 else ttd.MESH_RESULT_DTYPE_FLOAT32
     else:
         ttd.mesh_collide(a, b, empty, margin, **options)
-        dtype = ttd.COLLISION_DTYPE
+        dtype = COLLISION_DTYPE
     return da.map_blocks(_records_block, P, _meshes(a, b), query, dtype, margin, options, drop_axis=[1, 2],
                          dtype=dtype, meta=np.empty(0, dtype), chunks=(P.chunks[0],))
 
@@ -149,16 +158,17 @@ def mesh_distance(a, b, poses, **options):
 
 def mesh_collide(a, b, poses, margin=0.0, **options):
     """ttd.mesh_collide over a dask array of poses, one call per chunk: a lazy dask array of
-    shape (K,) of ttd.COLLISION_DTYPE records (r["hit"] is uint32, 1 where the meshes come
-    within margin; r["tri_a"], r["tri_b"], r["node_tests"], r["pair_tests"]). Arguments as in
-    ttd.dask.mesh_distance; equal to one ttd.mesh_collide call on all the poses."""
+    shape (K,) of ttd.dask.COLLISION_DTYPE records (r["hit"] is bool, True where the meshes
+    come within margin, as ttd.mesh_collide's hit; r["tri_a"], r["tri_b"], r["node_tests"],
+    r["pair_tests"] as in ttd.COLLISION_DTYPE). Arguments as in ttd.dask.mesh_distance; equal,
+    field by field, to one ttd.mesh_collide call on all the poses."""
     return _records(a, b, poses, "collide", margin, options)
 
 
 def _contacts_block(poses, meshes, margin, first, options):
     a, b = meshes
     c = ttd.mesh_contacts(a, b, poses, margin, **options)
-    return [ttd.MeshContacts((c.pose + first,) + tuple(c[1:]))]
+    return [c._replace(pose=c.pose + first)]
 
 
 def mesh_contacts(a, b, poses, margin, **options):
@@ -192,4 +202,4 @@ def concatenate_contacts(parts):
     counts = np.cumsum([0] + [len(c.pose) for c in parts])
     starts = [c.pose_start[:-1] + n for c, n in zip(parts, counts)] + [np.array([counts[-1]])]
     joined = [np.concatenate([getattr(c, f) for c in parts]) for f in ("pose", "tri_a", "tri_b", "distance", "p", "q")]
-    return ttd.MeshContacts(tuple(joined) + (np.concatenate(starts).astype(np.intp),))
+    return ttd.MeshContacts(*joined, np.concatenate(starts).astype(np.intp))

@@ -13,6 +13,10 @@
 #   - a 64 x 64 grid against itself: 110k contact lines equal to the set of triangles sharing a
 #     vertex, built here from the grid's incidence; --count over 20 poses;
 #   - float: coordinates and poses rounded once from the text (strtof), not through double;
+#   - poses of 16 numbers (4x4) equal their 12; --orthonormalize repairs a rotation printed
+#     with 5 digits (the exact rotation's answer) and still refuses one far from a rotation;
+#   - OBJ lines that are not statements skipped, counted and said once (--strict refuses them);
+#     text taken for a binary STL says so and why;
 #   - every error path: missing, malformed and truncated files (the message names file and line
 #     or byte offset), bad --pose arguments (exit 2) and poses-file lines (exit 1), poses that are
 #     not rotations, bad margins and bounds, unknown options and commands, missing and extra
@@ -552,13 +556,40 @@ dd if="$TTD" of="$DIR/garbage.bin" bs=1000 count=2 2> /dev/null
 run 1 mesh contacts "$DIR/garbage.bin" "$B" --margin 1; err_has "garbage.bin" "binary garbage"
 pass "errors: missing, malformed, truncated and empty mesh files (exit 1, file and line or offset)"
 
+# OBJ lines that are not OBJ statements (FCL's env.obj begins with "6540 2180"): skipped and
+# counted, said once on standard error with the first one's FILE:LINE; the answer is the file's
+# without them. --strict refuses them (exit 1, nothing printed).
+{ echo "6540 2180"; sed -n '1,3p' "$A"; echo "-12 7"; sed '1,3d' "$A"; echo "@@ not a statement"; } > "$DIR/env.obj"
+run 0 mesh distance "$DIR/env.obj" "$B" --pose "$P_GAP"
+"$TTD" mesh distance "$A" "$B" --pose "$P_GAP" | cmp -s - "$DIR/out" || fail "env.obj: not the answer of the file without its header"
+err_has "env.obj: skipped 3 lines that are not OBJ statements, first at .*env.obj:1 (--strict refuses them)" "skipped lines"
+[ "$(grep -c skipped "$DIR/err")" -eq 1 ] || fail "skipped lines: said more than once: $(cat "$DIR/err")"
+{ sed -n '1,3p' "$A"; echo "12"; sed '1,3d' "$A"; } > "$DIR/one.obj"
+run 0 mesh collide "$DIR/one.obj" "$B" --precision float
+err_has "one.obj: skipped 1 line that is not an OBJ statement, first at .*one.obj:4" "one skipped line"
+run 0 mesh distance "$A" "$B"; [ ! -s "$DIR/err" ] || fail "a clean OBJ file gave messages: $(cat "$DIR/err")"
+run 1 mesh distance "$DIR/env.obj" "$B" --strict; no_output "--strict"
+err_has "env.obj:1: unexpected '6540' (not an OBJ statement)" "--strict"
+run 0 mesh distance "$A" "$B" --strict
+pass "OBJ lines that are not statements: skipped, counted, said once (FILE:LINE of the first); --strict refuses them"
+
+# Text with a byte that text does not hold is taken for a binary STL, and the message says so.
+{ printf 'v 0 0 0\nv 1 0 0 # caf\377\nv 0 1 0\nf 1 2 3\n# '; awk 'BEGIN { while (n++ < 61) printf "H"; print "" }'; } > "$DIR/garbage.obj"
+run 1 mesh distance "$DIR/garbage.obj" "$B"; no_output "garbage.obj"
+err_has "garbage.obj: truncated: 1212696648 facets declared" "garbage.obj"
+err_has "(read as a binary STL: byte 21 is 0xff, which text does not hold)" "garbage.obj: why binary STL"
+pass "text read as a binary STL: the message names the format and the byte that decided it"
+
 # --pose arguments that are not 12 finite numbers, or not a rotation: exit 2, saying why.
 bad_pose() { # bad_pose WHAT POSE PATTERN
     run 2 mesh distance "$A" "$B" --pose "$2"; err_has "$3" "$1"; err_has "--pose" "$1"; no_output "$1"
 }
-bad_pose "11 numbers" '1 0 0 0 0 1 0 0 0 0 1' 'expected 12 numbers, found 11'
-bad_pose "13 numbers" '1 0 0 0 0 1 0 0 0 0 1 0 0' 'expected 12 numbers, found 13'
-bad_pose "empty pose" '' 'expected 12 numbers, found 0'
+bad_pose "11 numbers" '1 0 0 0 0 1 0 0 0 0 1' 'expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 11'
+bad_pose "13 numbers" '1 0 0 0 0 1 0 0 0 0 1 0 0' 'expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 13'
+bad_pose "17 numbers" '1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 1' 'expected 12 or 16 numbers, found 17 or more'
+bad_pose "bottom row" '1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 2' 'the bottom row of a 4x4 pose must be 0 0 0 1, found 0 0 0 2'
+bad_pose "bottom row 2" '1 0 0 0 0 1 0 0 0 0 1 0 0.5 0 0 1' 'the bottom row of a 4x4 pose must be 0 0 0 1, found 0.5 0 0 1'
+bad_pose "empty pose" '' 'expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 0'
 bad_pose "junk" '1 0 0 0 0 1 0 0 0 0 1 x' "field 12 is not a number: 'x'"
 bad_pose "comma" '1,0,0,0,0,1,0,0,0,0,1,0' 'field 1 is not a number'
 bad_pose "nan" '1 0 0 nan 0 1 0 0 0 0 1 0' 'field 4 is not finite'
@@ -573,7 +604,49 @@ err_has "out of float range" "float pose out of range"
 # Within the tolerance (1e-7 off orthonormal) is accepted.
 run 0 mesh distance "$A" "$B" --pose '1.0000001 0 0 5  0 1 0 0  0 0 1 0'
 expect "near-rotation" "$(cat "$DIR/out")" '4 1 * * 5 * * * *' 1e-6
-pass "errors: --pose not 12 finite numbers, not orthonormal, det <= 0 (exit 2); 1e-7 off accepted"
+pass "errors: --pose not 12 or 16 finite numbers, a bottom row not 0 0 0 1, not orthonormal, det <= 0 (exit 2); 1e-7 off accepted"
+
+# 16 numbers: the 4x4 matrix, the same poses as their 12; a poses file may mix them.
+for name in GAP VV ROTZ ROTY FAR; do
+    pose=$(pose_of $name)
+    run 0 mesh distance "$A" "$B" --pose "$pose  0 0 0 1"
+    [ "$(cat "$DIR/out")" = "$("$TTD" mesh distance "$A" "$B" --pose "$pose")" ] || fail "4x4 pose $name differs from its 3x4"
+done
+{ echo "$P_GAP 0 0 0 1"; echo "$P_VV"; echo "$P_ROTZ  0 0 0 1.0 # 4x4"; } > "$DIR/poses16.txt"
+{ echo "$P_GAP"; echo "$P_VV"; echo "$P_ROTZ"; } > "$DIR/poses12.txt"
+run 0 mesh contacts "$A" "$B" --margin 0.5 --poses "$DIR/poses16.txt"
+"$TTD" mesh contacts "$A" "$B" --margin 0.5 --poses "$DIR/poses12.txt" | cmp -s - "$DIR/out" || fail "4x4 poses file differs"
+{ echo "$P_GAP"; echo "$P_VV 0 0 1 1"; } > "$DIR/poses16bad.txt"
+run 1 mesh distance "$A" "$B" --poses "$DIR/poses16bad.txt"; no_output "4x4 bad bottom row in a file"
+err_has "poses16bad.txt:2: pose 1: the bottom row of a 4x4 pose must be 0 0 0 1, found 0 0 1 1" "4x4 bottom row in a file"
+pass "poses of 16 numbers (4x4, bottom row 0 0 0 1) equal their 12, in --pose and --poses"
+
+# --orthonormalize: a rotation by 45 degrees printed with 5 digits (defect 9.1e-6) is refused,
+# and with the option replaced by the nearest rotation: the exact rotation's answer within
+# 1e-12; an exact pose is unchanged but for rounding; more than 1e-2 off, or det <= 0, is still
+# refused (with the option's limit named).
+C5=0.70711
+CX=0.70710678118654752
+run 2 mesh distance "$A" "$B" --pose "$C5 -$C5 0 3  $C5 $C5 0 0  0 0 1 0"
+err_has "an entry of R^T R - I is 9.1e-06, at most 1e-6 allowed; --orthonormalize replaces R by the nearest rotation" "5 digits refused"
+"$TTD" mesh distance "$A" "$B" --pose "$CX -$CX 0 3  $CX $CX 0 0  0 0 1 0" | cut -d' ' -f1-7 > "$DIR/exact" ||
+    fail "exact 45 degrees"  # d p q (the triangles of a vertex-to-edge minimum are not unique)
+for opts in "--pose" "--pose=4x4"; do
+    if [ "$opts" = "--pose" ]; then p="$C5 -$C5 0 3  $C5 $C5 0 0  0 0 1 0"; else p="$C5 -$C5 0 3  $C5 $C5 0 0  0 0 1 0  0 0 0 1"; fi
+    run 0 mesh distance "$A" "$B" --orthonormalize --pose "$p"
+    expect "orthonormalized ($opts)" "$(cut -d' ' -f1-7 "$DIR/out")" "$(cat "$DIR/exact")" 1e-12
+done
+printf '%s\n' "$C5 -$C5 0 3  $C5 $C5 0 0  0 0 1 0" "$P_GAP" > "$DIR/poses5.txt"
+run 1 mesh collide "$A" "$B" --poses "$DIR/poses5.txt"; err_has "poses5.txt:1: pose 0: not a rotation" "5 digits in a file"
+run 0 mesh collide "$A" "$B" --poses "$DIR/poses5.txt" --orthonormalize --precision float
+[ "$(wc -l < "$DIR/out")" -eq 2 ] || fail "--orthonormalize on a poses file: $(cat "$DIR/out")"
+run 0 mesh distance "$A" "$B" --orthonormalize --pose "$P_ROTY"
+expect "orthonormalize an exact pose" "$(cat "$DIR/out")" "$("$TTD" mesh distance "$A" "$B" --pose "$P_ROTY")" 1e-15
+run 2 mesh distance "$A" "$B" --orthonormalize --pose '2 0 0 0 0 2 0 0 0 0 2 0'
+err_has "an entry of R^T R - I is 3; --orthonormalize repairs at most 0.01" "scale 2 with --orthonormalize"
+run 2 mesh distance "$A" "$B" --orthonormalize --pose '-1 0 0 0 0 1 0 0 0 0 1 0'
+err_has "det R = -1 <= 0 (a reflection)" "reflection with --orthonormalize"
+pass "--orthonormalize: 5-digit rotations repaired (the exact answer within 1e-12), far or reflected R still refused"
 
 # A poses file with bad lines: every one named FILE:LINE with the pose's index, exit 1, nothing
 # computed.
@@ -581,7 +654,7 @@ pass "errors: --pose not 12 finite numbers, not orthonormal, det <= 0 (exit 2); 
   echo "2 0 0 0 0 2 0 0 0 0 2 0 # scaled"; echo "$P_FAR"; echo "1 0 0 0 0 1 0 0 0 0 1 abc"; } > "$DIR/badposes.txt"
 run 1 mesh distance "$A" "$B" --poses "$DIR/badposes.txt"
 no_output "bad poses file"
-err_has "badposes.txt:3: pose 1: expected 12 numbers, found 11" "poses line 3"
+err_has "badposes.txt:3: pose 1: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 11" "poses line 3"
 err_has "badposes.txt:6: pose 3: not a rotation: det R = -1" "poses line 6"
 err_has "badposes.txt:7: pose 4: not a rotation: R is not orthonormal" "poses line 7"
 err_has "badposes.txt:9: pose 6: field 12 is not a number" "poses line 9"
@@ -662,7 +735,7 @@ pass "operands after --"
 run 0 mesh --help
 for key in "mesh distance A B" "mesh contacts A B --margin M" "mesh collide A B" "d px py pz qx qy qz ia ib" \
            "ia ib d px py pz qx qy qz" "a ia ib d" "b ib ia d" "inf nan nan nan nan nan nan -1 -1" "1 ia ib" \
-           "--poses FILE" "--pose P" "--precision" "--isa" "--threads" "pose's index" "Exit status"; do
+           "--poses FILE" "--pose P" "--orthonormalize" "--strict" "bottom row must be 0 0 0 1" "--precision" "--isa" "--threads" "pose's index" "Exit status"; do
     grep -q -e "$key" "$DIR/out" || fail "mesh --help lacks '$key'"
 done
 run 0 mesh distance --help

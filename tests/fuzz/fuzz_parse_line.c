@@ -36,6 +36,25 @@ static ttd_line_kind check_line_as(const char *line, size_t len, int as_float)
     } else if (k != TTD_LINE_SKIP) {
         abort();
     }
+    /* The pose parser of `ttd mesh` (12 or 16 numbers) on the same line: the same kinds of
+     * answer, a blank or comment line skipped by both. */
+    double pose[12];
+    char perr[256];
+    perr[0] = '\0';
+    ttd_line_kind pk = ttd_parse_pose_line(line, len, as_float, pose, perr, sizeof perr);
+    if (pk == TTD_LINE_PAIR) {
+        for (int i = 0; i < 12; ++i)
+            if (!isfinite(pose[i]))
+                abort();
+    } else if (pk == TTD_LINE_ERROR) {
+        size_t n = strnlen(perr, sizeof perr);
+        if (n == 0 || n == sizeof perr)
+            abort();
+    } else if (pk != TTD_LINE_SKIP) {
+        abort();
+    }
+    if ((pk == TTD_LINE_SKIP) != (k == TTD_LINE_SKIP))
+        abort();
     return k;
 }
 

@@ -9,6 +9,14 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/ttd-install.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -f "$work/prefix/include/ttd/ttd.h"
+# bin/ holds the ttd program (when the CLI is built) and nothing else: no benchmark helpers.
+if [ -d "$work/prefix/bin" ]; then
+    extra=$(ls "$work/prefix/bin" | grep -vx ttd || true)
+    if [ -n "$extra" ]; then
+        echo "test_install: cmake --install put more than ttd in bin/: $extra" >&2
+        exit 1
+    fi
+fi
 cmake -S "$src/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 libdir=$(dirname "$(find "$work/prefix" -name 'libttd.so*' | head -n 1)")
