@@ -391,6 +391,136 @@ TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a,
 
 /** @} */
 
+/** @defgroup scene Scenes of many bodies
+ * A ttd_scene holds bodies, each a ttd_mesh (one mesh may serve any number of bodies) at a world
+ * pose [R | t] (x_world = R x_mesh + t, 12 reals row by row as for the mesh queries, with the
+ * same checks: R a rotation within 1e-6, the moved mesh within the coordinate range). A scene has
+ * one precision, fixed at creation: ttd_scene_create_d takes meshes from ttd_mesh_create_d and
+ * double poses, ttd_scene_create_f float ones. Bodies get ids 0, 1, 2, ... in the order they are
+ * added; a removed body's id is not given again.
+ *
+ * A body pair (i, j), i < j, is eligible when both bodies are present, (group_i & mask_j) and
+ * (group_j & mask_i) are non-zero (each body starts in group 1 with mask all ones), and the pair
+ * is not excluded. Every query is over the eligible pairs, and exact: it equals the exact method
+ * over all triangle pairs of all eligible body pairs in the world frame (each triangle's vertices
+ * moved by its body's pose, ((r0 x + r1 y) + r2 z) + t per coordinate, in the scene's precision;
+ * body i's triangle first), bit for bit. Results are in the world frame, sorted by (i, j) and
+ * then by triangles, and do not depend on the thread count or the instruction set.
+ *
+ * A scene keeps the broad phase's state between calls (the bodies' world boxes and their sorted
+ * order, updated as poses change): it must not be changed or queried from two threads at once.
+ * The meshes must outlive the scene. opt may be NULL; its method must be TTD_METHOD_EXACT and its
+ * isa and threads apply (body pairs are spread over the threads).
+ * @{ */
+
+/// A scene of bodies (opaque).
+typedef struct ttd_scene ttd_scene;
+
+/// A new, empty scene of double precision.
+TTD_API ttd_status ttd_scene_create_d(ttd_scene **out);
+/// A new, empty scene of single precision.
+TTD_API ttd_status ttd_scene_create_f(ttd_scene **out);
+/// Frees a scene (NULL is fine); its meshes are the caller's.
+TTD_API void ttd_scene_destroy(ttd_scene *scene);
+/// Adds a body of mesh at pose (12 reals); *id is its id. TTD_ERR_PRECISION_MISMATCH for a mesh
+/// or call of the other precision, TTD_ERR_BAD_POSE or TTD_ERR_COORDINATE_RANGE for the pose.
+TTD_API ttd_status ttd_scene_add_d(ttd_scene *scene, const ttd_mesh *mesh, const double pose[12], uint32_t *id);
+TTD_API ttd_status ttd_scene_add_f(ttd_scene *scene, const ttd_mesh *mesh, const float pose[12], uint32_t *id);
+/// Removes body id (TTD_ERR_INDEX_OUT_OF_RANGE when there is none).
+TTD_API ttd_status ttd_scene_remove(ttd_scene *scene, uint32_t id);
+/// Moves body id to pose.
+TTD_API ttd_status ttd_scene_set_pose_d(ttd_scene *scene, uint32_t id, const double pose[12]);
+TTD_API ttd_status ttd_scene_set_pose_f(ttd_scene *scene, uint32_t id, const float pose[12]);
+/// Moves every body at once: poses holds 12 reals for each id below ttd_scene_id_limit (n must be
+/// that limit); the entries of removed ids are ignored. Every pose is checked before any is set.
+TTD_API ttd_status ttd_scene_set_poses_d(ttd_scene *scene, size_t n, const double *poses);
+TTD_API ttd_status ttd_scene_set_poses_f(ttd_scene *scene, size_t n, const float *poses);
+/// Sets body id's collision group and mask (see above).
+TTD_API ttd_status ttd_scene_set_filter(ttd_scene *scene, uint32_t id, uint32_t group, uint32_t mask);
+/// Excludes (excluded != 0) or includes again the pair of bodies i and j (i != j, either order).
+TTD_API ttd_status ttd_scene_exclude_pair(ttd_scene *scene, uint32_t i, uint32_t j, int excluded);
+/// Bodies present.
+TTD_API size_t ttd_scene_body_count(const ttd_scene *scene);
+/// One more than the largest id given so far (0 for an empty or NULL scene).
+TTD_API size_t ttd_scene_id_limit(const ttd_scene *scene);
+
+/// A growable array the library manages: start from {0} (or reuse one), free with
+/// ttd_scene_array_free. count items of item_size bytes at data.
+typedef struct ttd_scene_array {
+    void *data;
+    size_t count;
+    size_t capacity;  ///< library's business
+} ttd_scene_array;
+/// Frees an array's memory and zeroes it (NULL is fine).
+TTD_API void ttd_scene_array_free(ttd_scene_array *array);
+
+/// A body pair within the margin, with one witness pair of triangles (tri_i of body i).
+typedef struct ttd_scene_hit {
+    uint32_t i, j, tri_i, tri_j;
+} ttd_scene_hit;
+
+/// Every eligible body pair within margin (>= 0, finite; 0: touching or crossing) into out, as
+/// ttd_scene_hit items.
+TTD_API ttd_status ttd_scene_collide_d(const ttd_options *opt, ttd_scene *scene, double margin, ttd_scene_array *out);
+TTD_API ttd_status ttd_scene_collide_f(const ttd_options *opt, ttd_scene *scene, float margin, ttd_scene_array *out);
+
+/// A pair of triangles of bodies i and j, their distance and closest points (p on body i).
+typedef struct ttd_scene_contact_d {
+    uint32_t i, j, tri_i, tri_j;
+    double distance;
+    double p[3], q[3];
+} ttd_scene_contact_d;
+typedef struct ttd_scene_contact_f {
+    uint32_t i, j, tri_i, tri_j;
+    float distance;
+    float p[3], q[3];
+} ttd_scene_contact_f;
+
+/// The closest eligible body pair (i < j) into *closest, ties to the smallest (i, j) and then
+/// (tri_i, tri_j); and, when nearest is not NULL, each body's nearest eligible other body into
+/// nearest[id] for every id below ttd_scene_id_limit (i = id, j the partner, p on body id; ties
+/// to the smallest partner and triangles). Within upper_bound (>= 0, +inf for none): beyond it,
+/// or with no partner, a record has distance +inf and j, tri_i, tri_j UINT32_MAX (so do removed
+/// ids' records). When the bodies touch or cross, distance 0 and p = q.
+TTD_API ttd_status ttd_scene_distance_d(const ttd_options *opt, ttd_scene *scene, double upper_bound,
+                                        ttd_scene_contact_d *closest, ttd_scene_contact_d *nearest);
+TTD_API ttd_status ttd_scene_distance_f(const ttd_options *opt, ttd_scene *scene, float upper_bound,
+                                        ttd_scene_contact_f *closest, ttd_scene_contact_f *nearest);
+
+/// Every triangle pair within margin (>= 0, finite) of every eligible body pair into out, as
+/// ttd_scene_contact_d (or _f) items.
+TTD_API ttd_status ttd_scene_contacts_d(const ttd_options *opt, ttd_scene *scene, double margin, ttd_scene_array *out);
+TTD_API ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene, float margin, ttd_scene_array *out);
+
+/// One contact point of a manifold, what a simulator consumes.
+typedef struct ttd_scene_point_d {
+    uint32_t i, j;         ///< the bodies, i < j
+    uint32_t tri_i, tri_j; ///< the triangle pair it comes from
+    double point[3];       ///< world point: the midpoint of the pair's closest points
+    double normal[3];      ///< unit normal from body i towards body j (docs/scenes.md, d = 0)
+    double distance;       ///< the pair's separation d (0 touching or crossing)
+    double depth;          ///< margin - d
+} ttd_scene_point_d;
+typedef struct ttd_scene_point_f {
+    uint32_t i, j;
+    uint32_t tri_i, tri_j;
+    float point[3];
+    float normal[3];
+    float distance;
+    float depth;
+} ttd_scene_point_f;
+
+/// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
+/// reduced to at most max_points points (0: all), the deepest first and then, one at a time, the
+/// one farthest from those already kept (docs/scenes.md), as ttd_scene_point_d (or _f) items,
+/// grouped by body pair in (i, j) order.
+TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t max_points,
+                                        ttd_scene_array *out);
+TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,
+                                        ttd_scene_array *out);
+
+/** @} */
+
 /** @addtogroup ttd
  * @{ */
 

@@ -125,7 +125,7 @@ static double pose_reach(const ttd_mesh *b, const void *poses, size_t i, int byt
 
 /* Every pose's check: a rotation within the tolerance, and b moved within the range. Fills
  * defects[i] (when defects is not NULL); on a refused pose, *bad is its index. */
-static ttd_status check_poses(const ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects, size_t *bad)
+ttd_status ttd_check_poses(const struct ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects, size_t *bad)
 {
     const double range = ttd_mesh_range(bytes);
     for (size_t i = 0; i < k; ++i) {
@@ -154,7 +154,7 @@ static ttd_status check_poses_entry(const ttd_mesh *a, const ttd_mesh *b, size_t
         return TTD_ERR_EMPTY;
     if (a->bytes != bytes || b->bytes != bytes)
         return TTD_ERR_PRECISION_MISMATCH;
-    return check_poses(b, k, poses, bytes, NULL, bad);
+    return ttd_check_poses(b, k, poses, bytes, NULL, bad);
 }
 
 ttd_status ttd_mesh_check_poses_d(const ttd_mesh *a, const ttd_mesh *b, size_t k, const double *poses, size_t *bad)
@@ -188,7 +188,7 @@ static ttd_status query_prepare(const ttd_options *opt, const ttd_mesh *a, const
     if (d == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
     size_t bad;
-    st = check_poses(b, k, poses, bytes, d, &bad);
+    st = ttd_check_poses(b, k, poses, bytes, d, &bad);
     if (st != TTD_OK) {
         if (d != inline_defects)
             free(d);

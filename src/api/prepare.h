@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* The checks every public entry makes before it computes (api.c), shared by the pair entries
- * (api.c) and the mesh entries (mesh_api.c), so that both answer bad input the same way and in
+ * (api.c), the mesh entries (mesh_api.c) and the scene entries (scene_api.c), so that both answer bad input the same way and in
  * the same order. */
 #ifndef TTD_API_PREPARE_H
 #define TTD_API_PREPARE_H
@@ -17,5 +17,13 @@ int ttd_too_large(size_t count, size_t per, size_t size);
 /// (TTD_ERR_ISA_UNAVAILABLE). The caller says whether its pointers are there and whether its
 /// arrays could exist; on TTD_OK, cfg is ready for the engine.
 ttd_status ttd_prepare(const ttd_options *opt, int pointers_ok, size_t n, int too_large, ttd_engine_config *cfg);
+
+struct ttd_mesh;
+/// The pose checks of every mesh and scene query (mesh_api.c): each of k poses (12 reals of bytes
+/// each) finite, R^T R - I within TTD_POSE_TOLERANCE, det R > 0 (TTD_ERR_BAD_POSE), and b moved
+/// by it within the coordinate range (TTD_ERR_COORDINATE_RANGE). Fills defects[i] (when not NULL)
+/// with max |R^T R - I|; on a refused pose, *bad is its index.
+ttd_status ttd_check_poses(const struct ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects,
+                           size_t *bad);
 
 #endif /* TTD_API_PREPARE_H */

@@ -1,0 +1,45 @@
+/* SPDX-License-Identifier: MIT */
+/* The scene queries in float: scene/query_impl.h compiled for this precision, and its entries
+ * (scene/scene.h) written out. */
+#include <math.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TTD_PRECISION_FLOAT
+#include "core/precision.h"
+#include "engine/parallel.h"
+#include "mesh/mesh.h"
+#include "scene/scene.h"
+
+typedef ttd_scene_contact_f ttd_scene_contact;
+typedef ttd_scene_point_f ttd_scene_point;
+typedef ttd_contacts_f ttd_mesh_contacts;
+typedef ttd_contact_f ttd_mesh_contact;
+typedef ttd_mesh_result_f ttd_mesh_result;
+#define TTD_QUERY(name) ttd_mesh_query_##name##_f
+#define TTD_CONTACTS_FREE ttd_contacts_free_f
+#include "scene/query_impl.h"
+
+ttd_status ttd_scene_query_collide_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin, ttd_scene_array *out)
+{
+    return query_collide(cfg, s, margin, out);
+}
+
+ttd_status ttd_scene_query_contacts_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin, ttd_scene_array *out)
+{
+    return query_contacts(cfg, s, margin, out);
+}
+
+ttd_status ttd_scene_query_distance_f(const ttd_engine_config *cfg, struct ttd_scene *s, float upper_bound,
+                                      ttd_scene_contact_f *closest, ttd_scene_contact_f *nearest)
+{
+    return query_distance(cfg, s, upper_bound, closest, nearest);
+}
+
+ttd_status ttd_scene_query_manifold_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin, size_t max_points,
+                                      ttd_scene_array *out)
+{
+    return query_manifold(cfg, s, margin, max_points, out);
+}

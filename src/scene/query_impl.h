@@ -1,0 +1,546 @@
+/* SPDX-License-Identifier: MIT */
+/* The scene queries, precision-generic: scene/query_d.c and query_f.c compile this once each.
+ *
+ * A query sweeps the bodies' world boxes for the eligible pairs that may come within its margin
+ * (scene/scene.c), then hands each such body pair to the mesh traversal (mesh/mesh.h) with both
+ * bodies' world poses: the tree works in body i's frame, the exact kernel on both triangles moved
+ * into the world, as a brute force over all triangle pairs in the world frame would. Body pairs
+ * are spread over the threads, each walked by one thread (one pair's answer does not depend on
+ * which), and their answers are joined in (i, j) order: results do not depend on the threads.
+ * docs/scenes.md has the design. */
+
+/* The pose of body id in the scene's precision. */
+static const real *body_pose(const struct ttd_scene *s, uint32_t id)
+{
+#ifdef TTD_PRECISION_DOUBLE
+    return s->body[id].pose;
+#else
+    return s->body[id].pose_f;
+#endif
+}
+
+/* How far from a rotation body j's pose in body i's frame, R_i^T R_j, may be: with R_i^T R_i =
+ * I + E_i (entries within d_i), |R_i R_i^T - I| <= 3 d_i in norm, so the relative pose's entries
+ * are within d_j + 3 d_i (1 + 3 d_j). */
+static double pair_defect(const struct ttd_scene *s, uint32_t i, uint32_t j)
+{
+    const double di = s->body[i].defect, dj = s->body[j].defect;
+    return dj + 3 * di * (1 + 3 * dj);
+}
+
+/* One thread per body pair: the mesh queries inside run on one thread each. */
+static ttd_engine_config one_thread(const ttd_engine_config *cfg)
+{
+    ttd_engine_config c = *cfg;
+    c.threads = 1;
+    return c;
+}
+
+/* ---- collide and distance: one mesh query per body pair ------------------------------------ */
+
+typedef struct pair_job {
+    const ttd_engine_config *cfg; /* one thread */
+    struct ttd_scene *s;
+    const scene_pair *pairs;
+    int mode;                     /* MODE_COLLIDE or MODE_DISTANCE */
+    real limit;                   /* the margin, or the distance's bound */
+    ttd_collision *hit;           /* collide: one per pair */
+    ttd_mesh_result *dist;        /* distance: one per pair */
+    atomic_int nomem;
+} pair_job;
+
+enum { MODE_COLLIDE, MODE_DISTANCE };
+
+static void pair_task(void *ctx, size_t k, int worker)
+{
+    (void)worker;
+    pair_job *J = ctx;
+    const scene_pair *p = &J->pairs[k];
+    const struct ttd_mesh *a = J->s->body[p->i].mesh, *b = J->s->body[p->j].mesh;
+    const double defect = pair_defect(J->s, p->i, p->j);
+    ttd_status st;
+    if (J->mode == MODE_COLLIDE)
+        st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
+                                &J->hit[k]);
+    else
+        st = TTD_QUERY(distance)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit, 0,
+                                 &J->dist[k]);
+    if (st != TTD_OK)
+        atomic_store(&J->nomem, 1);
+}
+
+static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
+{
+    const ttd_engine_config one = one_thread(cfg);
+    J->cfg = &one;
+    atomic_init(&J->nomem, 0);
+    ttd_parallel_tasks(n, cfg->threads, pair_task, J);
+    return atomic_load(&J->nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+}
+
+/* Room for n items of `size` bytes in a caller's array. */
+static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
+{
+    if (n <= a->capacity)
+        return 1;
+    size_t cap = a->capacity ? a->capacity : 64;
+    while (cap < n)
+        cap *= 2;
+    void *v = realloc(a->data, cap * size);
+    if (v == NULL)
+        return 0;
+    a->data = v;
+    a->capacity = cap;
+    return 1;
+}
+
+static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, ttd_scene_array *out)
+{
+    out->count = 0;
+    scene_pair *pairs;
+    size_t n;
+    if (!ttd_scene_sweep(s, (double)margin, NULL, &pairs, &n))
+        return TTD_ERR_OUT_OF_MEMORY;
+    pair_job J = {.s = s, .pairs = pairs, .mode = MODE_COLLIDE, .limit = margin};
+    J.hit = malloc((n ? n : 1) * sizeof *J.hit);
+    ttd_status st = J.hit == NULL ? TTD_ERR_OUT_OF_MEMORY : run_pairs(cfg, &J, n);
+    size_t hits = 0;
+    for (size_t k = 0; st == TTD_OK && k < n; ++k)
+        hits += J.hit[k].hit != 0;
+    if (st == TTD_OK && !array_reserve(out, hits, sizeof(ttd_scene_hit)))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    for (size_t k = 0; st == TTD_OK && k < n; ++k)
+        if (J.hit[k].hit)
+            ((ttd_scene_hit *)out->data)[out->count++] =
+                (ttd_scene_hit){pairs[k].i, pairs[k].j, J.hit[k].tri_a, J.hit[k].tri_b};
+    free(J.hit);
+    free(pairs);
+    return st;
+}
+
+/* ---- contacts: every pair within the margin, per body pair ---------------------------------- */
+
+typedef struct contact_job {
+    const ttd_engine_config *cfg;
+    struct ttd_scene *s;
+    const scene_pair *pairs;
+    real margin;
+    ttd_mesh_contacts *sets;      /* one per worker, reused */
+    ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles */
+    size_t *nfound;
+    atomic_int nomem;
+} contact_job;
+
+static int scene_contact_cmp(const void *x, const void *y)
+{
+    const ttd_scene_contact *a = x, *b = y;
+    if (a->tri_i != b->tri_i)
+        return a->tri_i < b->tri_i ? -1 : 1;
+    return (a->tri_j > b->tri_j) - (a->tri_j < b->tri_j);
+}
+
+/* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array. */
+static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
+                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n)
+{
+    *out = NULL;
+    *n = 0;
+    const double defect = pair_defect(s, p->i, p->j);
+    if (TTD_QUERY(contacts)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, 1, body_pose(s, p->j), body_pose(s, p->i),
+                            &defect, margin, set) != TTD_OK)
+        return 0;
+    if (set->count == 0)
+        return 1;
+    ttd_scene_contact *v = malloc(set->count * sizeof *v);
+    if (v == NULL)
+        return 0;
+    for (size_t k = 0; k < set->count; ++k) {
+        const ttd_mesh_contact *c = &set->pairs[k];
+        v[k].i = p->i;
+        v[k].j = p->j;
+        v[k].tri_i = c->tri_a;
+        v[k].tri_j = c->tri_b;
+        v[k].distance = c->distance;
+        memcpy(v[k].p, c->p, sizeof v[k].p);
+        memcpy(v[k].q, c->q, sizeof v[k].q);
+    }
+    qsort(v, set->count, sizeof *v, scene_contact_cmp);
+    *out = v;
+    *n = set->count;
+    return 1;
+}
+
+static void contact_task(void *ctx, size_t k, int worker)
+{
+    contact_job *J = ctx;
+    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k]))
+        atomic_store(&J->nomem, 1);
+}
+
+/* Every eligible body pair's contacts within margin: pairs[0..*n) and found[k] / nfound[k] for
+ * each (the caller frees them with free_found). */
+static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, scene_pair **pairs,
+                               size_t *n, ttd_scene_contact ***found, size_t **nfound)
+{
+    *found = NULL;
+    *nfound = NULL;
+    if (!ttd_scene_sweep(s, (double)margin, NULL, pairs, n))
+        return TTD_ERR_OUT_OF_MEMORY;
+    const ttd_engine_config one = one_thread(cfg);
+    const int workers = ttd_parallel_task_workers(*n, cfg->threads);
+    contact_job J = {&one, s, *pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
+                     calloc(*n ? *n : 1, sizeof(ttd_scene_contact *)), calloc(*n ? *n : 1, sizeof(size_t)), 0};
+    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL);
+    if (!atomic_load(&J.nomem))
+        ttd_parallel_tasks(*n, cfg->threads, contact_task, &J);
+    for (int w = 0; J.sets != NULL && w < workers; ++w)
+        TTD_CONTACTS_FREE(&J.sets[w]);
+    free(J.sets);
+    *found = J.found;
+    *nfound = J.nfound;
+    return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+}
+
+static void free_found(ttd_scene_contact **found, size_t n)
+{
+    for (size_t k = 0; found != NULL && k < n; ++k)
+        free(found[k]);
+    free(found);
+}
+
+static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin,
+                                 ttd_scene_array *out)
+{
+    out->count = 0;
+    scene_pair *pairs = NULL;
+    size_t n = 0, *nfound = NULL;
+    ttd_scene_contact **found = NULL;
+    ttd_status st = all_contacts(cfg, s, margin, &pairs, &n, &found, &nfound);
+    size_t total = 0;
+    for (size_t k = 0; st == TTD_OK && k < n; ++k)
+        total += nfound[k];
+    if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_contact)))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    for (size_t k = 0; st == TTD_OK && k < n; ++k) {
+        if (nfound[k])
+            memcpy((ttd_scene_contact *)out->data + out->count, found[k], nfound[k] * sizeof(ttd_scene_contact));
+        out->count += nfound[k];
+    }
+    free_found(found, n);
+    free(nfound);
+    free(pairs);
+    return st;
+}
+
+/* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
+
+/* The unit normal of triangle tri of body id in the world (0 when it has no area). */
+static void world_normal(const struct ttd_scene *s, uint32_t id, uint32_t tri, double n[3])
+{
+    const struct ttd_mesh *m = s->body[id].mesh;
+    const real *v = (const real *)m->verts, *pose = body_pose(s, id);
+    double x[3][3];
+    for (int k = 0; k < 3; ++k) {
+        real w[3];
+        const real *src = v + 3 * (size_t)m->tris[3 * (size_t)tri + (size_t)k];
+        for (int r = 0; r < 3; ++r)
+            w[r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
+        for (int r = 0; r < 3; ++r)
+            x[k][r] = (double)w[r];
+    }
+    const double e1[3] = {x[1][0] - x[0][0], x[1][1] - x[0][1], x[1][2] - x[0][2]};
+    const double e2[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int r = 0; r < 3; ++r)
+        n[r] = len > 0 && isfinite(len) ? n[r] / len : 0;
+}
+
+/* The centroid of triangle tri of body id in the world. */
+static void world_centroid(const struct ttd_scene *s, uint32_t id, uint32_t tri, double g[3])
+{
+    const struct ttd_mesh *m = s->body[id].mesh;
+    const real *v = (const real *)m->verts;
+    const double *pose = s->body[id].pose;
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r)
+            c[r] += (double)v[3 * (size_t)m->tris[3 * (size_t)tri + (size_t)k] + (size_t)r] / 3;
+    for (int r = 0; r < 3; ++r)
+        g[r] = pose[4 * r] * c[0] + pose[4 * r + 1] * c[1] + pose[4 * r + 2] * c[2] + pose[4 * r + 3];
+}
+
+/* The normal of contact c, from body i towards body j: the direction from p to q when they
+ * differ; where they meet (d = 0) there is none, so the face normal of i's triangle, else of j's,
+ * turned to point from i's triangle's centroid towards j's; where both triangles have no area,
+ * the direction between the centroids, else between the bodies' boxes' centres, else +z. */
+static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
+{
+    double d[3], len2 = 0;
+    for (int r = 0; r < 3; ++r) {
+        d[r] = (double)c->q[r] - (double)c->p[r];
+        len2 += d[r] * d[r];
+    }
+    if (c->distance > 0 && len2 > 0) {
+        const double len = sqrt(len2);
+        for (int r = 0; r < 3; ++r)
+            n[r] = d[r] / len;
+        return;
+    }
+    double gi[3], gj[3], towards[3], t2 = 0;
+    world_centroid(s, c->i, c->tri_i, gi);
+    world_centroid(s, c->j, c->tri_j, gj);
+    for (int r = 0; r < 3; ++r) {
+        towards[r] = gj[r] - gi[r];
+        t2 += towards[r] * towards[r];
+    }
+    if (!(t2 > 0)) {
+        t2 = 0;
+        const scene_body *bi = &s->body[c->i], *bj = &s->body[c->j];
+        for (int r = 0; r < 3; ++r) {
+            towards[r] = 0.5 * (bj->lo[r] + bj->hi[r]) - 0.5 * (bi->lo[r] + bi->hi[r]);
+            t2 += towards[r] * towards[r];
+        }
+    }
+    world_normal(s, c->i, c->tri_i, n);
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+        world_normal(s, c->j, c->tri_j, n);
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) {
+        const double len = sqrt(t2);
+        for (int r = 0; r < 3; ++r)
+            n[r] = t2 > 0 ? towards[r] / len : (r == 2 ? 1.0 : 0.0);
+        return;
+    }
+    if (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] < 0)
+        for (int r = 0; r < 3; ++r)
+            n[r] = -n[r];
+}
+
+/* Orders contacts deepest first: smaller distance, then triangles. */
+static int depth_cmp(const void *x, const void *y)
+{
+    const ttd_scene_contact *a = x, *b = y;
+    if (a->distance != b->distance)
+        return a->distance < b->distance ? -1 : 1;
+    return scene_contact_cmp(x, y);
+}
+
+/* Appends body pair's manifold: its n contacts (reordered here) reduced to at most max points:
+ * the deepest, then repeatedly the contact whose point is farthest from every point kept (ties
+ * to the earlier in depth order): the deepest contact and the spread of the region, as Hauser's
+ * clustering keeps, in O(max n) and the same on every run. */
+static int append_manifold(const struct ttd_scene *s, ttd_scene_contact *c, size_t n, real margin, size_t max,
+                           ttd_scene_array *out)
+{
+    qsort(c, n, sizeof *c, depth_cmp);
+    const size_t keep = max == 0 || max > n ? n : max;
+    if (!array_reserve(out, out->count + keep, sizeof(ttd_scene_point)))
+        return 0;
+    double *far = malloc(n * sizeof *far); /* squared distance to the nearest kept point */
+    unsigned char *taken = calloc(n, 1);
+    if (far == NULL || taken == NULL) {
+        free(far);
+        free(taken);
+        return 0;
+    }
+    for (size_t k = 0; k < n; ++k)
+        far[k] = HUGE_VAL;
+    size_t next = 0;
+    for (size_t kept = 0; kept < keep; ++kept) {
+        const ttd_scene_contact *x = &c[next];
+        taken[next] = 1;
+        ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count++;
+        double normal[3];
+        contact_normal(s, x, normal);
+        pt->i = x->i;
+        pt->j = x->j;
+        pt->tri_i = x->tri_i;
+        pt->tri_j = x->tri_j;
+        for (int r = 0; r < 3; ++r) {
+            pt->point[r] = (real)(0.5 * (double)x->p[r] + 0.5 * (double)x->q[r]);
+            pt->normal[r] = (real)normal[r];
+        }
+        pt->distance = x->distance;
+        pt->depth = margin - x->distance;
+        /* the next: farthest from every point kept so far */
+        double best = -1;
+        for (size_t k = 0; k < n; ++k) {
+            if (taken[k])
+                continue;
+            double d2 = 0;
+            for (int r = 0; r < 3; ++r) {
+                const double a = 0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r] - (double)pt->point[r];
+                d2 += a * a;
+            }
+            far[k] = d2 < far[k] ? d2 : far[k];
+            if (far[k] > best) {
+                best = far[k];
+                next = k;
+            }
+        }
+    }
+    free(far);
+    free(taken);
+    return 1;
+}
+
+static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, size_t max_points,
+                                 ttd_scene_array *out)
+{
+    out->count = 0;
+    scene_pair *pairs = NULL;
+    size_t n = 0, *nfound = NULL;
+    ttd_scene_contact **found = NULL;
+    ttd_status st = all_contacts(cfg, s, margin, &pairs, &n, &found, &nfound);
+    for (size_t k = 0; st == TTD_OK && k < n; ++k)
+        if (nfound[k] && !append_manifold(s, found[k], nfound[k], margin, max_points, out))
+            st = TTD_ERR_OUT_OF_MEMORY;
+    free_found(found, n);
+    free(nfound);
+    free(pairs);
+    if (st != TTD_OK)
+        out->count = 0;
+    return st;
+}
+
+/* ---- distance: the closest body pair, and each body's nearest ------------------------------ */
+
+static ttd_scene_contact no_contact(uint32_t i)
+{
+    ttd_scene_contact c = {i, UINT32_MAX, UINT32_MAX, UINT32_MAX, (real)INFINITY, {0, 0, 0}, {0, 0, 0}};
+    return c;
+}
+
+/* The record of body pair p at its minimum d, with its smallest pair of triangles at d (as body
+ * `first` sees it: its own triangle first), from the contacts within d. */
+static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real d, uint32_t first,
+                       ttd_scene_contact *rec)
+{
+    ttd_mesh_contacts set = {0};
+    ttd_scene_contact *v;
+    size_t n;
+    const ttd_engine_config one = one_thread(cfg);
+    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n);
+    TTD_CONTACTS_FREE(&set);
+    if (!ok)
+        return 0;
+    const int swap = first != p->i;
+    size_t best = n;
+    for (size_t k = 0; k < n; ++k) {
+        if (v[k].distance != d)
+            continue;
+        if (best == n)
+            best = k;
+        else if (swap && (v[k].tri_j < v[best].tri_j || (v[k].tri_j == v[best].tri_j && v[k].tri_i < v[best].tri_i)))
+            best = k;
+        /* not swapped: v is sorted by (tri_i, tri_j), the first at d is the smallest */
+    }
+    if (best == n) { /* cannot happen: the distance query found a pair at d */
+        free(v);
+        return 0;
+    }
+    *rec = v[best];
+    if (swap) {
+        *rec = (ttd_scene_contact){p->j, p->i, v[best].tri_j, v[best].tri_i, d, {0, 0, 0}, {0, 0, 0}};
+        memcpy(rec->p, v[best].q, sizeof rec->p);
+        memcpy(rec->q, v[best].p, sizeof rec->q);
+    }
+    free(v);
+    return 1;
+}
+
+static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene *s, real upper_bound,
+                                 ttd_scene_contact *closest, ttd_scene_contact *nearest)
+{
+    *closest = no_contact(UINT32_MAX);
+    const size_t nb = s->nbody;
+    for (size_t id = 0; nearest != NULL && id < nb; ++id)
+        nearest[id] = no_contact((uint32_t)id);
+    /* nearest[] of the present bodies still open (beyond every margin tried) */
+    unsigned char *open = nearest != NULL ? calloc(nb ? nb : 1, 1) : NULL;
+    real *best = nearest != NULL ? malloc((nb ? nb : 1) * sizeof *best) : NULL;
+    uint32_t *partner = nearest != NULL ? malloc((nb ? nb : 1) * sizeof *partner) : NULL;
+    if (nearest != NULL && (open == NULL || best == NULL || partner == NULL)) {
+        free(open);
+        free(best);
+        free(partner);
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    size_t nopen = 0;
+    for (size_t id = 0; nearest != NULL && id < nb; ++id) {
+        open[id] = s->body[id].mesh != NULL;
+        nopen += open[id];
+        best[id] = (real)INFINITY;
+        partner[id] = UINT32_MAX;
+    }
+    /* margins: the bound, or growing ones until the answers are inside (every body pair within a
+     * margin is examined, so a minimum at or below it is the minimum over all pairs) */
+    const double extent = ttd_scene_extent(s);
+    double margin = isfinite((double)upper_bound) ? (double)upper_bound : 1e-3 * extent;
+    ttd_status st = TTD_OK;
+    int closest_done = s->present < 2;
+    real cbest = (real)INFINITY;
+    size_t cpair_i = SIZE_MAX;
+    scene_pair cpair = {0, 0, 0};
+    for (;;) {
+        const int last = isfinite((double)upper_bound) || !(margin < extent) || !(margin > 0);
+        const double m = last && !isfinite((double)upper_bound) ? HUGE_VAL : margin;
+        scene_pair *pairs;
+        size_t n;
+        if (!ttd_scene_sweep(s, m, closest_done ? open : NULL, &pairs, &n)) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        pair_job J = {.s = s, .pairs = pairs, .mode = MODE_DISTANCE,
+                      .limit = isfinite(m) ? (real)m : (real)INFINITY};
+        J.dist = malloc((n ? n : 1) * sizeof *J.dist);
+        st = J.dist == NULL ? TTD_ERR_OUT_OF_MEMORY : run_pairs(cfg, &J, n);
+        for (size_t k = 0; st == TTD_OK && k < n; ++k) {
+            const real d = J.dist[k].distance;
+            if (!(d <= J.limit))
+                continue;
+            if (!closest_done && d < cbest) { /* pairs come in (i, j) order: ties keep the first */
+                cbest = d;
+                cpair = pairs[k];
+                cpair_i = k;
+            }
+            for (int side = 0; nearest != NULL && side < 2; ++side) {
+                const uint32_t me = side ? pairs[k].j : pairs[k].i, other = side ? pairs[k].i : pairs[k].j;
+                if (open[me] && (d < best[me] || (d == best[me] && other < partner[me]))) {
+                    best[me] = d;
+                    partner[me] = other;
+                }
+            }
+        }
+        free(J.dist);
+        free(pairs);
+        if (st != TTD_OK)
+            break;
+        if (cpair_i != SIZE_MAX)
+            closest_done = 1;
+        for (size_t id = 0; nearest != NULL && id < nb; ++id)
+            if (open[id] && best[id] <= (real)m) {
+                open[id] = 0;
+                --nopen;
+            }
+        if (last || (closest_done && nopen == 0))
+            break;
+        margin *= 4;
+    }
+    if (st == TTD_OK && cpair_i != SIZE_MAX && !pair_record(cfg, s, &cpair, cbest, cpair.i, closest))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    for (size_t id = 0; st == TTD_OK && nearest != NULL && id < nb; ++id) {
+        if (partner[id] == UINT32_MAX)
+            continue;
+        const uint32_t o = partner[id];
+        const scene_pair p = {id < o ? (uint32_t)id : o, id < o ? o : (uint32_t)id, 0};
+        if (!pair_record(cfg, s, &p, best[id], (uint32_t)id, &nearest[id]))
+            st = TTD_ERR_OUT_OF_MEMORY;
+    }
+    free(open);
+    free(best);
+    free(partner);
+    return st;
+}

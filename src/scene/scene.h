@@ -1,0 +1,82 @@
+/* SPDX-License-Identifier: MIT */
+/* A scene (the opaque ttd_scene of ttd/ttd.h): bodies, each a mesh at a world pose, with their
+ * filters, and the broad phase over them. The public entries (src/api/scene_api.c) check every
+ * argument and call these; the queries over body pairs (scene/query_impl.h, compiled per
+ * precision) hand each candidate body pair to the mesh traversal with both bodies' poses.
+ *
+ * The broad phase (docs/scenes.md): every body has a world box (axis-aligned) around its mesh's
+ * root box moved by its pose, recomputed when the pose changes; the present bodies are kept
+ * sorted by their boxes' lower end along one axis, and a query sweeps that order (sweep and
+ * prune). A step of small moves leaves the order nearly sorted, so it is repaired by insertion
+ * sort, in time linear in the bodies and the swaps, instead of being rebuilt. */
+#ifndef TTD_SCENE_SCENE_H
+#define TTD_SCENE_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "engine/batch.h"
+#include "mesh/mesh.h"
+
+typedef struct scene_body {
+    const struct ttd_mesh *mesh; /* NULL: removed */
+    double pose[12];             /* as given, in double (a float scene's are floats widened) */
+    float pose_f[12];            /* a float scene's, as given */
+    double defect;               /* max |R^T R - I| */
+    uint32_t group, mask;
+    double lo[3], hi[3];         /* the world box, with a rounding margin */
+} scene_body;
+
+struct ttd_scene {
+    int bytes;                   /* 8 or 4: the precision of every mesh and pose */
+    scene_body *body;            /* indexed by id */
+    size_t nbody, cap;           /* ids given so far, room */
+    size_t present;              /* bodies not removed */
+    uint32_t *order;             /* present bodies sorted by lo[axis] (sweep and prune) */
+    size_t norder;
+    int order_stale;             /* a body was added or removed: order to be rebuilt */
+    int axis;
+    uint64_t *excluded;          /* excluded pairs, i << 32 | j with i < j, sorted */
+    size_t nexcluded, excluded_cap;
+};
+
+/// A candidate body pair (i < j) of a sweep, and a lower bound on its bodies' distance.
+typedef struct scene_pair {
+    uint32_t i, j;
+    double gap; /* the larger of the boxes' gaps along the three axes (0 when they overlap) */
+} scene_pair;
+
+/// Sets body id's pose (checked) from 12 reals of the scene's precision, and its world box.
+void ttd_scene_place(struct ttd_scene *s, uint32_t id, const void *pose, double defect);
+
+/// The eligible body pairs whose world boxes are within margin on every axis (so every pair of
+/// bodies at distance <= margin), restricted to pairs with a body in `only` (NULL: all; else
+/// only[id] != 0), sorted by (i, j), into *out (malloc'd, *n of them). 0 when out of memory.
+int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *only, scene_pair **out, size_t *n);
+
+/// Whether bodies i and j (both present) may touch: the filters and the exclusions.
+int ttd_scene_eligible(const struct ttd_scene *s, uint32_t i, uint32_t j);
+
+/// A bound on the scene's extent: the diagonal of the box around every present body's box.
+double ttd_scene_extent(const struct ttd_scene *s);
+
+/* The queries, from checked arguments (a scene of the query's precision, a margin or bound
+ * within range, outputs present); each returns TTD_OK or TTD_ERR_OUT_OF_MEMORY. */
+ttd_status ttd_scene_query_collide_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin,
+                                     ttd_scene_array *out);
+ttd_status ttd_scene_query_collide_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
+                                     ttd_scene_array *out);
+ttd_status ttd_scene_query_contacts_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin,
+                                      ttd_scene_array *out);
+ttd_status ttd_scene_query_contacts_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
+                                      ttd_scene_array *out);
+ttd_status ttd_scene_query_distance_d(const ttd_engine_config *cfg, struct ttd_scene *s, double upper_bound,
+                                      ttd_scene_contact_d *closest, ttd_scene_contact_d *nearest);
+ttd_status ttd_scene_query_distance_f(const ttd_engine_config *cfg, struct ttd_scene *s, float upper_bound,
+                                      ttd_scene_contact_f *closest, ttd_scene_contact_f *nearest);
+ttd_status ttd_scene_query_manifold_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin,
+                                      size_t max_points, ttd_scene_array *out);
+ttd_status ttd_scene_query_manifold_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
+                                      size_t max_points, ttd_scene_array *out);
+
+#endif /* TTD_SCENE_SCENE_H */

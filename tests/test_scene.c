@@ -1,0 +1,821 @@
+/* SPDX-License-Identifier: MIT */
+/* Scenes (ttd_scene_*) against a brute force over every eligible body pair and every pair of
+ * their triangles, in the world frame (each triangle moved by its body's pose as ttd.h documents,
+ * in the scene's precision, the exact method on the scalar row):
+ *   - collide: exactly the body pairs whose minimum is within the margin, each with a witness
+ *     pair of triangles that is within it;
+ *   - contacts: the set of triangle pairs within the margin, in (i, j, tri_i, tri_j) order, with
+ *     the brute force's distances and points, bit for bit;
+ *   - distance: the closest body pair and each body's nearest, with their tie rules, with and
+ *     without a bound;
+ *   - manifold: per body pair, min(K, contacts) points, each a real contact with its depth,
+ *     the deepest first, each next one the farthest from those before, unit normals along q - p
+ *     (and, where d = 0, the face normal turned from i towards j);
+ * on scenes of spheres, cubes, thin and degenerate triangles and a huge floor, in both
+ * precisions, after bodies are removed and added, filters and exclusions set and every body
+ * moved; every instruction set and 1 or 2 threads give the same bits. And bad input. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshes.h"
+#include "pairs.h"
+#include "test_macros.h"
+#include <ttd/ttd.h>
+
+/* ---- the scene under test and its brute force -------------------------------------------- */
+
+#define MAX_BODIES 40
+
+typedef struct world {
+    int bytes;
+    ttd_gen_mesh gm[5];       /* the meshes, in double */
+    ttd_mesh *mesh[5];
+    size_t nbody;
+    int mesh_of[MAX_BODIES];  /* -1: removed */
+    double pose[MAX_BODIES][12];
+    uint32_t group[MAX_BODIES], mask[MAX_BODIES];
+    int excluded[MAX_BODIES][MAX_BODIES];
+    ttd_scene *scene;
+} world;
+
+typedef struct pairinfo {
+    uint32_t i, j;
+    size_t nt_i, nt_j;
+    double *d, *p, *q;        /* nt_i * nt_j results, pair (a, b) at a * nt_j + b */
+} pairinfo;
+
+typedef struct brute {
+    pairinfo *pairs;          /* eligible body pairs, sorted by (i, j) */
+    size_t n;
+} brute;
+
+static double round_to(int bytes, double x)
+{
+    return bytes == 8 ? x : (double)(float)x;
+}
+
+/* Vertex v of body id in the world, as the library computes it in the scene's precision. */
+static void world_vertex(const world *W, size_t id, size_t v, double out[3])
+{
+    const ttd_gen_mesh *m = &W->gm[W->mesh_of[id]];
+    const double *P = W->pose[id];
+    for (int r = 0; r < 3; ++r) {
+        if (W->bytes == 8) {
+            out[r] = ((P[4 * r] * m->verts[3 * v] + P[4 * r + 1] * m->verts[3 * v + 1]) + P[4 * r + 2] * m->verts[3 * v + 2]) +
+                     P[4 * r + 3];
+        } else {
+            const float x = (float)m->verts[3 * v], y = (float)m->verts[3 * v + 1], z = (float)m->verts[3 * v + 2];
+            out[r] = (double)((((float)P[4 * r] * x + (float)P[4 * r + 1] * y) + (float)P[4 * r + 2] * z) + (float)P[4 * r + 3]);
+        }
+    }
+}
+
+static int eligible(const world *W, size_t i, size_t j)
+{
+    return W->mesh_of[i] >= 0 && W->mesh_of[j] >= 0 && (W->group[i] & W->mask[j]) && (W->group[j] & W->mask[i]) &&
+           !W->excluded[i][j];
+}
+
+static void brute_free(brute *B)
+{
+    for (size_t k = 0; k < B->n; ++k) {
+        free(B->pairs[k].d);
+        free(B->pairs[k].p);
+        free(B->pairs[k].q);
+    }
+    free(B->pairs);
+    B->pairs = NULL;
+    B->n = 0;
+}
+
+static int brute_force(const world *W, brute *B)
+{
+    B->pairs = calloc(W->nbody * W->nbody, sizeof *B->pairs);
+    B->n = 0;
+    ENSURE(B->pairs != NULL);
+    ttd_options opt = ttd_default_options();
+    opt.isa = TTD_ISA_SCALAR;
+    for (size_t i = 0; i < W->nbody; ++i)
+        for (size_t j = i + 1; j < W->nbody; ++j) {
+            if (!eligible(W, i, j))
+                continue;
+            const ttd_gen_mesh *a = &W->gm[W->mesh_of[i]], *b = &W->gm[W->mesh_of[j]];
+            const size_t n = a->nt * b->nt;
+            pairinfo *P = &B->pairs[B->n++];
+            *P = (pairinfo){(uint32_t)i, (uint32_t)j, a->nt, b->nt, malloc(n * sizeof(double)),
+                            malloc(3 * n * sizeof(double)), malloc(3 * n * sizeof(double))};
+            double *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
+            ENSURE(P->d && P->p && P->q && s && t);
+            for (size_t x = 0; x < a->nt; ++x)
+                for (size_t y = 0; y < b->nt; ++y)
+                    for (int k = 0; k < 3; ++k) {
+                        world_vertex(W, i, a->tris[3 * x + (size_t)k], s + 9 * (x * b->nt + y) + 3 * k);
+                        world_vertex(W, j, b->tris[3 * y + (size_t)k], t + 9 * (x * b->nt + y) + 3 * k);
+                    }
+            if (W->bytes == 8) {
+                ttd_result_d *r = malloc(n * sizeof *r);
+                ENSURE(r != NULL);
+                ENSURE(ttd_batch_d(&opt, n, s, t, NULL, r) == TTD_OK);
+                for (size_t k = 0; k < n; ++k) {
+                    P->d[k] = r[k].distance;
+                    for (int c = 0; c < 3; ++c) {
+                        P->p[3 * k + c] = r[k].p[c];
+                        P->q[3 * k + c] = r[k].distance == 0 ? r[k].p[c] : r[k].q[c];
+                    }
+                }
+                free(r);
+            } else {
+                float *sf = malloc(9 * n * sizeof *sf), *tf = malloc(9 * n * sizeof *tf);
+                ttd_result_f *r = malloc(n * sizeof *r);
+                ENSURE(sf && tf && r);
+                for (size_t k = 0; k < 9 * n; ++k) {
+                    sf[k] = (float)s[k];
+                    tf[k] = (float)t[k];
+                }
+                ENSURE(ttd_batch_f(&opt, n, sf, tf, NULL, r) == TTD_OK);
+                for (size_t k = 0; k < n; ++k) {
+                    P->d[k] = (double)r[k].distance;
+                    for (int c = 0; c < 3; ++c) {
+                        P->p[3 * k + c] = (double)r[k].p[c];
+                        P->q[3 * k + c] = (double)(r[k].distance == 0 ? r[k].p[c] : r[k].q[c]);
+                    }
+                }
+                free(sf);
+                free(tf);
+                free(r);
+            }
+            free(s);
+            free(t);
+        }
+    return 0;
+}
+
+static double pair_min(const pairinfo *P, size_t *arg)
+{
+    double best = INFINITY;
+    *arg = SIZE_MAX;
+    for (size_t k = 0; k < P->nt_i * P->nt_j; ++k)
+        if (P->d[k] < best) {
+            best = P->d[k];
+            *arg = k;
+        }
+    return best;
+}
+
+/* ---- the queries' answers, widened to double ---------------------------------------------- */
+
+typedef struct contact {
+    uint32_t i, j, ti, tj;
+    double d, p[3], q[3];
+} contact;
+
+typedef struct point {
+    uint32_t i, j, ti, tj;
+    double x[3], n[3], d, depth;
+} point;
+
+typedef struct answers {
+    ttd_scene_hit *hits;
+    size_t nhits;
+    contact *contacts;
+    size_t ncontacts;
+    contact closest, bounded;
+    contact nearest[MAX_BODIES];
+    point *points;
+    size_t npoints;
+} answers;
+
+static void answers_free(answers *A)
+{
+    free(A->hits);
+    free(A->contacts);
+    free(A->points);
+    memset(A, 0, sizeof *A);
+}
+
+static contact widen_d(const ttd_scene_contact_d *c)
+{
+    contact x = {c->i, c->j, c->tri_i, c->tri_j, c->distance, {c->p[0], c->p[1], c->p[2]}, {c->q[0], c->q[1], c->q[2]}};
+    return x;
+}
+
+static contact widen_f(const ttd_scene_contact_f *c)
+{
+    contact x = {c->i,
+                 c->j,
+                 c->tri_i,
+                 c->tri_j,
+                 (double)c->distance,
+                 {(double)c->p[0], (double)c->p[1], (double)c->p[2]},
+                 {(double)c->q[0], (double)c->q[1], (double)c->q[2]}};
+    return x;
+}
+
+static const double MARGIN = 0.02, BOUND = 0.05;
+static const size_t MAX_POINTS = 4;
+
+static int ask(const world *W, ttd_isa isa, int threads, answers *A)
+{
+    memset(A, 0, sizeof *A);
+    ttd_options opt = ttd_default_options();
+    opt.isa = isa;
+    opt.threads = threads;
+    ttd_scene_array hits = {0}, con = {0}, man = {0};
+    if (W->bytes == 8) {
+        ttd_scene_contact_d c, b, near[MAX_BODIES];
+        ENSURE(ttd_scene_collide_d(&opt, W->scene, MARGIN, &hits) == TTD_OK);
+        ENSURE(ttd_scene_contacts_d(&opt, W->scene, MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_distance_d(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
+        ENSURE(ttd_scene_distance_d(&opt, W->scene, BOUND, &b, NULL) == TTD_OK);
+        ENSURE(ttd_scene_manifold_d(&opt, W->scene, MARGIN, MAX_POINTS, &man) == TTD_OK);
+        A->closest = widen_d(&c);
+        A->bounded = widen_d(&b);
+        for (size_t k = 0; k < W->nbody; ++k)
+            A->nearest[k] = widen_d(&near[k]);
+        A->ncontacts = con.count;
+        A->contacts = malloc((con.count + 1) * sizeof *A->contacts);
+        for (size_t k = 0; k < con.count; ++k)
+            A->contacts[k] = widen_d((const ttd_scene_contact_d *)con.data + k);
+        A->npoints = man.count;
+        A->points = malloc((man.count + 1) * sizeof *A->points);
+        for (size_t k = 0; k < man.count; ++k) {
+            const ttd_scene_point_d *p = (const ttd_scene_point_d *)man.data + k;
+            A->points[k] = (point){p->i, p->j, p->tri_i, p->tri_j, {p->point[0], p->point[1], p->point[2]},
+                                   {p->normal[0], p->normal[1], p->normal[2]}, p->distance, p->depth};
+        }
+    } else {
+        ttd_scene_contact_f c, b, near[MAX_BODIES];
+        ENSURE(ttd_scene_collide_f(&opt, W->scene, (float)MARGIN, &hits) == TTD_OK);
+        ENSURE(ttd_scene_contacts_f(&opt, W->scene, (float)MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_distance_f(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
+        ENSURE(ttd_scene_distance_f(&opt, W->scene, (float)BOUND, &b, NULL) == TTD_OK);
+        ENSURE(ttd_scene_manifold_f(&opt, W->scene, (float)MARGIN, MAX_POINTS, &man) == TTD_OK);
+        A->closest = widen_f(&c);
+        A->bounded = widen_f(&b);
+        for (size_t k = 0; k < W->nbody; ++k)
+            A->nearest[k] = widen_f(&near[k]);
+        A->ncontacts = con.count;
+        A->contacts = malloc((con.count + 1) * sizeof *A->contacts);
+        for (size_t k = 0; k < con.count; ++k)
+            A->contacts[k] = widen_f((const ttd_scene_contact_f *)con.data + k);
+        A->npoints = man.count;
+        A->points = malloc((man.count + 1) * sizeof *A->points);
+        for (size_t k = 0; k < man.count; ++k) {
+            const ttd_scene_point_f *p = (const ttd_scene_point_f *)man.data + k;
+            A->points[k] = (point){p->i,
+                                   p->j,
+                                   p->tri_i,
+                                   p->tri_j,
+                                   {(double)p->point[0], (double)p->point[1], (double)p->point[2]},
+                                   {(double)p->normal[0], (double)p->normal[1], (double)p->normal[2]},
+                                   (double)p->distance,
+                                   (double)p->depth};
+        }
+    }
+    A->nhits = hits.count;
+    A->hits = malloc((hits.count + 1) * sizeof *A->hits);
+    if (hits.count)
+        memcpy(A->hits, hits.data, hits.count * sizeof *A->hits);
+    ttd_scene_array_free(&hits);
+    ttd_scene_array_free(&con);
+    ttd_scene_array_free(&man);
+    ENSURE(A->hits && A->contacts && A->points);
+    return 0;
+}
+
+static int same_contact(const contact *a, const contact *b)
+{
+    return a->i == b->i && a->j == b->j && a->ti == b->ti && a->tj == b->tj &&
+           memcmp(&a->d, &b->d, sizeof a->d) == 0 && memcmp(a->p, b->p, sizeof a->p) == 0 &&
+           memcmp(a->q, b->q, sizeof a->q) == 0;
+}
+
+static int same_answers(const world *W, const answers *x, const answers *y)
+{
+    ENSURE(x->nhits == y->nhits && x->ncontacts == y->ncontacts && x->npoints == y->npoints);
+    ENSURE(x->nhits == 0 || memcmp(x->hits, y->hits, x->nhits * sizeof *x->hits) == 0);
+    for (size_t k = 0; k < x->ncontacts; ++k)
+        ENSURE(same_contact(&x->contacts[k], &y->contacts[k]));
+    ENSURE(x->npoints == 0 || memcmp(x->points, y->points, x->npoints * sizeof *x->points) == 0);
+    ENSURE(same_contact(&x->closest, &y->closest) && same_contact(&x->bounded, &y->bounded));
+    for (size_t k = 0; k < W->nbody; ++k)
+        ENSURE(same_contact(&x->nearest[k], &y->nearest[k]));
+    return 0;
+}
+
+/* A contact record equal to the brute force's pair (a, b) of body pair P, seen from body `me`. */
+static int record_is(const pairinfo *P, size_t k, uint32_t me, const contact *c)
+{
+    const size_t a = k / P->nt_j, b = k % P->nt_j;
+    const int swap = me != P->i;
+    const contact want = {swap ? P->j : P->i,
+                          swap ? P->i : P->j,
+                          (uint32_t)(swap ? b : a),
+                          (uint32_t)(swap ? a : b),
+                          P->d[k],
+                          {(swap ? P->q : P->p)[3 * k], (swap ? P->q : P->p)[3 * k + 1], (swap ? P->q : P->p)[3 * k + 2]},
+                          {(swap ? P->p : P->q)[3 * k], (swap ? P->p : P->q)[3 * k + 1], (swap ? P->p : P->q)[3 * k + 2]}};
+    return same_contact(&want, c);
+}
+
+/* The smallest (own triangle, other's triangle) at distance d of body pair P seen from me. */
+static size_t smallest_at(const pairinfo *P, double d, uint32_t me)
+{
+    size_t best = SIZE_MAX;
+    for (size_t k = 0; k < P->nt_i * P->nt_j; ++k) {
+        if (P->d[k] != d)
+            continue;
+        const size_t a = k / P->nt_j, b = k % P->nt_j;
+        if (best == SIZE_MAX) {
+            best = k;
+            continue;
+        }
+        const size_t ba = best / P->nt_j, bb = best % P->nt_j;
+        const int before = me == P->i ? (a < ba || (a == ba && b < bb)) : (b < bb || (b == bb && a < ba));
+        if (before)
+            best = k;
+    }
+    return best;
+}
+
+static int check_against_brute(const world *W, const brute *B, const answers *A)
+{
+    const double m = round_to(W->bytes, MARGIN);
+    /* collide */
+    size_t h = 0;
+    for (size_t k = 0; k < B->n; ++k) {
+        size_t arg;
+        const pairinfo *P = &B->pairs[k];
+        if (!(pair_min(P, &arg) <= m))
+            continue;
+        ENSURE_MSG(h < A->nhits && A->hits[h].i == P->i && A->hits[h].j == P->j, "collide: pair (%u, %u) missing", P->i,
+                   P->j);
+        ENSURE(A->hits[h].tri_i < P->nt_i && A->hits[h].tri_j < P->nt_j);
+        ENSURE(P->d[A->hits[h].tri_i * P->nt_j + A->hits[h].tri_j] <= m);
+        ++h;
+    }
+    ENSURE_MSG(h == A->nhits, "collide: %zu pairs, brute force %zu", A->nhits, h);
+    /* contacts, in order */
+    size_t c = 0;
+    for (size_t k = 0; k < B->n; ++k) {
+        const pairinfo *P = &B->pairs[k];
+        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x) {
+            if (!(P->d[x] <= m))
+                continue;
+            ENSURE_MSG(c < A->ncontacts && record_is(P, x, P->i, &A->contacts[c]),
+                       "contacts: entry %zu is not pair (%u, %u) triangles (%zu, %zu) at %.17g", c, P->i, P->j,
+                       x / P->nt_j, x % P->nt_j, P->d[x]);
+            ++c;
+        }
+    }
+    ENSURE_MSG(c == A->ncontacts, "contacts: %zu, brute force %zu", A->ncontacts, c);
+    /* closest pair (ties: smallest (i, j), then triangles), and within the bound */
+    double best = INFINITY;
+    size_t bk = SIZE_MAX;
+    for (size_t k = 0; k < B->n; ++k) {
+        size_t arg;
+        const double d = pair_min(&B->pairs[k], &arg);
+        if (d < best) {
+            best = d;
+            bk = k;
+        }
+    }
+    if (bk == SIZE_MAX) {
+        ENSURE(A->closest.i == UINT32_MAX && isinf(A->closest.d));
+    } else {
+        const pairinfo *P = &B->pairs[bk];
+        ENSURE_MSG(record_is(P, smallest_at(P, best, P->i), P->i, &A->closest),
+                   "closest: (%u, %u) at %.17g, brute force (%u, %u) at %.17g", A->closest.i, A->closest.j, A->closest.d,
+                   P->i, P->j, best);
+    }
+    if (best <= round_to(W->bytes, BOUND))
+        ENSURE(same_contact(&A->bounded, &A->closest));
+    else
+        ENSURE(isinf(A->bounded.d) && A->bounded.j == UINT32_MAX);
+    /* each body's nearest (ties: smallest partner, then triangles) */
+    for (size_t id = 0; id < W->nbody; ++id) {
+        double nb = INFINITY;
+        const pairinfo *np = NULL;
+        uint32_t partner = UINT32_MAX;
+        for (size_t k = 0; W->mesh_of[id] >= 0 && k < B->n; ++k) {
+            const pairinfo *P = &B->pairs[k];
+            if (P->i != id && P->j != id)
+                continue;
+            size_t arg;
+            const double d = pair_min(P, &arg);
+            const uint32_t o = P->i == id ? P->j : P->i;
+            if (d < nb || (d == nb && o < partner)) {
+                nb = d;
+                np = P;
+                partner = o;
+            }
+        }
+        if (np == NULL) {
+            ENSURE_MSG(isinf(A->nearest[id].d) && A->nearest[id].j == UINT32_MAX, "body %zu: a nearest where none", id);
+        } else {
+            ENSURE_MSG(record_is(np, smallest_at(np, nb, (uint32_t)id), (uint32_t)id, &A->nearest[id]),
+                       "body %zu: nearest %u at %.17g, brute force %u at %.17g", id, A->nearest[id].j,
+                       A->nearest[id].d, partner, nb);
+        }
+    }
+    /* manifolds */
+    size_t at = 0;
+    const double eps = W->bytes == 8 ? DBL_EPSILON : (double)FLT_EPSILON;
+    for (size_t k = 0; k < B->n; ++k) {
+        const pairinfo *P = &B->pairs[k];
+        size_t within = 0, deepest = SIZE_MAX;
+        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
+            if (P->d[x] <= m) {
+                ++within;
+                if (deepest == SIZE_MAX || P->d[x] < P->d[deepest])
+                    deepest = x;
+            }
+        const size_t want = within < MAX_POINTS ? within : MAX_POINTS;
+        for (size_t n = 0; n < want; ++n, ++at) {
+            ENSURE(at < A->npoints);
+            const point *pt = &A->points[at];
+            ENSURE(pt->i == P->i && pt->j == P->j && pt->ti < P->nt_i && pt->tj < P->nt_j);
+            const size_t x = pt->ti * P->nt_j + pt->tj;
+            ENSURE(P->d[x] <= m && pt->d == P->d[x] && pt->depth == round_to(W->bytes, m - pt->d));
+            if (n == 0)
+                ENSURE_MSG(x == deepest, "manifold (%u, %u): first point not the deepest", P->i, P->j);
+            const double nn = pt->n[0] * pt->n[0] + pt->n[1] * pt->n[1] + pt->n[2] * pt->n[2];
+            ENSURE_NEAR(nn, 1.0, 16 * eps);
+            double dir[3], dl = 0, mid[3];
+            for (int r = 0; r < 3; ++r) {
+                dir[r] = P->q[3 * x + r] - P->p[3 * x + r];
+                dl += dir[r] * dir[r];
+                mid[r] = round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]);
+                ENSURE(pt->x[r] == mid[r]);
+            }
+            if (pt->d > 0 && dl > 0)
+                for (int r = 0; r < 3; ++r)
+                    ENSURE_NEAR(pt->n[r], dir[r] / sqrt(dl), 16 * eps);
+            /* farthest-point choice: no unchosen contact farther from the points before */
+            if (n > 0) {
+                double mine = INFINITY;
+                for (size_t b = at - n; b < at; ++b) {
+                    double d2 = 0;
+                    for (int r = 0; r < 3; ++r)
+                        d2 += (pt->x[r] - A->points[b].x[r]) * (pt->x[r] - A->points[b].x[r]);
+                    mine = d2 < mine ? d2 : mine;
+                }
+                for (size_t y = 0; y < P->nt_i * P->nt_j; ++y) {
+                    if (!(P->d[y] <= m))
+                        continue;
+                    int chosen = 0;
+                    for (size_t b = at - n; b <= at; ++b)
+                        chosen |= A->points[b].ti * P->nt_j + A->points[b].tj == y;
+                    if (chosen)
+                        continue;
+                    double other = INFINITY;
+                    for (size_t b = at - n; b < at; ++b) {
+                        double d2 = 0;
+                        for (int r = 0; r < 3; ++r) {
+                            const double ym = round_to(W->bytes, 0.5 * P->p[3 * y + r] + 0.5 * P->q[3 * y + r]);
+                            d2 += (ym - A->points[b].x[r]) * (ym - A->points[b].x[r]);
+                        }
+                        other = d2 < other ? d2 : other;
+                    }
+                    ENSURE_MSG(other <= mine * (1 + 1e-9) + 1e-30, "manifold (%u, %u): point %zu not the farthest",
+                               P->i, P->j, n);
+                }
+            }
+        }
+    }
+    ENSURE_MSG(at == A->npoints, "manifold: %zu points, expected %zu", A->npoints, at);
+    return 0;
+}
+
+/* Every instruction set and 1 or 2 threads: the scalar row's answers, which equal the brute
+ * force. Returns the number of contacts (so callers can see the scene is not empty). */
+static int check_world(const world *W, const char *what, size_t *ncontacts)
+{
+    brute B;
+    ENSURE(brute_force(W, &B) == 0);
+    answers ref;
+    ENSURE(ask(W, TTD_ISA_SCALAR, 1, &ref) == 0);
+    const int bad = check_against_brute(W, &B, &ref);
+    brute_free(&B);
+    ENSURE_MSG(!bad, "%s (%s): scalar row against brute force", what, W->bytes == 8 ? "double" : "float");
+    for (int isa = TTD_ISA_SCALAR; isa < TTD_ISA_COUNT; ++isa) {
+        if (!ttd_isa_available((ttd_isa)isa))
+            continue;
+        for (int threads = 1; threads <= 2; ++threads) {
+            if (isa == TTD_ISA_SCALAR && threads == 1)
+                continue;
+            answers A;
+            ENSURE(ask(W, (ttd_isa)isa, threads, &A) == 0);
+            const int diff = same_answers(W, &ref, &A);
+            answers_free(&A);
+            ENSURE_MSG(!diff, "%s: %s with %d threads differs from the scalar row", what, ttd_isa_name((ttd_isa)isa),
+                       threads);
+        }
+    }
+    *ncontacts = ref.ncontacts;
+    printf("  %s, %s: %zu bodies, %zu colliding pairs, %zu contacts, %zu manifold points, closest %.3g\n", what,
+           W->bytes == 8 ? "double" : "float", W->nbody, ref.nhits, ref.ncontacts, ref.npoints, ref.closest.d);
+    answers_free(&ref);
+    return 0;
+}
+
+/* ---- scenes ------------------------------------------------------------------------------ */
+
+/* A soup of thin and degenerate triangles: collinear, needles, a segment, a point. */
+static int thin_soup(ttd_gen_mesh *m)
+{
+    const size_t nt = 12;
+    m->nv = 3 * nt;
+    m->nt = nt;
+    m->verts = malloc(9 * nt * sizeof *m->verts);
+    m->tris = malloc(3 * nt * sizeof *m->tris);
+    ENSURE(m->verts && m->tris);
+    ttd_gen_rng r = ttd_gen_rng_make(99, 1);
+    for (size_t k = 0; k < nt; ++k) {
+        double a[3], b[3];
+        for (int c = 0; c < 3; ++c) {
+            a[c] = ttd_gen_rng_uniform(&r) - 0.5;
+            b[c] = ttd_gen_rng_uniform(&r) - 0.5;
+        }
+        const double w = k % 4 == 0 ? 0 : pow(10, -(double)(3 * (k % 4) + 2)), f = 0.3;
+        for (int c = 0; c < 3; ++c) {
+            m->verts[9 * k + (size_t)c] = a[c];
+            m->verts[9 * k + 3 + (size_t)c] = k == 5 ? a[c] : b[c];
+            m->verts[9 * k + 6 + (size_t)c] = k == 5 ? a[c] : a[c] + f * (b[c] - a[c]) + w * (c == 0 ? 1 : -0.5);
+        }
+        for (int c = 0; c < 3; ++c)
+            m->tris[3 * k + (size_t)c] = (uint32_t)(3 * k + (size_t)c);
+    }
+    return 0;
+}
+
+static int make_world(world *W, int bytes, size_t nbody, double spread, int with_floor)
+{
+    memset(W, 0, sizeof *W);
+    W->bytes = bytes;
+    ENSURE(ttd_gen_icosphere(1, &W->gm[0]) == 0);
+    ENSURE(ttd_gen_mesh_cube(&W->gm[1]) == 0);
+    ENSURE(thin_soup(&W->gm[2]) == 0);
+    ENSURE(ttd_gen_mesh_degenerate(&W->gm[3]) == 0);
+    ENSURE(ttd_gen_grid(4, &W->gm[4]) == 0); /* the floor, scaled below */
+    for (int k = 0; k < 4; ++k)
+        ENSURE(ttd_gen_normalize(&W->gm[k]) == 0);
+    {
+        const double big[12] = {20, 0, 0, 0, 0, 20, 0, 0, 0, 0, 20, 0};
+        ENSURE(ttd_gen_normalize(&W->gm[4]) == 0);
+        ENSURE(ttd_gen_mesh_transform(&W->gm[4], big, &W->gm[4]) == 0);
+    }
+    for (int k = 0; k < 5; ++k) {
+        const ttd_gen_mesh *g = &W->gm[k];
+        if (bytes == 8) {
+            ENSURE(ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, &W->mesh[k]) == TTD_OK);
+        } else {
+            float *v = malloc(3 * g->nv * sizeof *v);
+            ENSURE(v != NULL);
+            for (size_t i = 0; i < 3 * g->nv; ++i)
+                v[i] = (float)g->verts[i];
+            /* the test's world vertices read the double copy: keep it equal to the float one */
+            for (size_t i = 0; i < 3 * g->nv; ++i)
+                W->gm[k].verts[i] = (double)v[i];
+            ENSURE(ttd_mesh_create_f(NULL, v, g->nv, g->tris, g->nt, &W->mesh[k]) == TTD_OK);
+            free(v);
+        }
+    }
+    ENSURE((bytes == 8 ? ttd_scene_create_d(&W->scene) : ttd_scene_create_f(&W->scene)) == TTD_OK);
+    for (size_t id = 0; id < nbody; ++id) {
+        /* bodies in a 2.5-wide box, a few of them touching or nearly (gaps 0..0.03 of the next
+         * body's reach), the last one the floor under them all */
+        const int floor = with_floor && id + 1 == nbody;
+        W->mesh_of[id] = floor ? 4 : (int)(id % 4);
+        ttd_gen_pose(7 + (uint64_t)bytes + (uint64_t)spread, id, spread, W->pose[id]);
+        if (floor) {
+            const double flat[12] = {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, -1.3};
+            memcpy(W->pose[id], flat, sizeof flat);
+        } else if (id % 3 == 1 && id > 0 && with_floor) {
+            for (int r = 0; r < 3; ++r)
+                W->pose[id][4 * r + 3] = W->pose[id - 1][4 * r + 3] + (r == 0 ? 0.45 + 0.01 * (double)(id % 4) : 0.02);
+        }
+        for (int k = 0; k < 12; ++k)
+            W->pose[id][k] = round_to(bytes, W->pose[id][k]);
+        W->group[id] = 1;
+        W->mask[id] = UINT32_MAX;
+        uint32_t got;
+        if (bytes == 8) {
+            ENSURE(ttd_scene_add_d(W->scene, W->mesh[W->mesh_of[id]], W->pose[id], &got) == TTD_OK);
+        } else {
+            float pf[12];
+            for (int k = 0; k < 12; ++k)
+                pf[k] = (float)W->pose[id][k];
+            ENSURE(ttd_scene_add_f(W->scene, W->mesh[W->mesh_of[id]], pf, &got) == TTD_OK);
+        }
+        ENSURE(got == id);
+        W->nbody++;
+    }
+    return 0;
+}
+
+static void free_world(world *W)
+{
+    ttd_scene_destroy(W->scene);
+    for (int k = 0; k < 5; ++k) {
+        ttd_mesh_destroy(W->mesh[k]);
+        ttd_gen_mesh_free(&W->gm[k]);
+    }
+}
+
+static int set_all_poses(world *W)
+{
+    double all[MAX_BODIES * 12];
+    float allf[MAX_BODIES * 12];
+    for (size_t id = 0; id < W->nbody; ++id)
+        for (int k = 0; k < 12; ++k) {
+            all[12 * id + (size_t)k] = W->pose[id][k];
+            allf[12 * id + (size_t)k] = (float)W->pose[id][k];
+        }
+    if (W->bytes == 8)
+        ENSURE(ttd_scene_set_poses_d(W->scene, W->nbody, all) == TTD_OK);
+    else
+        ENSURE(ttd_scene_set_poses_f(W->scene, W->nbody, allf) == TTD_OK);
+    return 0;
+}
+
+static int scenes_match_brute_force(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        ENSURE(make_world(&W, bytes, 24, 1.25, 1) == 0);
+        size_t n0, n1, n2, n3;
+        ENSURE(check_world(&W, "pile with floor", &n0) == 0);
+        ENSURE(n0 > 0);
+        /* remove two bodies, add one (a new id), exclude a pair, filter a body */
+        ENSURE(ttd_scene_remove(W.scene, 3) == TTD_OK);
+        ENSURE(ttd_scene_remove(W.scene, 3) == TTD_ERR_INDEX_OUT_OF_RANGE);
+        W.mesh_of[3] = -1;
+        ENSURE(ttd_scene_remove(W.scene, 10) == TTD_OK);
+        W.mesh_of[10] = -1;
+        W.mesh_of[W.nbody] = 2;
+        memcpy(W.pose[W.nbody], W.pose[4], sizeof W.pose[4]);
+        W.pose[W.nbody][11] = round_to(bytes, W.pose[W.nbody][11] + 0.01);
+        W.group[W.nbody] = 1;
+        W.mask[W.nbody] = UINT32_MAX;
+        uint32_t got;
+        if (bytes == 8) {
+            ENSURE(ttd_scene_add_d(W.scene, W.mesh[2], W.pose[W.nbody], &got) == TTD_OK);
+        } else {
+            float pf[12];
+            for (int k = 0; k < 12; ++k)
+                pf[k] = (float)W.pose[W.nbody][k];
+            ENSURE(ttd_scene_add_f(W.scene, W.mesh[2], pf, &got) == TTD_OK);
+        }
+        ENSURE(got == W.nbody);
+        W.nbody++;
+        ENSURE(ttd_scene_exclude_pair(W.scene, 5, 4, 1) == TTD_OK);
+        W.excluded[4][5] = W.excluded[5][4] = 1;
+        ENSURE(ttd_scene_exclude_pair(W.scene, 7, 6, 1) == TTD_OK);
+        ENSURE(ttd_scene_exclude_pair(W.scene, 6, 7, 0) == TTD_OK); /* and included again */
+        ENSURE(ttd_scene_set_filter(W.scene, 1, 2, 2) == TTD_OK);   /* body 1 meets group 2 only */
+        W.group[1] = 2;
+        W.mask[1] = 2;
+        ENSURE(ttd_scene_set_filter(W.scene, 2, 3, UINT32_MAX) == TTD_OK);
+        W.group[2] = 3;
+        ENSURE(check_world(&W, "after removals, an addition, filters and an exclusion", &n1) == 0);
+        /* every body moved a little: the broad phase's order repaired, not rebuilt */
+        for (size_t id = 0; id < W.nbody; ++id)
+            for (int r = 0; r < 3; ++r)
+                W.pose[id][4 * r + 3] = round_to(bytes, W.pose[id][4 * r + 3] + 0.004 * (double)((id * 7 + (size_t)r) % 5) - 0.008);
+        ENSURE(set_all_poses(&W) == 0);
+        ENSURE(check_world(&W, "every body moved", &n2) == 0);
+        /* one body moved alone, onto another */
+        memcpy(W.pose[0], W.pose[5], sizeof W.pose[0]);
+        if (bytes == 8) {
+            ENSURE(ttd_scene_set_pose_d(W.scene, 0, W.pose[0]) == TTD_OK);
+        } else {
+            float pf[12];
+            for (int k = 0; k < 12; ++k)
+                pf[k] = (float)W.pose[0][k];
+            ENSURE(ttd_scene_set_pose_f(W.scene, 0, pf) == TTD_OK);
+        }
+        ENSURE(check_world(&W, "one body onto another", &n3) == 0);
+        free_world(&W);
+    }
+    return 0;
+}
+
+/* Bodies far apart (no contacts): the closest pair and each body's nearest come from margins
+ * grown until they hold them. */
+static int sparse_scene_distances(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        ENSURE(make_world(&W, bytes, 14, 12, 0) == 0);
+        size_t n;
+        ENSURE(check_world(&W, "sparse", &n) == 0);
+        free_world(&W);
+    }
+    return 0;
+}
+
+/* A scene of one body, and of none: nothing collides, no closest pair. */
+static int small_scenes(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_mesh_cube(&g) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ttd_scene *s;
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    ttd_scene_array out = {0};
+    ttd_scene_contact_d c, near[2];
+    ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 0);
+    ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, near) == TTD_OK && isinf(c.distance) && c.i == UINT32_MAX);
+    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    uint32_t b;
+    ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 0);
+    ENSURE(ttd_scene_contacts_d(NULL, s, 1, &out) == TTD_OK && out.count == 0);
+    ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, near) == TTD_OK && isinf(c.distance));
+    ENSURE(near[0].i == 0 && near[0].j == UINT32_MAX && isinf(near[0].distance));
+    ENSURE(ttd_scene_body_count(s) == 1 && ttd_scene_id_limit(s) == 1);
+    ttd_scene_array_free(&out);
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
+static int bad_input(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_mesh_cube(&g) == 0);
+    ttd_mesh *m, *mf;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    float v[3 * 8];
+    for (size_t i = 0; i < 3 * g.nv && i < 24; ++i)
+        v[i] = (float)g.verts[i];
+    ENSURE(ttd_mesh_create_f(NULL, v, g.nv, g.tris, g.nt, &mf) == TTD_OK);
+    ttd_scene *s;
+    ENSURE(ttd_scene_create_d(NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    const double skew[12] = {1, 0.01, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    const double mirror[12] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    const double nan_t[12] = {1, 0, 0, NAN, 0, 1, 0, 0, 0, 0, 1, 0};
+    const double far_t[12] = {1, 0, 0, 1e300, 0, 1, 0, 0, 0, 0, 1, 0};
+    uint32_t b;
+    ENSURE(ttd_scene_add_d(s, NULL, id, &b) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_add_d(s, m, NULL, &b) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_add_d(s, m, skew, &b) == TTD_ERR_BAD_POSE);
+    ENSURE(ttd_scene_add_d(s, m, mirror, &b) == TTD_ERR_BAD_POSE);
+    ENSURE(ttd_scene_add_d(s, m, nan_t, &b) == TTD_ERR_BAD_POSE);
+    ENSURE(ttd_scene_add_d(s, m, far_t, &b) == TTD_ERR_COORDINATE_RANGE);
+    ENSURE(ttd_scene_add_d(s, mf, id, &b) == TTD_ERR_PRECISION_MISMATCH);
+    const float idf[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    ENSURE(ttd_scene_add_f(s, mf, idf, &b) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_scene_body_count(s) == 0 && ttd_scene_id_limit(s) == 0); /* nothing was added */
+    ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 0);
+    ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 1);
+    ENSURE(ttd_scene_set_pose_d(s, 2, id) == TTD_ERR_INDEX_OUT_OF_RANGE);
+    ENSURE(ttd_scene_set_pose_d(s, 1, skew) == TTD_ERR_BAD_POSE);
+    double two[24];
+    memcpy(two, id, sizeof id);
+    memcpy(two + 12, skew, sizeof skew);
+    ENSURE(ttd_scene_set_poses_d(s, 1, two) == TTD_ERR_INDEX_OUT_OF_RANGE);
+    ENSURE(ttd_scene_set_poses_d(s, 2, two) == TTD_ERR_BAD_POSE);
+    ENSURE(ttd_scene_exclude_pair(s, 0, 0, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+    ENSURE(ttd_scene_exclude_pair(s, 0, 5, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+    ENSURE(ttd_scene_set_filter(s, 9, 1, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+    ttd_scene_array out = {0};
+    ttd_scene_contact_d c;
+    ENSURE(ttd_scene_collide_d(NULL, s, -1, &out) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_collide_d(NULL, s, NAN, &out) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_contacts_d(NULL, s, INFINITY, &out) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_distance_d(NULL, s, -1, &c, NULL) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_collide_f(NULL, s, 0, &out) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_scene_collide_d(NULL, NULL, 0, &out) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_manifold_d(NULL, s, 0, 4, NULL) == TTD_ERR_NULL_POINTER);
+    ttd_options bad = ttd_default_options();
+    bad.method = TTD_METHOD_PENALTY;
+    ENSURE(ttd_scene_collide_d(&bad, s, 0, &out) == TTD_ERR_BAD_OPTIONS);
+    /* the two identical cubes touch: one pair, distance 0 */
+    ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
+    ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0 && c.i == 0 && c.j == 1);
+    ttd_scene_array_free(&out);
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(m);
+    ttd_mesh_destroy(mf);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(scenes_match_brute_force);
+    RUN_TEST(sparse_scene_distances);
+    RUN_TEST(small_scenes);
+    RUN_TEST(bad_input);
+    TEST_MAIN_END();
+}
