@@ -55,7 +55,10 @@ typedef enum ttd_status {
     TTD_ERR_PRECISION_MISMATCH = 25, ///< mesh queries: a mesh was built in the other precision
     /// mesh build or query: a vertex coordinate, or a vertex of b moved by a pose, beyond the
     /// meshes' range (magnitude 2^60 in float, 2^508 in double: see the mesh queries below)
-    TTD_ERR_COORDINATE_RANGE = 26
+    TTD_ERR_COORDINATE_RANGE = 26,
+    /// mesh queries with ttd_options.solid: a mesh is not closed (some edge is not shared by
+    /// exactly two triangles that run along it in opposite directions)
+    TTD_ERR_MESH_NOT_CLOSED = 27
 } ttd_status;
 
 /// How the distance is computed.
@@ -154,6 +157,11 @@ typedef struct ttd_options {
     /// coordinates). The float penalty and certified kernels use max(tol, 1e-6).
     double tol;
     int max_iterations; ///< Newton iteration cap, 1..65535 (default 99, the paper's)
+    /// Mesh distance and collision only: 0 (default) compares surfaces, so a mesh inside another
+    /// is at the distance between their surfaces; 1 treats both meshes as solids (they must be
+    /// closed, else TTD_ERR_MESH_NOT_CLOSED), so one inside the other collides at distance 0
+    /// (TTD_MESH_CONTAINED). Contacts and closest partners are between surfaces either way.
+    int solid;
     uint32_t internal_cookie; ///< set by ttd_default_options(); calls reject options without it
 } ttd_options;
 
@@ -210,6 +218,10 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
  * around b's bounding-box centre that holds its vertices); beyond that the tree's squared bounds
  * could overflow, so the build or the query returns TTD_ERR_COORDINATE_RANGE instead. The pair functions above have no such limit.
  *
+ * The queries compare surfaces, as FCL's mesh queries do: a mesh inside another, their surfaces
+ * apart, is at the distance between the surfaces and does not collide. For closed meshes,
+ * ttd_options.solid makes distance and collision treat them as solids.
+ *
  * Every query is exact to the pair kernel's accuracy: it returns what the exact method over all
  * triangle pairs would (the tree only skips pairs it proves cannot matter, with a margin for the
  * rounding of its own bounds). Results do not depend on the thread count or the instruction
@@ -255,7 +267,11 @@ TTD_API ttd_status ttd_mesh_check_poses_f(const ttd_mesh *a, const ttd_mesh *b, 
 /// Flags of a mesh distance result.
 enum {
     TTD_MESH_INTERSECTING = 1u << 0, ///< the meshes touch or cross: distance 0, p == q on both
-    TTD_MESH_ABOVE_BOUND = 1u << 1   ///< no pair within upper_bound: distance is +inf, no points or triangles
+    TTD_MESH_ABOVE_BOUND = 1u << 1,  ///< no pair within upper_bound: distance is +inf, no points or triangles
+    /// with ttd_options.solid: one mesh lies inside the other without their surfaces meeting
+    /// (also TTD_MESH_INTERSECTING, distance 0): p = q is the first vertex of the inner mesh's
+    /// triangle 0, tri_a or tri_b is that triangle and the other is UINT32_MAX
+    TTD_MESH_CONTAINED = 1u << 2
 };
 
 /// The minimum distance between two meshes under one pose (double precision).
@@ -375,7 +391,9 @@ TTD_API ttd_status ttd_mesh_closest_f(const ttd_options *opt, const ttd_mesh *a,
 /// Whether two meshes come within a margin of each other.
 typedef struct ttd_collision {
     uint32_t hit;         ///< 1 when some pair is at distance <= margin (0 = touching or crossing)
-    uint32_t tri_a;       ///< the first such pair found (UINT32_MAX when none)
+    uint32_t tri_a;       ///< the first such pair found (UINT32_MAX when none; with
+                          ///< ttd_options.solid and one mesh inside the other: the inner
+                          ///< mesh's triangle 0, and UINT32_MAX for the outer)
     uint32_t tri_b;
     uint32_t node_tests;  ///< as in ttd_mesh_result_d
     uint64_t pair_tests;

@@ -58,6 +58,8 @@ static ttd_status ttd_check_options(const ttd_options *opt, ttd_options *out)
         return TTD_ERR_BAD_OPTIONS;
     if (opt->max_iterations < 1 || opt->max_iterations > 65535)
         return TTD_ERR_BAD_OPTIONS;
+    if (opt->solid != 0 && opt->solid != 1)
+        return TTD_ERR_BAD_OPTIONS;
     *out = *opt;
     return TTD_OK;
 }

@@ -4,6 +4,7 @@
  * what only meshes have (indices, finite vertices, the meshes' precision, the poses, the margin
  * and bounds), before src/mesh/ builds or queries anything. */
 #include <math.h>
+#include <string.h>
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -222,11 +223,114 @@ static int ttd_nonneg(double x, int inf_ok)
             free(defects);                                                                     \
     } while (0)
 
+/* ---- solids (ttd_options.solid) ----------------------------------------------------------- */
+
+/* TTD_OK when opt does not ask for solids or both meshes are closed. */
+static ttd_status solid_check(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b)
+{
+    if (opt == NULL || !opt->solid)
+        return TTD_OK;
+    const int ca = ttd_mesh_closed(a), cb = ca == 1 ? ttd_mesh_closed(b) : 1;
+    if (ca < 0 || cb < 0)
+        return TTD_ERR_OUT_OF_MEMORY;
+    return ca && cb ? TTD_OK : TTD_ERR_MESH_NOT_CLOSED;
+}
+
+/* A vertex of a mesh: the first of its triangle 0. */
+static void first_vertex(const ttd_mesh *m, double x[3])
+{
+    for (int c = 0; c < 3; ++c)
+        x[c] = m->bytes == 8 ? ((const double *)m->verts)[3 * (size_t)m->tris[0] + (size_t)c]
+                             : (double)((const float *)m->verts)[3 * (size_t)m->tris[0] + (size_t)c];
+}
+
+/* Whether x lies inside closed mesh m: within its bounding sphere (the cheap test that settles
+ * far poses), then its winding number (mesh/solid.c). */
+static int inside(const ttd_mesh *m, const double x[3])
+{
+    double d2 = 0;
+    for (int c = 0; c < 3; ++c)
+        d2 += (x[c] - m->origin[c]) * (x[c] - m->origin[c]);
+    if (!(d2 <= m->radius * m->radius * (1 + 1e-9)))
+        return 0;
+    return fabs(ttd_mesh_winding(m, x)) > 0.5;
+}
+
+/* Under pose i (b into a's frame; 12 reals of `bytes`), with the surfaces apart: 1 when b lies
+ * inside a, 2 when a lies inside b, 0 otherwise; at[] gets the inner mesh's first vertex in a's
+ * frame (b's moved by the pose in the query's precision, as the kernel moves it). Surfaces that do
+ * not meet leave one mesh wholly inside the other's solid or wholly outside it, so one vertex
+ * each way decides. */
+static int nested(const ttd_mesh *a, const ttd_mesh *b, const void *poses, size_t i, int bytes, double at[3])
+{
+    double P[12], vb[3], va[3];
+    for (int k = 0; k < 12; ++k)
+        P[k] = bytes == 8 ? ((const double *)poses)[12 * i + (size_t)k] : (double)((const float *)poses)[12 * i + (size_t)k];
+    first_vertex(b, vb);
+    for (int r = 0; r < 3; ++r) {
+        if (bytes == 8) {
+            at[r] = ((P[4 * r] * vb[0] + P[4 * r + 1] * vb[1]) + P[4 * r + 2] * vb[2]) + P[4 * r + 3];
+        } else {
+            const float x = (float)vb[0], y = (float)vb[1], z = (float)vb[2];
+            at[r] = (double)((((float)P[4 * r] * x + (float)P[4 * r + 1] * y) + (float)P[4 * r + 2] * z) + (float)P[4 * r + 3]);
+        }
+    }
+    if (inside(a, at))
+        return 1;
+    first_vertex(a, va);
+    double inb[3]; /* a's vertex in b's frame: R^T (x - t) */
+    for (int r = 0; r < 3; ++r)
+        inb[r] = P[r] * (va[0] - P[3]) + P[4 + r] * (va[1] - P[7]) + P[8 + r] * (va[2] - P[11]);
+    if (inside(b, inb)) {
+        memcpy(at, va, sizeof va);
+        return 2;
+    }
+    return 0;
+}
+
+/* Marks result r contained (side 1: b inside a; 2: a inside b) at the inner vertex `at`. */
+#define TTD_SOLID_RESULT(r, side, at, real)                                                       \
+    do {                                                                                       \
+        (r)->distance = 0;                                                                     \
+        for (int c_ = 0; c_ < 3; ++c_)                                                         \
+            (r)->p[c_] = (r)->q[c_] = (real)(at)[c_];                                          \
+        (r)->tri_a = (side) == 2 ? 0 : UINT32_MAX;                                             \
+        (r)->tri_b = (side) == 1 ? 0 : UINT32_MAX;                                             \
+        (r)->feature_a = (side) == 2 ? 1 : 0;                                                  \
+        (r)->feature_b = (side) == 1 ? 1 : 0;                                                  \
+        (r)->flags = TTD_MESH_INTERSECTING | TTD_MESH_CONTAINED;                               \
+    } while (0)
+
+/* The solid pass of a distance query: every pose whose surfaces are apart, nested or not. */
+#define TTD_SOLID_DISTANCE(real, bytes)                                                            \
+    for (size_t i_ = 0; st == TTD_OK && opt != NULL && opt->solid && i_ < k; ++i_) {             \
+        double at_[3];                                                                         \
+        int side_;                                                                             \
+        if (!(out[i_].distance > 0) || (side_ = nested(a, b, poses, i_, bytes, at_)) == 0)      \
+            continue;                                                                          \
+        TTD_SOLID_RESULT(&out[i_], side_, at_, real);                                          \
+    }
+
+/* The solid pass of a collision query. */
+#define TTD_SOLID_COLLIDE(bytes)                                                                   \
+    for (size_t i_ = 0; st == TTD_OK && opt != NULL && opt->solid && i_ < k; ++i_) {             \
+        double at_[3];                                                                         \
+        int side_;                                                                             \
+        if (out[i_].hit || (side_ = nested(a, b, poses, i_, bytes, at_)) == 0)                  \
+            continue;                                                                          \
+        out[i_].hit = 1;                                                                       \
+        out[i_].tri_a = side_ == 2 ? 0 : UINT32_MAX;                                           \
+        out[i_].tri_b = side_ == 1 ? 0 : UINT32_MAX;                                           \
+    }
+
 ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                const double *poses, double upper_bound, double rel_tol, ttd_mesh_result_d *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(upper_bound, 1) && ttd_nonneg(rel_tol, 0))
-    st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
+    st = solid_check(opt, a, b);
+    if (st == TTD_OK)
+        st = ttd_mesh_query_distance_d(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
+    TTD_SOLID_DISTANCE(double, 8)
     TTD_QUERY_END();
     return st;
 }
@@ -235,7 +339,10 @@ ttd_status ttd_mesh_distance_f(const ttd_options *opt, const ttd_mesh *a, const 
                                const float *poses, float upper_bound, float rel_tol, ttd_mesh_result_f *out)
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)upper_bound, 1) && ttd_nonneg((double)rel_tol, 0))
-    st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
+    st = solid_check(opt, a, b);
+    if (st == TTD_OK)
+        st = ttd_mesh_query_distance_f(&cfg, a, b, k, poses, NULL, defects, upper_bound, rel_tol, out);
+    TTD_SOLID_DISTANCE(float, 4)
     TTD_QUERY_END();
     return st;
 }
@@ -244,7 +351,10 @@ ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const t
                               const double *poses, double margin, ttd_collision *out)
 {
     TTD_QUERY_BEGIN(8, out != NULL, ttd_nonneg(margin, 0))
-    st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, NULL, defects, margin, out);
+    st = solid_check(opt, a, b);
+    if (st == TTD_OK)
+        st = ttd_mesh_query_collide_d(&cfg, a, b, k, poses, NULL, defects, margin, out);
+    TTD_SOLID_COLLIDE(8)
     TTD_QUERY_END();
     return st;
 }
@@ -253,7 +363,10 @@ ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const t
                               const float *poses, float margin, ttd_collision *out)
 {
     TTD_QUERY_BEGIN(4, out != NULL, ttd_nonneg((double)margin, 0))
-    st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, NULL, defects, margin, out);
+    st = solid_check(opt, a, b);
+    if (st == TTD_OK)
+        st = ttd_mesh_query_collide_f(&cfg, a, b, k, poses, NULL, defects, margin, out);
+    TTD_SOLID_COLLIDE(4)
     TTD_QUERY_END();
     return st;
 }

@@ -21,6 +21,7 @@ const char *ttd_status_string(ttd_status status)
     case TTD_ERR_BAD_POSE: return "a pose is not a finite rotation (R^T R = I within 1e-6, det R > 0) and translation";
     case TTD_ERR_PRECISION_MISMATCH: return "a mesh was built in the other precision";
     case TTD_ERR_COORDINATE_RANGE: return "a mesh coordinate (or one moved by a pose) beyond 2^60 in float or 2^508 in double";
+    case TTD_ERR_MESH_NOT_CLOSED: return "a mesh is not closed (an edge not shared by exactly two oppositely oriented triangles), so it has no inside";
     }
     return "unknown status";
 }

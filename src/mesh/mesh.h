@@ -31,6 +31,7 @@ struct ttd_mesh {
     size_t nnodes;
     double origin[3];   /* the boxes' origin, in the mesh's coordinates */
     double radius;      /* every vertex is within radius of origin (rounded up) */
+    int closed;         /* solid queries: 0 not known yet, 1 closed, 2 not (mesh/solid.c; atomic) */
 };
 
 /* The largest coordinate magnitude a mesh query works on, a's vertices and b's moved by a pose
@@ -75,5 +76,15 @@ ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct 
 ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
                                      size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
+
+/* Solids (mesh/solid.c). Whether the mesh is closed: every directed edge (u, v) of a triangle
+ * appears once, and so does (v, u), by vertex index. Found on first use and kept (meshes are
+ * shared between threads: the flag is written atomically, and racing first uses compute the same
+ * answer). */
+int ttd_mesh_closed(const struct ttd_mesh *mesh); /* 1, 0, or -1 out of memory */
+/* The winding number of a closed mesh about point x (the mesh's own coordinates): the sum of
+ * its triangles' signed solid angles over 4 pi; near +-1 inside, near 0 outside, for x not on
+ * the surface. */
+double ttd_mesh_winding(const struct ttd_mesh *mesh, const double x[3]);
 
 #endif /* TTD_MESH_MESH_H */
