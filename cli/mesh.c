@@ -62,7 +62,8 @@ static const char ttd_mesh_usage_distance[] =
     "distance: the minimum distance, one line per pose:\n"
     "    d px py pz qx qy qz ia ib\n"
     "  p on triangle ia of A, q on triangle ib of B, both in A's frame; when the meshes touch or\n"
-    "  cross, d is 0 and p = q, a point common to both.\n"
+    "  cross, d is 0 and p = q, a point common to both. With --solid, where one mesh lies inside\n"
+    "  the other, d is 0, p = q is a vertex of the inner mesh, and the outer mesh's triangle is -1.\n"
     "  --upper-bound X   X >= 0: a pose whose distance exceeds X may stop early and prints\n"
     "                    'inf nan nan nan nan nan nan -1 -1' (default: no bound)\n"
     "  --rel-tol X       X >= 0: the pair printed may be up to a factor 1 + X farther than the\n"
@@ -88,6 +89,8 @@ static const char ttd_mesh_usage_collide[] =
     "\n"
     "collide: whether the meshes come within M of each other (0: touch or cross), one line per\n"
     "pose: '1 ia ib' with the first pair found within M (a witness, not the closest pair), or '0'.\n"
+    "With --solid, where one mesh lies inside the other: '1 ia -1' or '1 -1 ib' (the inner mesh's\n"
+    "triangle 0).\n"
     "  --margin M        M >= 0, finite (default 0)\n";
 
 static const char ttd_mesh_usage_common[] =
@@ -107,6 +110,10 @@ static const char ttd_mesh_usage_common[] =
     "                    are kept in memory, 96 bytes each). Output line i (distance, collide,\n"
     "                    --count) belongs to pose i; a file without poses gives no output.\n"
     "                    Without --pose or --poses, B is used as given (the identity pose).\n"
+    "  --solid           distance and collide only: treat A and B as solids, so that one inside\n"
+    "                    the other collides at distance 0 (both must be closed meshes). Without\n"
+    "                    it the queries compare surfaces, as FCL's do: a mesh inside another is\n"
+    "                    at the distance between their surfaces\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (such as FCL's header\n"
     "                    line of two counts); by default such lines are skipped, counted, and\n"
     "                    reported once on standard error\n"
@@ -213,6 +220,15 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
         }
         if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
             *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
+            continue;
+        }
+        if (strcmp(arg, "--solid") == 0) {
+            if (a->cmd == TTD_MESH_CONTACTS) {
+                ttd_cli_error("%s: --solid is an option of mesh distance and collide (contacts are between surfaces)",
+                              name);
+                return -1;
+            }
+            a->opt.solid = 1;
             continue;
         }
         static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
@@ -625,7 +641,8 @@ static int ttd_mesh_run_distance(const ttd_mesh_run *r)
                 continue;
             }
             ttd_mesh_put_dpq(r->out, a->use_float, d, p, q);
-            fprintf(r->out, " %lu %lu\n", (unsigned long)ta, (unsigned long)tb);
+            /* --solid, one mesh inside the other: the outer mesh has no triangle to name */
+            fprintf(r->out, " %ld %ld\n", ta == UINT32_MAX ? -1L : (long)ta, tb == UINT32_MAX ? -1L : (long)tb);
         }
     }
     free(rd);
@@ -654,7 +671,8 @@ static int ttd_mesh_run_collide(const ttd_mesh_run *r)
         }
         for (size_t i = 0; i < k; ++i) {
             if (res[i].hit)
-                fprintf(r->out, "1 %lu %lu\n", (unsigned long)res[i].tri_a, (unsigned long)res[i].tri_b);
+                fprintf(r->out, "1 %ld %ld\n", res[i].tri_a == UINT32_MAX ? -1L : (long)res[i].tri_a,
+                        res[i].tri_b == UINT32_MAX ? -1L : (long)res[i].tri_b);
             else
                 fputs("0\n", r->out);
         }
