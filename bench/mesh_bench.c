@@ -33,7 +33,7 @@
 
 #include "fcl_mesh_link.h"
 #include "meshes.h"
-#include "meshfile.h"
+#include <ttd/meshfile.h>
 
 /* ---- workloads ------------------------------------------------------------------------ */
 

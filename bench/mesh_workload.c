@@ -20,7 +20,7 @@
 #include "core/kernels.h"
 #include "engine/dispatch.h"
 #include "mesh_pairs.h"
-#include "meshfile.h"
+#include <ttd/meshfile.h>
 #include "ttd/ttd.h"
 
 int bench_cand_mesh_load(const char *path, int levels, ttd_gen_mesh *fine, ttd_gen_mesh *coarse, char *desc,

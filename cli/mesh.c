@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "meshfile.h"
+#include <ttd/meshfile.h>
 #include "parse.h"
 
 /// Poses per library call for distance and collide.

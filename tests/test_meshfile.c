@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "meshes.h"
-#include "meshfile.h"
+#include <ttd/meshfile.h>
 #include "test_macros.h"
 
 /* ---- a byte buffer and the temporary directory ----------------------------------------- */

@@ -4,6 +4,7 @@
 // a C++ program links and calls the library. The build of this file is the first check; main
 // is the second (run by CTest as ttd.cxx).
 #include "ttd/ttd.h"
+#include "ttd/meshfile.h"
 
 #include "core/certified_tol.h"
 #include "core/defaults.h"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The mesh-file reader of meshfile.h: format detection, one parser per format, and a shared
+/* The mesh-file reader of ttd/meshfile.h: format detection, one parser per format, and a shared
  * builder that grows the vertex and triangle arrays and merges STL's repeated vertices.
  *
  * Safety rules kept throughout: every read is bounds-checked against the buffer (nothing
@@ -9,7 +9,7 @@
  * it; every size computation is checked for overflow. */
 #define _POSIX_C_SOURCE 200809L
 
-#include "meshfile.h"
+#include "ttd/meshfile.h"
 
 #include <errno.h>
 #include <float.h>

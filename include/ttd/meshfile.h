@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Reading triangle meshes from files: OBJ, STL (ASCII and binary) and PLY (ASCII and binary
- * little-endian) into one indexed mesh, for `ttd mesh ...`, the tests and a fuzz target. The
+ * little-endian) into one indexed mesh, the public reader of the library that `ttd mesh`,
+ * `ttd scene` and the Python package use. The
  * format is recognised by content, never by the file name; docs/mesh-files.md has the rules
  * (what is accepted, merged, skipped, and the error messages).
  *
@@ -17,11 +18,13 @@
  * than the file can hold are refused before anything of that size is allocated. Numbers are
  * read with strtod/strtof, so the C locale (the default of a program that never calls
  * setlocale) is assumed. */
-#ifndef TTD_CLI_MESHFILE_H
-#define TTD_CLI_MESHFILE_H
+#ifndef TTD_MESHFILE_H
+#define TTD_MESHFILE_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "ttd/ttd.h" /* TTD_API */
 
 #ifdef __cplusplus
 extern "C" {
@@ -62,20 +65,20 @@ typedef struct ttd_meshfile {
 /// message in err (errsize bytes, always NUL-terminated when errsize > 0; err may be NULL). A
 /// file taken for a binary STL because of bytes that text does not hold has the reason at the
 /// end of every message: " (read as a binary STL: byte K is 0xNN, which text does not hold)".
-int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err, size_t errsize);
+TTD_API int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err, size_t errsize);
 
 /// The same on size bytes in memory (data need not be NUL-terminated); name is used in
 /// messages only (NULL: "<input>").
-int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
-                       ttd_meshfile *out, char *err, size_t errsize);
+TTD_API int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
+                               ttd_meshfile *out, char *err, size_t errsize);
 
 /// Frees the arrays and zeroes *m (NULL is allowed).
-void ttd_meshfile_free(ttd_meshfile *m);
+TTD_API void ttd_meshfile_free(ttd_meshfile *m);
 
 /// "obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary"; NULL when out of range.
-const char *ttd_meshfile_format_name(ttd_meshfile_format f);
+TTD_API const char *ttd_meshfile_format_name(ttd_meshfile_format f);
 
 #ifdef __cplusplus
 }
 #endif
-#endif /* TTD_CLI_MESHFILE_H */
+#endif /* TTD_MESHFILE_H */
