@@ -1107,7 +1107,7 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
     fprintf(f, "], \"disagreements\": %zu, \"rows\": [", R->disagreements);
     for (size_t i = 0; i < R->n; ++i) {
         const srow *r = &R->rows[i];
-        fprintf(f, "%s\n    {\"workload\": ", i ? "," : "");
+        fprintf(f, "%s\n        {\"workload\": ", i ? "," : "");
         json_str(f, r->workload);
         fprintf(f, ", \"bodies\": %zu, \"triangles\": %zu, \"query\": ", r->bodies, r->tris);
         json_str(f, r->query);
@@ -1131,7 +1131,7 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         json_str(f, r->note);
         fputc('}', f);
     }
-    fputs("\n  ]}", f);
+    fputs("\n    ]}", f);
 }
 
 static void csv_num(FILE *f, double v)
