@@ -101,6 +101,7 @@ struct bench_scene_results {
     char isa[16];
     char bunny[1600];
     char fcl[1200];
+    size_t compared;        /* rows whose answer was compared with FCL's */
     size_t disagreements;
     char alarms[8][240];
     size_t nalarms;
@@ -465,7 +466,7 @@ static int make_scene(const sctx *M, int w, size_t n, scene_def *s, char *why, s
     }
     ttd_gen_mesh g;
     if (w == SW_BUNNIES && !M->bunny) {
-        snprintf(why, why_size, "left out: the bunny is missing (%.300s)", M->R->bunny);
+        snprintf(why, why_size, "left out: the bunny is missing (see the bunny line)");
         return -1;
     }
     int ico = -1, bun = -1, tor = -1;
@@ -724,8 +725,9 @@ static int time_motion(sctx *M, ttd_scene *scene, const scene_def *s, const doub
 
 /* ---- checks --------------------------------------------------------------------------- */
 
-static void fcl_time(srow *r, const bench_fcl_scene_time *t)
+static void fcl_time(sctx *M, srow *r, const bench_fcl_scene_time *t)
 {
+    M->R->compared += strcmp(r->query, "build") != 0;
     r->fcl = 1;
     r->fcl_ms = t->ms;
     r->fcl_ms_min = t->ms_min;
@@ -827,7 +829,7 @@ static void run_scene(sctx *M, int w, size_t n)
         if (time_query(M, &q, r) == 0)
             snprintf(r->result, sizeof r->result, "%d meshes, %zu bodies", s.nmeshes, s.n);
         if (have_fcl)
-            fcl_time(r, &fr.build);
+            fcl_time(M, r, &fr.build);
     }
     for (int with_margin = 0; with_margin < 2; ++with_margin) {
         r = new_row(M, name, s.n, s.tris, with_margin ? "collide+m" : "collide", 8, 1, with_margin ? s.margin : 0.0);
@@ -840,7 +842,7 @@ static void run_scene(sctx *M, int w, size_t n)
             snprintf(r->result, sizeof r->result, "%zu body pairs", q.out.count);
             if (have_fcl) {
                 const bench_fcl_scene_time *t = with_margin ? &fr.collidem : &fr.collide0;
-                fcl_time(r, t);
+                fcl_time(M, r, t);
                 snprintf(r->note, sizeof r->note, "FCL: %" PRIu64 " candidates%s", t->candidates,
                          with_margin ? " (boxes + margin/2), early-exit traversal" : ", fcl::collide");
                 compare_pairs(M, r, &q.out, with_margin ? fr.pairsm : fr.pairs0, t->count);
@@ -857,7 +859,7 @@ static void run_scene(sctx *M, int w, size_t n)
             r->value = c->distance;
             snprintf(r->result, sizeof r->result, "%.6g (%u, %u)", c->distance, c->i, c->j);
             if (have_fcl) {
-                fcl_time(r, &fr.distance);
+                fcl_time(M, r, &fr.distance);
                 snprintf(r->note, sizeof r->note, "FCL: %" PRIu64 " fcl::distance calls; its pair (%" PRId64
                          ", %" PRId64 ")", fr.distance.candidates, fr.di, fr.dj);
                 double tol = TOL_D * fmax(fmax(c->distance, fr.dist), 1.0);
@@ -880,7 +882,7 @@ static void run_scene(sctx *M, int w, size_t n)
             r->value = (double)q.out.count;
             snprintf(r->result, sizeof r->result, "%zu triangle pairs", q.out.count);
             if (have_fcl) {
-                fcl_time(r, &fr.contacts);
+                fcl_time(M, r, &fr.contacts);
                 if (fr.contacts.count != q.out.count) {
                     if (prec)
                         snprintf(r->note, sizeof r->note, "FCL (double): %" PRIu64 " pairs (float rounds the margin's "
@@ -908,7 +910,7 @@ static void run_scene(sctx *M, int w, size_t n)
                 continue;
             snprintf(r->result, sizeof r->result, "%d steps, last %" PRIu64 " pairs", steps, counts1[steps - 1]);
             if (have_fcl) {
-                fcl_time(r, &fr.motion);
+                fcl_time(M, r, &fr.motion);
                 snprintf(r->note, sizeof r->note, "per step: set_poses + collide+m; FCL's update %.3g ms of %.3g",
                          fr.motion_update_ms, fr.motion.ms);
                 if (threads == 1)
@@ -1060,8 +1062,10 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
         fprintf(f, "DISAGREEMENTS with FCL: %zu\n", R->disagreements);
         for (size_t i = 0; i < R->nalarms; ++i)
             fprintf(f, "  %s\n", R->alarms[i]);
+    } else if (R->compared) {
+        fprintf(f, "agreement with FCL: every compared answer agrees (%zu rows)\n", R->compared);
     } else {
-        fprintf(f, "agreement with FCL: every compared answer agrees\n");
+        fprintf(f, "agreement with FCL: nothing compared (FCL absent or failed)\n");
     }
 }
 
@@ -1104,7 +1108,7 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         fputs(w ? ", " : "", f);
         json_str(f, R->scenes[w]);
     }
-    fprintf(f, "], \"disagreements\": %zu, \"rows\": [", R->disagreements);
+    fprintf(f, "], \"disagreements\": %zu, \"compared\": %zu, \"rows\": [", R->disagreements, R->compared);
     for (size_t i = 0; i < R->n; ++i) {
         const srow *r = &R->rows[i];
         fprintf(f, "%s\n        {\"workload\": ", i ? "," : "");
