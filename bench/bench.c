@@ -24,6 +24,7 @@
 
 #include "cli.h"
 #include "mesh_bench.h"
+#include "scene_bench.h"
 #include "mesh_workload.h"
 #include "pairs.h"
 
@@ -748,6 +749,7 @@ static void usage(FILE *f)
           "(for tests). Exit status: 0 done, 1 nothing measured or a file not written, 2 bad options.\n",
           f);
     bench_mesh_usage(f);
+    bench_scene_usage(f);
 }
 
 static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
@@ -803,8 +805,10 @@ static int write_file(const char *dir, const char *name, bench_ctx *cx, const be
         bench_write_json(f, m, &cx->st, cx->rows, cx->nrows);
     else if (kind == 2)
         bench_write_csv(f, cx->rows, cx->nrows);
-    else
+    else if (kind == 3)
         bench_mesh_write_csv(f, cx->st.mesh);
+    else
+        bench_scene_write_csv(f, cx->st.scene);
     if (fclose(f) != 0) {
         fprintf(stderr, "ttd bench: cannot write %s\n", path);
         return -1;
@@ -824,7 +828,10 @@ int ttd_bench_main(int argc, char **argv)
     double min_time = -1.0;
     bench_mesh_config mesh_cfg;
     bench_mesh_results *mesh = NULL;
+    bench_scene_config scene_cfg;
+    bench_scene_results *scene = NULL;
     memset(&mesh_cfg, 0, sizeof mesh_cfg);
+    memset(&scene_cfg, 0, sizeof scene_cfg);
     if (!cx) {
         fprintf(stderr, "ttd bench: out of memory\n");
         return 1;
@@ -875,6 +882,9 @@ int ttd_bench_main(int argc, char **argv)
             cx->quiet = 1;
             takes = 0;
         } else if ((took = bench_mesh_option(&mesh_cfg, a, v)) != 0) {
+            rc = took < 0 ? 3 : rc;
+            takes = took - 1;
+        } else if ((took = bench_scene_option(&scene_cfg, a, v)) != 0) {
             rc = took < 0 ? 3 : rc;
             takes = took - 1;
         } else if (!v) {
@@ -974,7 +984,7 @@ int ttd_bench_main(int argc, char **argv)
         cx->pair_bunny = mesh_cfg.bunny[0] ? mesh_cfg.bunny : (env && *env) ? env : "build/data/bunny.obj";
     }
 
-    for (size_t w = 0; w < N_WORKLOADS && (workload_mask || !mesh_cfg.named); ++w) {
+    for (size_t w = 0; w < N_WORKLOADS && (workload_mask || (!mesh_cfg.named && !scene_cfg.named)); ++w) {
         const workload_spec *ws = &workloads[w];
         size_t n = cx->st.quick ? ws->n_quick : ws->n_full;
         if (workload_mask) {
@@ -1000,10 +1010,15 @@ int ttd_bench_main(int argc, char **argv)
         if (n > 0)
             run_workload(cx, ws, n);
     }
-    if (bench_mesh_wanted(&mesh_cfg, workload_mask != 0)) {
+    if (bench_mesh_wanted(&mesh_cfg, workload_mask != 0 || scene_cfg.named)) {
         bench_mesh_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[0] != 0,
                               cx->precisions[1] != 0, cx->quiet, cx->t_start};
         cx->st.mesh = mesh = bench_mesh_run(&mesh_cfg, &env);
+    }
+    if (bench_scene_wanted(&scene_cfg, workload_mask != 0 || mesh_cfg.named)) {
+        bench_scene_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[1] != 0,
+                               cx->quiet, cx->t_start, &mesh_cfg};
+        cx->st.scene = scene = bench_scene_run(&scene_cfg, &env);
     }
     derive_ratios(cx);
     machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
@@ -1024,17 +1039,20 @@ int ttd_bench_main(int argc, char **argv)
             rc = 1;
         } else if (write_file(out_dir, "bench.txt", cx, &machine, 0) || write_file(out_dir, "bench.json", cx, &machine, 1) ||
                    write_file(out_dir, "bench.csv", cx, &machine, 2) ||
-                   (cx->st.mesh && write_file(out_dir, "bench-mesh.csv", cx, &machine, 3))) {
+                   (cx->st.mesh && write_file(out_dir, "bench-mesh.csv", cx, &machine, 3)) ||
+                   (cx->st.scene && write_file(out_dir, "bench-scene.csv", cx, &machine, 4))) {
             rc = 1;
         }
     }
-    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0) {
+    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0 && bench_scene_row_count(cx->st.scene) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
                         "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
         rc = 1;
     }
-    progress(cx, "done: %zu rows", cx->nrows + bench_mesh_row_count(cx->st.mesh));
+    progress(cx, "done: %zu rows",
+             cx->nrows + bench_mesh_row_count(cx->st.mesh) + bench_scene_row_count(cx->st.scene));
     bench_mesh_free(mesh);
+    bench_scene_free(scene);
     ttd_gen_mesh_free(&cx->pair_mesh);
     ttd_gen_mesh_free(&cx->pair_mesh_coarse);
     free(cx);

@@ -111,6 +111,7 @@ typedef struct bench_settings {
     char pair_mesh[200];      ///< the mesh-near/mesh-contact pair workloads' mesh and margin, or "not run"
     char command[512];        ///< the command line
     const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
+    const struct bench_scene_results *scene; ///< the scene section (bench/scene_bench.h), NULL when not run
 } bench_settings;
 
 void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st,

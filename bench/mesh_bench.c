@@ -316,7 +316,7 @@ static int find_bunny(const bench_mesh_config *c, char *path, size_t size, char 
     return -1;
 }
 
-static int load_bunny(const bench_mesh_config *c, ttd_gen_mesh *out, char *what, size_t size)
+int bench_mesh_load_bunny(const bench_mesh_config *c, ttd_gen_mesh *out, char *what, size_t size)
 {
     char path[1100], why[1400];
     memset(out, 0, sizeof *out);
@@ -1346,7 +1346,7 @@ bench_mesh_results *bench_mesh_run(const bench_mesh_config *c, const bench_mesh_
     memset(&bunny, 0, sizeof bunny);
     int bunny_needed = (want & ((1u << MW_BUNNY) | (1u << MW_BUNNY_SUB3))) || ((want & (1u << MW_POSES)) && !R->quick);
     if (bunny_needed) {
-        if (load_bunny(c, &bunny, R->bunny, sizeof R->bunny) == 0) {
+        if (bench_mesh_load_bunny(c, &bunny, R->bunny, sizeof R->bunny) == 0) {
             M.bunny = &bunny;
         } else {
             fprintf(stderr, "ttd bench: mesh: the Stanford bunny is %s: the bunny workloads are left out\n", R->bunny);

@@ -12,6 +12,7 @@
 #include <stdio.h>
 
 #include "bench_internal.h"
+#include "meshes.h"
 
 /// What the command line asked of the mesh section.
 typedef struct bench_mesh_config {
@@ -59,5 +60,11 @@ void bench_mesh_write_json(FILE *f, const bench_mesh_results *r);
 void bench_mesh_write_csv(FILE *f, const bench_mesh_results *r);
 
 void bench_mesh_free(bench_mesh_results *r);
+
+/// The Stanford bunny where the section finds it (--bunny, $TTD_BUNNY, build/data/bunny.obj,
+/// data/bunny.obj beside ttd's folder), normalised to a bounding-box diagonal of 1. Returns 0 with
+/// what (the file and its size), or -1 with what saying why it is missing (the scene section
+/// uses it too).
+int bench_mesh_load_bunny(const bench_mesh_config *c, ttd_gen_mesh *out, char *what, size_t size);
 
 #endif /* TTD_BENCH_MESH_BENCH_H */

@@ -5,6 +5,7 @@
  * table, null in the JSON and empty in the CSV. */
 #include "bench_internal.h"
 #include "mesh_bench.h"
+#include "scene_bench.h"
 
 #include <math.h>
 #include <string.h>
@@ -125,6 +126,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
                "(mean iterations / mean of each lane-block's maximum).\n");
     if (st->mesh)
         bench_mesh_write_table(f, st->mesh);
+    if (st->scene)
+        bench_scene_write_table(f, st->scene);
 }
 
 void bench_json_string(FILE *f, const char *s)
@@ -232,6 +235,10 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
     if (st->mesh) {
         fprintf(f, ",\n  \"mesh\": ");
         bench_mesh_write_json(f, st->mesh);
+    }
+    if (st->scene) {
+        fprintf(f, ",\n  \"scene\": ");
+        bench_scene_write_json(f, st->scene);
     }
     fprintf(f, "\n}\n");
 }

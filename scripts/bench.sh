@@ -2,9 +2,9 @@
 # The README's run command: installs what the benchmark needs when it can (FCL to compare
 # against, gnuplot for the figure), builds ttd in Release (build/, or $TTD_BUILD_DIR), runs
 # `ttd bench`, and writes results/ (or $TTD_RESULTS_DIR): bench.txt (the table), bench.json,
-# bench.csv, figure.svg/.png and figure-sizes.svg/.png, and for the mesh section bench-mesh.csv
-# and figure-mesh.svg/.png (it fetches the Stanford bunny first with scripts/fetch-bunny.sh when
-# it can). The table is printed as it is run.
+# bench.csv, figure.svg/.png and figure-sizes.svg/.png, for the mesh section bench-mesh.csv
+# and figure-mesh.svg/.png, and for the scene section bench-scene.csv (it fetches the Stanford
+# bunny first with scripts/fetch-bunny.sh when it can: the mesh and scene sections use it). The table is printed as it is run.
 # Usage: scripts/bench.sh [ttd bench options]     e.g. scripts/bench.sh --quick
 #        TTD_BENCH_NICE=-15 scripts/bench.sh       (raise the benchmark's priority, see below)
 set -euo pipefail
@@ -46,8 +46,12 @@ mkdir -p "$out"
 # The Stanford bunny for the mesh workloads (npm package bunny, converted to OBJ; cached in
 # $build/data). --quick does not use it (generated meshes only) and so does not fetch it; without
 # it (no node, npm or network) the benchmark says so and goes on with the generated meshes.
+# The scene section uses it too (the bunnies and mixed scenes).
 want_bunny=1
-case " $* " in *" --no-mesh "*) want_bunny=0 ;; *" --quick "*) case " $* " in *" --mesh-workloads "*) ;; *) want_bunny=0 ;; esac ;; esac
+case " $* " in
+  *" --no-mesh "*" --no-scene "* | *" --no-scene "*" --no-mesh "*) want_bunny=0 ;;
+  *" --quick "*) case " $* " in *" --mesh-workloads "* | *" --scene-workloads "*) ;; *) want_bunny=0 ;; esac ;;
+esac
 if [ "$want_bunny" = 1 ] && [ -z "${TTD_BUNNY:-}" ]; then
   if bunny=$(TTD_DATA_DIR="${TTD_DATA_DIR:-$build/data}" scripts/fetch-bunny.sh); then
     export TTD_BUNNY="$bunny"

@@ -7,7 +7,8 @@
 # names it and lists the machine's; a run that measures nothing exits 1; a load average above
 # the core count (from a file given in TTD_BENCH_LOADAVG) gives a warning on standard error and
 # in the table's header. The mesh section (issue 9) of the quick run is checked too: its rows,
-# placements and targets, and agreement with FCL's mesh program when that is built.
+# placements and targets, and agreement with FCL's mesh program when that is built; so is the
+# scene section (issue 17): its rows and, with FCL's scene program, agreement with FCL.
 # Timings are not checked: they belong to the benchmark, not to tests.
 # Usage: sh tests/cli/test_bench.sh path/to/ttd
 set -eu
@@ -117,9 +118,33 @@ rc=0
 [ "$rc" -eq 2 ] || fail "--mesh-workloads nosuch: exit status $rc, want 2"
 grep -q "nosuch" "$tmp/err.txt" || fail "--mesh-workloads nosuch: not named"
 
+# The scene section (issue 17) of the same quick run: generated scenes only (the bunnies are left
+# out with --quick), every row with a positive time, the motion on 1 and 2 threads; with FCL's
+# scene program next to ttd, FCL measured beside every row and no disagreement.
+grep -q '^  "scene": {"quick": true, ' "$tmp/out.json" || fail "no scene section in the quick JSON"
+grep '^        {"workload": ' "$tmp/out.json" > "$tmp/scene.rows" || fail "no scene rows"
+for w in icospheres mixed sparse; do
+  for q in build collide collide+m distance contacts; do
+    grep "\"workload\": \"$w\"" "$tmp/scene.rows" | grep -q "\"query\": \"$q\"" || fail "no scene row $w $q"
+  done
+done
+grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"precision": "float"' || fail "no float scene contacts row"
+grep '"query": "motion"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread motion row"
+bad=$(field ms < "$tmp/scene.rows" | awk '!($1 + 0 > 0)' | wc -l)
+[ "$bad" -eq 0 ] || fail "$bad scene rows without a positive time"
+if [ -x "$(dirname "$ttd")/ttd_fcl_scene_bench" ]; then
+  grep '^  "scene": ' "$tmp/out.json" | grep -q '"disagreements": 0,' || fail "ttd and FCL disagree in the scene section"
+  bad=$(field fcl_ms < "$tmp/scene.rows" | awk '!($1 + 0 > 0)' | wc -l)
+  [ "$bad" -eq 0 ] || fail "$bad scene rows without FCL's time although ttd_fcl_scene_bench exists"
+fi
+rc=0
+"$ttd" bench --quick --scene-workloads icospheres,nosuch > /dev/null 2> "$tmp/err.txt" || rc=$?
+[ "$rc" -eq 2 ] || fail "--scene-workloads nosuch: exit status $rc, want 2"
+grep -q "nosuch" "$tmp/err.txt" || fail "--scene-workloads nosuch: not named"
+
 # The JSON parses, where a parser is at hand.
 if command -v python3 >/dev/null 2>&1; then
-  python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert len(d["rows"]) > 0' "$tmp/out.json" ||
+  python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert len(d["rows"]) > 0; assert len(d["scene"]["rows"]) > 0' "$tmp/out.json" ||
     fail "the JSON does not parse"
 fi
 
