@@ -46,8 +46,29 @@ typedef struct pair_job {
     real limit;                   /* the margin, or the distance's bound */
     ttd_collision *hit;           /* collide: one per pair */
     ttd_mesh_result *dist;        /* distance: one per pair */
+    /* the closest pair alone: the bound falls to the best distance so far (its bits: distances
+     * are >= 0, so their bit patterns order as they do), and no pair after the first at
+     * distance 0 is needed (pairs come in (i, j) order: that one is the answer) */
+    int closest_only;
+    _Atomic uint64_t best_bits;
+    atomic_size_t first_zero;
     atomic_int nomem;
 } pair_job;
+
+static uint64_t real_bits(real x)
+{
+    double d = (double)x;
+    uint64_t b;
+    memcpy(&b, &d, sizeof b);
+    return b;
+}
+
+static real bits_real(uint64_t b)
+{
+    double d;
+    memcpy(&d, &b, sizeof d);
+    return (real)d;
+}
 
 enum { MODE_COLLIDE, MODE_DISTANCE };
 
@@ -59,12 +80,37 @@ static void pair_task(void *ctx, size_t k, int worker)
     const struct ttd_mesh *a = J->s->body[p->i].mesh, *b = J->s->body[p->j].mesh;
     const double defect = pair_defect(J->s, p->i, p->j);
     ttd_status st;
-    if (J->mode == MODE_COLLIDE)
+    if (J->mode == MODE_COLLIDE && J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
+        J->hit[k].hit = 0; /* after a touching pair: not needed */
+        st = TTD_OK;
+    } else if (J->mode == MODE_COLLIDE) {
         st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
                                 &J->hit[k]);
-    else
-        st = TTD_QUERY(distance)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit, 0,
+        if (st == TTD_OK && J->closest_only && J->hit[k].hit) {
+            size_t z = atomic_load(&J->first_zero);
+            while (k < z && !atomic_compare_exchange_weak(&J->first_zero, &z, k))
+                ;
+        }
+    } else if (J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
+        J->dist[k].distance = (real)INFINITY; /* after a pair at 0: not needed */
+        st = TTD_OK;
+    } else {
+        const real bound = J->closest_only ? bits_real(atomic_load(&J->best_bits)) : J->limit;
+        st = TTD_QUERY(distance)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, bound, 0,
                                  &J->dist[k]);
+        const real d = J->dist[k].distance;
+        if (st == TTD_OK && J->closest_only && d <= bound) {
+            uint64_t old = atomic_load(&J->best_bits);
+            const uint64_t mine = real_bits(d);
+            while (mine < old && !atomic_compare_exchange_weak(&J->best_bits, &old, mine))
+                ;
+            if (d == 0) {
+                size_t z = atomic_load(&J->first_zero);
+                while (k < z && !atomic_compare_exchange_weak(&J->first_zero, &z, k))
+                    ;
+            }
+        }
+    }
     if (st != TTD_OK)
         atomic_store(&J->nomem, 1);
 }
@@ -73,6 +119,8 @@ static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
 {
     const ttd_engine_config one = one_thread(cfg);
     J->cfg = &one;
+    atomic_init(&J->best_bits, real_bits(J->limit));
+    atomic_init(&J->first_zero, SIZE_MAX);
     atomic_init(&J->nomem, 0);
     ttd_parallel_tasks(n, cfg->threads, pair_task, J);
     return atomic_load(&J->nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
@@ -484,7 +532,28 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
     real cbest = (real)INFINITY;
     size_t cpair_i = SIZE_MAX;
     scene_pair cpair = {0, 0, 0};
-    for (;;) {
+    /* the closest pair alone: touching bodies are found sooner by collision at 0, which stops at
+     * its first pair within 0, than by distance; the first touching pair in (i, j) order is the
+     * answer, and no pair after it is needed */
+    if (nearest == NULL && !closest_done) {
+        scene_pair *pairs;
+        size_t n;
+        if (!ttd_scene_sweep(s, 0, NULL, &pairs, &n))
+            return TTD_ERR_OUT_OF_MEMORY;
+        pair_job J = {.s = s, .pairs = pairs, .mode = MODE_COLLIDE, .limit = 0, .closest_only = 1};
+        J.hit = malloc((n ? n : 1) * sizeof *J.hit);
+        st = J.hit == NULL ? TTD_ERR_OUT_OF_MEMORY : run_pairs(cfg, &J, n);
+        const size_t z = atomic_load(&J.first_zero);
+        if (st == TTD_OK && z < n) {
+            cbest = 0;
+            cpair = pairs[z];
+            cpair_i = z;
+            closest_done = 1;
+        }
+        free(J.hit);
+        free(pairs);
+    }
+    while (st == TTD_OK && !(closest_done && nopen == 0)) {
         const int last = isfinite((double)upper_bound) || !(margin < extent) || !(margin > 0);
         const double m = last && !isfinite((double)upper_bound) ? HUGE_VAL : margin;
         scene_pair *pairs;
@@ -494,7 +563,7 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
             break;
         }
         pair_job J = {.s = s, .pairs = pairs, .mode = MODE_DISTANCE,
-                      .limit = isfinite(m) ? (real)m : (real)INFINITY};
+                      .limit = isfinite(m) ? (real)m : (real)INFINITY, .closest_only = nearest == NULL};
         J.dist = malloc((n ? n : 1) * sizeof *J.dist);
         st = J.dist == NULL ? TTD_ERR_OUT_OF_MEMORY : run_pairs(cfg, &J, n);
         for (size_t k = 0; st == TTD_OK && k < n; ++k) {

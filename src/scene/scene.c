@@ -171,45 +171,147 @@ static int pair_cmp(const void *x, const void *y)
     return (a->j > b->j) - (a->j < b->j);
 }
 
+/* Slabs along the second axis: how many, and their base and width. A sweep along one axis meets
+ * every body whose box overlaps along that axis, most of them far apart along the others (in a
+ * sparse scene of n bodies, about n times the bodies' size over the scene's, per body); sweeping
+ * within slabs of the second axis divides that by the number of slabs. Slabs about twice the
+ * typical body wide (the median of a sample of the boxes' widths, so that a few huge bodies do
+ * not count), at most 64. */
+static int slab_count(const double *lo, const double *hi, size_t m, double margin, double *base, double *width)
+{
+    double mn = HUGE_VAL, mx = -HUGE_VAL, sample[65];
+    int ns = 0;
+    for (size_t a = 0; a < m; ++a) {
+        mn = lo[a] - margin < mn ? lo[a] - margin : mn;
+        mx = hi[a] > mx ? hi[a] : mx;
+    }
+    const size_t step = m / 64 + 1;
+    for (size_t a = 0; a < m && ns < 65; a += step)
+        sample[ns++] = hi[a] - lo[a] + margin;
+    for (int i = 1; i < ns; ++i) /* insertion sort of at most 65 widths */
+        for (int j = i; j > 0 && sample[j] < sample[j - 1]; --j) {
+            const double t = sample[j];
+            sample[j] = sample[j - 1];
+            sample[j - 1] = t;
+        }
+    const double typical = ns ? sample[ns / 2] : 0;
+    int count = typical > 0 && isfinite(mx - mn) ? (int)fmin(64, (mx - mn) / (2 * typical)) : 1;
+    count = count < 1 ? 1 : count;
+    *base = mn;
+    *width = (mx - mn) / count;
+    return count;
+}
+
+/* The slab of value x (clamped: the same function for every body, so a pair's slabs agree; it is
+ * monotone in x, so a body's interval maps to a run of slabs). */
+static int slab_of(double x, double base, double width, int count)
+{
+    const double k = floor((x - base) / width);
+    /* NaN (an infinite margin: every body in the one slab) and below: slab 0 */
+    return !(k > 0) ? 0 : (k >= count ? count - 1 : (int)k);
+}
+
 int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *only, scene_pair **out, size_t *n)
 {
     *out = NULL;
     *n = 0;
     if (!sweep_order(s))
         return 0;
+    const size_t m = s->norder;
+    /* the boxes in sweep order, one array per bound and axis: the inner loop reads them in order
+     * (a body's record is 300 bytes, of which it needs 48) */
+    double *lo[3], *hi[3];
+    double *block = malloc((6 * m + 1) * sizeof *block);
+    if (block == NULL)
+        return 0;
+    const int ax = s->axis, o1 = (ax + 1) % 3, o2 = (ax + 2) % 3;
+    const int axes[3] = {ax, o1, o2};
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = block + (size_t)(2 * k) * m;
+        hi[k] = block + (size_t)(2 * k + 1) * m;
+        for (size_t a = 0; a < m; ++a) {
+            lo[k][a] = s->body[s->order[a]].lo[axes[k]];
+            hi[k][a] = s->body[s->order[a]].hi[axes[k]];
+        }
+    }
+    /* each slab's bodies, in sweep order (a stable pass over the order keeps it): a body is in
+     * every slab that its interval [lo - margin, hi] along the second axis meets */
+    double base, width;
+    const int nslab = slab_count(lo[1], hi[1], m, margin, &base, &width);
+    size_t *first = calloc((size_t)nslab + 1, sizeof *first), total = 0;
+    for (size_t a = 0; first != NULL && a < m; ++a) {
+        const int k0 = slab_of(lo[1][a] - margin, base, width, nslab), k1 = slab_of(hi[1][a], base, width, nslab);
+        for (int k = k0; k <= k1; ++k)
+            first[k + 1]++;
+        total += (size_t)(k1 - k0 + 1);
+    }
+    size_t *member = first != NULL ? malloc((total + 1) * sizeof *member) : NULL, *fill = NULL;
+    if (member != NULL) {
+        for (int k = 0; k < nslab; ++k)
+            first[k + 1] += first[k];
+        fill = malloc(((size_t)nslab + 1) * sizeof *fill);
+    }
+    if (fill == NULL) {
+        free(block);
+        free(first);
+        free(member);
+        return 0;
+    }
+    memcpy(fill, first, (size_t)nslab * sizeof *fill);
+    for (size_t a = 0; a < m; ++a) {
+        const int k0 = slab_of(lo[1][a] - margin, base, width, nslab), k1 = slab_of(hi[1][a], base, width, nslab);
+        for (int k = k0; k <= k1; ++k)
+            member[fill[k]++] = a;
+    }
     size_t cap = 0, count = 0;
     scene_pair *v = NULL;
-    const int ax = s->axis, o1 = (ax + 1) % 3, o2 = (ax + 2) % 3;
-    for (size_t a = 0; a < s->norder; ++a) {
-        const uint32_t x = s->order[a];
-        const scene_body *bx = &s->body[x];
-        const double reach = bx->hi[ax] + margin;
-        /* the bodies after x whose boxes start within the margin of its end: one body that is
-         * huge (a floor) meets every other here once, and only here */
-        for (size_t b = a + 1; b < s->norder && s->body[s->order[b]].lo[ax] <= reach; ++b) {
-            const uint32_t y = s->order[b];
-            const scene_body *by = &s->body[y];
-            double gap = by->lo[ax] - bx->hi[ax];
-            const double g1 = fmax(by->lo[o1] - bx->hi[o1], bx->lo[o1] - by->hi[o1]);
-            const double g2 = fmax(by->lo[o2] - bx->hi[o2], bx->lo[o2] - by->hi[o2]);
-            if (!(g1 <= margin && g2 <= margin))
-                continue;
-            if (only != NULL && !only[x] && !only[y])
-                continue;
-            if (!ttd_scene_eligible(s, x, y))
-                continue;
-            if (count == cap) {
-                cap = cap ? 2 * cap : 256;
-                scene_pair *w = realloc(v, cap * sizeof *w);
-                if (w == NULL) {
-                    free(v);
-                    return 0;
+    int ok = 1;
+    for (int k = 0; k < nslab && ok; ++k) {
+        const size_t *in = member + first[k], nin = first[k + 1] - first[k];
+        for (size_t ia = 0; ia < nin && ok; ++ia) {
+            /* the bodies after a whose boxes start within the margin of its end: one body that is
+             * huge (a floor) meets every other here once per slab. The bounds with the margin
+             * added are rounded, but rounding is monotone: a gap at most the margin passes. */
+            const size_t a = in[ia];
+            const double reach = hi[0][a] + margin;
+            const double l1 = lo[1][a] - margin, h1 = hi[1][a] + margin, l2 = lo[2][a] - margin, h2 = hi[2][a] + margin;
+            for (size_t ib = ia + 1; ib < nin && lo[0][in[ib]] <= reach; ++ib) {
+                const size_t b = in[ib];
+                if (!(lo[1][b] <= h1 && hi[1][b] >= l1 && lo[2][b] <= h2 && hi[2][b] >= l2))
+                    continue;
+                /* a pair is reported in one slab: the one holding the later start of their
+                 * intervals, a point both intervals hold */
+                const double start = lo[1][a] > lo[1][b] ? lo[1][a] : lo[1][b];
+                if (slab_of(start - margin, base, width, nslab) != k)
+                    continue;
+                const uint32_t x = s->order[a], y = s->order[b];
+                if ((only != NULL && !only[x] && !only[y]) || !ttd_scene_eligible(s, x, y))
+                    continue;
+                if (count == cap) {
+                    cap = cap ? 2 * cap : 256;
+                    scene_pair *w = realloc(v, cap * sizeof *w);
+                    if (w == NULL) {
+                        ok = 0;
+                        break;
+                    }
+                    v = w;
                 }
-                v = w;
+                double gap = lo[0][b] - hi[0][a];
+                const double g1 = lo[1][b] - hi[1][a] > lo[1][a] - hi[1][b] ? lo[1][b] - hi[1][a] : lo[1][a] - hi[1][b];
+                const double g2 = lo[2][b] - hi[2][a] > lo[2][a] - hi[2][b] ? lo[2][b] - hi[2][a] : lo[2][a] - hi[2][b];
+                gap = gap > g1 ? gap : g1;
+                gap = gap > g2 ? gap : g2;
+                v[count++] = (scene_pair){x < y ? x : y, x < y ? y : x, gap > 0 ? gap : 0};
             }
-            gap = fmax(fmax(gap, 0), fmax(g1, g2));
-            v[count++] = (scene_pair){x < y ? x : y, x < y ? y : x, gap};
         }
+    }
+    free(block);
+    free(first);
+    free(member);
+    free(fill);
+    if (!ok) {
+        free(v);
+        return 0;
     }
     if (count > 1)
         qsort(v, count, sizeof *v, pair_cmp);
