@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The ttd program: `ttd dist`, `ttd mesh`, `ttd info`, `ttd bench` (when built), --help, --version. */
+/* The ttd program: `ttd dist`, `ttd mesh`, `ttd scene`, `ttd info`, `ttd bench` (when built), --help, --version. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -96,6 +96,8 @@ int main(int argc, char **argv)
         return ttd_cli_dist(argc - 1, argv + 1);
     if (strcmp(cmd, "mesh") == 0)
         return ttd_cli_mesh(argc - 1, argv + 1);
+    if (strcmp(cmd, "scene") == 0)
+        return ttd_cli_scene(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {
         if (ttd_bench_main == NULL) {
             ttd_cli_error("bench: not built into this program");
