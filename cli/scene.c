@@ -307,7 +307,7 @@ static const char *ttd_scene_word(const char **p, const char *end, size_t *len)
     return s;
 }
 
-/* The mesh called name[0..len), or NULL; *index its slot. */
+/* The mesh called name[0..len), or NULL. */
 static ttd_scene_mesh *ttd_scene_find_mesh(ttd_scene_state *st, const char *name, size_t len)
 {
     for (size_t k = 0; k < st->nmeshes; ++k)
