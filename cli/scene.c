@@ -777,7 +777,8 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, long long 
             memcpy(it->q, c->normal, sizeof it->q);
         }
     }
-    qsort(b->items, n, sizeof *b->items, ttd_scene_item_cmp);
+    if (n > 1)
+        qsort(b->items, n, sizeof *b->items, ttd_scene_item_cmp);
     for (size_t k = 0; k < n; ++k) {
         const ttd_scene_item *it = &b->items[k];
         if (step >= 0)
