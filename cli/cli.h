@@ -27,6 +27,8 @@ int ttd_cli_dist(int argc, char **argv);
 int ttd_cli_dist_run(int argc, char **argv, FILE *in, FILE *out);
 /// `ttd mesh distance | contacts | collide A B [options]` (cli/mesh.c); argv[0] is "mesh".
 int ttd_cli_mesh(int argc, char **argv);
+/// `ttd scene collide | distance | contacts | manifold SCENE [options]` (cli/scene.c); argv[0] is "scene".
+int ttd_cli_scene(int argc, char **argv);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 
@@ -40,6 +42,11 @@ int ttd_cli_parse_isa(const char *s, ttd_isa *out);
 int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
 /// A finite number (strtod syntax, the whole string); 0 on success, -1 otherwise.
 int ttd_cli_parse_real(const char *s, double *out);
+/// Why the 12 numbers of a pose ([R | t] row by row) are not one the library takes (every entry
+/// of R^T R - I within 1e-6, det R > 0, computed in double): -1 with the reason in err, or 0.
+/// With ortho (--orthonormalize) R is first replaced by the nearest rotation when it is within
+/// 1e-2 of orthonormal with det R > 0 (p is then changed). Shared by `ttd mesh` and `ttd scene`.
+int ttd_cli_pose_problem(double p[12], int ortho, char *err, size_t errsize);
 /// Lines "built: ...", "cpu:   ...", "auto:  ..." (the instruction sets).
 void ttd_cli_print_isas(FILE *f);
 /// Warns on stderr ("COMMAND: warning: ...") when the library is ignoring TTD_ISA.

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The ttd program: `ttd dist`, `ttd mesh`, `ttd info`, `ttd bench` (when built), --help, --version. */
+/* The ttd program: `ttd dist`, `ttd mesh`, `ttd scene`, `ttd info`, `ttd bench` (when built), --help, --version. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <string.h>
@@ -27,6 +27,13 @@ static const char ttd_usage[] =
     "                          its closest partner (--per-triangle), or their number (--count)\n"
     "  mesh collide A B        whether the meshes touch, cross or come within --margin M\n"
     "                          (ttd mesh --help for the formats and options)\n"
+    "  scene collide SCENE     every pair of bodies of a scene file within --margin M (default\n"
+    "                          0), with a witness pair of triangles each\n"
+    "  scene distance SCENE    the closest pair of bodies, its triangles and closest points\n"
+    "  scene contacts SCENE    every triangle pair of every body pair within --margin M\n"
+    "  scene manifold SCENE    contact points, normals and depths per body pair, at most\n"
+    "                          --max-points K each; each query once, or per step of\n"
+    "                          --motion FILE (ttd scene --help for the formats and options)\n"
     "  info                    version, instruction sets built and supported, the one chosen\n"
     "                          (ttd info --help)\n"
     "  bench [options]         the benchmark (ttd bench --help), when built in\n"
@@ -96,6 +103,8 @@ int main(int argc, char **argv)
         return ttd_cli_dist(argc - 1, argv + 1);
     if (strcmp(cmd, "mesh") == 0)
         return ttd_cli_mesh(argc - 1, argv + 1);
+    if (strcmp(cmd, "scene") == 0)
+        return ttd_cli_scene(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {
         if (ttd_bench_main == NULL) {
             ttd_cli_error("bench: not built into this program");

@@ -342,7 +342,7 @@ static double ttd_mesh_pose_defect(const double p[12], double *det_out)
  * defect is at most TTD_MESH_ORTHONORMALIZE_TOLERANCE: the polar factor of R, by Newton's
  * iteration R <- (R + R^-T) / 2, which converges quadratically from near a rotation (a handful
  * of steps from a defect of 1e-2 to rounding). */
-static int ttd_mesh_pose_problem(double p[12], int ortho, char *err, size_t errsize)
+int ttd_cli_pose_problem(double p[12], int ortho, char *err, size_t errsize)
 {
     double det;
     double defect = ttd_mesh_pose_defect(p, &det);
@@ -446,7 +446,7 @@ static int ttd_mesh_read_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
             }
             if (kind == TTD_LINE_SKIP)
                 continue;
-            if (kind == TTD_LINE_PAIR && ttd_mesh_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)
+            if (kind == TTD_LINE_PAIR && ttd_cli_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)
                 kind = TTD_LINE_ERROR;
             ++index;
             if (kind == TTD_LINE_ERROR) {
@@ -494,7 +494,7 @@ static int ttd_mesh_get_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
                 ttd_cli_error("%s: --pose '%s': %s", a->name, a->pose, err);
                 return TTD_EXIT_USAGE;
             }
-            if (ttd_mesh_pose_problem(v, a->orthonormalize, err, sizeof err) != 0) {
+            if (ttd_cli_pose_problem(v, a->orthonormalize, err, sizeof err) != 0) {
                 ttd_cli_error("%s: --pose '%s': %s", a->name, a->pose, err);
                 return TTD_EXIT_USAGE;
             }

@@ -1,0 +1,906 @@
+/* SPDX-License-Identifier: MIT */
+/* `ttd scene collide | distance | contacts | manifold SCENE [options]`: the library's scene
+ * queries (include/ttd/ttd.h, "Scenes") on bodies read from a scene file, at its poses or at
+ * every step of a motion file. The usage text below is the reference for the formats;
+ * docs/scenes-cli.md has them with examples.
+ *
+ * As `ttd mesh` does, everything that can be checked is checked before anything is computed,
+ * so that a run either prints its whole answer or nothing but messages: options (exit 2), then
+ * the scene file, line by line (every bad line named FILE:LINE, its meshes read with the mesh
+ * reader and built, its bodies added), then the whole motion file (every bad line named, each
+ * pose checked against its body's mesh), all exit 1. Only then does a query run, once, or once
+ * per step of the motion (the poses of step s set with ttd_scene_set_poses_*), and each step's
+ * lines are written before the next step is computed.
+ *
+ * Lines come out sorted by (i, j), then by the triangles (ia, ib): the library's order, sorted
+ * again here so that the output is a documented function of the input (a manifold's points are
+ * kept in the library, deepest first and then spread, and printed in triangle order). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "meshfile.h"
+#include "parse.h"
+
+/// Bad lines of a scene or motion file reported before the rest are only counted.
+#define TTD_SCENE_MAX_MESSAGES 20
+
+typedef enum ttd_scene_cmd { TTD_SCENE_COLLIDE, TTD_SCENE_DISTANCE, TTD_SCENE_CONTACTS, TTD_SCENE_MANIFOLD } ttd_scene_cmd;
+
+static const char *const ttd_scene_cmd_names[] = {"collide", "distance", "contacts", "manifold"};
+static const char *const ttd_scene_full_names[] = {"scene collide", "scene distance", "scene contacts",
+                                                   "scene manifold"};
+
+static const char ttd_scene_usage_text[] =
+    "usage: ttd scene collide SCENE [--margin M] [--count] [options]\n"
+    "       ttd scene distance SCENE [--margin M] [options]\n"
+    "       ttd scene contacts SCENE [--margin M] [--count] [options]\n"
+    "       ttd scene manifold SCENE [--margin M] [--max-points K] [--count] [options]\n"
+    "Queries over every pair of bodies of a scene: bodies are triangle meshes (OBJ, STL or PLY files)\n"
+    "placed in the world by rigid poses. Every query is exact: the answer of the exact method over all\n"
+    "triangle pairs of all body pairs, in the world frame (docs/scenes-cli.md).\n"
+    "\n"
+    "The scene file SCENE ('-' for standard input), one statement a line:\n"
+    "    mesh NAME FILE\n"
+    "        the mesh in FILE (OBJ, STL or PLY, recognised by content), a path relative to the scene\n"
+    "        file's folder (or absolute), known as NAME from then on\n"
+    "    body NAME r00 r01 r02 t0 r10 r11 r12 t1 r20 r21 r22 t2\n"
+    "        a body of mesh NAME at the world pose [R | t] (x_world = R x_mesh + t), row by row; or\n"
+    "        16 numbers, the 4x4 matrix row by row, whose bottom row must be 0 0 0 1\n"
+    "    '#' starts a comment (a whole line, or after a statement); blank lines are ignored.\n"
+    "  Bodies are numbered 0, 1, 2, ... in file order; a mesh may serve any number of bodies. NAME\n"
+    "  and FILE are one word each (no blanks, no '#'). R must be a rotation: every entry of\n"
+    "  R^T R - I within 1e-6 and det R > 0 (see --orthonormalize).\n";
+
+static const char ttd_scene_usage_outputs[] =
+    "\n"
+    "Outputs, one line per item, sorted by body pair (i, j), i < j, then by triangles (ia of body\n"
+    "i, ib of body j; 0-based in file order, polygons fan-triangulated); points in the world:\n"
+    "  collide    i j ia ib                      each body pair within M, with one witness pair of\n"
+    "                                            triangles within M (the first found, not the closest)\n"
+    "  distance   d i j ia ib px py pz qx qy qz  the closest body pair, one line: p on triangle ia of\n"
+    "                                            body i, q on ib of body j; ties to the smallest (i, j),\n"
+    "                                            then (ia, ib); d = 0 and p = q when they touch or cross;\n"
+    "                                            'inf -1 -1 -1 -1 nan nan nan nan nan nan' when no pair\n"
+    "                                            is within M (or the scene has fewer than two bodies)\n"
+    "  contacts   i j ia ib d px py pz qx qy qz  every triangle pair within M\n"
+    "  manifold   i j px py pz nx ny nz d depth  per body pair within M, at most K contact points:\n"
+    "                                            the midpoint of a triangle pair's closest points, the\n"
+    "                                            unit normal from body i towards body j, the pair's\n"
+    "                                            distance d and depth M - d; the K kept are the deepest\n"
+    "                                            and then, one at a time, the farthest from those kept\n"
+    "                                            (docs/scenes-cli.md; printed in triangle order)\n";
+
+static const char ttd_scene_usage_options[] =
+    "\n"
+    "options:\n"
+    "  --margin M        M >= 0, finite. collide, contacts, manifold: the margin (default 0: touching\n"
+    "                    or crossing); distance: an upper bound (default none)\n"
+    "  --count           collide, contacts, manifold: print only the number of lines instead\n"
+    "  --max-points K    manifold: at most K points per body pair, 0 for all (default 4)\n"
+    "  --motion FILE     run the query once per step of the motion in FILE ('-': standard input):\n"
+    "                    T steps back to back, each N lines of 12 (or 16) numbers, the new world\n"
+    "                    poses of bodies 0..N-1 in order (N the bodies of the scene); blank lines and\n"
+    "                    '#' comments are skipped. The scene file's poses are where the bodies start;\n"
+    "                    the queries run at the T steps only. Every output line then starts with the\n"
+    "                    step's index (0-based), and --count prints 'step count', one line per step.\n"
+    "                    The whole file is read and checked first (96 bytes a pose are kept).\n"
+    "  --orthonormalize  replace each pose's R (scene and motion) by the nearest rotation before the\n"
+    "                    check, for poses printed with few digits: R must be within 1e-2 of\n"
+    "                    orthonormal (every entry of R^T R - I) with det R > 0\n"
+    "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
+    "                    per file by default)\n"
+    "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
+    "                    coordinates rounded once from the file's text, poses and margin parsed with\n"
+    "                    strtof, the queries run in float, printed with %%.9g\n"
+    "  --isa I           %s (default auto; TTD_ISA may force one)\n"
+    "  --threads N       worker threads, 0 = every core (default); body pairs are spread over them,\n"
+    "                    and the results do not depend on N\n"
+    "  --help            this text\n"
+    "\n"
+    "Numbers: every mesh coordinate, and every body's under its poses, must stay within 2^60 (float)\n"
+    "or 2^508 (double) in magnitude; a mesh or a pose beyond that is refused (exit 1).\n"
+    "Exit status: 0 done; 1 a scene, mesh or motion file that cannot be read or is malformed (the\n"
+    "message names the file and line; nothing is printed on standard output), a library error, or\n"
+    "an output error; 2 bad command line (unknown option or command, a missing or extra operand, a\n"
+    "bad value).\n";
+
+static void ttd_scene_print_usage(FILE *f)
+{
+    char isas[256] = "";
+    for (int i = 0; i < TTD_ISA_COUNT; ++i)
+        snprintf(isas + strlen(isas), sizeof isas - strlen(isas), "%s%s", i ? "|" : "", ttd_isa_name((ttd_isa)i));
+    fputs(ttd_scene_usage_text, f);
+    fputs(ttd_scene_usage_outputs, f);
+    fprintf(f, ttd_scene_usage_options, isas);
+}
+
+/* ---- options ------------------------------------------------------------------------------ */
+
+typedef struct ttd_scene_args {
+    ttd_scene_cmd cmd;
+    const char *name; /* "scene collide" etc., for messages */
+    ttd_options opt;
+    int use_float;
+    const char *path, *motion_path;
+    const char *margin_s;
+    double margin; /* float-rounded with --precision float; distance: +inf without --margin */
+    size_t max_points;
+    int count, orthonormalize, strict;
+} ttd_scene_args;
+
+/* Options of `ttd scene CMD`; --name value and --name=value both work. Returns 0, 1 after
+ * --help, -1 on a bad command line (message printed). */
+static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
+{
+    const char *name = a->name;
+    a->opt = ttd_default_options();
+    a->max_points = 4;
+    int only_operands = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        if (only_operands || arg[0] != '-' || strcmp(arg, "-") == 0) {
+            if (a->path != NULL) {
+                ttd_cli_error("%s: unexpected argument '%s' (one scene file is taken)", name, arg);
+                return -1;
+            }
+            a->path = arg;
+            continue;
+        }
+        if (strcmp(arg, "--") == 0) {
+            only_operands = 1;
+            continue;
+        }
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            ttd_scene_print_usage(stdout);
+            return 1;
+        }
+        if (strcmp(arg, "--count") == 0) {
+            if (a->cmd == TTD_SCENE_DISTANCE) {
+                ttd_cli_error("%s: --count is an option of scene collide, contacts and manifold", name);
+                return -1;
+            }
+            a->count = 1;
+            continue;
+        }
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
+            *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
+            continue;
+        }
+        static const char *const valued[] = {"--margin", "--max-points", "--motion",
+                                             "--precision", "--isa", "--threads"};
+        const char *opt = NULL, *val = NULL;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; ++k) {
+            size_t l = strlen(valued[k]);
+            if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
+                opt = valued[k];
+                if (arg[l] == '=')
+                    val = arg + l + 1;
+                else if (i + 1 < argc)
+                    val = argv[++i];
+                break;
+            }
+        }
+        if (opt == NULL) {
+            ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", name, arg, name);
+            return -1;
+        }
+        if (val == NULL) {
+            ttd_cli_error("%s: %s needs a value", name, opt);
+            return -1;
+        }
+        long iv;
+        int bad = 0;
+        if (strcmp(opt, "--margin") == 0)
+            a->margin_s = val;
+        else if (strcmp(opt, "--motion") == 0)
+            a->motion_path = val;
+        else if (strcmp(opt, "--max-points") == 0) {
+            if (a->cmd != TTD_SCENE_MANIFOLD) {
+                ttd_cli_error("%s: --max-points is an option of scene manifold only", name);
+                return -1;
+            }
+            bad = ttd_cli_parse_int(val, 0, 1L << 30, &iv);
+            a->max_points = bad ? 0 : (size_t)iv;
+        } else if (strcmp(opt, "--precision") == 0) {
+            bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
+            a->use_float = strcmp(val, "float") == 0;
+        } else if (strcmp(opt, "--isa") == 0)
+            bad = ttd_cli_parse_isa(val, &a->opt.isa);
+        else if (strcmp(opt, "--threads") == 0) {
+            bad = ttd_cli_parse_int(val, 0, 1 << 20, &iv);
+            a->opt.threads = (int)iv;
+        }
+        if (bad) {
+            ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", name, opt, val, name);
+            return -1;
+        }
+    }
+    if (a->path == NULL) {
+        ttd_cli_error("%s: the scene file is missing (see ttd %s --help)", name, name);
+        return -1;
+    }
+    if (a->motion_path && strcmp(a->motion_path, "-") == 0 && strcmp(a->path, "-") == 0) {
+        ttd_cli_error("%s: standard input cannot hold both the scene and the motion", name);
+        return -1;
+    }
+    /* The margin is parsed once the precision is known, whatever the order of the options. */
+    a->margin = a->cmd == TTD_SCENE_DISTANCE ? (double)INFINITY : 0.0;
+    if (a->margin_s != NULL) {
+        char *end;
+        errno = 0;
+        double v = a->use_float ? (double)strtof(a->margin_s, &end) : strtod(a->margin_s, &end);
+        if (end == a->margin_s || *end != '\0' || !isfinite(v) || !(v >= 0)) {
+            ttd_cli_error("%s: bad value for --margin: '%s' (a finite number >= 0%s)", name, a->margin_s,
+                          a->use_float ? " in float range" : "");
+            return -1;
+        }
+        a->margin = v;
+    }
+    return 0;
+}
+
+/* ---- the scene file ----------------------------------------------------------------------- */
+
+typedef struct ttd_scene_mesh {
+    char *name;
+    ttd_mesh *mesh;                /* NULL when its file could not be read (already reported) */
+} ttd_scene_mesh;
+
+/* What a run holds: the meshes by name, the bodies (their mesh and starting pose), the scene. */
+typedef struct ttd_scene_state {
+    const ttd_scene_args *a;
+    const char *fname;             /* the scene file's name in messages */
+    ttd_scene_mesh *meshes;
+    size_t nmeshes, mesh_cap;
+    const ttd_mesh **body_mesh;    /* per body */
+    size_t nbodies, body_cap;
+    ttd_scene *scene;
+    unsigned long long bad;        /* bad lines of the file being read */
+} ttd_scene_state;
+
+/* Reports a bad line (the first TTD_SCENE_MAX_MESSAGES; then once that more were cut). */
+static void ttd_scene_bad_line(ttd_scene_state *st, const char *fname, unsigned long long line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void ttd_scene_bad_line(ttd_scene_state *st, const char *fname, unsigned long long line, const char *fmt, ...)
+{
+    if (st->bad < TTD_SCENE_MAX_MESSAGES) {
+        char msg[2048];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, sizeof msg, fmt, ap);
+        va_end(ap);
+        ttd_cli_error("%s:%llu: %s", fname, line, msg);
+    } else if (st->bad == TTD_SCENE_MAX_MESSAGES) {
+        ttd_cli_error("%s: more bad lines; only the first %d are shown", fname, TTD_SCENE_MAX_MESSAGES);
+    }
+    ++st->bad;
+}
+
+static int ttd_scene_is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* The next word of [*p, end) (blank-separated, ending at '#'), or NULL at the end; its length in *len. */
+static const char *ttd_scene_word(const char **p, const char *end, size_t *len)
+{
+    const char *s = *p;
+    while (s < end && ttd_scene_is_blank(*s))
+        ++s;
+    if (s == end || *s == '#') {
+        *p = s;
+        return NULL;
+    }
+    const char *e = s;
+    while (e < end && !ttd_scene_is_blank(*e) && *e != '#')
+        ++e;
+    *p = e;
+    *len = (size_t)(e - s);
+    return s;
+}
+
+/* The mesh called name[0..len), or NULL. */
+static ttd_scene_mesh *ttd_scene_find_mesh(ttd_scene_state *st, const char *name, size_t len)
+{
+    for (size_t k = 0; k < st->nmeshes; ++k)
+        if (strlen(st->meshes[k].name) == len && memcmp(st->meshes[k].name, name, len) == 0)
+            return &st->meshes[k];
+    return NULL;
+}
+
+/* The path of a mesh file named in the scene file: relative to the scene file's folder. */
+static char *ttd_scene_mesh_path(const char *scene_path, const char *file, size_t len)
+{
+    const char *slash = strcmp(scene_path, "-") == 0 ? NULL : strrchr(scene_path, '/');
+    const size_t dir = file[0] == '/' || slash == NULL ? 0 : (size_t)(slash - scene_path) + 1;
+    /* a bare '-' would be standard input to the reader: name it as a file */
+    const int dot = dir == 0 && len == 1 && file[0] == '-';
+    char *path = malloc(dir + len + 3);
+    if (path == NULL)
+        return NULL;
+    memcpy(path, dot ? "./" : scene_path, dot ? 2 : dir);
+    memcpy(path + (dot ? 2 : dir), file, len);
+    path[(dot ? 2 : dir) + len] = '\0';
+    return path;
+}
+
+/* `mesh NAME FILE` at line `line`: read and build it. 0, or -1 when out of memory. */
+static int ttd_scene_mesh_line(ttd_scene_state *st, unsigned long long line, const char *p, const char *end)
+{
+    const ttd_scene_args *a = st->a;
+    size_t nlen = 0, flen = 0, xlen = 0;
+    const char *name = ttd_scene_word(&p, end, &nlen);
+    const char *file = name ? ttd_scene_word(&p, end, &flen) : NULL;
+    const char *extra = file ? ttd_scene_word(&p, end, &xlen) : NULL;
+    if (file == NULL || extra != NULL) {
+        ttd_scene_bad_line(st, st->fname, line, "expected 'mesh NAME FILE', found %s",
+                           file == NULL ? (name == NULL ? "no NAME" : "no FILE") : "more words");
+        return 0;
+    }
+    if (ttd_scene_find_mesh(st, name, nlen) != NULL) {
+        ttd_scene_bad_line(st, st->fname, line, "mesh '%.*s' is already defined", (int)nlen, name);
+        return 0;
+    }
+    if (st->nmeshes == st->mesh_cap) {
+        const size_t cap = st->mesh_cap ? 2 * st->mesh_cap : 8;
+        ttd_scene_mesh *m = realloc(st->meshes, cap * sizeof *m);
+        if (m == NULL)
+            return -1;
+        st->meshes = m;
+        st->mesh_cap = cap;
+    }
+    ttd_scene_mesh *m = &st->meshes[st->nmeshes];
+    m->mesh = NULL;
+    m->name = malloc(nlen + 1);
+    char *path = ttd_scene_mesh_path(a->path, file, flen);
+    if (m->name == NULL || path == NULL) {
+        free(m->name);
+        free(path);
+        return -1;
+    }
+    memcpy(m->name, name, nlen);
+    m->name[nlen] = '\0';
+    st->nmeshes++;
+
+    char err[1024];
+    ttd_meshfile mf = {0};
+    const int flags = (a->use_float ? TTD_MESHFILE_FLOAT : 0) | (a->strict ? TTD_MESHFILE_STRICT : 0);
+    if (ttd_meshfile_read(path, flags, &mf, err, sizeof err) != 0) {
+        ttd_scene_bad_line(st, st->fname, line, "mesh '%s': %s", m->name, err);
+    } else {
+        if (mf.skipped_lines > 0) {
+            const int one = mf.skipped_lines == 1;
+            ttd_cli_error("%s: skipped %zu %s, first at %s:%zu (--strict refuses them)", path, mf.skipped_lines,
+                          one ? "line that is not an OBJ statement" : "lines that are not OBJ statements", path,
+                          mf.first_skipped_line);
+        }
+        ttd_status s = a->use_float ? ttd_mesh_create_f(&a->opt, mf.verts_f, mf.nv, mf.tris, mf.nt, &m->mesh)
+                                    : ttd_mesh_create_d(&a->opt, mf.verts, mf.nv, mf.tris, mf.nt, &m->mesh);
+        if (s != TTD_OK) {
+            m->mesh = NULL;
+            ttd_scene_bad_line(st, st->fname, line, "mesh '%s': %s: cannot build the mesh: %s", m->name, path,
+                               ttd_status_string(s));
+        }
+    }
+    ttd_meshfile_free(&mf);
+    free(path);
+    return 0;
+}
+
+/* A pose's numbers from [p, end): 12 or 16 (cli/parse.h), a rotation (ttd_cli_pose_problem);
+ * 0 with the 12 numbers in v, or -1 with the reason in err. */
+static int ttd_scene_parse_pose(const ttd_scene_args *a, const char *p, const char *end, double v[12], char *err,
+                                size_t errsize)
+{
+    ttd_line_kind kind = ttd_parse_pose_line(p, (size_t)(end - p), a->use_float, v, err, errsize);
+    if (kind == TTD_LINE_SKIP) {
+        snprintf(err, errsize, "expected 12 numbers ([R | t], 3x4) or 16 (a 4x4 matrix), found 0");
+        return -1;
+    }
+    if (kind != TTD_LINE_PAIR)
+        return -1;
+    return ttd_cli_pose_problem(v, a->orthonormalize, err, errsize);
+}
+
+/* `body NAME numbers` at line `line`, body id (its place among the file's body lines): add the
+ * body. 0, or -1 when out of memory. */
+static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, size_t id, const char *p, const char *end)
+{
+    const ttd_scene_args *a = st->a;
+    size_t nlen = 0;
+    const char *name = ttd_scene_word(&p, end, &nlen);
+    if (name == NULL) {
+        ttd_scene_bad_line(st, st->fname, line, "expected 'body NAME' and 12 numbers ([R | t]) or 16 (4x4), found no NAME");
+        return 0;
+    }
+    const ttd_scene_mesh *m = ttd_scene_find_mesh(st, name, nlen);
+    double v[12];
+    char err[512];
+    if (m == NULL) {
+        ttd_scene_bad_line(st, st->fname, line, "body %zu: unknown mesh '%.*s' (a 'mesh NAME FILE' line must come first)",
+                           id, (int)nlen, name);
+        return 0;
+    }
+    /* the end of the line is the pose's: its own comment and blanks are the parser's business */
+    if (ttd_scene_parse_pose(a, p, end, v, err, sizeof err) != 0) {
+        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", id, err);
+        return 0;
+    }
+    if (m->mesh == NULL) /* its mesh line failed, and said so: count the body, add nothing */
+        return 0;
+    if (st->bad > 0) /* the file is refused anyway: only its lines are checked from now on */
+        return 0;
+    if (st->nbodies == st->body_cap) {
+        const size_t cap = st->body_cap ? 2 * st->body_cap : 16;
+        const ttd_mesh **b = realloc(st->body_mesh, cap * sizeof *b);
+        if (b == NULL)
+            return -1;
+        st->body_mesh = b;
+        st->body_cap = cap;
+    }
+    uint32_t got;
+    ttd_status s;
+    if (a->use_float) {
+        float f[12];
+        for (int k = 0; k < 12; ++k)
+            f[k] = (float)v[k];
+        s = ttd_scene_add_f(st->scene, m->mesh, f, &got);
+    } else {
+        s = ttd_scene_add_d(st->scene, m->mesh, v, &got);
+    }
+    if (s == TTD_ERR_OUT_OF_MEMORY)
+        return -1;
+    if (s != TTD_OK) {
+        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", id, ttd_status_string(s));
+        return 0;
+    }
+    st->body_mesh[st->nbodies++] = m->mesh;
+    return 0;
+}
+
+/* Reads the scene file, builds its meshes and adds its bodies; 0 or the exit status. */
+static int ttd_scene_read(ttd_scene_state *st)
+{
+    const ttd_scene_args *a = st->a;
+    const int from_stdin = strcmp(a->path, "-") == 0;
+    st->fname = from_stdin ? "<stdin>" : a->path;
+    FILE *in = from_stdin ? stdin : fopen(a->path, "rb");
+    if (in == NULL) {
+        ttd_cli_error("%s: cannot open: %s", st->fname, strerror(errno));
+        return TTD_EXIT_INPUT;
+    }
+    ttd_line_reader *r = malloc(sizeof *r);
+    int rc = 0;
+    size_t statements = 0; /* body lines, good or bad: the ids in messages */
+    if (r == NULL) {
+        ttd_cli_error("out of memory");
+        rc = TTD_EXIT_INPUT;
+    }
+    if (r != NULL) {
+        size_t len;
+        int overlong;
+        ttd_reader_init(r, in);
+        while (rc == 0 && ttd_reader_next(r, &len, &overlong)) {
+            const char *p = r->line, *end = r->line + len;
+            size_t klen = 0;
+            const char *key = ttd_scene_word(&p, end, &klen);
+            if (key == NULL)
+                continue; /* blank or a comment */
+            if (overlong) {
+                ttd_scene_bad_line(st, st->fname, r->line_no, "line longer than %d bytes", TTD_CLI_MAX_LINE);
+                continue;
+            }
+            if (memchr(r->line, '\0', len) != NULL) {
+                ttd_scene_bad_line(st, st->fname, r->line_no, "a NUL byte in the line");
+                continue;
+            }
+            int mem = 0;
+            if (klen == 4 && memcmp(key, "mesh", 4) == 0)
+                mem = ttd_scene_mesh_line(st, r->line_no, p, end);
+            else if (klen == 4 && memcmp(key, "body", 4) == 0)
+                mem = ttd_scene_body_line(st, r->line_no, statements++, p, end);
+            else {
+                char word[64];
+                snprintf(word, sizeof word, "%.*s%s", klen > 40 ? 40 : (int)klen, key, klen > 40 ? "..." : "");
+                ttd_scene_bad_line(st, st->fname, r->line_no, "unknown statement '%s' (mesh or body)", word);
+            }
+            if (mem != 0) {
+                ttd_cli_error("%s:%llu: out of memory", st->fname, r->line_no);
+                rc = TTD_EXIT_INPUT;
+            }
+        }
+        if (rc == 0 && r->error) {
+            ttd_cli_error("%s: read error: %s", st->fname, strerror(r->error));
+            rc = TTD_EXIT_INPUT;
+        }
+    }
+    if (rc == 0 && st->bad > 0) {
+        ttd_cli_error("%s: %llu bad line%s; nothing computed", st->fname, st->bad, st->bad == 1 ? "" : "s");
+        rc = TTD_EXIT_INPUT;
+    }
+    free(r);
+    if (!from_stdin)
+        fclose(in);
+    return rc;
+}
+
+/* ---- the motion file ---------------------------------------------------------------------- */
+
+/* The poses of every step: 12 per body per step, doubles (exact floats in float). */
+typedef struct ttd_scene_motion {
+    double *d;
+    size_t poses, cap;             /* poses read (steps * bodies when complete) */
+} ttd_scene_motion;
+
+/* Reads and checks the whole motion file; 0 or the exit status. */
+static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
+{
+    const ttd_scene_args *a = st->a;
+    const int from_stdin = strcmp(a->motion_path, "-") == 0;
+    const char *fname = from_stdin ? "<stdin>" : a->motion_path;
+    FILE *in = from_stdin ? stdin : fopen(a->motion_path, "rb");
+    if (in == NULL) {
+        ttd_cli_error("%s: cannot open: %s", fname, strerror(errno));
+        return TTD_EXIT_INPUT;
+    }
+    ttd_line_reader *r = malloc(sizeof *r);
+    int rc = 0;
+    size_t index = 0;                   /* of the next pose line, good or bad */
+    unsigned long long step_line = 0;   /* the line of the current step's first pose */
+    const size_t n = st->nbodies;
+    st->bad = 0;
+    if (r == NULL) {
+        ttd_cli_error("out of memory");
+        rc = TTD_EXIT_INPUT;
+    }
+    if (r != NULL) {
+        size_t len;
+        int overlong;
+        ttd_reader_init(r, in);
+        while (rc == 0 && ttd_reader_next(r, &len, &overlong)) {
+            double v[12];
+            char err[512];
+            const char *p = r->line;
+            while (*p == ' ' || *p == '\t')
+                ++p;
+            ttd_line_kind kind;
+            if (overlong && *p != '#') {
+                kind = TTD_LINE_ERROR;
+                snprintf(err, sizeof err, "line longer than %d bytes", TTD_CLI_MAX_LINE);
+            } else {
+                kind = ttd_parse_pose_line(r->line, len, a->use_float, v, err, sizeof err);
+            }
+            if (kind == TTD_LINE_SKIP)
+                continue;
+            if (n == 0) {
+                ttd_scene_bad_line(st, fname, r->line_no, "a pose, but the scene has no bodies");
+                ++index;
+                continue;
+            }
+            const size_t step = index / n, body = index % n;
+            if (body == 0)
+                step_line = r->line_no;
+            ++index;
+            if (kind == TTD_LINE_PAIR && ttd_cli_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)
+                kind = TTD_LINE_ERROR;
+            if (kind == TTD_LINE_PAIR) {
+                /* the coordinate range, as ttd_scene_set_poses will check it, named here */
+                size_t badk;
+                ttd_status s;
+                if (a->use_float) {
+                    float f[12];
+                    for (int k = 0; k < 12; ++k)
+                        f[k] = (float)v[k];
+                    s = ttd_mesh_check_poses_f(st->body_mesh[body], st->body_mesh[body], 1, f, &badk);
+                } else {
+                    s = ttd_mesh_check_poses_d(st->body_mesh[body], st->body_mesh[body], 1, v, &badk);
+                }
+                if (s != TTD_OK) {
+                    kind = TTD_LINE_ERROR;
+                    snprintf(err, sizeof err, "%s", ttd_status_string(s));
+                }
+            }
+            if (kind == TTD_LINE_ERROR) {
+                ttd_scene_bad_line(st, fname, r->line_no, "step %zu, body %zu: %s", step, body, err);
+                continue;
+            }
+            if (st->bad > 0)
+                continue;
+            if (mo->poses == mo->cap) {
+                const size_t cap = mo->cap ? 2 * mo->cap : 64;
+                double *d = cap > SIZE_MAX / (12 * sizeof *d) ? NULL : realloc(mo->d, cap * 12 * sizeof *d);
+                if (d == NULL) {
+                    ttd_cli_error("%s:%llu: out of memory for the motion", fname, r->line_no);
+                    rc = TTD_EXIT_INPUT;
+                    break;
+                }
+                mo->d = d;
+                mo->cap = cap;
+            }
+            memcpy(mo->d + 12 * mo->poses++, v, sizeof v);
+        }
+        if (rc == 0 && r->error) {
+            ttd_cli_error("%s: read error: %s", fname, strerror(r->error));
+            rc = TTD_EXIT_INPUT;
+        }
+    }
+    if (rc == 0 && n > 0 && index % n != 0)
+        ttd_scene_bad_line(st, fname, step_line, "step %zu is incomplete: %zu of %zu poses (one per body), to the end of the file",
+                           index / n, index % n, n);
+    if (rc == 0 && st->bad > 0) {
+        ttd_cli_error("%s: %llu bad line%s; nothing computed", fname, st->bad, st->bad == 1 ? "" : "s");
+        rc = TTD_EXIT_INPUT;
+    }
+    free(r);
+    if (!from_stdin)
+        fclose(in);
+    return rc;
+}
+
+/* ---- queries and output ------------------------------------------------------------------- */
+
+static void ttd_scene_put_reals(FILE *out, int use_float, const double *v, int n)
+{
+    for (int k = 0; k < n; ++k)
+        fprintf(out, use_float ? " %.9g" : " %.17g", v[k]);
+}
+
+/* Items of one query, widened to double, for sorting and printing. */
+typedef struct ttd_scene_item {
+    uint32_t i, j, ti, tj;
+    double d, depth, p[3], q[3]; /* manifold: p the point, q the normal */
+} ttd_scene_item;
+
+static int ttd_scene_item_cmp(const void *x, const void *y)
+{
+    const ttd_scene_item *u = x, *v = y;
+    if (u->i != v->i)
+        return u->i < v->i ? -1 : 1;
+    if (u->j != v->j)
+        return u->j < v->j ? -1 : 1;
+    if (u->ti != v->ti)
+        return u->ti < v->ti ? -1 : 1;
+    return (u->tj > v->tj) - (u->tj < v->tj);
+}
+
+/* What the query loop reuses from step to step. */
+typedef struct ttd_scene_buffers {
+    ttd_scene_array arr;
+    ttd_scene_item *items;
+    size_t cap;
+} ttd_scene_buffers;
+
+/* One query on the scene as it is; its lines (prefixed by "step " when step >= 0) on out. 0 or the
+ * exit status. */
+static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, long long step, ttd_scene_buffers *b, FILE *out)
+{
+    const int f = a->use_float;
+    ttd_status s;
+    if (a->cmd == TTD_SCENE_DISTANCE) {
+        ttd_scene_contact_d cd;
+        ttd_scene_contact_f cf;
+        s = f ? ttd_scene_distance_f(&a->opt, scene, (float)a->margin, &cf, NULL)
+              : ttd_scene_distance_d(&a->opt, scene, a->margin, &cd, NULL);
+        if (s != TTD_OK)
+            goto failed;
+        if (step >= 0)
+            fprintf(out, "%lld ", step);
+        const uint32_t j = f ? cf.j : cd.j;
+        const double d = f ? (double)cf.distance : cd.distance;
+        if (j == UINT32_MAX || !(d <= a->margin)) {
+            fputs("inf -1 -1 -1 -1 nan nan nan nan nan nan\n", out);
+            return 0;
+        }
+        double pq[7] = {d};
+        for (int r = 0; r < 3; ++r) {
+            pq[1 + r] = f ? (double)cf.p[r] : cd.p[r];
+            pq[4 + r] = f ? (double)cf.q[r] : cd.q[r];
+        }
+        fprintf(out, f ? "%.9g" : "%.17g", d);
+        fprintf(out, " %lu %lu %lu %lu", (unsigned long)(f ? cf.i : cd.i), (unsigned long)j,
+                (unsigned long)(f ? cf.tri_i : cd.tri_i), (unsigned long)(f ? cf.tri_j : cd.tri_j));
+        ttd_scene_put_reals(out, f, pq + 1, 6);
+        fputc('\n', out);
+        return 0;
+    }
+    switch (a->cmd) {
+    case TTD_SCENE_COLLIDE:
+        s = f ? ttd_scene_collide_f(&a->opt, scene, (float)a->margin, &b->arr)
+              : ttd_scene_collide_d(&a->opt, scene, a->margin, &b->arr);
+        break;
+    case TTD_SCENE_CONTACTS:
+        s = f ? ttd_scene_contacts_f(&a->opt, scene, (float)a->margin, &b->arr)
+              : ttd_scene_contacts_d(&a->opt, scene, a->margin, &b->arr);
+        break;
+    default:
+        s = f ? ttd_scene_manifold_f(&a->opt, scene, (float)a->margin, a->max_points, &b->arr)
+              : ttd_scene_manifold_d(&a->opt, scene, a->margin, a->max_points, &b->arr);
+        break;
+    }
+    if (s != TTD_OK)
+        goto failed;
+    const size_t n = b->arr.count;
+    if (a->count) {
+        if (step >= 0)
+            fprintf(out, "%lld ", step);
+        fprintf(out, "%zu\n", n);
+        return 0;
+    }
+    if (n > b->cap) {
+        ttd_scene_item *v = realloc(b->items, n * sizeof *v);
+        if (v == NULL) {
+            ttd_cli_error("out of memory for %zu lines", n);
+            return TTD_EXIT_INPUT;
+        }
+        b->items = v;
+        b->cap = n;
+    }
+    for (size_t k = 0; k < n; ++k) {
+        ttd_scene_item *it = &b->items[k];
+        memset(it, 0, sizeof *it);
+        if (a->cmd == TTD_SCENE_COLLIDE) {
+            const ttd_scene_hit *h = (const ttd_scene_hit *)b->arr.data + k;
+            *it = (ttd_scene_item){.i = h->i, .j = h->j, .ti = h->tri_i, .tj = h->tri_j};
+        } else if (a->cmd == TTD_SCENE_CONTACTS && f) {
+            const ttd_scene_contact_f *c = (const ttd_scene_contact_f *)b->arr.data + k;
+            *it = (ttd_scene_item){.i = c->i, .j = c->j, .ti = c->tri_i, .tj = c->tri_j, .d = (double)c->distance};
+            for (int r = 0; r < 3; ++r) {
+                it->p[r] = (double)c->p[r];
+                it->q[r] = (double)c->q[r];
+            }
+        } else if (a->cmd == TTD_SCENE_CONTACTS) {
+            const ttd_scene_contact_d *c = (const ttd_scene_contact_d *)b->arr.data + k;
+            *it = (ttd_scene_item){.i = c->i, .j = c->j, .ti = c->tri_i, .tj = c->tri_j, .d = c->distance};
+            memcpy(it->p, c->p, sizeof it->p);
+            memcpy(it->q, c->q, sizeof it->q);
+        } else if (f) {
+            const ttd_scene_point_f *c = (const ttd_scene_point_f *)b->arr.data + k;
+            *it = (ttd_scene_item){.i = c->i, .j = c->j, .ti = c->tri_i, .tj = c->tri_j, .d = (double)c->distance,
+                                   .depth = (double)c->depth};
+            for (int r = 0; r < 3; ++r) {
+                it->p[r] = (double)c->point[r];
+                it->q[r] = (double)c->normal[r];
+            }
+        } else {
+            const ttd_scene_point_d *c = (const ttd_scene_point_d *)b->arr.data + k;
+            *it = (ttd_scene_item){.i = c->i, .j = c->j, .ti = c->tri_i, .tj = c->tri_j, .d = c->distance,
+                                   .depth = c->depth};
+            memcpy(it->p, c->point, sizeof it->p);
+            memcpy(it->q, c->normal, sizeof it->q);
+        }
+    }
+    if (n > 1)
+        qsort(b->items, n, sizeof *b->items, ttd_scene_item_cmp);
+    for (size_t k = 0; k < n; ++k) {
+        const ttd_scene_item *it = &b->items[k];
+        if (step >= 0)
+            fprintf(out, "%lld ", step);
+        fprintf(out, "%lu %lu", (unsigned long)it->i, (unsigned long)it->j);
+        if (a->cmd == TTD_SCENE_MANIFOLD) {
+            ttd_scene_put_reals(out, f, it->p, 3);
+            ttd_scene_put_reals(out, f, it->q, 3);
+            ttd_scene_put_reals(out, f, &it->d, 1);
+            ttd_scene_put_reals(out, f, &it->depth, 1);
+        } else {
+            fprintf(out, " %lu %lu", (unsigned long)it->ti, (unsigned long)it->tj);
+            if (a->cmd == TTD_SCENE_CONTACTS) {
+                ttd_scene_put_reals(out, f, &it->d, 1);
+                ttd_scene_put_reals(out, f, it->p, 3);
+                ttd_scene_put_reals(out, f, it->q, 3);
+            }
+        }
+        fputc('\n', out);
+    }
+    return 0;
+failed:
+    if (step >= 0)
+        ttd_cli_error("%s: step %lld: %s", a->name, step, ttd_status_string(s));
+    else
+        ttd_cli_error("%s: %s", a->name, ttd_status_string(s));
+    return TTD_EXIT_INPUT;
+}
+
+/* ---- the command -------------------------------------------------------------------------- */
+
+int ttd_cli_scene(int argc, char **argv)
+{
+    if (argc < 2) {
+        ttd_scene_print_usage(stderr);
+        return TTD_EXIT_USAGE;
+    }
+    const char *sub = argv[1];
+    if (strcmp(sub, "--help") == 0 || strcmp(sub, "-h") == 0 || strcmp(sub, "help") == 0) {
+        ttd_scene_print_usage(stdout);
+        return TTD_EXIT_OK;
+    }
+    int cmd = -1;
+    for (int c = 0; c < 4; ++c)
+        if (strcmp(sub, ttd_scene_cmd_names[c]) == 0)
+            cmd = c;
+    if (cmd < 0) {
+        ttd_cli_error("scene: unknown command '%s' (collide, distance, contacts or manifold; see ttd scene --help)",
+                      sub);
+        return TTD_EXIT_USAGE;
+    }
+    ttd_scene_args a;
+    memset(&a, 0, sizeof a);
+    a.cmd = (ttd_scene_cmd)cmd;
+    a.name = ttd_scene_full_names[cmd];
+    int rc = ttd_scene_parse_args(argc - 1, argv + 1, &a);
+    if (rc != 0)
+        return rc > 0 ? TTD_EXIT_OK : TTD_EXIT_USAGE;
+    if (ttd_isa_selected(&a.opt) == TTD_ISA_AUTO) {
+        ttd_cli_error("%s: --isa %s is not available here; this machine has:", a.name, ttd_isa_name(a.opt.isa));
+        ttd_cli_print_isas(stderr);
+        return TTD_EXIT_USAGE;
+    }
+    ttd_cli_warn_isa_env(a.name);
+
+    ttd_scene_state st;
+    memset(&st, 0, sizeof st);
+    st.a = &a;
+    ttd_scene_motion mo = {0};
+    ttd_scene_buffers buf = {{0}, NULL, 0};
+    float *posef = NULL;
+    ttd_status s = a.use_float ? ttd_scene_create_f(&st.scene) : ttd_scene_create_d(&st.scene);
+    if (s != TTD_OK) {
+        ttd_cli_error("%s: %s", a.name, ttd_status_string(s));
+        return TTD_EXIT_INPUT;
+    }
+    rc = ttd_scene_read(&st);
+    if (rc == 0 && a.motion_path != NULL)
+        rc = ttd_scene_read_motion(&st, &mo);
+    if (rc == 0) {
+        static char outbuf[1 << 16];
+        setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
+        if (a.motion_path == NULL) {
+            rc = ttd_scene_query(&a, st.scene, -1, &buf, stdout);
+        } else if (st.nbodies > 0) {
+            const size_t n = st.nbodies, steps = mo.poses / n;
+            if (a.use_float && (posef = malloc(12 * n * sizeof *posef)) == NULL) {
+                ttd_cli_error("out of memory");
+                rc = TTD_EXIT_INPUT;
+            }
+            for (size_t t = 0; rc == 0 && t < steps && !ferror(stdout); ++t) {
+                const double *pd = mo.d + 12 * n * t;
+                if (a.use_float) {
+                    for (size_t k = 0; k < 12 * n; ++k)
+                        posef[k] = (float)pd[k];
+                    s = ttd_scene_set_poses_f(st.scene, n, posef);
+                } else {
+                    s = ttd_scene_set_poses_d(st.scene, n, pd);
+                }
+                if (s != TTD_OK) {
+                    ttd_cli_error("%s: step %zu: %s", a.name, t, ttd_status_string(s));
+                    rc = TTD_EXIT_INPUT;
+                    break;
+                }
+                rc = ttd_scene_query(&a, st.scene, (long long)t, &buf, stdout);
+            }
+        }
+    }
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        ttd_cli_error("error writing the output");
+        rc = TTD_EXIT_INPUT;
+    }
+    ttd_scene_destroy(st.scene);
+    for (size_t k = 0; k < st.nmeshes; ++k) {
+        ttd_mesh_destroy(st.meshes[k].mesh);
+        free(st.meshes[k].name);
+    }
+    free(st.meshes);
+    free(st.body_mesh);
+    free(mo.d);
+    free(posef);
+    free(buf.items);
+    ttd_scene_array_free(&buf.arr);
+    return rc;
+}

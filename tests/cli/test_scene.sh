@@ -1,0 +1,533 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# `ttd scene collide | distance | contacts | manifold` on scene files this script writes (a unit
+# cube in OBJ, a tetrahedron in ASCII STL in a subfolder, a wedge in PLY and in binary STL),
+# checked against an independent computation: each body's mesh moved into the world here in awk
+# with the library's arithmetic (((r0 x + r1 y) + r2 z) + t, in double), written as an OBJ file,
+# and `ttd mesh contacts | distance` run on every pair of those world meshes at the identity pose.
+# The scene's lines must equal what those give, digit for digit:
+#   - contacts: the mesh contacts of every body pair, 'i j' in front;
+#   - collide: the body pairs that have a contact within the margin, each witness one of them;
+#   - distance: the smallest contact distance over all pairs (also the `ttd mesh distance`
+#     minimum), ties to the smallest (i, j) then (ia, ib), its points;
+#   - manifold: the reduction done here in awk on the mesh contacts (the deepest, then the
+#     farthest from those kept; midpoints; normals (q - p) / |q - p|, or the face normal turned
+#     from i's triangle's centroid towards j's where d = 0), then sorted by triangles;
+#   - --count; --margin on distance as a bound; --max-points; --motion over 3 steps equal to a
+#     scene file per step; --precision float on a scene whose world coordinates are exact in
+#     float (against `ttd mesh --precision float`); --threads 1, 2, 0 and every instruction set
+#     identical; 16-number poses; --orthonormalize; standard input; an empty scene;
+#   - every error path: the scene file's (unknown statement, missing fields, unknown and duplicate
+#     mesh names, bad numbers, poses that are not rotations, unreadable and malformed mesh files
+#     with the reader's message, coordinates beyond the range), the motion file's (wrong count
+#     of numbers, bad rotation, a trailing partial step), the options'; FILE:LINE in the message,
+#     a non-zero status, nothing on standard output.
+# Only POSIX sh and awk. Usage: sh test_scene.sh path/to/ttd
+set -u
+TTD=${1:?usage: test_scene.sh path/to/ttd}
+case $TTD in /*) ;; *) TTD=$(pwd)/$TTD ;; esac  # some checks run in other folders
+DIR=$(mktemp -d) || exit 1
+trap 'rm -rf "$DIR"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+pass() { echo "ok   $*"; }
+
+# ---- meshes ------------------------------------------------------------------------------
+# A mesh description is 'v x y z' and 'f i j k [l]' lines (0-based); load() fan-triangulates as
+# the reader does: (v0 v1 v2) (v0 v2 v3).
+cat > "$DIR/lib.awk" <<'EOF'
+function load(m, file,    line, f, n, k) {
+    NV[m] = 0; NT[m] = 0
+    while ((getline line < file) > 0) {
+        n = split(line, f, " ")
+        if (f[1] == "v") { VX[m, NV[m]] = f[2] + 0; VY[m, NV[m]] = f[3] + 0; VZ[m, NV[m]] = f[4] + 0; NV[m]++ }
+        else if (f[1] == "f")
+            for (k = 4; k <= n; k++) { TI[m, NT[m], 0] = f[2]; TI[m, NT[m], 1] = f[k - 1]; TI[m, NT[m], 2] = f[k]; NT[m]++ }
+    }
+    close(file)
+}
+function u32(n,    k, b, out) {
+    out = ""
+    for (k = 0; k < 4; k++) { b = n % 256; out = out sprintf("\\%03o", b); n = (n - b) / 256 }
+    return out
+}
+function f32(x,    s, e, bits) {
+    if (x == 0) return u32(0)
+    s = 0; if (x < 0) { s = 1; x = -x }
+    e = 0; while (x >= 2) { x /= 2; e++ } while (x < 1) { x *= 2; e-- }
+    bits = (x - 1) * 8388608
+    if (bits != int(bits)) { print "f32: not a float: " x > "/dev/stderr"; exit 3 }
+    return u32(s * 2147483648 + (e + 127) * 8388608 + bits)
+}
+function zeros(n,    out) { out = ""; while (n-- > 0) out = out "\\000"; return out }
+EOF
+LIB=$(cat "$DIR/lib.awk")
+cat > "$DIR/cube.mesh" <<'EOF'
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 1 1 0
+v 0 0 1
+v 1 0 1
+v 0 1 1
+v 1 1 1
+f 0 2 3 1
+f 4 5 7 6
+f 0 1 5 4
+f 2 6 7 3
+f 0 4 6 2
+f 1 3 7 5
+EOF
+cat > "$DIR/tet.mesh" <<'EOF'
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 0 0 1
+f 0 2 1
+f 0 1 3
+f 0 3 2
+f 1 2 3
+EOF
+# A wedge: a triangular prism 0.5 long along x over the right triangle (0,0) (0.75,0) (0,0.5).
+cat > "$DIR/wedge.mesh" <<'EOF'
+v 0 0 0
+v 0 0.75 0
+v 0 0 0.5
+v 0.5 0 0
+v 0.5 0.75 0
+v 0.5 0 0.5
+f 0 2 1
+f 3 4 5
+f 0 1 4 3
+f 0 3 5 2
+f 1 2 5 4
+EOF
+mkdir -p "$DIR/sub"
+awk '$1 == "v" { print "v", $2, $3, $4 } $1 == "f" { s = "f"; for (k = 2; k <= NF; k++) s = s " " ($k + 1); print s }' \
+    "$DIR/cube.mesh" > "$DIR/cube.obj"
+awk -v file="$DIR/tet.mesh" "$LIB"'BEGIN { load(1, file); print "solid tet"
+    for (t = 0; t < NT[1]; t++) { print " facet normal 0 0 0"; print "  outer loop"
+        for (c = 0; c < 3; c++) { i = TI[1, t, c]; print "   vertex", VX[1, i], VY[1, i], VZ[1, i] }
+        print "  endloop"; print " endfacet" }
+    print "endsolid tet" }' > "$DIR/sub/tet.stl"
+awk 'BEGIN { print "ply"; print "format ascii 1.0" }
+     $1 == "v" { v[nv++] = $2 " " $3 " " $4 } $1 == "f" { s = NF - 1; for (k = 2; k <= NF; k++) s = s " " $k; f[nf++] = s }
+     END { print "element vertex " nv; print "property double x"; print "property double y"; print "property double z"
+           print "element face " nf; print "property list uchar int vertex_indices"; print "end_header"
+           for (i = 0; i < nv; i++) print v[i]; for (i = 0; i < nf; i++) print f[i] }' "$DIR/wedge.mesh" > "$DIR/wedge.ply"
+printf "$(awk -v file="$DIR/wedge.mesh" "$LIB"'BEGIN { load(1, file); s = ""
+    for (k = 0; k < 80; k++) s = s "\\040"
+    s = s u32(NT[1])
+    for (t = 0; t < NT[1]; t++) { s = s zeros(12)
+        for (c = 0; c < 3; c++) { i = TI[1, t, c]; s = s f32(VX[1, i]) f32(VY[1, i]) f32(VZ[1, i]) }
+        s = s zeros(2) }
+    printf "%s", s }')" > "$DIR/wedge.stl"
+[ "$(wc -c < "$DIR/wedge.stl" | tr -d ' ')" = $((84 + 50 * 8)) ] || fail "wedge.stl has $(wc -c < "$DIR/wedge.stl") bytes"
+
+# ---- running and checking ----------------------------------------------------------------
+run() { # run WANT-STATUS ARGS...: stdout in $DIR/out, stderr in $DIR/err
+    want=$1; shift
+    "$TTD" "$@" > "$DIR/out" 2> "$DIR/err"
+    rc=$?
+    [ $rc -lt 124 ] || fail "ttd $*: crash (status $rc): $(cat "$DIR/err")"
+    [ $rc -eq "$want" ] || fail "ttd $*: status $rc, want $want: $(cat "$DIR/err")"
+}
+no_output() { [ ! -s "$DIR/out" ] || fail "$1: printed '$(head -c 200 "$DIR/out")'"; }
+err_has() { grep -q -e "$1" "$DIR/err" || fail "$2: no '$1' in: $(cat "$DIR/err")"; }
+same() { cmp -s "$1" "$2" || fail "$3: $(diff "$1" "$2" | head -5)"; }
+
+# A scene: which mesh each body is (by name), and its pose. The mesh names map to the files
+# above and to their descriptions for the reference.
+mesh_desc() { case $1 in cube) echo "$DIR/cube.mesh" ;; tet) echo "$DIR/tet.mesh" ;; wedge|wedgeb) echo "$DIR/wedge.mesh" ;; esac; }
+SCENE_HEAD='# meshes, in three formats (one of them in a subfolder), and a binary STL
+mesh cube cube.obj
+mesh tet   sub/tet.stl     # ASCII STL
+mesh wedge wedge.ply
+mesh wedgeb wedge.stl'
+# write_scene FILE BODIES: BODIES holds 'NAME 12 numbers' lines; writes the scene file.
+write_scene() {
+    { echo "$SCENE_HEAD"; echo; echo "$2" | sed 's/^/body /'; } > "$1"
+}
+# world BODIES: $DIR/world/K.obj, body K's mesh moved by its pose (double arithmetic, %.17g).
+world() {
+    rm -rf "$DIR/world"; mkdir "$DIR/world"
+    k=0
+    echo "$1" | while read -r name rest; do
+        [ -n "$name" ] || continue
+        awk -v file="$(mesh_desc "$name")" -v pose="$rest" "$LIB"'BEGIN { load(1, file); split(pose, P, " ")
+            for (i = 0; i < NV[1]; i++) { x = VX[1, i]; y = VY[1, i]; z = VZ[1, i]
+                printf "v %.17g %.17g %.17g\n", ((P[1] * x + P[2] * y) + P[3] * z) + P[4],
+                       ((P[5] * x + P[6] * y) + P[7] * z) + P[8], ((P[9] * x + P[10] * y) + P[11] * z) + P[12] }
+            for (t = 0; t < NT[1]; t++) printf "f %d %d %d\n", TI[1, t, 0] + 1, TI[1, t, 1] + 1, TI[1, t, 2] + 1 }' \
+            > "$DIR/world/$k.obj"
+        k=$((k + 1))
+    done
+}
+# ref_contacts N MARGIN [PREC]: 'i j ia ib d p q' over every pair of the N world meshes.
+ref_contacts() {
+    i=0
+    while [ $i -lt "$1" ]; do
+        j=$((i + 1))
+        while [ $j -lt "$1" ]; do
+            "$TTD" mesh contacts "$DIR/world/$i.obj" "$DIR/world/$j.obj" --margin "$2" --precision "${3:-double}" |
+                sed "s/^/$i $j /" || fail "mesh contacts $i $j"
+            j=$((j + 1))
+        done
+        i=$((i + 1))
+    done
+}
+# ref_distance N [PREC]: the minimum of `ttd mesh distance` over every pair (its d only).
+ref_distance_d() {
+    i=0
+    while [ $i -lt "$1" ]; do
+        j=$((i + 1))
+        while [ $j -lt "$1" ]; do
+            "$TTD" mesh distance "$DIR/world/$i.obj" "$DIR/world/$j.obj" --precision "${2:-double}" | cut -d' ' -f1
+            j=$((j + 1))
+        done
+        i=$((i + 1))
+    done | awk 'NR == 1 || $1 + 0 < m + 0 { m = $1 } END { print m }'
+}
+# ref_manifold MARGIN K BODIES < contacts: the manifold lines from the contact lines (double).
+ref_manifold() {
+    echo "$3" > "$DIR/bodies.txt"
+    awk -v m="$1" -v K="$2" -v bodies="$DIR/bodies.txt" -v cube="$DIR/cube.mesh" -v tet="$DIR/tet.mesh" \
+        -v wedge="$DIR/wedge.mesh" "$LIB"'
+    function wv(b, v, r,    x, y, z) { # vertex v of body b in the world, coordinate r (0..2)
+        x = VX[MB[b], v]; y = VY[MB[b], v]; z = VZ[MB[b], v]
+        return ((BP[b, 4 * r + 1] * x + BP[b, 4 * r + 2] * y) + BP[b, 4 * r + 3] * z) + BP[b, 4 * r + 4] }
+    function face_normal(b, t,    k, r, X, e1, e2, len) { # unit normal of triangle t of body b into FN
+        for (k = 0; k < 3; k++) for (r = 0; r < 3; r++) X[k, r] = wv(b, TI[MB[b], t, k], r)
+        for (r = 0; r < 3; r++) { e1[r] = X[1, r] - X[0, r]; e2[r] = X[2, r] - X[0, r] }
+        FN[0] = e1[1] * e2[2] - e1[2] * e2[1]; FN[1] = e1[2] * e2[0] - e1[0] * e2[2]; FN[2] = e1[0] * e2[1] - e1[1] * e2[0]
+        len = sqrt(FN[0] * FN[0] + FN[1] * FN[1] + FN[2] * FN[2])
+        for (r = 0; r < 3; r++) FN[r] = len > 0 ? FN[r] / len : 0 }
+    function centroid(b, t, G,    c, k, r, x, y, z) {
+        for (r = 0; r < 3; r++) c[r] = 0
+        for (k = 0; k < 3; k++) { v = TI[MB[b], t, k]; c[0] += VX[MB[b], v] / 3; c[1] += VY[MB[b], v] / 3; c[2] += VZ[MB[b], v] / 3 }
+        for (r = 0; r < 3; r++) G[r] = BP[b, 4 * r + 1] * c[0] + BP[b, 4 * r + 2] * c[1] + BP[b, 4 * r + 3] * c[2] + BP[b, 4 * r + 4] }
+    BEGIN { load(1, cube); load(2, tet); load(3, wedge); nb = 0
+        while ((getline line < bodies) > 0) { n = split(line, f, " "); if (n < 13) continue
+            MB[nb] = f[1] == "cube" ? 1 : f[1] == "tet" ? 2 : 3
+            for (k = 1; k <= 12; k++) BP[nb, k] = f[k + 1] + 0
+            nb++ } }
+    { key = $1 " " $2; if (!(key in N)) { order[np++] = key; N[key] = 0 }
+      L[key, N[key]++] = $0 }
+    END {
+        for (q = 0; q < np; q++) { key = order[q]; n = N[key]
+            # depth order: smaller d first, ties in (ia, ib) order (the input order): insertion sort
+            for (a = 0; a < n; a++) { split(L[key, a], f, " "); D[a] = f[5] + 0; S[a] = a }
+            for (a = 1; a < n; a++) { x = S[a]; c = a - 1
+                while (c >= 0 && D[S[c]] > D[x]) { S[c + 1] = S[c]; c-- } S[c + 1] = x }
+            for (a = 0; a < n; a++) { split(L[key, S[a]], f, " ")
+                I[a] = f[1]; J[a] = f[2]; TA[a] = f[3]; TB[a] = f[4]; DD[a] = f[5] + 0
+                for (r = 0; r < 3; r++) { PP[a, r] = f[6 + r] + 0; QQ[a, r] = f[9 + r] + 0; M[a, r] = 0.5 * PP[a, r] + 0.5 * QQ[a, r] }
+                FAR[a] = -1; TK[a] = 0 }
+            keep = (K == 0 || K > n) ? n : K; nx = 0
+            for (kept = 0; kept < keep; kept++) { a = nx; TK[a] = 1
+                l2 = 0; for (r = 0; r < 3; r++) { dv[r] = QQ[a, r] - PP[a, r]; l2 += dv[r] * dv[r] }
+                if (DD[a] > 0 && l2 > 0) { len = sqrt(l2); for (r = 0; r < 3; r++) nn[r] = dv[r] / len }
+                else { centroid(I[a], TA[a], gi); centroid(J[a], TB[a], gj)
+                    for (r = 0; r < 3; r++) tw[r] = gj[r] - gi[r]
+                    face_normal(I[a], TA[a]); if (FN[0] == 0 && FN[1] == 0 && FN[2] == 0) face_normal(J[a], TB[a])
+                    if (FN[0] == 0 && FN[1] == 0 && FN[2] == 0) { print "ref_manifold: no face normal" > "/dev/stderr"; exit 3 }
+                    s = FN[0] * tw[0] + FN[1] * tw[1] + FN[2] * tw[2] < 0 ? -1 : 1
+                    for (r = 0; r < 3; r++) nn[r] = s * FN[r] }
+                printf "%d %d %d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", I[a], J[a], TA[a], TB[a],
+                    M[a, 0], M[a, 1], M[a, 2], nn[0], nn[1], nn[2], DD[a], m - DD[a]
+                best = -1
+                for (c = 0; c < n; c++) { if (TK[c]) continue
+                    d2 = 0; for (r = 0; r < 3; r++) { e = M[c, r] - M[a, r]; d2 += e * e }
+                    if (FAR[c] < 0 || d2 < FAR[c]) FAR[c] = d2
+                    if (FAR[c] > best) { best = FAR[c]; nx = c } } } } }' |
+        sort -k1,1n -k2,2n -k3,3n -k4,4n | cut -d' ' -f1,2,5-
+}
+
+# ---- the double scene --------------------------------------------------------------------
+# Six bodies: a cube at the origin; a tetrahedron turned about y near its face x = 1 (0.2 off,
+# by construction below); the wedge turned about z near its back face y = 1; a cube turned by a
+# general rotation, crossing the first; a tetrahedron far away; the binary-STL wedge touching
+# the first cube's bottom corner (z = -0.5 .. 0, d = 0) from below.
+BODIES='cube   1 0 0 0  0 1 0 0  0 0 1 0
+tet    0.6 0 0.8 1.2  0 1 0 0.25  -0.8 0 0.6 0.3
+wedge  0 -1 0 0.75  1 0 0 1.1  0 0 1 0.2
+cube   0.36 0.48 -0.8 0.3  -0.8 0.6 0 0.4  0.48 0.64 0.6 0.9
+tet    1 0 0 5  0 1 0 5  0 0 1 5
+wedgeb 1 0 0 0  0 1 0 0  0 0 1 -0.5'
+NB=6
+write_scene "$DIR/scene.txt" "$BODIES"
+world "$BODIES"
+for m in 0 0.15 0.35; do
+    ref_contacts $NB $m > "$DIR/want"
+    [ -s "$DIR/want" ] || fail "reference: no contacts at margin $m"
+    run 0 scene contacts "$DIR/scene.txt" --margin $m
+    same "$DIR/out" "$DIR/want" "contacts --margin $m against the world meshes' mesh contacts"
+    run 0 scene contacts "$DIR/scene.txt" --margin $m --count
+    [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want" | tr -d ' ')" ] || fail "contacts --count $m: $(cat "$DIR/out")"
+    # collide: the body pairs with contacts, each witness among them
+    cut -d' ' -f1,2 "$DIR/want" | uniq > "$DIR/want_pairs"
+    run 0 scene collide "$DIR/scene.txt" --margin $m
+    cut -d' ' -f1,2 "$DIR/out" | cmp -s - "$DIR/want_pairs" || fail "collide --margin $m: pairs $(cut -d' ' -f1,2 "$DIR/out" | tr '\n' ,)"
+    awk 'NR == FNR { w[$1 " " $2 " " $3 " " $4] = 1; next } NF != 4 || !(($1 " " $2 " " $3 " " $4) in w) { print; exit 1 }' \
+        "$DIR/want" "$DIR/out" > /dev/null || fail "collide --margin $m: a witness not within the margin"
+    run 0 scene collide "$DIR/scene.txt" --margin $m --count
+    [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want_pairs" | tr -d ' ')" ] || fail "collide --count $m"
+    # manifold, K = 4 (default), 2 and 0 (all)
+    for k in 4 2 0; do
+        ref_manifold $m $k "$BODIES" < "$DIR/want" > "$DIR/want_m"
+        if [ $k = 4 ]; then run 0 scene manifold "$DIR/scene.txt" --margin $m; else run 0 scene manifold "$DIR/scene.txt" --margin $m --max-points $k; fi
+        same "$DIR/out" "$DIR/want_m" "manifold --margin $m --max-points $k against the reduction of the mesh contacts"
+        run 0 scene manifold "$DIR/scene.txt" --margin $m --max-points $k --count
+        [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want_m" | tr -d ' ')" ] || fail "manifold --count $m $k"
+    done
+done
+# The expected pairs at 0.35: (0,1) 0.2 apart, (0,2) 0.1 apart, (0,3) crossing, (0,5) touching;
+# never the far body 4.
+cut -d' ' -f1,2 "$DIR/want" | uniq | tr '\n' , > "$DIR/pairs"
+for p in "0 1," "0 2," "0 3," "0 5,"; do grep -q "$p" "$DIR/pairs" || fail "scene pairs at 0.35 lack $p: $(cat "$DIR/pairs")"; done
+! grep -q "4" "$DIR/pairs" || fail "scene pairs at 0.35 include the far body: $(cat "$DIR/pairs")"
+[ "$(awk '$1 == 0 && $2 == 5 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no touching pair (0, 5)"
+[ "$(awk '$1 == 0 && $2 == 3 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no crossing pair (0, 3)"
+pass "contacts, collide, manifold (K 4, 2, all), --count at margins 0, 0.15, 0.35: equal to the world meshes' mesh contacts"
+
+# distance: the smallest contact over all pairs (a margin holding every pair), ties to the
+# smallest (i, j) then (ia, ib): the first such line in the sorted contacts.
+ref_contacts $NB 20 > "$DIR/all"
+[ "$(cut -d' ' -f1,2 "$DIR/all" | uniq | wc -l)" -eq 15 ] || fail "margin 20 does not hold every pair"
+awk 'NR == 1 || $5 + 0 < m + 0 { m = $5; line = $0 } END { split(line, f, " ")
+     print f[5], f[1], f[2], f[3], f[4], f[6], f[7], f[8], f[9], f[10], f[11] }' "$DIR/all" > "$DIR/want"
+run 0 scene distance "$DIR/scene.txt"
+same "$DIR/out" "$DIR/want" "distance against the smallest contact"
+[ "$(cut -d' ' -f1 "$DIR/out")" = "$(ref_distance_d $NB)" ] || fail "distance: not the minimum of ttd mesh distance"
+# Without the crossing and touching bodies: gaps, the wedge 0.1 from the cube (the tetrahedron 0.2).
+BODIES2=$(echo "$BODIES" | sed -n '1,3p;5p')
+write_scene "$DIR/scene2.txt" "$BODIES2"
+world "$BODIES2"
+ref_contacts 4 20 | awk 'NR == 1 || $5 + 0 < m + 0 { m = $5; line = $0 } END { split(line, f, " ")
+     print f[5], f[1], f[2], f[3], f[4], f[6], f[7], f[8], f[9], f[10], f[11] }' > "$DIR/want"
+run 0 scene distance "$DIR/scene2.txt"
+same "$DIR/out" "$DIR/want" "distance of a scene with gaps"
+awk '{ e = $1 - 0.1; if (e < 0) e = -e; exit !(e < 1e-15 && $2 == 0 && $3 == 2) }' "$DIR/out" || fail "distance: $(cat "$DIR/out"), want 0.1 between 0 and 2"
+# --margin on distance is an upper bound: at or above the minimum the same line, below it none.
+run 0 scene distance "$DIR/scene2.txt" --margin 0.15
+same "$DIR/out" "$DIR/want" "distance --margin above the minimum"
+run 0 scene distance "$DIR/scene2.txt" --margin "$(cut -d' ' -f1 "$DIR/want")"
+same "$DIR/out" "$DIR/want" "distance --margin at the minimum"
+run 0 scene distance "$DIR/scene2.txt" --margin 0.05
+[ "$(cat "$DIR/out")" = "inf -1 -1 -1 -1 nan nan nan nan nan nan" ] || fail "distance beyond the bound: $(cat "$DIR/out")"
+pass "distance: the smallest contact over every pair (also the ttd mesh distance minimum), ties by (i, j, ia, ib); --margin as an upper bound"
+
+# ---- --motion: 3 steps, each equal to a scene file at those poses ----------------------------
+STEP0=$BODIES
+STEP1=$(echo "$BODIES" | sed '2s/.*/tet    0.6 0 0.8 1.05  0 1 0 0.25  -0.8 0 0.6 0.3/;5s/.*/tet    1 0 0 1.5  0 1 0 1.5  0 0 1 1/')
+STEP2=$(echo "$BODIES" | sed '4s/.*/cube   1 0 0 3  0 1 0 0  0 0 1 0/;6s/.*/wedgeb 0 -1 0 0  1 0 0 0  0 0 1 -0.6/')
+{ echo "# three steps of $NB poses"; for s in "$STEP0" "$STEP1" "$STEP2"; do echo "$s" | cut -c8-; echo; done
+  echo "# end"; } > "$DIR/motion.txt"
+for q in "collide --margin 0.1" "collide --margin 0.1 --count" "distance" "contacts --margin 0.05" "contacts --margin 0.05 --count" \
+         "manifold --margin 0.05" "manifold --margin 0.05 --max-points 0 --count"; do
+    : > "$DIR/want"
+    k=0
+    for s in "$STEP0" "$STEP1" "$STEP2"; do
+        write_scene "$DIR/step.txt" "$s"
+        # shellcheck disable=SC2086
+        "$TTD" scene $q "$DIR/step.txt" | sed "s/^/$k /" >> "$DIR/want" || fail "$q on step $k"
+        k=$((k + 1))
+    done
+    # shellcheck disable=SC2086
+    run 0 scene $q "$DIR/scene.txt" --motion "$DIR/motion.txt"
+    same "$DIR/out" "$DIR/want" "$q --motion"
+done
+[ "$(wc -l < "$DIR/want")" -eq 3 ] || fail "--count over 3 steps: $(cat "$DIR/want")"
+# the steps differ (the motion is not a no-op)
+[ "$("$TTD" scene contacts "$DIR/scene.txt" --margin 0.05 --motion "$DIR/motion.txt" --count | cut -d' ' -f2 | sort -u | wc -l)" -gt 1 ] ||
+    fail "--motion: every step has the same count"
+# from standard input; an empty motion gives no output
+"$TTD" scene contacts "$DIR/scene.txt" --margin 0.05 --motion - < "$DIR/motion.txt" > "$DIR/out2" || fail "--motion -"
+"$TTD" scene contacts "$DIR/scene.txt" --margin 0.05 --motion "$DIR/motion.txt" | cmp -s - "$DIR/out2" || fail "--motion - differs"
+printf '# nothing\n\n' > "$DIR/nomotion.txt"
+run 0 scene distance "$DIR/scene.txt" --motion "$DIR/nomotion.txt"; no_output "empty motion"
+pass "--motion: 3 steps equal to a scene file per step (collide, distance, contacts, manifold, --count); from standard input"
+
+# ---- threads, instruction sets, poses of 16 numbers, --orthonormalize, standard input --------
+for q in "collide --margin 0.1" "distance" "contacts --margin 0.35" "manifold --margin 0.35 --max-points 3"; do
+    # shellcheck disable=SC2086
+    "$TTD" scene $q "$DIR/scene.txt" --motion "$DIR/motion.txt" --threads 1 > "$DIR/ref" || fail "$q --threads 1"
+    for opt in "--threads 2" "--threads 0" "--threads 5"; do
+        # shellcheck disable=SC2086
+        "$TTD" scene $q "$DIR/scene.txt" --motion "$DIR/motion.txt" $opt | cmp -s - "$DIR/ref" || fail "$q $opt differs from --threads 1"
+    done
+    for isa in scalar sse2 avx2 avx512 neon portable; do
+        # shellcheck disable=SC2086
+        "$TTD" scene $q "$DIR/scene.txt" --motion "$DIR/motion.txt" --isa $isa > "$DIR/out" 2> "$DIR/err"
+        rc=$?
+        if [ $rc -eq 2 ]; then grep -q "not available" "$DIR/err" || fail "--isa $isa: $(cat "$DIR/err")"; continue; fi
+        [ $rc -eq 0 ] || fail "$q --isa $isa: status $rc"
+        cmp -s "$DIR/out" "$DIR/ref" || fail "$q --isa $isa differs"
+    done
+done
+pass "threads 1, 2, 0, 5 and every available instruction set: identical output"
+
+{ echo "$SCENE_HEAD"; echo "$BODIES" | sed 's/^/body /; s/$/  0 0 0 1   # 4x4/'; } > "$DIR/scene16.txt"
+run 0 scene contacts "$DIR/scene16.txt" --margin 0.35
+"$TTD" scene contacts "$DIR/scene.txt" --margin 0.35 | cmp -s - "$DIR/out" || fail "16-number body poses differ from their 12"
+{ echo "$STEP0" | cut -c8- | sed 's/$/ 0 0 0 1/'; echo "$STEP1" | cut -c8-; } > "$DIR/motion16.txt"
+run 0 scene distance "$DIR/scene.txt" --motion "$DIR/motion16.txt"
+[ "$(wc -l < "$DIR/out")" -eq 2 ] || fail "16-number motion poses"
+# A rotation printed with 5 digits: refused, repaired by --orthonormalize (the exact rotation's
+# distance within 1e-12).
+C5=0.70711; CX=0.70710678118654752
+write_scene "$DIR/rot5.txt" "cube 1 0 0 0  0 1 0 0  0 0 1 0
+tet $C5 -$C5 0 3  $C5 $C5 0 0  0 0 1 0"
+write_scene "$DIR/rotx.txt" "cube 1 0 0 0  0 1 0 0  0 0 1 0
+tet $CX -$CX 0 3  $CX $CX 0 0  0 0 1 0"
+run 1 scene distance "$DIR/rot5.txt"; no_output "5-digit rotation"
+err_has "rot5.txt:8: body 1: not a rotation: R is not orthonormal (an entry of R^T R - I is 9.1e-06" "5-digit rotation"
+run 0 scene distance "$DIR/rot5.txt" --orthonormalize
+awk -v want="$("$TTD" scene distance "$DIR/rotx.txt" | cut -d' ' -f1)" '{ e = $1 - want; if (e < 0) e = -e; exit !(e < 1e-12) }' "$DIR/out" ||
+    fail "--orthonormalize: $(cat "$DIR/out")"
+# The scene from standard input: mesh files relative to the working folder.
+(cd "$DIR" && "$TTD" scene contacts - --margin 0.35 < scene.txt) > "$DIR/out2" || fail "scene from standard input"
+"$TTD" scene contacts "$DIR/scene.txt" --margin 0.35 | cmp -s - "$DIR/out2" || fail "scene from standard input differs"
+# Relative to the scene file's folder, from anywhere.
+(cd "$DIR/sub" && "$TTD" scene collide ../scene.txt --margin 0.1) > "$DIR/out2" || fail "scene from another folder"
+"$TTD" scene collide "$DIR/scene.txt" --margin 0.1 | cmp -s - "$DIR/out2" || fail "scene from another folder differs"
+# No bodies, one body: nothing to report; distance says so.
+{ echo "$SCENE_HEAD"; } > "$DIR/empty.txt"
+run 0 scene contacts "$DIR/empty.txt" --margin 1; no_output "empty scene"
+run 0 scene collide "$DIR/empty.txt" --count; [ "$(cat "$DIR/out")" = 0 ] || fail "empty scene --count"
+write_scene "$DIR/one.txt" "cube 1 0 0 0  0 1 0 0  0 0 1 0"
+run 0 scene distance "$DIR/one.txt"
+[ "$(cat "$DIR/out")" = "inf -1 -1 -1 -1 nan nan nan nan nan nan" ] || fail "one body: $(cat "$DIR/out")"
+pass "16-number poses (scene and motion), --orthonormalize, standard input, mesh paths from the scene's folder, empty scenes"
+
+# ---- float: a scene whose world coordinates are exact in float -----------------------------
+FBODIES='cube   1 0 0 0  0 1 0 0  0 0 1 0
+tet    0 -1 0 1.25  1 0 0 0.25  0 0 1 0.5
+wedge  1 0 0 0.25  0 0 -1 1.125  0 1 0 0.25
+cube   0 0 1 -1  0 1 0 0.5  -1 0 0 1.75
+wedgeb 0 1 0 0.5  0 0 1 0.25  1 0 0 -0.5'
+write_scene "$DIR/fscene.txt" "$FBODIES"
+world "$FBODIES"
+for m in 0 0.25; do
+    ref_contacts 5 $m float > "$DIR/want"
+    [ -s "$DIR/want" ] || fail "float reference: no contacts at $m"
+    run 0 scene contacts "$DIR/fscene.txt" --margin $m --precision float
+    same "$DIR/out" "$DIR/want" "float contacts --margin $m against ttd mesh --precision float"
+    run 0 scene collide "$DIR/fscene.txt" --margin $m --precision float
+    cut -d' ' -f1,2 "$DIR/want" | uniq > "$DIR/wp"
+    cut -d' ' -f1,2 "$DIR/out" | cmp -s - "$DIR/wp" || fail "float collide $m"
+done
+ref_contacts 5 20 float | awk 'NR == 1 || $5 + 0 < m + 0 { m = $5; line = $0 } END { split(line, f, " ")
+     print f[5], f[1], f[2], f[3], f[4], f[6], f[7], f[8], f[9], f[10], f[11] }' > "$DIR/want"
+run 0 scene distance "$DIR/fscene.txt" --precision float
+same "$DIR/out" "$DIR/want" "float distance"
+run 0 scene manifold "$DIR/fscene.txt" --margin 0.25 --precision float
+[ -s "$DIR/out" ] && awk 'NF != 10 { exit 1 } { for (k = 3; k <= 10; k++) if ($k !~ /^-?[0-9.e+-]+$/) exit 1
+     n = $6 * $6 + $7 * $7 + $8 * $8; if (n < 1 - 1e-6 || n > 1 + 1e-6) exit 1 }' "$DIR/out" ||
+    fail "float manifold: $(head -3 "$DIR/out")"
+# float prints 9 significant digits at most
+awk '{ for (k = 1; k <= NF; k++) { s = $k; sub(/e.*/, "", s); gsub(/[-.]/, "", s); sub(/^0+/, "", s); if (length(s) > 9) exit 1 } }' "$DIR/out" ||
+    fail "float manifold: more than 9 digits"
+pass "--precision float: contacts, collide, distance equal to ttd mesh --precision float on the world meshes; manifold well formed"
+
+# ---- errors: the scene file ------------------------------------------------------------------
+P0='1 0 0 0  0 1 0 0  0 0 1 0'
+bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, refused with PATTERN
+    what=$1; pat=$2; shift 2
+    { echo "$SCENE_HEAD"; for l in "$@"; do echo "$l"; done; } > "$DIR/bad.txt"
+    run 1 scene contacts "$DIR/bad.txt" --margin 1; no_output "$what"; err_has "$pat" "$what"
+    err_has "bad.txt: [0-9]* bad lines\{0,1\}; nothing computed" "$what (summary)"
+}
+bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh or body)" "bodies cube $P0"
+bad_scene "unknown mesh" "bad.txt:7: body 1: unknown mesh 'cub' (a 'mesh NAME FILE' line must come first)" "body cube $P0" "body cub $P0"
+bad_scene "duplicate mesh" "bad.txt:6: mesh 'tet' is already defined" "mesh tet cube.obj"
+bad_scene "mesh without FILE" "bad.txt:6: expected 'mesh NAME FILE', found no FILE" "mesh foo  # a comment"
+bad_scene "mesh without NAME" "bad.txt:6: expected 'mesh NAME FILE', found no NAME" "mesh"
+bad_scene "mesh with more" "bad.txt:6: expected 'mesh NAME FILE', found more words" "mesh foo cube.obj extra"
+bad_scene "body without NAME" "bad.txt:6: expected 'body NAME'" "body"
+bad_scene "11 numbers" "bad.txt:6: body 0: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 11" "body cube 1 0 0 0 0 1 0 0 0 0 1"
+bad_scene "no numbers" "bad.txt:6: body 0: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 0" "body cube # none"
+bad_scene "17 numbers" "bad.txt:6: body 0: expected 12 or 16 numbers, found 17 or more" "body cube $P0 0 0 0 1 1"
+bad_scene "bottom row" "bad.txt:6: body 0: the bottom row of a 4x4 pose must be 0 0 0 1, found 0 0 0 2" "body cube $P0 0 0 0 2"
+bad_scene "bad number" "bad.txt:6: body 0: field 4 is not a number: 'x'" "body cube 1 0 0 x  0 1 0 0  0 0 1 0"
+bad_scene "nan" "bad.txt:6: body 0: field 12 is not finite" "body cube 1 0 0 0  0 1 0 0  0 0 1 nan"
+bad_scene "not orthonormal" "bad.txt:6: body 0: not a rotation: R is not orthonormal (an entry of R^T R - I is 3, at most 1e-6" "body cube 2 0 0 0  0 2 0 0  0 0 2 0"
+bad_scene "reflection" "bad.txt:7: body 1: not a rotation: det R = -1 <= 0 (a reflection)" "body cube $P0" "body tet -1 0 0 0  0 1 0 0  0 0 1 0"
+bad_scene "missing mesh file" "bad.txt:6: mesh 'x': .*nothere.obj: cannot open" "mesh x nothere.obj" "body x $P0"
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 9\n' > "$DIR/broken.obj"
+bad_scene "malformed mesh file" "bad.txt:6: mesh 'x': .*broken.obj:3: " "mesh x broken.obj" "body x $P0"
+bad_scene "beyond the range" "bad.txt:6: body 0: a mesh coordinate (or one moved by a pose) beyond" "body cube 1 0 0 1e300  0 1 0 0  0 0 1 0"
+awk 'BEGIN { s = "body cube"; for (i = 0; i < 500; i++) s = s " 0.000000000"; print s }' > "$DIR/long.txt"
+bad_scene "overlong line" "bad.txt:6: line longer than 4096 bytes" "$(cat "$DIR/long.txt")"
+# Every bad line is named, not only the first; a body of a mesh that failed is not named again.
+bad_scene "several" "bad.txt:9: body 2: field 1 is not a number" "mesh x nothere.obj" "body x $P0" "body cube $P0" "body cube y 0 0 0  0 1 0 0  0 0 1 0" "what"
+err_has "bad.txt:6: mesh 'x'" "several: the mesh"; err_has "bad.txt:10: unknown statement 'what'" "several: the last"
+err_has "bad.txt: 3 bad lines; nothing computed" "several: 3 bad lines (the body of the failed mesh is not one)"
+# float: a pose beyond float range, a mesh beyond float's coordinate range
+{ echo "$SCENE_HEAD"; echo "body cube 1 0 0 1e39  0 1 0 0  0 0 1 0"; } > "$DIR/bad.txt"
+run 1 scene collide "$DIR/bad.txt" --precision float; no_output "float pose"; err_has "bad.txt:6: body 0: field 4 is out of float range" "float pose"
+printf 'v 2e18 0 0\nv 2e18 1 0\nv 2e18 0 1\nf 1 2 3\n' > "$DIR/big19.obj"
+{ echo "mesh big big19.obj"; } > "$DIR/bad.txt"
+run 1 scene collide "$DIR/bad.txt" --precision float; no_output "float mesh"; err_has "bad.txt:1: mesh 'big': .*big19.obj: cannot build the mesh: a mesh coordinate" "float mesh"
+run 1 scene collide "$DIR/nothere.txt"; no_output "missing scene"; err_has "nothere.txt: cannot open" "missing scene"
+run 1 scene collide "$DIR"; no_output "scene a directory"; err_has "read error" "scene a directory"
+pass "errors: scene files (every bad line FILE:LINE, exit 1, nothing printed)"
+
+# ---- errors: the motion file ---------------------------------------------------------------
+bad_motion() { # bad_motion WHAT PATTERN: $DIR/badm.txt refused with PATTERN
+    run 1 scene collide "$DIR/scene.txt" --motion "$DIR/badm.txt"; no_output "$1"; err_has "$2" "$1"
+    err_has "badm.txt: [0-9]* bad lines\{0,1\}; nothing computed" "$1 (summary)"
+}
+{ echo "$STEP0" | cut -c8-; echo "$STEP1" | cut -c8- | sed '3s/ 0.2$//'; } > "$DIR/badm.txt"
+bad_motion "11 numbers" "badm.txt:9: step 1, body 2: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 11"
+{ echo "$STEP0" | cut -c8- | sed '4s/^.*$/0.36 0.48 -0.8 0.3  -0.8 0.6 0 0.4  -0.48 -0.64 -0.6 1.05/'; } > "$DIR/badm.txt"
+bad_motion "reflection" "badm.txt:4: step 0, body 3: not a rotation: det R = -1"
+{ echo "$STEP0" | cut -c8- | sed '2s/^.*$/1 0.01 0 0  0 1 0 0  0 0 1 0/'; } > "$DIR/badm.txt"
+bad_motion "not orthonormal" "badm.txt:2: step 0, body 1: not a rotation: R is not orthonormal"
+{ echo "$STEP0" | cut -c8- | sed '2s/^.*$/1 0 0 1e300  0 1 0 0  0 0 1 0/'; } > "$DIR/badm.txt"
+bad_motion "beyond the range" "badm.txt:2: step 0, body 1: a mesh coordinate (or one moved by a pose) beyond"
+{ echo "$STEP0" | cut -c8-; echo "# step 1, cut short"; echo "$STEP1" | cut -c8- | sed -n '1,2p'; } > "$DIR/badm.txt"
+bad_motion "partial step" "badm.txt:8: step 1 is incomplete: 2 of 6 poses (one per body), to the end of the file"
+{ echo "$STEP0" | cut -c8-; echo "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 7"; } > "$DIR/badm.txt"
+bad_motion "17 numbers" "badm.txt:7: step 1, body 0: expected 12 or 16 numbers, found 17 or more"
+run 1 scene collide "$DIR/scene.txt" --motion "$DIR/nothere.txt"; no_output "missing motion"; err_has "nothere.txt: cannot open" "missing motion"
+echo "$P0" > "$DIR/badm.txt"
+run 1 scene collide "$DIR/empty.txt" --motion "$DIR/badm.txt"; no_output "motion of no bodies"
+err_has "badm.txt:1: a pose, but the scene has no bodies" "motion of no bodies"
+pass "errors: motion files (wrong count, not a rotation, beyond the range, a trailing partial step; FILE:LINE, exit 1)"
+
+# ---- errors: the command line (exit 2) ------------------------------------------------------
+for m in -1 nan inf abc '' 1e999; do
+    run 2 scene contacts "$DIR/scene.txt" --margin "$m"; no_output "margin '$m'"; err_has "bad value for --margin" "margin '$m'"
+done
+run 2 scene contacts "$DIR/scene.txt" --margin 1e39 --precision float; err_has "bad value for --margin" "float margin"
+run 2 scene contacts "$DIR/scene.txt" --margin; err_has "--margin needs a value" "--margin without a value"
+run 2 scene distance "$DIR/scene.txt" --count; err_has "--count is an option of scene collide, contacts and manifold" "--count on distance"
+run 2 scene contacts "$DIR/scene.txt" --max-points 3; err_has "--max-points is an option of scene manifold only" "--max-points on contacts"
+for k in -1 x 1.5 ''; do run 2 scene manifold "$DIR/scene.txt" --max-points "$k"; err_has "bad value for --max-points" "--max-points '$k'"; done
+run 2 scene collide "$DIR/scene.txt" --precision half; err_has "bad value for --precision" "--precision"
+run 2 scene collide "$DIR/scene.txt" --isa nosuch; err_has "bad value for --isa" "--isa"
+run 2 scene collide "$DIR/scene.txt" --threads -1; err_has "bad value for --threads" "--threads"
+run 2 scene collide "$DIR/scene.txt" --bogus; err_has "unknown option '--bogus'" "unknown option"
+run 2 scene collide; err_has "the scene file is missing" "no operand"
+run 2 scene collide "$DIR/scene.txt" "$DIR/scene.txt"; err_has "unexpected argument" "two operands"
+run 2 scene collide - --motion -; err_has "standard input cannot hold both" "two stdin"
+run 2 scene nearest "$DIR/scene.txt"; err_has "unknown command 'nearest'" "unknown command"
+run 2 scene; err_has "usage: ttd scene" "no command"
+run 2 scene collide "$DIR/nothere.txt" --bogus; err_has "unknown option" "usage errors before files"
+if [ -w /dev/full ]; then
+    "$TTD" scene contacts "$DIR/scene.txt" --margin 1 > /dev/full 2> "$DIR/err"
+    [ $? -eq 1 ] || fail "output to /dev/full: status not 1"; err_has "error writing the output" "/dev/full"
+fi
+pass "errors: options and operands (exit 2)"
+
+# ---- help ----------------------------------------------------------------------------------
+run 0 scene --help
+for key in "scene collide SCENE" "scene distance SCENE" "scene contacts SCENE" "scene manifold SCENE" "mesh NAME FILE" \
+           "body NAME r00 r01 r02 t0" "i j ia ib" "d i j ia ib px py pz qx qy qz" "i j ia ib d px py pz qx qy qz" \
+           "i j px py pz nx ny nz d depth" "inf -1 -1 -1 -1 nan nan nan nan nan nan" "default 0" "--max-points K" \
+           "default 4" "--motion FILE" "--count" "--precision" "--isa" "--threads" "--orthonormalize" "Exit status"; do
+    grep -q -e "$key" "$DIR/out" || fail "scene --help lacks '$key'"
+done
+run 0 scene manifold -h; grep -q "depth" "$DIR/out" || fail "scene manifold -h"
+run 0 --help; grep -q "scene collide SCENE" "$DIR/out" || fail "ttd --help lacks scene"
+pass "help: ttd scene --help, ttd --help"
