@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* `ttd mesh distance | contacts | collide A B [options]`: the library's mesh queries on two
- * meshes read from files (cli/meshfile.h), under one pose (--pose), many (--poses FILE) or the
+ * meshes read from files (ttd/meshfile.h), under one pose (--pose), many (--poses FILE) or the
  * identity. The usage text below is the reference for the output formats; docs/mesh-files.md
  * has a summary.
  *

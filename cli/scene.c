@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "meshfile.h"
+#include <ttd/meshfile.h>
 #include "parse.h"
 
 /// Bad lines of a scene or motion file reported before the rest are only counted.

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The mesh-file reader (cli/meshfile.h): every format and variant is written here, by this
+/* The mesh-file reader (ttd/meshfile.h): every format and variant is written here, by this
  * test's own small writers, from a generator mesh (gen/meshes.h) into a temporary directory,
  * read back, and compared with the mesh it was written from: coordinates bit for bit (or
  * their float32 rounding where the format stores floats), triangles in order. Malformed and

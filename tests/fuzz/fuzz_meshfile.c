@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* libFuzzer target: the mesh-file reader (cli/meshfile.h) on arbitrary bytes, read once with
+/* libFuzzer target: the mesh-file reader (ttd/meshfile.h) on arbitrary bytes, read once with
  * double coordinates only and once with floats too. Checked: no crash, hang or out-of-bounds
  * access (AddressSanitizer; libFuzzer hands over a buffer of exactly size bytes); on success at
  * least one vertex and triangle, every index below nv, every coordinate finite, each float
