@@ -434,7 +434,26 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                 if (deepest == SIZE_MAX || P->d[x] < P->d[deepest])
                     deepest = x;
             }
-        const size_t want = within < MAX_POINTS ? within : MAX_POINTS;
+        /* points kept: at most K, and no point twice (faces in contact give many pairs at one
+         * point): min(K, the distinct points among the contacts) */
+        size_t distinct = 0;
+        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x) {
+            if (!(P->d[x] <= m))
+                continue;
+            int seen = 0;
+            for (size_t y = 0; y < x && !seen; ++y) {
+                if (!(P->d[y] <= m))
+                    continue;
+                int same = 1;
+                for (int r = 0; r < 3; ++r)
+                    same &= round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]) ==
+                            round_to(W->bytes, 0.5 * P->p[3 * y + r] + 0.5 * P->q[3 * y + r]);
+                seen = same;
+            }
+            distinct += (size_t)!seen;
+        }
+        (void)within;
+        const size_t want = distinct < MAX_POINTS ? distinct : MAX_POINTS;
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
@@ -719,6 +738,45 @@ static int sparse_scene_distances(void)
     return 0;
 }
 
+/* A cube resting on another, offset: the manifold's normals are the face it rests on (+z from
+ * the lower to the upper), also at the pairs where an edge of the lower cube's side faces meets
+ * the upper cube's bottom (d = 0 gives no direction from p to q), and no point twice. */
+static int resting_cube_normals(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_mesh_cube(&g) == 0);
+    double lo[3], hi[3];
+    ENSURE(ttd_gen_mesh_bounds(&g, lo, hi) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ttd_scene *s;
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    const double h = hi[2] - lo[2], w = hi[0] - lo[0];
+    const double below[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    const double above[12] = {1, 0, 0, 0.25 * w, 0, 1, 0, 0.25 * w, 0, 0, 1, h};
+    uint32_t id;
+    ENSURE(ttd_scene_add_d(s, m, below, &id) == TTD_OK);
+    ENSURE(ttd_scene_add_d(s, m, above, &id) == TTD_OK);
+    ttd_scene_array out = {0};
+    ENSURE(ttd_scene_manifold_d(NULL, s, 0, 8, &out) == TTD_OK);
+    ENSURE(out.count >= 3 && out.count <= 8);
+    const ttd_scene_point_d *p = out.data;
+    for (size_t k = 0; k < out.count; ++k) {
+        ENSURE_MSG(p[k].normal[0] == 0 && p[k].normal[1] == 0 && p[k].normal[2] == 1,
+                   "point %zu (triangles %u, %u) at (%g, %g, %g): normal (%g, %g, %g)", k, p[k].tri_i, p[k].tri_j,
+                   p[k].point[0], p[k].point[1], p[k].point[2], p[k].normal[0], p[k].normal[1], p[k].normal[2]);
+        ENSURE(p[k].distance == 0 && p[k].point[2] == hi[2]);
+        for (size_t l = 0; l < k; ++l)
+            ENSURE(memcmp(p[k].point, p[l].point, sizeof p[k].point) != 0);
+    }
+    printf("  resting cube: %zu manifold points, every normal +z\n", out.count);
+    ttd_scene_array_free(&out);
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -815,6 +873,7 @@ int main(int argc, char **argv)
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(scenes_match_brute_force);
     RUN_TEST(sparse_scene_distances);
+    RUN_TEST(resting_cube_normals);
     RUN_TEST(small_scenes);
     RUN_TEST(bad_input);
     TEST_MAIN_END();

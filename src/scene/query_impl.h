@@ -282,48 +282,56 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
-/* The unit normal of triangle tri of body id in the world (0 when it has no area). */
-static void world_normal(const struct ttd_scene *s, uint32_t id, uint32_t tri, double n[3])
+/* Triangle tri of body id in the world, as the kernel sees it (9 reals). */
+static void world_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, real x[9])
 {
     const struct ttd_mesh *m = s->body[id].mesh;
     const real *v = (const real *)m->verts, *pose = body_pose(s, id);
-    double x[3][3];
     for (int k = 0; k < 3; ++k) {
-        real w[3];
         const real *src = v + 3 * (size_t)m->tris[3 * (size_t)tri + (size_t)k];
         for (int r = 0; r < 3; ++r)
-            w[r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
-        for (int r = 0; r < 3; ++r)
-            x[k][r] = (double)w[r];
+            x[3 * k + r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
     }
-    const double e1[3] = {x[1][0] - x[0][0], x[1][1] - x[0][1], x[1][2] - x[0][2]};
-    const double e2[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
+}
+
+/* The unit normal of triangle x (0 when it has no area), and its centroid. */
+static void triangle_normal(const real x[9], double n[3], double g[3])
+{
+    const double e1[3] = {(double)x[3] - (double)x[0], (double)x[4] - (double)x[1], (double)x[5] - (double)x[2]};
+    const double e2[3] = {(double)x[6] - (double)x[0], (double)x[7] - (double)x[1], (double)x[8] - (double)x[2]};
     n[0] = e1[1] * e2[2] - e1[2] * e2[1];
     n[1] = e1[2] * e2[0] - e1[0] * e2[2];
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int r = 0; r < 3; ++r)
+    for (int r = 0; r < 3; ++r) {
         n[r] = len > 0 && isfinite(len) ? n[r] / len : 0;
+        g[r] = ((double)x[r] + (double)x[3 + r] + (double)x[6 + r]) / 3;
+    }
 }
 
-/* The centroid of triangle tri of body id in the world. */
-static void world_centroid(const struct ttd_scene *s, uint32_t id, uint32_t tri, double g[3])
+/* The direction of the edge of triangle x whose two vertices are the bits of f. */
+static void edge_of(const real x[9], unsigned f, double e[3])
 {
-    const struct ttd_mesh *m = s->body[id].mesh;
-    const real *v = (const real *)m->verts;
-    const double *pose = s->body[id].pose;
-    double c[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k)
-        for (int r = 0; r < 3; ++r)
-            c[r] += (double)v[3 * (size_t)m->tris[3 * (size_t)tri + (size_t)k] + (size_t)r] / 3;
+    const int a = (f & 1) ? 0 : 1, b = (f & 4) ? 2 : 1;
     for (int r = 0; r < 3; ++r)
-        g[r] = pose[4 * r] * c[0] + pose[4 * r + 1] * c[1] + pose[4 * r + 2] * c[2] + pose[4 * r + 3];
+        e[r] = (double)x[3 * b + r] - (double)x[3 * a + r];
+}
+
+static int bits3(unsigned f)
+{
+    return (int)(f & 1) + (int)((f >> 1) & 1) + (int)((f >> 2) & 1);
 }
 
 /* The normal of contact c, from body i towards body j: the direction from p to q when they
- * differ; where they meet (d = 0) there is none, so the face normal of i's triangle, else of j's,
- * turned to point from i's triangle's centroid towards j's; where both triangles have no area,
- * the direction between the centroids, else between the bodies' boxes' centres, else +z. */
+ * differ. Where they meet (d = 0) there is none; then, by where the contact lies on each
+ * triangle (the exact method's features): across both edges where an edge of each crosses the
+ * other; j's face normal where the contact lies inside j's face and not inside i's (a vertex or
+ * an edge of i on a face of j: a box resting on an edge of another gets the face it rests on,
+ * not the side face of the edge); i's face normal otherwise, or the other's when one has no
+ * area; turned to point from i's triangle's centroid towards j's
+ * (from i's body's box centre towards j's where the centroids do not tell, as for two
+ * coplanar faces); where both triangles have no area, the direction between the centroids, else
+ * between the boxes' centres, else +z. */
 static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
 {
     double d[3], len2 = 0;
@@ -337,31 +345,49 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
             n[r] = d[r] / len;
         return;
     }
-    double gi[3], gj[3], towards[3], t2 = 0;
-    world_centroid(s, c->i, c->tri_i, gi);
-    world_centroid(s, c->j, c->tri_j, gj);
+    real ti[9], tj[9];
+    world_triangle(s, c->i, c->tri_i, ti);
+    world_triangle(s, c->j, c->tri_j, tj);
+    double ni[3], nj[3], gi[3], gj[3];
+    triangle_normal(ti, ni, gi);
+    triangle_normal(tj, nj, gj);
+    ttd_result full;
+    TTD_EXACT_PAIR(ti, tj, &full); /* where on each triangle the contact lies */
+    const int has_i = ni[0] != 0 || ni[1] != 0 || ni[2] != 0, has_j = nj[0] != 0 || nj[1] != 0 || nj[2] != 0;
+    const int use_j = has_j && (!has_i || (bits3(full.feature_q) == 3 && bits3(full.feature_p) < 3));
+    double ne[3] = {0, 0, 0};
+    if (bits3(full.feature_p) == 2 && bits3(full.feature_q) == 2) { /* two edges cross: across both */
+        double ei[3], ej[3];
+        edge_of(ti, full.feature_p, ei);
+        edge_of(tj, full.feature_q, ej);
+        ne[0] = ei[1] * ej[2] - ei[2] * ej[1];
+        ne[1] = ei[2] * ej[0] - ei[0] * ej[2];
+        ne[2] = ei[0] * ej[1] - ei[1] * ej[0];
+        const double l = sqrt(ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]);
+        for (int r = 0; r < 3; ++r)
+            ne[r] = l > 0 && isfinite(l) ? ne[r] / l : 0;
+    }
+    const int use_edges = ne[0] != 0 || ne[1] != 0 || ne[2] != 0;
+    const scene_body *bi = &s->body[c->i], *bj = &s->body[c->j];
+    double towards[3], t2 = 0, boxes[3], b2 = 0;
     for (int r = 0; r < 3; ++r) {
         towards[r] = gj[r] - gi[r];
         t2 += towards[r] * towards[r];
+        boxes[r] = 0.5 * (bj->lo[r] + bj->hi[r]) - 0.5 * (bi->lo[r] + bi->hi[r]);
+        b2 += boxes[r] * boxes[r];
     }
-    if (!(t2 > 0)) {
-        t2 = 0;
-        const scene_body *bi = &s->body[c->i], *bj = &s->body[c->j];
-        for (int r = 0; r < 3; ++r) {
-            towards[r] = 0.5 * (bj->lo[r] + bj->hi[r]) - 0.5 * (bi->lo[r] + bi->hi[r]);
-            t2 += towards[r] * towards[r];
-        }
-    }
-    world_normal(s, c->i, c->tri_i, n);
-    if (n[0] == 0 && n[1] == 0 && n[2] == 0)
-        world_normal(s, c->j, c->tri_j, n);
-    if (n[0] == 0 && n[1] == 0 && n[2] == 0) {
-        const double len = sqrt(t2);
+    if (!has_i && !has_j) {
+        const double *dir = t2 > 0 ? towards : boxes;
+        const double len = sqrt(t2 > 0 ? t2 : b2);
         for (int r = 0; r < 3; ++r)
-            n[r] = t2 > 0 ? towards[r] / len : (r == 2 ? 1.0 : 0.0);
+            n[r] = len > 0 ? dir[r] / len : (r == 2 ? 1.0 : 0.0);
         return;
     }
-    if (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] < 0)
+    memcpy(n, use_edges ? ne : use_j ? nj : ni, 3 * sizeof *n);
+    double dot = n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2];
+    if (!(fabs(dot) > 1e-9 * sqrt(t2)))
+        dot = n[0] * boxes[0] + n[1] * boxes[1] + n[2] * boxes[2];
+    if (dot < 0)
         for (int r = 0; r < 3; ++r)
             n[r] = -n[r];
 }
@@ -377,8 +403,9 @@ static int depth_cmp(const void *x, const void *y)
 
 /* Appends body pair's manifold: its n contacts (reordered here) reduced to at most max points:
  * the deepest, then repeatedly the contact whose point is farthest from every point kept (ties
- * to the earlier in depth order): the deepest contact and the spread of the region, as Hauser's
- * clustering keeps, in O(max n) and the same on every run. */
+ * to the earlier in depth order), until max points or none left at a new point: the deepest
+ * contact and the spread of the region, as Hauser's clustering keeps, without repeated points,
+ * in O(max n) and the same on every run. */
 static int append_manifold(const struct ttd_scene *s, ttd_scene_contact *c, size_t n, real margin, size_t max,
                            ttd_scene_array *out)
 {
@@ -412,14 +439,16 @@ static int append_manifold(const struct ttd_scene *s, ttd_scene_contact *c, size
         }
         pt->distance = x->distance;
         pt->depth = margin - x->distance;
-        /* the next: farthest from every point kept so far */
-        double best = -1;
+        /* the next: farthest from every point kept so far; none when every contact left is at a
+         * point already kept (faces in contact give many pairs at the same points) */
+        double best = 0;
         for (size_t k = 0; k < n; ++k) {
             if (taken[k])
                 continue;
             double d2 = 0;
             for (int r = 0; r < 3; ++r) {
-                const double a = 0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r] - (double)pt->point[r];
+                /* the midpoint as a point would hold it: equal points are equal reals */
+                const double a = (double)(real)(0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r]) - (double)pt->point[r];
                 d2 += a * a;
             }
             far[k] = d2 < far[k] ? d2 : far[k];
@@ -428,6 +457,8 @@ static int append_manifold(const struct ttd_scene *s, ttd_scene_contact *c, size
                 next = k;
             }
         }
+        if (!(best > 0))
+            break;
     }
     free(far);
     free(taken);
