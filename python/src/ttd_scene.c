@@ -619,20 +619,24 @@ static PyObject *ttd_py_scene_set_pose(PyObject *obj, PyObject *args)
         return NULL;
     ttd_py_scene_lock(s);
     ttd_status st = TTD_ERR_INDEX_OUT_OF_RANGE;
-    if (ttd_py_scene_present(s, id))
+    PyObject *mesh = NULL; /* the body's Mesh, held for the message */
+    if (ttd_py_scene_present(s, id)) {
+        mesh = PyList_GET_ITEM(s->meshes, id);
+        Py_INCREF(mesh);
         st = s->type == NPY_DOUBLE ? ttd_scene_set_pose_d(s->scene, id, PyArray_DATA(p))
                                    : ttd_scene_set_pose_f(s->scene, id, PyArray_DATA(p));
+    }
     ttd_py_scene_unlock(s);
     if (st == TTD_ERR_INDEX_OUT_OF_RANGE)
         ttd_py_scene_no_body(s, "id", id);
     else if (st != TTD_OK) {
         PyObject *what = PyUnicode_FromFormat("pose (of body %u)", (unsigned)id);
         if (what != NULL) {
-            const ttd_py_mesh *m = (const ttd_py_mesh *)PyList_GET_ITEM(s->meshes, id);
-            ttd_py_scene_pose_error(st, m->mesh, PyArray_DATA(p), s->type, what);
+            ttd_py_scene_pose_error(st, ((const ttd_py_mesh *)mesh)->mesh, PyArray_DATA(p), s->type, what);
             Py_DECREF(what);
         }
     }
+    Py_XDECREF(mesh);
     Py_DECREF(p);
     if (st != TTD_OK)
         return NULL;

@@ -481,3 +481,67 @@ def test_stub_covers_the_scene():
     for obj in (ttd.Scene, ttd.SceneCollision, ttd.SceneContacts, ttd.SceneDistance, ttd.SceneManifold,
                 ttd.Scene.collide, ttd.Scene.distance, ttd.Scene.contacts, ttd.Scene.manifold):
         assert obj.__doc__ and len(obj.__doc__) > 40, obj
+
+
+class _Array(__import__("ctypes").Structure):
+    import ctypes as _c
+    _fields_ = [("data", _c.c_void_p), ("count", _c.c_size_t), ("capacity", _c.c_size_t)]
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_against_the_c_scene_api(libttd, dtype):
+    # The same scene made through ctypes on libttd.so: every field of every query's records is
+    # the C library's, and the records' dtypes match the structs' sizes.
+    import ctypes
+
+    ms, P = scene_setup(dtype, n=7, seed=5)
+    scene = ttd.Scene(ms, P)
+    scene.set_filter(2, 2, 2)
+    scene.exclude(0, 6)
+    lib = libttd.lib
+    sfx = "d" if dtype == np.float64 else "f"
+    real = ctypes.c_double if dtype == np.float64 else ctypes.c_float
+    cmeshes = [libttd.mesh(m.vertices, m.faces)[1] for m in ms]
+    handle = ctypes.c_void_p()
+    assert getattr(lib, "ttd_scene_create_" + sfx)(ctypes.byref(handle)) == 0
+    try:
+        poses = np.ascontiguousarray(P[:, :3, :].astype(dtype))
+        for k, cm in enumerate(cmeshes):
+            bid = ctypes.c_uint32()
+            assert getattr(lib, "ttd_scene_add_" + sfx)(handle, cm.handle, poses[k].ctypes.data_as(ctypes.POINTER(real)),
+                                                        ctypes.byref(bid)) == 0 and bid.value == k
+        assert lib.ttd_scene_set_filter(handle, 2, 2, 2) == 0 and lib.ttd_scene_exclude_pair(handle, 0, 6, 1) == 0
+        lib.ttd_scene_array_free.argtypes = [ctypes.POINTER(_Array)]
+        opt = ctypes.byref(libttd.options())
+        f = "FLOAT64" if dtype == np.float64 else "FLOAT32"
+
+        def array_query(name, records, *args):
+            arr = _Array()
+            fn = getattr(lib, f"ttd_scene_{name}_{sfx}")
+            assert fn(opt, handle, *[real(a) if isinstance(a, float) else a for a in args], ctypes.byref(arr)) == 0
+            try:
+                raw = ctypes.string_at(arr.data, arr.count * records.itemsize) if arr.count else b""
+                return np.frombuffer(raw, dtype=records)
+            finally:
+                lib.ttd_scene_array_free(ctypes.byref(arr))
+
+        pairs = [(array_query("collide", ttd.SCENE_HIT_DTYPE, 0.1), scene.collide(0.1)),
+                 (array_query("contacts", getattr(ttd, "SCENE_CONTACT_DTYPE_" + f), 0.2), scene.contacts(0.2)),
+                 (array_query("manifold", getattr(ttd, "SCENE_POINT_DTYPE_" + f), 0.2, ctypes.c_size_t(3)),
+                  scene.manifold(0.2, 3))]
+        for want, got in pairs:
+            assert len(want) == len(got[0]) > 0
+            for name in want.dtype.names:
+                np.testing.assert_array_equal(getattr(got, name), want[name])
+        rec = getattr(ttd, "SCENE_CONTACT_DTYPE_" + f)
+        closest = np.zeros((), rec)
+        nearest = np.zeros(7, rec)
+        fn = getattr(lib, "ttd_scene_distance_" + sfx)
+        assert fn(opt, handle, real(np.inf), ctypes.c_void_p(closest.ctypes.data), ctypes.c_void_p(nearest.ctypes.data)) == 0
+        d = scene.distance(nearest=True)
+        for name in rec.names:
+            np.testing.assert_array_equal(getattr(d, name), closest[name])
+            np.testing.assert_array_equal(getattr(d.nearest, name), nearest[name])
+    finally:
+        lib.ttd_scene_destroy.argtypes = [ctypes.c_void_p]
+        lib.ttd_scene_destroy(handle)
