@@ -94,7 +94,7 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
     {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
-    {"normal", "shape (n, 3): unit normal from body i towards body j (at distance 0: a face normal, see docs/python.md)"},
+    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p|; at distance 0 the face normal of tri_i (else of tri_j) turned from tri_i towards tri_j"},
     {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
