@@ -12,9 +12,10 @@
 #
 # Missing Debian packages are installed with apt-get when this runs as root (or with
 # password-less sudo). Where they cannot be, the Python tests are skipped with a message that
-# names what is missing, and the script exits 0. Dask, distributed and mypy are optional: without
-# them only the scale-out tests, or the type check of the docs' examples against the stub
-# (python/tests/test_types.py), are skipped (pytest says so).
+# names what is missing, and the script exits 0. Dask, distributed, mypy and matplotlib are
+# optional: without them only the scale-out tests, the type check of the docs' examples against
+# the stub (python/tests/test_types.py), or the check of the pile example's picture
+# (python/tests/test_examples.py) are skipped (pytest says so).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-${TTD_BUILD_DIR:-build}}
@@ -29,14 +30,15 @@ skip() {
 # What $py lacks, as Debian package names (one line, empty when nothing is).
 missing() {
     if ! command -v "$py" > /dev/null 2>&1; then
-        echo "python3 python3-numpy python3-pytest python3-setuptools python3-pip python3-venv python3-dev python3-dask python3-distributed python3-mypy"
+        echo "python3 python3-numpy python3-pytest python3-setuptools python3-pip python3-venv python3-dev python3-dask python3-distributed python3-mypy python3-matplotlib"
         return
     fi
     "$py" - << 'EOF'
 import importlib.util, os, sysconfig
 need = [("numpy", "python3-numpy"), ("pytest", "python3-pytest"), ("setuptools", "python3-setuptools"),
         ("pip", "python3-pip"), ("wheel", "python3-wheel"), ("ensurepip", "python3-venv"),
-        ("dask.array", "python3-dask"), ("distributed", "python3-distributed"), ("mypy", "python3-mypy")]
+        ("dask.array", "python3-dask"), ("distributed", "python3-distributed"), ("mypy", "python3-mypy"),
+        ("matplotlib", "python3-matplotlib")]
 out = []
 for module, package in need:
     try:
@@ -72,7 +74,7 @@ command -v "$py" > /dev/null 2>&1 || skip "the interpreter $py was not found (TT
 required=""
 for p in $lacking; do
     case $p in
-        python3-dask | python3-distributed | python3-mypy) ;;
+        python3-dask | python3-distributed | python3-mypy | python3-matplotlib) ;;
         *) required="$required $p" ;;
     esac
 done
@@ -85,7 +87,7 @@ if [ -n "$required" ]; then
     skip "$py (TTD_PYTHON) lacks$required; unset TTD_PYTHON to use Debian's $debian_py"
 fi
 if [ -n "$lacking" ]; then
-    echo "test-python.sh: $lacking not installed: the Dask tests, or the type check of the docs' examples (mypy), will be skipped (apt-get install $lacking)" >&2
+    echo "test-python.sh: $lacking not installed: the Dask tests, the type check of the docs' examples (mypy), or the check of the pile example's picture (matplotlib), will be skipped (apt-get install $lacking)" >&2
 fi
 
 # The library is built here (the package links its static archive); a sanitized build's

@@ -20,17 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- the Mesh type ----------------------------------------------------------------------- */
-
-typedef struct ttd_py_mesh {
-    PyObject_HEAD
-    ttd_mesh *mesh;
-    PyArrayObject *vertices; /* (nv, 3), the mesh's dtype, read-only, owned */
-    PyArrayObject *faces;    /* (nt, 3) uint32, read-only, owned */
-    int type;                /* NPY_DOUBLE or NPY_FLOAT */
-} ttd_py_mesh;
-
-static PyTypeObject ttd_py_MeshType;
+/* ---- the Mesh type (its struct is in ttd_py.h: ttd.Scene's bodies refer to it) ------------ */
 
 /* A one-triangle mesh in each precision: the queries' checks (options, instruction set,
  * parameters) are run on it for calls with no poses, so that errors do not depend on K. */
@@ -38,7 +28,7 @@ static ttd_mesh *ttd_py_probe_d, *ttd_py_probe_f;
 
 /* A real that was a double, as the float the float entries take: beyond float's range it is
  * infinite (the conversion would be undefined in C). */
-static float ttd_py_to_float(double x)
+float ttd_py_to_float(double x)
 {
     if (x > (double)FLT_MAX)
         return INFINITY;
@@ -209,7 +199,6 @@ PyDoc_STRVAR(ttd_py_mesh_doc,
 "MemoryError.");
 
 /* The mesh coordinate range (ttd.h): 2^60 in float, 2^508 in double. */
-#define TTD_PY_RANGE_TEXT "|x| <= 2**60 (about 1.2e18) in float32 and 2**508 (about 8e152) in float64"
 
 /* TTD_ERR_COORDINATE_RANGE from a build: names the first vertex beyond the range. */
 static void ttd_py_raise_vertex_range(PyArrayObject *v, size_t nv, int type)
@@ -354,7 +343,7 @@ static PyMethodDef ttd_py_mesh_type_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
-static PyTypeObject ttd_py_MeshType = {
+PyTypeObject ttd_py_MeshType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "ttd.Mesh",
     .tp_basicsize = sizeof(ttd_py_mesh),

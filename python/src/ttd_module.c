@@ -182,7 +182,7 @@ PyMODINIT_FUNC PyInit__ttd(void)
         Py_XDECREF(isas);
         goto fail;
     }
-    if (ttd_py_pairs_init(m) < 0 || ttd_py_mesh_init(m) < 0)
+    if (ttd_py_pairs_init(m) < 0 || ttd_py_mesh_init(m) < 0 || ttd_py_scene_init(m) < 0)
         goto fail;
     return m;
 fail:

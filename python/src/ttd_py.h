@@ -98,10 +98,28 @@ int ttd_py_same_lead(PyArrayObject *a, int lead_a, PyArrayObject *b, int lead_b,
  * instruction set, for calls with nothing to compute (so that errors never depend on n). */
 ttd_status ttd_py_check_options(const ttd_options *opt);
 
+/* A ttd.Mesh (ttd_mesh.c): the C mesh and the arrays it was built from. */
+typedef struct ttd_py_mesh {
+    PyObject_HEAD
+    ttd_mesh *mesh;
+    PyArrayObject *vertices; /* (nv, 3), the mesh's dtype, read-only, owned */
+    PyArrayObject *faces;    /* (nt, 3) uint32, read-only, owned */
+    int type;                /* NPY_DOUBLE or NPY_FLOAT */
+} ttd_py_mesh;
+extern PyTypeObject ttd_py_MeshType;
+
+/* The mesh coordinate range, for messages. */
+#define TTD_PY_RANGE_TEXT "|x| <= 2**60 (about 1.2e18) in float32 and 2**508 (about 8e152) in float64"
+
+/* A real that was a double, as the float the float entries take (beyond float's range:
+ * infinite). */
+float ttd_py_to_float(double x);
+
 /* Query families: each adds its functions and types to the module. */
 int ttd_py_pairs_init(PyObject *module);
 extern PyMethodDef ttd_py_pairs_methods[];
 int ttd_py_mesh_init(PyObject *module);
 extern PyMethodDef ttd_py_mesh_methods[];
+int ttd_py_scene_init(PyObject *module); /* ttd.Scene and its result types (ttd_scene.c) */
 
 #endif /* TTD_PY_H */

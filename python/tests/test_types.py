@@ -17,7 +17,8 @@ import ttd
 from meshes import icosphere, torus
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
-RESULT_TYPES = ("PairResult", "MeshDistance", "MeshContacts", "MeshCollision", "MeshClosest", "ClosestPartners")
+RESULT_TYPES = ("PairResult", "MeshDistance", "MeshContacts", "MeshCollision", "MeshClosest", "ClosestPartners",
+                "SceneCollision", "SceneContacts", "SceneDistance", "SceneManifold")
 
 
 def _results():
@@ -26,7 +27,12 @@ def _results():
     P = np.tile(np.eye(4), (3, 1, 1))
     P[:, 0, 3] = [0.0, 1.5, 4.0]
     closest = ttd.mesh_closest(A, B, P, 0.5)
-    return {"PairResult": ttd.distance(S, S + 2, points=True),
+    scene = ttd.Scene([A, B, A], P)
+    return {"SceneCollision": scene.collide(0.5),
+            "SceneContacts": scene.contacts(0.5),
+            "SceneDistance": scene.distance(nearest=True),
+            "SceneManifold": scene.manifold(0.5),
+            "PairResult": ttd.distance(S, S + 2, points=True),
             "MeshDistance": ttd.mesh_distance(A, B, P),
             "MeshContacts": ttd.mesh_contacts(A, B, P, 0.1),
             "MeshCollision": ttd.mesh_collide(A, B, P),
@@ -114,6 +120,17 @@ T2: np.ndarray = ttd.orthonormalize(T)
 w: ttd.MeshDistance = ttd.mesh_distance(A, A, pose_a=T, pose_b=T2)
 wc: ttd.MeshContacts = ttd.mesh_contacts(A, A, margin=0.1, pose_b=T)
 hit = ttd.mesh_collide(A, A).hit
+scene = ttd.Scene([A, A], np.stack([np.eye(4), np.eye(4)]), precision="float64")
+body: int = scene.add(A, np.eye(4))
+scene.set_poses(np.tile(np.eye(4), (3, 1, 1)))
+scene.set_filter(body, 1, 0xFFFFFFFF)
+scene.exclude(0, body)
+sc: ttd.SceneCollision = scene.collide(0.0)
+sd: ttd.SceneDistance = scene.distance(nearest=True)
+near: ttd.SceneContacts | None = sd.nearest
+scc: ttd.SceneContacts = scene.contacts(0.1)
+sm: ttd.SceneManifold = scene.manifold(0.1, max_points=4)
+n_bodies: int = len(scene)
 """
 
 DOCS = ("README.md", "python/README.md", "docs/python.md")

@@ -17,10 +17,16 @@ numpy arrays in, numpy arrays out::
     c = ttd.mesh_contacts(A, B, poses, 0.01)  # every triangle pair within 0.01, all poses
     ttd.mesh_collide(A, B, poses).hit       # (K,) bool
 
+    scene = ttd.Scene([A, B, B], world_poses)   # bodies: meshes at world poses (N, 4, 4)
+    scene.set_poses(new_poses)              # each step
+    scene.collide(), scene.distance(), scene.contacts(0.01), scene.manifold(0.01, 4)
+
 What is here: distance() (the pair API); Mesh and the mesh queries mesh_distance(),
 mesh_contacts(), mesh_closest(), mesh_collide() with their result types (b's poses in a's
 frame, or world poses pose_a= and pose_b= with results in the world frame); pose() and
-orthonormalize() for poses as users hold them (quaternions, matrices printed with few digits); the enums Method,
+orthonormalize() for poses as users hold them (quaternions, matrices printed with few digits);
+Scene, bodies of meshes at world poses, with the queries over every pair of bodies (collide,
+distance, contacts, manifold) and their result types; the enums Method,
 Isa, Flag and MeshFlag; the instruction-set queries isa_available(), isa_selected(),
 isa_lanes(), version; the exception IsaUnavailableError and the warnings NonFiniteInputWarning
 and NotConvergedWarning. ttd.dask runs batches of pairs and of poses larger than memory on a
@@ -42,6 +48,11 @@ try:
         NO_TRIANGLE,
         RESULT_DTYPE_FLOAT32,
         RESULT_DTYPE_FLOAT64,
+        SCENE_CONTACT_DTYPE_FLOAT32,
+        SCENE_CONTACT_DTYPE_FLOAT64,
+        SCENE_HIT_DTYPE,
+        SCENE_POINT_DTYPE_FLOAT32,
+        SCENE_POINT_DTYPE_FLOAT64,
         ClosestPartners,
         IsaUnavailableError,
         Mesh,
@@ -52,6 +63,11 @@ try:
         NonFiniteInputWarning,
         NotConvergedWarning,
         PairResult,
+        Scene,
+        SceneCollision,
+        SceneContacts,
+        SceneDistance,
+        SceneManifold,
         distance,
         isa_available,
         isa_lanes,
@@ -145,6 +161,16 @@ __all__ = [
     "PairResult",
     "RESULT_DTYPE_FLOAT32",
     "RESULT_DTYPE_FLOAT64",
+    "SCENE_CONTACT_DTYPE_FLOAT32",
+    "SCENE_CONTACT_DTYPE_FLOAT64",
+    "SCENE_HIT_DTYPE",
+    "SCENE_POINT_DTYPE_FLOAT32",
+    "SCENE_POINT_DTYPE_FLOAT64",
+    "Scene",
+    "SceneCollision",
+    "SceneContacts",
+    "SceneDistance",
+    "SceneManifold",
     "__version__",
     "distance",
     "isa_available",

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # Type hints for the C extension ttd._ttd (python/src/), re-exported by the ttd package:
-# the pair API, then the mesh objects and queries.
-from typing import Literal, NamedTuple, Optional, Tuple, Union, overload
+# the pair API, then the mesh objects and queries, then scenes of many bodies.
+from typing import Literal, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -207,3 +207,100 @@ def mesh_collide(
     threads: int = 0,
     out: Optional[npt.NDArray[np.void]] = None,
 ) -> MeshCollision: ...
+
+# ---- scenes ----------------------------------------------------------------------------------
+
+SCENE_HIT_DTYPE: np.dtype
+SCENE_CONTACT_DTYPE_FLOAT64: np.dtype
+SCENE_CONTACT_DTYPE_FLOAT32: np.dtype
+SCENE_POINT_DTYPE_FLOAT64: np.dtype
+SCENE_POINT_DTYPE_FLOAT32: np.dtype
+
+class SceneCollision(NamedTuple):
+    """Scene.collide's result: each body pair (i < j) within the margin and one witness pair of triangles."""
+
+    i: npt.NDArray[np.uint32]
+    j: npt.NDArray[np.uint32]
+    tri_i: npt.NDArray[np.uint32]
+    tri_j: npt.NDArray[np.uint32]
+
+class SceneContacts(NamedTuple):
+    """Scene.contacts's result (and Scene.distance's nearest): parallel (n,) arrays, world frame."""
+
+    i: npt.NDArray[np.uint32]
+    j: npt.NDArray[np.uint32]
+    tri_i: npt.NDArray[np.uint32]
+    tri_j: npt.NDArray[np.uint32]
+    distance: npt.NDArray[np.floating]
+    p: npt.NDArray[np.floating]
+    q: npt.NDArray[np.floating]
+
+class SceneDistance(NamedTuple):
+    """Scene.distance's result: the closest body pair (numpy scalars, (3,) points), and nearest."""
+
+    i: np.uint32
+    j: np.uint32
+    tri_i: np.uint32
+    tri_j: np.uint32
+    distance: Real
+    p: npt.NDArray[np.floating]
+    q: npt.NDArray[np.floating]
+    nearest: Optional[SceneContacts]
+
+class SceneManifold(NamedTuple):
+    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j)."""
+
+    i: npt.NDArray[np.uint32]
+    j: npt.NDArray[np.uint32]
+    tri_i: npt.NDArray[np.uint32]
+    tri_j: npt.NDArray[np.uint32]
+    point: npt.NDArray[np.floating]
+    normal: npt.NDArray[np.floating]
+    distance: npt.NDArray[np.floating]
+    depth: npt.NDArray[np.floating]
+
+class Scene:
+    """Bodies (ttd.Mesh objects at world poses) and the queries over every eligible pair of bodies."""
+
+    def __init__(
+        self,
+        meshes: Union[None, Mesh, Sequence[Mesh]] = None,
+        poses: Optional[npt.ArrayLike] = None,
+        *,
+        precision: Precision = None,
+    ) -> None: ...
+    def __len__(self) -> int: ...
+    @property
+    def id_limit(self) -> int: ...
+    @property
+    def dtype(self) -> Optional[np.dtype]: ...
+    @property
+    def meshes(self) -> Tuple[Optional[Mesh], ...]: ...
+    @property
+    def ids(self) -> npt.NDArray[np.intp]: ...
+    def add(self, mesh: Mesh, pose: Optional[npt.ArrayLike] = None) -> int: ...
+    def remove(self, id: int, /) -> None: ...
+    def set_pose(self, id: int, pose: npt.ArrayLike, /) -> None: ...
+    def set_poses(self, poses: npt.ArrayLike, /) -> None: ...
+    def set_filter(self, id: int, group: int, mask: int, /) -> None: ...
+    def exclude(self, i: int, j: int, excluded: bool = True) -> None: ...
+    def collide(
+        self, margin: float = 0.0, *, isa: Union[IsaName, str] = "auto", threads: int = 0
+    ) -> SceneCollision: ...
+    def distance(
+        self,
+        upper_bound: float = ...,
+        *,
+        nearest: bool = False,
+        isa: Union[IsaName, str] = "auto",
+        threads: int = 0,
+    ) -> SceneDistance: ...
+    def contacts(self, margin: float, *, isa: Union[IsaName, str] = "auto", threads: int = 0) -> SceneContacts: ...
+    def manifold(
+        self,
+        margin: float,
+        max_points: int = 4,
+        *,
+        isa: Union[IsaName, str] = "auto",
+        threads: int = 0,
+    ) -> SceneManifold: ...

@@ -1,0 +1,547 @@
+# SPDX-License-Identifier: MIT
+"""ttd.Scene: every query against an independent brute force over all triangle pairs of all
+eligible body pairs in the world frame (ttd.distance on each body's vertices moved exactly as
+include/ttd/ttd.h documents, ((r0 x + r1 y) + r2 z) + t per coordinate in the scene's dtype,
+body i's triangle first): equal bit for bit where the library promises it (distances, points,
+triangles, the manifold's reduction, re-done here in numpy); filters, exclusions, removals and
+additions, set_poses, both dtypes, 1 and 2 threads identical, the lock released, bad input."""
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import ttd
+from meshes import cube, grid, icosphere, move, random_poses, torus
+from test_threads import long_switch_interval, released_during  # noqa: F401 (a fixture)
+
+DTYPES = [np.float64, np.float32]
+NO = ttd.NO_TRIANGLE
+
+
+def meshes(dtype):
+    gv, gf = grid(8)
+    return [ttd.Mesh(*icosphere(1), precision=dtype), ttd.Mesh(*torus(), precision=dtype),
+            ttd.Mesh(*cube(), precision=dtype), ttd.Mesh(gv * [6, 6, 1] - [3, 3, 1.2], gf, precision=dtype)]
+
+
+def scene_setup(dtype, n=7, seed=5, spread=1.3):
+    """n bodies of the four meshes (the last one a floor at the identity) at random poses."""
+    M = meshes(dtype)
+    ms = [M[k % 3] for k in range(n - 1)] + [M[3]]
+    P = random_poses(n, seed, spread=spread)
+    P[-1] = np.eye(4)
+    return ms, P
+
+
+class World:
+    """The brute force: every triangle pair of every body pair, in the world frame."""
+
+    def __init__(self, ms, P, dtype, present=None, eligible=None):
+        self.ms, self.P, self.dtype = ms, np.asarray(P), dtype
+        self.present = present if present is not None else set(range(len(ms)))
+        self.eligible = eligible or (lambda i, j: True)
+        self.tris = {b: move(ms[b].vertices, self.P[b])[ms[b].faces] for b in self.present}
+        self.pairs = {}
+        for i in sorted(self.present):
+            for j in sorted(self.present):
+                if i < j and self.eligible(i, j):
+                    S, T = self.tris[i], self.tris[j]
+                    na, nb = len(S), len(T)
+                    self.pairs[i, j] = ttd.distance(np.broadcast_to(S[:, None], (na, nb, 3, 3)),
+                                                    np.broadcast_to(T[None, :], (na, nb, 3, 3)), points=True)
+
+    def contacts(self, margin):
+        m = self.dtype(margin)
+        rows = []
+        for (i, j), r in sorted(self.pairs.items()):
+            for a, b in np.argwhere(r.distance <= m):
+                rows.append((i, j, a, b, r.distance[a, b], r.p[a, b], r.q[a, b]))
+        return rows
+
+    def closest(self):
+        best = None
+        for (i, j), r in sorted(self.pairs.items()):
+            k = np.argmin(r.distance)  # the first minimum in (tri_i, tri_j) order
+            a, b = np.unravel_index(k, r.distance.shape)
+            if best is None or r.distance[a, b] < best[4]:
+                best = (i, j, a, b, r.distance[a, b], r.p[a, b], r.q[a, b])
+        return best
+
+
+def assert_contacts_equal(got, want):
+    assert len(got.i) == len(want)
+    for k, (i, j, a, b, d, p, q) in enumerate(want):
+        assert (got.i[k], got.j[k], got.tri_i[k], got.tri_j[k]) == (i, j, a, b), k
+        assert got.distance[k] == d
+        np.testing.assert_array_equal(got.p[k], p)
+        np.testing.assert_array_equal(got.q[k], q)
+
+
+def world_normal(world, body, tri):
+    x = world.tris[body][tri].astype(np.float64)
+    n = np.cross(x[1] - x[0], x[2] - x[0])
+    L = np.sqrt(n @ n)
+    return n / L if L > 0 and np.isfinite(L) else np.zeros(3)
+
+
+def manifold_brute(world, margin, max_points):
+    """The reduction of the library, re-done: deepest first (distance, then triangles), then
+    each the contact whose midpoint is farthest from the points kept."""
+    real = world.dtype
+    out = []
+    rows = world.contacts(margin)
+    by_pair = {}
+    for row in rows:
+        by_pair.setdefault(row[:2], []).append(row)
+    for (i, j), cs in sorted(by_pair.items()):
+        cs = sorted(cs, key=lambda c: (c[4], c[2], c[3]))
+        mids = np.array([0.5 * c[5].astype(np.float64) + 0.5 * c[6].astype(np.float64) for c in cs])
+        keep = len(cs) if max_points == 0 else min(max_points, len(cs))
+        far = np.full(len(cs), np.inf)
+        taken = np.zeros(len(cs), bool)
+        nxt = 0
+        for _ in range(keep):
+            c = cs[nxt]
+            taken[nxt] = True
+            point = mids[nxt].astype(real)
+            out.append((i, j, c[2], c[3], point, c[4], real(real(margin) - c[4]), c))
+            d2 = np.sum((mids - point.astype(np.float64)) ** 2, axis=1)
+            far = np.minimum(far, d2)
+            best = -1.0
+            for k in range(len(cs)):  # the first largest among those not taken
+                if not taken[k] and far[k] > best:
+                    best, nxt = far[k], k
+    return out
+
+
+def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
+    dtype = world.dtype
+    for margin in margins:
+        want = world.contacts(margin)
+        got = scene.contacts(margin)
+        assert_contacts_equal(got, want)
+        # collide: the body pairs within the margin, with a witness within it
+        hit = scene.collide(margin)
+        pairs = sorted({(c[0], c[1]) for c in want})
+        assert list(zip(hit.i.tolist(), hit.j.tolist())) == pairs
+        for i, j, a, b in zip(hit.i, hit.j, hit.tri_i, hit.tri_j):
+            assert world.pairs[i, j].distance[a, b] <= dtype(margin)
+        # manifold
+        for max_points in (1, 4, 0):
+            m = scene.manifold(margin, max_points)
+            mw = manifold_brute(world, margin, max_points)
+            assert len(m.i) == len(mw), (margin, max_points)
+            for k, (i, j, a, b, point, d, depth, c) in enumerate(mw):
+                assert (m.i[k], m.j[k], m.tri_i[k], m.tri_j[k]) == (i, j, a, b)
+                np.testing.assert_array_equal(m.point[k], point)
+                assert m.distance[k] == d and m.depth[k] == depth
+                n = m.normal[k].astype(np.float64)
+                assert abs(np.sqrt(n @ n) - 1) < 1e-5
+                pq = c[6].astype(np.float64) - c[5].astype(np.float64)
+                if d > 0 and pq @ pq > 0:
+                    np.testing.assert_array_equal(m.normal[k], (pq / np.sqrt(pq @ pq)).astype(dtype))
+                else:  # touching or crossing: the face normal of tri_i (else tri_j), towards j
+                    face = world_normal(world, i, a)
+                    if not face.any():
+                        face = world_normal(world, j, b)
+                    if face.any():
+                        assert abs(abs(n @ face) - 1) < 1e-5
+                        gi = world.tris[i][a].astype(np.float64).mean(0)
+                        gj = world.tris[j][b].astype(np.float64).mean(0)
+                        assert n @ (gj - gi) >= -1e-9
+    # distance
+    best = world.closest()
+    for nearest in (False, True):
+        d = scene.distance(nearest=nearest)
+        if best is None:
+            assert d.distance == np.inf and (d.i, d.j, d.tri_i, d.tri_j) == (NO, NO, NO, NO)
+        else:
+            assert (d.i, d.j, d.tri_i, d.tri_j) == best[:4]
+            assert d.distance == best[4]
+            np.testing.assert_array_equal(d.p, best[5])
+            np.testing.assert_array_equal(d.q, best[6])
+        assert (d.nearest is None) == (not nearest)
+    near = scene.distance(nearest=True).nearest
+    assert len(near.i) == scene.id_limit
+    for b in range(scene.id_limit):
+        if b not in world.present:
+            assert near.distance[b] == np.inf and (near.j[b], near.tri_i[b], near.tri_j[b]) == (NO, NO, NO)
+            continue
+        cands = []
+        for (i, j), r in world.pairs.items():
+            if b in (i, j):
+                D = r.distance if b == i else r.distance.T  # body b's triangles first
+                k = np.argmin(D)
+                a, c = np.unravel_index(k, D.shape)
+                cands.append((D[a, c], j if b == i else i, a, c))
+        if not cands:
+            assert near.distance[b] == np.inf and near.j[b] == NO
+            continue
+        dist, partner, a, c = min(cands)
+        assert near.i[b] == b
+        assert (near.distance[b], near.j[b], near.tri_i[b], near.tri_j[b]) == (dist, partner, a, c), b
+        assert np.all(near.p[b] == near.q[b]) if dist == 0 else abs(np.linalg.norm(
+            near.p[b].astype(np.float64) - near.q[b].astype(np.float64)) - dist) <= 1e-5 * max(1.0, dist)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_queries_equal_the_brute_force(dtype):
+    ms, P = scene_setup(dtype)
+    scene = ttd.Scene(ms, P)
+    assert scene.dtype == dtype and len(scene) == 7 and scene.id_limit == 7
+    world = World(ms, P, dtype)
+    assert len(world.contacts(0.05)) > 0, "the scene has contacts"
+    check_all(scene, world)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_poses_3x4_and_builder_give_the_same_scene(dtype):
+    ms, P = scene_setup(dtype)
+    a = ttd.Scene(ms, P[:, :3, :])
+    b = ttd.Scene(precision=dtype)
+    assert [b.add(m, p) for m, p in zip(ms, P)] == list(range(7))
+    for s in (a, b):
+        assert_contacts_equal(s.contacts(0.1), World(ms, P, dtype).contacts(0.1))
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_set_poses_moves_every_body(dtype):
+    ms, P = scene_setup(dtype)
+    scene = ttd.Scene(ms, P)
+    for step in range(3):
+        Q = random_poses(7, 100 + step, spread=1.2)
+        Q[-1] = np.eye(4)
+        Q[-1, 2, 3] = -0.1 * step
+        scene.set_poses(Q if step % 2 else Q[:, :3, :])
+        check_all(scene, World(ms, Q, dtype), margins=(0.0, 0.1))
+    scene.set_pose(2, np.eye(4))
+    Q[2] = np.eye(4)
+    check_all(scene, World(ms, Q, dtype), margins=(0.1,))
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_filters_exclusions_removals(dtype):
+    ms, P = scene_setup(dtype)
+    scene = ttd.Scene(ms, P)
+    groups = {0: (1, 0xFFFFFFFF), 1: (2, 0xFFFFFFFF ^ 2), 2: (2, 1), 3: (4, 0), 4: (1, 0xFFFFFFFF)}
+    for b, (g, m) in groups.items():
+        scene.set_filter(b, g, m)
+    scene.exclude(6, 0)
+    scene.exclude(1, 5)
+    scene.exclude(1, 5, excluded=False)
+    scene.exclude(4, 6)
+
+    def eligible(i, j):
+        gi, mi = groups.get(i, (1, 0xFFFFFFFF))
+        gj, mj = groups.get(j, (1, 0xFFFFFFFF))
+        return bool(gi & mj) and bool(gj & mi) and {i, j} not in ({0, 6}, {4, 6})
+
+    check_all(scene, World(ms, P, dtype, eligible=eligible))
+    scene.remove(1)
+    scene.remove(4)
+    present = {0, 2, 3, 5, 6}
+    assert len(scene) == 5 and scene.id_limit == 7 and scene.ids.tolist() == sorted(present)
+    assert scene.meshes[1] is None and scene.meshes[0] is ms[0]
+    check_all(scene, World(ms, P, dtype, present=present, eligible=eligible))
+    # an addition gets id 7; set_poses takes one pose per id, removed ones ignored
+    assert scene.add(ms[0], P[1]) == 7
+    ms2, P2 = ms + [ms[0]], np.concatenate([P, P[1:2]])
+    present.add(7)
+    check_all(scene, World(ms2, P2, dtype, present=present, eligible=eligible))
+    Q = P2.copy()
+    Q[:, :3, 3] *= 0.9
+    Q[1, 0, 0] = np.nan  # removed: ignored
+    scene.set_poses(Q)
+    Q[1] = P2[1]
+    check_all(scene, World(ms2, Q, dtype, present=present, eligible=eligible), margins=(0.0, 0.1))
+
+
+def test_one_mesh_for_every_body_and_meshes_outlive_the_scene():
+    import gc
+    P = np.tile(np.eye(4), (3, 1, 1))
+    P[:, 0, 3] = [0, 2.0, 4.5]
+    scene = ttd.Scene(ttd.Mesh(*icosphere(1)), P)  # the only reference to the mesh is the scene's
+    gc.collect()
+    assert len(scene) == 3 and scene.meshes[0] is scene.meshes[2]
+    hit = scene.collide()
+    assert hit.i.tolist() == [0] and hit.j.tolist() == [1]  # touching at x = 1
+    assert ttd.Scene([scene.meshes[0]]).id_limit == 1  # a mesh and no poses: the identity
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_threads_and_isas_give_identical_results(dtype):
+    ms, P = scene_setup(dtype, n=9, seed=8)
+    scene = ttd.Scene(ms, P)
+    ref = None
+    for isa in [i for i in ttd.ISAS if i != "auto" and ttd.isa_available(i)]:
+        for threads in (1, 2):
+            got = (scene.contacts(0.2, isa=isa, threads=threads), scene.collide(0.1, isa=isa, threads=threads),
+                   scene.manifold(0.2, 3, isa=isa, threads=threads),
+                   scene.distance(nearest=True, isa=isa, threads=threads))
+            flat = [np.asarray(x) for r in got for x in r if not isinstance(x, tuple)]
+            flat += [np.asarray(x) for x in got[3].nearest]
+            if ref is None:
+                ref = flat
+            for x, y in zip(flat, ref):
+                np.testing.assert_array_equal(x, y)
+
+
+def test_upper_bound_and_empty_scenes():
+    ms, P = scene_setup(np.float64)
+    scene = ttd.Scene(ms, P)
+    best = scene.distance()
+    assert scene.distance(upper_bound=float(best.distance)).distance == best.distance
+    far = ttd.Scene([ms[0], ms[0]], np.stack([np.eye(4), np.eye(4)]))
+    far.set_pose(1, np.array([[1, 0, 0, 10.0], [0, 1, 0, 0], [0, 0, 1, 0]]))
+    d = far.distance(upper_bound=1.0, nearest=True)
+    assert d.distance == np.inf and d.i == NO and d.nearest.j.tolist() == [NO, NO]
+    assert far.distance().distance == pytest.approx(8.0, abs=1e-9)
+    for s in (ttd.Scene(), ttd.Scene(precision="float32"), ttd.Scene([ms[0]])):
+        assert len(s.collide().i) == 0 and len(s.contacts(1.0).i) == 0 and len(s.manifold(1.0).i) == 0
+        assert s.distance().distance == np.inf
+    assert ttd.Scene().dtype is None and ttd.Scene(precision="float32").dtype == np.float32
+
+
+def test_results_are_views_of_library_records():
+    ms, P = scene_setup(np.float64)
+    scene = ttd.Scene(ms, P)
+    c = scene.contacts(0.1)
+    assert c.p.base is not None and c.i.base is c.p.base
+    assert c.p.base.dtype == ttd.SCENE_CONTACT_DTYPE_FLOAT64
+    assert scene.manifold(0.1).point.base.dtype == ttd.SCENE_POINT_DTYPE_FLOAT64
+    assert scene.collide(0.1).i.base.dtype == ttd.SCENE_HIT_DTYPE
+    f = ttd.Scene([ttd.Mesh(*icosphere(1), precision="float32")] * 2, P[:2])
+    assert f.contacts(3.0).distance.dtype == np.float32
+    assert f.manifold(3.0).normal.dtype == np.float32
+
+
+def test_the_lock_is_released(long_switch_interval):  # noqa: F811
+    v, f = icosphere(3)
+    A = ttd.Mesh(v, f)
+    n = 27
+    P = np.tile(np.eye(4), (n, 1, 1))
+    P[:, :3, 3] = 1.9 * np.stack(np.meshgrid(*[np.arange(3)] * 3, indexing="ij"), -1).reshape(-1, 3)
+    scene = ttd.Scene(A, P)
+    assert released_during(lambda: scene.contacts(0.2, threads=1))
+    assert released_during(lambda: scene.manifold(0.2, threads=1))
+
+
+def test_concurrent_use_is_serialised():
+    ms, P = scene_setup(np.float64)
+    scene = ttd.Scene(ms, P)
+    want = scene.contacts(0.1)
+    errors = []
+
+    def worker(k):
+        try:
+            for _ in range(20):
+                if k == 0:
+                    scene.set_poses(P)
+                got = scene.contacts(0.1, threads=1)
+                assert np.array_equal(got.distance, want.distance)
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    ts = [threading.Thread(target=worker, args=(k,)) for k in range(3)]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    assert not errors
+
+
+# ---- bad input ------------------------------------------------------------------------------
+
+def test_bad_input():
+    ms, P = scene_setup(np.float64)
+    scene = ttd.Scene(ms, P)
+    F = ttd.Mesh(*icosphere(1), precision="float32")
+    with pytest.raises(ValueError, match=r"poses has shape \(7, 3, 3\)"):
+        ttd.Scene(ms, P[:, :3, :3])
+    with pytest.raises(ValueError, match="7 meshes and 6 poses"):
+        ttd.Scene(ms, P[:6])
+    with pytest.raises(TypeError, match=r"meshes\[2\] must be a ttd.Mesh, not int"):
+        ttd.Scene([ms[0], ms[1], 3])
+    with pytest.raises(TypeError, match=r"meshes\[1\] is a float32 mesh in a float64 scene"):
+        ttd.Scene([ms[0], F])
+    with pytest.raises(TypeError, match="float64 mesh in a float32 scene"):
+        ttd.Scene([ms[0]], precision="float32")
+    with pytest.raises(TypeError, match="a float32 mesh cannot join a float64 scene"):
+        scene.add(F)
+    with pytest.raises(TypeError, match="poses without meshes"):
+        ttd.Scene(None, P)
+    Q = P.copy()
+    Q[3, :3, :3] = np.diag([1, 1, -1])
+    with pytest.raises(ValueError, match=r"poses\[3\] \(body 3\) is not a rotation: det R = -1.0"):
+        ttd.Scene(ms, Q)
+    with pytest.raises(ValueError, match=r"poses\[3\] \(body 3\) is not a rotation: det R = -1.0"):
+        scene.set_poses(Q)
+    Q = P.copy()
+    Q[5, 0, 1] += 1e-3
+    with pytest.raises(ValueError, match=r"poses\[5\] \(body 5\) is not a rotation within 1e-6"):
+        scene.set_poses(Q)
+    Q = P.copy()
+    Q[2, 1, 3] = np.nan
+    with pytest.raises(ValueError, match=r"poses\[2\] \(body 2\) has a NaN or infinite entry"):
+        scene.set_poses(Q)
+    check_all(scene, World(ms, P, np.float64), margins=(0.1,))  # a refused set_poses changes nothing
+    Q = P.copy()
+    Q[4, 3] = [0, 0, 1, 1]
+    with pytest.raises(ValueError, match=r"poses\[4\] has bottom row \(0.0, 0.0, 1.0, 1.0\)"):
+        scene.set_poses(Q)
+    Q = P.copy()
+    Q[1, 0, 3] = 1e300
+    with pytest.raises(ValueError, match=r"poses\[1\] \(body 1\) moves its mesh beyond the mesh coordinate range"):
+        scene.set_poses(Q)
+    with pytest.raises(ValueError, match=r"poses holds 6 poses: the scene takes one per body id, 7"):
+        scene.set_poses(P[:6])
+    with pytest.raises(ValueError, match=r"pose \(of body 2\) is not a rotation within 1e-6"):
+        scene.set_pose(2, np.eye(4) * 1.1 + np.diag([0, 0, 0, -0.1]))
+    with pytest.raises(ValueError, match=r"pose has shape \(4,\)"):
+        scene.set_pose(2, np.zeros(4))
+    with pytest.raises(ValueError, match=r"pose \(of the body being added, id 7\) has a NaN"):
+        scene.add(ms[0], np.full((3, 4), np.nan))
+    assert scene.id_limit == 7
+    with pytest.raises(IndexError, match="no such body"):
+        scene.set_pose(9, np.eye(4))
+    with pytest.raises(IndexError, match="no such body"):
+        scene.remove(7)
+    with pytest.raises(IndexError, match="is not a body id"):
+        scene.remove(-1)
+    with pytest.raises(TypeError, match="integer body id"):
+        scene.remove(1.0)
+    with pytest.raises(ValueError, match="a pair is two different bodies"):
+        scene.exclude(2, 2)
+    with pytest.raises(IndexError, match="j = 12: no such body"):
+        scene.exclude(2, 12)
+    with pytest.raises(ValueError, match="group = -1 is out of range"):
+        scene.set_filter(0, -1, 1)
+    with pytest.raises(ValueError, match="mask = 4294967296 is out of range"):
+        scene.set_filter(0, 1, 2 ** 32)
+    for bad in (-1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="margin=.* is out of range"):
+            scene.collide(bad)
+        with pytest.raises(ValueError, match="margin=.* is out of range"):
+            scene.contacts(bad)
+        with pytest.raises(ValueError, match="margin=.* is out of range"):
+            scene.manifold(bad)
+    with pytest.raises(ValueError, match="upper_bound=-1.0 is out of range"):
+        scene.distance(-1.0)
+    with pytest.raises(ValueError, match="upper_bound=nan is out of range"):
+        scene.distance(math.nan)
+    with pytest.raises(ValueError, match="max_points=-1 is out of range"):
+        scene.manifold(0.1, -1)
+    with pytest.raises(TypeError, match="margin must be a real number"):
+        scene.contacts(None)
+    with pytest.raises(TypeError, match="margin"):
+        scene.collide("0.1")
+    with pytest.raises(ValueError, match="threads"):
+        scene.collide(threads=-1)
+    with pytest.raises(ValueError, match="isa"):
+        scene.collide(isa="nonsense")
+    scene.remove(3)
+    with pytest.raises(IndexError, match="body 3 was removed"):
+        scene.set_filter(3, 1, 1)
+    with pytest.raises(IndexError, match="i = 3: body 3 was removed"):
+        scene.exclude(3, 1)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_sparse_scene_distances_and_nearest(dtype):
+    # Bodies apart: positive distances, so the closest pair, each body's nearest and the
+    # manifolds' q - p normals are tested away from contact.
+    ms, P = scene_setup(dtype, n=7, seed=11, spread=4.0)
+    P[-1, 2, 3] = -6.0
+    scene = ttd.Scene(ms, P)
+    world = World(ms, P, dtype)
+    near = scene.distance(nearest=True)
+    assert near.distance > 0 and np.all(near.nearest.distance > 0)
+    check_all(scene, world, margins=(0.0, 0.5, 1.5))
+    assert len(scene.manifold(1.5).i) > 0
+
+
+def test_stub_covers_the_scene():
+    import ast
+    import inspect
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(ttd.__file__).parent / "_ttd.pyi").read_text())
+    cls = [n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "Scene"][0]
+    methods = {n.name: n for n in cls.body if isinstance(n, ast.FunctionDef)}
+    for name in ("add", "remove", "set_pose", "set_poses", "set_filter", "exclude", "collide", "distance",
+                 "contacts", "manifold"):
+        a = methods[name].args
+        stubbed = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs][1:]
+        real = inspect.signature(getattr(ttd.Scene, name)).parameters
+        assert stubbed == [p for p in real if p != "self"], name
+        assert [x.arg for x in a.kwonlyargs] == [p for p, v in real.items() if v.kind is v.KEYWORD_ONLY], name
+    init = methods["__init__"].args
+    assert [x.arg for x in init.args + init.kwonlyargs][1:] == list(inspect.signature(ttd.Scene).parameters)
+    for obj in (ttd.Scene, ttd.SceneCollision, ttd.SceneContacts, ttd.SceneDistance, ttd.SceneManifold,
+                ttd.Scene.collide, ttd.Scene.distance, ttd.Scene.contacts, ttd.Scene.manifold):
+        assert obj.__doc__ and len(obj.__doc__) > 40, obj
+
+
+class _Array(__import__("ctypes").Structure):
+    import ctypes as _c
+    _fields_ = [("data", _c.c_void_p), ("count", _c.c_size_t), ("capacity", _c.c_size_t)]
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_against_the_c_scene_api(libttd, dtype):
+    # The same scene made through ctypes on libttd.so: every field of every query's records is
+    # the C library's, and the records' dtypes match the structs' sizes.
+    import ctypes
+
+    ms, P = scene_setup(dtype, n=7, seed=5)
+    scene = ttd.Scene(ms, P)
+    scene.set_filter(2, 2, 2)
+    scene.exclude(0, 6)
+    lib = libttd.lib
+    sfx = "d" if dtype == np.float64 else "f"
+    real = ctypes.c_double if dtype == np.float64 else ctypes.c_float
+    cmeshes = [libttd.mesh(m.vertices, m.faces)[1] for m in ms]
+    handle = ctypes.c_void_p()
+    assert getattr(lib, "ttd_scene_create_" + sfx)(ctypes.byref(handle)) == 0
+    try:
+        poses = np.ascontiguousarray(P[:, :3, :].astype(dtype))
+        for k, cm in enumerate(cmeshes):
+            bid = ctypes.c_uint32()
+            assert getattr(lib, "ttd_scene_add_" + sfx)(handle, cm.handle, poses[k].ctypes.data_as(ctypes.POINTER(real)),
+                                                        ctypes.byref(bid)) == 0 and bid.value == k
+        assert lib.ttd_scene_set_filter(handle, 2, 2, 2) == 0 and lib.ttd_scene_exclude_pair(handle, 0, 6, 1) == 0
+        lib.ttd_scene_array_free.argtypes = [ctypes.POINTER(_Array)]
+        opt = ctypes.byref(libttd.options())
+        f = "FLOAT64" if dtype == np.float64 else "FLOAT32"
+
+        def array_query(name, records, *args):
+            arr = _Array()
+            fn = getattr(lib, f"ttd_scene_{name}_{sfx}")
+            assert fn(opt, handle, *[real(a) if isinstance(a, float) else a for a in args], ctypes.byref(arr)) == 0
+            try:
+                raw = ctypes.string_at(arr.data, arr.count * records.itemsize) if arr.count else b""
+                return np.frombuffer(raw, dtype=records)
+            finally:
+                lib.ttd_scene_array_free(ctypes.byref(arr))
+
+        pairs = [(array_query("collide", ttd.SCENE_HIT_DTYPE, 0.1), scene.collide(0.1)),
+                 (array_query("contacts", getattr(ttd, "SCENE_CONTACT_DTYPE_" + f), 0.2), scene.contacts(0.2)),
+                 (array_query("manifold", getattr(ttd, "SCENE_POINT_DTYPE_" + f), 0.2, ctypes.c_size_t(3)),
+                  scene.manifold(0.2, 3))]
+        for want, got in pairs:
+            assert len(want) == len(got[0]) > 0
+            for name in want.dtype.names:
+                np.testing.assert_array_equal(getattr(got, name), want[name])
+        rec = getattr(ttd, "SCENE_CONTACT_DTYPE_" + f)
+        closest = np.zeros((), rec)
+        nearest = np.zeros(7, rec)
+        fn = getattr(lib, "ttd_scene_distance_" + sfx)
+        assert fn(opt, handle, real(np.inf), ctypes.c_void_p(closest.ctypes.data), ctypes.c_void_p(nearest.ctypes.data)) == 0
+        d = scene.distance(nearest=True)
+        for name in rec.names:
+            np.testing.assert_array_equal(getattr(d, name), closest[name])
+            np.testing.assert_array_equal(getattr(d.nearest, name), nearest[name])
+    finally:
+        lib.ttd_scene_destroy.argtypes = [ctypes.c_void_p]
+        lib.ttd_scene_destroy(handle)
