@@ -342,6 +342,34 @@ static size_t smallest_at(const pairinfo *P, double d, uint32_t me)
     return best;
 }
 
+/* At d = 0 a manifold normal is a face normal of one of the two triangles, or across an edge of
+ * each (docs/scenes.md): parallel to n_i or n_j, or perpendicular to an edge of both. */
+static int d0_normal_plausible(const world *W, const pairinfo *P, const point *pt, double eps)
+{
+    double x[2][3][3];
+    for (int k = 0; k < 3; ++k) {
+        world_vertex(W, P->i, W->gm[W->mesh_of[P->i]].tris[3 * pt->ti + (uint32_t)k], x[0][k]);
+        world_vertex(W, P->j, W->gm[W->mesh_of[P->j]].tris[3 * pt->tj + (uint32_t)k], x[1][k]);
+    }
+    int perp[2] = {0, 0};
+    for (int t = 0; t < 2; ++t) {
+        double e[3][3];
+        for (int k = 0; k < 3; ++k)
+            for (int r = 0; r < 3; ++r)
+                e[k][r] = x[t][(k + 1) % 3][r] - x[t][k][r];
+        int face = 1;
+        for (int k = 0; k < 3; ++k) {
+            const double len = sqrt(e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2]);
+            const double c = len > 0 ? fabs(pt->n[0] * e[k][0] + pt->n[1] * e[k][1] + pt->n[2] * e[k][2]) / len : 0;
+            face &= c <= 1e3 * eps;
+            perp[t] |= c <= 1e3 * eps && len > 0;
+        }
+        if (face)
+            return 1; /* perpendicular to all three edges: the face normal */
+    }
+    return perp[0] && perp[1];
+}
+
 static int check_against_brute(const world *W, const brute *B, const answers *A)
 {
     const double m = round_to(W->bytes, MARGIN);
@@ -474,6 +502,9 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
             if (pt->d > 0 && dl > 0)
                 for (int r = 0; r < 3; ++r)
                     ENSURE_NEAR(pt->n[r], dir[r] / sqrt(dl), 16 * eps);
+            if (pt->d == 0)
+                ENSURE_MSG(d0_normal_plausible(W, P, pt, eps), "manifold (%u, %u) triangles (%u, %u): normal at d = 0",
+                           P->i, P->j, pt->ti, pt->tj);
             /* farthest-point choice: no unchosen contact farther from the points before */
             if (n > 0) {
                 double mine = INFINITY;

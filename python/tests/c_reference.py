@@ -16,6 +16,7 @@ class Options(ctypes.Structure):
         ("rho", ctypes.c_double),
         ("tol", ctypes.c_double),
         ("max_iterations", ctypes.c_int),
+        ("solid", ctypes.c_int),
         ("internal_cookie", ctypes.c_uint32),
     ]
 

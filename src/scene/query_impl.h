@@ -328,9 +328,9 @@ static int bits3(unsigned f)
  * other; j's face normal where the contact lies inside j's face and not inside i's (a vertex or
  * an edge of i on a face of j: a box resting on an edge of another gets the face it rests on,
  * not the side face of the edge); i's face normal otherwise, or the other's when one has no
- * area; turned to point from i's triangle's centroid towards j's
- * (from i's body's box centre towards j's where the centroids do not tell, as for two
- * coplanar faces); where both triangles have no area, the direction between the centroids, else
+ * area; turned to point from i's triangle's centroid towards j's where that direction is
+ * within 60 degrees of the normal, from i's body's box centre towards j's otherwise (coplanar
+ * faces, crossing triangles side by side); where both triangles have no area, the direction between the centroids, else
  * between the boxes' centres, else +z. */
 static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
 {
@@ -384,8 +384,11 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
         return;
     }
     memcpy(n, use_edges ? ne : use_j ? nj : ni, 3 * sizeof *n);
+    /* the sign: from i's triangle towards j's where that direction is within 60 degrees of the
+     * normal either way; otherwise (coplanar faces, crossing triangles whose centroids sit side
+     * by side) from i's body towards j's */
     double dot = n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2];
-    if (!(fabs(dot) > 1e-9 * sqrt(t2)))
+    if (!(fabs(dot) >= 0.5 * sqrt(t2)))
         dot = n[0] * boxes[0] + n[1] * boxes[1] + n[2] * boxes[2];
     if (dot < 0)
         for (int r = 0; r < 3; ++r)
