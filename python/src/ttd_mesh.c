@@ -12,6 +12,7 @@
  * index, the pose); the library's checks stay the reference: a refused pose or parameter is
  * located after the library has refused it, by the rule the header documents. */
 #include "ttd_py.h"
+#include <ttd/meshfile.h>
 
 #include <float.h>
 #include <math.h>
@@ -338,8 +339,41 @@ static PyGetSetDef ttd_py_mesh_getset[] = {
     {NULL, NULL, NULL, NULL, NULL},
 };
 
+static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwargs);
+
+/* Mesh.from_file(path, *, precision='float64', threads=0, strict=False): the file read by the
+ * library's reader, then the mesh built (the reader's precision is the mesh's). */
+static PyObject *ttd_py_mesh_from_file(PyObject *cls, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = {"path", "precision", "threads", "strict", NULL};
+    PyObject *path, *threads = NULL;
+    const char *precision = "float64";
+    int strict = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$sOp:from_file", kwlist, &path, &precision, &threads, &strict))
+        return NULL;
+    PyObject *largs = Py_BuildValue("(O)", path), *lkw = Py_BuildValue("{s:s,s:O}", "precision", precision, "strict",
+                                                                       strict ? Py_True : Py_False);
+    PyObject *read = largs && lkw ? ttd_py_load_mesh(NULL, largs, lkw) : NULL, *mesh = NULL;
+    Py_XDECREF(largs);
+    Py_XDECREF(lkw);
+    if (read == NULL)
+        return NULL;
+    PyObject *margs = Py_BuildValue("(OO)", PyTuple_GET_ITEM(read, 0), PyTuple_GET_ITEM(read, 1));
+    PyObject *mkw = threads != NULL ? Py_BuildValue("{s:s,s:O}", "precision", precision, "threads", threads)
+                                    : Py_BuildValue("{s:s}", "precision", precision);
+    if (margs != NULL && mkw != NULL)
+        mesh = PyObject_Call(cls, margs, mkw);
+    Py_XDECREF(margs);
+    Py_XDECREF(mkw);
+    Py_DECREF(read);
+    return mesh;
+}
+
 static PyMethodDef ttd_py_mesh_type_methods[] = {
     {"__reduce__", ttd_py_mesh_reduce, METH_NOARGS, "Pickles as (vertices, faces); unpickling rebuilds the mesh."},
+    {"from_file", (PyCFunction)(void (*)(void))ttd_py_mesh_from_file, METH_CLASS | METH_VARARGS | METH_KEYWORDS,
+     "from_file(path, *, precision='float64', threads=0, strict=False)\n--\n\n"
+     "The mesh in an OBJ, STL or PLY file (ttd.load_mesh reads it), built in that precision."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -522,6 +556,7 @@ int ttd_py_mesh_init(PyObject *module)
         return -1;
     if (PyModule_AddIntConstant(module, "MESH_INTERSECTING", TTD_MESH_INTERSECTING) < 0 ||
         PyModule_AddIntConstant(module, "MESH_ABOVE_BOUND", TTD_MESH_ABOVE_BOUND) < 0 ||
+        PyModule_AddIntConstant(module, "MESH_CONTAINED", TTD_MESH_CONTAINED) < 0 ||
         ttd_py_add(module, "NO_TRIANGLE", PyLong_FromUnsignedLong(UINT32_MAX)) < 0)
         return -1;
     /* The probes: one triangle, built with options that cannot fail (TTD_ISA is not read). */
@@ -681,6 +716,9 @@ static ttd_status ttd_py_probe(ttd_py_kind kind, const ttd_options *opt, int typ
         ttd_contacts_f sf;
     } out;
     memset(&out, 0, sizeof out);
+    ttd_options o = *opt;
+    o.solid = 0; /* the probe's meshes are not closed; the real ones are checked by the query */
+    opt = &o;
     ttd_status st = ttd_py_call(kind, opt, type, d ? ttd_py_probe_d : ttd_py_probe_f, d ? ttd_py_probe_d : ttd_py_probe_f,
                                 1, d ? (const void *)pd : (const void *)pf, x, y, &out, NULL);
     if (kind == TTD_PY_CONTACTS) {
@@ -781,6 +819,10 @@ static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_quer
     case TTD_ERR_COORDINATE_RANGE:
         ttd_py_raise_pose_range(q);
         return -1;
+    case TTD_ERR_MESH_NOT_CLOSED:
+        PyErr_Format(PyExc_ValueError,
+                     "ttd: solid=True needs closed meshes: %s", ttd_status_string(st));
+        return -1;
     case TTD_ERR_BAD_OPTIONS:
         if (ttd_py_check_options(&q->opt) == TTD_ERR_BAD_OPTIONS) /* threads */
             return ttd_py_raise_fatal(st, &q->opt);
@@ -863,7 +905,7 @@ static PyArrayObject *ttd_py_records(const ttd_py_query *q, PyArray_Descr *descr
 }
 
 PyDoc_STRVAR(ttd_py_mesh_distance_doc,
-"mesh_distance(a, b, poses, *, upper_bound=math.inf, rel_tol=0.0, isa='auto', threads=0, out=None)\n"
+"mesh_distance(a, b, poses, *, upper_bound=math.inf, rel_tol=0.0, isa='auto', threads=0, out=None, solid=False)\n"
 "--\n\n"
 "Minimum distance between meshes a and b under each pose of b, with the closest points and\n"
 "the triangles that realise it.\n\n"
@@ -884,7 +926,12 @@ PyDoc_STRVAR(ttd_py_mesh_distance_doc,
 "    depend on either.\n"
 "out : numpy.ndarray, optional\n"
 "    Where the library writes its records instead of a new array: ttd.MESH_RESULT_DTYPE_FLOAT64\n"
-"    (or FLOAT32 for float32 meshes), shape (K,) (() for one pose), C-contiguous, writeable.\n\n"
+"    (or FLOAT32 for float32 meshes), shape (K,) (() for one pose), C-contiguous, writeable.\n"
+"solid : bool\n"
+"    False (default): the meshes' surfaces are compared, so a mesh inside another is at the\n"
+"    distance between their surfaces. True: both meshes are solids (they must be closed,\n"
+"    ValueError otherwise); one inside the other gives distance 0 with ttd.MeshFlag.CONTAINED,\n"
+"    p = q a vertex of the inner mesh and ttd.NO_TRIANGLE for the outer mesh's triangle.\n\n"
 "Returns a ttd.MeshDistance: distance (K,), p, q (K, 3), tri_a, tri_b (K,) uint32,\n"
 "feature_a, feature_b (K,) uint8, flags (K,) uint16 (ttd.MeshFlag), node_tests (uint32) and\n"
 "pair_tests (uint64), in a's frame; numpy scalars and (3,) points for a single pose. The\n"
@@ -897,10 +944,11 @@ PyDoc_STRVAR(ttd_py_mesh_distance_doc,
 static PyObject *ttd_py_mesh_distance(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kwlist[] = {"a", "b", "poses", "upper_bound", "rel_tol", "isa", "threads", "out", NULL};
+    static char *kwlist[] = {"a", "b", "poses", "upper_bound", "rel_tol", "isa", "threads", "out", "solid", NULL};
     PyObject *a, *b, *poses, *ub_obj = NULL, *rt_obj = NULL, *isa = NULL, *threads = NULL, *out_obj = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|$OOOOO:mesh_distance", kwlist, &a, &b, &poses, &ub_obj, &rt_obj,
-                                     &isa, &threads, &out_obj))
+    int solid = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|$OOOOOp:mesh_distance", kwlist, &a, &b, &poses, &ub_obj, &rt_obj,
+                                     &isa, &threads, &out_obj, &solid))
         return NULL;
     double ub = (double)INFINITY, rt = 0;
     if (ttd_py_real_arg(ub_obj, "upper_bound", &ub) < 0 || ttd_py_real_arg(rt_obj, "rel_tol", &rt) < 0)
@@ -908,6 +956,7 @@ static PyObject *ttd_py_mesh_distance(PyObject *self, PyObject *args, PyObject *
     ttd_py_query q;
     if (ttd_py_query_begin(a, b, poses, isa, threads, &q) < 0)
         return NULL;
+    q.opt.solid = solid;
     const int f = q.type == NPY_FLOAT;
     PyObject *result = NULL;
     PyArrayObject *rec = ttd_py_records(&q, ttd_py_dist_rec[f], f ? "ttd.MESH_RESULT_DTYPE_FLOAT32" : "ttd.MESH_RESULT_DTYPE_FLOAT64",
@@ -929,14 +978,15 @@ done:
 }
 
 PyDoc_STRVAR(ttd_py_mesh_collide_doc,
-"mesh_collide(a, b, poses, margin=0, *, isa='auto', threads=0, out=None)\n"
+"mesh_collide(a, b, poses, margin=0, *, isa='auto', threads=0, out=None, solid=False)\n"
 "--\n\n"
 "Whether meshes a and b come within margin of each other under each pose of b (margin 0: do\n"
 "they touch or cross?). Each pose stops at its first witness pair.\n\n"
 "a, b, poses, isa, threads : as in ttd.mesh_distance.\n"
 "margin : float, finite and >= 0 (converted to the meshes' dtype).\n"
 "out : numpy.ndarray, optional: ttd.COLLISION_DTYPE records, shape (K,) (() for one pose),\n"
-"    written by the library instead of a new array.\n\n"
+"    written by the library instead of a new array.\n"
+"solid : bool: as in ttd.mesh_distance (one closed mesh inside another collides).\n\n"
 "Returns a ttd.MeshCollision: hit (K,) bool, and the first pair found within the margin,\n"
 "tri_a and tri_b (K,) uint32 (ttd.NO_TRIANGLE where there is none), node_tests, pair_tests;\n"
 "numpy scalars for a single pose. hit equals (the minimum distance <= margin). The\n"
@@ -945,10 +995,11 @@ PyDoc_STRVAR(ttd_py_mesh_collide_doc,
 static PyObject *ttd_py_mesh_collide(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kwlist[] = {"a", "b", "poses", "margin", "isa", "threads", "out", NULL};
+    static char *kwlist[] = {"a", "b", "poses", "margin", "isa", "threads", "out", "solid", NULL};
     PyObject *a, *b, *poses, *margin_obj = NULL, *isa = NULL, *threads = NULL, *out_obj = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|O$OOO:mesh_collide", kwlist, &a, &b, &poses, &margin_obj, &isa,
-                                     &threads, &out_obj))
+    int solid = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|O$OOOp:mesh_collide", kwlist, &a, &b, &poses, &margin_obj, &isa,
+                                     &threads, &out_obj, &solid))
         return NULL;
     double margin = 0;
     if (ttd_py_real_arg(margin_obj, "margin", &margin) < 0)
@@ -956,6 +1007,7 @@ static PyObject *ttd_py_mesh_collide(PyObject *self, PyObject *args, PyObject *k
     ttd_py_query q;
     if (ttd_py_query_begin(a, b, poses, isa, threads, &q) < 0)
         return NULL;
+    q.opt.solid = solid;
     PyObject *result = NULL;
     PyArrayObject *hit = NULL, *rec = ttd_py_records(&q, ttd_py_coll_rec, "ttd.COLLISION_DTYPE", 0, out_obj);
     if (rec == NULL)
@@ -1213,7 +1265,69 @@ done:
     return result;
 }
 
+/* ---- mesh files ---------------------------------------------------------------------------- */
+
+PyDoc_STRVAR(ttd_py_load_mesh_doc,
+"load_mesh(path, *, precision='float64', strict=False)\n"
+"--\n\n"
+"Reads a triangle mesh from an OBJ, STL (ASCII or binary) or PLY (ASCII or binary) file, the\n"
+"format told by the content, with the C library's reader (include/ttd/meshfile.h,\n"
+"docs/mesh-files.md): polygons fan-triangulated, STL's repeated vertices merged.\n\n"
+"precision : 'float64' (default) or 'float32' (coordinates rounded once from the file's text).\n"
+"strict : bool: refuse OBJ lines that are not OBJ statements (default: skip them).\n\n"
+"Returns (vertices, faces, skipped): vertices (N, 3) of that dtype, faces (M, 3) uint32, and\n"
+"skipped, the number of OBJ lines skipped. Raises ValueError naming FILE:LINE or the byte\n"
+"(a malformed or unreadable file), TypeError for a path that is not str or os.PathLike.");
+
+static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"path", "precision", "strict", NULL};
+    PyObject *path_obj, *bytes = NULL;
+    const char *precision = "float64";
+    int strict = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$sp:load_mesh", kwlist, &path_obj, &precision, &strict))
+        return NULL;
+    const int f32 = strcmp(precision, "float32") == 0;
+    if (!f32 && strcmp(precision, "float64") != 0) {
+        PyErr_Format(PyExc_ValueError, "precision must be 'float64' or 'float32', not '%s'", precision);
+        return NULL;
+    }
+    if (!PyUnicode_FSConverter(path_obj, &bytes))
+        return NULL;
+    ttd_meshfile m;
+    char err[512];
+    int rc;
+    const char *path = PyBytes_AS_STRING(bytes);
+    Py_BEGIN_ALLOW_THREADS
+    rc = ttd_meshfile_read(path, (f32 ? TTD_MESHFILE_FLOAT : 0) | (strict ? TTD_MESHFILE_STRICT : 0), &m, err,
+                           sizeof err);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(bytes);
+    if (rc != 0) {
+        PyErr_SetString(PyExc_ValueError, err);
+        return NULL;
+    }
+    npy_intp vd[2] = {(npy_intp)m.nv, 3}, fd[2] = {(npy_intp)m.nt, 3};
+    PyArrayObject *v = (PyArrayObject *)PyArray_SimpleNew(2, vd, f32 ? NPY_FLOAT : NPY_DOUBLE);
+    PyArrayObject *t = (PyArrayObject *)PyArray_SimpleNew(2, fd, NPY_UINT32);
+    PyObject *result = NULL;
+    if (v != NULL && t != NULL) {
+        if (f32)
+            memcpy(PyArray_DATA(v), m.verts_f, 3 * m.nv * sizeof(float));
+        else
+            memcpy(PyArray_DATA(v), m.verts, 3 * m.nv * sizeof(double));
+        memcpy(PyArray_DATA(t), m.tris, 3 * m.nt * sizeof(uint32_t));
+        result = Py_BuildValue("(OOn)", v, t, (Py_ssize_t)m.skipped_lines);
+    }
+    Py_XDECREF(v);
+    Py_XDECREF(t);
+    ttd_meshfile_free(&m);
+    return result;
+}
+
 PyMethodDef ttd_py_mesh_methods[] = {
+    {"load_mesh", (PyCFunction)(void (*)(void))ttd_py_load_mesh, METH_VARARGS | METH_KEYWORDS, ttd_py_load_mesh_doc},
     {"mesh_distance", (PyCFunction)(void (*)(void))ttd_py_mesh_distance, METH_VARARGS | METH_KEYWORDS,
      ttd_py_mesh_distance_doc},
     {"mesh_contacts", (PyCFunction)(void (*)(void))ttd_py_mesh_contacts, METH_VARARGS | METH_KEYWORDS,

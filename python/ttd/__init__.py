@@ -11,6 +11,7 @@ numpy arrays in, numpy arrays out::
     r.distance, r.p, r.q, r.flags & ttd.Flag.INTERSECTING
 
     A = ttd.Mesh(vertices, faces)           # (n, 3) float32/float64, (m, 3) integers
+    A = ttd.Mesh.from_file("bunny.obj")     # or an OBJ, STL or PLY file (ttd.load_mesh reads one)
     B = ttd.Mesh(vertices2, faces2)
     d = ttd.mesh_distance(A, B, poses)      # poses (K, 4, 4) or (K, 3, 4): B in A's frame
     d.distance, d.p, d.q, d.tri_a, d.tri_b  # (K,), (K, 3), (K, 3), (K,), (K,)
@@ -75,7 +76,7 @@ try:
         version,
     )
     from . import _ttd
-    from ._poses import mesh_closest, mesh_collide, mesh_contacts, mesh_distance, orthonormalize, pose
+    from ._poses import load_mesh, mesh_closest, mesh_collide, mesh_contacts, mesh_distance, orthonormalize, pose
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -130,6 +131,7 @@ class MeshFlag(enum.IntFlag):
 
     INTERSECTING = _ttd.MESH_INTERSECTING  #: the meshes touch or cross: distance 0, p == q
     ABOVE_BOUND = _ttd.MESH_ABOVE_BOUND  #: no pair within upper_bound: distance inf, no points or triangles
+    CONTAINED = _ttd.MESH_CONTAINED  #: solid=True: one mesh inside the other (also INTERSECTING)
 
 
 del enum  # used above only: not part of the package's namespace
@@ -176,6 +178,7 @@ __all__ = [
     "isa_available",
     "isa_lanes",
     "isa_selected",
+    "load_mesh",
     "mesh_closest",
     "mesh_collide",
     "mesh_contacts",

@@ -195,9 +195,11 @@ def _poses_for(poses, pose_a, pose_b, query):
 
 def mesh_distance(a: Mesh, b: Mesh, poses: Optional[npt.ArrayLike] = None, *, pose_a: Optional[npt.ArrayLike] = None,
                   pose_b: Optional[npt.ArrayLike] = None, upper_bound: float = math.inf, rel_tol: float = 0.0,
-                  isa: str = "auto", threads: int = 0, out: Optional[npt.NDArray[np.void]] = None) -> MeshDistance:
+                  isa: str = "auto", threads: int = 0, out: Optional[npt.NDArray[np.void]] = None,
+                  solid: bool = False) -> MeshDistance:
     P, world = _poses_for(poses, pose_a, pose_b, "distance")
-    r = _ttd.mesh_distance(a, b, P, upper_bound=upper_bound, rel_tol=rel_tol, isa=isa, threads=threads, out=out)
+    r = _ttd.mesh_distance(a, b, P, upper_bound=upper_bound, rel_tol=rel_tol, isa=isa, threads=threads, out=out,
+                           solid=solid)
     if world is None:
         return r
     return r._replace(p=_to_world(r.p, *world), q=_to_world(r.q, *world))
@@ -234,9 +236,9 @@ def mesh_closest(a: Mesh, b: Mesh, poses: Optional[npt.ArrayLike] = None, margin
 
 def mesh_collide(a: Mesh, b: Mesh, poses: Optional[npt.ArrayLike] = None, margin: float = 0.0, *,
                  pose_a: Optional[npt.ArrayLike] = None, pose_b: Optional[npt.ArrayLike] = None, isa: str = "auto",
-                 threads: int = 0, out: Optional[npt.NDArray[np.void]] = None) -> MeshCollision:
+                 threads: int = 0, out: Optional[npt.NDArray[np.void]] = None, solid: bool = False) -> MeshCollision:
     P, _ = _poses_for(poses, pose_a, pose_b, "collide")
-    return _ttd.mesh_collide(a, b, P, margin, isa=isa, threads=threads, out=out)
+    return _ttd.mesh_collide(a, b, P, margin, isa=isa, threads=threads, out=out, solid=solid)
 
 
 _WORLD = """
@@ -255,3 +257,20 @@ for _f in (mesh_distance, mesh_contacts, mesh_closest, mesh_collide):
     _doc = (getattr(_ttd, _f.__name__).__doc__ or "").split("--\n\n", 1)[-1]
     _f.__doc__ = f"{_f.__name__}: the mesh query, with world poses if wanted.\n" + _WORLD + _doc
 del _f, _doc
+
+
+def load_mesh(path: Any, *, precision: str = "float64", strict: bool = False
+              ) -> Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32]]:
+    """(vertices, faces) of the OBJ, STL or PLY file at path, read by the C library's reader
+    (docs/mesh-files.md): vertices (N, 3) float64 (or float32 with precision="float32"),
+    faces (M, 3) uint32. OBJ lines that are not OBJ statements (FCL's header line of two counts,
+    say) are skipped with a warning saying how many (strict=True refuses them). A malformed
+    file is a ValueError naming FILE:LINE or the byte."""
+    vertices, faces, skipped = _ttd.load_mesh(path, precision=precision, strict=strict)
+    if skipped:
+        import warnings
+
+        warnings.warn(f"{path}: skipped {skipped} line(s) that are not OBJ statements (strict=True refuses them)",
+                      stacklevel=2)
+    return vertices, faces
+

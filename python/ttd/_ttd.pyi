@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # Type hints for the C extension ttd._ttd (python/src/), re-exported by the ttd package:
 # the pair API, then the mesh objects and queries, then scenes of many bodies.
-from typing import Literal, NamedTuple, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Literal, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -81,6 +81,7 @@ def isa_lanes(isa: Union[IsaName, str] = "auto", precision: Precision = "float64
 
 MESH_INTERSECTING: int
 MESH_ABOVE_BOUND: int
+MESH_CONTAINED: int
 NO_TRIANGLE: int
 MESH_RESULT_DTYPE_FLOAT64: np.dtype
 MESH_RESULT_DTYPE_FLOAT32: np.dtype
@@ -114,6 +115,12 @@ class Mesh:
     @property
     def node_count(self) -> int: ...
     def __reduce__(self) -> Tuple[type, Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32]]]: ...
+    @classmethod
+    def from_file(cls, path: Any, *, precision: str = "float64", threads: int = 0, strict: bool = False) -> "Mesh": ...
+
+def load_mesh(
+    path: Any, *, precision: str = "float64", strict: bool = False
+) -> Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32], int]: ...
 
 Floats = Union[npt.NDArray[np.floating], Real]
 
@@ -175,6 +182,7 @@ def mesh_distance(
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
     out: Optional[npt.NDArray[np.void]] = None,
+    solid: bool = False,
 ) -> MeshDistance: ...
 def mesh_contacts(
     a: Mesh,
@@ -206,6 +214,7 @@ def mesh_collide(
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
     out: Optional[npt.NDArray[np.void]] = None,
+    solid: bool = False,
 ) -> MeshCollision: ...
 
 # ---- scenes ----------------------------------------------------------------------------------
