@@ -26,6 +26,7 @@
 #include "mesh_bench.h"
 #include "scene_bench.h"
 #include "mesh_workload.h"
+#include "output.h"
 #include "pairs.h"
 
 /* What is run on a workload. */
@@ -528,19 +529,6 @@ static int load_data(bench_ctx *cx, const workload_spec *w, size_t n, bench_data
             return -1;
     }
     return 0;
-}
-
-/* Instruction sets from the fastest down: the portable row is plain C over lane arrays, slower
- * than any native SIMD row, so it ranks just above scalar (its enum value is the highest). */
-static const ttd_isa isa_preference[] = {TTD_ISA_AVX512, TTD_ISA_NEON, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_PORTABLE,
-                                         TTD_ISA_SCALAR};
-
-ttd_isa bench_best_isa(unsigned mask)
-{
-    for (size_t i = 0; i < sizeof isa_preference / sizeof isa_preference[0]; ++i)
-        if ((mask & (1u << isa_preference[i])) && ttd_isa_available(isa_preference[i]))
-            return isa_preference[i];
-    return TTD_ISA_AUTO;
 }
 
 static ttd_isa best_simd(void)

@@ -114,17 +114,10 @@ typedef struct bench_settings {
     const struct bench_scene_results *scene; ///< the scene section (bench/scene_bench.h), NULL when not run
 } bench_settings;
 
-void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st,
-                       const bench_row *rows, size_t n);
-void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
-                      const bench_row *rows, size_t n);
-void bench_write_csv(FILE *f, const bench_row *rows, size_t n);
 
 /// The best instruction set available here among those in mask (bit i: ttd_isa i), the portable
 /// row ranked just above scalar; TTD_ISA_AUTO if none is.
 ttd_isa bench_best_isa(unsigned mask);
 
-/// Writes s as a JSON string literal (quotes, backslashes and control characters escaped).
-void bench_json_string(FILE *f, const char *s);
 
 #endif /* TTD_BENCH_INTERNAL_H */

@@ -394,3 +394,16 @@ void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes)
     free(src);
     free(dst);
 }
+
+/* Instruction sets from the fastest down: the portable row is plain C over lane arrays, slower
+ * than any native SIMD row, so it ranks just above scalar (its enum value is the highest). */
+static const ttd_isa isa_preference[] = {TTD_ISA_AVX512, TTD_ISA_NEON, TTD_ISA_AVX2, TTD_ISA_SSE2, TTD_ISA_PORTABLE,
+                                         TTD_ISA_SCALAR};
+
+ttd_isa bench_best_isa(unsigned mask)
+{
+    for (size_t i = 0; i < sizeof isa_preference / sizeof isa_preference[0]; ++i)
+        if ((mask & (1u << isa_preference[i])) && ttd_isa_available(isa_preference[i]))
+            return isa_preference[i];
+    return TTD_ISA_AUTO;
+}

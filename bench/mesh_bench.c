@@ -32,6 +32,7 @@
 #include <unistd.h>
 
 #include "fcl_mesh_link.h"
+#include "json.h"
 #include "meshes.h"
 #include <ttd/meshfile.h>
 

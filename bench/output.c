@@ -4,6 +4,8 @@
  * line per row, the same fields as the JSON rows). Values that do not apply are "-" in the
  * table, null in the JSON and empty in the CSV. */
 #include "bench_internal.h"
+#include "json.h"
+#include "output.h"
 #include "mesh_bench.h"
 #include "scene_bench.h"
 
@@ -128,21 +130,6 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
         bench_mesh_write_table(f, st->mesh);
     if (st->scene)
         bench_scene_write_table(f, st->scene);
-}
-
-void bench_json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
 }
 
 static void json_num(FILE *f, const char *key, double v)
