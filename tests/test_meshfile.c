@@ -55,16 +55,29 @@ static void putf(buf *b, const char *fmt, ...)
     put(b, s, (size_t)n);
 }
 
+/* The byte order of the put_* writers below: 0 little-endian (STL, PLY's default here), 1 big. */
+static int big_endian;
+
+static void put_ordered(buf *b, unsigned char *s, int n)
+{
+    for (int k = 0; big_endian && k < n / 2; ++k) {
+        const unsigned char t = s[k];
+        s[k] = s[n - 1 - k];
+        s[n - 1 - k] = t;
+    }
+    put(b, s, (size_t)n);
+}
+
 static void put_u32(buf *b, uint32_t v)
 {
     unsigned char s[4] = {(unsigned char)v, (unsigned char)(v >> 8), (unsigned char)(v >> 16), (unsigned char)(v >> 24)};
-    put(b, s, 4);
+    put_ordered(b, s, 4);
 }
 
 static void put_u16(buf *b, uint16_t v)
 {
     unsigned char s[2] = {(unsigned char)v, (unsigned char)(v >> 8)};
-    put(b, s, 2);
+    put_ordered(b, s, 2);
 }
 
 static void put_f32(buf *b, float f)
@@ -78,8 +91,10 @@ static void put_f64(buf *b, double d)
 {
     uint64_t u;
     memcpy(&u, &d, 8);
-    put_u32(b, (uint32_t)u);
-    put_u32(b, (uint32_t)(u >> 32));
+    unsigned char s[8];
+    for (int k = 0; k < 8; ++k)
+        s[k] = (unsigned char)(u >> (8 * k));
+    put_ordered(b, s, 8);
 }
 
 static char tmpdir[256];
@@ -490,7 +505,8 @@ static int stl_errors(void)
 static void ply_binary(buf *b, const ttd_gen_mesh *m, const char *coord_type, const char *count_type,
                        const char *index_type, const char *index_name, int faces_first)
 {
-    putf(b, "ply\nformat binary_little_endian 1.0\ncomment written by ttd's test\nobj_info nothing\n");
+    putf(b, "ply\nformat %s 1.0\ncomment written by ttd's test\nobj_info nothing\n",
+         big_endian ? "binary_big_endian" : "binary_little_endian");
     putf(b, "element material 2\nproperty float shine\nproperty uchar id\n");
     const char *vertex_header_fmt = "element vertex %zu\nproperty double quality\nproperty %s x\nproperty %s y\n"
                                     "property uchar red\nproperty list uchar int16 tags\nproperty %s z\n";
@@ -567,14 +583,17 @@ static int ply_binary_variants(void)
         {"float32", "uchar", "ushort", "vertex_index", 1, 1, 0},
         {"int16", "uint", "int16", "vertex_indices", 0, 0, 1},
     };
-    for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k) {
-        const ttd_gen_mesh *m = v[k].use_grid ? &grid : &ref;
+    for (size_t k = 0; k < 2 * (sizeof v / sizeof v[0]); ++k) {
+        big_endian = k >= sizeof v / sizeof v[0]; /* every variant in both byte orders */
+        const size_t j = k % (sizeof v / sizeof v[0]);
+        const ttd_gen_mesh *m = v[j].use_grid ? &grid : &ref;
         buf b = {0};
-        ply_binary(&b, m, v[k].coord, v[k].count, v[k].index, v[k].name, v[k].faces_first);
+        ply_binary(&b, m, v[j].coord, v[j].count, v[j].index, v[j].name, v[j].faces_first);
+        big_endian = 0;
         ttd_meshfile mf;
         ENSURE_MSG(roundtrip("b.ply", &b, 1, &mf) == 0, "variant %zu: %s", k, err);
         ENSURE(mf.format == TTD_MESHFILE_PLY_BINARY);
-        if (same_mesh(&mf, m, v[k].fl)) { fprintf(stderr, "  variant %zu\n", k); return 1; }
+        if (same_mesh(&mf, m, v[j].fl)) { fprintf(stderr, "  variant %zu\n", k); return 1; }
         ttd_meshfile_free(&mf);
         free(b.p);
     }
@@ -617,7 +636,7 @@ static int ply_errors(void)
     const char *face = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
     const char *verts = "0 0 0\n1 0 0\n0 1 0\n";
     struct { const char *a, *b, *c, *d, *want; } cases[] = {
-        {"ply\nformat binary_big_endian 1.0\n", "", "", "", "a.ply:2: format binary_big_endian is not supported"},
+        {"ply\nformat binary_middle_endian 1.0\n", "", "", "", "a.ply:2: unknown format 'binary_middle_endian'"},
         {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty list float int n\n",
          "", "", "", "a.ply:7: property list count type 'float' is not an integer type"},
         {head, "element face 1\nproperty list uchar float vertex_indices\n", "", "", "a.ply:8: face index type 'float' is not an integer type"},

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* Reading triangle meshes from files: OBJ, STL (ASCII and binary) and PLY (ASCII and binary
- * little-endian) into one indexed mesh, the public reader of the library that `ttd mesh`,
+/* Reading triangle meshes from files: OBJ, STL (ASCII and binary) and PLY (ASCII, binary
+ * little- and big-endian) into one indexed mesh, the public reader of the library that `ttd mesh`,
  * `ttd scene` and the Python package use. The
  * format is recognised by content, never by the file name; docs/mesh-files.md has the rules
  * (what is accepted, merged, skipped, and the error messages).

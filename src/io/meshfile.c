@@ -701,7 +701,7 @@ static int ply_header_parse(ctx *c, const uchar *data, size_t size, ply_header *
             else if (tok_is(a, al, "binary_little_endian", 0))
                 h->binary = 1;
             else if (tok_is(a, al, "binary_big_endian", 0))
-                return fail_line(c, line, "format binary_big_endian is not supported (only ascii and binary_little_endian)");
+                h->binary = 2;
             else
                 return fail_line(c, line, "unknown format '%s'", quote(a, al, q));
             have_format = 1;
@@ -856,9 +856,10 @@ typedef struct ply_value {
     float f;
 } ply_value;
 
-/// Reads a scalar of type t from the binary data at *off.
+/// Reads a scalar of type t from the binary data at *off, little-endian (binary 1) or big-endian
+/// (binary 2: its bytes reversed first, then read as little-endian).
 static int ply_read_bin(ctx *c, const uchar *data, size_t size, size_t *off, ply_type t, ply_value *v,
-                        const ply_elem *el, unsigned long long idx)
+                        const ply_elem *el, unsigned long long idx, int binary)
 {
     size_t n = ply_types[t].size;
     if (size - *off < n) {
@@ -866,6 +867,12 @@ static int ply_read_bin(ctx *c, const uchar *data, size_t size, size_t *off, ply
         return fail_at(c, size, "truncated: file ends inside %s %llu of %llu", quote(el->name, el->name_len, q), idx, el->count);
     }
     const uchar *p = data + *off;
+    uchar swapped[8];
+    if (binary == 2 && n <= sizeof swapped) {
+        for (size_t k = 0; k < n; ++k)
+            swapped[k] = p[n - 1 - k];
+        p = swapped;
+    }
     *off += n;
     switch (t) {
     case PLY_I8: v->i = (signed char)p[0]; break;
@@ -954,7 +961,7 @@ static int ply_body(ctx *c, const uchar *data, size_t size, const ply_header *h)
                 if (pr->count_type == PLY_NONE) {
                     size_t at = off, at_line = 0;
                     int coord = pr->role >= ROLE_X && pr->role <= ROLE_Z;
-                    if (h->binary ? ply_read_bin(c, data, size, &off, pr->type, &v, el, i)
+                    if (h->binary ? ply_read_bin(c, data, size, &off, pr->type, &v, el, i, h->binary)
                                   : ply_read_text(c, &L, pr->type, coord, &v, el, i, &at_line))
                         return -1;
                     if (coord) {
@@ -966,7 +973,7 @@ static int ply_body(ctx *c, const uchar *data, size_t size, const ply_header *h)
                     continue;
                 }
                 size_t count_at = off, count_line = 0, item_line = 0;
-                if (h->binary ? ply_read_bin(c, data, size, &off, pr->count_type, &v, el, i)
+                if (h->binary ? ply_read_bin(c, data, size, &off, pr->count_type, &v, el, i, h->binary)
                               : ply_read_text(c, &L, pr->count_type, 0, &v, el, i, &count_line))
                     return -1;
                 if (v.i < 0) {
@@ -996,7 +1003,7 @@ static int ply_body(ctx *c, const uchar *data, size_t size, const ply_header *h)
                 uint32_t first = 0, prev = 0;
                 for (unsigned long long k = 0; k < n; ++k) {
                     size_t at = off;
-                    if (h->binary ? ply_read_bin(c, data, size, &off, pr->type, &v, el, i)
+                    if (h->binary ? ply_read_bin(c, data, size, &off, pr->type, &v, el, i, h->binary)
                                   : ply_read_text(c, &L, pr->type, 0, &v, el, i, &item_line))
                         return -1;
                     if (v.i < 0 || (unsigned long long)v.i >= ve->count) {
