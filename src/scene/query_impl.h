@@ -55,6 +55,14 @@ typedef struct pair_job {
     atomic_int nomem;
 } pair_job;
 
+/* *x = min(*x, v), atomically. */
+static void atomic_min_size(atomic_size_t *x, size_t v)
+{
+    size_t old = atomic_load(x);
+    while (v < old && !atomic_compare_exchange_weak(x, &old, v))
+        ;
+}
+
 static uint64_t real_bits(real x)
 {
     double d = (double)x;
@@ -87,9 +95,7 @@ static void pair_task(void *ctx, size_t k, int worker)
         st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
                                 &J->hit[k]);
         if (st == TTD_OK && J->closest_only && J->hit[k].hit) {
-            size_t z = atomic_load(&J->first_zero);
-            while (k < z && !atomic_compare_exchange_weak(&J->first_zero, &z, k))
-                ;
+            atomic_min_size(&J->first_zero, k);
         }
     } else if (J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
         J->dist[k].distance = (real)INFINITY; /* after a pair at 0: not needed */
@@ -105,9 +111,7 @@ static void pair_task(void *ctx, size_t k, int worker)
             while (mine < old && !atomic_compare_exchange_weak(&J->best_bits, &old, mine))
                 ;
             if (d == 0) {
-                size_t z = atomic_load(&J->first_zero);
-                while (k < z && !atomic_compare_exchange_weak(&J->first_zero, &z, k))
-                    ;
+                atomic_min_size(&J->first_zero, k);
             }
         }
     }
@@ -225,58 +229,63 @@ static void contact_task(void *ctx, size_t k, int worker)
         atomic_store(&J->nomem, 1);
 }
 
-/* Every eligible body pair's contacts within margin: pairs[0..*n) and found[k] / nfound[k] for
- * each (the caller frees them with free_found). */
-static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, scene_pair **pairs,
-                               size_t *n, ttd_scene_contact ***found, size_t **nfound)
+/* Every eligible body pair within a margin and its contacts: pairs[0..n), with found[k] and
+ * nfound[k] for pair k (sorted by triangles). */
+typedef struct pair_contacts_set {
+    scene_pair *pairs;
+    size_t n;
+    ttd_scene_contact **found;
+    size_t *nfound;
+} pair_contacts_set;
+
+static void pair_contacts_free(pair_contacts_set *c)
 {
-    *found = NULL;
-    *nfound = NULL;
-    if (!ttd_scene_sweep(s, (double)margin, NULL, pairs, n))
+    for (size_t k = 0; c->found != NULL && k < c->n; ++k)
+        free(c->found[k]);
+    free(c->found);
+    free(c->nfound);
+    free(c->pairs);
+}
+
+/* The set of every eligible body pair's contacts within margin (the caller frees it with
+ * pair_contacts_free, whatever the status). */
+static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, pair_contacts_set *c)
+{
+    *c = (pair_contacts_set){NULL, 0, NULL, NULL};
+    if (!ttd_scene_sweep(s, (double)margin, NULL, &c->pairs, &c->n))
         return TTD_ERR_OUT_OF_MEMORY;
     const ttd_engine_config one = one_thread(cfg);
-    const int workers = ttd_parallel_task_workers(*n, cfg->threads);
-    contact_job J = {&one, s, *pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
-                     calloc(*n ? *n : 1, sizeof(ttd_scene_contact *)), calloc(*n ? *n : 1, sizeof(size_t)), 0};
+    const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
+    contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
+                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)), 0};
     atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL);
     if (!atomic_load(&J.nomem))
-        ttd_parallel_tasks(*n, cfg->threads, contact_task, &J);
+        ttd_parallel_tasks(c->n, cfg->threads, contact_task, &J);
     for (int w = 0; J.sets != NULL && w < workers; ++w)
         TTD_CONTACTS_FREE(&J.sets[w]);
     free(J.sets);
-    *found = J.found;
-    *nfound = J.nfound;
+    c->found = J.found;
+    c->nfound = J.nfound;
     return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
-}
-
-static void free_found(ttd_scene_contact **found, size_t n)
-{
-    for (size_t k = 0; found != NULL && k < n; ++k)
-        free(found[k]);
-    free(found);
 }
 
 static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin,
                                  ttd_scene_array *out)
 {
     out->count = 0;
-    scene_pair *pairs = NULL;
-    size_t n = 0, *nfound = NULL;
-    ttd_scene_contact **found = NULL;
-    ttd_status st = all_contacts(cfg, s, margin, &pairs, &n, &found, &nfound);
+    pair_contacts_set c;
+    ttd_status st = all_contacts(cfg, s, margin, &c);
     size_t total = 0;
-    for (size_t k = 0; st == TTD_OK && k < n; ++k)
-        total += nfound[k];
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        total += c.nfound[k];
     if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_contact)))
         st = TTD_ERR_OUT_OF_MEMORY;
-    for (size_t k = 0; st == TTD_OK && k < n; ++k) {
-        if (nfound[k])
-            memcpy((ttd_scene_contact *)out->data + out->count, found[k], nfound[k] * sizeof(ttd_scene_contact));
-        out->count += nfound[k];
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
+        if (c.nfound[k])
+            memcpy((ttd_scene_contact *)out->data + out->count, c.found[k], c.nfound[k] * sizeof(ttd_scene_contact));
+        out->count += c.nfound[k];
     }
-    free_found(found, n);
-    free(nfound);
-    free(pairs);
+    pair_contacts_free(&c);
     return st;
 }
 
@@ -472,16 +481,12 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
                                  ttd_scene_array *out)
 {
     out->count = 0;
-    scene_pair *pairs = NULL;
-    size_t n = 0, *nfound = NULL;
-    ttd_scene_contact **found = NULL;
-    ttd_status st = all_contacts(cfg, s, margin, &pairs, &n, &found, &nfound);
-    for (size_t k = 0; st == TTD_OK && k < n; ++k)
-        if (nfound[k] && !append_manifold(s, found[k], nfound[k], margin, max_points, out))
+    pair_contacts_set c;
+    ttd_status st = all_contacts(cfg, s, margin, &c);
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        if (c.nfound[k] && !append_manifold(s, c.found[k], c.nfound[k], margin, max_points, out))
             st = TTD_ERR_OUT_OF_MEMORY;
-    free_found(found, n);
-    free(nfound);
-    free(pairs);
+    pair_contacts_free(&c);
     if (st != TTD_OK)
         out->count = 0;
     return st;
