@@ -8,6 +8,7 @@
 #define TTDW_USE_CUDA 1
 #define TTD_PRECISION_DOUBLE
 #include "simd/kernels_all.h"
+#include "gpu/gpu_pair_impl.h"
 #include "cuda_host.h"
 
 const ttd_kernels_d ttd_kernels_cuda_host_d = TTD_LANE_ROW(TTD_ISA_SCALAR);
@@ -15,4 +16,10 @@ const ttd_kernels_d ttd_kernels_cuda_host_d = TTD_LANE_ROW(TTD_ISA_SCALAR);
 int ttd_lanes_probe_cuda_host_d(int op, const double *a, const double *b, const double *c, double *out)
 {
     return lanes_probe(op, a, b, c, out);
+}
+
+void ttd_cuda_host_batch_d(size_t n, const double *s, const double *t, double *distance, ttd_result_d *results)
+{
+    for (size_t i = 0; i < n; ++i) /* what thread i of src/gpu/'s kernel runs */
+        gpu_pair(i, s, t, distance, results);
 }

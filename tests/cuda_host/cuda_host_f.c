@@ -8,6 +8,7 @@
 #define TTDW_USE_CUDA 1
 #define TTD_PRECISION_FLOAT
 #include "simd/kernels_all.h"
+#include "gpu/gpu_pair_impl.h"
 #include "cuda_host.h"
 
 const ttd_kernels_f ttd_kernels_cuda_host_f = TTD_LANE_ROW(TTD_ISA_SCALAR);
@@ -15,4 +16,10 @@ const ttd_kernels_f ttd_kernels_cuda_host_f = TTD_LANE_ROW(TTD_ISA_SCALAR);
 int ttd_lanes_probe_cuda_host_f(int op, const float *a, const float *b, const float *c, float *out)
 {
     return lanes_probe(op, a, b, c, out);
+}
+
+void ttd_cuda_host_batch_f(size_t n, const float *s, const float *t, float *distance, ttd_result_f *results)
+{
+    for (size_t i = 0; i < n; ++i) /* what thread i of src/gpu/'s kernel runs */
+        gpu_pair(i, s, t, distance, results);
 }
