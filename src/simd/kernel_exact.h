@@ -9,7 +9,8 @@
  * errors of kx_dop, is exact, and the rows without FMA (SSE2, portable) compute the same exact
  * errors by Dekker's split (Kahan's shorter form, fma(a, b, -w) - err, rounded differently from
  * any FMA-free formula: 26 of 1e6 thin pairs differed on those rows before). The mesh queries
- * rely on it (src/mesh/query_impl.h); test_isa_kernels.c and the mesh fuzzer check it.
+ * rely on it (src/mesh/query_impl.h); test_isa_kernels.c and the mesh fuzzer check it. The GPU
+ * runs this file too, one lane per CUDA thread (simd/lanes_cuda.h, src/gpu/, docs/gpu.md).
  *
  * What differs, and why:
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
@@ -248,7 +249,7 @@ TTDW_FN void kx_face_point(const kx_tri *T, vreal b, vreal c, vreal q[3], vreal 
  * KX_FULL mode, lbl in KX_POINTS mode) and the first np of u, v, w (np_pts of them in
  * KX_POINTS mode: a crossing's point needs only tau); the others are never read for it. */
 TTDW_FN void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
-                                      vreal v, vreal w)
+                       vreal v, vreal w)
 {
     const int k = best->mode == KX_FULL ? np : np_pts;
     best->d2 = vsel(m, d2, best->d2);
@@ -264,7 +265,7 @@ TTDW_FN void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int lbl, int np
  * signed zeros and NaN, and d2 is a sum of squares or a square), so the compare folds into
  * the min. */
 TTDW_FN void kx_keep(kx_best *best, vmask ok, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
-                                    vreal v, vreal w)
+                     vreal v, vreal w)
 {
     if (best->mode != KX_DIST)
         kx_keep_m(best, mand(ok, vlt(d2, best->d2)), d2, id, lbl, np, np_pts, u, v, w);
@@ -285,7 +286,7 @@ TTDW_FN void kx_keep_all(kx_best *best, vreal d2, int id, int lbl, int np, vreal
  * when id0 is TTD_EXACT_VE_S, else T). When rdot is given, rdot[3i + j] keeps
  * dot(X.v[i] - Y.v[j], Y.e[j]) for the edge-edge pass. */
 TTDW_FN void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
-                                           kx_best *best, vreal *rdot)
+                            kx_best *best, vreal *rdot)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -307,7 +308,7 @@ TTDW_FN void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
 TTDW_FN void kx_edge_edge(const kx_tri *S, const kx_tri *T,
-                                         kx_best *best, const vreal rdot[9])
+                          kx_best *best, const vreal rdot[9])
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -339,7 +340,7 @@ TTDW_FN void kx_edge_edge(const kx_tri *S, const kx_tri *T,
 /* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; f gets the
  * vertices' face coordinates for the crossings. */
 TTDW_FN void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
-                                           kx_best *best, kx_fc f[3])
+                            kx_best *best, kx_fc f[3])
 {
     for (int i = 0; i < 3; ++i) {
         vreal b;
@@ -356,7 +357,7 @@ TTDW_FN void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
  * are f) with ends strictly on opposite sides of Y's plane, crossing it inside the face
  * (distance 0). The crossing's coordinates are the ends' interpolated with tau. */
 TTDW_FN void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
-                                         const kx_fc f[3])
+                          const kx_fc f[3])
 {
     const vreal zero = vzero();
     /* Only a lane whose other triangle has a face and whose vertices lie strictly on both sides
@@ -383,7 +384,7 @@ TTDW_FN void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
 
 /* scalar: exact_edge_point, for the edge picked per lane by the masks e0, e1 (else edge 2). */
 TTDW_FN void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal t, vreal p[3],
-                                              vreal w[3])
+                               vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
     for (int c = 0; c < 3; ++c) {
@@ -402,7 +403,7 @@ TTDW_FN void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal t, vre
 /* scalar: exact_rebuild. p, q and their weights from (id, u, v, w), the scalar expressions
  * chosen per lane: for each side, a vertex, an edge point or a face point. */
 TTDW_FN void kx_rebuild(const kx_best *best, const kx_tri *S,
-                                       const kx_tri *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
+                        const kx_tri *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
 {
     const vreal zero = vzero(), one = vset1((real)1), id = best->id;
 #define KX_IN(lo, hi) mand(vge(id, vset1((real)(lo))), vlt(id, vset1((real)(hi))))
@@ -490,7 +491,7 @@ TTDW_FN vreal kx_sel3(vmask i0, vmask i1, vreal x0, vreal x1, vreal x2)
  * (v[k] + b L) + c M on each side; a crossing is the edge point on both. Weights are not
  * computed: this is the KX_POINTS path. */
 TTDW_FN void kx_rebuild_points(const kx_best *best, const kx_tri *S, const kx_tri *T, vreal p[3],
-                                              vreal q[3])
+                               vreal q[3])
 {
     const vreal u = best->u, v = best->v;
     /* label = 9 cls + 3 a + b with a, b in 0..2: each is an exact small integer */
@@ -825,7 +826,7 @@ static TTD_DEVICE void kx_screened(size_t n, const real *s, const real *t, real 
 }
 
 static TTD_DEVICE void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
-                         const ttd_out *out)
+                                    const ttd_out *out)
 {
     (void)prm;
     if (bound < TTD_REAL_MAX)

@@ -33,7 +33,8 @@
  *   mand mor mandnot(a, b) (= a & ~b) mnot(a); mtrue(); mfirst(k) = lanes 0..k-1 set
  *   any(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
  *   f2d_lo(vf), f2d_hi(vf) -> vd   float lanes 0..W_d-1 / W_d..W_f-1 widened (W_f = 2 W_d
- *                      on every ISA); d2f(lo, hi) -> vf narrows back, rounding to nearest
+ *                      on every ISA; on CUDA W_f = W_d = 1 and f2d_hi repeats f2d_lo, whose
+ *                      half d2f drops); d2f(lo, hi) -> vf narrows back, rounding to nearest
  *   load_aos9(p, out[9])  transposition: p holds W triangles of 9 reals each, the user's
  *                      layout (triangle i at p + 9i, any alignment); out[k] lane i = p[9i + k]
  *
