@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "ttd/ttd_gpu.h"
 
 #ifndef TTD_C_COMPILER
 #define TTD_C_COMPILER "unknown"
@@ -53,7 +54,8 @@ static const char ttd_info_usage[] =
     "usage: ttd info\n"
     "Prints the version, the instruction sets built in, those this CPU and OS support, the one\n"
     "auto picks (and TTD_ISA when set), lanes per instruction set, the methods, the online cores,\n"
-    "the compiler and flags, and whether `ttd bench` is built in. Takes no operands.\n";
+    "the compiler and flags, whether `ttd bench` is built in, and whether a GPU is usable (the\n"
+    "GPU library, include/ttd/ttd_gpu.h). Takes no operands.\n";
 
 static int ttd_info(int argc, char **argv)
 {
@@ -79,6 +81,16 @@ static int ttd_info(int argc, char **argv)
     printf("\nthreads: %ld online cores\n", sysconf(_SC_NPROCESSORS_ONLN));
     printf("compiler: %s\nflags: %s\n", TTD_C_COMPILER, TTD_C_FLAGS);
     printf("bench: %s\n", ttd_bench_main ? "built" : "not built");
+    ttd_gpu_info gi;
+    const ttd_gpu_status gs = ttd_gpu_query(&gi);
+    if (gs == TTD_GPU_OK)
+        printf("gpu: usable: device %d of %d, %s (compute capability %d.%d), CUDA driver %d.%d, runtime %d.%d\n",
+               gi.device, gi.device_count, gi.name, gi.cc_major, gi.cc_minor, gi.driver_version / 1000,
+               gi.driver_version % 1000 / 10, gi.runtime_version / 1000, gi.runtime_version % 1000 / 10);
+    else if (gs == TTD_GPU_ERR_NOT_BUILT)
+        printf("gpu: not built (%s)\n", gi.message);
+    else
+        printf("gpu: built, not usable: %s\n", gi.message[0] ? gi.message : ttd_gpu_status_string(gs));
     return fflush(stdout) == 0 ? TTD_EXIT_OK : TTD_EXIT_INPUT;
 }
 

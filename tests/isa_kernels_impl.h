@@ -378,3 +378,107 @@ static int TTD_SFX(check_bound)(const char *what, TTD_SFX(kern_fn) kern, TTD_SFX
     free(pref);
     return rc;
 }
+
+/* Every pair of n from each family through kern and through ref (the scalar row's kernel of
+ * the same method), in blocks, in the three output paths: *diff counts the pairs whose whole
+ * result, distance or points differ in any bit. */
+static int TTD_SFX(check_bits)(const char *what, TTD_SFX(kern_fn) kern, TTD_SFX(kern_fn) ref, const ttd_params *prm,
+                               size_t n, size_t *diff)
+{
+    real *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
+    real *d = malloc(n * sizeof *d), *dr = malloc(n * sizeof *dr), *p = malloc(6 * n * sizeof *p),
+         *pr = malloc(6 * n * sizeof *pr);
+    ttd_result *r = malloc(n * sizeof *r), *rr = malloc(n * sizeof *rr);
+    ENSURE(s && t && d && dr && p && pr && r && rr);
+    *diff = 0;
+    for (int fam = 0; fam < GEN_FAMILIES; ++fam) {
+        TTD_SFX(fill)(fam, 1009u + (uint64_t)fam, n, s, t);
+        size_t fam_diff = 0;
+        for (int path = 0; path < 3; ++path) {
+            TTD_SFX(run_bounded)(kern, n, s, t, prm, (real)INFINITY, d, path == 1 ? p : NULL, path == 2 ? r : NULL);
+            TTD_SFX(run_bounded)(ref, n, s, t, prm, (real)INFINITY, dr, path == 1 ? pr : NULL, path == 2 ? rr : NULL);
+            for (size_t i = 0; i < n; ++i) {
+                int same = memcmp(&d[i], &dr[i], sizeof(real)) == 0;
+                if (path == 1)
+                    same &= memcmp(p + 6 * i, pr + 6 * i, 6 * sizeof(real)) == 0;
+                if (path == 2)
+                    same &= TTD_SFX(same_result)(&r[i], &rr[i]);
+                if (!same && fam_diff == 0)
+                    fprintf(stderr, "  %s, %s pair %zu (output path %d): distance %.17g, scalar row %.17g\n", what,
+                            gen_family_name(fam), i, path, (double)d[i], (double)dr[i]);
+                fam_diff += (size_t)!same;
+            }
+        }
+        *diff += fam_diff;
+    }
+    free(s);
+    free(t);
+    free(d);
+    free(dr);
+    free(p);
+    free(pr);
+    free(r);
+    free(rr);
+    return 0;
+}
+
+/* The node test of a row against the scalar row's on random boxes: x's frame a random rotation
+ * (Gram-Schmidt of random vectors) moved by up to 4, the children's axes likewise, centres in
+ * [-4, 4]^3, half extents in [0, 2), some children flat (an extent 0) or coinciding with x;
+ * *diff counts the children whose lb2 or sep differ in any bit. */
+static void TTD_SFX(random_frame)(ttd_gen_rng *st, real m[9])
+{
+    double a[9];
+    for (int k = 0; k < 9; ++k)
+        a[k] = ttd_gen_rng_uniform(st) - 0.5;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < i; ++j) {
+            const double dp = a[3 * i] * a[3 * j] + a[3 * i + 1] * a[3 * j + 1] + a[3 * i + 2] * a[3 * j + 2];
+            for (int c = 0; c < 3; ++c)
+                a[3 * i + c] -= dp * a[3 * j + c];
+        }
+        const double nn = sqrt(a[3 * i] * a[3 * i] + a[3 * i + 1] * a[3 * i + 1] + a[3 * i + 2] * a[3 * i + 2]);
+        for (int c = 0; c < 3; ++c)
+            m[3 * i + c] = (real)(a[3 * i + c] / nn);
+    }
+}
+
+typedef void (*TTD_SFX(node_fn))(const TTD_SFX(ttd_box_query) *x, const TTD_SFX(ttd_node) *y, real *lb2, real *sep);
+
+static int TTD_SFX(check_node_bits)(TTD_SFX(node_fn) node_test, TTD_SFX(node_fn) ref, size_t trials, size_t *diff)
+{
+    ttd_gen_rng st = ttd_gen_rng_make(20, 26);
+    *diff = 0;
+    for (size_t trial = 0; trial < trials; ++trial) {
+        TTD_SFX(ttd_box_query) x;
+        TTD_SFX(ttd_node) y;
+        memset(&y, 0, sizeof y);
+        TTD_SFX(random_frame)(&st, x.m);
+        for (int i = 0; i < 3; ++i) {
+            x.v[i] = (real)(8 * ttd_gen_rng_uniform(&st) - 4);
+            x.e[i] = (real)(2 * ttd_gen_rng_uniform(&st));
+        }
+        y.count = TTD_NODE_WIDTH;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            real u[9];
+            TTD_SFX(random_frame)(&st, u);
+            for (int k = 0; k < 9; ++k)
+                y.u[k][j] = u[k];
+            for (int i = 0; i < 3; ++i) {
+                y.c[i][j] = (real)(8 * ttd_gen_rng_uniform(&st) - 4);
+                y.e[i][j] = (real)(2 * ttd_gen_rng_uniform(&st));
+            }
+            if (ttd_gen_rng_u64(&st) % 8 == 0)
+                y.e[ttd_gen_rng_u64(&st) % 3][j] = 0;
+            if (ttd_gen_rng_u64(&st) % 8 == 0)
+                for (int i = 0; i < 3; ++i)
+                    y.c[i][j] = -x.v[i]; /* near x's centre */
+        }
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH], lb2r[TTD_NODE_WIDTH], sepr[TTD_NODE_WIDTH];
+        node_test(&x, &y, lb2, sep);
+        ref(&x, &y, lb2r, sepr);
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+            *diff += (size_t)(memcmp(&lb2[j], &lb2r[j], sizeof(real)) != 0 || memcmp(&sep[j], &sepr[j], sizeof(real)) != 0);
+    }
+    return 0;
+}

@@ -9,6 +9,9 @@
 #include <string.h>
 
 #include "core/kernels.h"
+#ifdef TTD_HAVE_CUDA_HOST
+#include "cuda_host/cuda_host.h"
+#endif
 
 /* A row's kernel called as the batch engine calls it: distances and/or results, no bound. */
 static inline void run_kernel_d(ttd_kernel_d_fn fn, size_t n, const double *s, const double *t,
@@ -51,11 +54,15 @@ static inline int cpu_runs(const char *isa, const char **why)
 #endif
     if (!strcmp(isa, "portable")) /* baseline code of this target */
         return 1;
+    if (!strcmp(isa, "cuda-host")) /* src/simd/lanes_cuda.h on the host: plain C */
+        return 1;
     *why = "not this architecture";
     return 0;
 }
 
-/* Every SIMD row built in (TTD_HAVE_<ISA>), ended by a NULL name. */
+/* Every SIMD row built in (TTD_HAVE_<ISA>), ended by a NULL name; and the test-only
+ * "cuda-host" row (tests/cuda_host/: the CUDA lane vocabulary compiled for the host, one lane),
+ * which the library's dispatcher does not have. */
 typedef struct isa_row {
     const char *name;
     const ttd_kernels_d *d;
@@ -77,6 +84,9 @@ static const isa_row isa_rows[] = {
 #endif
 #ifdef TTD_HAVE_PORTABLE
     {"portable", &ttd_kernels_portable_d, &ttd_kernels_portable_f},
+#endif
+#ifdef TTD_HAVE_CUDA_HOST
+    {"cuda-host", &ttd_kernels_cuda_host_d, &ttd_kernels_cuda_host_f},
 #endif
     {NULL, NULL, NULL},
 };

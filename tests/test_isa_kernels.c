@@ -297,6 +297,30 @@ static int rows_bit_identical_on_thin_pairs(void)
                    first < n ? want[first].distance : 0.0);
         ++rows;
     }
+#ifdef TTD_HAVE_CUDA_HOST
+    {
+        /* the cuda-host row is not in the dispatcher: its kernel is called in blocks */
+        const ttd_params prm = test_params();
+        double *dist = malloc(n * sizeof *dist);
+        float *dist_f = malloc(n * sizeof *dist_f);
+        ENSURE(dist && dist_f);
+        run_bounded_d(ttd_kernels_cuda_host_d.fn[TTD_METHOD_EXACT], n, s, t, &prm, (double)INFINITY, dist, NULL, got);
+        run_bounded_f(ttd_kernels_cuda_host_f.fn[TTD_METHOD_EXACT], n, sf, tf, &prm, INFINITY, dist_f, NULL, got_f);
+        size_t diff_d = 0, diff_f = 0;
+        for (size_t i = 0; i < n; ++i) {
+            diff_d += (size_t)(memcmp(&got[i], &want[i], sizeof *got) != 0 ||
+                               memcmp(&dist[i], &want[i].distance, sizeof *dist) != 0);
+            diff_f += (size_t)(memcmp(&got_f[i], &want_f[i], sizeof *got_f) != 0 ||
+                               memcmp(&dist_f[i], &want_f[i].distance, sizeof *dist_f) != 0);
+        }
+        printf("  cuda-host: %zu thin pairs, results differing from the scalar row's bits: %zu double, %zu float\n",
+               n, diff_d, diff_f);
+        ENSURE(diff_d == 0 && diff_f == 0);
+        ++rows;
+        free(dist);
+        free(dist_f);
+    }
+#endif
     printf("  %d rows besides the scalar one checked\n", rows);
     free(s);
     free(t);
@@ -309,6 +333,52 @@ static int rows_bit_identical_on_thin_pairs(void)
     return 0;
 }
 
+/* The exact method on every row, whole results in every output path, against the scalar row's
+ * bits on every family (the SPMD promise: the same operations in the same order), the
+ * cuda-host row included: that is the CUDA device source (src/simd/lanes_cuda.h,
+ * docs/gpu.md) compiled for the host, tested here on machines without a GPU. */
+static int rows_exact_bits_on_families(void)
+{
+    const ttd_params prm = test_params();
+    for (const isa_row *r = isa_rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why))
+            continue;
+        char what[64];
+        size_t diff_d = 0, diff_f = 0;
+        snprintf(what, sizeof what, "%s exact double", r->name);
+        ENSURE(check_bits_d(what, r->d->fn[TTD_METHOD_EXACT], ttd_kernels_scalar_d.fn[TTD_METHOD_EXACT], &prm, 2000,
+                            &diff_d) == 0);
+        snprintf(what, sizeof what, "%s exact float", r->name);
+        ENSURE(check_bits_f(what, r->f->fn[TTD_METHOD_EXACT], ttd_kernels_scalar_f.fn[TTD_METHOD_EXACT], &prm, 2000,
+                            &diff_f) == 0);
+        printf("  %s exact: %d families x 2000 pairs x 3 output paths, differing from the scalar row's bits: %zu "
+               "double, %zu float\n",
+               r->name, GEN_FAMILIES, diff_d, diff_f);
+        ENSURE(diff_d == 0 && diff_f == 0);
+    }
+    return 0;
+}
+
+/* The mesh queries' node test on every row against the scalar row's, bit for bit
+ * (simd/kernel_node.h: a traversal visits the same nodes on every row, and on the GPU). */
+static int rows_node_test_bits(void)
+{
+    for (const isa_row *r = isa_rows; r->name; ++r) {
+        const char *why = "";
+        if (!cpu_runs(r->name, &why))
+            continue;
+        size_t diff_d = 0, diff_f = 0;
+        ENSURE(check_node_bits_d(r->d->node_test, ttd_kernels_scalar_d.node_test, 20000, &diff_d) == 0);
+        ENSURE(check_node_bits_f(r->f->node_test, ttd_kernels_scalar_f.node_test, 20000, &diff_f) == 0);
+        printf("  %s node test: 20000 nodes x 8 children, differing from the scalar row's bits: %zu double, %zu "
+               "float\n",
+               r->name, diff_d, diff_f);
+        ENSURE(diff_d == 0 && diff_f == 0);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -317,5 +387,7 @@ int main(int argc, char **argv)
     RUN_TEST(rows_lane_independence);
     RUN_TEST(rows_sizes_and_alignment);
     RUN_TEST(rows_bit_identical_on_thin_pairs);
+    RUN_TEST(rows_exact_bits_on_families);
+    RUN_TEST(rows_node_test_bits);
     TEST_MAIN_END();
 }

@@ -38,7 +38,8 @@ static double lanes_uniform(uint64_t *st, double lo, double hi)
 #include "precision_close.h"
 
 /* The rows built into the library (src/CMakeLists.txt defines TTD_HAVE_<ISA> for internal
- * users), with what the CPU must support to run them. */
+ * users), with what the CPU must support to run them; and the tests' cuda-host row
+ * (tests/cuda_host/, src/simd/lanes_cuda.h compiled for the host). */
 typedef struct isa_probe {
     const char *name;
     int has_fma;
@@ -61,6 +62,9 @@ static const isa_probe probes[] = {
 #endif
 #ifdef TTD_HAVE_PORTABLE
     {"portable", 0, ttd_lanes_probe_portable_d, ttd_lanes_probe_portable_f},
+#endif
+#ifdef TTD_HAVE_CUDA_HOST
+    {"cuda-host", 1, ttd_lanes_probe_cuda_host_d, ttd_lanes_probe_cuda_host_f},
 #endif
     {NULL, 0, NULL, NULL},
 };

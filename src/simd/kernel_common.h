@@ -7,19 +7,24 @@
  * W below is TTDW_LANES (lanes per vector in this precision). */
 
 /* A harmless pair for the lanes past the end of a block: two unit right triangles one apart
- * in z. Every method converges on it in a few iterations, and its outputs are never stored. */
+ * in z. Every method converges on it in a few iterations, and its outputs are never stored.
+ * A one-lane row (lanes_cuda.h) has no tail, hence no padding (and no file-scope data, which
+ * device code could not read). */
+#if TTDW_LANES > 1
 static const real kw_pad_s[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 static const real kw_pad_t[9] = {0, 0, 1, 1, 0, 1, 0, 1, 1};
+#endif
 
 /* S[k], T[k] lane i = coordinate k of pair i of the group starting at s, t; live pairs are
  * 1..W. Full groups are transposed straight from the caller's arrays. */
-static inline void kw_load_group(const real *s, const real *t, int live, vreal S[9], vreal T[9])
+TTDW_FN void kw_load_group(const real *s, const real *t, int live, vreal S[9], vreal T[9])
 {
     if (live == TTDW_LANES) {
         vload_aos9(s, S);
         vload_aos9(t, T);
         return;
     }
+#if TTDW_LANES > 1
     real bs[9 * TTDW_LANES], bt[9 * TTDW_LANES];
     for (int i = 0; i < TTDW_LANES; ++i)
         for (int k = 0; k < 9; ++k) {
@@ -28,6 +33,7 @@ static inline void kw_load_group(const real *s, const real *t, int live, vreal S
         }
     vload_aos9(bs, S);
     vload_aos9(bt, T);
+#endif
 }
 
 /* |(x, y, z)| as scalar/penalty_impl.h's pen_norm3: divide by 2^e, where m = max|.| =
@@ -35,7 +41,7 @@ static inline void kw_load_group(const real *s, const real *t, int live, vreal S
  * mantissa bits cleared; the divisions and products by it are exact except where a result
  * is subnormal, which only touches components whose squares vanish anyway (and distances
  * below REAL_MIN). m = 0 and m = inf come back unchanged, as in the scalar code. */
-static inline vreal kw_norm3(vreal x, vreal y, vreal z)
+TTDW_FN vreal kw_norm3(vreal x, vreal y, vreal z)
 {
     const vreal zero = vzero();
     vreal ax = vabs(x), ay = vabs(y), az = vabs(z);
@@ -80,7 +86,7 @@ typedef struct kw_out {
 } kw_out;
 
 /* Writes the first `live` lanes of d to distance[0..live). */
-static inline void kw_store_distance(vreal d, int live, real *distance)
+TTDW_FN void kw_store_distance(vreal d, int live, real *distance)
 {
     if (live == TTDW_LANES) {
         vstoreu(distance, d);
@@ -94,7 +100,7 @@ static inline void kw_store_distance(vreal d, int live, real *distance)
 
 /* Writes the first `live` lanes of o's points (p then q, 6 reals a pair) to points and, when
  * distance is not NULL, its distances to distance. */
-static inline void kw_store_points(const kw_out *o, int live, real *distance, real *points)
+TTDW_FN void kw_store_points(const kw_out *o, int live, real *distance, real *points)
 {
     real buf[6][TTDW_LANES] TTDW_ALIGN(64);
     for (int k = 0; k < 3; ++k) {
@@ -111,7 +117,7 @@ static inline void kw_store_points(const kw_out *o, int live, real *distance, re
 /* Writes the first `live` lanes of o to the outputs out names, at pair offset i0: distances,
  * points (p then q, 6 reals a pair) and results. feature bits follow the scalar code: bit i
  * when weight i > 0. */
-static inline void kw_store_group(const kw_out *o, int live, const ttd_out *out, size_t i0)
+TTDW_FN void kw_store_group(const kw_out *o, int live, const ttd_out *out, size_t i0)
 {
     ttd_result *results = out->results ? out->results + i0 : NULL;
     if (out->points)

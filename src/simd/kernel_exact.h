@@ -9,7 +9,8 @@
  * errors of kx_dop, is exact, and the rows without FMA (SSE2, portable) compute the same exact
  * errors by Dekker's split (Kahan's shorter form, fma(a, b, -w) - err, rounded differently from
  * any FMA-free formula: 26 of 1e6 thin pairs differed on those rows before). The mesh queries
- * rely on it (src/mesh/query_impl.h); test_isa_kernels.c and the mesh fuzzer check it.
+ * rely on it (src/mesh/query_impl.h); test_isa_kernels.c and the mesh fuzzer check it. The GPU
+ * runs this file too, one lane per CUDA thread (simd/lanes_cuda.h, src/gpu/, docs/gpu.md).
  *
  * What differs, and why:
  *  - The longest-edge index k of a triangle becomes two masks (is0, is1) and the vectors that
@@ -42,9 +43,9 @@
 /* kx_group is inlined into each of the three loops (kx_run_*), so that each is specialised on
  * its constant mode (gcc 12 otherwise keeps one out-of-line copy and tests it at run time). */
 #if defined(__GNUC__)
-#define KX_GROUP_INLINE static inline __attribute__((always_inline))
+#define KX_GROUP_INLINE TTDW_FN __attribute__((always_inline))
 #else
-#define KX_GROUP_INLINE static inline
+#define KX_GROUP_INLINE TTDW_FN
 #endif
 
 typedef struct kx_tri {
@@ -83,12 +84,12 @@ typedef struct kx_best {
     int mode;
 } kx_best;
 
-static inline vreal kx_dot(const vreal a[3], const vreal b[3])
+TTDW_FN vreal kx_dot(const vreal a[3], const vreal b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static inline void kx_cross(const vreal a[3], const vreal b[3], vreal out[3])
+TTDW_FN void kx_cross(const vreal a[3], const vreal b[3], vreal out[3])
 {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
@@ -99,13 +100,13 @@ static inline void kx_cross(const vreal a[3], const vreal b[3], vreal out[3])
  * max(a, b) = a > b ? a : b this is the same expression, signed zeros included (NEON's
  * min/max may turn a -0 into +0 here, nothing else); x is never NaN. Two instructions instead
  * of two compares and two selects. */
-static inline vreal kx_clamp01(vreal x)
+TTDW_FN vreal kx_clamp01(vreal x)
 {
     return vmax(vzero(), vmin(vset1((real)1), x));
 }
 
 /* k-indexed selection: x[k] */
-static inline vreal kx_pick(const kx_tri *T, vreal x0, vreal x1, vreal x2)
+TTDW_FN vreal kx_pick(const kx_tri *T, vreal x0, vreal x1, vreal x2)
 {
     return vsel(T->is0, x0, vsel(T->is1, x1, x2));
 }
@@ -114,7 +115,7 @@ static inline vreal kx_pick(const kx_tri *T, vreal x0, vreal x1, vreal x2)
 /* scalar: exact_prod_err_d. The rounding error of p = a*b, exactly, where |p| > 2^-900 (0
  * below): one FMA, or without FMA (SSE2, portable) Dekker's split, which is exact over the same
  * range, so every row gets the same bits. */
-static inline vreal kx_prod_err(vreal a, vreal b, vreal p)
+TTDW_FN vreal kx_prod_err(vreal a, vreal b, vreal p)
 {
 #if TTDW_HAVE_FMA
     const vreal err = vfma(a, b, -p);
@@ -130,7 +131,7 @@ static inline vreal kx_prod_err(vreal a, vreal b, vreal p)
 }
 
 /* scalar: exact_dop_d. a*b - c*d with both products' errors restored. */
-static inline vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
+TTDW_FN vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
 {
     const vreal p = a * b, w = c * d;
     return ((p - w) + kx_prod_err(a, b, p)) - kx_prod_err(c, d, w);
@@ -138,7 +139,7 @@ static inline vreal kx_dop(vreal a, vreal b, vreal c, vreal d)
 
 /* scalar: exact_cross_acc_d. Naive cross product; lanes whose |n|^2 is below 2^-20 |a|^2 |b|^2
  * (nearly parallel) take the FMA-compensated one. Returns |n|^2. */
-static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+TTDW_FN vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
 {
     kx_cross(a, b, out);
     vreal nn = kx_dot(out, out);
@@ -154,7 +155,7 @@ static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, v
 #else
 /* scalar: exact_cross_acc_f. Products of floats are exact in double: one double difference
  * per component, rounded to float. The float lanes are widened in two halves. */
-static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
+TTDW_FN vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, vreal bb, vreal out[3])
 {
     (void)aa;
     (void)bb;
@@ -173,7 +174,7 @@ static inline vreal kx_cross_acc(const vreal a[3], const vreal b[3], vreal aa, v
 #endif
 
 /* scalar: exact_tri_init. v[][] is filled by the caller. */
-static inline void kx_tri_init(kx_tri *T)
+TTDW_FN void kx_tri_init(kx_tri *T)
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -210,7 +211,7 @@ typedef struct kx_fc {
     vreal c, g, h;
 } kx_fc;
 
-static inline kx_fc kx_face_coords(const kx_tri *T, const vreal P[3])
+TTDW_FN kx_fc kx_face_coords(const kx_tri *T, const vreal P[3])
 {
     vreal r[3];
     for (int i = 0; i < 3; ++i)
@@ -224,7 +225,7 @@ static inline kx_fc kx_face_coords(const kx_tri *T, const vreal P[3])
 
 /* scalar: exact_face_weights. b from (c, g), and the lanes whose point is inside or on the
  * face. */
-static inline vmask kx_face_weights(const kx_tri *T, vreal c, vreal g, vreal *b)
+TTDW_FN vmask kx_face_weights(const kx_tri *T, vreal c, vreal g, vreal *b)
 {
     const vreal zero = vzero();
     const vreal bb = (g - c * T->ML) * T->inv_eek;
@@ -234,7 +235,7 @@ static inline vmask kx_face_weights(const kx_tri *T, vreal c, vreal g, vreal *b)
 }
 
 /* scalar: exact_face_point. q = v[k] + b L + c M and its weights (w[k] = 1 - b - c). */
-static inline void kx_face_point(const kx_tri *T, vreal b, vreal c, vreal q[3], vreal w[3])
+TTDW_FN void kx_face_point(const kx_tri *T, vreal b, vreal c, vreal q[3], vreal w[3])
 {
     for (int i = 0; i < 3; ++i)
         q[i] = T->vk[i] + b * T->L[i] + c * T->M[i];
@@ -247,8 +248,8 @@ static inline void kx_face_point(const kx_tri *T, vreal b, vreal c, vreal q[3], 
 /* scalar: exact_keep. In the lanes of m (where d2 is strictly smaller), keep d2, the id (id in
  * KX_FULL mode, lbl in KX_POINTS mode) and the first np of u, v, w (np_pts of them in
  * KX_POINTS mode: a crossing's point needs only tau); the others are never read for it. */
-static inline void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
-                                      vreal v, vreal w)
+TTDW_FN void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
+                       vreal v, vreal w)
 {
     const int k = best->mode == KX_FULL ? np : np_pts;
     best->d2 = vsel(m, d2, best->d2);
@@ -263,8 +264,8 @@ static inline void kx_keep_m(kx_best *best, vmask m, vreal d2, int id, int lbl, 
 /* Distances only: min(d2, best) is d2 < best ? d2 : best on x86 (NEON differs only for
  * signed zeros and NaN, and d2 is a sum of squares or a square), so the compare folds into
  * the min. */
-static inline void kx_keep(kx_best *best, vmask ok, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
-                                    vreal v, vreal w)
+TTDW_FN void kx_keep(kx_best *best, vmask ok, vreal d2, int id, int lbl, int np, int np_pts, vreal u,
+                     vreal v, vreal w)
 {
     if (best->mode != KX_DIST)
         kx_keep_m(best, mand(ok, vlt(d2, best->d2)), d2, id, lbl, np, np_pts, u, v, w);
@@ -273,7 +274,7 @@ static inline void kx_keep(kx_best *best, vmask ok, vreal d2, int id, int lbl, i
 }
 
 /* kx_keep for a candidate that every lane offers (vertex-edge) */
-static inline void kx_keep_all(kx_best *best, vreal d2, int id, int lbl, int np, vreal u, vreal v, vreal w)
+TTDW_FN void kx_keep_all(kx_best *best, vreal d2, int id, int lbl, int np, vreal u, vreal v, vreal w)
 {
     if (best->mode != KX_DIST)
         kx_keep_m(best, vlt(d2, best->d2), d2, id, lbl, np, np, u, v, w);
@@ -284,8 +285,8 @@ static inline void kx_keep_all(kx_best *best, vreal d2, int id, int lbl, int np,
 /* scalar: exact_vertex_edge. 9 candidates: each vertex of X against each edge of Y (X is S
  * when id0 is TTD_EXACT_VE_S, else T). When rdot is given, rdot[3i + j] keeps
  * dot(X.v[i] - Y.v[j], Y.e[j]) for the edge-edge pass. */
-static inline void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
-                                           kx_best *best, vreal *rdot)
+TTDW_FN void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
+                            kx_best *best, vreal *rdot)
 {
     const vreal zero = vzero();
     for (int i = 0; i < 3; ++i)
@@ -306,8 +307,8 @@ static inline void kx_vertex_edge(const kx_tri *X, const kx_tri *Y, int id0,
 
 /* scalar: exact_edge_edge. 9 candidates: the stationary point of two edges' lines, where it
  * lies inside both segments (plain cross product for the normal, as in the scalar code). */
-static inline void kx_edge_edge(const kx_tri *S, const kx_tri *T,
-                                         kx_best *best, const vreal rdot[9])
+TTDW_FN void kx_edge_edge(const kx_tri *S, const kx_tri *T,
+                          kx_best *best, const vreal rdot[9])
 {
     const vreal zero = vzero(), one = vset1((real)1), rmin = vset1(TTD_REAL_MIN);
     for (int i = 0; i < 3; ++i) {
@@ -338,8 +339,8 @@ static inline void kx_edge_edge(const kx_tri *S, const kx_tri *T,
 
 /* scalar: exact_vertex_face. 3 candidates: vertices of X over the face of Y; f gets the
  * vertices' face coordinates for the crossings. */
-static inline void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
-                                           kx_best *best, kx_fc f[3])
+TTDW_FN void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
+                            kx_best *best, kx_fc f[3])
 {
     for (int i = 0; i < 3; ++i) {
         vreal b;
@@ -355,8 +356,8 @@ static inline void kx_vertex_face(const kx_tri *X, const kx_tri *Y, int id0,
 /* scalar: exact_crossings. 3 candidates: edges of X (whose vertices' face coordinates over Y
  * are f) with ends strictly on opposite sides of Y's plane, crossing it inside the face
  * (distance 0). The crossing's coordinates are the ends' interpolated with tau. */
-static inline void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
-                                         const kx_fc f[3])
+TTDW_FN void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
+                          const kx_fc f[3])
 {
     const vreal zero = vzero();
     /* Only a lane whose other triangle has a face and whose vertices lie strictly on both sides
@@ -382,8 +383,8 @@ static inline void kx_crossings(const kx_tri *Y, int id0, kx_best *best,
 }
 
 /* scalar: exact_edge_point, for the edge picked per lane by the masks e0, e1 (else edge 2). */
-static inline void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal t, vreal p[3],
-                                              vreal w[3])
+TTDW_FN void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal t, vreal p[3],
+                               vreal w[3])
 {
     const vreal zero = vzero(), one = vset1((real)1);
     for (int c = 0; c < 3; ++c) {
@@ -401,8 +402,8 @@ static inline void kx_edge_point_sel(const kx_tri *X, vmask e0, vmask e1, vreal 
 
 /* scalar: exact_rebuild. p, q and their weights from (id, u, v, w), the scalar expressions
  * chosen per lane: for each side, a vertex, an edge point or a face point. */
-static inline void kx_rebuild(const kx_best *best, const kx_tri *S,
-                                       const kx_tri *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
+TTDW_FN void kx_rebuild(const kx_best *best, const kx_tri *S,
+                        const kx_tri *T, vreal p[3], vreal q[3], vreal wp[3], vreal wq[3])
 {
     const vreal zero = vzero(), one = vset1((real)1), id = best->id;
 #define KX_IN(lo, hi) mand(vge(id, vset1((real)(lo))), vlt(id, vset1((real)(hi))))
@@ -469,7 +470,7 @@ static inline void kx_rebuild(const kx_best *best, const kx_tri *S,
 
 /* x rounded to the nearest integer (|x| < 2^(mantissa bits - 1)): adding and removing 1.5 2^52
  * (2^23 in float) leaves only the integer part, as -ffp-contract=off keeps both roundings. */
-static inline vreal kx_round(vreal x)
+TTDW_FN vreal kx_round(vreal x)
 {
 #ifdef TTD_PRECISION_DOUBLE
     const vreal magic = vset1(0x1.8p52);
@@ -480,7 +481,7 @@ static inline vreal kx_round(vreal x)
 }
 
 /* x[i] for i in {0, 1, 2} picked per lane by the masks i0, i1 (else 2). */
-static inline vreal kx_sel3(vmask i0, vmask i1, vreal x0, vreal x1, vreal x2)
+TTDW_FN vreal kx_sel3(vmask i0, vmask i1, vreal x0, vreal x1, vreal x2)
 {
     return vsel(i0, x0, vsel(i1, x1, x2));
 }
@@ -489,8 +490,8 @@ static inline vreal kx_sel3(vmask i0, vmask i1, vreal x0, vreal x1, vreal x2)
  * expressions (exact_rebuild): a vertex, an edge point v + t e, or a face point
  * (v[k] + b L) + c M on each side; a crossing is the edge point on both. Weights are not
  * computed: this is the KX_POINTS path. */
-static inline void kx_rebuild_points(const kx_best *best, const kx_tri *S, const kx_tri *T, vreal p[3],
-                                              vreal q[3])
+TTDW_FN void kx_rebuild_points(const kx_best *best, const kx_tri *S, const kx_tri *T, vreal p[3],
+                               vreal q[3])
 {
     const vreal u = best->u, v = best->v;
     /* label = 9 cls + 3 a + b with a, b in 0..2: each is an exact small integer */
@@ -652,7 +653,7 @@ KX_GROUP_INLINE void kx_group(const vreal Sin[9], const vreal Tin[9], kw_out *ou
 
 /* The three specialisations of the group loop over n pairs (n <= TTD_BLOCK_PAIRS); pad lanes
  * compute a harmless pair and are never stored. */
-static void kx_run_dist(size_t n, const real *s, const real *t, real *distance)
+static TTD_DEVICE void kx_run_dist(size_t n, const real *s, const real *t, real *distance)
 {
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
@@ -664,7 +665,7 @@ static void kx_run_dist(size_t n, const real *s, const real *t, real *distance)
     }
 }
 
-static void kx_run_points(size_t n, const real *s, const real *t, real *distance, real *points)
+static TTD_DEVICE void kx_run_points(size_t n, const real *s, const real *t, real *distance, real *points)
 {
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
@@ -676,7 +677,7 @@ static void kx_run_points(size_t n, const real *s, const real *t, real *distance
     }
 }
 
-static void kx_run_full(size_t n, const real *s, const real *t, const ttd_out *out)
+static TTD_DEVICE void kx_run_full(size_t n, const real *s, const real *t, const ttd_out *out)
 {
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
@@ -689,7 +690,7 @@ static void kx_run_full(size_t n, const real *s, const real *t, const ttd_out *o
 }
 
 /* The pairs of out (offset 0) for n pairs, whichever outputs it names. */
-static void kx_run(size_t n, const real *s, const real *t, const ttd_out *out)
+static TTD_DEVICE void kx_run(size_t n, const real *s, const real *t, const ttd_out *out)
 {
     if (out->results)
         kx_run_full(n, s, t, out);
@@ -710,7 +711,7 @@ static void kx_run(size_t n, const real *s, const real *t, const ttd_out *out)
  * the products could overflow or lose bits to underflow, get -inf (never ruled out). The
  * scalar row uses scalar/exact_impl.h's exact_lower_bound, the same operations in the same
  * order: the rows rule out the same pairs with the same bits. */
-static inline vreal kx_screen(const vreal S[9], const vreal T[9])
+TTDW_FN vreal kx_screen(const vreal S[9], const vreal T[9])
 {
 #ifdef TTD_PRECISION_DOUBLE
     const vreal lo = vset1(0x1p-500), hi = vset1(0x1p500);
@@ -740,7 +741,7 @@ static inline vreal kx_screen(const vreal S[9], const vreal T[9])
 /* Writes what a pair ruled out by the screen gets, for the live lanes of a group at pair i0 (the
  * lanes that are not ruled out are overwritten later): its lower bound (at least 0) as the
  * distance, NaN points, and in results the bound, NaN points and weights, no flags. */
-static void kx_write_far(const ttd_out *out, size_t i0, int live, vreal lb)
+static TTD_DEVICE void kx_write_far(const ttd_out *out, size_t i0, int live, vreal lb)
 {
     const real nan = (real)NAN;
     lb = vmax(lb, vzero());
@@ -765,7 +766,7 @@ static void kx_write_far(const ttd_out *out, size_t i0, int live, vreal lb)
 }
 
 /* Runs the nf gathered pairs of bs, bt and scatters their outputs to the indices idx of out. */
-static void kx_flush(int nf, const real *bs, const real *bt, const size_t *idx, const ttd_out *out)
+static TTD_DEVICE void kx_flush(int nf, const real *bs, const real *bt, const size_t *idx, const ttd_out *out)
 {
     real bd[KX_CHUNK + TTDW_LANES], bp[6 * (KX_CHUNK + TTDW_LANES)];
     ttd_result br[KX_CHUNK + TTDW_LANES];
@@ -788,7 +789,7 @@ static void kx_flush(int nf, const real *bs, const real *bt, const size_t *idx, 
  * the ones it needs by advancing its count, without a branch per lane (ruled-out lanes come
  * unpredictably). A group with nothing ruled out while nothing is pending runs in place; one
  * with everything ruled out copies nothing. */
-static void kx_screened(size_t n, const real *s, const real *t, real bound, const ttd_out *out)
+static TTD_DEVICE void kx_screened(size_t n, const real *s, const real *t, real bound, const ttd_out *out)
 {
     real bs[9 * (KX_CHUNK + TTDW_LANES)], bt[9 * (KX_CHUNK + TTDW_LANES)];
     size_t idx[KX_CHUNK + TTDW_LANES];
@@ -824,8 +825,8 @@ static void kx_screened(size_t n, const real *s, const real *t, real bound, cons
         kx_flush(nf, bs, bt, idx, out);
 }
 
-static void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
-                         const ttd_out *out)
+static TTD_DEVICE void kernel_exact(size_t n, const real *s, const real *t, const ttd_params *prm, real bound,
+                                    const ttd_out *out)
 {
     (void)prm;
     if (bound < TTD_REAL_MAX)

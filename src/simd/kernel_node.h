@@ -19,7 +19,7 @@
  * arithmetic, and are left out. sep is the largest face gap. */
 
 /* Stores the first lanes of v to out[j0 .. TTD_NODE_WIDTH). */
-static inline void node_store(real *out, int j0, vreal v)
+TTDW_FN void node_store(real *out, int j0, vreal v)
 {
     if (TTDW_LANES <= TTD_NODE_WIDTH - j0) {
         vstoreu(&out[j0], v);
@@ -31,7 +31,7 @@ static inline void node_store(real *out, int j0, vreal v)
     }
 }
 
-static void node_test(const ttd_box_query *x, const ttd_node *y, real lb2[TTD_NODE_WIDTH], real sep[TTD_NODE_WIDTH])
+static TTD_DEVICE void node_test(const ttd_box_query *x, const ttd_node *y, real lb2[TTD_NODE_WIDTH], real sep[TTD_NODE_WIDTH])
 {
     const vreal zero = vzero();
     vreal m[9], v[3], ex[3];

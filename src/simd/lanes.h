@@ -7,7 +7,7 @@
  *
  * Include this file once per translation unit after defining exactly one of TTDW_USE_SSE2,
  * TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON, TTDW_USE_PORTABLE (src/isa/<isa>_<p>.c
- * does). It defines, for both precisions (suffix _d = double, _f = float):
+ * does), or TTDW_USE_CUDA (lanes_cuda.h: one lane per CUDA thread, src/gpu/, docs/gpu.md). It defines, for both precisions (suffix _d = double, _f = float):
  *
  *   TTDW_LANES_D / TTDW_LANES_F    lanes per vector (compile-time constants)
  *   ttdw_vd / ttdw_vf              a vector of reals. + - * / and unary - work as operators,
@@ -33,7 +33,8 @@
  *   mand mor mandnot(a, b) (= a & ~b) mnot(a); mtrue(); mfirst(k) = lanes 0..k-1 set
  *   any(m) none(m) -> int;   mbits(m) -> unsigned, bit i = lane i
  *   f2d_lo(vf), f2d_hi(vf) -> vd   float lanes 0..W_d-1 / W_d..W_f-1 widened (W_f = 2 W_d
- *                      on every ISA); d2f(lo, hi) -> vf narrows back, rounding to nearest
+ *                      on every ISA; on CUDA W_f = W_d = 1 and f2d_hi repeats f2d_lo, whose
+ *                      half d2f drops); d2f(lo, hi) -> vf narrows back, rounding to nearest
  *   load_aos9(p, out[9])  transposition: p holds W triangles of 9 reals each, the user's
  *                      layout (triangle i at p + 9i, any alignment); out[k] lane i = p[9i + k]
  *
@@ -45,6 +46,15 @@
 
 #include <stddef.h>
 
+/* Qualifiers of the functions a CUDA kernel calls (the lane vocabulary and the kernels' helpers):
+ * host and device code under nvcc, plain C otherwise. TTDW_FN is `static inline` for both. */
+#if defined(__CUDACC__)
+#define TTD_DEVICE __host__ __device__
+#else
+#define TTD_DEVICE
+#endif
+#define TTDW_FN static inline TTD_DEVICE
+
 #if defined(TTDW_USE_SSE2)
 #include "simd/lanes_sse2.h"
 #elif defined(TTDW_USE_AVX2)
@@ -55,8 +65,10 @@
 #include "simd/lanes_neon.h"
 #elif defined(TTDW_USE_PORTABLE)
 #include "simd/lanes_portable.h"
+#elif defined(TTDW_USE_CUDA)
+#include "simd/lanes_cuda.h"
 #else
-#error "define one of TTDW_USE_SSE2, TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON, TTDW_USE_PORTABLE before lanes.h"
+#error "define one of TTDW_USE_SSE2, TTDW_USE_AVX2, TTDW_USE_AVX512, TTDW_USE_NEON, TTDW_USE_PORTABLE, TTDW_USE_CUDA before lanes.h"
 #endif
 
 #if defined(__GNUC__)
@@ -90,7 +102,7 @@ static inline void ttdw_load_aos9_f(const float *p, ttdw_vf out[9])
 }
 #endif
 
-static inline int ttdw_none_d(ttdw_md m) { return !ttdw_any_d(m); }
-static inline int ttdw_none_f(ttdw_mf m) { return !ttdw_any_f(m); }
+TTDW_FN int ttdw_none_d(ttdw_md m) { return !ttdw_any_d(m); }
+TTDW_FN int ttdw_none_f(ttdw_mf m) { return !ttdw_any_f(m); }
 
 #endif /* TTD_SIMD_LANES_H */

@@ -23,7 +23,7 @@ out=$("$TTD" --version) || fail "--version exit status $?"
 echo "$out" | grep -q '^ttd [0-9][0-9]*\.[0-9][0-9]*\.[0-9][0-9]*$' || fail "--version: $out"
 echo "$out" | grep -q '^auto: ' || fail "--version lacks the chosen ISA: $out"
 out=$("$TTD" info) || fail "info exit status $?"
-for key in '^ttd ' '^built: scalar' '^cpu: *scalar' '^auto: ' '^threads: '; do
+for key in '^ttd ' '^built: scalar' '^cpu: *scalar' '^auto: ' '^threads: ' '^gpu: \(usable\|not built\|built, not usable\)'; do
     echo "$out" | grep -q "$key" || fail "info lacks '$key': $out"
 done
 # What auto picks is built and supported, and TTD_ISA=scalar changes it.

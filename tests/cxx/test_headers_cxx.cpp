@@ -5,6 +5,7 @@
 // is the second (run by CTest as ttd.cxx).
 #include "ttd/ttd.h"
 #include "ttd/meshfile.h"
+#include "ttd/ttd_gpu.h"
 
 #include "core/certified_tol.h"
 #include "core/defaults.h"
@@ -45,5 +46,9 @@ int main()
             std::printf("ok   %s from C++\n", ttd_isa_name(isa));
         }
     }
+    // the GPU library's header and entry points from C++ (a stub without CUDA)
+    ttd_gpu_info gi;
+    const ttd_gpu_status gs = ttd_gpu_query(&gi);
+    std::printf("ok   ttd_gpu_query from C++: %s\n", ttd_gpu_status_string(gs));
     return failures != 0;
 }

@@ -1,0 +1,67 @@
+/* SPDX-License-Identifier: MIT */
+/* ttd on an NVIDIA GPU: the exact method on pairs that live in device memory, one pair per CUDA
+ * thread, from the same kernel source as the CPU rows (docs/gpu.md). A separate library,
+ * ttd_gpu (libttd_gpu), so that ttd itself never depends on CUDA: when ttd was built with its
+ * GPU part (CMake -DTTD_CUDA=AUTO found a CUDA toolkit, or ON), libttd_gpu holds the CUDA code
+ * and the CUDA runtime (linked statically: it loads the driver at run time, so a machine without
+ * a GPU driver runs programs linked with it and gets TTD_GPU_ERR_NO_DEVICE); otherwise it is a
+ * stub whose every call returns TTD_GPU_ERR_NOT_BUILT. C and C++; no CUDA header needed. */
+#ifndef TTD_TTD_GPU_H
+#define TTD_TTD_GPU_H
+
+#include <stddef.h>
+
+#include "ttd/ttd.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// What a GPU call did.
+typedef enum ttd_gpu_status {
+    TTD_GPU_OK = 0,
+    TTD_GPU_ERR_NOT_BUILT = 1,         ///< this ttd was built without its GPU part (no CUDA toolkit, or TTD_CUDA=OFF)
+    TTD_GPU_ERR_NO_DEVICE = 2,         ///< no usable CUDA device: no driver, a driver older than the runtime, no GPU, or none that runs the built code
+    TTD_GPU_ERR_NULL_POINTER = 3,      ///< s or t NULL, or both outputs NULL, or info NULL
+    TTD_GPU_ERR_NOT_DEVICE_MEMORY = 4, ///< an array the device cannot access (plain host memory); nothing launched
+    TTD_GPU_ERR_CUDA = 5               ///< the CUDA runtime failed (a launch, the device); ttd_gpu_query's message says what
+} ttd_gpu_status;
+
+/// A short English description of status (never NULL).
+TTD_API const char *ttd_gpu_status_string(ttd_gpu_status status);
+
+/// What ttd_gpu_query found.
+typedef struct ttd_gpu_info {
+    int built;              ///< 1 when this ttd has its GPU part
+    int device;             ///< the current CUDA device, -1 when none
+    int device_count;       ///< CUDA devices visible
+    int cc_major, cc_minor; ///< compute capability of the current device
+    int runtime_version;    ///< CUDA runtime (1000 major + 10 minor), 0 when not built
+    int driver_version;     ///< CUDA driver, 0 when none
+    char name[128];         ///< the current device's name, "" when none
+    char message[192];      ///< why no device is usable, or the last CUDA error; "" when none
+} ttd_gpu_info;
+
+/// Whether a GPU is usable for the calls below: TTD_GPU_OK with the current device's details in
+/// *info, TTD_GPU_ERR_NOT_BUILT or TTD_GPU_ERR_NO_DEVICE (info->message says why).
+TTD_API ttd_gpu_status ttd_gpu_query(ttd_gpu_info *info);
+
+/// The exact method on n pairs in device memory, one CUDA thread per pair: s and t hold 9n
+/// reals (the layout of ttd_batch_d), distance n reals, results n ttd_result_d; either output may
+/// be NULL, not both; all three arrays on the current device (device or managed memory).
+/// Each pair's result has the bits the CPU's ttd_batch_d gives it (with the exact method), on
+/// every instruction set; a pair with a NaN or infinite coordinate gets NaN outputs and
+/// TTD_PAIR_NONFINITE (not reported in the status). stream is a cudaStream_t (NULL: the
+/// default stream); the call returns after the launch, and the outputs are ready when the stream
+/// is. n = 0 launches nothing and returns TTD_GPU_OK.
+TTD_API ttd_gpu_status ttd_gpu_batch_d(size_t n, const double *s, const double *t, double *distance,
+                                       ttd_result_d *results, void *stream);
+/// ttd_gpu_batch_d in single precision (ttd_batch_f's bits).
+TTD_API ttd_gpu_status ttd_gpu_batch_f(size_t n, const float *s, const float *t, float *distance,
+                                       ttd_result_f *results, void *stream);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TTD_TTD_GPU_H */

@@ -1,0 +1,22 @@
+/* SPDX-License-Identifier: MIT */
+/* The GPU kernels in double (gpu_kernels_impl.cuh) and their two exported launchers. */
+#define TTD_PRECISION_DOUBLE
+#include "gpu/gpu_kernels_impl.cuh"
+
+extern "C" int ttd_gpu_launch_exact_d(size_t n, const double *s, const double *t, double *distance, ttd_result_d *results,
+                                      void *stream)
+{
+    return gpu_launch_exact(n, s, t, distance, results, stream);
+}
+
+extern "C" int ttd_gpu_launch_node_d(size_t k, const ttd_box_query_d *q, const ttd_node_d *y, double *lb2, double *sep,
+                                     void *stream)
+{
+    return gpu_launch_node(k, q, y, lb2, sep, stream);
+}
+
+extern "C" int ttd_gpu_kernel_loads(void)
+{
+    cudaFuncAttributes a;
+    return (int)cudaFuncGetAttributes(&a, gpu_exact_dist_kernel);
+}

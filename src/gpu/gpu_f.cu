@@ -1,0 +1,16 @@
+/* SPDX-License-Identifier: MIT */
+/* The GPU kernels in float (gpu_kernels_impl.cuh) and their two exported launchers. */
+#define TTD_PRECISION_FLOAT
+#include "gpu/gpu_kernels_impl.cuh"
+
+extern "C" int ttd_gpu_launch_exact_f(size_t n, const float *s, const float *t, float *distance, ttd_result_f *results,
+                                      void *stream)
+{
+    return gpu_launch_exact(n, s, t, distance, results, stream);
+}
+
+extern "C" int ttd_gpu_launch_node_f(size_t k, const ttd_box_query_f *q, const ttd_node_f *y, float *lb2, float *sep,
+                                     void *stream)
+{
+    return gpu_launch_node(k, q, y, lb2, sep, stream);
+}

@@ -1,0 +1,76 @@
+/* SPDX-License-Identifier: MIT */
+/* The device kernels for one precision (gpu_d.cu, gpu_f.cu define TTD_PRECISION_* and the
+ * exported names): the CPU rows' lane-generic kernels (simd/kernel_exact.h, kernel_node.h)
+ * compiled through the CUDA lane vocabulary (simd/lanes_cuda.h), one pair per thread. Built with
+ * -fmad=false -prec-div=true -prec-sqrt=true -ftz=false (src/gpu/CMakeLists.txt), so each
+ * operation rounds as on the CPU (docs/gpu.md). */
+#include <stdint.h>
+#include <string.h>
+
+#include <cuda_runtime.h>
+
+#define TTDW_USE_CUDA 1
+#include "core/precision.h"
+#include "core/kernels.h"
+#include "simd/lanes.h"
+#include "simd/lanes_precision.h"
+#include "simd/kernel_common.h"
+#include "simd/kernel_exact.h"
+#include "simd/kernel_node.h"
+#include "gpu/gpu_pair_impl.h"
+#include "gpu/gpu_internal.h"
+
+#define GPU_BLOCK 128
+
+/* The exact method, one pair per thread; a grid-stride loop for grids past the launch limit. */
+__global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_kernel(size_t n, const real *s, const real *t,
+                                                             real *distance, ttd_result *results)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < n; i += stride)
+        gpu_pair(i, s, t, distance, results);
+}
+
+/* The distance-only specialisation: no results pointer, so the compiler keeps only the running
+ * minimum (kx_run_dist). */
+__global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_dist_kernel(size_t n, const real *s, const real *t,
+                                                                  real *distance)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < n; i += stride)
+        gpu_pair(i, s, t, distance, NULL);
+}
+
+/* The mesh queries' node test, one node test per thread: query q[i] against the 8 children of
+ * node y[i], into lb2 and sep at 8i. Not yet used by an entry point (the GPU mesh queries are
+ * still to come, issue 20); built so that the device compilation covers kernel_node.h. */
+__global__ void __launch_bounds__(GPU_BLOCK) gpu_node_kernel(size_t k, const ttd_box_query *q, const ttd_node *y,
+                                                            real *lb2, real *sep)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < k; i += stride)
+        node_test(&q[i], &y[i], lb2 + TTD_NODE_WIDTH * i, sep + TTD_NODE_WIDTH * i);
+}
+
+static unsigned gpu_grid(size_t n)
+{
+    const size_t blocks = (n + GPU_BLOCK - 1) / GPU_BLOCK;
+    return blocks > 1u << 30 ? 1u << 30 : (unsigned)blocks;
+}
+
+static int gpu_launch_exact(size_t n, const real *s, const real *t, real *distance, ttd_result *results,
+                            void *stream)
+{
+    cudaStream_t st = (cudaStream_t)stream;
+    if (results)
+        gpu_exact_kernel<<<gpu_grid(n), GPU_BLOCK, 0, st>>>(n, s, t, distance, results);
+    else
+        gpu_exact_dist_kernel<<<gpu_grid(n), GPU_BLOCK, 0, st>>>(n, s, t, distance);
+    return (int)cudaGetLastError();
+}
+
+static int gpu_launch_node(size_t k, const ttd_box_query *q, const ttd_node *y, real *lb2, real *sep, void *stream)
+{
+    gpu_node_kernel<<<gpu_grid(k), GPU_BLOCK, 0, (cudaStream_t)stream>>>(k, q, y, lb2, sep);
+    return (int)cudaGetLastError();
+}

@@ -1,0 +1,31 @@
+/* SPDX-License-Identifier: MIT */
+/* The GPU library of a build without CUDA (TTD_CUDA=OFF, or AUTO without a CUDA toolkit): the
+ * entry points of include/ttd/ttd_gpu.h, each saying TTD_GPU_ERR_NOT_BUILT, so that programs
+ * (the ttd CLI, the tests) link and run the same with or without the GPU part. */
+#include <string.h>
+
+#include "ttd/ttd_gpu.h"
+
+ttd_gpu_status ttd_gpu_query(ttd_gpu_info *info)
+{
+    if (!info)
+        return TTD_GPU_ERR_NULL_POINTER;
+    memset(info, 0, sizeof *info);
+    info->device = -1;
+    strcpy(info->message, "built without CUDA");
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_batch_d(size_t n, const double *s, const double *t, double *distance, ttd_result_d *results,
+                               void *stream)
+{
+    (void)n, (void)s, (void)t, (void)distance, (void)results, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_batch_f(size_t n, const float *s, const float *t, float *distance, ttd_result_f *results,
+                               void *stream)
+{
+    (void)n, (void)s, (void)t, (void)distance, (void)results, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
