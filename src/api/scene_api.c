@@ -36,6 +36,10 @@ void ttd_scene_destroy(ttd_scene *scene)
     if (scene == NULL)
         return;
     free(scene->body);
+    free(scene->box);
+    free(scene->sweep_d);
+    free(scene->sweep_i);
+    free(scene->sweep_b);
     free(scene->order);
     free(scene->excluded);
     free(scene);
@@ -69,9 +73,12 @@ static ttd_status scene_add(ttd_scene *s, const ttd_mesh *mesh, const void *pose
     if (s->nbody == s->cap) {
         const size_t cap = s->cap ? 2 * s->cap : 16;
         scene_body *b = realloc(s->body, cap * sizeof *b);
-        if (b == NULL)
-            return TTD_ERR_OUT_OF_MEMORY;
-        s->body = b;
+        if (b != NULL)
+            s->body = b;
+        double *x = b != NULL ? realloc(s->box, 6 * cap * sizeof *x) : NULL;
+        if (x == NULL)
+            return TTD_ERR_OUT_OF_MEMORY; /* the scene as it was: both arrays still hold cap bodies */
+        s->box = x;
         s->cap = cap;
     }
     const uint32_t k = (uint32_t)s->nbody;
