@@ -423,7 +423,8 @@ TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a,
  * over all triangle pairs of all eligible body pairs in the world frame (each triangle's vertices
  * moved by its body's pose, ((r0 x + r1 y) + r2 z) + t per coordinate, in the scene's precision;
  * body i's triangle first), bit for bit. Results are in the world frame, sorted by (i, j) and
- * then by triangles, and do not depend on the thread count or the instruction set.
+ * then by triangles (a manifold's points: in the reduction's order within their body pair), and
+ * do not depend on the thread count or the instruction set.
  *
  * A scene keeps the broad phase's state between calls (the bodies' world boxes and their sorted
  * order, updated as poses change): it must not be changed or queried from two threads at once.
@@ -530,8 +531,8 @@ typedef struct ttd_scene_point_f {
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
 /// reduced to at most max_points points (0: all), the deepest first and then, one at a time, the
-/// one farthest from those already kept (docs/scenes.md), as ttd_scene_point_d (or _f) items,
-/// grouped by body pair in (i, j) order.
+/// one farthest from those already kept, never one at a point already kept (docs/scenes.md), as
+/// ttd_scene_point_d (or _f) items, grouped by body pair in (i, j) order.
 TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t max_points,
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,
