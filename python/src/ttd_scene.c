@@ -94,7 +94,7 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
     {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
-    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p|; at distance 0 the face normal of tri_i (else of tri_j) turned from tri_i towards tri_j"},
+    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p|; at distance 0 a face normal of either triangle, or across an edge of each (docs/scenes.md)"},
     {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
@@ -961,7 +961,7 @@ PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "Contact manifolds, what a simulator consumes: for every eligible body pair with triangle\n"
 "pairs within margin (finite, >= 0), at most max_points of them (0: all), chosen as the\n"
 "deepest (smallest distance; ties to the smaller triangles) and then, one at a time, the one\n"
-"whose point is farthest from the points kept. A ttd.SceneManifold of parallel (n,) arrays\n"
+"whose point is farthest from the points kept, never a point already kept. A ttd.SceneManifold of parallel (n,) arrays\n"
 "i, j, tri_i, tri_j (uint32), point (n, 3) (the midpoint of the pair's closest points),\n"
 "normal (n, 3) (unit, from body i towards body j: the direction q - p; at distance 0 the face\n"
 "normal of tri_i, else of tri_j, turned from tri_i's centroid towards tri_j's), distance\n"
