@@ -40,6 +40,12 @@ int ttd_cli_parse_method(const char *s, ttd_method *out);
 int ttd_cli_parse_isa(const char *s, ttd_isa *out);
 /// A whole decimal integer in [lo, hi]; 0 on success, -1 otherwise.
 int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
+
+/// An option that takes a value, argv[*i] as `--name value` or `--name=value`, among valued (a
+/// NULL-terminated list): 0 with *opt the name and *val the value (*i moved past a separate
+/// value), or -1 after a message naming the command (an unknown option, a missing value).
+int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
+                          const char **opt, const char **val);
 /// A finite number (strtod syntax, the whole string); 0 on success, -1 otherwise.
 int ttd_cli_parse_real(const char *s, double *out);
 /// Why the 12 numbers of a pose ([R | t] row by row) are not one the library takes (every entry

@@ -85,3 +85,31 @@ void ttd_cli_warn_isa_env(const char *command)
     if (note != NULL)
         ttd_cli_error("%s: warning: TTD_ISA=%s: %s", command, getenv("TTD_ISA"), note);
 }
+
+int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
+                          const char **opt, const char **val)
+{
+    const char *arg = argv[*i];
+    *opt = NULL;
+    *val = NULL;
+    for (size_t k = 0; valued[k] != NULL; ++k) {
+        const size_t l = strlen(valued[k]);
+        if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
+            *opt = valued[k];
+            if (arg[l] == '=')
+                *val = arg + l + 1;
+            else if (*i + 1 < argc)
+                *val = argv[++*i];
+            break;
+        }
+    }
+    if (*opt == NULL) {
+        ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", command, arg, command);
+        return -1;
+    }
+    if (*val == NULL) {
+        ttd_cli_error("%s: %s needs a value", command, *opt);
+        return -1;
+    }
+    return 0;
+}

@@ -174,27 +174,10 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             continue;
         }
         static const char *const valued[] = {"--margin", "--max-points", "--motion",
-                                             "--precision", "--isa", "--threads"};
-        const char *opt = NULL, *val = NULL;
-        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; ++k) {
-            size_t l = strlen(valued[k]);
-            if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
-                opt = valued[k];
-                if (arg[l] == '=')
-                    val = arg + l + 1;
-                else if (i + 1 < argc)
-                    val = argv[++i];
-                break;
-            }
-        }
-        if (opt == NULL) {
-            ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", name, arg, name);
+                                             "--precision", "--isa", "--threads", NULL};
+        const char *opt, *val;
+        if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
-        }
-        if (val == NULL) {
-            ttd_cli_error("%s: %s needs a value", name, opt);
-            return -1;
-        }
         long iv;
         int bad = 0;
         if (strcmp(opt, "--margin") == 0)
