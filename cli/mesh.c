@@ -417,16 +417,7 @@ static int ttd_mesh_read_poses(const ttd_mesh_args *a, ttd_mesh_poses *ps)
         while (rc == 0 && ttd_reader_next(r, &len, &overlong)) {
             double v[12];
             char err[256];
-            const char *p = r->line;
-            while (*p == ' ' || *p == '\t')
-                ++p;
-            ttd_line_kind kind;
-            if (overlong && *p != '#') {
-                kind = TTD_LINE_ERROR;
-                snprintf(err, sizeof err, "line longer than %d bytes", TTD_CLI_MAX_LINE);
-            } else {
-                kind = ttd_parse_pose_line(r->line, len, a->use_float, v, err, sizeof err);
-            }
+            ttd_line_kind kind = ttd_read_pose_line(r, len, overlong, a->use_float, v, err, sizeof err);
             if (kind == TTD_LINE_SKIP)
                 continue;
             if (kind == TTD_LINE_PAIR && ttd_cli_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)

@@ -200,3 +200,16 @@ ttd_line_kind ttd_parse_pair_line(const char *line, size_t len, int as_float, do
 {
     return ttd_parse_numbers_line(line, len, as_float, 18, out, err, errsize);
 }
+
+ttd_line_kind ttd_read_pose_line(const ttd_line_reader *r, size_t len, int overlong, int as_float, double out[12],
+                                 char *err, size_t errsize)
+{
+    const char *p = r->line;
+    while (*p == ' ' || *p == '\t')
+        ++p;
+    if (overlong && *p != '#') {
+        snprintf(err, errsize, "line longer than %d bytes", TTD_CLI_MAX_LINE);
+        return TTD_LINE_ERROR;
+    }
+    return ttd_parse_pose_line(r->line, len, as_float, out, err, errsize);
+}

@@ -59,4 +59,10 @@ ttd_line_kind ttd_parse_numbers_line(const char *line, size_t len, int as_float,
 ttd_line_kind ttd_parse_pose_line(const char *line, size_t len, int as_float, double out[12], char *err,
                                   size_t errsize);
 
+/// The pose in the line r last returned (len and overlong as ttd_reader_next gave them): an
+/// overlong line that is not a comment is an error, anything else ttd_parse_pose_line's. The
+/// reading of poses files (`ttd mesh --poses`) and motion files (`ttd scene --motion`).
+ttd_line_kind ttd_read_pose_line(const ttd_line_reader *r, size_t len, int overlong, int as_float, double out[12],
+                                 char *err, size_t errsize);
+
 #endif /* TTD_CLI_PARSE_H */

@@ -551,16 +551,7 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
         while (rc == 0 && ttd_reader_next(r, &len, &overlong)) {
             double v[12];
             char err[512];
-            const char *p = r->line;
-            while (*p == ' ' || *p == '\t')
-                ++p;
-            ttd_line_kind kind;
-            if (overlong && *p != '#') {
-                kind = TTD_LINE_ERROR;
-                snprintf(err, sizeof err, "line longer than %d bytes", TTD_CLI_MAX_LINE);
-            } else {
-                kind = ttd_parse_pose_line(r->line, len, a->use_float, v, err, sizeof err);
-            }
+            ttd_line_kind kind = ttd_read_pose_line(r, len, overlong, a->use_float, v, err, sizeof err);
             if (kind == TTD_LINE_SKIP)
                 continue;
             if (n == 0) {
