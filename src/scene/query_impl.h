@@ -377,12 +377,12 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
             ne[r] = l > 0 && isfinite(l) ? ne[r] / l : 0;
     }
     const int use_edges = ne[0] != 0 || ne[1] != 0 || ne[2] != 0;
-    const scene_body *bi = &s->body[c->i], *bj = &s->body[c->j];
+    const double *bi = s->box + 6 * (size_t)c->i, *bj = s->box + 6 * (size_t)c->j; /* their world boxes */
     double towards[3], t2 = 0, boxes[3], b2 = 0;
     for (int r = 0; r < 3; ++r) {
         towards[r] = gj[r] - gi[r];
         t2 += towards[r] * towards[r];
-        boxes[r] = 0.5 * (bj->lo[r] + bj->hi[r]) - 0.5 * (bi->lo[r] + bi->hi[r]);
+        boxes[r] = 0.5 * (bj[r] + bj[3 + r]) - 0.5 * (bi[r] + bi[3 + r]);
         b2 += boxes[r] * boxes[r];
     }
     if (!has_i && !has_j) {
@@ -570,7 +570,7 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
     int closest_done = s->present < 2;
     real cbest = (real)INFINITY;
     size_t cpair_i = SIZE_MAX;
-    scene_pair cpair = {0, 0, 0};
+    scene_pair cpair = {0, 0};
     /* the closest pair alone: touching bodies are found sooner by collision at 0, which stops at
      * its first pair within 0, than by distance; the first touching pair in (i, j) order is the
      * answer, and no pair after it is needed */
@@ -643,7 +643,7 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
         if (partner[id] == UINT32_MAX)
             continue;
         const uint32_t o = partner[id];
-        const scene_pair p = {id < o ? (uint32_t)id : o, id < o ? o : (uint32_t)id, 0};
+        const scene_pair p = {id < o ? (uint32_t)id : o, id < o ? o : (uint32_t)id};
         if (!pair_record(cfg, s, &p, best[id], (uint32_t)id, &nearest[id]))
             st = TTD_ERR_OUT_OF_MEMORY;
     }

@@ -35,7 +35,7 @@ static void root_box(const struct ttd_mesh *m, double c[3], double u[9], double 
  * kernel's world coordinates are b's vertices moved by the pose in the scene's precision (within
  * a few eps of |v| + |t| of exact), the root box holds the vertices less the origin rounded to
  * double, and its axes are orthonormal to a few eps (docs/mesh-queries.md, section 4). */
-static void world_box(scene_body *b, int bytes)
+static void world_box(const scene_body *b, int bytes, double box[6])
 {
     const struct ttd_mesh *m = b->mesh;
     double c[3], u[9], e[3];
@@ -61,8 +61,8 @@ static void world_box(scene_body *b, int bytes)
         for (int a = 0; a < 3; ++a) /* |row i of R . axis a| e_a */
             h += fabs(p[4 * i] * u[3 * a] + p[4 * i + 1] * u[3 * a + 1] + p[4 * i + 2] * u[3 * a + 2]) * e[a];
         const double lo_box = ci - h, hi_box = ci + h, lo_ball = si - r, hi_ball = si + r;
-        b->lo[i] = (lo_box > lo_ball ? lo_box : lo_ball) - pad;
-        b->hi[i] = (hi_box < hi_ball ? hi_box : hi_ball) + pad;
+        box[i] = (lo_box > lo_ball ? lo_box : lo_ball) - pad;
+        box[3 + i] = (hi_box < hi_ball ? hi_box : hi_ball) + pad;
     }
 }
 
@@ -78,11 +78,7 @@ void ttd_scene_place(struct ttd_scene *s, uint32_t id, const void *pose, double 
         }
     }
     b->defect = defect;
-    world_box(b, s->bytes);
-    for (int k = 0; k < 3; ++k) {
-        s->box[6 * (size_t)id + (size_t)k] = b->lo[k];
-        s->box[6 * (size_t)id + 3 + (size_t)k] = b->hi[k];
-    }
+    world_box(b, s->bytes, s->box + 6 * (size_t)id);
 }
 
 int ttd_scene_eligible(const struct ttd_scene *s, uint32_t i, uint32_t j)
@@ -110,8 +106,9 @@ double ttd_scene_extent(const struct ttd_scene *s)
         if (b->mesh == NULL)
             continue;
         for (int k = 0; k < 3; ++k) {
-            lo[k] = b->lo[k] < lo[k] ? b->lo[k] : lo[k];
-            hi[k] = b->hi[k] > hi[k] ? b->hi[k] : hi[k];
+            const double *x = s->box + 6 * id;
+            lo[k] = x[k] < lo[k] ? x[k] : lo[k];
+            hi[k] = x[3 + k] > hi[k] ? x[3 + k] : hi[k];
         }
     }
     double d2 = 0;
@@ -144,7 +141,7 @@ static int sweep_order(struct ttd_scene *s)
                 continue;
             o[s->norder++] = (uint32_t)id;
             for (int k = 0; k < 3; ++k) {
-                const double c = 0.5 * s->body[id].lo[k] + 0.5 * s->body[id].hi[k];
+                const double c = 0.5 * s->box[6 * id + (size_t)k] + 0.5 * s->box[6 * id + 3 + (size_t)k];
                 sum[k] += c;
                 sum2[k] += c * c;
             }
@@ -332,12 +329,7 @@ int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *onl
                     }
                     v = w;
                 }
-                double gap = lo[0][b] - hi[0][a];
-                const double g1 = lo[1][b] - hi[1][a] > lo[1][a] - hi[1][b] ? lo[1][b] - hi[1][a] : lo[1][a] - hi[1][b];
-                const double g2 = lo[2][b] - hi[2][a] > lo[2][a] - hi[2][b] ? lo[2][b] - hi[2][a] : lo[2][a] - hi[2][b];
-                gap = gap > g1 ? gap : g1;
-                gap = gap > g2 ? gap : g2;
-                v[count++] = (scene_pair){x < y ? x : y, x < y ? y : x, gap > 0 ? gap : 0};
+                v[count++] = (scene_pair){x < y ? x : y, x < y ? y : x};
             }
         }
     }

@@ -24,7 +24,6 @@ typedef struct scene_body {
     float pose_f[12];            /* a float scene's, as given */
     double defect;               /* max |R^T R - I| */
     uint32_t group, mask;
-    double lo[3], hi[3];         /* the world box, with a rounding margin */
 } scene_body;
 
 struct ttd_scene {
@@ -32,9 +31,9 @@ struct ttd_scene {
     scene_body *body;            /* indexed by id */
     size_t nbody, cap;           /* ids given so far, room */
     size_t present;              /* bodies not removed */
-    double *box;                 /* 6 per id: the world box's lo[3] then hi[3], a copy of the
-                                  * bodies' kept together for the sweep (48 bytes a body, not
-                                  * the whole record: 5,000 bodies' fit in the L2 cache) */
+    double *box;                 /* 6 per id: its world box, lo[3] then hi[3], with a rounding
+                                  * margin; apart from the bodies' records, so that the sweep
+                                  * reads 48 bytes a body */
     uint32_t *order;             /* present bodies sorted by lo[axis] (sweep and prune) */
     size_t norder;
     int order_stale;             /* a body was added or removed: order to be rebuilt */
@@ -45,10 +44,9 @@ struct ttd_scene {
     size_t nexcluded, excluded_cap;
 };
 
-/// A candidate body pair (i < j) of a sweep, and a lower bound on its bodies' distance.
+/// A candidate body pair (i < j) of a sweep.
 typedef struct scene_pair {
     uint32_t i, j;
-    double gap; /* the larger of the boxes' gaps along the three axes (0 when they overlap) */
 } scene_pair;
 
 /// Sets body id's pose (checked) from 12 reals of the scene's precision, and its world box.
