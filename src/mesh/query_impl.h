@@ -574,12 +574,12 @@ static void qpose_make(const qctx *C, const real pose[12], const real *pose_a, d
     P->b = (side){(const ttd_node *)mb->nodes, (const real *)mb->verts, mb->tris};
     memcpy(P->pose, pose, sizeof P->pose);
     P->has_a = pose_a != NULL;
-    /* b's pose in a's frame, [rb | tb] */
-    double rb[9], tb[3], world = 0;
+    /* b's pose in a's frame, [r | tb] */
+    double r[9], tb[3], world = 0;
     for (int i = 0; i < 3; ++i) {
         tb[i] = (double)pose[4 * i + 3];
         for (int k = 0; k < 3; ++k)
-            rb[3 * i + k] = (double)pose[4 * i + k];
+            r[3 * i + k] = (double)pose[4 * i + k];
     }
     if (pose_a != NULL) {
         memcpy(P->pose_a, pose_a, sizeof P->pose_a);
@@ -589,21 +589,19 @@ static void qpose_make(const qctx *C, const real pose[12], const real *pose_a, d
             for (int k = 0; k < 3; ++k) {
                 double x = 0;
                 for (int j = 0; j < 3; ++j)
-                    x += (double)pose_a[4 * j + i] * rb[3 * j + k];
+                    x += (double)pose_a[4 * j + i] * r[3 * j + k];
                 rr[3 * i + k] = x;
                 tr[i] += (double)pose_a[4 * k + i] * (tb[k] - (double)pose_a[4 * k + 3]);
             }
             ta2 += (double)pose_a[4 * i + 3] * (double)pose_a[4 * i + 3];
         }
-        memcpy(rb, rr, sizeof rb);
+        memcpy(r, rr, sizeof r);
         memcpy(tb, tr, sizeof tb);
         world = sqrt(ta2); /* the kernel's coordinates are as far out as a's translation more */
     }
     /* x_a - o_a = R (x_b - o_b) + (R o_b + t - o_a), in double */
-    double r[9], t[3], tn = 0;
+    double t[3], tn = 0;
     for (int i = 0; i < 3; ++i) {
-        for (int k = 0; k < 3; ++k)
-            r[3 * i + k] = rb[3 * i + k];
         t[i] = tb[i] - ma->origin[i];
         for (int k = 0; k < 3; ++k)
             t[i] += r[3 * i + k] * mb->origin[k];
