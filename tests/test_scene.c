@@ -215,7 +215,11 @@ static contact widen_f(const ttd_scene_contact_f *c)
     return x;
 }
 
-static const double MARGIN = 0.02, BOUND = 0.05;
+/* The scenes' size and where they sit: 1 and 0, or scaled and moved (scaled_scenes), the margin
+ * and the bound with them. */
+static double world_scale = 1, world_offset = 0;
+#define MARGIN (0.02 * world_scale)
+#define BOUND (0.05 * world_scale)
 static const size_t MAX_POINTS = 4;
 
 static int ask(const world *W, ttd_isa isa, int threads, answers *A)
@@ -619,6 +623,9 @@ static int make_world(world *W, int bytes, size_t nbody, double spread, int with
         ENSURE(ttd_gen_normalize(&W->gm[4]) == 0);
         ENSURE(ttd_gen_mesh_transform(&W->gm[4], big, &W->gm[4]) == 0);
     }
+    for (int k = 0; k < 5; ++k)
+        for (size_t i = 0; i < 3 * W->gm[k].nv; ++i)
+            W->gm[k].verts[i] *= world_scale;
     for (int k = 0; k < 5; ++k) {
         const ttd_gen_mesh *g = &W->gm[k];
         if (bytes == 8) {
@@ -636,6 +643,7 @@ static int make_world(world *W, int bytes, size_t nbody, double spread, int with
         }
     }
     ENSURE((bytes == 8 ? ttd_scene_create_d(&W->scene) : ttd_scene_create_f(&W->scene)) == TTD_OK);
+    double unscaled_t[MAX_BODIES][3]; /* the translations before world_scale and world_offset */
     for (size_t id = 0; id < nbody; ++id) {
         /* bodies in a 2.5-wide box, a few of them touching or nearly (gaps 0..0.03 of the next
          * body's reach), the last one the floor under them all */
@@ -647,7 +655,11 @@ static int make_world(world *W, int bytes, size_t nbody, double spread, int with
             memcpy(W->pose[id], flat, sizeof flat);
         } else if (id % 3 == 1 && id > 0 && with_floor) {
             for (int r = 0; r < 3; ++r)
-                W->pose[id][4 * r + 3] = W->pose[id - 1][4 * r + 3] + (r == 0 ? 0.45 + 0.01 * (double)(id % 4) : 0.02);
+                W->pose[id][4 * r + 3] = unscaled_t[id - 1][r] + (r == 0 ? 0.45 + 0.01 * (double)(id % 4) : 0.02);
+        }
+        for (int r = 0; r < 3; ++r) {
+            unscaled_t[id][r] = W->pose[id][4 * r + 3];
+            W->pose[id][4 * r + 3] = W->pose[id][4 * r + 3] * world_scale + world_offset;
         }
         for (int k = 0; k < 12; ++k)
             W->pose[id][k] = round_to(bytes, W->pose[id][k]);
@@ -808,6 +820,30 @@ static int resting_cube_normals(void)
     return 0;
 }
 
+/* Tiny and huge scenes, and scenes far from the origin: the pile with its floor at scales 1e-6
+ * and 1e6, and at unit scale moved by 1e6 (the world boxes' rounding margin and the traversal's,
+ * which grows with where the bodies sit), in double; float at 1e-3 and 1e3. */
+static int scaled_scenes(void)
+{
+    static const struct { int bytes; double scale, offset; } cases[] = {
+        {8, 1e-6, 0}, {8, 1e6, 0}, {8, 1, 1e6}, {8, 1e-6, 3e-4}, {4, 1e-3, 0}, {4, 1e3, 0}, {4, 1, 1e3}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        world_scale = cases[c].scale;
+        world_offset = cases[c].offset;
+        world W;
+        char what[96];
+        snprintf(what, sizeof what, "pile at scale %g, offset %g", world_scale, world_offset);
+        size_t n;
+        const int bad = make_world(&W, cases[c].bytes, 16, 1.25, 1) != 0 || check_world(&W, what, &n) != 0;
+        free_world(&W);
+        world_scale = 1;
+        world_offset = 0;
+        ENSURE_MSG(!bad, "%s", what);
+        ENSURE(n > 0);
+    }
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -904,6 +940,7 @@ int main(int argc, char **argv)
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(scenes_match_brute_force);
     RUN_TEST(sparse_scene_distances);
+    RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);
     RUN_TEST(small_scenes);
     RUN_TEST(bad_input);
