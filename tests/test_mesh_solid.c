@@ -224,6 +224,64 @@ static int tetrahedron_in_cube(void)
     return 0;
 }
 
+/* Nesting at tiny and huge scales and far from the origin (the winding number works at unit
+ * scale per triangle), and a closed sliver (a tetrahedron 1e-9 of its size thick) that holds
+ * nothing: a small sphere inside the large one is contained, one beside it is not, and the sliver
+ * answers as its surface does. */
+static int nesting_at_scales(void)
+{
+    static const double scales[][2] = {{1e-8, 0}, {1e8, 0}, {1, 1e6}, {1e-6, 3e-4}};
+    ttd_gen_mesh big, small, sliver;
+    ENSURE(ttd_gen_icosphere(2, &big) == 0);
+    ENSURE(ttd_gen_icosphere(1, &small) == 0);
+    ENSURE(ttd_gen_mesh_tetrahedron(&sliver) == 0);
+    for (size_t v = 0; v < sliver.nv; ++v)
+        sliver.verts[3 * v + 2] *= 1e-9; /* the apex nearly in the base's plane */
+    const ttd_options sol = solid_options(1), surf = solid_options(0);
+    for (size_t c = 0; c < sizeof scales / sizeof scales[0]; ++c) {
+        const double k = scales[c][0], o = scales[c][1];
+        ttd_gen_mesh B, S, L;
+        const double scale_big[12] = {k, 0, 0, o, 0, k, 0, o, 0, 0, k, o};
+        const double scale_small[12] = {0.15 * k, 0, 0, 0, 0, 0.15 * k, 0, 0, 0, 0, 0.15 * k, 0};
+        const double scale_sliver[12] = {k, 0, 0, 0, 0, k, 0, 0, 0, 0, k, 0};
+        ENSURE(ttd_gen_mesh_transform(&big, scale_big, &B) == 0);
+        ENSURE(ttd_gen_mesh_transform(&small, scale_small, &S) == 0);
+        ENSURE(ttd_gen_mesh_transform(&sliver, scale_sliver, &L) == 0);
+        ttd_mesh *mb, *ms, *ml;
+        ENSURE(ttd_mesh_create_d(NULL, B.verts, B.nv, B.tris, B.nt, &mb) == TTD_OK);
+        ENSURE(ttd_mesh_create_d(NULL, S.verts, S.nv, S.tris, S.nt, &ms) == TTD_OK);
+        ENSURE(ttd_mesh_create_d(NULL, L.verts, L.nv, L.tris, L.nt, &ml) == TTD_OK);
+        const double inside[12] = {1, 0, 0, o + 0.3 * k, 0, 1, 0, o - 0.2 * k, 0, 0, 1, o + 0.1 * k};
+        const double beside[12] = {1, 0, 0, o + 1.4 * k, 0, 1, 0, o, 0, 0, 1, o};
+        ttd_mesh_result_d r, rs;
+        ttd_collision x;
+        ENSURE(ttd_mesh_distance_d(&sol, mb, ms, 1, inside, INFINITY, 0, &r) == TTD_OK);
+        ENSURE_MSG(r.distance == 0 && (r.flags & TTD_MESH_CONTAINED), "scale %g offset %g: not contained", k, o);
+        ENSURE(ttd_mesh_collide_d(&sol, ms, mb, 1, (const double[12]){1, 0, 0, -inside[3], 0, 1, 0, -inside[7], 0, 0, 1,
+                                                                      -inside[11]},
+                                  0, &x) == TTD_OK &&
+               x.hit && x.tri_a == 0 && x.tri_b == UINT32_MAX);
+        ENSURE(ttd_mesh_distance_d(&sol, mb, ms, 1, beside, INFINITY, 0, &r) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(&surf, mb, ms, 1, beside, INFINITY, 0, &rs) == TTD_OK);
+        ENSURE_MSG(r.distance > 0 && memcmp(&r, &rs, sizeof r) == 0, "scale %g offset %g: beside", k, o);
+        /* the sliver, 0.2 of its size above the small sphere's centre: surfaces apart, nothing inside */
+        const double above[12] = {1, 0, 0, -0.3 * k, 0, 1, 0, -0.3 * k, 0, 0, 1, 0.2 * k};
+        ENSURE(ttd_mesh_distance_d(&sol, ms, ml, 1, above, INFINITY, 0, &r) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(&surf, ms, ml, 1, above, INFINITY, 0, &rs) == TTD_OK);
+        ENSURE_MSG(rs.distance > 0 && memcmp(&r, &rs, sizeof r) == 0, "scale %g: the sliver", k);
+        ttd_mesh_destroy(mb);
+        ttd_mesh_destroy(ms);
+        ttd_mesh_destroy(ml);
+        ttd_gen_mesh_free(&B);
+        ttd_gen_mesh_free(&S);
+        ttd_gen_mesh_free(&L);
+    }
+    ttd_gen_mesh_free(&big);
+    ttd_gen_mesh_free(&small);
+    ttd_gen_mesh_free(&sliver);
+    return 0;
+}
+
 /* Open meshes are refused in solid mode and answered in surface mode. */
 static int open_meshes_refused(void)
 {
@@ -276,6 +334,7 @@ int main(int argc, char **argv)
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(spheres_against_plane_test);
     RUN_TEST(tetrahedron_in_cube);
+    RUN_TEST(nesting_at_scales);
     RUN_TEST(open_meshes_refused);
     TEST_MAIN_END();
 }
