@@ -67,7 +67,7 @@ static double ref_point_triangle_scaled(const double x[3], const double tri[9], 
 
 /* ---- the hostile pairs -------------------------------------------------------------------- */
 
-enum { NCASES = 16 };
+enum { NCASES = 17 };
 /* Case c of the double cases; e receives a power-of-two exponent that brings it into the
  * reference's comfortable range (0 if none is needed). */
 static void hostile_case_d(int c, double s[9], double t[9], int *e)
@@ -164,6 +164,12 @@ static void hostile_case_d(int c, double s[9], double t[9], int *e)
         *e = -1020;
         break;
     }
+    case 15: /* case 9 of the float cases in double: a point near (DBL_MAX, DBL_MAX, DBL_MAX) against
+              * a tiny segment, where the reference penalty iterate can overflow to -inf */
+        for (int k = 0; k < 9; ++k)
+            s[k] = 0x1.fefefefefefefp+1023, t[k] = k == 0 ? -0x1.000016p-43 : -0x1.555554p-42;
+        *e = -1020;
+        break;
     default: /* an ordinary pair, for comparison inside mixed batches */
         break;
     }
@@ -267,7 +273,7 @@ static int hostile_double_cases(void)
 static int hostile_float_cases(void)
 {
     seed(2);
-    for (int c = 0; c < 9; ++c) {
+    for (int c = 0; c < 10; ++c) {
         for (int rep = 0; rep < 8; ++rep) {
             float sf[9], tf[9];
             int e = 0;
@@ -284,6 +290,11 @@ static int hostile_float_cases(void)
                 case 8: /* a unit triangle against one at FLT_MAX height: q rounded to inf */
                     sf[k] = (float)((const double[]){0, 0, 0, 1, 0, 0, 0, 1, 0}[k]);
                     tf[k] = k == 0 ? 0.0f : (k == 6 ? 1e38f : FLT_MAX), e = -120;
+                    break;
+                case 9: /* a point near (FLT_MAX, FLT_MAX, FLT_MAX) against a tiny segment (found by
+                         * fuzz_batch): the reference penalty iterate ran off to -inf, its weights NaN */
+                    sf[k] = 0x1.fefefep+127f;
+                    tf[k] = k == 0 ? -0x1.000016p-43f : -0x1.555554p-42f, e = -120;
                     break;
                 default: /* a FLT_MAX-size triangle with a unit one inside, coplanar */
                     sf[k] = (float)((const double[]){-1, -1, 0, 1, -1, 0, 0, 1, 0}[k]) * FLT_MAX;

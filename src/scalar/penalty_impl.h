@@ -78,8 +78,16 @@ static void pen_clamp_bary3(real c, real a, real b, real w[3])
     w[2] = w2 * inv;
 }
 
+/* The reference method's weights. Not in the paper: its iterate is unbounded, and where the
+ * step is finite but x - dx overflows (coordinates near REAL_MAX) it reaches +-inf, which would
+ * make 1 - a - b inf or NaN and the weights NaN. Bounded at REAL_MAX/8 first, 1 - a - b and the
+ * clamped weights' sum stay finite; any iterate below the bound is untouched. (x is never NaN:
+ * it starts at 0.33 and moves only by finite steps.) */
 static void pen_clamp_bary(real a, real b, real w[3])
 {
+    const real big = TTD_REAL_MAX / 8;
+    a = a > big ? big : (a < -big ? -big : a);
+    b = b > big ? big : (b < -big ? -big : b);
     pen_clamp_bary3((real)1 - a - b, a, b, w);
 }
 

@@ -40,9 +40,13 @@ static inline void kpr_clamp_bary3(vreal c, vreal a, vreal b, vreal w[3])
     w[2] = w2 * inv;
 }
 
-/* scalar: pen_clamp_bary(a, b) = pen_clamp_bary3(1 - a - b, a, b) */
+/* scalar: pen_clamp_bary(a, b) = pen_clamp_bary3(1 - a - b, a, b), a and b bounded at
+ * +-REAL_MAX/8 first (an iterate that overflowed to +-inf gives finite weights) */
 static inline void kpr_clamp_bary(vreal a, vreal b, vreal w[3])
 {
+    const vreal big = vset1(TTD_REAL_MAX / 8), mbig = vset1(-(TTD_REAL_MAX / 8));
+    a = vmin(vmax(a, mbig), big);
+    b = vmin(vmax(b, mbig), big);
     kpr_clamp_bary3(vset1((real)1) - a - b, a, b, w);
 }
 
