@@ -6,11 +6,15 @@
 # caused it is left in $build/artifacts/.
 # Where clang or its libFuzzer runtime is missing, the script tries to install the runtime
 # (apt-get, when run as root) and otherwise skips with a message and status 0.
+# The mutations start from a fixed seed (TTD_FUZZ_SEED, default 20261126), so that a failure in
+# CI reruns the same way here; TTD_FUZZ_SEED=0 lets libFuzzer pick one (long campaigns that
+# explore beyond CI's path: docs/testing.md).
 # Usage: scripts/fuzz.sh [seconds per target, default 30]   (build folder: build-fuzz/, or $TTD_FUZZ_BUILD_DIR)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-${TTD_FUZZ_SECONDS:-30}}
 build=${TTD_FUZZ_BUILD_DIR:-build-fuzz}
+seed=${TTD_FUZZ_SEED:-20261126}
 jobs=$(nproc 2>/dev/null || echo 2)
 CC_FUZZ=${CC_FUZZ:-clang}
 
@@ -58,9 +62,9 @@ for target in parse_line batch meshfile mesh; do
     mkdir -p "$work"
     cp tests/fuzz/corpus/$target/* "$work/"
     exe=$(find "$build" -name "fuzz_$target" -type f -perm -u+x | head -n 1)
-    echo "fuzz.sh: fuzz_$target for $seconds s from $(ls "$work" | wc -l) corpus files"
+    echo "fuzz.sh: fuzz_$target for $seconds s from $(ls "$work" | wc -l) corpus files, seed $seed"
     # -max_len: long enough for the CLI's 4096-byte lines, 64 double pairs, and small meshes
-    if ! "$exe" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=10000 \
+    if ! "$exe" "$work" -seed="$seed" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=10000 \
             -artifact_prefix="$build/artifacts/$target-" -print_final_stats=1 2> "$build/fuzz_$target.log"; then
         echo "fuzz.sh: fuzz_$target FAILED (input saved under $build/artifacts/):"
         tail -n 40 "$build/fuzz_$target.log"
