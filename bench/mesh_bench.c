@@ -1223,12 +1223,13 @@ static int is_row(const mrow *r, const char *query, int bytes, int threads)
 static void evaluate_targets(bench_mesh_results *R, int fcl_ok)
 {
     target *T = R->targets;
-    set_target(&T[T_DIST_EVERY], "minimum distance, every mesh workload", ">= 5x FCL", 5.0);
-    set_target(&T[T_DIST_MEDIAN], "minimum distance, median over workloads", ">= 8x FCL", 8.0);
+    /* issue 19's targets where it raised issue 9's; the build and collision ones are issue 9's */
+    set_target(&T[T_DIST_EVERY], "minimum distance, every mesh workload", ">= 8x FCL", 8.0);
+    set_target(&T[T_DIST_MEDIAN], "minimum distance, median over workloads", ">= 10x FCL", 10.0);
     set_target(&T[T_POSES], "1,000 random bunny poses, 1 thread", ">= 7x FCL", 7.0);
-    set_target(&T[T_POSES_2T], "1,000 random bunny poses, 2 threads over 1", ">= 1.8x", 1.8);
-    set_target(&T[T_CONTACTS_D], "contacts within a margin, double (worst mesh)", ">= 3x FCL's traversal", 3.0);
-    set_target(&T[T_CONTACTS_F], "contacts within a margin, float (worst mesh)", ">= 5x FCL's traversal", 5.0);
+    set_target(&T[T_POSES_2T], "1,000 random bunny poses, 2 threads over 1", ">= 1.85x", 1.85);
+    set_target(&T[T_CONTACTS_D], "contacts within a margin, double (worst mesh)", ">= 5x FCL's traversal", 5.0);
+    set_target(&T[T_CONTACTS_F], "contacts within a margin, float (worst mesh)", ">= 8x FCL's traversal", 8.0);
     set_target(&T[T_BUILD], "tree build, 1M triangles, 1 thread", ">= 10x FCL's OBBRSS", 10.0);
     set_target(&T[T_COLLIDE], "collision, margin 0 (worst row)", "within 1.5x of FCL (x_fcl >= 0.67)", 1.0 / 1.5);
     if (!fcl_ok)
@@ -1452,7 +1453,7 @@ void bench_mesh_write_table(FILE *f, const bench_mesh_results *R)
             R->compared, num(b[0], 40, R->compared ? R->worst_diff : BENCH_NAN, "%.3g"), TOL_D, R->disagreements);
     for (size_t i = 0; i < R->nalarms; ++i)
         fprintf(f, "  DISAGREEMENT: %s\n", R->alarms[i]);
-    fprintf(f, "\nissue 9 targets (ratios of this run%s; the benchmark measures, it does not fail on them):\n",
+    fprintf(f, "\nmesh targets, issues 9 and 19 (ratios of this run%s; the benchmark measures, it does not fail on them):\n",
             R->quick ? ", --quick: small meshes, not the issue's workloads" : "");
     for (int i = 0; i < T_COUNT; ++i) {
         const target *t = &R->targets[i];
