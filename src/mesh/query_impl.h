@@ -560,9 +560,11 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
         heap_up(h, i);
     item kids[TTD_NODE_WIDTH];
     while (n > 0 && !W->nomem && h[0].lb2 <= w->limit2 && !(w->found && w->limit == 0)) {
+        /* the top stays in place while it is opened (nothing below touches the heap in this
+         * phase): its first child to enter the heap replaces it, saving a sift; as the order
+         * is total, the items leave the heap in the same order either way */
         const item it = h[0];
-        h[0] = h[--n];
-        heap_down(h, n, 0);
+        int replaced = 0;
         w->ordered = 0;
         const int m = expand(C, P, W, w, &it, kids);
         size_t top = 0;
@@ -577,11 +579,21 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
                 W->stack[at] = kids[j];
                 continue;
             }
+            if (!replaced) {
+                h[0] = kids[j];
+                heap_down(h, n, 0);
+                replaced = 1;
+                continue;
+            }
             W->ndef = n;
             if (!defer_item(W, &kids[j]))
                 return;
             h = W->deferred;
             heap_up(h, n++);
+        }
+        if (!replaced) {
+            h[0] = h[--n];
+            heap_down(h, n, 0);
         }
         if (top > 0)
             walk_stack(C, P, W, w, top);
