@@ -118,7 +118,7 @@ typedef struct qwork {
      * opens items in bound order, so that one box meets the other side's nodes far apart in
      * time: keeping only the last view recomputed it for 94% of the node tests (far bunny
      * poses), at a third of the node test's own instructions. */
-    int32_t query_key[QUERY_SLOTS]; /* 2 (node * 8 + slot) + side, or -1: empty */
+    uint64_t query_key[QUERY_SLOTS]; /* (node * 8 + slot) * 2 + side, or UINT64_MAX: empty */
     ttd_box_query query[QUERY_SLOTS];
     int nomem;
 } qwork;
@@ -375,7 +375,7 @@ static void pose_forget(qwork *W)
  * in, through the walk's cache. */
 static const ttd_box_query *walk_box_query(const qpose *P, qwork *W, int side_b, int32_t n, int j)
 {
-    const int32_t key = 2 * (n * TTD_NODE_WIDTH + j) + side_b;
+    const uint64_t key = ((uint64_t)n * TTD_NODE_WIDTH + (uint64_t)j) * 2 + (uint64_t)side_b; /* exact: no two boxes share it */
     const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & (QUERY_SLOTS - 1); /* Knuth's multiplier */
     ttd_box_query *q = &W->query[slot];
     if (W->query_key[slot] != key) {
