@@ -78,6 +78,20 @@ void bench_machine_probe(bench_machine *m, double seconds, size_t stream_bytes);
 /// Monotonic time in seconds.
 double bench_now(void);
 
+/// What bench_time_call measured: seconds per call (median and fastest sample), samples, calls per sample.
+typedef struct bench_timing {
+    double med_s, min_s;
+    int samples;
+    long passes;
+} bench_timing;
+
+/// Times fn(arg) as the pair rows are timed: a warm-up call (a call of a second or more is its
+/// own warm-up and first sample), then `samples` samples (at most 64; fewer, at least 3, when
+/// they would take more than max_row_s; with single_long, one when a single call of a second or
+/// more already would) of enough calls each to last min_s. Returns 0, or -1 when fn failed.
+int bench_time_call(int (*fn)(void *arg), void *arg, double min_s, double max_row_s, int samples, int single_long,
+                    bench_timing *out);
+
 /// Relative error above which a pair counts as a disagreement with the exact method.
 static inline double bench_disagree_tol(int bytes) { return bytes == 8 ? 1e-9 : 1e-4; }
 

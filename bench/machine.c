@@ -36,6 +36,57 @@ double bench_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static int cmp_seconds(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int bench_time_call(int (*fn)(void *arg), void *arg, double min_s, double max_row_s, int samples, int single_long,
+                    bench_timing *out)
+{
+    double t[64];
+    int have = 0;
+    double t0 = bench_now();
+    if (fn(arg))
+        return -1;
+    double one = bench_now() - t0;
+    /* a call of a second or more is its own warm-up and the first sample (the builds and contacts
+     * of the 1M-triangle torus: a fourth call would add seconds and change nothing) */
+    if (one >= 1.0) {
+        t[have++] = one;
+    } else {
+        t0 = bench_now();
+        if (fn(arg))
+            return -1;
+        one = bench_now() - t0;
+    }
+    long passes = 1;
+    if (have == 0 && one >= min_s)
+        t[have++] = one;
+    else if (have == 0)
+        passes = (long)fmin(ceil(min_s / fmax(one, 1e-9)), 1e7);
+    while (samples > 3 && one * (double)passes * samples > max_row_s)
+        --samples;
+    if (single_long && one >= 1.0 && samples > 1 && one * samples > max_row_s)
+        samples = 1;
+    if (samples > 64)
+        samples = 64;
+    while (have < samples) {
+        t0 = bench_now();
+        for (long k = 0; k < passes; ++k)
+            if (fn(arg))
+                return -1;
+        t[have++] = (bench_now() - t0) / (double)passes;
+    }
+    qsort(t, (size_t)samples, sizeof t[0], cmp_seconds);
+    out->med_s = samples % 2 ? t[samples / 2] : 0.5 * (t[samples / 2 - 1] + t[samples / 2]);
+    out->min_s = t[0];
+    out->samples = samples;
+    out->passes = passes;
+    return 0;
+}
+
 static void trim(char *s)
 {
     size_t n = strlen(s);

@@ -400,45 +400,13 @@ static int cmp_double(const void *a, const void *b)
  * divides the time (poses per call). Fills ms, ms_min, samples and passes of r; -1 when fn failed. */
 static int time_call(const mctx *M, call_fn fn, void *arg, double per_call, mrow *r)
 {
-    double t[64];
-    int have = 0;
-    double t0 = bench_now();
-    if (fn(arg))
+    bench_timing t;
+    if (bench_time_call(fn, arg, M->min_s, M->max_row_s, M->env->st->samples, 0, &t) != 0)
         return -1;
-    double one = bench_now() - t0;
-    /* a call of a second or more is its own warm-up and the first sample (the builds and contacts of
-     * the 1M-triangle torus: a fourth call would add seconds and change nothing) */
-    if (one >= 1.0) {
-        t[have++] = one;
-    } else {
-        t0 = bench_now();
-        if (fn(arg))
-            return -1;
-        one = bench_now() - t0;
-    }
-    long passes = 1;
-    if (have == 0 && one >= M->min_s)
-        t[have++] = one;
-    else if (have == 0)
-        passes = (long)fmin(ceil(M->min_s / fmax(one, 1e-9)), 1e7);
-    int samples = M->env->st->samples;
-    while (samples > 3 && one * (double)passes * samples > M->max_row_s)
-        --samples;
-    if (samples > 64)
-        samples = 64;
-    while (have < samples) {
-        t0 = bench_now();
-        for (long k = 0; k < passes; ++k)
-            if (fn(arg))
-                return -1;
-        t[have++] = (bench_now() - t0) / (double)passes;
-    }
-    qsort(t, (size_t)samples, sizeof t[0], cmp_double);
-    double med = samples % 2 ? t[samples / 2] : 0.5 * (t[samples / 2 - 1] + t[samples / 2]);
-    r->ms = med * 1e3 / per_call;
-    r->ms_min = t[0] * 1e3 / per_call;
-    r->samples = samples;
-    r->passes = passes;
+    r->ms = t.med_s * 1e3 / per_call;
+    r->ms_min = t.min_s * 1e3 / per_call;
+    r->samples = t.samples;
+    r->passes = t.passes;
     return 0;
 }
 

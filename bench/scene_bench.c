@@ -544,48 +544,16 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* As mesh_bench.c's time_call: a warm-up call, then samples of enough calls to last the minimum
- * sample time (fewer samples when one call is long). */
+/* bench_time_call (machine.c), as the mesh rows are timed, but one sample where a single call
+ * of a second or more already fills the row's time. */
 static int time_call(const sctx *M, call_fn fn, void *arg, srow *r)
 {
-    double t[64];
-    int have = 0;
-    double t0 = bench_now();
-    if (fn(arg))
+    bench_timing t;
+    if (bench_time_call(fn, arg, M->min_s, M->max_row_s, M->env->st->samples, 1, &t) != 0)
         return -1;
-    double one = bench_now() - t0;
-    if (one >= 1.0) {
-        t[have++] = one;
-    } else {
-        t0 = bench_now();
-        if (fn(arg))
-            return -1;
-        one = bench_now() - t0;
-    }
-    long passes = 1;
-    if (have == 0 && one >= M->min_s)
-        t[have++] = one;
-    else if (have == 0)
-        passes = (long)fmin(ceil(M->min_s / fmax(one, 1e-9)), 1e7);
-    int samples = M->env->st->samples;
-    while (samples > 3 && one * (double)passes * samples > M->max_row_s)
-        --samples;
-    if (one >= 1.0 && samples > 1 && one * samples > M->max_row_s)
-        samples = 1;
-    if (samples > 64)
-        samples = 64;
-    while (have < samples) {
-        t0 = bench_now();
-        for (long k = 0; k < passes; ++k)
-            if (fn(arg))
-                return -1;
-        t[have++] = (bench_now() - t0) / (double)passes;
-    }
-    qsort(t, (size_t)samples, sizeof t[0], cmp_double);
-    double med = samples % 2 ? t[samples / 2] : 0.5 * (t[samples / 2 - 1] + t[samples / 2]);
-    r->ms = med * 1e3;
-    r->ms_min = t[0] * 1e3;
-    r->samples = samples;
+    r->ms = t.med_s * 1e3;
+    r->ms_min = t.min_s * 1e3;
+    r->samples = t.samples;
     return 0;
 }
 
