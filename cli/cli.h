@@ -46,6 +46,10 @@ int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
 /// value), or -1 after a message naming the command (an unknown option, a missing value).
 int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
                           const char **opt, const char **val);
+/// The options every computing command takes alike: --precision double|float, --isa NAME,
+/// --threads N (0..2^20). 1 when opt is none of them; otherwise 0, or -1 when val is bad
+/// (nothing printed: the caller names its command).
+int ttd_cli_run_option(const char *opt, const char *val, ttd_options *o, int *use_float);
 /// A finite number (strtod syntax, the whole string); 0 on success, -1 otherwise.
 int ttd_cli_parse_real(const char *s, double *out);
 /// Why the 12 numbers of a pose ([R | t] row by row) are not one the library takes (every entry

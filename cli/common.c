@@ -86,6 +86,24 @@ void ttd_cli_warn_isa_env(const char *command)
         ttd_cli_error("%s: warning: TTD_ISA=%s: %s", command, getenv("TTD_ISA"), note);
 }
 
+int ttd_cli_run_option(const char *opt, const char *val, ttd_options *o, int *use_float)
+{
+    long iv;
+    if (strcmp(opt, "--precision") == 0) {
+        *use_float = strcmp(val, "float") == 0;
+        return strcmp(val, "double") != 0 && !*use_float ? -1 : 0;
+    }
+    if (strcmp(opt, "--isa") == 0)
+        return ttd_cli_parse_isa(val, &o->isa) ? -1 : 0;
+    if (strcmp(opt, "--threads") == 0) {
+        if (ttd_cli_parse_int(val, 0, 1 << 20, &iv))
+            return -1;
+        o->threads = (int)iv;
+        return 0;
+    }
+    return 1;
+}
+
 int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
                           const char **opt, const char **val)
 {

@@ -162,21 +162,15 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
         int bad = 0;
         if (strcmp(name, "--method") == 0)
             bad = ttd_cli_parse_method(val, &a->opt.method);
-        else if (strcmp(name, "--isa") == 0)
-            bad = ttd_cli_parse_isa(val, &a->opt.isa);
-        else if (strcmp(name, "--precision") == 0) {
-            bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
-            a->use_float = strcmp(val, "float") == 0;
-        } else if (strcmp(name, "--rho") == 0)
+        else if (strcmp(name, "--rho") == 0)
             bad = ttd_cli_parse_real(val, &a->opt.rho) || !(a->opt.rho > 0 && a->opt.rho <= TTD_RHO_MAX);
         else if (strcmp(name, "--tol") == 0)
             bad = ttd_cli_parse_real(val, &a->opt.tol) || !(a->opt.tol >= 0 && a->opt.tol <= 1);
         else if (strcmp(name, "--max-iter") == 0) {
             bad = ttd_cli_parse_int(val, 1, 65535, &iv);
             a->opt.max_iterations = (int)iv;
-        } else if (strcmp(name, "--threads") == 0) {
-            bad = ttd_cli_parse_int(val, 0, 1 << 20, &iv);
-            a->opt.threads = (int)iv;
+        } else {
+            bad = ttd_cli_run_option(name, val, &a->opt, &a->use_float) < 0;
         }
         if (bad && strcmp(name, "--isa") == 0) {
             ttd_cli_error("dist: --isa %s: unknown instruction set (auto, scalar, sse2, avx2, avx512, neon, portable; "

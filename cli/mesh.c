@@ -236,7 +236,6 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
         const char *opt, *val;
         if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
-        long iv;
         int bad = 0;
         if (strcmp(opt, "--pose") == 0)
             a->pose = val;
@@ -254,14 +253,8 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
                 return -1;
             }
             *(opt[2] == 'u' ? &a->upper_s : &a->rel_s) = val;
-        } else if (strcmp(opt, "--precision") == 0) {
-            bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
-            a->use_float = strcmp(val, "float") == 0;
-        } else if (strcmp(opt, "--isa") == 0)
-            bad = ttd_cli_parse_isa(val, &a->opt.isa);
-        else if (strcmp(opt, "--threads") == 0) {
-            bad = ttd_cli_parse_int(val, 0, 1 << 20, &iv);
-            a->opt.threads = (int)iv;
+        } else {
+            bad = ttd_cli_run_option(opt, val, &a->opt, &a->use_float) < 0;
         }
         if (bad) {
             ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", name, opt, val, name);

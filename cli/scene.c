@@ -191,14 +191,8 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             }
             bad = ttd_cli_parse_int(val, 0, 1L << 30, &iv);
             a->max_points = bad ? 0 : (size_t)iv;
-        } else if (strcmp(opt, "--precision") == 0) {
-            bad = strcmp(val, "double") != 0 && strcmp(val, "float") != 0;
-            a->use_float = strcmp(val, "float") == 0;
-        } else if (strcmp(opt, "--isa") == 0)
-            bad = ttd_cli_parse_isa(val, &a->opt.isa);
-        else if (strcmp(opt, "--threads") == 0) {
-            bad = ttd_cli_parse_int(val, 0, 1 << 20, &iv);
-            a->opt.threads = (int)iv;
+        } else {
+            bad = ttd_cli_run_option(opt, val, &a->opt, &a->use_float) < 0;
         }
         if (bad) {
             ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", name, opt, val, name);
