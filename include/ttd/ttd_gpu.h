@@ -38,6 +38,9 @@ typedef struct ttd_gpu_info {
     int cc_major, cc_minor; ///< compute capability of the current device
     int runtime_version;    ///< CUDA runtime (1000 major + 10 minor), 0 when not built
     int driver_version;     ///< CUDA driver, 0 when none
+    int block_threads;      ///< CUDA threads a block of the kernels (0 when not built)
+    int min_blocks;         ///< the kernels' __launch_bounds__ minimum of resident blocks an SM
+    int registers_d, registers_f; ///< registers a thread of the distance kernels, double and float (0 when unknown)
     char name[128];         ///< the current device's name, "" when none
     char message[192];      ///< why no device is usable, or the last CUDA error; "" when none
 } ttd_gpu_info;
@@ -59,6 +62,21 @@ TTD_API ttd_gpu_status ttd_gpu_batch_d(size_t n, const double *s, const double *
 /// ttd_gpu_batch_d in single precision (ttd_batch_f's bits).
 TTD_API ttd_gpu_status ttd_gpu_batch_f(size_t n, const float *s, const float *t, float *distance,
                                        ttd_result_f *results, void *stream);
+
+/// The exact method on n pairs in host memory (the arrays of ttd_batch_d, any alignment): the
+/// pairs go to the current device in chunks, each chunk's copies overlapped with another's kernel
+/// on a second stream, and the call returns when every output is written. Arrays the caller has
+/// page-locked (cudaHostRegister, cudaMallocHost) are copied by DMA in place, at the bus's speed;
+/// plain pageable arrays pass through small pinned staging buffers, at the speed of a host copy
+/// (docs/gpu.md has both, measured). Results as ttd_gpu_batch_d's (the CPU's bits). Either output
+/// may be NULL, not both; n = 0 does nothing. TTD_GPU_ERR_NO_DEVICE without a usable GPU,
+/// TTD_GPU_ERR_CUDA when the runtime fails (pinned or device memory cannot be had, say): the
+/// outputs are then indeterminate.
+TTD_API ttd_gpu_status ttd_gpu_batch_host_d(size_t n, const double *s, const double *t, double *distance,
+                                            ttd_result_d *results);
+/// ttd_gpu_batch_host_d in single precision.
+TTD_API ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const float *t, float *distance,
+                                            ttd_result_f *results);
 
 #ifdef __cplusplus
 }

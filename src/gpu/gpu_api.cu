@@ -23,6 +23,8 @@ extern "C" ttd_gpu_status ttd_gpu_query(ttd_gpu_info *info)
     memset(info, 0, sizeof *info);
     info->built = 1;
     info->device = -1;
+    info->block_threads = ttd_gpu_block_threads();
+    info->min_blocks = ttd_gpu_min_blocks();
     cudaRuntimeGetVersion(&info->runtime_version);
     cudaError_t err = cudaDriverGetVersion(&info->driver_version);
     if (err != cudaSuccess || info->driver_version == 0) {
@@ -57,6 +59,8 @@ extern "C" ttd_gpu_status ttd_gpu_query(ttd_gpu_info *info)
         gpu_message(info, "the kernels do not load on this device", err);
         return TTD_GPU_ERR_NO_DEVICE;
     }
+    info->registers_d = ttd_gpu_kernel_registers_d();
+    info->registers_f = ttd_gpu_kernel_registers_f();
     return TTD_GPU_OK;
 }
 
@@ -119,4 +123,139 @@ extern "C" ttd_gpu_status ttd_gpu_batch_f(size_t n, const float *s, const float 
     if (st != TTD_GPU_OK || n == 0)
         return st;
     return gpu_launched(ttd_gpu_launch_exact_f(n, s, t, distance, results, stream));
+}
+
+/* The host entries: chunks of at most HOST_CHUNK pairs, two slots on two streams, so that one
+ * chunk's copies overlap the other's kernel. Arrays the caller has page-locked (cudaHostRegister,
+ * cudaMallocHost) are copied by DMA straight from and into place; plain pageable arrays go through
+ * a slot's pinned staging buffers (a host copy each way), and a chunk's outputs then reach the
+ * caller when its slot comes round again (or at the end). The staging is allocated per call, so
+ * it is kept small: 2^17 pairs a slot (19 MB of inputs in double). */
+enum { HOST_CHUNK = 1 << 17 };
+
+template <typename R, typename Res> struct host_slot {
+    cudaStream_t stream;
+    R *pin_in, *dev_in;   /* 18 m reals: s's 9 m, then t's */
+    R *pin_dist, *dev_dist;
+    Res *pin_res, *dev_res;
+    size_t off, m;        /* the chunk whose outputs wait in the staging buffers (m = 0: none) */
+};
+
+/* 1 when p is page-locked host memory the device can copy from by DMA */
+static int host_pinned(const void *p)
+{
+    cudaPointerAttributes a;
+    if (cudaPointerGetAttributes(&a, p) != cudaSuccess) {
+        cudaGetLastError();
+        return 0;
+    }
+    return a.type == cudaMemoryTypeHost;
+}
+
+template <typename R, typename Res>
+static void host_slot_drain(host_slot<R, Res> *sl, R *distance, Res *results)
+{
+    if (distance && sl->pin_dist)
+        memcpy(distance + sl->off, sl->pin_dist, sl->m * sizeof(R));
+    if (results && sl->pin_res)
+        memcpy(results + sl->off, sl->pin_res, sl->m * sizeof(Res));
+    sl->m = 0;
+}
+
+template <typename R, typename Res>
+static ttd_gpu_status host_batch(size_t n, const R *s, const R *t, R *distance, Res *results,
+                                 int (*launch)(size_t, const R *, const R *, R *, Res *, void *))
+{
+    if (!s || !t || (!distance && !results))
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (n == 0)
+        return TTD_GPU_OK;
+    int dev;
+    if (cudaGetDevice(&dev) != cudaSuccess || ttd_gpu_kernel_loads() != cudaSuccess) {
+        cudaGetLastError();
+        return TTD_GPU_ERR_NO_DEVICE;
+    }
+    const int direct_in = host_pinned(s) && host_pinned(t);
+    const int direct_dist = distance && host_pinned(distance), direct_res = results && host_pinned(results);
+    const size_t chunk = n < HOST_CHUNK ? n : HOST_CHUNK;
+    host_slot<R, Res> slot[2];
+    memset(slot, 0, sizeof slot);
+    cudaError_t err = cudaSuccess;
+    for (int k = 0; k < 2 && err == cudaSuccess; ++k) {
+        host_slot<R, Res> *sl = &slot[k];
+        err = cudaStreamCreateWithFlags(&sl->stream, cudaStreamNonBlocking);
+        if (err == cudaSuccess && !direct_in)
+            err = cudaMallocHost((void **)&sl->pin_in, 18 * chunk * sizeof(R));
+        if (err == cudaSuccess)
+            err = cudaMalloc((void **)&sl->dev_in, 18 * chunk * sizeof(R));
+        if (err == cudaSuccess && distance && !direct_dist)
+            err = cudaMallocHost((void **)&sl->pin_dist, chunk * sizeof(R));
+        if (err == cudaSuccess && distance)
+            err = cudaMalloc((void **)&sl->dev_dist, chunk * sizeof(R));
+        if (err == cudaSuccess && results && !direct_res)
+            err = cudaMallocHost((void **)&sl->pin_res, chunk * sizeof(Res));
+        if (err == cudaSuccess && results)
+            err = cudaMalloc((void **)&sl->dev_res, chunk * sizeof(Res));
+    }
+    for (size_t off = 0, c = 0; off < n && err == cudaSuccess; off += chunk, ++c) {
+        host_slot<R, Res> *sl = &slot[c & 1];
+        const size_t m = n - off < chunk ? n - off : chunk;
+        /* the slot's previous chunk must be done before its buffers are reused */
+        if ((err = cudaStreamSynchronize(sl->stream)) != cudaSuccess)
+            break;
+        if (sl->m)
+            host_slot_drain(sl, distance, results);
+        if (direct_in) {
+            err = cudaMemcpyAsync(sl->dev_in, s + 9 * off, 9 * m * sizeof(R), cudaMemcpyHostToDevice, sl->stream);
+            if (err == cudaSuccess)
+                err = cudaMemcpyAsync(sl->dev_in + 9 * m, t + 9 * off, 9 * m * sizeof(R), cudaMemcpyHostToDevice,
+                                      sl->stream);
+        } else {
+            memcpy(sl->pin_in, s + 9 * off, 9 * m * sizeof(R));
+            memcpy(sl->pin_in + 9 * m, t + 9 * off, 9 * m * sizeof(R));
+            err = cudaMemcpyAsync(sl->dev_in, sl->pin_in, 18 * m * sizeof(R), cudaMemcpyHostToDevice, sl->stream);
+        }
+        if (err == cudaSuccess)
+            err = (cudaError_t)launch(m, sl->dev_in, sl->dev_in + 9 * m, sl->dev_dist, sl->dev_res, sl->stream);
+        if (err == cudaSuccess && distance)
+            err = cudaMemcpyAsync(direct_dist ? distance + off : sl->pin_dist, sl->dev_dist, m * sizeof(R),
+                                  cudaMemcpyDeviceToHost, sl->stream);
+        if (err == cudaSuccess && results)
+            err = cudaMemcpyAsync(direct_res ? results + off : sl->pin_res, sl->dev_res, m * sizeof(Res),
+                                  cudaMemcpyDeviceToHost, sl->stream);
+        sl->off = off;
+        sl->m = m;
+    }
+    for (int k = 0; k < 2; ++k) {
+        host_slot<R, Res> *sl = &slot[k];
+        if (sl->stream) {
+            const cudaError_t e = cudaStreamSynchronize(sl->stream);
+            if (err == cudaSuccess)
+                err = e;
+            if (err == cudaSuccess && sl->m)
+                host_slot_drain(sl, distance, results);
+            cudaStreamDestroy(sl->stream);
+        }
+        cudaFreeHost(sl->pin_in);
+        cudaFree(sl->dev_in);
+        cudaFreeHost(sl->pin_dist);
+        cudaFree(sl->dev_dist);
+        cudaFreeHost(sl->pin_res);
+        cudaFree(sl->dev_res);
+    }
+    if (err != cudaSuccess)
+        cudaGetLastError();
+    return gpu_launched((int)err);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_batch_host_d(size_t n, const double *s, const double *t, double *distance,
+                                               ttd_result_d *results)
+{
+    return host_batch(n, s, t, distance, results, ttd_gpu_launch_exact_d);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const float *t, float *distance,
+                                               ttd_result_f *results)
+{
+    return host_batch(n, s, t, distance, results, ttd_gpu_launch_exact_f);
 }

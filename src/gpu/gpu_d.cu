@@ -20,3 +20,19 @@ extern "C" int ttd_gpu_kernel_loads(void)
     cudaFuncAttributes a;
     return (int)cudaFuncGetAttributes(&a, gpu_exact_dist_kernel);
 }
+
+extern "C" int ttd_gpu_kernel_registers_d(void)
+{
+    cudaFuncAttributes a;
+    return cudaFuncGetAttributes(&a, gpu_exact_dist_kernel) == cudaSuccess ? a.numRegs : 0;
+}
+
+extern "C" int ttd_gpu_block_threads(void)
+{
+    return GPU_BLOCK;
+}
+
+extern "C" int ttd_gpu_min_blocks(void)
+{
+    return TTD_GPU_MIN_BLOCKS;
+}

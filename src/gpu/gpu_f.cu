@@ -14,3 +14,9 @@ extern "C" int ttd_gpu_launch_node_f(size_t k, const ttd_box_query_f *q, const t
 {
     return gpu_launch_node(k, q, y, lb2, sep, stream);
 }
+
+extern "C" int ttd_gpu_kernel_registers_f(void)
+{
+    cudaFuncAttributes a;
+    return cudaFuncGetAttributes(&a, gpu_exact_dist_kernel) == cudaSuccess ? a.numRegs : 0;
+}

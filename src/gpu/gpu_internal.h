@@ -26,6 +26,13 @@ int ttd_gpu_launch_node_f(size_t k, const ttd_box_query_f *q, const ttd_node_f *
  * cudaFuncGetAttributes on one of them (no kernel image for the device, no driver, ...) */
 int ttd_gpu_kernel_loads(void);
 
+/* registers a thread of the distance-only exact kernel (0 when they cannot be read), and the
+ * launch configuration the kernels were built with */
+int ttd_gpu_kernel_registers_d(void);
+int ttd_gpu_kernel_registers_f(void);
+int ttd_gpu_block_threads(void);
+int ttd_gpu_min_blocks(void);
+
 #ifdef __cplusplus
 }
 #endif

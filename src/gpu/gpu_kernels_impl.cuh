@@ -20,10 +20,25 @@
 #include "gpu/gpu_pair_impl.h"
 #include "gpu/gpu_internal.h"
 
-#define GPU_BLOCK 128
+/* Threads a block and the blocks an SM must hold at once (__launch_bounds__'s second argument,
+ * which caps the registers a thread may use at 65536 / (GPU_BLOCK * GPU_MIN_BLOCKS); 0: none). The
+ * defaults were chosen on an H200 (docs/gpu.md, section 5); other values build for the tuning
+ * runs of scripts/test-gpu-device.sh (-DTTD_GPU_BLOCK=..., -DTTD_GPU_MIN_BLOCKS=...). */
+#ifndef TTD_GPU_BLOCK
+#define TTD_GPU_BLOCK 128
+#endif
+#ifndef TTD_GPU_MIN_BLOCKS
+#define TTD_GPU_MIN_BLOCKS 0
+#endif
+#define GPU_BLOCK TTD_GPU_BLOCK
+#if TTD_GPU_MIN_BLOCKS > 0
+#define GPU_BOUNDS __launch_bounds__(TTD_GPU_BLOCK, TTD_GPU_MIN_BLOCKS)
+#else /* no minimum: the compiler's choice of registers */
+#define GPU_BOUNDS __launch_bounds__(TTD_GPU_BLOCK)
+#endif
 
 /* The exact method, one pair per thread; a grid-stride loop for grids past the launch limit. */
-__global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_kernel(size_t n, const real *s, const real *t,
+__global__ void GPU_BOUNDS gpu_exact_kernel(size_t n, const real *s, const real *t,
                                                              real *distance, ttd_result *results)
 {
     const size_t stride = (size_t)gridDim.x * blockDim.x;
@@ -33,7 +48,7 @@ __global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_kernel(size_t n, const re
 
 /* The distance-only specialisation: no results pointer, so the compiler keeps only the running
  * minimum (kx_run_dist). */
-__global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_dist_kernel(size_t n, const real *s, const real *t,
+__global__ void GPU_BOUNDS gpu_exact_dist_kernel(size_t n, const real *s, const real *t,
                                                                   real *distance)
 {
     const size_t stride = (size_t)gridDim.x * blockDim.x;
@@ -44,7 +59,7 @@ __global__ void __launch_bounds__(GPU_BLOCK) gpu_exact_dist_kernel(size_t n, con
 /* The mesh queries' node test, one node test per thread: query q[i] against the 8 children of
  * node y[i], into lb2 and sep at 8i. Not yet used by an entry point (the GPU mesh queries are
  * still to come, issue 20); built so that the device compilation covers kernel_node.h. */
-__global__ void __launch_bounds__(GPU_BLOCK) gpu_node_kernel(size_t k, const ttd_box_query *q, const ttd_node *y,
+__global__ void GPU_BOUNDS gpu_node_kernel(size_t k, const ttd_box_query *q, const ttd_node *y,
                                                             real *lb2, real *sep)
 {
     const size_t stride = (size_t)gridDim.x * blockDim.x;

@@ -29,3 +29,15 @@ ttd_gpu_status ttd_gpu_batch_f(size_t n, const float *s, const float *t, float *
     (void)n, (void)s, (void)t, (void)distance, (void)results, (void)stream;
     return TTD_GPU_ERR_NOT_BUILT;
 }
+
+ttd_gpu_status ttd_gpu_batch_host_d(size_t n, const double *s, const double *t, double *distance, ttd_result_d *results)
+{
+    (void)n, (void)s, (void)t, (void)distance, (void)results;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const float *t, float *distance, ttd_result_f *results)
+{
+    (void)n, (void)s, (void)t, (void)distance, (void)results;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
