@@ -25,10 +25,13 @@
 #include "ttd/ttd_gpu.h"
 #include "cuda_host/cuda_host.h"
 #include "test_macros.h"
+#include "mesh_like_pairs.h"
+#include <unistd.h>
 
 #ifdef TTD_TEST_CUDA
 #include <cuda_runtime.h>
 #endif
+
 
 /* Pairs for the bit comparisons: every gen/pairs.h family (n each), then the random family
  * scaled by 2^k over the whole double exponent range (extreme: subnormal-sized to near
@@ -194,25 +197,22 @@ static double seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The pair set through ttd_gpu_batch_d/f on device memory, bit for bit against the CPU. */
-static int gpu_device_bits(void)
+/* One set of n pairs (s, t in double, sf, tf their float copies) through ttd_gpu_batch_d/f on
+ * device memory, full results and then distances alone, against the CPU's scalar row on every
+ * core (ttd_batch with TTD_ISA_SCALAR), bit for bit. Prints a line; the differing pairs go to
+ * *diff_d and *diff_f. */
+static int device_vs_scalar(const char *name, size_t n, const double *s, const double *t, const float *sf,
+                            const float *tf, size_t *diff_d, size_t *diff_f)
 {
-    ttd_gpu_info info;
-    if (ttd_gpu_query(&info) != TTD_GPU_OK) {
-        printf("  skip: no usable GPU (%s)\n", info.message);
-        return 0;
-    }
-    double *s, *t;
-    float *sf, *tf;
-    const size_t n = pair_set(&s, &t, &sf, &tf);
     ttd_result_d *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
     ttd_result_f *want_f = malloc(n * sizeof *want_f), *got_f = malloc(n * sizeof *got_f);
     double *dist = malloc(n * sizeof *dist);
     float *dist_f = malloc(n * sizeof *dist_f);
     ENSURE(want && got && want_f && got_f && dist && dist_f);
     ttd_options opt = ttd_default_options();
-    ENSURE(ttd_batch_d(&opt, n, s, t, NULL, want) == TTD_ERR_NONFINITE_INPUT);
-    ENSURE(ttd_batch_f(&opt, n, sf, tf, NULL, want_f) == TTD_ERR_NONFINITE_INPUT);
+    opt.isa = TTD_ISA_SCALAR;
+    const ttd_status cd = ttd_batch_d(&opt, n, s, t, NULL, want), cf = ttd_batch_f(&opt, n, sf, tf, NULL, want_f);
+    ENSURE((cd == TTD_OK || cd == TTD_ERR_NONFINITE_INPUT) && (cf == TTD_OK || cf == TTD_ERR_NONFINITE_INPUT));
     double *ds, *dt, *dd;
     float *fs, *ft, *fd;
     ttd_result_d *dr;
@@ -240,14 +240,10 @@ static int gpu_device_bits(void)
     CU(cudaDeviceSynchronize());
     CU(cudaMemcpy(dist, dd, n * sizeof *dist, cudaMemcpyDeviceToHost));
     CU(cudaMemcpy(dist_f, fd, n * sizeof *dist_f, cudaMemcpyDeviceToHost));
-    const size_t diff_d = count_diff_d(n, want, got, dist), diff_f = count_diff_f(n, want_f, got_f, dist_f);
-    printf("  %s: %zu pairs, differing from the CPU's bits: %zu double, %zu float\n", info.name, n, diff_d, diff_f);
-    /* the checks: host memory, NULL, n = 0 */
-    ENSURE(ttd_gpu_batch_d(n, s, dt, dd, NULL, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
-    ENSURE(ttd_gpu_batch_d(n, ds, dt, dist, NULL, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
-    ENSURE(ttd_gpu_batch_f(n, fs, NULL, fd, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
-    ENSURE(ttd_gpu_batch_f(n, fs, ft, NULL, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
-    ENSURE(ttd_gpu_batch_d(0, ds, dt, dd, NULL, NULL) == TTD_GPU_OK);
+    *diff_d = count_diff_d(n, want, got, dist);
+    *diff_f = count_diff_f(n, want_f, got_f, dist_f);
+    printf("  %-22s %9zu pairs, differing from the scalar row's bits: %zu double, %zu float\n", name, n, *diff_d,
+           *diff_f);
     CU(cudaFree(ds));
     CU(cudaFree(dt));
     CU(cudaFree(dd));
@@ -256,22 +252,259 @@ static int gpu_device_bits(void)
     CU(cudaFree(ft));
     CU(cudaFree(fd));
     CU(cudaFree(fr));
-    free(s);
-    free(t);
-    free(sf);
-    free(tf);
     free(want);
     free(got);
     free(want_f);
     free(got_f);
     free(dist);
     free(dist_f);
-    ENSURE(diff_d == 0 && diff_f == 0);
     return 0;
 }
 
-/* Device-resident random pairs, distances only: pairs per second on the GPU (best of 5), and
- * ttd_batch on every core of this machine for scale. Printed, not asserted (docs/gpu.md). */
+/* n mesh-like pairs, made 2^16 at a time from successive seeds (one call of mesh_like_pairs
+ * stops after 1000 poses) */
+static int mesh_like_fill(uint64_t seed, size_t n, double *s, double *t)
+{
+    for (size_t at = 0, k = 0; at < n; at += (size_t)1 << 16, ++k) {
+        const size_t m = n - at < ((size_t)1 << 16) ? n - at : (size_t)1 << 16;
+        if (mesh_like_pairs(seed + k, m, s + 9 * at, t + 9 * at) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+static void to_float(size_t n9, const double *s, const double *t, float *sf, float *tf)
+{
+    for (size_t i = 0; i < n9; ++i) {
+        sf[i] = (float)s[i];
+        tf[i] = (float)t[i];
+    }
+}
+
+/* The device against the CPU's scalar row, bit for bit: TTD_GPU_BITS_PAIRS pairs (default 4000)
+ * of every gen/pairs.h family, of mesh-like pairs (tests/mesh_like_pairs.h) and of random pairs
+ * scaled over the whole exponent range, then NaN/inf pairs; then the host entries on the first
+ * family, and the argument and memory checks. */
+static int gpu_device_bits(void)
+{
+    ttd_gpu_info info;
+    if (ttd_gpu_query(&info) != TTD_GPU_OK) {
+        printf("  skip: no usable GPU (%s)\n", info.message);
+        return 0;
+    }
+    printf("  %s (compute capability %d.%d)\n", info.name, info.cc_major, info.cc_minor);
+    const char *env = getenv("TTD_GPU_BITS_PAIRS");
+    const size_t n = env ? (size_t)strtoull(env, NULL, 10) : FAM_N;
+    ENSURE(n >= 8);
+    double *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t);
+    float *sf = malloc(9 * n * sizeof *sf), *tf = malloc(9 * n * sizeof *tf);
+    ENSURE(s && t && sf && tf);
+    size_t total_d = 0, total_f = 0, pairs = 0, dd, df;
+    for (int f = 0; f <= TTD_GEN_COUNT + 1; ++f) {
+        const char *name;
+        if (f < TTD_GEN_COUNT) {
+            ttd_gen((ttd_gen_family)f, 2020u + (uint64_t)f, n, s, t);
+            name = ttd_gen_name((ttd_gen_family)f);
+            to_float(9 * n, s, t, sf, tf);
+        } else if (f == TTD_GEN_COUNT) {
+            ENSURE(mesh_like_fill(77u, n, s, t) == 0);
+            name = "mesh-like";
+            to_float(9 * n, s, t, sf, tf);
+        } else { /* scaled by 2^k over the whole range: subnormal-sized to near the largest finite */
+            ttd_gen(TTD_GEN_RANDOM, 99u, n, s, t);
+            to_float(9 * n, s, t, sf, tf);
+            for (size_t i = 0; i < n; ++i) {
+                const int kd = -1060 + (int)((i * 2654435761u) % 2080u), kf = -160 + (int)((i * 2654435761u) % 285u);
+                for (int c = 0; c < 9; ++c) {
+                    const size_t j = 9 * i + (size_t)c;
+                    sf[j] = ldexpf(sf[j], kf);
+                    tf[j] = ldexpf(tf[j], kf);
+                    s[j] = ldexp(s[j], kd);
+                    t[j] = ldexp(t[j], kd);
+                }
+            }
+            name = "random, scaled 2^k";
+        }
+        ENSURE(device_vs_scalar(name, n, s, t, sf, tf, &dd, &df) == 0);
+        total_d += dd;
+        total_f += df;
+        pairs += n;
+    }
+    /* NaN and inf pairs */
+    ttd_gen(TTD_GEN_RANDOM, 7u, 8, s, t);
+    for (size_t i = 0; i < 8; ++i) {
+        double *x = (i % 2 ? t : s) + 9 * i;
+        x[i] = i < 4 ? (double)NAN : (i % 3 ? (double)INFINITY : -(double)INFINITY);
+    }
+    to_float(9 * 8, s, t, sf, tf);
+    ENSURE(device_vs_scalar("NaN and inf", 8, s, t, sf, tf, &dd, &df) == 0);
+    total_d += dd;
+    total_f += df;
+    pairs += 8;
+    printf("  all: %zu pairs, differing: %zu double, %zu float\n", pairs, total_d, total_f);
+
+    /* the host entries: the random family, full results and distances, against the device's */
+    const size_t nh = n;
+    ttd_gen(TTD_GEN_RANDOM, 2020u, nh, s, t);
+    to_float(9 * nh, s, t, sf, tf);
+    ttd_result_d *hr = malloc(nh * sizeof *hr), *want = malloc(nh * sizeof *want);
+    ttd_result_f *hrf = malloc(nh * sizeof *hrf), *want_f = malloc(nh * sizeof *want_f);
+    double *hd = malloc(nh * sizeof *hd);
+    float *hdf = malloc(nh * sizeof *hdf);
+    ENSURE(hr && want && hrf && want_f && hd && hdf);
+    ttd_options opt = ttd_default_options();
+    opt.isa = TTD_ISA_SCALAR;
+    ENSURE(ttd_batch_d(&opt, nh, s, t, NULL, want) == TTD_OK);
+    ENSURE(ttd_batch_f(&opt, nh, sf, tf, NULL, want_f) == TTD_OK);
+    ENSURE(ttd_gpu_batch_host_d(nh, s, t, hd, hr) == TTD_GPU_OK);
+    ENSURE(ttd_gpu_batch_host_f(nh, sf, tf, hdf, hrf) == TTD_GPU_OK);
+    const size_t hdiff = count_diff_d(nh, want, hr, hd), hdiff_f = count_diff_f(nh, want_f, hrf, hdf);
+    ENSURE(ttd_gpu_batch_host_d(nh, s, t, hd, NULL) == TTD_GPU_OK);
+    ENSURE(ttd_gpu_batch_host_f(nh, sf, tf, NULL, hrf) == TTD_GPU_OK);
+    const size_t hdiff2 = count_diff_d(nh, want, NULL, hd), hdiff2_f = count_diff_f(nh, want_f, hrf, NULL);
+    printf("  host entries, %zu random pairs: differing %zu + %zu double, %zu + %zu float\n", nh, hdiff, hdiff2,
+           hdiff_f, hdiff2_f);
+    /* page-locked arrays go by DMA in place: inputs and distances pinned, results staged (double);
+     * inputs and results pinned (float) */
+    memset(hd, 0, nh * sizeof *hd);
+    memset(hr, 0, nh * sizeof *hr);
+    memset(hrf, 0, nh * sizeof *hrf);
+    CU(cudaHostRegister(s, 9 * nh * sizeof *s, cudaHostRegisterDefault));
+    CU(cudaHostRegister(t, 9 * nh * sizeof *t, cudaHostRegisterDefault));
+    CU(cudaHostRegister(hd, nh * sizeof *hd, cudaHostRegisterDefault));
+    CU(cudaHostRegister(sf, 9 * nh * sizeof *sf, cudaHostRegisterDefault));
+    CU(cudaHostRegister(tf, 9 * nh * sizeof *tf, cudaHostRegisterDefault));
+    CU(cudaHostRegister(hrf, nh * sizeof *hrf, cudaHostRegisterDefault));
+    ENSURE(ttd_gpu_batch_host_d(nh, s, t, hd, hr) == TTD_GPU_OK);
+    ENSURE(ttd_gpu_batch_host_f(nh, sf, tf, NULL, hrf) == TTD_GPU_OK);
+    const size_t pdiff = count_diff_d(nh, want, hr, hd), pdiff_f = count_diff_f(nh, want_f, hrf, NULL);
+    CU(cudaHostUnregister(s));
+    CU(cudaHostUnregister(t));
+    CU(cudaHostUnregister(hd));
+    CU(cudaHostUnregister(sf));
+    CU(cudaHostUnregister(tf));
+    CU(cudaHostUnregister(hrf));
+    printf("  host entries on page-locked arrays: differing %zu double, %zu float\n", pdiff, pdiff_f);
+    ENSURE(pdiff == 0 && pdiff_f == 0);
+    ENSURE(ttd_gpu_batch_host_d(nh, NULL, t, hd, NULL) == TTD_GPU_ERR_NULL_POINTER);
+    ENSURE(ttd_gpu_batch_host_f(nh, sf, tf, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
+    ENSURE(ttd_gpu_batch_host_d(0, s, t, hd, NULL) == TTD_GPU_OK);
+
+    /* the checks: host memory, NULL, n = 0 */
+    double *dptr;
+    CU(cudaMalloc((void **)&dptr, 9 * sizeof *dptr));
+    ENSURE(ttd_gpu_batch_d(1, s, dptr, dptr, NULL, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
+    ENSURE(ttd_gpu_batch_d(1, dptr, dptr, hd, NULL, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
+    ENSURE(ttd_gpu_batch_f(1, (float *)dptr, NULL, (float *)dptr, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
+    ENSURE(ttd_gpu_batch_f(1, (float *)dptr, (float *)dptr, NULL, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
+    ENSURE(ttd_gpu_batch_d(0, dptr, dptr, dptr, NULL, NULL) == TTD_GPU_OK);
+    CU(cudaFree(dptr));
+    free(s);
+    free(t);
+    free(sf);
+    free(tf);
+    free(hr);
+    free(want);
+    free(hrf);
+    free(want_f);
+    free(hd);
+    free(hdf);
+    ENSURE(total_d == 0 && total_f == 0);
+    ENSURE(hdiff == 0 && hdiff_f == 0 && hdiff2 == 0 && hdiff2_f == 0);
+    return 0;
+}
+
+/* Milliseconds of one call of fn, best of reps after a warm-up run, timed with CUDA events on the
+ * default stream (device-resident calls) or the wall clock (host entries, which synchronise). */
+typedef int (*gpu_call)(void *ctx);
+static float best_ms(gpu_call fn, void *ctx, int reps, int events)
+{
+    float best = 1e30f;
+    cudaEvent_t a, b;
+    cudaEventCreate(&a);
+    cudaEventCreate(&b);
+    for (int rep = 0; rep <= reps; ++rep) {
+        float ms;
+        if (events) {
+            cudaEventRecord(a, NULL);
+            if (fn(ctx) != 0)
+                return -1;
+            cudaEventRecord(b, NULL);
+            cudaEventSynchronize(b);
+            cudaEventElapsedTime(&ms, a, b);
+        } else {
+            const double t0 = seconds();
+            if (fn(ctx) != 0)
+                return -1;
+            cudaDeviceSynchronize();
+            ms = (float)(1e3 * (seconds() - t0));
+        }
+        if (rep > 0 && ms < best) /* the first run loads the module */
+            best = ms;
+    }
+    cudaEventDestroy(a);
+    cudaEventDestroy(b);
+    return best;
+}
+
+typedef struct tp_ctx {
+    int prec;              /* 0 double, 1 float */
+    size_t n;
+    const void *s, *t;     /* host */
+    void *dist, *res;      /* host outputs */
+    void *ds, *dt, *dd, *dr; /* device */
+} tp_ctx;
+
+static int tp_device_dist(void *p)
+{
+    tp_ctx *c = p;
+    return c->prec ? ttd_gpu_batch_f(c->n, c->ds, c->dt, c->dd, NULL, NULL) != TTD_GPU_OK
+                   : ttd_gpu_batch_d(c->n, c->ds, c->dt, c->dd, NULL, NULL) != TTD_GPU_OK;
+}
+
+static int tp_device_full(void *p)
+{
+    tp_ctx *c = p;
+    return c->prec ? ttd_gpu_batch_f(c->n, c->ds, c->dt, NULL, c->dr, NULL) != TTD_GPU_OK
+                   : ttd_gpu_batch_d(c->n, c->ds, c->dt, NULL, c->dr, NULL) != TTD_GPU_OK;
+}
+
+/* plain cudaMemcpy from pageable memory, the kernel, and the distances back */
+static int tp_memcpy_dist(void *p)
+{
+    tp_ctx *c = p;
+    const size_t rs = c->prec ? sizeof(float) : sizeof(double);
+    if (cudaMemcpy(c->ds, c->s, 9 * c->n * rs, cudaMemcpyHostToDevice) != cudaSuccess ||
+        cudaMemcpy(c->dt, c->t, 9 * c->n * rs, cudaMemcpyHostToDevice) != cudaSuccess || tp_device_dist(p) != 0)
+        return 1;
+    return cudaMemcpy(c->dist, c->dd, c->n * rs, cudaMemcpyDeviceToHost) != cudaSuccess;
+}
+
+static int tp_host_dist(void *p)
+{
+    tp_ctx *c = p;
+    return c->prec ? ttd_gpu_batch_host_f(c->n, c->s, c->t, c->dist, NULL) != TTD_GPU_OK
+                   : ttd_gpu_batch_host_d(c->n, c->s, c->t, c->dist, NULL) != TTD_GPU_OK;
+}
+
+/* the host entry on arrays page-locked beforehand (the registration is not timed) */
+static int tp_host_pinned_dist(void *p)
+{
+    return tp_host_dist(p);
+}
+
+static int tp_cpu_dist(void *p)
+{
+    tp_ctx *c = p;
+    ttd_options opt = ttd_default_options();
+    return c->prec ? ttd_batch_f(&opt, c->n, c->s, c->t, c->dist, NULL) != TTD_OK
+                   : ttd_batch_d(&opt, c->n, c->s, c->t, c->dist, NULL) != TTD_OK;
+}
+
+/* Pairs per second: device-resident distances and full results, the same with the pairs copied
+ * from and to host memory (plain cudaMemcpy, and the host entry, whose copies overlap the
+ * kernels), and ttd_batch on every core of this machine for scale; random pairs
+ * (TTD_GPU_BENCH_PAIRS, default 2^22) and mesh-like pairs. Printed, not asserted (docs/gpu.md). */
 static int gpu_device_throughput(void)
 {
     ttd_gpu_info info;
@@ -284,53 +517,51 @@ static int gpu_device_throughput(void)
     double *s = malloc(9 * n * sizeof *s), *t = malloc(9 * n * sizeof *t), *dist = malloc(n * sizeof *dist);
     float *sf = malloc(9 * n * sizeof *sf), *tf = malloc(9 * n * sizeof *tf), *dist_f = malloc(n * sizeof *dist_f);
     ENSURE(s && t && dist && sf && tf && dist_f);
-    ttd_gen(TTD_GEN_RANDOM, 1u, n, s, t);
-    for (size_t i = 0; i < 9 * n; ++i) {
-        sf[i] = (float)s[i];
-        tf[i] = (float)t[i];
-    }
-    void *ds, *dt, *dd;
+    void *ds, *dt, *dd, *dr;
     CU(cudaMalloc(&ds, 9 * n * sizeof(double)));
     CU(cudaMalloc(&dt, 9 * n * sizeof(double)));
     CU(cudaMalloc(&dd, n * sizeof(double)));
-    for (int prec = 0; prec < 2; ++prec) {
-        const size_t rs = prec ? sizeof(float) : sizeof(double);
-        CU(cudaMemcpy(ds, prec ? (const void *)sf : (const void *)s, 9 * n * rs, cudaMemcpyHostToDevice));
-        CU(cudaMemcpy(dt, prec ? (const void *)tf : (const void *)t, 9 * n * rs, cudaMemcpyHostToDevice));
-        cudaEvent_t a, b;
-        CU(cudaEventCreate(&a));
-        CU(cudaEventCreate(&b));
-        float best = 1e30f;
-        for (int rep = 0; rep < 6; ++rep) {
-            CU(cudaEventRecord(a, NULL));
-            const ttd_gpu_status st = prec ? ttd_gpu_batch_f(n, (const float *)ds, (const float *)dt, (float *)dd, NULL, NULL)
-                                           : ttd_gpu_batch_d(n, (const double *)ds, (const double *)dt, (double *)dd, NULL, NULL);
-            ENSURE(st == TTD_GPU_OK);
-            CU(cudaEventRecord(b, NULL));
-            CU(cudaEventSynchronize(b));
-            float ms;
-            CU(cudaEventElapsedTime(&ms, a, b));
-            if (rep > 0 && ms < best) /* the first run loads the module */
-                best = ms;
+    CU(cudaMalloc(&dr, n * sizeof(ttd_result_d)));
+    printf("  %s; %d threads a block, launch bounds of %d blocks an SM, registers a thread (distance kernels) %d "
+           "double, %d float; %zu pairs a call\n",
+           info.name, info.block_threads, info.min_blocks, info.registers_d, info.registers_f, n);
+    for (int set = 0; set < 2; ++set) {
+        if (set == 0)
+            ttd_gen(TTD_GEN_RANDOM, 1u, n, s, t);
+        else
+            ENSURE(mesh_like_fill(5u, n, s, t) == 0);
+        to_float(9 * n, s, t, sf, tf);
+        for (int prec = 0; prec < 2; ++prec) {
+            const size_t rs = prec ? sizeof(float) : sizeof(double);
+            tp_ctx c = {prec, n, prec ? (const void *)sf : (const void *)s, prec ? (const void *)tf : (const void *)t,
+                        prec ? (void *)dist_f : (void *)dist, NULL, ds, dt, dd, dr};
+            CU(cudaMemcpy(ds, c.s, 9 * n * rs, cudaMemcpyHostToDevice));
+            CU(cudaMemcpy(dt, c.t, 9 * n * rs, cudaMemcpyHostToDevice));
+            const float dev = best_ms(tp_device_dist, &c, 5, 1), full = best_ms(tp_device_full, &c, 3, 1);
+            const float mc = best_ms(tp_memcpy_dist, &c, 2, 0), host = best_ms(tp_host_dist, &c, 2, 0);
+            const float cpu = best_ms(tp_cpu_dist, &c, 2, 0);
+            void *hs = prec ? (void *)sf : (void *)s, *ht = prec ? (void *)tf : (void *)t;
+            CU(cudaHostRegister(hs, 9 * n * rs, cudaHostRegisterDefault));
+            CU(cudaHostRegister(ht, 9 * n * rs, cudaHostRegisterDefault));
+            CU(cudaHostRegister(c.dist, n * rs, cudaHostRegisterDefault));
+            const float pinned = best_ms(tp_host_pinned_dist, &c, 2, 0);
+            CU(cudaHostUnregister(hs));
+            CU(cudaHostUnregister(ht));
+            CU(cudaHostUnregister(c.dist));
+            ENSURE(dev > 0 && full > 0 && mc > 0 && host > 0 && cpu > 0 && pinned > 0);
+#define PPS(ms) ((double)n / (1e-3 * (double)(ms)))
+            printf("  %-9s %-6s pairs/s: device-resident %.3g (distances), %.3g (full results); from host memory "
+                   "%.3g (cudaMemcpy), %.3g (ttd_gpu_batch_host), %.3g (ttd_gpu_batch_host, page-locked arrays); "
+                   "ttd_batch on %ld CPU cores %.3g\n",
+                   set ? "mesh-like" : "random", prec ? "float" : "double", PPS(dev), PPS(full), PPS(mc), PPS(host),
+                   PPS(pinned), sysconf(_SC_NPROCESSORS_ONLN), PPS(cpu));
+#undef PPS
         }
-        ttd_options opt = ttd_default_options();
-        double cpu = 1e30;
-        for (int rep = 0; rep < 3; ++rep) {
-            const double t0 = seconds();
-            ENSURE((prec ? ttd_batch_f(&opt, n, sf, tf, dist_f, NULL) : ttd_batch_d(&opt, n, s, t, dist, NULL)) == TTD_OK);
-            const double el = seconds() - t0;
-            cpu = el < cpu ? el : cpu;
-        }
-        printf("  %s, %s, %zu device-resident random pairs, distances: %.3g pairs/s (%.3f ms); ttd_batch on this "
-               "machine's cores: %.3g pairs/s\n",
-               info.name, prec ? "float" : "double", n, (double)n / (1e-3 * (double)best), (double)best,
-               (double)n / cpu);
-        CU(cudaEventDestroy(a));
-        CU(cudaEventDestroy(b));
     }
     CU(cudaFree(ds));
     CU(cudaFree(dt));
     CU(cudaFree(dd));
+    CU(cudaFree(dr));
     free(s);
     free(t);
     free(dist);
