@@ -68,9 +68,15 @@ for b in "$W"/blocks/*; do
         continue
     fi
     if grep -q 'python3 -m venv' "$b"; then deferred=$((deferred + 1)); continue; fi
-    if grep -q 'pkg-config' "$b" && ! command -v pkg-config > /dev/null 2>&1; then
-        echo "skip README.md block $(basename "$b"): pkg-config not installed (apt-get install pkg-config); app.c built without it"
-        cc "$W/work/app.c" -I"$REPO/include" -I"$BUILD/include" "$(find "$BUILD" -name libttd.a | head -n 1)" -lm -lpthread \
+    # The link block as written needs pkg-config, and a plain program cannot link a sanitized
+    # library (scripts/test-sanitize.sh leaves ttd.install out for that reason): then app.c is
+    # built against the build's archive, with the sanitizers where the build has them.
+    san=""
+    grep -q '^TTD_SANITIZE:BOOL=ON' "$BUILD/CMakeCache.txt" 2> /dev/null && san="-fsanitize=address,undefined"
+    if grep -q 'pkg-config' "$b" && { [ -n "$san" ] || ! command -v pkg-config > /dev/null 2>&1; }; then
+        echo "skip README.md block $(basename "$b"): ${san:+a sanitizer build}${san:-pkg-config not installed (apt-get install pkg-config)}; app.c built against the archive instead"
+        # shellcheck disable=SC2086 # no flags or one
+        cc $san "$W/work/app.c" -I"$REPO/include" "$(find "$BUILD" -name libttd.a | head -n 1)" -lm -lpthread \
             -o "$W/work/app" || fail "README.md: app.c does not build"
         "$W/work/app" > "$W/out" || fail "README.md: app.c: status $?"
         cp "$W/out" "$W/app.out"
