@@ -329,13 +329,16 @@ def test_results_are_views_of_library_records():
     assert f.manifold(3.0).normal.dtype == np.float32
 
 
-def test_the_lock_is_released(long_switch_interval):  # noqa: F811
-    v, f = icosphere(3)
-    A = ttd.Mesh(v, f)
-    n = 27
-    P = np.tile(np.eye(4), (n, 1, 1))
+def icosphere_block():
+    """27 level-3 icospheres on a 3x3x3 grid, 1.9 apart: a query of tens of milliseconds."""
+    A = ttd.Mesh(*icosphere(3))
+    P = np.tile(np.eye(4), (27, 1, 1))
     P[:, :3, 3] = 1.9 * np.stack(np.meshgrid(*[np.arange(3)] * 3, indexing="ij"), -1).reshape(-1, 3)
-    scene = ttd.Scene(A, P)
+    return A, ttd.Scene(A, P)
+
+
+def test_the_lock_is_released(long_switch_interval):  # noqa: F811
+    _, scene = icosphere_block()
     assert released_during(lambda: scene.contacts(0.2, threads=1))
     assert released_during(lambda: scene.manifold(0.2, threads=1))
 
@@ -390,12 +393,7 @@ def test_set_poses_counts_the_ids_under_the_lock():
     # count's ValueError, never the library's index error. Each round: a long query holds the
     # scene; an add and then a set_poses (its poses counted before the add) wait for it; when
     # the add goes first, the set_poses sees one id more than it was given.
-    v, f = icosphere(3)
-    A = ttd.Mesh(v, f)
-    n = 27
-    P = np.tile(np.eye(4), (n, 1, 1))
-    P[:, :3, 3] = 1.9 * np.stack(np.meshgrid(*[np.arange(3)] * 3, indexing="ij"), -1).reshape(-1, 3)
-    scene = ttd.Scene(A, P)
+    A, scene = icosphere_block()
     raced, rounds = 0, 0
     while raced < 3 and rounds < 40:
         rounds += 1
