@@ -9,9 +9,9 @@
  * the scene file, line by line (every bad line named FILE:LINE, its meshes read with the mesh
  * reader and built, its bodies added, their filters and excluded pairs set), then the whole
  * motion file (every bad line named, each pose checked against its body's mesh, the steps
- * counted off by the bodies or by `step` lines), all exit 1. Only then does a query run, once, or once
- * per step of the motion (the poses of step s set with ttd_scene_set_poses_*), and each step's
- * lines are written before the next step is computed.
+ * counted off by the bodies or by `step` lines), all exit 1. Only then does a query run, once,
+ * or once per step of the motion (the poses of step s set with ttd_scene_set_poses_*), and each
+ * step's lines are written before the next step is computed.
  *
  * Lines come out sorted by (i, j), then by the triangles (ia, ib): the library's order, sorted
  * again here so that the output is a documented function of the input (a manifold's points are
@@ -257,7 +257,7 @@ typedef struct ttd_scene_state {
     size_t nmeshes, mesh_cap;
     const ttd_mesh **body_mesh;    /* per body added */
     size_t nbodies, body_cap;
-    ttd_scene_body_rec *lines;    /* per body line, in file order: the body numbers */
+    ttd_scene_body_rec *lines;     /* per body line, in file order: the body numbers */
     size_t nlines, line_cap;
     char **id_name;                /* per body added (library id): its name or NULL, for --names */
     ttd_scene *scene;
@@ -451,8 +451,8 @@ static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, con
         const char *body = ttd_scene_word(&q, end, &blen);
         const char *extra = body ? ttd_scene_word(&q, end, &xlen) : NULL;
         if (body == NULL || extra != NULL) {
-            ttd_scene_bad_line(st, st->fname, line, "body %zu: expected 'name BODY' at the end of the line, found %s", no,
-                               body == NULL ? "no BODY" : "more words");
+            ttd_scene_bad_line(st, st->fname, line, "body %zu: expected 'name BODY' at the end of the line, found %s",
+                               no, body == NULL ? "no BODY" : "more words");
             return 0;
         }
         if (*body >= '0' && *body <= '9') {
@@ -463,8 +463,8 @@ static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, con
         }
         for (size_t k = 0; k < no; ++k)
             if (st->lines[k].name && strlen(st->lines[k].name) == blen && memcmp(st->lines[k].name, body, blen) == 0) {
-                ttd_scene_bad_line(st, st->fname, line, "body %zu: the name '%.*s' is body %zu's already", no, (int)blen,
-                                   body, k);
+                ttd_scene_bad_line(st, st->fname, line, "body %zu: the name '%.*s' is body %zu's already", no,
+                                   (int)blen, body, k);
                 return 0;
             }
         if ((bl->name = malloc(blen + 1)) == NULL)
@@ -533,10 +533,11 @@ static long ttd_scene_body_ref(ttd_scene_state *st, unsigned long long line, con
         for (; k < len && word[k] >= '0' && word[k] <= '9'; ++k)
             no = no > st->nlines ? no : 10 * no + (size_t)(word[k] - '0');
         if (k < len)
-            ttd_scene_bad_line(st, st->fname, line, "%s: '%.*s' is neither a body number nor a name", what, shown, word);
-        else if (no >= st->nlines && st->nlines == 0)
-            ttd_scene_bad_line(st, st->fname, line, "%s: no body %.*s (no body line comes before this one)", what, shown,
+            ttd_scene_bad_line(st, st->fname, line, "%s: '%.*s' is neither a body number nor a name", what, shown,
                                word);
+        else if (no >= st->nlines && st->nlines == 0)
+            ttd_scene_bad_line(st, st->fname, line, "%s: no body %.*s (no body line comes before this one)", what,
+                               shown, word);
         else if (no >= st->nlines)
             ttd_scene_bad_line(st, st->fname, line, "%s: no body %.*s (the body lines above this one are 0 to %zu)",
                                what, shown, word, st->nlines - 1);
@@ -615,8 +616,9 @@ static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line
         uint32_t group, mask;
         for (int k = 1; k < 3; ++k)
             if (ttd_scene_u32(w[k], len[k], k == 1 ? &group : &mask) != 0) {
-                ttd_scene_bad_line(st, st->fname, line, "filter: %s '%.*s' is not a 32-bit number (0 to 4294967295, or "
-                                   "0x0 to 0xffffffff)", k == 1 ? "GROUP" : "MASK", (int)(len[k] > 40 ? 40 : len[k]), w[k]);
+                ttd_scene_bad_line(st, st->fname, line,
+                                   "filter: %s '%.*s' is not a 32-bit number (0 to 4294967295, or 0x0 to 0xffffffff)",
+                                   k == 1 ? "GROUP" : "MASK", (int)(len[k] > 40 ? 40 : len[k]), w[k]);
                 return 0;
             }
         const uint32_t i = st->lines[b0].id;
@@ -730,6 +732,16 @@ static int ttd_scene_step_line(const char *line, size_t len, size_t *index, char
     return 1;
 }
 
+/* A step opened by a `step` line at `line` that holds `got` poses of the scene's n. */
+static void ttd_scene_short_step(ttd_scene_state *st, const char *fname, unsigned long long line, size_t step,
+                                 size_t got, size_t n)
+{
+    ttd_scene_bad_line(st, fname, line,
+                       "step %zu has %zu pose%s where the scene has %zu bod%s "
+                       "(one pose per body after each 'step' line)",
+                       step, got, got == 1 ? "" : "s", n, n == 1 ? "y" : "ies");
+}
+
 /* Reads and checks the whole motion file; 0 or the exit status. Steps are counted off N poses at
  * a time (N the bodies), or, where the file opens every step with a `step` line, by those lines,
  * and then each step must hold N poses. */
@@ -747,7 +759,7 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
     int rc = 0;
     size_t index = 0;                   /* of the next pose line, good or bad */
     unsigned long long step_line = 0;   /* the line of the current step's first pose (its `step` line) */
-    int marked = -1;                    /* 1: the file opens its steps with `step` lines; 0: it does not; -1: not yet known */
+    int marked = -1;                    /* 1: its steps open with `step` lines; 0: they do not; -1: not known yet */
     size_t steps = 0, in_step = 0;      /* with `step` lines: steps opened, poses in the last one */
     const size_t n = st->nbodies;
     st->bad = 0;
@@ -773,9 +785,7 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
                     ttd_scene_bad_line(st, fname, r->line_no, "'step %zu' where step %zu comes (steps are numbered 0, "
                                        "1, 2, ... in order)", at, steps);
                 if (marked == 1 && in_step < n) /* too many poses were named at the first extra one */
-                    ttd_scene_bad_line(st, fname, step_line, "step %zu has %zu pose%s where the scene has %zu bod%s (one pose per "
-                                       "body after each 'step' line)", steps - 1, in_step, in_step == 1 ? "" : "s", n,
-                                       n == 1 ? "y" : "ies");
+                    ttd_scene_short_step(st, fname, step_line, steps - 1, in_step, n);
                 if (marked != 0) {
                     marked = 1;
                     step_line = r->line_no;
@@ -848,8 +858,7 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
         }
     }
     if (rc == 0 && marked == 1 && in_step < n)
-        ttd_scene_bad_line(st, fname, step_line, "step %zu has %zu pose%s where the scene has %zu bod%s (one pose per body after "
-                           "each 'step' line)", steps - 1, in_step, in_step == 1 ? "" : "s", n, n == 1 ? "y" : "ies");
+        ttd_scene_short_step(st, fname, step_line, steps - 1, in_step, n);
     else if (rc == 0 && marked == 0 && n > 0 && index % n != 0)
         ttd_scene_bad_line(st, fname, step_line, "step %zu is incomplete: %zu of %zu poses (one per body), to the end of the file",
                            index / n, index % n, n);
