@@ -74,7 +74,9 @@ for b in "$W"/blocks/*; do
     san=""
     grep -q '^TTD_SANITIZE:BOOL=ON' "$BUILD/CMakeCache.txt" 2> /dev/null && san="-fsanitize=address,undefined"
     if grep -q 'pkg-config' "$b" && { [ -n "$san" ] || ! command -v pkg-config > /dev/null 2>&1; }; then
-        echo "skip README.md block $(basename "$b"): ${san:+a sanitizer build}${san:-pkg-config not installed (apt-get install pkg-config)}; app.c built against the archive instead"
+        why="pkg-config not installed (apt-get install pkg-config)"
+        [ -n "$san" ] && why="a sanitizer build (a plain program cannot link its libttd.so)"
+        echo "skip README.md block $(basename "$b"): $why; app.c built against the archive instead"
         # shellcheck disable=SC2086 # no flags or one
         cc $san "$W/work/app.c" -I"$REPO/include" "$(find "$BUILD" -name libttd.a | head -n 1)" -lm -lpthread \
             -o "$W/work/app" || fail "README.md: app.c does not build"
