@@ -13,6 +13,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench.h"
 #include "bench_internal.h"
+#include "rows.h"
 
 #include <errno.h>
 #include <math.h>

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* What the files of `ttd bench` share: one measured row, the machine description, the
- * probes of peak arithmetic and memory bandwidth, the FCL side program and the writers.
+/* What the files of `ttd bench` share: the machine description, the probes of peak arithmetic
+ * and memory bandwidth, the timer, the FCL side program and `ttd dist` timed in-process. The
+ * pair rows and the run's settings, which bench.c fills and output.c writes, are in rows.h.
  * Times are medians of several samples; ratios are formed only between rows of one run. */
 #ifndef TTD_BENCH_INTERNAL_H
 #define TTD_BENCH_INTERNAL_H
@@ -13,36 +14,6 @@
 /// NaN and infinity as doubles (the <math.h> macros are floats, which -Wdouble-promotion flags).
 #define BENCH_NAN ((double)NAN)
 #define BENCH_INF ((double)INFINITY)
-
-/// One line of the results: a workload timed with one method, precision, ISA and thread count.
-typedef struct bench_row {
-    char workload[32];
-    char method[16];          ///< ttd_method_name(), or "fcl"
-    int bytes;                ///< 8 = double, 4 = float
-    char isa[16];             ///< ttd_isa_name(); FCL rows say "scalar"
-    int lanes;                ///< pairs per vector for this ISA and precision
-    int threads;
-    size_t pairs;
-    int samples;              ///< timed samples (after the warm-up)
-    long passes;              ///< passes over the data per sample
-    double ns_per_pair;       ///< median sample
-    double ns_min;            ///< fastest sample
-    double pairs_per_s;
-    double speedup_vs_scalar; ///< scalar row (same workload, method, precision, 1 thread) / this; NaN if none
-    double lane_fraction;     ///< speedup_vs_scalar / (lanes * threads)
-    double thread_speedup;    ///< same ISA on 1 thread / this; NaN if none
-    double speedup_vs_fcl;    ///< FCL (same workload, precision) / this; NaN if none
-    int has_accuracy;         ///< the next five fields are set
-    double max_rel_err;       ///< max |d - d_exact| / max(d_exact, size)
-    double p999_rel_err;      ///< its 99.9th percentile
-    double max_abs_err;       ///< max |d - d_exact|
-    size_t disagree;          ///< pairs whose relative error exceeds bench_disagree_tol()
-    size_t not_converged;     ///< pairs flagged TTD_PAIR_NOT_CONVERGED
-    size_t fallback;          ///< certified method: pairs flagged TTD_PAIR_FALLBACK (sent to the exact method)
-    int has_iterations;       ///< the next two fields are set
-    double mean_iterations;   ///< mean Newton iterations per pair
-    double occupancy;         ///< mean iterations / mean over lane-blocks of the block's maximum
-} bench_row;
 
 /// The machine and the build, for the header; NaN where a probe was not run.
 typedef struct bench_machine {
@@ -92,9 +63,6 @@ typedef struct bench_timing {
 int bench_time_call(int (*fn)(void *arg), void *arg, double min_s, double max_row_s, int samples, int single_long,
                     bench_timing *out);
 
-/// Relative error above which a pair counts as a disagreement with the exact method.
-static inline double bench_disagree_tol(int bytes) { return bytes == 8 ? 1e-9 : 1e-4; }
-
 /// Path of ttd_fcl_bench: explicit (may be NULL), $TTD_FCL_BENCH, or next to this program.
 /// Returns 0 and writes path when found and executable.
 int bench_fcl_find(const char *explicit_path, char *path, size_t size);
@@ -114,20 +82,6 @@ int bench_fcl_run(const char *program, int bytes, size_t n, const void *s, const
 /// output did not hold n distances.
 int bench_cli_run(int bytes, int binary, const char *isa, size_t n, const void *s, const void *t, int samples,
                   double *dist, double *ns_median, double *ns_min);
-
-/// Output settings echoed into the JSON and the table header.
-typedef struct bench_settings {
-    int quick;
-    int samples;
-    double min_sample_s;
-    unsigned long long seed;
-    char fcl[512];            ///< path of the FCL program, or a reason it is absent
-    char pair_mesh[200];      ///< the mesh-near/mesh-contact pair workloads' mesh and margin, or "not run"
-    char command[512];        ///< the command line
-    const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
-    const struct bench_scene_results *scene; ///< the scene section (bench/scene_bench.h), NULL when not run
-} bench_settings;
-
 
 /// The best instruction set available here among those in mask (bit i: ttd_isa i), the portable
 /// row ranked just above scalar; TTD_ISA_AUTO if none is.

@@ -48,7 +48,7 @@ typedef struct mesh_workload {
 } mesh_workload;
 
 /* Contact margins give thousands to millions of pairs at the near placement (distance 1%): 2% of
- * the size as in ../shared/mesh-anchors.md for the big meshes, 5% for the coarse ones, whose
+ * the size as in docs/anchors.md ("Mesh queries") for the big meshes, 5% for the coarse ones, whose
  * triangles are a few percent of the size across. */
 static const mesh_workload mws[MW_COUNT] = {
     {"icosphere", 1, 1, 0.05, "ttd_gen_icosphere(3), the icosahedron split 4:1 three times: 1,280 triangles"},

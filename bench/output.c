@@ -4,6 +4,7 @@
  * line per row, the same fields as the JSON rows). Values that do not apply are "-" in the
  * table, null in the JSON and empty in the CSV. */
 #include "bench_internal.h"
+#include "rows.h"
 #include "json.h"
 #include "output.h"
 #include "mesh_bench.h"

@@ -12,6 +12,7 @@
 #include <stdio.h>
 
 #include "bench_internal.h"
+#include "rows.h"
 #include "mesh_bench.h"
 
 /// What the command line asked of the scene section.

@@ -40,6 +40,12 @@ static int ttd_reader_fill(ttd_line_reader *r)
     return 1;
 }
 
+/* The blanks of every line format read here (space, tab, CR, VT, FF). */
+static int ttd_is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
 int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
 {
     size_t n = 0;
@@ -55,9 +61,12 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
         size_t take = nl ? (size_t)(nl - start) : avail;
         size_t room = cap - n;
         if (take > room) {
-            *overlong = 1;
+            /* What does not fit is dropped; only blanks dropped (padding, a line of blanks
+             * alone) leave the line what it was, anything else makes it overlong. */
             memcpy(r->line + n, start, room);
             n += room;
+            for (size_t k = room; k < take && !*overlong; ++k)
+                *overlong = !ttd_is_blank(start[k]);
         } else {
             memcpy(r->line + n, start, take);
             n += take;
@@ -74,8 +83,9 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
         n -= 3;
     }
     if (n > TTD_CLI_MAX_LINE) {
+        for (size_t k = TTD_CLI_MAX_LINE; k < n && !*overlong; ++k)
+            *overlong = !ttd_is_blank(r->line[k]);
         n = TTD_CLI_MAX_LINE;
-        *overlong = 1;
     }
     if (n > 0 && r->line[n - 1] == '\r' && !*overlong)
         --n;
@@ -83,11 +93,6 @@ int ttd_reader_next(ttd_line_reader *r, size_t *len, int *overlong)
     *len = n;
     ++r->line_no;
     return 1;
-}
-
-static int ttd_is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
 /* Quotes up to 24 bytes of a token for a message: printable ASCII as is, others as \xHH. */

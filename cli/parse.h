@@ -12,7 +12,8 @@
 #define TTD_CLI_MAX_LINE 4096
 
 /// Reads lines of any length from a FILE in bounded memory: a line longer than
-/// TTD_CLI_MAX_LINE is reported as overlong (its start kept, the rest skipped). A UTF-8
+/// TTD_CLI_MAX_LINE is reported as overlong (its start kept, the rest skipped), unless all it
+/// has beyond the limit is blanks (padding, or a line of blanks alone), which are dropped. A UTF-8
 /// byte-order mark at the start of the input is dropped (and does not count to the limit).
 typedef struct ttd_line_reader {
     FILE *f;

@@ -7,10 +7,11 @@
  * As `ttd mesh` does, everything that can be checked is checked before anything is computed,
  * so that a run either prints its whole answer or nothing but messages: options (exit 2), then
  * the scene file, line by line (every bad line named FILE:LINE, its meshes read with the mesh
- * reader and built, its bodies added), then the whole motion file (every bad line named, each
- * pose checked against its body's mesh), all exit 1. Only then does a query run, once, or once
- * per step of the motion (the poses of step s set with ttd_scene_set_poses_*), and each step's
- * lines are written before the next step is computed.
+ * reader and built, its bodies added, their filters and excluded pairs set), then the whole
+ * motion file (every bad line named, each pose checked against its body's mesh, the steps
+ * counted off by the bodies or by `step` lines), all exit 1. Only then does a query run, once,
+ * or once per step of the motion (the poses of step s set with ttd_scene_set_poses_*), and each
+ * step's lines are written before the next step is computed.
  *
  * Lines come out sorted by (i, j), then by the triangles (ia, ib): the library's order, sorted
  * again here so that the output is a documented function of the input (a manifold's points are
@@ -50,13 +51,21 @@ static const char ttd_scene_usage_text[] =
     "    mesh NAME FILE\n"
     "        the mesh in FILE (OBJ, STL or PLY, recognised by content), a path relative to the scene\n"
     "        file's folder (or absolute), known as NAME from then on\n"
-    "    body NAME r00 r01 r02 t0 r10 r11 r12 t1 r20 r21 r22 t2\n"
-    "        a body of mesh NAME at the world pose [R | t] (x_world = R x_mesh + t), row by row; or\n"
-    "        16 numbers, the 4x4 matrix row by row, whose bottom row must be 0 0 0 1\n"
+    "    body MESH r00 r01 r02 t0 r10 r11 r12 t1 r20 r21 r22 t2 [name BODY]\n"
+    "        a body of mesh MESH at the world pose [R | t] (x_world = R x_mesh + t), row by row; or\n"
+    "        16 numbers, the 4x4 matrix row by row, whose bottom row must be 0 0 0 1; 'name BODY'\n"
+    "        names it (a name is used once and does not start with a digit)\n"
+    "    filter BODY GROUP MASK\n"
+    "        the body's collision group and mask, 32 bits each (decimal or 0x hex): bodies i and j\n"
+    "        are a pair only when (group_i & mask_j) and (group_j & mask_i) are both non-zero\n"
+    "        (default: group 1, mask 0xffffffff)\n"
+    "    exclude BODY BODY\n"
+    "        the two bodies are not a pair\n"
     "    '#' starts a comment (a whole line, or after a statement); blank lines are ignored.\n"
-    "  Bodies are numbered 0, 1, 2, ... in file order; a mesh may serve any number of bodies. NAME\n"
-    "  and FILE are one word each (no blanks, no '#'). R must be a rotation: every entry of\n"
-    "  R^T R - I within 1e-6 and det R > 0 (see --orthonormalize).\n";
+    "  Bodies are numbered 0, 1, 2, ... in file order; BODY is a body's name or number, from a body\n"
+    "  line above. A mesh may serve any number of bodies. Names and FILE are one word each (no\n"
+    "  blanks, no '#'). R must be a rotation: every entry of R^T R - I within 1e-6 and det R > 0\n"
+    "  (see --orthonormalize).\n";
 
 static const char ttd_scene_usage_outputs[] =
     "\n"
@@ -75,7 +84,8 @@ static const char ttd_scene_usage_outputs[] =
     "                                            unit normal from body i towards body j, the pair's\n"
     "                                            distance d and depth M - d; the K kept are the deepest\n"
     "                                            and then, one at a time, the farthest from those kept\n"
-    "                                            (docs/scenes-cli.md; printed in triangle order)\n";
+    "                                            (docs/scenes-cli.md; printed in triangle order)\n"
+    "  i and j are body numbers; with --names, a named body's name.\n";
 
 static const char ttd_scene_usage_options[] =
     "\n"
@@ -87,13 +97,16 @@ static const char ttd_scene_usage_options[] =
     "  --motion FILE     run the query once per step of the motion in FILE ('-': standard input):\n"
     "                    T steps back to back, each N lines of 12 (or 16) numbers, the new world\n"
     "                    poses of bodies 0..N-1 in order (N the bodies of the scene); blank lines and\n"
-    "                    '#' comments are skipped. The scene file's poses are where the bodies start;\n"
+    "                    '#' comments are skipped. A line 'step' (or 'step S', S the step's index\n"
+    "                    from 0) may open every step, and then each step must hold N poses exactly.\n"
+    "                    The scene file's poses are where the bodies start;\n"
     "                    the queries run at the T steps only. Every output line then starts with the\n"
     "                    step's index (0-based), and --count prints 'step count', one line per step.\n"
     "                    The whole file is read and checked first (96 bytes a pose are kept).\n"
     "  --orthonormalize  replace each pose's R (scene and motion) by the nearest rotation before the\n"
     "                    check, for poses printed with few digits: R must be within 1e-2 of\n"
     "                    orthonormal (every entry of R^T R - I) with det R > 0\n"
+    "  --names           print a named body's name for i and j (unnamed bodies: their number)\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
     "                    per file by default)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
@@ -132,7 +145,7 @@ typedef struct ttd_scene_args {
     const char *margin_s;
     double margin; /* float-rounded with --precision float; distance: +inf without --margin */
     size_t max_points;
-    int count, orthonormalize, strict;
+    int count, orthonormalize, strict, names;
 } ttd_scene_args;
 
 /* Options of `ttd scene CMD`; --name value and --name=value both work. Returns 0, 1 after
@@ -169,8 +182,8 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             a->count = 1;
             continue;
         }
-        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
-            *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0) {
+            *(arg[2] == 'o' ? &a->orthonormalize : arg[2] == 's' ? &a->strict : &a->names) = 1;
             continue;
         }
         static const char *const valued[] = {"--margin", "--max-points", "--motion",
@@ -230,14 +243,23 @@ typedef struct ttd_scene_mesh {
     ttd_mesh *mesh;                /* NULL when its file could not be read (already reported) */
 } ttd_scene_mesh;
 
+/* A body line of the scene file, good or bad: what later lines refer to it by. */
+typedef struct ttd_scene_body_rec {
+    char *name;                    /* NULL when unnamed */
+    uint32_t id;                   /* the library's id, UINT32_MAX when the body was not added */
+} ttd_scene_body_rec;
+
 /* What a run holds: the meshes by name, the bodies (their mesh and starting pose), the scene. */
 typedef struct ttd_scene_state {
     const ttd_scene_args *a;
     const char *fname;             /* the scene file's name in messages */
     ttd_scene_mesh *meshes;
     size_t nmeshes, mesh_cap;
-    const ttd_mesh **body_mesh;    /* per body */
+    const ttd_mesh **body_mesh;    /* per body added */
     size_t nbodies, body_cap;
+    ttd_scene_body_rec *lines;     /* per body line, in file order: the body numbers */
+    size_t nlines, line_cap;
+    char **id_name;                /* per body added (library id): its name or NULL, for --names */
     ttd_scene *scene;
     unsigned long long bad;        /* bad lines of the file being read */
 } ttd_scene_state;
@@ -387,28 +409,80 @@ static int ttd_scene_parse_pose(const ttd_scene_args *a, const char *p, const ch
     return ttd_cli_pose_problem(v, a->orthonormalize, err, errsize);
 }
 
-/* `body NAME numbers` at line `line`, body id (its place among the file's body lines): add the
- * body. 0, or -1 when out of memory. */
-static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, size_t id, const char *p, const char *end)
+/* Whether word[0..len) is `kw`. */
+static int ttd_scene_is(const char *word, size_t len, const char *kw)
+{
+    return word != NULL && len == strlen(kw) && memcmp(word, kw, len) == 0;
+}
+
+/* `body MESH numbers [name BODY]` at line `line`, the file's body number `no` (its place among
+ * the body lines, good or bad, as st->lines has it): add the body. 0, or -1 when out of memory. */
+static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, const char *p, const char *end)
 {
     const ttd_scene_args *a = st->a;
+    if (st->nlines == st->line_cap) {
+        const size_t cap = st->line_cap ? 2 * st->line_cap : 16;
+        ttd_scene_body_rec *b = realloc(st->lines, cap * sizeof *b);
+        if (b == NULL)
+            return -1;
+        st->lines = b;
+        st->line_cap = cap;
+    }
+    const size_t no = st->nlines++;
+    ttd_scene_body_rec *bl = &st->lines[no];
+    bl->name = NULL;
+    bl->id = UINT32_MAX;
     size_t nlen = 0;
     const char *name = ttd_scene_word(&p, end, &nlen);
     if (name == NULL) {
-        ttd_scene_bad_line(st, st->fname, line, "expected 'body NAME' and 12 numbers ([R | t]) or 16 (4x4), found no NAME");
+        ttd_scene_bad_line(st, st->fname, line, "expected 'body MESH' and 12 numbers ([R | t]) or 16 (4x4), found no MESH");
         return 0;
+    }
+    /* the pose ends where a 'name BODY' clause starts (a number is never the word 'name') */
+    const char *pose_end = end, *q = p;
+    size_t wlen = 0;
+    for (const char *w; (w = ttd_scene_word(&q, end, &wlen)) != NULL;)
+        if (ttd_scene_is(w, wlen, "name")) {
+            pose_end = w;
+            break;
+        }
+    if (pose_end != end) {
+        size_t blen = 0, xlen = 0;
+        const char *body = ttd_scene_word(&q, end, &blen);
+        const char *extra = body ? ttd_scene_word(&q, end, &xlen) : NULL;
+        if (body == NULL || extra != NULL) {
+            ttd_scene_bad_line(st, st->fname, line, "body %zu: expected 'name BODY' at the end of the line, found %s",
+                               no, body == NULL ? "no BODY" : "more words");
+            return 0;
+        }
+        if (*body >= '0' && *body <= '9') {
+            ttd_scene_bad_line(st, st->fname, line,
+                               "body %zu: the name '%.*s' starts with a digit (numbers refer to bodies by number)", no,
+                               (int)blen, body);
+            return 0;
+        }
+        for (size_t k = 0; k < no; ++k)
+            if (st->lines[k].name && strlen(st->lines[k].name) == blen && memcmp(st->lines[k].name, body, blen) == 0) {
+                ttd_scene_bad_line(st, st->fname, line, "body %zu: the name '%.*s' is body %zu's already", no,
+                                   (int)blen, body, k);
+                return 0;
+            }
+        if ((bl->name = malloc(blen + 1)) == NULL)
+            return -1;
+        memcpy(bl->name, body, blen);
+        bl->name[blen] = '\0';
     }
     const ttd_scene_mesh *m = ttd_scene_find_mesh(st, name, nlen);
     double v[12];
     char err[512];
     if (m == NULL) {
         ttd_scene_bad_line(st, st->fname, line, "body %zu: unknown mesh '%.*s' (a 'mesh NAME FILE' line must come first)",
-                           id, (int)nlen, name);
+                           no, (int)nlen, name);
         return 0;
     }
-    /* the end of the line is the pose's: its own comment and blanks are the parser's business */
-    if (ttd_scene_parse_pose(a, p, end, v, err, sizeof err) != 0) {
-        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", id, err);
+    /* the rest of the line is the pose's: its own comment and blanks are the parser's business */
+    if (ttd_scene_parse_pose(a, p, pose_end, v, err, sizeof err) != 0) {
+        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", no, err);
         return 0;
     }
     if (m->mesh == NULL) /* its mesh line failed, and said so: count the body, add nothing */
@@ -418,9 +492,12 @@ static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, siz
     if (st->nbodies == st->body_cap) {
         const size_t cap = st->body_cap ? 2 * st->body_cap : 16;
         const ttd_mesh **b = realloc(st->body_mesh, cap * sizeof *b);
-        if (b == NULL)
+        char **n = b == NULL ? NULL : realloc(st->id_name, cap * sizeof *n);
+        if (b != NULL)
+            st->body_mesh = b;
+        if (n == NULL)
             return -1;
-        st->body_mesh = b;
+        st->id_name = n;
         st->body_cap = cap;
     }
     uint32_t got;
@@ -436,10 +513,122 @@ static int ttd_scene_body_line(ttd_scene_state *st, unsigned long long line, siz
     if (s == TTD_ERR_OUT_OF_MEMORY)
         return -1;
     if (s != TTD_OK) {
-        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", id, ttd_status_string(s));
+        ttd_scene_bad_line(st, st->fname, line, "body %zu: %s", no, ttd_status_string(s));
         return 0;
     }
+    bl->id = got;
+    st->id_name[st->nbodies] = bl->name;
     st->body_mesh[st->nbodies++] = m->mesh;
+    return 0;
+}
+
+/* The body line that word[0..len) refers to: a body's name, or its number (decimal digits);
+ * -1 after a message naming what (the statement) when there is none above this line. */
+static long ttd_scene_body_ref(ttd_scene_state *st, unsigned long long line, const char *what, const char *word,
+                               size_t len)
+{
+    const int shown = len > 40 ? 40 : (int)len;
+    if (*word >= '0' && *word <= '9') {
+        size_t no = 0, k = 0;
+        for (; k < len && word[k] >= '0' && word[k] <= '9'; ++k)
+            no = no > st->nlines ? no : 10 * no + (size_t)(word[k] - '0');
+        if (k < len)
+            ttd_scene_bad_line(st, st->fname, line, "%s: '%.*s' is neither a body number nor a name", what, shown,
+                               word);
+        else if (no >= st->nlines && st->nlines == 0)
+            ttd_scene_bad_line(st, st->fname, line, "%s: no body %.*s (no body line comes before this one)", what,
+                               shown, word);
+        else if (no >= st->nlines)
+            ttd_scene_bad_line(st, st->fname, line, "%s: no body %.*s (the body lines above this one are 0 to %zu)",
+                               what, shown, word, st->nlines - 1);
+        else
+            return (long)no;
+        return -1;
+    }
+    for (size_t k = 0; k < st->nlines; ++k)
+        if (st->lines[k].name && strlen(st->lines[k].name) == len && memcmp(st->lines[k].name, word, len) == 0)
+            return (long)k;
+    ttd_scene_bad_line(st, st->fname, line, "%s: unknown body '%.*s' (a body line naming it must come first)", what,
+                       shown, word);
+    return -1;
+}
+
+/* A 32-bit group or mask: decimal digits, or 0x and hex digits. 0, or -1. */
+static int ttd_scene_u32(const char *word, size_t len, uint32_t *out)
+{
+    const int hex = len > 2 && word[0] == '0' && (word[1] == 'x' || word[1] == 'X');
+    unsigned long long v = 0;
+    for (size_t k = hex ? 2 : 0; k < len; ++k) {
+        const char c = word[k];
+        int d;
+        if (c >= '0' && c <= '9')
+            d = c - '0';
+        else if (hex && c >= 'a' && c <= 'f')
+            d = c - 'a' + 10;
+        else if (hex && c >= 'A' && c <= 'F')
+            d = c - 'A' + 10;
+        else
+            return -1;
+        v = v * (hex ? 16u : 10u) + (unsigned)d;
+        if (v > UINT32_MAX)
+            return -1;
+    }
+    *out = (uint32_t)v;
+    return 0;
+}
+
+/* `filter BODY GROUP MASK` (exclude = 0) or `exclude BODY BODY` (exclude = 1) at line `line`:
+ * the library's ttd_scene_set_filter or ttd_scene_exclude_pair on the bodies named. 0, or -1
+ * when out of memory. */
+static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line, int exclude, const char *p,
+                                    const char *end)
+{
+    const char *what = exclude ? "exclude" : "filter";
+    const char *w[4];
+    size_t len[4] = {0};
+    int n = 0;
+    while (n < 4 && (w[n] = ttd_scene_word(&p, end, &len[n])) != NULL)
+        ++n;
+    const int want = exclude ? 2 : 3;
+    if (n != want) {
+        static const char *const missing[2][3] = {{"no BODY", "no GROUP", "no MASK"}, {"no BODY", "one BODY", ""}};
+        ttd_scene_bad_line(st, st->fname, line, "expected '%s', found %s",
+                           exclude ? "exclude BODY BODY" : "filter BODY GROUP MASK",
+                           n > want ? "more words" : missing[exclude][n]);
+        return 0;
+    }
+    const long b0 = ttd_scene_body_ref(st, line, what, w[0], len[0]);
+    if (b0 < 0)
+        return 0;
+    ttd_status s = TTD_OK;
+    if (exclude) {
+        const long b1 = ttd_scene_body_ref(st, line, what, w[1], len[1]);
+        if (b1 < 0)
+            return 0;
+        if (b1 == b0) {
+            ttd_scene_bad_line(st, st->fname, line, "exclude: body %ld twice (a pair is two bodies)", b0);
+            return 0;
+        }
+        const uint32_t i = st->lines[b0].id, j = st->lines[b1].id;
+        if (st->bad == 0 && i != UINT32_MAX && j != UINT32_MAX)
+            s = ttd_scene_exclude_pair(st->scene, i, j, 1);
+    } else {
+        uint32_t group, mask;
+        for (int k = 1; k < 3; ++k)
+            if (ttd_scene_u32(w[k], len[k], k == 1 ? &group : &mask) != 0) {
+                ttd_scene_bad_line(st, st->fname, line,
+                                   "filter: %s '%.*s' is not a 32-bit number (0 to 4294967295, or 0x0 to 0xffffffff)",
+                                   k == 1 ? "GROUP" : "MASK", (int)(len[k] > 40 ? 40 : len[k]), w[k]);
+                return 0;
+            }
+        const uint32_t i = st->lines[b0].id;
+        if (st->bad == 0 && i != UINT32_MAX)
+            s = ttd_scene_set_filter(st->scene, i, group, mask);
+    }
+    if (s == TTD_ERR_OUT_OF_MEMORY)
+        return -1;
+    if (s != TTD_OK)
+        ttd_scene_bad_line(st, st->fname, line, "%s: %s", what, ttd_status_string(s));
     return 0;
 }
 
@@ -456,7 +645,6 @@ static int ttd_scene_read(ttd_scene_state *st)
     }
     ttd_line_reader *r = malloc(sizeof *r);
     int rc = 0;
-    size_t statements = 0; /* body lines, good or bad: the ids in messages */
     if (r == NULL) {
         ttd_cli_error("out of memory");
         rc = TTD_EXIT_INPUT;
@@ -480,14 +668,17 @@ static int ttd_scene_read(ttd_scene_state *st)
                 continue;
             }
             int mem = 0;
-            if (klen == 4 && memcmp(key, "mesh", 4) == 0)
+            if (ttd_scene_is(key, klen, "mesh"))
                 mem = ttd_scene_mesh_line(st, r->line_no, p, end);
-            else if (klen == 4 && memcmp(key, "body", 4) == 0)
-                mem = ttd_scene_body_line(st, r->line_no, statements++, p, end);
+            else if (ttd_scene_is(key, klen, "body"))
+                mem = ttd_scene_body_line(st, r->line_no, p, end);
+            else if (ttd_scene_is(key, klen, "filter") || ttd_scene_is(key, klen, "exclude"))
+                mem = ttd_scene_pair_rule_line(st, r->line_no, key[0] == 'e', p, end);
             else {
                 char word[64];
                 snprintf(word, sizeof word, "%.*s%s", klen > 40 ? 40 : (int)klen, key, klen > 40 ? "..." : "");
-                ttd_scene_bad_line(st, st->fname, r->line_no, "unknown statement '%s' (mesh or body)", word);
+                ttd_scene_bad_line(st, st->fname, r->line_no, "unknown statement '%s' (mesh, body, filter or exclude)",
+                                   word);
             }
             if (mem != 0) {
                 ttd_cli_error("%s:%llu: out of memory", st->fname, r->line_no);
@@ -517,7 +708,43 @@ typedef struct ttd_scene_motion {
     size_t poses, cap;             /* poses read (steps * bodies when complete) */
 } ttd_scene_motion;
 
-/* Reads and checks the whole motion file; 0 or the exit status. */
+/* A motion file's `step` line ("step", or "step S"), checked: 1 when line[0..len) is one (S, when
+ * given, in *index, else SIZE_MAX; a malformed one sets err), 0 when it is not. */
+static int ttd_scene_step_line(const char *line, size_t len, size_t *index, char *err, size_t errsize)
+{
+    const char *p = line, *end = line + len;
+    size_t klen = 0, ilen = 0, xlen = 0;
+    const char *key = ttd_scene_word(&p, end, &klen);
+    if (!ttd_scene_is(key, klen, "step"))
+        return 0;
+    const char *idx = ttd_scene_word(&p, end, &ilen);
+    const char *extra = idx ? ttd_scene_word(&p, end, &xlen) : NULL;
+    *index = SIZE_MAX;
+    err[0] = '\0';
+    size_t v = 0, k = 0;
+    for (; idx != NULL && k < ilen && idx[k] >= '0' && idx[k] <= '9' && v < SIZE_MAX / 10 - 1; ++k)
+        v = 10 * v + (size_t)(idx[k] - '0');
+    if (extra != NULL || (idx != NULL && k < ilen))
+        snprintf(err, errsize, "expected 'step' or 'step S' (S the step's index, from 0), found %s",
+                 extra ? "more words" : "an index that is not a whole number");
+    else if (idx != NULL)
+        *index = v;
+    return 1;
+}
+
+/* A step opened by a `step` line at `line` that holds `got` poses of the scene's n. */
+static void ttd_scene_short_step(ttd_scene_state *st, const char *fname, unsigned long long line, size_t step,
+                                 size_t got, size_t n)
+{
+    ttd_scene_bad_line(st, fname, line,
+                       "step %zu has %zu pose%s where the scene has %zu bod%s "
+                       "(one pose per body after each 'step' line)",
+                       step, got, got == 1 ? "" : "s", n, n == 1 ? "y" : "ies");
+}
+
+/* Reads and checks the whole motion file; 0 or the exit status. Steps are counted off N poses at
+ * a time (N the bodies), or, where the file opens every step with a `step` line, by those lines,
+ * and then each step must hold N poses. */
 static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
 {
     const ttd_scene_args *a = st->a;
@@ -531,7 +758,9 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
     ttd_line_reader *r = malloc(sizeof *r);
     int rc = 0;
     size_t index = 0;                   /* of the next pose line, good or bad */
-    unsigned long long step_line = 0;   /* the line of the current step's first pose */
+    unsigned long long step_line = 0;   /* the line of the current step's first pose (its `step` line) */
+    int marked = -1;                    /* 1: its steps open with `step` lines; 0: they do not; -1: not known yet */
+    size_t steps = 0, in_step = 0;      /* with `step` lines: steps opened, poses in the last one */
     const size_t n = st->nbodies;
     st->bad = 0;
     if (r == NULL) {
@@ -545,6 +774,26 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
         while (rc == 0 && ttd_reader_next(r, &len, &overlong)) {
             double v[12];
             char err[512];
+            size_t at;
+            if (!overlong && ttd_scene_step_line(r->line, len, &at, err, sizeof err)) {
+                if (err[0] != '\0')
+                    ttd_scene_bad_line(st, fname, r->line_no, "%s", err);
+                else if (marked == 0)
+                    ttd_scene_bad_line(st, fname, r->line_no, "a 'step' line, but the poses above it had none: a "
+                                       "motion file opens every step with a 'step' line, or none");
+                else if (at != SIZE_MAX && at != steps)
+                    ttd_scene_bad_line(st, fname, r->line_no, "'step %zu' where step %zu comes (steps are numbered 0, "
+                                       "1, 2, ... in order)", at, steps);
+                if (marked == 1 && in_step < n) /* too many poses were named at the first extra one */
+                    ttd_scene_short_step(st, fname, step_line, steps - 1, in_step, n);
+                if (marked != 0) {
+                    marked = 1;
+                    step_line = r->line_no;
+                    ++steps;
+                    in_step = 0;
+                }
+                continue;
+            }
             ttd_line_kind kind = ttd_read_pose_line(r, len, overlong, a->use_float, v, err, sizeof err);
             if (kind == TTD_LINE_SKIP)
                 continue;
@@ -553,8 +802,16 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
                 ++index;
                 continue;
             }
-            const size_t step = index / n, body = index % n;
-            if (body == 0)
+            if (marked < 0)
+                marked = 0;
+            if (marked == 1 && in_step++ >= n) {
+                if (in_step == n + 1) /* once per step */
+                    ttd_scene_bad_line(st, fname, r->line_no, "step %zu: more poses than the scene's %zu bod%s (one "
+                                       "pose per body after each 'step' line)", steps - 1, n, n == 1 ? "y" : "ies");
+                continue;
+            }
+            const size_t step = marked == 1 ? steps - 1 : index / n, body = marked == 1 ? in_step - 1 : index % n;
+            if (marked == 0 && body == 0)
                 step_line = r->line_no;
             ++index;
             if (kind == TTD_LINE_PAIR && ttd_cli_pose_problem(v, a->orthonormalize, err, sizeof err) != 0)
@@ -600,7 +857,9 @@ static int ttd_scene_read_motion(ttd_scene_state *st, ttd_scene_motion *mo)
             rc = TTD_EXIT_INPUT;
         }
     }
-    if (rc == 0 && n > 0 && index % n != 0)
+    if (rc == 0 && marked == 1 && in_step < n)
+        ttd_scene_short_step(st, fname, step_line, steps - 1, in_step, n);
+    else if (rc == 0 && marked == 0 && n > 0 && index % n != 0)
         ttd_scene_bad_line(st, fname, step_line, "step %zu is incomplete: %zu of %zu poses (one per body), to the end of the file",
                            index / n, index % n, n);
     if (rc == 0 && st->bad > 0) {
@@ -619,6 +878,16 @@ static void ttd_scene_put_reals(FILE *out, int use_float, const double *v, int n
 {
     for (int k = 0; k < n; ++k)
         fprintf(out, use_float ? " %.9g" : " %.17g", v[k]);
+}
+
+/* Body id as i or j is printed, after sep: its name with --names where it has one (names, NULL
+ * without --names, holds them by id), else its number. */
+static void ttd_scene_put_body(FILE *out, char *const *names, uint32_t id, const char *sep)
+{
+    if (names != NULL && names[id] != NULL)
+        fprintf(out, "%s%s", sep, names[id]);
+    else
+        fprintf(out, "%s%lu", sep, (unsigned long)id);
 }
 
 /* Items of one query, widened to double, for sorting and printing. */
@@ -646,9 +915,10 @@ typedef struct ttd_scene_buffers {
     size_t cap;
 } ttd_scene_buffers;
 
-/* One query on the scene as it is; its lines (prefixed by "step " when step >= 0) on out. 0 or the
- * exit status. */
-static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, long long step, ttd_scene_buffers *b, FILE *out)
+/* One query on the scene as it is; its lines (prefixed by "step " when step >= 0) on out, bodies
+ * as ttd_scene_put_body prints them. 0 or the exit status. */
+static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *const *names, long long step,
+                           ttd_scene_buffers *b, FILE *out)
 {
     const int f = a->use_float;
     ttd_status s;
@@ -673,8 +943,9 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, long long 
             pq[4 + r] = f ? (double)cf.q[r] : cd.q[r];
         }
         fprintf(out, f ? "%.9g" : "%.17g", d);
-        fprintf(out, " %lu %lu %lu %lu", (unsigned long)(f ? cf.i : cd.i), (unsigned long)j,
-                (unsigned long)(f ? cf.tri_i : cd.tri_i), (unsigned long)(f ? cf.tri_j : cd.tri_j));
+        ttd_scene_put_body(out, names, f ? cf.i : cd.i, " ");
+        ttd_scene_put_body(out, names, j, " ");
+        fprintf(out, " %lu %lu", (unsigned long)(f ? cf.tri_i : cd.tri_i), (unsigned long)(f ? cf.tri_j : cd.tri_j));
         ttd_scene_put_reals(out, f, pq + 1, 6);
         fputc('\n', out);
         return 0;
@@ -751,7 +1022,8 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, long long 
         const ttd_scene_item *it = &b->items[k];
         if (step >= 0)
             fprintf(out, "%lld ", step);
-        fprintf(out, "%lu %lu", (unsigned long)it->i, (unsigned long)it->j);
+        ttd_scene_put_body(out, names, it->i, "");
+        ttd_scene_put_body(out, names, it->j, " ");
         if (a->cmd == TTD_SCENE_MANIFOLD) {
             ttd_scene_put_reals(out, f, it->p, 3);
             ttd_scene_put_reals(out, f, it->q, 3);
@@ -826,11 +1098,12 @@ int ttd_cli_scene(int argc, char **argv)
     rc = ttd_scene_read(&st);
     if (rc == 0 && a.motion_path != NULL)
         rc = ttd_scene_read_motion(&st, &mo);
+    char *const *names = a.names ? st.id_name : NULL;
     if (rc == 0) {
         static char outbuf[1 << 16];
         setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
         if (a.motion_path == NULL) {
-            rc = ttd_scene_query(&a, st.scene, -1, &buf, stdout);
+            rc = ttd_scene_query(&a, st.scene, names, -1, &buf, stdout);
         } else if (st.nbodies > 0) {
             const size_t n = st.nbodies, steps = mo.poses / n;
             if (a.use_float && (posef = malloc(12 * n * sizeof *posef)) == NULL) {
@@ -851,7 +1124,7 @@ int ttd_cli_scene(int argc, char **argv)
                     rc = TTD_EXIT_INPUT;
                     break;
                 }
-                rc = ttd_scene_query(&a, st.scene, (long long)t, &buf, stdout);
+                rc = ttd_scene_query(&a, st.scene, names, (long long)t, &buf, stdout);
             }
         }
     }
@@ -866,6 +1139,10 @@ int ttd_cli_scene(int argc, char **argv)
     }
     free(st.meshes);
     free(st.body_mesh);
+    for (size_t k = 0; k < st.nlines; ++k)
+        free(st.lines[k].name);
+    free(st.lines);
+    free(st.id_name);
     free(mo.d);
     free(posef);
     free(buf.items);

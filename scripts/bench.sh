@@ -27,8 +27,8 @@ if [ ${#missing[@]} -gt 0 ]; then
     sudo="sudo -n"
   fi
   if command -v apt-get >/dev/null 2>&1 && { [ "$(id -u)" = 0 ] || [ -n "$sudo" ]; }; then
-    echo "bench.sh: installing ${missing[*]} with apt-get" >&2
-    if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"; } >&2; then
+    echo "bench.sh: installing the Debian packages ${missing[*]} with apt-get (apt-get lists them with what they depend on)" >&2
+    if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q "${missing[@]}"; } >&2; then
       echo "bench.sh: apt-get could not install ${missing[*]}; carrying on without" >&2
     fi
   else

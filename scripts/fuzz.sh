@@ -34,13 +34,14 @@ PROBE
 can_fuzz() { "$CC_FUZZ" -fsanitize=fuzzer,address,undefined "$probe_dir/probe.c" -o "$probe_dir/probe" > /dev/null 2>&1; }
 if ! can_fuzz; then
     major=$("$CC_FUZZ" -dumpversion 2>/dev/null | cut -d. -f1)
-    echo "fuzz.sh: $CC_FUZZ $major cannot link -fsanitize=fuzzer; trying to install its runtime"
+    echo "fuzz.sh: $CC_FUZZ $major cannot link -fsanitize=fuzzer"
     if [ "$(id -u)" = 0 ] && command -v apt-get > /dev/null 2>&1; then
         export DEBIAN_FRONTEND=noninteractive
         apt-get update -qq || true
         # clang >= 14 on Debian/Ubuntu: libclang-rt-N-dev; older: libclang-common-N-dev
-        apt-get install -y -qq "libclang-rt-$major-dev" > /dev/null 2>&1 ||
-            apt-get install -y -qq "libclang-common-$major-dev" > /dev/null 2>&1 || true
+        echo "fuzz.sh: installing the Debian package libclang-rt-$major-dev (else libclang-common-$major-dev) with apt-get"
+        apt-get install -y -q "libclang-rt-$major-dev" 2>&1 ||
+            apt-get install -y -q "libclang-common-$major-dev" 2>&1 || true
     fi
     can_fuzz || skip "$CC_FUZZ cannot link libFuzzer programs here (install libclang-rt-$major-dev)"
 fi

@@ -61,9 +61,9 @@ if [ -n "$lacking" ] && [ "$py" = "$debian_py" ]; then
         sudo="sudo -n"
     fi
     if command -v apt-get > /dev/null 2>&1 && { [ "$(id -u)" = 0 ] || [ -n "$sudo" ]; }; then
-        echo "test-python.sh: installing $lacking with apt-get" >&2
+        echo "test-python.sh: installing the Debian packages $lacking with apt-get (apt-get lists them with what they depend on)" >&2
         # shellcheck disable=SC2086 # one package name per word
-        if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq $lacking; } >&2; then
+        if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q $lacking; } >&2; then
             echo "test-python.sh: apt-get could not install $lacking" >&2
         fi
         lacking=$(missing)

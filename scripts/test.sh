@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds ttd and runs every test (the README's test command; .ci/run calls it).
 # Usage: scripts/test.sh            (build folder: build/, or $TTD_BUILD_DIR)
+# Installs nothing itself; the Python tests (scripts/test-python.sh) install the Debian
+# packages they lack with apt-get when run as root, and say which first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -10,4 +12,5 @@ cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
 # The Python package (python/), built against this build's library and tested with pytest;
 # skipped with a message where Python's Debian packages cannot be had (scripts/test-python.sh).
+echo "test.sh: the Python tests next (scripts/test-python.sh: as root it installs the Debian packages it lacks, naming them)" >&2
 scripts/test-python.sh "$build"

@@ -6,7 +6,7 @@
 // Usage: ttd_fcl_scene_bench IN
 //
 // The input and output formats are in bench/fcl_scene_link.h. What FCL users do today
-// (../shared/scene-anchors.md): one BVHModel<OBBRSS<double>> per mesh, shared by every body of
+// (docs/anchors.md, "Scenes"): one BVHModel<OBBRSS<double>> per mesh, shared by every body of
 // that mesh, each body a CollisionObject, DynamicAABBTreeCollisionManager<double> as the broad
 // phase, one thread. FCL 0.7 has no margin and no contacts, so the queries at a margin are what a
 // user writes over FCL's trees:
@@ -15,7 +15,7 @@
 //     by update();
 //   - collide at the margin: per candidate, a traversal of the two OBBRSS trees that prunes a node
 //     pair whose OBBRSS distance exceeds the margin and stops at the first triangle pair within it
-//     (the anchors' "early-exit traversal", 12-35x faster than fcl::distance per candidate);
+//     (docs/anchors.md's "early-exit traversal", 12-35x faster than fcl::distance per candidate);
 //   - contacts: per candidate, the same traversal without the early exit, every triangle pair
 //     within the margin (the mesh benchmark's margin traversal, bench/fcl/fcl_mesh_bench.cpp).
 // collide at 0 is fcl::collide per candidate (one contact); distance is manager->distance with a

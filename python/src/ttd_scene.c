@@ -94,7 +94,7 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
     {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
-    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p|; at distance 0 a face normal of either triangle, or across an edge of each (docs/scenes.md)"},
+    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p| where distance > 0; at distance 0 the library's rule (docs/scenes.md section 5, 'normal')"},
     {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
@@ -189,10 +189,10 @@ static const char *ttd_py_type_name(int type)
     return type == NPY_FLOAT ? "float32" : "float64";
 }
 
-/* obj as a C-contiguous (k, 3, 4) array of type: one pose ((3, 4) or (4, 4)) when single, else
- * (k, 3, 4) or (k, 4, 4); the bottom row of a 4x4 pose checked. name is the argument's name.
- * NULL with the exception that names the problem. */
-static PyArrayObject *ttd_py_scene_poses(PyObject *obj, int type, int single, const char *name)
+/* obj as a C-contiguous array of type, of one pose ((3, 4) or (4, 4)) when single, else of
+ * (k, 3, 4) or (k, 4, 4): its shape checked, not its values. name is the argument's name. NULL
+ * with the exception that names the problem. */
+static PyArrayObject *ttd_py_scene_pose_array(PyObject *obj, int type, int single, const char *name)
 {
     PyArrayObject *a = ttd_py_as_array(obj, name), *p = NULL;
     if (a == NULL)
@@ -208,17 +208,29 @@ static PyArrayObject *ttd_py_scene_poses(PyObject *obj, int type, int single, co
         Py_XDECREF(shape);
         goto fail;
     }
-    const npy_intp k = single ? 1 : PyArray_DIM(a, 0);
-    if ((p = ttd_py_as_real(a, name, type)) == NULL)
-        goto fail;
-    if (rows == 4) {
+    p = ttd_py_as_real(a, name, type);
+fail:
+    Py_DECREF(a);
+    return p;
+}
+
+/* The poses of p (from ttd_py_scene_pose_array: single, or k of them) as a C-contiguous
+ * (k, 3, 4) array, the bottom row of each 4x4 pose checked, except those of the ids s has
+ * removed when s is not NULL (set_poses ignores them; the caller holds s's lock). Takes p's
+ * reference. NULL with the exception that names the problem. */
+static PyArrayObject *ttd_py_scene_pose_rows(PyArrayObject *p, int type, int single, const char *name,
+                                             const struct ttd_py_scene *s)
+{
+    const npy_intp k = single ? 1 : PyArray_DIM(p, 0);
+    if (PyArray_DIM(p, PyArray_NDIM(p) - 2) == 4) {
         const size_t bytes = type == NPY_DOUBLE ? sizeof(double) : sizeof(float);
         for (npy_intp i = 0; i < k; ++i) {
             double r[4];
             for (int c = 0; c < 4; ++c)
                 r[c] = type == NPY_DOUBLE ? ((const double *)PyArray_DATA(p))[16 * i + 12 + c]
                                           : (double)((const float *)PyArray_DATA(p))[16 * i + 12 + c];
-            if (r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 1)
+            if ((r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 1) ||
+                (s != NULL && PyList_GET_ITEM(s->meshes, i) == Py_None))
                 continue;
             PyObject *row = Py_BuildValue("(dddd)", r[0], r[1], r[2], r[3]);
             PyObject *where = single ? PyUnicode_FromString(name) : PyUnicode_FromFormat("%s[%zd]", name, (Py_ssize_t)i);
@@ -239,12 +251,19 @@ static PyArrayObject *ttd_py_scene_poses(PyObject *obj, int type, int single, co
         Py_DECREF(p);
         p = c;
     }
-    Py_DECREF(a);
     return p;
 fail:
-    Py_DECREF(a);
-    Py_XDECREF(p);
+    Py_DECREF(p);
     return NULL;
+}
+
+/* obj as a C-contiguous (k, 3, 4) array of type: one pose ((3, 4) or (4, 4)) when single, else
+ * (k, 3, 4) or (k, 4, 4); the bottom row of a 4x4 pose checked. name is the argument's name.
+ * NULL with the exception that names the problem. */
+static PyArrayObject *ttd_py_scene_poses(PyObject *obj, int type, int single, const char *name)
+{
+    PyArrayObject *p = ttd_py_scene_pose_array(obj, type, single, name);
+    return p == NULL ? NULL : ttd_py_scene_pose_rows(p, type, single, name, NULL);
 }
 
 /* 0 when pose (12 reals of type) is a rigid motion by the rule of include/ttd/ttd.h (finite,
@@ -653,24 +672,27 @@ static PyObject *ttd_py_scene_set_poses(PyObject *obj, PyObject *arg)
 {
     ttd_py_scene *s = (ttd_py_scene *)obj;
     const int type = s->type == NPY_NOTYPE ? NPY_DOUBLE : s->type;
-    PyArrayObject *p = ttd_py_scene_poses(arg, type, 0, "poses");
+    PyArrayObject *p = ttd_py_scene_pose_array(arg, type, 0, "poses");
     if (p == NULL)
         return NULL;
+    /* Under the lock, so that an add from another thread cannot come between the count and the
+     * call: the ids counted, the bottom rows of present ids checked, the poses set, a refused
+     * one named. */
+    ttd_py_scene_lock(s);
+    ttd_status st = TTD_OK;
     const size_t limit = ttd_scene_id_limit(s->scene);
     if ((size_t)PyArray_DIM(p, 0) != limit) {
         PyErr_Format(PyExc_ValueError, "poses holds %zd poses: the scene takes one per body id, %zu (id_limit)",
                      (Py_ssize_t)PyArray_DIM(p, 0), limit);
-        Py_DECREF(p);
-        return NULL;
+        goto done;
     }
-    ttd_status st = TTD_OK;
+    if ((p = ttd_py_scene_pose_rows(p, type, 0, "poses", s)) == NULL)
+        goto done;
     if (limit > 0) {
-        ttd_py_scene_lock(s);
         Py_BEGIN_ALLOW_THREADS
         st = type == NPY_DOUBLE ? ttd_scene_set_poses_d(s->scene, limit, PyArray_DATA(p))
                                 : ttd_scene_set_poses_f(s->scene, limit, PyArray_DATA(p));
         Py_END_ALLOW_THREADS
-        ttd_py_scene_unlock(s);
     }
     if (st != TTD_OK) {
         /* the first body whose pose the library's rule refuses */
@@ -695,8 +717,10 @@ static PyObject *ttd_py_scene_set_poses(PyObject *obj, PyObject *arg)
                 PyErr_Format(PyExc_ValueError, "poses: %s", ttd_status_string(st));
         }
     }
-    Py_DECREF(p);
-    if (st != TTD_OK)
+done:
+    ttd_py_scene_unlock(s);
+    Py_XDECREF(p);
+    if (PyErr_Occurred())
         return NULL;
     Py_RETURN_NONE;
 }
@@ -963,8 +987,8 @@ PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "deepest (smallest distance; ties to the smaller triangles) and then, one at a time, the one\n"
 "whose point is farthest from the points kept, never a point already kept. A ttd.SceneManifold of parallel (n,) arrays\n"
 "i, j, tri_i, tri_j (uint32), point (n, 3) (the midpoint of the pair's closest points),\n"
-"normal (n, 3) (unit, from body i towards body j: the direction q - p; at distance 0 the face\n"
-"normal of tri_i, else of tri_j, turned from tri_i's centroid towards tri_j's), distance\n"
+"normal (n, 3) (unit, from body i towards body j: the direction q - p where distance > 0; at\n"
+"distance 0 the library's rule, in docs/scenes.md section 5 'normal'), distance\n"
 "(the pair's d) and depth (margin - d), grouped by body pair in (i, j) order. isa, threads:\n"
 "as in collide.");
 

@@ -7,6 +7,7 @@ triangles, the manifold's reduction, re-done here in numpy); filters, exclusions
 additions, set_poses, both dtypes, 1 and 2 threads identical, the lock released, bad input."""
 import math
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -328,13 +329,16 @@ def test_results_are_views_of_library_records():
     assert f.manifold(3.0).normal.dtype == np.float32
 
 
-def test_the_lock_is_released(long_switch_interval):  # noqa: F811
-    v, f = icosphere(3)
-    A = ttd.Mesh(v, f)
-    n = 27
-    P = np.tile(np.eye(4), (n, 1, 1))
+def icosphere_block():
+    """27 level-3 icospheres on a 3x3x3 grid, 1.9 apart: a query of tens of milliseconds."""
+    A = ttd.Mesh(*icosphere(3))
+    P = np.tile(np.eye(4), (27, 1, 1))
     P[:, :3, 3] = 1.9 * np.stack(np.meshgrid(*[np.arange(3)] * 3, indexing="ij"), -1).reshape(-1, 3)
-    scene = ttd.Scene(A, P)
+    return A, ttd.Scene(A, P)
+
+
+def test_the_lock_is_released(long_switch_interval):  # noqa: F811
+    _, scene = icosphere_block()
     assert released_during(lambda: scene.contacts(0.2, threads=1))
     assert released_during(lambda: scene.manifold(0.2, threads=1))
 
@@ -361,6 +365,68 @@ def test_concurrent_use_is_serialised():
     for t in ts:
         t.join()
     assert not errors
+
+
+def test_set_poses_ignores_the_rows_of_removed_ids():
+    # (N, 4, 4) poses: a removed id's row is ignored whatever it holds, a bottom row that is not
+    # 0 0 0 1 or NaN included, as (N, 3, 4) poses are; a present id's is still checked.
+    ms, P = scene_setup(np.float64)
+    scene = ttd.Scene(ms, P)
+    scene.remove(2)
+    scene.remove(5)
+    present = {0, 1, 3, 4, 6}
+    Q = P.copy()
+    Q[:, :3, 3] += 0.05
+    Q[2] = 0.0              # all zeros: no rotation, bottom row 0 0 0 0
+    Q[5, 3] = np.nan
+    scene.set_poses(Q)
+    check_all(scene, World(ms, np.where(np.isin(np.arange(len(P)), [2, 5])[:, None, None], P, Q), np.float64,
+                           present=present), margins=(0.1,))
+    Q[3, 3, 3] = 2.0
+    with pytest.raises(ValueError, match=r"poses\[3\] has bottom row \(0.0, 0.0, 0.0, 2.0\)"):
+        scene.set_poses(Q)
+
+
+def test_set_poses_counts_the_ids_under_the_lock():
+    # set_poses compares the number of poses with id_limit while it holds the scene, so an add
+    # from another thread between the caller's reading of id_limit and the call gives the
+    # count's ValueError, never the library's index error. Each round: a long query holds the
+    # scene; an add and then a set_poses (its poses counted before the add) wait for it; when
+    # the add goes first, the set_poses sees one id more than it was given.
+    A, scene = icosphere_block()
+    raced, rounds = 0, 0
+    while raced < 3 and rounds < 40:
+        rounds += 1
+        poses = np.tile(np.eye(4), (scene.id_limit, 1, 1))
+        poses[:, :3, 3] = 5.0 * np.arange(scene.id_limit)[:, None]
+        outcome = []
+
+        def query():
+            scene.contacts(0.2, threads=1)
+
+        def add():
+            scene.add(A, np.eye(4))
+
+        def set_poses():
+            try:
+                scene.set_poses(poses)
+                outcome.append(None)
+            except Exception as e:  # noqa: BLE001 (the kind of error is the point)
+                outcome.append(e)
+
+        ts = [threading.Thread(target=t) for t in (query, add, set_poses)]
+        for t in ts:
+            t.start()
+            time.sleep(0.01)
+        for t in ts:
+            t.join()
+        e = outcome[0]
+        if e is not None:
+            assert isinstance(e, ValueError), repr(e)
+            assert str(e) == (f"poses holds {len(poses)} poses: the scene takes one per body id, "
+                              f"{len(poses) + 1} (id_limit)"), str(e)
+            raced += 1
+    assert raced > 0, f"in {rounds} rounds the add never went before the set_poses"
 
 
 # ---- bad input ------------------------------------------------------------------------------

@@ -90,14 +90,11 @@ def test_none_is_a_type_error(args):
 
 # ---- the documentation's examples against the stub --------------------------------------------
 
-# Names the examples use without defining them (inputs the reader brings), declared for mypy.
+# The examples define every name they use (python/tests/test_readme.py runs the README's); the
+# preamble only makes numpy's typing names available.
 PREAMBLE = """\
 import numpy as np
 import numpy.typing as npt
-vertices_a: npt.NDArray[np.float64]
-faces_a: npt.NDArray[np.int64]
-vertices_b: npt.NDArray[np.float64]
-faces_b: npt.NDArray[np.int64]
 """
 
 # What the examples claim of the result types, said as code that mypy checks too.

@@ -265,6 +265,8 @@ class SceneManifold(NamedTuple):
     tri_j: npt.NDArray[np.uint32]
     point: npt.NDArray[np.floating]
     normal: npt.NDArray[np.floating]
+    """Unit, from body i towards body j: (q - p) / |q - p| where distance > 0; at distance 0
+    (touching or crossing) the library's rule, in docs/scenes.md section 5 ("normal")."""
     distance: npt.NDArray[np.floating]
     depth: npt.NDArray[np.floating]
 

@@ -29,3 +29,72 @@ $(cat "$DIR/want.$i")"
     i=$((i + 1))
 done
 echo "ok   $count examples of docs/mesh-files.md print what the page shows"
+
+# ---- README.md: every fenced block runs as written ------------------------------------------
+# Each block is cut out of the README as it stands. The C blocks are one program, app.c, in
+# order; it is built by the README's own link block (an install into a temporary prefix, then
+# pkg-config) and run. The shell blocks run with `sh -e` in a folder laid out as the
+# repository's (build/ the build under test, docs/examples/ copied, app.c), so each command's
+# status must be 0. Not run here: the Python blocks and the Python install block (run by
+# python/tests/test_readme.py, which needs the Python package), and the block of the two
+# commands scripts/bench.sh and scripts/test.sh (this test is part of the second; the scripts
+# must exist and be executable).
+README="$HERE/../../README.md"
+REPO=$(cd "$HERE/../.." && pwd)
+BUILD=$(cd "$(dirname "$TTD")/.." && pwd)
+W="$DIR/readme"
+mkdir -p "$W/blocks" "$W/work/docs"
+awk -v dir="$W/blocks" '
+    /^```/ { if (!inblock) { inblock = 1; n++; lang = substr($0, 4); if (lang == "") lang = "sh"
+                             file = sprintf("%s/%02d.%s", dir, n, lang); printf "" > file }
+             else { inblock = 0; close(file) }
+             next }
+    inblock { print >> file }
+    END { if (inblock) { print "unterminated block" > "/dev/stderr"; exit 1 } }' "$README" || fail "README.md: cannot cut its blocks"
+cp -R "$REPO/docs/examples" "$W/work/docs/"
+ln -s "$BUILD" "$W/work/build"
+cat "$W"/blocks/*.c > "$W/work/app.c"
+[ -s "$W/work/app.c" ] || fail "README.md: no C block"
+ran=0; deferred=0
+for b in "$W"/blocks/*; do
+    case $b in
+        *.c) continue ;;
+        *.python) deferred=$((deferred + 1)); continue ;;
+        *.sh) ;;
+        *) fail "README.md: block $(basename "$b") in an unknown language" ;;
+    esac
+    if grep -q '^scripts/bench.sh' "$b"; then
+        for s in $(awk '{ print $1 }' "$b"); do [ -x "$REPO/$s" ] || fail "README.md names $s, which is not an executable script"; done
+        continue
+    fi
+    if grep -q 'python3 -m venv' "$b"; then deferred=$((deferred + 1)); continue; fi
+    # The link block as written needs pkg-config, and a plain program cannot link a sanitized
+    # library (scripts/test-sanitize.sh leaves ttd.install out for that reason): then app.c is
+    # built against the build's archive, with the sanitizers where the build has them.
+    san=""
+    grep -q '^TTD_SANITIZE:BOOL=ON' "$BUILD/CMakeCache.txt" 2> /dev/null && san="-fsanitize=address,undefined"
+    if grep -q 'pkg-config' "$b" && { [ -n "$san" ] || ! command -v pkg-config > /dev/null 2>&1; }; then
+        why="pkg-config not installed (apt-get install pkg-config)"
+        [ -n "$san" ] && why="a sanitizer build (a plain program cannot link its libttd.so)"
+        echo "skip README.md block $(basename "$b"): $why; app.c built against the archive instead"
+        # shellcheck disable=SC2086 # no flags or one
+        cc $san "$W/work/app.c" -I"$REPO/include" "$(find "$BUILD" -name libttd.a | head -n 1)" -lm -lpthread \
+            -o "$W/work/app" || fail "README.md: app.c does not build"
+        "$W/work/app" > "$W/out" || fail "README.md: app.c: status $?"
+        cp "$W/out" "$W/app.out"
+        ran=$((ran + 1)); continue
+    fi
+    (cd "$W/work" && sh -e "$b") > "$W/out" 2> "$W/err" || fail "README.md block:
+$(cat "$b")
+exited with status $?: $(cat "$W/err")"
+    grep -q 'pkg-config' "$b" && cp "$W/out" "$W/app.out"
+    ran=$((ran + 1))
+done
+[ "$ran" -ge 4 ] && [ "$deferred" -ge 2 ] || fail "README.md: ran $ran shell blocks and left $deferred to Python: fewer than expected"
+# app.c printed what its blocks compute: 2 for the pair, 2 and 1 for the batch, the meshes
+# crossing (distance 0), the scene's manifold.
+[ -f "$W/app.out" ] || fail "README.md: app.c was not run"
+grep -q '^2 between (0 0 0) and (0 0 2)$' "$W/app.out" && grep -q '^batch: 2 1$' "$W/app.out" &&
+    grep -q '^meshes: distance 0, [1-9][0-9]* contact pairs$' "$W/app.out" && grep -q '^scene: [1-9][0-9]* manifold points$' "$W/app.out" ||
+    fail "README.md: app.c printed $(cat "$W/app.out")"
+echo "ok   README.md: its C program built and run, $ran shell blocks run, $deferred Python blocks left to python/tests/test_readme.py"

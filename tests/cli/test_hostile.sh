@@ -76,20 +76,35 @@ want_err "mbnonl.txt:2: " megabyte_last_line
 run megabyte_comment 0 "$DIR/mbcomment.txt"; want_out 2 megabyte_comment
 pass megabyte_lines
 
-# The line limit (4096 bytes without the newline): at the limit computed, one more byte refused.
+# The line limit (4096 bytes without the newline): at the limit computed, one more byte that is
+# not a blank refused.
 pad=$(awk -v n=$((4096 - ${#GOOD})) 'BEGIN { s = ""; for (i = 0; i < n; i++) s = s " "; printf "%s", s }')
 printf '%s%s\n' "$GOOD" "$pad" > "$DIR/limit.txt"
 [ "$(head -n 1 "$DIR/limit.txt" | wc -c)" -eq 4097 ] || fail "limit: test line is not 4096 bytes"
 run line_limit 0 "$DIR/limit.txt"; want_out 2 line_limit
-printf '%s%s \n%s\n' "$GOOD" "$pad" "$GOOD" > "$DIR/limit1.txt"
+printf '%s%s7\n%s\n' "$GOOD" "$pad" "$GOOD" > "$DIR/limit1.txt"
 run line_limit_plus_one 1 "$DIR/limit1.txt"; want_out "$(printf 'nan\n2')" line_limit_plus_one
 want_err "limit1.txt:1: line longer than 4096" line_limit_plus_one
 # A byte-order mark does not count towards the first line's limit.
 printf '\357\273\277%s%s\n' "$GOOD" "$pad" > "$DIR/limitbom.txt"
 run line_limit_bom 0 "$DIR/limitbom.txt"; want_out 2 line_limit_bom
-printf '\357\273\277%s%s \n' "$GOOD" "$pad" > "$DIR/limitbom1.txt"
+printf '\357\273\277%s%s7\n' "$GOOD" "$pad" > "$DIR/limitbom1.txt"
 run line_limit_bom_plus_one 1 "$DIR/limitbom1.txt"; want_err "limitbom1.txt:1: line longer than 4096" line_limit_bom_plus_one
 pass line_limit
+
+# Blanks beyond the limit are not data: a pair followed by a megabyte of blanks (spaces, tabs,
+# CR, VT, FF; with and without its newline, after a byte-order mark) and a line of blanks alone
+# are read as if the blanks were not there. One byte that is not a blank after them is refused.
+blanks() { head -c 1048576 /dev/zero | tr '\0' ' '; printf '\t\r\v\f \t'; }
+{ printf '%s' "$GOOD"; blanks; printf '\n'; blanks; printf '\n%s' "$GOOD"; blanks; } > "$DIR/blanks.txt"
+run trailing_blanks 0 "$DIR/blanks.txt"; want_out "$(printf '2\n2')" trailing_blanks
+[ -s "$DIR/err" ] && fail "trailing_blanks: $(head -c 300 "$DIR/err")"
+{ printf '\357\273\277%s' "$GOOD"; blanks; printf '\n'; } > "$DIR/blanksbom.txt"
+run trailing_blanks_bom 0 "$DIR/blanksbom.txt"; want_out 2 trailing_blanks_bom
+{ printf '%s' "$GOOD"; blanks; printf '7\n%s\n' "$GOOD"; } > "$DIR/blanks7.txt"
+run trailing_blanks_then_data 1 "$DIR/blanks7.txt"; want_out "$(printf 'nan\n2')" trailing_blanks_then_data
+want_err "blanks7.txt:1: line longer than 4096" trailing_blanks_then_data
+pass trailing_blanks
 
 # NUL bytes only (one long line), NUL at the start of a line, NUL inside a comment.
 head -c 100000 /dev/zero > "$DIR/nul.bin"

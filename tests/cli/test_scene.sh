@@ -13,14 +13,19 @@
 #   - manifold: the reduction done here in awk on the mesh contacts (the deepest, then the
 #     farthest from those kept; midpoints; normals (q - p) / |q - p|, or the face normal turned
 #     from i's triangle's centroid towards j's where d = 0), then sorted by triangles;
+#   - filter and exclude statements: every query equal to the unfiltered scene's lines less the
+#     body pairs that the group/mask rule (computed here in awk) or an exclusion removes; body
+#     names (referred to by name or number; --names prints them for i and j);
 #   - --count; --margin on distance as a bound; --max-points; --motion over 3 steps equal to a
-#     scene file per step; --precision float on a scene whose world coordinates are exact in
+#     scene file per step, with and without 'step' lines (their counts checked); blanks past the
+#     4096-byte line limit; --precision float on a scene whose world coordinates are exact in
 #     float (against `ttd mesh --precision float`); --threads 1, 2, 0 and every instruction set
 #     identical; 16-number poses; --orthonormalize; standard input; an empty scene;
 #   - every error path: the scene file's (unknown statement, missing fields, unknown and duplicate
-#     mesh names, bad numbers, poses that are not rotations, unreadable and malformed mesh files
-#     with the reader's message, coordinates beyond the range), the motion file's (wrong count
-#     of numbers, bad rotation, a trailing partial step), the options'; FILE:LINE in the message,
+#     mesh and body names, bad numbers, poses that are not rotations, unreadable and malformed mesh
+#     files with the reader's message, coordinates beyond the range, bad filter and exclude
+#     lines), the motion file's (wrong count of numbers, bad rotation, a trailing partial step, a
+#     step whose pose count is not the bodies', misnumbered or mixed 'step' lines), the options'; FILE:LINE in the message,
 #     a non-zero status, nothing on standard output.
 # Only POSIX sh and awk. Usage: sh test_scene.sh path/to/ttd
 set -u
@@ -329,6 +334,72 @@ run 0 scene distance "$DIR/scene2.txt" --margin 0.05
 [ "$(cat "$DIR/out")" = "inf -1 -1 -1 -1 nan nan nan nan nan nan" ] || fail "distance beyond the bound: $(cat "$DIR/out")"
 pass "distance: the smallest contact over every pair (also the ttd mesh distance minimum), ties by (i, j, ia, ib); --margin as an upper bound"
 
+# ---- filter and exclude statements, body names ------------------------------------------------
+# The same six bodies, the cube 0 named floor and the wedge 2 named lid; the cube 0 and the
+# crossing cube 3 in group 2 seeing group 1 only (so not each other, as a bin's walls), the
+# touching wedge 5 in group 4 (which 0's mask leaves out), 0 and 2 excluded; rules referred to by
+# name and by number. The same rules with numbers only, for the reference below.
+NAMED=$(echo "$BODIES" | sed '1s/$/  name floor/; 3s/$/ name lid   # the wedge/')
+{ echo "$SCENE_HEAD"; echo "$NAMED" | sed 's/^/body /'
+  printf 'filter floor 2 0x1\nfilter 3 2 1   # the crossing cube\nfilter 5 4 0xFFFFFFFF\nexclude lid floor\n'; } > "$DIR/filtered.txt"
+printf 'filter 0 2 1\nfilter 3 2 1\nfilter 5 4 4294967295\nexclude 0 2\n' > "$DIR/rules.txt"
+# eligible COL < LINES: the lines whose bodies i = $COL, j = $(COL + 1) are a pair under rules.txt:
+# (group_i & mask_j) != 0, (group_j & mask_i) != 0 (each body group 1, mask all ones unless a
+# rule says otherwise), and not excluded.
+eligible() {
+    awk -v c="$1" -v rules="$DIR/rules.txt" '
+    function band(a, b,    r, p) { r = 0; p = 1
+        while (a > 0 && b > 0) { if (a % 2 == 1 && b % 2 == 1) r += p; a = int(a / 2); b = int(b / 2); p *= 2 }
+        return r }
+    function g(i) { return (i in G) ? G[i] : 1 }
+    function m(i) { return (i in M) ? M[i] : 4294967295 }
+    BEGIN { while ((getline l < rules) > 0) { split(l, f, " ")
+        if (f[1] == "filter") { G[f[2]] = f[3]; M[f[2]] = f[4] } else { X[f[2] " " f[3]] = 1; X[f[3] " " f[2]] = 1 } } }
+    { i = $c; j = $(c + 1) }
+    band(g(i), m(j)) != 0 && band(g(j), m(i)) != 0 && !((i " " j) in X)'
+}
+for q in "contacts --margin 0.35" "collide --margin 0.35" "manifold --margin 0.35" "manifold --margin 0.15 --max-points 0" \
+         "contacts --margin 0.35 --precision float"; do
+    # shellcheck disable=SC2086
+    "$TTD" scene $q "$DIR/scene.txt" | eligible 1 > "$DIR/want" || fail "$q on the unfiltered scene"
+    # shellcheck disable=SC2086
+    run 0 scene $q "$DIR/filtered.txt"
+    same "$DIR/out" "$DIR/want" "$q with filters and an exclusion"
+done
+cut -d' ' -f1,2 "$DIR/out" | uniq | tr '\n' , > "$DIR/pairs"
+[ "$(cat "$DIR/pairs")" = "0 1," ] || fail "filtered pairs at 0.35 (unfiltered: 0 1, 0 2, 0 3, 0 5): $(cat "$DIR/pairs")"
+eligible 1 < "$DIR/all" | awk 'NR == 1 || $5 + 0 < m + 0 { m = $5; line = $0 } END { split(line, f, " ")
+     print f[5], f[1], f[2], f[3], f[4], f[6], f[7], f[8], f[9], f[10], f[11] }' > "$DIR/want"
+run 0 scene distance "$DIR/filtered.txt"
+same "$DIR/out" "$DIR/want" "distance with filters and an exclusion"
+[ "$(cut -d' ' -f2,3 "$DIR/out")" != "0 3" ] || fail "distance: the filtered pair (0, 3)"
+# --names: the same lines with floor and lid for 0 and 2; unnamed bodies keep their numbers.
+for q in "contacts --margin 20" "manifold --margin 0.35" "distance"; do
+    col=1; case $q in distance) col=2 ;; esac
+    # shellcheck disable=SC2086
+    "$TTD" scene $q "$DIR/filtered.txt" | awk -v c=$col '{ for (k = c; k <= c + 1; k++) $k = $k == 0 ? "floor" : $k == 2 ? "lid" : $k } 1' > "$DIR/want"
+    grep -q "floor" "$DIR/want" || fail "--names $q: the reference names nothing"
+    # shellcheck disable=SC2086
+    run 0 scene $q "$DIR/filtered.txt" --names
+    same "$DIR/out" "$DIR/want" "$q --names"
+done
+# A bin as a user writes it: four static walls in group 2 with mask 1 (they never pair with each
+# other), a ball in group 1 among them, touching each; the walls would otherwise pair with their
+# neighbours where they touch.
+{ echo "mesh cube cube.obj"
+  echo "body cube 1 0 0 -1  0 1 0 0  0 0 1 0  name west";  echo "body cube 1 0 0 1  0 1 0 0  0 0 1 0  name east"
+  echo "body cube 1 0 0 0  0 1 0 -1  0 0 1 0  name south"; echo "body cube 1 0 0 0  0 1 0 1  0 0 1 0  name north"
+  echo "body cube 1 0 0 0  0 1 0 0  0 0 1 0  name ball"
+  for w in west east south north; do echo "filter $w 2 1"; done; } > "$DIR/bin.txt"
+sed '/^filter/d' "$DIR/bin.txt" > "$DIR/bin0.txt"
+run 0 scene collide "$DIR/bin0.txt" --names
+[ "$(cat "$DIR/out" | cut -d' ' -f1,2 | tr '\n' ,)" = "west south,west north,west ball,east south,east north,east ball,south ball,north ball," ] ||
+    fail "the unfiltered bin: $(cat "$DIR/out" | tr '\n' ,)"
+run 0 scene collide "$DIR/bin.txt" --names
+[ "$(cat "$DIR/out" | cut -d' ' -f1,2 | tr '\n' ,)" = "west ball,east ball,south ball,north ball," ] ||
+    fail "the filtered bin: $(cat "$DIR/out" | tr '\n' ,)"
+pass "filter and exclude statements: every query equals the unfiltered scene's less the pairs the rules remove; names by reference and --names"
+
 # ---- --motion: 3 steps, each equal to a scene file at those poses ----------------------------
 STEP0=$BODIES
 STEP1=$(echo "$BODIES" | sed '2s/.*/tet    0.6 0 0.8 1.05  0 1 0 0.25  -0.8 0 0.6 0.3/;5s/.*/tet    1 0 0 1.5  0 1 0 1.5  0 0 1 1/')
@@ -359,6 +430,28 @@ done
 printf '# nothing\n\n' > "$DIR/nomotion.txt"
 run 0 scene distance "$DIR/scene.txt" --motion "$DIR/nomotion.txt"; no_output "empty motion"
 pass "--motion: 3 steps equal to a scene file per step (collide, distance, contacts, manifold, --count); from standard input"
+
+# 'step' lines: the same motion opened step by step ('step' alone or with its index) reads the
+# same; blanks beyond the 4096-byte line limit are no error, in the scene file or the motion.
+blanks=$(awk 'BEGIN { s = ""; for (i = 0; i < 5000; i++) s = s " "; printf "%s\t", s }')
+{ echo "# three steps of $NB poses"; k=0
+  for s in "$STEP0" "$STEP1" "$STEP2"; do
+      if [ $k = 1 ]; then echo "step 1   # the second"; else echo "  step$blanks"; fi
+      echo "$s" | cut -c8- | sed "2s/\$/$blanks/"; k=$((k + 1)); done; } > "$DIR/motion_steps.txt"
+{ echo "$SCENE_HEAD$blanks"; echo "$BODIES" | sed "s/^/body /; 1s/\$/$blanks/"; echo "$blanks"; } > "$DIR/scene_blanks.txt"
+[ "$(head -n 1 "$DIR/motion_steps.txt" | wc -c)" -lt 4096 ] && [ "$(sed -n 2p "$DIR/motion_steps.txt" | wc -c)" -gt 5000 ] || fail "step lines: the test file"
+for q in "contacts --margin 0.05" "manifold --margin 0.05 --count" "distance"; do
+    # shellcheck disable=SC2086
+    "$TTD" scene $q "$DIR/scene.txt" --motion "$DIR/motion.txt" > "$DIR/want" || fail "$q"
+    # shellcheck disable=SC2086
+    run 0 scene $q "$DIR/scene_blanks.txt" --motion "$DIR/motion_steps.txt"
+    same "$DIR/out" "$DIR/want" "$q --motion with 'step' lines and trailing blanks"
+done
+"$TTD" scene contacts "$DIR/filtered.txt" --margin 0.35 --motion "$DIR/motion.txt" |
+    awk '{ $2 = $2 == 0 ? "floor" : $2 == 2 ? "lid" : $2; $3 = $3 == 2 ? "lid" : $3 } 1' > "$DIR/want"
+run 0 scene contacts "$DIR/filtered.txt" --margin 0.35 --motion "$DIR/motion.txt" --names
+same "$DIR/out" "$DIR/want" "--names with --motion"
+pass "--motion with 'step' lines ('step', 'step S'); blanks past the line limit in scene and motion files; --names"
 
 # ---- threads, instruction sets, poses of 16 numbers, --orthonormalize, standard input --------
 for q in "collide --margin 0.1" "distance" "contacts --margin 0.35" "manifold --margin 0.35 --max-points 3"; do
@@ -450,13 +543,13 @@ bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, 
     run 1 scene contacts "$DIR/bad.txt" --margin 1; no_output "$what"; err_has "$pat" "$what"
     err_has "bad.txt: [0-9]* bad lines\{0,1\}; nothing computed" "$what (summary)"
 }
-bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh or body)" "bodies cube $P0"
+bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh, body, filter or exclude)" "bodies cube $P0"
 bad_scene "unknown mesh" "bad.txt:7: body 1: unknown mesh 'cub' (a 'mesh NAME FILE' line must come first)" "body cube $P0" "body cub $P0"
 bad_scene "duplicate mesh" "bad.txt:6: mesh 'tet' is already defined" "mesh tet cube.obj"
 bad_scene "mesh without FILE" "bad.txt:6: expected 'mesh NAME FILE', found no FILE" "mesh foo  # a comment"
 bad_scene "mesh without NAME" "bad.txt:6: expected 'mesh NAME FILE', found no NAME" "mesh"
 bad_scene "mesh with more" "bad.txt:6: expected 'mesh NAME FILE', found more words" "mesh foo cube.obj extra"
-bad_scene "body without NAME" "bad.txt:6: expected 'body NAME'" "body"
+bad_scene "body without MESH" "bad.txt:6: expected 'body MESH'" "body"
 bad_scene "11 numbers" "bad.txt:6: body 0: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 11" "body cube 1 0 0 0 0 1 0 0 0 0 1"
 bad_scene "no numbers" "bad.txt:6: body 0: expected 12 numbers (\[R | t\], 3x4) or 16 (a 4x4 matrix), found 0" "body cube # none"
 bad_scene "17 numbers" "bad.txt:6: body 0: expected 12 or 16 numbers, found 17 or more" "body cube $P0 0 0 0 1 1"
@@ -471,6 +564,24 @@ bad_scene "malformed mesh file" "bad.txt:6: mesh 'x': .*broken.obj:3: " "mesh x 
 bad_scene "beyond the range" "bad.txt:6: body 0: a mesh coordinate (or one moved by a pose) beyond" "body cube 1 0 0 1e300  0 1 0 0  0 0 1 0"
 awk 'BEGIN { s = "body cube"; for (i = 0; i < 500; i++) s = s " 0.000000000"; print s }' > "$DIR/long.txt"
 bad_scene "overlong line" "bad.txt:6: line longer than 4096 bytes" "$(cat "$DIR/long.txt")"
+bad_scene "name without BODY" "bad.txt:6: body 0: expected 'name BODY' at the end of the line, found no BODY" "body cube $P0 name # none"
+bad_scene "name and more" "bad.txt:6: body 0: expected 'name BODY' at the end of the line, found more words" "body cube $P0 name a b"
+bad_scene "name with a digit" "bad.txt:6: body 0: the name '2a' starts with a digit" "body cube $P0 name 2a"
+bad_scene "duplicate name" "bad.txt:7: body 1: the name 'a' is body 0's already" "body cube $P0 name a" "body tet $P0 name a"
+bad_scene "name after 11 numbers" "bad.txt:6: body 0: expected 12 numbers .* found 11" "body cube 1 0 0 0 0 1 0 0 0 0 1 name a"
+bad_scene "filter without BODY" "bad.txt:7: expected 'filter BODY GROUP MASK', found no BODY" "body cube $P0" "filter"
+bad_scene "filter without MASK" "bad.txt:7: expected 'filter BODY GROUP MASK', found no MASK" "body cube $P0" "filter 0 1 # none"
+bad_scene "filter with more" "bad.txt:7: expected 'filter BODY GROUP MASK', found more words" "body cube $P0" "filter 0 1 2 3"
+bad_scene "filter before bodies" "bad.txt:6: filter: no body 0 (no body line comes before this one)" "filter 0 1 1" "body cube $P0"
+bad_scene "filter of a later body" "bad.txt:7: filter: no body 1 (the body lines above this one are 0 to 0)" "body cube $P0" "filter 1 1 1" "body cube $P0"
+bad_scene "filter of an unknown name" "bad.txt:7: filter: unknown body 'lid' (a body line naming it must come first)" "body cube $P0" "filter lid 1 1"
+bad_scene "filter of a bad reference" "bad.txt:7: filter: '0x' is neither a body number nor a name" "body cube $P0" "filter 0x 1 1"
+bad_scene "group beyond 32 bits" "bad.txt:7: filter: GROUP '0x100000000' is not a 32-bit number" "body cube $P0" "filter 0 0x100000000 1"
+bad_scene "negative mask" "bad.txt:7: filter: MASK '-1' is not a 32-bit number" "body cube $P0" "filter 0 1 -1"
+bad_scene "mask beyond 32 bits" "bad.txt:7: filter: MASK '4294967296' is not a 32-bit number" "body cube $P0" "filter 0 1 4294967296"
+bad_scene "exclude one body" "bad.txt:7: expected 'exclude BODY BODY', found one BODY" "body cube $P0" "exclude 0"
+bad_scene "exclude a body twice" "bad.txt:7: exclude: body 0 twice" "body cube $P0 name a" "exclude a 0"
+bad_scene "exclude an unknown body" "bad.txt:8: exclude: unknown body 'b'" "body cube $P0 name a" "body cube $P0" "exclude a b"
 # Every bad line is named, not only the first; a body of a mesh that failed is not named again.
 bad_scene "several" "bad.txt:9: body 2: field 1 is not a number" "mesh x nothere.obj" "body x $P0" "body cube $P0" "body cube y 0 0 0  0 1 0 0  0 0 1 0" "what"
 err_has "bad.txt:6: mesh 'x'" "several: the mesh"; err_has "bad.txt:10: unknown statement 'what'" "several: the last"
@@ -503,10 +614,27 @@ bad_motion "partial step" "badm.txt:8: step 1 is incomplete: 2 of 6 poses (one p
 { echo "$STEP0" | cut -c8-; echo "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 7"; } > "$DIR/badm.txt"
 bad_motion "17 numbers" "badm.txt:7: step 1, body 0: expected 12 or 16 numbers, found 17 or more"
 run 1 scene collide "$DIR/scene.txt" --motion "$DIR/nothere.txt"; no_output "missing motion"; err_has "nothere.txt: cannot open" "missing motion"
+# 'step' lines: a step of fewer or more poses than bodies (as a motion written for another scene
+# whose line count happens to be a multiple of this one's bodies), a misnumbered or malformed
+# 'step' line, one after poses without them.
+{ echo "$STEP0" | sed -n '1,3p' | cut -c8- | sed '1s/^/step\n/'; echo step; echo "$STEP0" | sed -n '1,3p' | cut -c8-
+  echo step; echo "$STEP0" | sed -n '1,3p' | cut -c8-; echo step; echo "$STEP0" | sed -n '1,3p' | cut -c8-; } > "$DIR/badm.txt"
+[ "$(grep -c '^[0-9-]' "$DIR/badm.txt")" = 12 ] || fail "step lines: the test file"
+bad_motion "a step of half the bodies" "badm.txt:1: step 0 has 3 poses where the scene has 6 bodies"
+err_has "badm.txt:13: step 3 has 3 poses" "the last short step"
+{ echo step; echo "$STEP0" | cut -c8-; echo "$STEP0" | sed -n 1p | cut -c8-; echo step; echo "$STEP1" | cut -c8-; } > "$DIR/badm.txt"
+bad_motion "a step of too many poses" "badm.txt:8: step 0: more poses than the scene's 6 bodies"
+{ echo step 0; echo "$STEP0" | cut -c8-; echo step 2; echo "$STEP1" | cut -c8-; } > "$DIR/badm.txt"
+bad_motion "a misnumbered step" "badm.txt:8: 'step 2' where step 1 comes"
+{ echo "step x"; echo "$STEP0" | cut -c8-; echo "step 1 2"; echo "$STEP1" | cut -c8-; } > "$DIR/badm.txt"
+bad_motion "a malformed step" "badm.txt:1: expected 'step' or 'step S' (S the step's index, from 0), found an index that is not a whole number"
+err_has "badm.txt:8: expected 'step' or 'step S' (S the step's index, from 0), found more words" "a step line with more words"
+{ echo "$STEP0" | cut -c8-; echo step; echo "$STEP1" | cut -c8-; } > "$DIR/badm.txt"
+bad_motion "a step line after unmarked poses" "badm.txt:7: a 'step' line, but the poses above it had none"
 echo "$P0" > "$DIR/badm.txt"
 run 1 scene collide "$DIR/empty.txt" --motion "$DIR/badm.txt"; no_output "motion of no bodies"
 err_has "badm.txt:1: a pose, but the scene has no bodies" "motion of no bodies"
-pass "errors: motion files (wrong count, not a rotation, beyond the range, a trailing partial step; FILE:LINE, exit 1)"
+pass "errors: motion files (wrong count, not a rotation, beyond the range, a trailing partial step, 'step' lines; FILE:LINE, exit 1)"
 
 # ---- errors: the command line (exit 2) ------------------------------------------------------
 for m in -1 nan inf abc '' 1e999; do
@@ -536,7 +664,7 @@ pass "errors: options and operands (exit 2)"
 # ---- help ----------------------------------------------------------------------------------
 run 0 scene --help
 for key in "scene collide SCENE" "scene distance SCENE" "scene contacts SCENE" "scene manifold SCENE" "mesh NAME FILE" \
-           "body NAME r00 r01 r02 t0" "i j ia ib" "d i j ia ib px py pz qx qy qz" "i j ia ib d px py pz qx qy qz" \
+           "body MESH r00 r01 r02 t0" "name BODY" "filter BODY GROUP MASK" "exclude BODY BODY" "--names" "'step S'" "i j ia ib" "d i j ia ib px py pz qx qy qz" "i j ia ib d px py pz qx qy qz" \
            "i j px py pz nx ny nz d depth" "inf -1 -1 -1 -1 nan nan nan nan nan nan" "default 0" "--max-points K" \
            "default 4" "--motion FILE" "--count" "--precision" "--isa" "--threads" "--orthonormalize" "Exit status"; do
     grep -q -e "$key" "$DIR/out" || fail "scene --help lacks '$key'"
