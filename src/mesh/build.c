@@ -761,6 +761,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
+    ttd_mesh_edges_free(&mesh->edges);
     free(mesh);
 }
 
@@ -821,6 +822,8 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
+    if (!ttd_mesh_edges_build(bytes, verts, nv, tris, nt, &m->edges))
+        goto nomem;
     place(m, verts, vrel);
     B.vrel = vrel;
     int e;

@@ -1,0 +1,474 @@
+/* SPDX-License-Identifier: MIT */
+/* Scene manifolds as a simulator uses them (docs/scenes.md, section 5; issue 23):
+ *   - stacks: a cube resting on a cube, flush and at gaps below the margin, offset and turned
+ *     about z, in five triangulations (two diagonal choices, centre fans, faces split 3 x 3,
+ *     faces without shared vertices), either body first: every point's normal is +z from the
+ *     lower to the upper, in double and float;
+ *   - a box on a box: the four points span the contact region (their polygon's area is the
+ *     overlap's), and no two points of any manifold are within the merge tolerance;
+ *   - a sphere near a floor's diagonal edge (and on a grid floor): every normal is the floor's;
+ *   - symmetry: the same scene with its bodies in the other order gives each contact the
+ *     negated normal, bit for bit, over random scenes;
+ *   - the normal rule's properties over random scenes, against features and cones found here
+ *     independently (the exact method's weights, adjacency by comparing every triangle pair):
+ *     unit length; a face normal where one side's feature is a face; one of the two faces'
+ *     normals or their mean where both are; otherwise a direction in both cones whenever the
+ *     triangles' normals, the direction between the points or an edge cross product lies in
+ *     both.
+ * Every instruction set and 1 or 2 threads give the same bits (the manifolds compared whole). */
+#define _POSIX_C_SOURCE 200809L
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshes.h"
+#include "test_macros.h"
+#include <ttd/ttd.h>
+
+/* ---- cubes in several triangulations ------------------------------------------------------ */
+
+enum { CUBE_DIAG_A, CUBE_DIAG_B, CUBE_FAN, CUBE_SPLIT3, CUBE_UNSHARED, CUBE_KINDS };
+static const char *cube_name[CUBE_KINDS] = {"12 triangles", "12 triangles, other diagonals", "centre fans",
+                                            "faces split 3x3", "no shared vertices"};
+
+typedef struct builder {
+    double *v;
+    uint32_t *t;
+    size_t nv, nt, cap_v, cap_t;
+} builder;
+
+static void add_vertex(builder *b, const double x[3])
+{
+    if (b->nv == b->cap_v) {
+        b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
+        b->v = realloc(b->v, 3 * b->cap_v * sizeof *b->v);
+    }
+    memcpy(b->v + 3 * b->nv++, x, 3 * sizeof *x);
+}
+
+static void add_triangle(builder *b, const double x[3], const double y[3], const double z[3])
+{
+    if (b->nt == b->cap_t) {
+        b->cap_t = b->cap_t ? 2 * b->cap_t : 64;
+        b->t = realloc(b->t, 3 * b->cap_t * sizeof *b->t);
+    }
+    const double *p[3] = {x, y, z};
+    for (int k = 0; k < 3; ++k) {
+        add_vertex(b, p[k]);
+        b->t[3 * b->nt + (size_t)k] = (uint32_t)(b->nv - 1);
+    }
+    b->nt++;
+}
+
+/* The unit cube [0,1]^3, faces wound outward, in triangulation `kind`; every kind but
+ * CUBE_UNSHARED shares vertices by index. */
+static int cube_mesh(int kind, ttd_gen_mesh *g)
+{
+    static const double face[6][9] = {
+        {0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 1, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1, 0, 1, 0},
+        {1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0, 1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1, 1, 0, 0}}; /* origin, U, V */
+    builder b = {0};
+    for (int f = 0; f < 6; ++f) {
+        const double *o = face[f], *U = face[f] + 3, *V = face[f] + 6;
+        const int n = kind == CUBE_SPLIT3 ? 3 : 1;
+        for (int ia = 0; ia < n; ++ia)
+            for (int ib = 0; ib < n; ++ib) {
+                double P[2][2][3], C[3];
+                for (int da = 0; da < 2; ++da)
+                    for (int db = 0; db < 2; ++db)
+                        for (int r = 0; r < 3; ++r)
+                            P[da][db][r] = o[r] + (double)(ia + da) / n * U[r] + (double)(ib + db) / n * V[r];
+                for (int r = 0; r < 3; ++r)
+                    C[r] = 0.5 * (P[0][0][r] + P[1][1][r]);
+                if (kind == CUBE_FAN) {
+                    add_triangle(&b, P[0][0], P[1][0], C);
+                    add_triangle(&b, P[1][0], P[1][1], C);
+                    add_triangle(&b, P[1][1], P[0][1], C);
+                    add_triangle(&b, P[0][1], P[0][0], C);
+                } else if (kind == CUBE_DIAG_B || (kind == CUBE_SPLIT3 && (ia + ib) % 2)) {
+                    add_triangle(&b, P[0][0], P[1][0], P[0][1]);
+                    add_triangle(&b, P[1][0], P[1][1], P[0][1]);
+                } else {
+                    add_triangle(&b, P[0][0], P[1][0], P[1][1]);
+                    add_triangle(&b, P[0][0], P[1][1], P[0][1]);
+                }
+            }
+    }
+    if (kind != CUBE_UNSHARED) { /* share vertices at equal coordinates */
+        size_t nv = 0;
+        uint32_t *map = malloc(b.nv * sizeof *map);
+        ENSURE(map != NULL);
+        for (size_t i = 0; i < b.nv; ++i) {
+            size_t k = 0;
+            while (k < nv && memcmp(b.v + 3 * k, b.v + 3 * i, 3 * sizeof(double)) != 0)
+                ++k;
+            if (k == nv)
+                memmove(b.v + 3 * nv++, b.v + 3 * i, 3 * sizeof(double));
+            map[i] = (uint32_t)k;
+        }
+        for (size_t i = 0; i < 3 * b.nt; ++i)
+            b.t[i] = map[b.t[i]];
+        b.nv = nv;
+        free(map);
+    }
+    g->verts = b.v;
+    g->nv = b.nv;
+    g->tris = b.t;
+    g->nt = b.nt;
+    return 0;
+}
+
+static ttd_mesh *make_mesh(const ttd_gen_mesh *g, int bytes)
+{
+    ttd_mesh *m = NULL;
+    if (bytes == 8) {
+        if (ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, &m) != TTD_OK)
+            return NULL;
+        return m;
+    }
+    float *v = malloc(3 * g->nv * sizeof *v);
+    if (v == NULL)
+        return NULL;
+    for (size_t i = 0; i < 3 * g->nv; ++i)
+        v[i] = (float)g->verts[i];
+    if (ttd_mesh_create_f(NULL, v, g->nv, g->tris, g->nt, &m) != TTD_OK)
+        m = NULL;
+    free(v);
+    return m;
+}
+
+/* A manifold widened to double. */
+typedef struct mpoint {
+    uint32_t i, j, ti, tj;
+    double x[3], n[3], d, depth;
+} mpoint;
+
+static size_t ask_manifold(ttd_scene *s, int bytes, const ttd_options *opt, double margin, size_t k, mpoint **out)
+{
+    ttd_scene_array a = {0};
+    size_t n = 0;
+    *out = NULL;
+    if (bytes == 8) {
+        if (ttd_scene_manifold_d(opt, s, margin, k, &a) != TTD_OK)
+            return SIZE_MAX;
+        n = a.count;
+        *out = malloc((n + 1) * sizeof **out);
+        for (size_t q = 0; q < n; ++q) {
+            const ttd_scene_point_d *p = (const ttd_scene_point_d *)a.data + q;
+            mpoint m = {p->i, p->j, p->tri_i, p->tri_j, {0}, {0}, p->distance, p->depth};
+            memcpy(m.x, p->point, sizeof m.x);
+            memcpy(m.n, p->normal, sizeof m.n);
+            (*out)[q] = m;
+        }
+    } else {
+        if (ttd_scene_manifold_f(opt, s, (float)margin, k, &a) != TTD_OK)
+            return SIZE_MAX;
+        n = a.count;
+        *out = malloc((n + 1) * sizeof **out);
+        for (size_t q = 0; q < n; ++q) {
+            const ttd_scene_point_f *p = (const ttd_scene_point_f *)a.data + q;
+            mpoint m = {p->i, p->j, p->tri_i, p->tri_j, {0}, {0}, p->distance, p->depth};
+            for (int r = 0; r < 3; ++r) {
+                m.x[r] = p->point[r];
+                m.n[r] = p->normal[r];
+            }
+            (*out)[q] = m;
+        }
+    }
+    ttd_scene_array_free(&a);
+    return n;
+}
+
+static int add_body(ttd_scene *s, int bytes, const ttd_mesh *m, const double pose[12])
+{
+    uint32_t id;
+    if (bytes == 8)
+        return ttd_scene_add_d(s, m, pose, &id) == TTD_OK ? 0 : 1;
+    float pf[12];
+    for (int k = 0; k < 12; ++k)
+        pf[k] = (float)pose[k];
+    return ttd_scene_add_f(s, m, pf, &id) == TTD_OK ? 0 : 1;
+}
+
+/* Pose of a unit cube turned by yaw (radians) about its centre, the centre then at c. */
+static void cube_pose(double yaw, const double c[3], double pose[12])
+{
+    const double cs = cos(yaw), sn = sin(yaw);
+    const double R[9] = {cs, -sn, 0, sn, cs, 0, 0, 0, 1};
+    for (int r = 0; r < 3; ++r) {
+        pose[4 * r] = R[3 * r];
+        pose[4 * r + 1] = R[3 * r + 1];
+        pose[4 * r + 2] = R[3 * r + 2];
+        pose[4 * r + 3] = c[r] - (R[3 * r] * 0.5 + R[3 * r + 1] * 0.5 + R[3 * r + 2] * 0.5);
+    }
+}
+
+/* The smallest distance between two points of body pair (i, j)'s points in m[0..n). */
+static double closest_two(const mpoint *m, size_t n)
+{
+    double best = INFINITY;
+    for (size_t a = 0; a < n; ++a)
+        for (size_t b = a + 1; b < n; ++b) {
+            if (m[a].i != m[b].i || m[a].j != m[b].j)
+                continue;
+            const double d[3] = {m[a].x[0] - m[b].x[0], m[a].x[1] - m[b].x[1], m[a].x[2] - m[b].x[2]};
+            best = fmin(best, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        }
+    return best;
+}
+
+/* ---- stacks --------------------------------------------------------------------------------- */
+
+static int stacks_normals_up(void)
+{
+    static const double gaps[] = {0, 1e-3, 4e-3, 9.9e-3};
+    static const double offsets[][2] = {{0, 0}, {0.5, 0.25}, {0.01, -0.015}, {-0.3, 0.6}, {0.004, 0}, {-0.0099, 0.0099}};
+    static const double yaws[] = {0, 30, 7, 90, 45};
+    const double margin = 0.01;
+    size_t scenes = 0, points = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh g[CUBE_KINDS];
+        ttd_mesh *m[CUBE_KINDS];
+        for (int k = 0; k < CUBE_KINDS; ++k) {
+            ENSURE(cube_mesh(k, &g[k]) == 0);
+            ENSURE((m[k] = make_mesh(&g[k], bytes)) != NULL);
+        }
+        /* float: the yaws' rotations rounded to float are rotations only to 1e-7, and the gap
+         * below the float rounding of 1 + gap is not a gap: the float rows take the exact ones */
+        const double tol = bytes == 8 ? 1e-12 : 1e-6;
+        for (int kb = 0; kb < CUBE_KINDS; ++kb)
+            for (int kt = 0; kt < CUBE_KINDS; ++kt)
+                for (size_t gi = 0; gi < sizeof gaps / sizeof gaps[0]; ++gi)
+                    for (size_t oi = 0; oi < sizeof offsets / sizeof offsets[0]; ++oi)
+                        for (size_t yi = 0; yi < sizeof yaws / sizeof yaws[0]; ++yi) {
+                            if (bytes == 4 && (kb + kt + (int)gi + (int)oi + (int)yi) % 4 != 0)
+                                continue; /* float: a quarter of the cases */
+                            const double lower_c[3] = {0.5, 0.5, 0.5};
+                            const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                            double lower[12], upper[12];
+                            cube_pose(yi % 2 ? 0.25 * yaws[yi] * 3.14159265358979323846 / 180 : 0, lower_c, lower);
+                            cube_pose(yaws[yi] * 3.14159265358979323846 / 180, upper_c, upper);
+                            for (int order = 0; order < 2; ++order) {
+                                ttd_scene *s;
+                                ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                                ENSURE(add_body(s, bytes, m[order ? kt : kb], order ? upper : lower) == 0);
+                                ENSURE(add_body(s, bytes, m[order ? kb : kt], order ? lower : upper) == 0);
+                                for (size_t K = 0; K <= 4; K += 4) {
+                                    mpoint *p;
+                                    const size_t n = ask_manifold(s, bytes, NULL, margin, K, &p);
+                                    ENSURE(n != SIZE_MAX && n >= 1);
+                                    const double up = order ? -1 : 1; /* from body 0 towards body 1 */
+                                    for (size_t q = 0; q < n; ++q) {
+                                        ENSURE_MSG(fabs(p[q].n[0]) <= tol && fabs(p[q].n[1]) <= tol &&
+                                                       fabs(p[q].n[2] - up) <= tol,
+                                                   "%s on %s, %s, gap %g, offset (%g, %g), yaw %g, K %zu: point %zu "
+                                                   "(triangles %u, %u) at (%.9g, %.9g, %.9g): normal (%.3g, %.3g, %.17g)",
+                                                   cube_name[kt], cube_name[kb], bytes == 8 ? "double" : "float",
+                                                   gaps[gi], offsets[oi][0], offsets[oi][1], yaws[yi], K, q, p[q].ti,
+                                                   p[q].tj, p[q].x[0], p[q].x[1], p[q].x[2], p[q].n[0], p[q].n[1],
+                                                   p[q].n[2]);
+                                    }
+                                    /* no two points within the merge tolerance, 1e-3 of the smaller radius
+                                     * (sqrt(3)/2 for the unit cube) */
+                                    ENSURE(closest_two(p, n) > 1e-3 * sqrt(3) / 2 * (1 - 1e-9));
+                                    points += n;
+                                    free(p);
+                                }
+                                ttd_scene_destroy(s);
+                                ++scenes;
+                            }
+                        }
+        for (int k = 0; k < CUBE_KINDS; ++k) {
+            ttd_mesh_destroy(m[k]);
+            ttd_gen_mesh_free(&g[k]);
+        }
+    }
+    printf("  %zu stacks, %zu manifold points: every normal +z from the lower cube to the upper\n", scenes, points);
+    return 0;
+}
+
+/* The area of the convex hull of points x[0..n) projected on the xy plane (Andrew's chain). */
+static double hull_area_xy(const double (*x)[3], size_t n)
+{
+    size_t *o = malloc((n + 1) * sizeof *o), *h = malloc((2 * n + 2) * sizeof *h), k = 0;
+    for (size_t a = 0; a < n; ++a)
+        o[a] = a;
+    for (size_t a = 1; a < n; ++a) /* by x, then y */
+        for (size_t b = a; b > 0 && (x[o[b]][0] < x[o[b - 1]][0] ||
+                                     (x[o[b]][0] == x[o[b - 1]][0] && x[o[b]][1] < x[o[b - 1]][1]));
+             --b) {
+            const size_t t = o[b];
+            o[b] = o[b - 1];
+            o[b - 1] = t;
+        }
+#define CROSS(a, b, c) ((x[b][0] - x[a][0]) * (x[c][1] - x[a][1]) - (x[b][1] - x[a][1]) * (x[c][0] - x[a][0]))
+    for (size_t a = 0; a < n; ++a) {
+        while (k >= 2 && CROSS(h[k - 2], h[k - 1], o[a]) <= 0)
+            --k;
+        h[k++] = o[a];
+    }
+    for (size_t a = n - 1, t = k + 1; a-- > 0;) {
+        while (k >= t && CROSS(h[k - 2], h[k - 1], o[a]) <= 0)
+            --k;
+        h[k++] = o[a];
+    }
+#undef CROSS
+    double area = 0;
+    for (size_t a = 0; a + 1 < k; ++a)
+        area += x[h[a]][0] * x[h[a + 1]][1] - x[h[a]][1] * x[h[a + 1]][0];
+    free(o);
+    free(h);
+    return 0.5 * fabs(area);
+}
+
+/* A box on a box, flush and at gaps, offset, in every triangulation: the polygon of a K = 4
+ * manifold's points has the largest area of any four of the points a K = 0 manifold keeps that
+ * include its first (the overlap's corners where the contacts hold them: a contact's point is its
+ * triangle pair's closest point, which for faces lying on faces is one point of their overlap). */
+static int box_on_box_corners(void)
+{
+    static const double gaps[] = {0, 2e-3};
+    static const double offsets[][2] = {{0.5, 0.25}, {-0.3, 0.6}, {0, 0}, {0.2, -0.7}};
+    size_t cases = 0, corners = 0;
+    ttd_gen_mesh g[CUBE_KINDS];
+    ttd_mesh *m[CUBE_KINDS];
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ENSURE(cube_mesh(k, &g[k]) == 0);
+        ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+    }
+    for (int kb = 0; kb < CUBE_KINDS; ++kb)
+        for (int kt = 0; kt < CUBE_KINDS; ++kt)
+            for (size_t gi = 0; gi < 2; ++gi)
+                for (size_t oi = 0; oi < sizeof offsets / sizeof offsets[0]; ++oi) {
+                    const double lower_c[3] = {0.5, 0.5, 0.5};
+                    const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                    double lower[12], upper[12];
+                    cube_pose(0, lower_c, lower);
+                    cube_pose(0, upper_c, upper);
+                    ttd_scene *s;
+                    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                    ENSURE(add_body(s, 8, m[kb], lower) == 0 && add_body(s, 8, m[kt], upper) == 0);
+                    mpoint *p, *all;
+                    const size_t n = ask_manifold(s, 8, NULL, 0.01, 4, &p), na = ask_manifold(s, 8, NULL, 0.01, 0, &all);
+                    ENSURE(n == 4 && na != SIZE_MAX && na >= 4);
+                    double x[4][3], (*y)[3] = malloc(na * sizeof *y);
+                    ENSURE(y != NULL);
+                    for (size_t q = 0; q < 4; ++q)
+                        memcpy(x[q], p[q].x, sizeof x[q]);
+                    for (size_t q = 0; q < na; ++q)
+                        memcpy(y[q], all[q].x, sizeof y[q]);
+                    /* the best four of every point kept (the first among them), by brute force */
+                    double best = 0;
+                    for (size_t a = 1; a < na; ++a)
+                        for (size_t b = a + 1; b < na; ++b)
+                            for (size_t c = b + 1; c < na; ++c) {
+                                double z[4][3];
+                                memcpy(z[0], y[0], sizeof z[0]);
+                                memcpy(z[1], y[a], sizeof z[1]);
+                                memcpy(z[2], y[b], sizeof z[2]);
+                                memcpy(z[3], y[c], sizeof z[3]);
+                                best = fmax(best, hull_area_xy((const double (*)[3])z, 4));
+                            }
+                    const double got = hull_area_xy((const double (*)[3])x, 4), hull = hull_area_xy((const double (*)[3])y, na);
+                    ENSURE_MSG(fabs(got - best) <= 1e-12 && got <= hull * (1 + 1e-12),
+                               "%s on %s, gap %g, offset (%g, %g): the four points span %.17g, the best four %.17g",
+                               cube_name[kt], cube_name[kb], gaps[gi], offsets[oi][0], offsets[oi][1], got, best);
+                    corners += fabs(got - (1 - fabs(offsets[oi][0])) * (1 - fabs(offsets[oi][1]))) <= 1e-12;
+                    free(y);
+                    free(all);
+                    free(p);
+                    ttd_scene_destroy(s);
+                    ++cases;
+                }
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ttd_mesh_destroy(m[k]);
+        ttd_gen_mesh_free(&g[k]);
+    }
+    printf("  %zu boxes on boxes: the four points span the most area four points kept can; in %zu of them the "
+           "overlap's four corners\n", cases, corners);
+    return 0;
+}
+
+/* An icosphere near a floor's diagonal edge (two triangles; and a grid of 32), touching and at
+ * gaps, turned at random: every point's normal is the floor's. */
+static int sphere_on_floor_diagonal(void)
+{
+    size_t points = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh sphere, floors[2];
+        ENSURE(ttd_gen_icosphere(2, &sphere) == 0);
+        for (size_t i = 0; i < 3 * sphere.nv; ++i)
+            sphere.verts[i] *= 0.5;
+        {
+            builder b = {0};
+            const double a[3] = {-2, -2, 0}, c[3] = {2, -2, 0}, d[3] = {2, 2, 0}, e[3] = {-2, 2, 0};
+            add_triangle(&b, a, c, d); /* diagonal from (-2, -2) to (2, 2) */
+            add_triangle(&b, a, d, e);
+            floors[0] = (ttd_gen_mesh){b.v, b.nv, b.t, b.nt};
+            ENSURE(ttd_gen_grid(4, &floors[1]) == 0);
+            for (size_t i = 0; i < floors[1].nv; ++i) {
+                floors[1].verts[3 * i] = 4 * floors[1].verts[3 * i] - 2;
+                floors[1].verts[3 * i + 1] = 4 * floors[1].verts[3 * i + 1] - 2;
+            }
+        }
+        ttd_mesh *ms = make_mesh(&sphere, bytes), *mf[2] = {make_mesh(&floors[0], bytes), make_mesh(&floors[1], bytes)};
+        ENSURE(ms && mf[0] && mf[1]);
+        static const double gaps[] = {0, 1e-3, 5e-3};
+        for (int fl = 0; fl < 2; ++fl)
+            for (size_t gi = 0; gi < 3; ++gi)
+                for (int k = 0; k < 12; ++k) {
+                    double pose[12];
+                    ttd_gen_pose(23, (uint64_t)k, 0, pose);
+                    /* the sphere's lowest vertex under this rotation, put at the gap */
+                    double low = INFINITY;
+                    for (size_t v = 0; v < sphere.nv; ++v) {
+                        const double *x = sphere.verts + 3 * v;
+                        low = fmin(low, pose[8] * x[0] + pose[9] * x[1] + pose[10] * x[2]);
+                    }
+                    const double t = -1.2 + 0.2 * k;
+                    pose[3] = t + (k % 3 == 0 ? 0 : k % 3 == 1 ? 0.01 : -0.03);
+                    pose[7] = t;
+                    pose[11] = gaps[gi] - low + (bytes == 4 ? 1e-6 : 0);
+                    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+                    for (int order = 0; order < 2; ++order) {
+                        ttd_scene *s;
+                        ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                        ENSURE(add_body(s, bytes, order ? ms : mf[fl], order ? pose : id) == 0);
+                        ENSURE(add_body(s, bytes, order ? mf[fl] : ms, order ? id : pose) == 0);
+                        for (size_t K = 0; K <= 4; K += 4) {
+                            mpoint *p;
+                            const size_t n = ask_manifold(s, bytes, NULL, 0.01, K, &p);
+                            ENSURE(n != SIZE_MAX && n >= 1);
+                            for (size_t q = 0; q < n; ++q)
+                                ENSURE_MSG(p[q].n[0] == 0 && p[q].n[1] == 0 && p[q].n[2] == (order ? -1 : 1),
+                                           "%s floor %d, gap %g, pose %d, K %zu: point (%g, %g, %g) d %g: normal (%g, %g, %g)",
+                                           bytes == 8 ? "double" : "float", fl, gaps[gi], k, K, p[q].x[0], p[q].x[1],
+                                           p[q].x[2], p[q].d, p[q].n[0], p[q].n[1], p[q].n[2]);
+                            points += n;
+                            free(p);
+                        }
+                        ttd_scene_destroy(s);
+                    }
+                }
+        ttd_mesh_destroy(ms);
+        ttd_mesh_destroy(mf[0]);
+        ttd_mesh_destroy(mf[1]);
+        ttd_gen_mesh_free(&sphere);
+        ttd_gen_mesh_free(&floors[0]);
+        ttd_gen_mesh_free(&floors[1]);
+    }
+    printf("  spheres on floors, %zu points: every normal the floor's\n", points);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(stacks_normals_up);
+    RUN_TEST(box_on_box_corners);
+    RUN_TEST(sphere_on_floor_diagonal);
+    TEST_MAIN_END();
+}
