@@ -351,25 +351,21 @@ static size_t smallest_at(const pairinfo *P, double d, uint32_t me)
  * to the farthest vertex, rounded up by 4 eps (src/mesh/build.c). */
 static double mesh_radius(const ttd_gen_mesh *g)
 {
-    double lo[3], hi[3], c[3], r2 = 0;
+    double lo[3], hi[3], c[3], r = 0;
     ttd_gen_mesh_bounds(g, lo, hi);
     for (int k = 0; k < 3; ++k)
         c[k] = 0.5 * lo[k] + 0.5 * hi[k];
     for (size_t v = 0; v < g->nv; ++v) {
-        double d2 = 0;
-        for (int k = 0; k < 3; ++k) {
-            const double d = g->verts[3 * v + (size_t)k] - c[k];
-            d2 += d * d;
-        }
-        r2 = d2 > r2 ? d2 : r2;
+        const double d[3] = {g->verts[3 * v] - c[0], g->verts[3 * v + 1] - c[1], g->verts[3 * v + 2] - c[2]};
+        const double h = hypot(hypot(d[0], d[1]), d[2]); /* no square underflows at tiny scales */
+        r = h > r ? h : r;
     }
-    return sqrt(r2) * (1 + 4 * DBL_EPSILON);
+    return r * (1 + 4 * DBL_EPSILON);
 }
 
 static double dist3(const double *a, const double *b)
 {
-    const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return hypot(hypot(a[0] - b[0], a[1] - b[1]), a[2] - b[2]);
 }
 
 static int check_against_brute(const world *W, const brute *B, const answers *A)
@@ -830,7 +826,8 @@ static int resting_cube_normals(void)
 static int scaled_scenes(void)
 {
     static const struct { int bytes; double scale, offset; } cases[] = {
-        {8, 1e-6, 0}, {8, 1e6, 0}, {8, 1, 1e6}, {8, 1e-6, 3e-4}, {4, 1e-3, 0}, {4, 1e3, 0}, {4, 1, 1e3}};
+        {8, 1e-6, 0}, {8, 1e6, 0}, {8, 1, 1e6}, {8, 1e-6, 3e-4}, {4, 1e-3, 0}, {4, 1e3, 0}, {4, 1, 1e3},
+        {8, 1e-163, 0}, {8, 1e70, 0}, {8, 1e-78, 0}, {8, 1e150, 0}, {8, 1e-300, 0}, {8, 1e-160, 1e-158}};
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         world_scale = cases[c].scale;
         world_offset = cases[c].offset;

@@ -290,6 +290,99 @@ static int stacks_normals_up(void)
     return 0;
 }
 
+/* Stacks at the ends of the double range (1e-300 .. 1e150; issue 23 found sideways normals at
+ * 1e70 and 1e-78, a touching pair lost at 1e-163 and squared distances underflowing near
+ * 1e-160): every normal +z, and as many points as the contacts at that scale merged (K = 0;
+ * at most 4 with K = 4). (Not the same points as at size 1: where faces lie on faces a
+ * contact's closest point is one of many, and which one follows the rounding.) */
+static int stacks_at_extreme_scales(void)
+{
+    static const double scales[] = {1e-300, 1e-163, 1e-160, 1e-78, 1e70, 1e150};
+    static const int kinds[][2] = {{CUBE_DIAG_A, CUBE_DIAG_B}, {CUBE_FAN, CUBE_SPLIT3}, {CUBE_DIAG_A, CUBE_DIAG_A}};
+    static const double gaps[] = {0, 4e-3};
+    static const double offsets[][2] = {{0.5, 0.25}, {0.01, -0.015}};
+    static const double yaws[] = {0, 30};
+    size_t cases = 0;
+    for (size_t ki = 0; ki < sizeof kinds / sizeof kinds[0]; ++ki)
+        for (size_t gi = 0; gi < 2; ++gi)
+            for (size_t oi = 0; oi < 2; ++oi)
+                for (size_t yi = 0; yi < 2; ++yi) {
+                    for (size_t sc = 0; sc <= sizeof scales / sizeof scales[0]; ++sc) {
+                        const double scale = sc == 0 ? 1 : scales[sc - 1];
+                        ttd_gen_mesh g[2];
+                        ttd_mesh *m[2];
+                        for (int k = 0; k < 2; ++k) {
+                            ENSURE(cube_mesh(kinds[ki][k], &g[k]) == 0);
+                            for (size_t i = 0; i < 3 * g[k].nv; ++i)
+                                g[k].verts[i] *= scale;
+                            ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+                        }
+                        const double lower_c[3] = {0.5, 0.5, 0.5};
+                        const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                        double lower[12], upper[12];
+                        cube_pose(0, lower_c, lower);
+                        cube_pose(yaws[yi] * 3.14159265358979323846 / 180, upper_c, upper);
+                        for (int r = 0; r < 3; ++r) { /* the poses about the scaled cubes */
+                            lower[4 * r + 3] *= scale;
+                            upper[4 * r + 3] *= scale;
+                        }
+                        ttd_scene *s;
+                        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                        ENSURE(add_body(s, 8, m[0], lower) == 0 && add_body(s, 8, m[1], upper) == 0);
+                        for (size_t K = 0; K <= 4; K += 4) {
+                            mpoint *p;
+                            const size_t n = ask_manifold(s, 8, NULL, 0.01 * scale, K, &p);
+                            ENSURE(n != SIZE_MAX && n >= 1);
+                            /* the contacts at this scale, merged as docs/scenes.md says (in depth order,
+                             * within 1e-3 of the cube's radius sqrt(3)/2 of a point kept): K = 0 keeps
+                             * them all, K = 4 min(4, them) */
+                            size_t want = 0;
+                            {
+                                ttd_scene_array ca = {0};
+                                ENSURE(ttd_scene_contacts_d(NULL, s, 0.01 * scale, &ca) == TTD_OK);
+                                ttd_scene_contact_d *c = ca.data;
+                                for (size_t a = 1; a < ca.count; ++a) /* by distance, stable on triangles */
+                                    for (size_t b = a; b > 0 && c[b].distance < c[b - 1].distance; --b) {
+                                        const ttd_scene_contact_d t = c[b];
+                                        c[b] = c[b - 1];
+                                        c[b - 1] = t;
+                                    }
+                                double (*kept)[3] = malloc((ca.count + 1) * sizeof *kept);
+                                ENSURE(kept != NULL);
+                                for (size_t a = 0; a < ca.count; ++a) {
+                                    double x[3];
+                                    int near = 0;
+                                    for (int r = 0; r < 3; ++r)
+                                        x[r] = 0.5 * c[a].p[r] + 0.5 * c[a].q[r];
+                                    for (size_t b = 0; b < want && !near; ++b)
+                                        near = hypot(hypot(x[0] - kept[b][0], x[1] - kept[b][1]), x[2] - kept[b][2]) <=
+                                               1e-3 * sqrt(3) / 2 * scale;
+                                    if (!near)
+                                        memcpy(kept[want++], x, sizeof x);
+                                }
+                                free(kept);
+                                ttd_scene_array_free(&ca);
+                            }
+                            ENSURE_MSG(n == (K == 0 || want < K ? want : K), "scale %g: %zu points, %zu kept", scale, n, want);
+                            for (size_t q = 0; q < n; ++q)
+                                ENSURE_MSG(fabs(p[q].n[0]) <= 1e-12 && fabs(p[q].n[1]) <= 1e-12 && fabs(p[q].n[2] - 1) <= 1e-12,
+                                           "scale %g, kinds %d on %d, gap %g, offset (%g, %g), yaw %g, K %zu: point %zu normal "
+                                           "(%g, %g, %.17g)", scale, kinds[ki][1], kinds[ki][0], gaps[gi], offsets[oi][0],
+                                           offsets[oi][1], yaws[yi], K, q, p[q].n[0], p[q].n[1], p[q].n[2]);
+                            free(p);
+                        }
+                        ttd_scene_destroy(s);
+                        for (int k = 0; k < 2; ++k) {
+                            ttd_mesh_destroy(m[k]);
+                            ttd_gen_mesh_free(&g[k]);
+                        }
+                        ++cases;
+                    }
+                }
+    printf("  %zu stacks at scales 1e-300 to 1e150 and 1: every normal +z, the merged contacts' count\n", cases);
+    return 0;
+}
+
 /* The area of the convex hull of points x[0..n) projected on the xy plane (Andrew's chain). */
 static double hull_area_xy(const double (*x)[3], size_t n)
 {
@@ -468,6 +561,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(stacks_normals_up);
+    RUN_TEST(stacks_at_extreme_scales);
     RUN_TEST(box_on_box_corners);
     RUN_TEST(sphere_on_floor_diagonal);
     TEST_MAIN_END();
