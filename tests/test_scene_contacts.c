@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "meshes.h"
+#include "pairs.h"
 #include "test_macros.h"
 #include <ttd/ttd.h>
 
@@ -557,6 +558,219 @@ static int sphere_on_floor_diagonal(void)
     return 0;
 }
 
+/* ---- the rule's properties over random scenes --------------------------------------------- */
+
+/* The unit normal of a world triangle (double), 0 when it has none to speak of. */
+static int tri_normal(const double x[9], double n[3])
+{
+    const double e1[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, e2[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]), l2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+    if (!(l > 1e-6 * l1 * l2))
+        return 0;
+    for (int r = 0; r < 3; ++r)
+        n[r] /= l;
+    return 1;
+}
+
+/* Whether x lies inside triangle t (9 coordinates) by more than 1e-6 of it in every weight. */
+static int strictly_inside(const double t[9], const double x[3])
+{
+    const double e1[3] = {t[3] - t[0], t[4] - t[1], t[5] - t[2]}, e2[3] = {t[6] - t[0], t[7] - t[1], t[8] - t[2]};
+    const double d[3] = {x[0] - t[0], x[1] - t[1], x[2] - t[2]};
+    const double a = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+    const double c = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+    const double p = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2], q = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+    const double den = a * c - b * b;
+    if (!(den > 1e-12 * a * c))
+        return 0;
+    const double v = (c * p - b * q) / den, w = (a * q - b * p) / den;
+    return v > 1e-6 && w > 1e-6 && 1 - v - w > 1e-6;
+}
+
+/* Random scenes of icospheres, cubes in two triangulations and a torus placed at gaps and
+ * overlaps near the margin, both body orders, K = 0, double and float:
+ *   - every normal unit;
+ *   - swapping the bodies negates it: bit for bit wherever the exact method gives the swapped
+ *     triangle pair the same points (swapped), to 1e-9 where its points differ by a rounding;
+ *   - where a contact's point lies well inside its triangle and the points differ (that face
+ *     speaks for it), the normal is that face's normal, the other triangle's (negated) or their
+ *     mean: the face rule, whichever side's face it is. */
+static int random_scenes_rule(void)
+{
+    size_t points = 0, matched = 0, near_matched = 0, faces = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh g[5];
+        ENSURE(ttd_gen_icosphere(1, &g[0]) == 0 && ttd_gen_icosphere(2, &g[1]) == 0);
+        ENSURE(cube_mesh(CUBE_DIAG_A, &g[2]) == 0 && cube_mesh(CUBE_FAN, &g[3]) == 0);
+        ENSURE(ttd_gen_torus(0.6, 0.25, 16, 8, &g[4]) == 0);
+        for (int k = 0; k < 5; ++k)
+            ENSURE(ttd_gen_normalize(&g[k]) == 0);
+        ttd_mesh *m[5];
+        for (int k = 0; k < 5; ++k)
+            ENSURE((m[k] = make_mesh(&g[k], bytes)) != NULL);
+        const int scenes = bytes == 8 ? 40 : 10;
+        for (int sc = 0; sc < scenes; ++sc) {
+            enum { NB = 6 };
+            int mesh_of[NB];
+            double pose[NB][12];
+            ttd_gen_rng rng = ttd_gen_rng_make(1000 + (uint64_t)sc, (uint64_t)bytes);
+            for (int b = 0; b < NB; ++b) {
+                mesh_of[b] = (int)(ttd_gen_rng_u64(&rng) % 5);
+                if (b == 0) {
+                    ttd_gen_pose(77 + (uint64_t)sc, 0, 0, pose[0]);
+                    continue;
+                }
+                const int near = (int)(ttd_gen_rng_u64(&rng) % (uint64_t)b);
+                const double gap = -0.01 + 0.025 * ttd_gen_rng_uniform(&rng);
+                double rel[12];
+                ENSURE(ttd_gen_pose_gap(&g[mesh_of[near]], &g[mesh_of[b]], 91 + (uint64_t)sc, (uint64_t)b, NULL, gap, rel) == 0);
+                for (int r = 0; r < 3; ++r) /* pose[b] = pose[near] . rel */
+                    for (int c = 0; c < 4; ++c) {
+                        double v = c == 3 ? pose[near][4 * r + 3] : 0;
+                        for (int k = 0; k < 3; ++k)
+                            v += pose[near][4 * r + k] * rel[4 * k + c];
+                        pose[b][4 * r + c] = v;
+                    }
+            }
+            if (bytes == 4)
+                for (int b = 0; b < NB; ++b)
+                    for (int k = 0; k < 12; ++k)
+                        pose[b][k] = (double)(float)pose[b][k];
+            mpoint *got[2];
+            size_t n[2];
+            ttd_scene_array con[2] = {{0}, {0}};
+            for (int order = 0; order < 2; ++order) {
+                ttd_scene *s;
+                ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                for (int b = 0; b < NB; ++b) {
+                    const int id = order ? NB - 1 - b : b;
+                    ENSURE(add_body(s, bytes, m[mesh_of[id]], pose[id]) == 0);
+                }
+                n[order] = ask_manifold(s, bytes, NULL, 0.02, 0, &got[order]);
+                ENSURE(n[order] != SIZE_MAX);
+                ENSURE((bytes == 8 ? ttd_scene_contacts_d(NULL, s, 0.02, &con[order])
+                                   : ttd_scene_contacts_f(NULL, s, 0.02f, &con[order])) == TTD_OK);
+                ttd_scene_destroy(s);
+            }
+            for (size_t a = 0; a < n[0]; ++a) {
+                const mpoint *x = &got[0][a];
+                ENSURE_NEAR(x->n[0] * x->n[0] + x->n[1] * x->n[1] + x->n[2] * x->n[2], 1, 1e-6);
+                for (size_t b = 0; b < n[1]; ++b) {
+                    const mpoint *y = &got[1][b];
+                    if (y->i != NB - 1 - x->j || y->j != NB - 1 - x->i || y->ti != x->tj || y->tj != x->ti)
+                        continue;
+                    /* the same points, swapped? (where a pair's closest points are not unique, as
+                     * for parallel edges, the exact method may pick others, or the same ones to
+                     * the last bit or not, with the triangles swapped) */
+                    int same = 0;
+                    for (size_t c = 0; c < con[0].count && !same; ++c) {
+                        double p0[3], q0[3], p1[3], q1[3];
+                        uint32_t k0[4], k1[4];
+                        if (bytes == 8) {
+                            const ttd_scene_contact_d *c0 = (const ttd_scene_contact_d *)con[0].data + c;
+                            memcpy(k0, c0, sizeof k0);
+                            memcpy(p0, c0->p, sizeof p0);
+                            memcpy(q0, c0->q, sizeof q0);
+                        } else {
+                            const ttd_scene_contact_f *c0 = (const ttd_scene_contact_f *)con[0].data + c;
+                            memcpy(k0, c0, sizeof k0);
+                            for (int r = 0; r < 3; ++r)
+                                p0[r] = c0->p[r], q0[r] = c0->q[r];
+                        }
+                        if (k0[0] != x->i || k0[1] != x->j || k0[2] != x->ti || k0[3] != x->tj)
+                            continue;
+                        for (size_t e = 0; e < con[1].count && !same; ++e) {
+                            if (bytes == 8) {
+                                const ttd_scene_contact_d *c1 = (const ttd_scene_contact_d *)con[1].data + e;
+                                memcpy(k1, c1, sizeof k1);
+                                memcpy(p1, c1->p, sizeof p1);
+                                memcpy(q1, c1->q, sizeof q1);
+                            } else {
+                                const ttd_scene_contact_f *c1 = (const ttd_scene_contact_f *)con[1].data + e;
+                                memcpy(k1, c1, sizeof k1);
+                                for (int r = 0; r < 3; ++r)
+                                    p1[r] = c1->p[r], q1[r] = c1->q[r];
+                            }
+                            if (k1[0] == y->i && k1[1] == y->j && k1[2] == y->ti && k1[3] == y->tj) {
+                                double off = 0;
+                                for (int r = 0; r < 3; ++r)
+                                    off = fmax(off, fmax(fabs(p0[r] - q1[r]), fabs(q0[r] - p1[r])));
+                                same = off == 0 ? 2 : off <= (bytes == 8 ? 1e-13 : 1e-6) ? 1 : -1;
+                            }
+                        }
+                    }
+                    if (same == 1) { /* points a rounding apart: normals too */
+                        const double tol = bytes == 8 ? 1e-9 : 1e-3;
+                        ENSURE_MSG(fabs(y->n[0] + x->n[0]) <= tol && fabs(y->n[1] + x->n[1]) <= tol && fabs(y->n[2] + x->n[2]) <= tol,
+                                   "%s scene %d, bodies (%u, %u) triangles (%u, %u): (%.17g, %.17g, %.17g) swapped "
+                                   "(%.17g, %.17g, %.17g)", bytes == 8 ? "double" : "float", sc, x->i, x->j, x->ti,
+                                   x->tj, x->n[0], x->n[1], x->n[2], y->n[0], y->n[1], y->n[2]);
+                        ++near_matched;
+                    } else if (same == 2) {
+                        ENSURE_MSG(y->n[0] == -x->n[0] && y->n[1] == -x->n[1] && y->n[2] == -x->n[2],
+                                   "%s scene %d, bodies (%u, %u) triangles (%u, %u): (%.17g, %.17g, %.17g) swapped "
+                                   "(%.17g, %.17g, %.17g)", bytes == 8 ? "double" : "float", sc, x->i, x->j, x->ti,
+                                   x->tj, x->n[0], x->n[1], x->n[2], y->n[0], y->n[1], y->n[2]);
+                        ++matched;
+                    }
+                    break;
+                }
+                /* the face rule: the contact's points from the contacts query (its own p and q) */
+                double ti[9], tj[9];
+                const ttd_gen_mesh *gi = &g[mesh_of[x->i]], *gj = &g[mesh_of[x->j]];
+                for (int k = 0; k < 3; ++k)
+                    for (int r = 0; r < 3; ++r) {
+                        const double *vi = gi->verts + 3 * gi->tris[3 * x->ti + (uint32_t)k];
+                        const double *vj = gj->verts + 3 * gj->tris[3 * x->tj + (uint32_t)k];
+                        const double *Pi = pose[x->i], *Pj = pose[x->j];
+                        ti[3 * k + r] = ((Pi[4 * r] * vi[0] + Pi[4 * r + 1] * vi[1]) + Pi[4 * r + 2] * vi[2]) + Pi[4 * r + 3];
+                        tj[3 * k + r] = ((Pj[4 * r] * vj[0] + Pj[4 * r + 1] * vj[1]) + Pj[4 * r + 2] * vj[2]) + Pj[4 * r + 3];
+                    }
+                double ni[3], nj[3], res[9];
+                if (x->d > 0 && tri_normal(ti, ni) && tri_normal(tj, nj)) {
+                    ttd_result_d r;
+                    ENSURE(ttd_distance_d(NULL, ti, tj, &r) == TTD_OK);
+                    if (strictly_inside(ti, r.p) || strictly_inside(tj, r.q)) {
+                        const double mean[3] = {ni[0] - nj[0], ni[1] - nj[1], ni[2] - nj[2]};
+                        const double ml = sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
+                        for (int r2 = 0; r2 < 3; ++r2) {
+                            res[r2] = ni[r2];
+                            res[3 + r2] = -nj[r2];
+                            res[6 + r2] = ml > 0 ? mean[r2] / ml : 0;
+                        }
+                        int ok = 0;
+                        const double tol = bytes == 8 ? 1e-9 : 1e-4;
+                        for (int c = 0; c < 3; ++c)
+                            ok |= fabs(x->n[0] - res[3 * c]) <= tol && fabs(x->n[1] - res[3 * c + 1]) <= tol &&
+                                  fabs(x->n[2] - res[3 * c + 2]) <= tol;
+                        ENSURE_MSG(ok, "%s scene %d, bodies (%u, %u) triangles (%u, %u), d %g: a point inside a face "
+                                   "but the normal (%.9g, %.9g, %.9g) is neither face's", bytes == 8 ? "double" : "float",
+                                   sc, x->i, x->j, x->ti, x->tj, x->d, x->n[0], x->n[1], x->n[2]);
+                        ++faces;
+                    }
+                }
+            }
+            points += n[0];
+            free(got[0]);
+            free(got[1]);
+            ttd_scene_array_free(&con[0]);
+            ttd_scene_array_free(&con[1]);
+        }
+        for (int k = 0; k < 5; ++k) {
+            ttd_mesh_destroy(m[k]);
+            ttd_gen_mesh_free(&g[k]);
+        }
+    }
+    ENSURE(matched * 5 >= points && (matched + near_matched) * 2 >= points && faces > 0);
+    printf("  random scenes: %zu points; %zu at the same points swapped (normals negated bit for bit), %zu at points a "
+           "rounding apart (negated to 1e-9); %zu inside a face\n", points, matched, near_matched, faces);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -564,5 +778,6 @@ int main(int argc, char **argv)
     RUN_TEST(stacks_at_extreme_scales);
     RUN_TEST(box_on_box_corners);
     RUN_TEST(sphere_on_floor_diagonal);
+    RUN_TEST(random_scenes_rule);
     TEST_MAIN_END();
 }
