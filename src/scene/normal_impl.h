@@ -60,6 +60,13 @@ typedef struct body_feature {
 /* a / |a| into out, formed at unit scale; 0 when a is 0. */
 static int unit3(const double a[3], double out[3])
 {
+    const double d = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (d > 0x1p-900 && d < 0x1p900) { /* no scaling needed: the same bits as with it (powers of two) */
+        const double len = sqrt(d);
+        for (int r = 0; r < 3; ++r)
+            out[r] = a[r] / len;
+        return 1;
+    }
     const double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
     if (!(m > 0) || !isfinite(m))
         return 0;
