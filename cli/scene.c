@@ -15,7 +15,8 @@
  *
  * Lines come out sorted by (i, j), then by the triangles (ia, ib): the library's order, sorted
  * again here so that the output is a documented function of the input (a manifold's points are
- * kept in the library, deepest first and then spread, and printed in triangle order). */
+ * kept in the library, deepest first and then spread, and printed in triangle order, then by
+ * point: a triangle pair may give several). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -80,13 +81,15 @@ static const char ttd_scene_usage_outputs[] =
     "                                            is within M (or the scene has fewer than two bodies)\n"
     "  contacts   i j ia ib d px py pz qx qy qz  every triangle pair within M\n"
     "  manifold   i j px py pz nx ny nz d depth  per body pair within M, at most K contact points:\n"
-    "                                            the midpoint of a triangle pair's closest points, the\n"
-    "                                            unit normal from body i towards body j, the pair's\n"
-    "                                            distance d and depth M - d; no two points within 1e-3\n"
+    "                                            the midpoint of a point of each body (a triangle pair's\n"
+    "                                            closest points, or a corner of flat contact: a vertex\n"
+    "                                            within M of the other body, a crossing of edges), the\n"
+    "                                            unit normal from body i towards body j, the two\n"
+    "                                            points' distance d and depth M - d; no two within 1e-3\n"
     "                                            of the smaller body's radius; the K kept are the\n"
     "                                            deepest, then spread by area; normals from the\n"
     "                                            bodies' faces and real edges (docs/scenes-cli.md;\n"
-    "                                            printed in triangle order)\n"
+    "                                            printed in triangle order, then by point)\n"
     "  i and j are body numbers; with --names, a named body's name.\n";
 
 static const char ttd_scene_usage_options[] =
@@ -907,7 +910,12 @@ static int ttd_scene_item_cmp(const void *x, const void *y)
         return u->j < v->j ? -1 : 1;
     if (u->ti != v->ti)
         return u->ti < v->ti ? -1 : 1;
-    return (u->tj > v->tj) - (u->tj < v->tj);
+    if (u->tj != v->tj)
+        return u->tj < v->tj ? -1 : 1;
+    for (int r = 0; r < 3; ++r) /* a manifold's corners: several points of one triangle pair */
+        if (u->p[r] != v->p[r])
+            return u->p[r] < v->p[r] ? -1 : 1;
+    return (u->d > v->d) - (u->d < v->d);
 }
 
 /* What the query loop reuses from step to step. */

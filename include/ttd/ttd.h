@@ -515,9 +515,9 @@ TTD_API ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene
 typedef struct ttd_scene_point_d {
     uint32_t i, j;         ///< the bodies, i < j
     uint32_t tri_i, tri_j; ///< the triangle pair it comes from
-    double point[3];       ///< world point: the midpoint of the pair's closest points
+    double point[3];       ///< world point: the midpoint of a point of each body (the pair's closest points, or a corner of flat contact)
     double normal[3];      ///< unit normal from body i towards body j, from the bodies' shapes (docs/scenes.md, 5a)
-    double distance;       ///< the pair's separation d (0 touching or crossing)
+    double distance;       ///< the exact distance d between those two points (0 touching or crossing)
     double depth;          ///< margin - d
 } ttd_scene_point_d;
 typedef struct ttd_scene_point_f {
@@ -530,10 +530,14 @@ typedef struct ttd_scene_point_f {
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
-/// merged (in depth order, a contact within 1e-3 of the smaller body's mesh radius of a point
-/// kept before it goes) and reduced to at most max_points points (0: all of them): the deepest,
-/// then spread over the contact region (the farthest, the largest triangle, the largest area
-/// added). Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
+/// and the corners of flat contact they add (each vertex of one body within the margin of the
+/// other, at its closest point; each two edges whose closest points lie inside both within the
+/// margin; vertices and edges inside flat faces left out: a box on a box gets the corners of the
+/// faces' overlap), merged (in depth order, a point within 1e-3 of the smaller body's mesh
+/// radius of a point kept before it goes) and reduced to at most max_points points (0: all of
+/// them): the deepest, then spread over the contact region (the farthest, the largest triangle,
+/// the largest area added). Every point is a real point of contact: a point of each body at
+/// their exact distance, within the margin. Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
 /// face of one body lies within the margin of the other, across edges only where both are real
 /// edges of their bodies, never outside the normal cones of the contact's features where they
 /// meet; the same for any triangulation of a flat face; negated when the bodies swap

@@ -93,9 +93,9 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"j", "uint32, shape (n,): the second body"},
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
-    {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
+    {"point", "shape (n, 3): the contact point in the world, the midpoint of a point of each body (the pair's closest points, or a corner of flat contact)"},
     {"normal", "shape (n, 3): unit normal from body i towards body j, from the bodies' shapes: a face's normal where a face of one body lies within the margin of the other, across two real edges, within the normal cones of the contact's features where they meet (docs/scenes.md, section 5a)"},
-    {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
+    {"distance", "shape (n,): the exact distance d between those two points (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
 };
@@ -984,15 +984,17 @@ static PyObject *ttd_py_scene_contacts(PyObject *obj, PyObject *args, PyObject *
 PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "manifold($self, margin, max_points=4, *, isa='auto', threads=0)\n--\n\n"
 "Contact manifolds, what a simulator consumes: for every eligible body pair with triangle\n"
-"pairs within margin (finite, >= 0), its contacts merged (in depth order, a contact within\n"
-"1e-3 of the smaller body's radius of a point kept goes) and at most max_points of them kept\n"
-"(0: all): the deepest, then the farthest from it, the largest triangle, the largest area\n"
-"added (a box on a box: its corners). A ttd.SceneManifold of parallel (n,) arrays\n"
-"i, j, tri_i, tri_j (uint32), point (n, 3) (the midpoint of the pair's closest points),\n"
+"pairs within margin (finite, >= 0), its contacts and the corners of flat contact they add\n"
+"(vertices within the margin of the other body, crossings of edges; a box on a box: the\n"
+"corners of the faces' overlap) merged (in depth order, a point within 1e-3 of the smaller\n"
+"body's radius of a point kept goes) and at most max_points of them kept (0: all): the\n"
+"deepest, then the farthest from it, the largest triangle, the largest area added. A\n"
+"ttd.SceneManifold of parallel (n,) arrays i, j, tri_i, tri_j (uint32), point (n, 3) (the\n"
+"midpoint of a point of each body, at their exact distance),\n"
 "normal (n, 3) (unit, from body i towards body j, from the bodies' shapes: a face's normal\n"
 "where a face of one body lies within the margin of the other, across two real edges, never\n"
 "outside the normal cones of the contact's features where they meet; the same for any\n"
-"triangulation of a flat face; docs/scenes.md, section 5a), distance (the pair's d) and\n"
+"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d) and\n"
 "depth (margin - d), grouped by body pair in (i, j) order. isa, threads: as in collide.");
 
 static PyObject *ttd_py_scene_manifold(PyObject *obj, PyObject *args, PyObject *kwargs)

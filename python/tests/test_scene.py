@@ -3,8 +3,8 @@
 eligible body pairs in the world frame (ttd.distance on each body's vertices moved exactly as
 include/ttd/ttd.h documents, ((r0 x + r1 y) + r2 z) + t per coordinate in the scene's dtype,
 body i's triangle first): equal bit for bit where the library promises it (distances, points,
-triangles; the manifolds' points drawn from the contacts merged as the library documents,
-re-done here in numpy); filters, exclusions, removals and
+triangles; the manifolds' points drawn from the contacts and their corners merged as the
+library documents, re-done here in numpy); filters, exclusions, removals and
 additions, set_poses, both dtypes, 1 and 2 threads identical, the lock released, bad input."""
 import math
 import threading
@@ -88,24 +88,162 @@ def mesh_radius(mesh):
     return math.sqrt(np.max(np.sum((v - c) ** 2, axis=1))) * (1 + 4 * np.finfo(np.float64).eps)
 
 
+FLAT_ANGLE = 1e-3  # mesh/edges.h's TTD_FLAT_ANGLE, as docs/scenes.md documents it
+
+
+def mesh_shape(mesh):
+    """A mesh's shape around each triangle, found here by comparing triangles (docs/scenes.md 5a,
+    "the edge information"): each corner's place (the smallest corner index 3 t + k at the same
+    point), its first triangle, whether the place lies inside a flat part, whether each edge k
+    (corner k to k + 1) is flat, and the triangle across each real (convex or concave) edge."""
+    X = mesh.vertices.astype(np.float64)[mesh.faces]  # (nt, 3, 3), the mesh's own values
+    nt = len(X)
+    corners = X.reshape(-1, 3)
+    index = {}
+    place = np.empty(3 * nt, dtype=np.int64)
+    for c, x in enumerate(map(tuple, (corners + 0.0).tolist())):  # + 0.0: -0 is 0
+        place[c] = index.setdefault(x, c)
+    place = place.reshape(nt, 3)
+    normal = np.zeros((nt, 3))
+    has = np.zeros(nt, dtype=bool)
+    for t in range(nt):
+        e1, e2 = X[t, 1] - X[t, 0], X[t, 2] - X[t, 0]
+        m = max(np.abs(e1).max(), np.abs(e2).max())
+        if len(set(place[t])) < 3 or not m > 0:
+            continue
+        e1, e2 = e1 / m, e2 / m
+        c = np.cross(e1, e2)
+        ln = math.sqrt(c @ c)
+        if ln > 64 * np.finfo(np.float64).eps * math.sqrt(e1 @ e1) * math.sqrt(e2 @ e2):
+            has[t], normal[t] = True, c / ln
+    cos_flat = math.cos(FLAT_ANGLE)
+    around = {}
+    for t in range(nt):
+        for k in range(3):
+            around.setdefault(place[t, k], []).append(t)
+    flat_edge = np.zeros((nt, 3), dtype=bool)
+    real_edge = np.zeros((nt, 3), dtype=bool)
+    across = np.full((nt, 3), -1, dtype=np.int64)
+    for t in range(nt):
+        for k in range(3):
+            a, b = place[t, k], place[t, (k + 1) % 3]
+            others = [u for u in sorted(set(around[a])) if u != t and b in place[u]] if has[t] else []
+            if len(others) != 1 or not has[others[0]]:
+                continue
+            u = others[0]
+            ia, ib = list(place[u]).index(a), list(place[u]).index(b)
+            if (ib + 1) % 3 != ia:
+                continue  # not running the other way
+            far = [q for q in range(3) if place[u, q] not in (a, b)][0]
+            side = (X[u, far] - X[t, k]) @ normal[t]
+            if normal[t] @ normal[u] >= cos_flat:
+                flat_edge[t, k] = True
+            elif side != 0:
+                real_edge[t, k], across[t, k] = True, u
+    flat_vertex = np.zeros((nt, 3), dtype=bool)
+    for t in range(nt):
+        for k in range(3):
+            ring = around[place[t, k]]
+            t0 = min(ring)
+            flat_vertex[t, k] = all(
+                has[u] and has[t0] and normal[u] @ normal[t0] >= cos_flat and flat_edge[u, q] and flat_edge[u, (q + 2) % 3]
+                for u in set(ring) for q in range(3) if place[u, q] == place[t, k])
+    first = place // 3
+    return place, first, flat_vertex, flat_edge, across
+
+
+def corners(world, i, j, margin):
+    """The corners of flat contact body pair (i, j) adds to its contacts (docs/scenes.md 5, step
+    0; tests/scene_corners_ref.h in C): each vertex not inside a flat part, asked by the first
+    triangle around it, within the margin of a triangle in contact with that one (once, at its
+    smallest distance, ties to the smaller triangle); each two real edges, asked by their first
+    triangles, whose closest points lie inside both within the margin. The exact method on the
+    scalar row, the vertex as a triangle of three equal vertices, each edge from its smaller end,
+    the smaller first. [(a, b, d, p, q)]"""
+    real = world.dtype
+    m = real(margin)
+    r = world.pairs[i, j]
+    S, T = world.tris[i], world.tris[j]
+    shape = [mesh_shape(world.ms[i]), mesh_shape(world.ms[j])]
+    tri = [S, T]
+    verts, edges = [], []
+    for a, b in np.argwhere(r.distance <= m):
+        t = (a, b)
+        for side in (0, 1):
+            place, first, flat_vertex, _, _ = shape[side]
+            for k in range(3):
+                if first[t[side], k] == t[side] and not flat_vertex[t[side], k]:
+                    verts.append((side, place[t[side], k], a, b, tri[side][t[side], k]))
+        for k in range(3):
+            _, _, _, flat_e, acr = shape[0]
+            e0, e1 = S[a, k], S[a, (k + 1) % 3]
+            if flat_e[a, k] or (acr[a, k] >= 0 and acr[a, k] < a) or np.array_equal(e0, e1):
+                continue
+            for l in range(3):
+                _, _, _, flat_f, acf = shape[1]
+                f0, f1 = T[b, l], T[b, (l + 1) % 3]
+                if flat_f[b, l] or (acf[b, l] >= 0 and acf[b, l] < b) or np.array_equal(f0, f1):
+                    continue
+                edges.append((a, b, e0, e1, f0, f1))
+    out = []
+    if verts:
+        P = np.array([[v[4]] * 3 for v in verts], dtype=real)
+        Q = np.array([tri[1 - v[0]][v[3] if v[0] == 0 else v[2]] for v in verts], dtype=real)
+        res = ttd.distance(P, Q, points=True, isa="scalar")
+        best = {}
+        for v, d, q in zip(verts, res.distance, res.q):
+            if not d <= m:
+                continue
+            side, pl, a, b, x = v
+            other = b if side == 0 else a
+            key = (side, pl)
+            if key not in best or (d, other) < (best[key][0], best[key][1]):
+                far = x if d == 0 else q
+                best[key] = (d, other, (a, b, d, x if side == 0 else far, far if side == 0 else x))
+        out += [best[k][2] for k in best]
+    if edges:
+        def canon(e0, e1):
+            return (e0, e1) if tuple(e0) <= tuple(e1) else (e1, e0)
+        segs = []
+        for a, b, e0, e1, f0, f1 in edges:
+            s, t = canon(e0, e1), canon(f0, f1)
+            second = (tuple(s[0]), tuple(s[1])) > (tuple(t[0]), tuple(t[1]))
+            segs.append((second, s, t))
+        A = np.array([[x[2 if x[0] else 1][0], x[2 if x[0] else 1][1], x[2 if x[0] else 1][1]] for x in segs], dtype=real)
+        B = np.array([[x[1 if x[0] else 2][0], x[1 if x[0] else 2][1], x[1 if x[0] else 2][1]] for x in segs], dtype=real)
+        res = ttd.distance(A, B, points=True, isa="scalar")
+        for (a, b, *_), (second, _, _), d, p, q, wp, wq in zip(edges, segs, res.distance, res.p, res.q,
+                                                               res.bary_p, res.bary_q):
+            if not (d <= m and 0 < wp[0] < 1 and 0 < wq[0] < 1):
+                continue
+            first_pt, other = p, (p if d == 0 else q)
+            out.append((a, b, d, other if second else first_pt, first_pt if second else other))
+    return out
+
+
 def manifold_kept(world, margin):
-    """The contacts a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, in
-    depth order (distance, then triangles), a contact whose point lies within 1e-3 of the
-    smaller radius of a point kept before it goes. {(i, j): (tolerance, [(a, b, point, d, depth)])}"""
+    """The points a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, its
+    contacts and the corners they add, in depth order (distance, triangles, midpoint), a point
+    within 1e-3 of the smaller radius of a point kept before it goes.
+    {(i, j): (tolerance, [(a, b, point, d, depth)])}"""
     real = world.dtype
     by_pair = {}
     for row in world.contacts(margin):
-        by_pair.setdefault(row[:2], []).append(row)
+        by_pair.setdefault(row[:2], []).append(row[2:])
     out = {}
     for (i, j), cs in sorted(by_pair.items()):
-        cs = sorted(cs, key=lambda c: (c[4], c[2], c[3]))
+        cs = cs + corners(world, i, j, margin)
+
+        def mid(c):
+            return 0.5 * np.asarray(c[3], dtype=np.float64) + 0.5 * np.asarray(c[4], dtype=np.float64)
+        cs = sorted(cs, key=lambda c: (c[2], c[0], c[1], tuple(mid(c))))
         tol = 1e-3 * min(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
         kept = []
         for c in cs:
-            point = (0.5 * c[5].astype(np.float64) + 0.5 * c[6].astype(np.float64)).astype(real)
+            point = mid(c).astype(real)
             x = point.astype(np.float64)
             if all(math.sqrt(np.sum((x - k[2].astype(np.float64)) ** 2)) > tol for k in kept):
-                kept.append((c[2], c[3], point, c[4], real(real(margin) - c[4])))
+                kept.append((c[0], c[1], point, c[2], real(real(margin) - c[2])))
         out[i, j] = (tol, kept)
     return out
 
@@ -122,7 +260,7 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
         assert list(zip(hit.i.tolist(), hit.j.tolist())) == pairs
         for i, j, a, b in zip(hit.i, hit.j, hit.tri_i, hit.tri_j):
             assert world.pairs[i, j].distance[a, b] <= dtype(margin)
-        # manifold: min(K, kept) points per body pair, each a kept contact (triangles, point,
+        # manifold: min(K, kept) points per body pair, each a kept contact or corner (triangles, point,
         # distance, depth bit for bit), the first within the seed's window of the smallest
         # distance, no two within the tolerance, unit normals (the rule: tests/test_scene_contacts.c)
         kept = manifold_kept(world, margin)
@@ -134,12 +272,12 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
                 want = len(ks) if max_points == 0 else min(max_points, len(ks))
                 rows = range(at, at + want)
                 at += want
-                by_tri = {(a, b): k for a, b, *k in ks}
                 big = max(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
                 for n, k in enumerate(rows):
                     assert (m.i[k], m.j[k]) == (i, j), (margin, max_points, k)
-                    point, d, depth = by_tri[m.tri_i[k], m.tri_j[k]]
-                    np.testing.assert_array_equal(m.point[k], point)
+                    same = [x for x in ks if (x[0], x[1]) == (m.tri_i[k], m.tri_j[k]) and np.array_equal(x[2], m.point[k])]
+                    assert len(same) == 1, (margin, max_points, k)
+                    _, _, point, d, depth = same[0]
                     assert m.distance[k] == d and m.depth[k] == depth
                     nv = m.normal[k].astype(np.float64)
                     assert abs(np.sqrt(nv @ nv) - 1) < 1e-5

@@ -257,9 +257,11 @@ class SceneDistance(NamedTuple):
     nearest: Optional[SceneContacts]
 
 class SceneManifold(NamedTuple):
-    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j); no two
-    within 1e-3 of the smaller body's radius; normals from the bodies' shapes (face normals where
-    a face lies within the margin, across real edges only; docs/scenes.md, section 5a)."""
+    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j), drawn
+    from the contacts and the corners of flat contact (a box on a box: the corners of the faces'
+    overlap); no two within 1e-3 of the smaller body's radius; normals from the bodies' shapes
+    (face normals where a face lies within the margin, across real edges only; docs/scenes.md,
+    section 5a)."""
 
     i: npt.NDArray[np.uint32]
     j: npt.NDArray[np.uint32]
@@ -267,8 +269,7 @@ class SceneManifold(NamedTuple):
     tri_j: npt.NDArray[np.uint32]
     point: npt.NDArray[np.floating]
     normal: npt.NDArray[np.floating]
-    """Unit, from body i towards body j: (q - p) / |q - p| where distance > 0; at distance 0
-    (touching or crossing) the library's rule, in docs/scenes.md section 5 ("normal")."""
+    """Unit, from body i towards body j, from the bodies' shapes (docs/scenes.md, section 5a)."""
     distance: npt.NDArray[np.floating]
     depth: npt.NDArray[np.floating]
 

@@ -3,7 +3,18 @@
  * included by scene/query_impl.h. A function of the pair's contacts and the scene alone, so that
  * it may run wherever the pair's contacts are found.
  *
- * 1. Depth order: smaller distance first, ties by triangles.
+ * 0. The corners of flat contact: a contact's point is its triangle pair's closest point, and
+ *    where a face lies on a face (or an edge on a face) the pair's points within the margin are
+ *    a whole region, of which the closest point is one. So each contact adds the other points
+ *    of its region's rim that are points of the bodies: the vertices within the margin of the
+ *    other body (each once, at its closest point on the other body's triangles in contact with
+ *    it) and the crossings of edges within the margin (two edges, one of each body, whose
+ *    closest points lie inside both), as clipping does in GImpact. Vertices inside a flat part
+ *    and edges between coplanar triangles (mesh/edges.h) are never corners and are left out;
+ *    each vertex and edge is asked by one of its triangles. Each point carries the exact
+ *    distance between its two points (the exact method on the vertex or the edges as
+ *    degenerate triangles), so it is a real point of contact within the margin.
+ * 1. Depth order: smaller distance first, ties by triangles, then by point.
  * 2. No point twice: in that order, a contact is dropped when its point lies within the merge
  *    tolerance (MERGE_FRACTION of the smaller body's radius) of a point kept before it; a grid
  *    of cells that wide finds the points near it. So no two points kept are that close, and
@@ -32,7 +43,18 @@ typedef struct manifold_work {
     size_t *sel;         /* the points chosen */
     unsigned char *taken;
     size_t cap, cell_cap;
+    ttd_scene_contact *all; /* the pair's contacts, then the corners they add (step 0) */
+    size_t all_n, all_cap;
+    struct corner_vertex *vc; /* step 0's vertices before each keeps its closest */
+    size_t vc_n, vc_cap;
 } manifold_work;
+
+/* A vertex within the margin of the other body's triangle: side 0 a vertex of body i, 1 of j;
+ * its place (mesh/edges.h) on its body. */
+typedef struct corner_vertex {
+    ttd_scene_contact c;
+    uint32_t side, place, other; /* other: the triangle of the other body */
+} corner_vertex;
 
 static void manifold_work_free(manifold_work *w)
 {
@@ -43,6 +65,8 @@ static void manifold_work_free(manifold_work *w)
     free(w->cell_key);
     free(w->sel);
     free(w->taken);
+    free(w->all);
+    free(w->vc);
     memset(w, 0, sizeof *w);
 }
 
@@ -91,13 +115,255 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
     return 1;
 }
 
-/* Orders contacts deepest first: smaller distance, then triangles. */
+/* Orders contacts deepest first: smaller distance, then triangles, then the midpoint of their
+ * points (a triangle pair's corners, step 0; the midpoint is the same when the bodies swap). */
 static int depth_cmp(const void *x, const void *y)
 {
     const ttd_scene_contact *a = x, *b = y;
     if (a->distance != b->distance)
         return a->distance < b->distance ? -1 : 1;
-    return scene_contact_cmp(x, y);
+    const int t = scene_contact_cmp(x, y);
+    if (t != 0)
+        return t;
+    for (int r = 0; r < 3; ++r) {
+        const double ma = 0.5 * (double)a->p[r] + 0.5 * (double)a->q[r], mb = 0.5 * (double)b->p[r] + 0.5 * (double)b->q[r];
+        if (ma != mb)
+            return ma < mb ? -1 : 1;
+    }
+    return 0;
+}
+
+/* ---- step 0: the corners of flat contact ---------------------------------------------------- */
+
+/* A world triangle's plane for a cheap test that a point is farther than the margin from the
+ * triangle (it is at least as far from its plane): the unit normal n about the first vertex a;
+ * err bounds how far a computed height may be off, per unit of the point's distance from a
+ * (the normal's direction is known to about 16 eps |e1| |e2| / |e1 x e2|). ok = 0 where the
+ * triangle has no plane to speak of (a direction known no better than 2^-20): no test. */
+typedef struct corner_plane {
+    double a[3], n[3], err, size;
+    int ok;
+} corner_plane;
+
+static void corner_plane_make(const real x[9], corner_plane *P)
+{
+    double e1[3], e2[3], m = 0;
+    P->ok = 0;
+    for (int r = 0; r < 3; ++r) {
+        P->a[r] = (double)x[r];
+        e1[r] = (double)x[3 + r] - P->a[r];
+        e2[r] = (double)x[6 + r] - P->a[r];
+        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
+    }
+    P->size = m;
+    if (!(m > 0) || !isfinite(m))
+        return;
+    int ex;
+    frexp(m, &ex);
+    for (int r = 0; r < 3; ++r) {
+        e1[r] = ldexp(e1[r], -ex);
+        e2[r] = ldexp(e2[r], -ex);
+    }
+    double cr[3];
+    cross3d(e1, e2, cr);
+    const double l = sqrt(dot3d(cr, cr)), l12 = sqrt(dot3d(e1, e1)) * sqrt(dot3d(e2, e2));
+    if (!(l > 0x1p-20 * l12))
+        return;
+    for (int r = 0; r < 3; ++r)
+        P->n[r] = cr[r] / l;
+    P->err = (16 * l12 / l + 8) * DBL_EPSILON;
+    P->ok = 1;
+}
+
+/* Whether world point y may lie within lim of plane P's triangle: +1 or -1 when it is farther
+ * than lim above or below the plane (surely, with every rounding of the height, of y's world
+ * coordinates and of the exact method's distance allowed for), 0 when it may not be. */
+static int corner_side(const corner_plane *P, const real y[3], double lim)
+{
+    if (!P->ok)
+        return 0;
+    double d[3], far = 0;
+    for (int r = 0; r < 3; ++r) {
+        d[r] = (double)y[r] - P->a[r];
+        far = fmax(far, fabs(d[r]));
+    }
+    const double h = dot3d(d, P->n), slack = 2 * (far + P->size) * (P->err + 64 * (double)TTD_REAL_EPS);
+    return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
+}
+
+/* Whether the vertex at corner k of triangle t is asked for corners by t: not inside a flat
+ * part, and t is the first triangle around its place. */
+static int corner_vertex_asked(const ttd_mesh_edges *E, const uint32_t *tris, uint32_t t, int k)
+{
+    return ttd_vertex_class(E, t, k) != TTD_VERTEX_FLAT && E->ring[E->ring_start[E->weld[tris[3 * (size_t)t + (size_t)k]]]] == t;
+}
+
+/* Whether edge k of triangle t is asked for crossings by t: a real edge (not between coplanar
+ * triangles), and t the first of its two triangles (an open edge: each of its triangles). */
+static int corner_edge_asked(const ttd_mesh_edges *E, uint32_t t, int k)
+{
+    const int cls = ttd_edge_class(E, t, k);
+    return cls != TTD_EDGE_FLAT && (cls == TTD_EDGE_OPEN || t < E->across[3 * (size_t)t + (size_t)k]);
+}
+
+/* Whether 3 reals x come after y (lexicographically). */
+static int point_after(const real *x, const real *y)
+{
+    for (int r = 0; r < 3; ++r)
+        if (x[r] != y[r])
+            return x[r] > y[r];
+    return 0;
+}
+
+static int all_push(manifold_work *w, const ttd_scene_contact *c)
+{
+    if (w->all_n == w->all_cap) {
+        const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
+        ttd_scene_contact *v = realloc(w->all, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->all = v;
+        w->all_cap = cap;
+    }
+    w->all[w->all_n++] = *c;
+    return 1;
+}
+
+static int vc_push(manifold_work *w, const corner_vertex *c)
+{
+    if (w->vc_n == w->vc_cap) {
+        const size_t cap = w->vc_cap ? 2 * w->vc_cap : 64;
+        corner_vertex *v = realloc(w->vc, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->vc = v;
+        w->vc_cap = cap;
+    }
+    w->vc[w->vc_n++] = *c;
+    return 1;
+}
+
+/* By side, place, distance, the other body's triangle: each vertex's closest first. */
+static int corner_vertex_cmp(const void *x, const void *y)
+{
+    const corner_vertex *a = x, *b = y;
+    if (a->side != b->side)
+        return a->side < b->side ? -1 : 1;
+    if (a->place != b->place)
+        return a->place < b->place ? -1 : 1;
+    if (a->c.distance != b->c.distance)
+        return a->c.distance < b->c.distance ? -1 : 1;
+    return (a->other > b->other) - (a->other < b->other);
+}
+
+/* The corners contact c adds (step 0): vertices into w->vc, crossings into w->all. 0 out of
+ * memory. */
+static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, manifold_work *w)
+{
+    const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
+    int vmask[2] = {0, 0}, emask[2] = {0, 0};
+    for (int side = 0; side < 2; ++side) {
+        const struct ttd_mesh *m = s->body[id[side]].mesh;
+        for (int k = 0; k < 3; ++k) {
+            vmask[side] |= corner_vertex_asked(&m->edges, m->tris, tri[side], k) << k;
+            emask[side] |= corner_edge_asked(&m->edges, tri[side], k) << k;
+        }
+    }
+    if (!vmask[0] && !vmask[1] && !(emask[0] && emask[1]))
+        return 1;
+    real x[2][9];
+    corner_plane P[2];
+    for (int side = 0; side < 2; ++side) {
+        world_triangle(s, id[side], tri[side], x[side]);
+        corner_plane_make(x[side], &P[side]);
+    }
+    const double lim = (double)margin;
+    int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k)
+            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, lim);
+    /* vertices within the margin of the other triangle */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k) {
+            if (!(vmask[side] >> k & 1) || h[side][k] != 0)
+                continue;
+            const real *v = x[side] + 3 * k;
+            const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
+            ttd_result r;
+            TTD_EXACT_PAIR(pt, x[!side], &r);
+            if (!(r.distance <= margin))
+                continue;
+            const struct ttd_mesh *m = s->body[id[side]].mesh;
+            corner_vertex cv = {*c, (uint32_t)side, m->edges.weld[m->tris[3 * (size_t)tri[side] + (size_t)k]], tri[!side]};
+            cv.c.distance = r.distance;
+            for (int q = 0; q < 3; ++q) {
+                const real other = r.distance == 0 ? v[q] : r.q[q]; /* touching: the vertex itself */
+                cv.c.p[q] = side ? other : v[q];
+                cv.c.q[q] = side ? v[q] : other;
+            }
+            if (!vc_push(w, &cv))
+                return 0;
+        }
+    /* crossings of edges within the margin, their closest points inside both */
+    for (int k = 0; k < 3; ++k) {
+        const real *a0 = x[0] + 3 * k, *a1 = x[0] + 3 * ((k + 1) % 3);
+        if (!(emask[0] >> k & 1) || (h[0][k] != 0 && h[0][k] == h[0][(k + 1) % 3]) ||
+            (!point_after(a1, a0) && !point_after(a0, a1)))
+            continue;
+        for (int l = 0; l < 3; ++l) {
+            const real *b0 = x[1] + 3 * l, *b1 = x[1] + 3 * ((l + 1) % 3);
+            if (!(emask[1] >> l & 1) || (h[1][l] != 0 && h[1][l] == h[1][(l + 1) % 3]) ||
+                (!point_after(b1, b0) && !point_after(b0, b1)))
+                continue;
+            /* each segment from its smaller end, the smaller segment first: the same call when
+             * the bodies swap */
+            real seg[2][9];
+            const real *e[2][2] = {{a0, a1}, {b0, b1}};
+            for (int g = 0; g < 2; ++g) {
+                const int f = point_after(e[g][0], e[g][1]);
+                for (int q = 0; q < 3; ++q) {
+                    seg[g][q] = e[g][f][q];
+                    seg[g][3 + q] = seg[g][6 + q] = e[g][!f][q];
+                }
+            }
+            const int second = point_after(seg[0], seg[1]) || (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 &&
+                                                                point_after(seg[0] + 3, seg[1] + 3));
+            ttd_result r;
+            TTD_EXACT_PAIR(seg[second], seg[!second], &r);
+            if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
+                continue;
+            ttd_scene_contact x1 = *c;
+            x1.distance = r.distance;
+            for (int q = 0; q < 3; ++q) {
+                const real on_first = r.p[q], on_second = r.distance == 0 ? r.p[q] : r.q[q];
+                x1.p[q] = second ? on_second : on_first; /* body i's edge is seg[0] */
+                x1.q[q] = second ? on_first : on_second;
+            }
+            if (!all_push(w, &x1))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Step 0: the pair's n contacts c and the corners they add into w->all (w->all_n of them). 0 out
+ * of memory. */
+static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
+{
+    w->all_n = w->vc_n = 0;
+    for (size_t k = 0; k < n; ++k)
+        if (!all_push(w, &c[k]))
+            return 0;
+    for (size_t k = 0; k < n; ++k)
+        if (!contact_corners(s, &c[k], margin, w))
+            return 0;
+    /* each vertex once: at its closest point on the other body's triangles it was asked against */
+    qsort(w->vc, w->vc_n, sizeof *w->vc, corner_vertex_cmp);
+    for (size_t k = 0; k < w->vc_n; ++k)
+        if ((k == 0 || w->vc[k].side != w->vc[k - 1].side || w->vc[k].place != w->vc[k - 1].place) &&
+            !all_push(w, &w->vc[k].c))
+            return 0;
+    return 1;
 }
 
 static double dist2(const double *a, const double *b)
@@ -304,11 +570,17 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-/* Body pair's manifold: its n >= 1 contacts c (reordered here) reduced to at most max points (0:
- * all) into out[0..), in the order chosen; returns how many. w: scratch for n contacts. */
-static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_t n, real margin, size_t max,
-                          manifold_work *w, ttd_scene_point *out)
+/* Body pair's manifold: its n >= 1 contacts c and the corners they add (step 0) reduced to at
+ * most max points (0: all) appended to out, in the order chosen. w: scratch. 0 out of memory. */
+static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, size_t n0, real margin, size_t max,
+                       manifold_work *w, ttd_scene_array *out)
 {
+    if (!pair_corners(s, c0, n0, margin, w))
+        return 0;
+    ttd_scene_contact *c = w->all;
+    const size_t n = w->all_n;
+    if (!manifold_work_reserve(w, n))
+        return 0;
     qsort(c, n, sizeof *c, depth_cmp);
     const double ri = s->body[c[0].i].mesh->radius, rj = s->body[c[0].j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
@@ -358,9 +630,11 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
         memset(w->taken, 0, nk);
         ns = spread_points(z, nk, seed, max, w->sel, w->taken);
     }
+    if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
+        return 0;
     for (size_t k = 0; k < ns; ++k) {
         const ttd_scene_contact *x = &c[w->kept[w->sel[k]]];
-        ttd_scene_point *pt = out + k;
+        ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count + k;
         double normal[3];
         contact_normal(s, x, normal);
         pt->i = x->i;
@@ -374,5 +648,6 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
         pt->distance = x->distance;
         pt->depth = margin - x->distance;
     }
-    return ns;
+    out->count += ns;
+    return 1;
 }

@@ -305,12 +305,10 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
         const size_t n = c.nfound[k];
         if (n == 0)
             continue;
-        const size_t most = max_points == 0 || max_points > n ? n : max_points;
-        if (!manifold_work_reserve(&w, n) || !array_reserve(out, out->count + most, sizeof(ttd_scene_point))) {
+        if (!reduce_pair(s, c.found[k], n, margin, max_points, &w, out)) {
             st = TTD_ERR_OUT_OF_MEMORY;
             break;
         }
-        out->count += reduce_pair(s, c.found[k], n, margin, max_points, &w, (ttd_scene_point *)out->data + out->count);
     }
     manifold_work_free(&w);
     pair_contacts_free(&c);
