@@ -6,17 +6,18 @@
  * the angle between unit normals), and no cheap test rules a point out before the exact method
  * is asked (the library's plane test must never drop a point this finds).
  *
- * For each contact (triangle a of body i, b of body j, within the margin):
- *   - each vertex of a whose place is not inside a flat part, when a is the first triangle with a
- *     corner at that place: the exact method on the vertex (as a triangle of three equal
- *     vertices) and b; within the margin, a point (the vertex, its closest point on b);
- *     the same for b's vertices against a;
- *   - each real edge of a (not between coplanar triangles) of which a is the first triangle (or
- *     any, for an open edge), and each such edge of b: the exact method on the two edges (each
- *     from its smaller end, the smaller first); a point where their closest points lie inside
- *     both edges, within the margin.
- * Each vertex is kept once, at its smallest distance (ties: the smaller triangle of the other
- * body). Touching points (d = 0) put both points at the vertex or at the first edge's point. */
+ * For each contact (triangle a of body i, b of body j, within the margin) whose triangles lie face
+ * on face (both have a normal, their world normals opposite within CORNER_REF_ANGLE):
+ *   - each vertex of a whose place is not inside a flat part: the exact method on the vertex (as
+ *     a triangle of three equal vertices) and b; within the margin, a point (the vertex, its
+ *     closest point on b); the same for b's vertices against a;
+ *   - each edge of a not between coplanar triangles, and each such edge of b: the exact method
+ *     on the two edges (each from its smaller end, the smaller first); a point where their
+ *     closest points lie inside both edges, within the margin.
+ * The same question (a vertex's place and the other triangle; two edges' places) is kept once,
+ * with the smallest triangles that ask it; each vertex once, at its smallest distance (ties: the
+ * smaller triangle of the other body). Touching points (d = 0) put both points at the vertex or
+ * at the first edge's point. */
 #ifndef TTD_TESTS_SCENE_CORNERS_REF_H
 #define TTD_TESTS_SCENE_CORNERS_REF_H
 
@@ -28,6 +29,7 @@
 #include <ttd/ttd.h>
 
 #define CORNER_REF_FLAT_ANGLE 1e-3 /* mesh/edges.h's TTD_FLAT_ANGLE, as documented */
+#define CORNER_REF_ANGLE 0.1       /* face on face (docs/scenes.md, section 5, step 0) */
 
 /* A mesh's shape around each corner and edge of each triangle. */
 typedef struct corner_mesh {
@@ -37,6 +39,7 @@ typedef struct corner_mesh {
     unsigned char *flat_vertex; /* 3 nt */
     unsigned char *flat_edge;   /* 3 nt: edge k of t, from corner k to k + 1 */
     uint32_t *across;           /* 3 nt: the triangle across a convex or concave edge, else UINT32_MAX */
+    unsigned char *has_normal;  /* nt */
 } corner_mesh;
 
 static void corner_mesh_free(corner_mesh *m)
@@ -46,6 +49,7 @@ static void corner_mesh_free(corner_mesh *m)
     free(m->flat_vertex);
     free(m->flat_edge);
     free(m->across);
+    free(m->has_normal);
     memset(m, 0, sizeof *m);
 }
 
@@ -179,7 +183,7 @@ static int corner_mesh_make(const double *verts, const uint32_t *tris, size_t nt
     free(cls);
     free(n);
     free(x);
-    free(has);
+    m->has_normal = has;
     return 1;
 }
 
@@ -254,105 +258,117 @@ static int corner_rec_push(corner_rec **v, size_t *n, size_t *cap, const corner_
 static size_t corner_refs(const corner_mesh *mi, const double *wi, const corner_mesh *mj, const double *wj,
                           const unsigned char *contact, double margin, int bytes, corner_rec **out)
 {
-    corner_rec *v = NULL, *vert = NULL;
-    size_t n = 0, cap = 0, nv = 0, capv = 0;
-    uint32_t *vkey = NULL; /* per vertex point: side << 31 | place */
-    size_t nkey = 0, capkey = 0;
+    /* every question every face-on-face contact asks, with its answer; then each question once
+     * (for its smallest triangles) and each vertex once */
+    typedef struct ask {
+        int kind;              /* 0 vertex of i, 1 vertex of j, 2 edges */
+        uint32_t a[2], b[2];   /* vertex: its place, the other triangle; edges: their places, smaller first */
+        int within;
+        corner_rec r;
+    } ask;
+    ask *q = NULL;
+    size_t nq = 0, capq = 0;
+    corner_rec *v = NULL;
+    size_t n = 0, cap = 0;
     const corner_mesh *m[2] = {mi, mj};
     const double *w[2] = {wi, wj};
     for (size_t a = 0; a < mi->nt; ++a)
         for (size_t b = 0; b < mj->nt; ++b) {
-            if (!contact[a * mj->nt + b])
+            double na[3], nb[3];
+            if (!contact[a * mj->nt + b] || !mi->has_normal[a] || !mj->has_normal[b] ||
+                !corner_ref_normal(wi + 9 * a, na) || !corner_ref_normal(wj + 9 * b, nb) ||
+                !(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2] <= -cos(CORNER_REF_ANGLE)))
                 continue;
             const size_t t[2] = {a, b};
-            for (int side = 0; side < 2; ++side)
-                for (int k = 0; k < 3; ++k) {
-                    const size_t c = 3 * t[side] + (size_t)k;
-                    if (m[side]->first[c] != t[side] || m[side]->flat_vertex[c])
-                        continue;
-                    const double *x = w[side] + 9 * t[side] + 3 * k;
-                    const double pt[9] = {x[0], x[1], x[2], x[0], x[1], x[2], x[0], x[1], x[2]};
-                    double d, p[3], q[3], wp, wq;
-                    if (!corner_ref_exact(bytes, pt, w[!side] + 9 * t[!side], &d, p, q, &wp, &wq))
-                        goto fail;
-                    if (!(d <= margin))
-                        continue;
-                    corner_rec r = {(uint32_t)a, (uint32_t)b, d, {0}, {0}};
-                    for (int s = 0; s < 3; ++s) {
-                        const double other = d == 0 ? x[s] : q[s];
-                        r.p[s] = side ? other : x[s];
-                        r.q[s] = side ? x[s] : other;
-                    }
-                    if (!corner_rec_push(&vert, &nv, &capv, &r))
-                        goto fail;
-                    if (nkey == capkey) {
-                        capkey = capkey ? 2 * capkey : 64;
-                        uint32_t *y = realloc(vkey, capkey * sizeof *y);
-                        if (y == NULL)
-                            goto fail;
-                        vkey = y;
-                    }
-                    vkey[nkey++] = (uint32_t)side << 31 | m[side]->place[c];
-                }
-            for (int k = 0; k < 3; ++k) {
-                const size_t ca = 3 * a + (size_t)k;
-                const double *a0 = wi + 9 * a + 3 * k, *a1 = wi + 9 * a + 3 * ((k + 1) % 3);
-                if (mi->flat_edge[ca] || (mi->across[ca] != UINT32_MAX && mi->across[ca] < a) ||
-                    (!corner_ref_after(a0, a1) && !corner_ref_after(a1, a0)))
-                    continue;
-                for (int l = 0; l < 3; ++l) {
-                    const size_t cb = 3 * b + (size_t)l;
-                    const double *b0 = wj + 9 * b + 3 * l, *b1 = wj + 9 * b + 3 * ((l + 1) % 3);
-                    if (mj->flat_edge[cb] || (mj->across[cb] != UINT32_MAX && mj->across[cb] < b) ||
-                        (!corner_ref_after(b0, b1) && !corner_ref_after(b1, b0)))
-                        continue;
-                    double seg[2][9];
-                    const double *e[2][2] = {{a0, a1}, {b0, b1}};
-                    for (int g = 0; g < 2; ++g) {
-                        const int f = corner_ref_after(e[g][0], e[g][1]);
-                        for (int s = 0; s < 3; ++s) {
-                            seg[g][s] = e[g][f][s];
-                            seg[g][3 + s] = seg[g][6 + s] = e[g][!f][s];
+            for (int kind = 0; kind < 3; ++kind)
+                for (int k = 0; k < 3; ++k)
+                    for (int l = 0; l < (kind == 2 ? 3 : 1); ++l) {
+                        ask x = {kind, {0, 0}, {0, 0}, 0, {(uint32_t)a, (uint32_t)b, 0, {0}, {0}}};
+                        double d, p[3], qq[3], wp, wq;
+                        if (kind < 2) {
+                            const int side = kind;
+                            const size_t c = 3 * t[side] + (size_t)k;
+                            if (m[side]->flat_vertex[c])
+                                continue;
+                            const double *y = w[side] + 9 * t[side] + 3 * k;
+                            const double pt[9] = {y[0], y[1], y[2], y[0], y[1], y[2], y[0], y[1], y[2]};
+                            if (!corner_ref_exact(bytes, pt, w[!side] + 9 * t[!side], &d, p, qq, &wp, &wq))
+                                goto fail;
+                            x.a[0] = m[side]->place[c];
+                            x.b[0] = (uint32_t)t[!side];
+                            x.within = d <= margin;
+                            x.r.d = d;
+                            for (int r = 0; r < 3; ++r) {
+                                const double other = d == 0 ? y[r] : qq[r];
+                                x.r.p[r] = side ? other : y[r];
+                                x.r.q[r] = side ? y[r] : other;
+                            }
+                        } else {
+                            const size_t ca = 3 * a + (size_t)k, cb = 3 * b + (size_t)l;
+                            const size_t ca1 = 3 * a + (size_t)((k + 1) % 3), cb1 = 3 * b + (size_t)((l + 1) % 3);
+                            if (mi->flat_edge[ca] || mj->flat_edge[cb] || mi->place[ca] == mi->place[ca1] ||
+                                mj->place[cb] == mj->place[cb1])
+                                continue;
+                            x.a[0] = mi->place[ca] < mi->place[ca1] ? mi->place[ca] : mi->place[ca1];
+                            x.a[1] = mi->place[ca] < mi->place[ca1] ? mi->place[ca1] : mi->place[ca];
+                            x.b[0] = mj->place[cb] < mj->place[cb1] ? mj->place[cb] : mj->place[cb1];
+                            x.b[1] = mj->place[cb] < mj->place[cb1] ? mj->place[cb1] : mj->place[cb];
+                            const double *a0 = wi + 9 * a + 3 * k, *a1 = wi + 9 * a + 3 * ((k + 1) % 3);
+                            const double *b0 = wj + 9 * b + 3 * l, *b1 = wj + 9 * b + 3 * ((l + 1) % 3);
+                            double seg[2][9];
+                            const double *e[2][2] = {{a0, a1}, {b0, b1}};
+                            for (int g = 0; g < 2; ++g) {
+                                const int f = corner_ref_after(e[g][0], e[g][1]);
+                                for (int r = 0; r < 3; ++r) {
+                                    seg[g][r] = e[g][f][r];
+                                    seg[g][3 + r] = seg[g][6 + r] = e[g][!f][r];
+                                }
+                            }
+                            const int second = corner_ref_after(seg[0], seg[1]) ||
+                                               (memcmp(seg[0], seg[1], 3 * sizeof(double)) == 0 &&
+                                                corner_ref_after(seg[0] + 3, seg[1] + 3));
+                            if (!corner_ref_exact(bytes, seg[second], seg[!second], &d, p, qq, &wp, &wq))
+                                goto fail;
+                            x.within = d <= margin && wp > 0 && wp < 1 && wq > 0 && wq < 1;
+                            x.r.d = d;
+                            for (int r = 0; r < 3; ++r) {
+                                const double first = p[r], other = d == 0 ? p[r] : qq[r];
+                                x.r.p[r] = second ? other : first;
+                                x.r.q[r] = second ? first : other;
+                            }
                         }
+                        if (nq == capq) {
+                            capq = capq ? 2 * capq : 64;
+                            ask *y = realloc(q, capq * sizeof *y);
+                            if (y == NULL)
+                                goto fail;
+                            q = y;
+                        }
+                        q[nq++] = x;
                     }
-                    const int second = corner_ref_after(seg[0], seg[1]) ||
-                                       (memcmp(seg[0], seg[1], 3 * sizeof(double)) == 0 && corner_ref_after(seg[0] + 3, seg[1] + 3));
-                    double d, p[3], q[3], wp, wq;
-                    if (!corner_ref_exact(bytes, seg[second], seg[!second], &d, p, q, &wp, &wq))
-                        goto fail;
-                    if (!(d <= margin) || !(wp > 0 && wp < 1) || !(wq > 0 && wq < 1))
-                        continue;
-                    corner_rec r = {(uint32_t)a, (uint32_t)b, d, {0}, {0}};
-                    for (int s = 0; s < 3; ++s) {
-                        const double first = p[s], other = d == 0 ? p[s] : q[s];
-                        r.p[s] = second ? other : first;
-                        r.q[s] = second ? first : other;
-                    }
-                    if (!corner_rec_push(&v, &n, &cap, &r))
-                        goto fail;
-                }
-            }
         }
-    /* each vertex once, at its smallest distance (ties: the other body's smaller triangle) */
-    for (size_t x = 0; x < nv; ++x) {
-        int best = 1;
-        for (size_t y = 0; y < nv && best; ++y) {
-            if (y == x || vkey[y] != vkey[x])
+    for (size_t x = 0; x < nq; ++x) {
+        if (!q[x].within)
+            continue;
+        int keep = 1;
+        for (size_t y = 0; y < nq && keep; ++y) {
+            if (y == x || q[y].kind != q[x].kind || q[y].a[0] != q[x].a[0] || (q[x].kind == 2 && q[y].a[1] != q[x].a[1]))
                 continue;
-            const uint32_t ox = vkey[x] >> 31 ? vert[x].ti : vert[x].tj, oy = vkey[y] >> 31 ? vert[y].ti : vert[y].tj;
-            best = vert[x].d < vert[y].d || (vert[x].d == vert[y].d && ox < oy);
+            const int same = q[y].b[0] == q[x].b[0] && q[y].b[1] == q[x].b[1];
+            if (same) /* the same question: asked for the smallest triangles */
+                keep = q[x].r.ti < q[y].r.ti || (q[x].r.ti == q[y].r.ti && q[x].r.tj < q[y].r.tj);
+            else if (q[x].kind < 2 && q[y].within) /* one vertex, another triangle: the closest */
+                keep = q[x].r.d < q[y].r.d || (q[x].r.d == q[y].r.d && q[x].b[0] < q[y].b[0]);
         }
-        if (best && !corner_rec_push(&v, &n, &cap, &vert[x]))
+        if (keep && !corner_rec_push(&v, &n, &cap, &q[x].r))
             goto fail;
     }
-    free(vert);
-    free(vkey);
+    free(q);
     *out = v;
     return n;
 fail:
+    free(q);
     free(v);
-    free(vert);
-    free(vkey);
     *out = NULL;
     return SIZE_MAX;
 }

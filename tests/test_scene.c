@@ -829,6 +829,50 @@ static int scenes_match_brute_force(void)
     return 0;
 }
 
+/* Cubes stacked face on face, tilted, turned, offset, flush and at a gap within the margin (the
+ * pile's other bodies moved away): the manifolds, with their corners of flat contact, against the
+ * brute force in both precisions, every instruction set and thread count. */
+static int stacked_cubes_match_brute_force(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        ENSURE(make_world(&W, bytes, 12, 1.25, 0) == 0);
+        double lo[3], hi[3];
+        ENSURE(ttd_gen_mesh_bounds(&W.gm[1], lo, hi) == 0);
+        const double side = hi[2] - lo[2];
+        /* cubes (mesh 1) are bodies 1, 5 and 9: yaw about z after a tilt about x, centre */
+        static const double place[3][4] = {{0, 0, 0, 0}, {0.4, 0.01, 0.05, 0.004}, {-0.3, 0, -0.04, 0}};
+        double z = 0;
+        for (size_t id = 0; id < W.nbody; ++id) {
+            double *P = W.pose[id];
+            if (W.mesh_of[id] != 1) {
+                const double far[12] = {1, 0, 0, 10 + 3 * (double)id, 0, 1, 0, 0, 0, 0, 1, 0};
+                memcpy(P, far, sizeof far);
+            } else {
+                const double *q = place[id / 4];
+                const double cy = cos(q[0]), sy = sin(q[0]), ct = cos(q[1]), st = sin(q[1]);
+                const double R[9] = {cy, -sy * ct, sy * st, sy, cy * ct, -cy * st, 0, st, ct};
+                const double c[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+                const double at[3] = {q[2], -q[2], z};
+                for (int r = 0; r < 3; ++r) {
+                    for (int k = 0; k < 3; ++k)
+                        P[4 * r + k] = R[3 * r + k];
+                    P[4 * r + 3] = at[r] - (R[3 * r] * c[0] + R[3 * r + 1] * c[1] + R[3 * r + 2] * c[2]);
+                }
+                z += side + q[3] + 0.5 * side * fabs(q[1]) + 0.004; /* the next one's rest, within the margin */
+            }
+            for (int k = 0; k < 12; ++k)
+                P[k] = round_to(bytes, P[k]);
+        }
+        ENSURE(set_all_poses(&W) == 0);
+        size_t n;
+        ENSURE(check_world(&W, "stacked cubes", &n) == 0);
+        ENSURE(n > 0 && npoints_corner > 0);
+        free_world(&W);
+    }
+    return 0;
+}
+
 /* Bodies far apart (no contacts): the closest pair and each body's nearest come from margins
  * grown until they hold them. */
 static int sparse_scene_distances(void)
@@ -1002,6 +1046,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(scenes_match_brute_force);
+    RUN_TEST(stacked_cubes_match_brute_force);
     RUN_TEST(sparse_scene_distances);
     RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);

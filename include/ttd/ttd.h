@@ -530,10 +530,11 @@ typedef struct ttd_scene_point_f {
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
-/// and the corners of flat contact they add (each vertex of one body within the margin of the
-/// other, at its closest point; each two edges whose closest points lie inside both within the
-/// margin; vertices and edges inside flat faces left out: a box on a box gets the corners of the
-/// faces' overlap), merged (in depth order, a point within 1e-3 of the smaller body's mesh
+/// and the corners of flat contact they add (where two triangles lie face on face, normals
+/// opposite within 0.1 radians: each vertex within the margin of the other triangle, at its
+/// closest point; each two edges whose closest points lie inside both within the margin;
+/// vertices and edges inside flat faces left out: a box on a box gets the corners of the faces'
+/// overlap), merged (in depth order, a point within 1e-3 of the smaller body's mesh
 /// radius of a point kept before it goes) and reduced to at most max_points points (0: all of
 /// them): the deepest, then spread over the contact region (the farthest, the largest triangle,
 /// the largest area added). Every point is a real point of contact: a point of each body at

@@ -89,6 +89,7 @@ def mesh_radius(mesh):
 
 
 FLAT_ANGLE = 1e-3  # mesh/edges.h's TTD_FLAT_ANGLE, as docs/scenes.md documents it
+CORNER_ANGLE = 0.1  # face on face (docs/scenes.md, section 5, step 0)
 
 
 def mesh_shape(mesh):
@@ -149,71 +150,85 @@ def mesh_shape(mesh):
                 has[u] and has[t0] and normal[u] @ normal[t0] >= cos_flat and flat_edge[u, q] and flat_edge[u, (q + 2) % 3]
                 for u in set(ring) for q in range(3) if place[u, q] == place[t, k])
     first = place // 3
-    return place, first, flat_vertex, flat_edge, across
+    return place, first, flat_vertex, flat_edge, across, has
+
+
+def unit_normals(X):
+    """The unit normals of triangles X (n, 3, 3) in float64; 0 where a triangle has none."""
+    X = np.asarray(X, dtype=np.float64)
+    c = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
+    ln = np.sqrt(np.sum(c * c, axis=1))
+    return np.where(ln[:, None] > 0, c / np.where(ln > 0, ln, 1)[:, None], 0)
 
 
 def corners(world, i, j, margin):
     """The corners of flat contact body pair (i, j) adds to its contacts (docs/scenes.md 5, step
-    0; tests/scene_corners_ref.h in C): each vertex not inside a flat part, asked by the first
-    triangle around it, within the margin of a triangle in contact with that one (once, at its
-    smallest distance, ties to the smaller triangle); each two real edges, asked by their first
-    triangles, whose closest points lie inside both within the margin. The exact method on the
-    scalar row, the vertex as a triangle of three equal vertices, each edge from its smaller end,
-    the smaller first. [(a, b, d, p, q)]"""
+    0; tests/scene_corners_ref.h in C), where a contact's triangles lie face on face (both have a
+    normal, opposite within CORNER_ANGLE): each vertex not inside a flat part within the margin of
+    the other triangle; each two edges not between coplanar triangles whose closest points lie
+    inside both within the margin. The same question (a vertex's place and the other triangle;
+    two edges' places) once, with the smallest triangles asking it; each vertex once, at its
+    smallest distance (ties to the smaller triangle). The exact method on the scalar row, the
+    vertex as a triangle of three equal vertices, each edge from its smaller end, the smaller
+    first. [(a, b, d, p, q)]"""
     real = world.dtype
     m = real(margin)
     r = world.pairs[i, j]
     S, T = world.tris[i], world.tris[j]
     shape = [mesh_shape(world.ms[i]), mesh_shape(world.ms[j])]
     tri = [S, T]
-    verts, edges = [], []
+    verts, edges = {}, {}  # question -> the smallest triangles asking it
+    NS, NT = unit_normals(S), unit_normals(T)
     for a, b in np.argwhere(r.distance <= m):
+        if not (shape[0][5][a] and shape[1][5][b] and NS[a] @ NT[b] <= -math.cos(CORNER_ANGLE)):
+            continue
         t = (a, b)
         for side in (0, 1):
-            place, first, flat_vertex, _, _ = shape[side]
+            place, _, flat_vertex, _, _, _ = shape[side]
             for k in range(3):
-                if first[t[side], k] == t[side] and not flat_vertex[t[side], k]:
-                    verts.append((side, place[t[side], k], a, b, tri[side][t[side], k]))
+                if not flat_vertex[t[side], k]:
+                    key = (side, place[t[side], k], t[1 - side])
+                    verts[key] = min(verts.get(key, (a, b, k)), (a, b, k))
+        pa, _, _, flat_e, _, _ = shape[0]
+        pb, _, _, flat_f, _, _ = shape[1]
         for k in range(3):
-            _, _, _, flat_e, acr = shape[0]
-            e0, e1 = S[a, k], S[a, (k + 1) % 3]
-            if flat_e[a, k] or (acr[a, k] >= 0 and acr[a, k] < a) or np.array_equal(e0, e1):
+            ea = tuple(sorted((pa[a, k], pa[a, (k + 1) % 3])))
+            if flat_e[a, k] or ea[0] == ea[1]:
                 continue
             for l in range(3):
-                _, _, _, flat_f, acf = shape[1]
-                f0, f1 = T[b, l], T[b, (l + 1) % 3]
-                if flat_f[b, l] or (acf[b, l] >= 0 and acf[b, l] < b) or np.array_equal(f0, f1):
+                eb = tuple(sorted((pb[b, l], pb[b, (l + 1) % 3])))
+                if flat_f[b, l] or eb[0] == eb[1]:
                     continue
-                edges.append((a, b, e0, e1, f0, f1))
+                edges[ea, eb] = min(edges.get((ea, eb), (a, b, k, l)), (a, b, k, l))
     out = []
     if verts:
-        P = np.array([[v[4]] * 3 for v in verts], dtype=real)
-        Q = np.array([tri[1 - v[0]][v[3] if v[0] == 0 else v[2]] for v in verts], dtype=real)
+        keys = sorted(verts)
+        P = np.array([[tri[side][verts[key][side], verts[key][2]]] * 3 for key in keys for side in [key[0]]], dtype=real)
+        Q = np.array([tri[1 - key[0]][key[2]] for key in keys], dtype=real)
         res = ttd.distance(P, Q, points=True, isa="scalar")
         best = {}
-        for v, d, q in zip(verts, res.distance, res.q):
+        for key, x, d, q in zip(keys, P[:, 0], res.distance, res.q):
+            side, pl, other = key
             if not d <= m:
                 continue
-            side, pl, a, b, x = v
-            other = b if side == 0 else a
-            key = (side, pl)
-            if key not in best or (d, other) < (best[key][0], best[key][1]):
+            if (side, pl) not in best or (d, other) < best[side, pl][:2]:
+                a, b, _ = verts[key]
                 far = x if d == 0 else q
-                best[key] = (d, other, (a, b, d, x if side == 0 else far, far if side == 0 else x))
-        out += [best[k][2] for k in best]
+                best[side, pl] = (d, other, (a, b, d, x if side == 0 else far, far if side == 0 else x))
+        out += [best[k][2] for k in sorted(best)]
     if edges:
         def canon(e0, e1):
             return (e0, e1) if tuple(e0) <= tuple(e1) else (e1, e0)
         segs = []
-        for a, b, e0, e1, f0, f1 in edges:
-            s, t = canon(e0, e1), canon(f0, f1)
-            second = (tuple(s[0]), tuple(s[1])) > (tuple(t[0]), tuple(t[1]))
-            segs.append((second, s, t))
-        A = np.array([[x[2 if x[0] else 1][0], x[2 if x[0] else 1][1], x[2 if x[0] else 1][1]] for x in segs], dtype=real)
-        B = np.array([[x[1 if x[0] else 2][0], x[1 if x[0] else 2][1], x[1 if x[0] else 2][1]] for x in segs], dtype=real)
+        for key in sorted(edges):
+            a, b, k, l = edges[key]
+            s_, t_ = canon(S[a, k], S[a, (k + 1) % 3]), canon(T[b, l], T[b, (l + 1) % 3])
+            second = (tuple(s_[0]), tuple(s_[1])) > (tuple(t_[0]), tuple(t_[1]))
+            segs.append((a, b, second, t_ if second else s_, s_ if second else t_))
+        A = np.array([[x[3][0], x[3][1], x[3][1]] for x in segs], dtype=real)
+        B = np.array([[x[4][0], x[4][1], x[4][1]] for x in segs], dtype=real)
         res = ttd.distance(A, B, points=True, isa="scalar")
-        for (a, b, *_), (second, _, _), d, p, q, wp, wq in zip(edges, segs, res.distance, res.p, res.q,
-                                                               res.bary_p, res.bary_q):
+        for (a, b, second, _, _), d, p, q, wp, wq in zip(segs, res.distance, res.p, res.q, res.bary_p, res.bary_q):
             if not (d <= m and 0 < wp[0] < 1 and 0 < wq[0] < 1):
                 continue
             first_pt, other = p, (p if d == 0 else q)
@@ -330,6 +345,33 @@ def test_queries_equal_the_brute_force(dtype):
     world = World(ms, P, dtype)
     assert len(world.contacts(0.05)) > 0, "the scene has contacts"
     check_all(scene, world)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_stacked_cubes_corners(dtype):
+    """Unit cubes stacked face on face on a flat floor (turned, tilted by up to 0.02, offset,
+    flush and at gaps within the margin): the manifolds with their corners of flat contact
+    against the brute force."""
+    cube_mesh = ttd.Mesh(*cube(), precision=dtype)
+    fv, ff = grid(4)
+    fv[:, 2] = 0
+    floor = ttd.Mesh(fv * [4, 4, 1] - [2, 2, 0], ff, precision=dtype)
+    P = [np.eye(4)]
+    z = 0.003
+    for yaw, tilt, off, gap in ((0.3, 0.0, 0.1, 0.0), (-0.2, 0.02, -0.15, 0.004), (0.0, 0.0, 0.3, 0.002)):
+        cy, sy, ct, st = math.cos(yaw), math.sin(yaw), math.cos(tilt), math.sin(tilt)
+        R = np.array([[cy, -sy * ct, sy * st], [sy, cy * ct, -cy * st], [0, st, ct]])
+        Q = np.eye(4)
+        Q[:3, :3] = R
+        Q[:3, 3] = np.array([off, -off, z + gap + 0.5]) - R @ [0.5, 0.5, 0.5]
+        P.append(Q)
+        z += 1 + gap + 0.5 * abs(tilt) + 0.01
+    ms = [floor] + [cube_mesh] * 3
+    scene = ttd.Scene(ms, np.array(P))
+    world = World(ms, np.array(P), dtype)
+    n = sum(len(corners(world, i, j, 0.05)) for (i, j), r in world.pairs.items() if (r.distance <= dtype(0.05)).any())
+    assert n > 0, "the stack has corners of flat contact"
+    check_all(scene, world, margins=(0.0, 0.05))
 
 
 @pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])

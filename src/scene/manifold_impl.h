@@ -4,16 +4,16 @@
  * it may run wherever the pair's contacts are found.
  *
  * 0. The corners of flat contact: a contact's point is its triangle pair's closest point, and
- *    where a face lies on a face (or an edge on a face) the pair's points within the margin are
- *    a whole region, of which the closest point is one. So each contact adds the other points
- *    of its region's rim that are points of the bodies: the vertices within the margin of the
- *    other body (each once, at its closest point on the other body's triangles in contact with
- *    it) and the crossings of edges within the margin (two edges, one of each body, whose
- *    closest points lie inside both), as clipping does in GImpact. Vertices inside a flat part
- *    and edges between coplanar triangles (mesh/edges.h) are never corners and are left out;
- *    each vertex and edge is asked by one of its triangles. Each point carries the exact
- *    distance between its two points (the exact method on the vertex or the edges as
- *    degenerate triangles), so it is a real point of contact within the margin.
+ *    where a face lies on a face the pair's points within the margin are a whole region, of which
+ *    the closest point is one. So each contact whose triangles lie face on face (CORNER_ANGLE)
+ *    adds the other points of its region's rim that are points of the bodies: the vertices within
+ *    the margin of the other triangle (each vertex once, at its smallest distance) and the
+ *    crossings of edges within the margin (two edges, one of each body, whose closest points lie
+ *    inside both), as clipping does in GImpact. Vertices inside a flat part and edges between
+ *    coplanar triangles (mesh/edges.h) are never corners and are left out; a question asked by
+ *    several contacts is asked once, for the smallest triangles. Each point carries the exact
+ *    distance between its two points (the exact method on the vertex or the edges as degenerate
+ *    triangles), so it is a real point of contact within the margin.
  * 1. Depth order: smaller distance first, ties by triangles, then by point.
  * 2. No point twice: in that order, a contact is dropped when its point lies within the merge
  *    tolerance (MERGE_FRACTION of the smaller body's radius) of a point kept before it; a grid
@@ -45,16 +45,21 @@ typedef struct manifold_work {
     size_t cap, cell_cap;
     ttd_scene_contact *all; /* the pair's contacts, then the corners they add (step 0) */
     size_t all_n, all_cap;
-    struct corner_vertex *vc; /* step 0's vertices before each keeps its closest */
-    size_t vc_n, vc_cap;
+    struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
+    size_t key_n, key_cap;
 } manifold_work;
 
-/* A vertex within the margin of the other body's triangle: side 0 a vertex of body i, 1 of j;
- * its place (mesh/edges.h) on its body. */
-typedef struct corner_vertex {
-    ttd_scene_contact c;
-    uint32_t side, place, other; /* other: the triangle of the other body */
-} corner_vertex;
+/* A vertex or a pair of edges step 0 asks about. A vertex: side 0 a vertex of body i (corner k of
+ * its triangle ti), 1 of body j (corner k of tj), against the other body's triangle; its place
+ * (mesh/edges.h) in a and the other triangle in b. Edges: edge k of ti and edge l of tj, their
+ * ends' places (smaller first) in a and b. Equal keys ask the same question: it is asked once,
+ * for the smallest triangles. */
+typedef struct corner_key {
+    uint32_t kind;       /* 0 vertex of i, 1 vertex of j, 2 edges */
+    uint64_t a, b;
+    uint32_t ti, tj;
+    int k, l;
+} corner_key;
 
 static void manifold_work_free(manifold_work *w)
 {
@@ -66,7 +71,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->sel);
     free(w->taken);
     free(w->all);
-    free(w->vc);
+    free(w->key);
     memset(w, 0, sizeof *w);
 }
 
@@ -135,6 +140,11 @@ static int depth_cmp(const void *x, const void *y)
 
 /* ---- step 0: the corners of flat contact ---------------------------------------------------- */
 
+/* Two triangles lie face on face when their normals are opposite within this angle (radians):
+ * about 5.7 degrees, a box resting on a box or a floor however it has settled. Curved bodies'
+ * triangles rarely are (an icosphere of 1,280 triangles: 0.2% of the contacts of a pile). */
+#define CORNER_ANGLE 0.1
+
 /* A world triangle's plane for a cheap test that a point is farther than the margin from the
  * triangle (it is at least as far from its plane): the unit normal n about the first vertex a;
  * err bounds how far a computed height may be off, per unit of the point's distance from a
@@ -191,21 +201,6 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
     return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
 }
 
-/* Whether the vertex at corner k of triangle t is asked for corners by t: not inside a flat
- * part, and t is the first triangle around its place. */
-static int corner_vertex_asked(const ttd_mesh_edges *E, const uint32_t *tris, uint32_t t, int k)
-{
-    return ttd_vertex_class(E, t, k) != TTD_VERTEX_FLAT && E->ring[E->ring_start[E->weld[tris[3 * (size_t)t + (size_t)k]]]] == t;
-}
-
-/* Whether edge k of triangle t is asked for crossings by t: a real edge (not between coplanar
- * triangles), and t the first of its two triangles (an open edge: each of its triangles). */
-static int corner_edge_asked(const ttd_mesh_edges *E, uint32_t t, int k)
-{
-    const int cls = ttd_edge_class(E, t, k);
-    return cls != TTD_EDGE_FLAT && (cls == TTD_EDGE_OPEN || t < E->across[3 * (size_t)t + (size_t)k]);
-}
-
 /* Whether 3 reals x come after y (lexicographically). */
 static int point_after(const real *x, const real *y)
 {
@@ -229,119 +224,142 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c)
     return 1;
 }
 
-static int vc_push(manifold_work *w, const corner_vertex *c)
+static int key_push(manifold_work *w, const corner_key *k)
 {
-    if (w->vc_n == w->vc_cap) {
-        const size_t cap = w->vc_cap ? 2 * w->vc_cap : 64;
-        corner_vertex *v = realloc(w->vc, cap * sizeof *v);
+    if (w->key_n == w->key_cap) {
+        const size_t cap = w->key_cap ? 2 * w->key_cap : 64;
+        corner_key *v = realloc(w->key, cap * sizeof *v);
         if (v == NULL)
             return 0;
-        w->vc = v;
-        w->vc_cap = cap;
+        w->key = v;
+        w->key_cap = cap;
     }
-    w->vc[w->vc_n++] = *c;
+    w->key[w->key_n++] = *k;
     return 1;
 }
 
-/* By side, place, distance, the other body's triangle: each vertex's closest first. */
-static int corner_vertex_cmp(const void *x, const void *y)
+/* By the question (kind, a, b), then the triangles that ask it. */
+static int corner_key_cmp(const void *x, const void *y)
 {
-    const corner_vertex *a = x, *b = y;
-    if (a->side != b->side)
-        return a->side < b->side ? -1 : 1;
-    if (a->place != b->place)
-        return a->place < b->place ? -1 : 1;
-    if (a->c.distance != b->c.distance)
-        return a->c.distance < b->c.distance ? -1 : 1;
-    return (a->other > b->other) - (a->other < b->other);
+    const corner_key *u = x, *v = y;
+    if (u->kind != v->kind)
+        return u->kind < v->kind ? -1 : 1;
+    if (u->a != v->a)
+        return u->a < v->a ? -1 : 1;
+    if (u->b != v->b)
+        return u->b < v->b ? -1 : 1;
+    if (u->ti != v->ti)
+        return u->ti < v->ti ? -1 : 1;
+    return (u->tj > v->tj) - (u->tj < v->tj);
 }
 
-/* The corners contact c adds (step 0): vertices into w->vc, crossings into w->all. 0 out of
- * memory. */
-static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, manifold_work *w)
+/* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
+ * and a vertex or an edge may lie within the margin of the other triangle. rel: R_i^T R_j, body
+ * j's rotation in body i's frame. 0 out of memory. */
+static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, const double rel[9],
+                           manifold_work *w)
 {
     const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
-    int vmask[2] = {0, 0}, emask[2] = {0, 0};
-    for (int side = 0; side < 2; ++side) {
-        const struct ttd_mesh *m = s->body[id[side]].mesh;
-        for (int k = 0; k < 3; ++k) {
-            vmask[side] |= corner_vertex_asked(&m->edges, m->tris, tri[side], k) << k;
-            emask[side] |= corner_edge_asked(&m->edges, tri[side], k) << k;
-        }
-    }
-    if (!vmask[0] && !vmask[1] && !(emask[0] && emask[1]))
+    /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
+     * body i's frame) */
+    const float *ni = s->body[c->i].mesh->edges.normal + 3 * (size_t)c->tri_i;
+    const float *nj = s->body[c->j].mesh->edges.normal + 3 * (size_t)c->tri_j;
+    double facing = 0;
+    for (int r = 0; r < 3; ++r)
+        facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+    if (!(facing <= -cos(CORNER_ANGLE)))
         return 1;
     real x[2][9];
     corner_plane P[2];
+    const ttd_mesh_edges *E[2];
+    const uint32_t *tris[2];
     for (int side = 0; side < 2; ++side) {
         world_triangle(s, id[side], tri[side], x[side]);
         corner_plane_make(x[side], &P[side]);
+        E[side] = &s->body[id[side]].mesh->edges;
+        tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
-    const double lim = (double)margin;
-    int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin */
+    int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
-            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, lim);
-    /* vertices within the margin of the other triangle */
+            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, (double)margin);
+    /* vertices not inside a flat part that may lie within the margin of the other triangle */
     for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 3; ++k) {
-            if (!(vmask[side] >> k & 1) || h[side][k] != 0)
-                continue;
-            const real *v = x[side] + 3 * k;
-            const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
-            ttd_result r;
-            TTD_EXACT_PAIR(pt, x[!side], &r);
-            if (!(r.distance <= margin))
-                continue;
-            const struct ttd_mesh *m = s->body[id[side]].mesh;
-            corner_vertex cv = {*c, (uint32_t)side, m->edges.weld[m->tris[3 * (size_t)tri[side] + (size_t)k]], tri[!side]};
-            cv.c.distance = r.distance;
-            for (int q = 0; q < 3; ++q) {
-                const real other = r.distance == 0 ? v[q] : r.q[q]; /* touching: the vertex itself */
-                cv.c.p[q] = side ? other : v[q];
-                cv.c.q[q] = side ? v[q] : other;
+        for (int k = 0; k < 3; ++k)
+            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT) {
+                const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
+                if (!key_push(w, &key))
+                    return 0;
             }
-            if (!vc_push(w, &cv))
-                return 0;
-        }
-    /* crossings of edges within the margin, their closest points inside both */
+    /* real edges (not between coplanar triangles), each of which may come within the margin of
+     * the other triangle's plane */
     for (int k = 0; k < 3; ++k) {
-        const real *a0 = x[0] + 3 * k, *a1 = x[0] + 3 * ((k + 1) % 3);
-        if (!(emask[0] >> k & 1) || (h[0][k] != 0 && h[0][k] == h[0][(k + 1) % 3]) ||
-            (!point_after(a1, a0) && !point_after(a0, a1)))
+        const int k1 = (k + 1) % 3;
+        if (ttd_edge_class(E[0], tri[0], k) == TTD_EDGE_FLAT || (h[0][k] != 0 && h[0][k] == h[0][k1]))
+            continue;
+        const uint64_t pa = E[0]->weld[tris[0][k]], pb = E[0]->weld[tris[0][k1]];
+        if (pa == pb)
             continue;
         for (int l = 0; l < 3; ++l) {
-            const real *b0 = x[1] + 3 * l, *b1 = x[1] + 3 * ((l + 1) % 3);
-            if (!(emask[1] >> l & 1) || (h[1][l] != 0 && h[1][l] == h[1][(l + 1) % 3]) ||
-                (!point_after(b1, b0) && !point_after(b0, b1)))
+            const int l1 = (l + 1) % 3;
+            if (ttd_edge_class(E[1], tri[1], l) == TTD_EDGE_FLAT || (h[1][l] != 0 && h[1][l] == h[1][l1]))
                 continue;
-            /* each segment from its smaller end, the smaller segment first: the same call when
-             * the bodies swap */
-            real seg[2][9];
-            const real *e[2][2] = {{a0, a1}, {b0, b1}};
-            for (int g = 0; g < 2; ++g) {
-                const int f = point_after(e[g][0], e[g][1]);
-                for (int q = 0; q < 3; ++q) {
-                    seg[g][q] = e[g][f][q];
-                    seg[g][3 + q] = seg[g][6 + q] = e[g][!f][q];
-                }
-            }
-            const int second = point_after(seg[0], seg[1]) || (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 &&
-                                                                point_after(seg[0] + 3, seg[1] + 3));
-            ttd_result r;
-            TTD_EXACT_PAIR(seg[second], seg[!second], &r);
-            if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
+            const uint64_t qa = E[1]->weld[tris[1][l]], qb = E[1]->weld[tris[1][l1]];
+            if (qa == qb)
                 continue;
-            ttd_scene_contact x1 = *c;
-            x1.distance = r.distance;
-            for (int q = 0; q < 3; ++q) {
-                const real on_first = r.p[q], on_second = r.distance == 0 ? r.p[q] : r.q[q];
-                x1.p[q] = second ? on_second : on_first; /* body i's edge is seg[0] */
-                x1.q[q] = second ? on_first : on_second;
-            }
-            if (!all_push(w, &x1))
+            const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
+                                    c->tri_i, c->tri_j, k, l};
+            if (!key_push(w, &key))
                 return 0;
         }
+    }
+    return 1;
+}
+
+/* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
+static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const corner_key *q, real margin,
+                      ttd_scene_contact *out)
+{
+    real x[2][9];
+    world_triangle(s, i, q->ti, x[0]);
+    world_triangle(s, j, q->tj, x[1]);
+    *out = (ttd_scene_contact){i, j, q->ti, q->tj, 0, {0, 0, 0}, {0, 0, 0}};
+    ttd_result r;
+    if (q->kind < 2) {
+        const int side = (int)q->kind;
+        const real *v = x[side] + 3 * q->k;
+        const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
+        TTD_EXACT_PAIR(pt, x[!side], &r);
+        if (!(r.distance <= margin))
+            return 0;
+        out->distance = r.distance;
+        for (int t = 0; t < 3; ++t) {
+            const real other = r.distance == 0 ? v[t] : r.q[t]; /* touching: the vertex itself */
+            out->p[t] = side ? other : v[t];
+            out->q[t] = side ? v[t] : other;
+        }
+        return 1;
+    }
+    /* each edge from its smaller end, the smaller edge first: the same call when the bodies swap */
+    real seg[2][9];
+    const real *e[2][2] = {{x[0] + 3 * q->k, x[0] + 3 * ((q->k + 1) % 3)}, {x[1] + 3 * q->l, x[1] + 3 * ((q->l + 1) % 3)}};
+    for (int g = 0; g < 2; ++g) {
+        const int f = point_after(e[g][0], e[g][1]);
+        for (int t = 0; t < 3; ++t) {
+            seg[g][t] = e[g][f][t];
+            seg[g][3 + t] = seg[g][6 + t] = e[g][!f][t];
+        }
+    }
+    const int second = point_after(seg[0], seg[1]) ||
+                       (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 && point_after(seg[0] + 3, seg[1] + 3));
+    TTD_EXACT_PAIR(seg[second], seg[!second], &r);
+    if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
+        return 0;
+    out->distance = r.distance;
+    for (int t = 0; t < 3; ++t) {
+        const real on_first = r.p[t], on_second = r.distance == 0 ? r.p[t] : r.q[t];
+        out->p[t] = second ? on_second : on_first; /* body i's edge is seg[0] */
+        out->q[t] = second ? on_first : on_second;
     }
     return 1;
 }
@@ -350,20 +368,48 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
  * of memory. */
 static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
 {
-    w->all_n = w->vc_n = 0;
+    w->all_n = w->key_n = 0;
     for (size_t k = 0; k < n; ++k)
         if (!all_push(w, &c[k]))
             return 0;
+    double rel[9]; /* R_i^T R_j */
+    const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
+    for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q)
+            rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
     for (size_t k = 0; k < n; ++k)
-        if (!contact_corners(s, &c[k], margin, w))
+        if (!contact_corners(s, &c[k], margin, rel, w))
             return 0;
-    /* each vertex once: at its closest point on the other body's triangles it was asked against */
-    qsort(w->vc, w->vc_n, sizeof *w->vc, corner_vertex_cmp);
-    for (size_t k = 0; k < w->vc_n; ++k)
-        if ((k == 0 || w->vc[k].side != w->vc[k - 1].side || w->vc[k].place != w->vc[k - 1].place) &&
-            !all_push(w, &w->vc[k].c))
-            return 0;
-    return 1;
+    if (w->key_n == 0)
+        return 1;
+    /* each question once, for its smallest triangles; each vertex kept once, at its smallest
+     * distance (ties: the smaller triangle of the other body) */
+    qsort(w->key, w->key_n, sizeof *w->key, corner_key_cmp);
+    int have = 0; /* a vertex corner waiting in `best` */
+    ttd_scene_contact best = c[0];
+    const corner_key *best_q = NULL;
+    for (size_t k = 0; k < w->key_n; ++k) {
+        const corner_key *q = &w->key[k];
+        if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
+            continue; /* asked already */
+        if (have && (q->kind != best_q->kind || q->a != best_q->a)) {
+            if (!all_push(w, &best))
+                return 0;
+            have = 0;
+        }
+        ttd_scene_contact got;
+        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got))
+            continue;
+        if (q->kind == 2) {
+            if (!all_push(w, &got))
+                return 0;
+        } else if (!have || got.distance < best.distance) { /* keys come in the order of the other triangle */
+            best = got;
+            best_q = q;
+            have = 1;
+        }
+    }
+    return !have || all_push(w, &best);
 }
 
 static double dist2(const double *a, const double *b)
