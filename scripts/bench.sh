@@ -21,6 +21,10 @@ if ! { [ -f /usr/include/fcl/narrowphase/detail/primitive_shape_algorithm/triang
   missing+=(libfcl-dev)
 fi
 command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot-nox)
+# The point queries' comparison (ttd bench points): Embree, CGAL and Open3D (Debian's python3).
+[ -f /usr/include/embree3/rtcore.h ] || missing+=(libembree-dev)
+[ -f /usr/include/CGAL/AABB_tree.h ] || missing+=(libcgal-dev)
+{ [ -x /usr/bin/python3 ] && /usr/bin/python3 -c "import open3d" >/dev/null 2>&1; } || missing+=(python3-open3d)
 if [ ${#missing[@]} -gt 0 ]; then
   sudo=""
   if [ "$(id -u)" != 0 ] && command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
@@ -33,7 +37,8 @@ if [ ${#missing[@]} -gt 0 ]; then
     fi
   else
     echo "bench.sh: ${missing[*]} not installed and apt-get is not usable here; carrying on without" \
-         "(FCL: apt-get install libfcl-dev; figure: apt-get install gnuplot-nox)" >&2
+         "(FCL: apt-get install libfcl-dev; figure: apt-get install gnuplot-nox; points: libembree-dev" \
+         "libcgal-dev python3-open3d)" >&2
   fi
 fi
 
@@ -67,6 +72,14 @@ if [ -n "${TTD_BENCH_NICE:-}" ]; then
     "$TTD_BENCH_NICE" "$TTD_BENCH_NICE" "$ttd" bench --out "$out" "$@"
 else
   "$ttd" bench --out "$out" "$@"
+fi
+
+# The point queries against Embree, CGAL and Open3D (those found), into points.txt
+# (TTD_BENCH_POINTS=0 leaves them out).
+if [ "${TTD_BENCH_POINTS:-1}" != 0 ]; then
+  points_args=()
+  case " $* " in *" --quick "*) points_args=(--quick) ;; esac
+  "$ttd" bench points "${points_args[@]}" > "$out/points.txt" || echo "bench.sh: ttd bench points failed" >&2
 fi
 
 if command -v gnuplot >/dev/null 2>&1; then
