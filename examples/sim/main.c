@@ -28,50 +28,14 @@ static void usage(FILE *f)
     fprintf(f, " (default: all)\n");
 }
 
-/// What one scenario's rest window measured.
-typedef struct figures {
-    double drift;        ///< largest vertex drift / size
-    double centre_drift; ///< largest centroid drift / size
-    size_t drift_body;
-    double overlap;      ///< deepest interpenetration / margin
-    uint32_t overlap_a, overlap_b;
-    size_t touching;     ///< most pairs collide at 0 found at a sample
-    double kinetic;      ///< at the end
-    double max_tilt_deg; ///< over the whole run
-} figures;
-
-/// The largest horizontal displacement of any vertex of b from where start puts it.
-static double vertex_drift(const sim_body *b, const double start[12])
+static int ttd_step(void *ctx, sim_world *w)
 {
-    double now[12], worst = 0;
-    sim_body_pose(b, now);
-    for (size_t k = 0; k < b->shape->nv; ++k) {
-        double p[3], q[3];
-        pose_apply(start, b->shape->v + 3 * k, p);
-        pose_apply(now, b->shape->v + 3 * k, q);
-        worst = fmax(worst, hypot(q[0] - p[0], q[1] - p[1]));
-    }
-    return worst;
+    (void)ctx;
+    return sim_world_step(w);
 }
 
-static int sample_overlap(sim_world *w, figures *f)
-{
-    double depth;
-    uint32_t a, b;
-    size_t touching;
-    if (sim_world_overlap(w, &depth, &a, &b, &touching) != 0)
-        return -1;
-    if (depth / w->set.margin > f->overlap) {
-        f->overlap = depth / w->set.margin;
-        f->overlap_a = a;
-        f->overlap_b = b;
-    }
-    f->touching = touching > f->touching ? touching : f->touching;
-    return 0;
-}
-
-static int run_one(const char *name, const sim_settings *set, double seconds, double settle_override, const char *obj_dir,
-                   figures *f)
+static int run_one(const char *name, const sim_settings *set, double seconds, double settle, const char *obj_dir,
+                   sim_figures *f)
 {
     sim_run run;
     if (sim_run_build(&run, name, set) != 0) {
@@ -79,8 +43,6 @@ static int run_one(const char *name, const sim_settings *set, double seconds, do
         return -1;
     }
     sim_world *w = &run.world;
-    memset(f, 0, sizeof *f);
-    f->overlap_a = f->overlap_b = UINT32_MAX;
     for (size_t k = 0; k < run.nshape; ++k)
         if (sim_shape_convexity_defect(run.shape + k) > 1e-12) {
             fprintf(stderr, "ttd_sim: %s: shape %s's pieces are not convex (defect %.3g)\n", name, run.shape[k].name,
@@ -88,36 +50,7 @@ static int run_one(const char *name, const sim_settings *set, double seconds, do
             sim_run_free(&run);
             return -1;
         }
-    int rc = 0;
-    long settle = lround((settle_override >= 0 ? settle_override : run.settle) / set->dt), rest = lround(seconds / set->dt), every = lround(0.25 / set->dt);
-    for (long s = 0; s < settle && rc == 0; ++s)
-        rc = sim_world_step(w);
-    double *start = malloc(12 * w->n * sizeof(double));
-    if (!start)
-        rc = -1;
-    for (size_t k = 0; rc == 0 && k < w->n; ++k)
-        sim_body_pose(w->body + k, start + 12 * k);
-    if (rc == 0)
-        rc = sample_overlap(w, f);
-    for (long s = 1; s <= rest && rc == 0; ++s) {
-        rc = sim_world_step(w);
-        for (size_t k = 0; rc == 0 && k < w->n; ++k) {
-            const sim_body *b = w->body + k;
-            if (b->is_static)
-                continue;
-            double d = vertex_drift(b, start + 12 * k) / b->shape->size;
-            double c = hypot(b->x[0] - start[12 * k + 3], b->x[1] - start[12 * k + 7]) / b->shape->size;
-            if (d > f->drift) {
-                f->drift = d;
-                f->drift_body = k;
-            }
-            f->centre_drift = fmax(f->centre_drift, c);
-        }
-        if (rc == 0 && (s % every == 0 || s == rest))
-            rc = sample_overlap(w, f);
-    }
-    f->kinetic = sim_world_kinetic(w);
-    f->max_tilt_deg = w->max_tilt * 57.29577951308232;
+    int rc = sim_run_window(w, settle >= 0 ? settle : run.settle, seconds, ttd_step, NULL, f);
     if (rc == 0) {
         double steps = (double)w->steps;
         printf("%-12s %6zu %6zu %7.1f %8.3f %8.3f %10.2e %10.2e %10.2e %8.1f %9.2e %7zu  %s %zu\n", name, w->n,
@@ -134,7 +67,6 @@ static int run_one(const char *name, const sim_settings *set, double seconds, do
             rc = -1;
         }
     }
-    free(start);
     sim_run_free(&run);
     return rc;
 }
@@ -238,7 +170,7 @@ int main(int argc, char **argv)
            "query ms", "solve ms", "drift", "ctr drift", "overlap", "tilt deg", "kinetic", "touch", "  drifting most");
     int failed = 0;
     for (int k = 0; k < nnames; ++k) {
-        figures f;
+        sim_figures f;
         if (run_one(names[k], &set, seconds, settle, obj_dir, &f) != 0)
             return 1;
         if (check && !(f.drift < 1e-3 && f.overlap < 0.1)) {

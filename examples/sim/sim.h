@@ -167,6 +167,29 @@ int sim_world_overlap(sim_world *w, double *depth, uint32_t *pair_a, uint32_t *p
 /// their projections over the candidate axes, <= 0 when some axis separates them.
 double sim_piece_overlap(const sim_piece *p, const double pose_p[12], const sim_piece *q, const double pose_q[12]);
 
+/// After the caller changed bodies' x and q (another engine's poses): their matrices, and ttd's
+/// scene, follow. 0, or -1 when ttd refuses a pose.
+int sim_world_sync(sim_world *w);
+
+/// What a rest window measured (measure.c).
+typedef struct sim_figures {
+    double drift;        ///< largest horizontal displacement of a vertex from its place at the window's start / size
+    double centre_drift; ///< the same for centroids
+    size_t drift_body;   ///< the body of the largest drift
+    double overlap;      ///< deepest interpenetration at a sample / margin
+    uint32_t overlap_a, overlap_b;
+    size_t touching;     ///< most body pairs collide at 0 found at a sample
+    double kinetic;      ///< kinetic energy at the end
+    double max_tilt_deg; ///< largest angle of a contact normal from vertical over the run (stacks: 0 is right)
+} sim_figures;
+
+/// Advances w by one step (ttd_sim: sim_world_step; another engine: its step, then sim_world_sync).
+typedef int (*sim_step_fn)(void *ctx, sim_world *w);
+
+/// Runs settle seconds, then a rest window of seconds: drift at every step, interpenetration
+/// (sim_world_overlap) at the window's start, every 0.25 s and at its end. 0 or -1.
+int sim_run_window(sim_world *w, double settle, double seconds, sim_step_fn step, void *ctx, sim_figures *f);
+
 /// Writes the bodies' world triangles as an OBJ file, one group per body ("g static_3" or
 /// "g body_7"). 0 or -1.
 int sim_world_write_obj(const sim_world *w, const char *path);

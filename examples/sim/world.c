@@ -452,6 +452,15 @@ int sim_world_step(sim_world *w)
     return 0;
 }
 
+int sim_world_sync(sim_world *w)
+{
+    for (size_t k = 0; k < w->n; ++k) {
+        body_update(w->body + k);
+        sim_body_pose(w->body + k, w->poses + 12 * k);
+    }
+    return ttd_scene_set_poses_d(w->scene, w->n, w->poses) == TTD_OK ? 0 : -1;
+}
+
 int sim_world_write_obj(const sim_world *w, const char *path)
 {
     FILE *f = fopen(path, "w");
