@@ -75,7 +75,7 @@ static const scene_workload sws[SW_COUNT] = {
 typedef struct srow {
     char workload[16];
     size_t bodies, tris;
-    char query[16];        /* build collide collide+m distance contacts motion */
+    char query[16];        /* build collide collide+m distance distance+n contacts manifold-K motion */
     int bytes, threads;
     double margin;
     char result[48];
@@ -85,8 +85,9 @@ typedef struct srow {
     int fcl;               /* 1: an FCL time beside */
     double fcl_ms, fcl_ms_min, x_fcl;
     double x_threads;      /* motion, 2 threads: the 1-thread row / this */
+    double x_ref;          /* manifold: this / contacts (double); distance+n: this / distance */
     double need;           /* the issue's target for this row's ratio, NaN if none */
-    const char *need_of;   /* "x_fcl" or "x_threads" */
+    const char *need_of;   /* "x_fcl" or "x_threads" (at least), "x_contacts" or "x_distance" (x_ref at most) */
     int met;               /* -1 not measured, 0 no, 1 yes */
     int disagree;
     char note[200];
@@ -165,7 +166,7 @@ static srow *new_row(sctx *M, const char *workload, size_t bodies, size_t tris, 
     r->bytes = bytes;
     r->threads = threads;
     r->margin = margin;
-    r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->need = BENCH_NAN;
+    r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->x_ref = r->need = BENCH_NAN;
     r->met = -1;
     return r;
 }
@@ -557,7 +558,7 @@ static int time_call(const sctx *M, call_fn fn, void *arg, srow *r)
     return 0;
 }
 
-enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_CONTACTS_D, Q_CONTACTS_F };
+enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_NEAREST, Q_CONTACTS_D, Q_CONTACTS_F, Q_MANIFOLD };
 
 typedef struct qarg {
     int kind;
@@ -568,6 +569,8 @@ typedef struct qarg {
     double margin;
     ttd_scene_array out;
     ttd_scene_contact_d closest;
+    ttd_scene_contact_d *nearest; /* distance+n: one per body */
+    size_t max_points;     /* manifold */
     ttd_status st;
 } qarg;
 
@@ -634,8 +637,14 @@ static int call_query(void *p)
     case Q_DISTANCE:
         q->st = ttd_scene_distance_d(&q->o, q->scene, BENCH_INF, &q->closest, NULL);
         break;
+    case Q_NEAREST:
+        q->st = ttd_scene_distance_d(&q->o, q->scene, BENCH_INF, &q->closest, q->nearest);
+        break;
     case Q_CONTACTS_D:
         q->st = ttd_scene_contacts_d(&q->o, q->scene, q->margin, &q->out);
+        break;
+    case Q_MANIFOLD:
+        q->st = ttd_scene_manifold_d(&q->o, q->scene, q->margin, q->max_points, &q->out);
         break;
     default:
         q->st = ttd_scene_contacts_f(&q->o, q->scene_f, (float)q->margin, &q->out);
@@ -737,6 +746,20 @@ static void set_need(srow *r, double need, const char *of)
     r->need_of = of;
     double x = strcmp(of, "x_threads") == 0 ? r->x_threads : r->x_fcl;
     r->met = isfinite(x) ? x >= need : -1;
+}
+
+/* A target on this row's time over a reference row's (issue 23): x_ref at most `most`. */
+static void set_need_at_most(srow *r, double ref_ms, double most, const char *of)
+{
+    r->x_ref = r->ms / ref_ms;
+    r->need = most;
+    r->need_of = of;
+    r->met = isfinite(r->x_ref) ? r->x_ref <= most : -1;
+}
+
+static int need_is_at_most(const srow *r)
+{
+    return r->need_of && (strcmp(r->need_of, "x_contacts") == 0 || strcmp(r->need_of, "x_distance") == 0);
 }
 
 static void run_scene(sctx *M, int w, size_t n)
@@ -841,6 +864,25 @@ static void run_scene(sctx *M, int w, size_t n)
         }
         set_need(r, 5.0, "x_fcl");
     }
+    const double distance_ms = r ? r->ms : BENCH_NAN;
+    /* each body's nearest too (issue 23: within 3x of the closest pair alone) */
+    r = new_row(M, name, s.n, s.tris, "distance+n", 8, 1, BENCH_NAN);
+    if (r) {
+        q.kind = Q_NEAREST;
+        q.nearest = malloc(s.n * sizeof *q.nearest);
+        if (q.nearest && time_query(M, &q, r) == 0) {
+            size_t apart = 0;
+            for (size_t b = 0; b < s.n; ++b)
+                apart += q.nearest[b].distance > 0;
+            r->value = q.closest.distance;
+            snprintf(r->result, sizeof r->result, "%zu bodies, %zu apart", s.n, apart);
+            set_need_at_most(r, distance_ms, 3.0, "x_distance");
+            snprintf(r->note, sizeof r->note, "distance+n / distance = %.2fx", r->x_ref);
+        }
+        free(q.nearest);
+        q.nearest = NULL;
+    }
+    double contacts_ms = BENCH_NAN;
     for (int prec = 0; prec < 1 + (q.scene_f != NULL); ++prec) {
         r = new_row(M, name, s.n, s.tris, "contacts", prec ? 4 : 8, 1, s.margin);
         if (!r)
@@ -865,6 +907,22 @@ static void run_scene(sctx *M, int w, size_t n)
             }
         }
         set_need(r, prec ? 5.0 : 3.0, "x_fcl");
+        if (!prec)
+            contacts_ms = r->ms;
+    }
+    /* manifolds at K = 4 and K = 0 (issue 23: within 15% of the contacts they reduce) */
+    for (int kk = 0; kk < 2; ++kk) {
+        r = new_row(M, name, s.n, s.tris, kk ? "manifold-0" : "manifold-4", 8, 1, s.margin);
+        if (!r)
+            break;
+        q.kind = Q_MANIFOLD;
+        q.max_points = kk ? 0 : 4;
+        if (time_query(M, &q, r) == 0) {
+            r->value = (double)q.out.count;
+            snprintf(r->result, sizeof r->result, "%zu points", q.out.count);
+            set_need_at_most(r, contacts_ms, 1.15, "x_contacts");
+            snprintf(r->note, sizeof r->note, "manifold / contacts (double) = %.2fx", r->x_ref);
+        }
     }
     if (steps) {
         double one_ms = BENCH_NAN;
@@ -1011,7 +1069,9 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
     for (size_t i = 0; i < R->n; ++i) {
         const srow *r = &R->rows[i];
         char a[32], b[32], c[32], t[48];
-        if (isfinite(r->need))
+        if (isfinite(r->need) && need_is_at_most(r))
+            snprintf(t, sizeof t, "<=%.2fx %s", r->need, met_str(r));
+        else if (isfinite(r->need))
             snprintf(t, sizeof t, "%s>=%.1fx %s", strcmp(r->need_of, "x_threads") ? "" : "thr ", r->need, met_str(r));
         else
             snprintf(t, sizeof t, "-");
@@ -1025,7 +1085,8 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
     }
     fprintf(f, "ms per query (motion: per step, set_poses + collide at the margin); x_fcl = FCL's time / ttd's; "
                "targets (issue 17): collide and distance >= 5x, contacts >= 3x double and >= 5x float, motion step "
-               ">= 5x, two threads >= 1.8x one on the motion\n");
+               ">= 5x, two threads >= 1.8x one on the motion; (issue 23) manifold-K (K points per body pair, 0: all) "
+               "within 1.15x the double contacts' time, distance+n (each body's nearest too) within 3x distance's\n");
     if (R->disagreements) {
         fprintf(f, "DISAGREEMENTS with FCL: %zu\n", R->disagreements);
         for (size_t i = 0; i < R->nalarms; ++i)
@@ -1095,6 +1156,7 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         json_num(f, "fcl_ms_min", r->fcl_ms_min);
         json_num(f, "x_fcl", r->x_fcl);
         json_num(f, "x_threads", r->x_threads);
+        json_num(f, "x_ref", r->x_ref);
         json_num(f, "target", r->need);
         fputs(", \"target_of\": ", f);
         json_str(f, r->need_of ? r->need_of : "");
@@ -1117,7 +1179,7 @@ static void csv_num(FILE *f, double v)
 void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
 {
     fputs("workload,bodies,triangles,query,precision,threads,margin,value,ms,ms_min,fcl_ms,fcl_ms_min,x_fcl,"
-          "x_threads,target,target_of,met,disagree\n",
+          "x_threads,x_ref,target,target_of,met,disagree\n",
           f);
     if (!R)
         return;
@@ -1133,6 +1195,7 @@ void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
         csv_num(f, r->fcl_ms_min);
         csv_num(f, r->x_fcl);
         csv_num(f, r->x_threads);
+        csv_num(f, r->x_ref);
         csv_num(f, r->need);
         fprintf(f, ",%s,%s,%d\n", r->need_of ? r->need_of : "", r->met < 0 ? "" : r->met ? "yes" : "no",
                 r->disagree);
