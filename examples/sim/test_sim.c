@@ -102,6 +102,19 @@ static void test_overlap(void)
         double o = sim_piece_overlap(box.pieces, pa, box.pieces, pb);
         CHECK(fabs(o - d) < 1e-15, "box on box at %g: %.17g", d, o);
     }
+    /* edge on edge: a cube turned 45 degrees about y (its top an edge along y at height
+     * sqrt(1/2)) under a cube turned 45 degrees about x (its bottom an edge along x), sunk by d:
+     * the depth is d along z, the cross product of the two edges, which no face of either has */
+    for (double d = 1e-3; d < 0.2; d *= 4) {
+        const double yaxis[3] = {0, 1, 0}, below[3] = {0, 0, 0}, above[3] = {0, 0, sqrt(2.0) - d};
+        double qa[4], qb[4];
+        quat_axis_angle(yaxis, 0.25 * 3.141592653589793, qa);
+        quat_axis_angle(xaxis, 0.25 * 3.141592653589793, qb);
+        pose_of(qa, below, pa);
+        pose_of(qb, above, pb);
+        double o = sim_piece_overlap(box.pieces, pa, box.pieces, pb);
+        CHECK(fabs(o - d) < 1e-14, "edge on edge at %g: %.17g", d, o);
+    }
     /* a box tilted about x, its lowest edge sunk by d into the floor's top (z = 0) */
     for (double d = 1e-3; d < 0.2; d *= 4) {
         double q[4], R[9];
