@@ -21,7 +21,7 @@
 static void usage(FILE *f)
 {
     fprintf(f, "usage: ttd_sim [--scenario NAME]... [--seconds S] [--settle S] [--check] [--obj DIR] [--threads N]\n"
-               "               [--jig S] [--vertical-normals] [--level D] [--points K] [--hertz F] [--substeps N] [--iterations N] [--dt S] [--no-warm-start]\n"
+               "               [--jig S] [--vertical-normals] [--points K] [--hertz F] [--substeps N] [--iterations N] [--dt S] [--no-warm-start]\n"
                "scenarios:");
     for (int k = 0; sim_scenarios[k]; ++k)
         fprintf(f, " %s", sim_scenarios[k]);
@@ -128,9 +128,6 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--threads")) {
             ok = ok && x >= 0 && x <= 1024 && x == floor(x);
             set.threads = (int)x;
-        } else if (!strcmp(a, "--level")) {
-            ok = ok && x >= 0;
-            set.level_tolerance = x;
         } else if (!strcmp(a, "--jig")) {
             set.jig = x;
         } else if (!strcmp(a, "--points")) {

@@ -119,7 +119,6 @@ typedef struct sim_settings {
     int warm_start;       ///< 0: every step's impulses start at 0
     int threads;          ///< ttd's thread count (results do not depend on it)
     int vertical_normals; ///< diagnostic: every normal replaced by +z (a stack's exact normal)
-    double level_tolerance; ///< diagnostic: > 0 drops a pair's points farther than this from its nearest
     double jig;           ///< the stacks' offsets and turns are this times their defaults (1)
 } sim_settings;
 

@@ -229,17 +229,9 @@ static int build_contacts(sim_world *w)
     w->nprevious = w->ncontact;
     if (grow_contacts(w, n) != 0)
         return -1;
-    size_t prev = 0, m = 0, group = 0; /* both lists are sorted by (a, b) */
-    double level = HUGE_VAL;
+    size_t prev = 0; /* both lists are sorted by (a, b) */
     for (size_t k = 0; k < n; ++k) {
-        if (k == group) { /* a new body pair: its smallest distance */
-            level = HUGE_VAL;
-            for (group = k; group < n && pt[group].i == pt[k].i && pt[group].j == pt[k].j; ++group)
-                level = fmin(level, pt[group].distance);
-        }
-        if (w->set.level_tolerance > 0 && pt[k].distance > level + w->set.level_tolerance)
-            continue; /* the diagnostic of docs/simulator.md */
-        sim_contact *c = w->contact + m++;
+        sim_contact *c = w->contact + k;
         memset(c, 0, sizeof *c);
         c->a = pt[k].i;
         c->b = pt[k].j;
@@ -282,7 +274,7 @@ static int build_contacts(sim_world *w)
             c->impulse_t2 = v3_dot(pt_world, c->t2);
         }
     }
-    w->ncontact = m;
+    w->ncontact = n;
     return 0;
 }
 
