@@ -112,8 +112,10 @@ static int piece_make(sim_piece *p, const sim_shape *s, size_t t0, size_t t1, co
         }
     }
     free(used);
-    memcpy(p->normal + 4 * p->nn, extra, 4 * nextra * sizeof(double));
-    p->nn += nextra;
+    if (nextra) {
+        memcpy(p->normal + 4 * p->nn, extra, 4 * nextra * sizeof(double));
+        p->nn += nextra;
+    }
     /* the sphere around the vertices' mean */
     for (size_t k = 0; k < p->nv; ++k)
         v3_axpy(p->centre, 1.0 / (double)p->nv, p->v + 3 * k, p->centre);
