@@ -1016,6 +1016,27 @@ static int bad_input(void)
     ENSURE(ttd_scene_add_d(s, mf, id, &b) == TTD_ERR_PRECISION_MISMATCH);
     const float idf[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     ENSURE(ttd_scene_add_f(s, mf, idf, &b) == TTD_ERR_PRECISION_MISMATCH);
+    /* solids: a closed mesh only, a present body only; a refused call leaves the body as it was */
+    {
+        ttd_gen_mesh tri;
+        ENSURE(ttd_gen_mesh_triangle(&tri) == 0);
+        ttd_mesh *open_m;
+        ENSURE(ttd_mesh_create_d(NULL, tri.verts, tri.nv, tri.tris, tri.nt, &open_m) == TTD_OK);
+        uint32_t bc, bo;
+        ttd_scene *ss;
+        ENSURE(ttd_scene_create_d(&ss) == TTD_OK);
+        ENSURE(ttd_scene_add_d(ss, m, id, &bc) == TTD_OK && ttd_scene_add_d(ss, open_m, id, &bo) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(NULL, bc, 1) == TTD_ERR_NULL_POINTER);
+        ENSURE(ttd_scene_set_solid(ss, bo + 1, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+        ENSURE(ttd_scene_set_solid(ss, bo, 1) == TTD_ERR_MESH_NOT_CLOSED);
+        ENSURE(ttd_scene_set_solid(ss, bo, 0) == TTD_OK); /* a surface may always be a surface */
+        ENSURE(ttd_scene_set_solid(ss, bc, 1) == TTD_OK && ttd_scene_set_solid(ss, bc, 0) == TTD_OK);
+        ENSURE(ttd_scene_remove(ss, bo) == TTD_OK && ttd_scene_remove(ss, bc) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(ss, bc, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+        ttd_scene_destroy(ss);
+        ttd_mesh_destroy(open_m);
+        ttd_gen_mesh_free(&tri);
+    }
     ENSURE(ttd_scene_body_count(s) == 0 && ttd_scene_id_limit(s) == 0); /* nothing was added */
     ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 0);
     ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 1);

@@ -1107,6 +1107,334 @@ static int random_scenes_rule(void)
     return 0;
 }
 
+/* ---- solids (docs/scenes.md, section 5b) -------------------------------------------------- */
+
+/* Scales mesh g about the origin by f (in place). */
+static void scale_mesh(ttd_gen_mesh *g, double f)
+{
+    for (size_t i = 0; i < 3 * g->nv; ++i)
+        g->verts[i] *= f;
+}
+
+/* A cube half the size of the unit cube sunk 0.1 into a unit cube (both solid), centred, turned
+ * by yaws, in four triangulations of each (faces without shared vertices are not closed), either
+ * body first: the deepest point is at depth M + 0.1 (to 1e-12), and every point at that depth (a
+ * vertex of the sunk face) has normal +z from the lower cube to the upper; K = 4 gives the sunk
+ * face's four corners. */
+static int sunk_cube_depth(void)
+{
+    static const double yaws[] = {0, 20, 45};
+    const double M = 0.01;
+    size_t cases = 0;
+    ttd_gen_mesh g[CUBE_KINDS], h[CUBE_KINDS];
+    ttd_mesh *m[CUBE_KINDS], *mh[CUBE_KINDS];
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ENSURE(cube_mesh(k, &g[k]) == 0 && cube_mesh(k, &h[k]) == 0);
+        scale_mesh(&h[k], 0.5);
+        ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL && (mh[k] = make_mesh(&h[k], 8)) != NULL);
+    }
+    for (int kb = 0; kb < CUBE_KINDS; ++kb)
+        for (int kt = 0; kt < CUBE_KINDS; ++kt)
+            for (size_t yi = 0; yi < sizeof yaws / sizeof yaws[0]; ++yi)
+                for (int order = 0; order < 2; ++order) {
+                    if (kb == CUBE_UNSHARED || kt == CUBE_UNSHARED)
+                        continue; /* closed by vertex index only: not a solid (ttd_mesh_closed) */
+                    double lower[12], upper[12];
+                    const double lc[3] = {0.5, 0.5, 0.5}, uc[3] = {0.5, 0.5, 1 + 0.25 - 0.1};
+                    cube_pose(0, lc, lower);
+                    /* the small cube: cube_pose turns about the unit cube's centre (0.5, 0.5, 0.5);
+                     * the half cube's centre is (0.25, 0.25, 0.25) */
+                    const double yaw = yaws[yi] * 3.14159265358979323846 / 180, cs = cos(yaw), sn = sin(yaw);
+                    const double R[9] = {cs, -sn, 0, sn, cs, 0, 0, 0, 1};
+                    for (int r = 0; r < 3; ++r) {
+                        for (int q = 0; q < 3; ++q)
+                            upper[4 * r + q] = R[3 * r + q];
+                        upper[4 * r + 3] = uc[r] - (R[3 * r] * 0.25 + R[3 * r + 1] * 0.25 + R[3 * r + 2] * 0.25);
+                    }
+                    ttd_scene *s;
+                    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                    ENSURE(add_body(s, 8, order ? mh[kt] : m[kb], order ? upper : lower) == 0);
+                    ENSURE(add_body(s, 8, order ? m[kb] : mh[kt], order ? lower : upper) == 0);
+                    ENSURE(ttd_scene_set_solid(s, 0, 1) == TTD_OK && ttd_scene_set_solid(s, 1, 1) == TTD_OK);
+                    const double up = order ? -1 : 1; /* from body 0 towards body 1 */
+                    for (size_t K = 0; K <= 4; K += 4) {
+                        mpoint *p;
+                        const size_t n = ask_manifold(s, 8, NULL, M, K, &p);
+                        ENSURE(n != SIZE_MAX && n >= 4);
+                        size_t below = 0;
+                        for (size_t q = 0; q < n; ++q) {
+                            ENSURE(p[q].depth == M - p[q].d);
+                            if (!(fabs(p[q].d + 0.1) <= 1e-12))
+                                continue; /* not of the sunk face (a lower cube's vertex inside the upper: shallower) */
+                            ++below;
+                            ENSURE_MSG(fabs(p[q].n[0]) <= 1e-12 && fabs(p[q].n[1]) <= 1e-12 && fabs(p[q].n[2] - up) <= 1e-12,
+                                       "%s in %s, yaw %g, K %zu: point %zu normal (%g, %g, %g)", cube_name[kt], cube_name[kb],
+                                       yaws[yi], K, q, p[q].n[0], p[q].n[1], p[q].n[2]);
+                            ENSURE(fabs(p[q].x[2] - 0.95) <= 1e-12); /* between the corner and the top face */
+                        }
+                        ENSURE_MSG(fabs(p[0].depth - (M + 0.1)) <= 1e-12, "%s in %s, yaw %g, K %zu: the deepest at %.17g",
+                                   cube_name[kt], cube_name[kb], yaws[yi], K, p[0].depth);
+                        /* the sunk face's vertices, first (the deepest); at K = 4 its four corners */
+                        ENSURE_MSG(below >= 4 && p[0].d < 0 && (K == 0 || n == 4), "%s in %s, yaw %g, K %zu: %zu points below 0 of %zu",
+                                   cube_name[kt], cube_name[kb], yaws[yi], K, below, n);
+                        if (K == 4) {
+                            double x4[4][3];
+                            for (size_t q = 0; q < 4; ++q) {
+                                ENSURE(p[q].d < 0);
+                                memcpy(x4[q], p[q].x, sizeof x4[q]);
+                            }
+                            ENSURE_NEAR(hull_area_xy((const double (*)[3])x4, 4), 0.25, 1e-12);
+                        }
+                        free(p);
+                    }
+                    ttd_scene_destroy(s);
+                    ++cases;
+                }
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ttd_mesh_destroy(m[k]);
+        ttd_mesh_destroy(mh[k]);
+        ttd_gen_mesh_free(&g[k]);
+        ttd_gen_mesh_free(&h[k]);
+    }
+    printf("  %zu cubes sunk 0.1 into cubes (solids): depth M + 0.1 at the four sunk corners, normal +z\n", cases);
+    return 0;
+}
+
+/* Whether world point x lies inside the closed triangle soup w[0..nt) (9 per triangle), by the
+ * parity of a ray's crossings (a fixed, general direction; a ray through an edge or a vertex is
+ * not expected at these points): an inside test of its own, beside the library's winding number. */
+static int ray_inside(const double *w, size_t nt, const double x[3])
+{
+    const double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896259};
+    int crossings = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        const double *a = w + 9 * t, *b = a + 3, *c = a + 6;
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double pv[3] = {dir[1] * e2[2] - dir[2] * e2[1], dir[2] * e2[0] - dir[0] * e2[2], dir[0] * e2[1] - dir[1] * e2[0]};
+        const double det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
+        if (fabs(det) < 1e-300)
+            continue;
+        const double tv[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+        const double u = (tv[0] * pv[0] + tv[1] * pv[1] + tv[2] * pv[2]) / det;
+        const double qv[3] = {tv[1] * e1[2] - tv[2] * e1[1], tv[2] * e1[0] - tv[0] * e1[2], tv[0] * e1[1] - tv[1] * e1[0]};
+        const double v = (dir[0] * qv[0] + dir[1] * qv[1] + dir[2] * qv[2]) / det;
+        const double h = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) / det;
+        crossings += u >= 0 && v >= 0 && u + v <= 1 && h > 0;
+    }
+    return crossings % 2;
+}
+
+/* Solid bodies interpenetrating or nested, against a brute force: icospheres, cubes and a torus at
+ * random rotations, sunk 0.02 to 0.3 into each other, a small icosphere wholly inside a cube and a
+ * cube inside a large icosphere; both precisions, either order. The manifold's points below 0 at
+ * K = 0 are exactly the vertices of each body inside the other (the ray test here, leaving out
+ * vertices within 1e-9 of the surface), each at minus its exact distance to the other's surface
+ * (the point-triangle distance over all of the other's triangles, the vertex moved into its
+ * frame as the point queries move points), bit for bit, with normals of unit length that point
+ * out of the other body (positive along the surface point minus the vertex). A nested pair is
+ * found by collide at 0 (the inner body's triangle 0 as witness) and gets distance 0. */
+static int solid_pairs_brute_force(void)
+{
+    size_t pairs = 0, inside_points = 0, nested = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh g[5];
+        ENSURE(ttd_gen_icosphere(2, &g[0]) == 0 && cube_mesh(CUBE_DIAG_A, &g[1]) == 0);
+        ENSURE(ttd_gen_torus(0.6, 0.25, 16, 8, &g[2]) == 0 && ttd_gen_icosphere(1, &g[3]) == 0);
+        ENSURE(cube_mesh(CUBE_SPLIT3, &g[4]) == 0);
+        for (int k = 0; k < 5; ++k)
+            ENSURE(ttd_gen_normalize(&g[k]) == 0);
+        scale_mesh(&g[3], 0.3); /* a small icosphere, to go inside a cube */
+        scale_mesh(&g[0], 2.2);  /* and a large one, to hold a cube */
+        if (bytes == 4)
+            for (int k = 0; k < 5; ++k)
+                for (size_t i = 0; i < 3 * g[k].nv; ++i)
+                    g[k].verts[i] = (double)(float)g[k].verts[i];
+        ttd_mesh *m[5];
+        for (int k = 0; k < 5; ++k)
+            ENSURE((m[k] = make_mesh(&g[k], bytes)) != NULL);
+        static const int kinds[][2] = {{0, 1}, {1, 2}, {2, 4}, {4, 1}, {0, 2}, {3, 1}, {4, 3}, {0, 4}};
+        for (size_t ki = 0; ki < sizeof kinds / sizeof kinds[0]; ++ki)
+            for (int trial = 0; trial < (bytes == 8 ? 4 : 2); ++trial) {
+                const int a = kinds[ki][0], b = kinds[ki][1];
+                const int nest = (a == 3 || b == 3 || (a == 0 && b != 2)) && trial % 2 == 0;
+                double pose[2][12];
+                ttd_gen_pose(500 + ki, (uint64_t)trial, 0, pose[0]);
+                for (int r = 0; r < 3; ++r)
+                    pose[0][4 * r + 3] = 0.1 * r;
+                if (nest) { /* the smaller inside the larger: the same centre, turned */
+                    ttd_gen_pose(600 + ki, (uint64_t)trial, 0, pose[1]);
+                    for (int r = 0; r < 3; ++r)
+                        pose[1][4 * r + 3] = pose[0][4 * r + 3];
+                } else {
+                    double rel[12];
+                    const double sink = -(0.02 + 0.07 * trial);
+                    ENSURE(ttd_gen_pose_gap(&g[a], &g[b], 700 + ki, (uint64_t)trial, NULL, sink, rel) == 0);
+                    for (int r = 0; r < 3; ++r) /* pose[1] = pose[0] . rel */
+                        for (int c = 0; c < 4; ++c) {
+                            double v = c == 3 ? pose[0][4 * r + 3] : 0;
+                            for (int k = 0; k < 3; ++k)
+                                v += pose[0][4 * r + k] * rel[4 * k + c];
+                            pose[1][4 * r + c] = v;
+                        }
+                }
+                if (bytes == 4)
+                    for (int q = 0; q < 2; ++q)
+                        for (int k = 0; k < 12; ++k)
+                            pose[q][k] = (double)(float)pose[q][k];
+                for (int order = 0; order < 2; ++order) {
+                    const int mi = order ? b : a, mj = order ? a : b;
+                    const double *Pi = pose[order], *Pj = pose[!order];
+                    ttd_scene *s;
+                    ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                    ENSURE(add_body(s, bytes, m[mi], Pi) == 0 && add_body(s, bytes, m[mj], Pj) == 0);
+                    ENSURE(ttd_scene_set_solid(s, 0, 1) == TTD_OK && ttd_scene_set_solid(s, 1, 1) == TTD_OK);
+                    /* the bodies' world triangles and vertices, as the library computes them */
+                    const ttd_gen_mesh *gm[2] = {&g[mi], &g[mj]};
+                    const double *P[2] = {Pi, Pj};
+                    double *wt[2], *wv[2];
+                    for (int q = 0; q < 2; ++q) {
+                        wt[q] = malloc(9 * gm[q]->nt * sizeof *wt[q]);
+                        wv[q] = malloc(3 * gm[q]->nv * sizeof *wv[q]);
+                        ENSURE(wt[q] && wv[q]);
+                        for (size_t v = 0; v < gm[q]->nv; ++v)
+                            for (int r = 0; r < 3; ++r) {
+                                const double *x = gm[q]->verts + 3 * v, *Q = P[q];
+                                if (bytes == 8) {
+                                    wv[q][3 * v + (size_t)r] = ((Q[4 * r] * x[0] + Q[4 * r + 1] * x[1]) + Q[4 * r + 2] * x[2]) + Q[4 * r + 3];
+                                } else {
+                                    const float f = (((float)Q[4 * r] * (float)x[0] + (float)Q[4 * r + 1] * (float)x[1]) +
+                                                     (float)Q[4 * r + 2] * (float)x[2]) + (float)Q[4 * r + 3];
+                                    wv[q][3 * v + (size_t)r] = (double)f;
+                                }
+                            }
+                        for (size_t t = 0; t < gm[q]->nt; ++t)
+                            for (int k = 0; k < 3; ++k)
+                                memcpy(wt[q] + 9 * t + 3 * k, wv[q] + 3 * (size_t)gm[q]->tris[3 * t + (size_t)k], 3 * sizeof(double));
+                    }
+                    mpoint *pt;
+                    const size_t n = ask_manifold(s, bytes, NULL, 0.01, 0, &pt);
+                    ENSURE(n != SIZE_MAX);
+                    /* every vertex inside the other body: its point, at minus its exact distance */
+                    size_t want = 0, found = 0;
+                    for (int q = 0; q < 2; ++q) {
+                        const ttd_gen_mesh *o = gm[!q];
+                        for (size_t v = 0; v < gm[q]->nv; ++v) {
+                            const double *x = wv[q] + 3 * v;
+                            if (!ray_inside(wt[!q], o->nt, x))
+                                continue;
+                            /* x in the other's frame (ttd.h, "Point queries"), the exact distance there */
+                            const double *Q = P[!q];
+                            double y[3], best = INFINITY, at[3] = {0, 0, 0};
+                            float yf[3];
+                            for (int c = 0; c < 3; ++c) {
+                                y[c] = (Q[c] * (x[0] - Q[3]) + Q[4 + c] * (x[1] - Q[7])) + Q[8 + c] * (x[2] - Q[11]);
+                                yf[c] = ((float)Q[c] * ((float)x[0] - (float)Q[3]) + (float)Q[4 + c] * ((float)x[1] - (float)Q[7])) +
+                                        (float)Q[8 + c] * ((float)x[2] - (float)Q[11]);
+                            }
+                            for (size_t t = 0; t < o->nt; ++t) {
+                                double tri[9];
+                                for (int k = 0; k < 3; ++k)
+                                    memcpy(tri + 3 * k, o->verts + 3 * (size_t)o->tris[3 * t + (size_t)k], 3 * sizeof(double));
+                                double d;
+                                if (bytes == 8) {
+                                    ttd_point_result_d r;
+                                    ENSURE(ttd_point_triangle_d(y, tri, &r) == TTD_OK);
+                                    d = r.distance;
+                                } else {
+                                    float trf[9];
+                                    for (int k = 0; k < 9; ++k)
+                                        trf[k] = (float)tri[k];
+                                    ttd_point_result_f r;
+                                    ENSURE(ttd_point_triangle_f(yf, trf, &r) == TTD_OK);
+                                    d = (double)r.distance;
+                                }
+                                if (d < best)
+                                    best = d;
+                            }
+                            if (!(best > 1e-9))
+                                continue; /* on the surface, to rounding: no inside point asked of it */
+                            memcpy(at, x, sizeof at);
+                            ++want;
+                            /* its point: the midpoint of the vertex and its closest point, at -best */
+                            int got = 0;
+                            for (size_t k = 0; k < n && !got; ++k) {
+                                if (!(pt[k].d < 0))
+                                    continue;
+                                const double h = hypot(hypot(pt[k].x[0] - at[0], pt[k].x[1] - at[1]), pt[k].x[2] - at[2]);
+                                if (pt[k].d == -best && fabs(h - 0.5 * best) <= (bytes == 8 ? 1e-9 : 1e-5)) {
+                                    got = 1;
+                                    /* the normal out of the other body: from the vertex towards the surface
+                                     * for body j's vertex (j pushed out of i along +n); the other way for i's */
+                                    const double away[3] = {pt[k].x[0] - at[0], pt[k].x[1] - at[1], pt[k].x[2] - at[2]};
+                                    const double dot = (q == 1 ? 1 : -1) * (away[0] * pt[k].n[0] + away[1] * pt[k].n[1] + away[2] * pt[k].n[2]);
+                                    ENSURE_NEAR(pt[k].n[0] * pt[k].n[0] + pt[k].n[1] * pt[k].n[1] + pt[k].n[2] * pt[k].n[2], 1, 1e-6);
+                                    ENSURE_MSG(dot > 0, "%s pair %d (%d, %d) order %d: an inside point's normal points into the "
+                                               "other body", bytes == 8 ? "double" : "float", (int)ki, a, b, order);
+                                }
+                            }
+                            found += got;
+                        }
+                    }
+                    size_t below = 0;
+                    for (size_t k = 0; k < n; ++k)
+                        below += pt[k].d < 0;
+                    ENSURE_MSG(found == want && below == want,
+                               "%s pair %d (%d in %d) trial %d order %d: %zu vertices inside, %zu found, %zu points below 0",
+                               bytes == 8 ? "double" : "float", (int)ki, a, b, trial, order, want, found, below);
+                    inside_points += found;
+                    /* every instruction set and 1 or 2 threads: the same manifold, bit for bit */
+                    for (int isa = TTD_ISA_SCALAR; isa < TTD_ISA_COUNT; ++isa) {
+                        if (!ttd_isa_available((ttd_isa)isa))
+                            continue;
+                        for (int threads = 1; threads <= 2; ++threads) {
+                            ttd_options opt = ttd_default_options();
+                            opt.isa = (ttd_isa)isa;
+                            opt.threads = threads;
+                            mpoint *other;
+                            const size_t no = ask_manifold(s, bytes, &opt, 0.01, 0, &other);
+                            ENSURE(no == n && (n == 0 || memcmp(other, pt, n * sizeof *pt) == 0));
+                            free(other);
+                        }
+                    }
+                    if (nest) { /* collide at 0 and distance see the nested pair */
+                        ttd_scene_array hits = {0};
+                        ENSURE((bytes == 8 ? ttd_scene_collide_d(NULL, s, 0, &hits) : ttd_scene_collide_f(NULL, s, 0, &hits)) == TTD_OK);
+                        ENSURE(hits.count == 1);
+                        const ttd_scene_hit *hh = hits.data;
+                        ENSURE((hh->tri_i == 0 && hh->tri_j == UINT32_MAX) || (hh->tri_i == UINT32_MAX && hh->tri_j == 0));
+                        ttd_scene_array_free(&hits);
+                        if (bytes == 8) {
+                            ttd_scene_contact_d c, near[2];
+                            ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, near) == TTD_OK);
+                            ENSURE(c.distance == 0 && near[0].distance == 0 && near[1].distance == 0);
+                            ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0);
+                            ENSURE(memcmp(c.p, c.q, sizeof c.p) == 0 && (c.tri_i == 0 || c.tri_j == 0));
+                        } else {
+                            ttd_scene_contact_f c;
+                            ENSURE(ttd_scene_distance_f(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0);
+                        }
+                        ++nested;
+                    }
+                    free(pt);
+                    for (int q = 0; q < 2; ++q) {
+                        free(wt[q]);
+                        free(wv[q]);
+                    }
+                    ttd_scene_destroy(s);
+                    ++pairs;
+                }
+            }
+        for (int k = 0; k < 5; ++k) {
+            ttd_mesh_destroy(m[k]);
+            ttd_gen_mesh_free(&g[k]);
+        }
+    }
+    ENSURE(inside_points > 100 && nested > 0);
+    printf("  %zu solid pairs (%zu nested): %zu vertices inside the other body, each a point at minus its exact "
+           "distance, normals out of the other body\n", pairs, nested, inside_points);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -1117,5 +1445,7 @@ int main(int argc, char **argv)
     RUN_TEST(sphere_on_floor_diagonal);
     RUN_TEST(torus_on_floor_level);
     RUN_TEST(random_scenes_rule);
+    RUN_TEST(sunk_cube_depth);
+    RUN_TEST(solid_pairs_brute_force);
     TEST_MAIN_END();
 }

@@ -571,6 +571,15 @@ TTD_API ttd_status ttd_scene_set_poses_f(ttd_scene *scene, size_t n, const float
 TTD_API ttd_status ttd_scene_set_filter(ttd_scene *scene, uint32_t id, uint32_t group, uint32_t mask);
 /// Excludes (excluded != 0) or includes again the pair of bodies i and j (i != j, either order).
 TTD_API ttd_status ttd_scene_exclude_pair(ttd_scene *scene, uint32_t i, uint32_t j, int excluded);
+/// Marks body id a solid (solid != 0) or a surface again (0; bodies start as surfaces). A solid's
+/// mesh must be closed (every edge shared by two triangles running it the two ways:
+/// TTD_ERR_MESH_NOT_CLOSED otherwise, the body unchanged); inside is its winding number's side,
+/// as for ttd_options.solid. A pair of solids is a solid pair: collide finds it when one lies
+/// inside the other (its witness: the inner body's triangle 0, UINT32_MAX for the outer), distance
+/// is then 0 (the inner body's first vertex as p = q, its triangle 0, UINT32_MAX for the outer),
+/// and a manifold carries the points of each body inside the other with negative distances
+/// (docs/scenes.md, section 5b). contacts is the same for solids and surfaces.
+TTD_API ttd_status ttd_scene_set_solid(ttd_scene *scene, uint32_t id, int solid);
 /// Bodies present.
 TTD_API size_t ttd_scene_body_count(const ttd_scene *scene);
 /// One more than the largest id given so far (0 for an empty or NULL scene).

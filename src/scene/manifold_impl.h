@@ -51,11 +51,29 @@ typedef struct manifold_work {
     size_t *sel;         /* the points chosen */
     unsigned char *taken;
     size_t cap, cell_cap;
-    ttd_scene_contact *all; /* the pair's contacts, then the corners they add (step 0) */
+    struct manifold_rec *all; /* the pair's points: its contacts, the corners they add (step 0),
+                               * the points of solids inside each other (5b) */
     size_t all_n, all_cap;
+    int solid;               /* the pair is a solid pair */
+    unsigned char *inner[2]; /* solid pairs: the places of body i's (0) and j's (1) vertices found
+                              * inside the other body (2), or outside (1), or not asked (0) */
+    size_t inner_cap[2];
+    uint32_t *queue;         /* 5b: places to ask, then those inside */
+    real *pts;               /* 5b: the inside vertices in the other body's frame */
+    uint32_t *pts_place;
+    ttd_point_result *res;   /* 5b: their closest points */
+    size_t queue_cap, pts_cap;
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
 } manifold_work;
+
+/* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
+ * solid inside the other (inside 0: p, a vertex of body i inside body j; 1: q, a vertex of body j
+ * inside body i; -1 for the others), whose distance is then negative. */
+typedef struct manifold_rec {
+    ttd_scene_contact c;
+    int inside;
+} manifold_rec;
 
 /* A vertex or a pair of edges step 0 asks about. A vertex: side 0 a vertex of body i (corner k of
  * its triangle ti), 1 of body j (corner k of tj), against the other body's triangle; its place
@@ -79,6 +97,12 @@ static void manifold_work_free(manifold_work *w)
     free(w->sel);
     free(w->taken);
     free(w->all);
+    free(w->inner[0]);
+    free(w->inner[1]);
+    free(w->queue);
+    free(w->pts);
+    free(w->pts_place);
+    free(w->res);
     free(w->key);
     memset(w, 0, sizeof *w);
 }
@@ -132,10 +156,10 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
  * points (a triangle pair's corners, step 0; the midpoint is the same when the bodies swap). */
 static int depth_cmp(const void *x, const void *y)
 {
-    const ttd_scene_contact *a = x, *b = y;
+    const ttd_scene_contact *a = &((const manifold_rec *)x)->c, *b = &((const manifold_rec *)y)->c;
     if (a->distance != b->distance)
         return a->distance < b->distance ? -1 : 1;
-    const int t = scene_contact_cmp(x, y);
+    const int t = scene_contact_cmp(a, b);
     if (t != 0)
         return t;
     for (int r = 0; r < 3; ++r) {
@@ -218,17 +242,18 @@ static int point_after(const real *x, const real *y)
     return 0;
 }
 
-static int all_push(manifold_work *w, const ttd_scene_contact *c)
+static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
 {
     if (w->all_n == w->all_cap) {
         const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
-        ttd_scene_contact *v = realloc(w->all, cap * sizeof *v);
+        manifold_rec *v = realloc(w->all, cap * sizeof *v);
         if (v == NULL)
             return 0;
         w->all = v;
         w->all_cap = cap;
     }
-    w->all[w->all_n++] = *c;
+    w->all[w->all_n].c = *c;
+    w->all[w->all_n++].inside = inside;
     return 1;
 }
 
@@ -372,14 +397,13 @@ static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const c
     return 1;
 }
 
-/* Step 0: the pair's n contacts c and the corners they add into w->all (w->all_n of them). 0 out
- * of memory. */
+/* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
+ * inside the other body left out: they have their negative distances). 0 out of memory. */
 static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
 {
-    w->all_n = w->key_n = 0;
-    for (size_t k = 0; k < n; ++k)
-        if (!all_push(w, &c[k]))
-            return 0;
+    w->key_n = 0;
+    if (n == 0)
+        return 1;
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
     for (int r = 0; r < 3; ++r)
@@ -400,8 +424,10 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         const corner_key *q = &w->key[k];
         if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
             continue; /* asked already */
+        if (q->kind < 2 && w->solid && w->inner[q->kind][q->a] == 2)
+            continue; /* a solid's vertex inside the other */
         if (have && (q->kind != best_q->kind || q->a != best_q->a)) {
-            if (!all_push(w, &best))
+            if (!all_push(w, &best, -1))
                 return 0;
             have = 0;
         }
@@ -409,7 +435,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got))
             continue;
         if (q->kind == 2) {
-            if (!all_push(w, &got))
+            if (!all_push(w, &got, -1))
                 return 0;
         } else if (!have || got.distance < best.distance) { /* keys come in the order of the other triangle */
             best = got;
@@ -417,7 +443,141 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
             have = 1;
         }
     }
-    return !have || all_push(w, &best);
+    return !have || all_push(w, &best, -1);
+}
+
+/* ---- 5b: the points of solids inside each other --------------------------------------------- */
+
+/* Room for side's flags over nw places and a queue of nw places. */
+static int inner_reserve(manifold_work *w, int side, size_t nw)
+{
+    if (nw + 1 > w->inner_cap[side]) {
+        unsigned char *f = realloc(w->inner[side], nw + 1);
+        if (f == NULL)
+            return 0;
+        w->inner[side] = f;
+        w->inner_cap[side] = nw + 1;
+    }
+    if (nw + 1 > w->queue_cap) {
+        uint32_t *q = realloc(w->queue, (nw + 1) * sizeof *q);
+        if (q == NULL)
+            return 0;
+        w->queue = q;
+        w->queue_cap = nw + 1;
+    }
+    if (nw + 1 > w->pts_cap) {
+        real *p = realloc(w->pts, 3 * (nw + 1) * sizeof *p);
+        if (p != NULL)
+            w->pts = p;
+        uint32_t *pl = p != NULL ? realloc(w->pts_place, (nw + 1) * sizeof *pl) : NULL;
+        if (pl != NULL)
+            w->pts_place = pl;
+        ttd_point_result *r = pl != NULL ? realloc(w->res, (nw + 1) * sizeof *r) : NULL;
+        if (r == NULL)
+            return 0;
+        w->res = r;
+        w->pts_cap = nw + 1;
+    }
+    return 1;
+}
+
+/* The vertex at place pl of a mesh (edge information E, triangles tris): a corner of the first
+ * triangle around it, that triangle into *tri. */
+static uint32_t place_vertex(const ttd_mesh_edges *E, const uint32_t *tris, uint32_t pl, uint32_t *tri)
+{
+    const uint32_t t = E->ring[E->ring_start[pl]];
+    *tri = t;
+    for (int k = 0; k < 3; ++k)
+        if (E->weld[tris[3 * (size_t)t + (size_t)k]] == pl)
+            return tris[3 * (size_t)t + (size_t)k];
+    return tris[3 * (size_t)t];
+}
+
+/* The vertices of one body of solid pair (i, j) inside the other (side 0: body i's inside j; 1:
+ * j's inside i), each with its closest point on the other's surface at a negative distance,
+ * into w->all. nested: the body lies wholly inside the other (every vertex); else the vertices
+ * of its triangles in the contacts c[0..n) and, from those found inside, their neighbours, as
+ * long as they are inside: the part of a surface inside the other solid is bounded where the
+ * surfaces cross, at triangles that are contacts. Inside: the winding number of the other body
+ * about the vertex moved into its frame as the point queries move points; the distance: the
+ * point query's exact distance there (the closest point moved back into the world). */
+static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, uint32_t i, uint32_t j, int side,
+                      const ttd_scene_contact *c, size_t n, int nested, manifold_work *w)
+{
+    const uint32_t b = side ? j : i, a = side ? i : j;
+    const struct ttd_mesh *mb = s->body[b].mesh;
+    const ttd_mesh_edges *E = &mb->edges;
+    if (!inner_reserve(w, side, E->nw))
+        return 0;
+    unsigned char *state = w->inner[side];
+    memset(state, 0, E->nw);
+    size_t nq = 0, nin = 0;
+    if (nested) {
+        for (uint32_t pl = 0; pl < E->nw; ++pl)
+            if (E->ring_start[pl] < E->ring_start[pl + 1]) {
+                state[pl] = 2;
+                w->queue[nin++] = pl;
+            }
+    } else {
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t t = side ? c[k].tri_j : c[k].tri_i;
+            for (int v = 0; v < 3; ++v) {
+                const uint32_t pl = E->weld[mb->tris[3 * (size_t)t + (size_t)v]];
+                if (state[pl] == 0) {
+                    state[pl] = 1;
+                    w->queue[nq++] = pl;
+                }
+            }
+        }
+        /* breadth first over the places asked: those inside go to the front of the queue */
+        for (size_t head = 0; head < nq; ++head) {
+            const uint32_t pl = w->queue[head];
+            uint32_t tri;
+            real x[3];
+            body_vertex(s, b, place_vertex(E, mb->tris, pl, &tri), x);
+            if (!body_inside(s, a, x))
+                continue;
+            state[pl] = 2;
+            for (uint32_t r = E->ring_start[pl]; r < E->ring_start[pl + 1]; ++r)
+                for (int v = 0; v < 3; ++v) {
+                    const uint32_t q = E->weld[mb->tris[3 * (size_t)E->ring[r] + (size_t)v]];
+                    if (state[q] == 0) {
+                        state[q] = 1;
+                        w->queue[nq++] = q;
+                    }
+                }
+        }
+        for (size_t k = 0; k < nq; ++k)
+            if (state[w->queue[k]] == 2)
+                w->queue[nin++] = w->queue[k];
+    }
+    if (nin == 0)
+        return 1;
+    const real *P = body_pose(s, a);
+    for (size_t k = 0; k < nin; ++k) {
+        uint32_t tri;
+        real x[3];
+        body_vertex(s, b, place_vertex(E, mb->tris, w->queue[k], &tri), x);
+        TTD_POINT_INTO(P, x, w->pts + 3 * k)
+        w->pts_place[k] = tri;
+    }
+    if (TTD_POINTS_CLOSEST(cfg, s->body[a].mesh, nin, w->pts, (real)INFINITY, w->res) != TTD_OK)
+        return 0;
+    for (size_t k = 0; k < nin; ++k) {
+        const ttd_point_result *r = &w->res[k];
+        if (!(r->distance > 0))
+            continue; /* on the surface: a contact */
+        uint32_t tri;
+        real x[3], y[3] = {r->point[0], r->point[1], r->point[2]};
+        body_vertex(s, b, place_vertex(E, mb->tris, w->queue[k], &tri), x);
+        TTD_POINT_BACK(real, P, y);
+        ttd_scene_contact rec = {i, j, side ? r->triangle : tri, side ? tri : r->triangle, -r->distance, {0, 0, 0}, {0, 0, 0}};
+        memcpy(rec.p, side ? y : x, sizeof rec.p);
+        memcpy(rec.q, side ? x : y, sizeof rec.q);
+        if (!all_push(w, &rec, side))
+            return 0;
+    }
+    return 1;
 }
 
 static double dist2(const double *a, const double *b)
@@ -633,19 +793,42 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-/* Body pair's manifold: its n >= 1 contacts c and the corners they add (step 0) reduced to at
- * most max points (0: all) appended to out, in the order chosen. w: scratch. 0 out of memory. */
-static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, size_t n0, real margin, size_t max,
-                       manifold_work *w, ttd_scene_array *out)
+/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
+ * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
+ * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
+static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
+                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
+                       ttd_scene_array *out)
 {
+    w->all_n = 0;
+    for (size_t k = 0; k < n0; ++k)
+        if (!all_push(w, &c0[k], -1))
+            return 0;
+    w->solid = solid_pair(s, p->i, p->j);
+    if (w->solid) {
+        real at[3];
+        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
+        if (n0 == 0 && nest == 0)
+            return 1;
+        for (int side = 0; side < 2; ++side) {
+            if (n0 == 0 && nest != (side ? 1 : 2)) {
+                memset(w->inner[side], 0, w->inner_cap[side]);
+                continue;
+            }
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
+                return 0;
+        }
+    }
     if (!pair_corners(s, c0, n0, margin, w))
         return 0;
-    ttd_scene_contact *c = w->all;
+    if (w->all_n == 0)
+        return 1;
+    manifold_rec *rc = w->all;
     const size_t n = w->all_n;
     if (!manifold_work_reserve(w, n))
         return 0;
-    qsort(c, n, sizeof *c, depth_cmp);
-    const double ri = s->body[c[0].i].mesh->radius, rj = s->body[c[0].j].mesh->radius;
+    qsort(rc, n, sizeof *rc, depth_cmp);
+    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
     int ex = 0;
     if (big > 0 && isfinite(big))
@@ -654,7 +837,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, s
     double *z = w->z, origin[3];
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
-            const double x = (double)(real)(0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r]);
+            const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
             if (k == 0)
                 origin[r] = x;
             z[3 * k + (size_t)r] = ldexp(x - origin[r], -ex);
@@ -664,10 +847,10 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, s
         memmove(z + 3 * a, z + 3 * w->kept[a], 3 * sizeof *z);
     /* the seed: among the kept within FEATURE_TOL of the larger radius of the smallest distance,
      * the farthest from their centroid */
-    const double d0 = (double)c[w->kept[0]].distance, window = FEATURE_TOL * big;
+    const double d0 = (double)rc[w->kept[0]].c.distance, window = FEATURE_TOL * big;
     double g[3] = {0, 0, 0};
     size_t ntie = 0;
-    for (size_t a = 0; a < nk && (double)c[w->kept[a]].distance - d0 <= window; ++a, ++ntie)
+    for (size_t a = 0; a < nk && (double)rc[w->kept[a]].c.distance - d0 <= window; ++a, ++ntie)
         for (int r = 0; r < 3; ++r)
             g[r] += z[3 * a + (size_t)r];
     for (int r = 0; r < 3; ++r)
@@ -694,7 +877,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, s
          * every contact of the seed's window) */
         const double level = LEVEL_FRACTION * ((double)margin - d0);
         size_t nl = ntie;
-        while (nl < nk && (double)c[w->kept[nl]].distance - d0 <= level)
+        while (nl < nk && (double)rc[w->kept[nl]].c.distance - d0 <= level)
             ++nl;
         memset(w->taken, 0, nk);
         if (nl >= max) {
@@ -718,10 +901,11 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_scene_contact *c0, s
     if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
         return 0;
     for (size_t k = 0; k < ns; ++k) {
-        const ttd_scene_contact *x = &c[w->kept[w->sel[k]]];
+        const manifold_rec *xr = &rc[w->kept[w->sel[k]]];
+        const ttd_scene_contact *x = &xr->c;
         ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count + k;
         double normal[3];
-        contact_normal(s, x, normal);
+        contact_normal(s, x, xr->inside, normal);
         pt->i = x->i;
         pt->j = x->j;
         pt->tri_i = x->tri_i;

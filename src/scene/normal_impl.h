@@ -26,10 +26,10 @@
  * are symmetric. Every vector is formed at unit scale (scaled by a power of two first), so that
  * tiny and huge scenes get the normals of the same scene at size 1.
  *
- * The solid pairs of a later round (a point of one body inside the other, its closest point on
- * the other's surface) fit the same rule: the inside point's side is nothing, the surface
- * point's side its feature (contact_side), u the direction from the surface point to the
- * inside one. */
+ * The points of solids inside each other (a vertex of one body inside the other, its closest
+ * point on the other's surface; docs/scenes.md, section 5b) fit the same rule: the inside
+ * point's side is nothing, the surface point's side its feature (contact_side), u the direction
+ * from the inside point to the surface one, out of the other body. */
 
 /* A barycentric weight this close to 0 is 0: the world coordinates' rounding (relative to the
  * triangle, for coordinates up to about 1e6 times its size in double, 1e3 in float). */
@@ -556,17 +556,21 @@ static int triangle_after(const real x[9], const real y[9])
     return 0;
 }
 
-/* The normal of contact c, from body i towards body j (docs/scenes.md, section 5). */
-static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
+/* The normal of contact c, from body i towards body j (docs/scenes.md, section 5). inside: -1,
+ * or which of c's points is a vertex of one solid inside the other (0: p, body i's; 1: q, body
+ * j's; c's distance negative): that side has no feature, and the normal comes out of the other
+ * body at its surface point (5b). */
+static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, int inside, double n[3])
 {
     real tri[2][9];
     world_triangle(s, c->i, c->tri_i, tri[0]);
     world_triangle(s, c->j, c->tri_j, tri[1]);
-    /* u: from p to q, else between the world boxes' centres, else +z */
+    /* u: from p to q (inside: from q to p, out of the other body), else between the world boxes'
+     * centres, else +z */
     double u[3], d[3];
     for (int r = 0; r < 3; ++r)
-        d[r] = (double)c->q[r] - (double)c->p[r];
-    if (!(c->distance > 0 && unit3(d, u))) {
+        d[r] = c->distance < 0 ? (double)c->p[r] - (double)c->q[r] : (double)c->q[r] - (double)c->p[r];
+    if (!(c->distance != 0 && unit3(d, u))) {
         const double *bi = s->box + 6 * (size_t)c->i, *bj = s->box + 6 * (size_t)c->j;
         for (int r = 0; r < 3; ++r)
             d[r] = (0.5 * bj[r] + 0.5 * bj[3 + r]) - (0.5 * bi[r] + 0.5 * bi[3 + r]);
@@ -581,8 +585,14 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
     const uint32_t t[2] = {swap ? c->tri_j : c->tri_i, swap ? c->tri_i : c->tri_j};
     const real *x[2] = {tri[swap], tri[!swap]}, *pt[2] = {swap ? c->q : c->p, swap ? c->p : c->q};
     body_feature f[2];
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2; ++k) {
         contact_side(s, id[k], t[k], x[k], pt[k], &f[k]);
+        if (inside >= 0 && k == (swap ? !inside : inside)) { /* a point inside the other solid: nothing */
+            f[k].kind = SIDE_FREE;
+            f[k].has_normal = 0;
+            f[k].ncon = f[k].neq = 0;
+        }
+    }
     /* the triangles about a's point, at one scale, for the face-face test */
     double tt[2][9], m = 0;
     for (int k = 0; k < 2; ++k)

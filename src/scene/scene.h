@@ -24,6 +24,7 @@ typedef struct scene_body {
     float pose_f[12];            /* a float scene's, as given */
     double defect;               /* max |R^T R - I| */
     uint32_t group, mask;
+    int solid;                   /* a solid (its mesh closed): pairs of solids are solid pairs */
 } scene_body;
 
 struct ttd_scene {
