@@ -62,6 +62,10 @@ static const char ttd_scene_usage_text[] =
     "        (default: group 1, mask 0xffffffff)\n"
     "    exclude BODY BODY\n"
     "        the two bodies are not a pair\n"
+    "    solid BODY\n"
+    "        the body is a solid (its mesh must be closed): a pair of solids collides when one lies\n"
+    "        inside the other (distance 0), and its manifold has points of each inside the other\n"
+    "        at negative d, depth M - d past M (docs/scenes.md, section 5b)\n"
     "    '#' starts a comment (a whole line, or after a statement); blank lines are ignored.\n"
     "  Bodies are numbered 0, 1, 2, ... in file order; BODY is a body's name or number, from a body\n"
     "  line above. A mesh may serve any number of bodies. Names and FILE are one word each (no\n"
@@ -113,6 +117,7 @@ static const char ttd_scene_usage_options[] =
     "                    check, for poses printed with few digits: R must be within 1e-2 of\n"
     "                    orthonormal (every entry of R^T R - I) with det R > 0\n"
     "  --names           print a named body's name for i and j (unnamed bodies: their number)\n"
+    "  --solid           every body a solid, as a 'solid BODY' line for each would make it\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
     "                    per file by default)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
@@ -151,7 +156,7 @@ typedef struct ttd_scene_args {
     const char *margin_s;
     double margin; /* float-rounded with --precision float; distance: +inf without --margin */
     size_t max_points;
-    int count, orthonormalize, strict, names;
+    int count, orthonormalize, strict, names, solid;
 } ttd_scene_args;
 
 /* Options of `ttd scene CMD`; --name value and --name=value both work. Returns 0, 1 after
@@ -188,8 +193,12 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             a->count = 1;
             continue;
         }
-        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0) {
-            *(arg[2] == 'o' ? &a->orthonormalize : arg[2] == 's' ? &a->strict : &a->names) = 1;
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0 ||
+            strcmp(arg, "--solid") == 0) {
+            *(arg[2] == 'o'                 ? &a->orthonormalize
+              : strcmp(arg, "--solid") == 0 ? &a->solid
+              : arg[2] == 's'               ? &a->strict
+                                            : &a->names) = 1;
             continue;
         }
         static const char *const valued[] = {"--margin", "--max-points", "--motion",
@@ -583,24 +592,27 @@ static int ttd_scene_u32(const char *word, size_t len, uint32_t *out)
     return 0;
 }
 
-/* `filter BODY GROUP MASK` (exclude = 0) or `exclude BODY BODY` (exclude = 1) at line `line`:
- * the library's ttd_scene_set_filter or ttd_scene_exclude_pair on the bodies named. 0, or -1
- * when out of memory. */
-static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line, int exclude, const char *p,
+/* `filter BODY GROUP MASK` (rule 0), `exclude BODY BODY` (1) or `solid BODY` (2) at line
+ * `line`: the library's ttd_scene_set_filter, ttd_scene_exclude_pair or ttd_scene_set_solid on
+ * the bodies named. 0, or -1 when out of memory. */
+static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line, int rule, const char *p,
                                     const char *end)
 {
-    const char *what = exclude ? "exclude" : "filter";
+    static const char *const whats[3] = {"filter", "exclude", "solid"};
+    static const char *const forms[3] = {"filter BODY GROUP MASK", "exclude BODY BODY", "solid BODY"};
+    static const int wants[3] = {3, 2, 1};
+    const char *what = whats[rule];
+    const int exclude = rule == 1;
     const char *w[4];
     size_t len[4] = {0};
     int n = 0;
     while (n < 4 && (w[n] = ttd_scene_word(&p, end, &len[n])) != NULL)
         ++n;
-    const int want = exclude ? 2 : 3;
+    const int want = wants[rule];
     if (n != want) {
-        static const char *const missing[2][3] = {{"no BODY", "no GROUP", "no MASK"}, {"no BODY", "one BODY", ""}};
-        ttd_scene_bad_line(st, st->fname, line, "expected '%s', found %s",
-                           exclude ? "exclude BODY BODY" : "filter BODY GROUP MASK",
-                           n > want ? "more words" : missing[exclude][n]);
+        static const char *const missing[3][3] = {{"no BODY", "no GROUP", "no MASK"}, {"no BODY", "one BODY", ""}, {"no BODY", "", ""}};
+        ttd_scene_bad_line(st, st->fname, line, "expected '%s', found %s", forms[rule],
+                           n > want ? "more words" : missing[rule][n]);
         return 0;
     }
     const long b0 = ttd_scene_body_ref(st, line, what, w[0], len[0]);
@@ -618,6 +630,10 @@ static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line
         const uint32_t i = st->lines[b0].id, j = st->lines[b1].id;
         if (st->bad == 0 && i != UINT32_MAX && j != UINT32_MAX)
             s = ttd_scene_exclude_pair(st->scene, i, j, 1);
+    } else if (rule == 2) {
+        const uint32_t i = st->lines[b0].id;
+        if (st->bad == 0 && i != UINT32_MAX)
+            s = ttd_scene_set_solid(st->scene, i, 1);
     } else {
         uint32_t group, mask;
         for (int k = 1; k < 3; ++k)
@@ -678,13 +694,14 @@ static int ttd_scene_read(ttd_scene_state *st)
                 mem = ttd_scene_mesh_line(st, r->line_no, p, end);
             else if (ttd_scene_is(key, klen, "body"))
                 mem = ttd_scene_body_line(st, r->line_no, p, end);
-            else if (ttd_scene_is(key, klen, "filter") || ttd_scene_is(key, klen, "exclude"))
-                mem = ttd_scene_pair_rule_line(st, r->line_no, key[0] == 'e', p, end);
+            else if (ttd_scene_is(key, klen, "filter") || ttd_scene_is(key, klen, "exclude") ||
+                     ttd_scene_is(key, klen, "solid"))
+                mem = ttd_scene_pair_rule_line(st, r->line_no, key[0] == 'f' ? 0 : key[0] == 'e' ? 1 : 2, p, end);
             else {
                 char word[64];
                 snprintf(word, sizeof word, "%.*s%s", klen > 40 ? 40 : (int)klen, key, klen > 40 ? "..." : "");
-                ttd_scene_bad_line(st, st->fname, r->line_no, "unknown statement '%s' (mesh, body, filter or exclude)",
-                                   word);
+                ttd_scene_bad_line(st, st->fname, r->line_no,
+                                   "unknown statement '%s' (mesh, body, filter, exclude or solid)", word);
             }
             if (mem != 0) {
                 ttd_cli_error("%s:%llu: out of memory", st->fname, r->line_no);
@@ -896,6 +913,14 @@ static void ttd_scene_put_body(FILE *out, char *const *names, uint32_t id, const
         fprintf(out, "%s%lu", sep, (unsigned long)id);
 }
 
+/* Triangles ia and ib after a space each: -1 for UINT32_MAX (no triangle: the outer body of two
+ * nested solids). */
+static void ttd_scene_put_tris(FILE *out, uint32_t ia, uint32_t ib)
+{
+    fprintf(out, ia == UINT32_MAX ? " -1" : " %lu", (unsigned long)ia);
+    fprintf(out, ib == UINT32_MAX ? " -1" : " %lu", (unsigned long)ib);
+}
+
 /* Items of one query, widened to double, for sorting and printing. */
 typedef struct ttd_scene_item {
     uint32_t i, j, ti, tj;
@@ -956,7 +981,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
         fprintf(out, f ? "%.9g" : "%.17g", d);
         ttd_scene_put_body(out, names, f ? cf.i : cd.i, " ");
         ttd_scene_put_body(out, names, j, " ");
-        fprintf(out, " %lu %lu", (unsigned long)(f ? cf.tri_i : cd.tri_i), (unsigned long)(f ? cf.tri_j : cd.tri_j));
+        ttd_scene_put_tris(out, f ? cf.tri_i : cd.tri_i, f ? cf.tri_j : cd.tri_j);
         ttd_scene_put_reals(out, f, pq + 1, 6);
         fputc('\n', out);
         return 0;
@@ -1041,7 +1066,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
             ttd_scene_put_reals(out, f, &it->d, 1);
             ttd_scene_put_reals(out, f, &it->depth, 1);
         } else {
-            fprintf(out, " %lu %lu", (unsigned long)it->ti, (unsigned long)it->tj);
+            ttd_scene_put_tris(out, it->ti, it->tj);
             if (a->cmd == TTD_SCENE_CONTACTS) {
                 ttd_scene_put_reals(out, f, &it->d, 1);
                 ttd_scene_put_reals(out, f, it->p, 3);
@@ -1107,6 +1132,14 @@ int ttd_cli_scene(int argc, char **argv)
         return TTD_EXIT_INPUT;
     }
     rc = ttd_scene_read(&st);
+    for (size_t k = 0; rc == 0 && a.solid && k < st.nlines; ++k) { /* --solid: every body a solid */
+        s = ttd_scene_set_solid(st.scene, st.lines[k].id, 1);
+        if (s != TTD_OK) {
+            ttd_cli_error("%s: --solid: body %zu%s%s: %s", st.fname, k, st.lines[k].name ? " " : "",
+                          st.lines[k].name ? st.lines[k].name : "", ttd_status_string(s));
+            rc = TTD_EXIT_INPUT;
+        }
+    }
     if (rc == 0 && a.motion_path != NULL)
         rc = ttd_scene_read_motion(&st, &mo);
     char *const *names = a.names ? st.id_name : NULL;

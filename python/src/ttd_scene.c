@@ -808,6 +808,43 @@ static PyObject *ttd_py_scene_exclude(PyObject *obj, PyObject *args, PyObject *k
     Py_RETURN_NONE;
 }
 
+PyDoc_STRVAR(ttd_py_scene_set_solid_doc,
+"set_solid($self, id, solid=True)\n--\n\n"
+"Makes body id a solid (its mesh must be closed: ValueError otherwise, the body unchanged), or\n"
+"with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
+"one lies inside the other (distance 0; the inner body's triangle 0 as witness, NO_TRIANGLE for\n"
+"the outer), and its manifold holds the vertices of each body inside the other at negative\n"
+"distances: minus their exact distance to the other's surface, depth = margin - distance past\n"
+"the margin, normals out of the other body (docs/scenes.md, section 5b).");
+
+static PyObject *ttd_py_scene_set_solid(PyObject *obj, PyObject *args, PyObject *kwargs)
+{
+    ttd_py_scene *s = (ttd_py_scene *)obj;
+    static char *kwlist[] = {"id", "solid", NULL};
+    PyObject *id_obj;
+    int solid = 1;
+    uint32_t id;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|p:set_solid", kwlist, &id_obj, &solid) ||
+        ttd_py_scene_id(id_obj, "id", &id) < 0)
+        return NULL;
+    ttd_py_scene_lock(s);
+    ttd_status st = TTD_ERR_INDEX_OUT_OF_RANGE;
+    if (ttd_py_scene_present(s, id))
+        st = ttd_scene_set_solid(s->scene, id, solid);
+    ttd_py_scene_unlock(s);
+    if (st == TTD_ERR_INDEX_OUT_OF_RANGE)
+        ttd_py_scene_no_body(s, "id", id);
+    else if (st == TTD_ERR_MESH_NOT_CLOSED)
+        PyErr_Format(PyExc_ValueError, "body %u cannot be a solid: %s", (unsigned)id, ttd_status_string(st));
+    else if (st == TTD_ERR_OUT_OF_MEMORY)
+        PyErr_NoMemory();
+    else if (st != TTD_OK)
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from ttd_scene_set_solid", (int)st);
+    if (st != TTD_OK)
+        return NULL;
+    Py_RETURN_NONE;
+}
+
 /* ---- the queries ------------------------------------------------------------------------- */
 
 typedef enum ttd_py_scene_kind { TTD_PY_SCOLLIDE, TTD_PY_SDISTANCE, TTD_PY_SCONTACTS, TTD_PY_SMANIFOLD } ttd_py_scene_kind;
@@ -1166,6 +1203,8 @@ static PyMethodDef ttd_py_scene_type_methods[] = {
     {"set_pose", ttd_py_scene_set_pose, METH_VARARGS, ttd_py_scene_set_pose_doc},
     {"set_poses", ttd_py_scene_set_poses, METH_O, ttd_py_scene_set_poses_doc},
     {"set_filter", ttd_py_scene_set_filter, METH_VARARGS, ttd_py_scene_set_filter_doc},
+    {"set_solid", (PyCFunction)(void (*)(void))ttd_py_scene_set_solid, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_scene_set_solid_doc},
     {"exclude", (PyCFunction)(void (*)(void))ttd_py_scene_exclude, METH_VARARGS | METH_KEYWORDS,
      ttd_py_scene_exclude_doc},
     {"collide", (PyCFunction)(void (*)(void))ttd_py_scene_collide, METH_VARARGS | METH_KEYWORDS,

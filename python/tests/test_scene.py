@@ -400,6 +400,57 @@ def test_set_poses_moves_every_body(dtype):
 
 
 @pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_solids(dtype):
+    """Solid bodies (docs/scenes.md, section 5b): a unit cube sunk 0.1 into another has its
+    deepest point at depth margin + 0.1 with normal +z (as surfaces: no point below 0); a half cube
+    inside a cube is found by collide(0) (the inner body's triangle 0), distance 0, and its
+    manifold's points are its 8 vertices at minus their exact distance to the outer cube
+    (ttd.closest_points with the outer body's pose); an open mesh cannot be a solid."""
+    unit = ttd.Mesh(*cube(), precision=dtype)
+    v, f = cube()
+    half = ttd.Mesh(0.5 * v, f, precision=dtype)
+    up = np.eye(4)
+    up[:3, 3] = [0.25, 0.25, 0.9]
+    scene = ttd.Scene([unit, half], np.array([np.eye(4), up]))
+    assert np.all(scene.manifold(0.01, 0).distance >= 0)
+    scene.set_solid(0)
+    scene.set_solid(1, solid=True)
+    m = scene.manifold(0.01, 4)
+    k = int(np.argmax(m.depth))
+    assert abs(float(m.depth[k]) - 0.11) <= (1e-12 if dtype == np.float64 else 1e-6)
+    np.testing.assert_allclose(m.normal[k].astype(np.float64), [0, 0, 1], atol=1e-6)
+    assert np.sum(m.distance < 0) == 4  # the half cube's bottom corners, the deepest level
+    scene.set_solid(1, solid=False)
+    assert np.all(scene.manifold(0.01, 0).distance >= 0)
+    # nested
+    inner = np.eye(4)
+    inner[:3, 3] = [0.25, 0.25, 0.25]
+    nest = ttd.Scene([unit, half], np.array([np.eye(4), inner]))
+    assert len(nest.collide().i) == 0
+    nest.set_solid(0)
+    nest.set_solid(1)
+    hit = nest.collide()
+    assert (hit.i.tolist(), hit.j.tolist(), hit.tri_i.tolist(), hit.tri_j.tolist()) == ([0], [1], [NO], [0])
+    d = nest.distance(nearest=True)
+    assert d.distance == 0 and np.all(d.nearest.distance == 0)
+    m = nest.manifold(0.01, 0)
+    assert len(m.i) == 8 and np.all(m.distance < 0)
+    corners = move(half.vertices, inner)
+    want = ttd.closest_points(unit, corners, pose=np.eye(4)).distance
+    got = sorted(float(-x) for x in m.distance)
+    assert got == sorted(float(x) for x in want)
+    # an open mesh is no solid
+    gv, gf = grid(2)
+    flat = ttd.Scene([ttd.Mesh(gv, gf, precision=dtype)], np.array([np.eye(4)]))
+    with pytest.raises(ValueError, match="cannot be a solid"):
+        flat.set_solid(0)
+    flat.set_solid(0, solid=False)
+    flat.remove(0)
+    with pytest.raises((ValueError, IndexError)):
+        flat.set_solid(0)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
 def test_filters_exclusions_removals(dtype):
     ms, P = scene_setup(dtype)
     scene = ttd.Scene(ms, P)

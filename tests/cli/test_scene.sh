@@ -574,6 +574,48 @@ awk '{ for (k = 1; k <= NF; k++) { s = $k; sub(/e.*/, "", s); gsub(/[-.]/, "", s
     fail "float manifold: more than 9 digits"
 pass "--precision float: contacts, collide, distance equal to ttd mesh --precision float on the world meshes; manifold well formed"
 
+# ---- solids ------------------------------------------------------------------------------
+# A unit cube sunk 0.1 into another (offset 0.1, 0.2), solid by --solid or by 'solid' lines: the
+# same lines; the deepest point at depth M + 0.1 with normal +z, every point below 0 at d = -0.1
+# (a corner of one cube inside the other) with depth M - d; as surfaces, no point below 0.
+awk '/^v/ { print "v", $2 * 0.5, $3 * 0.5, $4 * 0.5; next } { print }' "$DIR/cube.obj" > "$DIR/half.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$DIR/open.obj"
+SOLID_HEAD='mesh cube cube.obj
+mesh half half.obj
+mesh open open.obj'
+printf '%s\nbody cube 1 0 0 0  0 1 0 0  0 0 1 0 name low\nbody cube 1 0 0 0.1  0 1 0 0.2  0 0 1 0.9\n' "$SOLID_HEAD" > "$DIR/sunk.txt"
+run 0 scene manifold "$DIR/sunk.txt" --margin 0.01 --solid --max-points 0
+cp "$DIR/out" "$DIR/sunk_solid"
+awk 'BEGIN { deepest = -1 } { d = $9 + 0; depth = $10 + 0; if (depth > deepest) { deepest = depth; nz = $8 + 0 }
+     e = depth - (0.01 - d); if (e < 0) e = -e; if (e > 1e-15) { print "depth " $0; exit 1 }
+     if (d < 0 && (d + 0.1 > 1e-12 || d + 0.1 < -1e-12)) { print "d " $0; exit 1 } if (d < 0) below++ }
+     END { e = deepest - 0.11; if (e < 0) e = -e; if (e > 1e-12 || nz != 1 || below < 2) { print "deepest " deepest " nz " nz " below " below; exit 1 } }' \
+    "$DIR/sunk_solid" > "$DIR/diff" || fail "sunk cube, --solid: $(cat "$DIR/diff")"
+{ cat "$DIR/sunk.txt"; echo "solid low"; echo "solid 1  # by number"; } > "$DIR/sunk2.txt"
+run 0 scene manifold "$DIR/sunk2.txt" --margin 0.01 --max-points 0
+same "$DIR/out" "$DIR/sunk_solid" "sunk cube: 'solid' lines against --solid"
+run 0 scene manifold "$DIR/sunk.txt" --margin 0.01 --max-points 0
+awk '$9 < 0 { exit 1 }' "$DIR/out" || fail "sunk cube as surfaces: a point below 0"
+# A half cube inside the unit cube: as solids, collide at 0 finds the pair (the inner body's
+# triangle 0, -1 for the outer), distance is 0 at the inner body's first vertex, the manifold's
+# points lie below 0; as surfaces, nothing collides.
+printf '%s\nbody cube 1 0 0 0  0 1 0 0  0 0 1 0\nbody half 1 0 0 0.25  0 1 0 0.25  0 0 1 0.25\n' "$SOLID_HEAD" > "$DIR/nest.txt"
+run 0 scene collide "$DIR/nest.txt" --solid
+[ "$(cat "$DIR/out")" = "0 1 -1 0" ] || fail "nested solids, collide: $(cat "$DIR/out")"
+run 0 scene distance "$DIR/nest.txt" --solid
+[ "$(cat "$DIR/out")" = "0 0 1 -1 0 0.25 0.25 0.25 0.25 0.25 0.25" ] || fail "nested solids, distance: $(cat "$DIR/out")"
+run 0 scene manifold "$DIR/nest.txt" --solid --max-points 0
+[ "$(wc -l < "$DIR/out" | tr -d ' ')" = 8 ] && awk '!($9 < 0) { exit 1 }' "$DIR/out" || fail "nested solids, manifold: $(cat "$DIR/out")"
+run 0 scene collide "$DIR/nest.txt"; no_output "nested surfaces collide"
+# An open mesh cannot be a solid.
+printf '%s\nbody open 1 0 0 0  0 1 0 0  0 0 1 0\n' "$SOLID_HEAD" > "$DIR/open.txt"
+run 1 scene collide "$DIR/open.txt" --solid; no_output "--solid on an open mesh"
+err_has "open.txt: --solid: body 0: a mesh is not closed" "--solid on an open mesh"
+{ cat "$DIR/open.txt"; echo "solid 0"; } > "$DIR/open2.txt"
+run 1 scene collide "$DIR/open2.txt"; no_output "solid on an open mesh"
+err_has "open2.txt:5: solid: a mesh is not closed" "solid on an open mesh"
+pass "solids: a cube sunk 0.1 (depth M + 0.1, +z; --solid and 'solid' lines alike), a cube inside a cube (collide, distance 0, points below 0), open meshes refused"
+
 # ---- errors: the scene file ------------------------------------------------------------------
 P0='1 0 0 0  0 1 0 0  0 0 1 0'
 bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, refused with PATTERN
@@ -582,7 +624,10 @@ bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, 
     run 1 scene contacts "$DIR/bad.txt" --margin 1; no_output "$what"; err_has "$pat" "$what"
     err_has "bad.txt: [0-9]* bad lines\{0,1\}; nothing computed" "$what (summary)"
 }
-bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh, body, filter or exclude)" "bodies cube $P0"
+bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh, body, filter, exclude or solid)" "bodies cube $P0"
+bad_scene "solid without BODY" "bad.txt:6: expected 'solid BODY', found no BODY" "solid"
+bad_scene "solid with more" "bad.txt:7: expected 'solid BODY', found more words" "body cube $P0" "solid 0 1"
+bad_scene "solid of no body" "bad.txt:7: solid: no body 3 (the body lines above this one are 0 to 0)" "body cube $P0" "solid 3"
 bad_scene "unknown mesh" "bad.txt:7: body 1: unknown mesh 'cub' (a 'mesh NAME FILE' line must come first)" "body cube $P0" "body cub $P0"
 bad_scene "duplicate mesh" "bad.txt:6: mesh 'tet' is already defined" "mesh tet cube.obj"
 bad_scene "mesh without FILE" "bad.txt:6: expected 'mesh NAME FILE', found no FILE" "mesh foo  # a comment"
