@@ -20,6 +20,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1435,6 +1436,78 @@ static int solid_pairs_brute_force(void)
     return 0;
 }
 
+/* ---- the edge information, made on first use ---------------------------------------------- */
+
+typedef struct edges_job {
+    const ttd_mesh *m[2];
+    const double *pose[2];
+    mpoint *got;
+    size_t n;
+} edges_job;
+
+static void *edges_worker(void *ctx)
+{
+    edges_job *J = ctx;
+    ttd_scene *s;
+    J->n = SIZE_MAX;
+    if (ttd_scene_create_d(&s) != TTD_OK)
+        return NULL;
+    if (add_body(s, 8, J->m[0], J->pose[0]) == 0 && add_body(s, 8, J->m[1], J->pose[1]) == 0) {
+        ttd_options opt = ttd_default_options();
+        opt.threads = 1;
+        J->n = ask_manifold(s, 8, &opt, 0.01, 0, &J->got);
+    }
+    ttd_scene_destroy(s);
+    return NULL;
+}
+
+/* Fresh meshes whose edge information no query has made yet, asked for manifolds by four threads
+ * at once (each its own scene): every thread gets the manifold one thread gets alone, from meshes
+ * made afresh, bit for bit (under ThreadSanitizer, scripts/test-tsan.sh, the race of the first
+ * use is checked too). */
+static int edges_made_on_first_use(void)
+{
+    ttd_gen_mesh g[2];
+    ENSURE(cube_mesh(CUBE_SPLIT3, &g[0]) == 0 && cube_mesh(CUBE_FAN, &g[1]) == 0);
+    const double lc[3] = {0.5, 0.5, 0.5}, uc[3] = {0.7, 0.6, 1.5 + 0.002};
+    double lower[12], upper[12];
+    cube_pose(0, lc, lower);
+    cube_pose(0.3, uc, upper);
+    mpoint *want = NULL;
+    size_t nwant = 0;
+    for (int round = 0; round < 3; ++round) {
+        ttd_mesh *m[2];
+        for (int k = 0; k < 2; ++k)
+            ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+        enum { NT = 4 };
+        edges_job J[NT];
+        pthread_t th[NT];
+        for (int t = 0; t < NT; ++t) {
+            J[t] = (edges_job){{m[0], m[1]}, {lower, upper}, NULL, 0};
+            ENSURE(pthread_create(&th[t], NULL, edges_worker, &J[t]) == 0);
+        }
+        for (int t = 0; t < NT; ++t)
+            ENSURE(pthread_join(th[t], NULL) == 0);
+        for (int t = 0; t < NT; ++t) {
+            ENSURE(J[t].n != SIZE_MAX && J[t].n >= 4);
+            if (want == NULL) {
+                want = J[t].got;
+                nwant = J[t].n;
+                continue;
+            }
+            ENSURE(J[t].n == nwant && memcmp(J[t].got, want, nwant * sizeof *want) == 0);
+            free(J[t].got);
+        }
+        for (int k = 0; k < 2; ++k)
+            ttd_mesh_destroy(m[k]);
+    }
+    free(want);
+    for (int k = 0; k < 2; ++k)
+        ttd_gen_mesh_free(&g[k]);
+    printf("  three rounds of fresh meshes, four threads each: the same manifold (%zu points)\n", nwant);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -1447,5 +1520,6 @@ int main(int argc, char **argv)
     RUN_TEST(random_scenes_rule);
     RUN_TEST(sunk_cube_depth);
     RUN_TEST(solid_pairs_brute_force);
+    RUN_TEST(edges_made_on_first_use);
     TEST_MAIN_END();
 }

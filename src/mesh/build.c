@@ -763,8 +763,32 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
-    ttd_mesh_edges_free(&mesh->edges);
+    if (mesh->edges != NULL) {
+        ttd_mesh_edges_free(mesh->edges);
+        free(mesh->edges);
+    }
     free(mesh);
+}
+
+const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
+{
+    /* a cache of what the immutable mesh determines, not a change to it */
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    ttd_mesh_edges *e = __atomic_load_n(&m->edges, __ATOMIC_ACQUIRE);
+    if (e != NULL)
+        return e;
+    e = malloc(sizeof *e);
+    if (e == NULL || !ttd_mesh_edges_build(m->bytes, m->verts, m->nv, m->tris, m->nt, e)) {
+        free(e);
+        return NULL;
+    }
+    ttd_mesh_edges *expected = NULL;
+    if (!__atomic_compare_exchange_n(&m->edges, &expected, e, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        ttd_mesh_edges_free(e); /* another thread made it first: the same arrays */
+        free(e);
+        return expected;
+    }
+    return e;
 }
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
@@ -836,8 +860,6 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-    if (!ttd_mesh_edges_build(bytes, verts, nv, tris, nt, &m->edges))
-        goto nomem;
     place(m, verts, vrel);
     B.vrel = vrel;
     int e;

@@ -12,7 +12,8 @@
  * lie face on face.
  *
  * ttd_mesh_edges_build is a function of the vertices and triangles alone (no other state of
- * the mesh), computed when a mesh is built; a mesh whose vertices change calls it again. */
+ * the mesh), made on the first query that reads it (ttd_mesh_edges_get, mesh/mesh.h), so that a
+ * mesh build does not pay for it; a mesh whose vertices change drops it and has it made again. */
 #ifndef TTD_MESH_EDGES_H
 #define TTD_MESH_EDGES_H
 

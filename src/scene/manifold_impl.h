@@ -65,6 +65,9 @@ typedef struct manifold_work {
     size_t queue_cap, pts_cap;
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
+    struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
+    struct manifold_rec *sorted;
+    size_t keys_cap;
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -100,6 +103,8 @@ static void manifold_work_free(manifold_work *w)
     free(w->inner[0]);
     free(w->inner[1]);
     free(w->queue);
+    free(w->keys);
+    free(w->sorted);
     free(w->pts);
     free(w->pts_place);
     free(w->res);
@@ -168,6 +173,71 @@ static int depth_cmp(const void *x, const void *y)
             return ma < mb ? -1 : 1;
     }
     return 0;
+}
+
+/* Step 1's order as keys, sorted in place of the points: the distance's bits made to order as the
+ * numbers do, the triangles, the point's index (the midpoint only where those tie). */
+typedef struct depth_key {
+    uint64_t d, t;
+    size_t at;
+} depth_key;
+
+static uint64_t order_bits(double x)
+{
+    x += 0.0; /* -0 is +0 */
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return u >> 63 ? ~u : u | 0x8000000000000000ULL;
+}
+
+static int key_before(const depth_key *a, const depth_key *b, const manifold_rec *rc)
+{
+    if (a->d != b->d)
+        return a->d < b->d;
+    if (a->t != b->t)
+        return a->t < b->t;
+    return depth_cmp(&rc[a->at], &rc[b->at]) < 0;
+}
+
+/* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
+ * place of qsort on the records). 0 out of memory. */
+static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
+{
+    if (2 * n > w->keys_cap) {
+        depth_key *k = realloc(w->keys, 2 * n * sizeof *k);
+        if (k != NULL)
+            w->keys = k;
+        manifold_rec *r = k != NULL ? realloc(w->sorted, n * sizeof *r) : NULL;
+        if (r == NULL)
+            return 0;
+        w->sorted = r;
+        w->keys_cap = 2 * n;
+    }
+    depth_key *a = w->keys, *b = w->keys + n;
+    for (size_t k = 0; k < n; ++k) {
+        a[k].d = order_bits((double)rc[k].c.distance);
+        a[k].t = (uint64_t)rc[k].c.tri_i << 32 | rc[k].c.tri_j;
+        a[k].at = k;
+    }
+    for (size_t run = 1; run < n; run *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * run) {
+            const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
+            size_t x = lo, y = mid, o = lo;
+            while (x < mid && y < hi)
+                b[o++] = key_before(&a[y], &a[x], rc) ? a[y++] : a[x++];
+            while (x < mid)
+                b[o++] = a[x++];
+            while (y < hi)
+                b[o++] = a[y++];
+        }
+        depth_key *t = a;
+        a = b;
+        b = t;
+    }
+    for (size_t k = 0; k < n; ++k)
+        w->sorted[k] = rc[a[k].at];
+    memcpy(rc, w->sorted, n * sizeof *rc);
+    return 1;
 }
 
 /* ---- step 0: the corners of flat contact ---------------------------------------------------- */
@@ -295,8 +365,8 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
     /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
      * body i's frame) */
-    const float *ni = s->body[c->i].mesh->edges.normal + 3 * (size_t)c->tri_i;
-    const float *nj = s->body[c->j].mesh->edges.normal + 3 * (size_t)c->tri_j;
+    const float *ni = s->body[c->i].mesh->edges->normal + 3 * (size_t)c->tri_i;
+    const float *nj = s->body[c->j].mesh->edges->normal + 3 * (size_t)c->tri_j;
     double facing = 0;
     for (int r = 0; r < 3; ++r)
         facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
@@ -309,7 +379,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     for (int side = 0; side < 2; ++side) {
         world_triangle(s, id[side], tri[side], x[side]);
         corner_plane_make(x[side], &P[side]);
-        E[side] = &s->body[id[side]].mesh->edges;
+        E[side] = s->body[id[side]].mesh->edges;
         tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
     int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
@@ -506,7 +576,7 @@ static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, u
 {
     const uint32_t b = side ? j : i, a = side ? i : j;
     const struct ttd_mesh *mb = s->body[b].mesh;
-    const ttd_mesh_edges *E = &mb->edges;
+    const ttd_mesh_edges *E = mb->edges;
     if (!inner_reserve(w, side, E->nw))
         return 0;
     unsigned char *state = w->inner[side];
@@ -587,34 +657,44 @@ static double dist2(const double *a, const double *b)
 }
 
 /* The cell of scaled point z, each coordinate in cells of width `cell` (saturated far out:
- * the cells there only gather more points to compare). */
-static void cell_of(const double z[3], double cell, int64_t c[3])
+ * the cells there only gather more points to compare), and per axis the neighbour on the side of
+ * the half of its cell z lies in (-1 or +1). */
+static void cell_of(const double z[3], double cell, int64_t c[3], int side[3])
 {
     for (int r = 0; r < 3; ++r) {
-        const double x = floor(z[r] / cell);
+        const double q = z[r] / cell, x = floor(q);
         c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : (int64_t)x;
+        side[r] = q - x < 0.5 ? -1 : 1;
     }
 }
 
+/* A cell's key: its coordinates mixed (splitmix64's finisher), never 0 (0 marks an empty slot). */
 static uint64_t cell_key(const int64_t c[3])
 {
-    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL;
-    h ^= (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL + (h << 6) + (h >> 2);
-    h ^= (uint64_t)c[2] * 0x165667b19e3779f9ULL + (h << 6) + (h >> 2);
-    return h | 1; /* never 0: 0 marks an empty slot */
+    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL ^ (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL ^
+                 (uint64_t)c[2] * 0x165667b19e3779f9ULL;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+    return (h ^ (h >> 31)) | 1;
 }
 
-/* The slot of cell key k in the open-addressing table (its own, or the empty one where it goes). */
-static size_t cell_slot(const manifold_work *w, size_t cells, uint64_t k)
+/* The slot of cell key k in the open-addressing table of 2^bits slots (its own, or the empty one
+ * where it goes): from the key's top bits, then the next ones. */
+static size_t cell_slot(const manifold_work *w, int bits, uint64_t k)
 {
-    size_t at = (size_t)(k ^ (k >> 29)) & (cells - 1);
+    const size_t mask = ((size_t)1 << bits) - 1;
+    size_t at = (size_t)(k >> (64 - bits));
     while (w->cell_key[at] != 0 && w->cell_key[at] != k)
-        at = (at + 1) & (cells - 1);
+        at = (at + 1) & mask;
     return at;
 }
 
 /* Step 2: the contacts to keep (indices into c, depth order) into w->kept; returns how many.
- * z holds the scaled points, tol2 the squared scaled tolerance. */
+ * z holds the scaled points, tol the scaled tolerance. The grid's cells are 2.5 tolerances
+ * wide, so that the points within the tolerance of a point lie in 8 cells: its own and, per
+ * axis, the neighbour on the side of the half of its cell it lies in (the tolerance reaches at
+ * most 0.4 of a cell out of the point, which leaves 0.1 of a cell for the rounding of the cell
+ * coordinates). */
 static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
 {
     const double tol2 = tol * tol;
@@ -629,32 +709,30 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         }
         return nk;
     }
-    size_t cells = 64;
-    while (cells < 2 * n)
-        cells *= 2;
-    memset(w->cell_key, 0, cells * sizeof *w->cell_key);
-    /* cells as wide as the tolerance (a tolerance of 0 merges equal points only: any width) */
-    const double width = tol > 0 ? tol : 1;
+    int bits = 6;
+    while (((size_t)1 << bits) < 2 * n)
+        ++bits;
+    memset(w->cell_key, 0, ((size_t)1 << bits) * sizeof *w->cell_key);
+    /* (a tolerance of 0 merges equal points only: any width) */
+    const double width = tol > 0 ? 2.5 * tol : 1;
     for (size_t k = 0; k < n; ++k) {
         int64_t c[3];
-        cell_of(w->z + 3 * k, width, c);
+        int side[3];
+        cell_of(w->z + 3 * k, width, c, side);
         int near = 0;
-        for (int dx = -1; dx <= 1 && !near; ++dx)
-            for (int dy = -1; dy <= 1 && !near; ++dy)
-                for (int dz = -1; dz <= 1 && !near; ++dz) {
-                    const int64_t cc[3] = {c[0] + dx, c[1] + dy, c[2] + dz};
-                    const uint64_t key = cell_key(cc);
-                    const size_t at = cell_slot(w, cells, key);
-                    if (w->cell_key[at] == 0)
-                        continue;
-                    for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
-                        near = dist2(w->z + 3 * k, w->z + 3 * a) <= tol2;
-                }
+        for (int m = 0; m < 8 && !near; ++m) {
+            const int64_t cc[3] = {c[0] + (m & 1 ? side[0] : 0), c[1] + (m & 2 ? side[1] : 0), c[2] + (m & 4 ? side[2] : 0)};
+            const size_t at = cell_slot(w, bits, cell_key(cc));
+            if (w->cell_key[at] == 0)
+                continue;
+            for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
+                near = dist2(w->z + 3 * k, w->z + 3 * a) <= tol2;
+        }
         if (near)
             continue;
         w->kept[nk++] = k;
         const uint64_t key = cell_key(c);
-        const size_t at = cell_slot(w, cells, key);
+        const size_t at = cell_slot(w, bits, key);
         if (w->cell_key[at] == 0) {
             w->cell_key[at] = key;
             w->cell_head[at] = SIZE_MAX;
@@ -827,20 +905,24 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
     const size_t n = w->all_n;
     if (!manifold_work_reserve(w, n))
         return 0;
-    qsort(rc, n, sizeof *rc, depth_cmp);
+    if (!depth_sort(w, rc, n))
+        return 0;
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
     int ex = 0;
     if (big > 0 && isfinite(big))
         frexp(big, &ex);
-    /* the points as a point record holds them, relative to the deepest, at the larger body's scale */
-    double *z = w->z, origin[3];
+    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
+     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
+    double *z = w->z, origin[3] = {0, 0, 0};
+    const int one = ex >= -1021 && ex <= 1021;
+    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
             const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
             if (k == 0)
                 origin[r] = x;
-            z[3 * k + (size_t)r] = ldexp(x - origin[r], -ex);
+            z[3 * k + (size_t)r] = (x - origin[r]) * f1 * f2;
         }
     const size_t nk = merge_points(w, n, ldexp(MERGE_FRACTION * small, -ex), n > 32);
     for (size_t a = 0; a < nk; ++a) /* compact: kept[a] >= a, increasing */

@@ -366,6 +366,11 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
     manifold_work w = {0};
     const ttd_engine_config one = one_thread(cfg);
     ttd_status st = all_contacts(cfg, s, margin, &c);
+    /* the meshes' edge information, made on their first manifold (mesh/mesh.h) */
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        if (c.nfound[k] > 0 || solid_pair(s, c.pairs[k].i, c.pairs[k].j))
+            if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
+                st = TTD_ERR_OUT_OF_MEMORY;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
         const size_t n = c.nfound[k];
         if (n == 0 && !solid_pair(s, c.pairs[k].i, c.pairs[k].j))
