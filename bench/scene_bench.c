@@ -116,6 +116,7 @@ typedef struct sctx {
     char fcl_path[1024];
     double min_s, max_row_s;
     const ttd_gen_mesh *bunny;
+    const char *write_dir;     /* --scene-write, or "" */
 } sctx;
 
 __attribute__((format(printf, 2, 3))) static void progress(const sctx *M, const char *fmt, ...)
@@ -178,19 +179,23 @@ int bench_scene_option(bench_scene_config *c, const char *a, const char *v)
         c->disabled = 1;
         return 1;
     }
-    int which = strcmp(a, "--scene-workloads") == 0 ? 0 : strcmp(a, "--fcl-scene") == 0 ? 1 : -1;
+    int which = strcmp(a, "--scene-workloads") == 0 ? 0
+                : strcmp(a, "--fcl-scene") == 0   ? 1
+                : strcmp(a, "--scene-write") == 0 ? 2
+                                                  : -1;
     if (which < 0)
         return 0;
     if (!v || !*v) {
         fprintf(stderr, "ttd bench: %s needs a value (see ttd bench --help)\n", a);
         return -1;
     }
-    if (which == 1) {
+    if (which >= 1) {
+        char *dst = which == 1 ? c->fcl_scene : c->write_dir;
         if (strlen(v) >= sizeof c->fcl_scene) {
             fprintf(stderr, "ttd bench: %s: path too long\n", a);
             return -1;
         }
-        snprintf(c->fcl_scene, sizeof c->fcl_scene, "%s", v);
+        snprintf(dst, sizeof c->fcl_scene, "%s", v);
         return 2;
     }
     char buf[256];
@@ -230,6 +235,9 @@ void bench_scene_usage(FILE *f)
           "                       (the bunnies only when named; named with --quick: 40)\n"
           "  --no-scene           leave the scene section out\n"
           "  --fcl-scene PATH     the ttd_fcl_scene_bench program (default: $TTD_FCL_SCENE_BENCH, or next to ttd)\n"
+          "  --scene-write DIR    also write each scene run into DIR (an existing folder) for `ttd scene`:\n"
+          "                       NAME.txt (the scene file), NAME-meshK.obj, and NAME-motion.txt where it\n"
+          "                       has a motion, so that one query can be run and profiled alone\n"
           "The section adds rows to the table, a \"scene\" object to the JSON and, with --out DIR,\n"
           "DIR/bench-scene.csv.\n",
           f);
@@ -534,6 +542,67 @@ static double *make_motion(const scene_def *s, int steps, uint64_t seed)
     return m;
 }
 
+/* ---- the scene as files, for `ttd scene` (--scene-write) ------------------------------- */
+
+/* Writes scene `name` into dir: its meshes as OBJ, the scene file (bodies in order, so that body
+ * k is number k) and, with steps, the motion file; every number with 17 digits, so that `ttd
+ * scene` reads back the bits the benchmark used. Returns 0, or -1 with why. */
+static int write_scene_files(const char *dir, const char *name, const scene_def *s, const double *motion, int steps,
+                             char *why, size_t why_size)
+{
+    char path[1400];
+    for (int m = 0; m < s->nmeshes; ++m) {
+        snprintf(path, sizeof path, "%s/%s-mesh%d.obj", dir, name, m);
+        FILE *f = fopen(path, "w");
+        if (!f)
+            goto fail;
+        const ttd_gen_mesh *g = &s->mesh[m];
+        for (size_t v = 0; v < g->nv; ++v)
+            fprintf(f, "v %.17g %.17g %.17g\n", g->verts[3 * v], g->verts[3 * v + 1], g->verts[3 * v + 2]);
+        for (size_t t = 0; t < g->nt; ++t)
+            fprintf(f, "f %u %u %u\n", g->tris[3 * t] + 1, g->tris[3 * t + 1] + 1, g->tris[3 * t + 2] + 1);
+        if (fclose(f) != 0)
+            goto fail;
+    }
+    snprintf(path, sizeof path, "%s/%s.txt", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        goto fail;
+    fprintf(f, "# ttd bench's scene '%s' (seed as run), margin %.17g: `ttd scene contacts %s.txt --margin %g`\n",
+            name, s->margin, name, s->margin);
+    for (int m = 0; m < s->nmeshes; ++m)
+        fprintf(f, "mesh m%d %s-mesh%d.obj\n", m, name, m);
+    for (size_t b = 0; b < s->n; ++b) {
+        fprintf(f, "body m%u", s->body_mesh[b]);
+        for (int k = 0; k < 12; ++k)
+            fprintf(f, " %.17g", s->poses[12 * b + (size_t)k]);
+        fputc('\n', f);
+    }
+    if (fclose(f) != 0)
+        goto fail;
+    if (steps) {
+        snprintf(path, sizeof path, "%s/%s-motion.txt", dir, name);
+        f = fopen(path, "w");
+        if (!f)
+            goto fail;
+        for (int k = 0; k < steps; ++k) {
+            fprintf(f, "step %d\n", k);
+            for (size_t b = 0; b < s->n; ++b) {
+                const double *p = &motion[12 * (s->n * (size_t)k + b)];
+                for (int c = 0; c < 12; ++c)
+                    fprintf(f, c ? " %.17g" : "%.17g", p[c]);
+                fputc('\n', f);
+            }
+        }
+        if (fclose(f) != 0)
+            goto fail;
+    }
+    return 0;
+fail:
+    snprintf(why, why_size, "%.300s: cannot be written", path);
+    return -1;
+}
+
 /* ---- ttd's side ----------------------------------------------------------------------- */
 
 typedef int (*call_fn)(void *arg);
@@ -757,6 +826,12 @@ static void run_scene(sctx *M, int w, size_t n)
     const int steps = w == SW_ICOSPHERES ? (M->env->st->quick ? MOTION_STEPS_QUICK : MOTION_STEPS) : 0;
     double *motion = steps ? make_motion(&s, steps, M->env->st->seed) : NULL;
     uint64_t *counts1 = steps ? calloc((size_t)steps, sizeof *counts1) : NULL;
+    if (M->write_dir[0] && (!steps || motion)) {
+        if (write_scene_files(M->write_dir, name, &s, motion, steps, why, sizeof why) == 0)
+            progress(M, "%s written into %s", name, M->write_dir);
+        else
+            fprintf(stderr, "ttd bench: scene: --scene-write: %s\n", why);
+    }
     ttd_mesh *meshes[3] = {NULL, NULL, NULL}, *meshes_f[3] = {NULL, NULL, NULL};
     qarg q;
     memset(&q, 0, sizeof q);
@@ -927,6 +1002,7 @@ bench_scene_results *bench_scene_run(const bench_scene_config *c, const bench_sc
     memset(&M, 0, sizeof M);
     M.env = env;
     M.R = R;
+    M.write_dir = c->write_dir;
     R->quick = env->st->quick;
     M.min_s = env->st->min_sample_s;
     M.max_row_s = env->st->quick ? 0.5 : 4.0;

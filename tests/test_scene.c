@@ -187,6 +187,7 @@ typedef struct answers {
     contact nearest[MAX_BODIES];
     point *points;
     size_t npoints;
+    ttd_scene_stats contact_stats; /* ttd_scene_get_stats after the contacts */
 } answers;
 
 static void answers_free(answers *A)
@@ -233,6 +234,7 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ttd_scene_contact_d c, b, near[MAX_BODIES];
         ENSURE(ttd_scene_collide_d(&opt, W->scene, MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_d(&opt, W->scene, MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_d(&opt, W->scene, MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -255,6 +257,7 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ttd_scene_contact_f c, b, near[MAX_BODIES];
         ENSURE(ttd_scene_collide_f(&opt, W->scene, (float)MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_f(&opt, W->scene, (float)MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, (float)BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_f(&opt, W->scene, (float)MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -280,6 +283,17 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
                                    (double)p->depth};
         }
     }
+    /* the stats of the contacts: every result was a pair given to the kernel, and the body pairs
+     * handed on hold every body pair of the answer (it is sorted by (i, j)) */
+    const ttd_scene_stats *st = &A->contact_stats;
+    size_t distinct = 0;
+    for (size_t k = 0; k < A->ncontacts; ++k)
+        distinct += k == 0 || A->contacts[k].i != A->contacts[k - 1].i || A->contacts[k].j != A->contacts[k - 1].j;
+    ENSURE_MSG(st->results == A->ncontacts && st->pair_tests >= st->results && st->body_pairs >= distinct &&
+                   (A->ncontacts == 0 || st->node_tests > 0),
+               "contacts' stats: %llu results (%zu contacts), %llu pair tests, %llu body pairs (%zu in the answer)",
+               (unsigned long long)st->results, A->ncontacts, (unsigned long long)st->pair_tests,
+               (unsigned long long)st->body_pairs, distinct);
     A->nhits = hits.count;
     A->hits = malloc((hits.count + 1) * sizeof *A->hits);
     if (hits.count)
@@ -564,7 +578,9 @@ static int check_world(const world *W, const char *what, size_t *ncontacts)
                 continue;
             answers A;
             ENSURE(ask(W, (ttd_isa)isa, threads, &A) == 0);
-            const int diff = same_answers(W, &ref, &A);
+            /* the work behind the contacts is fixed by the scene too, not only the answer */
+            const int diff = same_answers(W, &ref, &A) ||
+                             memcmp(&ref.contact_stats, &A.contact_stats, sizeof ref.contact_stats) != 0;
             answers_free(&A);
             ENSURE_MSG(!diff, "%s: %s with %d threads differs from the scalar row", what, ttd_isa_name((ttd_isa)isa),
                        threads);
@@ -925,7 +941,12 @@ static int bad_input(void)
     bad.method = TTD_METHOD_PENALTY;
     ENSURE(ttd_scene_collide_d(&bad, s, 0, &out) == TTD_ERR_BAD_OPTIONS);
     /* the two identical cubes touch: one pair, distance 0 */
+    ttd_scene_stats stats;
+    ENSURE(ttd_scene_get_stats(NULL, &stats) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_get_stats(s, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
+    ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 1 && stats.results == 1 &&
+           stats.pair_tests >= 1);
     ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0 && c.i == 0 && c.j == 1);
     ttd_scene_array_free(&out);
     ttd_scene_destroy(s);

@@ -340,6 +340,8 @@ typedef struct ttd_contacts_d {
     size_t poses;         ///< k of the last call
     size_t capacity;      ///< allocated pairs (library's business)
     size_t pose_capacity; ///< allocated offsets (library's business)
+    uint64_t node_tests;  ///< the last call's box-against-node tests, over every pose (as in ttd_mesh_result_d)
+    uint64_t pair_tests;  ///< the last call's triangle pairs given to the exact method
 } ttd_contacts_d;
 
 /// ttd_contacts_d in single precision.
@@ -350,6 +352,8 @@ typedef struct ttd_contacts_f {
     size_t poses;
     size_t capacity;
     size_t pose_capacity;
+    uint64_t node_tests;
+    uint64_t pair_tests;
 } ttd_contacts_f;
 
 /// Every triangle pair of a and b at distance <= margin (>= 0, finite) under each of k poses,
@@ -537,6 +541,17 @@ TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,
                                         ttd_scene_array *out);
+
+/// What the scene's last query (collide, contacts, manifold or distance) did, for profiling and
+/// for sizing a scene: the work behind an answer, which the answer itself does not show.
+typedef struct ttd_scene_stats {
+    uint64_t body_pairs;  ///< candidate body pairs the broad phase handed to the narrow phase
+    uint64_t node_tests;  ///< box-against-node tests of the narrow phase (each against up to 8 boxes)
+    uint64_t pair_tests;  ///< triangle pairs given to the exact method
+    uint64_t results;     ///< items the query returned (body pairs, triangle pairs, points; distance: 1)
+} ttd_scene_stats;
+/// The last query's ttd_scene_stats (all 0 before the first, or after a failed query).
+TTD_API ttd_status ttd_scene_get_stats(const ttd_scene *scene, ttd_scene_stats *out);
 
 /** @} */
 

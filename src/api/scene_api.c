@@ -302,3 +302,11 @@ ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float 
 {
     TTD_SCENE_QUERY(4, out != NULL, margin, 0, ttd_scene_query_manifold_f(&cfg, scene, margin, max_points, out));
 }
+
+ttd_status ttd_scene_get_stats(const ttd_scene *scene, ttd_scene_stats *out)
+{
+    if (scene == NULL || out == NULL)
+        return TTD_ERR_NULL_POINTER;
+    *out = scene->stats;
+    return TTD_OK;
+}

@@ -89,7 +89,7 @@ static void pair_task(void *ctx, size_t k, int worker)
     const double defect = pair_defect(J->s, p->i, p->j);
     ttd_status st;
     if (J->mode == MODE_COLLIDE && J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
-        J->hit[k].hit = 0; /* after a touching pair: not needed */
+        J->hit[k] = (ttd_collision){0, UINT32_MAX, UINT32_MAX, 0, 0}; /* after a touching pair: not needed */
         st = TTD_OK;
     } else if (J->mode == MODE_COLLIDE) {
         st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
@@ -99,6 +99,8 @@ static void pair_task(void *ctx, size_t k, int worker)
         }
     } else if (J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
         J->dist[k].distance = (real)INFINITY; /* after a pair at 0: not needed */
+        J->dist[k].node_tests = 0;
+        J->dist[k].pair_tests = 0;
         st = TTD_OK;
     } else {
         const real bound = J->closest_only ? bits_real(atomic_load(&J->best_bits)) : J->limit;
@@ -127,7 +129,15 @@ static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
     atomic_init(&J->first_zero, SIZE_MAX);
     atomic_init(&J->nomem, 0);
     ttd_parallel_tasks(n, cfg->threads, pair_task, J);
-    return atomic_load(&J->nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+    if (atomic_load(&J->nomem))
+        return TTD_ERR_OUT_OF_MEMORY;
+    ttd_scene_stats *t = &J->s->stats;
+    t->body_pairs += n;
+    for (size_t k = 0; k < n; ++k) {
+        t->node_tests += J->mode == MODE_COLLIDE ? J->hit[k].node_tests : J->dist[k].node_tests;
+        t->pair_tests += J->mode == MODE_COLLIDE ? J->hit[k].pair_tests : J->dist[k].pair_tests;
+    }
+    return TTD_OK;
 }
 
 /* Room for n items of `size` bytes in a caller's array. */
@@ -149,6 +159,7 @@ static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
 static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, ttd_scene_array *out)
 {
     out->count = 0;
+    s->stats = (ttd_scene_stats){0};
     scene_pair *pairs;
     size_t n;
     if (!ttd_scene_sweep(s, (double)margin, NULL, &pairs, &n))
@@ -167,6 +178,9 @@ static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *
                 (ttd_scene_hit){pairs[k].i, pairs[k].j, J.hit[k].tri_a, J.hit[k].tri_b};
     free(J.hit);
     free(pairs);
+    s->stats.results = out->count;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }
 
@@ -180,6 +194,7 @@ typedef struct contact_job {
     ttd_mesh_contacts *sets;      /* one per worker, reused */
     ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles */
     size_t *nfound;
+    uint64_t *tests;              /* per pair: node tests and pair tests */
     atomic_int nomem;
 } contact_job;
 
@@ -193,7 +208,7 @@ static int scene_contact_cmp(const void *x, const void *y)
 
 /* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array. */
 static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
-                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n)
+                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n, uint64_t tests[2])
 {
     *out = NULL;
     *n = 0;
@@ -201,6 +216,8 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     if (TTD_QUERY(contacts)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, 1, body_pose(s, p->j), body_pose(s, p->i),
                             &defect, margin, set) != TTD_OK)
         return 0;
+    tests[0] = set->node_tests;
+    tests[1] = set->pair_tests;
     if (set->count == 0)
         return 1;
     ttd_scene_contact *v = malloc(set->count * sizeof *v);
@@ -225,7 +242,8 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
 static void contact_task(void *ctx, size_t k, int worker)
 {
     contact_job *J = ctx;
-    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k]))
+    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k],
+                       J->tests + 2 * k))
         atomic_store(&J->nomem, 1);
 }
 
@@ -257,10 +275,18 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
     const ttd_engine_config one = one_thread(cfg);
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
     contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
-                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)), 0};
-    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL);
+                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)),
+                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), 0};
+    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
     if (!atomic_load(&J.nomem))
         ttd_parallel_tasks(c->n, cfg->threads, contact_task, &J);
+    s->stats = (ttd_scene_stats){0};
+    s->stats.body_pairs = c->n;
+    for (size_t k = 0; J.tests != NULL && k < c->n; ++k) {
+        s->stats.node_tests += J.tests[2 * k];
+        s->stats.pair_tests += J.tests[2 * k + 1];
+    }
+    free(J.tests);
     for (int w = 0; J.sets != NULL && w < workers; ++w)
         TTD_CONTACTS_FREE(&J.sets[w]);
     free(J.sets);
@@ -286,6 +312,9 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
         out->count += c.nfound[k];
     }
     pair_contacts_free(&c);
+    s->stats.results = out->count;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }
 
@@ -487,8 +516,11 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
         if (c.nfound[k] && !append_manifold(s, c.found[k], c.nfound[k], margin, max_points, out))
             st = TTD_ERR_OUT_OF_MEMORY;
     pair_contacts_free(&c);
-    if (st != TTD_OK)
+    s->stats.results = out->count;
+    if (st != TTD_OK) {
         out->count = 0;
+        s->stats = (ttd_scene_stats){0};
+    }
     return st;
 }
 
@@ -509,7 +541,8 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
     ttd_scene_contact *v;
     size_t n;
     const ttd_engine_config one = one_thread(cfg);
-    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n);
+    uint64_t tests[2];
+    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n, tests);
     TTD_CONTACTS_FREE(&set);
     if (!ok)
         return 0;
@@ -542,6 +575,7 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
                                  ttd_scene_contact *closest, ttd_scene_contact *nearest)
 {
     *closest = no_contact(UINT32_MAX);
+    s->stats = (ttd_scene_stats){0};
     const size_t nb = s->nbody;
     for (size_t id = 0; nearest != NULL && id < nb; ++id)
         nearest[id] = no_contact((uint32_t)id);
@@ -650,5 +684,8 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
     free(open);
     free(best);
     free(partner);
+    s->stats.results = st == TTD_OK && cpair_i != SIZE_MAX;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }

@@ -42,6 +42,7 @@ struct ttd_scene {
     size_t sweep_d_cap, sweep_i_cap, sweep_b_cap;
     uint64_t *excluded;          /* excluded pairs, i << 32 | j with i < j, sorted */
     size_t nexcluded, excluded_cap;
+    ttd_scene_stats stats;       /* what the last query did (ttd_scene_get_stats) */
 };
 
 /// A candidate body pair (i < j) of a sweep.

@@ -137,6 +137,21 @@ if [ -x "$(dirname "$ttd")/ttd_fcl_scene_bench" ]; then
   bad=$(field fcl_ms < "$tmp/scene.rows" | awk '!($1 + 0 > 0)' | wc -l)
   [ "$bad" -eq 0 ] || fail "$bad scene rows without FCL's time although ttd_fcl_scene_bench exists"
 fi
+# --scene-write: the quick icospheres written for `ttd scene`, which reads them back to the same
+# answer as the benchmark's rows (the bits of every pose and vertex survive the text)
+mkdir "$tmp/scenes"
+"$ttd" bench --quick --no-probes --no-fcl --scene-workloads icospheres --scene-write "$tmp/scenes" --json \
+  > "$tmp/w.json" 2> "$tmp/w.err" || fail "--scene-write run exited with $?"
+for f in icospheres.txt icospheres-mesh0.obj icospheres-motion.txt; do
+  [ -s "$tmp/scenes/$f" ] || fail "--scene-write: no $f"
+done
+grep '^        {"workload": ' "$tmp/w.json" > "$tmp/w.rows"
+for q in contacts collide+m; do
+  want=$(grep "\"query\": \"$q\"" "$tmp/w.rows" | grep '"precision": "double"' | head -n 1 | field value)
+  cmd=contacts; [ "$q" = contacts ] || cmd=collide
+  got=$("$ttd" scene $cmd "$tmp/scenes/icospheres.txt" --margin 0.01 --count) || fail "ttd scene $cmd on the written scene"
+  [ "$got" = "$want" ] || fail "--scene-write: ttd scene $cmd counts $got, the benchmark's $q row $want"
+done
 rc=0
 "$ttd" bench --quick --scene-workloads icospheres,nosuch > /dev/null 2> "$tmp/err.txt" || rc=$?
 [ "$rc" -eq 2 ] || fail "--scene-workloads nosuch: exit status $rc, want 2"
