@@ -18,6 +18,12 @@ static ttd_status scene_create(int bytes, ttd_scene **out)
         return TTD_ERR_OUT_OF_MEMORY;
     (*out)->bytes = bytes;
     (*out)->order_stale = 1;
+    (*out)->pool = ttd_pool_create();
+    if ((*out)->pool == NULL) {
+        free(*out);
+        *out = NULL;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
     return TTD_OK;
 }
 
@@ -42,6 +48,7 @@ void ttd_scene_destroy(ttd_scene *scene)
     free(scene->sweep_b);
     free(scene->order);
     free(scene->excluded);
+    ttd_pool_destroy(scene->pool);
     free(scene);
 }
 

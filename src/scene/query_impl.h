@@ -128,7 +128,7 @@ static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
     atomic_init(&J->best_bits, real_bits(J->limit));
     atomic_init(&J->first_zero, SIZE_MAX);
     atomic_init(&J->nomem, 0);
-    ttd_parallel_tasks(n, cfg->threads, pair_task, J);
+    ttd_pool_tasks(J->s->pool, n, cfg->threads, pair_task, J);
     if (atomic_load(&J->nomem))
         return TTD_ERR_OUT_OF_MEMORY;
     ttd_scene_stats *t = &J->s->stats;
@@ -279,7 +279,7 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
                      calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), 0};
     atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
     if (!atomic_load(&J.nomem))
-        ttd_parallel_tasks(c->n, cfg->threads, contact_task, &J);
+        ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
     s->stats = (ttd_scene_stats){0};
     s->stats.body_pairs = c->n;
     for (size_t k = 0; J.tests != NULL && k < c->n; ++k) {

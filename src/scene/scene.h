@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "engine/batch.h"
+#include "engine/parallel.h"
 #include "mesh/mesh.h"
 
 typedef struct scene_body {
@@ -43,6 +44,7 @@ struct ttd_scene {
     uint64_t *excluded;          /* excluded pairs, i << 32 | j with i < j, sorted */
     size_t nexcluded, excluded_cap;
     ttd_scene_stats stats;       /* what the last query did (ttd_scene_get_stats) */
+    struct ttd_pool *pool;       /* worker threads kept between queries (engine/parallel.h) */
 };
 
 /// A candidate body pair (i < j) of a sweep.
