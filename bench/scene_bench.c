@@ -43,6 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bullet_scene_link.h"
 #include "fcl_scene_link.h"
 #include "meshes.h"
 
@@ -84,9 +85,10 @@ typedef struct srow {
     int samples;
     int fcl;               /* 1: an FCL time beside */
     double fcl_ms, fcl_ms_min, x_fcl;
-    double x_threads;      /* motion, 2 threads: the 1-thread row / this */
+    double x_threads;      /* 2 threads: the 1-thread row / this */
+    double bullet_ms, bullet_ms_min, x_bullet; /* manifold: Bullet's GImpact beside */
     double need;           /* the issue's target for this row's ratio, NaN if none */
-    const char *need_of;   /* "x_fcl" or "x_threads" */
+    const char *need_of;   /* "x_fcl", "x_threads" or "x_bullet" */
     int met;               /* -1 not measured, 0 no, 1 yes */
     int disagree;
     char note[200];
@@ -101,6 +103,7 @@ struct bench_scene_results {
     char isa[16];
     char bunny[1600];
     char fcl[1200];
+    char bullet[1200];
     size_t compared;        /* rows whose answer was compared with FCL's */
     size_t disagreements;
     char alarms[8][240];
@@ -114,6 +117,8 @@ typedef struct sctx {
     ttd_isa isa;
     int fcl_ok;
     char fcl_path[1024];
+    int bullet_ok;
+    char bullet_path[1024];
     double min_s, max_row_s;
     const ttd_gen_mesh *bunny;
     const char *write_dir;     /* --scene-write, or "" */
@@ -167,6 +172,7 @@ static srow *new_row(sctx *M, const char *workload, size_t bodies, size_t tris, 
     r->threads = threads;
     r->margin = margin;
     r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->need = BENCH_NAN;
+    r->bullet_ms = r->bullet_ms_min = r->x_bullet = BENCH_NAN;
     r->met = -1;
     return r;
 }
@@ -626,7 +632,7 @@ static int time_call(const sctx *M, call_fn fn, void *arg, srow *r)
     return 0;
 }
 
-enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_CONTACTS_D, Q_CONTACTS_F };
+enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_CONTACTS_D, Q_CONTACTS_F, Q_MANIFOLD4 };
 
 typedef struct qarg {
     int kind;
@@ -705,6 +711,9 @@ static int call_query(void *p)
         break;
     case Q_CONTACTS_D:
         q->st = ttd_scene_contacts_d(&q->o, q->scene, q->margin, &q->out);
+        break;
+    case Q_MANIFOLD4:
+        q->st = ttd_scene_manifold_d(&q->o, q->scene, q->margin, 4, &q->out);
         break;
     default:
         q->st = ttd_scene_contacts_f(&q->o, q->scene_f, (float)q->margin, &q->out);
@@ -798,13 +807,40 @@ static void compare_pairs(sctx *M, srow *r, const ttd_scene_array *a, const benc
                a->count, nf, first);
 }
 
+/* Compares ttd's manifold (points grouped by body pair in (i, j) order) with Bullet's body pairs
+ * in the row's note. Not a disagreement either way: GImpact's test is not the exact distance (a
+ * clipped vertex within the margins' sum of the other face's plane), and it is known to miss
+ * pairs near the margin (docs/anchors.md, "Scenes"). */
+static void compare_bullet(srow *r, const ttd_scene_array *man, const bench_bullet_scene_result *br)
+{
+    const ttd_scene_point_d *pt = man->data;
+    size_t i = 0, j = 0, only_ttd = 0, only_bullet = 0, both = 0;
+    const size_t nb = (size_t)br->manifold.candidates;
+    while (i < man->count || j < nb) {
+        const uint64_t x = i < man->count ? ((uint64_t)pt[i].i << 32 | pt[i].j) : UINT64_MAX;
+        const uint64_t y = j < nb ? ((uint64_t)br->pairs[j].i << 32 | br->pairs[j].j) : UINT64_MAX;
+        if (x <= y) /* skip the rest of this body pair's points */
+            while (i < man->count && ((uint64_t)pt[i].i << 32 | pt[i].j) == x)
+                ++i;
+        if (y <= x)
+            ++j;
+        both += x == y;
+        only_ttd += x < y;
+        only_bullet += y < x;
+    }
+    snprintf(r->note, sizeof r->note,
+             "Bullet %s %.4g ms: %" PRIu64 " points on %zu body pairs; %zu pairs only in ttd's, %zu only in Bullet's",
+             br->version, br->manifold.ms, br->manifold.count, nb, only_ttd, only_bullet);
+    (void)both;
+}
+
 /* ---- one scene ------------------------------------------------------------------------ */
 
 static void set_need(srow *r, double need, const char *of)
 {
     r->need = need;
     r->need_of = of;
-    double x = strcmp(of, "x_threads") == 0 ? r->x_threads : r->x_fcl;
+    double x = strcmp(of, "x_threads") == 0 ? r->x_threads : strcmp(of, "x_bullet") == 0 ? r->x_bullet : r->x_fcl;
     r->met = isfinite(x) ? x >= need : -1;
 }
 
@@ -864,6 +900,24 @@ static void run_scene(sctx *M, int w, size_t n)
         else
             fprintf(stderr, "ttd bench: scene: %s: FCL failed: %s\n", name, fr.error);
     }
+    /* Bullet's GImpact manifolds (no motion: a step costs it a full query, and the motion row is
+     * FCL's collide+m) */
+    bench_bullet_scene_result br;
+    memset(&br, 0, sizeof br);
+    int have_bullet = 0;
+    if (M->bullet_ok) {
+        bench_fcl_scene_mesh fm[3];
+        for (int m = 0; m < s.nmeshes; ++m)
+            fm[m] = (bench_fcl_scene_mesh){s.mesh[m].verts, s.mesh[m].nv, s.mesh[m].tris, s.mesh[m].nt};
+        bench_fcl_scene_job job = {fm, (uint32_t)s.nmeshes, s.n, s.body_mesh, s.poses, s.margin,
+                                   M->env->st->quick ? 2u : 3u, 0u, 0u, NULL};
+        progress(M, "%s: Bullet", name);
+        int rc = bench_bullet_scene_run(M->bullet_path, &job, &br);
+        if (rc == BENCH_FCL_SCENE_OK)
+            have_bullet = 1;
+        else
+            fprintf(stderr, "ttd bench: scene: %s: Bullet failed: %s\n", name, br.error);
+    }
     progress(M, "%s: ttd", name);
 
     srow *r = new_row(M, name, s.n, s.tris, "build", 8, 1, BENCH_NAN);
@@ -916,6 +970,7 @@ static void run_scene(sctx *M, int w, size_t n)
         }
         set_need(r, 5.0, "x_fcl");
     }
+    srow *contacts_row = NULL;
     for (int prec = 0; prec < 1 + (q.scene_f != NULL); ++prec) {
         r = new_row(M, name, s.n, s.tris, "contacts", prec ? 4 : 8, 1, s.margin);
         if (!r)
@@ -940,6 +995,44 @@ static void run_scene(sctx *M, int w, size_t n)
             }
         }
         set_need(r, prec ? 5.0 : 3.0, "x_fcl");
+        if (!prec)
+            contacts_row = r;
+    }
+    /* two threads on the double contacts (issue 26: at least 1.85x one on every scene) */
+    const double contacts1_ms = contacts_row ? contacts_row->ms : BENCH_NAN;
+    if (M->env->max_threads >= 2 && isfinite(contacts1_ms)) {
+        r = new_row(M, name, s.n, s.tris, "contacts", 8, 2, s.margin);
+        if (r) {
+            q.kind = Q_CONTACTS_D;
+            q.o = options(M, 2);
+            if (time_query(M, &q, r) == 0) {
+                r->value = (double)q.out.count;
+                snprintf(r->result, sizeof r->result, "%zu triangle pairs", q.out.count);
+                r->x_threads = contacts1_ms / r->ms;
+            }
+            set_need(r, 1.85, "x_threads");
+            q.o = options(M, 1);
+        }
+    }
+    /* the manifold at K = 4, Bullet's GImpact beside (issue 26: at least 5x Bullet) */
+    r = new_row(M, name, s.n, s.tris, "manifold", 8, 1, s.margin);
+    if (r) {
+        q.kind = Q_MANIFOLD4;
+        if (time_query(M, &q, r) == 0) {
+            r->value = (double)q.out.count;
+            size_t pairs = 0;
+            const ttd_scene_point_d *pt = q.out.data;
+            for (size_t k = 0; k < q.out.count; ++k)
+                pairs += k == 0 || pt[k].i != pt[k - 1].i || pt[k].j != pt[k - 1].j;
+            snprintf(r->result, sizeof r->result, "%zu points, %zu pairs (K=4)", q.out.count, pairs);
+            if (have_bullet) {
+                r->bullet_ms = br.manifold.ms;
+                r->bullet_ms_min = br.manifold.ms_min;
+                r->x_bullet = br.manifold.ms / r->ms;
+                compare_bullet(r, &q.out, &br);
+            }
+        }
+        set_need(r, 5.0, "x_bullet");
     }
     if (steps) {
         double one_ms = BENCH_NAN;
@@ -969,11 +1062,12 @@ static void run_scene(sctx *M, int w, size_t n)
                 set_need(r, 5.0, "x_fcl");
             } else {
                 r->x_threads = one_ms / r->ms;
-                set_need(r, 1.8, "x_threads");
+                set_need(r, 1.85, "x_threads");
             }
         }
     }
     bench_fcl_scene_result_free(&fr);
+    bench_bullet_scene_result_free(&br);
 done:
     ttd_scene_array_free(&q.out);
     if (q.scene)
@@ -1021,6 +1115,18 @@ bench_scene_results *bench_scene_run(const bench_scene_config *c, const bench_sc
         snprintf(R->fcl, sizeof R->fcl, "%s not found (apt-get install libfcl-dev and rebuild, or --fcl-scene PATH)",
                  BENCH_FCL_SCENE_PROGRAM);
         fprintf(stderr, "ttd bench: scene: %s\n", R->fcl);
+    }
+    if (env->no_fcl) {
+        snprintf(R->bullet, sizeof R->bullet, "left out (--no-fcl)");
+    } else if (bench_fcl_find_program(BENCH_BULLET_SCENE_PROGRAM, BENCH_BULLET_SCENE_ENV, NULL, M.bullet_path,
+                                      sizeof M.bullet_path) == 0) {
+        M.bullet_ok = 1;
+        snprintf(R->bullet, sizeof R->bullet,
+                 "%s (btCollisionWorld, btDbvtBroadphase, btGImpactMeshShape per mesh, margin M/2)", M.bullet_path);
+    } else {
+        snprintf(R->bullet, sizeof R->bullet, "%s not found (apt-get install libbullet-dev and rebuild)",
+                 BENCH_BULLET_SCENE_PROGRAM);
+        fprintf(stderr, "ttd bench: scene: %s\n", R->bullet);
     }
     unsigned want = c->named;
     if (!want)
@@ -1079,29 +1185,37 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
         return;
     fprintf(f, "\nScenes against FCL 0.7's DynamicAABBTreeCollisionManager (issue 17; one thread unless said; "
                "ttd on %s)%s\n", R->isa, R->quick ? " [--quick: reduced sizes]" : "");
-    fprintf(f, "FCL: %s\nbunny: %s\n", R->fcl, R->bunny);
+    fprintf(f, "FCL: %s\nBullet: %s\nbunny: %s\n", R->fcl, R->bullet, R->bunny);
     for (int w = 0; w < SW_COUNT; ++w)
         fprintf(f, "  %s\n", R->scenes[w]);
-    fprintf(f, "%-10s %6s %8s %-9s %-6s %3s %-26s %10s %10s %7s %-14s %s\n", "scene", "bodies", "tris", "query", "prec",
+    fprintf(f, "%-10s %6s %8s %-9s %-6s %3s %-26s %10s %10s %7s %-16s %s\n", "scene", "bodies", "tris", "query", "prec",
             "thr", "result", "ttd_ms", "fcl_ms", "x_fcl", "target", "note");
     for (size_t i = 0; i < R->n; ++i) {
         const srow *r = &R->rows[i];
         char a[32], b[32], c[32], t[48];
         if (isfinite(r->need))
-            snprintf(t, sizeof t, "%s>=%.1fx %s", strcmp(r->need_of, "x_threads") ? "" : "thr ", r->need, met_str(r));
+            snprintf(t, sizeof t, "%s>=%gx %s",
+                     strcmp(r->need_of, "x_threads") == 0  ? "thr "
+                     : strcmp(r->need_of, "x_bullet") == 0 ? "blt "
+                                                           : "",
+                     r->need, met_str(r));
         else
             snprintf(t, sizeof t, "-");
-        char x[32];
+        char x[48];
         if (isfinite(r->x_threads))
-            snprintf(x, sizeof x, "%.2f (%.2fx thr)", r->x_fcl, r->x_threads);
-        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-14s %s\n", r->workload, r->bodies, r->tris,
+            snprintf(x, sizeof x, "%s (%.2fx thr)", num(c, sizeof c, r->x_fcl, "%.2f"), r->x_threads);
+        else if (isfinite(r->x_bullet))
+            snprintf(x, sizeof x, "%.2f", r->x_bullet);
+        else
+            num(x, sizeof x, r->x_fcl, "%.2f");
+        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-16s %s\n", r->workload, r->bodies, r->tris,
                 r->query, r->bytes == 8 ? "double" : "float", r->threads, r->result, num(a, sizeof a, r->ms, "%.4g"),
-                num(b, sizeof b, r->fcl_ms, "%.4g"), isfinite(r->x_threads) ? x : num(c, sizeof c, r->x_fcl, "%.2f"),
-                t, r->note);
+                num(b, sizeof b, isfinite(r->bullet_ms) ? r->bullet_ms : r->fcl_ms, "%.4g"), x, t, r->note);
     }
-    fprintf(f, "ms per query (motion: per step, set_poses + collide at the margin); x_fcl = FCL's time / ttd's; "
-               "targets (issue 17): collide and distance >= 5x, contacts >= 3x double and >= 5x float, motion step "
-               ">= 5x, two threads >= 1.8x one on the motion\n");
+    fprintf(f, "ms per query (motion: per step, set_poses + collide at the margin); x_fcl = FCL's time / ttd's "
+               "(manifold rows: Bullet's time in fcl_ms, x = Bullet's / ttd's, 'blt'); targets (issue 17): collide "
+               "and distance >= 5x, contacts >= 3x double and >= 5x float, motion step >= 5x; (issue 26) two threads "
+               ">= 1.85x one (contacts on every scene, the motion), the manifold (K = 4) >= 5x Bullet's GImpact\n");
     if (R->disagreements) {
         fprintf(f, "DISAGREEMENTS with FCL: %zu\n", R->disagreements);
         for (size_t i = 0; i < R->nalarms; ++i)
@@ -1145,6 +1259,8 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
     json_str(f, R->isa);
     fputs(", \"fcl\": ", f);
     json_str(f, R->fcl);
+    fputs(", \"bullet\": ", f);
+    json_str(f, R->bullet);
     fputs(", \"bunny\": ", f);
     json_str(f, R->bunny);
     fputs(", \"scenes\": [", f);
@@ -1171,6 +1287,9 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         json_num(f, "fcl_ms_min", r->fcl_ms_min);
         json_num(f, "x_fcl", r->x_fcl);
         json_num(f, "x_threads", r->x_threads);
+        json_num(f, "bullet_ms", r->bullet_ms);
+        json_num(f, "bullet_ms_min", r->bullet_ms_min);
+        json_num(f, "x_bullet", r->x_bullet);
         json_num(f, "target", r->need);
         fputs(", \"target_of\": ", f);
         json_str(f, r->need_of ? r->need_of : "");
@@ -1193,7 +1312,7 @@ static void csv_num(FILE *f, double v)
 void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
 {
     fputs("workload,bodies,triangles,query,precision,threads,margin,value,ms,ms_min,fcl_ms,fcl_ms_min,x_fcl,"
-          "x_threads,target,target_of,met,disagree\n",
+          "x_threads,bullet_ms,bullet_ms_min,x_bullet,target,target_of,met,disagree\n",
           f);
     if (!R)
         return;
@@ -1209,6 +1328,9 @@ void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
         csv_num(f, r->fcl_ms_min);
         csv_num(f, r->x_fcl);
         csv_num(f, r->x_threads);
+        csv_num(f, r->bullet_ms);
+        csv_num(f, r->bullet_ms_min);
+        csv_num(f, r->x_bullet);
         csv_num(f, r->need);
         fprintf(f, ",%s,%s,%d\n", r->need_of ? r->need_of : "", r->met < 0 ? "" : r->met ? "yes" : "no",
                 r->disagree);
