@@ -76,7 +76,7 @@ static const scene_workload sws[SW_COUNT] = {
 typedef struct srow {
     char workload[16];
     size_t bodies, tris;
-    char query[16];        /* build collide collide+m distance contacts motion */
+    char query[16];        /* build collide collide+m distance distance+n contacts manifold-K motion */
     int bytes, threads;
     double margin;
     char result[48];
@@ -86,9 +86,12 @@ typedef struct srow {
     int fcl;               /* 1: an FCL time beside */
     double fcl_ms, fcl_ms_min, x_fcl;
     double x_threads;      /* 2 threads: the 1-thread row / this */
-    double bullet_ms, bullet_ms_min, x_bullet; /* manifold: Bullet's GImpact beside */
+    double x_ref;          /* manifold: this / contacts (double); distance+n: this / distance */
     double need;           /* the issue's target for this row's ratio, NaN if none */
-    const char *need_of;   /* "x_fcl", "x_threads" or "x_bullet" */
+    const char *need_of;   /* "x_fcl" or "x_threads" (at least), "x_contacts" or "x_distance" (x_ref at most) */
+    double bullet_ms, bullet_ms_min, x_bullet; /* manifold-4: Bullet's GImpact beside */
+    double need_b;         /* and its target on x_bullet (at least), NaN if none */
+    int met_b;             /* -1 not measured, 0 no, 1 yes */
     int met;               /* -1 not measured, 0 no, 1 yes */
     int disagree;
     char note[200];
@@ -171,8 +174,9 @@ static srow *new_row(sctx *M, const char *workload, size_t bodies, size_t tris, 
     r->bytes = bytes;
     r->threads = threads;
     r->margin = margin;
-    r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->need = BENCH_NAN;
-    r->bullet_ms = r->bullet_ms_min = r->x_bullet = BENCH_NAN;
+    r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->x_ref = r->need = BENCH_NAN;
+    r->bullet_ms = r->bullet_ms_min = r->x_bullet = r->need_b = BENCH_NAN;
+    r->met_b = -1;
     r->met = -1;
     return r;
 }
@@ -632,7 +636,7 @@ static int time_call(const sctx *M, call_fn fn, void *arg, srow *r)
     return 0;
 }
 
-enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_CONTACTS_D, Q_CONTACTS_F, Q_MANIFOLD4 };
+enum { Q_BUILD, Q_COLLIDE, Q_DISTANCE, Q_NEAREST, Q_CONTACTS_D, Q_CONTACTS_F, Q_MANIFOLD };
 
 typedef struct qarg {
     int kind;
@@ -643,6 +647,8 @@ typedef struct qarg {
     double margin;
     ttd_scene_array out;
     ttd_scene_contact_d closest;
+    ttd_scene_contact_d *nearest; /* distance+n: one per body */
+    size_t max_points;     /* manifold */
     ttd_status st;
 } qarg;
 
@@ -709,11 +715,14 @@ static int call_query(void *p)
     case Q_DISTANCE:
         q->st = ttd_scene_distance_d(&q->o, q->scene, BENCH_INF, &q->closest, NULL);
         break;
+    case Q_NEAREST:
+        q->st = ttd_scene_distance_d(&q->o, q->scene, BENCH_INF, &q->closest, q->nearest);
+        break;
     case Q_CONTACTS_D:
         q->st = ttd_scene_contacts_d(&q->o, q->scene, q->margin, &q->out);
         break;
-    case Q_MANIFOLD4:
-        q->st = ttd_scene_manifold_d(&q->o, q->scene, q->margin, 4, &q->out);
+    case Q_MANIFOLD:
+        q->st = ttd_scene_manifold_d(&q->o, q->scene, q->margin, q->max_points, &q->out);
         break;
     default:
         q->st = ttd_scene_contacts_f(&q->o, q->scene_f, (float)q->margin, &q->out);
@@ -828,9 +837,10 @@ static void compare_bullet(srow *r, const ttd_scene_array *man, const bench_bull
         only_ttd += x < y;
         only_bullet += y < x;
     }
-    snprintf(r->note, sizeof r->note,
-             "Bullet %s %.4g ms: %" PRIu64 " points on %zu body pairs; %zu pairs only in ttd's, %zu only in Bullet's",
-             br->version, br->manifold.ms, br->manifold.count, nb, only_ttd, only_bullet);
+    const size_t at = strlen(r->note);
+    snprintf(r->note + at, sizeof r->note - at,
+             "%sBullet %s: %" PRIu64 " points on %zu body pairs; %zu pairs only in ttd's, %zu only in Bullet's",
+             at ? "; " : "", br->version, br->manifold.count, nb, only_ttd, only_bullet);
     (void)both;
 }
 
@@ -842,6 +852,20 @@ static void set_need(srow *r, double need, const char *of)
     r->need_of = of;
     double x = strcmp(of, "x_threads") == 0 ? r->x_threads : strcmp(of, "x_bullet") == 0 ? r->x_bullet : r->x_fcl;
     r->met = isfinite(x) ? x >= need : -1;
+}
+
+/* A target on this row's time over a reference row's (issue 23): x_ref at most `most`. */
+static void set_need_at_most(srow *r, double ref_ms, double most, const char *of)
+{
+    r->x_ref = r->ms / ref_ms;
+    r->need = most;
+    r->need_of = of;
+    r->met = isfinite(r->x_ref) ? r->x_ref <= most : -1;
+}
+
+static int need_is_at_most(const srow *r)
+{
+    return r->need_of && (strcmp(r->need_of, "x_contacts") == 0 || strcmp(r->need_of, "x_distance") == 0);
 }
 
 static void run_scene(sctx *M, int w, size_t n)
@@ -971,6 +995,25 @@ static void run_scene(sctx *M, int w, size_t n)
         set_need(r, 5.0, "x_fcl");
     }
     srow *contacts_row = NULL;
+    const double distance_ms = r ? r->ms : BENCH_NAN;
+    /* each body's nearest too (issue 23: within 3x of the closest pair alone) */
+    r = new_row(M, name, s.n, s.tris, "distance+n", 8, 1, BENCH_NAN);
+    if (r) {
+        q.kind = Q_NEAREST;
+        q.nearest = malloc(s.n * sizeof *q.nearest);
+        if (q.nearest && time_query(M, &q, r) == 0) {
+            size_t apart = 0;
+            for (size_t b = 0; b < s.n; ++b)
+                apart += q.nearest[b].distance > 0;
+            r->value = q.closest.distance;
+            snprintf(r->result, sizeof r->result, "%zu bodies, %zu apart", s.n, apart);
+            set_need_at_most(r, distance_ms, 3.0, "x_distance");
+            snprintf(r->note, sizeof r->note, "distance+n / distance = %.2fx", r->x_ref);
+        }
+        free(q.nearest);
+        q.nearest = NULL;
+    }
+    double contacts_ms = BENCH_NAN;
     for (int prec = 0; prec < 1 + (q.scene_f != NULL); ++prec) {
         r = new_row(M, name, s.n, s.tris, "contacts", prec ? 4 : 8, 1, s.margin);
         if (!r)
@@ -996,6 +1039,8 @@ static void run_scene(sctx *M, int w, size_t n)
         }
         set_need(r, prec ? 5.0 : 3.0, "x_fcl");
         if (!prec)
+            contacts_ms = r->ms;
+        if (!prec)
             contacts_row = r;
     }
     /* two threads on the double contacts (issue 26: at least 1.85x one on every scene) */
@@ -1014,25 +1059,30 @@ static void run_scene(sctx *M, int w, size_t n)
             q.o = options(M, 1);
         }
     }
-    /* the manifold at K = 4, Bullet's GImpact beside (issue 26: at least 5x Bullet) */
-    r = new_row(M, name, s.n, s.tris, "manifold", 8, 1, s.margin);
-    if (r) {
-        q.kind = Q_MANIFOLD4;
+    /* manifolds at K = 4 and K = 0 (issue 23: within 15% of the contacts they reduce); K = 4 with
+     * Bullet's GImpact beside (issue 26: at least 5x Bullet) */
+    for (int kk = 0; kk < 2; ++kk) {
+        r = new_row(M, name, s.n, s.tris, kk ? "manifold-0" : "manifold-4", 8, 1, s.margin);
+        if (!r)
+            break;
+        q.kind = Q_MANIFOLD;
+        q.max_points = kk ? 0 : 4;
         if (time_query(M, &q, r) == 0) {
             r->value = (double)q.out.count;
-            size_t pairs = 0;
-            const ttd_scene_point_d *pt = q.out.data;
-            for (size_t k = 0; k < q.out.count; ++k)
-                pairs += k == 0 || pt[k].i != pt[k - 1].i || pt[k].j != pt[k - 1].j;
-            snprintf(r->result, sizeof r->result, "%zu points, %zu pairs (K=4)", q.out.count, pairs);
-            if (have_bullet) {
+            snprintf(r->result, sizeof r->result, "%zu points", q.out.count);
+            set_need_at_most(r, contacts_ms, 1.15, "x_contacts");
+            snprintf(r->note, sizeof r->note, "manifold / contacts (double) = %.2fx", r->x_ref);
+            if (kk == 0 && have_bullet) {
                 r->bullet_ms = br.manifold.ms;
                 r->bullet_ms_min = br.manifold.ms_min;
                 r->x_bullet = br.manifold.ms / r->ms;
                 compare_bullet(r, &q.out, &br);
             }
         }
-        set_need(r, 5.0, "x_bullet");
+        if (kk == 0 && M->bullet_ok) {
+            r->need_b = 5.0;
+            r->met_b = isfinite(r->x_bullet) ? r->x_bullet >= 5.0 : -1;
+        }
     }
     if (steps) {
         double one_ms = BENCH_NAN;
@@ -1188,19 +1238,22 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
     fprintf(f, "FCL: %s\nBullet: %s\nbunny: %s\n", R->fcl, R->bullet, R->bunny);
     for (int w = 0; w < SW_COUNT; ++w)
         fprintf(f, "  %s\n", R->scenes[w]);
-    fprintf(f, "%-10s %6s %8s %-9s %-6s %3s %-26s %10s %10s %7s %-16s %s\n", "scene", "bodies", "tris", "query", "prec",
+    fprintf(f, "%-10s %6s %8s %-9s %-6s %3s %-26s %10s %10s %7s %-24s %s\n", "scene", "bodies", "tris", "query", "prec",
             "thr", "result", "ttd_ms", "fcl_ms", "x_fcl", "target", "note");
     for (size_t i = 0; i < R->n; ++i) {
         const srow *r = &R->rows[i];
-        char a[32], b[32], c[32], t[48];
-        if (isfinite(r->need))
-            snprintf(t, sizeof t, "%s>=%gx %s",
-                     strcmp(r->need_of, "x_threads") == 0  ? "thr "
-                     : strcmp(r->need_of, "x_bullet") == 0 ? "blt "
-                                                           : "",
-                     r->need, met_str(r));
+        char a[32], b[32], c[32], t[64];
+        if (isfinite(r->need) && need_is_at_most(r))
+            snprintf(t, sizeof t, "<=%.2fx %s", r->need, met_str(r));
+        else if (isfinite(r->need))
+            snprintf(t, sizeof t, "%s>=%gx %s", strcmp(r->need_of, "x_threads") ? "" : "thr ", r->need, met_str(r));
         else
             snprintf(t, sizeof t, "-");
+        if (isfinite(r->need_b)) {
+            const size_t at = strlen(t);
+            snprintf(t + at, sizeof t - at, "%sblt>=%gx %s", isfinite(r->need) ? " " : "", r->need_b,
+                     r->met_b < 0 ? "n/a" : r->met_b ? "yes" : "NO");
+        }
         char x[48];
         if (isfinite(r->x_threads))
             snprintf(x, sizeof x, "%s (%.2fx thr)", num(c, sizeof c, r->x_fcl, "%.2f"), r->x_threads);
@@ -1208,14 +1261,16 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
             snprintf(x, sizeof x, "%.2f", r->x_bullet);
         else
             num(x, sizeof x, r->x_fcl, "%.2f");
-        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-16s %s\n", r->workload, r->bodies, r->tris,
+        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-24s %s\n", r->workload, r->bodies, r->tris,
                 r->query, r->bytes == 8 ? "double" : "float", r->threads, r->result, num(a, sizeof a, r->ms, "%.4g"),
                 num(b, sizeof b, isfinite(r->bullet_ms) ? r->bullet_ms : r->fcl_ms, "%.4g"), x, t, r->note);
     }
     fprintf(f, "ms per query (motion: per step, set_poses + collide at the margin); x_fcl = FCL's time / ttd's "
-               "(manifold rows: Bullet's time in fcl_ms, x = Bullet's / ttd's, 'blt'); targets (issue 17): collide "
-               "and distance >= 5x, contacts >= 3x double and >= 5x float, motion step >= 5x; (issue 26) two threads "
-               ">= 1.85x one (contacts on every scene, the motion), the manifold (K = 4) >= 5x Bullet's GImpact\n");
+               "(manifold-4: Bullet's time in the fcl_ms column and Bullet's / ttd's in x_fcl); targets (issue 17): "
+               "collide and distance >= 5x, contacts >= 3x double and >= 5x float, motion step >= 5x; (issue 23) "
+               "manifold-K (K points per body pair, 0: all) within 1.15x the double contacts' time, distance+n (each "
+               "body's nearest too) within 3x distance's; (issue 26) two threads >= 1.85x one (contacts on every "
+               "scene, the motion), manifold-4 >= 5x Bullet's GImpact ('blt')\n");
     if (R->disagreements) {
         fprintf(f, "DISAGREEMENTS with FCL: %zu\n", R->disagreements);
         for (size_t i = 0; i < R->nalarms; ++i)
@@ -1287,9 +1342,12 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         json_num(f, "fcl_ms_min", r->fcl_ms_min);
         json_num(f, "x_fcl", r->x_fcl);
         json_num(f, "x_threads", r->x_threads);
+        json_num(f, "x_ref", r->x_ref);
         json_num(f, "bullet_ms", r->bullet_ms);
         json_num(f, "bullet_ms_min", r->bullet_ms_min);
         json_num(f, "x_bullet", r->x_bullet);
+        json_num(f, "bullet_target", r->need_b);
+        fprintf(f, ", \"bullet_met\": %s", r->met_b < 0 ? "null" : r->met_b ? "true" : "false");
         json_num(f, "target", r->need);
         fputs(", \"target_of\": ", f);
         json_str(f, r->need_of ? r->need_of : "");
@@ -1312,7 +1370,7 @@ static void csv_num(FILE *f, double v)
 void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
 {
     fputs("workload,bodies,triangles,query,precision,threads,margin,value,ms,ms_min,fcl_ms,fcl_ms_min,x_fcl,"
-          "x_threads,bullet_ms,bullet_ms_min,x_bullet,target,target_of,met,disagree\n",
+          "x_threads,x_ref,bullet_ms,bullet_ms_min,x_bullet,bullet_target,bullet_met,target,target_of,met,disagree\n",
           f);
     if (!R)
         return;
@@ -1328,9 +1386,12 @@ void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
         csv_num(f, r->fcl_ms_min);
         csv_num(f, r->x_fcl);
         csv_num(f, r->x_threads);
+        csv_num(f, r->x_ref);
         csv_num(f, r->bullet_ms);
         csv_num(f, r->bullet_ms_min);
         csv_num(f, r->x_bullet);
+        csv_num(f, r->need_b);
+        fprintf(f, ",%s", r->met_b < 0 ? "" : r->met_b ? "yes" : "no");
         csv_num(f, r->need);
         fprintf(f, ",%s,%s,%d\n", r->need_of ? r->need_of : "", r->met < 0 ? "" : r->met ? "yes" : "no",
                 r->disagree);

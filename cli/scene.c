@@ -83,9 +83,11 @@ static const char ttd_scene_usage_outputs[] =
     "  manifold   i j px py pz nx ny nz d depth  per body pair within M, at most K contact points:\n"
     "                                            the midpoint of a triangle pair's closest points, the\n"
     "                                            unit normal from body i towards body j, the pair's\n"
-    "                                            distance d and depth M - d; the K kept are the deepest\n"
-    "                                            and then, one at a time, the farthest from those kept\n"
-    "                                            (docs/scenes-cli.md; printed in triangle order)\n"
+    "                                            distance d and depth M - d; no two points within 1e-3\n"
+    "                                            of the smaller body's radius; the K kept are the\n"
+    "                                            deepest, then spread by area; normals from the\n"
+    "                                            bodies' faces and real edges (docs/scenes-cli.md;\n"
+    "                                            printed in triangle order)\n"
     "  i and j are body numbers; with --names, a named body's name.\n";
 
 static const char ttd_scene_usage_options[] =

@@ -8,9 +8,10 @@
  *     the brute force's distances and points, bit for bit;
  *   - distance: the closest body pair and each body's nearest, with their tie rules, with and
  *     without a bound;
- *   - manifold: per body pair, min(K, contacts) points, each a real contact with its depth,
- *     the deepest first, each next one the farthest from those before, unit normals along q - p
- *     (and, where d = 0, the face normal turned from i towards j);
+ *   - manifold: per body pair, min(K, points kept by the merge) points, each a real contact with
+ *     its depth, no two within the merge tolerance, the deepest first, the next ones spreading
+ *     out (the farthest, the largest triangle), unit normals (the normal rule's properties:
+ *     tests/test_scene_contacts.c);
  * on scenes of spheres, cubes, thin and degenerate triangles and a huge floor, in both
  * precisions, after bodies are removed and added, filters and exclusions set and every body
  * moved; every instruction set and 1 or 2 threads give the same bits. And bad input. */
@@ -360,32 +361,25 @@ static size_t smallest_at(const pairinfo *P, double d, uint32_t me)
     return best;
 }
 
-/* At d = 0 a manifold normal is a face normal of one of the two triangles, or across an edge of
- * each (docs/scenes.md): parallel to n_i or n_j, or perpendicular to an edge of both. */
-static int d0_normal_plausible(const world *W, const pairinfo *P, const point *pt, double eps)
+/* What the library calls a mesh's radius: the distance from its vertices' bounding-box centre
+ * to the farthest vertex, rounded up by 4 eps (src/mesh/build.c). */
+static double mesh_radius(const ttd_gen_mesh *g)
 {
-    double x[2][3][3];
-    for (int k = 0; k < 3; ++k) {
-        world_vertex(W, P->i, W->gm[W->mesh_of[P->i]].tris[3 * pt->ti + (uint32_t)k], x[0][k]);
-        world_vertex(W, P->j, W->gm[W->mesh_of[P->j]].tris[3 * pt->tj + (uint32_t)k], x[1][k]);
+    double lo[3], hi[3], c[3], r = 0;
+    ttd_gen_mesh_bounds(g, lo, hi);
+    for (int k = 0; k < 3; ++k)
+        c[k] = 0.5 * lo[k] + 0.5 * hi[k];
+    for (size_t v = 0; v < g->nv; ++v) {
+        const double d[3] = {g->verts[3 * v] - c[0], g->verts[3 * v + 1] - c[1], g->verts[3 * v + 2] - c[2]};
+        const double h = hypot(hypot(d[0], d[1]), d[2]); /* no square underflows at tiny scales */
+        r = h > r ? h : r;
     }
-    int perp[2] = {0, 0};
-    for (int t = 0; t < 2; ++t) {
-        double e[3][3];
-        for (int k = 0; k < 3; ++k)
-            for (int r = 0; r < 3; ++r)
-                e[k][r] = x[t][(k + 1) % 3][r] - x[t][k][r];
-        int face = 1;
-        for (int k = 0; k < 3; ++k) {
-            const double len = sqrt(e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2]);
-            const double c = len > 0 ? fabs(pt->n[0] * e[k][0] + pt->n[1] * e[k][1] + pt->n[2] * e[k][2]) / len : 0;
-            face &= c <= 1e3 * eps;
-            perp[t] |= c <= 1e3 * eps && len > 0;
-        }
-        if (face)
-            return 1; /* perpendicular to all three edges: the face normal */
-    }
-    return perp[0] && perp[1];
+    return r * (1 + 4 * DBL_EPSILON);
+}
+
+static double dist3(const double *a, const double *b)
+{
+    return hypot(hypot(a[0] - b[0], a[1] - b[1]), a[2] - b[2]);
 }
 
 static int check_against_brute(const world *W, const brute *B, const answers *A)
@@ -468,92 +462,98 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                        A->nearest[id].d, partner, nb);
         }
     }
-    /* manifolds */
+    /* manifolds (docs/scenes.md, section 5): the contacts merged in depth order (a contact within
+     * 1e-3 of the smaller radius of a point kept before it goes), min(K, those kept) points of
+     * them, the first within the seed's window of the smallest distance, the second the farthest
+     * from it, the third the largest triangle with those two; no two points within the
+     * tolerance; unit normals (their rule: tests/test_scene_contacts.c) */
     size_t at = 0;
     const double eps = W->bytes == 8 ? DBL_EPSILON : (double)FLT_EPSILON;
+    const double window = W->bytes == 8 ? 0x1p-30 : 0x1p-16;
     for (size_t k = 0; k < B->n; ++k) {
         const pairinfo *P = &B->pairs[k];
-        size_t within = 0, deepest = SIZE_MAX;
+        const double ri = mesh_radius(&W->gm[W->mesh_of[P->i]]), rj = mesh_radius(&W->gm[W->mesh_of[P->j]]);
+        const double tol = 1e-3 * (ri < rj ? ri : rj), big = ri > rj ? ri : rj;
+        /* the contacts in depth order, then merged */
+        size_t nc = 0;
         for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
-            if (P->d[x] <= m) {
-                ++within;
-                if (deepest == SIZE_MAX || P->d[x] < P->d[deepest])
-                    deepest = x;
+            nc += P->d[x] <= m;
+        if (nc == 0)
+            continue;
+        size_t *ord = malloc(nc * sizeof *ord), *kept = malloc(nc * sizeof *kept), nk = 0;
+        double (*mid)[3] = malloc(nc * sizeof *mid);
+        ENSURE(ord && kept && mid);
+        nc = 0;
+        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
+            if (P->d[x] <= m)
+                ord[nc++] = x;
+        for (size_t a = 1; a < nc; ++a) /* insertion sort by (distance, triangles): stable on x */
+            for (size_t b = a; b > 0 && P->d[ord[b]] < P->d[ord[b - 1]]; --b) {
+                const size_t t = ord[b];
+                ord[b] = ord[b - 1];
+                ord[b - 1] = t;
             }
-        /* points kept: at most K, and no point twice (faces in contact give many pairs at one
-         * point): min(K, the distinct points among the contacts) */
-        size_t distinct = 0;
-        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x) {
-            if (!(P->d[x] <= m))
-                continue;
-            int seen = 0;
-            for (size_t y = 0; y < x && !seen; ++y) {
-                if (!(P->d[y] <= m))
-                    continue;
-                int same = 1;
-                for (int r = 0; r < 3; ++r)
-                    same &= round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]) ==
-                            round_to(W->bytes, 0.5 * P->p[3 * y + r] + 0.5 * P->q[3 * y + r]);
-                seen = same;
-            }
-            distinct += (size_t)!seen;
+        for (size_t a = 0; a < nc; ++a)
+            for (int r = 0; r < 3; ++r)
+                mid[a][r] = round_to(W->bytes, 0.5 * P->p[3 * ord[a] + r] + 0.5 * P->q[3 * ord[a] + r]);
+        for (size_t a = 0; a < nc; ++a) {
+            int near = 0;
+            for (size_t b = 0; b < nk && !near; ++b)
+                near = dist3(mid[a], mid[kept[b]]) <= tol;
+            if (!near)
+                kept[nk++] = a;
         }
-        (void)within;
-        const size_t want = distinct < MAX_POINTS ? distinct : MAX_POINTS;
+        const size_t want = nk < MAX_POINTS ? nk : MAX_POINTS;
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
             ENSURE(pt->i == P->i && pt->j == P->j && pt->ti < P->nt_i && pt->tj < P->nt_j);
             const size_t x = pt->ti * P->nt_j + pt->tj;
             ENSURE(P->d[x] <= m && pt->d == P->d[x] && pt->depth == round_to(W->bytes, m - pt->d));
-            if (n == 0)
-                ENSURE_MSG(x == deepest, "manifold (%u, %u): first point not the deepest", P->i, P->j);
+            for (int r = 0; r < 3; ++r)
+                ENSURE(pt->x[r] == round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]));
             const double nn = pt->n[0] * pt->n[0] + pt->n[1] * pt->n[1] + pt->n[2] * pt->n[2];
             ENSURE_NEAR(nn, 1.0, 16 * eps);
-            double dir[3], dl = 0, mid[3];
-            for (int r = 0; r < 3; ++r) {
-                dir[r] = P->q[3 * x + r] - P->p[3 * x + r];
-                dl += dir[r] * dir[r];
-                mid[r] = round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]);
-                ENSURE(pt->x[r] == mid[r]);
-            }
-            if (pt->d > 0 && dl > 0)
-                for (int r = 0; r < 3; ++r)
-                    ENSURE_NEAR(pt->n[r], dir[r] / sqrt(dl), 16 * eps);
-            if (pt->d == 0)
-                ENSURE_MSG(d0_normal_plausible(W, P, pt, eps), "manifold (%u, %u) triangles (%u, %u): normal at d = 0",
-                           P->i, P->j, pt->ti, pt->tj);
-            /* farthest-point choice: no unchosen contact farther from the points before */
-            if (n > 0) {
-                double mine = INFINITY;
-                for (size_t b = at - n; b < at; ++b) {
-                    double d2 = 0;
-                    for (int r = 0; r < 3; ++r)
-                        d2 += (pt->x[r] - A->points[b].x[r]) * (pt->x[r] - A->points[b].x[r]);
-                    mine = d2 < mine ? d2 : mine;
-                }
-                for (size_t y = 0; y < P->nt_i * P->nt_j; ++y) {
-                    if (!(P->d[y] <= m))
-                        continue;
-                    int chosen = 0;
-                    for (size_t b = at - n; b <= at; ++b)
-                        chosen |= A->points[b].ti * P->nt_j + A->points[b].tj == y;
-                    if (chosen)
-                        continue;
-                    double other = INFINITY;
-                    for (size_t b = at - n; b < at; ++b) {
-                        double d2 = 0;
-                        for (int r = 0; r < 3; ++r) {
-                            const double ym = round_to(W->bytes, 0.5 * P->p[3 * y + r] + 0.5 * P->q[3 * y + r]);
-                            d2 += (ym - A->points[b].x[r]) * (ym - A->points[b].x[r]);
-                        }
-                        other = d2 < other ? d2 : other;
+            /* one of those kept by the merge */
+            size_t me = SIZE_MAX;
+            for (size_t b = 0; b < nk && me == SIZE_MAX; ++b)
+                me = ord[kept[b]] == x ? b : me;
+            ENSURE_MSG(me != SIZE_MAX, "manifold (%u, %u): triangles (%u, %u) were merged into a deeper point", P->i,
+                       P->j, pt->ti, pt->tj);
+            if (n == 0)
+                ENSURE_MSG(pt->d - P->d[ord[0]] <= window * big, "manifold (%u, %u): first point not the deepest", P->i,
+                           P->j);
+            for (size_t b = at - n; b < at; ++b)
+                ENSURE_MSG(dist3(pt->x, A->points[b].x) > tol * (1 - 1e-9), "manifold (%u, %u): points %zu and %zu within %g",
+                           P->i, P->j, b - (at - n), n, tol);
+            if (nk > MAX_POINTS && (n == 1 || n == 2)) { /* farthest from the first; the largest triangle with the first two */
+                const double *x0 = A->points[at - n].x, *x1 = n == 2 ? A->points[at - 1].x : NULL;
+                double mine = 0, other = 0;
+                for (size_t b = 0; b < nk; ++b) {
+                    const double *y = mid[kept[b]];
+                    double v;
+                    if (n == 1) {
+                        v = dist3(y, x0);
+                    } else {
+                        const double e1[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+                        const double e2[3] = {y[0] - x0[0], y[1] - x0[1], y[2] - x0[2]};
+                        const double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                              e1[0] * e2[1] - e1[1] * e2[0]};
+                        v = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
                     }
-                    ENSURE_MSG(other <= mine * (1 + 1e-9) + 1e-30, "manifold (%u, %u): point %zu not the farthest",
-                               P->i, P->j, n);
+                    if (b == me)
+                        mine = v;
+                    other = v > other ? v : other;
                 }
+                /* a zero triangle (points on a line) falls back to the farthest point */
+                if (!(n == 2 && other == 0))
+                    ENSURE_MSG(mine >= other * (1 - 1e-9), "manifold (%u, %u): point %zu not the spread's choice (%g < %g)",
+                               P->i, P->j, n, mine, other);
             }
         }
+        free(ord);
+        free(kept);
+        free(mid);
     }
     ENSURE_MSG(at == A->npoints, "manifold: %zu points, expected %zu", A->npoints, at);
     return 0;
@@ -842,7 +842,8 @@ static int resting_cube_normals(void)
 static int scaled_scenes(void)
 {
     static const struct { int bytes; double scale, offset; } cases[] = {
-        {8, 1e-6, 0}, {8, 1e6, 0}, {8, 1, 1e6}, {8, 1e-6, 3e-4}, {4, 1e-3, 0}, {4, 1e3, 0}, {4, 1, 1e3}};
+        {8, 1e-6, 0}, {8, 1e6, 0}, {8, 1, 1e6}, {8, 1e-6, 3e-4}, {4, 1e-3, 0}, {4, 1e3, 0}, {4, 1, 1e3},
+        {8, 1e-163, 0}, {8, 1e70, 0}, {8, 1e-78, 0}, {8, 1e150, 0}, {8, 1e-300, 0}, {8, 1e-160, 1e-158}};
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         world_scale = cases[c].scale;
         world_offset = cases[c].offset;

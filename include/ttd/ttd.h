@@ -520,7 +520,7 @@ typedef struct ttd_scene_point_d {
     uint32_t i, j;         ///< the bodies, i < j
     uint32_t tri_i, tri_j; ///< the triangle pair it comes from
     double point[3];       ///< world point: the midpoint of the pair's closest points
-    double normal[3];      ///< unit normal from body i towards body j (docs/scenes.md, d = 0)
+    double normal[3];      ///< unit normal from body i towards body j, from the bodies' shapes (docs/scenes.md, 5a)
     double distance;       ///< the pair's separation d (0 touching or crossing)
     double depth;          ///< margin - d
 } ttd_scene_point_d;
@@ -534,9 +534,15 @@ typedef struct ttd_scene_point_f {
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
-/// reduced to at most max_points points (0: all), the deepest first and then, one at a time, the
-/// one farthest from those already kept, never one at a point already kept (docs/scenes.md), as
-/// ttd_scene_point_d (or _f) items, grouped by body pair in (i, j) order.
+/// merged (in depth order, a contact within 1e-3 of the smaller body's mesh radius of a point
+/// kept before it goes) and reduced to at most max_points points (0: all of them): the deepest,
+/// then spread over the contact region (the farthest, the largest triangle, the largest area
+/// added). Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
+/// face of one body lies within the margin of the other, across edges only where both are real
+/// edges of their bodies, never outside the normal cones of the contact's features where they
+/// meet; the same for any triangulation of a flat face; negated when the bodies swap
+/// (docs/scenes.md, section 5a). As ttd_scene_point_d (or _f) items, grouped by body pair in
+/// (i, j) order.
 TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t max_points,
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,

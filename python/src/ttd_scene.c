@@ -94,7 +94,7 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
     {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
-    {"normal", "shape (n, 3): unit normal from body i towards body j: (q - p) / |q - p| where distance > 0; at distance 0 the library's rule (docs/scenes.md section 5, 'normal')"},
+    {"normal", "shape (n, 3): unit normal from body i towards body j, from the bodies' shapes: a face's normal where a face of one body lies within the margin of the other, across two real edges, within the normal cones of the contact's features where they meet (docs/scenes.md, section 5a)"},
     {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
@@ -102,7 +102,8 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
 static PyStructSequence_Desc ttd_py_point_desc = {
     "ttd.SceneManifold",
     "The result of Scene.manifold: for every eligible body pair within the margin, at most\n"
-    "max_points contact points (the deepest first, then each the farthest from those kept),\n"
+    "max_points contact points (no two within 1e-3 of the smaller body's radius; the deepest\n"
+    "first, then spread over the contact region),\n"
     "grouped by body pair in (i, j) order, as parallel arrays of n points. Views of the C\n"
     "library's ttd_scene_point_d/_f records (ttd.SCENE_POINT_DTYPE_FLOAT64 / FLOAT32).",
     ttd_py_point_fields, TTD_PY_NPOINT,
@@ -983,14 +984,16 @@ static PyObject *ttd_py_scene_contacts(PyObject *obj, PyObject *args, PyObject *
 PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "manifold($self, margin, max_points=4, *, isa='auto', threads=0)\n--\n\n"
 "Contact manifolds, what a simulator consumes: for every eligible body pair with triangle\n"
-"pairs within margin (finite, >= 0), at most max_points of them (0: all), chosen as the\n"
-"deepest (smallest distance; ties to the smaller triangles) and then, one at a time, the one\n"
-"whose point is farthest from the points kept, never a point already kept. A ttd.SceneManifold of parallel (n,) arrays\n"
+"pairs within margin (finite, >= 0), its contacts merged (in depth order, a contact within\n"
+"1e-3 of the smaller body's radius of a point kept goes) and at most max_points of them kept\n"
+"(0: all): the deepest, then the farthest from it, the largest triangle, the largest area\n"
+"added (a box on a box: its corners). A ttd.SceneManifold of parallel (n,) arrays\n"
 "i, j, tri_i, tri_j (uint32), point (n, 3) (the midpoint of the pair's closest points),\n"
-"normal (n, 3) (unit, from body i towards body j: the direction q - p where distance > 0; at\n"
-"distance 0 the library's rule, in docs/scenes.md section 5 'normal'), distance\n"
-"(the pair's d) and depth (margin - d), grouped by body pair in (i, j) order. isa, threads:\n"
-"as in collide.");
+"normal (n, 3) (unit, from body i towards body j, from the bodies' shapes: a face's normal\n"
+"where a face of one body lies within the margin of the other, across two real edges, never\n"
+"outside the normal cones of the contact's features where they meet; the same for any\n"
+"triangulation of a flat face; docs/scenes.md, section 5a), distance (the pair's d) and\n"
+"depth (margin - d), grouped by body pair in (i, j) order. isa, threads: as in collide.");
 
 static PyObject *ttd_py_scene_manifold(PyObject *obj, PyObject *args, PyObject *kwargs)
 {

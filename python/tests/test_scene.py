@@ -3,7 +3,8 @@
 eligible body pairs in the world frame (ttd.distance on each body's vertices moved exactly as
 include/ttd/ttd.h documents, ((r0 x + r1 y) + r2 z) + t per coordinate in the scene's dtype,
 body i's triangle first): equal bit for bit where the library promises it (distances, points,
-triangles, the manifold's reduction, re-done here in numpy); filters, exclusions, removals and
+triangles; the manifolds' points drawn from the contacts merged as the library documents,
+re-done here in numpy); filters, exclusions, removals and
 additions, set_poses, both dtypes, 1 and 2 threads identical, the lock released, bad input."""
 import math
 import threading
@@ -79,60 +80,34 @@ def assert_contacts_equal(got, want):
         np.testing.assert_array_equal(got.q[k], q)
 
 
-def world_normal(world, body, tri):
-    x = world.tris[body][tri].astype(np.float64)
-    n = np.cross(x[1] - x[0], x[2] - x[0])
-    L = np.sqrt(n @ n)
-    return n / L if L > 0 and np.isfinite(L) else np.zeros(3)
+def mesh_radius(mesh):
+    """The library's radius of a mesh: from its vertices' bounding-box centre to the farthest
+    vertex, rounded up by 4 eps (src/mesh/build.c)."""
+    v = mesh.vertices.astype(np.float64)
+    c = 0.5 * v.min(axis=0) + 0.5 * v.max(axis=0)
+    return math.sqrt(np.max(np.sum((v - c) ** 2, axis=1))) * (1 + 4 * np.finfo(np.float64).eps)
 
 
-def manifold_brute(world, margin, max_points):
-    """The reduction of the library, re-done: deepest first (distance, then triangles), then
-    each the contact whose midpoint is farthest from the points kept."""
+def manifold_kept(world, margin):
+    """The contacts a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, in
+    depth order (distance, then triangles), a contact whose point lies within 1e-3 of the
+    smaller radius of a point kept before it goes. {(i, j): (tolerance, [(a, b, point, d, depth)])}"""
     real = world.dtype
-    out = []
-    rows = world.contacts(margin)
     by_pair = {}
-    for row in rows:
+    for row in world.contacts(margin):
         by_pair.setdefault(row[:2], []).append(row)
+    out = {}
     for (i, j), cs in sorted(by_pair.items()):
         cs = sorted(cs, key=lambda c: (c[4], c[2], c[3]))
-        # the midpoints as the points hold them (rounded to the scene's precision: equal points
-        # are equal reals, which is how repeated points are told)
-        mids = np.array([(0.5 * c[5].astype(np.float64) + 0.5 * c[6].astype(np.float64)).astype(real).astype(np.float64)
-                         for c in cs])
-        keep = len(cs) if max_points == 0 else min(max_points, len(cs))
-        far = np.full(len(cs), np.inf)
-        taken = np.zeros(len(cs), bool)
-        nxt = 0
-        for _ in range(keep):
-            c = cs[nxt]
-            taken[nxt] = True
-            point = mids[nxt].astype(real)
-            out.append((i, j, c[2], c[3], point, c[4], real(real(margin) - c[4]), c))
-            d2 = np.sum((mids - point.astype(np.float64)) ** 2, axis=1)
-            far = np.minimum(far, d2)
-            best = 0.0
-            for k in range(len(cs)):  # the first largest among those not taken
-                if not taken[k] and far[k] > best:
-                    best, nxt = far[k], k
-            if not best > 0:  # every contact left is at a point kept: no point twice
-                break
+        tol = 1e-3 * min(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
+        kept = []
+        for c in cs:
+            point = (0.5 * c[5].astype(np.float64) + 0.5 * c[6].astype(np.float64)).astype(real)
+            x = point.astype(np.float64)
+            if all(math.sqrt(np.sum((x - k[2].astype(np.float64)) ** 2)) > tol for k in kept):
+                kept.append((c[2], c[3], point, c[4], real(real(margin) - c[4])))
+        out[i, j] = (tol, kept)
     return out
-
-
-def d0_normal_plausible(world, i, a, j, b, n):
-    """Where d = 0 the normal follows where the contact lies on each triangle (docs/scenes.md):
-    perpendicular to every edge of one triangle (its face normal), or to an edge of each."""
-    perp = []
-    for t in (world.tris[i][a], world.tris[j][b]):
-        t = t.astype(np.float64)
-        e = [t[(k + 1) % 3] - t[k] for k in range(3)]
-        c = [abs(n @ x) / np.sqrt(x @ x) if x @ x > 0 else 0.0 for x in e]
-        if all(v < 1e-4 for v in c):
-            return True
-        perp.append(any(v < 1e-4 and x @ x > 0 for v, x in zip(c, e)))
-    return all(perp)
 
 
 def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
@@ -147,22 +122,33 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
         assert list(zip(hit.i.tolist(), hit.j.tolist())) == pairs
         for i, j, a, b in zip(hit.i, hit.j, hit.tri_i, hit.tri_j):
             assert world.pairs[i, j].distance[a, b] <= dtype(margin)
-        # manifold
+        # manifold: min(K, kept) points per body pair, each a kept contact (triangles, point,
+        # distance, depth bit for bit), the first within the seed's window of the smallest
+        # distance, no two within the tolerance, unit normals (the rule: tests/test_scene_contacts.c)
+        kept = manifold_kept(world, margin)
+        window = 2.0 ** -30 if dtype == np.float64 else 2.0 ** -16
         for max_points in (1, 4, 0):
             m = scene.manifold(margin, max_points)
-            mw = manifold_brute(world, margin, max_points)
-            assert len(m.i) == len(mw), (margin, max_points)
-            for k, (i, j, a, b, point, d, depth, c) in enumerate(mw):
-                assert (m.i[k], m.j[k], m.tri_i[k], m.tri_j[k]) == (i, j, a, b)
-                np.testing.assert_array_equal(m.point[k], point)
-                assert m.distance[k] == d and m.depth[k] == depth
-                n = m.normal[k].astype(np.float64)
-                assert abs(np.sqrt(n @ n) - 1) < 1e-5
-                pq = c[6].astype(np.float64) - c[5].astype(np.float64)
-                if d > 0 and pq @ pq > 0:
-                    np.testing.assert_array_equal(m.normal[k], (pq / np.sqrt(pq @ pq)).astype(dtype))
-                else:  # touching or crossing: a face normal of either triangle, or across an edge of each
-                    assert d0_normal_plausible(world, i, a, j, b, n), (i, j, a, b, n)
+            at = 0
+            for (i, j), (tol, ks) in kept.items():
+                want = len(ks) if max_points == 0 else min(max_points, len(ks))
+                rows = range(at, at + want)
+                at += want
+                by_tri = {(a, b): k for a, b, *k in ks}
+                big = max(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
+                for n, k in enumerate(rows):
+                    assert (m.i[k], m.j[k]) == (i, j), (margin, max_points, k)
+                    point, d, depth = by_tri[m.tri_i[k], m.tri_j[k]]
+                    np.testing.assert_array_equal(m.point[k], point)
+                    assert m.distance[k] == d and m.depth[k] == depth
+                    nv = m.normal[k].astype(np.float64)
+                    assert abs(np.sqrt(nv @ nv) - 1) < 1e-5
+                    if n == 0:
+                        assert float(d) - float(ks[0][3]) <= window * big
+                    for k2 in rows[:n]:
+                        gap = m.point[k].astype(np.float64) - m.point[k2].astype(np.float64)
+                        assert math.sqrt(gap @ gap) > tol * (1 - 1e-9)
+            assert len(m.i) == at, (margin, max_points)
     # distance
     best = world.closest()
     for nearest in (False, True):
@@ -528,7 +514,7 @@ def test_bad_input():
 @pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
 def test_sparse_scene_distances_and_nearest(dtype):
     # Bodies apart: positive distances, so the closest pair, each body's nearest and the
-    # manifolds' q - p normals are tested away from contact.
+    # manifolds are tested away from contact.
     ms, P = scene_setup(dtype, n=7, seed=11, spread=4.0)
     P[-1, 2, 3] = -6.0
     scene = ttd.Scene(ms, P)

@@ -257,7 +257,9 @@ class SceneDistance(NamedTuple):
     nearest: Optional[SceneContacts]
 
 class SceneManifold(NamedTuple):
-    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j)."""
+    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j); no two
+    within 1e-3 of the smaller body's radius; normals from the bodies' shapes (face normals where
+    a face lies within the margin, across real edges only; docs/scenes.md, section 5a)."""
 
     i: npt.NDArray[np.uint32]
     j: npt.NDArray[np.uint32]

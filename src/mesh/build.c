@@ -761,6 +761,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
+    ttd_mesh_edges_free(&mesh->edges);
     free(mesh);
 }
 
@@ -778,16 +779,28 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
     }
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
+    double big = 0;
+    for (size_t i = 0; i < nv; ++i)
+        for (int c = 0; c < 3; ++c) {
+            vrel[3 * i + c] -= m->origin[c];
+            big = dmax(big, fabs(vrel[3 * i + c]));
+        }
+    /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
+     * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
+     * pair, at 1e-163) */
+    int e = 0;
+    if (big > 0)
+        frexp(big, &e);
     double r2 = 0;
     for (size_t i = 0; i < nv; ++i) {
         double d2 = 0;
         for (int c = 0; c < 3; ++c) {
-            vrel[3 * i + c] -= m->origin[c];
-            d2 += vrel[3 * i + c] * vrel[3 * i + c];
+            const double x = ldexp(vrel[3 * i + c], -e);
+            d2 += x * x;
         }
         r2 = dmax(r2, d2);
     }
-    m->radius = sqrt(r2) * (1 + 4 * DBL_EPSILON);
+    m->radius = ldexp(sqrt(r2), e) * (1 + 4 * DBL_EPSILON);
 }
 
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
@@ -821,6 +834,8 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
+    if (!ttd_mesh_edges_build(bytes, verts, nv, tris, nt, &m->edges))
+        goto nomem;
     place(m, verts, vrel);
     B.vrel = vrel;
     int e;

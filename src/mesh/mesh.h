@@ -21,6 +21,7 @@
 
 #include "core/kernels.h"
 #include "engine/batch.h"
+#include "mesh/edges.h"
 
 struct ttd_mesh {
     int bytes;          /* 8: built from double vertices and queried in double; 4: float */
@@ -32,6 +33,8 @@ struct ttd_mesh {
     double origin[3];   /* the boxes' origin, in the mesh's coordinates */
     double radius;      /* every vertex is within radius of origin (rounded up) */
     int closed;         /* solid queries: 0 not known yet, 1 closed, 2 not (mesh/solid.c; atomic) */
+    ttd_mesh_edges edges; /* neighbours across edges, flat or real edges and corners (mesh/edges.h;
+                           * ttd_mesh_edges_build of verts and tris) */
 };
 
 /* The largest coordinate magnitude a mesh query works on, a's vertices and b's moved by a pose

@@ -320,201 +320,28 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
-/* Triangle tri of body id in the world, as the kernel sees it (9 reals). */
-static void world_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, real x[9])
-{
-    const struct ttd_mesh *m = s->body[id].mesh;
-    const real *v = (const real *)m->verts, *pose = body_pose(s, id);
-    for (int k = 0; k < 3; ++k) {
-        const real *src = v + 3 * (size_t)m->tris[3 * (size_t)tri + (size_t)k];
-        for (int r = 0; r < 3; ++r)
-            x[3 * k + r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
-    }
-}
-
-/* The unit normal of triangle x (0 when it has no area), and its centroid. */
-static void triangle_normal(const real x[9], double n[3], double g[3])
-{
-    const double e1[3] = {(double)x[3] - (double)x[0], (double)x[4] - (double)x[1], (double)x[5] - (double)x[2]};
-    const double e2[3] = {(double)x[6] - (double)x[0], (double)x[7] - (double)x[1], (double)x[8] - (double)x[2]};
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int r = 0; r < 3; ++r) {
-        n[r] = len > 0 && isfinite(len) ? n[r] / len : 0;
-        g[r] = ((double)x[r] + (double)x[3 + r] + (double)x[6 + r]) / 3;
-    }
-}
-
-/* The direction of the edge of triangle x whose two vertices are the bits of f. */
-static void edge_of(const real x[9], unsigned f, double e[3])
-{
-    const int a = (f & 1) ? 0 : 1, b = (f & 4) ? 2 : 1;
-    for (int r = 0; r < 3; ++r)
-        e[r] = (double)x[3 * b + r] - (double)x[3 * a + r];
-}
-
-static int bits3(unsigned f)
-{
-    return (int)(f & 1) + (int)((f >> 1) & 1) + (int)((f >> 2) & 1);
-}
-
-/* The normal of contact c, from body i towards body j: the direction from p to q when they
- * differ. Where they meet (d = 0) there is none; then, by where the contact lies on each
- * triangle (the exact method's features): across both edges where an edge of each crosses the
- * other; j's face normal where the contact lies inside j's face and not inside i's (a vertex or
- * an edge of i on a face of j: a box resting on an edge of another gets the face it rests on,
- * not the side face of the edge); i's face normal otherwise, or the other's when one has no
- * area; turned to point from i's triangle's centroid towards j's where that direction is
- * within 60 degrees of the normal, from i's body's box centre towards j's otherwise (coplanar
- * faces, crossing triangles side by side); where both triangles have no area, the direction between the centroids, else
- * between the boxes' centres, else +z. */
-static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
-{
-    double d[3], len2 = 0;
-    for (int r = 0; r < 3; ++r) {
-        d[r] = (double)c->q[r] - (double)c->p[r];
-        len2 += d[r] * d[r];
-    }
-    if (c->distance > 0 && len2 > 0) {
-        const double len = sqrt(len2);
-        for (int r = 0; r < 3; ++r)
-            n[r] = d[r] / len;
-        return;
-    }
-    real ti[9], tj[9];
-    world_triangle(s, c->i, c->tri_i, ti);
-    world_triangle(s, c->j, c->tri_j, tj);
-    double ni[3], nj[3], gi[3], gj[3];
-    triangle_normal(ti, ni, gi);
-    triangle_normal(tj, nj, gj);
-    ttd_result full;
-    TTD_EXACT_PAIR(ti, tj, &full); /* where on each triangle the contact lies */
-    const int has_i = ni[0] != 0 || ni[1] != 0 || ni[2] != 0, has_j = nj[0] != 0 || nj[1] != 0 || nj[2] != 0;
-    const int use_j = has_j && (!has_i || (bits3(full.feature_q) == 3 && bits3(full.feature_p) < 3));
-    double ne[3] = {0, 0, 0};
-    if (bits3(full.feature_p) == 2 && bits3(full.feature_q) == 2) { /* two edges cross: across both */
-        double ei[3], ej[3];
-        edge_of(ti, full.feature_p, ei);
-        edge_of(tj, full.feature_q, ej);
-        ne[0] = ei[1] * ej[2] - ei[2] * ej[1];
-        ne[1] = ei[2] * ej[0] - ei[0] * ej[2];
-        ne[2] = ei[0] * ej[1] - ei[1] * ej[0];
-        const double l = sqrt(ne[0] * ne[0] + ne[1] * ne[1] + ne[2] * ne[2]);
-        for (int r = 0; r < 3; ++r)
-            ne[r] = l > 0 && isfinite(l) ? ne[r] / l : 0;
-    }
-    const int use_edges = ne[0] != 0 || ne[1] != 0 || ne[2] != 0;
-    const double *bi = s->box + 6 * (size_t)c->i, *bj = s->box + 6 * (size_t)c->j; /* their world boxes */
-    double towards[3], t2 = 0, boxes[3], b2 = 0;
-    for (int r = 0; r < 3; ++r) {
-        towards[r] = gj[r] - gi[r];
-        t2 += towards[r] * towards[r];
-        boxes[r] = 0.5 * (bj[r] + bj[3 + r]) - 0.5 * (bi[r] + bi[3 + r]);
-        b2 += boxes[r] * boxes[r];
-    }
-    if (!has_i && !has_j) {
-        const double *dir = t2 > 0 ? towards : boxes;
-        const double len = sqrt(t2 > 0 ? t2 : b2);
-        for (int r = 0; r < 3; ++r)
-            n[r] = len > 0 ? dir[r] / len : (r == 2 ? 1.0 : 0.0);
-        return;
-    }
-    memcpy(n, use_edges ? ne : use_j ? nj : ni, 3 * sizeof *n);
-    /* the sign: from i's triangle towards j's where that direction is within 60 degrees of the
-     * normal either way; otherwise (coplanar faces, crossing triangles whose centroids sit side
-     * by side) from i's body towards j's */
-    double dot = n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2];
-    if (!(fabs(dot) >= 0.5 * sqrt(t2)))
-        dot = n[0] * boxes[0] + n[1] * boxes[1] + n[2] * boxes[2];
-    if (dot < 0)
-        for (int r = 0; r < 3; ++r)
-            n[r] = -n[r];
-}
-
-/* Orders contacts deepest first: smaller distance, then triangles. */
-static int depth_cmp(const void *x, const void *y)
-{
-    const ttd_scene_contact *a = x, *b = y;
-    if (a->distance != b->distance)
-        return a->distance < b->distance ? -1 : 1;
-    return scene_contact_cmp(x, y);
-}
-
-/* Appends body pair's manifold: its n contacts (reordered here) reduced to at most max points:
- * the deepest, then repeatedly the contact whose point is farthest from every point kept (ties
- * to the earlier in depth order), until max points or none left at a new point: the deepest
- * contact and the spread of the region, as Hauser's clustering keeps, without repeated points,
- * in O(max n) and the same on every run. */
-static int append_manifold(const struct ttd_scene *s, ttd_scene_contact *c, size_t n, real margin, size_t max,
-                           ttd_scene_array *out)
-{
-    qsort(c, n, sizeof *c, depth_cmp);
-    const size_t keep = max == 0 || max > n ? n : max;
-    if (!array_reserve(out, out->count + keep, sizeof(ttd_scene_point)))
-        return 0;
-    double *far = malloc(n * sizeof *far); /* squared distance to the nearest kept point */
-    unsigned char *taken = calloc(n, 1);
-    if (far == NULL || taken == NULL) {
-        free(far);
-        free(taken);
-        return 0;
-    }
-    for (size_t k = 0; k < n; ++k)
-        far[k] = HUGE_VAL;
-    size_t next = 0;
-    for (size_t kept = 0; kept < keep; ++kept) {
-        const ttd_scene_contact *x = &c[next];
-        taken[next] = 1;
-        ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count++;
-        double normal[3];
-        contact_normal(s, x, normal);
-        pt->i = x->i;
-        pt->j = x->j;
-        pt->tri_i = x->tri_i;
-        pt->tri_j = x->tri_j;
-        for (int r = 0; r < 3; ++r) {
-            pt->point[r] = (real)(0.5 * (double)x->p[r] + 0.5 * (double)x->q[r]);
-            pt->normal[r] = (real)normal[r];
-        }
-        pt->distance = x->distance;
-        pt->depth = margin - x->distance;
-        /* the next: farthest from every point kept so far; none when every contact left is at a
-         * point already kept (faces in contact give many pairs at the same points) */
-        double best = 0;
-        for (size_t k = 0; k < n; ++k) {
-            if (taken[k])
-                continue;
-            double d2 = 0;
-            for (int r = 0; r < 3; ++r) {
-                /* the midpoint as a point would hold it: equal points are equal reals */
-                const double a = (double)(real)(0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r]) - (double)pt->point[r];
-                d2 += a * a;
-            }
-            far[k] = d2 < far[k] ? d2 : far[k];
-            if (far[k] > best) {
-                best = far[k];
-                next = k;
-            }
-        }
-        if (!(best > 0))
-            break;
-    }
-    free(far);
-    free(taken);
-    return 1;
-}
+#include "scene/normal_impl.h"
+#include "scene/manifold_impl.h"
 
 static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, size_t max_points,
                                  ttd_scene_array *out)
 {
     out->count = 0;
     pair_contacts_set c;
+    manifold_work w = {0};
     ttd_status st = all_contacts(cfg, s, margin, &c);
-    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
-        if (c.nfound[k] && !append_manifold(s, c.found[k], c.nfound[k], margin, max_points, out))
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
+        const size_t n = c.nfound[k];
+        if (n == 0)
+            continue;
+        const size_t most = max_points == 0 || max_points > n ? n : max_points;
+        if (!manifold_work_reserve(&w, n) || !array_reserve(out, out->count + most, sizeof(ttd_scene_point))) {
             st = TTD_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        out->count += reduce_pair(s, c.found[k], n, margin, max_points, &w, (ttd_scene_point *)out->data + out->count);
+    }
+    manifold_work_free(&w);
     pair_contacts_free(&c);
     s->stats.results = out->count;
     if (st != TTD_OK) {

@@ -130,20 +130,23 @@ for w in icospheres mixed sparse; do
 done
 grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"precision": "float"' || fail "no float scene contacts row"
 grep '"query": "motion"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread motion row"
+for q in manifold-4 manifold-0 distance+n; do # issue 23's ratios: against ttd's contacts and distance
+  grep "\"query\": \"$q\"" "$tmp/scene.rows" | grep -q '"x_ref": [0-9]' || fail "no $q row with its ratio"
+done
 grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread contacts row"
-grep '"query": "manifold"' "$tmp/scene.rows" | grep -q '"target_of": "x_bullet"' || fail "no manifold row against Bullet"
-# with Bullet's program next to ttd: its time beside every manifold row
+# with Bullet's program next to ttd: its time beside every manifold-4 row (issue 26)
 if [ -x "$(dirname "$ttd")/ttd_bullet_scene_bench" ]; then
-  bad=$(grep '"query": "manifold"' "$tmp/scene.rows" | field bullet_ms | awk '!($1 + 0 > 0)' | wc -l)
-  [ "$bad" -eq 0 ] || fail "$bad manifold rows without Bullet's time although ttd_bullet_scene_bench exists"
+  bad=$(grep '"query": "manifold-4"' "$tmp/scene.rows" | field bullet_ms | awk '!($1 + 0 > 0)' | wc -l)
+  [ "$bad" -eq 0 ] || fail "$bad manifold-4 rows without Bullet's time although ttd_bullet_scene_bench exists"
 fi
 bad=$(field ms < "$tmp/scene.rows" | awk '!($1 + 0 > 0)' | wc -l)
 [ "$bad" -eq 0 ] || fail "$bad scene rows without a positive time"
 if [ -x "$(dirname "$ttd")/ttd_fcl_scene_bench" ]; then
   grep '^  "scene": ' "$tmp/out.json" | grep -q '"disagreements": 0,' || fail "ttd and FCL disagree in the scene section"
-  # (not the manifold, FCL has none, nor the two-thread rows, which are against ttd's one thread)
-  bad=$(grep -v -e '"query": "manifold"' -e '"target_of": "x_threads"' "$tmp/scene.rows" | field fcl_ms |
-        awk '!($1 + 0 > 0)' | wc -l)
+  # FCL has no manifold and no per-body nearest: those rows are timed against ttd's own contacts and
+  # distance instead (issue 23); the two-thread rows are against ttd's own one thread (issue 26)
+  bad=$(grep -v -e '"query": "manifold-' -e '"query": "distance+n"' -e '"target_of": "x_threads"' "$tmp/scene.rows" |
+        field fcl_ms | awk '!($1 + 0 > 0)' | wc -l)
   [ "$bad" -eq 0 ] || fail "$bad scene rows without FCL's time although ttd_fcl_scene_bench exists"
 fi
 # --scene-write: the quick icospheres written for `ttd scene`, which reads them back to the same

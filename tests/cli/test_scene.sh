@@ -10,9 +10,10 @@
 #   - collide: the body pairs that have a contact within the margin, each witness one of them;
 #   - distance: the smallest contact distance over all pairs (also the `ttd mesh distance`
 #     minimum), ties to the smallest (i, j) then (ia, ib), its points;
-#   - manifold: the reduction done here in awk on the mesh contacts (the deepest, then the
-#     farthest from those kept; midpoints; normals (q - p) / |q - p|, or the face normal turned
-#     from i's triangle's centroid towards j's where d = 0), then sorted by triangles;
+#   - manifold: against the mesh contacts merged here in awk (in depth order, a contact within
+#     1e-3 of the smaller mesh radius of a point kept before goes): min(K, kept) points per body
+#     pair, each a kept contact's midpoint with its d and depth, unit normals, no two points
+#     within the tolerance (the normal rule itself: tests/test_scene_contacts.c);
 #   - filter and exclude statements: every query equal to the unfiltered scene's lines less the
 #     body pairs that the group/mask rule (computed here in awk) or an exclusion removes; body
 #     names (referred to by name or number; --names prints them for i and j);
@@ -139,20 +140,6 @@ run() { # run WANT-STATUS ARGS...: stdout in $DIR/out, stderr in $DIR/err
 no_output() { [ ! -s "$DIR/out" ] || fail "$1: printed '$(head -c 200 "$DIR/out")'"; }
 err_has() { grep -q -e "$1" "$DIR/err" || fail "$2: no '$1' in: $(cat "$DIR/err")"; }
 same() { cmp -s "$1" "$2" || fail "$3: $(diff "$1" "$2" | head -5)"; }
-# same_manifold GOT WANT WHAT: line for line equal, but where WANT has 'unit unit unit' for the
-# normal (d = 0), GOT's normal must be a unit vector.
-same_manifold() {
-    awk 'NR == FNR { w[FNR] = $0; n = FNR; next }
-        { if (!(FNR in w)) { print "extra line " FNR; bad = 1; exit }
-          split(w[FNR], f, " ")
-          if (f[6] == "unit") { l = $6 * $6 + $7 * $7 + $8 * $8
-              if (l < 1 - 1e-12 || l > 1 + 1e-12) { print "line " FNR ": normal not unit: " $0; bad = 1; exit }
-              $6 = "unit"; $7 = "unit"; $8 = "unit" }
-          if ($0 != w[FNR]) { print "line " FNR ": " $0 " want " w[FNR]; bad = 1; exit } }
-        END { if (!bad && FNR != n) print "got " FNR " lines, want " n; exit bad || FNR != n }' "$2" "$1" > "$DIR/diff" ||
-        fail "$3: $(cat "$DIR/diff")"
-}
-
 # A scene: which mesh each body is (by name), and its pose. The mesh names map to the files
 # above and to their descriptions for the reference.
 mesh_desc() { case $1 in cube) echo "$DIR/cube.mesh" ;; tet) echo "$DIR/tet.mesh" ;; wedge|wedgeb) echo "$DIR/wedge.mesh" ;; esac; }
@@ -205,59 +192,58 @@ ref_distance_d() {
         i=$((i + 1))
     done | awk 'NR == 1 || $1 + 0 < m + 0 { m = $1 } END { print m }'
 }
-# ref_manifold MARGIN K BODIES < contacts: the manifold lines from the contact lines (double).
-ref_manifold() {
-    echo "$3" > "$DIR/bodies.txt"
-    awk -v m="$1" -v K="$2" -v bodies="$DIR/bodies.txt" -v cube="$DIR/cube.mesh" -v tet="$DIR/tet.mesh" \
+# check_manifold GOT MARGIN K BODIES WHAT < contacts: GOT's manifold lines against the contact
+# lines (double), per body pair: the contacts merged in depth order (a contact within 1e-3 of the
+# smaller mesh radius of a point kept before it goes; radius: from the vertices' bounding-box
+# centre to the farthest vertex), min(K, kept) lines (all where K = 0), each point the midpoint of
+# a kept contact with its d and depth M - d, a unit normal, no two points within the tolerance.
+check_manifold() {
+    echo "$4" > "$DIR/bodies.txt"
+    awk -v m="$2" -v K="$3" -v got="$1" -v bodies="$DIR/bodies.txt" -v cube="$DIR/cube.mesh" -v tet="$DIR/tet.mesh" \
         -v wedge="$DIR/wedge.mesh" "$LIB"'
-    function wv(b, v, r,    x, y, z) { # vertex v of body b in the world, coordinate r (0..2)
-        x = VX[MB[b], v]; y = VY[MB[b], v]; z = VZ[MB[b], v]
-        return ((BP[b, 4 * r + 1] * x + BP[b, 4 * r + 2] * y) + BP[b, 4 * r + 3] * z) + BP[b, 4 * r + 4] }
-    function face_normal(b, t,    k, r, X, e1, e2, len) { # unit normal of triangle t of body b into FN
-        for (k = 0; k < 3; k++) for (r = 0; r < 3; r++) X[k, r] = wv(b, TI[MB[b], t, k], r)
-        for (r = 0; r < 3; r++) { e1[r] = X[1, r] - X[0, r]; e2[r] = X[2, r] - X[0, r] }
-        FN[0] = e1[1] * e2[2] - e1[2] * e2[1]; FN[1] = e1[2] * e2[0] - e1[0] * e2[2]; FN[2] = e1[0] * e2[1] - e1[1] * e2[0]
-        len = sqrt(FN[0] * FN[0] + FN[1] * FN[1] + FN[2] * FN[2])
-        for (r = 0; r < 3; r++) FN[r] = len > 0 ? FN[r] / len : 0 }
-    function centroid(b, t, G,    c, k, r, x, y, z) {
-        for (r = 0; r < 3; r++) c[r] = 0
-        for (k = 0; k < 3; k++) { v = TI[MB[b], t, k]; c[0] += VX[MB[b], v] / 3; c[1] += VY[MB[b], v] / 3; c[2] += VZ[MB[b], v] / 3 }
-        for (r = 0; r < 3; r++) G[r] = BP[b, 4 * r + 1] * c[0] + BP[b, 4 * r + 2] * c[1] + BP[b, 4 * r + 3] * c[2] + BP[b, 4 * r + 4] }
-    BEGIN { load(1, cube); load(2, tet); load(3, wedge); nb = 0
+    function radius(k,    v, r, lo, hi, c, d2, best) {
+        for (r = 0; r < 3; r++) { lo[r] = 1e300; hi[r] = -1e300 }
+        for (v = 0; v < NV[k]; v++) { X[0] = VX[k, v]; X[1] = VY[k, v]; X[2] = VZ[k, v]
+            for (r = 0; r < 3; r++) { if (X[r] < lo[r]) lo[r] = X[r]; if (X[r] > hi[r]) hi[r] = X[r] } }
+        for (r = 0; r < 3; r++) c[r] = 0.5 * lo[r] + 0.5 * hi[r]
+        best = 0
+        for (v = 0; v < NV[k]; v++) { X[0] = VX[k, v]; X[1] = VY[k, v]; X[2] = VZ[k, v]
+            d2 = 0; for (r = 0; r < 3; r++) d2 += (X[r] - c[r]) * (X[r] - c[r]); if (d2 > best) best = d2 }
+        return sqrt(best) * (1 + 4 * 2.220446049250313e-16) }
+    BEGIN { load(1, cube); load(2, tet); load(3, wedge); for (k = 1; k <= 3; k++) RAD[k] = radius(k); nb = 0
         while ((getline line < bodies) > 0) { n = split(line, f, " "); if (n < 13) continue
-            MB[nb] = f[1] == "cube" ? 1 : f[1] == "tet" ? 2 : 3
-            for (k = 1; k <= 12; k++) BP[nb, k] = f[k + 1] + 0
-            nb++ } }
+            MB[nb++] = f[1] == "cube" ? 1 : f[1] == "tet" ? 2 : 3 }
+        while ((getline line < got) > 0) { split(line, f, " "); key = f[1] " " f[2]
+            G[key, NG[key]++] = line; if (!(key in SEEN)) { SEEN[key] = 1; gorder[ng++] = key } } }
     { key = $1 " " $2; if (!(key in N)) { order[np++] = key; N[key] = 0 }
       L[key, N[key]++] = $0 }
     END {
-        for (q = 0; q < np; q++) { key = order[q]; n = N[key]
-            # depth order: smaller d first, ties in (ia, ib) order (the input order): insertion sort
+        for (q = 0; q < ng; q++) if (!(gorder[q] in N)) { print "points for pair " gorder[q] " without contacts"; exit 1 }
+        for (q = 0; q < np; q++) { key = order[q]; n = N[key]; split(key, ij, " ")
+            ri = RAD[MB[ij[1]]]; rj = RAD[MB[ij[2]]]; tol = 1e-3 * (ri < rj ? ri : rj)
+            # depth order (stable: the input is in (ia, ib) order), then the merge
             for (a = 0; a < n; a++) { split(L[key, a], f, " "); D[a] = f[5] + 0; S[a] = a }
             for (a = 1; a < n; a++) { x = S[a]; c = a - 1
                 while (c >= 0 && D[S[c]] > D[x]) { S[c + 1] = S[c]; c-- } S[c + 1] = x }
+            nk = 0; delete KEPT
             for (a = 0; a < n; a++) { split(L[key, S[a]], f, " ")
-                I[a] = f[1]; J[a] = f[2]; TA[a] = f[3]; TB[a] = f[4]; DD[a] = f[5] + 0
-                for (r = 0; r < 3; r++) { PP[a, r] = f[6 + r] + 0; QQ[a, r] = f[9 + r] + 0; M[a, r] = 0.5 * PP[a, r] + 0.5 * QQ[a, r] }
-                FAR[a] = -1; TK[a] = 0 }
-            keep = (K == 0 || K > n) ? n : K; nx = 0
-            for (kept = 0; kept < keep; kept++) { a = nx; TK[a] = 1
-                l2 = 0; for (r = 0; r < 3; r++) { dv[r] = QQ[a, r] - PP[a, r]; l2 += dv[r] * dv[r] }
-                if (DD[a] > 0 && l2 > 0) { len = sqrt(l2); for (r = 0; r < 3; r++) nn[r] = dv[r] / len }
-                if (DD[a] > 0 && l2 > 0)
-                    printf "%d %d %d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", I[a], J[a], TA[a], TB[a],
-                        M[a, 0], M[a, 1], M[a, 2], nn[0], nn[1], nn[2], DD[a], m - DD[a]
-                else # d = 0: the normal follows where the contact lies on each triangle (test_scene.c
-                     # checks that rule); here a unit vector is required (checked by same_manifold)
-                    printf "%d %d %d %d %.17g %.17g %.17g unit unit unit %.17g %.17g\n", I[a], J[a], TA[a], TB[a],
-                        M[a, 0], M[a, 1], M[a, 2], DD[a], m - DD[a]
-                best = 0
-                for (c = 0; c < n; c++) { if (TK[c]) continue
-                    d2 = 0; for (r = 0; r < 3; r++) { e = M[c, r] - M[a, r]; d2 += e * e }
-                    if (FAR[c] < 0 || d2 < FAR[c]) FAR[c] = d2
-                    if (FAR[c] > best) { best = FAR[c]; nx = c } }
-                if (!(best > 0)) break } } }' |
-        sort -k1,1n -k2,2n -k3,3n -k4,4n | cut -d' ' -f1,2,5-
+                for (r = 0; r < 3; r++) M[a, r] = 0.5 * (f[6 + r] + 0) + 0.5 * (f[9 + r] + 0)
+                near = 0
+                for (b = 0; b < nk && !near; b++) { d2 = 0
+                    for (r = 0; r < 3; r++) { e = M[a, r] - M[KI[b], r]; d2 += e * e }
+                    near = sqrt(d2) <= tol }
+                if (!near) { KI[nk++] = a
+                    KEPT[sprintf("%.17g %.17g %.17g %.17g %.17g", M[a, 0], M[a, 1], M[a, 2], f[5] + 0, m - f[5])] = 1 } }
+            want = (K == 0 || K > nk) ? nk : K
+            if (NG[key] != want) { print "pair " key ": " NG[key] " points, want " want " (of " nk " kept)"; exit 1 }
+            for (a = 0; a < NG[key]; a++) { split(G[key, a], f, " ")
+                if (!((f[3] " " f[4] " " f[5] " " f[9] " " f[10]) in KEPT)) { print "pair " key ": not a kept contact: " G[key, a]; exit 1 }
+                l = f[6] * f[6] + f[7] * f[7] + f[8] * f[8]
+                if (l < 1 - 1e-12 || l > 1 + 1e-12) { print "normal not unit: " G[key, a]; exit 1 }
+                for (b = 0; b < a; b++) { split(G[key, b], g, " "); d2 = 0
+                    for (r = 3; r <= 5; r++) d2 += (f[r] - g[r]) * (f[r] - g[r])
+                    if (sqrt(d2) <= tol * (1 - 1e-9)) { print "pair " key ": two points within " tol; exit 1 } } } } }' \
+        > "$DIR/diff" || fail "$5: $(cat "$DIR/diff")"
 }
 
 # ---- the double scene --------------------------------------------------------------------
@@ -298,11 +284,11 @@ for m in 0 0.15 0.35; do
         END { exit !found }' "$DIR/err" || fail "contacts --stats $m: $(cat "$DIR/err")"
     # manifold, K = 4 (default), 2 and 0 (all)
     for k in 4 2 0; do
-        ref_manifold $m $k "$BODIES" < "$DIR/want" > "$DIR/want_m"
         if [ $k = 4 ]; then run 0 scene manifold "$DIR/scene.txt" --margin $m; else run 0 scene manifold "$DIR/scene.txt" --margin $m --max-points $k; fi
-        same_manifold "$DIR/out" "$DIR/want_m" "manifold --margin $m --max-points $k against the reduction of the mesh contacts"
+        cp "$DIR/out" "$DIR/got_m"
+        check_manifold "$DIR/got_m" $m $k "$BODIES" "manifold --margin $m --max-points $k against the mesh contacts" < "$DIR/want"
         run 0 scene manifold "$DIR/scene.txt" --margin $m --max-points $k --count
-        [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want_m" | tr -d ' ')" ] || fail "manifold --count $m $k"
+        [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/got_m" | tr -d ' ')" ] || fail "manifold --count $m $k"
     done
 done
 # The expected pairs at 0.35: (0,1) 0.2 apart, (0,2) 0.1 apart, (0,3) crossing, (0,5) touching;
@@ -312,7 +298,7 @@ for p in "0 1," "0 2," "0 3," "0 5,"; do grep -q "$p" "$DIR/pairs" || fail "scen
 ! grep -q "4" "$DIR/pairs" || fail "scene pairs at 0.35 include the far body: $(cat "$DIR/pairs")"
 [ "$(awk '$1 == 0 && $2 == 5 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no touching pair (0, 5)"
 [ "$(awk '$1 == 0 && $2 == 3 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no crossing pair (0, 3)"
-pass "contacts, collide, manifold (K 4, 2, all), --count at margins 0, 0.15, 0.35: equal to the world meshes' mesh contacts"
+pass "contacts, collide, manifold (K 4, 2, all), --count at margins 0, 0.15, 0.35: equal to (manifold: drawn from) the world meshes' mesh contacts"
 
 # distance: the smallest contact over all pairs (a margin holding every pair), ties to the
 # smallest (i, j) then (ia, ib): the first such line in the sorted contacts.

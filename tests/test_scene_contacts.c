@@ -1,0 +1,783 @@
+/* SPDX-License-Identifier: MIT */
+/* Scene manifolds as a simulator uses them (docs/scenes.md, section 5; issue 23):
+ *   - stacks: a cube resting on a cube, flush and at gaps below the margin, offset and turned
+ *     about z, in five triangulations (two diagonal choices, centre fans, faces split 3 x 3,
+ *     faces without shared vertices), either body first: every point's normal is +z from the
+ *     lower to the upper, in double and float;
+ *   - a box on a box: the four points span the contact region (their polygon's area is the
+ *     overlap's), and no two points of any manifold are within the merge tolerance;
+ *   - a sphere near a floor's diagonal edge (and on a grid floor): every normal is the floor's;
+ *   - symmetry: the same scene with its bodies in the other order gives each contact the
+ *     negated normal, bit for bit, over random scenes;
+ *   - the normal rule's properties over random scenes, against features and cones found here
+ *     independently (the exact method's weights, adjacency by comparing every triangle pair):
+ *     unit length; a face normal where one side's feature is a face; one of the two faces'
+ *     normals or their mean where both are; otherwise a direction in both cones whenever the
+ *     triangles' normals, the direction between the points or an edge cross product lies in
+ *     both.
+ * Every instruction set and 1 or 2 threads give the same bits (the manifolds compared whole). */
+#define _POSIX_C_SOURCE 200809L
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshes.h"
+#include "pairs.h"
+#include "test_macros.h"
+#include <ttd/ttd.h>
+
+/* ---- cubes in several triangulations ------------------------------------------------------ */
+
+enum { CUBE_DIAG_A, CUBE_DIAG_B, CUBE_FAN, CUBE_SPLIT3, CUBE_UNSHARED, CUBE_KINDS };
+static const char *cube_name[CUBE_KINDS] = {"12 triangles", "12 triangles, other diagonals", "centre fans",
+                                            "faces split 3x3", "no shared vertices"};
+
+typedef struct builder {
+    double *v;
+    uint32_t *t;
+    size_t nv, nt, cap_v, cap_t;
+} builder;
+
+static void add_vertex(builder *b, const double x[3])
+{
+    if (b->nv == b->cap_v) {
+        b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
+        b->v = realloc(b->v, 3 * b->cap_v * sizeof *b->v);
+    }
+    memcpy(b->v + 3 * b->nv++, x, 3 * sizeof *x);
+}
+
+static void add_triangle(builder *b, const double x[3], const double y[3], const double z[3])
+{
+    if (b->nt == b->cap_t) {
+        b->cap_t = b->cap_t ? 2 * b->cap_t : 64;
+        b->t = realloc(b->t, 3 * b->cap_t * sizeof *b->t);
+    }
+    const double *p[3] = {x, y, z};
+    for (int k = 0; k < 3; ++k) {
+        add_vertex(b, p[k]);
+        b->t[3 * b->nt + (size_t)k] = (uint32_t)(b->nv - 1);
+    }
+    b->nt++;
+}
+
+/* The unit cube [0,1]^3, faces wound outward, in triangulation `kind`; every kind but
+ * CUBE_UNSHARED shares vertices by index. */
+static int cube_mesh(int kind, ttd_gen_mesh *g)
+{
+    static const double face[6][9] = {
+        {0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 1, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1, 0, 1, 0},
+        {1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0, 1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1, 1, 0, 0}}; /* origin, U, V */
+    builder b = {0};
+    for (int f = 0; f < 6; ++f) {
+        const double *o = face[f], *U = face[f] + 3, *V = face[f] + 6;
+        const int n = kind == CUBE_SPLIT3 ? 3 : 1;
+        for (int ia = 0; ia < n; ++ia)
+            for (int ib = 0; ib < n; ++ib) {
+                double P[2][2][3], C[3];
+                for (int da = 0; da < 2; ++da)
+                    for (int db = 0; db < 2; ++db)
+                        for (int r = 0; r < 3; ++r)
+                            P[da][db][r] = o[r] + (double)(ia + da) / n * U[r] + (double)(ib + db) / n * V[r];
+                for (int r = 0; r < 3; ++r)
+                    C[r] = 0.5 * (P[0][0][r] + P[1][1][r]);
+                if (kind == CUBE_FAN) {
+                    add_triangle(&b, P[0][0], P[1][0], C);
+                    add_triangle(&b, P[1][0], P[1][1], C);
+                    add_triangle(&b, P[1][1], P[0][1], C);
+                    add_triangle(&b, P[0][1], P[0][0], C);
+                } else if (kind == CUBE_DIAG_B || (kind == CUBE_SPLIT3 && (ia + ib) % 2)) {
+                    add_triangle(&b, P[0][0], P[1][0], P[0][1]);
+                    add_triangle(&b, P[1][0], P[1][1], P[0][1]);
+                } else {
+                    add_triangle(&b, P[0][0], P[1][0], P[1][1]);
+                    add_triangle(&b, P[0][0], P[1][1], P[0][1]);
+                }
+            }
+    }
+    if (kind != CUBE_UNSHARED) { /* share vertices at equal coordinates */
+        size_t nv = 0;
+        uint32_t *map = malloc(b.nv * sizeof *map);
+        ENSURE(map != NULL);
+        for (size_t i = 0; i < b.nv; ++i) {
+            size_t k = 0;
+            while (k < nv && memcmp(b.v + 3 * k, b.v + 3 * i, 3 * sizeof(double)) != 0)
+                ++k;
+            if (k == nv)
+                memmove(b.v + 3 * nv++, b.v + 3 * i, 3 * sizeof(double));
+            map[i] = (uint32_t)k;
+        }
+        for (size_t i = 0; i < 3 * b.nt; ++i)
+            b.t[i] = map[b.t[i]];
+        b.nv = nv;
+        free(map);
+    }
+    g->verts = b.v;
+    g->nv = b.nv;
+    g->tris = b.t;
+    g->nt = b.nt;
+    return 0;
+}
+
+static ttd_mesh *make_mesh(const ttd_gen_mesh *g, int bytes)
+{
+    ttd_mesh *m = NULL;
+    if (bytes == 8) {
+        if (ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, &m) != TTD_OK)
+            return NULL;
+        return m;
+    }
+    float *v = malloc(3 * g->nv * sizeof *v);
+    if (v == NULL)
+        return NULL;
+    for (size_t i = 0; i < 3 * g->nv; ++i)
+        v[i] = (float)g->verts[i];
+    if (ttd_mesh_create_f(NULL, v, g->nv, g->tris, g->nt, &m) != TTD_OK)
+        m = NULL;
+    free(v);
+    return m;
+}
+
+/* A manifold widened to double. */
+typedef struct mpoint {
+    uint32_t i, j, ti, tj;
+    double x[3], n[3], d, depth;
+} mpoint;
+
+static size_t ask_manifold(ttd_scene *s, int bytes, const ttd_options *opt, double margin, size_t k, mpoint **out)
+{
+    ttd_scene_array a = {0};
+    size_t n = 0;
+    *out = NULL;
+    if (bytes == 8) {
+        if (ttd_scene_manifold_d(opt, s, margin, k, &a) != TTD_OK)
+            return SIZE_MAX;
+        n = a.count;
+        *out = malloc((n + 1) * sizeof **out);
+        for (size_t q = 0; q < n; ++q) {
+            const ttd_scene_point_d *p = (const ttd_scene_point_d *)a.data + q;
+            mpoint m = {p->i, p->j, p->tri_i, p->tri_j, {0}, {0}, p->distance, p->depth};
+            memcpy(m.x, p->point, sizeof m.x);
+            memcpy(m.n, p->normal, sizeof m.n);
+            (*out)[q] = m;
+        }
+    } else {
+        if (ttd_scene_manifold_f(opt, s, (float)margin, k, &a) != TTD_OK)
+            return SIZE_MAX;
+        n = a.count;
+        *out = malloc((n + 1) * sizeof **out);
+        for (size_t q = 0; q < n; ++q) {
+            const ttd_scene_point_f *p = (const ttd_scene_point_f *)a.data + q;
+            mpoint m = {p->i, p->j, p->tri_i, p->tri_j, {0}, {0}, p->distance, p->depth};
+            for (int r = 0; r < 3; ++r) {
+                m.x[r] = p->point[r];
+                m.n[r] = p->normal[r];
+            }
+            (*out)[q] = m;
+        }
+    }
+    ttd_scene_array_free(&a);
+    return n;
+}
+
+static int add_body(ttd_scene *s, int bytes, const ttd_mesh *m, const double pose[12])
+{
+    uint32_t id;
+    if (bytes == 8)
+        return ttd_scene_add_d(s, m, pose, &id) == TTD_OK ? 0 : 1;
+    float pf[12];
+    for (int k = 0; k < 12; ++k)
+        pf[k] = (float)pose[k];
+    return ttd_scene_add_f(s, m, pf, &id) == TTD_OK ? 0 : 1;
+}
+
+/* Pose of a unit cube turned by yaw (radians) about its centre, the centre then at c. */
+static void cube_pose(double yaw, const double c[3], double pose[12])
+{
+    const double cs = cos(yaw), sn = sin(yaw);
+    const double R[9] = {cs, -sn, 0, sn, cs, 0, 0, 0, 1};
+    for (int r = 0; r < 3; ++r) {
+        pose[4 * r] = R[3 * r];
+        pose[4 * r + 1] = R[3 * r + 1];
+        pose[4 * r + 2] = R[3 * r + 2];
+        pose[4 * r + 3] = c[r] - (R[3 * r] * 0.5 + R[3 * r + 1] * 0.5 + R[3 * r + 2] * 0.5);
+    }
+}
+
+/* The smallest distance between two points of body pair (i, j)'s points in m[0..n). */
+static double closest_two(const mpoint *m, size_t n)
+{
+    double best = INFINITY;
+    for (size_t a = 0; a < n; ++a)
+        for (size_t b = a + 1; b < n; ++b) {
+            if (m[a].i != m[b].i || m[a].j != m[b].j)
+                continue;
+            const double d[3] = {m[a].x[0] - m[b].x[0], m[a].x[1] - m[b].x[1], m[a].x[2] - m[b].x[2]};
+            best = fmin(best, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        }
+    return best;
+}
+
+/* ---- stacks --------------------------------------------------------------------------------- */
+
+static int stacks_normals_up(void)
+{
+    static const double gaps[] = {0, 1e-3, 4e-3, 9.9e-3};
+    static const double offsets[][2] = {{0, 0}, {0.5, 0.25}, {0.01, -0.015}, {-0.3, 0.6}, {0.004, 0}, {-0.0099, 0.0099}};
+    static const double yaws[] = {0, 30, 7, 90, 45};
+    const double margin = 0.01;
+    size_t scenes = 0, points = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh g[CUBE_KINDS];
+        ttd_mesh *m[CUBE_KINDS];
+        for (int k = 0; k < CUBE_KINDS; ++k) {
+            ENSURE(cube_mesh(k, &g[k]) == 0);
+            ENSURE((m[k] = make_mesh(&g[k], bytes)) != NULL);
+        }
+        /* float: the yaws' rotations rounded to float are rotations only to 1e-7, and the gap
+         * below the float rounding of 1 + gap is not a gap: the float rows take the exact ones */
+        const double tol = bytes == 8 ? 1e-12 : 1e-6;
+        for (int kb = 0; kb < CUBE_KINDS; ++kb)
+            for (int kt = 0; kt < CUBE_KINDS; ++kt)
+                for (size_t gi = 0; gi < sizeof gaps / sizeof gaps[0]; ++gi)
+                    for (size_t oi = 0; oi < sizeof offsets / sizeof offsets[0]; ++oi)
+                        for (size_t yi = 0; yi < sizeof yaws / sizeof yaws[0]; ++yi) {
+                            if (bytes == 4 && (kb + kt + (int)gi + (int)oi + (int)yi) % 4 != 0)
+                                continue; /* float: a quarter of the cases */
+                            const double lower_c[3] = {0.5, 0.5, 0.5};
+                            const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                            double lower[12], upper[12];
+                            cube_pose(yi % 2 ? 0.25 * yaws[yi] * 3.14159265358979323846 / 180 : 0, lower_c, lower);
+                            cube_pose(yaws[yi] * 3.14159265358979323846 / 180, upper_c, upper);
+                            for (int order = 0; order < 2; ++order) {
+                                ttd_scene *s;
+                                ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                                ENSURE(add_body(s, bytes, m[order ? kt : kb], order ? upper : lower) == 0);
+                                ENSURE(add_body(s, bytes, m[order ? kb : kt], order ? lower : upper) == 0);
+                                for (size_t K = 0; K <= 4; K += 4) {
+                                    mpoint *p;
+                                    const size_t n = ask_manifold(s, bytes, NULL, margin, K, &p);
+                                    ENSURE(n != SIZE_MAX && n >= 1);
+                                    const double up = order ? -1 : 1; /* from body 0 towards body 1 */
+                                    for (size_t q = 0; q < n; ++q) {
+                                        ENSURE_MSG(fabs(p[q].n[0]) <= tol && fabs(p[q].n[1]) <= tol &&
+                                                       fabs(p[q].n[2] - up) <= tol,
+                                                   "%s on %s, %s, gap %g, offset (%g, %g), yaw %g, K %zu: point %zu "
+                                                   "(triangles %u, %u) at (%.9g, %.9g, %.9g): normal (%.3g, %.3g, %.17g)",
+                                                   cube_name[kt], cube_name[kb], bytes == 8 ? "double" : "float",
+                                                   gaps[gi], offsets[oi][0], offsets[oi][1], yaws[yi], K, q, p[q].ti,
+                                                   p[q].tj, p[q].x[0], p[q].x[1], p[q].x[2], p[q].n[0], p[q].n[1],
+                                                   p[q].n[2]);
+                                    }
+                                    /* no two points within the merge tolerance, 1e-3 of the smaller radius
+                                     * (sqrt(3)/2 for the unit cube) */
+                                    ENSURE(closest_two(p, n) > 1e-3 * sqrt(3) / 2 * (1 - 1e-9));
+                                    points += n;
+                                    free(p);
+                                }
+                                ttd_scene_destroy(s);
+                                ++scenes;
+                            }
+                        }
+        for (int k = 0; k < CUBE_KINDS; ++k) {
+            ttd_mesh_destroy(m[k]);
+            ttd_gen_mesh_free(&g[k]);
+        }
+    }
+    printf("  %zu stacks, %zu manifold points: every normal +z from the lower cube to the upper\n", scenes, points);
+    return 0;
+}
+
+/* Stacks at the ends of the double range (1e-300 .. 1e150; issue 23 found sideways normals at
+ * 1e70 and 1e-78, a touching pair lost at 1e-163 and squared distances underflowing near
+ * 1e-160): every normal +z, and as many points as the contacts at that scale merged (K = 0;
+ * at most 4 with K = 4). (Not the same points as at size 1: where faces lie on faces a
+ * contact's closest point is one of many, and which one follows the rounding.) */
+static int stacks_at_extreme_scales(void)
+{
+    static const double scales[] = {1e-300, 1e-163, 1e-160, 1e-78, 1e70, 1e150};
+    static const int kinds[][2] = {{CUBE_DIAG_A, CUBE_DIAG_B}, {CUBE_FAN, CUBE_SPLIT3}, {CUBE_DIAG_A, CUBE_DIAG_A}};
+    static const double gaps[] = {0, 4e-3};
+    static const double offsets[][2] = {{0.5, 0.25}, {0.01, -0.015}};
+    static const double yaws[] = {0, 30};
+    size_t cases = 0;
+    for (size_t ki = 0; ki < sizeof kinds / sizeof kinds[0]; ++ki)
+        for (size_t gi = 0; gi < 2; ++gi)
+            for (size_t oi = 0; oi < 2; ++oi)
+                for (size_t yi = 0; yi < 2; ++yi) {
+                    for (size_t sc = 0; sc <= sizeof scales / sizeof scales[0]; ++sc) {
+                        const double scale = sc == 0 ? 1 : scales[sc - 1];
+                        ttd_gen_mesh g[2];
+                        ttd_mesh *m[2];
+                        for (int k = 0; k < 2; ++k) {
+                            ENSURE(cube_mesh(kinds[ki][k], &g[k]) == 0);
+                            for (size_t i = 0; i < 3 * g[k].nv; ++i)
+                                g[k].verts[i] *= scale;
+                            ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+                        }
+                        const double lower_c[3] = {0.5, 0.5, 0.5};
+                        const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                        double lower[12], upper[12];
+                        cube_pose(0, lower_c, lower);
+                        cube_pose(yaws[yi] * 3.14159265358979323846 / 180, upper_c, upper);
+                        for (int r = 0; r < 3; ++r) { /* the poses about the scaled cubes */
+                            lower[4 * r + 3] *= scale;
+                            upper[4 * r + 3] *= scale;
+                        }
+                        ttd_scene *s;
+                        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                        ENSURE(add_body(s, 8, m[0], lower) == 0 && add_body(s, 8, m[1], upper) == 0);
+                        for (size_t K = 0; K <= 4; K += 4) {
+                            mpoint *p;
+                            const size_t n = ask_manifold(s, 8, NULL, 0.01 * scale, K, &p);
+                            ENSURE(n != SIZE_MAX && n >= 1);
+                            /* the contacts at this scale, merged as docs/scenes.md says (in depth order,
+                             * within 1e-3 of the cube's radius sqrt(3)/2 of a point kept): K = 0 keeps
+                             * them all, K = 4 min(4, them) */
+                            size_t want = 0;
+                            {
+                                ttd_scene_array ca = {0};
+                                ENSURE(ttd_scene_contacts_d(NULL, s, 0.01 * scale, &ca) == TTD_OK);
+                                ttd_scene_contact_d *c = ca.data;
+                                for (size_t a = 1; a < ca.count; ++a) /* by distance, stable on triangles */
+                                    for (size_t b = a; b > 0 && c[b].distance < c[b - 1].distance; --b) {
+                                        const ttd_scene_contact_d t = c[b];
+                                        c[b] = c[b - 1];
+                                        c[b - 1] = t;
+                                    }
+                                double (*kept)[3] = malloc((ca.count + 1) * sizeof *kept);
+                                ENSURE(kept != NULL);
+                                for (size_t a = 0; a < ca.count; ++a) {
+                                    double x[3];
+                                    int near = 0;
+                                    for (int r = 0; r < 3; ++r)
+                                        x[r] = 0.5 * c[a].p[r] + 0.5 * c[a].q[r];
+                                    for (size_t b = 0; b < want && !near; ++b)
+                                        near = hypot(hypot(x[0] - kept[b][0], x[1] - kept[b][1]), x[2] - kept[b][2]) <=
+                                               1e-3 * sqrt(3) / 2 * scale;
+                                    if (!near)
+                                        memcpy(kept[want++], x, sizeof x);
+                                }
+                                free(kept);
+                                ttd_scene_array_free(&ca);
+                            }
+                            ENSURE_MSG(n == (K == 0 || want < K ? want : K), "scale %g: %zu points, %zu kept", scale, n, want);
+                            for (size_t q = 0; q < n; ++q)
+                                ENSURE_MSG(fabs(p[q].n[0]) <= 1e-12 && fabs(p[q].n[1]) <= 1e-12 && fabs(p[q].n[2] - 1) <= 1e-12,
+                                           "scale %g, kinds %d on %d, gap %g, offset (%g, %g), yaw %g, K %zu: point %zu normal "
+                                           "(%g, %g, %.17g)", scale, kinds[ki][1], kinds[ki][0], gaps[gi], offsets[oi][0],
+                                           offsets[oi][1], yaws[yi], K, q, p[q].n[0], p[q].n[1], p[q].n[2]);
+                            free(p);
+                        }
+                        ttd_scene_destroy(s);
+                        for (int k = 0; k < 2; ++k) {
+                            ttd_mesh_destroy(m[k]);
+                            ttd_gen_mesh_free(&g[k]);
+                        }
+                        ++cases;
+                    }
+                }
+    printf("  %zu stacks at scales 1e-300 to 1e150 and 1: every normal +z, the merged contacts' count\n", cases);
+    return 0;
+}
+
+/* The area of the convex hull of points x[0..n) projected on the xy plane (Andrew's chain). */
+static double hull_area_xy(const double (*x)[3], size_t n)
+{
+    size_t *o = malloc((n + 1) * sizeof *o), *h = malloc((2 * n + 2) * sizeof *h), k = 0;
+    for (size_t a = 0; a < n; ++a)
+        o[a] = a;
+    for (size_t a = 1; a < n; ++a) /* by x, then y */
+        for (size_t b = a; b > 0 && (x[o[b]][0] < x[o[b - 1]][0] ||
+                                     (x[o[b]][0] == x[o[b - 1]][0] && x[o[b]][1] < x[o[b - 1]][1]));
+             --b) {
+            const size_t t = o[b];
+            o[b] = o[b - 1];
+            o[b - 1] = t;
+        }
+#define CROSS(a, b, c) ((x[b][0] - x[a][0]) * (x[c][1] - x[a][1]) - (x[b][1] - x[a][1]) * (x[c][0] - x[a][0]))
+    for (size_t a = 0; a < n; ++a) {
+        while (k >= 2 && CROSS(h[k - 2], h[k - 1], o[a]) <= 0)
+            --k;
+        h[k++] = o[a];
+    }
+    for (size_t a = n - 1, t = k + 1; a-- > 0;) {
+        while (k >= t && CROSS(h[k - 2], h[k - 1], o[a]) <= 0)
+            --k;
+        h[k++] = o[a];
+    }
+#undef CROSS
+    double area = 0;
+    for (size_t a = 0; a + 1 < k; ++a)
+        area += x[h[a]][0] * x[h[a + 1]][1] - x[h[a]][1] * x[h[a + 1]][0];
+    free(o);
+    free(h);
+    return 0.5 * fabs(area);
+}
+
+/* A box on a box, flush and at gaps, offset, in every triangulation: the polygon of a K = 4
+ * manifold's points has the largest area of any four of the points a K = 0 manifold keeps that
+ * include its first (the overlap's corners where the contacts hold them: a contact's point is its
+ * triangle pair's closest point, which for faces lying on faces is one point of their overlap). */
+static int box_on_box_corners(void)
+{
+    static const double gaps[] = {0, 2e-3};
+    static const double offsets[][2] = {{0.5, 0.25}, {-0.3, 0.6}, {0, 0}, {0.2, -0.7}};
+    size_t cases = 0, corners = 0;
+    ttd_gen_mesh g[CUBE_KINDS];
+    ttd_mesh *m[CUBE_KINDS];
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ENSURE(cube_mesh(k, &g[k]) == 0);
+        ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+    }
+    for (int kb = 0; kb < CUBE_KINDS; ++kb)
+        for (int kt = 0; kt < CUBE_KINDS; ++kt)
+            for (size_t gi = 0; gi < 2; ++gi)
+                for (size_t oi = 0; oi < sizeof offsets / sizeof offsets[0]; ++oi) {
+                    const double lower_c[3] = {0.5, 0.5, 0.5};
+                    const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi]};
+                    double lower[12], upper[12];
+                    cube_pose(0, lower_c, lower);
+                    cube_pose(0, upper_c, upper);
+                    ttd_scene *s;
+                    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                    ENSURE(add_body(s, 8, m[kb], lower) == 0 && add_body(s, 8, m[kt], upper) == 0);
+                    mpoint *p, *all;
+                    const size_t n = ask_manifold(s, 8, NULL, 0.01, 4, &p), na = ask_manifold(s, 8, NULL, 0.01, 0, &all);
+                    ENSURE(n == 4 && na != SIZE_MAX && na >= 4);
+                    double x[4][3], (*y)[3] = malloc(na * sizeof *y);
+                    ENSURE(y != NULL);
+                    for (size_t q = 0; q < 4; ++q)
+                        memcpy(x[q], p[q].x, sizeof x[q]);
+                    for (size_t q = 0; q < na; ++q)
+                        memcpy(y[q], all[q].x, sizeof y[q]);
+                    /* the best four of every point kept (the first among them), by brute force */
+                    double best = 0;
+                    for (size_t a = 1; a < na; ++a)
+                        for (size_t b = a + 1; b < na; ++b)
+                            for (size_t c = b + 1; c < na; ++c) {
+                                double z[4][3];
+                                memcpy(z[0], y[0], sizeof z[0]);
+                                memcpy(z[1], y[a], sizeof z[1]);
+                                memcpy(z[2], y[b], sizeof z[2]);
+                                memcpy(z[3], y[c], sizeof z[3]);
+                                best = fmax(best, hull_area_xy((const double (*)[3])z, 4));
+                            }
+                    const double got = hull_area_xy((const double (*)[3])x, 4), hull = hull_area_xy((const double (*)[3])y, na);
+                    ENSURE_MSG(fabs(got - best) <= 1e-12 && got <= hull * (1 + 1e-12),
+                               "%s on %s, gap %g, offset (%g, %g): the four points span %.17g, the best four %.17g",
+                               cube_name[kt], cube_name[kb], gaps[gi], offsets[oi][0], offsets[oi][1], got, best);
+                    corners += fabs(got - (1 - fabs(offsets[oi][0])) * (1 - fabs(offsets[oi][1]))) <= 1e-12;
+                    free(y);
+                    free(all);
+                    free(p);
+                    ttd_scene_destroy(s);
+                    ++cases;
+                }
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ttd_mesh_destroy(m[k]);
+        ttd_gen_mesh_free(&g[k]);
+    }
+    printf("  %zu boxes on boxes: the four points span the most area four points kept can; in %zu of them the "
+           "overlap's four corners\n", cases, corners);
+    return 0;
+}
+
+/* An icosphere near a floor's diagonal edge (two triangles; and a grid of 32), touching and at
+ * gaps, turned at random: every point's normal is the floor's. */
+static int sphere_on_floor_diagonal(void)
+{
+    size_t points = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh sphere, floors[2];
+        ENSURE(ttd_gen_icosphere(2, &sphere) == 0);
+        for (size_t i = 0; i < 3 * sphere.nv; ++i)
+            sphere.verts[i] *= 0.5;
+        {
+            builder b = {0};
+            const double a[3] = {-2, -2, 0}, c[3] = {2, -2, 0}, d[3] = {2, 2, 0}, e[3] = {-2, 2, 0};
+            add_triangle(&b, a, c, d); /* diagonal from (-2, -2) to (2, 2) */
+            add_triangle(&b, a, d, e);
+            floors[0] = (ttd_gen_mesh){b.v, b.nv, b.t, b.nt};
+            ENSURE(ttd_gen_grid(4, &floors[1]) == 0);
+            for (size_t i = 0; i < floors[1].nv; ++i) {
+                floors[1].verts[3 * i] = 4 * floors[1].verts[3 * i] - 2;
+                floors[1].verts[3 * i + 1] = 4 * floors[1].verts[3 * i + 1] - 2;
+            }
+        }
+        ttd_mesh *ms = make_mesh(&sphere, bytes), *mf[2] = {make_mesh(&floors[0], bytes), make_mesh(&floors[1], bytes)};
+        ENSURE(ms && mf[0] && mf[1]);
+        static const double gaps[] = {0, 1e-3, 5e-3};
+        for (int fl = 0; fl < 2; ++fl)
+            for (size_t gi = 0; gi < 3; ++gi)
+                for (int k = 0; k < 12; ++k) {
+                    double pose[12];
+                    ttd_gen_pose(23, (uint64_t)k, 0, pose);
+                    /* the sphere's lowest vertex under this rotation, put at the gap */
+                    double low = INFINITY;
+                    for (size_t v = 0; v < sphere.nv; ++v) {
+                        const double *x = sphere.verts + 3 * v;
+                        low = fmin(low, pose[8] * x[0] + pose[9] * x[1] + pose[10] * x[2]);
+                    }
+                    const double t = -1.2 + 0.2 * k;
+                    pose[3] = t + (k % 3 == 0 ? 0 : k % 3 == 1 ? 0.01 : -0.03);
+                    pose[7] = t;
+                    pose[11] = gaps[gi] - low + (bytes == 4 ? 1e-6 : 0);
+                    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+                    for (int order = 0; order < 2; ++order) {
+                        ttd_scene *s;
+                        ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                        ENSURE(add_body(s, bytes, order ? ms : mf[fl], order ? pose : id) == 0);
+                        ENSURE(add_body(s, bytes, order ? mf[fl] : ms, order ? id : pose) == 0);
+                        for (size_t K = 0; K <= 4; K += 4) {
+                            mpoint *p;
+                            const size_t n = ask_manifold(s, bytes, NULL, 0.01, K, &p);
+                            ENSURE(n != SIZE_MAX && n >= 1);
+                            for (size_t q = 0; q < n; ++q)
+                                ENSURE_MSG(p[q].n[0] == 0 && p[q].n[1] == 0 && p[q].n[2] == (order ? -1 : 1),
+                                           "%s floor %d, gap %g, pose %d, K %zu: point (%g, %g, %g) d %g: normal (%g, %g, %g)",
+                                           bytes == 8 ? "double" : "float", fl, gaps[gi], k, K, p[q].x[0], p[q].x[1],
+                                           p[q].x[2], p[q].d, p[q].n[0], p[q].n[1], p[q].n[2]);
+                            points += n;
+                            free(p);
+                        }
+                        ttd_scene_destroy(s);
+                    }
+                }
+        ttd_mesh_destroy(ms);
+        ttd_mesh_destroy(mf[0]);
+        ttd_mesh_destroy(mf[1]);
+        ttd_gen_mesh_free(&sphere);
+        ttd_gen_mesh_free(&floors[0]);
+        ttd_gen_mesh_free(&floors[1]);
+    }
+    printf("  spheres on floors, %zu points: every normal the floor's\n", points);
+    return 0;
+}
+
+/* ---- the rule's properties over random scenes --------------------------------------------- */
+
+/* The unit normal of a world triangle (double), 0 when it has none to speak of. */
+static int tri_normal(const double x[9], double n[3])
+{
+    const double e1[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]}, e2[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]), l2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+    if (!(l > 1e-6 * l1 * l2))
+        return 0;
+    for (int r = 0; r < 3; ++r)
+        n[r] /= l;
+    return 1;
+}
+
+/* Whether x lies inside triangle t (9 coordinates) by more than 1e-6 of it in every weight. */
+static int strictly_inside(const double t[9], const double x[3])
+{
+    const double e1[3] = {t[3] - t[0], t[4] - t[1], t[5] - t[2]}, e2[3] = {t[6] - t[0], t[7] - t[1], t[8] - t[2]};
+    const double d[3] = {x[0] - t[0], x[1] - t[1], x[2] - t[2]};
+    const double a = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+    const double c = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+    const double p = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2], q = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+    const double den = a * c - b * b;
+    if (!(den > 1e-12 * a * c))
+        return 0;
+    const double v = (c * p - b * q) / den, w = (a * q - b * p) / den;
+    return v > 1e-6 && w > 1e-6 && 1 - v - w > 1e-6;
+}
+
+/* Random scenes of icospheres, cubes in two triangulations and a torus placed at gaps and
+ * overlaps near the margin, both body orders, K = 0, double and float:
+ *   - every normal unit;
+ *   - swapping the bodies negates it: bit for bit wherever the exact method gives the swapped
+ *     triangle pair the same points (swapped), to 1e-9 where its points differ by a rounding;
+ *   - where a contact's point lies well inside its triangle and the points differ (that face
+ *     speaks for it), the normal is that face's normal, the other triangle's (negated) or their
+ *     mean: the face rule, whichever side's face it is. */
+static int random_scenes_rule(void)
+{
+    size_t points = 0, matched = 0, near_matched = 0, faces = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_gen_mesh g[5];
+        ENSURE(ttd_gen_icosphere(1, &g[0]) == 0 && ttd_gen_icosphere(2, &g[1]) == 0);
+        ENSURE(cube_mesh(CUBE_DIAG_A, &g[2]) == 0 && cube_mesh(CUBE_FAN, &g[3]) == 0);
+        ENSURE(ttd_gen_torus(0.6, 0.25, 16, 8, &g[4]) == 0);
+        for (int k = 0; k < 5; ++k)
+            ENSURE(ttd_gen_normalize(&g[k]) == 0);
+        ttd_mesh *m[5];
+        for (int k = 0; k < 5; ++k)
+            ENSURE((m[k] = make_mesh(&g[k], bytes)) != NULL);
+        const int scenes = bytes == 8 ? 40 : 10;
+        for (int sc = 0; sc < scenes; ++sc) {
+            enum { NB = 6 };
+            int mesh_of[NB];
+            double pose[NB][12];
+            ttd_gen_rng rng = ttd_gen_rng_make(1000 + (uint64_t)sc, (uint64_t)bytes);
+            for (int b = 0; b < NB; ++b) {
+                mesh_of[b] = (int)(ttd_gen_rng_u64(&rng) % 5);
+                if (b == 0) {
+                    ttd_gen_pose(77 + (uint64_t)sc, 0, 0, pose[0]);
+                    continue;
+                }
+                const int near = (int)(ttd_gen_rng_u64(&rng) % (uint64_t)b);
+                const double gap = -0.01 + 0.025 * ttd_gen_rng_uniform(&rng);
+                double rel[12];
+                ENSURE(ttd_gen_pose_gap(&g[mesh_of[near]], &g[mesh_of[b]], 91 + (uint64_t)sc, (uint64_t)b, NULL, gap, rel) == 0);
+                for (int r = 0; r < 3; ++r) /* pose[b] = pose[near] . rel */
+                    for (int c = 0; c < 4; ++c) {
+                        double v = c == 3 ? pose[near][4 * r + 3] : 0;
+                        for (int k = 0; k < 3; ++k)
+                            v += pose[near][4 * r + k] * rel[4 * k + c];
+                        pose[b][4 * r + c] = v;
+                    }
+            }
+            if (bytes == 4)
+                for (int b = 0; b < NB; ++b)
+                    for (int k = 0; k < 12; ++k)
+                        pose[b][k] = (double)(float)pose[b][k];
+            mpoint *got[2];
+            size_t n[2];
+            ttd_scene_array con[2] = {{0}, {0}};
+            for (int order = 0; order < 2; ++order) {
+                ttd_scene *s;
+                ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+                for (int b = 0; b < NB; ++b) {
+                    const int id = order ? NB - 1 - b : b;
+                    ENSURE(add_body(s, bytes, m[mesh_of[id]], pose[id]) == 0);
+                }
+                n[order] = ask_manifold(s, bytes, NULL, 0.02, 0, &got[order]);
+                ENSURE(n[order] != SIZE_MAX);
+                ENSURE((bytes == 8 ? ttd_scene_contacts_d(NULL, s, 0.02, &con[order])
+                                   : ttd_scene_contacts_f(NULL, s, 0.02f, &con[order])) == TTD_OK);
+                ttd_scene_destroy(s);
+            }
+            for (size_t a = 0; a < n[0]; ++a) {
+                const mpoint *x = &got[0][a];
+                ENSURE_NEAR(x->n[0] * x->n[0] + x->n[1] * x->n[1] + x->n[2] * x->n[2], 1, 1e-6);
+                for (size_t b = 0; b < n[1]; ++b) {
+                    const mpoint *y = &got[1][b];
+                    if (y->i != NB - 1 - x->j || y->j != NB - 1 - x->i || y->ti != x->tj || y->tj != x->ti)
+                        continue;
+                    /* the same points, swapped? (where a pair's closest points are not unique, as
+                     * for parallel edges, the exact method may pick others, or the same ones to
+                     * the last bit or not, with the triangles swapped) */
+                    int same = 0;
+                    for (size_t c = 0; c < con[0].count && !same; ++c) {
+                        double p0[3], q0[3], p1[3], q1[3];
+                        uint32_t k0[4], k1[4];
+                        if (bytes == 8) {
+                            const ttd_scene_contact_d *c0 = (const ttd_scene_contact_d *)con[0].data + c;
+                            memcpy(k0, c0, sizeof k0);
+                            memcpy(p0, c0->p, sizeof p0);
+                            memcpy(q0, c0->q, sizeof q0);
+                        } else {
+                            const ttd_scene_contact_f *c0 = (const ttd_scene_contact_f *)con[0].data + c;
+                            memcpy(k0, c0, sizeof k0);
+                            for (int r = 0; r < 3; ++r)
+                                p0[r] = c0->p[r], q0[r] = c0->q[r];
+                        }
+                        if (k0[0] != x->i || k0[1] != x->j || k0[2] != x->ti || k0[3] != x->tj)
+                            continue;
+                        for (size_t e = 0; e < con[1].count && !same; ++e) {
+                            if (bytes == 8) {
+                                const ttd_scene_contact_d *c1 = (const ttd_scene_contact_d *)con[1].data + e;
+                                memcpy(k1, c1, sizeof k1);
+                                memcpy(p1, c1->p, sizeof p1);
+                                memcpy(q1, c1->q, sizeof q1);
+                            } else {
+                                const ttd_scene_contact_f *c1 = (const ttd_scene_contact_f *)con[1].data + e;
+                                memcpy(k1, c1, sizeof k1);
+                                for (int r = 0; r < 3; ++r)
+                                    p1[r] = c1->p[r], q1[r] = c1->q[r];
+                            }
+                            if (k1[0] == y->i && k1[1] == y->j && k1[2] == y->ti && k1[3] == y->tj) {
+                                double off = 0;
+                                for (int r = 0; r < 3; ++r)
+                                    off = fmax(off, fmax(fabs(p0[r] - q1[r]), fabs(q0[r] - p1[r])));
+                                same = off == 0 ? 2 : off <= (bytes == 8 ? 1e-13 : 1e-6) ? 1 : -1;
+                            }
+                        }
+                    }
+                    if (same == 1) { /* points a rounding apart: normals too */
+                        const double tol = bytes == 8 ? 1e-9 : 1e-3;
+                        ENSURE_MSG(fabs(y->n[0] + x->n[0]) <= tol && fabs(y->n[1] + x->n[1]) <= tol && fabs(y->n[2] + x->n[2]) <= tol,
+                                   "%s scene %d, bodies (%u, %u) triangles (%u, %u): (%.17g, %.17g, %.17g) swapped "
+                                   "(%.17g, %.17g, %.17g)", bytes == 8 ? "double" : "float", sc, x->i, x->j, x->ti,
+                                   x->tj, x->n[0], x->n[1], x->n[2], y->n[0], y->n[1], y->n[2]);
+                        ++near_matched;
+                    } else if (same == 2) {
+                        ENSURE_MSG(y->n[0] == -x->n[0] && y->n[1] == -x->n[1] && y->n[2] == -x->n[2],
+                                   "%s scene %d, bodies (%u, %u) triangles (%u, %u): (%.17g, %.17g, %.17g) swapped "
+                                   "(%.17g, %.17g, %.17g)", bytes == 8 ? "double" : "float", sc, x->i, x->j, x->ti,
+                                   x->tj, x->n[0], x->n[1], x->n[2], y->n[0], y->n[1], y->n[2]);
+                        ++matched;
+                    }
+                    break;
+                }
+                /* the face rule: the contact's points from the contacts query (its own p and q) */
+                double ti[9], tj[9];
+                const ttd_gen_mesh *gi = &g[mesh_of[x->i]], *gj = &g[mesh_of[x->j]];
+                for (int k = 0; k < 3; ++k)
+                    for (int r = 0; r < 3; ++r) {
+                        const double *vi = gi->verts + 3 * gi->tris[3 * x->ti + (uint32_t)k];
+                        const double *vj = gj->verts + 3 * gj->tris[3 * x->tj + (uint32_t)k];
+                        const double *Pi = pose[x->i], *Pj = pose[x->j];
+                        ti[3 * k + r] = ((Pi[4 * r] * vi[0] + Pi[4 * r + 1] * vi[1]) + Pi[4 * r + 2] * vi[2]) + Pi[4 * r + 3];
+                        tj[3 * k + r] = ((Pj[4 * r] * vj[0] + Pj[4 * r + 1] * vj[1]) + Pj[4 * r + 2] * vj[2]) + Pj[4 * r + 3];
+                    }
+                double ni[3], nj[3], res[9];
+                if (x->d > 0 && tri_normal(ti, ni) && tri_normal(tj, nj)) {
+                    ttd_result_d r;
+                    ENSURE(ttd_distance_d(NULL, ti, tj, &r) == TTD_OK);
+                    if (strictly_inside(ti, r.p) || strictly_inside(tj, r.q)) {
+                        const double mean[3] = {ni[0] - nj[0], ni[1] - nj[1], ni[2] - nj[2]};
+                        const double ml = sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
+                        for (int r2 = 0; r2 < 3; ++r2) {
+                            res[r2] = ni[r2];
+                            res[3 + r2] = -nj[r2];
+                            res[6 + r2] = ml > 0 ? mean[r2] / ml : 0;
+                        }
+                        int ok = 0;
+                        const double tol = bytes == 8 ? 1e-9 : 1e-4;
+                        for (int c = 0; c < 3; ++c)
+                            ok |= fabs(x->n[0] - res[3 * c]) <= tol && fabs(x->n[1] - res[3 * c + 1]) <= tol &&
+                                  fabs(x->n[2] - res[3 * c + 2]) <= tol;
+                        ENSURE_MSG(ok, "%s scene %d, bodies (%u, %u) triangles (%u, %u), d %g: a point inside a face "
+                                   "but the normal (%.9g, %.9g, %.9g) is neither face's", bytes == 8 ? "double" : "float",
+                                   sc, x->i, x->j, x->ti, x->tj, x->d, x->n[0], x->n[1], x->n[2]);
+                        ++faces;
+                    }
+                }
+            }
+            points += n[0];
+            free(got[0]);
+            free(got[1]);
+            ttd_scene_array_free(&con[0]);
+            ttd_scene_array_free(&con[1]);
+        }
+        for (int k = 0; k < 5; ++k) {
+            ttd_mesh_destroy(m[k]);
+            ttd_gen_mesh_free(&g[k]);
+        }
+    }
+    ENSURE(matched * 5 >= points && (matched + near_matched) * 2 >= points && faces > 0);
+    printf("  random scenes: %zu points; %zu at the same points swapped (normals negated bit for bit), %zu at points a "
+           "rounding apart (negated to 1e-9); %zu inside a face\n", points, matched, near_matched, faces);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(stacks_normals_up);
+    RUN_TEST(stacks_at_extreme_scales);
+    RUN_TEST(box_on_box_corners);
+    RUN_TEST(sphere_on_floor_diagonal);
+    RUN_TEST(random_scenes_rule);
+    TEST_MAIN_END();
+}
