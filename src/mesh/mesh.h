@@ -80,6 +80,16 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
                                      size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
 
+/* One pose's contacts (pose_a as above, or NULL), walked from the root on the calling thread, into
+ * out in the walk's order: the same set as ttd_mesh_query_contacts_*, in another order, for a
+ * caller that sorts them (a scene's body pair). */
+ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                          const struct ttd_mesh *b, const double *pose, const double *pose_a,
+                                          double defect, double margin, ttd_contacts_d *out);
+ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                          const struct ttd_mesh *b, const float *pose, const float *pose_a,
+                                          double defect, float margin, ttd_contacts_f *out);
+
 /* Solids (mesh/solid.c). Whether the mesh is closed: every directed edge (u, v) of a triangle
  * appears once, and so does (v, u), by vertex index. Found on first use and kept (meshes are
  * shared between threads: the flag is written atomically, and racing first uses compute the same

@@ -213,8 +213,11 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     *out = NULL;
     *n = 0;
     const double defect = pair_defect(s, p->i, p->j);
-    if (TTD_QUERY(contacts)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, 1, body_pose(s, p->j), body_pose(s, p->i),
-                            &defect, margin, set) != TTD_OK)
+    /* one walk from the root: this pair's contacts are sorted below, and the pairs spread over
+     * the threads, so the mesh query's cut into sub-walks (for an order independent of the
+     * thread count) would buy nothing */
+    if (TTD_QUERY(contacts_walk)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, body_pose(s, p->j), body_pose(s, p->i),
+                                 defect, margin, set) != TTD_OK)
         return 0;
     tests[0] = set->node_tests;
     tests[1] = set->pair_tests;
