@@ -861,6 +861,58 @@ static int scaled_scenes(void)
     return 0;
 }
 
+/* The closest pair alone (no nearest[]) where the first touching pair in (i, j) order comes late
+ * and early: a row of 120 unit cubes 2 apart (nothing touches) with cube 97 moved onto cube 60
+ * and cube 119 onto cube 118, and then cube 1 onto cube 0. The closest-only query scans the first
+ * bodies' boxes before it sweeps, and gives up on the first scene (the pair is past its budget),
+ * finds the pair itself on the second; both must give the general path's answer (each body's
+ * nearest asked too, which sweeps at growing margins): the pair, distance 0, its triangles and
+ * point. Then every cube apart: no pair touches, the closest is (96, 97), 0.5 apart. */
+static int closest_pair_order(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_mesh_cube(&g) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ttd_scene *s;
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    enum { N = 120 };
+    double poses[12 * N];
+    for (int k = 0; k < N; ++k) {
+        const double p[12] = {1, 0, 0, 2.0 * k, 0, 1, 0, 0, 0, 0, 1, 0};
+        memcpy(poses + 12 * k, p, sizeof p);
+        uint32_t id;
+        ENSURE(ttd_scene_add_d(s, m, p, &id) == TTD_OK);
+    }
+    poses[12 * 97 + 3] = 2.0 * 60 + 0.5;
+    poses[12 * 119 + 3] = 2.0 * 118 + 0.25;
+    ttd_scene_contact_d near[N];
+    for (int round = 0; round < 3; ++round) {
+        if (round == 1)
+            poses[12 * 1 + 3] = 0.75;
+        if (round == 2) /* apart again: 97 0.5 from 96, 1 and 119 back */
+            poses[12 * 97 + 3] = 2.0 * 97 - 0.5, poses[12 * 1 + 3] = 2, poses[12 * 119 + 3] = 2.0 * 119;
+        ENSURE(ttd_scene_set_poses_d(s, N, poses) == TTD_OK);
+        for (int threads = 1; threads <= 2; ++threads) {
+            ttd_options o = ttd_default_options();
+            o.threads = threads;
+            ttd_scene_contact_d alone, general;
+            ENSURE(ttd_scene_distance_d(&o, s, INFINITY, &alone, NULL) == TTD_OK);
+            ENSURE(ttd_scene_distance_d(&o, s, INFINITY, &general, near) == TTD_OK);
+            const uint32_t wi = round == 0 ? 60 : round == 1 ? 0 : 96, wj = round == 0 ? 97 : round == 1 ? 1 : 97;
+            ENSURE_MSG(alone.i == wi && alone.j == wj && alone.distance == (round == 2 ? 0.5 : 0),
+                       "round %d: closest (%u, %u) at %g, want (%u, %u)", round, alone.i, alone.j, alone.distance, wi,
+                       wj);
+            ENSURE_MSG(memcmp(&alone, &general, sizeof alone) == 0,
+                       "round %d: the closest pair alone differs from the general path's", round);
+        }
+    }
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -965,6 +1017,7 @@ int main(int argc, char **argv)
     RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);
     RUN_TEST(small_scenes);
+    RUN_TEST(closest_pair_order);
     RUN_TEST(bad_input);
     TEST_MAIN_END();
 }
