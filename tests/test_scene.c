@@ -913,6 +913,97 @@ static int closest_pair_order(void)
     return 0;
 }
 
+/* Collide across the steps of a motion (the scene keeps its sweep's order between them, and a
+ * bound kept between steps was tried there: docs/scene-speed.md). Six pairs, a sphere and an
+ * ellipsoid (semi-axes 0.29, 0.12, 0.12) beside it diagonally (candidates: their boxes overlap,
+ * 0.054 apart at first), the ellipsoid moving in small steps (at a different speed in each pair),
+ * then turning about its own centre by 0.1 a step, so that the turn alone brings its tip within
+ * the margin, with a jump back at step 12; at every step
+ * the answer (pairs and witnesses) must equal a fresh scene's at the same poses, on 1 and 2
+ * threads, in double and float. (With the kept bounds, it caught bounds that ignored the motion,
+ * or the turn.) */
+static int collide_across_steps(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_icosphere(2, &g) == 0);
+    ENSURE(ttd_gen_normalize(&g) == 0); /* diagonal 1: radius about 0.5 */
+    ttd_mesh *md[2], *mf[2];
+    float *vf = malloc(3 * g.nv * sizeof *vf);
+    ENSURE(vf != NULL);
+    for (int e = 0; e < 2; ++e) { /* the sphere, then the ellipsoid */
+        for (size_t k = 0; e == 1 && k < g.nv; ++k)
+            g.verts[3 * k + 1] *= 0.4, g.verts[3 * k + 2] *= 0.4;
+        ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &md[e]) == TTD_OK);
+        for (size_t k = 0; k < 3 * g.nv; ++k)
+            vf[k] = (float)g.verts[k];
+        ENSURE(ttd_mesh_create_f(NULL, vf, g.nv, g.tris, g.nt, &mf[e]) == TTD_OK);
+    }
+    enum { PAIRS = 6, N = 2 * PAIRS, STEPS = 24 };
+    const double S0 = 0.38; /* the icosphere normalised: radius 0.289; 0.056 apart at first */
+    const double margin = 0.01;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        for (int threads = 1; threads <= 2; ++threads) {
+            ttd_scene *kept;
+            ENSURE((bytes == 8 ? ttd_scene_create_d(&kept) : ttd_scene_create_f(&kept)) == TTD_OK);
+            ttd_options o = ttd_default_options();
+            o.threads = threads;
+            for (int step = 0; step < STEPS; ++step) {
+                double poses[12 * N];
+                const int t = step < 12 ? step : step - 12; /* the jump back */
+                for (int p = 0; p < PAIRS; ++p) {
+                    const double a[12] = {1, 0, 0, 3.0 * p, 0, 1, 0, 0, 0, 0, 1, 0};
+                    /* steps of a simulation first (bounds reused), then turns of 0.1 about its centre
+                     * that swing its tip within the margin (a bound that ignored them would not see it) */
+                    const double at = S0 - 0.0002 * (p + 1) * (t < 7 ? t : 7), th = t < 7 ? 0.001 * t : 0.1 * (t - 7);
+                    const double c = cos(th), sn = sin(th);
+                    const double b[12] = {c, -sn, 0, 3.0 * p + at, sn, c, 0, at, 0, 0, 1, 0};
+                    memcpy(poses + 24 * p, a, sizeof a);
+                    memcpy(poses + 24 * p + 12, b, sizeof b);
+                }
+                float pf[12 * N];
+                for (int k = 0; k < 12 * N; ++k)
+                    pf[k] = (float)poses[k];
+                ttd_scene *fresh;
+                ENSURE((bytes == 8 ? ttd_scene_create_d(&fresh) : ttd_scene_create_f(&fresh)) == TTD_OK);
+                for (int k = 0; k < N; ++k) {
+                    uint32_t id;
+                    ENSURE((bytes == 8 ? ttd_scene_add_d(fresh, md[k % 2], poses + 12 * k, &id)
+                                       : ttd_scene_add_f(fresh, mf[k % 2], pf + 12 * k, &id)) == TTD_OK);
+                    if (step == 0)
+                        ENSURE((bytes == 8 ? ttd_scene_add_d(kept, md[k % 2], poses + 12 * k, &id)
+                                           : ttd_scene_add_f(kept, mf[k % 2], pf + 12 * k, &id)) == TTD_OK);
+                }
+                ENSURE((bytes == 8 ? ttd_scene_set_poses_d(kept, N, poses) : ttd_scene_set_poses_f(kept, N, pf)) ==
+                       TTD_OK);
+                ttd_scene_array x = {0}, y = {0};
+                ENSURE((bytes == 8 ? ttd_scene_collide_d(&o, kept, margin, &x)
+                                   : ttd_scene_collide_f(&o, kept, (float)margin, &x)) == TTD_OK);
+                ENSURE((bytes == 8 ? ttd_scene_collide_d(&o, fresh, margin, &y)
+                                   : ttd_scene_collide_f(&o, fresh, (float)margin, &y)) == TTD_OK);
+                ENSURE_MSG(x.count == y.count && (x.count == 0 || memcmp(x.data, y.data, x.count * sizeof(ttd_scene_hit)) == 0),
+                           "%s, %d threads, step %d: %zu pairs after earlier steps, %zu in a fresh scene",
+                           bytes == 8 ? "double" : "float", threads, step, x.count, y.count);
+                if (step == 10 || step == 22)
+                    ENSURE_MSG(x.count == PAIRS, "step %d: %zu pairs within the margin, want all %d", step, x.count,
+                               PAIRS);
+                if (step == 9 || step == 21)
+                    ENSURE_MSG(x.count == 0, "step %d: %zu pairs within the margin, want none yet", step, x.count);
+                ttd_scene_array_free(&x);
+                ttd_scene_array_free(&y);
+                ttd_scene_destroy(fresh);
+            }
+            ttd_scene_destroy(kept);
+        }
+    }
+    free(vf);
+    for (int e = 0; e < 2; ++e) {
+        ttd_mesh_destroy(md[e]);
+        ttd_mesh_destroy(mf[e]);
+    }
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -1018,6 +1109,7 @@ int main(int argc, char **argv)
     RUN_TEST(resting_cube_normals);
     RUN_TEST(small_scenes);
     RUN_TEST(closest_pair_order);
+    RUN_TEST(collide_across_steps);
     RUN_TEST(bad_input);
     TEST_MAIN_END();
 }
