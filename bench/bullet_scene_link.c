@@ -104,18 +104,6 @@ static int parse_output(const char *path, size_t nbodies, bench_bullet_scene_res
 int bench_bullet_scene_run(const char *program, const bench_fcl_scene_job *job, bench_bullet_scene_result *out)
 {
     memset(out, 0, sizeof *out);
-    char found[1024];
-    if (!program) {
-        if (bench_fcl_find_program(BENCH_BULLET_SCENE_PROGRAM, BENCH_BULLET_SCENE_ENV, NULL, found, sizeof found) !=
-            0) {
-            snprintf(out->error, sizeof out->error,
-                     "%s not found (Bullet was not found when ttd was built; apt-get install libbullet-dev and "
-                     "rebuild, or set %s): Bullet is left out",
-                     BENCH_BULLET_SCENE_PROGRAM, BENCH_BULLET_SCENE_ENV);
-            return BENCH_FCL_SCENE_MISSING;
-        }
-        program = found;
-    }
     out->steps = job && job->motion_runs ? job->steps : 0;
     char out_name[512];
     if (bench_scene_program_run(program, job, out_name, sizeof out_name, out->error, sizeof out->error) != 0)

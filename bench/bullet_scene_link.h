@@ -25,9 +25,9 @@ typedef struct bench_bullet_scene_result {
     char error[512];
 } bench_bullet_scene_result;
 
-/// Runs program (NULL: $TTD_BULLET_SCENE_BENCH or next to ttd) on the job (its repetitions and
-/// motion_runs as given; job->nmeshes meshes, poses, margin) and reads the result. Returns
-/// BENCH_FCL_SCENE_OK, _MISSING (not built: Bullet absent) or _ERROR; out->error says why.
+/// Runs program (found by the caller: bench_fcl_find_program with BENCH_BULLET_SCENE_PROGRAM and
+/// BENCH_BULLET_SCENE_ENV) on the job (its repetitions and motion runs as given) and reads the
+/// result. Returns BENCH_FCL_SCENE_OK or _ERROR; out->error says why.
 int bench_bullet_scene_run(const char *program, const bench_fcl_scene_job *job, bench_bullet_scene_result *out);
 
 /// Frees what a run allocated; safe on a zeroed struct.

@@ -910,10 +910,10 @@ static void run_scene(sctx *M, int w, size_t n)
     bench_fcl_scene_result fr;
     memset(&fr, 0, sizeof fr);
     int have_fcl = 0;
+    bench_fcl_scene_mesh fm[3]; /* the workload the FCL and Bullet programs read */
+    for (int m = 0; m < s.nmeshes; ++m)
+        fm[m] = (bench_fcl_scene_mesh){s.mesh[m].verts, s.mesh[m].nv, s.mesh[m].tris, s.mesh[m].nt};
     if (M->fcl_ok) {
-        bench_fcl_scene_mesh fm[3];
-        for (int m = 0; m < s.nmeshes; ++m)
-            fm[m] = (bench_fcl_scene_mesh){s.mesh[m].verts, s.mesh[m].nv, s.mesh[m].tris, s.mesh[m].nt};
         bench_fcl_scene_job job = {fm, (uint32_t)s.nmeshes, s.n, s.body_mesh, s.poses, s.margin,
                                    M->env->st->quick ? 3u : 5u, steps ? (M->env->st->quick ? 1u : 3u) : 0u,
                                    (uint32_t)steps, motion};
@@ -930,9 +930,6 @@ static void run_scene(sctx *M, int w, size_t n)
     memset(&br, 0, sizeof br);
     int have_bullet = 0;
     if (M->bullet_ok) {
-        bench_fcl_scene_mesh fm[3];
-        for (int m = 0; m < s.nmeshes; ++m)
-            fm[m] = (bench_fcl_scene_mesh){s.mesh[m].verts, s.mesh[m].nv, s.mesh[m].tris, s.mesh[m].nt};
         bench_fcl_scene_job job = {fm, (uint32_t)s.nmeshes, s.n, s.body_mesh, s.poses, s.margin,
                                    M->env->st->quick ? 2u : 3u, 0u, 0u, NULL};
         progress(M, "%s: Bullet", name);
