@@ -25,6 +25,7 @@
 
 #include "cli.h"
 #include "mesh_bench.h"
+#include "points_bench.h"
 #include "scene_bench.h"
 #include "mesh_workload.h"
 #include "output.h"
@@ -807,6 +808,8 @@ static int write_file(const char *dir, const char *name, bench_ctx *cx, const be
 
 int ttd_bench_main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "points") == 0) /* the point queries' section (points_bench.c) */
+        return bench_points_main(argc - 1, argv + 1);
     bench_ctx *cx = calloc(1, sizeof *cx);
     bench_machine machine;
     int want_json = 0, want_csv = 0, no_fcl = 0, probes = 1, rc = 0;

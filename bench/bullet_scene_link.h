@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Bullet's contact manifolds beside ttd's (issue 26): runs the C++ program ttd_bullet_scene_bench
- * (bench/bullet/bullet_scene_bench.cpp, built when cmake/TtdBullet.cmake finds Bullet) on the
+ * (bench/bullet/bullet_scene_bench.cpp, built when cmake/TTDBullet.cmake finds Bullet) on the
  * scene workload that bench/fcl_scene_link.h describes and reads its answers back. Bullet 3.24's
  * btCollisionWorld with btDbvtBroadphase and btGImpactCollisionAlgorithm, one btGImpactMeshShape
  * per mesh shared by its bodies, shape margin M/2 (GImpact reports pairs within the sum of the

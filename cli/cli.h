@@ -29,6 +29,8 @@ int ttd_cli_dist_run(int argc, char **argv, FILE *in, FILE *out);
 int ttd_cli_mesh(int argc, char **argv);
 /// `ttd scene collide | distance | contacts | manifold SCENE [options]` (cli/scene.c); argv[0] is "scene".
 int ttd_cli_scene(int argc, char **argv);
+/// `ttd points closest|signed|winding|grid` (points.c).
+int ttd_cli_points(int argc, char **argv);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

@@ -28,6 +28,10 @@ static const char ttd_usage[] =
     "                          its closest partner (--per-triangle), or their number (--count)\n"
     "  mesh collide A B        whether the meshes touch, cross or come within --margin M\n"
     "                          (ttd mesh --help for the formats and options)\n"
+    "  points closest MESH P   the exact closest point of the mesh to each point of the file P\n"
+    "  points signed MESH P    signed distances (negative inside), points winding MESH P: winding\n"
+    "                          numbers, points grid MESH: signed distances on a grid into a .npy\n"
+    "                          or raw file (ttd points --help for the formats and options)\n"
     "  scene collide SCENE     every pair of bodies of a scene file within --margin M (default\n"
     "                          0), with a witness pair of triangles each\n"
     "  scene distance SCENE    the closest pair of bodies, its triangles and closest points\n"
@@ -115,6 +119,8 @@ int main(int argc, char **argv)
         return ttd_cli_dist(argc - 1, argv + 1);
     if (strcmp(cmd, "mesh") == 0)
         return ttd_cli_mesh(argc - 1, argv + 1);
+    if (strcmp(cmd, "points") == 0)
+        return ttd_cli_points(argc - 1, argv + 1);
     if (strcmp(cmd, "scene") == 0)
         return ttd_cli_scene(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {

@@ -14,8 +14,8 @@ out=${TTD_RESULTS_DIR:-results}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 # Optional packages: FCL (libfcl-dev), Bullet (libbullet-dev: its GImpact manifolds beside the
-# scene section's) and gnuplot (gnuplot-nox). Missing ones are installed
-# with apt-get when this runs as root (or with password-less sudo); otherwise we carry on.
+# scene section's) and gnuplot (gnuplot-nox). Missing ones are installed with apt-get when this
+# runs as root (or with password-less sudo); otherwise we carry on (scripts/install-optional.sh).
 missing=()
 if ! { [ -f /usr/include/fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h ] ||
        pkg-config --exists fcl 2>/dev/null; }; then
@@ -25,21 +25,11 @@ if ! { [ -f /usr/include/bullet/btBulletCollisionCommon.h ] || pkg-config --exis
   missing+=(libbullet-dev)
 fi
 command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot-nox)
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo=""
-  if [ "$(id -u)" != 0 ] && command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
-    sudo="sudo -n"
-  fi
-  if command -v apt-get >/dev/null 2>&1 && { [ "$(id -u)" = 0 ] || [ -n "$sudo" ]; }; then
-    echo "bench.sh: installing the Debian packages ${missing[*]} with apt-get (apt-get lists them with what they depend on)" >&2
-    if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q "${missing[@]}"; } >&2; then
-      echo "bench.sh: apt-get could not install ${missing[*]}; carrying on without" >&2
-    fi
-  else
-    echo "bench.sh: ${missing[*]} not installed and apt-get is not usable here; carrying on without" \
-         "(FCL: apt-get install libfcl-dev; Bullet: apt-get install libbullet-dev; figure: apt-get install gnuplot-nox)" >&2
-  fi
-fi
+# The point queries' comparison (ttd bench points): Embree, CGAL and Open3D (Debian's python3).
+[ -f /usr/include/embree3/rtcore.h ] || missing+=(libembree-dev)
+[ -f /usr/include/CGAL/AABB_tree.h ] || missing+=(libcgal-dev)
+{ [ -x /usr/bin/python3 ] && /usr/bin/python3 -c "import open3d" >/dev/null 2>&1; } || missing+=(python3-open3d)
+scripts/install-optional.sh bench.sh "${missing[@]}"
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-} >&2
 cmake --build "$build" -j "$jobs" >&2
@@ -71,6 +61,14 @@ if [ -n "${TTD_BENCH_NICE:-}" ]; then
     "$TTD_BENCH_NICE" "$TTD_BENCH_NICE" "$ttd" bench --out "$out" "$@"
 else
   "$ttd" bench --out "$out" "$@"
+fi
+
+# The point queries against Embree, CGAL and Open3D (those found), into points.txt
+# (TTD_BENCH_POINTS=0 leaves them out).
+if [ "${TTD_BENCH_POINTS:-1}" != 0 ]; then
+  points_args=()
+  case " $* " in *" --quick "*) points_args=(--quick) ;; esac
+  "$ttd" bench points "${points_args[@]}" > "$out/points.txt" || echo "bench.sh: ttd bench points failed" >&2
 fi
 
 if command -v gnuplot >/dev/null 2>&1; then

@@ -51,13 +51,13 @@ mkdir -p "$build"
 CC="$CC_FUZZ" cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_FUZZ=ON -DTTD_SANITIZE=ON \
     -DTTD_BUILD_CLI=OFF -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link" > "$build/cmake.log" 2>&1 ||
     { cat "$build/cmake.log"; exit 1; }
-cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile fuzz_mesh
+cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile fuzz_mesh fuzz_points
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 mkdir -p "$build/artifacts"
 status=0
-for target in parse_line batch meshfile mesh; do
+for target in parse_line batch meshfile mesh points; do
     work="$build/corpus/$target"
     rm -rf "$work"
     mkdir -p "$work"

@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
 # Builds ttd and runs every test (the README's test command; .ci/run calls it).
 # Usage: scripts/test.sh            (build folder: build/, or $TTD_BUILD_DIR)
-# Installs nothing itself; the Python tests (scripts/test-python.sh) install the Debian
+# Installs the optional Bullet (below) with apt-get when run as root; the Python tests
+# (scripts/test-python.sh) install the Debian
 # packages they lack with apt-get when run as root, and say which first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
+# Optional: Bullet (libbullet-dev, found through pkg-config) for the simulator's comparison
+# program, examples/sim/bullet/ (docs/simulator.md); without it that program and its test are
+# not built, and CMake says so.
+missing=()
+command -v pkg-config > /dev/null 2>&1 || missing+=(pkg-config)
+[ -f /usr/include/bullet/btBulletDynamicsCommon.h ] || missing+=(libbullet-dev)
+scripts/install-optional.sh test.sh "${missing[@]}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"

@@ -13,8 +13,8 @@
 // plane, so each shape's margin is M/2 to match "within M". A query is
 // performDiscreteCollisionDetection() (every body's box, the broad phase, the narrow phase); the
 // manifolds (at most 4 points each, Bullet's cap) are then read from the dispatcher. Built
-// against Bullet's double-precision libraries when they are installed (Debian's
-// libbullet-dev ships both), else the float ones; the first output line says which.
+// against the Bullet that cmake/TTDBullet.cmake finds (Debian's float build); the first output
+// line says which precision.
 //
 // Output (text on stdout, numbers %.17g, one record a line, the keyword first):
 //   # ttd_bullet_scene_bench bullet VERSION precision P bodies N meshes K margin M repetitions R steps S

@@ -413,6 +413,119 @@ TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a,
 
 /** @} */
 
+/** @defgroup points Point queries
+ * Points against a mesh: the closest point, the generalized winding number, inside or not, the
+ * signed distance, and signed distances on a regular grid (docs/points.md). n points are 3n reals
+ * (point i at 3i). A query in double takes a mesh from ttd_mesh_create_d, in float one from
+ * ttd_mesh_create_f (TTD_ERR_PRECISION_MISMATCH otherwise); opt may be NULL, its method must be
+ * TTD_METHOD_EXACT and its isa and threads apply (points are spread over the threads). Results do
+ * not depend on the thread count or the instruction set.
+ *
+ * pose is NULL (the points are in the mesh's frame) or the mesh's pose in the points' frame: 12
+ * reals [R | t] as for the mesh queries (x_points = R x_mesh + t), checked the same way
+ * (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE). Each point p is taken into the mesh's frame,
+ * x_c = ((r0c (p0 - t0) + r1c (p1 - t1)) + r2c (p2 - t2)) in the query's precision, answered
+ * there, and its closest point moved back by ((rc0 y0 + rc1 y1) + rc2 y2) + tc.
+ *
+ * The closest point is exact: its distance is the minimum over all triangles of
+ * ttd_point_triangle_d/f (the exact point-triangle distance), bit for bit, ties to the smallest
+ * triangle index, and its point, weights and feature are that function's for that triangle.
+ * Points (in the mesh's frame) must lie within the meshes' coordinate range (2^508 in double, 2^60
+ * in float; TTD_ERR_COORDINATE_RANGE otherwise, nothing computed). A point with a NaN or infinite
+ * coordinate gets NaN outputs and TTD_POINT_NONFINITE while the others are computed; the call then
+ * returns TTD_ERR_NONFINITE_INPUT.
+ *
+ * Inside means a generalized winding number of at least 1/2 (Jacobson et al. 2013), computed
+ * hierarchically (Barill et al. 2018) to a bounded error: for a closed, consistently oriented
+ * mesh it is the solid's inside (outward normals: counter-clockwise seen from outside), and an
+ * open or imperfect mesh still gets a sensible side. docs/points.md gives the error bound and
+ * where it guarantees the sign.
+ * @{ */
+
+/// Flags of a point result.
+enum {
+    TTD_POINT_NONFINITE = 1u << 0,   ///< the point had a NaN or infinite coordinate: outputs NaN
+    TTD_POINT_ABOVE_BOUND = 1u << 1, ///< no triangle within upper_bound: distance +inf, no point, triangle UINT32_MAX
+    TTD_POINT_INSIDE = 1u << 2,      ///< signed distance: the point is inside (winding number >= 1/2)
+    TTD_POINT_DEGENERATE = 1u << 3   ///< the closest triangle has no area (a segment or a point)
+};
+
+/// The closest point of a mesh to one query point (double precision).
+typedef struct ttd_point_result_d {
+    double distance;     ///< the exact distance (+inf above the bound, NaN for a NaN point)
+    double point[3];     ///< the closest point on the mesh, in the points' frame
+    double bary[3];      ///< weights of the triangle's vertices that give it (non-negative, sum 1)
+    uint32_t triangle;   ///< the triangle it lies on (UINT32_MAX with TTD_POINT_ABOVE_BOUND or NONFINITE)
+    uint8_t feature;     ///< bit i when vertex i has a non-zero weight: 1 bit a vertex, 2 an edge, 3 the face
+    uint8_t flags;       ///< TTD_POINT_* bits
+    uint16_t reserved;
+    uint32_t node_tests; ///< nodes of the hierarchy tested (each against up to 8 boxes)
+    uint32_t triangle_tests; ///< triangles measured exactly
+} ttd_point_result_d;
+
+/// ttd_point_result_d in single precision.
+typedef struct ttd_point_result_f {
+    float distance;
+    float point[3];
+    float bary[3];
+    uint32_t triangle;
+    uint8_t feature;
+    uint8_t flags;
+    uint16_t reserved;
+    uint32_t node_tests;
+    uint32_t triangle_tests;
+} ttd_point_result_f;
+
+/// The exact distance from point p to triangle tri (9 reals: A, B, C), the reference of the
+/// point queries, into out (triangle 0; no node or triangle counts). Coordinates within 2^508
+/// (float: 2^60): TTD_ERR_COORDINATE_RANGE beyond; NaN or infinite ones: NaN outputs,
+/// TTD_POINT_NONFINITE and TTD_ERR_NONFINITE_INPUT.
+TTD_API ttd_status ttd_point_triangle_d(const double p[3], const double tri[9], ttd_point_result_d *out);
+TTD_API ttd_status ttd_point_triangle_f(const float p[3], const float tri[9], ttd_point_result_f *out);
+
+/// For each of n points, the closest point of mesh (see above) into results[i]. upper_bound >= 0
+/// (INFINITY for none): a point farther than it from every triangle gets +inf and
+/// TTD_POINT_ABOVE_BOUND; NaN or negative: TTD_ERR_BAD_OPTIONS.
+TTD_API ttd_status ttd_points_closest_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const double *points,
+                                        const double *pose, double upper_bound, ttd_point_result_d *results);
+TTD_API ttd_status ttd_points_closest_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const float *points,
+                                        const float *pose, float upper_bound, ttd_point_result_f *results);
+
+/// The generalized winding number of mesh about each of n points into winding[i]: about 1 inside
+/// a closed mesh oriented outwards, 0 outside, fractions for open meshes (NaN for a NaN point).
+TTD_API ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
+                                               const double *points, const double *pose, double *winding);
+TTD_API ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
+                                               const float *points, const float *pose, float *winding);
+
+/// inside[i] = 1 when point i is inside mesh (winding number >= 1/2), else 0 (0 for a NaN point).
+TTD_API ttd_status ttd_points_contains_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const double *points,
+                                         const double *pose, uint8_t *inside);
+TTD_API ttd_status ttd_points_contains_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const float *points,
+                                         const float *pose, uint8_t *inside);
+
+/// Signed distances: the closest point's distance, negative inside (winding number >= 1/2), into
+/// distance[i]; when results is not NULL, the closest points too, with TTD_POINT_INSIDE set for
+/// points inside. Either output may be NULL, not both. Beyond upper_bound: +-inf.
+TTD_API ttd_status ttd_points_signed_distance_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
+                                                const double *points, const double *pose, double upper_bound,
+                                                double *distance, ttd_point_result_d *results);
+TTD_API ttd_status ttd_points_signed_distance_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
+                                                const float *points, const float *pose, float upper_bound,
+                                                float *distance, ttd_point_result_f *results);
+
+/// Signed distances on a regular grid of dims[0] x dims[1] x dims[2] points, point (i, j, k) at
+/// origin + (i step[0], j step[1], k step[2]) (each coordinate computed as origin[c] + i step[c]
+/// in the query's precision), into out[(i dims[1] + j) dims[2] + k] (the C order of an (nx, ny,
+/// nz) array), in the mesh's frame. Any dimension 0: TTD_ERR_EMPTY; non-finite origin or step:
+/// TTD_ERR_BAD_OPTIONS.
+TTD_API ttd_status ttd_sdf_grid_d(const ttd_options *opt, const ttd_mesh *mesh, const double origin[3],
+                                  const double step[3], const size_t dims[3], double *out);
+TTD_API ttd_status ttd_sdf_grid_f(const ttd_options *opt, const ttd_mesh *mesh, const float origin[3],
+                                  const float step[3], const size_t dims[3], float *out);
+
+/** @} */
+
 /** @defgroup scene Scenes of many bodies
  * A ttd_scene holds bodies, each a ttd_mesh (one mesh may serve any number of bodies) at a world
  * pose [R | t] (x_world = R x_mesh + t, 12 reals row by row as for the mesh queries, with the

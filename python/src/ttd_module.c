@@ -141,7 +141,8 @@ PyMODINIT_FUNC PyInit__ttd(void)
     PyObject *m = PyModule_Create(&ttd_py_module);
     if (m == NULL)
         return NULL;
-    if (PyModule_AddFunctions(m, ttd_py_pairs_methods) < 0 || PyModule_AddFunctions(m, ttd_py_mesh_methods) < 0)
+    if (PyModule_AddFunctions(m, ttd_py_pairs_methods) < 0 || PyModule_AddFunctions(m, ttd_py_mesh_methods) < 0 ||
+        PyModule_AddFunctions(m, ttd_py_points_methods) < 0)
         goto fail;
     ttd_py_IsaUnavailableError = ttd_py_new_class(
         m, "ttd.IsaUnavailableError",
@@ -182,7 +183,7 @@ PyMODINIT_FUNC PyInit__ttd(void)
         Py_XDECREF(isas);
         goto fail;
     }
-    if (ttd_py_pairs_init(m) < 0 || ttd_py_mesh_init(m) < 0 || ttd_py_scene_init(m) < 0)
+    if (ttd_py_pairs_init(m) < 0 || ttd_py_mesh_init(m) < 0 || ttd_py_scene_init(m) < 0 || ttd_py_points_init(m) < 0)
         goto fail;
     return m;
 fail:

@@ -121,5 +121,7 @@ extern PyMethodDef ttd_py_pairs_methods[];
 int ttd_py_mesh_init(PyObject *module);
 extern PyMethodDef ttd_py_mesh_methods[];
 int ttd_py_scene_init(PyObject *module); /* ttd.Scene and its result types (ttd_scene.c) */
+int ttd_py_points_init(PyObject *module); /* the point queries and their result types (ttd_points.c) */
+extern PyMethodDef ttd_py_points_methods[];
 
 #endif /* TTD_PY_H */

@@ -163,3 +163,20 @@ def test_mesh_bad_arguments_fail_before_computing():
         ttd.dask.mesh_distance(A, B, P, out=np.empty(100, ttd.MESH_RESULT_DTYPE_FLOAT64))
     with pytest.raises(ValueError, match="at least one"):
         ttd.dask.concatenate_contacts([])
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_point_queries_in_chunks_equal_one_call(client, dtype):
+    v, f = torus(nu=32, nv=16)
+    mesh = ttd.Mesh(v.astype(dtype), f)
+    rng = np.random.default_rng(4)
+    P = (3 * rng.random((20_011, 3)) - 1.5).astype(dtype)
+    dP = da.from_array(P, chunks=(3_001, 3))
+    r = client.compute(ttd.dask.closest_points(mesh, dP, threads=1)).result()
+    one = ttd.closest_points(mesh, P)
+    for name in r.dtype.names:
+        np.testing.assert_array_equal(r[name], getattr(one, name))
+    sd = client.compute(ttd.dask.signed_distance(mesh, dP, threads=1)).result()
+    np.testing.assert_array_equal(sd, ttd.signed_distance(mesh, P).distance)
+    w = client.compute(ttd.dask.winding_number(mesh, dP)).result()
+    np.testing.assert_array_equal(w, ttd.winding_number(mesh, P).winding)

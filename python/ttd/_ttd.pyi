@@ -317,3 +317,86 @@ class Scene:
         isa: Union[IsaName, str] = "auto",
         threads: int = 0,
     ) -> SceneManifold: ...
+
+# ---- point queries (python/src/ttd_points.c) -------------------------------------------------
+POINT_NONFINITE: int
+POINT_ABOVE_BOUND: int
+POINT_INSIDE: int
+POINT_DEGENERATE: int
+POINT_RESULT_DTYPE_FLOAT64: np.dtype
+POINT_RESULT_DTYPE_FLOAT32: np.dtype
+
+class ClosestPoints(NamedTuple):
+    """ttd.closest_points' result: arrays over the points' shape (...)."""
+
+    distance: npt.NDArray[np.floating]
+    point: npt.NDArray[np.floating]
+    triangle: npt.NDArray[np.uint32]
+    bary: npt.NDArray[np.floating]
+    feature: npt.NDArray[np.uint8]
+    flags: npt.NDArray[np.uint8]
+    node_tests: npt.NDArray[np.uint32]
+    triangle_tests: npt.NDArray[np.uint32]
+
+class SignedDistance(NamedTuple):
+    """ttd.signed_distance's result: arrays over the points' shape (...)."""
+
+    distance: npt.NDArray[np.floating]
+    point: npt.NDArray[np.floating]
+    triangle: npt.NDArray[np.uint32]
+    inside: npt.NDArray[np.bool_]
+
+class WindingNumber(NamedTuple):
+    """ttd.winding_number's result."""
+
+    winding: npt.NDArray[np.float64]
+    inside: npt.NDArray[np.bool_]
+
+class Containment(NamedTuple):
+    """ttd.contains' result."""
+
+    inside: npt.NDArray[np.bool_]
+
+def closest_points(
+    mesh: Mesh,
+    points: npt.ArrayLike,
+    *,
+    pose: Optional[npt.ArrayLike] = None,
+    upper_bound: Optional[float] = None,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> ClosestPoints: ...
+def signed_distance(
+    mesh: Mesh,
+    points: npt.ArrayLike,
+    *,
+    pose: Optional[npt.ArrayLike] = None,
+    upper_bound: Optional[float] = None,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> SignedDistance: ...
+def winding_number(
+    mesh: Mesh,
+    points: npt.ArrayLike,
+    *,
+    pose: Optional[npt.ArrayLike] = None,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> WindingNumber: ...
+def contains(
+    mesh: Mesh,
+    points: npt.ArrayLike,
+    *,
+    pose: Optional[npt.ArrayLike] = None,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> Containment: ...
+def sdf_grid(
+    mesh: Mesh,
+    origin: npt.ArrayLike,
+    step: Union[float, npt.ArrayLike],
+    shape: Sequence[int],
+    *,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> npt.NDArray[np.floating]: ...

@@ -17,6 +17,9 @@ queries over poses chunk by chunk.
     r = ttd.dask.mesh_distance(A, B, poses)   # lazy: (K,) records of ttd.MESH_RESULT_DTYPE_*
     r["distance"].min().compute(), r["tri_a"][:10].compute()
     hit = ttd.dask.mesh_collide(A, B, poses, 0.01)["hit"]   # (K,) bool, True where within 0.01
+    P = da.from_zarr("points.zarr")           # (n, 3), chunked along the points
+    r = ttd.dask.closest_points(A, P)         # lazy: (n,) records of ttd.POINT_RESULT_DTYPE_*
+    sd = ttd.dask.signed_distance(A, P)       # lazy: (n,) signed distances
     parts = ttd.dask.mesh_contacts(A, B, poses, 0.01)       # a dask.bag: one MeshContacts per chunk
     contacts = ttd.dask.concatenate_contacts(parts.compute())  # = ttd.mesh_contacts on all poses
 
@@ -41,7 +44,8 @@ import numpy as np
 
 import ttd
 
-__all__ = ["COLLISION_DTYPE", "concatenate_contacts", "distance", "mesh_collide", "mesh_contacts", "mesh_distance"]
+__all__ = ["COLLISION_DTYPE", "closest_points", "concatenate_contacts", "distance", "mesh_collide", "mesh_contacts",
+           "mesh_distance", "signed_distance", "winding_number"]
 
 #: The records of ttd.dask.mesh_collide: ttd.COLLISION_DTYPE's fields with hit as bool (as
 #: ttd.mesh_collide's hit is), packed.
@@ -203,3 +207,76 @@ def concatenate_contacts(parts):
     starts = [c.pose_start[:-1] + n for c, n in zip(parts, counts)] + [np.array([counts[-1]])]
     joined = [np.concatenate([getattr(c, f) for c in parts]) for f in ("pose", "tri_a", "tri_b", "distance", "p", "q")]
     return ttd.MeshContacts(*joined, np.concatenate(starts).astype(np.intp))
+
+
+# ---- point queries ------------------------------------------------------------------------------
+
+
+def _points_2d(P):
+    import dask.array as da
+
+    P = da.asarray(P)
+    if P.ndim != 2 or P.shape[1] != 3:
+        raise ValueError(f"points has shape {P.shape}: ttd.dask's point queries take (n, 3) arrays")
+    return P.rechunk({1: 3})
+
+
+def _mesh_task(mesh):
+    import dask
+
+    if not isinstance(mesh, ttd.Mesh):
+        raise TypeError(f"mesh must be a ttd.Mesh, not {type(mesh).__name__}")
+    return dask.delayed(mesh, pure=False)
+
+
+def _points_block(points, mesh, query, options):
+    if query == "closest":
+        r = ttd.closest_points(mesh, points, **options)
+        out = np.empty(len(points), ttd.POINT_RESULT_DTYPE_FLOAT64 if mesh.dtype == np.float64 else ttd.POINT_RESULT_DTYPE_FLOAT32)
+        for name in out.dtype.names:
+            out[name] = getattr(r, name)
+        return out
+    if query == "signed":
+        return ttd.signed_distance(mesh, points, **options).distance
+    return ttd.winding_number(mesh, points, **options).winding
+
+
+def _points(mesh, points, query, options):
+    import dask.array as da
+
+    P = _points_2d(points)
+    empty = np.zeros((0, 3), P.dtype)
+    # The mesh and the options are checked now, on no points.
+    if query == "closest":
+        ttd.closest_points(mesh, empty, **options)
+        dtype = ttd.POINT_RESULT_DTYPE_FLOAT64 if mesh.dtype == np.float64 else ttd.POINT_RESULT_DTYPE_FLOAT32
+    elif query == "signed":
+        ttd.signed_distance(mesh, empty, **options)
+        dtype = mesh.dtype
+    else:
+        ttd.winding_number(mesh, empty, **options)
+        dtype = np.dtype(np.float64)
+    return da.map_blocks(_points_block, P, _mesh_task(mesh), query, options, drop_axis=[1], dtype=dtype,
+                         meta=np.empty(0, dtype), chunks=(P.chunks[0],))
+
+
+def closest_points(mesh, points, **options):
+    """ttd.closest_points over a dask array of points (n, 3), one call per chunk: a lazy dask array of
+    shape (n,) of records laid out as the C library's ttd_point_result_d/_f (dtype
+    ttd.POINT_RESULT_DTYPE_FLOAT64 or FLOAT32, the mesh's): r["distance"], r["point"] (n, 3),
+    r["triangle"], ... are the fields of ttd.ClosestPoints. options: those of ttd.closest_points
+    (pose, upper_bound, isa, threads), checked here. Equal, bit for bit, to one call on all the points.
+    """
+    return _points(mesh, points, "closest", options)
+
+
+def signed_distance(mesh, points, **options):
+    """ttd.signed_distance over a dask array of points (n, 3), chunk by chunk: a lazy dask array of the
+    n signed distances (negative inside), in the mesh's dtype. Equal, bit for bit, to one call."""
+    return _points(mesh, points, "signed", options)
+
+
+def winding_number(mesh, points, **options):
+    """ttd.winding_number over a dask array of points (n, 3), chunk by chunk: a lazy float64 dask array
+    of the n winding numbers. Equal, bit for bit, to one call."""
+    return _points(mesh, points, "winding", options)

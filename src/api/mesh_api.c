@@ -10,6 +10,7 @@
 
 #include "api/prepare.h"
 #include "mesh/mesh.h"
+#include "points/points.h"
 #include "ttd/ttd.h"
 
 /* Poses whose R^T R - I has an entry larger than this are not rotations. */
@@ -245,7 +246,9 @@ static void first_vertex(const ttd_mesh *m, double x[3])
 }
 
 /* Whether x lies inside closed mesh m: within its bounding sphere (the cheap test that settles
- * far poses), then its winding number (mesh/solid.c). */
+ * far poses), then its winding number: hierarchical with its error certified below 1/4
+ * (points/winding.c), so a traversal rather than a pass over the triangles; the pass
+ * (mesh/solid.c) only when the point data cannot be had (out of memory). */
 static int inside(const ttd_mesh *m, const double x[3])
 {
     double d2 = 0;
@@ -253,7 +256,8 @@ static int inside(const ttd_mesh *m, const double x[3])
         d2 += (x[c] - m->origin[c]) * (x[c] - m->origin[c]);
     if (!(d2 <= m->radius * m->radius * (1 + 1e-9)))
         return 0;
-    return fabs(ttd_mesh_winding(m, x)) > 0.5;
+    const ttd_points_data *pd = ttd_points_data_get(m, 0);
+    return fabs(pd != NULL ? ttd_points_winding_certified(m, pd, x) : ttd_mesh_winding(m, x)) > 0.5;
 }
 
 /* Under pose i (b into a's frame; 12 reals of `bytes`), with the surfaces apart: 1 when b lies

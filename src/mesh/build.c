@@ -758,6 +758,8 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
 {
     if (mesh == NULL)
         return;
+    if (mesh->points != NULL) /* its first member frees it (src/points/points.h) */
+        (*(void (**)(void *))mesh->points)(mesh->points);
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);

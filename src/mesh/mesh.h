@@ -35,6 +35,9 @@ struct ttd_mesh {
     int closed;         /* solid queries: 0 not known yet, 1 closed, 2 not (mesh/solid.c; atomic) */
     ttd_mesh_edges edges; /* neighbours across edges, flat or real edges and corners (mesh/edges.h;
                            * ttd_mesh_edges_build of verts and tris) */
+    /* the point queries' data (src/points/points.h: prepared triangles, winding-number moments),
+     * made on first use (atomic); its first member is the function that frees it */
+    void *points;
 };
 
 /* The largest coordinate magnitude a mesh query works on, a's vertices and b's moved by a pose
@@ -99,5 +102,9 @@ int ttd_mesh_closed(const struct ttd_mesh *mesh); /* 1, 0, or -1 out of memory *
  * its triangles' signed solid angles over 4 pi; near +-1 inside, near 0 outside, for x not on
  * the surface. */
 double ttd_mesh_winding(const struct ttd_mesh *mesh, const double x[3]);
+/* The signed solid angle of triangle t seen from x (van Oosterom and Strackee, at unit scale),
+ * positive when x sees the triangle's back (the side its counter-clockwise normal points away
+ * from): the term the winding number sums. */
+double ttd_mesh_solid_angle(const struct ttd_mesh *mesh, size_t t, const double x[3]);
 
 #endif /* TTD_MESH_MESH_H */

@@ -59,39 +59,43 @@ int ttd_mesh_closed(const struct ttd_mesh *mesh)
     return c == 1;
 }
 
+double ttd_mesh_solid_angle(const struct ttd_mesh *m, size_t t, const double x[3])
+{
+    double a[3][3], len[3];
+    for (int k = 0; k < 3; ++k) {
+        const size_t v = m->tris[3 * t + (size_t)k];
+        for (int c = 0; c < 3; ++c) {
+            const double p = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
+                                           : (double)((const float *)m->verts)[3 * v + (size_t)c];
+            a[k][c] = p - x[c];
+        }
+        len[k] = sqrt(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
+    }
+    /* the angle does not depend on the scale: work at unit scale, so that the products
+     * below neither overflow nor underflow anywhere in the coordinate range */
+    const double sc = fmax(len[0], fmax(len[1], len[2]));
+    if (!(sc > 0))
+        return 0; /* x is the (point) triangle itself: no angle */
+    for (int k = 0; k < 3; ++k) {
+        len[k] /= sc;
+        for (int c = 0; c < 3; ++c)
+            a[k][c] /= sc;
+    }
+    /* Van Oosterom and Strackee: tan(omega / 2) = det / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|) */
+    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    const double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
+    const double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
+    const double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
+    const double den = len[0] * len[1] * len[2] + ab * len[2] + ac * len[1] + bc * len[0];
+    return 2 * atan2(det, den);
+}
+
 double ttd_mesh_winding(const struct ttd_mesh *m, const double x[3])
 {
     double sum = 0;
-    for (size_t t = 0; t < m->nt; ++t) {
-        double a[3][3], len[3];
-        for (int k = 0; k < 3; ++k) {
-            const size_t v = m->tris[3 * t + (size_t)k];
-            for (int c = 0; c < 3; ++c) {
-                const double p = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
-                                               : (double)((const float *)m->verts)[3 * v + (size_t)c];
-                a[k][c] = p - x[c];
-            }
-            len[k] = sqrt(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        /* the angle does not depend on the scale: work at unit scale, so that the products
-         * below neither overflow nor underflow anywhere in the coordinate range */
-        const double sc = fmax(len[0], fmax(len[1], len[2]));
-        if (!(sc > 0))
-            continue; /* x is the (point) triangle itself: no angle */
-        for (int k = 0; k < 3; ++k) {
-            len[k] /= sc;
-            for (int c = 0; c < 3; ++c)
-                a[k][c] /= sc;
-        }
-        /* Van Oosterom and Strackee: tan(omega / 2) = det / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|) */
-        const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        const double den = len[0] * len[1] * len[2] + ab * len[2] + ac * len[1] + bc * len[0];
-        sum += 2 * atan2(det, den);
-    }
+    for (size_t t = 0; t < m->nt; ++t)
+        sum += ttd_mesh_solid_angle(m, t, x);
     return sum / (4 * 3.14159265358979323846);
 }

@@ -5,6 +5,7 @@
 #include "core/precision.h"
 #include "scalar/scalar.h"
 #include "scalar/exact_impl.h"
+#include "scalar/point_impl.h"
 
 void ttd_exact_pair_d(const double s[9], const double t[9], ttd_result_d *r)
 {
@@ -14,4 +15,30 @@ void ttd_exact_pair_d(const double s[9], const double t[9], ttd_result_d *r)
 double ttd_exact_lower_bound_d(const double s[9], const double t[9])
 {
     return exact_lower_bound(s, t);
+}
+
+void ttd_point_prepare_d(const double v[9], double *f, size_t stride)
+{
+    point_prepare(v, f, stride);
+}
+
+double ttd_point_eval_d(const double *f, size_t stride, const double p[3], double q[3], double w[3])
+{
+    return point_eval(f, stride, p, q, w);
+}
+
+void ttd_point_rebuild_d(const double *f, size_t stride, int id, double u, double v, double q[3], double w[3])
+{
+    point_rebuild(f, stride, id, u, v, q, w);
+}
+
+void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
+                                double par[3][TTD_NODE_WIDTH])
+{
+    point_block_scalar(p, block, d, par);
+}
+
+unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH])
+{
+    return point_node_scalar(p, y, lim2, lb2);
 }

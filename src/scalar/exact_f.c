@@ -5,6 +5,7 @@
 #include "core/precision.h"
 #include "scalar/scalar.h"
 #include "scalar/exact_impl.h"
+#include "scalar/point_impl.h"
 
 void ttd_exact_pair_f(const float s[9], const float t[9], ttd_result_f *r)
 {
@@ -14,4 +15,30 @@ void ttd_exact_pair_f(const float s[9], const float t[9], ttd_result_f *r)
 float ttd_exact_lower_bound_f(const float s[9], const float t[9])
 {
     return exact_lower_bound(s, t);
+}
+
+void ttd_point_prepare_f(const float v[9], float *f, size_t stride)
+{
+    point_prepare(v, f, stride);
+}
+
+float ttd_point_eval_f(const float *f, size_t stride, const float p[3], float q[3], float w[3])
+{
+    return point_eval(f, stride, p, q, w);
+}
+
+void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v, float q[3], float w[3])
+{
+    point_rebuild(f, stride, id, u, v, q, w);
+}
+
+void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
+                                float par[3][TTD_NODE_WIDTH])
+{
+    point_block_scalar(p, block, d, par);
+}
+
+unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH])
+{
+    return point_node_scalar(p, y, lim2, lb2);
 }

@@ -37,6 +37,25 @@ void ttd_node_test_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, doubl
 void ttd_node_test_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float lb2[TTD_NODE_WIDTH],
                             float sep[TTD_NODE_WIDTH]);
 
+/* The exact distance from a point to a triangle (scalar/point_impl.h, the point queries'
+ * reference): the triangle v (9 reals) prepared once into f (core/point_layout.h's fields, field i
+ * at f[i * stride]), then any number of points measured against it; q and w, when not NULL, get
+ * the closest point and its weights. */
+void ttd_point_prepare_d(const double v[9], double *f, size_t stride);
+void ttd_point_prepare_f(const float v[9], float *f, size_t stride);
+double ttd_point_eval_d(const double *f, size_t stride, const double p[3], double q[3], double w[3]);
+float ttd_point_eval_f(const float *f, size_t stride, const float p[3], float q[3], float w[3]);
+/* The closest point and weights of candidate (id, u, v) of a prepared triangle, as the point
+ * kernels return it (core/kernels.h). */
+void ttd_point_rebuild_d(const double *f, size_t stride, int id, double u, double v, double q[3], double w[3]);
+void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v, float q[3], float w[3]);
+/* The scalar row's point kernels (core/kernels.h). */
+void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
+                              double par[3][TTD_NODE_WIDTH]);
+void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH], float par[3][TTD_NODE_WIDTH]);
+unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH]);
+unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH]);
+
 /* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other
  * methods of its own precision by these names. */
 #if defined(TTD_PRECISION_DOUBLE)

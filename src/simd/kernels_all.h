@@ -11,6 +11,7 @@
 #include "core/certified_tol.h"
 #include "core/defaults.h"
 #include "core/kernels.h"
+#include "core/point_layout.h"
 #include "simd/lanes.h"
 #include "simd/lanes_precision.h"
 #include "simd/probe.h"
@@ -21,6 +22,7 @@
 #include "simd/kernel_exact.h"
 #include "simd/kernel_certified.h"
 #include "simd/kernel_node.h"
+#include "simd/kernel_point.h"
 #include "simd/probe_impl.h"
 
 /* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
@@ -33,4 +35,6 @@
                [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref,                            \
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
         .node_test = node_test,                                                                \
+        .point_node = point_node,                                                              \
+        .point_block = point_block,                                                            \
     }

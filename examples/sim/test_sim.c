@@ -1,0 +1,229 @@
+/* SPDX-License-Identifier: MIT */
+/* The simulator's own parts against answers known by construction (CTest ttd.sim.parts): mass
+ * properties against the box's formulas and the icosphere's symmetry, the convex pieces, the
+ * separating-axis depth against placed overlaps and gaps, the nested case that collide at 0
+ * cannot see, and a run that gives the same bits twice and with 1 or 2 threads. */
+#include "sim.h"
+#include "vec.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures;
+
+#define CHECK(cond, ...)                                                                                              \
+    do {                                                                                                              \
+        if (!(cond)) {                                                                                                \
+            fprintf(stderr, "%s:%d: FAILED %s: ", __FILE__, __LINE__, #cond);                                         \
+            fprintf(stderr, __VA_ARGS__);                                                                             \
+            fprintf(stderr, "\n");                                                                                    \
+            ++failures;                                                                                               \
+        }                                                                                                             \
+    } while (0)
+
+static void pose_of(const double q[4], const double t[3], double pose[12])
+{
+    double R[9];
+    quat_to_m3(q, R);
+    for (int r = 0; r < 3; ++r) {
+        pose[4 * r] = R[3 * r];
+        pose[4 * r + 1] = R[3 * r + 1];
+        pose[4 * r + 2] = R[3 * r + 2];
+        pose[4 * r + 3] = t[r];
+    }
+}
+
+static void test_mass(void)
+{
+    const double h[3] = {0.5, 0.3, 0.2};
+    for (int tri = 0; tri < 3; ++tri) {
+        sim_shape s;
+        CHECK(sim_shape_box(&s, h, (sim_box_tri)tri) == 0, "box %d", tri);
+        double v = 8 * h[0] * h[1] * h[2];
+        double want[3] = {v / 3 * (h[1] * h[1] + h[2] * h[2]), v / 3 * (h[0] * h[0] + h[2] * h[2]),
+                          v / 3 * (h[0] * h[0] + h[1] * h[1])};
+        CHECK(fabs(s.volume - v) < 1e-15, "box %d volume %.17g", tri, s.volume);
+        for (int i = 0; i < 3; ++i) {
+            CHECK(fabs(s.inertia[4 * i] - want[i]) < 1e-15, "box %d I[%d] %.17g, want %.17g", tri, i, s.inertia[4 * i], want[i]);
+            for (int j = 0; j < 3; ++j)
+                if (i != j)
+                    CHECK(fabs(s.inertia[3 * i + j]) < 1e-16, "box %d I[%d][%d] %.3g", tri, i, j, s.inertia[3 * i + j]);
+        }
+        CHECK(s.size == 1.0 && sim_shape_convexity_defect(&s) < 1e-15, "box %d size %g", tri, s.size);
+        sim_shape_free(&s);
+    }
+    /* an icosphere has the icosahedron's symmetry, so its inertia is a multiple of the identity
+     * in any frame; its volume lies between the inscribed and circumscribed balls' */
+    sim_shape b;
+    CHECK(sim_shape_icosphere(&b, 0.5, 1) == 0, "icosphere");
+    double i0 = b.inertia[0];
+    for (int i = 0; i < 9; ++i)
+        CHECK(fabs(b.inertia[i] - (i % 4 == 0 ? i0 : 0)) < 1e-14 * i0, "icosphere I[%d] %.17g", i, b.inertia[i]);
+    CHECK(b.volume < 4.0 / 3 * 3.141592653589793 * 0.125 && b.volume > 0.8 * 4.0 / 3 * 3.141592653589793 * 0.125, "%g",
+          b.volume);
+    double lowest = 0;
+    for (size_t k = 0; k < b.nv; ++k)
+        lowest = fmin(lowest, b.v[3 * k + 2]);
+    size_t flat = 0; /* a face lies flat at the bottom: three vertices at the lowest height */
+    for (size_t k = 0; k < b.nv; ++k)
+        flat += b.v[3 * k + 2] < lowest + 1e-12;
+    CHECK(flat == 3 && sim_shape_convexity_defect(&b) < 1e-14, "flat %zu, defect %g", flat, sim_shape_convexity_defect(&b));
+    sim_shape_free(&b);
+    /* a torus: symmetric about z, its pieces convex; the tube's polygon has less area than its
+     * circle, so the volume is below Pappus's 2 pi^2 R r^2 */
+    sim_shape t;
+    CHECK(sim_shape_torus(&t, 0.35, 0.15, 24, 12) == 0, "torus");
+    CHECK(t.npieces == 24 && sim_shape_convexity_defect(&t) < 1e-14, "defect %g", sim_shape_convexity_defect(&t));
+    CHECK(fabs(t.inertia[0] - t.inertia[4]) < 1e-12 && t.inertia[8] > t.inertia[0], "%g %g %g", t.inertia[0], t.inertia[4],
+          t.inertia[8]);
+    double pappus = 2 * 3.141592653589793 * 3.141592653589793 * 0.35 * 0.15 * 0.15;
+    CHECK(t.volume < pappus && t.volume > 0.9 * pappus, "%g vs %g", t.volume, pappus);
+    sim_shape_free(&t);
+}
+
+static void test_overlap(void)
+{
+    const double h[3] = {0.5, 0.5, 0.5}, hf[3] = {4, 4, 0.5}, one[4] = {1, 0, 0, 0};
+    sim_shape box, floor_, ball, torus;
+    CHECK(sim_shape_box(&box, h, SIM_BOX_DIAG_A) == 0 && sim_shape_box(&floor_, hf, SIM_BOX_FAN) == 0 &&
+              sim_shape_icosphere(&ball, 0.5, 1) == 0 && sim_shape_torus(&torus, 0.35, 0.15, 24, 12) == 0,
+          "shapes");
+    double pa[12], pb[12];
+    const double origin[3] = {0, 0, 0}, zaxis[3] = {0, 0, 1}, xaxis[3] = {1, 0, 0};
+    pose_of(one, origin, pa);
+    /* a box on a box, sunk by d or lifted by g, shifted and turned about z */
+    const double offsets[] = {0.3, 0.01, 1e-3, 1e-9, -1e-9, -1e-3, -0.02};
+    for (size_t k = 0; k < sizeof offsets / sizeof *offsets; ++k) {
+        double d = offsets[k], q[4];
+        quat_axis_angle(zaxis, 0.5, q);
+        const double t[3] = {0.3, -0.2, 1 - d};
+        pose_of(q, t, pb);
+        double o = sim_piece_overlap(box.pieces, pa, box.pieces, pb);
+        CHECK(fabs(o - d) < 1e-15, "box on box at %g: %.17g", d, o);
+    }
+    /* edge on edge: a cube turned 45 degrees about y (its top an edge along y at height
+     * sqrt(1/2)) under a cube turned 45 degrees about x (its bottom an edge along x), sunk by d:
+     * the depth is d along z, the cross product of the two edges, which no face of either has */
+    for (double d = 1e-3; d < 0.2; d *= 4) {
+        const double yaxis[3] = {0, 1, 0}, below[3] = {0, 0, 0}, above[3] = {0, 0, sqrt(2.0) - d};
+        double qa[4], qb[4];
+        quat_axis_angle(yaxis, 0.25 * 3.141592653589793, qa);
+        quat_axis_angle(xaxis, 0.25 * 3.141592653589793, qb);
+        pose_of(qa, below, pa);
+        pose_of(qb, above, pb);
+        double o = sim_piece_overlap(box.pieces, pa, box.pieces, pb);
+        CHECK(fabs(o - d) < 1e-14, "edge on edge at %g: %.17g", d, o);
+    }
+    /* a box tilted about x, its lowest edge sunk by d into the floor's top (z = 0) */
+    for (double d = 1e-3; d < 0.2; d *= 4) {
+        double q[4], R[9];
+        quat_axis_angle(xaxis, 0.35, q);
+        quat_to_m3(q, R);
+        double low = HUGE_VAL;
+        for (size_t i = 0; i < box.nv; ++i) {
+            double p[3];
+            m3_mul_v(R, box.v + 3 * i, p);
+            low = fmin(low, p[2]);
+        }
+        const double t[3] = {0.7, 0.2, -low - d}, tf[3] = {0, 0, -0.5};
+        pose_of(q, t, pb);
+        pose_of(one, tf, pa);
+        double o = sim_piece_overlap(floor_.pieces, pa, box.pieces, pb);
+        CHECK(fabs(o - d) < 1e-14, "tilted box at %g: %.17g", d, o);
+        /* the same for an icosphere and each piece of a torus lying flat */
+        const double tb[3] = {0.1, -0.3, 0.5 - d};
+        double lowest = 0;
+        for (size_t i = 0; i < ball.nv; ++i)
+            lowest = fmin(lowest, ball.v[3 * i + 2]);
+        double tball[3] = {tb[0], tb[1], -lowest - d};
+        pose_of(one, tball, pb);
+        o = sim_piece_overlap(floor_.pieces, pa, ball.pieces, pb);
+        CHECK(fabs(o - d) < 1e-14, "icosphere at %g: %.17g", d, o);
+        double ttor[3] = {0, 0, 0.15 - d}, deepest = -HUGE_VAL;
+        pose_of(one, ttor, pb);
+        for (size_t i = 0; i < torus.npieces; ++i)
+            deepest = fmax(deepest, sim_piece_overlap(floor_.pieces, pa, torus.pieces + i, pb));
+        CHECK(fabs(deepest - d) < 1e-14, "torus at %g: %.17g", d, deepest);
+    }
+
+    /* in a world: a ball held whole inside a box 3 wide, surfaces apart: collide at 0 sees
+     * nothing, the nested test finds it, and its depth is the distance to the nearer face */
+    sim_shape big;
+    const double hb[3] = {1.5, 1.5, 1.5};
+    CHECK(sim_shape_box(&big, hb, SIM_BOX_DIAG_B) == 0, "big box");
+    sim_settings set = sim_default_settings();
+    sim_world w;
+    CHECK(sim_world_init(&w, &set) == 0, "world");
+    const double xb[3] = {0, 0, 0}, xs[3] = {0.4, 0, 0}, xfar[3] = {10, 0, 0};
+    CHECK(sim_world_add(&w, &big, xb, one, 0) == 0 && sim_world_add(&w, &ball, xs, one, 0) == 1 &&
+              sim_world_add(&w, &ball, xfar, one, 0) == 2,
+          "bodies");
+    double depth;
+    uint32_t a, b;
+    size_t touching;
+    CHECK(sim_world_overlap(&w, &depth, &a, &b, &touching) == 0, "overlap");
+    double extent = 0; /* the ball's extent along +x */
+    for (size_t i = 0; i < ball.nv; ++i)
+        extent = fmax(extent, ball.v[3 * i]);
+    /* the ball leaves the box fastest through x = 1.5: by 1.5 - 0.4 + extent */
+    CHECK(touching == 0 && a == 0 && b == 1 && fabs(depth - (1.5 - 0.4 + extent)) < 1e-14, "nested: %zu %u %u %.17g",
+          touching, a, b, depth);
+    sim_world_free(&w);
+    sim_shape_free(&big);
+    sim_shape_free(&box);
+    sim_shape_free(&floor_);
+    sim_shape_free(&ball);
+    sim_shape_free(&torus);
+}
+
+/// Runs a scenario for steps and returns its poses (12 per body; the caller frees).
+static double *run_poses(const char *name, int threads, int steps, size_t *n)
+{
+    sim_settings set = sim_default_settings();
+    set.threads = threads;
+    sim_run run;
+    if (sim_run_build(&run, name, &set) != 0)
+        return NULL;
+    for (int s = 0; s < steps; ++s)
+        if (sim_world_step(&run.world) != 0) {
+            sim_run_free(&run);
+            return NULL;
+        }
+    *n = run.world.n;
+    double *poses = malloc(12 * *n * sizeof(double));
+    if (poses)
+        memcpy(poses, run.world.poses, 12 * *n * sizeof(double));
+    sim_run_free(&run);
+    return poses;
+}
+
+static void test_determinism(void)
+{
+    const char *names[2] = {"stack-mixed", "pyramid"};
+    for (int k = 0; k < 2; ++k) {
+        size_t n1 = 0, n2 = 0, n3 = 0;
+        double *a = run_poses(names[k], 1, 60, &n1), *b = run_poses(names[k], 1, 60, &n2), *c = run_poses(names[k], 2, 60, &n3);
+        CHECK(a && b && c && n1 == n2 && n1 == n3, "%s ran", names[k]);
+        if (a && b && c && n1 == n2 && n1 == n3) {
+            CHECK(!memcmp(a, b, 12 * n1 * sizeof(double)), "%s: two runs differ", names[k]);
+            CHECK(!memcmp(a, c, 12 * n1 * sizeof(double)), "%s: 1 and 2 threads differ", names[k]);
+        }
+        free(a);
+        free(b);
+        free(c);
+    }
+}
+
+int main(void)
+{
+    test_mass();
+    test_overlap();
+    test_determinism();
+    if (failures) {
+        fprintf(stderr, "test_sim: %d failures\n", failures);
+        return 1;
+    }
+    printf("test_sim: mass properties, convex pieces, separating-axis depths, the nested case and determinism pass\n");
+    return 0;
+}

@@ -1,0 +1,499 @@
+/* SPDX-License-Identifier: MIT */
+/* The point queries of ttd._ttd (include/ttd/ttd.h, "Point queries"; docs/points.md):
+ * ttd.closest_points, ttd.signed_distance, ttd.winding_number, ttd.contains and ttd.sdf_grid on a
+ * ttd.Mesh. Points are any array of shape (..., 3), converted to the mesh's dtype; results have the
+ * shape (...). The interpreter lock is released while the library computes. */
+#include "ttd_py.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+enum { NCP = 8, NSD = 4, NWN = 2, NCT = 1 };
+
+static PyStructSequence_Field cp_fields[NCP + 1] = {
+    {"distance", "the exact distance to the mesh, shape (...); inf beyond upper_bound, NaN for a NaN point"},
+    {"point", "the closest point on the mesh, shape (..., 3), in the points' frame"},
+    {"triangle", "uint32: the triangle it lies on (ttd.NO_TRIANGLE beyond the bound or for a NaN point)"},
+    {"bary", "the weights of the triangle's vertices that give point, shape (..., 3)"},
+    {"feature", "uint8: vertex bits with a non-zero weight (1 bit: a vertex, 2: an edge, 3: the face)"},
+    {"flags", "uint8: ttd.POINT_* bits (NONFINITE, ABOVE_BOUND, INSIDE, DEGENERATE)"},
+    {"node_tests", "uint32: hierarchy nodes tested for the point"},
+    {"triangle_tests", "uint32: triangles measured exactly for the point"},
+    {NULL, NULL},
+};
+static PyStructSequence_Desc cp_desc = {
+    "ttd.ClosestPoints",
+    "The result of ttd.closest_points: a named tuple of arrays over the points, views of one\n"
+    "record array laid out as the C library's ttd_point_result_d/_f (ttd.POINT_RESULT_DTYPE_*).",
+    cp_fields, NCP,
+};
+static PyStructSequence_Field sd_fields[NSD + 1] = {
+    {"distance", "the signed distance, negative inside (winding number >= 1/2), shape (...)"},
+    {"point", "the closest point on the mesh, shape (..., 3)"},
+    {"triangle", "uint32: the triangle it lies on"},
+    {"inside", "bool: the point is inside (winding number >= 1/2)"},
+    {NULL, NULL},
+};
+static PyStructSequence_Desc sd_desc = {
+    "ttd.SignedDistance", "The result of ttd.signed_distance: a named tuple of arrays over the points.", sd_fields, NSD,
+};
+static PyStructSequence_Field wn_fields[NWN + 1] = {
+    {"winding", "float64: the generalized winding number, shape (...) (about 1 inside a closed mesh, 0 outside)"},
+    {"inside", "bool: winding >= 1/2"},
+    {NULL, NULL},
+};
+static PyStructSequence_Desc wn_desc = {
+    "ttd.WindingNumber", "The result of ttd.winding_number: a named tuple of arrays over the points.", wn_fields, NWN,
+};
+static PyStructSequence_Field ct_fields[NCT + 1] = {
+    {"inside", "bool: the point is inside the mesh (winding number >= 1/2), shape (...)"},
+    {NULL, NULL},
+};
+static PyStructSequence_Desc ct_desc = {
+    "ttd.Containment", "The result of ttd.contains: a named tuple of one bool array over the points.", ct_fields, NCT,
+};
+
+static PyTypeObject *ClosestPoints, *SignedDistance, *WindingNumber, *Containment;
+static PyObject *cp_names[NCP], *sd_names[NSD], *wn_names[NWN], *ct_names[NCT];
+static PyArray_Descr *cp_rec[2]; /* [0] float64, [1] float32 */
+
+#define CP_OFFSETS(T)                                                                                  \
+    {offsetof(T, distance), offsetof(T, point), offsetof(T, triangle), offsetof(T, bary), offsetof(T, feature), \
+     offsetof(T, flags), offsetof(T, node_tests), offsetof(T, triangle_tests)}
+
+static int add_obj(PyObject *module, const char *name, PyObject *obj)
+{
+    if (obj == NULL)
+        return -1;
+    Py_INCREF(obj);
+    if (PyModule_AddObject(module, name, obj) < 0) {
+        Py_DECREF(obj);
+        return -1;
+    }
+    return 0;
+}
+
+int ttd_py_points_init(PyObject *module)
+{
+    if (!(ClosestPoints = ttd_py_named_tuple(module, &cp_desc, cp_names)) ||
+        !(SignedDistance = ttd_py_named_tuple(module, &sd_desc, sd_names)) ||
+        !(WindingNumber = ttd_py_named_tuple(module, &wn_desc, wn_names)) ||
+        !(Containment = ttd_py_named_tuple(module, &ct_desc, ct_names)))
+        return -1;
+    static const size_t off[2][NCP] = {CP_OFFSETS(ttd_point_result_d), CP_OFFSETS(ttd_point_result_f)};
+    static const size_t size[2] = {sizeof(ttd_point_result_d), sizeof(ttd_point_result_f)};
+    static const char *const reals[2] = {"f8", "f4"}, *const vecs[2] = {"(3,)f8", "(3,)f4"};
+    for (int i = 0; i < 2; ++i) {
+        const char *fmt[NCP] = {reals[i], vecs[i], "u4", vecs[i], "u1", "u1", "u4", "u4"};
+        cp_rec[i] = ttd_py_record_descr(NCP, cp_names, fmt, off[i], size[i]);
+        if (add_obj(module, i ? "POINT_RESULT_DTYPE_FLOAT32" : "POINT_RESULT_DTYPE_FLOAT64", (PyObject *)cp_rec[i]) < 0)
+            return -1;
+    }
+    if (PyModule_AddIntConstant(module, "POINT_NONFINITE", TTD_POINT_NONFINITE) < 0 ||
+        PyModule_AddIntConstant(module, "POINT_ABOVE_BOUND", TTD_POINT_ABOVE_BOUND) < 0 ||
+        PyModule_AddIntConstant(module, "POINT_INSIDE", TTD_POINT_INSIDE) < 0 ||
+        PyModule_AddIntConstant(module, "POINT_DEGENERATE", TTD_POINT_DEGENERATE) < 0)
+        return -1;
+    return 0;
+}
+
+/* What every point query takes, checked and converted. */
+typedef struct pq {
+    const ttd_py_mesh *mesh;
+    int type, f;            /* the mesh's NPY_DOUBLE or NPY_FLOAT; f: float */
+    ttd_options opt;
+    PyArrayObject *points;  /* C-contiguous, of type (owned) */
+    npy_intp n;
+    int nd;                 /* result dimensions: the points' minus the last */
+    npy_intp dims[NPY_MAXDIMS];
+    double pose_d[12];
+    float pose_f[12];
+    int has_pose;
+} pq;
+
+static int pq_begin(PyObject *mesh, PyObject *points, PyObject *pose, PyObject *isa, PyObject *threads, pq *q)
+{
+    memset(q, 0, sizeof *q);
+    if (!PyObject_TypeCheck(mesh, &ttd_py_MeshType)) {
+        PyErr_Format(PyExc_TypeError, "mesh must be a ttd.Mesh, not %.100s", Py_TYPE(mesh)->tp_name);
+        return -1;
+    }
+    q->mesh = (const ttd_py_mesh *)mesh;
+    q->type = q->mesh->type;
+    q->f = q->type == NPY_FLOAT;
+    if (ttd_py_options(NULL, isa, threads, NULL, NULL, NULL, &q->opt) < 0)
+        return -1;
+    PyArrayObject *a = ttd_py_as_array(points, "points");
+    if (a == NULL)
+        return -1;
+    const int nd = PyArray_NDIM(a);
+    if (nd < 1 || PyArray_DIM(a, nd - 1) != 3) {
+        PyObject *shape = ttd_py_shape(a);
+        PyErr_Format(PyExc_ValueError, "points must have shape (..., 3), not %S", shape);
+        Py_XDECREF(shape);
+        Py_DECREF(a);
+        return -1;
+    }
+    q->points = ttd_py_as_real(a, "points", q->type);
+    Py_DECREF(a);
+    if (q->points == NULL)
+        return -1;
+    q->nd = nd - 1;
+    q->n = 1;
+    for (int i = 0; i < q->nd; ++i) {
+        q->dims[i] = PyArray_DIM(q->points, i);
+        q->n *= q->dims[i];
+    }
+    if (pose != NULL && pose != Py_None) {
+        PyArrayObject *p = ttd_py_as_array(pose, "pose"), *pd = NULL;
+        if (p != NULL && PyArray_NDIM(p) == 2 && (PyArray_DIM(p, 0) == 3 || PyArray_DIM(p, 0) == 4) &&
+            PyArray_DIM(p, 1) == 4)
+            pd = ttd_py_as_real(p, "pose", NPY_DOUBLE);
+        else if (p != NULL)
+            PyErr_SetString(PyExc_ValueError, "pose must have shape (3, 4) or (4, 4): [R | t], x_points = R x_mesh + t");
+        Py_XDECREF(p);
+        if (pd == NULL) {
+            Py_CLEAR(q->points);
+            return -1;
+        }
+        const double *x = PyArray_DATA(pd);
+        for (int k = 0; k < 12; ++k) {
+            q->pose_d[k] = x[k];
+            q->pose_f[k] = ttd_py_to_float(x[k]);
+        }
+        Py_DECREF(pd);
+        q->has_pose = 1;
+    }
+    return 0;
+}
+
+static void pq_end(pq *q)
+{
+    Py_CLEAR(q->points);
+}
+
+/* The status's exception or warning; -1 when one was raised. */
+static int pq_status(ttd_status st, const pq *q)
+{
+    if (st == TTD_ERR_NONFINITE_INPUT) {
+        return PyErr_WarnEx(ttd_py_NonFiniteInputWarning,
+                            "ttd: some points had NaN or infinite coordinates; their outputs are NaN", 1) < 0
+                   ? -1
+                   : 0;
+    }
+    if (st == TTD_ERR_COORDINATE_RANGE) {
+        PyErr_Format(PyExc_ValueError, "ttd: a point (in the mesh's frame) or the pose is beyond the meshes' range, " TTD_PY_RANGE_TEXT);
+        return -1;
+    }
+    if (st == TTD_ERR_BAD_POSE) {
+        PyErr_SetString(PyExc_ValueError, "ttd: pose is not a rotation and translation (R^T R - I within 1e-6, det R > 0, finite)");
+        return -1;
+    }
+    if (st == TTD_ERR_BAD_OPTIONS && q != NULL) {
+        PyErr_SetString(PyExc_ValueError, "ttd: upper_bound must be >= 0 (or None)");
+        return -1;
+    }
+    return ttd_py_raise_fatal(st, &q->opt);
+}
+
+/* A new array of the result shape (...) plus extra trailing dimensions. */
+static PyArrayObject *pq_array(const pq *q, int type_num)
+{
+    return (PyArrayObject *)PyArray_SimpleNew(q->nd, q->dims, type_num);
+}
+
+static PyArrayObject *pq_records(const pq *q)
+{
+    PyArray_Descr *d = cp_rec[q->f];
+    Py_INCREF(d);
+    return (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, d, q->nd, q->dims, NULL, NULL, 0, NULL);
+}
+
+/* The library call (closest: sd NULL; signed: sd set) with the lock released. */
+static ttd_status pq_closest(const pq *q, double ub, void *rec, void *sd)
+{
+    ttd_status st;
+    const void *pts = PyArray_DATA(q->points);
+    const size_t n = (size_t)q->n;
+    Py_BEGIN_ALLOW_THREADS
+    if (q->f)
+        st = sd ? ttd_points_signed_distance_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL,
+                                               ttd_py_to_float(ub), sd, rec)
+                : ttd_points_closest_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL, ttd_py_to_float(ub), rec);
+    else
+        st = sd ? ttd_points_signed_distance_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, ub, sd, rec)
+                : ttd_points_closest_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, ub, rec);
+    Py_END_ALLOW_THREADS
+    return st;
+}
+
+PyDoc_STRVAR(closest_points_doc,
+"closest_points(mesh, points, *, pose=None, upper_bound=None, isa='auto', threads=0)\n"
+"--\n\n"
+"The exact closest point of mesh to each point: the minimum over every triangle of the exact\n"
+"point-triangle distance, bit for bit, ties to the smallest triangle index.\n\n"
+"mesh : ttd.Mesh (float64 or float32: the query runs in its dtype).\n"
+"points : array of shape (..., 3), converted to the mesh's dtype.\n"
+"pose : optional (3, 4) or (4, 4) [R | t]: the mesh's pose in the points' frame.\n"
+"upper_bound : optional float >= 0: points farther than it get inf and ttd.NO_TRIANGLE.\n\n"
+"Returns a ttd.ClosestPoints of arrays of shape (...): distance, point (..., 3), triangle,\n"
+"bary (..., 3), feature, flags, node_tests, triangle_tests. NaN or infinite points get NaN\n"
+"outputs and a ttd.NonFiniteInputWarning. The interpreter lock is released while it computes.");
+
+static PyObject *py_closest_points(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "points", "pose", "upper_bound", "isa", "threads", NULL};
+    PyObject *mesh, *points, *pose = NULL, *ub_obj = NULL, *isa = NULL, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$OOOO:closest_points", kwlist, &mesh, &points, &pose, &ub_obj, &isa,
+                                     &threads))
+        return NULL;
+    double ub = (double)INFINITY;
+    pq q;
+    if (ttd_py_real_arg(ub_obj, "upper_bound", &ub) < 0 || pq_begin(mesh, points, pose, isa, threads, &q) < 0)
+        return NULL;
+    PyObject *result = NULL;
+    PyArrayObject *rec = pq_records(&q);
+    if (rec == NULL)
+        goto done;
+    if (q.n > 0 && pq_status(pq_closest(&q, ub, PyArray_DATA(rec), NULL), &q) < 0)
+        goto done;
+    result = ttd_py_named_new(ClosestPoints, NCP);
+    if (result != NULL && ttd_py_set_views(result, 0, rec, cp_names, NCP) < 0)
+        Py_CLEAR(result);
+done:
+    Py_XDECREF(rec);
+    pq_end(&q);
+    return result;
+}
+
+PyDoc_STRVAR(signed_distance_doc,
+"signed_distance(mesh, points, *, pose=None, upper_bound=None, isa='auto', threads=0)\n"
+"--\n\n"
+"Signed distances: the exact closest-point distance, negative inside the mesh (generalized\n"
+"winding number >= 1/2; for a closed mesh oriented outwards, its solid).\n\n"
+"Arguments as ttd.closest_points. Returns a ttd.SignedDistance: distance (...), point (..., 3),\n"
+"triangle (...), inside (...) bool.");
+
+static PyObject *py_signed_distance(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "points", "pose", "upper_bound", "isa", "threads", NULL};
+    PyObject *mesh, *points, *pose = NULL, *ub_obj = NULL, *isa = NULL, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$OOOO:signed_distance", kwlist, &mesh, &points, &pose, &ub_obj,
+                                     &isa, &threads))
+        return NULL;
+    double ub = (double)INFINITY;
+    pq q;
+    if (ttd_py_real_arg(ub_obj, "upper_bound", &ub) < 0 || pq_begin(mesh, points, pose, isa, threads, &q) < 0)
+        return NULL;
+    PyObject *result = NULL, *views = NULL;
+    PyArrayObject *rec = pq_records(&q), *sd = pq_array(&q, q.type), *inside = pq_array(&q, NPY_BOOL);
+    if (rec == NULL || sd == NULL || inside == NULL)
+        goto done;
+    if (q.n > 0 && pq_status(pq_closest(&q, ub, PyArray_DATA(rec), PyArray_DATA(sd)), &q) < 0)
+        goto done;
+    npy_bool *in = PyArray_DATA(inside);
+    for (npy_intp i = 0; i < q.n; ++i)
+        in[i] = (q.f ? ((const ttd_point_result_f *)PyArray_DATA(rec))[i].flags
+                     : ((const ttd_point_result_d *)PyArray_DATA(rec))[i].flags) & TTD_POINT_INSIDE
+                    ? 1
+                    : 0;
+    views = ttd_py_named_new(ClosestPoints, NCP);
+    if (views == NULL || ttd_py_set_views(views, 0, rec, cp_names, NCP) < 0)
+        goto done;
+    result = ttd_py_named_new(SignedDistance, NSD);
+    if (result == NULL)
+        goto done;
+    PyTuple_SET_ITEM(result, 0, (PyObject *)sd);
+    sd = NULL;
+    PyObject *pt = PyTuple_GET_ITEM(views, 1), *tri = PyTuple_GET_ITEM(views, 2);
+    Py_INCREF(pt);
+    Py_INCREF(tri);
+    PyTuple_SET_ITEM(result, 1, pt);
+    PyTuple_SET_ITEM(result, 2, tri);
+    PyTuple_SET_ITEM(result, 3, (PyObject *)inside);
+    inside = NULL;
+done:
+    Py_XDECREF(views);
+    Py_XDECREF(rec);
+    Py_XDECREF(sd);
+    Py_XDECREF(inside);
+    pq_end(&q);
+    return result;
+}
+
+/* The winding numbers (as float64) into w; -1 with an exception. */
+static int pq_winding(const pq *q, double *w)
+{
+    if (q->n == 0)
+        return 0;
+    ttd_status st;
+    const void *pts = PyArray_DATA(q->points);
+    const size_t n = (size_t)q->n;
+    float *wf = q->f ? PyMem_RawMalloc(n * sizeof *wf) : NULL;
+    if (q->f && wf == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    Py_BEGIN_ALLOW_THREADS
+    if (q->f) {
+        st = ttd_points_winding_number_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL, wf);
+        for (size_t i = 0; i < n && st < TTD_ERR_FIRST_FATAL; ++i)
+            w[i] = (double)wf[i];
+    } else {
+        st = ttd_points_winding_number_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, w);
+    }
+    Py_END_ALLOW_THREADS
+    PyMem_RawFree(wf);
+    return pq_status(st, q);
+}
+
+PyDoc_STRVAR(winding_number_doc,
+"winding_number(mesh, points, *, pose=None, isa='auto', threads=0)\n"
+"--\n\n"
+"The generalized winding number of mesh about each point, computed hierarchically (Barill et al.\n"
+"2018) with a bounded error (docs/points.md). Returns a ttd.WindingNumber: winding (...) float64,\n"
+"inside (...) bool (winding >= 1/2).");
+
+PyDoc_STRVAR(contains_doc,
+"contains(mesh, points, *, pose=None, isa='auto', threads=0)\n"
+"--\n\n"
+"Whether each point is inside mesh (generalized winding number >= 1/2). Returns a\n"
+"ttd.Containment: inside (...) bool.");
+
+static PyObject *winding_or_contains(PyObject *args, PyObject *kwargs, int contains)
+{
+    static char *kwlist[] = {"mesh", "points", "pose", "isa", "threads", NULL};
+    PyObject *mesh, *points, *pose = NULL, *isa = NULL, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, contains ? "OO|$OOO:contains" : "OO|$OOO:winding_number", kwlist, &mesh,
+                                     &points, &pose, &isa, &threads))
+        return NULL;
+    pq q;
+    if (pq_begin(mesh, points, pose, isa, threads, &q) < 0)
+        return NULL;
+    PyObject *result = NULL;
+    PyArrayObject *w = pq_array(&q, NPY_DOUBLE), *inside = pq_array(&q, NPY_BOOL);
+    if (w == NULL || inside == NULL || pq_winding(&q, PyArray_DATA(w)) < 0)
+        goto done;
+    const double *wv = PyArray_DATA(w);
+    npy_bool *in = PyArray_DATA(inside);
+    for (npy_intp i = 0; i < q.n; ++i)
+        in[i] = wv[i] >= 0.5;
+    result = ttd_py_named_new(contains ? Containment : WindingNumber, contains ? NCT : NWN);
+    if (result == NULL)
+        goto done;
+    if (contains) {
+        PyTuple_SET_ITEM(result, 0, (PyObject *)inside);
+    } else {
+        PyTuple_SET_ITEM(result, 0, (PyObject *)w);
+        PyTuple_SET_ITEM(result, 1, (PyObject *)inside);
+        w = NULL;
+    }
+    inside = NULL;
+done:
+    Py_XDECREF(w);
+    Py_XDECREF(inside);
+    pq_end(&q);
+    return result;
+}
+
+static PyObject *py_winding_number(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    return winding_or_contains(args, kwargs, 0);
+}
+
+static PyObject *py_contains(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    return winding_or_contains(args, kwargs, 1);
+}
+
+PyDoc_STRVAR(sdf_grid_doc,
+"sdf_grid(mesh, origin, step, shape, *, isa='auto', threads=0)\n"
+"--\n\n"
+"Signed distances on a regular grid, in the mesh's frame: an array of the given shape (nx, ny,\n"
+"nz) and the mesh's dtype whose [i, j, k] is the signed distance at origin + (i, j, k) * step\n"
+"(each coordinate computed as origin[c] + i * step[c] in the mesh's dtype). step is one number\n"
+"or three.");
+
+static PyObject *py_sdf_grid(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "origin", "step", "shape", "isa", "threads", NULL};
+    PyObject *mesh, *origin, *step, *shape, *isa = NULL, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOO|$OO:sdf_grid", kwlist, &mesh, &origin, &step, &shape, &isa,
+                                     &threads))
+        return NULL;
+    if (!PyObject_TypeCheck(mesh, &ttd_py_MeshType)) {
+        PyErr_Format(PyExc_TypeError, "mesh must be a ttd.Mesh, not %.100s", Py_TYPE(mesh)->tp_name);
+        return NULL;
+    }
+    const ttd_py_mesh *m = (const ttd_py_mesh *)mesh;
+    ttd_options opt;
+    if (ttd_py_options(NULL, isa, threads, NULL, NULL, NULL, &opt) < 0)
+        return NULL;
+    double o[3], s[3];
+    npy_intp dims[3];
+    PyArrayObject *oa = ttd_py_as_array(origin, "origin"), *sa = ttd_py_as_array(step, "step"),
+                  *ha = ttd_py_as_array(shape, "shape");
+    PyArrayObject *od = oa ? ttd_py_as_real(oa, "origin", NPY_DOUBLE) : NULL, *sdd = sa ? ttd_py_as_real(sa, "step", NPY_DOUBLE) : NULL,
+                  *hd = ha ? ttd_py_as_real(ha, "shape", NPY_DOUBLE) : NULL;
+    Py_XDECREF(oa);
+    Py_XDECREF(sa);
+    Py_XDECREF(ha);
+    int ok = od && sdd && hd && PyArray_SIZE(od) == 3 && (PyArray_SIZE(sdd) == 3 || PyArray_SIZE(sdd) == 1) &&
+             PyArray_SIZE(hd) == 3;
+    for (int c = 0; ok && c < 3; ++c) {
+        o[c] = ((const double *)PyArray_DATA(od))[c];
+        s[c] = ((const double *)PyArray_DATA(sdd))[PyArray_SIZE(sdd) == 1 ? 0 : c];
+        const double h = ((const double *)PyArray_DATA(hd))[c];
+        ok = h >= 0 && h == floor(h) && h < 1e15;
+        dims[c] = (npy_intp)h;
+    }
+    Py_XDECREF(od);
+    Py_XDECREF(sdd);
+    Py_XDECREF(hd);
+    if (!ok) {
+        if (!PyErr_Occurred())
+            PyErr_SetString(PyExc_ValueError, "sdf_grid: origin is 3 numbers, step 1 or 3, shape 3 non-negative integers");
+        return NULL;
+    }
+    PyArrayObject *out = (PyArrayObject *)PyArray_SimpleNew(3, dims, m->type);
+    if (out == NULL)
+        return NULL;
+    if (PyArray_SIZE(out) == 0)
+        return (PyObject *)out;
+    const size_t sz[3] = {(size_t)dims[0], (size_t)dims[1], (size_t)dims[2]};
+    ttd_status st;
+    Py_BEGIN_ALLOW_THREADS
+    if (m->type == NPY_FLOAT) {
+        const float of[3] = {ttd_py_to_float(o[0]), ttd_py_to_float(o[1]), ttd_py_to_float(o[2])};
+        const float sf[3] = {ttd_py_to_float(s[0]), ttd_py_to_float(s[1]), ttd_py_to_float(s[2])};
+        st = ttd_sdf_grid_f(&opt, m->mesh, of, sf, sz, PyArray_DATA(out));
+    } else {
+        st = ttd_sdf_grid_d(&opt, m->mesh, o, s, sz, PyArray_DATA(out));
+    }
+    Py_END_ALLOW_THREADS
+    if (st == TTD_ERR_BAD_OPTIONS) {
+        PyErr_SetString(PyExc_ValueError, "sdf_grid: origin and step must be finite");
+        Py_DECREF(out);
+        return NULL;
+    }
+    if (ttd_py_raise_fatal(st, &opt) < 0) {
+        Py_DECREF(out);
+        return NULL;
+    }
+    return (PyObject *)out;
+}
+
+PyMethodDef ttd_py_points_methods[] = {
+    {"closest_points", (PyCFunction)(void (*)(void))py_closest_points, METH_VARARGS | METH_KEYWORDS, closest_points_doc},
+    {"signed_distance", (PyCFunction)(void (*)(void))py_signed_distance, METH_VARARGS | METH_KEYWORDS, signed_distance_doc},
+    {"winding_number", (PyCFunction)(void (*)(void))py_winding_number, METH_VARARGS | METH_KEYWORDS, winding_number_doc},
+    {"contains", (PyCFunction)(void (*)(void))py_contains, METH_VARARGS | METH_KEYWORDS, contains_doc},
+    {"sdf_grid", (PyCFunction)(void (*)(void))py_sdf_grid, METH_VARARGS | METH_KEYWORDS, sdf_grid_doc},
+    {NULL, NULL, 0, NULL},
+};

@@ -1,0 +1,80 @@
+/* SPDX-License-Identifier: MIT */
+/* Point queries against a mesh (include/ttd/ttd.h, "Point queries"; docs/points.md): what
+ * src/api/points_api.c calls once it has checked its arguments.
+ *
+ * A mesh's point data is made from its hierarchy and vertices on the first point query and kept
+ * in the mesh (struct ttd_mesh.points, set atomically: meshes are shared between threads):
+ *  - every node's triangle children prepared for the point kernel (core/point_layout.h), one
+ *    block of TTD_PT_LANES per node that has any (the other slots hold a copy of its first
+ *    triangle, harmless in the lanes), so a node's triangles are measured in one kernel call;
+ *  - every child slot's winding-number moments (WM_* below): area vector, centre, second moment,
+ *    area and radius, summed bottom-up, for the hierarchical winding number.
+ * Both depend on the vertices: a change of vertices in place must call ttd_points_data_refresh. */
+#ifndef TTD_POINTS_POINTS_H
+#define TTD_POINTS_POINTS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "engine/batch.h"
+#include "mesh/mesh.h"
+
+/* Winding-number moments of one child slot (a triangle or a subtree), in double, relative to the
+ * mesh's origin: the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
+ * centroid), the second moment M[i][j] = integral of (x - pc)_i n_j dA (row-major), the
+ * (unsigned) area and a radius about pc that holds every vertex below. */
+enum {
+    WM_N = 0,      /* 3 */
+    WM_C = 3,      /* 3 */
+    WM_M = 6,      /* 9 */
+    WM_AREA = 15,
+    WM_RADIUS = 16,
+    WM_COUNT = 17
+};
+
+typedef struct ttd_points_data {
+    void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
+    int bytes;             /* the mesh's precision */
+    size_t nnodes;
+    int32_t *block_of;     /* per node: its block of prepared triangles, or -1 */
+    uint8_t *tri_mask;     /* per node: the slots that hold triangles (bit j) */
+    uint8_t *live_mask;    /* per node: the slots in use (the walk reads it here, not from the node's last line) */
+    size_t nblocks;
+    void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
+    double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at
+                            * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j] */
+} ttd_points_data;
+
+/// The mesh's point data, made on first use with `threads` workers; NULL when out of memory.
+const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int threads);
+
+/// Recomputes the point data of a mesh whose vertices changed in place (same triangles, same
+/// hierarchy shape, refitted boxes): a no-op when no point query has made it yet. The one function
+/// that computes it, from the hierarchy and the vertices, bottom-up.
+void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads);
+
+/* The closest point of mesh to each of n points (3n reals of the mesh's precision, in its frame)
+ * within upper_bound, into results (ttd_point_result_d or _f). Points must be finite or flagged
+ * NaN by the caller: a point with a NaN coordinate gets NaN outputs and TTD_POINT_NONFINITE.
+ * Returns TTD_OK or TTD_ERR_OUT_OF_MEMORY. points/closest_d.c, closest_f.c. */
+ttd_status ttd_points_query_closest_d(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
+                                      const double *points, double upper_bound, ttd_point_result_d *results);
+ttd_status ttd_points_query_closest_f(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
+                                      const float *points, float upper_bound, ttd_point_result_f *results);
+
+/* The winding number of the mesh about x (the mesh's coordinates, in double), hierarchically
+ * (points/winding.c; docs/points.md): far subtrees by their moments, near triangles exactly.
+ * *bound (when not NULL) gets a rigorous bound on the error of the far-field terms. */
+double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double *bound);
+
+/* The winding number with its error certified below 1/4 (points/winding.c): the far-field
+ * criterion is tightened until the bound is, down to every triangle exactly. For the solid mode
+ * of the mesh queries, where one point decides a pose. */
+double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
+
+/* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
+ * winding (double), over the threads: TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN for a NaN point. */
+ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
+                                    const void *points, double *winding);
+
+#endif /* TTD_POINTS_POINTS_H */

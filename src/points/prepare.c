@@ -1,0 +1,252 @@
+/* SPDX-License-Identifier: MIT */
+/* A mesh's point data (points/points.h): prepared triangle blocks and winding-number moments,
+ * computed from the hierarchy and the vertices by one function (points_compute), made on first use
+ * and kept in the mesh. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/point_layout.h"
+#include "engine/parallel.h"
+#include "mesh/memory.h"
+#include "points/points.h"
+#include "scalar/scalar.h"
+
+static void points_free(void *p)
+{
+    ttd_points_data *pd = p;
+    if (pd == NULL)
+        return;
+    free(pd->block_of);
+    free(pd->tri_mask);
+    free(pd->live_mask);
+    free(pd->blocks);
+    free(pd->moments);
+    free(pd);
+}
+
+/* The child array and count of node n, either precision. */
+static const int32_t *node_child(const struct ttd_mesh *m, size_t n, int *count)
+{
+    if (m->bytes == 8) {
+        const ttd_node_d *x = (const ttd_node_d *)m->nodes + n;
+        *count = x->count;
+        return x->child;
+    }
+    const ttd_node_f *x = (const ttd_node_f *)m->nodes + n;
+    *count = x->count;
+    return x->child;
+}
+
+/* Vertex k of triangle t, in double, relative to the mesh's origin when rel is set. */
+static void tri_vertex(const struct ttd_mesh *m, size_t t, int k, int rel, double out[3])
+{
+    const size_t v = m->tris[3 * t + (size_t)k];
+    for (int c = 0; c < 3; ++c) {
+        const double x = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
+                                       : (double)((const float *)m->verts)[3 * v + (size_t)c];
+        out[c] = rel ? x - m->origin[c] : x;
+    }
+}
+
+typedef struct prep_job {
+    const struct ttd_mesh *m;
+    ttd_points_data *pd;
+} prep_job;
+
+#define PREP_NODES 256 /* nodes per block of the parallel preparation */
+
+/* The prepared blocks of nodes [256 b, 256 b + 256). */
+static void prepare_blocks(void *ctx, size_t b, int worker)
+{
+    (void)worker;
+    const prep_job *J = ctx;
+    const struct ttd_mesh *m = J->m;
+    const ttd_points_data *pd = J->pd;
+    const size_t n1 = (b + 1) * PREP_NODES < pd->nnodes ? (b + 1) * PREP_NODES : pd->nnodes;
+    for (size_t n = b * PREP_NODES; n < n1; ++n) {
+        const int32_t blk = pd->block_of[n];
+        if (blk < 0)
+            continue;
+        int count;
+        const int32_t *child = node_child(m, n, &count);
+        int first = 0; /* a slot without a triangle gets a copy of the node's first triangle */
+        while (child[first] >= 0)
+            ++first;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            const int src = j < count && child[j] < 0 ? j : first;
+            const size_t t = (size_t)(-1 - child[src]);
+            const size_t off = (size_t)blk * TTD_PT_ROWS * TTD_PT_LANES + (size_t)j;
+            if (m->bytes == 8) {
+                double v[9];
+                for (int k = 0; k < 9; ++k)
+                    v[k] = ((const double *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+                ttd_point_prepare_d(v, (double *)pd->blocks + off, TTD_PT_LANES);
+                ((double *)pd->blocks)[off + (size_t)TTD_PT_COUNT * TTD_PT_LANES] = 0;
+            } else {
+                float v[9];
+                for (int k = 0; k < 9; ++k)
+                    v[k] = ((const float *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+                ttd_point_prepare_f(v, (float *)pd->blocks + off, TTD_PT_LANES);
+                ((float *)pd->blocks)[off + (size_t)TTD_PT_COUNT * TTD_PT_LANES] = 0;
+            }
+        }
+    }
+}
+
+/* The moments of triangle t (relative to the origin) into w[f * TTD_NODE_WIDTH] (slot j's base). */
+static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
+{
+    double v[3][3], e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; ++k)
+        tri_vertex(m, t, k, 1, v[k]);
+    for (int c = 0; c < 3; ++c) {
+        e1[c] = v[1][c] - v[0][c];
+        e2[c] = v[2][c] - v[0][c];
+    }
+    n[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
+    n[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
+    n[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
+    double r2 = 0;
+    for (int c = 0; c < 3; ++c) {
+        w[(WM_N + c) * TTD_NODE_WIDTH] = n[c];
+        w[(WM_C + c) * TTD_NODE_WIDTH] = (v[0][c] + v[1][c] + v[2][c]) / 3;
+    }
+    for (int k = 0; k < 3; ++k) {
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = v[k][c] - w[(WM_C + c) * TTD_NODE_WIDTH];
+            d2 += d * d;
+        }
+        r2 = d2 > r2 ? d2 : r2;
+    }
+    for (int i = 0; i < 9; ++i) /* the first moment about the centroid vanishes */
+        w[(WM_M + i) * TTD_NODE_WIDTH] = 0;
+    w[WM_AREA * TTD_NODE_WIDTH] = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    w[WM_RADIUS * TTD_NODE_WIDTH] = sqrt(r2) * (1 + 1e-12);
+}
+
+/* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors
+ * and areas add, the centre is the area-weighted mean (the plain mean without area), the second
+ * moments move to it (M += (c_i - pc) n_i^T), and the radius holds every child's ball. */
+static void node_moments(const ttd_points_data *pd, size_t c, int count, double *w)
+{
+    const double *x = pd->moments + c * WM_COUNT * TTD_NODE_WIDTH;
+#define X(f, j) x[(size_t)(f) * TTD_NODE_WIDTH + (size_t)(j)]
+#define W(f) w[(size_t)(f) * TTD_NODE_WIDTH]
+    double area = 0, pc[3] = {0, 0, 0}, mean[3] = {0, 0, 0};
+    for (int j = 0; j < count; ++j) {
+        area += X(WM_AREA, j);
+        for (int k = 0; k < 3; ++k) {
+            pc[k] += X(WM_AREA, j) * X(WM_C + k, j);
+            mean[k] += X(WM_C + k, j) / count;
+        }
+    }
+    for (int k = 0; k < 3; ++k)
+        pc[k] = area > 0 ? pc[k] / area : mean[k];
+    double radius = 0, M[9] = {0}, N[3] = {0};
+    for (int j = 0; j < count; ++j) {
+        double d[3], d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            d[k] = X(WM_C + k, j) - pc[k];
+            d2 += d[k] * d[k];
+            N[k] += X(WM_N + k, j);
+        }
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                M[3 * a + b] += X(WM_M + 3 * a + b, j) + d[a] * X(WM_N + b, j);
+        const double r = sqrt(d2) + X(WM_RADIUS, j);
+        radius = r > radius ? r : radius;
+    }
+    for (int k = 0; k < 3; ++k) {
+        W(WM_N + k) = N[k];
+        W(WM_C + k) = pc[k];
+    }
+    for (int i = 0; i < 9; ++i)
+        W(WM_M + i) = M[i];
+    W(WM_AREA) = area;
+    W(WM_RADIUS) = radius * (1 + 1e-12); /* covers the rounding of the sums above */
+#undef X
+#undef W
+}
+
+/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the moments bottom-up
+ * (a node's children come after it in the pre-order numbering, so a reverse pass sees them first). */
+static void points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
+{
+    prep_job J = {m, pd};
+    ttd_parallel_for((pd->nnodes + PREP_NODES - 1) / PREP_NODES, threads, prepare_blocks, &J);
+    for (size_t n = pd->nnodes; n-- > 0;) {
+        int count;
+        const int32_t *child = node_child(m, n, &count);
+        double *w = pd->moments + n * WM_COUNT * TTD_NODE_WIDTH;
+        memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
+        for (int j = 0; j < count; ++j) {
+            if (child[j] < 0) {
+                triangle_moments(m, (size_t)(-1 - child[j]), w + j);
+            } else {
+                int cc;
+                (void)node_child(m, (size_t)child[j], &cc);
+                node_moments(pd, (size_t)child[j], cc, w + j);
+            }
+        }
+    }
+}
+
+static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
+{
+    ttd_points_data *pd = calloc(1, sizeof *pd);
+    if (pd == NULL)
+        return NULL;
+    pd->destroy = points_free;
+    pd->bytes = m->bytes;
+    pd->nnodes = m->nnodes;
+    pd->block_of = malloc(m->nnodes * sizeof *pd->block_of);
+    pd->tri_mask = malloc(m->nnodes);
+    pd->live_mask = malloc(m->nnodes);
+    if (pd->block_of == NULL || pd->tri_mask == NULL || pd->live_mask == NULL)
+        goto fail;
+    for (size_t n = 0; n < m->nnodes; ++n) {
+        int count;
+        const int32_t *child = node_child(m, n, &count);
+        unsigned mask = 0;
+        for (int j = 0; j < count; ++j)
+            mask |= (unsigned)(child[j] < 0) << j;
+        pd->tri_mask[n] = (uint8_t)mask;
+        pd->live_mask[n] = (uint8_t)((1u << count) - 1u);
+        pd->block_of[n] = mask ? (int32_t)pd->nblocks++ : -1;
+    }
+    pd->blocks = ttd_big_alloc(pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes);
+    pd->moments = ttd_big_alloc(m->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
+    if (pd->blocks == NULL || pd->moments == NULL)
+        goto fail;
+    points_compute(m, pd, threads);
+    return pd;
+fail:
+    points_free(pd);
+    return NULL;
+}
+
+const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int threads)
+{
+    /* a cache of what the immutable mesh determines, not a change to it */
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    ttd_points_data *pd = __atomic_load_n((ttd_points_data **)&m->points, __ATOMIC_ACQUIRE);
+    if (pd != NULL)
+        return pd;
+    pd = points_make(m, threads);
+    if (pd == NULL)
+        return NULL;
+    void *expected = NULL;
+    if (!__atomic_compare_exchange_n(&m->points, &expected, pd, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        points_free(pd); /* another thread made it first: the same data */
+        return expected;
+    }
+    return pd;
+}
+
+void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads)
+{
+    if (mesh->points != NULL)
+        points_compute(mesh, mesh->points, threads);
+}

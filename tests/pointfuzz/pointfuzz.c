@@ -1,0 +1,272 @@
+/* SPDX-License-Identifier: MIT */
+/* The point queries' differential fuzzer core (pointfuzz.h). */
+#include "pointfuzz/pointfuzz.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ttd/ttd.h"
+
+void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed)
+{
+    src->data = data;
+    src->size = data ? size : 0;
+    src->pos = 0;
+    uint64_t h = seed ^ 0x9E3779B97F4A7C15ull;
+    for (size_t i = 0; i < src->size; ++i)
+        h = (h ^ data[i]) * 0x100000001B3ull;
+    src->state = h;
+}
+
+static uint64_t pf_u64(pf_src *s)
+{
+    if (s->pos + 8 <= s->size) {
+        uint64_t x = 0;
+        memcpy(&x, s->data + s->pos, 8);
+        s->pos += 8;
+        return x;
+    }
+    s->pos = s->size;
+    uint64_t z = (s->state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static double pf_unit(pf_src *s)
+{
+    return (double)(pf_u64(s) >> 11) * 0x1p-53;
+}
+
+static int pf_int(pf_src *s, int n)
+{
+    return (int)(pf_u64(s) % (uint64_t)n);
+}
+
+#define PF_MAX_TRIS 24
+#define PF_MAX_POINTS 48
+
+typedef struct pf_case {
+    int use_float, has_pose;
+    size_t nv, nt, n;
+    double v[9 * PF_MAX_TRIS];
+    uint32_t t[3 * PF_MAX_TRIS];
+    double p[3 * PF_MAX_POINTS];
+    double pose[12];
+    double ub;
+} pf_case;
+
+/* A mesh of hostile triangles in [0, 1]^3, some sharing vertices with the one before. */
+static void pf_mesh(pf_src *s, pf_case *c)
+{
+    c->nt = 1 + (size_t)pf_int(s, PF_MAX_TRIS);
+    c->nv = 0;
+    for (size_t t = 0; t < c->nt; ++t) {
+        double *v = c->v + 3 * c->nv;
+        const int kind = pf_int(s, 8);
+        const int share = t > 0 && pf_int(s, 3) == 0; /* reuse the previous triangle's last two vertices */
+        size_t base = c->nv;
+        for (int k = 0; k < 9; ++k)
+            v[k] = pf_unit(s);
+        const double w = pow(10.0, -(double)pf_int(s, 16));
+        for (int k = 0; k < 3; ++k) {
+            switch (kind) {
+            case 1: v[6 + k] = v[k] + w * (v[3 + k] - v[k]) + (k == 2 ? w : 0); break;         /* needle */
+            case 2: v[6 + k] = v[k] + 0.4 * (v[3 + k] - v[k]) + (k == 1 ? w : 0); break;       /* sliver */
+            case 3: v[6 + k] = v[k] + 0.5 * (v[3 + k] - v[k]); break;                          /* segment */
+            case 4: v[3 + k] = v[6 + k] = v[k]; break;                                          /* point */
+            case 5: v[3 + k] = v[k]; break;                                                     /* repeated vertex */
+            default: break;
+            }
+        }
+        c->nv += 3;
+        for (int k = 0; k < 3; ++k)
+            c->t[3 * t + (size_t)k] = (uint32_t)(base + (size_t)k);
+        if (share) {
+            c->t[3 * t] = c->t[3 * (t - 1) + 1];
+            c->t[3 * t + 1] = c->t[3 * (t - 1) + 2];
+        }
+        if (kind == 6 && t > 0) /* a duplicate */
+            memcpy(&c->t[3 * t], &c->t[3 * (t - 1)], 3 * sizeof(uint32_t));
+    }
+}
+
+/* Points: on a triangle's face, edge or vertex, 10^-k off it, in the box, far. */
+static void pf_points(pf_src *s, pf_case *c)
+{
+    c->n = 1 + (size_t)pf_int(s, PF_MAX_POINTS);
+    for (size_t i = 0; i < c->n; ++i) {
+        const size_t t = (size_t)pf_int(s, (int)c->nt);
+        const double *a = c->v + 3 * c->t[3 * t], *b = c->v + 3 * c->t[3 * t + 1], *d = c->v + 3 * c->t[3 * t + 2];
+        double u = pf_unit(s), w = pf_unit(s);
+        if (u + w > 1) {
+            u = 1 - u;
+            w = 1 - w;
+        }
+        const int kind = pf_int(s, 7);
+        const double off = pow(10.0, -(double)pf_int(s, 17));
+        for (int k = 0; k < 3; ++k) {
+            const double face = a[k] + u * (b[k] - a[k]) + w * (d[k] - a[k]);
+            double x;
+            switch (kind) {
+            case 0: x = face; break;
+            case 1: x = a[k] + u * (b[k] - a[k]); break;
+            case 2: x = b[k]; break;
+            case 3: x = face + off * (pf_unit(s) - 0.5); break;
+            case 4: x = 1.5 * pf_unit(s) - 0.25; break;
+            case 5: x = 1e4 * (pf_unit(s) - 0.5); break;
+            default: x = i > 0 ? c->p[3 * (i - 1) + (size_t)k] : face; break; /* a repeated point */
+            }
+            c->p[3 * i + (size_t)k] = x;
+        }
+    }
+}
+
+static void pf_case_draw(pf_src *s, pf_case *c)
+{
+    memset(c, 0, sizeof *c);
+    c->use_float = pf_int(s, 2);
+    pf_mesh(s, c);
+    pf_points(s, c);
+    /* scale and offset */
+    const double scale = pow(10.0, (double)(pf_int(s, 17) - 8));
+    const double offset = pf_int(s, 3) == 0 ? 1e6 * (pf_unit(s) - 0.5) : 0;
+    for (size_t i = 0; i < 3 * c->nv; ++i)
+        c->v[i] = c->v[i] * scale + offset;
+    for (size_t i = 0; i < 3 * c->n; ++i)
+        c->p[i] = c->p[i] * scale + offset;
+    c->ub = pf_int(s, 3) == 0 ? scale * pf_unit(s) * 0.5 : (double)INFINITY;
+    c->has_pose = pf_int(s, 4) == 0;
+    if (c->has_pose) { /* a rotation about z by a quarter turn and a translation */
+        const double tr = scale * (pf_unit(s) - 0.5);
+        const double P[12] = {0, -1, 0, tr, 1, 0, 0, 0, 0, 0, 1, -tr};
+        memcpy(c->pose, P, sizeof P);
+    }
+}
+
+static void pf_dump(FILE *out, const pf_case *c)
+{
+    fprintf(out, "  case: %s, %zu triangles, %zu points, bound %.17g%s\n", c->use_float ? "float" : "double", c->nt, c->n,
+            c->ub, c->has_pose ? ", posed" : "");
+    for (size_t t = 0; t < c->nt; ++t) {
+        fprintf(out, "    tri %zu:", t);
+        for (int k = 0; k < 3; ++k) {
+            const double *v = c->v + 3 * c->t[3 * t + (size_t)k];
+            fprintf(out, " (%.17g %.17g %.17g)", v[0], v[1], v[2]);
+        }
+        fputc('\n', out);
+    }
+    for (size_t i = 0; i < c->n; ++i)
+        fprintf(out, "    point %zu: %.17g %.17g %.17g\n", i, c->p[3 * i], c->p[3 * i + 1], c->p[3 * i + 2]);
+}
+
+#define PF_FAIL(...)                                                                                   \
+    do {                                                                                               \
+        if (out) {                                                                                     \
+            fprintf(out, "pointfuzz: ");                                                               \
+            fprintf(out, __VA_ARGS__);                                                                 \
+            fputc('\n', out);                                                                          \
+        }                                                                                              \
+        ++fails;                                                                                       \
+    } while (0)
+
+/* The case in one precision: real, the result type and the entries' suffix. */
+#define PF_BODY(real, sfx)                                                                             \
+    {                                                                                                  \
+        real v[9 * PF_MAX_TRIS], p[3 * PF_MAX_POINTS], pose[12], x[3 * PF_MAX_POINTS];                 \
+        for (size_t i = 0; i < 3 * c.nv; ++i)                                                          \
+            v[i] = (real)c.v[i];                                                                       \
+        for (size_t i = 0; i < 3 * c.n; ++i)                                                           \
+            p[i] = (real)c.p[i];                                                                       \
+        for (int k = 0; k < 12; ++k)                                                                   \
+            pose[k] = (real)c.pose[k];                                                                 \
+        const real ub = (real)c.ub;                                                                    \
+        ttd_mesh *mesh;                                                                                \
+        if (ttd_mesh_create_##sfx(NULL, v, c.nv, c.t, c.nt, &mesh) != TTD_OK) {                        \
+            PF_FAIL("mesh not built");                                                                 \
+            break;                                                                                     \
+        }                                                                                              \
+        /* the points in the mesh's frame, by the documented formula */                               \
+        for (size_t i = 0; i < c.n; ++i)                                                               \
+            for (int k = 0; k < 3; ++k)                                                                \
+                x[3 * i + (size_t)k] = c.has_pose ? (pose[k] * (p[3 * i] - pose[3]) + pose[4 + k] * (p[3 * i + 1] - pose[7])) + \
+                                                        pose[8 + k] * (p[3 * i + 2] - pose[11])        \
+                                                  : p[3 * i + (size_t)k];                              \
+        ttd_point_result_##sfx ref[PF_MAX_POINTS], got[PF_MAX_POINTS];                                 \
+        for (size_t i = 0; i < c.n; ++i) {                                                             \
+            ttd_point_result_##sfx *b = &ref[i];                                                       \
+            b->distance = (real)INFINITY;                                                              \
+            b->triangle = UINT32_MAX;                                                                  \
+            for (size_t t = 0; t < c.nt; ++t) {                                                        \
+                real tri[9];                                                                           \
+                for (int k = 0; k < 9; ++k)                                                            \
+                    tri[k] = v[3 * c.t[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];                    \
+                ttd_point_result_##sfx r;                                                              \
+                if (ttd_point_triangle_##sfx(x + 3 * i, tri, &r) != TTD_OK)                            \
+                    PF_FAIL("ttd_point_triangle refused point %zu", i);                                \
+                if (r.distance < b->distance && r.distance <= ub) {                                    \
+                    *b = r;                                                                            \
+                    b->triangle = (uint32_t)t;                                                         \
+                }                                                                                      \
+            }                                                                                          \
+            if (c.has_pose && b->triangle != UINT32_MAX) {                                             \
+                const real y[3] = {b->point[0], b->point[1], b->point[2]};                             \
+                for (int k = 0; k < 3; ++k)                                                            \
+                    b->point[k] = ((pose[4 * k] * y[0] + pose[4 * k + 1] * y[1]) + pose[4 * k + 2] * y[2]) + pose[4 * k + 3]; \
+            }                                                                                          \
+        }                                                                                              \
+        for (int run = 0; run < 3; ++run) {                                                            \
+            ttd_options o = ttd_default_options();                                                     \
+            o.isa = run == 0 ? TTD_ISA_SCALAR : TTD_ISA_AUTO;                                          \
+            o.threads = run == 2 ? 2 : 1;                                                              \
+            const ttd_status st = ttd_points_closest_##sfx(&o, mesh, c.n, p, c.has_pose ? pose : NULL, ub, got); \
+            if (st != TTD_OK) {                                                                        \
+                PF_FAIL("run %d: status %s", run, ttd_status_string(st));                              \
+                continue;                                                                              \
+            }                                                                                          \
+            for (size_t i = 0; i < c.n; ++i) {                                                         \
+                const ttd_point_result_##sfx *a = &got[i], *b = &ref[i];                               \
+                const int same = b->triangle == UINT32_MAX                                            \
+                                     ? a->triangle == UINT32_MAX && a->flags == TTD_POINT_ABOVE_BOUND && isinf(a->distance) \
+                                     : memcmp(&a->distance, &b->distance, sizeof a->distance) == 0 &&  \
+                                           a->triangle == b->triangle &&                               \
+                                           memcmp(a->point, b->point, sizeof a->point) == 0 &&         \
+                                           memcmp(a->bary, b->bary, sizeof a->bary) == 0 && a->feature == b->feature; \
+                if (!same)                                                                             \
+                    PF_FAIL("run %d point %zu: %.17g (tri %u) vs brute force %.17g (tri %u)", run, i,   \
+                            (double)a->distance, a->triangle, (double)b->distance, b->triangle);       \
+            }                                                                                          \
+        }                                                                                              \
+        real sd[PF_MAX_POINTS];                                                                        \
+        uint8_t in[PF_MAX_POINTS];                                                                     \
+        if (ttd_points_signed_distance_##sfx(NULL, mesh, c.n, p, c.has_pose ? pose : NULL, ub, sd, got) != TTD_OK || \
+            ttd_points_contains_##sfx(NULL, mesh, c.n, p, c.has_pose ? pose : NULL, in) != TTD_OK) {   \
+            PF_FAIL("signed distance or contains refused the case");                                   \
+        } else {                                                                                       \
+            for (size_t i = 0; i < c.n; ++i) {                                                         \
+                const real d = ref[i].triangle == UINT32_MAX ? (real)INFINITY : ref[i].distance;       \
+                if (!(sd[i] == (in[i] ? -d : d)) || ((got[i].flags & TTD_POINT_INSIDE) != 0) != (in[i] != 0)) \
+                    PF_FAIL("point %zu: signed %.17g, distance %.17g, inside %d", i, (double)sd[i], (double)d, in[i]); \
+            }                                                                                          \
+        }                                                                                              \
+        ttd_mesh_destroy(mesh);                                                                        \
+    }
+
+int pf_run_case(pf_src *src, FILE *out, int dump, size_t *points)
+{
+    pf_case c;
+    pf_case_draw(src, &c);
+    int fails = 0;
+    do {
+        if (c.use_float)
+            PF_BODY(float, f)
+        else
+            PF_BODY(double, d)
+    } while (0);
+    if (fails && dump && out)
+        pf_dump(out, &c);
+    if (points)
+        *points = c.n;
+    return fails;
+}

@@ -1,0 +1,33 @@
+/* SPDX-License-Identifier: MIT */
+/* The point queries' differential fuzzer (docs/testing.md): cases drawn from a byte source (a
+ * libFuzzer input, then a stream seeded by its hash; or a seeded stream alone), each a small mesh
+ * of hostile triangles (needles down to 1e-15 wide, slivers, segments, points, duplicates, shared
+ * vertices) at a scale of 1e-8..1e8 and an offset up to 1e6, in double or float, and points near
+ * it (on faces, edges, vertices, 10^-k off them), around it and far away, with an optional upper
+ * bound and pose. Every case checks, on the scalar row and the automatic choice with 1 and 2
+ * threads: the closest point against the brute force over every triangle with ttd_point_triangle
+ * (bit for bit, ties to the smallest index, the bound), the rows and thread counts against each
+ * other, signed distances against the closest distance and the winding number's side, and the
+ * statuses. Used by tests/test_points_fuzz.c (CTest, seeded) and tests/fuzz/fuzz_points.c
+ * (libFuzzer). */
+#ifndef TTD_TESTS_POINTFUZZ_H
+#define TTD_TESTS_POINTFUZZ_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+typedef struct pf_src {
+    const uint8_t *data;
+    size_t size, pos;
+    uint64_t state;
+} pf_src;
+
+/// A source reading data first, then a stream seeded by its hash (data may be NULL).
+void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed);
+
+/// Runs one case; prints what failed to out (with the case when dump is set). Returns the number
+/// of failed checks (0: the case passed). *points, when not NULL, gets the points checked.
+int pf_run_case(pf_src *src, FILE *out, int dump, size_t *points);
+
+#endif /* TTD_TESTS_POINTFUZZ_H */
