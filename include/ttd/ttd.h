@@ -340,8 +340,6 @@ typedef struct ttd_contacts_d {
     size_t poses;         ///< k of the last call
     size_t capacity;      ///< allocated pairs (library's business)
     size_t pose_capacity; ///< allocated offsets (library's business)
-    uint64_t node_tests;  ///< the last call's box-against-node tests, over every pose (as in ttd_mesh_result_d)
-    uint64_t pair_tests;  ///< the last call's triangle pairs given to the exact method
 } ttd_contacts_d;
 
 /// ttd_contacts_d in single precision.
@@ -352,8 +350,6 @@ typedef struct ttd_contacts_f {
     size_t poses;
     size_t capacity;
     size_t pose_capacity;
-    uint64_t node_tests;
-    uint64_t pair_tests;
 } ttd_contacts_f;
 
 /// Every triangle pair of a and b at distance <= margin (>= 0, finite) under each of k poses,

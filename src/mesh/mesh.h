@@ -85,13 +85,16 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
 
 /* One pose's contacts (pose_a as above, or NULL), walked from the root on the calling thread, into
  * out in the walk's order: the same set as ttd_mesh_query_contacts_*, in another order, for a
- * caller that sorts them (a scene's body pair). */
+ * caller that sorts them (a scene's body pair); tests[0] and [1]: the walk's node tests and the
+ * triangle pairs it gave the exact method. */
 ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
                                           const struct ttd_mesh *b, const double *pose, const double *pose_a,
-                                          double defect, double margin, ttd_contacts_d *out);
+                                          double defect, double margin, ttd_contacts_d *out,
+                                          uint64_t tests[2]);
 ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
                                           const struct ttd_mesh *b, const float *pose, const float *pose_a,
-                                          double defect, float margin, ttd_contacts_f *out);
+                                          double defect, float margin, ttd_contacts_f *out,
+                                          uint64_t tests[2]);
 
 /* Solids (mesh/solid.c). Whether the mesh is closed: every directed edge (u, v) of a triangle
  * appears once, and so does (v, u), by vertex index. Found on first use and kept (meshes are

@@ -47,7 +47,8 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
 
 ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
                                           const struct ttd_mesh *b, const float *pose, const float *pose_a, double defect,
-                                          float margin, ttd_contacts_f *out)
+                                          float margin, ttd_contacts_f *out,
+                                          uint64_t tests[2])
 {
-    return query_contacts_walk(cfg, a, b, pose, pose_a, defect, margin, out);
+    return query_contacts_walk(cfg, a, b, pose, pose_a, defect, margin, out, tests);
 }

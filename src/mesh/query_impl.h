@@ -87,7 +87,6 @@ typedef struct clist {
     size_t n;                     /* contacts in all */
     size_t in_last;               /* contacts in the last chunk */
     ttd_contacts *direct;         /* when not NULL: append to this set instead */
-    uint64_t node_tests, pair_tests; /* of the walk that filled it */
 } clist;
 
 /* A thread's working memory, reused across the walks it runs. */
@@ -839,7 +838,6 @@ typedef struct contact_pose {
     item *tasks;
     size_t ntasks;
     clist *lists;     /* one per task */
-    uint64_t cut_tests; /* node tests of the cut into tasks */
 } contact_pose;
 
 /* The size of item it's boxes: a proxy for the work below it (their children and pairs). */
@@ -928,8 +926,6 @@ static void contact_task_run(const contact_job *J, contact_pose *cp, size_t i, q
     walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
     w.out = &cp->lists[i];
     walk_run(J->C, &cp->P, W, &w, &cp->tasks[i]);
-    cp->lists[i].node_tests = w.node_tests;
-    cp->lists[i].pair_tests = w.pair_tests;
 }
 
 /* Prepares pose i's tasks (walks nothing else). */
@@ -943,7 +939,6 @@ static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
     pose_forget(W);
     if (!contact_tasks(J->C, W, cp, &w))
         return 0;
-    cp->cut_tests = w.node_tests;
     if (J->direct != NULL) { /* one worker: the poses come in order */
         J->direct->pose_start[i] = J->direct->count;
         for (size_t t = 0; t < cp->ntasks; ++t)
@@ -1031,7 +1026,6 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     const qctx C = qctx_make(cfg, a, b);
     out->count = 0;
     out->poses = 0;
-    out->node_tests = out->pair_tests = 0;
     if (!contacts_offsets(out, k))
         return TTD_ERR_OUT_OF_MEMORY;
     /* one pose: its tasks over the threads; several: the poses over the threads */
@@ -1055,12 +1049,8 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     /* one worker walked the poses and their tasks in order, into the set; several: join */
     int ok = !atomic_load(&J.nomem) && (J.direct != NULL || contacts_join(&J, k, out));
     for (size_t i = 0; J.cp != NULL && i < k; ++i) {
-        out->node_tests += J.cp[i].cut_tests;
-        for (size_t t = 0; J.cp[i].lists != NULL && t < J.cp[i].ntasks; ++t) {
-            out->node_tests += J.cp[i].lists[t].node_tests;
-            out->pair_tests += J.cp[i].lists[t].pair_tests;
+        for (size_t t = 0; J.cp[i].lists != NULL && t < J.cp[i].ntasks; ++t)
             clist_drain(&J.cp[i].lists[t], NULL);
-        }
         free(J.cp[i].lists);
         free(J.cp[i].tasks);
     }
@@ -1083,12 +1073,12 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
  * body pair, the walk's caches reset per sub-walk, kernel calls of 4 pairs: docs/scene-speed.md). */
 static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
                                       const real *pose, const real *pose_a, double defect, real margin,
-                                      ttd_contacts *out)
+                                      ttd_contacts *out, uint64_t tests[2])
 {
     const qctx C = qctx_make(cfg, a, b);
     out->count = 0;
     out->poses = 0;
-    out->node_tests = out->pair_tests = 0;
+    tests[0] = tests[1] = 0;
     if (!contacts_offsets(out, 1))
         return TTD_ERR_OUT_OF_MEMORY;
     qwork W;
@@ -1106,8 +1096,8 @@ static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct
         const item root = root_item();
         walk_run(&C, &P, &W, &w, &root);
     }
-    out->node_tests = w.node_tests;
-    out->pair_tests = w.pair_tests;
+    tests[0] = w.node_tests;
+    tests[1] = w.pair_tests;
     qwork_release(&W);
     if (W.nomem) {
         out->count = 0;

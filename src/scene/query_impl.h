@@ -246,10 +246,8 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
      * the threads, so the mesh query's cut into sub-walks (for an order independent of the
      * thread count) would buy nothing */
     if (TTD_QUERY(contacts_walk)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, body_pose(s, p->j), body_pose(s, p->i),
-                                 defect, margin, set) != TTD_OK)
+                                 defect, margin, set, tests) != TTD_OK)
         return 0;
-    tests[0] = set->node_tests;
-    tests[1] = set->pair_tests;
     if (set->count == 0)
         return 1;
     ttd_scene_contact *v = malloc(set->count * sizeof *v);
