@@ -10,7 +10,7 @@
  *     without a bound;
  *   - manifold: per body pair, min(K, points kept by the merge) points, each a real contact with
  *     its depth, no two within the merge tolerance, the deepest first, the next ones spreading
- *     out (the farthest, the largest triangle), unit normals (the normal rule's properties:
+ *     out over the deepest level (the farthest, the largest triangle), unit normals (the normal rule's properties:
  *     tests/test_scene_contacts.c);
  * on scenes of spheres, cubes, thin and degenerate triangles and a huge floor, in both
  * precisions, after bodies are removed and added, filters and exclusions set and every body
@@ -504,6 +504,12 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                 kept[nk++] = a;
         }
         const size_t want = nk < MAX_POINTS ? nk : MAX_POINTS;
+        /* the deepest level the spread works in first: within a quarter of the margin left below
+         * the smallest distance (or the seed's window) */
+        const double d0 = P->d[ord[kept[0]]];
+        size_t nl = 0;
+        while (nl < nk && (P->d[ord[kept[nl]]] - d0 <= 0.25 * (m - d0) || P->d[ord[kept[nl]]] - d0 <= window * big))
+            ++nl;
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
@@ -526,10 +532,14 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
             for (size_t b = at - n; b < at; ++b)
                 ENSURE_MSG(dist3(pt->x, A->points[b].x) > tol * (1 - 1e-9), "manifold (%u, %u): points %zu and %zu within %g",
                            P->i, P->j, b - (at - n), n, tol);
-            if (nk > MAX_POINTS && (n == 1 || n == 2)) { /* farthest from the first; the largest triangle with the first two */
+            if (nk > MAX_POINTS && nl < MAX_POINTS && n < nl) /* a short level: all of it first */
+                ENSURE_MSG(me < nl, "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
+            if (nk > MAX_POINTS && nl >= MAX_POINTS && (n == 1 || n == 2)) {
+                /* within the level: farthest from the first; the largest triangle with the first two */
+                ENSURE_MSG(me < nl, "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
                 const double *x0 = A->points[at - n].x, *x1 = n == 2 ? A->points[at - 1].x : NULL;
                 double mine = 0, other = 0;
-                for (size_t b = 0; b < nk; ++b) {
+                for (size_t b = 0; b < nl; ++b) {
                     const double *y = mid[kept[b]];
                     double v;
                     if (n == 1) {

@@ -291,6 +291,174 @@ static int stacks_normals_up(void)
     return 0;
 }
 
+static double hull_area_xy(const double (*x)[3], size_t n);
+
+/* The rotation about unit axis a by angle t, into pose's 3x3 part, the centre c of a unit cube
+ * kept at c (cube_pose's convention). */
+static void tilted_cube_pose(const double a[3], double t, const double c[3], double pose[12])
+{
+    const double cs = cos(t), sn = sin(t), v = 1 - cs;
+    const double R[9] = {cs + a[0] * a[0] * v,        a[0] * a[1] * v - a[2] * sn, a[0] * a[2] * v + a[1] * sn,
+                         a[1] * a[0] * v + a[2] * sn, cs + a[1] * a[1] * v,        a[1] * a[2] * v - a[0] * sn,
+                         a[2] * a[0] * v - a[1] * sn, a[2] * a[1] * v + a[0] * sn, cs + a[2] * a[2] * v};
+    for (int r = 0; r < 3; ++r) {
+        pose[4 * r] = R[3 * r];
+        pose[4 * r + 1] = R[3 * r + 1];
+        pose[4 * r + 2] = R[3 * r + 2];
+        pose[4 * r + 3] = c[r] - (R[3 * r] * 0.5 + R[3 * r + 1] * 0.5 + R[3 * r + 2] * 0.5);
+    }
+}
+
+/* Stacks whose cubes are tilted by a hair (1e-7 to 1e-4 rad, what one step of a simulated stack
+ * leaves): corners over corners and edges over edges, whose normal cones meet only in the
+ * vertical ray when aligned and miss each other once tilted. Every normal within the tilts
+ * (plus the flat angle, 1e-3) of +z. The simulator of examples/sim found (-1, 0, 0) at a corner
+ * after one step (its poses are the last case); the cones now count as meeting when they miss by
+ * less than the flat angle (src/scene/normal_impl.h, CONE_LOOSE). */
+static int tilted_stacks_normals_up(void)
+{
+    static const double tilts[] = {1e-7, 1e-6, 1e-5, 1e-4};
+    static const double axes[][3] = {{1, 0, 0}, {0, 1, 0}, {0.6, 0.8, 0}, {0.48, 0.6, 0.64}};
+    static const double offsets[][2] = {{0, 0}, {1e-5, -1e-5}, {0.3, 0.2}};
+    /* gap, margin: apart (crossing bodies, d = 0 at points on their intersection, are the solids' case) */
+    static const double gaps[][2] = {{0.01, 0.04}, {0.001, 0.01}, {0.004, 0.01}};
+    size_t scenes = 0, points = 0;
+    double worst = 0;
+    ttd_gen_mesh g[CUBE_KINDS];
+    ttd_mesh *m[CUBE_KINDS];
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ENSURE(cube_mesh(k, &g[k]) == 0);
+        ENSURE((m[k] = make_mesh(&g[k], 8)) != NULL);
+    }
+    for (int kb = 0; kb < CUBE_KINDS; ++kb)
+        for (int kt = 0; kt < CUBE_KINDS; ++kt)
+            for (size_t ti = 0; ti < sizeof tilts / sizeof tilts[0]; ++ti)
+                for (size_t ai = 0; ai < sizeof axes / sizeof axes[0]; ++ai)
+                    for (size_t oi = 0; oi < sizeof offsets / sizeof offsets[0]; ++oi) {
+                        const size_t gi = (ti + ai + oi + (size_t)kb) % (sizeof gaps / sizeof gaps[0]);
+                        const double lower_c[3] = {0.5, 0.5, 0.5};
+                        const double upper_c[3] = {0.5 + offsets[oi][0], 0.5 + offsets[oi][1], 1.5 + gaps[gi][0]};
+                        const double *other = axes[(ai + 1) % (sizeof axes / sizeof axes[0])];
+                        double lower[12], upper[12];
+                        tilted_cube_pose(other, -0.5 * tilts[ti], lower_c, lower);
+                        tilted_cube_pose(axes[ai], tilts[ti], upper_c, upper);
+                        ttd_scene *s;
+                        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                        ENSURE(add_body(s, 8, m[kb], lower) == 0);
+                        ENSURE(add_body(s, 8, m[kt], upper) == 0);
+                        mpoint *p;
+                        const size_t n = ask_manifold(s, 8, NULL, gaps[gi][1], 4, &p);
+                        ENSURE(n != SIZE_MAX && n >= 1);
+                        const double limit = 1e-3 + 2 * tilts[ti];
+                        for (size_t q = 0; q < n; ++q) {
+                            const double off = acos(fmin(1.0, p[q].n[2]));
+                            worst = fmax(worst, off);
+                            ENSURE_MSG(off <= limit,
+                                       "%s on %s, tilt %g about (%g, %g, %g), offset (%g, %g), gap %g: point %zu "
+                                       "(triangles %u, %u) at (%.9g, %.9g, %.9g): normal (%.3g, %.3g, %.17g)",
+                                       cube_name[kt], cube_name[kb], tilts[ti], axes[ai][0], axes[ai][1], axes[ai][2],
+                                       offsets[oi][0], offsets[oi][1], gaps[gi][0], q, p[q].ti, p[q].tj, p[q].x[0],
+                                       p[q].x[1], p[q].x[2], p[q].n[0], p[q].n[1], p[q].n[2]);
+                        }
+                        points += n;
+                        free(p);
+                        ttd_scene_destroy(s);
+                        ++scenes;
+                    }
+    /* the simulator's two boxes after one step (docs/simulator.md), the 12-triangle cube centred */
+    {
+        static const double step1[2][12] = {
+            {0.99999999999601441, -4.0581818028281941e-07, 2.7940023696132233e-06, -1.6755089336489047e-06,
+             4.0582053126103198e-07, 0.99999999999956368, -8.4143692854671585e-07, -1.5607188907867611e-06,
+             -2.794002028141601e-06, 8.4143806240688817e-07, 0.99999999999574274, 0.50998728181903719},
+            {0.99999999999847911, -2.7477712565268328e-07, 1.7222880665239525e-06, -3.9130060061552404e-07,
+             2.7477648550773414e-07, 0.9999999999998932, 3.7168308260064119e-07, -2.4638608639301593e-06,
+             -1.7222881686537774e-06, -3.7168260935581392e-07, 0.9999999999984478, 1.5199711245388927}};
+        ttd_gen_mesh c = {NULL, 0, NULL, 0};
+        ENSURE(cube_mesh(0, &c) == 0);
+        for (size_t v = 0; v < 3 * c.nv; ++v) /* centred */
+            c.verts[v] -= 0.5;
+        ttd_mesh *mc = make_mesh(&c, 8);
+        ENSURE(mc != NULL);
+        ttd_scene *s;
+        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+        ENSURE(add_body(s, 8, mc, step1[0]) == 0 && add_body(s, 8, mc, step1[1]) == 0);
+        mpoint *p;
+        const size_t n = ask_manifold(s, 8, NULL, 0.04, 4, &p);
+        ENSURE(n == 4);
+        for (size_t q = 0; q < n; ++q)
+            ENSURE_MSG(acos(fmin(1.0, p[q].n[2])) <= 1e-5, "the simulator's step: point %zu normal (%.3g, %.3g, %.17g)", q,
+                       p[q].n[0], p[q].n[1], p[q].n[2]);
+        free(p);
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(mc);
+        ttd_gen_mesh_free(&c);
+    }
+    for (int k = 0; k < CUBE_KINDS; ++k) {
+        ttd_mesh_destroy(m[k]);
+        ttd_gen_mesh_free(&g[k]);
+    }
+    printf("  %zu tilted stacks and the simulator's step, %zu points: every normal within the tilts and the flat "
+           "angle of +z (worst %.3g rad)\n",
+           scenes, points, worst);
+    return 0;
+}
+
+/* A torus lying on a floor inside the margin: its points are spread over the contacts of the
+ * deepest level (the ring resting on the floor), not over the speculative ones farther inside the
+ * margin (the simulator saw one point at the resting level and three 0.02 above it, and the torus
+ * rocked): every point within a quarter of the margin left below the deepest, and the four span
+ * the ring (their hull's area at least a third of the square inscribed in the ring's middle
+ * circle). */
+static int torus_on_floor_level(void)
+{
+    ttd_gen_mesh torus = {NULL, 0, NULL, 0}, floor_g = {NULL, 0, NULL, 0};
+    ENSURE(ttd_gen_torus(1.0, 0.25, 48, 16, &torus) == 0);
+    ENSURE(cube_mesh(0, &floor_g) == 0);
+    for (size_t v = 0; v < floor_g.nv; ++v) { /* a 8 x 8 x 1 slab, top at z = 0 */
+        floor_g.verts[3 * v] = 8 * floor_g.verts[3 * v] - 4;
+        floor_g.verts[3 * v + 1] = 8 * floor_g.verts[3 * v + 1] - 4;
+        floor_g.verts[3 * v + 2] -= 1;
+    }
+    ttd_mesh *mt = make_mesh(&torus, 8), *mf = make_mesh(&floor_g, 8);
+    ENSURE(mt && mf);
+    static const double gaps[] = {0.002, 0.01}, margins[] = {0.02, 0.04};
+    size_t cases = 0;
+    for (size_t gi = 0; gi < 2; ++gi)
+        for (size_t mi = 0; mi < 2; ++mi)
+            for (int turn = 0; turn < 4; ++turn) {
+                const double t = 0.1 * turn, cs = cos(t), sn = sin(t);
+                const double pt[12] = {cs, -sn, 0, 0.1 * turn, sn, cs, 0, -0.05 * turn, 0, 0, 1, 0.25 + gaps[gi]};
+                const double pf[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+                ttd_scene *s;
+                ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                ENSURE(add_body(s, 8, mf, pf) == 0 && add_body(s, 8, mt, pt) == 0);
+                mpoint *p;
+                const size_t n = ask_manifold(s, 8, NULL, margins[mi], 4, &p);
+                ENSURE(n == 4);
+                double d0 = INFINITY;
+                for (size_t q = 0; q < n; ++q)
+                    d0 = fmin(d0, p[q].d);
+                for (size_t q = 0; q < n; ++q)
+                    ENSURE_MSG(p[q].d - d0 <= 0.25 * (margins[mi] - d0), "gap %g, margin %g, turn %d: point %zu at %g, "
+                               "the deepest at %g", gaps[gi], margins[mi], turn, q, p[q].d, d0);
+                const double x[4][3] = {{p[0].x[0], p[0].x[1], 0}, {p[1].x[0], p[1].x[1], 0}, {p[2].x[0], p[2].x[1], 0},
+                                        {p[3].x[0], p[3].x[1], 0}};
+                const double area = hull_area_xy(x, 4);
+                ENSURE_MSG(area >= 2.0 / 3, "gap %g, margin %g, turn %d: the points' hull %g", gaps[gi], margins[mi],
+                           turn, area);
+                free(p);
+                ttd_scene_destroy(s);
+                ++cases;
+            }
+    ttd_mesh_destroy(mt);
+    ttd_mesh_destroy(mf);
+    ttd_gen_mesh_free(&torus);
+    ttd_gen_mesh_free(&floor_g);
+    printf("  %zu tori on a floor: four points of the resting level spanning the ring\n", cases);
+    return 0;
+}
+
 /* Stacks at the ends of the double range (1e-300 .. 1e150; issue 23 found sideways normals at
  * 1e70 and 1e-78, a touching pair lost at 1e-163 and squared distances underflowing near
  * 1e-160): every normal +z, and as many points as the contacts at that scale merged (K = 0;
@@ -775,9 +943,11 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(stacks_normals_up);
+    RUN_TEST(tilted_stacks_normals_up);
     RUN_TEST(stacks_at_extreme_scales);
     RUN_TEST(box_on_box_corners);
     RUN_TEST(sphere_on_floor_diagonal);
+    RUN_TEST(torus_on_floor_level);
     RUN_TEST(random_scenes_rule);
     TEST_MAIN_END();
 }

@@ -645,8 +645,8 @@ typedef struct ttd_scene_point_f {
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
 /// merged (in depth order, a contact within 1e-3 of the smaller body's mesh radius of a point
 /// kept before it goes) and reduced to at most max_points points (0: all of them): the deepest,
-/// then spread over the contact region (the farthest, the largest triangle, the largest area
-/// added). Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
+/// then spread over the contact region of its level (within a quarter of the margin left below
+/// it: the farthest, the largest triangle, the largest area added). Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
 /// face of one body lies within the margin of the other, across edges only where both are real
 /// edges of their bodies, never outside the normal cones of the contact's features where they
 /// meet; the same for any triangulation of a flat face; negated when the bodies swap

@@ -10,16 +10,24 @@
  *    each kept one is the deepest of those it stands for.
  * 3. The seed: the deepest, and among contacts within FEATURE_TOL of the larger radius of its
  *    depth (faces resting on faces: many at one depth), the one farthest from their centroid.
- * 4. Spread (when more than K remain): the seed; the point farthest from it; the point making the
- *    largest triangle with those two; then, one at a time, the point that adds the most area to
- *    the polygon of those kept (on the plane of the first three), as PhysX's reduction keeps a
- *    box's four corners on a face; where no point adds area (points on a line, or inside), the
- *    point farthest from every point kept. Ties to the earlier in depth order.
+ * 4. Spread (when more than K remain), first over the contacts of the deepest level (within
+ *    LEVEL_FRACTION of the rest of the margin, M - d, of the deepest distance d: where a body
+ *    rests, rather than a speculative contact farther inside the margin): the seed; the point
+ *    farthest from it; the point making the largest triangle with those two; then, one at a
+ *    time, the point that adds the most area to the polygon of those kept (on the plane of the
+ *    first three), as PhysX's reduction keeps a box's four corners on a face; where no point
+ *    adds area (points on a line, or inside), the point farthest from every point kept. Ties to
+ *    the earlier in depth order. When the level holds fewer than K, all of them, then the
+ *    farthest from every point kept among the rest.
  * Distances between points are formed on coordinates relative to the deepest point, scaled by a
  * power of two to the larger body's size, so that no square underflows or overflows at any scale
  * of the coordinate range. */
 
 #define MERGE_FRACTION 1e-3
+/* The deepest level of step 4: a quarter of the margin left below the deepest contact (a box
+ * resting 0.01 inside a margin of 0.04 spreads its points over contacts within 0.0175, not over
+ * the torus-side contacts at 0.03 that a simulator found rocking the body). */
+#define LEVEL_FRACTION 0.25
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -227,6 +235,26 @@ static size_t hull_insert(const double *y, size_t *hull, size_t nh, const double
     return no;
 }
 
+/* The point of y[0..nk) not taken that is farthest from every point of sel[0..ns) (the first
+ * of equals), or SIZE_MAX when every point is taken. */
+static size_t farthest_point(const double *y, size_t nk, const size_t *sel, size_t ns, const unsigned char *taken)
+{
+    double best = -1;
+    size_t pick = SIZE_MAX;
+    for (size_t a = 0; a < nk; ++a) {
+        if (taken[a])
+            continue;
+        double near = HUGE_VAL;
+        for (size_t b = 0; b < ns; ++b)
+            near = fmin(near, dist2(y + 3 * a, y + 3 * sel[b]));
+        if (near > best) {
+            best = near;
+            pick = a;
+        }
+    }
+    return pick;
+}
+
 /* Step 4: up to max of the nk kept points y (3 nk, depth order), the seed first, into sel
  * (indices into y); taken[nk] zeroed. Returns how many. */
 static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max, size_t *sel, unsigned char *taken)
@@ -265,18 +293,7 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
         if (pick == SIZE_MAX) {
             /* nothing adds area (points on a line, or inside what is kept): the point farthest
              * from every point kept */
-            best = -1;
-            for (size_t a = 0; a < nk; ++a) {
-                if (taken[a])
-                    continue;
-                double near = HUGE_VAL;
-                for (size_t b = 0; b < ns; ++b)
-                    near = fmin(near, dist2(y + 3 * a, y + 3 * sel[b]));
-                if (near > best) {
-                    best = near;
-                    pick = a;
-                }
-            }
+            pick = farthest_point(y, nk, sel, ns, taken);
             if (pick == SIZE_MAX)
                 break;
             nh = 0; /* from here on, farthest points only */
@@ -355,8 +372,30 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
             if (a != seed)
                 w->sel[ns++] = a;
     } else {
+        /* the deepest level: the kept within LEVEL_FRACTION of the margin left below d0 (and
+         * every contact of the seed's window) */
+        const double level = LEVEL_FRACTION * ((double)margin - d0);
+        size_t nl = ntie;
+        while (nl < nk && (double)c[w->kept[nl]].distance - d0 <= level)
+            ++nl;
         memset(w->taken, 0, nk);
-        ns = spread_points(z, nk, seed, max, w->sel, w->taken);
+        if (nl >= max) {
+            ns = spread_points(z, nl, seed, max, w->sel, w->taken);
+        } else {
+            w->sel[0] = seed;
+            w->taken[seed] = 1;
+            ns = 1;
+            for (size_t a = 0; a < nl; ++a)
+                if (a != seed) {
+                    w->sel[ns++] = a;
+                    w->taken[a] = 1;
+                }
+            while (ns < max) {
+                const size_t pick = farthest_point(z, nk, w->sel, ns, w->taken);
+                w->sel[ns++] = pick;
+                w->taken[pick] = 1;
+            }
+        }
     }
     for (size_t k = 0; k < ns; ++k) {
         const ttd_scene_contact *x = &c[w->kept[w->sel[k]]];

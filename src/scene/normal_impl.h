@@ -38,9 +38,15 @@
 #else
 #define FEATURE_TOL 0x1p-16
 #endif
-/* A direction is in a cone when it is within this of each side (the rounding of the candidate
- * directions, which are formed in double from the same constraint vectors). */
+/* A direction is in a cone when it is within CONE_TOL of each side (the rounding of the
+ * candidate directions, which are formed in double from the same constraint vectors). Where the
+ * two sides' cones meet only in a ray (a corner resting on a corner, an edge on an edge), a tilt
+ * far below anything a face would notice (1e-6 rad after one step of a simulated stack) parts
+ * them; cones that miss each other by less than the flat angle (CONE_LOOSE, sin TTD_FLAT_ANGLE:
+ * what the edge information already calls flat) then count as meeting, before the rule falls
+ * back to the triangles' own faces. */
 #define CONE_TOL 0x1p-40
+#define CONE_LOOSE 1e-3
 
 enum { SIDE_FREE, SIDE_FACE, SIDE_CONE };
 
@@ -376,13 +382,12 @@ static void contact_side(const struct ttd_scene *s, uint32_t id, uint32_t tri, c
     side_feature(s, f, on);
 }
 
-/* Whether unit v lies in the cone of constraints g[0..n) (the first neq equalities), to
- * CONE_TOL. */
-static int in_cone(const double (*g)[3], int n, int neq, const double v[3])
+/* Whether unit v lies in the cone of constraints g[0..n) (the first neq equalities), to tol. */
+static int in_cone(const double (*g)[3], int n, int neq, const double v[3], double tol)
 {
     for (int k = 0; k < n; ++k) {
         const double x = dot3d(v, g[k]);
-        if (k < neq ? !(fabs(x) <= CONE_TOL) : !(x <= CONE_TOL))
+        if (k < neq ? !(fabs(x) <= tol) : !(x <= tol))
             return 0;
     }
     return 1;
@@ -392,7 +397,7 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3])
  * projected onto a constraint's plane), or on an edge (where two planes meet): whichever of
  * these lies in the cone and is nearest u (the first of equals, in this order). 0 when the
  * cone holds no direction. */
-static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3], double out[3])
+static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3], double tol, double out[3])
 {
     double best = -HUGE_VAL;
     int found = 0;
@@ -416,7 +421,7 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
             }
             for (int t = 0; t < nc; ++t) {
                 double v[3];
-                if (!unit3(c[t], v) || !in_cone(g, n, neq, v))
+                if (!unit3(c[t], v) || !in_cone(g, n, neq, v, tol))
                     continue;
                 const double x = dot3d(u, v);
                 if (x > best) {
@@ -494,8 +499,11 @@ static void rule_normal(const body_feature *fi, const body_feature *fj, int ai, 
             n[r] = face_i ? fi->n[r] : -fj->n[r];
     } else if (fi->kind == SIDE_CONE || fj->kind == SIDE_CONE) {
         /* i's cone and the opposite of j's, equalities first, with the faces that do not apply
-         * as their normals where that meets the other cone; without them where it does not */
-        for (int with_faces = 1; with_faces >= 0; --with_faces) {
+         * as their normals where that meets the other cone; without them where it does not;
+         * then the same with cones that miss each other by less than the flat angle */
+        for (int attempt = 0; attempt < 4; ++attempt) {
+            const int with_faces = !(attempt & 1);
+            const double tol = attempt < 2 ? CONE_TOL : CONE_LOOSE;
             double g[2 * TTD_CORNER_MAX + 4][3];
             int ng = 0, neq = 0;
             for (int pass = 0; pass < 2; ++pass) {
@@ -530,7 +538,7 @@ static void rule_normal(const body_feature *fi, const body_feature *fj, int ai, 
                 if (pass == 0)
                     neq = ng;
             }
-            if (cone_nearest((const double (*)[3])g, ng, neq, u, n))
+            if (cone_nearest((const double (*)[3])g, ng, neq, u, tol, n))
                 return;
         }
         own_faces(fi, fj, ti, tj, u, n);
