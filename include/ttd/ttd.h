@@ -205,8 +205,11 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 
 /** @defgroup mesh Mesh queries
  * A ttd_mesh is a triangle mesh with a bounding-volume hierarchy over its triangles (oriented
- * boxes, 8 children per node), built once and immutable afterwards: it may be queried from many
- * threads at once. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
+ * boxes, 8 children per node). Its triangles are fixed when it is built; its vertices may move
+ * (ttd_mesh_set_vertices_d, a deforming mesh), which refits the hierarchy in place. Between
+ * such updates a mesh is read-only and may be queried from many threads at once; an update must
+ * not run while anything else (a query, a scene query over a body of it, another update) uses
+ * that mesh. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
  * a. A pose is 12 reals, the 3x4 matrix [R | t] row by row (r00 r01 r02 t0 r10 r11 r12 t1 r20
  * r21 r22 t2), mapping b's coordinates into a's frame: x_a = R x_b + t, computed per coordinate
  * as ((r0*x + r1*y) + r2*z) + t, so that a brute force can reproduce it to the bit. R must be a
@@ -231,7 +234,7 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
  * threads.
  * @{ */
 
-/// An immutable triangle mesh and its hierarchy (opaque).
+/// A triangle mesh and its hierarchy (opaque).
 typedef struct ttd_mesh ttd_mesh;
 
 /// Builds a mesh from nv vertices (3 coordinates each) and nt triangles (3 vertex indices each,
@@ -252,6 +255,33 @@ TTD_API size_t ttd_mesh_triangle_count(const ttd_mesh *mesh);
 TTD_API size_t ttd_mesh_vertex_count(const ttd_mesh *mesh);
 /// Nodes of its hierarchy (0 for NULL).
 TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
+
+/// New positions for a mesh's vertices, its triangles the same (a deforming mesh): vertices
+/// holds 3 reals for each of its ttd_mesh_vertex_count vertices, copied, with the checks of
+/// ttd_mesh_create_d (TTD_ERR_NONFINITE_MESH, TTD_ERR_COORDINATE_RANGE;
+/// TTD_ERR_PRECISION_MISMATCH for a mesh built by ttd_mesh_create_f). The hierarchy keeps its
+/// shape and every box is fitted again around the moved triangles (a refit, much cheaper than a
+/// build); when refitting has degraded it past a measure (its boxes' summed surface area over
+/// the root box's, grown twice what it was at the last build: docs/mesh-queries.md, section
+/// 2b), it is rebuilt. Every query then answers for the new positions, exactly as for a mesh
+/// built from them. The mesh stays the same object: every scene body of it moves with it (the
+/// scene updates their world boxes on its next call). Must not run while the mesh is used by
+/// anything else (see above). On an error (TTD_ERR_OUT_OF_MEMORY included) the mesh is as it
+/// was. opt's threads apply.
+TTD_API ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices);
+/// ttd_mesh_set_vertices_d for a mesh built by ttd_mesh_create_f.
+TTD_API ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices);
+
+/// What vertex updates have done to a mesh's hierarchy.
+typedef struct ttd_mesh_refit_info {
+    uint64_t generation;  ///< ttd_mesh_set_vertices_* calls that changed the mesh (0 when built)
+    uint64_t rebuilds;    ///< of those, the ones that rebuilt the hierarchy
+    double quality;       ///< the hierarchy's measure now (docs/mesh-queries.md, section 2b)
+    double quality_built; ///< the measure when it was last built; a refit past twice it rebuilds
+} ttd_mesh_refit_info;
+
+/// Fills *info for mesh (TTD_ERR_NULL_POINTER for NULL).
+TTD_API ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info);
 
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with

@@ -20,6 +20,23 @@
 
 /* ---- building ---------------------------------------------------------------------------- */
 
+/* The build's checks of vertex coordinates: finite, then within the range. */
+static ttd_status check_vertices(int bytes, const void *vertices, size_t nv)
+{
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (!isfinite(x))
+            return TTD_ERR_NONFINITE_MESH;
+    }
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (fabs(x) > range)
+            return TTD_ERR_COORDINATE_RANGE;
+    }
+    return TTD_OK;
+}
+
 static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *vertices, size_t nv,
                               const uint32_t *triangles, size_t nt, ttd_mesh **out)
 {
@@ -38,18 +55,8 @@ static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *ver
     for (size_t i = 0; i < 3 * nt; ++i)
         if (triangles[i] >= nv)
             return TTD_ERR_INDEX_OUT_OF_RANGE;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
-        if (!isfinite(x))
-            return TTD_ERR_NONFINITE_MESH;
-    }
-    const double range = ttd_mesh_range(bytes);
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
-        if (fabs(x) > range)
-            return TTD_ERR_COORDINATE_RANGE;
-    }
-    return ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out);
+    st = check_vertices(bytes, vertices, nv);
+    return st == TTD_OK ? ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out) : st;
 }
 
 ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv, const uint32_t *triangles,
@@ -67,6 +74,38 @@ ttd_status ttd_mesh_create_f(const ttd_options *opt, const float *vertices, size
 void ttd_mesh_destroy(ttd_mesh *mesh)
 {
     ttd_mesh_free(mesh);
+}
+
+static ttd_status set_vertices(const ttd_options *opt, int bytes, ttd_mesh *mesh, const void *vertices)
+{
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, mesh && vertices, 1, 0, &cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg.method != TTD_METHOD_EXACT)
+        return TTD_ERR_BAD_OPTIONS;
+    if (mesh->bytes != bytes)
+        return TTD_ERR_PRECISION_MISMATCH;
+    st = check_vertices(bytes, vertices, mesh->nv);
+    return st == TTD_OK ? ttd_mesh_refit(&cfg, mesh, vertices) : st;
+}
+
+ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices)
+{
+    return set_vertices(opt, 8, mesh, vertices);
+}
+
+ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices)
+{
+    return set_vertices(opt, 4, mesh, vertices);
+}
+
+ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info)
+{
+    if (mesh == NULL || info == NULL)
+        return TTD_ERR_NULL_POINTER;
+    *info = (ttd_mesh_refit_info){mesh->generation, mesh->rebuilds, mesh->quality, mesh->quality_built};
+    return TTD_OK;
 }
 
 size_t ttd_mesh_triangle_count(const ttd_mesh *mesh)
