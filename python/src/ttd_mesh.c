@@ -172,9 +172,10 @@ fail:
 PyDoc_STRVAR(ttd_py_mesh_doc,
 "Mesh(vertices, faces, *, precision=None, threads=0)\n"
 "--\n\n"
-"A triangle mesh and its bounding-volume hierarchy, built once and immutable: the operand of\n"
-"ttd.mesh_distance, mesh_contacts, mesh_closest and mesh_collide. Safe to share between\n"
-"threads (queries only read it).\n\n"
+"A triangle mesh and its bounding-volume hierarchy: the operand of ttd.mesh_distance,\n"
+"mesh_contacts, mesh_closest, mesh_collide and mesh_self_contacts. Its faces are fixed; its\n"
+"vertices may move (set_vertices, for deforming meshes). Safe to share between threads (queries\n"
+"only read it; set_vertices refuses to run during one).\n\n"
 "vertices : array_like, shape (n, 3)\n"
 "    Coordinates. float32 input gives a float32 mesh (queried in float32), float64 input a\n"
 "    float64 mesh; integers and bools count as float64. Every coordinate must be finite.\n"
@@ -320,6 +321,107 @@ static PyObject *ttd_py_mesh_get_dtype(PyObject *obj, void *closure)
     return (PyObject *)PyArray_DescrFromType(((ttd_py_mesh *)obj)->type);
 }
 
+int ttd_py_meshes_use(PyObject *const *objs, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType) && ((ttd_py_mesh *)objs[i])->moving) {
+            PyErr_SetString(PyExc_RuntimeError,
+                            "a ttd.Mesh of this call is being moved by Mesh.set_vertices in another thread: a mesh "
+                            "must not be queried while its vertices change");
+            return -1;
+        }
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType))
+            ((ttd_py_mesh *)objs[i])->users++;
+    return 0;
+}
+
+void ttd_py_meshes_release(PyObject *const *objs, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType))
+            ((ttd_py_mesh *)objs[i])->users--;
+}
+
+PyDoc_STRVAR(ttd_py_mesh_set_vertices_doc,
+"set_vertices(vertices, *, threads=0)\n"
+"--\n\n"
+"Moves the mesh's vertices (a deforming mesh: cloth, soft bodies), its faces the same: the\n"
+"hierarchy is refitted in place, much faster than building a new Mesh, and rebuilt when\n"
+"refitting has degraded it (docs/mesh-queries.md, section 2b). Every query then answers for the\n"
+"new positions exactly as for a mesh built from them; scenes holding this mesh move all its\n"
+"bodies with it (their world boxes are updated on the scene's next call).\n\n"
+"vertices : array_like, shape (n, 3), n = vertex_count\n"
+"    The new coordinates, converted to the mesh's dtype and copied (mesh.vertices is then the\n"
+"    new copy). Every coordinate finite and within the mesh coordinate range.\n"
+"threads : int\n"
+"    Threads for the refit, >= 0; 0 (default) uses every core. The result does not depend on it.\n\n"
+"Not while the mesh is used by a query or a scene query running in another thread (and no\n"
+"query on it starts until this returns): RuntimeError. ValueError for a shape other than\n"
+"(vertex_count, 3), a NaN, infinite or out-of-range coordinate (naming the vertex); the mesh is\n"
+"then as it was. The tree, unlike the answers, depends on the mesh's history: a pickled mesh is\n"
+"rebuilt from its vertices, so the order of its contact sets may differ from this one's.");
+
+static PyObject *ttd_py_mesh_set_vertices(PyObject *obj, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = {"vertices", "threads", NULL};
+    ttd_py_mesh *self = (ttd_py_mesh *)obj;
+    PyObject *v_obj, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$O:set_vertices", kwlist, &v_obj, &threads))
+        return NULL;
+    ttd_options opt;
+    if (ttd_py_options(NULL, NULL, threads, NULL, NULL, NULL, &opt) < 0)
+        return NULL;
+    int t;
+    PyArrayObject *v = ttd_py_mesh_vertices(v_obj, self->type, &t);
+    if (v == NULL)
+        return NULL;
+    const size_t nv = ttd_mesh_vertex_count(self->mesh);
+    if ((size_t)PyArray_DIM(v, 0) != nv) {
+        PyErr_Format(PyExc_ValueError,
+                     "vertices has %zd rows: the mesh has %zu vertices, and set_vertices moves them (its faces stay)",
+                     (Py_ssize_t)PyArray_DIM(v, 0), nv);
+        Py_DECREF(v);
+        return NULL;
+    }
+    if (self->users > 0 || self->moving) {
+        PyErr_SetString(PyExc_RuntimeError,
+                        "this ttd.Mesh is in use by a query (or set_vertices) running in another thread: its vertices "
+                        "must not change until that returns");
+        Py_DECREF(v);
+        return NULL;
+    }
+    ttd_mesh *m = self->mesh;
+    const void *vd = PyArray_DATA(v);
+    ttd_status st;
+    self->moving = 1;
+    Py_BEGIN_ALLOW_THREADS
+    st = t == NPY_DOUBLE ? ttd_mesh_set_vertices_d(&opt, m, vd) : ttd_mesh_set_vertices_f(&opt, m, vd);
+    Py_END_ALLOW_THREADS
+    self->moving = 0;
+    if (st == TTD_ERR_COORDINATE_RANGE) {
+        ttd_py_raise_vertex_range(v, nv, t);
+        Py_DECREF(v);
+        return NULL;
+    }
+    if (st != TTD_OK) {
+        if (ttd_py_raise_fatal(st, &opt) == 0)
+            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d moving a mesh's vertices", (int)st);
+        Py_DECREF(v);
+        return NULL;
+    }
+    Py_SETREF(self->vertices, v);
+    Py_RETURN_NONE;
+}
+
+static PyObject *ttd_py_mesh_get_refit(PyObject *obj, void *closure)
+{
+    ttd_mesh_refit_info info;
+    if (ttd_mesh_get_refit_info(((ttd_py_mesh *)obj)->mesh, &info) != TTD_OK)
+        return PyErr_NoMemory();
+    return PyLong_FromUnsignedLongLong(((const char *)closure)[0] == 'g' ? info.generation : info.rebuilds);
+}
+
 static PyObject *ttd_py_mesh_get_count(PyObject *obj, void *closure)
 {
     const ttd_mesh *m = ((ttd_py_mesh *)obj)->mesh;
@@ -336,6 +438,8 @@ static PyGetSetDef ttd_py_mesh_getset[] = {
     {"vertex_count", ttd_py_mesh_get_count, NULL, "number of vertices", "v"},
     {"triangle_count", ttd_py_mesh_get_count, NULL, "number of triangles (faces)", "t"},
     {"node_count", ttd_py_mesh_get_count, NULL, "nodes of its bounding-volume hierarchy (8 children each)", "n"},
+    {"generation", ttd_py_mesh_get_refit, NULL, "set_vertices calls that moved the mesh (0 when built)", "g"},
+    {"rebuilds", ttd_py_mesh_get_refit, NULL, "of those, the ones that rebuilt its hierarchy (it had degraded)", "r"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
@@ -371,6 +475,8 @@ static PyObject *ttd_py_mesh_from_file(PyObject *cls, PyObject *args, PyObject *
 
 static PyMethodDef ttd_py_mesh_type_methods[] = {
     {"__reduce__", ttd_py_mesh_reduce, METH_NOARGS, "Pickles as (vertices, faces); unpickling rebuilds the mesh."},
+    {"set_vertices", (PyCFunction)(void (*)(void))ttd_py_mesh_set_vertices, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_mesh_set_vertices_doc},
     {"from_file", (PyCFunction)(void (*)(void))ttd_py_mesh_from_file, METH_CLASS | METH_VARARGS | METH_KEYWORDS,
      "from_file(path, *, precision='float64', threads=0, strict=False)\n--\n\n"
      "The mesh in an OBJ, STL or PLY file (ttd.load_mesh reads it), built in that precision."},
@@ -812,6 +918,8 @@ static void ttd_py_raise_bad_param(const char *what, double x, int type, const c
 /* For a status other than TTD_OK: the exception that names the problem; returns -1. */
 static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_query *q, double x, double y)
 {
+    if (st == TTD_PY_IN_USE) /* raised already */
+        return -1;
     switch (st) {
     case TTD_ERR_BAD_POSE:
         ttd_py_raise_bad_pose(q);
@@ -847,9 +955,13 @@ static ttd_status ttd_py_query_call(ttd_py_kind kind, const ttd_py_query *q, dou
         return ttd_py_probe(kind, &q->opt, q->type, x, y);
     ttd_status st;
     const void *poses = PyArray_DATA(q->poses);
+    PyObject *const meshes[2] = {(PyObject *)q->a, (PyObject *)q->b};
+    if (ttd_py_meshes_use(meshes, 2) < 0)
+        return TTD_PY_IN_USE;
     Py_BEGIN_ALLOW_THREADS
     st = ttd_py_call(kind, &q->opt, q->type, q->a->mesh, q->b->mesh, (size_t)q->k, poses, x, y, out, out2);
     Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(meshes, 2);
     return st;
 }
 
