@@ -437,6 +437,45 @@ TTD_API ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a,
 TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                       const float *poses, float margin, ttd_collision *out);
 
+/// Flags of the self queries (ttd_mesh_self_contacts_d, ttd_mesh_self_collide_d).
+enum {
+    /// Also the pairs that share exactly one vertex, by how near they come away from it (see
+    /// ttd_mesh_self_contacts_d): what a cloth solver needs where a sheet folds at a vertex.
+    TTD_SELF_SHARED_VERTEX = 1u << 0
+};
+
+/// Self-contacts: every pair of triangles (i, j), i < j, of one mesh at distance <= margin
+/// (>= 0, finite) that share no vertex (by index: triangles that share one are neighbours in the
+/// mesh, touching by construction; duplicate vertices at one position with different indices do
+/// not count as shared), into out as one pose: tri_a = i, tri_b = j, p on i and q on j, in the
+/// mesh's frame (out->poses = 1, pose_start = {0, count}). Each pair is computed as the exact
+/// method computes (T_i, T_j), i first.
+/// With flags TTD_SELF_SHARED_VERTEX, also the pairs that share exactly one vertex v, when each
+/// triangle has a vertex other than v: their distance is the smaller of d(E_i, T_j) and d(T_i,
+/// E_j), E_i being triangle i's edge opposite v (its vertices other than v, by index, in their
+/// order: a segment (r0, r1, r1), or a point (r0, r0, r0) when two of its indices are v; the
+/// exact method on it as a degenerate triangle), with that pair's points (E_i's first when the
+/// two are equal); so a pair is reported when the triangles come within margin away from v, as
+/// when a sheet folds onto itself at a vertex. Pairs that share two or three vertices (an edge,
+/// or the same vertices) are never reported; nor is a triangle with itself.
+/// Exact (the brute force over all pairs i < j by these rules, bit for bit) and deterministic:
+/// the set and its order depend on the mesh (its vertices and, through its tree, the history of
+/// its vertex updates) alone, not on threads or instruction set. Unknown flag bits, a margin
+/// out of range: TTD_ERR_BAD_OPTIONS. On an error out->count is 0.
+TTD_API ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                            ttd_contacts_d *out);
+/// ttd_mesh_self_contacts_d in single precision (a mesh from ttd_mesh_create_f).
+TTD_API ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                            ttd_contacts_f *out);
+/// Whether a mesh comes within margin (>= 0; 0: does it intersect itself?) of itself, by the
+/// pairs and rules of ttd_mesh_self_contacts_d: stops at the first such pair, out->tri_a <
+/// out->tri_b its triangles (UINT32_MAX when none); the witness depends on the mesh alone.
+TTD_API ttd_status ttd_mesh_self_collide_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                           ttd_collision *out);
+/// ttd_mesh_self_collide_d in single precision.
+TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                           ttd_collision *out);
+
 /** @} */
 
 /** @defgroup scene Scenes of many bodies

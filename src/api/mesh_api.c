@@ -432,6 +432,57 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
     return st;
 }
 
+/* ---- self queries ------------------------------------------------------------------------ */
+
+/* The checks of the self queries: pointers, options (the exact method), the precision, the
+ * margin, the flags. */
+static ttd_status self_prepare(const ttd_options *opt, const ttd_mesh *m, int bytes, int out_ok, double margin,
+                               unsigned flags, ttd_engine_config *cfg)
+{
+    const ttd_status st = ttd_prepare(opt, m != NULL && out_ok, 1, 0, cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg->method != TTD_METHOD_EXACT || !ttd_nonneg(margin, 0) || (flags & ~(unsigned)TTD_SELF_SHARED_VERTEX))
+        return TTD_ERR_BAD_OPTIONS;
+    return m->bytes == bytes ? TTD_OK : TTD_ERR_PRECISION_MISMATCH;
+}
+
+ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                    ttd_contacts_d *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 8, out != NULL, margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                    ttd_contacts_f *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 4, out != NULL, (double)margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_f(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_collide_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                   ttd_collision *out)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 8, out != NULL, margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_collide_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                   ttd_collision *out)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 4, out != NULL, (double)margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_collide_f(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
 void ttd_contacts_free_d(ttd_contacts_d *contacts)
 {
     if (contacts == NULL)

@@ -92,6 +92,18 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
                                      size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
 
+/* Self queries: pairs of one mesh's triangles (i < j) that share no vertex, and with shared
+ * (TTD_SELF_SHARED_VERTEX) those that share one, by their edges opposite it (ttd/ttd.h); from
+ * checked arguments. Written out in mesh/query_d.c and query_f.c. */
+ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                          unsigned shared, ttd_contacts_d *out);
+ttd_status ttd_mesh_query_self_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                          unsigned shared, ttd_contacts_f *out);
+ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                         unsigned shared, ttd_collision *out);
+ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                         unsigned shared, ttd_collision *out);
+
 /* Solids (mesh/solid.c). Whether the mesh is closed: every directed edge (u, v) of a triangle
  * appears once, and so does (v, u), by vertex index. Found on first use and kept (meshes are
  * shared between threads: the flag is written atomically, and racing first uses compute the same
