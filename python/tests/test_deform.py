@@ -114,3 +114,114 @@ def test_set_vertices_and_queries_from_threads_never_overlap():
     assert moved[0] > 0
     fresh = ttd.Mesh(big_v, big_f)
     np.testing.assert_array_equal(ttd.mesh_distance(A, A, poses).distance, ttd.mesh_distance(fresh, fresh, poses).distance)
+
+
+def self_brute_force(m, shared_vertex):
+    """Every counting pair (i < j) of mesh m by the header's rules, with its ttd.distance result:
+    no shared vertex (by index): (T_i, T_j); exactly one, v, and each triangle another vertex
+    (shared_vertex): the nearer of (E_i, T_j) and (T_i, E_j), E the vertices other than v in their
+    order, the last repeated; {(i, j): (d, p, q)}."""
+    V, F = m.vertices, m.faces.astype(np.int64)
+    pairs, S, T = [], [], []
+    for i in range(len(F)):
+        for j in range(i + 1, len(F)):
+            common = set(F[i].tolist()) & set(F[j].tolist())
+            if not common:
+                pairs.append((i, j, 1))
+                S.append(V[F[i]])
+                T.append(V[F[j]])
+            elif len(common) == 1 and shared_vertex:
+                (v,) = common
+                ei = [k for k in F[i] if k != v]
+                ej = [k for k in F[j] if k != v]
+                if not ei or not ej:
+                    continue
+                ei, ej = (ei + [ei[-1]] * 2)[:3], (ej + [ej[-1]] * 2)[:3]
+                pairs.append((i, j, 2))
+                S += [V[ei], V[F[i]]]
+                T += [V[F[j]], V[ej]]
+    r = ttd.distance(np.array(S), np.array(T), points=True)
+    out, k = {}, 0
+    for i, j, n in pairs:
+        best = k
+        if n == 2 and r.distance[k + 1] < r.distance[k]:
+            best = k + 1
+        d = r.distance[best]
+        out[(i, j)] = (d, r.p[best], r.p[best] if d == 0 else r.q[best])
+        k += n
+    return out
+
+
+def folded(n=6, gap=0.05):
+    """A sheet folded into two layers gap apart over a round fold (its own small generator)."""
+    u, w = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    s = u.ravel() * (1 + np.pi * gap / 2)
+    half = 0.5
+    x = np.where(s < half, s, np.where(s < half + np.pi * gap / 2, half + gap / 2 * np.sin((s - half) / (gap / 2)),
+                                       half - (s - half - np.pi * gap / 2)))
+    z = np.where(s < half, 0.0, np.where(s < half + np.pi * gap / 2, gap / 2 - gap / 2 * np.cos((s - half) / (gap / 2)),
+                                         gap))
+    V = np.stack([x, w.ravel(), z], 1)
+    F = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            F += [[a, a + 1, a + n + 2], [a, a + n + 2, a + n + 1]]
+    return V, np.array(F)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("shared_vertex", [False, True])
+@pytest.mark.parametrize("name", ["folded", "grid", "torus", "slivers"])
+def test_self_contacts_equal_brute_force(name, shared_vertex, dtype):
+    v, f = folded() if name == "folded" else MESHES[name]
+    m = ttd.Mesh(v.astype(dtype), f)
+    want = self_brute_force(m, shared_vertex)
+    d = np.array([x[0] for x in want.values()])
+    for margin in (0.0, float(np.sort(d)[len(d) // 50]), float(np.sort(d)[len(d) // 10])):
+        margin = dtype(margin)
+        r = ttd.mesh_self_contacts(m, margin, shared_vertex=shared_vertex)
+        assert type(r).__name__ == "SelfContacts" and r.distance.dtype == dtype
+        assert np.all(r.tri_i < r.tri_j)
+        got = {(int(i), int(j)): k for k, (i, j) in enumerate(zip(r.tri_i, r.tri_j))}
+        assert set(got) == {ij for ij, x in want.items() if x[0] <= margin}
+        for ij, k in got.items():
+            assert r.distance[k] == want[ij][0]
+            np.testing.assert_array_equal(r.p[k], want[ij][1])
+            np.testing.assert_array_equal(r.q[k], want[ij][2])
+        c = ttd.mesh_self_collide(m, margin, shared_vertex=shared_vertex)
+        assert c.hit == (len(got) > 0)
+        if c.hit:
+            assert c.tri_i < c.tri_j and (c.tri_i, c.tri_j) in got
+        else:
+            assert c.tri_i == ttd.NO_TRIANGLE == c.tri_j
+
+
+def test_self_queries_threads_isas_and_errors():
+    v, f = folded(12, 0.02)
+    m = ttd.Mesh(v, f)
+    ref = ttd.mesh_self_contacts(m, 0.03, shared_vertex=True, isa="scalar", threads=1)
+    assert len(ref.tri_i) > 100
+    for isa in ttd.ISAS:
+        if not ttd.isa_available(isa):
+            continue
+        for threads in (1, 2):
+            r = ttd.mesh_self_contacts(m, 0.03, shared_vertex=True, isa=isa, threads=threads)
+            for a, b in zip(r, ref):
+                np.testing.assert_array_equal(a, b)
+    assert ttd.mesh_self_collide(m).hit is False
+    with pytest.raises(ValueError, match="margin"):
+        ttd.mesh_self_contacts(m, -1.0)
+    with pytest.raises(ValueError, match="margin"):
+        ttd.mesh_self_contacts(m, float("nan"))
+    with pytest.raises(TypeError, match="ttd.Mesh"):
+        ttd.mesh_self_contacts(v, 0.1)
+    with pytest.raises(TypeError):
+        ttd.mesh_self_contacts(m, None)
+    with pytest.raises(TypeError):
+        ttd.mesh_self_contacts(m, 0.1, True)  # shared_vertex is keyword-only
+    # a moved mesh: the self-contacts of its new vertices
+    m.set_vertices(v * [1, 1, 0.5])
+    assert {(int(i), int(j)) for i, j in zip(*ttd.mesh_self_contacts(m, 0.011)[:2])} == {
+        ij for ij, x in self_brute_force(m, False).items() if x[0] <= 0.011
+    }

@@ -199,6 +199,38 @@ def mesh_contacts(
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
 ) -> MeshContacts: ...
+class SelfContacts(NamedTuple):
+    """ttd.mesh_self_contacts' result: arrays over the n pairs of one mesh, tri_i < tri_j."""
+
+    tri_i: npt.NDArray[np.uint32]
+    tri_j: npt.NDArray[np.uint32]
+    distance: npt.NDArray[np.floating]
+    p: npt.NDArray[np.floating]
+    q: npt.NDArray[np.floating]
+
+class SelfCollision(NamedTuple):
+    """ttd.mesh_self_collide's result."""
+
+    hit: bool
+    tri_i: int
+    tri_j: int
+
+def mesh_self_contacts(
+    mesh: Mesh,
+    margin: float,
+    *,
+    shared_vertex: bool = False,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> SelfContacts: ...
+def mesh_self_collide(
+    mesh: Mesh,
+    margin: float = 0.0,
+    *,
+    shared_vertex: bool = False,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> SelfCollision: ...
 def mesh_closest(
     a: Mesh,
     b: Mesh,
