@@ -22,132 +22,9 @@
 #include <string.h>
 
 #include "meshes.h"
+#include "self_brute.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
-
-/* ---- the brute force --------------------------------------------------------------------- */
-
-/* One pair's answer: distance and points (p on i, q on j); d = +inf when the pair does not count. */
-typedef struct spair {
-    uint32_t i, j;
-    double d;
-    double p[3], q[3];
-} spair;
-
-/* How many distinct indices of x are in y; the last such in *v. */
-static int count_shared(const uint32_t x[3], const uint32_t y[3], uint32_t *v)
-{
-    uint32_t seen[3];
-    int ns = 0, n = 0;
-    for (int k = 0; k < 3; ++k) {
-        int dup = 0;
-        for (int q = 0; q < ns; ++q)
-            dup |= seen[q] == x[k];
-        if (dup)
-            continue;
-        seen[ns++] = x[k];
-        if (x[k] == y[0] || x[k] == y[1] || x[k] == y[2]) {
-            ++n;
-            *v = x[k];
-        }
-    }
-    return n;
-}
-
-/* Triangle t's coordinates (double), or its edge opposite vertex v (vertices other than v in
- * order, the last repeated); returns how many vertices other than v it has. */
-static int tri_coords(const double *verts, const uint32_t t[3], int edge, uint32_t v, double out[9])
-{
-    int n = 0;
-    for (int k = 0; k < 3; ++k)
-        if (!edge || t[k] != v)
-            memcpy(out + 3 * n++, verts + 3 * (size_t)t[k], 3 * sizeof(double));
-    for (int k = n; k < 3 && n > 0; ++k)
-        memcpy(out + 3 * k, out + 3 * (n - 1), 3 * sizeof(double));
-    return n;
-}
-
-/* Every counting pair of m (vertices as double, or as float when fl), i < j, in row-major order. */
-static spair *brute_self(const ttd_gen_mesh *m, int fl, int shared, size_t *count)
-{
-    const size_t nt = m->nt;
-    size_t cap = nt * (nt - 1) / 2 * (shared ? 2 : 1) + 1, n = 0, np = 0;
-    double *s = malloc(9 * cap * sizeof *s), *t = malloc(9 * cap * sizeof *t);
-    uint8_t *kind = malloc(cap);
-    spair *out = malloc((nt * (nt - 1) / 2 + 1) * sizeof *out);
-    if (!s || !t || !kind || !out)
-        abort();
-    for (size_t i = 0; i < nt; ++i)
-        for (size_t j = i + 1; j < nt; ++j) {
-            const uint32_t *ti = m->tris + 3 * i, *tj = m->tris + 3 * j;
-            uint32_t v = 0;
-            const int k = count_shared(ti, tj, &v);
-            if (k == 0) {
-                tri_coords(m->verts, ti, 0, 0, s + 9 * n);
-                tri_coords(m->verts, tj, 0, 0, t + 9 * n);
-                kind[n++] = 0;
-            } else if (k == 1 && shared) {
-                double e[9];
-                if (tri_coords(m->verts, ti, 1, v, e) == 0 || tri_coords(m->verts, tj, 1, v, e) == 0)
-                    continue;
-                tri_coords(m->verts, ti, 1, v, s + 9 * n);
-                tri_coords(m->verts, tj, 0, 0, t + 9 * n);
-                kind[n++] = 1;
-                tri_coords(m->verts, ti, 0, 0, s + 9 * n);
-                tri_coords(m->verts, tj, 1, v, t + 9 * n);
-                kind[n++] = 2;
-            } else {
-                continue;
-            }
-            out[np].i = (uint32_t)i;
-            out[np++].j = (uint32_t)j;
-        }
-    if (!fl) {
-        ttd_result_d *r = malloc((n + 1) * sizeof *r);
-        if (!r || (n > 0 && ttd_batch_d(NULL, n, s, t, NULL, r) != TTD_OK))
-            abort();
-        for (size_t e = 0, p = 0; e < n; ++p) {
-            const ttd_result_d *best = &r[e];
-            if (kind[e] == 1 && r[e + 1].distance < best->distance)
-                best = &r[e + 1];
-            e += kind[e] == 1 ? 2 : 1;
-            out[p].d = best->distance;
-            memcpy(out[p].p, best->p, sizeof out[p].p);
-            memcpy(out[p].q, best->distance == 0 ? best->p : best->q, sizeof out[p].q);
-        }
-        free(r);
-    } else {
-        float *sf = malloc((9 * n + 1) * sizeof *sf), *tf = malloc((9 * n + 1) * sizeof *tf);
-        ttd_result_f *r = malloc((n + 1) * sizeof *r);
-        if (!sf || !tf || !r)
-            abort();
-        for (size_t x = 0; x < 9 * n; ++x) {
-            sf[x] = (float)s[x];
-            tf[x] = (float)t[x];
-        }
-        if (n > 0 && ttd_batch_f(NULL, n, sf, tf, NULL, r) != TTD_OK)
-            abort();
-        for (size_t e = 0, p = 0; e < n; ++p) {
-            const ttd_result_f *best = &r[e];
-            if (kind[e] == 1 && r[e + 1].distance < best->distance)
-                best = &r[e + 1];
-            e += kind[e] == 1 ? 2 : 1;
-            out[p].d = (double)best->distance;
-            for (int c = 0; c < 3; ++c) {
-                out[p].p[c] = (double)best->p[c];
-                out[p].q[c] = (double)(best->distance == 0 ? best->p[c] : best->q[c]);
-            }
-        }
-        free(sf);
-        free(tf);
-        free(r);
-    }
-    free(s);
-    free(t);
-    free(kind);
-    *count = np;
-    return out;
-}
 
 /* ---- checks -------------------------------------------------------------------------------- */
 
@@ -249,7 +126,7 @@ static int check_mesh(const char *what, const ttd_gen_mesh *g, double wide)
         }
         for (int shared = 0; shared < 2; ++shared) {
             size_t np;
-            spair *all = brute_self(g, fl, shared, &np);
+            spair *all = brute_self(g->verts, g->tris, g->nt, fl, shared, &np);
             /* a boundary margin: the distance of a pair near the 5th percentile */
             double *d = malloc((np + 1) * sizeof *d), boundary = 0;
             ENSURE(d != NULL);
@@ -417,7 +294,7 @@ static int refitted_self_contacts_match_brute_force(void)
         ENSURE(ttd_gen_folded_sheet(9, 3, 0.03, step / 25.0, &s) == 0);
         ENSURE(ttd_mesh_set_vertices_d(NULL, m, s.verts) == TTD_OK);
         size_t np;
-        spair *all = brute_self(&s, 0, 1, &np);
+        spair *all = brute_self(s.verts, s.tris, s.nt, 0, 1, &np);
         char what[64];
         snprintf(what, sizeof what, "folding sheet, step %d", step);
         const size_t before = pairs_checked;
