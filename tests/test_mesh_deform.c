@@ -12,7 +12,10 @@
  *     step does not; both answer exactly;
  *   - every query after a refit is identical on every instruction set and thread count;
  *   - bad input (NULL, NaN, coordinates beyond the range, the other precision, bad options) gets
- *     its status and leaves the mesh as it was. */
+ *     its status and leaves the mesh as it was;
+ *   - scenes of deforming bodies: a scene's contacts, step after step of meshes moved (one of
+ *     them shared by two bodies), against the brute force over every body pair in the world;
+ *     ids kept; a mesh moved out of range under its body's pose refused by the query. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -571,6 +574,146 @@ static int bad_vertices_refused(void)
     return 0;
 }
 
+/* ---- scenes of deforming bodies ---------------------------------------------------------------- */
+
+/* Body b's triangle t in the world: its mesh's vertices (verts) moved by its pose, as the header
+ * documents ((r0 x + r1 y) + r2 z) + t. */
+static void world_tri(const double *verts, const uint32_t *tris, size_t t, const double pose[12], double out[9])
+{
+    for (int k = 0; k < 3; ++k)
+        pose_apply_d(pose, verts + 3 * (size_t)tris[3 * t + (size_t)k], out + 3 * k);
+}
+
+typedef struct dbody {
+    const ttd_gen_mesh *g; /* its mesh's current vertices */
+    double pose[12];
+} dbody;
+
+/* The scene's contacts at margin against every triangle pair of every body pair in the world. */
+static int check_scene(const char *what, ttd_scene *scene, const dbody *bodies, int n, double margin)
+{
+    ttd_scene_array arr = {0};
+    ENSURE(ttd_scene_contacts_d(NULL, scene, margin, &arr) == TTD_OK);
+    const ttd_scene_contact_d *got = arr.data;
+    size_t k = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) {
+            const dbody *a = &bodies[i], *b = &bodies[j];
+            const size_t np = a->g->nt * b->g->nt;
+            double *s = malloc(9 * np * sizeof *s), *t = malloc(9 * np * sizeof *t);
+            ttd_result_d *r = malloc(np * sizeof *r);
+            ENSURE(s && t && r);
+            for (size_t x = 0; x < a->g->nt; ++x)
+                for (size_t y = 0; y < b->g->nt; ++y) {
+                    world_tri(a->g->verts, a->g->tris, x, a->pose, s + 9 * (x * b->g->nt + y));
+                    world_tri(b->g->verts, b->g->tris, y, b->pose, t + 9 * (x * b->g->nt + y));
+                }
+            ENSURE(ttd_batch_d(NULL, np, s, t, NULL, r) == TTD_OK);
+            for (size_t e = 0; e < np; ++e) {
+                if (!(r[e].distance <= margin))
+                    continue;
+                ENSURE_MSG(k < arr.count && got[k].i == (uint32_t)i && got[k].j == (uint32_t)j &&
+                               got[k].tri_i == e / b->g->nt && got[k].tri_j == e % b->g->nt,
+                           "%s: bodies (%d, %d), triangles (%zu, %zu) at %.17g missing", what, i, j, e / b->g->nt,
+                           e % b->g->nt, r[e].distance);
+                ENSURE(got[k].distance == r[e].distance && memcmp(got[k].p, r[e].p, sizeof got[k].p) == 0);
+                ++k;
+            }
+            free(s);
+            free(t);
+            free(r);
+        }
+    ENSURE_MSG(k == arr.count, "%s: %zu contacts, brute force %zu", what, arr.count, k);
+    pairs_checked += k;
+    ttd_scene_array_free(&arr);
+    return 0;
+}
+
+/* A scene of four bodies: two of one grid mesh (a shared mesh moves for both), one of a torus,
+ * and a floor. Over 12 steps the grid bends and grows and the torus twists (their vertices moved
+ * with ttd_mesh_set_vertices_d), bodies move now and then: every step's contacts equal the brute
+ * force of the moved vertices at their poses, the ids stay (id_limit 4); a grid grown out of its
+ * old world box touches what only the new box reaches; a mesh moved out of the coordinate range
+ * under its pose makes the query refuse. */
+static int deforming_bodies_in_a_scene(void)
+{
+    ttd_gen_mesh grid, torus, floor_g, grid_now, torus_now;
+    ENSURE(ttd_gen_grid(6, &grid) == 0 && ttd_gen_torus(0.5, 0.15, 10, 6, &torus) == 0 && ttd_gen_grid(3, &floor_g) == 0);
+    ENSURE(ttd_gen_mesh_copy(&grid, &grid_now) == 0 && ttd_gen_mesh_copy(&torus, &torus_now) == 0);
+    for (size_t v = 0; v < floor_g.nv; ++v) { /* the floor: 6 x 6 at z = -0.4 */
+        floor_g.verts[3 * v] = 6 * floor_g.verts[3 * v] - 3;
+        floor_g.verts[3 * v + 1] = 6 * floor_g.verts[3 * v + 1] - 3;
+        floor_g.verts[3 * v + 2] = -0.4;
+    }
+    ttd_mesh *mg, *mt, *mf;
+    ENSURE(ttd_mesh_create_d(NULL, grid.verts, grid.nv, grid.tris, grid.nt, &mg) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, torus.verts, torus.nv, torus.tris, torus.nt, &mt) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, floor_g.verts, floor_g.nv, floor_g.tris, floor_g.nt, &mf) == TTD_OK);
+    dbody bodies[4] = {{&grid_now, {1, 0, 0, -1.2, 0, 1, 0, 0, 0, 0, 1, 0}},
+                       {&grid_now, {0, -1, 0, 2.2, 1, 0, 0, 0, 0, 0, 1, 0.1}},
+                       {&torus_now, {1, 0, 0, 0.3, 0, 1, 0, 0.5, 0, 0, 1, 0}},
+                       {&floor_g, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}}};
+    ttd_scene *scene;
+    ENSURE(ttd_scene_create_d(&scene) == TTD_OK);
+    ttd_mesh *meshes[4] = {mg, mg, mt, mf};
+    for (int i = 0; i < 4; ++i) {
+        uint32_t id;
+        ENSURE(ttd_scene_add_d(scene, meshes[i], bodies[i].pose, &id) == TTD_OK && id == (uint32_t)i);
+    }
+    /* grown threefold about its corner, body 0's grid reaches the torus only through a new box */
+    for (size_t v = 0; v < 3 * grid.nv; ++v)
+        grid_now.verts[v] = 3 * grid.verts[v];
+    ttd_scene_array arr = {0};
+    ENSURE(ttd_scene_contacts_d(NULL, scene, 0.05, &arr) == TTD_OK);
+    const size_t before = arr.count;
+    ENSURE(ttd_mesh_set_vertices_d(NULL, mg, grid_now.verts) == TTD_OK);
+    ENSURE(ttd_scene_contacts_d(NULL, scene, 0.05, &arr) == TTD_OK);
+    ENSURE_MSG(arr.count > before, "the grown grid: %zu contacts, %zu before", arr.count, before);
+    ttd_scene_array_free(&arr);
+    if (check_scene("grown grid", scene, bodies, 4, 0.05))
+        return 1;
+    for (int step = 1; step <= 12; ++step) {
+        deform(&grid, step % 2 ? DEF_BEND : DEF_TWIST, step / 10.0, grid_now.verts);
+        for (size_t v = 0; v < 3 * grid.nv; ++v)
+            grid_now.verts[v] *= 2.5;
+        deform(&torus, DEF_TWIST, step / 8.0, torus_now.verts);
+        ENSURE(ttd_mesh_set_vertices_d(NULL, mg, grid_now.verts) == TTD_OK);
+        ENSURE(ttd_mesh_set_vertices_d(NULL, mt, torus_now.verts) == TTD_OK);
+        if (step % 4 == 0) { /* and a move */
+            bodies[2].pose[3] += 0.2;
+            ENSURE(ttd_scene_set_pose_d(scene, 2, bodies[2].pose) == TTD_OK);
+        }
+        char what[64];
+        snprintf(what, sizeof what, "deforming scene, step %d", step);
+        if (check_scene(what, scene, bodies, 4, 0.08))
+            return 1;
+        ttd_scene_array hits = {0};
+        ENSURE(ttd_scene_collide_d(NULL, scene, 0.08, &hits) == TTD_OK);
+        ttd_scene_array_free(&hits);
+    }
+    ENSURE(ttd_scene_id_limit(scene) == 4 && ttd_scene_body_count(scene) == 4);
+    /* moved out of range under body 1's pose (translation 2.2): the query refuses, and accepts
+     * again once the mesh is back */
+    for (size_t v = 0; v < 3 * grid.nv; ++v)
+        grid_now.verts[v] = grid.verts[v] + (v % 3 == 0 ? 0x1p508 - 3 : 0);
+    ENSURE(ttd_mesh_set_vertices_d(NULL, mg, grid_now.verts) == TTD_OK);
+    ENSURE(ttd_scene_contacts_d(NULL, scene, 0.08, &arr) == TTD_ERR_COORDINATE_RANGE);
+    ENSURE(ttd_mesh_set_vertices_d(NULL, mg, grid.verts) == TTD_OK);
+    memcpy(grid_now.verts, grid.verts, 3 * grid.nv * sizeof *grid.verts);
+    if (check_scene("back in range", scene, bodies, 4, 0.08))
+        return 1;
+    printf("  13 steps of a scene of deforming bodies: every contact set the brute force's\n");
+    ttd_scene_array_free(&arr);
+    ttd_scene_destroy(scene);
+    ttd_mesh_destroy(mg);
+    ttd_mesh_destroy(mt);
+    ttd_mesh_destroy(mf);
+    ttd_gen_mesh *all[5] = {&grid, &torus, &floor_g, &grid_now, &torus_now};
+    for (int i = 0; i < 5; ++i)
+        ttd_gen_mesh_free(all[i]);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -580,5 +723,6 @@ int main(int argc, char **argv)
     RUN_TEST(degraded_trees_rebuild);
     RUN_TEST(refit_threads_isas_identical);
     RUN_TEST(bad_vertices_refused);
+    RUN_TEST(deforming_bodies_in_a_scene);
     TEST_MAIN_END();
 }

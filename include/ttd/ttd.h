@@ -497,7 +497,14 @@ TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mes
  *
  * A scene keeps the broad phase's state between calls (the bodies' world boxes and their sorted
  * order, updated as poses change): it must not be changed or queried from two threads at once.
- * The meshes must outlive the scene. opt may be NULL; its method must be TTD_METHOD_EXACT and its
+ * The meshes must outlive the scene.
+ *
+ * Deforming bodies: a body's mesh may have its vertices moved (ttd_mesh_set_vertices_d, between
+ * scene calls, never during one); the body keeps its id, pose and filters, and the scene's next
+ * query sees the new vertices: it recomputes the world box of every body whose mesh changed (a
+ * per-mesh update count the scene compares, one comparison per body), after checking the body's
+ * pose again against the moved mesh (TTD_ERR_COORDINATE_RANGE when it now leaves the range). A
+ * mesh shared by several bodies moves for all of them: give each deforming body its own mesh. opt may be NULL; its method must be TTD_METHOD_EXACT and its
  * isa and threads apply (body pairs are spread over the threads).
  * @{ */
 

@@ -225,3 +225,27 @@ def test_self_queries_threads_isas_and_errors():
     assert {(int(i), int(j)) for i, j in zip(*ttd.mesh_self_contacts(m, 0.011)[:2])} == {
         ij for ij, x in self_brute_force(m, False).items() if x[0] <= 0.011
     }
+
+
+def test_scene_sees_moved_meshes():
+    """A Scene's bodies move with their meshes: after set_vertices the scene's contacts are those of
+    the moved vertices at the bodies' poses (ttd.mesh_contacts with world poses), ids kept; a mesh
+    shared by two bodies moves for both."""
+    v, f = MESHES["grid"]
+    tv, tf = MESHES["torus"]
+    G, T = ttd.Mesh(v, f), ttd.Mesh(tv, tf)
+    poses = np.stack([np.eye(4)] * 3)
+    poses[1, :3, 3] = [1.4, 0, 0]
+    poses[2, :3, 3] = [0.3, 0.4, 0.2]
+    scene = ttd.Scene([G, G, T], poses)
+    for step, t in enumerate((0.0, 0.6, 1.3)):
+        G.set_vertices(bent(v, t) * (1 + step))
+        got = scene.contacts(0.05)
+        assert scene.id_limit == 3
+        for i, j in ((0, 1), (0, 2), (1, 2)):
+            A, B = (G, T) if j == 2 else (G, G)
+            want = ttd.mesh_contacts(A, B, None, 0.05, pose_a=poses[i], pose_b=poses[j])
+            mine = (got.i == i) & (got.j == j)
+            assert set(zip(got.tri_i[mine].tolist(), got.tri_j[mine].tolist())) == set(
+                zip(want.tri_a.tolist(), want.tri_b.tolist())
+            )
