@@ -120,36 +120,58 @@ def self_brute_force(m, shared_vertex):
     """Every counting pair (i < j) of mesh m by the header's rules, with its ttd.distance result:
     no shared vertex (by index): (T_i, T_j); exactly one, v, and each triangle another vertex
     (shared_vertex): the nearer of (E_i, T_j) and (T_i, E_j), E the vertices other than v in their
-    order, the last repeated; {(i, j): (d, p, q)}."""
+    order, the last repeated. Returns the pairs (n, 2) and their distances, p and q; vectorised."""
     V, F = m.vertices, m.faces.astype(np.int64)
-    pairs, S, T = [], [], []
-    for i in range(len(F)):
-        for j in range(i + 1, len(F)):
-            common = set(F[i].tolist()) & set(F[j].tolist())
-            if not common:
-                pairs.append((i, j, 1))
-                S.append(V[F[i]])
-                T.append(V[F[j]])
-            elif len(common) == 1 and shared_vertex:
-                (v,) = common
-                ei = [k for k in F[i] if k != v]
-                ej = [k for k in F[j] if k != v]
-                if not ei or not ej:
-                    continue
-                ei, ej = (ei + [ei[-1]] * 2)[:3], (ej + [ej[-1]] * 2)[:3]
-                pairs.append((i, j, 2))
-                S += [V[ei], V[F[i]]]
-                T += [V[F[j]], V[ej]]
-    r = ttd.distance(np.array(S), np.array(T), points=True)
-    out, k = {}, 0
-    for i, j, n in pairs:
-        best = k
-        if n == 2 and r.distance[k + 1] < r.distance[k]:
-            best = k + 1
-        d = r.distance[best]
-        out[(i, j)] = (d, r.p[best], r.p[best] if d == 0 else r.q[best])
-        k += n
-    return out
+    I, J = np.triu_indices(len(F), 1)
+    A, B = F[I], F[J]  # (n, 3)
+    first = np.ones((len(F), 3), bool)  # an index's first occurrence in its triangle
+    first[:, 1] = F[:, 1] != F[:, 0]
+    first[:, 2] = (F[:, 2] != F[:, 0]) & (F[:, 2] != F[:, 1])
+    hit = (A[:, :, None] == B[:, None, :]).any(2) & first[I]  # distinct indices of A found in B
+    shared = hit.sum(1)
+    plain = shared == 0
+    S, T, key, kind = [V[A[plain]]], [V[B[plain]]], [np.stack([I[plain], J[plain]], 1)], [np.ones(plain.sum(), int)]
+    if shared_vertex:
+        one = np.nonzero(shared == 1)[0]
+        v = A[one, np.argmax(hit[one], 1)]
+        def edge(T):  # vertices other than v, in order, the last repeated; None where none is left
+            keep = T != v[:, None]
+            out = np.empty_like(T)
+            ok = keep.any(1)
+            for r in np.nonzero(ok)[0]:
+                e = T[r][keep[r]].tolist()
+                out[r] = (e + [e[-1]] * 2)[:3]
+            return out, ok
+        EA, oka = edge(A[one])
+        EB, okb = edge(B[one])
+        ok = oka & okb
+        one, EA, EB = one[ok], EA[ok], EB[ok]
+        # the two entries of a pair side by side: (E_i, T_j), (T_i, E_j)
+        S.append(np.stack([V[EA], V[A[one]]], 1).reshape(-1, 3, 3))
+        T.append(np.stack([V[B[one]], V[EB]], 1).reshape(-1, 3, 3))
+        key.append(np.stack([I[one], J[one]], 1))
+        kind.append(np.full(len(one), 2))
+    S, T, key, kind = np.concatenate(S), np.concatenate(T), np.concatenate(key), np.concatenate(kind)
+    return key, *_reduce(S, T, kind)
+
+
+def _reduce(S, T, kind):
+    """ttd.distance on the entries, and per pair (kind[k] entries each) the nearer, the first on
+    ties: distance, p, q (q = p at distance 0)."""
+    if len(S) == 0:
+        return np.zeros(0), np.zeros((0, 3)), np.zeros((0, 3))
+    r = ttd.distance(S, T, points=True)
+    at = np.concatenate([[0], np.cumsum(kind)[:-1]])
+    second = np.minimum(at + 1, len(S) - 1)
+    best = np.where((kind == 2) & (r.distance[second] < r.distance[at]), second, at)
+    d = r.distance[best]
+    return d, r.p[best], np.where((d == 0)[:, None], r.p[best], r.q[best])
+
+
+def self_brute_dict(m, shared_vertex):
+    """self_brute_force as {(i, j): (d, p, q)}."""
+    key, d, p, q = self_brute_force(m, shared_vertex)
+    return {(int(i), int(j)): (d[k], p[k], q[k]) for k, (i, j) in enumerate(key)}
 
 
 def folded(n=6, gap=0.05):
@@ -176,7 +198,7 @@ def folded(n=6, gap=0.05):
 def test_self_contacts_equal_brute_force(name, shared_vertex, dtype):
     v, f = folded() if name == "folded" else MESHES[name]
     m = ttd.Mesh(v.astype(dtype), f)
-    want = self_brute_force(m, shared_vertex)
+    want = self_brute_dict(m, shared_vertex)
     d = np.array([x[0] for x in want.values()])
     for margin in (0.0, float(np.sort(d)[len(d) // 50]), float(np.sort(d)[len(d) // 10])):
         margin = dtype(margin)
@@ -223,7 +245,7 @@ def test_self_queries_threads_isas_and_errors():
     # a moved mesh: the self-contacts of its new vertices
     m.set_vertices(v * [1, 1, 0.5])
     assert {(int(i), int(j)) for i, j in zip(*ttd.mesh_self_contacts(m, 0.011)[:2])} == {
-        ij for ij, x in self_brute_force(m, False).items() if x[0] <= 0.011
+        ij for ij, x in self_brute_dict(m, False).items() if x[0] <= 0.011
     }
 
 

@@ -199,9 +199,10 @@ static void triangle_axes(double p[3][3], double u[9])
 }
 
 /* Eigenvectors of the symmetric 3x3 matrix a (destroyed) by cyclic Jacobi rotations, as the rows
- * of u, largest eigenvalue first. start (rows: unit, near perpendicular) or NULL: the rotations
- * start from those axes instead of the coordinate axes (a refit starts from a box's axes before
- * its triangles moved, which are near the new ones: a sweep or none instead of three or four). */
+ * of u, largest eigenvalue first. start (rows: unit, orthonormal to a few eps) or NULL: the
+ * rotations start from those axes instead of the coordinate axes (a refit starts from a box's
+ * axes before its triangles moved, which are near the new ones: a sweep or none instead of three
+ * or four), and where they need none, they are the answer as they are, in their order. */
 static void eigen_sym3(double a[3][3], double u[9], const double *start)
 {
     double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -224,10 +225,17 @@ static void eigen_sym3(double a[3][3], double u[9], const double *start)
     for (int sweep = 0; sweep < 50; ++sweep) {
         const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
         const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        /* axes to about 1e-6: a box is fitted to its vertices about whatever axes it gets,
-         * so further sweeps would only tilt it by less than that */
-        if (!(off > 1e-6 * diag))
+        /* axes to about 1e-6 (1e-3 from a start: a refit's box turns with its triangles, and
+         * its axes are the last fit's unless they moved by more): a box is fitted to its
+         * vertices about whatever axes it gets, so further sweeps would only tilt it by less
+         * than that */
+        if (!(off > (start ? 1e-3 : 1e-6) * diag)) {
+            if (start != NULL && sweep == 0) { /* the start's axes still do, as they are */
+                memcpy(u, start, 9 * sizeof *u);
+                return;
+            }
             break;
+        }
         for (int p = 0; p < 2; ++p)
             for (int q = p + 1; q < 3; ++q) {
                 if (a[p][q] == 0)
