@@ -472,15 +472,6 @@ bench_deform_results *bench_deform_run(const bench_deform_config *c, const bench
     return R;
 }
 
-static const char *num(char *b, size_t n, double v, const char *fmt)
-{
-    if (!isfinite(v))
-        snprintf(b, n, "-");
-    else
-        snprintf(b, n, fmt, v);
-    return b;
-}
-
 void bench_deform_write_table(FILE *f, const bench_deform_results *R)
 {
     if (R == NULL)
@@ -496,9 +487,9 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
     for (int i = 0; i < R->nrefit; ++i) {
         const refit_row *r = &R->refit[i];
         fprintf(f, "%-12s %9zu %5d %10s %10s %10s %10s %9s %9s %8llu  %s\n", r->workload, r->tris, r->runs,
-                num(b[0], 40, r->build_ms, "%.3f"), num(b[1], 40, r->refit_ms, "%.3f"),
-                num(b[2], 40, r->fcl_build_ms, "%.3f"), num(b[3], 40, r->fcl_refit_ms, "%.3f"),
-                num(b[4], 40, r->build_ms / r->refit_ms, "%.2f"), num(b[5], 40, r->fcl_refit_ms / r->refit_ms, "%.2f"),
+                bench_num(b[0], 40, r->build_ms, "%.3f"), bench_num(b[1], 40, r->refit_ms, "%.3f"),
+                bench_num(b[2], 40, r->fcl_build_ms, "%.3f"), bench_num(b[3], 40, r->fcl_refit_ms, "%.3f"),
+                bench_num(b[4], 40, r->build_ms / r->refit_ms, "%.2f"), bench_num(b[5], 40, r->fcl_refit_ms / r->refit_ms, "%.2f"),
                 r->rebuilds, r->fcl_note);
     }
     fprintf(f, "\nself-contacts: a sheet folded into 4 layers (gen: ttd_gen_folded_sheet, the fold going from 0.85 to "
@@ -510,8 +501,8 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
     for (int i = 0; i < R->nself; ++i) {
         const self_row *r = &R->self[i];
         fprintf(f, "%-22s %9zu %5d %9.3g %9s %9s %9s %9s %11.0f %11.0f %7s\n", r->workload, r->tris, r->steps,
-                r->margin, num(b[0], 40, r->ttd_ms, "%.2f"), num(b[1], 40, r->refit_ms, "%.2f"),
-                num(b[2], 40, r->grid_ms, "%.2f"), num(b[3], 40, r->grid_ms / r->ttd_ms, "%.2f"), r->pairs_mean,
+                r->margin, bench_num(b[0], 40, r->ttd_ms, "%.2f"), bench_num(b[1], 40, r->refit_ms, "%.2f"),
+                bench_num(b[2], 40, r->grid_ms, "%.2f"), bench_num(b[3], 40, r->grid_ms / r->ttd_ms, "%.2f"), r->pairs_mean,
                 r->candidates_mean, r->agree ? "yes" : "NO");
     }
     fprintf(f, "\ndeforming-mesh targets, issue 25 (ratios of this run; the benchmark measures, it does not fail on "
@@ -519,7 +510,7 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
     for (int i = 0; i < NTARGET; ++i) {
         const target *t = &R->targets[i];
         fprintf(f, "  %-50s %-12s measured %9s  %s\n", t->what, t->need,
-                num(b[0], 40, t->measured, i == 2 ? "%.2f ms" : "%.2fx"),
+                bench_num(b[0], 40, t->measured, i == 2 ? "%.2f ms" : "%.2fx"),
                 i == 3 ? "" : !isfinite(t->measured) ? "not measured" : t->met ? "met" : "MISSED");
     }
 }

@@ -209,7 +209,8 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
  * (ttd_mesh_set_vertices_d, a deforming mesh), which refits the hierarchy in place. Between
  * such updates a mesh is read-only and may be queried from many threads at once; an update must
  * not run while anything else (a query, a scene query over a body of it, another update) uses
- * that mesh. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
+ * that mesh. Every query but the self queries (one mesh against itself, at the end of this
+ * group) takes two meshes, a and b, and k >= 1 poses of b in the frame of
  * a. A pose is 12 reals, the 3x4 matrix [R | t] row by row (r00 r01 r02 t0 r10 r11 r12 t1 r20
  * r21 r22 t2), mapping b's coordinates into a's frame: x_a = R x_b + t, computed per coordinate
  * as ((r0*x + r1*y) + r2*z) + t, so that a brute force can reproduce it to the bit. R must be a
@@ -260,10 +261,10 @@ TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
 /// holds 3 reals for each of its ttd_mesh_vertex_count vertices, copied, with the checks of
 /// ttd_mesh_create_d (TTD_ERR_NONFINITE_MESH, TTD_ERR_COORDINATE_RANGE;
 /// TTD_ERR_PRECISION_MISMATCH for a mesh built by ttd_mesh_create_f). The hierarchy keeps its
-/// shape and every box is fitted again around the moved triangles (a refit, much cheaper than a
-/// build); when refitting has degraded it past a measure (its boxes' summed surface area over
-/// the root box's, grown twice what it was at the last build: docs/mesh-queries.md, section
-/// 2b), it is rebuilt. Every query then answers for the new positions, exactly as for a mesh
+/// shape and every box is fitted again around the moved triangles (a refit, cheaper than a
+/// build); when refitting has degraded it past a measure (the summed surface area of its
+/// subtrees' boxes over that of its triangles' boxes, grown past twice what it was at the last
+/// build: docs/mesh-queries.md, section 2b), it is rebuilt. Every query then answers for the new positions, exactly as for a mesh
 /// built from them. The mesh stays the same object: every scene body of it moves with it (the
 /// scene updates their world boxes on its next call). Must not run while the mesh is used by
 /// anything else (see above). On an error (TTD_ERR_OUT_OF_MEMORY included) the mesh is as it
@@ -504,8 +505,10 @@ TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mes
  * query sees the new vertices: it recomputes the world box of every body whose mesh changed (a
  * per-mesh update count the scene compares, one comparison per body), after checking the body's
  * pose again against the moved mesh (TTD_ERR_COORDINATE_RANGE when it now leaves the range). A
- * mesh shared by several bodies moves for all of them: give each deforming body its own mesh. opt may be NULL; its method must be TTD_METHOD_EXACT and its
- * isa and threads apply (body pairs are spread over the threads).
+ * mesh shared by several bodies moves for all of them: give each deforming body its own mesh.
+ *
+ * opt may be NULL; its method must be TTD_METHOD_EXACT and its isa and threads apply (body pairs
+ * are spread over the threads).
  * @{ */
 
 /// A scene of bodies (opaque).

@@ -225,6 +225,17 @@ static void ttd_py_raise_vertex_range(PyArrayObject *v, size_t nv, int type)
     PyErr_Format(PyExc_ValueError, "ttd: %s", ttd_status_string(TTD_ERR_COORDINATE_RANGE));
 }
 
+/* The exception for a status of a build or a vertex update from vertices v (nv rows of type t):
+ * the vertex beyond the coordinate range, or the fatal status's. */
+static void ttd_py_raise_vertices_status(ttd_status st, PyArrayObject *v, size_t nv, int t, const ttd_options *opt,
+                                         const char *doing)
+{
+    if (st == TTD_ERR_COORDINATE_RANGE)
+        ttd_py_raise_vertex_range(v, nv, t);
+    else if (ttd_py_raise_fatal(st, opt) == 0)
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d %s", (int)st, doing);
+}
+
 static PyObject *ttd_py_mesh_new(PyTypeObject *type, PyObject *args, PyObject *kwargs)
 {
     static char *kwlist[] = {"vertices", "faces", "precision", "threads", NULL};
@@ -260,14 +271,8 @@ static PyObject *ttd_py_mesh_new(PyTypeObject *type, PyObject *args, PyObject *k
     Py_BEGIN_ALLOW_THREADS
     st = t == NPY_DOUBLE ? ttd_mesh_create_d(&opt, vd, nv, fd, nt, &m) : ttd_mesh_create_f(&opt, vd, nv, fd, nt, &m);
     Py_END_ALLOW_THREADS
-    if (st == TTD_ERR_COORDINATE_RANGE) {
-        ttd_py_raise_vertex_range(v, nv, t);
-        Py_DECREF(self);
-        return NULL;
-    }
     if (st != TTD_OK) {
-        if (ttd_py_raise_fatal(st, &opt) == 0)
-            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d building a mesh", (int)st);
+        ttd_py_raise_vertices_status(st, v, nv, t, &opt, "building a mesh");
         Py_DECREF(self);
         return NULL;
     }
@@ -399,14 +404,8 @@ static PyObject *ttd_py_mesh_set_vertices(PyObject *obj, PyObject *args, PyObjec
     st = t == NPY_DOUBLE ? ttd_mesh_set_vertices_d(&opt, m, vd) : ttd_mesh_set_vertices_f(&opt, m, vd);
     Py_END_ALLOW_THREADS
     self->moving = 0;
-    if (st == TTD_ERR_COORDINATE_RANGE) {
-        ttd_py_raise_vertex_range(v, nv, t);
-        Py_DECREF(v);
-        return NULL;
-    }
     if (st != TTD_OK) {
-        if (ttd_py_raise_fatal(st, &opt) == 0)
-            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d moving a mesh's vertices", (int)st);
+        ttd_py_raise_vertices_status(st, v, nv, t, &opt, "moving a mesh's vertices");
         Py_DECREF(v);
         return NULL;
     }

@@ -995,7 +995,7 @@ nomem:
 typedef struct refit {
     const struct ttd_mesh *mesh;
     moments *mo;          /* per node: its triangles' moments, once the node is refitted */
-    const subtree *list;  /* the subtrees refitted in parallel */
+    subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
 
 /* A local builder over up to 8 triangles (a leaf, or one triangle): their vertices relative to
@@ -1158,8 +1158,8 @@ static moments refit_slot(const refit *R, int32_t n, int j)
 }
 
 /* Refits the slots of the nodes first..last-1 that are not leaves, the last first (pre-order:
- * children after their parent), keeping each node's moments; skips the listed subtrees' nodes
- * when skip_listed (the top of the tree, after they were done). */
+ * children after their parent), keeping each node's moments; skips the nodes of the first nlist
+ * listed subtrees (the top of the tree, refitted after them). */
 static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
 {
     size_t next = nlist; /* the listed subtree below the current node, from the last */
@@ -1193,8 +1193,9 @@ static void refit_task(void *ctx, size_t i, int worker)
     refit_nodes(R, (size_t)t->node, (size_t)t->node + count_nodes(t->hi - t->lo), 0);
 }
 
-/* Rebuilds m's hierarchy from its vertices (a fresh build, whose contents m takes, keeping its
- * counters and the closed flag, which depends on the triangles alone). Out of memory, m keeps its
+/* Rebuilds m's hierarchy from its vertices (a fresh build, whose contents, everything derived
+ * included, m takes, keeping its counters and the closed flag, which depends on the triangles
+ * alone; the old contents are freed with the fresh mesh's struct). Out of memory, m keeps its
  * refitted tree, which is valid: a rebuild only makes the queries faster. */
 static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
 {
@@ -1210,37 +1211,48 @@ static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
     ttd_mesh_free(fresh);
 }
 
+/* The hierarchy's boxes, bottom-up over its kept shape: the subtrees the build would build in
+ * parallel, in parallel, then the nodes above them, then the root's slot. */
+static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit *R)
+{
+    size_t nlist = 0;
+    if (m->nt > 1) {
+        builder B = {.mesh = m, .refit = 1};
+        shape(&B, 1, 0, m->nt, parallel_depth(cfg->threads), R->list, &nlist); /* lists them, in order */
+        ttd_parallel_tasks(nlist, cfg->threads, refit_task, R);
+        refit_nodes(R, 1, m->nnodes, nlist);
+    }
+    (void)refit_slot(R, 0, 0);
+}
+
+/* Everything derived from the vertex positions, recomputed after they moved, in this order:
+ *   1. place: the origin and the radius (the boxes' frame, the spheres, the rounding margin);
+ *   2. refit_boxes: the hierarchy's boxes;
+ *   3. tree_quality: the measure that decides a rebuild (ttd_mesh_refit).
+ * Data derived from the vertices that the mesh gains later (per-edge, per-node) is recomputed
+ * here too, after the boxes; a rebuild (ttd_mesh_build) recomputes it all by itself. What depends
+ * on the triangles alone (the closed flag, mesh/solid.c) stays as it is. */
+static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R)
+{
+    place(m, verts, NULL);
+    refit_boxes(cfg, m, R);
+    m->quality = tree_quality(m);
+}
+
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
-    subtree *list = malloc(64 * sizeof *list);
-    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(moments)), list};
-    if (list == NULL || R.mo == NULL) {
-        free(list);
+    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(moments)), malloc(64 * sizeof(subtree))};
+    if (R.mo == NULL || R.list == NULL) {
         free(R.mo);
+        free(R.list);
         return TTD_ERR_OUT_OF_MEMORY;
     }
     memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
     m->generation++;
-    /* Everything derived from the vertex positions is recomputed here, in this order:
-     *   1. the origin and radius (place_origin);
-     *   2. the hierarchy's boxes, bottom-up over the tree's kept shape (refit_nodes: the
-     *      subtrees the build would build in parallel, in parallel, then the top; then the root);
-     *   3. the tree's quality measure (tree_quality), and a rebuild when it has degraded.
-     * What depends on the triangles alone (the closed flag, mesh/solid.c) stays. */
-    place(m, verts, NULL);
-    size_t nlist = 0;
-    const int depth = parallel_depth(cfg->threads);
-    if (m->nt > 1) {
-        builder B = {.mesh = m, .refit = 1};
-        shape(&B, 1, 0, m->nt, depth, list, &nlist); /* lists the subtrees: B.refit keeps the order */
-        ttd_parallel_tasks(nlist, cfg->threads, refit_task, &R);
-        refit_nodes(&R, 1, m->nnodes, nlist);
-    }
-    (void)refit_slot(&R, 0, 0);
-    m->quality = tree_quality(m);
-    free(list);
+    refit_derived(cfg, m, verts, &R);
     free(R.mo);
+    free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);
     return TTD_OK;
