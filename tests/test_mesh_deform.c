@@ -13,6 +13,7 @@
  *   - every query after a refit is identical on every instruction set and thread count;
  *   - bad input (NULL, NaN, coordinates beyond the range, the other precision, bad options) gets
  *     its status and leaves the mesh as it was;
+ *   - solid queries see moved vertices (a sphere moved inside another is contained, and out);
  *   - scenes of deforming bodies: a scene's contacts, step after step of meshes moved (one of
  *     them shared by two bodies), against the brute force over every body pair in the world;
  *     ids kept; a mesh moved out of range under its body's pose refused by the query. */
@@ -548,7 +549,7 @@ static int bad_vertices_refused(void)
     ttd_options bad = ttd_default_options();
     bad.method = TTD_METHOD_PENALTY;
     ENSURE(ttd_mesh_set_vertices_d(&bad, m, g.verts) == TTD_ERR_BAD_OPTIONS);
-    const double nasty[3] = {NAN, INFINITY, 0x1p509};
+    const double nasty[3] = {(double)NAN, (double)INFINITY, 0x1p509};
     const ttd_status want[3] = {TTD_ERR_NONFINITE_MESH, TTD_ERR_NONFINITE_MESH, TTD_ERR_COORDINATE_RANGE};
     for (int k = 0; k < 3; ++k) {
         memcpy(v, g.verts, 3 * g.nv * sizeof *v);
@@ -571,6 +572,51 @@ static int bad_vertices_refused(void)
     ttd_mesh_destroy(m);
     ttd_mesh_destroy(mf);
     ttd_gen_mesh_free(&g);
+    return 0;
+}
+
+/* Solid queries (options.solid) on moved meshes: the closed flag stays (the triangles are the
+ * same), the containment test sees the new vertices. A small sphere moved inside a large one is
+ * contained (distance 0, TTD_MESH_CONTAINED), moved out again it is not, and its surface distance
+ * is the brute force's either way. */
+static int solids_after_refit(void)
+{
+    ttd_gen_mesh big, small, moved;
+    ENSURE(ttd_gen_icosphere(2, &big) == 0 && ttd_gen_icosphere(1, &small) == 0 && ttd_gen_mesh_copy(&small, &moved) == 0);
+    for (size_t v = 0; v < 3 * big.nv; ++v)
+        big.verts[v] *= 3;
+    ttd_mesh *a, *b;
+    ENSURE(ttd_mesh_create_d(NULL, big.verts, big.nv, big.tris, big.nt, &a) == TTD_OK);
+    for (size_t v = 0; v < small.nv; ++v) /* built far outside */
+        moved.verts[3 * v] = small.verts[3 * v] + 10;
+    ENSURE(ttd_mesh_create_d(NULL, moved.verts, moved.nv, moved.tris, moved.nt, &b) == TTD_OK);
+    ttd_options solid = ttd_default_options();
+    solid.solid = 1;
+    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    ttd_mesh_result_d r;
+    ENSURE(ttd_mesh_distance_d(&solid, a, b, 1, id, HUGE_VAL, 0, &r) == TTD_OK && r.flags == 0 && r.distance > 5);
+    const double shifts[2] = {0.4, 10};
+    for (int k = 0; k < 2; ++k) {
+        for (size_t v = 0; v < small.nv; ++v)
+            moved.verts[3 * v] = small.verts[3 * v] + shifts[k];
+        ENSURE(ttd_mesh_set_vertices_d(NULL, b, moved.verts) == TTD_OK);
+        ENSURE(ttd_mesh_distance_d(&solid, a, b, 1, id, HUGE_VAL, 0, &r) == TTD_OK);
+        if (k == 0) {
+            ENSURE_MSG(r.distance == 0 && r.flags == (TTD_MESH_INTERSECTING | TTD_MESH_CONTAINED),
+                       "moved inside: distance %.17g, flags %u", r.distance, (unsigned)r.flags);
+        } else {
+            ENSURE(r.flags == 0 && r.distance > 5);
+        }
+        ttd_collision c;
+        ENSURE(ttd_mesh_collide_d(&solid, a, b, 1, id, 0, &c) == TTD_OK && c.hit == (k == 0));
+        if (check_d(k == 0 ? "small sphere moved inside" : "moved out again", &big, &moved, a, b, id))
+            return 1;
+    }
+    ttd_mesh_destroy(a);
+    ttd_mesh_destroy(b);
+    ttd_gen_mesh_free(&big);
+    ttd_gen_mesh_free(&small);
+    ttd_gen_mesh_free(&moved);
     return 0;
 }
 
@@ -723,6 +769,7 @@ int main(int argc, char **argv)
     RUN_TEST(degraded_trees_rebuild);
     RUN_TEST(refit_threads_isas_identical);
     RUN_TEST(bad_vertices_refused);
+    RUN_TEST(solids_after_refit);
     RUN_TEST(deforming_bodies_in_a_scene);
     TEST_MAIN_END();
 }

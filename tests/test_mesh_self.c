@@ -366,10 +366,10 @@ static int bad_input_refused(void)
     ENSURE(ttd_mesh_self_contacts_d(NULL, m, 0.1, 0, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_mesh_self_collide_d(NULL, m, 0.1, 0, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_mesh_self_contacts_d(NULL, m, -1, 0, &set) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_self_contacts_d(NULL, m, NAN, 0, &set) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_self_contacts_d(NULL, m, INFINITY, 0, &set) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_contacts_d(NULL, m, (double)NAN, 0, &set) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_contacts_d(NULL, m, (double)INFINITY, 0, &set) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_mesh_self_contacts_d(NULL, m, 0.1, 4, &set) == TTD_ERR_BAD_OPTIONS);
-    ENSURE(ttd_mesh_self_collide_d(NULL, m, NAN, 0, &col) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_collide_d(NULL, m, (double)NAN, 0, &col) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_mesh_self_contacts_f(NULL, m, 0.1f, 0, &setf) == TTD_ERR_PRECISION_MISMATCH);
     ENSURE(ttd_mesh_self_contacts_d(NULL, mf, 0.1, 0, &set) == TTD_ERR_PRECISION_MISMATCH);
     ttd_options bad = ttd_default_options();
