@@ -11,8 +11,9 @@ contacts (ttd.mesh_contacts) within the cloth's thickness; both push the triangl
 
 The sheet (side 2, at height 0.8) is a grid of --n x --n quads, each split in two; the sphere
 (radius 0.5, an icosphere of 1,280 triangles) rests on the floor z = -0.5. A step: gravity and
-damping by Verlet integration; --iterations rounds of the edge-length constraints (every grid
-edge, both diagonals' one), Jacobi-style with relaxation; the floor and the exact sphere as hard
+damping by Verlet integration; --iterations rounds (default n / 3, at least 12, so that the
+sheet is as stiff at any resolution) of the edge-length constraints (every grid edge and one
+diagonal per quad), Jacobi-style with relaxation; the floor and the exact sphere as hard
 limits; then the contacts. For a pair within the thickness h at distance d, the two triangles'
 vertices are pushed apart along their closest points' direction (the first triangle's normal
 at d = 0) by (h - d) / 2 each, shared out over their three vertices. The margin h (default
@@ -79,19 +80,23 @@ def sheet(n, side=2.0, height=0.8):
 
 def push_apart(X, F, tri_a, tri_b, p, q, d, h, normal_a, b_static=False):
     """Moves the vertices of triangles tri_a (and tri_b, unless b is static) apart along q -> p
-    (a's normal where d = 0) by (h - d) / 2 each (all of it on a when b is static)."""
+    (a's normal where d = 0) by (h - d) / 2 each (all of it on a when b is static); a vertex in
+    several pairs moves by the mean of their pushes (their sum would overshoot: a vertex of a
+    sheet lying on a sphere is in dozens of pairs)."""
     if len(d) == 0:
         return
     dirn = p - q
     length = np.linalg.norm(dirn, axis=1)
     touching = length < 1e-12
     dirn = np.where(touching[:, None], normal_a, dirn / np.where(touching, 1.0, length)[:, None])
-    depth = (h - d)[:, None] * (1.0 if b_static else 0.5)
-    share = dirn * depth / 3.0
-    for k in range(3):
-        np.add.at(X, F[tri_a, k], share)
-        if not b_static:
-            np.add.at(X, F[tri_b, k], -share)
+    push = dirn * (h - d)[:, None] * (1.0 if b_static else 0.5)
+    verts = [F[tri_a, k] for k in range(3)] + ([] if b_static else [F[tri_b, k] for k in range(3)])
+    signs = [1.0] * 3 + [-1.0] * (len(verts) - 3)
+    at = np.concatenate(verts)
+    count = np.bincount(at, minlength=len(X))
+    for c in range(3):
+        total = np.bincount(at, np.concatenate([s * push[:, c] for s in signs]), len(X))
+        X[:, c] += total / np.maximum(count, 1)
 
 
 def triangle_normals(X, F):
@@ -99,12 +104,13 @@ def triangle_normals(X, F):
     return n / np.maximum(np.linalg.norm(n, axis=1), 1e-30)[:, None]
 
 
-def simulate(n=100, steps=300, dt=1 / 120, iterations=12, thickness=None, shared_vertex=True, threads=0,
+def simulate(n=100, steps=300, dt=1 / 120, iterations=None, thickness=None, shared_vertex=True, threads=0,
              sphere_level=3, callback=None, report=0):
     """Runs the cloth for `steps` steps; calls callback(step, sheet_mesh, sphere_mesh, self_contacts,
     sphere_contacts, margin) after each step's queries; returns the final vertices, the faces, the
     sphere and the per-step timings (refit, self, sphere, solver) in ms."""
     V, F, E = sheet(n)
+    iterations = iterations if iterations is not None else max(12, n // 3)  # stiff at any resolution
     rest = np.linalg.norm(V[E[:, 0]] - V[E[:, 1]], axis=1)
     h = thickness if thickness is not None else 0.6 * (2.0 / n)
     SV, SF = icosphere(sphere_level, SPHERE_RADIUS)
@@ -122,10 +128,8 @@ def simulate(n=100, steps=300, dt=1 / 120, iterations=12, thickness=None, shared
             e = X[E[:, 1]] - X[E[:, 0]]
             length = np.maximum(np.linalg.norm(e, axis=1), 1e-12)
             corr = (0.5 * (length - rest) / length)[:, None] * e
-            delta = np.zeros_like(X)
-            np.add.at(delta, E[:, 0], corr)
-            np.add.at(delta, E[:, 1], -corr)
-            X += 0.5 * delta  # under-relaxed Jacobi: each vertex takes part in up to 8 edges
+            for c in range(3):  # under-relaxed Jacobi: each vertex takes part in up to 8 edges
+                X[:, c] += 0.5 * (np.bincount(E[:, 0], corr[:, c], len(X)) - np.bincount(E[:, 1], corr[:, c], len(X)))
         r = np.linalg.norm(X, axis=1)
         inside = r < SPHERE_RADIUS + 0.5 * h
         X[inside] *= ((SPHERE_RADIUS + 0.5 * h) / np.maximum(r[inside], 1e-12))[:, None]
@@ -168,17 +172,20 @@ def picture(path, X, F, sphere, times):
     light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
     nrm = triangle_normals(X, F)
     shade = 0.35 + 0.65 * np.abs(nrm @ light)
+    # one collection, so that matplotlib orders the sheet's and the sphere's triangles by depth
+    # together (two collections are drawn one over the other), and a finer sphere a little inside
+    # the one simulated, so that its large triangles do not sort in front of the sheet on it
+    SV, SF = icosphere(4, SPHERE_RADIUS * 0.97)
+    polys = np.concatenate([X[F], SV[SF]])
+    colours = np.concatenate([np.outer(shade, [0.25, 0.45, 0.8]), np.tile([0.85, 0.55, 0.4], (len(SF), 1))])
     for k, (elev, azim) in enumerate(((60, -60), (8, -90))):
         ax = fig.add_subplot(1, 3, k + 1, projection="3d")
-        SV, SF = sphere
-        ax.add_collection3d(Poly3DCollection(SV[SF], facecolor=(0.85, 0.55, 0.4), edgecolor="none", alpha=0.9))
-        colours = np.outer(shade, [0.25, 0.45, 0.8])
-        ax.add_collection3d(Poly3DCollection(X[F], facecolors=colours, edgecolor="none"))
-        ax.set_xlim(-0.75, 0.75)
-        ax.set_ylim(-0.75, 0.75)
+        ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolor="none"))
+        ax.set_xlim(-0.95, 0.95)
+        ax.set_ylim(-0.95, 0.95)
         ax.set_zlim(-0.55, 0.75)
         ax.view_init(elev=elev, azim=azim)
-        ax.set_box_aspect((1.5, 1.5, 1.3))
+        ax.set_box_aspect((1.9, 1.9, 1.3))
         ax.set_axis_off()
         ax.set_title("the sheet after the last step" if k == 0 else "from the side")
     ax = fig.add_subplot(1, 3, 3)
@@ -201,7 +208,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--n", type=int, default=100, help="quads along a side (triangles: 2 n^2; default 100)")
     ap.add_argument("--steps", type=int, default=300)
-    ap.add_argument("--iterations", type=int, default=12, help="constraint rounds per step")
+    ap.add_argument("--iterations", type=int, default=None, help="constraint rounds per step (default max(12, n / 3))")
     ap.add_argument("--thickness", type=float, default=None, help="the contact margin (default 0.6 of an edge)")
     ap.add_argument("--no-shared-vertex", action="store_true", help="leave out pairs sharing one vertex")
     ap.add_argument("--threads", type=int, default=0)
