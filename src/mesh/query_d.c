@@ -52,3 +52,15 @@ ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const st
 {
     return query_contacts_walk(cfg, a, b, pose, pose_a, defect, margin, out, tests);
 }
+
+ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                          unsigned shared, ttd_contacts_d *out)
+{
+    return query_self_contacts(cfg, m, margin, shared, out);
+}
+
+ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                         unsigned shared, ttd_collision *out)
+{
+    return query_self_collide(cfg, m, margin, shared, out);
+}
