@@ -259,26 +259,14 @@ typedef struct corner_plane {
 
 static void corner_plane_make(const real x[9], corner_plane *P)
 {
-    double e1[3], e2[3], m = 0;
+    double v[3][3], cr[3], e11, e22;
     P->ok = 0;
-    for (int r = 0; r < 3; ++r) {
-        P->a[r] = (double)x[r];
-        e1[r] = (double)x[3 + r] - P->a[r];
-        e2[r] = (double)x[6 + r] - P->a[r];
-        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
-    }
-    P->size = m;
-    if (!(m > 0) || !isfinite(m))
+    for (int k = 0; k < 9; ++k)
+        v[k / 3][k % 3] = (double)x[k];
+    memcpy(P->a, v[0], sizeof P->a);
+    if (!unit_cross((const double (*)[3])v, cr, &e11, &e22, &P->size))
         return;
-    int ex;
-    frexp(m, &ex);
-    for (int r = 0; r < 3; ++r) {
-        e1[r] = ldexp(e1[r], -ex);
-        e2[r] = ldexp(e2[r], -ex);
-    }
-    double cr[3];
-    cross3d(e1, e2, cr);
-    const double l = sqrt(dot3d(cr, cr)), l12 = sqrt(dot3d(e1, e1)) * sqrt(dot3d(e2, e2));
+    const double l = sqrt(dot3d(cr, cr)), l12 = sqrt(e11) * sqrt(e22);
     if (!(l > 0x1p-20 * l12))
         return;
     for (int r = 0; r < 3; ++r)

@@ -120,7 +120,32 @@ static void world_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri,
     }
 }
 
-/* Adds the constraint v . (to - from) <= 0 (or = 0) to f. */
+/* The cross product of triangle v's edges from v[0], formed at unit scale (the edges scaled by a
+ * power of two), into cr, and the edges' squared lengths at that scale into e11, e22; the
+ * triangle's extent (its largest coordinate difference) into *extent. 0 when it has no extent. */
+static int unit_cross(const double v[3][3], double cr[3], double *e11, double *e22, double *extent)
+{
+    double e1[3], e2[3], m = 0;
+    for (int r = 0; r < 3; ++r) {
+        e1[r] = v[1][r] - v[0][r];
+        e2[r] = v[2][r] - v[0][r];
+        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
+    }
+    *extent = m;
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    int ex;
+    frexp(m, &ex);
+    for (int r = 0; r < 3; ++r) {
+        e1[r] = ldexp(e1[r], -ex);
+        e2[r] = ldexp(e2[r], -ex);
+    }
+    cross3d(e1, e2, cr);
+    *e11 = dot3d(e1, e1);
+    *e22 = dot3d(e2, e2);
+    return 1;
+}
+
 /* Barycentric weights of x in triangle v (double), formed at unit scale; 0 when v has no area. */
 static int weights_in(const double v[3][3], const double x[3], double w[3])
 {
@@ -179,24 +204,11 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
         else
             world_vertex(s, id, mesh->tris[3 * (size_t)tri + (size_t)k], f->v[k]);
     }
-    double e1[3], e2[3], m = 0;
-    for (int r = 0; r < 3; ++r) {
-        e1[r] = f->v[1][r] - f->v[0][r];
-        e2[r] = f->v[2][r] - f->v[0][r];
-        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
-    }
-    if (!(m > 0) || !isfinite(m))
+    double cr[3], e11, e22, m;
+    if (!unit_cross((const double (*)[3])f->v, cr, &e11, &e22, &m))
         return;
-    int ex;
-    frexp(m, &ex);
-    for (int r = 0; r < 3; ++r) {
-        e1[r] = ldexp(e1[r], -ex);
-        e2[r] = ldexp(e2[r], -ex);
-    }
-    double cr[3];
-    cross3d(e1, e2, cr);
     const double area = sqrt(dot3d(cr, cr));
-    if (!(area > 64 * DBL_EPSILON * sqrt(dot3d(e1, e1) * dot3d(e2, e2))))
+    if (!(area > 64 * DBL_EPSILON * sqrt(e11 * e22)))
         return; /* no area: no normal, no feature */
     f->has_normal = 1;
     for (int r = 0; r < 3; ++r)
