@@ -878,7 +878,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             return 1;
         for (int side = 0; side < 2; ++side) {
             if (n0 == 0 && nest != (side ? 1 : 2)) {
-                memset(w->inner[side], 0, w->inner_cap[side]);
+                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
+                    memset(w->inner[side], 0, w->inner_cap[side]);
                 continue;
             }
             if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
