@@ -837,8 +837,32 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
-    ttd_mesh_edges_free(&mesh->edges);
+    if (mesh->edges != NULL) {
+        ttd_mesh_edges_free(mesh->edges);
+        free(mesh->edges);
+    }
     free(mesh);
+}
+
+const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
+{
+    /* a cache of what the immutable mesh determines, not a change to it */
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    ttd_mesh_edges *e = __atomic_load_n(&m->edges, __ATOMIC_ACQUIRE);
+    if (e != NULL)
+        return e;
+    e = malloc(sizeof *e);
+    if (e == NULL || !ttd_mesh_edges_build(m->bytes, m->verts, m->nv, m->tris, m->nt, e)) {
+        free(e);
+        return NULL;
+    }
+    ttd_mesh_edges *expected = NULL;
+    if (!__atomic_compare_exchange_n(&m->edges, &expected, e, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        ttd_mesh_edges_free(e); /* another thread made it first: the same arrays */
+        free(e);
+        return expected;
+    }
+    return e;
 }
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
@@ -986,8 +1010,6 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-    if (!ttd_mesh_edges_build(bytes, verts, nv, tris, nt, &m->edges))
-        goto nomem;
     place(m, verts, vrel);
     B.vrel = vrel;
     int e;
@@ -1394,38 +1416,37 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
  *   2. refit_boxes: the hierarchy's boxes;
  *   3. tree_quality: the measure that decides a rebuild (ttd_mesh_refit);
  *   4. the edge information (mesh/edges.c: flat, convex and concave edges, corners, flat pieces,
- *      welded places: all from the positions), made beforehand into *edges by ttd_mesh_refit so
- *      that running out of memory leaves the mesh as it was.
+ *      welded places, normals: all from the positions) is dropped, for the next manifold to make
+ *      again from the new positions (ttd_mesh_edges_get): a refit that no manifold follows does
+ *      not pay for it, and dropping cannot run out of memory.
  * The point queries' data (src/points/, per node and per triangle) is refreshed by the API entry
  * after this (ttd_points_data_refresh: mesh/ does not include points/). A rebuild
  * (ttd_mesh_build) recomputes it all by itself. What depends on the triangles alone (the closed
  * flag, mesh/solid.c) stays as it is. */
-static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R,
-                          ttd_mesh_edges *edges)
+static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R)
 {
     place(m, verts, NULL);
     refit_boxes(cfg, m, R);
     m->quality = tree_quality(m);
-    ttd_mesh_edges_free(&m->edges);
-    m->edges = *edges;
-    memset(edges, 0, sizeof *edges);
+    if (m->edges != NULL) {
+        ttd_mesh_edges_free(m->edges);
+        free(m->edges);
+        m->edges = NULL;
+    }
 }
 
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
     refit R = {m, ttd_big_alloc(m->nnodes * sizeof(fitsum)), malloc(64 * sizeof(subtree))};
-    ttd_mesh_edges edges;
-    memset(&edges, 0, sizeof edges);
-    if (R.sums == NULL || R.list == NULL || !ttd_mesh_edges_build(m->bytes, verts, m->nv, m->tris, m->nt, &edges)) {
+    if (R.sums == NULL || R.list == NULL) {
         free(R.sums);
         free(R.list);
-        ttd_mesh_edges_free(&edges);
         return TTD_ERR_OUT_OF_MEMORY;
     }
     memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
     m->generation++;
-    refit_derived(cfg, m, verts, &R, &edges);
+    refit_derived(cfg, m, verts, &R);
     free(R.sums);
     free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)

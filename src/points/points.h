@@ -72,6 +72,26 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
  * of the mesh queries, where one point decides a pose. */
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
 
+/* Whether x (the mesh's coordinates) lies inside closed mesh m: within its bounding sphere (the
+ * cheap test that settles far points), then its winding number, certified (above): a traversal
+ * rather than a pass over the triangles; the pass (mesh/solid.c, ttd_mesh_winding) only when the
+ * point data cannot be had (out of memory). For the solid modes of the mesh and scene queries. */
+int ttd_points_inside(const struct ttd_mesh *m, const double x[3]);
+
+/* A point p of the points' frame moved into the mesh's frame for the mesh's pose P = [R | t]
+ * (12 reals of the query's precision): x_c = ((r0c (p0 - t0) + r1c (p1 - t1)) + r2c (p2 - t2));
+ * and a point y of the mesh's frame moved back: ((rc0 y0 + rc1 y1) + rc2 y2) + tc, in place. The
+ * arithmetic of the point queries' poses (include/ttd/ttd.h), written once. */
+#define TTD_POINT_INTO(P, p, x)                                                                    \
+    for (int c_ = 0; c_ < 3; ++c_)                                                             \
+        (x)[c_] = ((P)[c_] * ((p)[0] - (P)[3]) + (P)[4 + c_] * ((p)[1] - (P)[7])) + (P)[8 + c_] * ((p)[2] - (P)[11]);
+#define TTD_POINT_BACK(real, P, y)                                                                 \
+    do {                                                                                       \
+        const real y_[3] = {(y)[0], (y)[1], (y)[2]};                                           \
+        for (int c_ = 0; c_ < 3; ++c_)                                                         \
+            (y)[c_] = (((P)[4 * c_] * y_[0] + (P)[4 * c_ + 1] * y_[1]) + (P)[4 * c_ + 2] * y_[2]) + (P)[4 * c_ + 3]; \
+    } while (0)
+
 /* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
  * winding (double), over the threads: TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN for a NaN point. */
 ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
