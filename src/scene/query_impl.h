@@ -448,29 +448,84 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 #include "scene/normal_impl.h"
 #include "scene/manifold_impl.h"
 
+/* Body pairs' reductions on the threads: each worker appends to its own array with its own
+ * scratch, and the pairs' points are joined in pair order afterwards, so the answer does not
+ * depend on the threads. */
+typedef struct reduce_job {
+    const struct ttd_scene *s;
+    const ttd_engine_config *one;
+    const pair_contacts_set *c;
+    real margin;
+    size_t max_points;
+    manifold_work *w;      /* per worker */
+    ttd_scene_array *part; /* per worker */
+    size_t *at, *count;    /* per pair: its first point in its worker's array, its points */
+    int *by;               /* per pair: the worker that reduced it */
+    atomic_int nomem;
+} reduce_job;
+
+static void reduce_task(void *ctx, size_t k, int worker)
+{
+    reduce_job *J = ctx;
+    const scene_pair *p = &J->c->pairs[k];
+    ttd_scene_array *part = &J->part[worker];
+    J->by[k] = worker;
+    J->at[k] = part->count;
+    J->count[k] = 0;
+    if (atomic_load(&J->nomem) || (J->c->nfound[k] == 0 && !solid_pair(J->s, p->i, p->j)))
+        return;
+    if (!reduce_pair(J->s, J->one, p, J->c->found[k], J->c->nfound[k], J->margin, J->max_points, &J->w[worker], part))
+        atomic_store(&J->nomem, 1);
+    else
+        J->count[k] = part->count - J->at[k];
+}
+
 static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, size_t max_points,
                                  ttd_scene_array *out)
 {
     out->count = 0;
     pair_contacts_set c;
-    manifold_work w = {0};
     const ttd_engine_config one = one_thread(cfg);
     ttd_status st = all_contacts(cfg, s, margin, &c);
-    /* the meshes' edge information, made on their first manifold (mesh/mesh.h) */
+    /* the meshes' edge information, made on their first manifold (mesh/mesh.h), before the
+     * threads read it */
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
         if (c.nfound[k] > 0 || solid_pair(s, c.pairs[k].i, c.pairs[k].j))
             if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
                 st = TTD_ERR_OUT_OF_MEMORY;
-    for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
-        const size_t n = c.nfound[k];
-        if (n == 0 && !solid_pair(s, c.pairs[k].i, c.pairs[k].j))
-            continue;
-        if (!reduce_pair(s, &one, &c.pairs[k], c.found[k], n, margin, max_points, &w, out)) {
+    const size_t np = c.n ? c.n : 1;
+    const int workers = st == TTD_OK ? ttd_parallel_task_workers(c.n, cfg->threads) : 0;
+    reduce_job J = {s, &one, &c, margin, max_points, calloc((size_t)workers + 1, sizeof(manifold_work)),
+                    calloc((size_t)workers + 1, sizeof(ttd_scene_array)), malloc(np * sizeof(size_t)),
+                    malloc(np * sizeof(size_t)), malloc(np * sizeof(int)), 0};
+    atomic_init(&J.nomem, J.w == NULL || J.part == NULL || J.at == NULL || J.count == NULL || J.by == NULL);
+    if (st == TTD_OK && atomic_load(&J.nomem))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    if (st == TTD_OK) {
+        ttd_pool_tasks(s->pool, c.n, cfg->threads, reduce_task, &J);
+        if (atomic_load(&J.nomem))
             st = TTD_ERR_OUT_OF_MEMORY;
-            break;
-        }
     }
-    manifold_work_free(&w);
+    size_t total = 0;
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        total += J.count[k];
+    if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_point)))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        if (J.count[k]) {
+            memcpy((ttd_scene_point *)out->data + out->count, (const ttd_scene_point *)J.part[J.by[k]].data + J.at[k],
+                   J.count[k] * sizeof(ttd_scene_point));
+            out->count += J.count[k];
+        }
+    for (int k = 0; J.w != NULL && J.part != NULL && k < workers; ++k) {
+        manifold_work_free(&J.w[k]);
+        free(J.part[k].data);
+    }
+    free(J.w);
+    free(J.part);
+    free(J.at);
+    free(J.count);
+    free(J.by);
     pair_contacts_free(&c);
     s->stats.results = out->count;
     if (st != TTD_OK) {
