@@ -125,6 +125,27 @@ static real bits_real(uint64_t b)
 
 enum { MODE_COLLIDE, MODE_DISTANCE };
 
+/* Body pair p's distance if at most bound (else a result beyond it), solids included: one inside
+ * the other is at distance 0 (at the inner body's vertex). */
+static ttd_status pair_distance(const ttd_engine_config *one, const struct ttd_scene *s, const scene_pair *p,
+                                real bound, ttd_mesh_result *r)
+{
+    const double defect = pair_defect(s, p->i, p->j);
+    const ttd_status st = TTD_QUERY(distance)(one, s->body[p->i].mesh, s->body[p->j].mesh, 1, body_pose(s, p->j),
+                                              body_pose(s, p->i), &defect, bound, 0, r);
+    real at[3];
+    int side;
+    if (st == TTD_OK && !(r->distance == 0) && solid_pair(s, p->i, p->j) && (side = solid_nested(s, p->i, p->j, at))) {
+        r->distance = 0;
+        memcpy(r->p, at, sizeof r->p);
+        memcpy(r->q, at, sizeof r->q);
+        r->tri_a = side == 2 ? 0 : UINT32_MAX;
+        r->tri_b = side == 1 ? 0 : UINT32_MAX;
+        r->flags = TTD_MESH_INTERSECTING | TTD_MESH_CONTAINED;
+    }
+    return st;
+}
+
 static void pair_task(void *ctx, size_t k, int worker)
 {
     (void)worker;
@@ -156,20 +177,7 @@ static void pair_task(void *ctx, size_t k, int worker)
         st = TTD_OK;
     } else {
         const real bound = J->closest_only ? bits_real(atomic_load(&J->best_bits)) : J->limit;
-        st = TTD_QUERY(distance)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, bound, 0,
-                                 &J->dist[k]);
-        real at[3];
-        int side;
-        if (st == TTD_OK && !(J->dist[k].distance == 0) && solid_pair(J->s, p->i, p->j) &&
-            (side = solid_nested(J->s, p->i, p->j, at))) {
-            ttd_mesh_result *r = &J->dist[k]; /* one solid inside the other: distance 0 at the inner's vertex */
-            r->distance = 0;
-            memcpy(r->p, at, sizeof r->p);
-            memcpy(r->q, at, sizeof r->q);
-            r->tri_a = side == 2 ? 0 : UINT32_MAX;
-            r->tri_b = side == 1 ? 0 : UINT32_MAX;
-            r->flags = TTD_MESH_INTERSECTING | TTD_MESH_CONTAINED;
-        }
+        st = pair_distance(J->cfg, J->s, p, bound, &J->dist[k]);
         const real d = J->dist[k].distance;
         if (st == TTD_OK && J->closest_only && d <= bound) {
             uint64_t old = atomic_load(&J->best_bits);
