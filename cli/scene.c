@@ -105,6 +105,10 @@ static const char ttd_scene_usage_options[] =
     "                    or crossing); distance: an upper bound (default none)\n"
     "  --count           collide, contacts, manifold: print only the number of lines instead\n"
     "  --max-points K    manifold: at most K points per body pair, 0 for all (default 4)\n"
+    "  --nearest         distance: after the closest pair's line, one line per body (in body order)\n"
+    "                    with its nearest body: 'd i j ia ib p q' with i the body, j its nearest (the\n"
+    "                    smallest number at that distance), p on body i ('inf i -1 -1 -1 nan...'\n"
+    "                    when none is within M)\n"
     "  --motion FILE     run the query once per step of the motion in FILE ('-': standard input):\n"
     "                    T steps back to back, each N lines of 12 (or 16) numbers, the new world\n"
     "                    poses of bodies 0..N-1 in order (N the bodies of the scene); blank lines and\n"
@@ -162,7 +166,7 @@ typedef struct ttd_scene_args {
     const char *margin_s;
     double margin; /* float-rounded with --precision float; distance: +inf without --margin */
     size_t max_points;
-    int count, orthonormalize, strict, names, stats, solid;
+    int count, orthonormalize, strict, names, stats, solid, nearest;
     long repeat;   /* --repeat: runs of each query (the last one printed) */
 } ttd_scene_args;
 
@@ -192,6 +196,14 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             ttd_scene_print_usage(stdout);
             return 1;
+        }
+        if (strcmp(arg, "--nearest") == 0) {
+            if (a->cmd != TTD_SCENE_DISTANCE) {
+                ttd_cli_error("%s: --nearest is an option of scene distance only", name);
+                return -1;
+            }
+            a->nearest = 1;
+            continue;
         }
         if (strcmp(arg, "--count") == 0) {
             if (a->cmd == TTD_SCENE_DISTANCE) {
@@ -960,6 +972,8 @@ typedef struct ttd_scene_buffers {
     ttd_scene_array arr;
     ttd_scene_item *items;
     size_t cap;
+    ttd_scene_contact_d *near_d; /* --nearest: one per body id */
+    ttd_scene_contact_f *near_f;
 } ttd_scene_buffers;
 
 static double ttd_scene_clock(clockid_t id)
@@ -988,8 +1002,8 @@ static ttd_status ttd_scene_run(const ttd_scene_args *a, ttd_scene *scene, long 
         const double w0 = ttd_scene_clock(CLOCK_MONOTONIC), c0 = ttd_scene_clock(CLOCK_PROCESS_CPUTIME_ID);
         switch (a->cmd) {
         case TTD_SCENE_DISTANCE:
-            s = f ? ttd_scene_distance_f(&a->opt, scene, (float)a->margin, cf, NULL)
-                  : ttd_scene_distance_d(&a->opt, scene, a->margin, cd, NULL);
+            s = f ? ttd_scene_distance_f(&a->opt, scene, (float)a->margin, cf, b->near_f)
+                  : ttd_scene_distance_d(&a->opt, scene, a->margin, cd, b->near_d);
             break;
         case TTD_SCENE_COLLIDE:
             s = f ? ttd_scene_collide_f(&a->opt, scene, (float)a->margin, &b->arr)
@@ -1027,6 +1041,37 @@ static ttd_status ttd_scene_run(const ttd_scene_args *a, ttd_scene *scene, long 
     return s;
 }
 
+/* One line of `scene distance`: the closest pair (self -1), or body self's nearest (--nearest),
+ * 'inf' with -1s and NaNs where there is none within the margin. */
+static void ttd_scene_put_distance(FILE *out, char *const *names, int f, const ttd_scene_contact_d *cd,
+                                   const ttd_scene_contact_f *cf, double margin, long long step, long self)
+{
+    if (step >= 0)
+        fprintf(out, "%lld ", step);
+    const uint32_t j = f ? cf->j : cd->j;
+    const double d = f ? (double)cf->distance : cd->distance;
+    if (j == UINT32_MAX || !(d <= margin)) {
+        fputs("inf", out);
+        if (self >= 0)
+            ttd_scene_put_body(out, names, (uint32_t)self, " ");
+        else
+            fputs(" -1", out);
+        fputs(" -1 -1 -1 nan nan nan nan nan nan\n", out);
+        return;
+    }
+    double pq[7] = {d};
+    for (int r = 0; r < 3; ++r) {
+        pq[1 + r] = f ? (double)cf->p[r] : cd->p[r];
+        pq[4 + r] = f ? (double)cf->q[r] : cd->q[r];
+    }
+    fprintf(out, f ? "%.9g" : "%.17g", d);
+    ttd_scene_put_body(out, names, f ? cf->i : cd->i, " ");
+    ttd_scene_put_body(out, names, j, " ");
+    ttd_scene_put_tris(out, f ? cf->tri_i : cd->tri_i, f ? cf->tri_j : cd->tri_j);
+    ttd_scene_put_reals(out, f, pq + 1, 6);
+    fputc('\n', out);
+}
+
 /* One query on the scene as it is; its lines (prefixed by "step " when step >= 0) on out, bodies
  * as ttd_scene_put_body prints them. 0 or the exit status. */
 static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *const *names, long long step,
@@ -1040,25 +1085,10 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
         s = ttd_scene_run(a, scene, step, b, &cd, &cf);
         if (s != TTD_OK)
             goto failed;
-        if (step >= 0)
-            fprintf(out, "%lld ", step);
-        const uint32_t j = f ? cf.j : cd.j;
-        const double d = f ? (double)cf.distance : cd.distance;
-        if (j == UINT32_MAX || !(d <= a->margin)) {
-            fputs("inf -1 -1 -1 -1 nan nan nan nan nan nan\n", out);
-            return 0;
-        }
-        double pq[7] = {d};
-        for (int r = 0; r < 3; ++r) {
-            pq[1 + r] = f ? (double)cf.p[r] : cd.p[r];
-            pq[4 + r] = f ? (double)cf.q[r] : cd.q[r];
-        }
-        fprintf(out, f ? "%.9g" : "%.17g", d);
-        ttd_scene_put_body(out, names, f ? cf.i : cd.i, " ");
-        ttd_scene_put_body(out, names, j, " ");
-        ttd_scene_put_tris(out, f ? cf.tri_i : cd.tri_i, f ? cf.tri_j : cd.tri_j);
-        ttd_scene_put_reals(out, f, pq + 1, 6);
-        fputc('\n', out);
+        ttd_scene_put_distance(out, names, f, &cd, &cf, a->margin, step, -1);
+        if (a->nearest)
+            for (size_t id = 0; id < ttd_scene_id_limit(scene); ++id)
+                ttd_scene_put_distance(out, names, f, b->near_d + id, b->near_f + id, a->margin, step, (long)id);
         return 0;
     }
     s = ttd_scene_run(a, scene, step, b, NULL, NULL);
@@ -1186,7 +1216,7 @@ int ttd_cli_scene(int argc, char **argv)
     memset(&st, 0, sizeof st);
     st.a = &a;
     ttd_scene_motion mo = {0};
-    ttd_scene_buffers buf = {{0}, NULL, 0};
+    ttd_scene_buffers buf = {{0}, NULL, 0, NULL, NULL};
     float *posef = NULL;
     ttd_status s = a.use_float ? ttd_scene_create_f(&st.scene) : ttd_scene_create_d(&st.scene);
     if (s != TTD_OK) {
@@ -1205,6 +1235,15 @@ int ttd_cli_scene(int argc, char **argv)
     if (rc == 0 && a.motion_path != NULL)
         rc = ttd_scene_read_motion(&st, &mo);
     char *const *names = a.names ? st.id_name : NULL;
+    if (rc == 0 && a.nearest) { /* one record per body id, the scene's bodies fixed from here */
+        const size_t ids = ttd_scene_id_limit(st.scene) ? ttd_scene_id_limit(st.scene) : 1;
+        buf.near_d = malloc(ids * sizeof *buf.near_d);
+        buf.near_f = malloc(ids * sizeof *buf.near_f);
+        if (buf.near_d == NULL || buf.near_f == NULL) {
+            ttd_cli_error("out of memory");
+            rc = TTD_EXIT_INPUT;
+        }
+    }
     if (rc == 0) {
         static char outbuf[1 << 16];
         setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
@@ -1252,6 +1291,8 @@ int ttd_cli_scene(int argc, char **argv)
     free(mo.d);
     free(posef);
     free(buf.items);
+    free(buf.near_d);
+    free(buf.near_f);
     ttd_scene_array_free(&buf.arr);
     return rc;
 }

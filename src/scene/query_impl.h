@@ -649,6 +649,176 @@ static int first_touching(const ttd_engine_config *cfg, struct ttd_scene *s, sce
     return 0;
 }
 
+/* ---- each body's nearest, best first ------------------------------------------------------ */
+
+/* A lower bound on the distance between bodies x and y from their world boxes (which hold the
+ * triangles the kernel measures, section 4 of docs/mesh-queries.md): the boxes' gap, scaled by
+ * its largest axis (no overflow or underflow of squares), then lowered by 2^-20 of itself, more
+ * than the roundings here and a float distance's own (so it stays below a computed distance). */
+static double box_gap(const struct ttd_scene *s, uint32_t x, uint32_t y)
+{
+    const double *a = s->box + 6 * (size_t)x, *b = s->box + 6 * (size_t)y;
+    double g[3], big = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double u = b[k] - a[3 + k], v = a[k] - b[3 + k];
+        g[k] = u > v ? u : v;
+        g[k] = g[k] > 0 ? g[k] : 0;
+        big = g[k] > big ? g[k] : big;
+    }
+    if (!(big > 0))
+        return 0;
+    double q = 0;
+    for (int k = 0; k < 3; ++k)
+        q += (g[k] / big) * (g[k] / big);
+    return big * sqrt(q) * (1 - 0x1p-20);
+}
+
+typedef struct nearest_cand {
+    double gap;
+    uint32_t id;
+} nearest_cand;
+
+static int cand_cmp(const void *x, const void *y)
+{
+    const nearest_cand *a = x, *b = y;
+    return a->gap < b->gap ? -1 : a->gap > b->gap ? 1 : (a->id > b->id) - (a->id < b->id);
+}
+
+/* Neighbours in the sweep's order tried for a first bound, on each side. */
+#define NEAREST_SEED 8
+
+typedef struct nearest_job {
+    const ttd_engine_config *one;
+    const struct ttd_scene *s;
+    const uint32_t *todo;   /* the bodies asked */
+    const uint32_t *pos;    /* each present body's place in s->order */
+    double widest;          /* the widest box along the sweep's axis */
+    real *best;             /* per body id: its nearest distance (in: the bound), */
+    uint32_t *partner;      /* and its partner (UINT32_MAX: none) */
+    nearest_cand **cand;    /* per worker: room for every body */
+    uint64_t *tests;        /* per body asked: body pairs, node tests, pair tests */
+    atomic_int nomem;
+} nearest_job;
+
+/* Body i's nearest, its partner the smallest id at that distance: the bodies whose boxes are
+ * within the best distance so far (scanned out from i in the sweep's order while the axis alone
+ * allows it), measured in the order of their boxes' gaps, each with the best so far as bound; a
+ * first bound from the closest-looking of i's neighbours in that order. */
+static void nearest_task(void *ctx, size_t t, int worker)
+{
+    nearest_job *J = ctx;
+    const struct ttd_scene *s = J->s;
+    const uint32_t i = J->todo[t], at = J->pos[i];
+    const int ax = s->axis;
+    const double lo = s->box[6 * (size_t)i + (size_t)ax], hi = s->box[6 * (size_t)i + 3 + (size_t)ax];
+    real best = J->best[i];
+    uint32_t partner = J->partner[i];
+    uint64_t *tests = J->tests + 3 * t;
+    nearest_cand *c = J->cand[worker];
+    size_t n = 0;
+    /* the seed: the neighbour with the smallest gap, measured without a bound (the bound given) */
+    uint32_t seed = UINT32_MAX;
+    double seed_gap = HUGE_VAL;
+    for (size_t k = at > NEAREST_SEED ? at - NEAREST_SEED : 0; k < s->norder && k <= (size_t)at + NEAREST_SEED; ++k) {
+        const uint32_t j = s->order[k];
+        if (j == i || !ttd_scene_eligible(s, i, j))
+            continue;
+        const double g = box_gap(s, i, j);
+        if (g < seed_gap || (g == seed_gap && j < seed)) {
+            seed_gap = g;
+            seed = j;
+        }
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1) { /* every body whose box may come within best, from both sides (the
+                          * reach above best by more than the roundings of the gaps and of a
+                          * float distance) */
+            const double reach = (double)best * (1 + 0x1p-20);
+            for (size_t k = (size_t)at + 1; k < s->norder; ++k) {
+                const uint32_t j = s->order[k];
+                if (!(s->box[6 * (size_t)j + (size_t)ax] - hi <= reach))
+                    break; /* the order's lower ends only grow */
+                const double g = box_gap(s, i, j);
+                if (j != seed && g <= (double)best && ttd_scene_eligible(s, i, j))
+                    c[n++] = (nearest_cand){g, j};
+            }
+            for (size_t k = at; k-- > 0;) {
+                const uint32_t j = s->order[k];
+                if (!(lo - (s->box[6 * (size_t)j + (size_t)ax] + J->widest) <= reach))
+                    break; /* no box to the left reaches further than its lower end + widest */
+                const double g = box_gap(s, i, j);
+                if (j != seed && g <= (double)best && ttd_scene_eligible(s, i, j))
+                    c[n++] = (nearest_cand){g, j};
+            }
+            qsort(c, n, sizeof *c, cand_cmp);
+        } else if (seed != UINT32_MAX && seed_gap <= (double)best) {
+            c[n++] = (nearest_cand){seed_gap, seed};
+        }
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t j = c[k].id;
+            /* a distance at least gap: better only below best, or at it with a smaller id */
+            if (c[k].gap > (double)best)
+                break;
+            if (c[k].gap == (double)best && j > partner)
+                continue;
+            const scene_pair p = {i < j ? i : j, i < j ? j : i};
+            ttd_mesh_result r;
+            if (pair_distance(J->one, s, &p, best, &r) != TTD_OK) {
+                atomic_store(&J->nomem, 1);
+                return;
+            }
+            tests[0]++;
+            tests[1] += r.node_tests;
+            tests[2] += r.pair_tests;
+            const real d = r.distance;
+            if (d < best || (d == best && j < partner)) {
+                best = d;
+                partner = j;
+            }
+        }
+        n = 0;
+    }
+    J->best[i] = best;
+    J->partner[i] = partner;
+}
+
+/* Bodies todo[0..n)'s nearest (best[], partner[] hold each one's bound and partner so far), on
+ * the threads, each body independently: the same answer on every thread count. Needs the sweep's
+ * order made (a sweep of this query). */
+static ttd_status nearest_rest(const ttd_engine_config *cfg, struct ttd_scene *s, const uint32_t *todo, size_t n,
+                               real *best, uint32_t *partner)
+{
+    const int workers = ttd_parallel_task_workers(n, cfg->threads);
+    const ttd_engine_config one = one_thread(cfg);
+    uint32_t *pos = malloc((s->nbody ? s->nbody : 1) * sizeof *pos);
+    nearest_job J = {&one, s, todo, pos, 0, best, partner, calloc((size_t)workers + 1, sizeof(nearest_cand *)),
+                     calloc(3 * (n ? n : 1), sizeof(uint64_t)), 0};
+    atomic_init(&J.nomem, pos == NULL || J.cand == NULL || J.tests == NULL);
+    for (int w = 0; !atomic_load(&J.nomem) && w < workers; ++w)
+        if ((J.cand[w] = malloc((s->norder ? s->norder : 1) * sizeof(nearest_cand))) == NULL)
+            atomic_store(&J.nomem, 1);
+    for (size_t k = 0; !atomic_load(&J.nomem) && k < s->norder; ++k) {
+        const uint32_t id = s->order[k];
+        pos[id] = (uint32_t)k;
+        const double w = s->box[6 * (size_t)id + 3 + (size_t)s->axis] - s->box[6 * (size_t)id + (size_t)s->axis];
+        J.widest = w > J.widest ? w : J.widest;
+    }
+    if (!atomic_load(&J.nomem))
+        ttd_pool_tasks(s->pool, n, cfg->threads, nearest_task, &J);
+    for (size_t k = 0; J.tests != NULL && k < n; ++k) {
+        s->stats.body_pairs += J.tests[3 * k];
+        s->stats.node_tests += J.tests[3 * k + 1];
+        s->stats.pair_tests += J.tests[3 * k + 2];
+    }
+    const ttd_status st = atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+    for (int w = 0; J.cand != NULL && w < workers; ++w)
+        free(J.cand[w]);
+    free(J.cand);
+    free(J.tests);
+    free(pos);
+    return st;
+}
+
 static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene *s, real upper_bound,
                                  ttd_scene_contact *closest, ttd_scene_contact *nearest)
 {
@@ -716,6 +886,7 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
         free(pairs);
     }
     while (st == TTD_OK && !(closest_done && nopen == 0)) {
+        const size_t open_before = nopen;
         const int last = isfinite((double)upper_bound) || !(margin < extent) || !(margin > 0);
         const double m = last && !isfinite((double)upper_bound) ? HUGE_VAL : margin;
         scene_pair *pairs;
@@ -758,6 +929,28 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
             }
         if (last || (closest_done && nopen == 0))
             break;
+        if (nearest != NULL && 2 * (open_before - nopen) < open_before) {
+            /* a margin that settled fewer than half the bodies still open: the rest get their
+             * nearest best first (the margins grow by 4 and measure every pair within them
+             * again, a sparse scene's last margins nearly every pair), then the closest pair
+             * from them: the smallest id at the smallest distance and its partner, which comes
+             * later (an earlier one would be at that distance too) */
+            uint32_t *todo = malloc((nopen ? nopen : 1) * sizeof *todo);
+            size_t nt = 0;
+            for (size_t id = 0; todo != NULL && id < nb; ++id)
+                if (open[id])
+                    todo[nt++] = (uint32_t)id;
+            st = todo == NULL ? TTD_ERR_OUT_OF_MEMORY : nearest_rest(cfg, s, todo, nt, best, partner);
+            free(todo);
+            for (size_t id = 0; st == TTD_OK && !closest_done && id < nb; ++id)
+                if (partner[id] != UINT32_MAX && (cpair_i == SIZE_MAX || best[id] < cbest)) {
+                    cbest = best[id];
+                    cpair = (scene_pair){(uint32_t)id < partner[id] ? (uint32_t)id : partner[id],
+                                         (uint32_t)id < partner[id] ? partner[id] : (uint32_t)id};
+                    cpair_i = 0;
+                }
+            break;
+        }
         margin *= 4;
     }
     if (st == TTD_OK && cpair_i != SIZE_MAX && !pair_record(cfg, s, &cpair, cbest, cpair.i, closest))

@@ -378,7 +378,42 @@ run 0 scene distance "$DIR/scene2.txt" --margin "$(cut -d' ' -f1 "$DIR/want")"
 same "$DIR/out" "$DIR/want" "distance --margin at the minimum"
 run 0 scene distance "$DIR/scene2.txt" --margin 0.05
 [ "$(cat "$DIR/out")" = "inf -1 -1 -1 -1 nan nan nan nan nan nan" ] || fail "distance beyond the bound: $(cat "$DIR/out")"
-pass "distance: the smallest contact over every pair (also the ttd mesh distance minimum), ties by (i, j, ia, ib); --margin as an upper bound"
+# --nearest: after that line, each body's nearest from the contact lines, as the body sees it
+# (its own triangle and point first), ties to the smallest partner, then triangles; within the
+# margin, 'inf' lines beyond it.
+nearest_want() { # N [MARGIN] < contact lines (i j ia ib d p q)
+    awk -v n="$1" -v m="${2:-inf}" 'function consider(s, o, ts, to, d, ps, po) {
+        if (m != "inf" && d + 0 > m + 0) return
+        if (!(s in bd) || d + 0 < bd[s] + 0 || (d + 0 == bd[s] + 0 && (o + 0 < bo[s] + 0 ||
+            (o + 0 == bo[s] + 0 && (ts + 0 < bts[s] + 0 || (ts + 0 == bts[s] + 0 && to + 0 < bto[s] + 0)))))) {
+            bd[s] = d; bo[s] = o; bts[s] = ts; bto[s] = to
+            line[s] = d " " s " " o " " ts " " to " " ps " " po } }
+      { consider($1, $2, $3, $4, $5, $6 " " $7 " " $8, $9 " " $10 " " $11)
+        consider($2, $1, $4, $3, $5, $9 " " $10 " " $11, $6 " " $7 " " $8) }
+      END { for (b = 0; b < n; ++b) print (b in line) ? line[b] : "inf " b " -1 -1 -1 nan nan nan nan nan nan" }'
+}
+write_scene "$DIR/scene.txt" "$BODIES"
+world "$BODIES"
+ref_contacts $NB 20 > "$DIR/all"
+run 0 scene distance "$DIR/scene.txt" --nearest
+head -n 1 "$DIR/out" > "$DIR/got1"
+run 0 scene distance "$DIR/scene.txt"
+same "$DIR/got1" "$DIR/out" "distance --nearest: its first line"
+run 0 scene distance "$DIR/scene.txt" --nearest
+tail -n +2 "$DIR/out" > "$DIR/got"
+nearest_want $NB < "$DIR/all" > "$DIR/want"
+same "$DIR/got" "$DIR/want" "distance --nearest against the contacts"
+write_scene "$DIR/scene2.txt" "$BODIES2"
+world "$BODIES2"
+ref_contacts 4 20 > "$DIR/all"
+for m in 20 0.15 0.1; do
+    run 0 scene distance "$DIR/scene2.txt" --nearest --margin $m --threads 2
+    tail -n +2 "$DIR/out" > "$DIR/got"
+    nearest_want 4 $m < "$DIR/all" > "$DIR/want"
+    same "$DIR/got" "$DIR/want" "distance --nearest --margin $m against the contacts (a scene with gaps)"
+done
+run 2 scene contacts "$DIR/scene.txt" --nearest
+pass "distance: the smallest contact over every pair (also the ttd mesh distance minimum), ties by (i, j, ia, ib); --margin as an upper bound; --nearest: each body's nearest from the contacts"
 
 # ---- filter and exclude statements, body names ------------------------------------------------
 # The same six bodies, the cube 0 named floor and the wedge 2 named lid; the cube 0 and the
