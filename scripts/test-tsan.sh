@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the tests that call the library from several threads (test_determinism: six
 # concurrent callers with worker threads; test_api: threads_identical; test_scene's queries on
-# two threads of a scene's pool, kept across steps and scenes; test_mesh_self: a self query's
+# two threads of a scene's pool, kept across steps and scenes, each body's nearest best first
+# on them; test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
+# information made on first use; test_mesh_self: a self query's
 # sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads) with
 # ThreadSanitizer and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
 # space layouts make its runtime refuse to start).
@@ -19,12 +21,14 @@ if ! { cc -fsanitize=thread -pthread "$probe_dir/p.c" -o "$probe_dir/p" && "$pro
 fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
-cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_mesh_self test_mesh_deform
+cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
 "$build/tests/test_scene" collide_across_steps
 "$build/tests/test_scene" closest_pair_order
+"$build/tests/test_scene" sparse_scene_distances
+"$build/tests/test_scene_contacts" edges_made_on_first_use
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
 "$build/tests/test_mesh_deform" refit_bits
