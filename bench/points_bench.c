@@ -222,6 +222,7 @@ int bench_points_main(int argc, char **argv)
 {
     size_t n = 100000;
     int all = 0, quick = 0;
+    unsigned meshes = 15; /* bit w: workload w of names[] below */
     pb_env E;
     memset(&E, 0, sizeof E);
     bench_mesh_config mc;
@@ -234,14 +235,28 @@ int bench_points_main(int argc, char **argv)
             n = (size_t)strtoull(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
             all = atoi(argv[++i]);
+        } else if (strcmp(argv[i], "--meshes") == 0 && i + 1 < argc) {
+            static const char *const keys[4] = {"triangle", "bunny", "bunny-sub", "torus"};
+            meshes = 0;
+            for (char *tok = strtok(argv[++i], ","); tok; tok = strtok(NULL, ",")) {
+                int w = 0;
+                while (w < 4 && strcmp(tok, keys[w]) != 0)
+                    ++w;
+                if (w == 4) {
+                    fprintf(stderr, "ttd bench points: unknown mesh '%s' (triangle, bunny, bunny-sub, torus)\n", tok);
+                    return 2;
+                }
+                meshes |= 1u << w;
+            }
         } else if (strcmp(argv[i], "--no-refs") == 0) {
             E.no_refs = 1;
         } else if (strcmp(argv[i], "--bunny") == 0 && i + 1 < argc) {
             snprintf(mc.bunny, sizeof mc.bunny, "%s", argv[++i]);
         } else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--no-refs] [--bunny PATH]\n"
+            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--meshes LIST] [--no-refs] [--bunny PATH]\n"
                    "The point queries against Embree, CGAL and Open3D (docs/points.md): N points per set\n"
-                   "(default 100000; --quick 10000), one thread and N threads (default: every core).\n");
+                   "(default 100000; --quick 10000), one thread and N threads (default: every core);\n"
+                   "LIST: comma-separated, from triangle, bunny, bunny-sub, torus (default: all four).\n");
             return 0;
         } else {
             fprintf(stderr, "ttd bench points: unknown option '%s' (ttd bench points --help)\n", argv[i]);
@@ -285,6 +300,8 @@ int bench_points_main(int argc, char **argv)
     }
     static const char *const names[4] = {"one triangle", "bunny", "bunny subdivided", "torus 1M"};
     for (int w = 0; w < 4; ++w) {
+        if (!(meshes >> w & 1u))
+            continue;
         ttd_gen_mesh m = {0};
         char what[1600];
         int rc;

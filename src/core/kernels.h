@@ -114,15 +114,15 @@ typedef void (*ttd_node_test_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y
                                    float sep[TTD_NODE_WIDTH]);
 
 /* ---- The point queries' kernels (src/points/, docs/points.md) ------------------------------
- * point_node: lb2[j] = a lower bound on the squared distance from point p (in the mesh's box
- * frame, relative to its origin) to child box j of node y, up to rounding (the caller's margin
- * covers it), the same bits on every row; returns the mask of children (bit j) with lb2[j] <=
- * lim2 (unused slots included: the caller masks them). point_block: d[j] = the exact distance from
+ * point_node (float rows only; the double walk calls the float row's): lb2[j] = a lower bound on
+ * the squared distance from point p (in the frame of the walk's nodes, core/point_layout.h) to
+ * child box j of walk node y, up to rounding the caller's margin covers, the same bits on every
+ * row; returns the mask of children (bit j) with lb2[j] <= lim2 (an unused slot is never within). point_block: d[j] = the exact distance from
  * point p (the mesh's coordinates) to triangle j of a prepared block (core/point_layout.h:
  * TTD_PT_ROWS rows of TTD_PT_LANES reals), and par[0..2][j] the candidate that gives it (id, u, v):
  * the scalar reference's bits (scalar/point_impl.h's point_select). */
-typedef unsigned (*ttd_point_node_d_fn)(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH]);
-typedef unsigned (*ttd_point_node_f_fn)(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH]);
+struct ttd_pnode;
+typedef unsigned (*ttd_point_node_fn)(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_d_fn)(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                                      double par[3][TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_f_fn)(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
@@ -136,7 +136,6 @@ typedef struct ttd_kernels_d {
     int lanes;                          ///< double lanes per vector (1 for scalar)
     ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_d_fn node_test;       ///< never NULL
-    ttd_point_node_d_fn point_node;     ///< never NULL
     ttd_point_block_d_fn point_block;   ///< never NULL
 } ttd_kernels_d;
 
@@ -146,7 +145,7 @@ typedef struct ttd_kernels_f {
     int lanes;                          ///< float lanes per vector (1 for scalar)
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_f_fn node_test;
-    ttd_point_node_f_fn point_node;
+    ttd_point_node_fn point_node;         ///< never NULL; the double walk's too
     ttd_point_block_f_fn point_block;
 } ttd_kernels_f;
 

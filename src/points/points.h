@@ -4,6 +4,8 @@
  *
  * A mesh's point data is made from its hierarchy and vertices on the first point query and kept
  * in the mesh (struct ttd_mesh.points, set atomically: meshes are shared between threads):
+ *  - the walk's nodes (core/point_layout.h's ttd_pnode): the hierarchy's nodes, one for one,
+ *    with every child slot's box made axis-aligned, in float, from the vertices below it;
  *  - every node's triangle children prepared for the point kernel (core/point_layout.h), one
  *    block of TTD_PT_LANES per node that has any (the other slots hold a copy of its first
  *    triangle, harmless in the lanes), so a node's triangles are measured in one kernel call;
@@ -16,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/point_layout.h"
 #include "engine/batch.h"
 #include "mesh/mesh.h"
 
@@ -36,9 +39,11 @@ typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
     int bytes;             /* the mesh's precision */
     size_t nnodes;
-    int32_t *block_of;     /* per node: its block of prepared triangles, or -1 */
-    uint8_t *tri_mask;     /* per node: the slots that hold triangles (bit j) */
-    uint8_t *live_mask;    /* per node: the slots in use (the walk reads it here, not from the node's last line) */
+    ttd_pnode *pnodes;     /* nnodes walk nodes, 64-byte aligned: node n's slots' boxes, children,
+                            * block and triangle mask */
+    double scale;          /* the walk nodes' frame: x -> (x - the mesh's origin) scale, a power of
+                            * two that puts every vertex within [-1, 1] */
+    double stretch;        /* every walk box's axes U have |U| <= stretch (1 + a few float eps) */
     size_t nblocks;
     void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
     double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at

@@ -2,6 +2,7 @@
 /* A mesh's point data (points/points.h): prepared triangle blocks and winding-number moments,
  * computed from the hierarchy and the vertices by one function (points_compute), made on first use
  * and kept in the mesh. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,9 +18,7 @@ static void points_free(void *p)
     ttd_points_data *pd = p;
     if (pd == NULL)
         return;
-    free(pd->block_of);
-    free(pd->tri_mask);
-    free(pd->live_mask);
+    free(pd->pnodes);
     free(pd->blocks);
     free(pd->moments);
     free(pd);
@@ -49,14 +48,74 @@ static void tri_vertex(const struct ttd_mesh *m, size_t t, int k, int rel, doubl
     }
 }
 
+/* Slot j of mesh node n (either precision) as the walk's float box, scaled by `scale`, into y; its
+ * axes' norm bound into *stretch (the largest so far).
+ *
+ * The mesh's box holds its vertices as the tree sees them (docs/mesh-queries.md, 4.1): |u_a . (x -
+ * c)| <= e_a for every vertex x below it, in exact arithmetic, with axes orthonormal to a few eps of
+ * the mesh's precision. Scaled (exactly, a power of two), with the centre rounded to c' = c +
+ * gamma and the axes to u'_a = u_a + eps_a (both differences exact in double), for such an x:
+ *     |u'_a . (x - c')| <= e_a + |u_a| |gamma| + |eps_a| (|x - c| + |gamma|),
+ * and |x - c| <= (1 + eta) |e| (eta <= 8 eps, test_mesh_boxes). The extent stored is that bound,
+ * formed in double with a relative slack for its own rounding and rounded up to float. */
+static void slot_box(const struct ttd_mesh *m, size_t n, int j, double scale, ttd_pnode *y, double *stretch)
+{
+    double c[3], u[9], e[3];
+    for (int k = 0; k < 3; ++k) {
+        c[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].c[k][j] : (double)((const ttd_node_f *)m->nodes)[n].c[k][j];
+        e[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[k][j] : (double)((const ttd_node_f *)m->nodes)[n].e[k][j];
+    }
+    for (int k = 0; k < 9; ++k)
+        u[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].u[k][j] : (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
+    const double eta = 8 * (m->bytes == 8 ? DBL_EPSILON : (double)FLT_EPSILON);
+    double g2 = 0, ee = 0;
+    for (int k = 0; k < 3; ++k) {
+        volatile float cf = (float)(c[k] * scale); /* the rounding must happen (docs/mesh-queries.md, 4.1) */
+        y->c[k][j] = cf;
+        const double gk = (double)y->c[k][j] - c[k] * scale;
+        g2 += gk * gk;
+        ee += e[k] * scale * e[k] * scale;
+    }
+    const double gamma = sqrt(g2) * (1 + 1e-12), span = sqrt(ee) * (1 + eta) * (1 + 1e-12);
+    double uf[9];
+    for (int a = 0; a < 3; ++a) {
+        double d2 = 0, n2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            volatile float x = (float)u[3 * a + k];
+            y->u[3 * a + k][j] = x;
+            uf[3 * a + k] = (double)y->u[3 * a + k][j];
+            const double dk = uf[3 * a + k] - u[3 * a + k];
+            d2 += dk * dk;
+            n2 += u[3 * a + k] * u[3 * a + k];
+        }
+        const double ext = (e[a] * scale + sqrt(n2) * (1 + 1e-12) * gamma + sqrt(d2) * (1 + 1e-12) * (span + gamma)) *
+                           (1 + 1e-12);
+        float ef = (float)ext;
+        if ((double)ef < ext)
+            ef = nextafterf(ef, INFINITY);
+        y->e[a][j] = ef;
+    }
+    /* |U'| <= sqrt(1 + |U' U'^T - I|_F), the Gram matrix's error formed in double (its own rounding,
+     * near 1e-16, is far below the float axes' 1e-7) */
+    double f2 = 0;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            const double g = uf[3 * a] * uf[3 * b] + uf[3 * a + 1] * uf[3 * b + 1] + uf[3 * a + 2] * uf[3 * b + 2] - (a == b);
+            f2 += g * g;
+        }
+    const double st = sqrt(1 + sqrt(f2) * (1 + 1e-6)) * (1 + 1e-12);
+    *stretch = st > *stretch ? st : *stretch;
+}
+
 typedef struct prep_job {
     const struct ttd_mesh *m;
     ttd_points_data *pd;
+    double *stretch; /* per block of nodes: the largest axes' norm bound there */
 } prep_job;
 
 #define PREP_NODES 256 /* nodes per block of the parallel preparation */
 
-/* The prepared blocks of nodes [256 b, 256 b + 256). */
+/* The walk nodes' boxes and the prepared blocks of nodes [256 b, 256 b + 256). */
 static void prepare_blocks(void *ctx, size_t b, int worker)
 {
     (void)worker;
@@ -64,8 +123,14 @@ static void prepare_blocks(void *ctx, size_t b, int worker)
     const struct ttd_mesh *m = J->m;
     const ttd_points_data *pd = J->pd;
     const size_t n1 = (b + 1) * PREP_NODES < pd->nnodes ? (b + 1) * PREP_NODES : pd->nnodes;
+    double stretch = 1;
+    for (size_t n = b * PREP_NODES; n < n1; ++n)
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+            if ((uint32_t)j < pd->pnodes[n].nslots)
+                slot_box(m, n, j, pd->scale, &pd->pnodes[n], &stretch);
+    J->stretch[b] = stretch;
     for (size_t n = b * PREP_NODES; n < n1; ++n) {
-        const int32_t blk = pd->block_of[n];
+        const int32_t blk = pd->pnodes[n].block;
         if (blk < 0)
             continue;
         int count;
@@ -170,12 +235,20 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
 #undef W
 }
 
-/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the moments bottom-up
- * (a node's children come after it in the pre-order numbering, so a reverse pass sees them first). */
-static void points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
+/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the boxes and the
+ * moments bottom-up (a node's children come after it in the pre-order numbering, so a reverse pass
+ * sees them first). */
+static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
 {
-    prep_job J = {m, pd};
-    ttd_parallel_for((pd->nnodes + PREP_NODES - 1) / PREP_NODES, threads, prepare_blocks, &J);
+    const size_t nb = (pd->nnodes + PREP_NODES - 1) / PREP_NODES;
+    prep_job J = {m, pd, malloc(nb * sizeof(double))};
+    if (J.stretch == NULL)
+        return -1;
+    ttd_parallel_for(nb, threads, prepare_blocks, &J);
+    pd->stretch = 1;
+    for (size_t b = 0; b < nb; ++b)
+        pd->stretch = J.stretch[b] > pd->stretch ? J.stretch[b] : pd->stretch;
+    free(J.stretch);
     for (size_t n = pd->nnodes; n-- > 0;) {
         int count;
         const int32_t *child = node_child(m, n, &count);
@@ -191,6 +264,7 @@ static void points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int th
             }
         }
     }
+    return 0;
 }
 
 static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
@@ -201,26 +275,38 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
     pd->destroy = points_free;
     pd->bytes = m->bytes;
     pd->nnodes = m->nnodes;
-    pd->block_of = malloc(m->nnodes * sizeof *pd->block_of);
-    pd->tri_mask = malloc(m->nnodes);
-    pd->live_mask = malloc(m->nnodes);
-    if (pd->block_of == NULL || pd->tri_mask == NULL || pd->live_mask == NULL)
+    pd->pnodes = ttd_big_alloc(m->nnodes * sizeof *pd->pnodes);
+    if (pd->pnodes == NULL)
         goto fail;
+    /* the power of two at or above the radius (at least 2^-1000: s stays finite) */
+    int e;
+    (void)frexp(m->radius, &e);
+    pd->scale = ldexp(1.0, -(e < -1000 ? -1000 : e));
     for (size_t n = 0; n < m->nnodes; ++n) {
         int count;
         const int32_t *child = node_child(m, n, &count);
+        ttd_pnode *y = &pd->pnodes[n];
+        memset(y, 0, sizeof *y);
         unsigned mask = 0;
-        for (int j = 0; j < count; ++j)
-            mask |= (unsigned)(child[j] < 0) << j;
-        pd->tri_mask[n] = (uint8_t)mask;
-        pd->live_mask[n] = (uint8_t)((1u << count) - 1u);
-        pd->block_of[n] = mask ? (int32_t)pd->nblocks++ : -1;
+        y->nslots = (uint32_t)count;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            for (int a = 0; a < 3; ++a) /* an unused slot: no point is within it */
+                y->e[a][j] = -INFINITY;
+            if (j < count) {
+                y->child[j] = child[j];
+                mask |= (unsigned)(child[j] < 0) << j;
+            }
+        }
+        y->tmask = mask;
+        y->ntri = (uint32_t)__builtin_popcount(mask);
+        y->block = mask ? (int32_t)pd->nblocks++ : -1;
     }
     pd->blocks = ttd_big_alloc(pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes);
     pd->moments = ttd_big_alloc(m->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
     if (pd->blocks == NULL || pd->moments == NULL)
         goto fail;
-    points_compute(m, pd, threads);
+    if (points_compute(m, pd, threads) != 0)
+        goto fail;
     return pd;
 fail:
     points_free(pd);
@@ -247,6 +333,10 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads)
 {
-    if (mesh->points != NULL)
-        points_compute(mesh, mesh->points, threads);
+    if (mesh->points != NULL && points_compute(mesh, mesh->points, threads) != 0) {
+        /* out of memory: drop the point data (the next point query makes it again) */
+        ttd_points_data *pd = mesh->points;
+        mesh->points = NULL;
+        points_free(pd);
+    }
 }

@@ -37,8 +37,3 @@ void ttd_point_block_scalar_d(const double p[3], const double *block, double d[T
 {
     point_block_scalar(p, block, d, par);
 }
-
-unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH])
-{
-    return point_node_scalar(p, y, lim2, lb2);
-}

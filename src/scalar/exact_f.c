@@ -38,7 +38,7 @@ void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_
     point_block_scalar(p, block, d, par);
 }
 
-unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH])
+unsigned ttd_point_node_scalar(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {
     return point_node_scalar(p, y, lim2, lb2);
 }

@@ -53,8 +53,8 @@ void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v
 void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                               double par[3][TTD_NODE_WIDTH]);
 void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH], float par[3][TTD_NODE_WIDTH]);
-unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH]);
-unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH]);
+struct ttd_pnode;
+unsigned ttd_point_node_scalar(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 
 /* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other
  * methods of its own precision by these names. */

@@ -4,16 +4,17 @@
  * every row returns the scalar row's bits and a query finds the same triangle on every
  * instruction set.
  *
- *  - pk_node: one child box per lane, the distance from a point to each of a node's boxes. The
- *    point, relative to the mesh's origin, is taken into each box's frame (z = U (p - c)) and
- *    the box is [-e, e] there: the squared lower bound is the sum of the squared positive parts
- *    of |z_a| - e_a. A third of the mesh node test's work: no second frame, no rotation.
+ *  - point_node (float rows): one child box per lane, the distance from a point to each of a
+ *    walk node's float boxes (core/point_layout.h). The point is taken into each box's frame
+ *    (z = U (p - c)) and the box is [-e, e] there: the squared lower bound is the sum of the
+ *    squared positive parts of |z_a| - e_a. The double walk uses the float row's too.
  *  - pk_block: one triangle per lane, the distance from a point to each triangle of a prepared
  *    block (core/point_layout.h): the per-point part of point_eval, everything that depends on
  *    the triangle alone having been computed once when the block was prepared.
  *
  * A float row with more lanes than a node has children (AVX-512: 16) reads past each array into
- * the next (within the node, or into the block's spare row) and ignores those lanes. */
+ * the next (within the node: e[2] into child[]; or into the block's spare row) and ignores those
+ * lanes. */
 
 /* Stores lanes 0 .. TTD_NODE_WIDTH - j0 - 1 of v to out[j0 ..]. */
 TTDW_FN void pk_store(real *out, int j0, vreal v)
@@ -28,25 +29,28 @@ TTDW_FN void pk_store(real *out, int j0, vreal v)
     }
 }
 
-static TTD_DEVICE unsigned point_node(const real p[3], const ttd_node *y, real lim2, real lb2[TTD_NODE_WIDTH])
+#ifndef TTD_PRECISION_DOUBLE
+static TTD_DEVICE unsigned point_node(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {
     const vreal zero = vzero(), vlim2 = vset1(lim2);
     unsigned within = 0;
     const vreal px = vset1(p[0]), py = vset1(p[1]), pz = vset1(p[2]);
     for (int j0 = 0; j0 < TTD_NODE_WIDTH; j0 += TTDW_LANES) {
         const vreal dx = px - vloadu(&y->c[0][j0]), dy = py - vloadu(&y->c[1][j0]), dz = pz - vloadu(&y->c[2][j0]);
-        vreal s = zero;
+        vreal s = zero, sep = zero;
         for (int a = 0; a < 3; ++a) {
             const vreal z = (vloadu(&y->u[3 * a][j0]) * dx + vloadu(&y->u[3 * a + 1][j0]) * dy) +
                             vloadu(&y->u[3 * a + 2][j0]) * dz;
-            const vreal g = vmax(vabs(z) - vloadu(&y->e[a][j0]), zero);
+            const vreal gap = vabs(z) - vloadu(&y->e[a][j0]), g = vmax(gap, zero);
             s = a == 0 ? g * g : s + g * g;
+            sep = a == 0 ? gap : vmax(sep, gap);
         }
-        pk_store(lb2, j0, s);
+        pk_store(lb2, j0, vsel(vgt(s, zero), s, sep));
         within |= mbits(vle(s, vlim2)) << j0;
     }
     return within & ((1u << TTD_NODE_WIDTH) - 1);
 }
+#endif
 
 TTDW_FN vreal pk_dot(vreal ax, vreal ay, vreal az, vreal bx, vreal by, vreal bz)
 {
