@@ -443,7 +443,9 @@ enum {
     TTD_POINT_NONFINITE = 1u << 0,   ///< the point had a NaN or infinite coordinate: outputs NaN
     TTD_POINT_ABOVE_BOUND = 1u << 1, ///< no triangle within upper_bound: distance +inf, no point, triangle UINT32_MAX
     TTD_POINT_INSIDE = 1u << 2,      ///< signed distance: the point is inside (winding number >= 1/2)
-    TTD_POINT_DEGENERATE = 1u << 3   ///< the closest triangle has no area (a segment or a point)
+    TTD_POINT_DEGENERATE = 1u << 3,  ///< the closest triangle has no area (a segment or a point)
+    TTD_POINT_SIGN_UNPROVEN = 1u << 4 ///< signed distance: the side is not proven (an open mesh's winding
+                                      ///< number within rounding of 1/2; never for a closed mesh)
 };
 
 /// The closest point of a mesh to one query point (double precision).

@@ -152,12 +152,14 @@ TTD_POINTS_CLOSEST(float, f)
 
 /* ---- winding numbers, inside, signed distances ------------------------------------------- */
 
-/* The winding numbers of the checked points into w (n doubles, allocated here when *w is NULL). */
-static ttd_status pts_winding(const ttd_engine_config *cfg, const ttd_mesh *mesh, size_t n, const pts_in *in, double **w)
+/* The winding numbers of the checked points into w (n doubles, allocated here when *w is NULL);
+ * with proven not NULL, for their side of 1/2 (points/points.h), and whether it is proven. */
+static ttd_status pts_winding(const ttd_engine_config *cfg, const ttd_mesh *mesh, size_t n, const pts_in *in, double **w,
+                              uint8_t *proven)
 {
     if (*w == NULL && (*w = malloc(n * sizeof **w)) == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    return ttd_points_query_winding(cfg, mesh, n, in->pts, *w);
+    return ttd_points_query_winding(cfg, mesh, n, in->pts, *w, proven);
 }
 
 ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const double *points,
@@ -168,7 +170,7 @@ ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *m
     ttd_status st = pts_begin(opt, mesh, n, points, pose, 8, winding != NULL, sizeof(double), 1, &cfg, &in);
     if (st != TTD_OK)
         return st;
-    st = pts_winding(&cfg, mesh, n, &in, &winding);
+    st = pts_winding(&cfg, mesh, n, &in, &winding, NULL);
     pts_end(&in);
     return pts_status(st, &in);
 }
@@ -182,7 +184,7 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
     if (st != TTD_OK)
         return st;
     double *w = NULL;
-    st = pts_winding(&cfg, mesh, n, &in, &w);
+    st = pts_winding(&cfg, mesh, n, &in, &w, NULL);
     for (size_t i = 0; st == TTD_OK && i < n; ++i)
         winding[i] = (float)w[i];
     free(w);
@@ -201,7 +203,7 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
         if (st != TTD_OK)                                                                      \
             return st;                                                                         \
         double *w = NULL;                                                                      \
-        st = pts_winding(&cfg, mesh, n, &in, &w);                                              \
+        st = pts_winding(&cfg, mesh, n, &in, &w, inside);                                      \
         for (size_t i = 0; st == TTD_OK && i < n; ++i)                                         \
             inside[i] = w[i] >= 0.5;                                                           \
         free(w);                                                                               \
@@ -220,16 +222,20 @@ TTD_POINTS_CONTAINS(float, f)
     {                                                                                          \
         ttd_status st = ttd_points_query_closest_##sfx(cfg, mesh, n, in->pts, upper_bound, r);  \
         double *w = NULL;                                                                      \
+        uint8_t *proven = malloc(n ? n : 1);                                                   \
         if (st == TTD_OK)                                                                      \
-            st = pts_winding(cfg, mesh, n, in, &w);                                            \
+            st = proven ? pts_winding(cfg, mesh, n, in, &w, proven) : TTD_ERR_OUT_OF_MEMORY;   \
         for (size_t i = 0; st == TTD_OK && i < n; ++i) {                                       \
             const int inside = w[i] >= 0.5;                                                    \
             if (inside)                                                                        \
                 r[i].flags |= TTD_POINT_INSIDE;                                                \
+            if (!proven[i] && !(r[i].flags & TTD_POINT_NONFINITE))                             \
+                r[i].flags |= TTD_POINT_SIGN_UNPROVEN;                                         \
             if (distance)                                                                      \
                 distance[i] = inside ? -r[i].distance : r[i].distance;                         \
         }                                                                                      \
         free(w);                                                                               \
+        free(proven);                                                                          \
         return st;                                                                             \
     }
 

@@ -122,6 +122,11 @@ typedef void (*ttd_node_test_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y
  * TTD_PT_ROWS rows of TTD_PT_LANES reals), and par[0..2][j] the candidate that gives it (id, u, v):
  * the scalar reference's bits (scalar/point_impl.h's point_select). */
 struct ttd_pnode;
+struct ttd_rnode;
+/* ray_node (float rows only): the mask of the child slots of ray node y whose boxes meet the box
+ * [lo, hi] across axis k (the other two coordinates) and reach lo[k] (sigma > 0) or hi[k] (sigma <
+ * 0) along it: exact comparisons, the same on every row. */
+typedef unsigned (*ttd_ray_node_fn)(const float lo[3], const float hi[3], int k, int sigma, const struct ttd_rnode *y);
 typedef unsigned (*ttd_point_node_fn)(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_d_fn)(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                                      double par[3][TTD_NODE_WIDTH]);
@@ -146,6 +151,7 @@ typedef struct ttd_kernels_f {
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_f_fn node_test;
     ttd_point_node_fn point_node;         ///< never NULL; the double walk's too
+    ttd_ray_node_fn ray_node;             ///< never NULL
     ttd_point_block_f_fn point_block;
 } ttd_kernels_f;
 

@@ -55,6 +55,16 @@ typedef struct ttd_pnode {
     int32_t pad[12];
 } ttd_pnode;
 
+/* The ray walk's node (src/points/ray.c): a mesh node's child slots as axis-aligned float boxes in the
+ * walk nodes' frame (ttd_points_data.scale), rounded outward around the vertices as the tree sees
+ * them; an unused slot holds the empty box (lo = +inf, hi = -inf). 256 bytes. */
+typedef struct ttd_rnode {
+    float lo[3][8];
+    float hi[3][8];
+    int32_t child[8]; /* the mesh node's (0 in an unused slot) */
+    int32_t pad[8];
+} ttd_rnode;
+
 /* Beyond this scaled distance from vertex 0 (2^400 in double, 2^40 in float) the triangle is
  * smaller than the rounding of the distance: the point is measured to vertex 0, which avoids
  * squaring numbers that could overflow. */

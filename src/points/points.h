@@ -17,6 +17,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "core/point_layout.h"
 #include "engine/batch.h"
@@ -25,15 +26,42 @@
 /* Winding-number moments of one child slot (a triangle or a subtree), in double, relative to the
  * mesh's origin: the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
  * centroid), the second moment M[i][j] = integral of (x - pc)_i n_j dA (row-major), the
- * (unsigned) area and a radius about pc that holds every vertex below. */
+ * (unsigned) area, a radius about pc that holds every vertex below, and the polar moment
+ * I = integral of |x - pc|^2 dA (rounded up), which the remainder's bound uses. */
 enum {
     WM_N = 0,      /* 3 */
     WM_C = 3,      /* 3 */
     WM_M = 6,      /* 9 */
     WM_AREA = 15,
     WM_RADIUS = 16,
-    WM_COUNT = 17
+    WM_I = 17,
+    WM_COUNT = 18
 };
+
+/* x rounded to float downwards, upwards (|x| <= 2^100). The round trip goes through a volatile: the
+ * rounding must really happen (docs/mesh-queries.md, 4.1, saw gcc drop it). */
+static inline float ttd_float_down(double x)
+{
+    volatile float f = (float)x;
+    float r = f;
+    if ((double)r > x) { /* one float step down: r is finite and nonzero here unless x rounds to 0 */
+        uint32_t b;
+        memcpy(&b, &r, sizeof b);
+        if (r > 0)
+            --b;
+        else if (r < 0)
+            ++b;
+        else
+            b = 0x80000001u; /* -0 -> the smallest negative subnormal */
+        memcpy(&r, &b, sizeof r);
+    }
+    return r;
+}
+
+static inline float ttd_float_up(double x)
+{
+    return -ttd_float_down(-x);
+}
 
 typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
@@ -44,6 +72,8 @@ typedef struct ttd_points_data {
     double scale;          /* the walk nodes' frame: x -> (x - the mesh's origin) scale, a power of
                             * two that puts every vertex within [-1, 1] */
     double stretch;        /* every walk box's axes U have |U| <= stretch (1 + a few float eps) */
+    ttd_rnode *rnodes;     /* nnodes ray walk nodes (points/ray.c) */
+    double coord_max;      /* the largest vertex coordinate's magnitude (the ray's exact signs) */
     size_t nblocks;
     void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
     double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at
@@ -72,14 +102,37 @@ ttd_status ttd_points_query_closest_f(const ttd_engine_config *cfg, const struct
  * *bound (when not NULL) gets a rigorous bound on the error of the far-field terms. */
 double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double *bound);
 
+/* The winding number of a closed mesh about x (the mesh's coordinates), exactly: the signed count
+ * of the triangles an axis-aligned ray from x crosses, with exact predicates (points/ray.c). For x
+ * on the surface, the count of x moved by an infinitesimal across the ray. Returns 0 with *w set,
+ * or -1 where it cannot be made exact (products below the subnormal range, or a stack overflow). */
+int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                           const double x[3], int *w);
+
 /* The winding number with its error certified below 1/4 (points/winding.c): the far-field
  * criterion is tightened until the bound is, down to every triangle exactly. For the solid mode
  * of the mesh queries, where one point decides a pose. */
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
 
+/* The winding number the queries report about x: for a closed mesh (closed = ttd_mesh_closed's 1)
+ * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that cannot be made exact) the
+ * hierarchical walk's. */
+double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                                const double x[3]);
+
+/* The winding number about x for its side of 1/2: the exact count for a closed mesh; else the fast
+ * walk, and where its bound does not settle the side, the walk tightened until it does (down to
+ * every triangle exactly). *proven: 1 when the side of 1/2 is proven (always off the surface of a
+ * closed mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of
+ * where an open mesh's winding number is 1/2). docs/points.md, section 5. */
+double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                               const double x[3], int *proven);
+
 /* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
- * winding (double), over the threads: TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN for a NaN point. */
+ * winding (double), over the threads: ttd_points_winding_value's, or with proven not NULL
+ * ttd_points_winding_sign's and whether each side is proven. TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN
+ * for a NaN point. */
 ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
-                                    const void *points, double *winding);
+                                    const void *points, double *winding, uint8_t *proven);
 
 #endif /* TTD_POINTS_POINTS_H */

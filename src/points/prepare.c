@@ -19,6 +19,7 @@ static void points_free(void *p)
     if (pd == NULL)
         return;
     free(pd->pnodes);
+    free(pd->rnodes);
     free(pd->blocks);
     free(pd->moments);
     free(pd);
@@ -90,10 +91,7 @@ static void slot_box(const struct ttd_mesh *m, size_t n, int j, double scale, tt
         }
         const double ext = (e[a] * scale + sqrt(n2) * (1 + 1e-12) * gamma + sqrt(d2) * (1 + 1e-12) * (span + gamma)) *
                            (1 + 1e-12);
-        float ef = (float)ext;
-        if ((double)ef < ext)
-            ef = nextafterf(ef, INFINITY);
-        y->e[a][j] = ef;
+        y->e[a][j] = ttd_float_up(ext);
     }
     /* |U'| <= sqrt(1 + |U' U'^T - I|_F), the Gram matrix's error formed in double (its own rounding,
      * near 1e-16, is far below the float axes' 1e-7) */
@@ -159,6 +157,34 @@ static void prepare_blocks(void *ctx, size_t b, int worker)
     }
 }
 
+/* Slot j of ray node y holds triangle t: its box from the vertices as the tree sees them (minus the
+ * origin, rounded to double), scaled (exactly) and rounded outward. */
+static void triangle_rbox(const struct ttd_mesh *m, double scale, size_t t, ttd_rnode *y, int j)
+{
+    double v[3][3];
+    for (int k = 0; k < 3; ++k)
+        tri_vertex(m, t, k, 1, v[k]);
+    for (int c = 0; c < 3; ++c) {
+        const double lo = fmin(fmin(v[0][c], v[1][c]), v[2][c]), hi = fmax(fmax(v[0][c], v[1][c]), v[2][c]);
+        y->lo[c][j] = ttd_float_down(lo * scale);
+        y->hi[c][j] = ttd_float_up(hi * scale);
+    }
+}
+
+/* Slot j of ray node y holds node x: the union of x's boxes (exact in float). */
+static void node_rbox(const ttd_rnode *x, ttd_rnode *y, int j)
+{
+    for (int c = 0; c < 3; ++c) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+            lo = x->lo[c][i] < lo ? x->lo[c][i] : lo;
+            hi = x->hi[c][i] > hi ? x->hi[c][i] : hi;
+        }
+        y->lo[c][j] = lo;
+        y->hi[c][j] = hi;
+    }
+}
+
 /* The moments of triangle t (relative to the origin) into w[f * TTD_NODE_WIDTH] (slot j's base). */
 static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
 {
@@ -187,8 +213,21 @@ static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
     }
     for (int i = 0; i < 9; ++i) /* the first moment about the centroid vanishes */
         w[(WM_M + i) * TTD_NODE_WIDTH] = 0;
-    w[WM_AREA * TTD_NODE_WIDTH] = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    w[WM_AREA * TTD_NODE_WIDTH] = area;
     w[WM_RADIUS * TTD_NODE_WIDTH] = sqrt(r2) * (1 + 1e-12);
+    /* the polar moment about the stored centre g': (A / 12) (|v0 - g'|^2 + |v1 - g'|^2 + |v2 - g'|^2)
+     * is it about the exact centroid g plus A |g - g'|^2 / 4, against A |g - g'|^2 about g': the
+     * difference, with |g - g'| below 2 eps |v|_max per coordinate, is added */
+    double s = 0, big = 0;
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) {
+            const double d = v[k][c] - w[(WM_C + c) * TTD_NODE_WIDTH];
+            s += d * d;
+            big = fmax(big, fabs(v[k][c]));
+        }
+    const double off = 2 * DBL_EPSILON * big;
+    w[WM_I * TTD_NODE_WIDTH] = (area / 12 * s + area * 3 * off * off) * (1 + 1e-12);
 }
 
 /* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors
@@ -209,7 +248,7 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
     }
     for (int k = 0; k < 3; ++k)
         pc[k] = area > 0 ? pc[k] / area : mean[k];
-    double radius = 0, M[9] = {0}, N[3] = {0};
+    double radius = 0, M[9] = {0}, N[3] = {0}, polar = 0;
     for (int j = 0; j < count; ++j) {
         double d[3], d2 = 0;
         for (int k = 0; k < 3; ++k) {
@@ -217,6 +256,10 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
             d2 += d[k] * d[k];
             N[k] += X(WM_N + k, j);
         }
+        /* the parallel axis theorem (about any centre); d's rounding (below 2 eps |c_j| per
+         * coordinate) is added */
+        const double off = 2 * DBL_EPSILON * (fabs(X(WM_C, j)) + fabs(X(WM_C + 1, j)) + fabs(X(WM_C + 2, j)));
+        polar += X(WM_I, j) + X(WM_AREA, j) * (d2 + 2 * sqrt(d2) * off * 1.8 + 3 * off * off);
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
                 M[3 * a + b] += X(WM_M + 3 * a + b, j) + d[a] * X(WM_N + b, j);
@@ -231,6 +274,7 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
         W(WM_M + i) = M[i];
     W(WM_AREA) = area;
     W(WM_RADIUS) = radius * (1 + 1e-12); /* covers the rounding of the sums above */
+    W(WM_I) = polar * (1 + 1e-12);
 #undef X
 #undef W
 }
@@ -245,6 +289,11 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
     if (J.stretch == NULL)
         return -1;
     ttd_parallel_for(nb, threads, prepare_blocks, &J);
+    pd->coord_max = 0;
+    for (size_t i = 0; i < 3 * m->nv; ++i) {
+        const double x = fabs(m->bytes == 8 ? ((const double *)m->verts)[i] : (double)((const float *)m->verts)[i]);
+        pd->coord_max = x > pd->coord_max ? x : pd->coord_max;
+    }
     pd->stretch = 1;
     for (size_t b = 0; b < nb; ++b)
         pd->stretch = J.stretch[b] > pd->stretch ? J.stretch[b] : pd->stretch;
@@ -253,14 +302,24 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
         int count;
         const int32_t *child = node_child(m, n, &count);
         double *w = pd->moments + n * WM_COUNT * TTD_NODE_WIDTH;
+        ttd_rnode *y = &pd->rnodes[n];
         memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            y->child[j] = j < count ? child[j] : 0;
+            for (int c = 0; c < 3; ++c) {
+                y->lo[c][j] = INFINITY;
+                y->hi[c][j] = -INFINITY;
+            }
+        }
         for (int j = 0; j < count; ++j) {
             if (child[j] < 0) {
                 triangle_moments(m, (size_t)(-1 - child[j]), w + j);
+                triangle_rbox(m, pd->scale, (size_t)(-1 - child[j]), y, j);
             } else {
                 int cc;
                 (void)node_child(m, (size_t)child[j], &cc);
                 node_moments(pd, (size_t)child[j], cc, w + j);
+                node_rbox(&pd->rnodes[child[j]], y, j);
             }
         }
     }
@@ -276,12 +335,14 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
     pd->bytes = m->bytes;
     pd->nnodes = m->nnodes;
     pd->pnodes = ttd_big_alloc(m->nnodes * sizeof *pd->pnodes);
-    if (pd->pnodes == NULL)
+    pd->rnodes = ttd_big_alloc(m->nnodes * sizeof *pd->rnodes);
+    if (pd->pnodes == NULL || pd->rnodes == NULL)
         goto fail;
     /* the power of two at or above the radius (at least 2^-1000: s stays finite) */
     int e;
     (void)frexp(m->radius, &e);
     pd->scale = ldexp(1.0, -(e < -1000 ? -1000 : e));
+
     for (size_t n = 0; n < m->nnodes; ++n) {
         int count;
         const int32_t *child = node_child(m, n, &count);

@@ -38,6 +38,11 @@ void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_
     point_block_scalar(p, block, d, par);
 }
 
+unsigned ttd_ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const ttd_rnode *y)
+{
+    return ray_node_scalar(lo, hi, k, sigma, y);
+}
+
 unsigned ttd_point_node_scalar(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {
     return point_node_scalar(p, y, lim2, lb2);

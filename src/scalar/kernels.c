@@ -85,5 +85,6 @@ const ttd_kernels_f ttd_kernels_scalar_f = {
            [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
     .node_test = ttd_node_test_scalar_f,
     .point_node = ttd_point_node_scalar,
+    .ray_node = ttd_ray_node_scalar,
     .point_block = ttd_point_block_scalar_f,
 };

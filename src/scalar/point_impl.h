@@ -250,4 +250,15 @@ static unsigned point_node_scalar(const float p[3], const ttd_pnode *y, float li
     }
     return within;
 }
+
+static unsigned ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const ttd_rnode *y)
+{
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    unsigned hit = 0;
+    for (int s = 0; s < TTD_NODE_WIDTH; ++s)
+        hit |= (unsigned)((y->lo[i][s] <= hi[i]) & (y->hi[i][s] >= lo[i]) & (y->lo[j][s] <= hi[j]) & (y->hi[j][s] >= lo[j]) &
+                          (sigma > 0 ? y->hi[k][s] >= lo[k] : y->lo[k][s] <= hi[k]))
+               << s;
+    return hit;
+}
 #endif

@@ -54,6 +54,8 @@ void ttd_point_block_scalar_d(const double p[3], const double *block, double d[T
                               double par[3][TTD_NODE_WIDTH]);
 void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH], float par[3][TTD_NODE_WIDTH]);
 struct ttd_pnode;
+struct ttd_rnode;
+unsigned ttd_ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const struct ttd_rnode *y);
 unsigned ttd_point_node_scalar(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 
 /* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other

@@ -50,6 +50,21 @@ static TTD_DEVICE unsigned point_node(const float p[3], const ttd_pnode *y, floa
     }
     return within & ((1u << TTD_NODE_WIDTH) - 1);
 }
+
+static TTD_DEVICE unsigned ray_node(const float lo[3], const float hi[3], int k, int sigma, const ttd_rnode *y)
+{
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const vreal li = vset1(lo[i]), hi_ = vset1(hi[i]), lj = vset1(lo[j]), hj = vset1(hi[j]);
+    const vreal along = vset1(sigma > 0 ? lo[k] : hi[k]);
+    unsigned hit = 0;
+    for (int j0 = 0; j0 < TTD_NODE_WIDTH; j0 += TTDW_LANES) {
+        const vmask across = mand(mand(vle(vloadu(&y->lo[i][j0]), hi_), vge(vloadu(&y->hi[i][j0]), li)),
+                                  mand(vle(vloadu(&y->lo[j][j0]), hj), vge(vloadu(&y->hi[j][j0]), lj)));
+        const vmask ahead = sigma > 0 ? vge(vloadu(&y->hi[k][j0]), along) : vle(vloadu(&y->lo[k][j0]), along);
+        hit |= mbits(mand(across, ahead)) << j0;
+    }
+    return hit & ((1u << TTD_NODE_WIDTH) - 1);
+}
 #endif
 
 TTDW_FN vreal pk_dot(vreal ax, vreal ay, vreal az, vreal bx, vreal by, vreal bz)

@@ -41,5 +41,5 @@
 #ifdef TTD_PRECISION_DOUBLE
 #define TTD_LANE_ROW_POINT_NODE
 #else
-#define TTD_LANE_ROW_POINT_NODE .point_node = point_node,
+#define TTD_LANE_ROW_POINT_NODE .point_node = point_node, .ray_node = ray_node,
 #endif
