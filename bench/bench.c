@@ -25,6 +25,7 @@
 
 #include "cli.h"
 #include "mesh_bench.h"
+#include "deform_bench.h"
 #include "points_bench.h"
 #include "scene_bench.h"
 #include "mesh_workload.h"
@@ -740,6 +741,7 @@ static void usage(FILE *f)
           f);
     bench_mesh_usage(f);
     bench_scene_usage(f);
+    bench_deform_usage(f);
 }
 
 static const char *isa_name_of(int i) { return i == TTD_ISA_AUTO ? NULL : ttd_isa_name((ttd_isa)i); }
@@ -822,6 +824,9 @@ int ttd_bench_main(int argc, char **argv)
     bench_mesh_results *mesh = NULL;
     bench_scene_config scene_cfg;
     bench_scene_results *scene = NULL;
+    bench_deform_config deform_cfg;
+    bench_deform_results *deform = NULL;
+    memset(&deform_cfg, 0, sizeof deform_cfg);
     memset(&mesh_cfg, 0, sizeof mesh_cfg);
     memset(&scene_cfg, 0, sizeof scene_cfg);
     if (!cx) {
@@ -872,6 +877,8 @@ int ttd_bench_main(int argc, char **argv)
             takes = 0;
         } else if (strcmp(a, "--quiet") == 0) {
             cx->quiet = 1;
+            takes = 0;
+        } else if (bench_deform_option(&deform_cfg, a)) {
             takes = 0;
         } else if ((took = bench_mesh_option(&mesh_cfg, a, v)) != 0) {
             rc = took < 0 ? 3 : rc;
@@ -976,7 +983,8 @@ int ttd_bench_main(int argc, char **argv)
         cx->pair_bunny = mesh_cfg.bunny[0] ? mesh_cfg.bunny : (env && *env) ? env : "build/data/bunny.obj";
     }
 
-    for (size_t w = 0; w < N_WORKLOADS && (workload_mask || (!mesh_cfg.named && !scene_cfg.named)); ++w) {
+    for (size_t w = 0; w < N_WORKLOADS && !deform_cfg.only && (workload_mask || (!mesh_cfg.named && !scene_cfg.named));
+         ++w) {
         const workload_spec *ws = &workloads[w];
         size_t n = cx->st.quick ? ws->n_quick : ws->n_full;
         if (workload_mask) {
@@ -1002,15 +1010,20 @@ int ttd_bench_main(int argc, char **argv)
         if (n > 0)
             run_workload(cx, ws, n);
     }
-    if (bench_mesh_wanted(&mesh_cfg, workload_mask != 0 || scene_cfg.named)) {
+    if (!deform_cfg.only && bench_mesh_wanted(&mesh_cfg, workload_mask != 0 || scene_cfg.named)) {
         bench_mesh_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[0] != 0,
                               cx->precisions[1] != 0, cx->quiet, cx->t_start};
         cx->st.mesh = mesh = bench_mesh_run(&mesh_cfg, &env);
     }
-    if (bench_scene_wanted(&scene_cfg, workload_mask != 0 || mesh_cfg.named)) {
+    if (!deform_cfg.only && bench_scene_wanted(&scene_cfg, workload_mask != 0 || mesh_cfg.named)) {
         bench_scene_env env = {&cx->st, cx->max_threads, cx->isa_mask, no_fcl, cx->precisions[1] != 0,
                                cx->quiet, cx->t_start, &mesh_cfg};
         cx->st.scene = scene = bench_scene_run(&scene_cfg, &env);
+    }
+    /* the deforming-mesh section: by default with the others, unless sections were named */
+    if (!deform_cfg.disabled && (deform_cfg.only || !(workload_mask || mesh_cfg.named || scene_cfg.named))) {
+        bench_deform_env env = {&cx->st, no_fcl, cx->quiet, cx->t_start};
+        cx->st.deform = deform = bench_deform_run(&deform_cfg, &env);
     }
     derive_ratios(cx);
     machine.load1_end = bench_load_average(machine.load_end, sizeof machine.load_end);
@@ -1036,13 +1049,16 @@ int ttd_bench_main(int argc, char **argv)
             rc = 1;
         }
     }
-    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0 && bench_scene_row_count(cx->st.scene) == 0) {
+    if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0 && bench_scene_row_count(cx->st.scene) == 0 &&
+        bench_deform_row_count(cx->st.deform) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "
                         "chosen instruction sets (the barrier method is scalar only), or every workload failed\n");
         rc = 1;
     }
     progress(cx, "done: %zu rows",
-             cx->nrows + bench_mesh_row_count(cx->st.mesh) + bench_scene_row_count(cx->st.scene));
+             cx->nrows + bench_mesh_row_count(cx->st.mesh) + bench_scene_row_count(cx->st.scene) +
+                 bench_deform_row_count(cx->st.deform));
+    bench_deform_free(deform);
     bench_mesh_free(mesh);
     bench_scene_free(scene);
     ttd_gen_mesh_free(&cx->pair_mesh);

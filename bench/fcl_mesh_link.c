@@ -251,6 +251,7 @@ static const char *const row_header[BENCH_FCL_MESH_QUERY_COUNT] = {
     "# pose median_ms min_ms distance px py pz qx qy qz ia ib bv_tests leaf_tests",
     "# pose median_ms min_ms collide ia ib bv_tests leaf_tests margin",
     "# pose median_ms min_ms pairs bv_tests leaf_tests",
+    "# pose median_ms min_ms",
 };
 
 /* Splits a row into at most max fields at single spaces; returns the count. */
@@ -286,7 +287,7 @@ static int parse_int(const char *s, long long lo, int64_t *x)
 
 static int parse_row(char *line, bench_fcl_mesh_query query, size_t k, bench_fcl_mesh_pose *r)
 {
-    static const int nfields[BENCH_FCL_MESH_QUERY_COUNT] = {14, 9, 6};
+    static const int nfields[BENCH_FCL_MESH_QUERY_COUNT] = {14, 9, 6, 3};
     char *f[16];
     if (split(line, f, 16) != nfields[query])
         return -1;
@@ -320,11 +321,13 @@ static int parse_row(char *line, bench_fcl_mesh_query query, size_t k, bench_fcl
             r->margin_supported = 0;
         else
             return -1;
-    } else {
+    } else if (query == BENCH_FCL_MESH_PAIRS) {
         int64_t n;
         if (parse_int(f[3], 0, &n) || parse_int(f[4], 0, &a) || parse_int(f[5], 0, &b))
             return -1;
         r->pairs = (uint64_t)n;
+    } else { /* refit: the times only */
+        a = b = 0;
     }
     r->bv_tests = (uint64_t)a;
     r->leaf_tests = (uint64_t)b;

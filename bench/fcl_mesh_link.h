@@ -7,7 +7,7 @@
  *
  * Input file (little-endian; every count checked against the file size by the program):
  *   char     magic[8]     "TTDMESH1"
- *   uint32   query        0 = minimum distance, 1 = collision, 2 = pairs within margin
+ *   uint32   query        0 = minimum distance, 1 = collision, 2 = pairs within margin, 3 = refit
  *   uint32   repetitions  timed runs per pose (>= 1)
  *   double   margin       for queries 1 (0 = plain collision) and 2
  *   uint64   nvA, ntA;  double vA[3*nvA];  uint32 tA[3*ntA]
@@ -24,11 +24,15 @@
  *   query 0: pose median_ms min_ms distance px py pz qx qy qz ia ib bv_tests leaf_tests
  *   query 1: pose median_ms min_ms collide ia ib bv_tests leaf_tests margin
  *   query 2: pose median_ms min_ms pairs bv_tests leaf_tests
+ *   query 3: pose median_ms min_ms    (one row; the pose is not used)
  * p (on triangle ia of A) and q (on triangle ib of B) are in A's frame. collide is 1 or 0, ia
  * and ib the triangles of the contact FCL found (-1 -1 without one); margin is "ok", or
  * "unsupported" when a margin > 0 was asked for: FCL 0.7's collide has none, so the row
  * answers and times plain collision. bv_tests and leaf_tests are bounding-volume pair tests
- * and triangle pair tests of one query.
+ * and triangle pair tests of one query. Query 3 (refit, B holding A's triangles and the moved
+ * vertices): A's model is built once (build_ms B is 0), then each timed run is FCL's refit,
+ * beginUpdateModel(), updateSubModel(vertices), endUpdateModel(true, true) (bottom-up), to B's
+ * vertices and A's in turn, so that every run moves the model.
  *
  * Pairs file (query 2, `--pairs FILE`; little-endian):
  *   char magic[8] "TTDPAIR1"; uint64 K; then for each pose: uint64 n, and n records
@@ -53,7 +57,8 @@ typedef enum bench_fcl_mesh_query {
     BENCH_FCL_MESH_DISTANCE = 0, ///< minimum distance, closest points and triangle ids
     BENCH_FCL_MESH_COLLIDE = 1,  ///< collision yes/no and one contact's triangle ids
     BENCH_FCL_MESH_PAIRS = 2,    ///< every triangle pair within the margin
-    BENCH_FCL_MESH_QUERY_COUNT = 3
+    BENCH_FCL_MESH_REFIT = 3,    ///< A's model refitted to B's vertices and back (same triangles)
+    BENCH_FCL_MESH_QUERY_COUNT = 4
 } bench_fcl_mesh_query;
 
 /// One mesh: nv vertices (xyz each) and nt triangles (three vertex indices each).

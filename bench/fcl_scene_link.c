@@ -212,6 +212,74 @@ static int parse_output(const char *path, size_t nbodies, bench_fcl_scene_result
     return 0;
 }
 
+int bench_scene_program_run(const char *program, const bench_fcl_scene_job *job, char *out_name, size_t out_size,
+                            char *err, size_t err_size)
+{
+    out_name[0] = '\0';
+    if (!job || job->nbodies < 2 || !job->nmeshes || job->repetitions < 1 || !(job->margin > 0.0) ||
+        (job->steps && !job->motion)) {
+        set_error(err, err_size, "bad scene job");
+        return -1;
+    }
+    char in_name[512], err_name[512];
+    in_name[0] = err_name[0] = '\0';
+    int rc = -1;
+    if (temp_name(in_name, sizeof in_name, "in") || temp_name(out_name, out_size, "out") ||
+        temp_name(err_name, sizeof err_name, "err")) {
+        set_error(err, err_size, "cannot create a temporary file: %s", strerror(errno));
+        goto done;
+    }
+    bench_fcl_scene_job j = *job;
+    if (!j.motion_runs)
+        j.steps = 0;
+    if (write_job(in_name, &j, err, err_size))
+        goto done;
+    char prog[1024];
+    snprintf(prog, sizeof prog, "%s", program);
+    char *argv[] = {prog, in_name, NULL};
+    posix_spawn_file_actions_t actions;
+    if (posix_spawn_file_actions_init(&actions) != 0) {
+        set_error(err, err_size, "cannot spawn %s", program);
+        goto done;
+    }
+    pid_t pid;
+    int spawned = posix_spawn_file_actions_addopen(&actions, 1, out_name, O_WRONLY | O_TRUNC, 0) == 0 &&
+                  posix_spawn_file_actions_addopen(&actions, 2, err_name, O_WRONLY | O_TRUNC, 0) == 0 &&
+                  posix_spawn(&pid, program, &actions, NULL, argv, environ) == 0;
+    posix_spawn_file_actions_destroy(&actions);
+    if (!spawned) {
+        set_error(err, err_size, "cannot run %s", program);
+        goto done;
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) {
+            set_error(err, err_size, "waiting for %s: %s", program, strerror(errno));
+            goto done;
+        }
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        char why[400];
+        first_line(err_name, why, sizeof why);
+        if (WIFEXITED(status))
+            set_error(err, err_size, "%s exited with %d: %s", program, WEXITSTATUS(status), why);
+        else
+            set_error(err, err_size, "%s was killed by signal %d", program, WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+        goto done;
+    }
+    rc = 0;
+done:
+    if (in_name[0])
+        unlink(in_name);
+    if (err_name[0])
+        unlink(err_name);
+    if (rc != 0 && out_name[0]) {
+        unlink(out_name);
+        out_name[0] = '\0';
+    }
+    return rc;
+}
+
 int bench_fcl_scene_run(const char *program, const bench_fcl_scene_job *job, bench_fcl_scene_result *out)
 {
     memset(out, 0, sizeof *out);
@@ -226,69 +294,13 @@ int bench_fcl_scene_run(const char *program, const bench_fcl_scene_job *job, ben
         }
         program = found;
     }
-    if (!job || job->nbodies < 2 || !job->nmeshes || job->repetitions < 1 || !(job->margin > 0.0) ||
-        (job->steps && !job->motion)) {
-        set_error(out->error, sizeof out->error, "bad scene job");
+    out->steps = job && job->motion_runs ? job->steps : 0;
+    char out_name[512];
+    if (bench_scene_program_run(program, job, out_name, sizeof out_name, out->error, sizeof out->error) != 0)
         return BENCH_FCL_SCENE_ERROR;
-    }
-    out->steps = job->motion_runs ? job->steps : 0;
-    char in_name[512], out_name[512], err_name[512];
-    in_name[0] = out_name[0] = err_name[0] = '\0';
-    int rc = BENCH_FCL_SCENE_ERROR;
-    if (temp_name(in_name, sizeof in_name, "in") || temp_name(out_name, sizeof out_name, "out") ||
-        temp_name(err_name, sizeof err_name, "err")) {
-        set_error(out->error, sizeof out->error, "cannot create a temporary file: %s", strerror(errno));
-        goto done;
-    }
-    bench_fcl_scene_job j = *job;
-    if (!j.motion_runs)
-        j.steps = 0;
-    if (write_job(in_name, &j, out->error, sizeof out->error))
-        goto done;
-    char prog[1024];
-    snprintf(prog, sizeof prog, "%s", program);
-    char *argv[] = {prog, in_name, NULL};
-    posix_spawn_file_actions_t actions;
-    if (posix_spawn_file_actions_init(&actions) != 0) {
-        set_error(out->error, sizeof out->error, "cannot spawn %s", program);
-        goto done;
-    }
-    pid_t pid;
-    int spawned = posix_spawn_file_actions_addopen(&actions, 1, out_name, O_WRONLY | O_TRUNC, 0) == 0 &&
-                  posix_spawn_file_actions_addopen(&actions, 2, err_name, O_WRONLY | O_TRUNC, 0) == 0 &&
-                  posix_spawn(&pid, program, &actions, NULL, argv, environ) == 0;
-    posix_spawn_file_actions_destroy(&actions);
-    if (!spawned) {
-        set_error(out->error, sizeof out->error, "cannot run %s", program);
-        goto done;
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) {
-            set_error(out->error, sizeof out->error, "waiting for %s: %s", program, strerror(errno));
-            goto done;
-        }
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        char why[400];
-        first_line(err_name, why, sizeof why);
-        if (WIFEXITED(status))
-            set_error(out->error, sizeof out->error, "%s exited with %d: %s", program, WEXITSTATUS(status), why);
-        else
-            set_error(out->error, sizeof out->error, "%s was killed by signal %d", program,
-                      WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        goto done;
-    }
-    if (parse_output(out_name, job->nbodies, out) == 0)
-        rc = BENCH_FCL_SCENE_OK;
-done:
+    const int rc = parse_output(out_name, job->nbodies, out) == 0 ? BENCH_FCL_SCENE_OK : BENCH_FCL_SCENE_ERROR;
+    unlink(out_name);
     if (rc != BENCH_FCL_SCENE_OK)
         bench_fcl_scene_result_free(out);
-    if (in_name[0])
-        unlink(in_name);
-    if (out_name[0])
-        unlink(out_name);
-    if (err_name[0])
-        unlink(err_name);
     return rc;
 }

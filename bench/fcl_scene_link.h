@@ -106,6 +106,13 @@ int bench_fcl_scene_run(const char *program, const bench_fcl_scene_job *job, ben
 
 /// Frees what a run allocated (the struct itself is the caller's); safe on a zeroed struct.
 void bench_fcl_scene_result_free(bench_fcl_scene_result *r);
+
+/// What bench_fcl_scene_run and the other scene programs' runs (bench/bullet_scene_link.c) share:
+/// writes the job to a temporary file, runs program on it with its standard output into a new
+/// temporary file, whose name goes to out_name (the caller reads it, then unlinks it). 0, or -1
+/// with err set (and no file left).
+int bench_scene_program_run(const char *program, const bench_fcl_scene_job *job, char *out_name, size_t out_size,
+                            char *err, size_t err_size);
 #endif
 
 #ifdef __cplusplus

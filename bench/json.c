@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* JSON pieces every writer of `ttd bench` shares (bench/json.h). */
+/* Output pieces every writer of `ttd bench` shares (bench/json.h). */
+#include <math.h>
+
 #include "json.h"
 
 void bench_json_string(FILE *f, const char *s)
@@ -15,4 +17,13 @@ void bench_json_string(FILE *f, const char *s)
             fputc(c, f);
     }
     fputc('"', f);
+}
+
+const char *bench_num(char *buf, size_t size, double v, const char *fmt)
+{
+    if (!isfinite(v))
+        snprintf(buf, size, "-");
+    else
+        snprintf(buf, size, fmt, v);
+    return buf;
 }

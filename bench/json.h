@@ -1,12 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* JSON pieces shared by the benchmark's writers: the top-level ones (bench/output.c) and each
- * section's (mesh_bench.c, scene_bench.c). It sits below all of them and includes none. */
+/* Output pieces shared by the benchmark's writers: the top-level ones (bench/output.c) and each
+ * section's (mesh_bench.c, scene_bench.c, deform_bench.c). It sits below all of them and
+ * includes none. */
 #ifndef TTD_BENCH_JSON_H
 #define TTD_BENCH_JSON_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 /// Writes s as a JSON string literal (quotes, backslashes and control characters escaped).
 void bench_json_string(FILE *f, const char *s);
+
+/// v printed with fmt into buf (size bytes), or "-" when v is not finite (a table's cell);
+/// returns buf.
+const char *bench_num(char *buf, size_t size, double v, const char *fmt);
 
 #endif /* TTD_BENCH_JSON_H */

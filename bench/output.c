@@ -8,6 +8,7 @@
 #include "json.h"
 #include "output.h"
 #include "mesh_bench.h"
+#include "deform_bench.h"
 #include "scene_bench.h"
 
 #include <math.h>
@@ -131,6 +132,8 @@ void bench_write_table(FILE *f, const bench_machine *m, const bench_settings *st
         bench_mesh_write_table(f, st->mesh);
     if (st->scene)
         bench_scene_write_table(f, st->scene);
+    if (st->deform)
+        bench_deform_write_table(f, st->deform);
 }
 
 static void json_num(FILE *f, const char *key, double v)
@@ -223,6 +226,10 @@ void bench_write_json(FILE *f, const bench_machine *m, const bench_settings *st,
     if (st->mesh) {
         fprintf(f, ",\n  \"mesh\": ");
         bench_mesh_write_json(f, st->mesh);
+    }
+    if (st->deform) {
+        fprintf(f, ",\n  \"deform\": ");
+        bench_deform_write_json(f, st->deform);
     }
     if (st->scene) {
         fprintf(f, ",\n  \"scene\": ");

@@ -53,6 +53,7 @@ typedef struct bench_settings {
     char command[512];        ///< the command line
     const struct bench_mesh_results *mesh; ///< the mesh section (bench/mesh_bench.h), NULL when not run
     const struct bench_scene_results *scene; ///< the scene section (bench/scene_bench.h), NULL when not run
+    const struct bench_deform_results *deform; ///< the deforming-mesh section (bench/deform_bench.h), NULL when not run
 } bench_settings;
 
 #endif /* TTD_BENCH_ROWS_H */

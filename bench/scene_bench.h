@@ -20,6 +20,7 @@ typedef struct bench_scene_config {
     int disabled;          ///< --no-scene
     unsigned named;        ///< workloads named in --scene-workloads (bit i = workload i); 0: none named
     char fcl_scene[1024];  ///< --fcl-scene PATH ("" = $TTD_FCL_SCENE_BENCH or next to ttd)
+    char write_dir[1024];  ///< --scene-write DIR: each scene also written there for `ttd scene` ("" = not)
 } bench_scene_config;
 
 /// What the rest of the benchmark decided, for the scene section.

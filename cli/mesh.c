@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* `ttd mesh distance | contacts | collide A B [options]`: the library's mesh queries on two
  * meshes read from files (ttd/meshfile.h), under one pose (--pose), many (--poses FILE) or the
- * identity. The usage text below is the reference for the output formats; docs/mesh-files.md
+ * identity; `ttd mesh self-contacts | self-collide A`: one mesh against itself (its pairs that
+ * share no vertex), which run as a contacts or collide query of one pose. The usage text below is the reference for the output formats; docs/mesh-files.md
  * has a summary.
  *
  * Everything that can be checked is checked before anything is computed, so that a run either
@@ -41,14 +42,29 @@
 /// 3 or more significant digits; beyond it R is more than rounded and is refused.
 #define TTD_MESH_ORTHONORMALIZE_TOLERANCE 1e-2
 
-typedef enum ttd_mesh_cmd { TTD_MESH_DISTANCE, TTD_MESH_CONTACTS, TTD_MESH_COLLIDE } ttd_mesh_cmd;
+typedef enum ttd_mesh_cmd {
+    TTD_MESH_DISTANCE,
+    TTD_MESH_CONTACTS,
+    TTD_MESH_COLLIDE,
+    TTD_MESH_SELF_CONTACTS,
+    TTD_MESH_SELF_COLLIDE,
+    TTD_MESH_NCMD
+} ttd_mesh_cmd;
 
-static const char *const ttd_mesh_cmd_names[] = {"distance", "contacts", "collide"};
+static const char *const ttd_mesh_cmd_names[] = {"distance", "contacts", "collide", "self-contacts", "self-collide"};
 
 static const char *const ttd_mesh_synopsis[] = {
     "ttd mesh distance A B [--pose P | --poses FILE] [--upper-bound X] [--rel-tol X] [options]\n",
     "ttd mesh contacts A B --margin M [--pose P | --poses FILE] [--per-triangle] [--count] [options]\n",
-    "ttd mesh collide A B [--margin M] [--pose P | --poses FILE] [options]\n"};
+    "ttd mesh collide A B [--margin M] [--pose P | --poses FILE] [options]\n",
+    "ttd mesh self-contacts A --margin M [--shared-vertex] [--count] [options]\n",
+    "ttd mesh self-collide A [--margin M] [--shared-vertex] [options]\n"};
+
+/* Whether a command takes one mesh (against itself). */
+static int ttd_mesh_is_self(ttd_mesh_cmd cmd)
+{
+    return cmd == TTD_MESH_SELF_CONTACTS || cmd == TTD_MESH_SELF_COLLIDE;
+}
 
 static const char ttd_mesh_usage_head[] =
     "Queries between two triangle meshes read from the files A and B ('-' for standard input, once\n"
@@ -92,6 +108,24 @@ static const char ttd_mesh_usage_collide[] =
     "With --solid, where one mesh lies inside the other: '1 ia -1' or '1 -1 ib' (the inner mesh's\n"
     "triangle 0).\n"
     "  --margin M        M >= 0, finite (default 0)\n";
+
+static const char ttd_mesh_usage_self[] =
+    "\n"
+    "self-contacts: every pair of triangles i < j of A at distance <= M that share no vertex (by\n"
+    "index: neighbours in the mesh touch by construction), one line per pair, sorted by i then j:\n"
+    "    i j d px py pz qx qy qz\n"
+    "  p on triangle i, q on triangle j.\n"
+    "  --margin M        M >= 0, finite (required)\n"
+    "  --count           print only the number of pairs\n"
+    "self-collide: whether A comes within M of itself (0: intersects itself), by those pairs: '1 i j'\n"
+    "with the first pair found (i < j), or '0'.\n"
+    "  --margin M        M >= 0, finite (default 0)\n"
+    "both:\n"
+    "  --shared-vertex   also pairs that share exactly one vertex v, by how near they come away from\n"
+    "                    it: the nearer of each triangle's edge opposite v against the other\n"
+    "                    triangle (what a cloth solver needs where a sheet folds at a vertex;\n"
+    "                    include/ttd/ttd.h, ttd_mesh_self_contacts_d)\n"
+    "  --pose, --poses, --solid and --per-triangle do not apply.\n";
 
 static const char ttd_mesh_usage_common[] =
     "\n"
@@ -140,7 +174,7 @@ static void ttd_mesh_print_usage(FILE *f, int cmd)
     char isas[256] = "";
     for (int i = 0; i < TTD_ISA_COUNT; ++i)
         snprintf(isas + strlen(isas), sizeof isas - strlen(isas), "%s%s", i ? "|" : "", ttd_isa_name((ttd_isa)i));
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < TTD_MESH_NCMD; ++c)
         if (cmd < 0 || cmd == c)
             fprintf(f, "%s%s", c == (cmd < 0 ? 0 : cmd) ? "usage: " : "       ", ttd_mesh_synopsis[c]);
     fputs(ttd_mesh_usage_head, f);
@@ -150,6 +184,8 @@ static void ttd_mesh_print_usage(FILE *f, int cmd)
         fputs(ttd_mesh_usage_contacts, f);
     if (cmd < 0 || cmd == TTD_MESH_COLLIDE)
         fputs(ttd_mesh_usage_collide, f);
+    if (cmd < 0 || ttd_mesh_is_self((ttd_mesh_cmd)cmd))
+        fputs(ttd_mesh_usage_self, f);
     fprintf(f, ttd_mesh_usage_common, isas);
 }
 
@@ -167,6 +203,7 @@ typedef struct ttd_mesh_args {
     int per_triangle, count;
     int orthonormalize;               /* --orthonormalize: R replaced by the nearest rotation */
     int strict;                       /* --strict: OBJ lines that are not statements refused */
+    unsigned self_flags;              /* --shared-vertex: TTD_SELF_SHARED_VERTEX */
 } ttd_mesh_args;
 
 /* A finite number >= 0 in the precision's type (strtof in float: rounded once); 0 or -1. */
@@ -194,10 +231,11 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
         if (only_operands || arg[0] != '-' || strcmp(arg, "-") == 0) {
             if (a->path_a == NULL)
                 a->path_a = arg;
-            else if (a->path_b == NULL)
+            else if (a->path_b == NULL && !ttd_mesh_is_self(a->cmd))
                 a->path_b = arg;
             else {
-                ttd_cli_error("%s: unexpected argument '%s' (two mesh files A and B are taken)", name, arg);
+                ttd_cli_error("%s: unexpected argument '%s' (%s taken)", name, arg,
+                              ttd_mesh_is_self(a->cmd) ? "one mesh file A is" : "two mesh files A and B are");
                 return -1;
             }
             continue;
@@ -211,11 +249,21 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             return 1;
         }
         if (strcmp(arg, "--per-triangle") == 0 || strcmp(arg, "--count") == 0) {
-            if (a->cmd != TTD_MESH_CONTACTS) {
-                ttd_cli_error("%s: %s is an option of mesh contacts only", name, arg);
+            const int ok = a->cmd == TTD_MESH_CONTACTS || (arg[2] == 'c' && a->cmd == TTD_MESH_SELF_CONTACTS);
+            if (!ok) {
+                ttd_cli_error("%s: %s is an option of mesh contacts%s only", name, arg,
+                              arg[2] == 'c' ? " and mesh self-contacts" : "");
                 return -1;
             }
             *(arg[2] == 'p' ? &a->per_triangle : &a->count) = 1;
+            continue;
+        }
+        if (strcmp(arg, "--shared-vertex") == 0) {
+            if (!ttd_mesh_is_self(a->cmd)) {
+                ttd_cli_error("%s: --shared-vertex is an option of mesh self-contacts and self-collide", name);
+                return -1;
+            }
+            a->self_flags = TTD_SELF_SHARED_VERTEX;
             continue;
         }
         if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
@@ -223,7 +271,7 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             continue;
         }
         if (strcmp(arg, "--solid") == 0) {
-            if (a->cmd == TTD_MESH_CONTACTS) {
+            if (a->cmd == TTD_MESH_CONTACTS || ttd_mesh_is_self(a->cmd)) {
                 ttd_cli_error("%s: --solid is an option of mesh distance and collide (contacts are between surfaces)",
                               name);
                 return -1;
@@ -237,7 +285,10 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
         if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
         int bad = 0;
-        if (strcmp(opt, "--pose") == 0)
+        if ((strcmp(opt, "--pose") == 0 || strcmp(opt, "--poses") == 0) && ttd_mesh_is_self(a->cmd)) {
+            ttd_cli_error("%s: %s does not apply (one mesh against itself)", name, opt);
+            return -1;
+        } else if (strcmp(opt, "--pose") == 0)
             a->pose = val;
         else if (strcmp(opt, "--poses") == 0)
             a->poses_path = val;
@@ -261,6 +312,12 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             return -1;
         }
     }
+    if (ttd_mesh_is_self(a->cmd) && a->path_a == NULL) {
+        ttd_cli_error("%s: the mesh file A is missing (see ttd %s --help)", name, name);
+        return -1;
+    }
+    if (ttd_mesh_is_self(a->cmd))
+        a->path_b = a->path_a; /* the mesh against itself */
     if (a->path_b == NULL) {
         ttd_cli_error("%s: %s (see ttd %s --help)", name,
                       a->path_a == NULL ? "the mesh files A and B are missing" : "the mesh file B is missing", name);
@@ -275,7 +332,7 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
         ttd_cli_error("%s: standard input cannot hold both a mesh and the poses", name);
         return -1;
     }
-    if (a->cmd == TTD_MESH_CONTACTS && a->margin_s == NULL) {
+    if ((a->cmd == TTD_MESH_CONTACTS || a->cmd == TTD_MESH_SELF_CONTACTS) && a->margin_s == NULL) {
         ttd_cli_error("%s: --margin M is required", name);
         return -1;
     }
@@ -629,9 +686,13 @@ static int ttd_mesh_run_collide(const ttd_mesh_run *r)
     }
     for (size_t first = 0; first < r->ps->k && !ferror(r->out); first += chunk) {
         const size_t k = r->ps->k - first < chunk ? r->ps->k - first : chunk;
-        ttd_status st = a->use_float
-                            ? ttd_mesh_collide_f(&a->opt, r->ma, r->mb, k, r->ps->f + 12 * first, (float)a->margin, res)
-                            : ttd_mesh_collide_d(&a->opt, r->ma, r->mb, k, r->ps->d + 12 * first, a->margin, res);
+        ttd_status st;
+        if (ttd_mesh_is_self(a->cmd)) /* one pose, the identity */
+            st = a->use_float ? ttd_mesh_self_collide_f(&a->opt, r->ma, (float)a->margin, a->self_flags, res)
+                              : ttd_mesh_self_collide_d(&a->opt, r->ma, a->margin, a->self_flags, res);
+        else
+            st = a->use_float ? ttd_mesh_collide_f(&a->opt, r->ma, r->mb, k, r->ps->f + 12 * first, (float)a->margin, res)
+                              : ttd_mesh_collide_d(&a->opt, r->ma, r->mb, k, r->ps->d + 12 * first, a->margin, res);
         if (st != TTD_OK) {
             rc = ttd_mesh_failed(r, st, first, k);
             break;
@@ -688,9 +749,13 @@ static int ttd_mesh_run_contacts(const ttd_mesh_run *r)
     int rc = 0;
     for (size_t first = 0, k; first < r->ps->k && !ferror(r->out); first += k) {
         k = ttd_mesh_next_chunk(pairs_seen, first, r->ps->k - first);
-        ttd_status st = a->use_float
-                            ? ttd_mesh_contacts_f(&a->opt, r->ma, r->mb, k, r->ps->f + 12 * first, (float)a->margin, &sf)
-                            : ttd_mesh_contacts_d(&a->opt, r->ma, r->mb, k, r->ps->d + 12 * first, a->margin, &sd);
+        ttd_status st;
+        if (ttd_mesh_is_self(a->cmd)) /* one pose, the identity */
+            st = a->use_float ? ttd_mesh_self_contacts_f(&a->opt, r->ma, (float)a->margin, a->self_flags, &sf)
+                              : ttd_mesh_self_contacts_d(&a->opt, r->ma, a->margin, a->self_flags, &sd);
+        else
+            st = a->use_float ? ttd_mesh_contacts_f(&a->opt, r->ma, r->mb, k, r->ps->f + 12 * first, (float)a->margin, &sf)
+                              : ttd_mesh_contacts_d(&a->opt, r->ma, r->mb, k, r->ps->d + 12 * first, a->margin, &sd);
         if (st != TTD_OK) {
             rc = ttd_mesh_failed(r, st, first, k);
             break;
@@ -853,13 +918,16 @@ int ttd_cli_mesh(int argc, char **argv)
     }
     ttd_mesh_args a;
     memset(&a, 0, sizeof a);
-    static const char *const full_names[] = {"mesh distance", "mesh contacts", "mesh collide"};
+    static const char *const full_names[] = {"mesh distance", "mesh contacts", "mesh collide", "mesh self-contacts",
+                                             "mesh self-collide"};
     int cmd = -1;
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < TTD_MESH_NCMD; ++c)
         if (strcmp(sub, ttd_mesh_cmd_names[c]) == 0)
             cmd = c;
     if (cmd < 0) {
-        ttd_cli_error("mesh: unknown command '%s' (distance, contacts or collide; see ttd mesh --help)", sub);
+        ttd_cli_error("mesh: unknown command '%s' (distance, contacts, collide, self-contacts or self-collide; see "
+                      "ttd mesh --help)",
+                      sub);
         return TTD_EXIT_USAGE;
     }
     a.cmd = (ttd_mesh_cmd)cmd;
@@ -885,10 +953,10 @@ int ttd_cli_mesh(int argc, char **argv)
         static char outbuf[1 << 16];
         setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
         const ttd_mesh_run r = {.a = &a, .ma = ma, .mb = mb ? mb : ma, .ps = &ps, .out = stdout};
-        rc = a.cmd == TTD_MESH_DISTANCE  ? ttd_mesh_run_distance(&r)
-             : a.cmd == TTD_MESH_COLLIDE ? ttd_mesh_run_collide(&r)
-             : a.per_triangle            ? ttd_mesh_run_closest(&r)
-                                         : ttd_mesh_run_contacts(&r);
+        rc = a.cmd == TTD_MESH_DISTANCE                                 ? ttd_mesh_run_distance(&r)
+             : a.cmd == TTD_MESH_COLLIDE || a.cmd == TTD_MESH_SELF_COLLIDE ? ttd_mesh_run_collide(&r)
+             : a.per_triangle                                           ? ttd_mesh_run_closest(&r)
+                                                                        : ttd_mesh_run_contacts(&r);
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         ttd_cli_error("error writing the output");

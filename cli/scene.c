@@ -20,6 +20,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <time.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -109,6 +110,11 @@ static const char ttd_scene_usage_options[] =
     "                    check, for poses printed with few digits: R must be within 1e-2 of\n"
     "                    orthonormal (every entry of R^T R - I) with det R > 0\n"
     "  --names           print a named body's name for i and j (unnamed bodies: their number)\n"
+    "  --stats           after each query, print on standard error what the library's last query did\n"
+    "                    (ttd_scene_get_stats: candidate body pairs, node tests, triangle pairs given\n"
+    "                    to the exact method, results) and its time (wall and process CPU, ms)\n"
+    "  --repeat N        run each query N times (the answer printed once), for profiling one query;\n"
+    "                    with --stats the times are the fastest and the median of the N\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
     "                    per file by default)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
@@ -147,7 +153,8 @@ typedef struct ttd_scene_args {
     const char *margin_s;
     double margin; /* float-rounded with --precision float; distance: +inf without --margin */
     size_t max_points;
-    int count, orthonormalize, strict, names;
+    int count, orthonormalize, strict, names, stats;
+    long repeat;   /* --repeat: runs of each query (the last one printed) */
 } ttd_scene_args;
 
 /* Options of `ttd scene CMD`; --name value and --name=value both work. Returns 0, 1 after
@@ -157,6 +164,7 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
     const char *name = a->name;
     a->opt = ttd_default_options();
     a->max_points = 4;
+    a->repeat = 1;
     int only_operands = 0;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
@@ -184,12 +192,15 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             a->count = 1;
             continue;
         }
-        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0) {
-            *(arg[2] == 'o' ? &a->orthonormalize : arg[2] == 's' ? &a->strict : &a->names) = 1;
+        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0 ||
+            strcmp(arg, "--stats") == 0) {
+            *(arg[2] == 'o'   ? &a->orthonormalize
+              : arg[3] == 't' ? (arg[4] == 'r' ? &a->strict : &a->stats)
+                              : &a->names) = 1;
             continue;
         }
-        static const char *const valued[] = {"--margin", "--max-points", "--motion",
-                                             "--precision", "--isa", "--threads", NULL};
+        static const char *const valued[] = {"--margin", "--max-points", "--motion", "--precision",
+                                             "--isa",    "--threads",    "--repeat", NULL};
         const char *opt, *val;
         if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
@@ -199,6 +210,8 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             a->margin_s = val;
         else if (strcmp(opt, "--motion") == 0)
             a->motion_path = val;
+        else if (strcmp(opt, "--repeat") == 0)
+            bad = ttd_cli_parse_int(val, 1, 1L << 20, &a->repeat);
         else if (strcmp(opt, "--max-points") == 0) {
             if (a->cmd != TTD_SCENE_MANIFOLD) {
                 ttd_cli_error("%s: --max-points is an option of scene manifold only", name);
@@ -917,6 +930,71 @@ typedef struct ttd_scene_buffers {
     size_t cap;
 } ttd_scene_buffers;
 
+static double ttd_scene_clock(clockid_t id)
+{
+    struct timespec t;
+    clock_gettime(id, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int ttd_scene_cmp_double(const void *x, const void *y)
+{
+    const double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* Runs the query a->repeat times (the last answer stays in cd/cf or b->arr); with --stats, prints
+ * the library's stats of the last run and the runs' times on standard error. */
+static ttd_status ttd_scene_run(const ttd_scene_args *a, ttd_scene *scene, long long step, ttd_scene_buffers *b,
+                                ttd_scene_contact_d *cd, ttd_scene_contact_f *cf)
+{
+    const int f = a->use_float;
+    ttd_status s = TTD_OK;
+    double wall[64], cpu[64];
+    const long nt = a->repeat < 64 ? a->repeat : 64; /* times kept: the first 64 runs */
+    for (long r = 0; r < a->repeat && s == TTD_OK; ++r) {
+        const double w0 = ttd_scene_clock(CLOCK_MONOTONIC), c0 = ttd_scene_clock(CLOCK_PROCESS_CPUTIME_ID);
+        switch (a->cmd) {
+        case TTD_SCENE_DISTANCE:
+            s = f ? ttd_scene_distance_f(&a->opt, scene, (float)a->margin, cf, NULL)
+                  : ttd_scene_distance_d(&a->opt, scene, a->margin, cd, NULL);
+            break;
+        case TTD_SCENE_COLLIDE:
+            s = f ? ttd_scene_collide_f(&a->opt, scene, (float)a->margin, &b->arr)
+                  : ttd_scene_collide_d(&a->opt, scene, a->margin, &b->arr);
+            break;
+        case TTD_SCENE_CONTACTS:
+            s = f ? ttd_scene_contacts_f(&a->opt, scene, (float)a->margin, &b->arr)
+                  : ttd_scene_contacts_d(&a->opt, scene, a->margin, &b->arr);
+            break;
+        default:
+            s = f ? ttd_scene_manifold_f(&a->opt, scene, (float)a->margin, a->max_points, &b->arr)
+                  : ttd_scene_manifold_d(&a->opt, scene, a->margin, a->max_points, &b->arr);
+            break;
+        }
+        if (r < nt) {
+            wall[r] = ttd_scene_clock(CLOCK_MONOTONIC) - w0;
+            cpu[r] = ttd_scene_clock(CLOCK_PROCESS_CPUTIME_ID) - c0;
+        }
+    }
+    if (s != TTD_OK || !a->stats)
+        return s;
+    ttd_scene_stats t;
+    ttd_scene_get_stats(scene, &t);
+    qsort(wall, (size_t)nt, sizeof *wall, ttd_scene_cmp_double);
+    qsort(cpu, (size_t)nt, sizeof *cpu, ttd_scene_cmp_double);
+    char at[32] = "";
+    if (step >= 0)
+        snprintf(at, sizeof at, " step %lld:", step);
+    fprintf(stderr,
+            "ttd %s:%s %llu candidate body pairs, %llu node tests, %llu triangle pairs tested, %llu results; "
+            "%.4g ms wall, %.4g ms CPU (fastest of %ld; median %.4g / %.4g)\n",
+            a->name, at, (unsigned long long)t.body_pairs, (unsigned long long)t.node_tests,
+            (unsigned long long)t.pair_tests, (unsigned long long)t.results, wall[0], cpu[0], nt, wall[nt / 2],
+            cpu[nt / 2]);
+    return s;
+}
+
 /* One query on the scene as it is; its lines (prefixed by "step " when step >= 0) on out, bodies
  * as ttd_scene_put_body prints them. 0 or the exit status. */
 static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *const *names, long long step,
@@ -927,8 +1005,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
     if (a->cmd == TTD_SCENE_DISTANCE) {
         ttd_scene_contact_d cd;
         ttd_scene_contact_f cf;
-        s = f ? ttd_scene_distance_f(&a->opt, scene, (float)a->margin, &cf, NULL)
-              : ttd_scene_distance_d(&a->opt, scene, a->margin, &cd, NULL);
+        s = ttd_scene_run(a, scene, step, b, &cd, &cf);
         if (s != TTD_OK)
             goto failed;
         if (step >= 0)
@@ -952,20 +1029,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
         fputc('\n', out);
         return 0;
     }
-    switch (a->cmd) {
-    case TTD_SCENE_COLLIDE:
-        s = f ? ttd_scene_collide_f(&a->opt, scene, (float)a->margin, &b->arr)
-              : ttd_scene_collide_d(&a->opt, scene, a->margin, &b->arr);
-        break;
-    case TTD_SCENE_CONTACTS:
-        s = f ? ttd_scene_contacts_f(&a->opt, scene, (float)a->margin, &b->arr)
-              : ttd_scene_contacts_d(&a->opt, scene, a->margin, &b->arr);
-        break;
-    default:
-        s = f ? ttd_scene_manifold_f(&a->opt, scene, (float)a->margin, a->max_points, &b->arr)
-              : ttd_scene_manifold_d(&a->opt, scene, a->margin, a->max_points, &b->arr);
-        break;
-    }
+    s = ttd_scene_run(a, scene, step, b, NULL, NULL);
     if (s != TTD_OK)
         goto failed;
     const size_t n = b->arr.count;

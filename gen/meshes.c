@@ -448,6 +448,51 @@ int ttd_gen_grid(size_t n, ttd_gen_mesh *out)
     return 0;
 }
 
+int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mesh *out)
+{
+    if (!out)
+        return -1;
+    memset(out, 0, sizeof *out);
+    if (layers < 1 || layers > 64 || !(gap >= 0) || !(t >= 0 && t <= 2) || !isfinite(gap) ||
+        ttd_gen_grid(n, out) != 0)
+        return -1;
+    /* the path in the xz-plane: layers flat runs of length a joined by arcs of radius r turning by
+     * theta, left and right in turn; arc length x along it */
+    const double pi = 3.14159265358979323846, theta = pi * t, r = 0.5 * gap;
+    const double arc = r * theta, a = (1.0 - (double)(layers - 1) * arc) / (double)layers;
+    if (!(a > 0)) {
+        ttd_gen_mesh_free(out);
+        return -1;
+    }
+    const size_t w = n + 1;
+    for (size_t i = 0; i < w; ++i) {
+        double s = (double)i / (double)n, x = 0, z = 0, phi = 0;
+        for (int k = 0; k < layers; ++k) {
+            const double run = s < a || k == layers - 1 ? s : a;
+            x += run * cos(phi);
+            z += run * sin(phi);
+            s -= run;
+            if (s <= 0 || k == layers - 1)
+                break;
+            /* the arc: about its centre, a quarter-turn from the direction on the turning side */
+            const double side = k % 2 == 0 ? 1.0 : -1.0, turn = s < arc ? s / r : theta;
+            const double cx = x - side * r * sin(phi), cz = z + side * r * cos(phi);
+            phi += side * turn;
+            x = cx + side * r * sin(phi);
+            z = cz - side * r * cos(phi);
+            s -= s < arc ? s : arc;
+            if (s <= 0)
+                break;
+        }
+        for (size_t j = 0; j < w; ++j) {
+            double *p = out->verts + 3 * (j * w + i);
+            p[0] = x;
+            p[2] = z;
+        }
+    }
+    return 0;
+}
+
 /* ---- operations ---------------------------------------------------------------------- */
 
 int ttd_gen_mesh_bounds(const ttd_gen_mesh *m, double lo[3], double hi[3])

@@ -5,9 +5,9 @@
  * outside (closed meshes have a positive signed volume).
  *
  * Determinism: everything is built from IEEE basic operations and sqrt, so a call gives the
- * same bits on every platform with -ffp-contract=off (as gen/pairs.c), EXCEPT ttd_gen_torus,
- * which needs sin and cos: its vertices may differ in the last bit between libm versions (its
- * connectivity never does). New vertices are numbered in a fixed traversal order, never in the
+ * same bits on every platform with -ffp-contract=off (as gen/pairs.c), EXCEPT ttd_gen_torus and
+ * ttd_gen_folded_sheet, which need sin and cos: their vertices may differ in the last bit
+ * between libm versions (their connectivity never does). New vertices are numbered in a fixed traversal order, never in the
  * order of a hash table.
  *
  * Every function returning int returns 0 on success and -1 on bad arguments or allocation
@@ -79,6 +79,14 @@ int ttd_gen_mesh_nonmanifold(ttd_gen_mesh *out);
 /// (i, j) to (i+1, j+1): (n+1)^2 vertices (vertex (i, j) = index j*(n+1) + i at (i/n, j/n, 0)),
 /// 2 n^2 triangles, normals +z. n >= 1, (n+1)^2 < 2^32.
 int ttd_gen_grid(size_t n, ttd_gen_mesh *out);
+
+/// ttd_gen_grid(n) folded like a paper: the square's x axis laid along a path in the xz-plane of
+/// `layers` straight runs (1..64) joined by arcs of radius gap/2 that turn by t pi, left and
+/// right in turn (t in [0, 2]: 0 flat, 1 folded flat into layers gap apart, above 1 the layers
+/// pass through one another); y unchanged. The self-contact tests' and benchmark's deforming
+/// sheet. Uses sin and cos (see the determinism note above). Fails when the arcs would be longer
+/// than the sheet.
+int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mesh *out);
 
 /* ---- operations ---------------------------------------------------------------------- */
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The README's run command: installs what the benchmark needs when it can (FCL to compare
-# against, gnuplot for the figure), builds ttd in Release (build/, or $TTD_BUILD_DIR), runs
+# against, Bullet beside the scene section, gnuplot for the figure), builds ttd in Release (build/, or $TTD_BUILD_DIR), runs
 # `ttd bench`, and writes results/ (or $TTD_RESULTS_DIR): bench.txt (the table), bench.json,
 # bench.csv, figure.svg/.png and figure-sizes.svg/.png, for the mesh section bench-mesh.csv
 # and figure-mesh.svg/.png, and for the scene section bench-scene.csv (it fetches the Stanford
@@ -13,13 +13,16 @@ build=${TTD_BUILD_DIR:-build}
 out=${TTD_RESULTS_DIR:-results}
 jobs=$(nproc 2>/dev/null || echo 2)
 
-# Optional packages: FCL (libfcl-dev) and gnuplot (gnuplot-nox). Missing ones are installed
-# with apt-get when this runs as root (or with password-less sudo); otherwise we carry on
-# (scripts/install-optional.sh).
+# Optional packages: FCL (libfcl-dev), Bullet (libbullet-dev: its GImpact manifolds beside the
+# scene section's) and gnuplot (gnuplot-nox). Missing ones are installed with apt-get when this
+# runs as root (or with password-less sudo); otherwise we carry on (scripts/install-optional.sh).
 missing=()
 if ! { [ -f /usr/include/fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h ] ||
        pkg-config --exists fcl 2>/dev/null; }; then
   missing+=(libfcl-dev)
+fi
+if ! { [ -f /usr/include/bullet/btBulletCollisionCommon.h ] || pkg-config --exists bullet 2>/dev/null; }; then
+  missing+=(libbullet-dev)
 fi
 command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot-nox)
 # The point queries' comparison (ttd bench points): Embree, CGAL and Open3D (Debian's python3).

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Builds the two tests that call the library from several threads (test_determinism: six
-# concurrent callers with worker threads; test_api: threads_identical) with ThreadSanitizer
-# and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
+# Builds the tests that call the library from several threads (test_determinism: six
+# concurrent callers with worker threads; test_api: threads_identical; test_scene's queries on
+# two threads of a scene's pool, kept across steps and scenes; test_mesh_self: a self query's
+# sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads) with
+# ThreadSanitizer and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
 # space layouts make its runtime refuse to start).
 # Usage: scripts/test-tsan.sh      (build folder: build-tsan/, or $TTD_TSAN_BUILD_DIR)
 set -euo pipefail
@@ -17,7 +19,12 @@ if ! { cc -fsanitize=thread -pthread "$probe_dir/p.c" -o "$probe_dir/p" && "$pro
 fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
-cmake --build "$build" -j "$jobs" --target test_determinism test_api
+cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_mesh_self test_mesh_deform
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
+"$build/tests/test_scene" collide_across_steps
+"$build/tests/test_scene" closest_pair_order
+# self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
+"$build/tests/test_mesh_self" self_queries_threads
+"$build/tests/test_mesh_deform" refit_bits

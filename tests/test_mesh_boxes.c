@@ -6,6 +6,7 @@
  *     evaluated in quad precision (products of doubles exact, sums within 1e-33 relative);
  *   - every box's axes are orthonormal to a few eps of the mesh's precision (the node test's
  *     bound takes them as a frame): |u_a . u_b - [a == b]| <= 8 eps.
+ * Both hold for refitted trees too (ttd_mesh_set_vertices_d/f: boxes fitted around boxes).
  * The families: exactly collinear triangles (c = a + t (b - a) rounded), needles with widths
  * 1e-3 .. 1e-15 of their length, segments, points, ordinary triangles, all mixed into soups, in
  * both precisions, at scales 1e-8 .. 1e8 and offsets to 1e6. Before the frames were made
@@ -15,6 +16,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "meshes.h"
 #include "mesh/mesh.h"
 #include "ref_distance.h" /* ttd_qreal */
 #include "test_macros.h"
@@ -192,9 +194,98 @@ static int boxes_hold_their_triangles(void)
     return 0;
 }
 
+/* The same after refits (ttd_mesh_set_vertices_d/f, mesh/build.c): each soup's mesh moved to
+ * another kind's soup at the same scale (every triangle somewhere else: the refitted boxes around
+ * boxes hold them), then to itself jittered by a thousandth; the rebuild a degraded tree would
+ * get is turned off, so that every box is a refitted one. */
+static int refitted_boxes_hold_their_triangles(void)
+{
+    static const double scales[4] = {1, 1e-8, 1e8, 1};
+    static const double shifts[4] = {0, 0, 0, 1e6};
+    const size_t n = 300;
+    double *v = malloc(9 * n * sizeof *v), *w = malloc(9 * n * sizeof *w);
+    float *vf = malloc(9 * n * sizeof *vf);
+    uint32_t *t = malloc(3 * n * sizeof *t);
+    ENSURE(v != NULL && w != NULL && vf != NULL && t != NULL);
+    ttd_options opt = ttd_default_options();
+    opt.threads = 2;
+    int refits = 0;
+    double worst_axes = 0;
+    for (int kind = 0; kind < 6; ++kind)
+        for (int si = 0; si < 4; ++si)
+            for (int prec = 0; prec < 2; ++prec) {
+                rng_state = (uint64_t)(7000 + 10 * kind + si);
+                make_soup(kind, 1e-12, n, scales[si], shifts[si], v, t);
+                ttd_mesh *m = NULL;
+                for (size_t i = 0; i < 9 * n; ++i)
+                    vf[i] = (float)v[i];
+                ENSURE((prec == 0 ? ttd_mesh_create_d(&opt, v, 3 * n, t, n, &m) : ttd_mesh_create_f(&opt, vf, 3 * n, t, n, &m)) ==
+                       TTD_OK);
+                m->quality_built = INFINITY; /* refits only */
+                for (int step = 0; step < 2; ++step) {
+                    if (step == 0) {
+                        make_soup((kind + 1) % 6, 1e-9, n, scales[si], shifts[si], w, t);
+                    } else {
+                        for (size_t i = 0; i < 9 * n; ++i)
+                            w[i] = v[i] + 1e-3 * scales[si] * (urand() - 0.5);
+                    }
+                    for (size_t i = 0; i < 9 * n; ++i)
+                        vf[i] = (float)w[i];
+                    ENSURE((prec == 0 ? ttd_mesh_set_vertices_d(&opt, m, w) : ttd_mesh_set_vertices_f(&opt, m, vf)) == TTD_OK);
+                    ENSURE(m->rebuilds == 0);
+                    view V = {(const struct ttd_mesh *)m, prec == 0 ? DBL_EPSILON : (double)FLT_EPSILON, 0};
+                    const int bad = check_mesh(&V);
+                    worst_axes = fmax(worst_axes, V.worst_axes);
+                    ENSURE_MSG(!bad, "kind %d soup refitted (step %d), scale %g, shift %g, %s", kind, step, scales[si],
+                               shifts[si], prec == 0 ? "double" : "float");
+                    ++refits;
+                }
+                ttd_mesh_destroy(m);
+            }
+    /* axis-aligned sheets (a grid, its boxes' faces through its vertices: no slack to spare),
+     * moved up and over by steps that are not powers of two, at every scale */
+    ttd_gen_mesh grid;
+    ENSURE(ttd_gen_grid(40, &grid) == 0);
+    double *gv = malloc(3 * grid.nv * sizeof *gv);
+    float *gf = malloc(3 * grid.nv * sizeof *gf);
+    ENSURE(gv != NULL && gf != NULL);
+    for (int si = 0; si < 4; ++si)
+        for (int prec = 0; prec < 2; ++prec) {
+            ttd_mesh *m = NULL;
+            for (int step = 0; step < 4; ++step) {
+                for (size_t i = 0; i < 3 * grid.nv; ++i) {
+                    gv[i] = (grid.verts[i] + 0.1 * step * (double)(i % 3 + 1)) * scales[si] + shifts[si];
+                    gf[i] = (float)gv[i];
+                }
+                if (step == 0) {
+                    ENSURE((prec == 0 ? ttd_mesh_create_d(&opt, gv, grid.nv, grid.tris, grid.nt, &m)
+                                      : ttd_mesh_create_f(&opt, gf, grid.nv, grid.tris, grid.nt, &m)) == TTD_OK);
+                    m->quality_built = INFINITY;
+                    continue;
+                }
+                ENSURE((prec == 0 ? ttd_mesh_set_vertices_d(&opt, m, gv) : ttd_mesh_set_vertices_f(&opt, m, gf)) == TTD_OK);
+                view V = {(const struct ttd_mesh *)m, prec == 0 ? DBL_EPSILON : (double)FLT_EPSILON, 0};
+                ENSURE_MSG(!check_mesh(&V), "grid refitted (step %d), scale %g, shift %g, %s", step, scales[si],
+                           shifts[si], prec == 0 ? "double" : "float");
+                ++refits;
+            }
+            ttd_mesh_destroy(m);
+        }
+    free(gv);
+    free(gf);
+    ttd_gen_mesh_free(&grid);
+    printf("  %d refits: every vertex in every box above it; worst axis defect %.2f eps\n", refits, worst_axes);
+    free(v);
+    free(w);
+    free(vf);
+    free(t);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(boxes_hold_their_triangles);
+    RUN_TEST(refitted_boxes_hold_their_triangles);
     TEST_MAIN_END();
 }

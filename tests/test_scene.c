@@ -188,6 +188,7 @@ typedef struct answers {
     contact nearest[MAX_BODIES];
     point *points;
     size_t npoints;
+    ttd_scene_stats contact_stats; /* ttd_scene_get_stats after the contacts */
 } answers;
 
 static void answers_free(answers *A)
@@ -234,6 +235,7 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ttd_scene_contact_d c, b, near[MAX_BODIES];
         ENSURE(ttd_scene_collide_d(&opt, W->scene, MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_d(&opt, W->scene, MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_d(&opt, W->scene, MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -256,6 +258,7 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ttd_scene_contact_f c, b, near[MAX_BODIES];
         ENSURE(ttd_scene_collide_f(&opt, W->scene, (float)MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_f(&opt, W->scene, (float)MARGIN, &con) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, (float)BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_f(&opt, W->scene, (float)MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -281,6 +284,17 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
                                    (double)p->depth};
         }
     }
+    /* the stats of the contacts: every result was a pair given to the kernel, and the body pairs
+     * handed on hold every body pair of the answer (it is sorted by (i, j)) */
+    const ttd_scene_stats *st = &A->contact_stats;
+    size_t distinct = 0;
+    for (size_t k = 0; k < A->ncontacts; ++k)
+        distinct += k == 0 || A->contacts[k].i != A->contacts[k - 1].i || A->contacts[k].j != A->contacts[k - 1].j;
+    ENSURE_MSG(st->results == A->ncontacts && st->pair_tests >= st->results && st->body_pairs >= distinct &&
+                   (A->ncontacts == 0 || st->node_tests > 0),
+               "contacts' stats: %llu results (%zu contacts), %llu pair tests, %llu body pairs (%zu in the answer)",
+               (unsigned long long)st->results, A->ncontacts, (unsigned long long)st->pair_tests,
+               (unsigned long long)st->body_pairs, distinct);
     A->nhits = hits.count;
     A->hits = malloc((hits.count + 1) * sizeof *A->hits);
     if (hits.count)
@@ -574,7 +588,9 @@ static int check_world(const world *W, const char *what, size_t *ncontacts)
                 continue;
             answers A;
             ENSURE(ask(W, (ttd_isa)isa, threads, &A) == 0);
-            const int diff = same_answers(W, &ref, &A);
+            /* the work behind the contacts is fixed by the scene too, not only the answer */
+            const int diff = same_answers(W, &ref, &A) ||
+                             memcmp(&ref.contact_stats, &A.contact_stats, sizeof ref.contact_stats) != 0;
             answers_free(&A);
             ENSURE_MSG(!diff, "%s: %s with %d threads differs from the scalar row", what, ttd_isa_name((ttd_isa)isa),
                        threads);
@@ -855,6 +871,149 @@ static int scaled_scenes(void)
     return 0;
 }
 
+/* The closest pair alone (no nearest[]) where the first touching pair in (i, j) order comes late
+ * and early: a row of 120 unit cubes 2 apart (nothing touches) with cube 97 moved onto cube 60
+ * and cube 119 onto cube 118, and then cube 1 onto cube 0. The closest-only query scans the first
+ * bodies' boxes before it sweeps, and gives up on the first scene (the pair is past its budget),
+ * finds the pair itself on the second; both must give the general path's answer (each body's
+ * nearest asked too, which sweeps at growing margins): the pair, distance 0, its triangles and
+ * point. Then every cube apart: no pair touches, the closest is (96, 97), 0.5 apart. */
+static int closest_pair_order(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_mesh_cube(&g) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ttd_scene *s;
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    enum { N = 120 };
+    double poses[12 * N];
+    for (int k = 0; k < N; ++k) {
+        const double p[12] = {1, 0, 0, 2.0 * k, 0, 1, 0, 0, 0, 0, 1, 0};
+        memcpy(poses + 12 * k, p, sizeof p);
+        uint32_t id;
+        ENSURE(ttd_scene_add_d(s, m, p, &id) == TTD_OK);
+    }
+    poses[12 * 97 + 3] = 2.0 * 60 + 0.5;
+    poses[12 * 119 + 3] = 2.0 * 118 + 0.25;
+    ttd_scene_contact_d near[N];
+    for (int round = 0; round < 3; ++round) {
+        if (round == 1)
+            poses[12 * 1 + 3] = 0.75;
+        if (round == 2) /* apart again: 97 0.5 from 96, 1 and 119 back */
+            poses[12 * 97 + 3] = 2.0 * 97 - 0.5, poses[12 * 1 + 3] = 2, poses[12 * 119 + 3] = 2.0 * 119;
+        ENSURE(ttd_scene_set_poses_d(s, N, poses) == TTD_OK);
+        for (int threads = 1; threads <= 2; ++threads) {
+            ttd_options o = ttd_default_options();
+            o.threads = threads;
+            ttd_scene_contact_d alone, general;
+            ENSURE(ttd_scene_distance_d(&o, s, INFINITY, &alone, NULL) == TTD_OK);
+            ENSURE(ttd_scene_distance_d(&o, s, INFINITY, &general, near) == TTD_OK);
+            const uint32_t wi = round == 0 ? 60 : round == 1 ? 0 : 96, wj = round == 0 ? 97 : round == 1 ? 1 : 97;
+            ENSURE_MSG(alone.i == wi && alone.j == wj && alone.distance == (round == 2 ? 0.5 : 0),
+                       "round %d: closest (%u, %u) at %g, want (%u, %u)", round, alone.i, alone.j, alone.distance, wi,
+                       wj);
+            ENSURE_MSG(memcmp(&alone, &general, sizeof alone) == 0,
+                       "round %d: the closest pair alone differs from the general path's", round);
+        }
+    }
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
+/* Collide across the steps of a motion (the scene keeps its sweep's order between them, and a
+ * bound kept between steps was tried there: docs/scene-speed.md). Six pairs, a sphere and an
+ * ellipsoid (semi-axes 0.29, 0.12, 0.12) beside it diagonally (candidates: their boxes overlap,
+ * 0.054 apart at first), the ellipsoid moving in small steps (at a different speed in each pair),
+ * then turning about its own centre by 0.1 a step, so that the turn alone brings its tip within
+ * the margin, with a jump back at step 12; at every step
+ * the answer (pairs and witnesses) must equal a fresh scene's at the same poses, on 1 and 2
+ * threads, in double and float. (With the kept bounds, it caught bounds that ignored the motion,
+ * or the turn.) */
+static int collide_across_steps(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_icosphere(2, &g) == 0);
+    ENSURE(ttd_gen_normalize(&g) == 0); /* diagonal 1: radius about 0.5 */
+    ttd_mesh *md[2], *mf[2];
+    float *vf = malloc(3 * g.nv * sizeof *vf);
+    ENSURE(vf != NULL);
+    for (int e = 0; e < 2; ++e) { /* the sphere, then the ellipsoid */
+        for (size_t k = 0; e == 1 && k < g.nv; ++k)
+            g.verts[3 * k + 1] *= 0.4, g.verts[3 * k + 2] *= 0.4;
+        ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &md[e]) == TTD_OK);
+        for (size_t k = 0; k < 3 * g.nv; ++k)
+            vf[k] = (float)g.verts[k];
+        ENSURE(ttd_mesh_create_f(NULL, vf, g.nv, g.tris, g.nt, &mf[e]) == TTD_OK);
+    }
+    enum { PAIRS = 6, N = 2 * PAIRS, STEPS = 24 };
+    const double S0 = 0.38; /* the icosphere normalised: radius 0.289; 0.056 apart at first */
+    const double margin = 0.01;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        for (int threads = 1; threads <= 2; ++threads) {
+            ttd_scene *kept;
+            ENSURE((bytes == 8 ? ttd_scene_create_d(&kept) : ttd_scene_create_f(&kept)) == TTD_OK);
+            ttd_options o = ttd_default_options();
+            o.threads = threads;
+            for (int step = 0; step < STEPS; ++step) {
+                double poses[12 * N];
+                const int t = step < 12 ? step : step - 12; /* the jump back */
+                for (int p = 0; p < PAIRS; ++p) {
+                    const double a[12] = {1, 0, 0, 3.0 * p, 0, 1, 0, 0, 0, 0, 1, 0};
+                    /* steps of a simulation first (bounds reused), then turns of 0.1 about its centre
+                     * that swing its tip within the margin (a bound that ignored them would not see it) */
+                    const double at = S0 - 0.0002 * (p + 1) * (t < 7 ? t : 7), th = t < 7 ? 0.001 * t : 0.1 * (t - 7);
+                    const double c = cos(th), sn = sin(th);
+                    const double b[12] = {c, -sn, 0, 3.0 * p + at, sn, c, 0, at, 0, 0, 1, 0};
+                    memcpy(poses + 24 * p, a, sizeof a);
+                    memcpy(poses + 24 * p + 12, b, sizeof b);
+                }
+                float pf[12 * N];
+                for (int k = 0; k < 12 * N; ++k)
+                    pf[k] = (float)poses[k];
+                ttd_scene *fresh;
+                ENSURE((bytes == 8 ? ttd_scene_create_d(&fresh) : ttd_scene_create_f(&fresh)) == TTD_OK);
+                for (int k = 0; k < N; ++k) {
+                    uint32_t id;
+                    ENSURE((bytes == 8 ? ttd_scene_add_d(fresh, md[k % 2], poses + 12 * k, &id)
+                                       : ttd_scene_add_f(fresh, mf[k % 2], pf + 12 * k, &id)) == TTD_OK);
+                    if (step == 0)
+                        ENSURE((bytes == 8 ? ttd_scene_add_d(kept, md[k % 2], poses + 12 * k, &id)
+                                           : ttd_scene_add_f(kept, mf[k % 2], pf + 12 * k, &id)) == TTD_OK);
+                }
+                ENSURE((bytes == 8 ? ttd_scene_set_poses_d(kept, N, poses) : ttd_scene_set_poses_f(kept, N, pf)) ==
+                       TTD_OK);
+                ttd_scene_array x = {0}, y = {0};
+                ENSURE((bytes == 8 ? ttd_scene_collide_d(&o, kept, margin, &x)
+                                   : ttd_scene_collide_f(&o, kept, (float)margin, &x)) == TTD_OK);
+                ENSURE((bytes == 8 ? ttd_scene_collide_d(&o, fresh, margin, &y)
+                                   : ttd_scene_collide_f(&o, fresh, (float)margin, &y)) == TTD_OK);
+                ENSURE_MSG(x.count == y.count && (x.count == 0 || memcmp(x.data, y.data, x.count * sizeof(ttd_scene_hit)) == 0),
+                           "%s, %d threads, step %d: %zu pairs after earlier steps, %zu in a fresh scene",
+                           bytes == 8 ? "double" : "float", threads, step, x.count, y.count);
+                if (step == 10 || step == 22)
+                    ENSURE_MSG(x.count == PAIRS, "step %d: %zu pairs within the margin, want all %d", step, x.count,
+                               PAIRS);
+                if (step == 9 || step == 21)
+                    ENSURE_MSG(x.count == 0, "step %d: %zu pairs within the margin, want none yet", step, x.count);
+                ttd_scene_array_free(&x);
+                ttd_scene_array_free(&y);
+                ttd_scene_destroy(fresh);
+            }
+            ttd_scene_destroy(kept);
+        }
+    }
+    free(vf);
+    for (int e = 0; e < 2; ++e) {
+        ttd_mesh_destroy(md[e]);
+        ttd_mesh_destroy(mf[e]);
+    }
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -936,7 +1095,12 @@ static int bad_input(void)
     bad.method = TTD_METHOD_PENALTY;
     ENSURE(ttd_scene_collide_d(&bad, s, 0, &out) == TTD_ERR_BAD_OPTIONS);
     /* the two identical cubes touch: one pair, distance 0 */
+    ttd_scene_stats stats;
+    ENSURE(ttd_scene_get_stats(NULL, &stats) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_get_stats(s, NULL) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
+    ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 1 && stats.results == 1 &&
+           stats.pair_tests >= 1);
     ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0 && c.i == 0 && c.j == 1);
     ttd_scene_array_free(&out);
     ttd_scene_destroy(s);
@@ -954,6 +1118,8 @@ int main(int argc, char **argv)
     RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);
     RUN_TEST(small_scenes);
+    RUN_TEST(closest_pair_order);
+    RUN_TEST(collide_across_steps);
     RUN_TEST(bad_input);
     TEST_MAIN_END();
 }

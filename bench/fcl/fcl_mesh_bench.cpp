@@ -183,7 +183,7 @@ Job read_job(const std::vector<unsigned char> &file)
     Job job;
     job.query = r.u32("query");
     if (job.query >= BENCH_FCL_MESH_QUERY_COUNT)
-        throw BadInput(format("query %" PRIu32 " unknown (0 distance, 1 collision, 2 pairs)", job.query));
+        throw BadInput(format("query %" PRIu32 " unknown (0 distance, 1 collision, 2 pairs, 3 refit)", job.query));
     job.repetitions = r.u32("repetitions");
     if (job.repetitions < 1 || job.repetitions > 1000000)
         throw BadInput(format("repetitions %" PRIu32 " out of range [1, 1000000]", job.repetitions));
@@ -192,6 +192,9 @@ Job read_job(const std::vector<unsigned char> &file)
         throw BadInput(format("margin %g is not a finite number >= 0", job.margin));
     read_mesh(r, job.a, 'A');
     read_mesh(r, job.b, 'B');
+    if (job.query == BENCH_FCL_MESH_REFIT &&
+        (job.a.nv != job.b.nv || job.a.nt != job.b.nt || job.a.t != job.b.t))
+        throw BadInput("refit: B must hold A's triangles (and as many vertices), moved");
     job.k = r.u64("pose count");
     if (job.k < 1)
         throw BadInput("no poses");
@@ -472,6 +475,28 @@ void run_pairs(const Job &job, const std::shared_ptr<Model> &A, const std::share
     }
 }
 
+// FCL's refit (BVHModel::beginUpdateModel / updateSubModel / endUpdateModel, bottom-up): A's
+// model to B's vertices and back in turn, so that every timed run moves it.
+void run_refit(const Job &job, const std::shared_ptr<Model> &A)
+{
+    std::printf("# pose median_ms min_ms\n");
+    std::vector<fcl::Vector3d> va(job.a.nv), vb(job.b.nv);
+    for (uint64_t i = 0; i < job.a.nv; ++i) {
+        va[i] = fcl::Vector3d(job.a.v[3 * i], job.a.v[3 * i + 1], job.a.v[3 * i + 2]);
+        vb[i] = fcl::Vector3d(job.b.v[3 * i], job.b.v[3 * i + 1], job.b.v[3 * i + 2]);
+    }
+    bool to_b = true, ok = true;
+    double med, mn;
+    time_runs(job.repetitions, [&] {
+        ok &= A->beginUpdateModel() == fcl::BVH_OK && A->updateSubModel(to_b ? vb : va) == fcl::BVH_OK &&
+              A->endUpdateModel(true, true) == fcl::BVH_OK;
+        to_b = !to_b;
+    }, med, mn);
+    if (!ok)
+        throw std::runtime_error("FCL's refit (beginUpdateModel / updateSubModel / endUpdateModel) failed");
+    std::printf("0 %.17g %.17g\n", med, mn);
+}
+
 bool read_file(const char *path, std::vector<unsigned char> &out)
 {
     FILE *f = std::fopen(path, "rb");
@@ -488,7 +513,9 @@ bool read_file(const char *path, std::vector<unsigned char> &out)
 
 const char *query_name(uint32_t q)
 {
-    return q == BENCH_FCL_MESH_DISTANCE ? "distance" : q == BENCH_FCL_MESH_COLLIDE ? "collide" : "pairs";
+    return q == BENCH_FCL_MESH_DISTANCE ? "distance" : q == BENCH_FCL_MESH_COLLIDE ? "collide"
+         : q == BENCH_FCL_MESH_PAIRS     ? "pairs"
+                                         : "refit";
 }
 
 } // namespace
@@ -529,11 +556,14 @@ int main(int argc, char **argv)
             return 1;
         }
         double ms_a = 0.0, ms_b = 0.0;
-        std::shared_ptr<Model> A = build(job.a, ms_a), B = build(job.b, ms_b);
+        const bool refit = job.query == BENCH_FCL_MESH_REFIT; /* B is A moved: not built */
+        std::shared_ptr<Model> A = build(job.a, ms_a), B = refit ? nullptr : build(job.b, ms_b);
         std::printf("build_ms %.17g %.17g\n", ms_a, ms_b);
         std::printf("# ttd_fcl_mesh_bench fcl %s query %s repetitions %" PRIu32 " margin %.17g poses %" PRIu64 "\n",
                     FCL_VERSION, query_name(job.query), job.repetitions, job.margin, job.k);
-        if (job.query == BENCH_FCL_MESH_DISTANCE)
+        if (refit)
+            run_refit(job, A);
+        else if (job.query == BENCH_FCL_MESH_DISTANCE)
             run_distance(job, A, B);
         else if (job.query == BENCH_FCL_MESH_COLLIDE)
             run_collide(job, A, B);

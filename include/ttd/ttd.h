@@ -205,8 +205,12 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
 
 /** @defgroup mesh Mesh queries
  * A ttd_mesh is a triangle mesh with a bounding-volume hierarchy over its triangles (oriented
- * boxes, 8 children per node), built once and immutable afterwards: it may be queried from many
- * threads at once. Every query takes two meshes, a and b, and k >= 1 poses of b in the frame of
+ * boxes, 8 children per node). Its triangles are fixed when it is built; its vertices may move
+ * (ttd_mesh_set_vertices_d, a deforming mesh), which refits the hierarchy in place. Between
+ * such updates a mesh is read-only and may be queried from many threads at once; an update must
+ * not run while anything else (a query, a scene query over a body of it, another update) uses
+ * that mesh. Every query but the self queries (one mesh against itself, at the end of this
+ * group) takes two meshes, a and b, and k >= 1 poses of b in the frame of
  * a. A pose is 12 reals, the 3x4 matrix [R | t] row by row (r00 r01 r02 t0 r10 r11 r12 t1 r20
  * r21 r22 t2), mapping b's coordinates into a's frame: x_a = R x_b + t, computed per coordinate
  * as ((r0*x + r1*y) + r2*z) + t, so that a brute force can reproduce it to the bit. R must be a
@@ -231,7 +235,7 @@ TTD_API ttd_status ttd_mesh_batch_f(const ttd_options *opt,
  * threads.
  * @{ */
 
-/// An immutable triangle mesh and its hierarchy (opaque).
+/// A triangle mesh and its hierarchy (opaque).
 typedef struct ttd_mesh ttd_mesh;
 
 /// Builds a mesh from nv vertices (3 coordinates each) and nt triangles (3 vertex indices each,
@@ -252,6 +256,33 @@ TTD_API size_t ttd_mesh_triangle_count(const ttd_mesh *mesh);
 TTD_API size_t ttd_mesh_vertex_count(const ttd_mesh *mesh);
 /// Nodes of its hierarchy (0 for NULL).
 TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
+
+/// New positions for a mesh's vertices, its triangles the same (a deforming mesh): vertices
+/// holds 3 reals for each of its ttd_mesh_vertex_count vertices, copied, with the checks of
+/// ttd_mesh_create_d (TTD_ERR_NONFINITE_MESH, TTD_ERR_COORDINATE_RANGE;
+/// TTD_ERR_PRECISION_MISMATCH for a mesh built by ttd_mesh_create_f). The hierarchy keeps its
+/// shape and every box is fitted again around the moved triangles (a refit, cheaper than a
+/// build); when refitting has degraded it past a measure (the summed surface area of its
+/// subtrees' boxes over that of its triangles' boxes, grown past twice what it was at the last
+/// build: docs/mesh-queries.md, section 2b), it is rebuilt. Every query then answers for the new positions, exactly as for a mesh
+/// built from them. The mesh stays the same object: every scene body of it moves with it (the
+/// scene updates their world boxes on its next call). Must not run while the mesh is used by
+/// anything else (see above). On an error (TTD_ERR_OUT_OF_MEMORY included) the mesh is as it
+/// was. opt's threads apply.
+TTD_API ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices);
+/// ttd_mesh_set_vertices_d for a mesh built by ttd_mesh_create_f.
+TTD_API ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices);
+
+/// What vertex updates have done to a mesh's hierarchy.
+typedef struct ttd_mesh_refit_info {
+    uint64_t generation;  ///< ttd_mesh_set_vertices_* calls that changed the mesh (0 when built)
+    uint64_t rebuilds;    ///< of those, the ones that rebuilt the hierarchy
+    double quality;       ///< the hierarchy's measure now (docs/mesh-queries.md, section 2b)
+    double quality_built; ///< the measure when it was last built; a refit past twice it rebuilds
+} ttd_mesh_refit_info;
+
+/// Fills *info for mesh (TTD_ERR_NULL_POINTER for NULL).
+TTD_API ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info);
 
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
@@ -407,6 +438,45 @@ TTD_API ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a,
 TTD_API ttd_status ttd_mesh_collide_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                       const float *poses, float margin, ttd_collision *out);
 
+/// Flags of the self queries (ttd_mesh_self_contacts_d, ttd_mesh_self_collide_d).
+enum {
+    /// Also the pairs that share exactly one vertex, by how near they come away from it (see
+    /// ttd_mesh_self_contacts_d): what a cloth solver needs where a sheet folds at a vertex.
+    TTD_SELF_SHARED_VERTEX = 1u << 0
+};
+
+/// Self-contacts: every pair of triangles (i, j), i < j, of one mesh at distance <= margin
+/// (>= 0, finite) that share no vertex (by index: triangles that share one are neighbours in the
+/// mesh, touching by construction; duplicate vertices at one position with different indices do
+/// not count as shared), into out as one pose: tri_a = i, tri_b = j, p on i and q on j, in the
+/// mesh's frame (out->poses = 1, pose_start = {0, count}). Each pair is computed as the exact
+/// method computes (T_i, T_j), i first.
+/// With flags TTD_SELF_SHARED_VERTEX, also the pairs that share exactly one vertex v, when each
+/// triangle has a vertex other than v: their distance is the smaller of d(E_i, T_j) and d(T_i,
+/// E_j), E_i being triangle i's edge opposite v (its vertices other than v, by index, in their
+/// order: a segment (r0, r1, r1), or a point (r0, r0, r0) when two of its indices are v; the
+/// exact method on it as a degenerate triangle), with that pair's points (E_i's first when the
+/// two are equal); so a pair is reported when the triangles come within margin away from v, as
+/// when a sheet folds onto itself at a vertex. Pairs that share two or three vertices (an edge,
+/// or the same vertices) are never reported; nor is a triangle with itself.
+/// Exact (the brute force over all pairs i < j by these rules, bit for bit) and deterministic:
+/// the set and its order depend on the mesh (its vertices and, through its tree, the history of
+/// its vertex updates) alone, not on threads or instruction set. Unknown flag bits, a margin
+/// out of range: TTD_ERR_BAD_OPTIONS. On an error out->count is 0.
+TTD_API ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                            ttd_contacts_d *out);
+/// ttd_mesh_self_contacts_d in single precision (a mesh from ttd_mesh_create_f).
+TTD_API ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                            ttd_contacts_f *out);
+/// Whether a mesh comes within margin (>= 0; 0: does it intersect itself?) of itself, by the
+/// pairs and rules of ttd_mesh_self_contacts_d: stops at the first such pair, out->tri_a <
+/// out->tri_b its triangles (UINT32_MAX when none); the witness depends on the mesh alone.
+TTD_API ttd_status ttd_mesh_self_collide_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                           ttd_collision *out);
+/// ttd_mesh_self_collide_d in single precision.
+TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                           ttd_collision *out);
+
 /** @} */
 
 /** @defgroup points Point queries
@@ -543,8 +613,17 @@ TTD_API ttd_status ttd_sdf_grid_f(const ttd_options *opt, const ttd_mesh *mesh, 
  *
  * A scene keeps the broad phase's state between calls (the bodies' world boxes and their sorted
  * order, updated as poses change): it must not be changed or queried from two threads at once.
- * The meshes must outlive the scene. opt may be NULL; its method must be TTD_METHOD_EXACT and its
- * isa and threads apply (body pairs are spread over the threads).
+ * The meshes must outlive the scene.
+ *
+ * Deforming bodies: a body's mesh may have its vertices moved (ttd_mesh_set_vertices_d, between
+ * scene calls, never during one); the body keeps its id, pose and filters, and the scene's next
+ * query sees the new vertices: it recomputes the world box of every body whose mesh changed (a
+ * per-mesh update count the scene compares, one comparison per body), after checking the body's
+ * pose again against the moved mesh (TTD_ERR_COORDINATE_RANGE when it now leaves the range). A
+ * mesh shared by several bodies moves for all of them: give each deforming body its own mesh.
+ *
+ * opt may be NULL; its method must be TTD_METHOD_EXACT and its isa and threads apply (body pairs
+ * are spread over the threads).
  * @{ */
 
 /// A scene of bodies (opaque).
@@ -658,6 +737,17 @@ TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,
                                         ttd_scene_array *out);
+
+/// What the scene's last query (collide, contacts, manifold or distance) did, for profiling and
+/// for sizing a scene: the work behind an answer, which the answer itself does not show.
+typedef struct ttd_scene_stats {
+    uint64_t body_pairs;  ///< candidate body pairs the broad phase handed to the narrow phase
+    uint64_t node_tests;  ///< box-against-node tests of the narrow phase (each against up to 8 boxes)
+    uint64_t pair_tests;  ///< triangle pairs given to the exact method
+    uint64_t results;     ///< items the query returned (body pairs, triangle pairs, points; distance: 1)
+} ttd_scene_stats;
+/// The last query's ttd_scene_stats (all 0 before the first, or after a failed query).
+TTD_API ttd_status ttd_scene_get_stats(const ttd_scene *scene, ttd_scene_stats *out);
 
 /** @} */
 

@@ -172,9 +172,10 @@ fail:
 PyDoc_STRVAR(ttd_py_mesh_doc,
 "Mesh(vertices, faces, *, precision=None, threads=0)\n"
 "--\n\n"
-"A triangle mesh and its bounding-volume hierarchy, built once and immutable: the operand of\n"
-"ttd.mesh_distance, mesh_contacts, mesh_closest and mesh_collide. Safe to share between\n"
-"threads (queries only read it).\n\n"
+"A triangle mesh and its bounding-volume hierarchy: the operand of ttd.mesh_distance,\n"
+"mesh_contacts, mesh_closest, mesh_collide and mesh_self_contacts. Its faces are fixed; its\n"
+"vertices may move (set_vertices, for deforming meshes). Safe to share between threads (queries\n"
+"only read it; set_vertices refuses to run during one).\n\n"
 "vertices : array_like, shape (n, 3)\n"
 "    Coordinates. float32 input gives a float32 mesh (queried in float32), float64 input a\n"
 "    float64 mesh; integers and bools count as float64. Every coordinate must be finite.\n"
@@ -224,6 +225,17 @@ static void ttd_py_raise_vertex_range(PyArrayObject *v, size_t nv, int type)
     PyErr_Format(PyExc_ValueError, "ttd: %s", ttd_status_string(TTD_ERR_COORDINATE_RANGE));
 }
 
+/* The exception for a status of a build or a vertex update from vertices v (nv rows of type t):
+ * the vertex beyond the coordinate range, or the fatal status's. */
+static void ttd_py_raise_vertices_status(ttd_status st, PyArrayObject *v, size_t nv, int t, const ttd_options *opt,
+                                         const char *doing)
+{
+    if (st == TTD_ERR_COORDINATE_RANGE)
+        ttd_py_raise_vertex_range(v, nv, t);
+    else if (ttd_py_raise_fatal(st, opt) == 0)
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d %s", (int)st, doing);
+}
+
 static PyObject *ttd_py_mesh_new(PyTypeObject *type, PyObject *args, PyObject *kwargs)
 {
     static char *kwlist[] = {"vertices", "faces", "precision", "threads", NULL};
@@ -259,14 +271,8 @@ static PyObject *ttd_py_mesh_new(PyTypeObject *type, PyObject *args, PyObject *k
     Py_BEGIN_ALLOW_THREADS
     st = t == NPY_DOUBLE ? ttd_mesh_create_d(&opt, vd, nv, fd, nt, &m) : ttd_mesh_create_f(&opt, vd, nv, fd, nt, &m);
     Py_END_ALLOW_THREADS
-    if (st == TTD_ERR_COORDINATE_RANGE) {
-        ttd_py_raise_vertex_range(v, nv, t);
-        Py_DECREF(self);
-        return NULL;
-    }
     if (st != TTD_OK) {
-        if (ttd_py_raise_fatal(st, &opt) == 0)
-            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d building a mesh", (int)st);
+        ttd_py_raise_vertices_status(st, v, nv, t, &opt, "building a mesh");
         Py_DECREF(self);
         return NULL;
     }
@@ -320,6 +326,101 @@ static PyObject *ttd_py_mesh_get_dtype(PyObject *obj, void *closure)
     return (PyObject *)PyArray_DescrFromType(((ttd_py_mesh *)obj)->type);
 }
 
+int ttd_py_meshes_use(PyObject *const *objs, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType) && ((ttd_py_mesh *)objs[i])->moving) {
+            PyErr_SetString(PyExc_RuntimeError,
+                            "a ttd.Mesh of this call is being moved by Mesh.set_vertices in another thread: a mesh "
+                            "must not be queried while its vertices change");
+            return -1;
+        }
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType))
+            ((ttd_py_mesh *)objs[i])->users++;
+    return 0;
+}
+
+void ttd_py_meshes_release(PyObject *const *objs, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (PyObject_TypeCheck(objs[i], &ttd_py_MeshType))
+            ((ttd_py_mesh *)objs[i])->users--;
+}
+
+PyDoc_STRVAR(ttd_py_mesh_set_vertices_doc,
+"set_vertices(vertices, *, threads=0)\n"
+"--\n\n"
+"Moves the mesh's vertices (a deforming mesh: cloth, soft bodies), its faces the same: the\n"
+"hierarchy is refitted in place, much faster than building a new Mesh, and rebuilt when\n"
+"refitting has degraded it (docs/mesh-queries.md, section 2b). Every query then answers for the\n"
+"new positions exactly as for a mesh built from them; scenes holding this mesh move all its\n"
+"bodies with it (their world boxes are updated on the scene's next call).\n\n"
+"vertices : array_like, shape (n, 3), n = vertex_count\n"
+"    The new coordinates, converted to the mesh's dtype and copied (mesh.vertices is then the\n"
+"    new copy). Every coordinate finite and within the mesh coordinate range.\n"
+"threads : int\n"
+"    Threads for the refit, >= 0; 0 (default) uses every core. The result does not depend on it.\n\n"
+"Not while the mesh is used by a query or a scene query running in another thread (and no\n"
+"query on it starts until this returns): RuntimeError. ValueError for a shape other than\n"
+"(vertex_count, 3), a NaN, infinite or out-of-range coordinate (naming the vertex); the mesh is\n"
+"then as it was. The tree, unlike the answers, depends on the mesh's history: a pickled mesh is\n"
+"rebuilt from its vertices, so the order of its contact sets may differ from this one's.");
+
+static PyObject *ttd_py_mesh_set_vertices(PyObject *obj, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = {"vertices", "threads", NULL};
+    ttd_py_mesh *self = (ttd_py_mesh *)obj;
+    PyObject *v_obj, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$O:set_vertices", kwlist, &v_obj, &threads))
+        return NULL;
+    ttd_options opt;
+    if (ttd_py_options(NULL, NULL, threads, NULL, NULL, NULL, &opt) < 0)
+        return NULL;
+    int t;
+    PyArrayObject *v = ttd_py_mesh_vertices(v_obj, self->type, &t);
+    if (v == NULL)
+        return NULL;
+    const size_t nv = ttd_mesh_vertex_count(self->mesh);
+    if ((size_t)PyArray_DIM(v, 0) != nv) {
+        PyErr_Format(PyExc_ValueError,
+                     "vertices has %zd rows: the mesh has %zu vertices, and set_vertices moves them (its faces stay)",
+                     (Py_ssize_t)PyArray_DIM(v, 0), nv);
+        Py_DECREF(v);
+        return NULL;
+    }
+    if (self->users > 0 || self->moving) {
+        PyErr_SetString(PyExc_RuntimeError,
+                        "this ttd.Mesh is in use by a query (or set_vertices) running in another thread: its vertices "
+                        "must not change until that returns");
+        Py_DECREF(v);
+        return NULL;
+    }
+    ttd_mesh *m = self->mesh;
+    const void *vd = PyArray_DATA(v);
+    ttd_status st;
+    self->moving = 1;
+    Py_BEGIN_ALLOW_THREADS
+    st = t == NPY_DOUBLE ? ttd_mesh_set_vertices_d(&opt, m, vd) : ttd_mesh_set_vertices_f(&opt, m, vd);
+    Py_END_ALLOW_THREADS
+    self->moving = 0;
+    if (st != TTD_OK) {
+        ttd_py_raise_vertices_status(st, v, nv, t, &opt, "moving a mesh's vertices");
+        Py_DECREF(v);
+        return NULL;
+    }
+    Py_SETREF(self->vertices, v);
+    Py_RETURN_NONE;
+}
+
+static PyObject *ttd_py_mesh_get_refit(PyObject *obj, void *closure)
+{
+    ttd_mesh_refit_info info;
+    if (ttd_mesh_get_refit_info(((ttd_py_mesh *)obj)->mesh, &info) != TTD_OK)
+        return PyErr_NoMemory();
+    return PyLong_FromUnsignedLongLong(((const char *)closure)[0] == 'g' ? info.generation : info.rebuilds);
+}
+
 static PyObject *ttd_py_mesh_get_count(PyObject *obj, void *closure)
 {
     const ttd_mesh *m = ((ttd_py_mesh *)obj)->mesh;
@@ -336,6 +437,8 @@ static PyGetSetDef ttd_py_mesh_getset[] = {
     {"vertex_count", ttd_py_mesh_get_count, NULL, "number of vertices", "v"},
     {"triangle_count", ttd_py_mesh_get_count, NULL, "number of triangles (faces)", "t"},
     {"node_count", ttd_py_mesh_get_count, NULL, "nodes of its bounding-volume hierarchy (8 children each)", "n"},
+    {"generation", ttd_py_mesh_get_refit, NULL, "set_vertices calls that moved the mesh (0 when built)", "g"},
+    {"rebuilds", ttd_py_mesh_get_refit, NULL, "of those, the ones that rebuilt its hierarchy (it had degraded)", "r"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
@@ -371,6 +474,8 @@ static PyObject *ttd_py_mesh_from_file(PyObject *cls, PyObject *args, PyObject *
 
 static PyMethodDef ttd_py_mesh_type_methods[] = {
     {"__reduce__", ttd_py_mesh_reduce, METH_NOARGS, "Pickles as (vertices, faces); unpickling rebuilds the mesh."},
+    {"set_vertices", (PyCFunction)(void (*)(void))ttd_py_mesh_set_vertices, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_mesh_set_vertices_doc},
     {"from_file", (PyCFunction)(void (*)(void))ttd_py_mesh_from_file, METH_CLASS | METH_VARARGS | METH_KEYWORDS,
      "from_file(path, *, precision='float64', threads=0, strict=False)\n--\n\n"
      "The mesh in an OBJ, STL or PLY file (ttd.load_mesh reads it), built in that precision."},
@@ -392,7 +497,8 @@ PyTypeObject ttd_py_MeshType = {
 
 /* ---- result types and record dtypes ------------------------------------------------------ */
 
-enum { TTD_PY_NDIST = 10, TTD_PY_NCOLL = 5, TTD_PY_NCONT = 7, TTD_PY_NCLOSE = 4, TTD_PY_NPAIR = 2 };
+enum { TTD_PY_NDIST = 10, TTD_PY_NCOLL = 5, TTD_PY_NCONT = 7, TTD_PY_NCLOSE = 4, TTD_PY_NPAIR = 2, TTD_PY_NSELF = 5,
+       TTD_PY_NSCOLL = 3 };
 
 static PyStructSequence_Field ttd_py_distance_fields[TTD_PY_NDIST + 1] = {
     {"distance", "minimum distance per pose, shape (K,); 0 when the meshes touch or cross; inf with MeshFlag.ABOVE_BOUND"},
@@ -450,6 +556,39 @@ static PyStructSequence_Desc ttd_py_contacts_desc = {
     ttd_py_contacts_fields, TTD_PY_NCONT,
 };
 
+static PyStructSequence_Field ttd_py_self_fields[TTD_PY_NSELF + 1] = {
+    {"tri_i", "uint32, shape (n,): the first triangle of each pair"},
+    {"tri_j", "uint32, shape (n,): the second, tri_i < tri_j"},
+    {"distance", "shape (n,): the pair's distance, <= margin (for a pair sharing a vertex: away from it)"},
+    {"p", "shape (n, 3): closest point on tri_i"},
+    {"q", "shape (n, 3): closest point on tri_j; equal to p at distance 0"},
+    {NULL, NULL},
+};
+
+static PyStructSequence_Desc ttd_py_self_desc = {
+    "ttd.SelfContacts",
+    "The result of ttd.mesh_self_contacts: every pair of one mesh's triangles within the margin\n"
+    "that shares no vertex (with shared_vertex=True also those sharing one, by their edges\n"
+    "opposite it), as parallel arrays in an order that depends only on the mesh; views of the C\n"
+    "library's own contact buffer (ttd.CONTACT_DTYPE_*, whose tri_a and tri_b are tri_i, tri_j).",
+    ttd_py_self_fields, TTD_PY_NSELF,
+};
+
+static PyStructSequence_Field ttd_py_scoll_fields[TTD_PY_NSCOLL + 1] = {
+    {"hit", "bool: some pair is within the margin (margin 0: the mesh intersects itself)"},
+    {"tri_i", "int: the first triangle of the first such pair found (ttd.NO_TRIANGLE when none)"},
+    {"tri_j", "int: the second, tri_i < tri_j"},
+    {NULL, NULL},
+};
+
+static PyStructSequence_Desc ttd_py_scoll_desc = {
+    "ttd.SelfCollision",
+    "The result of ttd.mesh_self_collide: whether one mesh comes within the margin of itself, by\n"
+    "the pairs of ttd.mesh_self_contacts, with the first pair found (a witness that depends only on\n"
+    "the mesh).",
+    ttd_py_scoll_fields, TTD_PY_NSCOLL,
+};
+
 static PyStructSequence_Field ttd_py_partners_fields[TTD_PY_NCLOSE + 1] = {
     {"partner", "uint32, shape (K, m): the closest triangle of the other mesh within the margin (ttd.NO_TRIANGLE when none)"},
     {"distance", "shape (K, m): its distance (inf when none)"},
@@ -477,6 +616,8 @@ static PyStructSequence_Desc ttd_py_closest_desc = {
     ttd_py_closest_fields, TTD_PY_NPAIR,
 };
 
+static PyTypeObject *ttd_py_SelfContacts, *ttd_py_SelfCollision;
+static PyObject *ttd_py_self_names[TTD_PY_NSELF], *ttd_py_scoll_names[TTD_PY_NSCOLL];
 static PyTypeObject *ttd_py_MeshDistance, *ttd_py_MeshCollision, *ttd_py_MeshContacts, *ttd_py_ClosestPartners,
     *ttd_py_MeshClosest;
 static PyObject *ttd_py_distance_names[TTD_PY_NDIST], *ttd_py_collision_names[TTD_PY_NCOLL],
@@ -550,7 +691,9 @@ int ttd_py_mesh_init(PyObject *module)
         !(ttd_py_MeshCollision = ttd_py_named_tuple(module, &ttd_py_collision_desc, ttd_py_collision_names)) ||
         !(ttd_py_MeshContacts = ttd_py_named_tuple(module, &ttd_py_contacts_desc, ttd_py_contacts_names)) ||
         !(ttd_py_ClosestPartners = ttd_py_named_tuple(module, &ttd_py_partners_desc, ttd_py_partners_names)) ||
-        !(ttd_py_MeshClosest = ttd_py_named_tuple(module, &ttd_py_closest_desc, ttd_py_closest_names)))
+        !(ttd_py_MeshClosest = ttd_py_named_tuple(module, &ttd_py_closest_desc, ttd_py_closest_names)) ||
+        !(ttd_py_SelfContacts = ttd_py_named_tuple(module, &ttd_py_self_desc, ttd_py_self_names)) ||
+        !(ttd_py_SelfCollision = ttd_py_named_tuple(module, &ttd_py_scoll_desc, ttd_py_scoll_names)))
         return -1;
     if (ttd_py_make_records(module) < 0)
         return -1;
@@ -812,6 +955,8 @@ static void ttd_py_raise_bad_param(const char *what, double x, int type, const c
 /* For a status other than TTD_OK: the exception that names the problem; returns -1. */
 static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_query *q, double x, double y)
 {
+    if (st == TTD_PY_IN_USE) /* raised already */
+        return -1;
     switch (st) {
     case TTD_ERR_BAD_POSE:
         ttd_py_raise_bad_pose(q);
@@ -847,9 +992,13 @@ static ttd_status ttd_py_query_call(ttd_py_kind kind, const ttd_py_query *q, dou
         return ttd_py_probe(kind, &q->opt, q->type, x, y);
     ttd_status st;
     const void *poses = PyArray_DATA(q->poses);
+    PyObject *const meshes[2] = {(PyObject *)q->a, (PyObject *)q->b};
+    if (ttd_py_meshes_use(meshes, 2) < 0)
+        return TTD_PY_IN_USE;
     Py_BEGIN_ALLOW_THREADS
     st = ttd_py_call(kind, &q->opt, q->type, q->a->mesh, q->b->mesh, (size_t)q->k, poses, x, y, out, out2);
     Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(meshes, 2);
     return st;
 }
 
@@ -1067,6 +1216,30 @@ PyDoc_STRVAR(ttd_py_mesh_contacts_doc,
 "tri_b, distance, p and q are views of the buffer the C library filled (no copy). The\n"
 "interpreter lock is released while the library computes. Raises as ttd.mesh_distance does.");
 
+/* The first n contacts of a contact set (*set, ttd_contacts_f when f) as a record array that
+ * views the library's buffer, kept alive by a capsule that frees the set: *set is then NULL (the
+ * capsule's, *capsule holding it when n is 0). NULL with an exception (*set still the caller's
+ * unless the capsule was made). */
+static PyArrayObject *ttd_py_contact_records(void **set, int f, npy_intp n, PyObject **capsule)
+{
+    void *pairs = f ? (void *)((ttd_contacts_f *)*set)->pairs : (void *)((ttd_contacts_d *)*set)->pairs;
+    *capsule = PyCapsule_New(*set, f ? "ttd.contacts_f" : "ttd.contacts_d", f ? ttd_py_free_contacts_f : ttd_py_free_contacts_d);
+    if (*capsule == NULL)
+        return NULL;
+    *set = NULL; /* the capsule's now */
+    PyArray_Descr *descr = ttd_py_cont_rec[f];
+    Py_INCREF(descr);
+    PyArrayObject *rec = (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, descr, 1, &n, NULL, n > 0 ? pairs : NULL,
+                                                               n > 0 ? NPY_ARRAY_CARRAY : 0, NULL);
+    if (rec == NULL || n == 0)
+        return rec;
+    const int bad = PyArray_SetBaseObject(rec, *capsule); /* takes the capsule, even when it fails */
+    *capsule = NULL;
+    if (bad < 0)
+        Py_CLEAR(rec);
+    return rec;
+}
+
 static PyObject *ttd_py_mesh_contacts(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
@@ -1099,25 +1272,10 @@ static PyObject *ttd_py_mesh_contacts(PyObject *self, PyObject *args, PyObject *
         ttd_py_query_raise(st, TTD_PY_CONTACTS, &q, margin, 0);
         goto done;
     }
-    void *pairs = f ? (void *)((ttd_contacts_f *)set)->pairs : (void *)((ttd_contacts_d *)set)->pairs;
     const size_t *ps = f ? ((ttd_contacts_f *)set)->pose_start : ((ttd_contacts_d *)set)->pose_start;
     npy_intp n = q.k == 0 ? 0 : (npy_intp)(f ? ((ttd_contacts_f *)set)->count : ((ttd_contacts_d *)set)->count);
-    capsule = PyCapsule_New(set, f ? "ttd.contacts_f" : "ttd.contacts_d", f ? ttd_py_free_contacts_f : ttd_py_free_contacts_d);
-    if (capsule == NULL)
+    if ((rec = ttd_py_contact_records(&set, f, n, &capsule)) == NULL)
         goto done;
-    set = NULL; /* the capsule's now */
-    PyArray_Descr *descr = ttd_py_cont_rec[f];
-    Py_INCREF(descr);
-    rec = (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, descr, 1, &n, NULL, n > 0 ? pairs : NULL,
-                                                n > 0 ? NPY_ARRAY_CARRAY : 0, NULL);
-    if (rec == NULL)
-        goto done;
-    if (n > 0) {
-        const int bad = PyArray_SetBaseObject(rec, capsule); /* takes the capsule, even when it fails */
-        capsule = NULL;
-        if (bad < 0)
-            goto done;
-    }
     npy_intp k1 = q.k + 1;
     if ((pose = (PyArrayObject *)PyArray_SimpleNew(1, &n, NPY_INTP)) == NULL ||
         (start = (PyArrayObject *)PyArray_SimpleNew(1, &k1, NPY_INTP)) == NULL)
@@ -1326,6 +1484,147 @@ static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwar
     return result;
 }
 
+/* ---- self queries ---------------------------------------------------------------------------- */
+
+/* The arguments of both self queries: the mesh, margin (converted for a float32 mesh), the flag
+ * and the options; the library call with the lock released and the mesh marked in use. out: a
+ * ttd_contacts_d/_f (contacts) or a ttd_collision. -1 with an exception. */
+static int ttd_py_self_call(int contacts, PyObject *mesh, PyObject *margin_obj, int shared, PyObject *isa,
+                            PyObject *threads, void *out, int *type)
+{
+    if (!PyObject_TypeCheck(mesh, &ttd_py_MeshType)) {
+        PyErr_Format(PyExc_TypeError, "mesh must be a ttd.Mesh, not %.100s", Py_TYPE(mesh)->tp_name);
+        return -1;
+    }
+    double margin = 0;
+    if (margin_obj == Py_None) {
+        PyErr_SetString(PyExc_TypeError, "margin must be a real number, not None");
+        return -1;
+    }
+    ttd_options opt;
+    if (ttd_py_real_arg(margin_obj, "margin", &margin) < 0 || ttd_py_options(NULL, isa, threads, NULL, NULL, NULL, &opt) < 0)
+        return -1;
+    const ttd_py_mesh *m = (const ttd_py_mesh *)mesh;
+    const int d = m->type == NPY_DOUBLE;
+    const float mf = ttd_py_to_float(margin);
+    const unsigned flags = shared ? TTD_SELF_SHARED_VERTEX : 0u;
+    *type = m->type;
+    if (ttd_py_meshes_use(&mesh, 1) < 0)
+        return -1;
+    ttd_status st;
+    Py_BEGIN_ALLOW_THREADS
+    if (contacts)
+        st = d ? ttd_mesh_self_contacts_d(&opt, m->mesh, margin, flags, out)
+               : ttd_mesh_self_contacts_f(&opt, m->mesh, mf, flags, out);
+    else
+        st = d ? ttd_mesh_self_collide_d(&opt, m->mesh, margin, flags, out)
+               : ttd_mesh_self_collide_f(&opt, m->mesh, mf, flags, out);
+    Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(&mesh, 1);
+    if (st == TTD_OK)
+        return 0;
+    if (st == TTD_ERR_BAD_OPTIONS && ttd_py_check_options(&opt) != TTD_ERR_BAD_OPTIONS)
+        ttd_py_raise_bad_param("margin", margin, m->type, "a margin is finite and >= 0");
+    else if (ttd_py_raise_fatal(st, &opt) == 0)
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from a self query", (int)st);
+    return -1;
+}
+
+PyDoc_STRVAR(ttd_py_mesh_self_contacts_doc,
+"mesh_self_contacts(mesh, margin, *, shared_vertex=False, isa='auto', threads=0)\n"
+"--\n\n"
+"Every pair of one mesh's triangles (i < j) at distance <= margin that shares no vertex (by index:\n"
+"neighbours in the mesh touch by construction): the self-contacts of a cloth or a soft body.\n\n"
+"mesh : ttd.Mesh\n"
+"margin : float, finite and >= 0 (converted to the mesh's dtype)\n"
+"shared_vertex : bool\n"
+"    Also the pairs that share exactly one vertex v (each with another vertex), by how near they\n"
+"    come away from it: the nearer of each triangle's edge opposite v against the other triangle\n"
+"    (include/ttd/ttd.h, ttd_mesh_self_contacts_d): where a sheet folds onto itself at a vertex.\n"
+"isa, threads : as in ttd.mesh_distance; the result does not depend on them.\n\n"
+"Returns ttd.SelfContacts (tri_i, tri_j, distance, p, q), arrays over the n pairs, in an order\n"
+"that depends only on the mesh; exact: each pair's distance and points are those of\n"
+"ttd.distance on (triangle i, triangle j). Raises TypeError (not a Mesh), ValueError (margin),\n"
+"RuntimeError (the mesh is being moved by set_vertices in another thread).");
+
+static PyObject *ttd_py_mesh_self_contacts(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "margin", "shared_vertex", "isa", "threads", NULL};
+    PyObject *mesh, *margin, *isa = NULL, *threads = NULL;
+    int shared = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|$pOO:mesh_self_contacts", kwlist, &mesh, &margin, &shared, &isa,
+                                     &threads))
+        return NULL;
+    /* the type is known once the mesh is checked: room for either set */
+    void *set = calloc(1, sizeof(ttd_contacts_d) > sizeof(ttd_contacts_f) ? sizeof(ttd_contacts_d) : sizeof(ttd_contacts_f));
+    if (set == NULL)
+        return PyErr_NoMemory();
+    int type = NPY_DOUBLE;
+    PyObject *result = NULL, *capsule = NULL;
+    PyArrayObject *rec = NULL;
+    if (ttd_py_self_call(1, mesh, margin, shared, isa, threads, set, &type) < 0)
+        goto done;
+    const int f = type == NPY_FLOAT;
+    const npy_intp n = (npy_intp)(f ? ((ttd_contacts_f *)set)->count : ((ttd_contacts_d *)set)->count);
+    if ((rec = ttd_py_contact_records(&set, f, n, &capsule)) == NULL)
+        goto done;
+    if ((result = ttd_py_named_new(ttd_py_SelfContacts, TTD_PY_NSELF)) != NULL &&
+        ttd_py_set_views(result, 0, rec, ttd_py_contacts_names + 1, TTD_PY_NSELF) < 0)
+        Py_CLEAR(result);
+done:
+    if (set != NULL) {
+        if (type == NPY_FLOAT)
+            ttd_contacts_free_f(set);
+        else
+            ttd_contacts_free_d(set);
+        free(set);
+    }
+    Py_XDECREF(capsule);
+    Py_XDECREF(rec);
+    return result;
+}
+
+PyDoc_STRVAR(ttd_py_mesh_self_collide_doc,
+"mesh_self_collide(mesh, margin=0.0, *, shared_vertex=False, isa='auto', threads=0)\n"
+"--\n\n"
+"Whether one mesh comes within margin of itself (margin 0: does it intersect itself?), by the\n"
+"pairs and rules of ttd.mesh_self_contacts; stops at the first such pair. Returns\n"
+"ttd.SelfCollision (hit, tri_i, tri_j), tri_i < tri_j the witness (ttd.NO_TRIANGLE when none).");
+
+static PyObject *ttd_py_mesh_self_collide(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "margin", "shared_vertex", "isa", "threads", NULL};
+    PyObject *mesh, *margin = NULL, *isa = NULL, *threads = NULL;
+    int shared = 0, type;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|O$pOO:mesh_self_collide", kwlist, &mesh, &margin, &shared, &isa,
+                                     &threads))
+        return NULL;
+    PyObject *zero = margin == NULL ? PyFloat_FromDouble(0) : NULL;
+    if (margin == NULL && zero == NULL)
+        return NULL;
+    ttd_collision c;
+    const int rc = ttd_py_self_call(0, mesh, margin ? margin : zero, shared, isa, threads, &c, &type);
+    Py_XDECREF(zero);
+    if (rc < 0)
+        return NULL;
+    PyObject *result = ttd_py_named_new(ttd_py_SelfCollision, TTD_PY_NSCOLL);
+    if (result == NULL)
+        return NULL;
+    PyObject *items[3] = {PyBool_FromLong(c.hit != 0), PyLong_FromUnsignedLong(c.tri_a), PyLong_FromUnsignedLong(c.tri_b)};
+    for (int k = 0; k < 3; ++k) {
+        if (items[k] == NULL) {
+            for (int j = k; j < 3; ++j)
+                Py_XDECREF(items[j]);
+            Py_DECREF(result);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(result, k, items[k]);
+    }
+    return result;
+}
+
 PyMethodDef ttd_py_mesh_methods[] = {
     {"load_mesh", (PyCFunction)(void (*)(void))ttd_py_load_mesh, METH_VARARGS | METH_KEYWORDS, ttd_py_load_mesh_doc},
     {"mesh_distance", (PyCFunction)(void (*)(void))ttd_py_mesh_distance, METH_VARARGS | METH_KEYWORDS,
@@ -1336,5 +1635,9 @@ PyMethodDef ttd_py_mesh_methods[] = {
      ttd_py_mesh_closest_doc},
     {"mesh_collide", (PyCFunction)(void (*)(void))ttd_py_mesh_collide, METH_VARARGS | METH_KEYWORDS,
      ttd_py_mesh_collide_doc},
+    {"mesh_self_contacts", (PyCFunction)(void (*)(void))ttd_py_mesh_self_contacts, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_mesh_self_contacts_doc},
+    {"mesh_self_collide", (PyCFunction)(void (*)(void))ttd_py_mesh_self_collide, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_mesh_self_collide_doc},
     {NULL, NULL, 0, NULL},
 };

@@ -105,8 +105,22 @@ typedef struct ttd_py_mesh {
     PyArrayObject *vertices; /* (nv, 3), the mesh's dtype, read-only, owned */
     PyArrayObject *faces;    /* (nt, 3) uint32, read-only, owned */
     int type;                /* NPY_DOUBLE or NPY_FLOAT */
+    /* Calls that use the C mesh with the interpreter lock released (queries), and whether
+     * Mesh.set_vertices is moving it: the library's mesh must not be read while it is written,
+     * so each refuses to start while the other runs (RuntimeError). Read and written with the
+     * lock held. */
+    Py_ssize_t users;
+    int moving;
 } ttd_py_mesh;
 extern PyTypeObject ttd_py_MeshType;
+
+/* Marks every ttd.Mesh in objs (a sequence; other items are skipped) as used by a call about to
+ * release the interpreter lock: 0, or -1 with RuntimeError when one is being moved by
+ * set_vertices (then none is marked). ttd_py_meshes_release undoes it. */
+int ttd_py_meshes_use(PyObject *const *objs, Py_ssize_t n);
+/* The status a query wrapper returns when ttd_py_meshes_use refused (the exception is set). */
+#define TTD_PY_IN_USE ((ttd_status)-1)
+void ttd_py_meshes_release(PyObject *const *objs, Py_ssize_t n);
 
 /* The mesh coordinate range, for messages. */
 #define TTD_PY_RANGE_TEXT "|x| <= 2**60 (about 1.2e18) in float32 and 2**508 (about 8e152) in float64"

@@ -356,6 +356,9 @@ static int ttd_py_scene_make(ttd_py_scene *s, int type)
 static long ttd_py_scene_add_body(ttd_py_scene *s, PyObject *mesh, const void *pose, PyObject *what)
 {
     const ttd_py_mesh *m = (const ttd_py_mesh *)mesh;
+    if (ttd_py_meshes_use(&mesh, 1) < 0) /* not while set_vertices moves it: its box is read */
+        return -1;
+    ttd_py_meshes_release(&mesh, 1);
     if (s->scene == NULL && ttd_py_scene_make(s, m->type) < 0)
         return -1;
     if (m->type != s->type) {
@@ -643,10 +646,20 @@ static PyObject *ttd_py_scene_set_pose(PyObject *obj, PyObject *args)
     if (ttd_py_scene_present(s, id)) {
         mesh = PyList_GET_ITEM(s->meshes, id);
         Py_INCREF(mesh);
-        st = s->type == NPY_DOUBLE ? ttd_scene_set_pose_d(s->scene, id, PyArray_DATA(p))
-                                   : ttd_scene_set_pose_f(s->scene, id, PyArray_DATA(p));
+        if (ttd_py_meshes_use(&mesh, 1) == 0) { /* not while set_vertices moves it */
+            ttd_py_meshes_release(&mesh, 1);
+            st = s->type == NPY_DOUBLE ? ttd_scene_set_pose_d(s->scene, id, PyArray_DATA(p))
+                                       : ttd_scene_set_pose_f(s->scene, id, PyArray_DATA(p));
+        } else {
+            st = TTD_PY_IN_USE;
+        }
     }
     ttd_py_scene_unlock(s);
+    if (st == TTD_PY_IN_USE) {
+        Py_DECREF(mesh);
+        Py_DECREF(p);
+        return NULL;
+    }
     if (st == TTD_ERR_INDEX_OUT_OF_RANGE)
         ttd_py_scene_no_body(s, "id", id);
     else if (st != TTD_OK) {
@@ -690,10 +703,15 @@ static PyObject *ttd_py_scene_set_poses(PyObject *obj, PyObject *arg)
     if ((p = ttd_py_scene_pose_rows(p, type, 0, "poses", s)) == NULL)
         goto done;
     if (limit > 0) {
+        PyObject *const *items = PySequence_Fast_ITEMS(s->meshes);
+        const Py_ssize_t n = PyList_GET_SIZE(s->meshes);
+        if (ttd_py_meshes_use(items, n) < 0) /* not while set_vertices moves one */
+            goto done;
         Py_BEGIN_ALLOW_THREADS
         st = type == NPY_DOUBLE ? ttd_scene_set_poses_d(s->scene, limit, PyArray_DATA(p))
                                 : ttd_scene_set_poses_f(s->scene, limit, PyArray_DATA(p));
         Py_END_ALLOW_THREADS
+        ttd_py_meshes_release(items, n);
     }
     if (st != TTD_OK) {
         /* the first body whose pose the library's rule refuses */
@@ -820,13 +838,19 @@ static void ttd_py_free_scene_array(PyObject *capsule)
     free(a);
 }
 
-/* One library call of kind on scene (of type) with the lock released. */
+/* One library call of kind on scene (of type) with the lock released; its bodies' meshes (the
+ * list meshes) are marked in use meanwhile (TTD_PY_IN_USE with RuntimeError when one is being
+ * moved by Mesh.set_vertices). */
 static ttd_status ttd_py_scene_call(ttd_py_scene_kind kind, const ttd_options *opt, ttd_scene *scene, int type,
-                                    double x, size_t max_points, void *out, void *nearest)
+                                    PyObject *meshes, double x, size_t max_points, void *out, void *nearest)
 {
     const int d = type == NPY_DOUBLE;
     const float xf = ttd_py_to_float(x);
     ttd_status st = TTD_ERR_BAD_OPTIONS;
+    PyObject *const *items = PySequence_Fast_ITEMS(meshes);
+    const Py_ssize_t n = PyList_GET_SIZE(meshes);
+    if (ttd_py_meshes_use(items, n) < 0)
+        return TTD_PY_IN_USE;
     Py_BEGIN_ALLOW_THREADS
     switch (kind) {
     case TTD_PY_SCOLLIDE:
@@ -844,12 +868,15 @@ static ttd_status ttd_py_scene_call(ttd_py_scene_kind kind, const ttd_options *o
         break;
     }
     Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(items, n);
     return st;
 }
 
 /* The exception for a query's status; -1. */
 static int ttd_py_scene_query_raise(ttd_status st, ttd_py_scene_kind kind, const ttd_options *opt, double x, int type)
 {
+    if (st == TTD_PY_IN_USE) /* raised already */
+        return -1;
     if (st == TTD_ERR_BAD_OPTIONS && ttd_py_check_options(opt) != TTD_ERR_BAD_OPTIONS) {
         PyObject *v = PyFloat_FromDouble(x);
         if (v == NULL)
@@ -890,7 +917,7 @@ static PyObject *ttd_py_scene_array_query(ttd_py_scene *s, ttd_py_scene_kind kin
             temporary = NULL;
         scene = temporary;
     }
-    ttd_status st = scene == NULL ? TTD_ERR_OUT_OF_MEMORY : ttd_py_scene_call(kind, &opt, scene, type, x, max_points, arr, NULL);
+    ttd_status st = scene == NULL ? TTD_ERR_OUT_OF_MEMORY : ttd_py_scene_call(kind, &opt, scene, type, s->meshes, x, max_points, arr, NULL);
     ttd_scene_destroy(temporary);
     ttd_py_scene_unlock(s);
     if (st != TTD_OK) {
@@ -1082,7 +1109,7 @@ static PyObject *ttd_py_scene_distance(PyObject *obj, PyObject *args, PyObject *
     ttd_status st = TTD_OK;
     if (closest != NULL && (nearest != NULL || !want_nearest))
         st = scene == NULL ? TTD_ERR_OUT_OF_MEMORY
-                           : ttd_py_scene_call(TTD_PY_SDISTANCE, &opt, scene, type, ub, 0, PyArray_DATA(closest),
+                           : ttd_py_scene_call(TTD_PY_SDISTANCE, &opt, scene, type, s->meshes, ub, 0, PyArray_DATA(closest),
                                                nearest ? PyArray_DATA(nearest) : NULL);
     ttd_scene_destroy(temporary);
     ttd_py_scene_unlock(s);

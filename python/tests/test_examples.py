@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: MIT
-"""The scene examples run (small sizes): python/examples/scene_motion.py prints its per-step
-table, python/examples/scene_pile.py settles a small pile without crossings and writes its
-picture (the picture's check is skipped, saying so, without matplotlib)."""
+"""The examples run (small sizes): python/examples/scene_motion.py prints its per-step table,
+python/examples/scene_pile.py settles a small pile without crossings and writes its picture (the
+picture's check is skipped, saying so, without matplotlib); python/examples/cloth.py runs, and
+every step of a small sheet's simulation has the self-contacts and sheet-sphere contacts of the
+brute force over every triangle pair."""
 import importlib.util
 import pathlib
 import re
@@ -43,3 +45,44 @@ def test_scene_pile_example(tmp_path):
         pytest.skip("matplotlib is not installed: the pile's picture was not written "
                     "(apt-get install python3-matplotlib; scripts/test-python.sh installs it when run as root)")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cloth_example(tmp_path):
+    png = tmp_path / "cloth.png"
+    out = run("cloth.py", "--n", "10", "--steps", "40", "--report", "10", "--out", str(png), cwd=tmp_path)
+    assert "200 triangles" in out and "mean ms per step" in out, out
+    if importlib.util.find_spec("matplotlib") is None:
+        assert "matplotlib is not installed" in out
+        pytest.skip("matplotlib is not installed: the cloth's picture was not written")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cloth_contacts_every_step_equal_brute_force():
+    """A 10 x 10 sheet (200 triangles) over 110 steps, landing on the sphere and folding on the
+    floor: each step's self-contacts (pairs sharing one vertex included) and sheet-sphere contacts
+    are the brute force's over every triangle pair, pair for pair with their distances."""
+    import numpy as np
+
+    from meshes import brute_force
+    from test_deform import self_brute_force
+
+    spec = importlib.util.spec_from_file_location("cloth", EXAMPLES / "cloth.py")
+    cloth = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cloth)
+    seen = [0, 0]
+
+    def check(step, sheet, sphere, sc, cc, h):
+        key, d, _, _ = self_brute_force(sheet, True)
+        within = d <= h
+        want = dict(zip(map(tuple, key[within].tolist()), d[within].tolist()))
+        got = dict(zip(zip(sc.tri_i.tolist(), sc.tri_j.tolist()), sc.distance.tolist()))
+        assert got == want, f"step {step}: self-contacts differ"
+        d = brute_force(sheet, sphere, np.eye(4)).distance
+        want = {(int(i), int(j)): d[i, j] for i, j in zip(*np.nonzero(d <= h))}
+        got = dict(zip(zip(cc.tri_a.tolist(), cc.tri_b.tolist()), cc.distance.tolist()))
+        assert got == want, f"step {step}: sheet-sphere contacts differ"
+        seen[0] += len(sc.distance)
+        seen[1] += len(cc.distance)
+
+    cloth.simulate(n=10, steps=110, sphere_level=1, callback=check)
+    assert seen[0] > 0 and seen[1] > 0, seen

@@ -129,6 +129,11 @@ near: ttd.SceneContacts | None = sd.nearest
 scc: ttd.SceneContacts = scene.contacts(0.1)
 sm: ttd.SceneManifold = scene.manifold(0.1, max_points=4)
 n_bodies: int = len(scene)
+A.set_vertices(np.ones((3, 3)), threads=1)
+gen: int = A.generation + A.rebuilds
+ss: ttd.SelfContacts = ttd.mesh_self_contacts(A, 0.1, shared_vertex=True)
+sco: ttd.SelfCollision = ttd.mesh_self_collide(A)
+self_hit: bool = sco.hit
 """
 
 DOCS = ("README.md", "python/README.md", "docs/python.md")

@@ -24,7 +24,9 @@ numpy arrays in, numpy arrays out::
 
 What is here: distance() (the pair API); Mesh and the mesh queries mesh_distance(),
 mesh_contacts(), mesh_closest(), mesh_collide() with their result types (b's poses in a's
-frame, or world poses pose_a= and pose_b= with results in the world frame); pose() and
+frame, or world poses pose_a= and pose_b= with results in the world frame); deforming meshes
+(Mesh.set_vertices) and one mesh against itself (mesh_self_contacts(), mesh_self_collide());
+pose() and
 orthonormalize() for poses as users hold them (quaternions, matrices printed with few digits);
 Scene, bodies of meshes at world poses, with the queries over every pair of bodies (collide,
 distance, contacts, manifold) and their result types; the enums Method,
@@ -84,10 +86,14 @@ try:
         SceneContacts,
         SceneDistance,
         SceneManifold,
+        SelfCollision,
+        SelfContacts,
         distance,
         isa_available,
         isa_lanes,
         isa_selected,
+        mesh_self_collide,
+        mesh_self_contacts,
         version,
     )
     from . import _ttd
@@ -203,6 +209,8 @@ __all__ = [
     "SceneContacts",
     "SceneDistance",
     "SceneManifold",
+    "SelfCollision",
+    "SelfContacts",
     "__version__",
     "distance",
     "isa_available",
@@ -213,6 +221,8 @@ __all__ = [
     "mesh_collide",
     "mesh_contacts",
     "mesh_distance",
+    "mesh_self_collide",
+    "mesh_self_contacts",
     "orthonormalize",
     "pose",
     "version",

@@ -92,7 +92,8 @@ CLOSEST_DTYPE_FLOAT32: np.dtype
 COLLISION_DTYPE: np.dtype
 
 class Mesh:
-    """A triangle mesh and its hierarchy, built once, immutable; pickles as (vertices, faces)."""
+    """A triangle mesh and its hierarchy; its faces fixed, its vertices movable (set_vertices);
+    pickles as (vertices, faces)."""
 
     def __init__(
         self,
@@ -114,6 +115,11 @@ class Mesh:
     def triangle_count(self) -> int: ...
     @property
     def node_count(self) -> int: ...
+    @property
+    def generation(self) -> int: ...
+    @property
+    def rebuilds(self) -> int: ...
+    def set_vertices(self, vertices: npt.ArrayLike, *, threads: int = 0) -> None: ...
     def __reduce__(self) -> Tuple[type, Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32]]]: ...
     @classmethod
     def from_file(cls, path: Any, *, precision: str = "float64", threads: int = 0, strict: bool = False) -> "Mesh": ...
@@ -193,6 +199,38 @@ def mesh_contacts(
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
 ) -> MeshContacts: ...
+class SelfContacts(NamedTuple):
+    """ttd.mesh_self_contacts' result: arrays over the n pairs of one mesh, tri_i < tri_j."""
+
+    tri_i: npt.NDArray[np.uint32]
+    tri_j: npt.NDArray[np.uint32]
+    distance: npt.NDArray[np.floating]
+    p: npt.NDArray[np.floating]
+    q: npt.NDArray[np.floating]
+
+class SelfCollision(NamedTuple):
+    """ttd.mesh_self_collide's result."""
+
+    hit: bool
+    tri_i: int
+    tri_j: int
+
+def mesh_self_contacts(
+    mesh: Mesh,
+    margin: float,
+    *,
+    shared_vertex: bool = False,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> SelfContacts: ...
+def mesh_self_collide(
+    mesh: Mesh,
+    margin: float = 0.0,
+    *,
+    shared_vertex: bool = False,
+    isa: Union[IsaName, str] = "auto",
+    threads: int = 0,
+) -> SelfCollision: ...
 def mesh_closest(
     a: Mesh,
     b: Mesh,

@@ -21,6 +21,23 @@
 
 /* ---- building ---------------------------------------------------------------------------- */
 
+/* The build's checks of vertex coordinates: finite, then within the range. */
+static ttd_status check_vertices(int bytes, const void *vertices, size_t nv)
+{
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (!isfinite(x))
+            return TTD_ERR_NONFINITE_MESH;
+    }
+    const double range = ttd_mesh_range(bytes);
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
+        if (fabs(x) > range)
+            return TTD_ERR_COORDINATE_RANGE;
+    }
+    return TTD_OK;
+}
+
 static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *vertices, size_t nv,
                               const uint32_t *triangles, size_t nt, ttd_mesh **out)
 {
@@ -39,18 +56,8 @@ static ttd_status mesh_create(const ttd_options *opt, int bytes, const void *ver
     for (size_t i = 0; i < 3 * nt; ++i)
         if (triangles[i] >= nv)
             return TTD_ERR_INDEX_OUT_OF_RANGE;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
-        if (!isfinite(x))
-            return TTD_ERR_NONFINITE_MESH;
-    }
-    const double range = ttd_mesh_range(bytes);
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = bytes == 8 ? ((const double *)vertices)[i] : (double)((const float *)vertices)[i];
-        if (fabs(x) > range)
-            return TTD_ERR_COORDINATE_RANGE;
-    }
-    return ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out);
+    st = check_vertices(bytes, vertices, nv);
+    return st == TTD_OK ? ttd_mesh_build(&cfg, bytes, vertices, nv, triangles, nt, out) : st;
 }
 
 ttd_status ttd_mesh_create_d(const ttd_options *opt, const double *vertices, size_t nv, const uint32_t *triangles,
@@ -68,6 +75,42 @@ ttd_status ttd_mesh_create_f(const ttd_options *opt, const float *vertices, size
 void ttd_mesh_destroy(ttd_mesh *mesh)
 {
     ttd_mesh_free(mesh);
+}
+
+static ttd_status set_vertices(const ttd_options *opt, int bytes, ttd_mesh *mesh, const void *vertices)
+{
+    ttd_engine_config cfg;
+    ttd_status st = ttd_prepare(opt, mesh && vertices, 1, 0, &cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg.method != TTD_METHOD_EXACT)
+        return TTD_ERR_BAD_OPTIONS;
+    if (mesh->bytes != bytes)
+        return TTD_ERR_PRECISION_MISMATCH;
+    st = check_vertices(bytes, vertices, mesh->nv);
+    if (st == TTD_OK)
+        st = ttd_mesh_refit(&cfg, mesh, vertices);
+    if (st == TTD_OK) /* the point queries' data, where a point query made it (after a rebuild: none) */
+        ttd_points_data_refresh(mesh, cfg.threads);
+    return st;
+}
+
+ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices)
+{
+    return set_vertices(opt, 8, mesh, vertices);
+}
+
+ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices)
+{
+    return set_vertices(opt, 4, mesh, vertices);
+}
+
+ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info)
+{
+    if (mesh == NULL || info == NULL)
+        return TTD_ERR_NULL_POINTER;
+    *info = (ttd_mesh_refit_info){mesh->generation, mesh->rebuilds, mesh->quality, mesh->quality_built};
+    return TTD_OK;
 }
 
 size_t ttd_mesh_triangle_count(const ttd_mesh *mesh)
@@ -395,6 +438,57 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
     st = ttd_mesh_query_contacts_f(&cfg, a, b, k, poses, NULL, defects, margin, out);
     TTD_QUERY_END();
     return st;
+}
+
+/* ---- self queries ------------------------------------------------------------------------ */
+
+/* The checks of the self queries: pointers, options (the exact method), the precision, the
+ * margin, the flags. */
+static ttd_status self_prepare(const ttd_options *opt, const ttd_mesh *m, int bytes, int out_ok, double margin,
+                               unsigned flags, ttd_engine_config *cfg)
+{
+    const ttd_status st = ttd_prepare(opt, m != NULL && out_ok, 1, 0, cfg);
+    if (st != TTD_OK)
+        return st;
+    if (cfg->method != TTD_METHOD_EXACT || !ttd_nonneg(margin, 0) || (flags & ~(unsigned)TTD_SELF_SHARED_VERTEX))
+        return TTD_ERR_BAD_OPTIONS;
+    return m->bytes == bytes ? TTD_OK : TTD_ERR_PRECISION_MISMATCH;
+}
+
+ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                    ttd_contacts_d *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 8, out != NULL, margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                    ttd_contacts_f *out)
+{
+    if (out != NULL)
+        out->count = 0;
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 4, out != NULL, (double)margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_f(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_collide_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                   ttd_collision *out)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 8, out != NULL, margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_collide_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                   ttd_collision *out)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 4, out != NULL, (double)margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_collide_f(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
 }
 
 void ttd_contacts_free_d(ttd_contacts_d *contacts)

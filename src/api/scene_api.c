@@ -18,6 +18,12 @@ static ttd_status scene_create(int bytes, ttd_scene **out)
         return TTD_ERR_OUT_OF_MEMORY;
     (*out)->bytes = bytes;
     (*out)->order_stale = 1;
+    (*out)->pool = ttd_pool_create();
+    if ((*out)->pool == NULL) {
+        free(*out);
+        *out = NULL;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
     return TTD_OK;
 }
 
@@ -42,6 +48,7 @@ void ttd_scene_destroy(ttd_scene *scene)
     free(scene->sweep_b);
     free(scene->order);
     free(scene->excluded);
+    ttd_pool_destroy(scene->pool);
     free(scene);
 }
 
@@ -239,9 +246,31 @@ void ttd_scene_array_free(ttd_scene_array *array)
 
 /* ---- queries ----------------------------------------------------------------------------- */
 
+/* Deforming bodies: every present body whose mesh's vertices moved (ttd_mesh_set_vertices_*)
+ * since its world box was computed gets its pose checked again against the moved mesh (its
+ * extent changed: TTD_ERR_COORDINATE_RANGE when the pose now moves it out of range, the body then
+ * left as it was) and its world box recomputed; its id, pose and filters stay. One comparison
+ * per body: linear in the bodies, as the sweep is. */
+static ttd_status refresh_moved_bodies(ttd_scene *s)
+{
+    for (size_t id = 0; id < s->nbody; ++id) {
+        const scene_body *b = &s->body[id];
+        if (b->mesh == NULL || b->generation == b->mesh->generation)
+            continue;
+        const void *pose = s->bytes == 8 ? (const void *)b->pose : (const void *)b->pose_f;
+        double defect;
+        size_t bad;
+        const ttd_status st = ttd_check_poses(b->mesh, 1, pose, s->bytes, &defect, &bad);
+        if (st != TTD_OK)
+            return st;
+        ttd_scene_place(s, (uint32_t)id, pose, defect);
+    }
+    return TTD_OK;
+}
+
 /* The checks of every scene query: pointers, options (the exact method), the precision, and the
- * margin or bound (>= 0; +inf only where inf_ok). */
-static ttd_status query_prepare(const ttd_options *opt, const ttd_scene *s, int out_ok, int bytes, double limit,
+ * margin or bound (>= 0; +inf only where inf_ok); then the bodies whose meshes moved. */
+static ttd_status query_prepare(const ttd_options *opt, ttd_scene *s, int out_ok, int bytes, double limit,
                                 int inf_ok, ttd_engine_config *cfg)
 {
     const ttd_status st = ttd_prepare(opt, s != NULL && out_ok, 1, 0, cfg);
@@ -249,7 +278,7 @@ static ttd_status query_prepare(const ttd_options *opt, const ttd_scene *s, int 
         return st;
     if (cfg->method != TTD_METHOD_EXACT || !(limit >= 0) || (!inf_ok && !(limit < (double)INFINITY)))
         return TTD_ERR_BAD_OPTIONS;
-    return s->bytes == bytes ? TTD_OK : TTD_ERR_PRECISION_MISMATCH;
+    return s->bytes == bytes ? refresh_moved_bodies(s) : TTD_ERR_PRECISION_MISMATCH;
 }
 
 #define TTD_SCENE_QUERY(bytes, out_ok, limit, inf_ok, call)                                         \
@@ -301,4 +330,12 @@ ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float 
                                 ttd_scene_array *out)
 {
     TTD_SCENE_QUERY(4, out != NULL, margin, 0, ttd_scene_query_manifold_f(&cfg, scene, margin, max_points, out));
+}
+
+ttd_status ttd_scene_get_stats(const ttd_scene *scene, ttd_scene_stats *out)
+{
+    if (scene == NULL || out == NULL)
+        return TTD_ERR_NULL_POINTER;
+    *out = scene->stats;
+    return TTD_OK;
 }

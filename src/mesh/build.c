@@ -63,6 +63,7 @@ typedef struct builder {
     double unit;          /* a power of two near 1 / radius: the records' scale */
     uint32_t *ord;        /* bounds pass: the triangle at each position of that order */
     double *p[9];         /* bounds pass: p[3k + c][i] = coordinate c of vertex k of ord[i] */
+    int refit;            /* the shape is kept (a refit): the shape pass only lists subtrees */
 } builder;
 
 /* A subtree: positions [lo, hi) into node `node` (pre-order index). */
@@ -178,7 +179,18 @@ static void triangle_axes(double p[3][3], double u[9])
     }
     double n[3];
     cross3(e[k], e[(k + 2) % 3], n);
-    if (normalize3(n, u + 6) && orthogonalize(u)) {
+    if (!normalize3(n, u + 6)) {
+        complete_frame(u);
+        return;
+    }
+    /* the common case, a triangle that is not thin: the computed normal is perpendicular to the
+     * edge within 2 eps already, and so is their cross product, of length 1 within 3 u; the
+     * frame is orthonormal to 2 eps as it is (half of a refit's time was these square roots) */
+    if (fabs(dot3(u, u + 6)) <= 2 * DBL_EPSILON) {
+        cross3(u + 6, u, u + 3);
+        return;
+    }
+    if (orthogonalize(u)) {
         cross3(u + 6, u, u + 3);
         normalize3(u + 3, u + 3);
         return;
@@ -187,17 +199,43 @@ static void triangle_axes(double p[3][3], double u[9])
 }
 
 /* Eigenvectors of the symmetric 3x3 matrix a (destroyed) by cyclic Jacobi rotations, as the rows
- * of u, largest eigenvalue first. */
-static void eigen_sym3(double a[3][3], double u[9])
+ * of u, largest eigenvalue first. start (rows: unit, orthonormal to a few eps) or NULL: the
+ * rotations start from those axes instead of the coordinate axes (a refit starts from a box's
+ * axes before its triangles moved, which are near the new ones: a sweep or none instead of three
+ * or four), and where they need none, they are the answer as they are, in their order. */
+static void eigen_sym3(double a[3][3], double u[9], const double *start)
 {
     double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    if (start != NULL) { /* a <- S a S^T, v <- S^T */
+        double t[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                t[i][j] = 0;
+                for (int k = 0; k < 3; ++k)
+                    t[i][j] += a[i][k] * start[3 * j + k];
+                v[i][j] = start[3 * j + i];
+            }
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                a[i][j] = 0;
+                for (int k = 0; k < 3; ++k)
+                    a[i][j] += start[3 * i + k] * t[k][j];
+            }
+    }
     for (int sweep = 0; sweep < 50; ++sweep) {
         const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
         const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-        /* axes to about 1e-6: a box is fitted to its vertices about whatever axes it gets,
-         * so further sweeps would only tilt it by less than that */
-        if (!(off > 1e-6 * diag))
+        /* axes to about 1e-6 (1e-3 from a start: a refit's box turns with its triangles, and
+         * its axes are the last fit's unless they moved by more): a box is fitted to its
+         * vertices about whatever axes it gets, so further sweeps would only tilt it by less
+         * than that */
+        if (!(off > (start ? 1e-3 : 1e-6) * diag)) {
+            if (start != NULL && sweep == 0) { /* the start's axes still do, as they are */
+                memcpy(u, start, 9 * sizeof *u);
+                return;
+            }
             break;
+        }
         for (int p = 0; p < 2; ++p)
             for (int q = p + 1; q < 3; ++q) {
                 if (a[p][q] == 0)
@@ -278,8 +316,8 @@ static void pos_vertices(const builder *B, size_t i, double p[3][3])
 }
 
 /* Principal axes of the surface of positions [lo, hi) from its area moments m: eigenvectors of
- * the covariance of the area; of the vertices when the area is 0. */
-static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *mo, double u[9])
+ * the covariance of the area; of the vertices when the area is 0 (start: as eigen_sym3's). */
+static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *mo, const double *start, double u[9])
 {
     double m[10];
     memcpy(m, mo->m, sizeof m);
@@ -303,7 +341,7 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *
         const int r = sym_r[k], c = sym_c[k];
         cov[r][c] = cov[c][r] = m[4 + k] / m[0] - (m[1 + r] / m[0]) * (m[1 + c] / m[0]);
     }
-    eigen_sym3(cov, u);
+    eigen_sym3(cov, u, start);
 }
 
 /* The box with axes b->u around the vertices of positions [lo, hi): centre and extents from the
@@ -571,7 +609,7 @@ static void shape(builder *B, int32_t n, size_t lo, size_t hi, int depth, subtre
     size_t g[8];
     int32_t child[8];
     const int ng = node_groups(hi - lo, n, g, child);
-    if (hi - lo > TTD_NODE_WIDTH)
+    if (hi - lo > TTD_NODE_WIDTH && !B->refit)
         split_groups(B->rec, lo, g, ng);
     size_t at = lo;
     for (int j = 0; j < ng; ++j) {
@@ -598,7 +636,7 @@ static void shape_task(void *ctx, size_t i, int worker)
 /* The box of a group of positions [lo, hi) (two triangles or more) from its moments. */
 static void group_box(const builder *B, size_t lo, size_t hi, const moments *mo, obb *b)
 {
-    surface_axes(B, lo, hi, mo, b->u);
+    surface_axes(B, lo, hi, mo, NULL, b->u);
     fit_extents(B, lo, hi, b);
 }
 
@@ -768,25 +806,26 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
 }
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
- * is, rounded up) of a mesh, and its vertices relative to the origin into vrel. */
+ * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL). */
 static void place(struct ttd_mesh *m, const void *verts, double *vrel)
 {
     const size_t nv = m->nv;
     double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (size_t i = 0; i < 3 * nv; ++i) {
         const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
-        vrel[i] = x;
         mn[i % 3] = dmin(mn[i % 3], x);
         mx[i % 3] = dmax(mx[i % 3], x);
     }
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
-    for (size_t i = 0; i < nv; ++i)
-        for (int c = 0; c < 3; ++c) {
-            vrel[3 * i + c] -= m->origin[c];
-            big = dmax(big, fabs(vrel[3 * i + c]));
-        }
+    for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
+        const double d = x - m->origin[i % 3];
+        if (vrel != NULL)
+            vrel[i] = d;
+        big = dmax(big, fabs(d));
+    }
     /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
      * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
      * pair, at 1e-163) */
@@ -797,12 +836,84 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
     for (size_t i = 0; i < nv; ++i) {
         double d2 = 0;
         for (int c = 0; c < 3; ++c) {
-            const double x = ldexp(vrel[3 * i + c], -e);
-            d2 += x * x;
+            const double x = m->bytes == 8 ? ((const double *)verts)[3 * i + c] : (double)((const float *)verts)[3 * i + c];
+            const double d = ldexp(x - m->origin[c], -e);
+            d2 += d * d;
         }
         r2 = dmax(r2, d2);
     }
     m->radius = ldexp(sqrt(r2), e) * (1 + 4 * DBL_EPSILON);
+}
+
+/* The boxes, bottom-up, from the vertices in hierarchy order (B->p): the subtrees the shape
+ * pass listed in parallel (their moments into done), then the levels above them, then the root's
+ * box in node 0, slot 0. */
+static void bounds_pass(const builder *B, const subtree *list, size_t nlist, moments *done, int depth)
+{
+    const struct ttd_mesh *m = B->mesh;
+    const size_t nt = m->nt;
+    obb root;
+    moments all;
+    if (nt > 1) {
+        bound_job J = {B, list, done};
+        ttd_parallel_tasks(nlist, B->threads, bound_task, &J);
+        size_t next = 0;
+        bound_top(B, 1, 0, nt, depth, done, &next, &all);
+        group_box(B, 0, nt, &all, &root);
+    } else {
+        triangle_box(B, 0, &root, &all);
+    }
+    /* node 0, slot 0: the root's box around everything, with the tree (or the triangle) below */
+    store_box(B, 0, 0, &root, nt > 1 ? 1 : -1, 0, nt);
+    if (m->bytes == 8)
+        ((ttd_node_d *)m->nodes)[0].count = 1;
+    else
+        ((ttd_node_f *)m->nodes)[0].count = 1;
+}
+
+/* Slot j of node n: its child and half extents (in double). */
+static int32_t slot_child(const struct ttd_mesh *m, size_t n, int j)
+{
+    return m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].child[j] : ((const ttd_node_f *)m->nodes)[n].child[j];
+}
+
+static int slot_count(const struct ttd_mesh *m, size_t n)
+{
+    return m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].count : ((const ttd_node_f *)m->nodes)[n].count;
+}
+
+static void slot_extents(const struct ttd_mesh *m, size_t n, int j, double e[3])
+{
+    for (int i = 0; i < 3; ++i)
+        e[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[i][j] : (double)((const ttd_node_f *)m->nodes)[n].e[i][j];
+}
+
+/* A box's surface area over 2 (half extents e). */
+static double half_area(const double e[3])
+{
+    return 4 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+}
+
+/* The tree's quality measure (docs/mesh-queries.md, section 2b): the surface areas of every
+ * subtree's box (the root's included) summed, over those of every triangle's box. What a query
+ * pays for is boxes that hold more space than their triangles need: refitting a tree whose
+ * triangles moved far from where it grouped them grows its boxes, and this ratio with them,
+ * while the triangles' own boxes depend on the geometry alone (flat: each about twice its
+ * triangle's area), so that a geometry whose fresh tree has thick boxes (a crumpled sheet) is
+ * not held against one whose fresh tree has thin ones. Summed in node order; 0 when the
+ * triangles have no area at all. */
+static double tree_quality(const struct ttd_mesh *m)
+{
+    double e[3], sub = 0, tri = 0;
+    for (size_t n = 0; n < m->nnodes; ++n)
+        for (int j = 0; j < slot_count(m, n); ++j) {
+            slot_extents(m, n, j, e);
+            if (slot_child(m, n, j) >= 0)
+                sub += half_area(e);
+            else
+                tri += half_area(e);
+        }
+    return tri > 0 ? sub / tri : 0;
 }
 
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
@@ -868,23 +979,8 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     ttd_parallel_for(blocks, cfg->threads, prepare_vertices, &B);
     free(vrel);
     vrel = NULL;
-    obb root;
-    moments all;
-    if (nt > 1) {
-        bound_job J = {&B, list, done};
-        ttd_parallel_tasks(nlist, cfg->threads, bound_task, &J);
-        size_t next = 0;
-        bound_top(&B, 1, 0, nt, depth, done, &next, &all);
-        group_box(&B, 0, nt, &all, &root);
-    } else {
-        triangle_box(&B, 0, &root, &all);
-    }
-    /* node 0, slot 0: the root's box around everything, with the tree (or the triangle) below */
-    store_box(&B, 0, 0, &root, nt > 1 ? 1 : -1, 0, nt);
-    if (bytes == 8)
-        ((ttd_node_d *)m->nodes)[0].count = 1;
-    else
-        ((ttd_node_f *)m->nodes)[0].count = 1;
+    bounds_pass(&B, list, nlist, done, depth);
+    m->quality = m->quality_built = tree_quality(m);
     free(pts);
     free(B.ord);
     free(list);
@@ -900,4 +996,292 @@ nomem:
     free(B.ord);
     ttd_mesh_free(m);
     return TTD_ERR_OUT_OF_MEMORY;
+}
+
+/* ---- refit: new vertex positions, the same triangles -------------------------------------- */
+
+/* A refit keeps the tree's shape (which triangles lie below which box) and fits every box again:
+ * a triangle's box from its vertices exactly as the build fits it (the same functions on the
+ * same numbers: a refit to unchanged vertices gives the build's bits there); a leaf's (a node of
+ * triangles) from its vertices about the principal axes of its area, found from the box's axes
+ * before the move; the box of a larger subtree likewise, around its children's boxes
+ * (docs/mesh-queries.md, section 2b). Around boxes instead of vertices: each level above the
+ * leaves costs a few corners per child instead of a pass over every vertex below it, which made
+ * a refit a third of a build. */
+
+typedef struct refit {
+    const struct ttd_mesh *mesh;
+    moments *mo;          /* per node: its triangles' moments, once the node is refitted */
+    subtree *list;        /* the subtrees refitted in parallel (room for 64) */
+} refit;
+
+/* A local builder over up to 8 triangles (a leaf, or one triangle): their vertices relative to
+ * the origin, one array per coordinate as the build keeps them, so that the build's box
+ * functions run on the same numbers. */
+typedef struct local_tris {
+    builder B;
+    double p[9][TTD_NODE_WIDTH];
+    uint32_t ord[TTD_NODE_WIDTH];
+} local_tris;
+
+static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, int count)
+{
+    L->B = (builder){.mesh = m, .ord = L->ord};
+    for (int k = 0; k < 9; ++k)
+        L->B.p[k] = L->p[k];
+    for (int i = 0; i < count; ++i) {
+        L->ord[i] = t[i];
+        const uint32_t *ix = m->tris + 3 * (size_t)t[i];
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) {
+                const size_t at = 3 * (size_t)ix[k] + (size_t)c;
+                const double x = m->bytes == 8 ? ((const double *)m->verts)[at] : (double)((const float *)m->verts)[at];
+                L->p[3 * k + c][i] = x - m->origin[c]; /* as place() computes vrel */
+            }
+    }
+}
+
+/* Child slot j of node n read back in double (the stored values, exactly). */
+static void slot_box(const struct ttd_mesh *m, size_t n, int j, obb *b)
+{
+    for (int i = 0; i < 3; ++i) {
+        b->c[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].c[i][j] : (double)((const ttd_node_f *)m->nodes)[n].c[i][j];
+        b->e[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[i][j] : (double)((const ttd_node_f *)m->nodes)[n].e[i][j];
+    }
+    for (int i = 0; i < 9; ++i)
+        b->u[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].u[i][j] : (double)((const ttd_node_f *)m->nodes)[n].u[i][j];
+}
+
+/* Stores in slot j of node n the box with axes u0 (unit rows, double) around the boxes in the
+ * slots of node c, so that it holds every vertex they hold. A child box Y (centre y, axes the rows
+ * y_b of W, extents f) is {y + W^-1 s : |s_b| <= f_b}. With G = W W^T - I, every entry within g,
+ * W^-1 = W^T (I + G)^-1, so |W^-1 s - W^T s| <= |W| |G| / (1 - |G|) |s| <= 8 g |f|_1 for g < 1/6
+ * (|G| <= 3 g; the builder's frames are orthonormal to a few eps, tests/test_mesh_boxes.c). Hence,
+ * along an axis u_a of the new box (centre c),
+ *     |u_a . (x - c)| <= |u_a . (y - c)| + sum_b |u_a . y_b| f_b + |u_a| 8 g |f|_1.
+ * Each computed term is within a few u (double's unit roundoff) of its magnitude: y - c and its
+ * dot with u_a within 4.1 u |y - c|_1, each |u_a . y_b| f_b within 6.2 u f_b, g's own error
+ * within 4 u; the slack 16 u (|y - c|_1 + |f|_1) covers them with the sums, and |u_a| <= 1 + eps
+ * is folded into 8 (g + 4 u) (1 + 2^-20). A float mesh rounds the axes and centre to float first
+ * and the extents up. */
+static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const double u0[9], int32_t c)
+{
+    const int f32 = m->bytes == 4;
+    const int count = slot_count(m, (size_t)c);
+    double u[9], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double spread[TTD_NODE_WIDTH][3], slack[TTD_NODE_WIDTH];
+    obb y[TTD_NODE_WIDTH];
+    for (int i = 0; i < 9; ++i)
+        u[i] = f32 ? round_to_float(u0[i]) : u0[i];
+    for (int k = 0; k < count; ++k) {
+        slot_box(m, (size_t)c, k, &y[k]);
+        double g = 0;
+        for (int a = 0; a < 3; ++a)
+            for (int b = a; b < 3; ++b)
+                g = dmax(g, fabs(dot3(y[k].u + 3 * a, y[k].u + 3 * b) - (a == b ? 1.0 : 0.0)));
+        const double f1 = y[k].e[0] + y[k].e[1] + y[k].e[2];
+        const double skew = 8 * (g + 2 * DBL_EPSILON) * (1 + 0x1p-20) * f1;
+        slack[k] = skew + 8 * DBL_EPSILON * f1;
+        for (int a = 0; a < 3; ++a) {
+            double r = 0;
+            for (int b = 0; b < 3; ++b)
+                r += fabs(dot3(u + 3 * a, y[k].u + 3 * b)) * y[k].e[b];
+            spread[k][a] = r;
+            const double p = dot3(u + 3 * a, y[k].c);
+            lo[a] = dmin(lo[a], p - r - slack[k]);
+            hi[a] = dmax(hi[a], p + r + slack[k]);
+        }
+    }
+    /* the centre: the middle of the children's range along each axis (any centre would hold them) */
+    obb b = {{0, 0, 0}, {0}, {0, 0, 0}};
+    memcpy(b.u, u, sizeof u);
+    for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+            b.c[i] += 0.5 * (lo[a] + hi[a]) * u[3 * a + i];
+    for (int i = 0; i < 3; ++i)
+        b.c[i] = f32 ? round_to_float(b.c[i]) : b.c[i];
+    for (int k = 0; k < count; ++k) {
+        const double d[3] = {y[k].c[0] - b.c[0], y[k].c[1] - b.c[1], y[k].c[2] - b.c[2]};
+        const double d1 = fabs(d[0]) + fabs(d[1]) + fabs(d[2]);
+        for (int a = 0; a < 3; ++a)
+            b.e[a] = dmax(b.e[a], fabs(dot3(u + 3 * a, d)) + spread[k][a] + slack[k] + 8 * DBL_EPSILON * d1);
+    }
+    if (!f32) {
+        ttd_node_d *node = (ttd_node_d *)m->nodes + n;
+        for (int i = 0; i < 3; ++i) {
+            node->c[i][j] = b.c[i];
+            node->e[i][j] = b.e[i];
+        }
+        for (int i = 0; i < 9; ++i)
+            node->u[i][j] = b.u[i];
+        return;
+    }
+    ttd_node_f *node = (ttd_node_f *)m->nodes + n;
+    for (int i = 0; i < 3; ++i) {
+        float ef = (float)b.e[i];
+        if ((double)ef < b.e[i]) /* rounded up */
+            ef = nextafterf(ef, INFINITY);
+        node->c[i][j] = (float)b.c[i];
+        node->e[i][j] = ef;
+    }
+    for (int i = 0; i < 9; ++i)
+        node->u[i][j] = (float)b.u[i];
+}
+
+/* Refits slot j of node n (the node's child there refitted already, unless it is a leaf) and
+ * returns the moments of its triangles. A lone triangle and a leaf are fitted from their
+ * vertices (the leaf's own slots too); a larger subtree around its children's boxes. */
+static moments refit_slot(const refit *R, int32_t n, int j)
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int32_t c = slot_child(m, (size_t)n, j);
+    local_tris L;
+    obb b;
+    moments sum = {{0}}, mo;
+    if (c < 0) {
+        const uint32_t t = (uint32_t)(-1 - c);
+        gather(m, &L, &t, 1);
+        triangle_box(&L.B, 0, &b, &sum);
+        store_box(&L.B, n, j, &b, c, 0, 1);
+        return sum;
+    }
+    if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
+        const int count = slot_count(m, (size_t)c);
+        uint32_t t[TTD_NODE_WIDTH];
+        for (int i = 0; i < count; ++i)
+            t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
+        gather(m, &L, t, count);
+        for (int i = 0; i < count; ++i) {
+            triangle_box(&L.B, (size_t)i, &b, &mo);
+            store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
+            moments_add(&sum, &mo);
+        }
+        obb old;
+        slot_box(m, (size_t)n, j, &old);
+        surface_axes(&L.B, 0, (size_t)count, &sum, old.u, b.u); /* group_box's, from the old axes */
+        fit_extents(&L.B, 0, (size_t)count, &b);
+        store_box(&L.B, n, j, &b, c, 0, (size_t)count);
+        return sum;
+    }
+    sum = R->mo[c];
+    obb old;
+    slot_box(m, (size_t)n, j, &old);
+    if (sum.m[0] > 0) /* the area's axes (no area: the box keeps its axes) */
+        surface_axes(&L.B, 0, 0, &sum, old.u, b.u);
+    else
+        memcpy(b.u, old.u, sizeof b.u);
+    store_box_of_boxes(m, n, j, b.u, c);
+    return sum;
+}
+
+/* Refits the slots of the nodes first..last-1 that are not leaves, the last first (pre-order:
+ * children after their parent), keeping each node's moments; skips the nodes of the first nlist
+ * listed subtrees (the top of the tree, refitted after them). */
+static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
+{
+    size_t next = nlist; /* the listed subtree below the current node, from the last */
+    for (size_t n = last; n-- > first;) {
+        while (next > 0 && (size_t)R->list[next - 1].node > n)
+            --next;
+        if (next > 0) {
+            const subtree *t = &R->list[next - 1];
+            const size_t end = (size_t)t->node + count_nodes(t->hi - t->lo);
+            if (n < end) { /* inside a listed subtree: done */
+                n = (size_t)t->node;
+                continue;
+            }
+        }
+        if (slot_child(R->mesh, n, 0) < 0)
+            continue; /* a leaf: its parent refits it */
+        moments sum = {{0}};
+        for (int j = 0; j < slot_count(R->mesh, n); ++j) {
+            const moments mo = refit_slot(R, (int32_t)n, j);
+            moments_add(&sum, &mo);
+        }
+        R->mo[n] = sum;
+    }
+}
+
+static void refit_task(void *ctx, size_t i, int worker)
+{
+    (void)worker;
+    const refit *R = ctx;
+    const subtree *t = &R->list[i];
+    refit_nodes(R, (size_t)t->node, (size_t)t->node + count_nodes(t->hi - t->lo), 0);
+}
+
+/* Rebuilds m's hierarchy from its vertices (a fresh build, whose contents, everything derived
+ * included, m takes, keeping its counters and the closed flag, which depends on the triangles
+ * alone; the old contents are freed with the fresh mesh's struct). Out of memory, m keeps its
+ * refitted tree, which is valid: a rebuild only makes the queries faster. */
+static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
+{
+    struct ttd_mesh *fresh;
+    if (ttd_mesh_build(cfg, m->bytes, m->verts, m->nv, m->tris, m->nt, &fresh) != TTD_OK)
+        return;
+    struct ttd_mesh old = *m;
+    *m = *fresh;
+    m->generation = old.generation;
+    m->rebuilds = old.rebuilds + 1;
+    m->closed = old.closed;
+    *fresh = old;
+    ttd_mesh_free(fresh);
+}
+
+/* The hierarchy's boxes, bottom-up over its kept shape: the subtrees the build would build in
+ * parallel, in parallel, then the nodes above them, then the root's slot. */
+static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit *R)
+{
+    size_t nlist = 0;
+    if (m->nt > 1) {
+        builder B = {.mesh = m, .refit = 1};
+        shape(&B, 1, 0, m->nt, parallel_depth(cfg->threads), R->list, &nlist); /* lists them, in order */
+        ttd_parallel_tasks(nlist, cfg->threads, refit_task, R);
+        refit_nodes(R, 1, m->nnodes, nlist);
+    }
+    (void)refit_slot(R, 0, 0);
+}
+
+/* Everything derived from the vertex positions, recomputed after they moved, in this order:
+ *   1. place: the origin and the radius (the boxes' frame, the spheres, the rounding margin);
+ *   2. refit_boxes: the hierarchy's boxes;
+ *   3. tree_quality: the measure that decides a rebuild (ttd_mesh_refit);
+ *   4. the edge information (mesh/edges.c: flat, convex and concave edges, corners, flat pieces,
+ *      welded places: all from the positions), made beforehand into *edges by ttd_mesh_refit so
+ *      that running out of memory leaves the mesh as it was.
+ * The point queries' data (src/points/, per node and per triangle) is refreshed by the API entry
+ * after this (ttd_points_data_refresh: mesh/ does not include points/). A rebuild
+ * (ttd_mesh_build) recomputes it all by itself. What depends on the triangles alone (the closed
+ * flag, mesh/solid.c) stays as it is. */
+static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R,
+                          ttd_mesh_edges *edges)
+{
+    place(m, verts, NULL);
+    refit_boxes(cfg, m, R);
+    m->quality = tree_quality(m);
+    ttd_mesh_edges_free(&m->edges);
+    m->edges = *edges;
+    memset(edges, 0, sizeof *edges);
+}
+
+ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
+{
+    /* everything is allocated before the mesh changes: out of memory, it is as it was */
+    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(moments)), malloc(64 * sizeof(subtree))};
+    ttd_mesh_edges edges;
+    memset(&edges, 0, sizeof edges);
+    if (R.mo == NULL || R.list == NULL || !ttd_mesh_edges_build(m->bytes, verts, m->nv, m->tris, m->nt, &edges)) {
+        free(R.mo);
+        free(R.list);
+        ttd_mesh_edges_free(&edges);
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
+    m->generation++;
+    refit_derived(cfg, m, verts, &R, &edges);
+    free(R.mo);
+    free(R.list);
+    if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
+        rebuild(cfg, m);
+    return TTD_OK;
 }

@@ -38,7 +38,16 @@ struct ttd_mesh {
     /* the point queries' data (src/points/points.h: prepared triangles, winding-number moments),
      * made on first use (atomic); its first member is the function that frees it */
     void *points;
+    /* Deforming meshes (ttd_mesh_refit): */
+    uint64_t generation; /* vertex updates so far: a scene's bodies compare it with theirs */
+    uint64_t rebuilds;   /* of those, the ones whose refit triggered a rebuild */
+    double quality;      /* the tree's quality measure (build.c, tree_quality), now */
+    double quality_built; /* and when the tree was last built */
 };
+
+/* A refit rebuilds the tree when its quality measure has grown past this factor of what it was
+ * at the last build (docs/mesh-queries.md, section 2b). */
+#define TTD_MESH_REBUILD_RATIO 2.0
 
 /* The largest coordinate magnitude a mesh query works on, a's vertices and b's moved by a pose
  * alike: 2^60 in float, 2^508 in double. Below it no square or product of a node test or of the
@@ -53,6 +62,12 @@ static inline double ttd_mesh_range(int bytes)
 /// TTD_OK, or TTD_ERR_OUT_OF_MEMORY (*out NULL). verts holds 3 nv reals of bytes each.
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
                           const uint32_t *tris, size_t nt, struct ttd_mesh **out);
+
+/// New positions for a built mesh's vertices (checked as the build checks them; 3 nv reals of the
+/// mesh's precision), the same triangles: the hierarchy is refitted (its shape kept, every box
+/// fitted again as the build fits it), and rebuilt when that has degraded it past
+/// TTD_MESH_REBUILD_RATIO. TTD_OK, or TTD_ERR_OUT_OF_MEMORY with the mesh as it was.
+ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *mesh, const void *verts);
 
 /// Frees a mesh built by ttd_mesh_build.
 void ttd_mesh_free(struct ttd_mesh *mesh);
@@ -82,6 +97,30 @@ ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct 
 ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
                                      size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
+
+/* One pose's contacts (pose_a as above, or NULL), walked from the root on the calling thread, into
+ * out in the walk's order: the same set as ttd_mesh_query_contacts_*, in another order, for a
+ * caller that sorts them (a scene's body pair); tests[0] and [1]: the walk's node tests and the
+ * triangle pairs it gave the exact method. */
+ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                          const struct ttd_mesh *b, const double *pose, const double *pose_a,
+                                          double defect, double margin, ttd_contacts_d *out,
+                                          uint64_t tests[2]);
+ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                          const struct ttd_mesh *b, const float *pose, const float *pose_a,
+                                          double defect, float margin, ttd_contacts_f *out,
+                                          uint64_t tests[2]);
+/* Self queries: pairs of one mesh's triangles (i < j) that share no vertex, and with shared
+ * (TTD_SELF_SHARED_VERTEX) those that share one, by their edges opposite it (ttd/ttd.h); from
+ * checked arguments. Written out in mesh/query_d.c and query_f.c. */
+ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                          unsigned shared, ttd_contacts_d *out);
+ttd_status ttd_mesh_query_self_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                          unsigned shared, ttd_contacts_f *out);
+ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                         unsigned shared, ttd_collision *out);
+ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                         unsigned shared, ttd_collision *out);
 
 /* Solids (mesh/solid.c). Whether the mesh is closed: every directed edge (u, v) of a triangle
  * appears once, and so does (v, u), by vertex index. Found on first use and kept (meshes are

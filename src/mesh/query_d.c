@@ -44,3 +44,23 @@ ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct 
 {
     return query_contacts(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }
+
+ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                          const struct ttd_mesh *b, const double *pose, const double *pose_a, double defect,
+                                          double margin, ttd_contacts_d *out,
+                                          uint64_t tests[2])
+{
+    return query_contacts_walk(cfg, a, b, pose, pose_a, defect, margin, out, tests);
+}
+
+ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                          unsigned shared, ttd_contacts_d *out)
+{
+    return query_self_contacts(cfg, m, margin, shared, out);
+}
+
+ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                         unsigned shared, ttd_collision *out)
+{
+    return query_self_collide(cfg, m, margin, shared, out);
+}

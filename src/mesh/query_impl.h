@@ -13,6 +13,11 @@
  *     batches come back; small batches keep it fresh;
  *   - collision: the margin, and the walk stops at the first pair within it;
  *   - contacts: the margin; every pair within it is kept, with its points.
+ * A self query (one mesh against itself: self-contacts and self-collision) is the same walk with
+ * b = a under the identity, from the root's box against itself: an item of a box against itself
+ * opens into its children against themselves and every two of its children (expand_self), and
+ * a candidate pair is ordered (the smaller triangle first) and filtered by the vertices its two
+ * triangles share (queue_pair).
  * Each pose is walked by one thread, in an order fixed by the meshes and the pose; a contact
  * query on one pose is cut into a fixed list of sub-walks, run on any threads and joined in list
  * order. So results do not depend on the thread count, and as every row's node test and exact
@@ -52,6 +57,19 @@ enum { MODE_DISTANCE, MODE_COLLIDE, MODE_CONTACTS };
 #define BATCH_LEAF 8
 #define BATCH_MAX 128
 
+/* The most items one opening writes: a box against itself gives its children against themselves
+ * and every two of them (expand_self); any other opening, at most the children. */
+#define EXPAND_MAX (TTD_NODE_WIDTH * (TTD_NODE_WIDTH + 1) / 2)
+
+/* A self query's bits (qctx.self): set for every self query, and whether pairs that share one
+ * vertex are kept (TTD_SELF_SHARED_VERTEX). */
+#define SELF_QUERY 1u
+#define SELF_SHARED 2u
+
+/* What a queued candidate computes: the two triangles, or (a self query's pair that shares one
+ * vertex) one triangle's edge opposite that vertex against the other triangle. */
+enum { ENTRY_PAIR, ENTRY_EDGE_A, ENTRY_EDGE_B };
+
 /* What is shared by every walk of one pose. */
 typedef struct qpose {
     side a, b;
@@ -60,6 +78,7 @@ typedef struct qpose {
     real pose[12];     /* the caller's pose: b's coordinates -> a's frame (or the world's) */
     real pose_a[12];   /* with has_a: a's coordinates -> the world (scenes); else a stays put */
     int has_a;
+    unsigned self;     /* a self query (qctx.self): b is a, under the identity */
     real delta;        /* the rounding margin of the bounds */
 } qpose;
 
@@ -69,6 +88,7 @@ typedef struct qctx {
     ttd_node_test_fn node_test;
     TTD_KERNEL_FN kernel;
     int threads;
+    unsigned self;     /* 0, or SELF_QUERY (ma == mb) with SELF_SHARED or not */
 } qctx;
 
 /* A contact found, before it is copied into the caller's set. */
@@ -106,6 +126,8 @@ typedef struct qwork {
     size_t ndef, defcap;
     int nb;                          /* candidates waiting for the kernel */
     uint32_t ta[BATCH_MAX], tb[BATCH_MAX];
+    uint8_t kind[BATCH_MAX];         /* ENTRY_*: what each computes */
+    uint32_t shared[BATCH_MAX];      /* ENTRY_EDGE_*: the vertex the two triangles share */
     real s[9 * BATCH_MAX], t[9 * BATCH_MAX];
     real dist[BATCH_MAX], pts[6 * BATCH_MAX];
     /* The walk's triangles as the kernel sees them (b's moved by the pose; a's by a's pose in
@@ -353,7 +375,7 @@ static void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, r
     if (W->moved_key[side_b][slot] != tri) {
         const uint32_t *ix = (side_b ? P->b.tris : P->a.tris) + 3 * (size_t)tri;
         for (int k = 0; k < 3; ++k) {
-            if (side_b)
+            if (side_b && !P->self) /* a self query's b is a as given, not moved by the identity */
                 pose_apply(P->pose, P->b.verts + 3 * (size_t)ix[k], m + 3 * k);
             else
                 side_vertex(P, ix[k], m + 3 * k);
@@ -388,6 +410,42 @@ static const ttd_box_query *walk_box_query(const qpose *P, qwork *W, int side_b,
     return q;
 }
 
+/* The vertex indices of triangle x (distinct ones) that triangle y has too: how many, and the last
+ * in *v. */
+static int shared_vertices(const uint32_t *x, const uint32_t *y, uint32_t *v)
+{
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+        if ((k > 0 && x[k] == x[0]) || (k > 1 && x[k] == x[1]))
+            continue;
+        if (x[k] == y[0] || x[k] == y[1] || x[k] == y[2]) {
+            ++n;
+            *v = x[k];
+        }
+    }
+    return n;
+}
+
+/* Whether triangle ix has a vertex other than v. */
+static int has_other_vertex(const uint32_t *ix, uint32_t v)
+{
+    return ix[0] != v || ix[1] != v || ix[2] != v;
+}
+
+/* Triangle ix's edge opposite its vertex v, as the degenerate triangle the kernel takes: its
+ * vertices other than v (by index) in their order, the last repeated: (r0, r1, r1), or (r0, r0,
+ * r0) when one is left. tri holds the triangle's coordinates and gets the edge's. */
+static void opposite_edge(const uint32_t *ix, uint32_t v, real tri[9])
+{
+    real keep[9];
+    int n = 0;
+    for (int k = 0; k < 3; ++k)
+        if (ix[k] != v)
+            memcpy(keep + 3 * n++, tri + 3 * k, 3 * sizeof(real));
+    for (int k = 0; k < 3; ++k)
+        memcpy(tri + 3 * k, keep + 3 * (k < n ? k : n - 1), 3 * sizeof(real));
+}
+
 /* Sends the waiting candidates through the kernel and acts on the answers. */
 static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
 {
@@ -398,13 +456,26 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         moved_triangle(P, W, 0, W->ta[i], W->s + 9 * i);
         moved_triangle(P, W, 1, W->tb[i], W->t + 9 * i);
+        if (W->kind[i] == ENTRY_EDGE_A)
+            opposite_edge(P->a.tris + 3 * (size_t)W->ta[i], W->shared[i], W->s + 9 * i);
+        else if (W->kind[i] == ENTRY_EDGE_B)
+            opposite_edge(P->b.tris + 3 * (size_t)W->tb[i], W->shared[i], W->t + 9 * i);
     }
     const ttd_params prm = {0, 0, 1};
     const ttd_out out = {W->dist, w->mode == MODE_CONTACTS ? W->pts : NULL, NULL};
     C->kernel((size_t)n, W->s, W->t, &prm, w->limit, &out);
     w->pair_tests += (uint64_t)n;
     for (int i = 0; i < n; ++i) {
-        const real d = W->dist[i];
+        real d = W->dist[i];
+        int at = i; /* the entry whose points are the pair's */
+        if (W->kind[i] == ENTRY_EDGE_A && w->mode == MODE_CONTACTS) {
+            /* a pair sharing a vertex: its two entries, the nearer (the first when as near) */
+            ++i;
+            if (W->dist[i] < d) {
+                d = W->dist[i];
+                at = i;
+            }
+        }
         if (w->mode == MODE_DISTANCE) {
             if (d < w->limit || (!w->found && d <= w->limit)) {
                 w->found = 1;
@@ -421,8 +492,8 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
             }
             contact c = {.tri_a = W->ta[i], .tri_b = W->tb[i], .distance = d};
             for (int k = 0; k < 3; ++k) {
-                c.p[k] = W->pts[6 * i + k];
-                c.q[k] = d == 0 ? c.p[k] : W->pts[6 * i + 3 + k];
+                c.p[k] = W->pts[6 * at + k];
+                c.q[k] = d == 0 ? c.p[k] : W->pts[6 * at + 3 + k];
             }
             if (!clist_push(w->out, &c)) {
                 W->nomem = 1;
@@ -432,13 +503,46 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     }
 }
 
-/* Queues candidate pair (a's triangle ta, b's tb), sending the queue through the kernel when it
- * is full. */
-static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb)
+static void queue_entry(qwork *W, int kind, int32_t ta, int32_t tb, uint32_t shared)
 {
     W->ta[W->nb] = (uint32_t)ta;
     W->tb[W->nb] = (uint32_t)tb;
-    if (++W->nb >= (w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN))
+    W->kind[W->nb] = (uint8_t)kind;
+    W->shared[W->nb++] = shared;
+}
+
+/* Queues candidate pair (a's triangle ta, b's tb), sending the queue through the kernel when it
+ * is full. A self query orders the pair (the smaller triangle first, as a brute force over i < j
+ * computes it) and keeps it by the vertices the two share (by index): none, the pair; one, with
+ * SELF_SHARED and another vertex on each triangle, two entries, each triangle's edge opposite the
+ * shared vertex against the other triangle (the pair's distance away from that vertex, the
+ * nearer of the two); more, nothing (an edge or the whole triangle in common). */
+static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb)
+{
+    const int batch = w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN;
+    if (!P->self) {
+        queue_entry(W, ENTRY_PAIR, ta, tb, 0);
+    } else {
+        if (ta > tb) {
+            const int32_t t = ta;
+            ta = tb;
+            tb = t;
+        }
+        const uint32_t *ia = P->a.tris + 3 * (size_t)ta, *ib = P->b.tris + 3 * (size_t)tb;
+        uint32_t v = 0;
+        const int n = shared_vertices(ia, ib, &v);
+        if (n == 0) {
+            queue_entry(W, ENTRY_PAIR, ta, tb, 0);
+        } else if (n == 1 && (P->self & SELF_SHARED) && has_other_vertex(ia, v) && has_other_vertex(ib, v)) {
+            if (W->nb + 2 > BATCH_MAX) /* the two entries in one batch */
+                flush(C, P, W, w);
+            queue_entry(W, ENTRY_EDGE_A, ta, tb, v);
+            queue_entry(W, ENTRY_EDGE_B, ta, tb, v);
+        } else {
+            return;
+        }
+    }
+    if (W->nb >= batch)
         flush(C, P, W, w);
 }
 
@@ -464,8 +568,35 @@ static item child_item(const item *it, int open_b, int32_t node, int j, real lb2
  * aside; a leaf facing a triangle queues its pairs at once, and for the minimum and collision
  * the queue goes to the kernel as soon as it fills a vector, so that the next items meet a
  * fresh limit. In the best-first phase the children come unordered: the heap orders them. */
+/* Opens a self query's item of one box against itself: its children against themselves (as
+ * items; a triangle against itself is no pair) and every two of its children within the limit,
+ * each pair of children once, found by one node test of each child against the others. */
+static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
+{
+    const int32_t c = P->a.nodes[it->an].child[it->as];
+    if (c < 0)
+        return 0;
+    const ttd_node *y = P->b.nodes + c;
+    int n = 0;
+    for (int i = 0; i < y->count; ++i) {
+        if (y->child[i] >= 0)
+            dst[n++] = (item){c, c, i, i, 0};
+        if (i + 1 == y->count)
+            break;
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+        C->node_test(walk_box_query(P, W, 0, c, i), y, lb2, sep);
+        ++w->node_tests;
+        for (int j = i + 1; j < y->count; ++j)
+            if (lb2[j] <= w->limit2)
+                dst[n++] = (item){c, c, i, j, lb2[j]};
+    }
+    return n;
+}
+
 static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
 {
+    if (P->self && it->an == it->bn && it->as == it->bs)
+        return expand_self(C, P, W, w, it, dst);
     const ttd_node *na = P->a.nodes + it->an, *nb = P->b.nodes + it->bn;
     const int32_t ca = na->child[it->as], cb = nb->child[it->bs];
     if (ca < 0 && cb < 0) {
@@ -534,7 +665,7 @@ static void walk_stack(const qctx *C, const qpose *P, qwork *W, walk *w, size_t 
         const item it = W->stack[--top];
         if (it.lb2 > w->limit2)
             continue;
-        if (!grow_stack(W, top + TTD_NODE_WIDTH))
+        if (!grow_stack(W, top + EXPAND_MAX))
             return;
         top += (size_t)expand(C, P, W, w, &it, W->stack + top);
     }
@@ -558,7 +689,7 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
     size_t n = W->ndef;
     for (size_t i = 1; i < n; ++i)
         heap_up(h, i);
-    item kids[TTD_NODE_WIDTH];
+    item kids[EXPAND_MAX];
     while (n > 0 && !W->nomem && h[0].lb2 <= w->limit2 && !(w->found && w->limit == 0)) {
         /* the top stays in place while it is opened (nothing below touches the heap in this
          * phase): its first child to enter the heap replaces it, saving a sift; as the order
@@ -632,6 +763,7 @@ static void qpose_make(const qctx *C, const real pose[12], const real *pose_a, d
     P->b = (side){(const ttd_node *)mb->nodes, (const real *)mb->verts, mb->tris};
     memcpy(P->pose, pose, sizeof P->pose);
     P->has_a = pose_a != NULL;
+    P->self = C->self;
     /* b's pose in a's frame, [r | tb] */
     double r[9], tb[3], world = 0;
     for (int i = 0; i < 3; ++i) {
@@ -718,7 +850,7 @@ static void walk_init(walk *w, int mode, const qpose *P, real limit, real rel_to
 static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b)
 {
     const TTD_ROW *row = TTD_DISPATCH_ROW(cfg->isa);
-    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads};
+    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads, 0};
     return C;
 }
 
@@ -855,7 +987,7 @@ static real item_size(const qpose *P, const item *it)
  * query). The list depends on the meshes and the pose alone. */
 static int contact_tasks(const qctx *C, qwork *W, contact_pose *cp, walk *w)
 {
-    const size_t cap = CONTACT_TASKS + TTD_NODE_WIDTH;
+    const size_t cap = CONTACT_TASKS + EXPAND_MAX;
     item *list = malloc(2 * cap * sizeof *list);
     real *size = malloc(2 * cap * sizeof *size); /* -1: a pair of triangles */
     if (list == NULL || size == NULL) {
@@ -1019,11 +1151,10 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
     return 1;
 }
 
-static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                 size_t k, const real *poses, const real *poses_a, const double *defects, real margin,
-                                 ttd_contacts *out)
+static ttd_status run_contacts(const qctx *Cq, size_t k, const real *poses, const real *poses_a, const double *defects,
+                               real margin, ttd_contacts *out)
 {
-    const qctx C = qctx_make(cfg, a, b);
+    const qctx C = *Cq;
     out->count = 0;
     out->poses = 0;
     if (!contacts_offsets(out, k))
@@ -1062,5 +1193,82 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
     }
     out->pose_start[k] = out->count;
     out->poses = k;
+    return TTD_OK;
+}
+
+static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                 size_t k, const real *poses, const real *poses_a, const double *defects, real margin,
+                                 ttd_contacts *out)
+{
+    const qctx C = qctx_make(cfg, a, b);
+    return run_contacts(&C, k, poses, poses_a, defects, margin, out);
+}
+
+/* ---- self queries: one mesh against itself ------------------------------------------------ */
+
+static const real identity_pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+static const double no_defect = 0;
+
+static qctx self_ctx(const ttd_engine_config *cfg, const struct ttd_mesh *m, unsigned shared)
+{
+    qctx C = qctx_make(cfg, m, m);
+    C.self = SELF_QUERY | (shared ? SELF_SHARED : 0);
+    return C;
+}
+
+static ttd_status query_self_contacts(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,
+                                      unsigned shared, ttd_contacts *out)
+{
+    const qctx C = self_ctx(cfg, m, shared);
+    return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, out);
+}
+
+static ttd_status query_self_collide(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,
+                                     unsigned shared, ttd_collision *out)
+{
+    const qctx C = self_ctx(cfg, m, shared);
+    return run_poses(&C, 1, identity_pose, NULL, &no_defect, MODE_COLLIDE, margin, 0, out);
+}
+
+/* One pose's contacts walked from the root on the calling thread, straight into out, in the
+ * walk's order: for a caller that sorts them (a scene sorts each body pair's contacts by
+ * triangles, and spreads body pairs over the threads itself). The cut into sub-walks above is
+ * what makes the order of query_contacts independent of the thread count; on the pile of 1,000
+ * icospheres it cost a scene a quarter of its contact query (256 lists allocated and zeroed per
+ * body pair, the walk's caches reset per sub-walk, kernel calls of 4 pairs: docs/scene-speed.md). */
+static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                      const real *pose, const real *pose_a, double defect, real margin,
+                                      ttd_contacts *out, uint64_t tests[2])
+{
+    const qctx C = qctx_make(cfg, a, b);
+    out->count = 0;
+    out->poses = 0;
+    tests[0] = tests[1] = 0;
+    if (!contacts_offsets(out, 1))
+        return TTD_ERR_OUT_OF_MEMORY;
+    qwork W;
+    qwork_init(&W);
+    qpose P;
+    qpose_make(&C, pose, pose_a, defect, &P);
+    walk w;
+    walk_init(&w, MODE_CONTACTS, &P, margin, 0);
+    clist l;
+    memset(&l, 0, sizeof l);
+    l.direct = out;
+    w.out = &l;
+    out->pose_start[0] = 0;
+    if (!spheres_apart(&C, &P, &w)) {
+        const item root = root_item();
+        walk_run(&C, &P, &W, &w, &root);
+    }
+    tests[0] = w.node_tests;
+    tests[1] = w.pair_tests;
+    qwork_release(&W);
+    if (W.nomem) {
+        out->count = 0;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    out->pose_start[1] = out->count;
+    out->poses = 1;
     return TTD_OK;
 }

@@ -89,7 +89,7 @@ static void pair_task(void *ctx, size_t k, int worker)
     const double defect = pair_defect(J->s, p->i, p->j);
     ttd_status st;
     if (J->mode == MODE_COLLIDE && J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
-        J->hit[k].hit = 0; /* after a touching pair: not needed */
+        J->hit[k] = (ttd_collision){0, UINT32_MAX, UINT32_MAX, 0, 0}; /* after a touching pair: not needed */
         st = TTD_OK;
     } else if (J->mode == MODE_COLLIDE) {
         st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
@@ -99,6 +99,8 @@ static void pair_task(void *ctx, size_t k, int worker)
         }
     } else if (J->closest_only && k > atomic_load_explicit(&J->first_zero, memory_order_relaxed)) {
         J->dist[k].distance = (real)INFINITY; /* after a pair at 0: not needed */
+        J->dist[k].node_tests = 0;
+        J->dist[k].pair_tests = 0;
         st = TTD_OK;
     } else {
         const real bound = J->closest_only ? bits_real(atomic_load(&J->best_bits)) : J->limit;
@@ -126,8 +128,16 @@ static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
     atomic_init(&J->best_bits, real_bits(J->limit));
     atomic_init(&J->first_zero, SIZE_MAX);
     atomic_init(&J->nomem, 0);
-    ttd_parallel_tasks(n, cfg->threads, pair_task, J);
-    return atomic_load(&J->nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+    ttd_pool_tasks(J->s->pool, n, cfg->threads, pair_task, J);
+    if (atomic_load(&J->nomem))
+        return TTD_ERR_OUT_OF_MEMORY;
+    ttd_scene_stats *t = &J->s->stats;
+    t->body_pairs += n;
+    for (size_t k = 0; k < n; ++k) {
+        t->node_tests += J->mode == MODE_COLLIDE ? J->hit[k].node_tests : J->dist[k].node_tests;
+        t->pair_tests += J->mode == MODE_COLLIDE ? J->hit[k].pair_tests : J->dist[k].pair_tests;
+    }
+    return TTD_OK;
 }
 
 /* Room for n items of `size` bytes in a caller's array. */
@@ -149,6 +159,7 @@ static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
 static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, ttd_scene_array *out)
 {
     out->count = 0;
+    s->stats = (ttd_scene_stats){0};
     scene_pair *pairs;
     size_t n;
     if (!ttd_scene_sweep(s, (double)margin, NULL, &pairs, &n))
@@ -167,6 +178,9 @@ static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *
                 (ttd_scene_hit){pairs[k].i, pairs[k].j, J.hit[k].tri_a, J.hit[k].tri_b};
     free(J.hit);
     free(pairs);
+    s->stats.results = out->count;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }
 
@@ -180,6 +194,7 @@ typedef struct contact_job {
     ttd_mesh_contacts *sets;      /* one per worker, reused */
     ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles */
     size_t *nfound;
+    uint64_t *tests;              /* per pair: node tests and pair tests */
     atomic_int nomem;
 } contact_job;
 
@@ -191,23 +206,64 @@ static int scene_contact_cmp(const void *x, const void *y)
     return (a->tri_j > b->tri_j) - (a->tri_j < b->tri_j);
 }
 
+/* A contact's place in its body pair's order, and where it is in the walk's order. */
+typedef struct sort_item {
+    uint64_t key; /* tri_i * (triangles of j) + tri_j */
+    size_t at;
+} sort_item;
+
+/* Sorts x[0..n) by key, stably, with y as scratch; the result is in x or y, returned. A radix
+ * sort, a byte of the key at a time up to the largest key's bytes (3 passes on the pile's
+ * icospheres): the comparison sort it replaces, with a call per comparison, was 7.5% of the
+ * pile's contact query (docs/scene-speed.md). */
+static sort_item *radix_sort(sort_item *x, sort_item *y, size_t n, uint64_t largest)
+{
+    for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += 8) {
+        size_t count[257] = {0};
+        for (size_t k = 0; k < n; ++k)
+            count[((x[k].key >> shift) & 255) + 1]++;
+        if (count[((x[0].key >> shift) & 255) + 1] == n)
+            continue; /* one digit: this pass would not move anything */
+        for (int d = 0; d < 256; ++d)
+            count[d + 1] += count[d];
+        for (size_t k = 0; k < n; ++k)
+            y[count[(x[k].key >> shift) & 255]++] = x[k];
+        sort_item *t = x;
+        x = y;
+        y = t;
+    }
+    return x;
+}
+
 /* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array. */
 static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
-                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n)
+                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n, uint64_t tests[2])
 {
     *out = NULL;
     *n = 0;
     const double defect = pair_defect(s, p->i, p->j);
-    if (TTD_QUERY(contacts)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, 1, body_pose(s, p->j), body_pose(s, p->i),
-                            &defect, margin, set) != TTD_OK)
+    /* one walk from the root: this pair's contacts are sorted below, and the pairs spread over
+     * the threads, so the mesh query's cut into sub-walks (for an order independent of the
+     * thread count) would buy nothing */
+    if (TTD_QUERY(contacts_walk)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, body_pose(s, p->j), body_pose(s, p->i),
+                                 defect, margin, set, tests) != TTD_OK)
         return 0;
     if (set->count == 0)
         return 1;
     ttd_scene_contact *v = malloc(set->count * sizeof *v);
-    if (v == NULL)
+    sort_item *order = malloc(2 * set->count * sizeof *order);
+    if (v == NULL || order == NULL) {
+        free(v);
+        free(order);
         return 0;
+    }
+    const uint64_t ntj = (uint64_t)s->body[p->j].mesh->nt;
+    for (size_t k = 0; k < set->count; ++k)
+        order[k] = (sort_item){(uint64_t)set->pairs[k].tri_a * ntj + set->pairs[k].tri_b, k};
+    const sort_item *sorted =
+        radix_sort(order, order + set->count, set->count, (uint64_t)s->body[p->i].mesh->nt * ntj - 1);
     for (size_t k = 0; k < set->count; ++k) {
-        const ttd_mesh_contact *c = &set->pairs[k];
+        const ttd_mesh_contact *c = &set->pairs[sorted[k].at];
         v[k].i = p->i;
         v[k].j = p->j;
         v[k].tri_i = c->tri_a;
@@ -216,7 +272,7 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
         memcpy(v[k].p, c->p, sizeof v[k].p);
         memcpy(v[k].q, c->q, sizeof v[k].q);
     }
-    qsort(v, set->count, sizeof *v, scene_contact_cmp);
+    free(order);
     *out = v;
     *n = set->count;
     return 1;
@@ -225,7 +281,8 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
 static void contact_task(void *ctx, size_t k, int worker)
 {
     contact_job *J = ctx;
-    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k]))
+    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k],
+                       J->tests + 2 * k))
         atomic_store(&J->nomem, 1);
 }
 
@@ -257,16 +314,40 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
     const ttd_engine_config one = one_thread(cfg);
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
     contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
-                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)), 0};
-    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL);
+                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)),
+                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), 0};
+    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
     if (!atomic_load(&J.nomem))
-        ttd_parallel_tasks(c->n, cfg->threads, contact_task, &J);
+        ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
+    s->stats = (ttd_scene_stats){0};
+    s->stats.body_pairs = c->n;
+    for (size_t k = 0; J.tests != NULL && k < c->n; ++k) {
+        s->stats.node_tests += J.tests[2 * k];
+        s->stats.pair_tests += J.tests[2 * k + 1];
+    }
+    free(J.tests);
     for (int w = 0; J.sets != NULL && w < workers; ++w)
         TTD_CONTACTS_FREE(&J.sets[w]);
     free(J.sets);
     c->found = J.found;
     c->nfound = J.nfound;
     return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+}
+
+/* Copies body pairs' contacts into the caller's array at their offsets, a pair per task: on the
+ * threads, as a serial copy of the pile's 33 MB would hold the second thread up. */
+typedef struct join_job {
+    const pair_contacts_set *c;
+    const size_t *at;
+    ttd_scene_contact *dst;
+} join_job;
+
+static void join_task(void *ctx, size_t k, int worker)
+{
+    (void)worker;
+    const join_job *J = ctx;
+    if (J->c->nfound[k])
+        memcpy(J->dst + J->at[k], J->c->found[k], J->c->nfound[k] * sizeof(ttd_scene_contact));
 }
 
 static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin,
@@ -276,16 +357,25 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
     pair_contacts_set c;
     ttd_status st = all_contacts(cfg, s, margin, &c);
     size_t total = 0;
-    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
-        total += c.nfound[k];
-    if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_contact)))
+    size_t *at = st == TTD_OK ? malloc((c.n ? c.n : 1) * sizeof *at) : NULL;
+    if (st == TTD_OK && at == NULL)
         st = TTD_ERR_OUT_OF_MEMORY;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
-        if (c.nfound[k])
-            memcpy((ttd_scene_contact *)out->data + out->count, c.found[k], c.nfound[k] * sizeof(ttd_scene_contact));
-        out->count += c.nfound[k];
+        at[k] = total;
+        total += c.nfound[k];
     }
+    if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_contact)))
+        st = TTD_ERR_OUT_OF_MEMORY;
+    if (st == TTD_OK) {
+        join_job J = {&c, at, out->data};
+        ttd_pool_tasks(s->pool, c.n, cfg->threads, join_task, &J);
+        out->count = total;
+    }
+    free(at);
     pair_contacts_free(&c);
+    s->stats.results = out->count;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }
 
@@ -314,8 +404,11 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
     }
     manifold_work_free(&w);
     pair_contacts_free(&c);
-    if (st != TTD_OK)
+    s->stats.results = out->count;
+    if (st != TTD_OK) {
         out->count = 0;
+        s->stats = (ttd_scene_stats){0};
+    }
     return st;
 }
 
@@ -336,7 +429,8 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
     ttd_scene_contact *v;
     size_t n;
     const ttd_engine_config one = one_thread(cfg);
-    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n);
+    uint64_t tests[2];
+    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n, tests);
     TTD_CONTACTS_FREE(&set);
     if (!ok)
         return 0;
@@ -365,10 +459,61 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
     return 1;
 }
 
+/* Box tests the scan below may spend per present body before it leaves the rest to the sweep. */
+#define FIRST_TOUCH_BUDGET 32
+
+/* The closest pair alone, where bodies touch: the first touching pair in (i, j) order is the
+ * answer. Bodies are taken in id order, each against the later bodies whose world boxes meet its
+ * own (a pass over the boxes, so in j order), collided at 0 in that order, and the first that
+ * touches is the answer: in a packed scene it comes within the first bodies, found without
+ * sorting the whole scene (the sweep at 0 over the pile's 1,000 bodies was 87% of its distance
+ * query, docs/scene-speed.md). Every touching pair has meeting boxes, so none before it is
+ * skipped. Gives up after FIRST_TOUCH_BUDGET box tests per body (a scene whose first bodies touch
+ * nothing: the sweep then does it all). Returns 1 with *pair, 0 when no pair touches (*gave_up
+ * 0) or it gave up (*gave_up 1), -1 out of memory. */
+static int first_touching(const ttd_engine_config *cfg, struct ttd_scene *s, scene_pair *pair, int *gave_up)
+{
+    const ttd_engine_config one = one_thread(cfg);
+    const size_t nb = s->nbody;
+    size_t budget = FIRST_TOUCH_BUDGET * (s->present > 1 ? s->present : 1);
+    *gave_up = 0;
+    for (size_t i = 0; i < nb; ++i) {
+        if (s->body[i].mesh == NULL)
+            continue;
+        if (budget < nb - i) {
+            *gave_up = 1;
+            return 0;
+        }
+        budget -= nb - i;
+        const double *bi = s->box + 6 * i;
+        for (size_t j = i + 1; j < nb; ++j) {
+            const double *bj = s->box + 6 * j;
+            if (s->body[j].mesh == NULL || !(bj[0] <= bi[3] && bj[3] >= bi[0] && bj[1] <= bi[4] && bj[4] >= bi[1] &&
+                                              bj[2] <= bi[5] && bj[5] >= bi[2]) ||
+                !ttd_scene_eligible(s, (uint32_t)i, (uint32_t)j))
+                continue;
+            const double defect = pair_defect(s, (uint32_t)i, (uint32_t)j);
+            ttd_collision hit;
+            if (TTD_QUERY(collide)(&one, s->body[i].mesh, s->body[j].mesh, 1, body_pose(s, (uint32_t)j),
+                                   body_pose(s, (uint32_t)i), &defect, 0, &hit) != TTD_OK)
+                return -1;
+            s->stats.body_pairs++;
+            s->stats.node_tests += hit.node_tests;
+            s->stats.pair_tests += hit.pair_tests;
+            if (hit.hit) {
+                *pair = (scene_pair){(uint32_t)i, (uint32_t)j};
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene *s, real upper_bound,
                                  ttd_scene_contact *closest, ttd_scene_contact *nearest)
 {
     *closest = no_contact(UINT32_MAX);
+    s->stats = (ttd_scene_stats){0};
     const size_t nb = s->nbody;
     for (size_t id = 0; nearest != NULL && id < nb; ++id)
         nearest[id] = no_contact((uint32_t)id);
@@ -401,7 +546,18 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
     /* the closest pair alone: touching bodies are found sooner by collision at 0, which stops at
      * its first pair within 0, than by distance; the first touching pair in (i, j) order is the
      * answer, and no pair after it is needed */
+    int gave_up = 1;
     if (nearest == NULL && !closest_done) {
+        const int f = first_touching(cfg, s, &cpair, &gave_up);
+        if (f < 0)
+            return TTD_ERR_OUT_OF_MEMORY;
+        if (f > 0) {
+            cbest = 0;
+            cpair_i = 0;
+            closest_done = 1;
+        }
+    }
+    if (nearest == NULL && !closest_done && gave_up) {
         scene_pair *pairs;
         size_t n;
         if (!ttd_scene_sweep(s, 0, NULL, &pairs, &n))
@@ -477,5 +633,8 @@ static ttd_status query_distance(const ttd_engine_config *cfg, struct ttd_scene 
     free(open);
     free(best);
     free(partner);
+    s->stats.results = st == TTD_OK && cpair_i != SIZE_MAX;
+    if (st != TTD_OK)
+        s->stats = (ttd_scene_stats){0};
     return st;
 }

@@ -78,6 +78,7 @@ void ttd_scene_place(struct ttd_scene *s, uint32_t id, const void *pose, double 
         }
     }
     b->defect = defect;
+    b->generation = b->mesh->generation;
     world_box(b, s->bytes, s->box + 6 * (size_t)id);
 }
 

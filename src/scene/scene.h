@@ -5,7 +5,8 @@
  * precision) hand each candidate body pair to the mesh traversal with both bodies' poses.
  *
  * The broad phase (docs/scenes.md): every body has a world box (axis-aligned) around its mesh's
- * root box moved by its pose, recomputed when the pose changes; the present bodies are kept
+ * root box moved by its pose, recomputed when the pose changes or the mesh's vertices moved
+ * (ttd_mesh_set_vertices_*: the body's generation no longer the mesh's, seen by every query); the present bodies are kept
  * sorted by their boxes' lower end along one axis, and a query sweeps that order (sweep and
  * prune). A step of small moves leaves the order nearly sorted, so it is repaired by insertion
  * sort, in time linear in the bodies and the swaps, instead of being rebuilt. */
@@ -16,6 +17,7 @@
 #include <stdint.h>
 
 #include "engine/batch.h"
+#include "engine/parallel.h"
 #include "mesh/mesh.h"
 
 typedef struct scene_body {
@@ -24,6 +26,8 @@ typedef struct scene_body {
     float pose_f[12];            /* a float scene's, as given */
     double defect;               /* max |R^T R - I| */
     uint32_t group, mask;
+    uint64_t generation;         /* the mesh's generation (vertex updates) its world box was
+                                  * computed for: a query recomputes the box when they differ */
 } scene_body;
 
 struct ttd_scene {
@@ -42,6 +46,8 @@ struct ttd_scene {
     size_t sweep_d_cap, sweep_i_cap, sweep_b_cap;
     uint64_t *excluded;          /* excluded pairs, i << 32 | j with i < j, sorted */
     size_t nexcluded, excluded_cap;
+    ttd_scene_stats stats;       /* what the last query did (ttd_scene_get_stats) */
+    struct ttd_pool *pool;       /* worker threads kept between queries (engine/parallel.h) */
 };
 
 /// A candidate body pair (i < j) of a sweep.
@@ -49,7 +55,8 @@ typedef struct scene_pair {
     uint32_t i, j;
 } scene_pair;
 
-/// Sets body id's pose (checked) from 12 reals of the scene's precision, and its world box.
+/// Sets body id's pose (checked) from 12 reals of the scene's precision, and its world box (for
+/// its mesh's vertices as they are now: the body's generation becomes the mesh's).
 void ttd_scene_place(struct ttd_scene *s, uint32_t id, const void *pose, double defect);
 
 /// The eligible body pairs whose world boxes are within margin on every axis (so every pair of

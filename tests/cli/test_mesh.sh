@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# `ttd mesh distance | contacts | collide` on meshes this script writes (a unit cube A and a
+# `ttd mesh distance | contacts | collide | self-contacts | self-collide` on meshes this script writes (a unit cube A and a
 # tetrahedron B, each in OBJ, STL ASCII and binary, PLY ASCII and binary), checked against:
 #   - answers known by construction for seven poses (a face gap, vertex-vertex, two rotations, touching,
 #     crossing, far): the distance, the closest points, the triangle indices where unique;
@@ -17,6 +17,9 @@
 #     with 5 digits (the exact rotation's answer) and still refuses one far from a rotation;
 #   - OBJ lines that are not statements skipped, counted and said once (--strict refuses them);
 #     text taken for a binary STL says so and why;
+#   - self-contacts of two stacked grids, one bent through the other: `mesh contacts S S` less the
+#     pairs that share a vertex (from the file's incidence); --shared-vertex adds only pairs that
+#     share one vertex; --count; self-collide's witness; threads, ISAs, float; its errors;
 #   - every error path: missing, malformed and truncated files (the message names file and line
 #     or byte offset), bad --pose arguments (exit 2) and poses-file lines (exit 1), poses that are
 #     not rotations, bad margins and bounds, unknown options and commands, missing and extra
@@ -696,7 +699,7 @@ run 2 mesh contacts "$A" "$B" --margin; err_has "--margin needs a value" "--marg
 run 2 mesh distance "$A" "$B" --upper-bound -1; err_has "bad value for --upper-bound" "negative bound"
 run 2 mesh distance "$A" "$B" --rel-tol nan; err_has "bad value for --rel-tol" "NaN rel-tol"
 run 2 mesh distance "$A" "$B" --margin 1; err_has "--margin is an option of mesh contacts" "--margin on distance"
-run 2 mesh collide "$A" "$B" --count; err_has "--count is an option of mesh contacts only" "--count on collide"
+run 2 mesh collide "$A" "$B" --count; err_has "--count is an option of mesh contacts and mesh self-contacts only" "--count on collide"
 run 2 mesh distance "$A" "$B" --per-triangle; err_has "--per-triangle is an option of mesh contacts only" "--per-triangle"
 run 2 mesh collide "$A" "$B" --upper-bound 1; err_has "--upper-bound is an option of mesh distance only" "--upper-bound"
 run 2 mesh distance "$A" "$B" --pose "$P_GAP" --poses "$DIR/poses.txt"; err_has "do not go together" "--pose and --poses"
@@ -760,6 +763,75 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$DIR/open.obj"
 run 1 mesh distance "$A" "$DIR/open.obj" --solid; err_has "not closed" "--solid with an open mesh"
 run 2 mesh contacts "$A" "$DIR/inner.obj" --margin 1 --solid; err_has "--solid" "contacts --solid"
 pass "--solid: a mesh inside another at 0 as solids, 0.4 as surfaces; open meshes refused"
+
+# ---- self-contacts, self-collide ----------------------------------------------------------
+# Two 12 x 12 grids 0.01 apart (each its own vertices), the upper one with a corner bent down
+# through the lower: self-contacts against `ttd mesh contacts S S` (the same pairs, computed the
+# same way, i < j) less the pairs that share a vertex, found here from the file's incidence.
+awk 'BEGIN { n = 12
+    for (l = 0; l < 2; l++) for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) {
+        z = l * 0.01; if (l == 1 && i + j <= 2) z = -0.02 * (3 - i - j)
+        printf "v %.17g %.17g %.17g\n", i / n, j / n, z }
+    for (l = 0; l < 2; l++) for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+        a = l * (n + 1) * (n + 1) + j * (n + 1) + i + 1; b = a + 1; c = a + n + 2; d = a + n + 1
+        print "f " a " " b " " c; print "f " a " " c " " d } }' > "$DIR/sheets.obj"
+S="$DIR/sheets.obj"
+# not_shared FILE: the lines 'i j ...' of FILE with i < j whose triangles share no vertex
+not_shared() {
+    awk -v mesh="$S" 'BEGIN { nt = 0; while ((getline line < mesh) > 0) { split(line, f, " "); if (f[1] == "f") { T[nt, 0] = f[2]; T[nt, 1] = f[3]; T[nt, 2] = f[4]; nt++ } } }
+        { if ($1 >= $2) next
+          s = 0; for (a = 0; a < 3; a++) for (b = 0; b < 3; b++) if (T[$1, a] == T[$2, b]) s++
+          if (s == 0) print }' "$1"
+}
+for m in 0 0.005 0.012 0.03; do
+    run 0 mesh self-contacts "$S" --margin "$m"
+    cp "$DIR/out" "$DIR/self"
+    run 0 mesh contacts "$S" "$S" --margin "$m"
+    not_shared "$DIR/out" > "$DIR/want"
+    cmp -s "$DIR/self" "$DIR/want" || fail "self-contacts margin $m: not the pairs of contacts S S that share no vertex"
+    run 0 mesh self-contacts "$S" --margin "$m" --count
+    [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want" | tr -d ' ')" ] || fail "self-contacts --count $m: $(cat "$DIR/out")"
+    # --shared-vertex: more pairs, each extra one sharing exactly one vertex
+    run 0 mesh self-contacts "$S" --margin "$m" --shared-vertex
+    awk 'NR == FNR { seen[$1 " " $2] = 1; next } !(($1 " " $2) in seen) { print $1, $2 }' "$DIR/self" "$DIR/out" > "$DIR/extra"
+    awk 'NR == FNR { seen[$1 " " $2] = 1; next } !(($1 " " $2) in seen) { bad = 1 } END { exit bad }' "$DIR/out" "$DIR/self" ||
+        fail "self-contacts --shared-vertex $m lost pairs"
+    awk -v mesh="$S" 'BEGIN { nt = 0; while ((getline line < mesh) > 0) { split(line, f, " "); if (f[1] == "f") { T[nt, 0] = f[2]; T[nt, 1] = f[3]; T[nt, 2] = f[4]; nt++ } } }
+        { s = 0; for (a = 0; a < 3; a++) for (b = 0; b < 3; b++) if (T[$1, a] == T[$2, b]) s++; if (s != 1) exit 1 }' "$DIR/extra" ||
+        fail "self-contacts --shared-vertex $m: an extra pair does not share exactly one vertex"
+done
+[ "$(wc -l < "$DIR/self" | tr -d ' ')" -gt 400 ] || fail "self-contacts at 0.03: only $(wc -l < "$DIR/self") pairs"
+run 0 mesh self-collide "$S"
+set -- $(cat "$DIR/out")
+[ "$1" = 1 ] && [ "$2" -lt "$3" ] || fail "self-collide: '$(cat "$DIR/out")'"
+"$TTD" mesh self-contacts "$S" --margin 0 | awk -v i="$2" -v j="$3" '$1 == i && $2 == j { f = 1 } END { exit !f }' ||
+    fail "self-collide's witness is not a self-contact at margin 0"
+# the lower grid alone (the first 288 triangles) does not touch itself
+head -n 169 "$S" > "$DIR/lower.obj"; grep '^f' "$S" | head -n 288 >> "$DIR/lower.obj"
+run 0 mesh self-collide "$DIR/lower.obj"; [ "$(cat "$DIR/out")" = 0 ] || fail "a flat grid collides with itself"
+run 0 mesh self-collide "$DIR/lower.obj" --margin 0.1; [ "$(cut -d' ' -f1 "$DIR/out")" = 1 ] || fail "self-collide --margin"
+# threads, instruction sets and float
+"$TTD" mesh self-contacts "$S" --margin 0.012 --shared-vertex --threads 1 > "$DIR/t1"
+for isa in scalar sse2 avx2 avx512 neon portable; do
+    "$TTD" mesh self-contacts "$S" --margin 0.012 --shared-vertex --threads 2 --isa "$isa" > "$DIR/t2" 2> /dev/null || continue
+    cmp -s "$DIR/t1" "$DIR/t2" || fail "self-contacts with --isa $isa, 2 threads differ"
+done
+run 0 mesh self-contacts "$S" --margin 0.012 --precision float
+cp "$DIR/out" "$DIR/self"
+run 0 mesh contacts "$S" "$S" --margin 0.012 --precision float
+not_shared "$DIR/out" > "$DIR/want"
+[ -s "$DIR/self" ] && cmp -s "$DIR/self" "$DIR/want" || fail "self-contacts in float: not the pairs of contacts S S that share no vertex"
+# errors
+run 2 mesh self-contacts "$S"; err_has "--margin" "self-contacts without a margin"
+run 2 mesh self-contacts "$S" "$S" --margin 1; err_has "one mesh file" "self-contacts with two files"
+run 2 mesh self-contacts "$S" --margin 1 --pose '1 0 0 0 0 1 0 0 0 0 1 0'; err_has "--pose" "self-contacts --pose"
+run 2 mesh self-contacts "$S" --margin 1 --per-triangle; err_has "--per-triangle" "self-contacts --per-triangle"
+run 2 mesh self-collide "$S" --solid; err_has "--solid" "self-collide --solid"
+run 2 mesh self-collide; err_has "missing" "self-collide without a file"
+run 2 mesh contacts "$S" "$S" --margin 1 --shared-vertex; err_has "--shared-vertex" "contacts --shared-vertex"
+run 2 mesh self-contacts "$S" --margin -1; err_has "--margin" "self-contacts negative margin"
+run 1 mesh self-contacts "$DIR/missing.obj" --margin 1
+pass "self-contacts and self-collide: the pairs of contacts S S that share no vertex, --shared-vertex, --count, witnesses, threads and ISAs, float, errors"
 
 # ---- help ----------------------------------------------------------------------------------
 run 0 mesh --help

@@ -17,7 +17,7 @@
 #   - filter and exclude statements: every query equal to the unfiltered scene's lines less the
 #     body pairs that the group/mask rule (computed here in awk) or an exclusion removes; body
 #     names (referred to by name or number; --names prints them for i and j);
-#   - --count; --margin on distance as a bound; --max-points; --motion over 3 steps equal to a
+#   - --count; --stats and --repeat (same lines; the stats' results are the lines); --margin on distance as a bound; --max-points; --motion over 3 steps equal to a
 #     scene file per step, with and without 'step' lines (their counts checked); blanks past the
 #     4096-byte line limit; --precision float on a scene whose world coordinates are exact in
 #     float (against `ttd mesh --precision float`); --threads 1, 2, 0 and every instruction set
@@ -275,6 +275,13 @@ for m in 0 0.15 0.35; do
         "$DIR/want" "$DIR/out" > /dev/null || fail "collide --margin $m: a witness not within the margin"
     run 0 scene collide "$DIR/scene.txt" --margin $m --count
     [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want_pairs" | tr -d ' ')" ] || fail "collide --count $m"
+    # --stats and --repeat: the same answer, and the library's stats of the last run on stderr
+    # (its results are the lines printed; every result was a pair given to the kernel)
+    run 0 scene contacts "$DIR/scene.txt" --margin $m --repeat 3 --stats
+    same "$DIR/out" "$DIR/want" "contacts --margin $m --repeat 3 --stats"
+    awk -v n="$(wc -l < "$DIR/want" | tr -d ' ')" '/candidate body pairs/ {
+            if ($11 + 0 < $15 + 0 || $15 + 0 != n || $4 + 0 < 1) exit 1; found = 1 }
+        END { exit !found }' "$DIR/err" || fail "contacts --stats $m: $(cat "$DIR/err")"
     # manifold, K = 4 (default), 2 and 0 (all)
     for k in 4 2 0; do
         if [ $k = 4 ]; then run 0 scene manifold "$DIR/scene.txt" --margin $m; else run 0 scene manifold "$DIR/scene.txt" --margin $m --max-points $k; fi

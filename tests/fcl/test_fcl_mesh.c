@@ -559,14 +559,27 @@ static int hostile_files(void)
     ENSURE(bench_fcl_mesh_run_file(program, path, BENCH_FCL_MESH_DISTANCE, 1, 0, &r) == BENCH_FCL_MESH_OK);
     ENSURE_NEAR(r.poses[0].distance, 2.0, 1e-15);
     bench_fcl_mesh_result_free(&r);
+    /* query 3, FCL's refit of A to B's vertices (the same triangles) and back: one row of times,
+     * B not built */
+    bench_fcl_mesh_job refit = job;
+    refit.query = BENCH_FCL_MESH_REFIT;
+    refit.repetitions = 3;
+    ENSURE(bench_fcl_mesh_run(program, &refit, 0, &r) == BENCH_FCL_MESH_OK);
+    ENSURE(r.nposes == 1 && r.poses[0].median_ms >= 0 && r.poses[0].min_ms <= r.poses[0].median_ms && r.build_ms[1] == 0);
+    bench_fcl_mesh_result_free(&r);
+    const uint32_t t2[3] = {0, 2, 1}; /* B's triangles not A's: no refit */
+    refit.b.triangles = t2;
+    ENSURE(bench_fcl_mesh_run(program, &refit, 0, &r) == BENCH_FCL_MESH_ERROR);
+    ENSURE_MSG(strstr(r.error, "B must hold A's triangles") != NULL, "error \"%s\"", r.error);
+    bench_fcl_mesh_result_free(&r);
 
     unsigned char u32[4], u64[8], f64[8];
     int failed = 0;
     failed |= refused(path, &good, 0, 0, NULL, 0, "truncated");
     failed |= refused(path, &good, 5, 0, NULL, 0, "truncated");
     failed |= refused(path, &good, good.n, 0, (const unsigned char *)"TTDMESH2", 8, "magic");
-    put_le(u32, 3, 4);
-    failed |= refused(path, &good, good.n, 8, u32, 4, "query 3 unknown");
+    put_le(u32, 4, 4);
+    failed |= refused(path, &good, good.n, 8, u32, 4, "query 4 unknown");
     put_le(u32, 0, 4);
     failed |= refused(path, &good, good.n, 12, u32, 4, "repetitions 0");
     put_double(f64, (double)NAN);

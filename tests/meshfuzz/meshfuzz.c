@@ -6,6 +6,7 @@
  * thread count or the instruction set"). Float cases run the float API; their results are
  * widened to double (exact), so one set of checks serves both precisions. */
 #include "meshfuzz.h"
+#include "self_brute.h"
 
 #include <float.h>
 #include <math.h>
@@ -90,9 +91,9 @@ static double pow10u(mf_src *src, double lo, double hi)
 static const char *const family_names[MF_COUNT] = {
     "collinear", "point", "segment", "repeated", "sliver", "needle", "duplicate",
     "coplanar",  "touch", "gap",     "scaled",   "tolerance", "grid", "mixed"};
-static const char *const query_names[MFQ_COUNT] = {"pose",     "reference", "distance", "bound",
-                                                   "reltol",   "contacts",  "closest",  "collide",
-                                                   "k-poses",  "threads",   "isa"};
+static const char *const query_names[MFQ_COUNT] = {"pose",    "reference", "distance", "bound", "reltol",
+                                                   "contacts", "closest",  "collide",  "k-poses", "threads",
+                                                   "isa",      "refit",    "self"};
 
 const char *mf_family_name(int family)
 {
@@ -417,6 +418,8 @@ typedef struct mcase {
     double poses[12 * MAXK]; /* float values in a float case */
     int pose_kind[MAXK];
     double size;             /* extent of the scene, for the reports */
+    int refit;               /* 0: meshes built from their vertices; else 1 + how they were moved to
+                              * them (REFIT_*) */
 } mcase;
 
 static void round_to_float(mcase *c)
@@ -996,9 +999,11 @@ static FILE *out_of(const mf_run *run)
 
 static void dump_case(FILE *f, const mcase *c)
 {
-    fprintf(f, "    case: %s, %s, a %zu triangles / %zu vertices, b %zu / %zu, %zu poses, size %.3g\n",
+    static const char *const refits[] = {"built", "refitted from permuted vertices", "refitted from jittered vertices",
+                                         "refitted from rotated vertices", "refitted from one point"};
+    fprintf(f, "    case: %s, %s, a %zu triangles / %zu vertices, b %zu / %zu, %zu poses, size %.3g, %s\n",
             mf_family_name(c->family), c->is_float ? "float" : "double", c->a.nt, c->a.nv, c->b.nt, c->b.nv, c->k,
-            c->size);
+            c->size, refits[c->refit]);
     for (size_t p = 0; p < c->k; ++p) {
         fprintf(f, "    pose %zu:", p);
         for (int i = 0; i < 12; ++i)
@@ -1389,18 +1394,190 @@ static void check_reference(where *w, mf_src *src, const bpair *all, const ppara
 
 /* ---- a case, start to end ----------------------------------------------------------------- */
 
-static ttd_status build(const mcase *c, const mmesh *m, ttd_mesh **out)
+/* How a refitted case's meshes were built before they took the case's vertices. */
+enum { REFIT_PERMUTED = 1, REFIT_JITTERED, REFIT_ROTATED, REFIT_POINT, REFIT_KINDS };
+
+/* Builds (when set) or moves the mesh to vertices v (3 nv doubles, floats in a float case). */
+static ttd_status build_or_move(const mcase *c, const mmesh *m, const double *v, ttd_mesh **out, int move)
 {
     if (!c->is_float)
-        return ttd_mesh_create_d(NULL, m->v, m->nv, m->t, m->nt, out);
-    float *v = malloc(3 * m->nv * sizeof *v);
-    if (!v)
+        return move ? ttd_mesh_set_vertices_d(NULL, *out, v) : ttd_mesh_create_d(NULL, v, m->nv, m->t, m->nt, out);
+    float *f = malloc(3 * m->nv * sizeof *f);
+    if (!f)
         abort();
     for (size_t i = 0; i < 3 * m->nv; ++i)
-        v[i] = (float)m->v[i];
-    const ttd_status st = ttd_mesh_create_f(NULL, v, m->nv, m->t, m->nt, out);
-    free(v);
+        f[i] = (float)v[i];
+    const ttd_status st = move ? ttd_mesh_set_vertices_f(NULL, *out, f) : ttd_mesh_create_f(NULL, f, m->nv, m->t, m->nt, out);
+    free(f);
     return st;
+}
+
+/* The mesh of m: built from its vertices, or (c->refit) from other vertices drawn from src and
+ * then moved to them, so that the queries run on a refitted tree (or a rebuilt one, where the
+ * refit degraded it: permuted vertices, one point). */
+static ttd_status build(mf_src *src, const mcase *c, const mmesh *m, ttd_mesh **out)
+{
+    if (c->refit == 0)
+        return build_or_move(c, m, m->v, out, 0);
+    double *pre = malloc((3 * m->nv + 1) * sizeof *pre);
+    if (!pre)
+        abort();
+    const double amp = c->size * pow10u(src, -9, -1);
+    for (size_t i = 0; i < m->nv; ++i) {
+        const double *x = m->v + 3 * i;
+        double *y = pre + 3 * i;
+        switch (c->refit) {
+        case REFIT_PERMUTED: { /* another vertex's place */
+            const size_t j = (size_t)rint_n(src, (int)(m->nv < 1000000 ? m->nv : 1000000));
+            memcpy(y, m->v + 3 * j, 3 * sizeof *y);
+            break;
+        }
+        case REFIT_JITTERED:
+            for (int k = 0; k < 3; ++k)
+                y[k] = x[k] + amp * (unif(src) - 0.5);
+            break;
+        case REFIT_ROTATED: /* a quarter turn about z, twice the size */
+            y[0] = -2 * x[1], y[1] = 2 * x[0], y[2] = 2 * x[2];
+            break;
+        default: /* REFIT_POINT */
+            memcpy(y, m->v, 3 * sizeof *y);
+            break;
+        }
+        if (c->is_float)
+            for (int k = 0; k < 3; ++k)
+                y[k] = (double)(float)y[k];
+    }
+    ttd_status st = build_or_move(c, m, pre, out, 0);
+    if (st == TTD_OK)
+        st = build_or_move(c, m, m->v, out, 1);
+    free(pre);
+    return st;
+}
+
+/* ---- self queries ---------------------------------------------------------------------------- */
+
+/* Self-contacts of mesh mm (the case's mesh m) at margin with flags under options o, sorted by
+ * (tri_a, tri_b), widened to double; and its self-collision. */
+static ttd_status self_run(const mcase *c, const ttd_mesh *mm, const ttd_options *o, double margin, unsigned flags,
+                           ttd_contact_d **set, size_t *n, ttd_collision *col)
+{
+    ttd_status st;
+    *set = NULL;
+    *n = 0;
+    if (!c->is_float) {
+        ttd_contacts_d s = {0};
+        st = ttd_mesh_self_contacts_d(o, mm, margin, flags, &s);
+        *n = s.count;
+        *set = malloc((s.count + 1) * sizeof **set);
+        if (!*set)
+            abort();
+        if (s.count)
+            memcpy(*set, s.pairs, s.count * sizeof **set);
+        ttd_contacts_free_d(&s);
+        if (st == TTD_OK)
+            st = ttd_mesh_self_collide_d(o, mm, margin, flags, col);
+    } else {
+        ttd_contacts_f s = {0};
+        st = ttd_mesh_self_contacts_f(o, mm, (float)margin, flags, &s);
+        *n = s.count;
+        *set = malloc((s.count + 1) * sizeof **set);
+        if (!*set)
+            abort();
+        for (size_t i = 0; i < s.count; ++i) {
+            ttd_contact_d *d = &(*set)[i];
+            d->tri_a = s.pairs[i].tri_a, d->tri_b = s.pairs[i].tri_b, d->distance = (double)s.pairs[i].distance;
+            for (int k = 0; k < 3; ++k)
+                d->p[k] = (double)s.pairs[i].p[k], d->q[k] = (double)s.pairs[i].q[k];
+        }
+        ttd_contacts_free_f(&s);
+        if (st == TTD_OK)
+            st = ttd_mesh_self_collide_f(o, mm, (float)margin, flags, col);
+    }
+    return st;
+}
+
+static int contact_pair_cmp(const void *x, const void *y)
+{
+    const ttd_contact_d *a = x, *b = y;
+    return a->tri_a != b->tri_a ? (a->tri_a < b->tri_a ? -1 : 1) : (a->tri_b > b->tri_b) - (a->tri_b < b->tri_b);
+}
+
+/* Self-contacts and self-collision of mesh mm (the case's m) against the brute force, with and
+ * without shared-vertex pairs, at margins 0, the nearest counting pair's distance and the
+ * median's; every row with 1 and 2 threads, each equal to the scalar row's bits (set order and
+ * witness included). Meshes of more than 200 triangles are skipped (the brute force is
+ * quadratic). */
+static void check_self(where *w, const mcase *c, const mmesh *m, const ttd_mesh *mm, const ttd_isa *isas, int nisa)
+{
+    if (m->nt > 200)
+        return;
+    for (unsigned flags = 0; flags < 2; ++flags) {
+        size_t np;
+        spair *all = brute_self(m->v, m->t, m->nt, c->is_float, (int)flags, &np);
+        double *d = malloc((np + 1) * sizeof *d);
+        if (!d)
+            abort();
+        for (size_t k = 0; k < np; ++k)
+            d[k] = all[k].d;
+        qsort(d, np, sizeof *d, cmp_double);
+        const double margins[3] = {0, np ? d[0] : 0, np ? d[np / 2] : 0};
+        free(d);
+        for (int mi = 0; mi < 3; ++mi) {
+            const double margin = prec(c, margins[mi]);
+            ttd_contact_d *ref = NULL, *got;
+            size_t nref = 0, ngot;
+            ttd_collision cref = {0}, cgot;
+            for (int ii = 0; ii < nisa; ++ii)
+                for (int threads = 1; threads <= 2; ++threads) {
+                    ttd_options o = ttd_default_options();
+                    o.isa = isas[ii];
+                    o.threads = threads;
+                    const ttd_status st = self_run(c, mm, &o, margin, flags, &got, &ngot, &cgot);
+                    if (!check(w, MFQ_SELF, st == TTD_OK, "self query failed (status %d)", st)) {
+                        free(got);
+                        continue;
+                    }
+                    if (ref == NULL) { /* the scalar row, 1 thread: against the brute force */
+                        ref = got, nref = ngot, cref = cgot;
+                        ttd_contact_d *sorted = malloc((ngot + 1) * sizeof *sorted);
+                        if (!sorted)
+                            abort();
+                        memcpy(sorted, got, ngot * sizeof *sorted);
+                        qsort(sorted, ngot, sizeof *sorted, contact_pair_cmp);
+                        size_t k = 0, want = 0, bad = 0;
+                        for (size_t e = 0; e < np; ++e) {
+                            if (!(all[e].d <= margin))
+                                continue;
+                            ++want;
+                            bad += !(k < ngot && sorted[k].tri_a == all[e].i && sorted[k].tri_b == all[e].j &&
+                                     sorted[k].distance == all[e].d && memcmp(sorted[k].p, all[e].p, sizeof all[e].p) == 0 &&
+                                     memcmp(sorted[k].q, all[e].q, sizeof all[e].q) == 0);
+                            if (k < ngot && sorted[k].tri_a == all[e].i && sorted[k].tri_b == all[e].j)
+                                ++k;
+                        }
+                        check(w, MFQ_SELF, bad == 0 && want == ngot,
+                              "self-contacts (flags %u) at margin %.17g: %zu pairs, brute force %zu, %zu differ", flags,
+                              margin, ngot, want, bad);
+                        int within = 0;
+                        for (size_t e = 0; e < np && cgot.hit; ++e)
+                            within |= all[e].i == cgot.tri_a && all[e].j == cgot.tri_b && all[e].d <= margin;
+                        check(w, MFQ_SELF, cgot.hit == (want > 0) && (!cgot.hit || within),
+                              "self-collide (flags %u) at margin %.17g: hit %u (%u, %u), brute force %zu pairs", flags,
+                              margin, cgot.hit, cgot.tri_a, cgot.tri_b, want);
+                        free(sorted);
+                        continue;
+                    }
+                    check(w, MFQ_SELF,
+                          ngot == nref && (ngot == 0 || memcmp(got, ref, ngot * sizeof *got) == 0) &&
+                              cgot.hit == cref.hit && cgot.tri_a == cref.tri_a && cgot.tri_b == cref.tri_b,
+                          "self queries (flags %u, margin %.17g) on %s with %d threads differ from the scalar row", flags,
+                          margin, ttd_isa_name(isas[ii]), threads);
+                    free(got);
+                }
+            free(ref);
+        }
+        free(all);
+    }
 }
 
 uint64_t mf_run_case(mf_run *run, mf_src *src, int family, uint64_t seed, uint64_t index)
@@ -1424,7 +1601,9 @@ uint64_t mf_run_case(mf_run *run, mf_src *src, int family, uint64_t seed, uint64
     }
 
     ttd_mesh *a = NULL, *b = NULL;
-    if (!check(&w, MFQ_POSE, build(&c, &c.a, &a) == TTD_OK && build(&c, &c.b, &b) == TTD_OK, "mesh build failed")) {
+    c.refit = rint_n(src, 2) ? 1 + rint_n(src, REFIT_KINDS - 1) : 0;
+    if (!check(&w, c.refit ? MFQ_REFIT : MFQ_POSE, build(src, &c, &c.a, &a) == TTD_OK && build(src, &c, &c.b, &b) == TTD_OK,
+               "mesh build failed")) {
         ttd_mesh_destroy(a), ttd_mesh_destroy(b), free_case(&c);
         return run->failures - failures_before;
     }
@@ -1516,6 +1695,10 @@ uint64_t mf_run_case(mf_run *run, mf_src *src, int family, uint64_t seed, uint64
                     free_outs(one, c.k);
             }
         }
+    /* each mesh against itself */
+    w.config = "self";
+    check_self(&w, &c, &c.a, a, isas, nisa);
+    check_self(&w, &c, &c.b, b, isas, nisa);
     /* k poses in one call equal k single calls (the automatic choice, 1 thread) */
     if (c.k > 1) {
         ttd_options o = ttd_default_options();

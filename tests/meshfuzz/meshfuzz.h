@@ -8,7 +8,12 @@
  * query is run on every available instruction set with 1 and 2 threads and checked against a
  * brute force over all triangle pairs (the exact method on the scalar row, b moved exactly as
  * ttd.h documents); the brute force itself is checked on a sample of pairs against the quad
- * reference (tests/reference/). docs/testing.md describes the checks. */
+ * reference (tests/reference/). Half of the cases build their meshes from other vertices (the
+ * case's permuted, jittered, rotated or collapsed to a point) and move them to the case's with
+ * ttd_mesh_set_vertices_*, so that every query also runs on refitted (or rebuilt) trees; and each
+ * mesh of up to 200 triangles is checked against itself (self-contacts at three margins with and
+ * without shared-vertex pairs, self-collision) against tests/self_brute.h on every row and
+ * thread count. docs/testing.md describes the checks. */
 #ifndef TTD_TESTS_MESHFUZZ_H
 #define TTD_TESTS_MESHFUZZ_H
 
@@ -48,6 +53,8 @@ typedef enum mf_query {
     MFQ_POSES,       ///< k poses in one call equal k single calls
     MFQ_THREADS,     ///< 2 threads equal 1 thread
     MFQ_ISA,         ///< every instruction set equals the scalar row
+    MFQ_REFIT,       ///< a mesh built from other vertices takes the case's (ttd_mesh_set_vertices_*)
+    MFQ_SELF,        ///< self-contacts and self-collision of each mesh (both flag settings)
     MFQ_COUNT
 } mf_query;
 
