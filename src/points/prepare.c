@@ -284,6 +284,10 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
  * sees them first). */
 static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
 {
+    /* the walk nodes' scale: the power of two at or above the radius (at least 2^-1000) */
+    int e;
+    (void)frexp(m->radius, &e);
+    pd->scale = ldexp(1.0, -(e < -1000 ? -1000 : e));
     const size_t nb = (pd->nnodes + PREP_NODES - 1) / PREP_NODES;
     prep_job J = {m, pd, malloc(nb * sizeof(double))};
     if (J.stretch == NULL)
@@ -338,10 +342,6 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
     pd->rnodes = ttd_big_alloc(m->nnodes * sizeof *pd->rnodes);
     if (pd->pnodes == NULL || pd->rnodes == NULL)
         goto fail;
-    /* the power of two at or above the radius (at least 2^-1000: s stays finite) */
-    int e;
-    (void)frexp(m->radius, &e);
-    pd->scale = ldexp(1.0, -(e < -1000 ? -1000 : e));
 
     for (size_t n = 0; n < m->nnodes; ++n) {
         int count;
