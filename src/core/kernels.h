@@ -132,6 +132,13 @@ typedef void (*ttd_point_block_d_fn)(const double p[3], const double *block, dou
                                      double par[3][TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_f_fn)(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
                                      float par[3][TTD_NODE_WIDTH]);
+/* point_lanes: d[i] as point_block's for point i of 8 (P[c][i]) against one prepared triangle f
+ * (stride 1), and the closest point q[c][i] and weights w[c][i] of its candidate (point_rebuild's
+ * bits): points per lane, for meshes of a few triangles. */
+typedef void (*ttd_point_lanes_d_fn)(const double *f, const double P[3][TTD_NODE_WIDTH], double d[TTD_NODE_WIDTH],
+                                     double q[3][TTD_NODE_WIDTH], double w[3][TTD_NODE_WIDTH]);
+typedef void (*ttd_point_lanes_f_fn)(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
+                                     float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH]);
 
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
@@ -142,6 +149,7 @@ typedef struct ttd_kernels_d {
     ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_d_fn node_test;       ///< never NULL
     ttd_point_block_d_fn point_block;   ///< never NULL
+    ttd_point_lanes_d_fn point_lanes;   ///< never NULL
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.
@@ -153,6 +161,7 @@ typedef struct ttd_kernels_f {
     ttd_point_node_fn point_node;         ///< never NULL; the double walk's too
     ttd_ray_node_fn ray_node;             ///< never NULL
     ttd_point_block_f_fn point_block;
+    ttd_point_lanes_f_fn point_lanes;
 } ttd_kernels_f;
 
 /// What the engine must know of a method beyond its kernels (ttd_method_traits in core/traits.c).

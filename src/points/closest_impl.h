@@ -191,11 +191,78 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
     r->flags = f[TTD_PT_INN * TTD_PT_LANES] > 0 ? 0 : TTD_POINT_DEGENERATE;
 }
 
+/* Points i0 .. i1 - 1 against a mesh of a few triangles (ttd_points_data.tiny): 8 points at a
+ * time, one per lane, against every triangle in index order, each point keeping the smallest
+ * distance within the bound (ties to the smallest triangle): the brute force itself. */
+static void closest_tiny(const closest_job *J, size_t i0, size_t i1)
+{
+    const struct ttd_mesh *m = J->m;
+    const real *tiny = (const real *)J->pd->tiny;
+    const real ub = J->upper_bound;
+    for (size_t g = i0; g < i1; g += TTD_NODE_WIDTH) {
+        const int cnt = (int)(i1 - g < TTD_NODE_WIDTH ? i1 - g : TTD_NODE_WIDTH);
+        real P[3][TTD_NODE_WIDTH], best[TTD_NODE_WIDTH], bq[3][TTD_NODE_WIDTH], bw[3][TTD_NODE_WIDTH];
+        uint32_t bt[TTD_NODE_WIDTH];
+        int finite[TTD_NODE_WIDTH];
+        for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+            const real *p = J->points + 3 * (g + (size_t)(i < cnt ? i : 0));
+            /* x - x is 0 for a finite x, NaN for an infinite or NaN one; a NaN point's lane measures
+             * the origin (its result is NaN) */
+            finite[i] = (p[0] - p[0] == 0) & (p[1] - p[1] == 0) & (p[2] - p[2] == 0);
+            for (int c = 0; c < 3; ++c)
+                P[c][i] = finite[i] ? p[c] : (real)0;
+            best[i] = (real)INFINITY;
+            bt[i] = UINT32_MAX;
+        }
+        for (uint32_t t = 0; t < (uint32_t)m->nt; ++t) {
+            real d[TTD_NODE_WIDTH], q[3][TTD_NODE_WIDTH], w[3][TTD_NODE_WIDTH];
+            J->row->point_lanes(tiny + (size_t)t * TTD_PT_COUNT, (const real(*)[TTD_NODE_WIDTH])P, d, q, w);
+            for (int i = 0; i < cnt; ++i)
+                if (d[i] < best[i] && d[i] <= ub) {
+                    best[i] = d[i];
+                    bt[i] = t;
+                    for (int c = 0; c < 3; ++c) {
+                        bq[c][i] = q[c][i];
+                        bw[c][i] = w[c][i];
+                    }
+                }
+        }
+        for (int i = 0; i < cnt; ++i) {
+            ttd_point_result *r = &J->out[g + (size_t)i];
+            if (!finite[i]) {
+                memset(r, 0, sizeof *r);
+                closest_none(r, (real)NAN, TTD_POINT_NONFINITE);
+                continue;
+            }
+            r->node_tests = 0;
+            r->triangle_tests = (uint32_t)m->nt;
+            r->reserved = 0;
+            if (bt[i] == UINT32_MAX) {
+                closest_none(r, (real)INFINITY, TTD_POINT_ABOVE_BOUND);
+                continue;
+            }
+            const real *f = tiny + (size_t)bt[i] * TTD_PT_COUNT;
+            for (int c = 0; c < 3; ++c) {
+                r->point[c] = bq[c][i];
+                r->bary[c] = bw[c][i];
+            }
+            r->distance = best[i];
+            r->triangle = bt[i];
+            r->feature = (uint8_t)((r->bary[0] > 0 ? 1u : 0u) | (r->bary[1] > 0 ? 2u : 0u) | (r->bary[2] > 0 ? 4u : 0u));
+            r->flags = f[TTD_PT_INN] > 0 ? 0 : TTD_POINT_DEGENERATE;
+        }
+    }
+}
+
 static void closest_block(void *ctx, size_t b, int worker)
 {
     (void)worker;
     const closest_job *J = ctx;
     const size_t i1 = (b + 1) * CLOSEST_BLOCK < J->n ? (b + 1) * CLOSEST_BLOCK : J->n;
+    if (J->pd->tiny != NULL) {
+        closest_tiny(J, b * CLOSEST_BLOCK, i1);
+        return;
+    }
     for (size_t i = b * CLOSEST_BLOCK; i < i1; ++i)
         closest_one(J, J->points + 3 * i, &J->out[i]);
 }

@@ -63,6 +63,10 @@ static inline float ttd_float_up(double x)
     return -ttd_float_down(-x);
 }
 
+/* Meshes of at most this many triangles measure their points 8 at a time, one per lane, against
+ * every triangle (points/closest_impl.h; docs/points.md, section 4). */
+#define TTD_POINTS_TINY 8
+
 typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
     int bytes;             /* the mesh's precision */
@@ -74,6 +78,8 @@ typedef struct ttd_points_data {
     double stretch;        /* every walk box's axes U have |U| <= stretch (1 + a few float eps) */
     ttd_rnode *rnodes;     /* nnodes ray walk nodes (points/ray.c) */
     double coord_max;      /* the largest vertex coordinate's magnitude (the ray's exact signs) */
+    void *tiny;            /* a mesh of at most TTD_POINTS_TINY triangles: each prepared (stride 1),
+                            * in index order, for the points-per-lane path (else NULL) */
     size_t nblocks;
     void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
     double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at
@@ -124,7 +130,8 @@ double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_da
  * walk, and where its bound does not settle the side, the walk tightened until it does (down to
  * every triangle exactly). *proven: 1 when the side of 1/2 is proven (always off the surface of a
  * closed mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of
- * where an open mesh's winding number is 1/2). docs/points.md, section 5. */
+ * where an open mesh's winding number is 1/2). A mesh of one triangle, whose |w| is below 1/2
+ * everywhere, gets 0 and proven at once. docs/points.md, section 5. */
 double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                const double x[3], int *proven);
 

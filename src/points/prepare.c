@@ -21,6 +21,7 @@ static void points_free(void *p)
     free(pd->pnodes);
     free(pd->rnodes);
     free(pd->blocks);
+    free(pd->tiny);
     free(pd->moments);
     free(pd);
 }
@@ -293,6 +294,19 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
     if (J.stretch == NULL)
         return -1;
     ttd_parallel_for(nb, threads, prepare_blocks, &J);
+    for (size_t t = 0; pd->tiny != NULL && t < m->nt; ++t) {
+        if (m->bytes == 8) {
+            double v[9];
+            for (int k = 0; k < 9; ++k)
+                v[k] = ((const double *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+            ttd_point_prepare_d(v, (double *)pd->tiny + t * TTD_PT_COUNT, 1);
+        } else {
+            float v[9];
+            for (int k = 0; k < 9; ++k)
+                v[k] = ((const float *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+            ttd_point_prepare_f(v, (float *)pd->tiny + t * TTD_PT_COUNT, 1);
+        }
+    }
     pd->coord_max = 0;
     for (size_t i = 0; i < 3 * m->nv; ++i) {
         const double x = fabs(m->bytes == 8 ? ((const double *)m->verts)[i] : (double)((const float *)m->verts)[i]);
@@ -363,6 +377,8 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
         y->block = mask ? (int32_t)pd->nblocks++ : -1;
     }
     pd->blocks = ttd_big_alloc(pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes);
+    if (m->nt <= TTD_POINTS_TINY && (pd->tiny = malloc(m->nt * TTD_PT_COUNT * (size_t)m->bytes)) == NULL)
+        goto fail;
     pd->moments = ttd_big_alloc(m->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
     if (pd->blocks == NULL || pd->moments == NULL)
         goto fail;

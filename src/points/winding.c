@@ -132,6 +132,10 @@ double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_dat
     *proven = 0;
     if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
         return NAN;
+    if (mesh->nt == 1) { /* a triangle's solid angle is below 2 pi: |w| < 1/2, outside (w given as 0) */
+        *proven = 1;
+        return 0;
+    }
     int c;
     if (closed && ttd_points_ray_winding(mesh, pd, ray, x, &c) == 0) {
         *proven = 1;

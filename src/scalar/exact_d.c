@@ -32,6 +32,12 @@ void ttd_point_rebuild_d(const double *f, size_t stride, int id, double u, doubl
     point_rebuild(f, stride, id, u, v, q, w);
 }
 
+void ttd_point_lanes_scalar_d(const double *f, const double P[3][TTD_NODE_WIDTH], double d[TTD_NODE_WIDTH],
+                               double q[3][TTD_NODE_WIDTH], double w[3][TTD_NODE_WIDTH])
+{
+    point_lanes_scalar(f, P, d, q, w);
+}
+
 void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                                 double par[3][TTD_NODE_WIDTH])
 {

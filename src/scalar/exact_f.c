@@ -32,6 +32,12 @@ void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v
     point_rebuild(f, stride, id, u, v, q, w);
 }
 
+void ttd_point_lanes_scalar_f(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
+                               float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH])
+{
+    point_lanes_scalar(f, P, d, q, w);
+}
+
 void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
                                 float par[3][TTD_NODE_WIDTH])
 {

@@ -232,6 +232,20 @@ static void point_block_scalar(const real P[3], const real *blk, real d[TTD_NODE
     }
 }
 
+static void point_lanes_scalar(const real *f, const real P[3][TTD_NODE_WIDTH], real d[TTD_NODE_WIDTH],
+                               real q[3][TTD_NODE_WIDTH], real w[3][TTD_NODE_WIDTH])
+{
+    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+        const real p[3] = {P[0][i], P[1][i], P[2][i]};
+        real qi[3], wi[3];
+        d[i] = point_eval(f, 1, p, qi, wi);
+        for (int c = 0; c < 3; ++c) {
+            q[c][i] = qi[c];
+            w[c][i] = wi[c];
+        }
+    }
+}
+
 #ifndef TTD_PRECISION_DOUBLE
 static unsigned point_node_scalar(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {

@@ -36,7 +36,7 @@
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
         .node_test = node_test,                                                                \
         TTD_LANE_ROW_POINT_NODE                                                                 \
-        .point_block = point_block,                                                            \
+        .point_block = point_block, .point_lanes = point_lanes,                                \
     }
 #ifdef TTD_PRECISION_DOUBLE
 #define TTD_LANE_ROW_POINT_NODE
