@@ -222,10 +222,12 @@ TTD_POINTS_CONTAINS(float, f)
     {                                                                                          \
         ttd_status st = ttd_points_query_closest_##sfx(cfg, mesh, n, in->pts, upper_bound, r);  \
         double *w = NULL;                                                                      \
-        uint8_t *proven = malloc(n ? n : 1);                                                   \
-        if (st == TTD_OK)                                                                      \
-            st = proven ? pts_winding(cfg, mesh, n, in, &w, proven) : TTD_ERR_OUT_OF_MEMORY;   \
-        for (size_t i = 0; st == TTD_OK && i < n; ++i) {                                       \
+        uint8_t *proven = NULL;                                                                \
+        /* a mesh of one triangle contains no point (its |w| is below 1/2): no winding number */ \
+        const int one = mesh->nt == 1;                                                         \
+        if (st == TTD_OK && !one)                                                              \
+            st = (proven = malloc(n ? n : 1)) ? pts_winding(cfg, mesh, n, in, &w, proven) : TTD_ERR_OUT_OF_MEMORY; \
+        for (size_t i = 0; st == TTD_OK && !one && i < n; ++i) {                               \
             const int inside = w[i] >= 0.5;                                                    \
             if (inside)                                                                        \
                 r[i].flags |= TTD_POINT_INSIDE;                                                \
@@ -234,6 +236,8 @@ TTD_POINTS_CONTAINS(float, f)
             if (distance)                                                                      \
                 distance[i] = inside ? -r[i].distance : r[i].distance;                         \
         }                                                                                      \
+        for (size_t i = 0; st == TTD_OK && one && distance && i < n; ++i)                      \
+            distance[i] = r[i].distance;                                                       \
         free(w);                                                                               \
         free(proven);                                                                          \
         return st;                                                                             \

@@ -83,11 +83,16 @@ typedef struct ttd_points_data {
     size_t nblocks;
     void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
     double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at
-                            * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j] */
+                            * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j]; made by the first winding
+                            * walk (ttd_points_moments; NULL until then, atomic): a closed mesh's
+                            * winding number is counted by a ray and seldom needs them */
 } ttd_points_data;
 
 /// The mesh's point data, made on first use with `threads` workers; NULL when out of memory.
 const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int threads);
+
+/// The point data's winding-number moments, made on first use (NULL when out of memory).
+const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd);
 
 /// Recomputes the point data of a mesh whose vertices changed in place (same triangles, same
 /// hierarchy shape, refitted boxes): a no-op when no point query has made it yet. The one function

@@ -234,9 +234,9 @@ static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
 /* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors
  * and areas add, the centre is the area-weighted mean (the plain mean without area), the second
  * moments move to it (M += (c_i - pc) n_i^T), and the radius holds every child's ball. */
-static void node_moments(const ttd_points_data *pd, size_t c, int count, double *w)
+static void node_moments(const double *moments, size_t c, int count, double *w)
 {
-    const double *x = pd->moments + c * WM_COUNT * TTD_NODE_WIDTH;
+    const double *x = moments + c * WM_COUNT * TTD_NODE_WIDTH;
 #define X(f, j) x[(size_t)(f) * TTD_NODE_WIDTH + (size_t)(j)]
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH]
     double area = 0, pc[3] = {0, 0, 0}, mean[3] = {0, 0, 0};
@@ -280,9 +280,29 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
 #undef W
 }
 
-/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the boxes and the
- * moments bottom-up (a node's children come after it in the pre-order numbering, so a reverse pass
- * sees them first). */
+/* The winding-number moments of every slot, bottom-up (a node's children come after it in the
+ * pre-order numbering, so a reverse pass sees them first). */
+static void moments_compute(const struct ttd_mesh *m, double *moments)
+{
+    for (size_t n = m->nnodes; n-- > 0;) {
+        int count;
+        const int32_t *child = node_child(m, n, &count);
+        double *w = moments + n * WM_COUNT * TTD_NODE_WIDTH;
+        memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
+        for (int j = 0; j < count; ++j) {
+            if (child[j] < 0) {
+                triangle_moments(m, (size_t)(-1 - child[j]), w + j);
+            } else {
+                int cc;
+                (void)node_child(m, (size_t)child[j], &cc);
+                node_moments(moments, (size_t)child[j], cc, w + j);
+            }
+        }
+    }
+}
+
+/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the ray boxes
+ * bottom-up, and the moments where a winding walk has made them (moments_get). */
 static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
 {
     /* the walk nodes' scale: the power of two at or above the radius (at least 2^-1000) */
@@ -319,9 +339,7 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
     for (size_t n = pd->nnodes; n-- > 0;) {
         int count;
         const int32_t *child = node_child(m, n, &count);
-        double *w = pd->moments + n * WM_COUNT * TTD_NODE_WIDTH;
         ttd_rnode *y = &pd->rnodes[n];
-        memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
         for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
             y->child[j] = j < count ? child[j] : 0;
             for (int c = 0; c < 3; ++c) {
@@ -330,18 +348,34 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
             }
         }
         for (int j = 0; j < count; ++j) {
-            if (child[j] < 0) {
-                triangle_moments(m, (size_t)(-1 - child[j]), w + j);
+            if (child[j] < 0)
                 triangle_rbox(m, pd->scale, (size_t)(-1 - child[j]), y, j);
-            } else {
-                int cc;
-                (void)node_child(m, (size_t)child[j], &cc);
-                node_moments(pd, (size_t)child[j], cc, w + j);
+            else
                 node_rbox(&pd->rnodes[child[j]], y, j);
-            }
         }
     }
+    if (pd->moments != NULL)
+        moments_compute(m, pd->moments);
     return 0;
+}
+
+const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd)
+{
+    /* a cache of what the mesh determines, as the point data itself */
+    ttd_points_data *p = (ttd_points_data *)(uintptr_t)pd;
+    double *w = __atomic_load_n(&p->moments, __ATOMIC_ACQUIRE);
+    if (w != NULL)
+        return w;
+    w = ttd_big_alloc(mesh->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
+    if (w == NULL)
+        return NULL;
+    moments_compute(mesh, w);
+    double *expected = NULL;
+    if (!__atomic_compare_exchange_n(&p->moments, &expected, w, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        free(w); /* another thread made them first: the same numbers */
+        return expected;
+    }
+    return w;
 }
 
 static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
@@ -376,14 +410,15 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
         y->ntri = (uint32_t)__builtin_popcount(mask);
         y->block = mask ? (int32_t)pd->nblocks++ : -1;
     }
+
     pd->blocks = ttd_big_alloc(pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes);
     if (m->nt <= TTD_POINTS_TINY && (pd->tiny = malloc(m->nt * TTD_PT_COUNT * (size_t)m->bytes)) == NULL)
         goto fail;
-    pd->moments = ttd_big_alloc(m->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
-    if (pd->blocks == NULL || pd->moments == NULL)
+    if (pd->blocks == NULL)
         goto fail;
     if (points_compute(m, pd, threads) != 0)
         goto fail;
+    (void)ttd_mesh_closed(m); /* the winding number's choice (points/ray.c), kept in the mesh */
     return pd;
 fail:
     points_free(pd);

@@ -36,6 +36,11 @@
 static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double beta, double tau,
                       double *err)
 {
+    const double *moments = ttd_points_moments(m, pd);
+    if (moments == NULL) { /* out of memory: the linear sum, its rounding alone */
+        *err = 64 * DBL_EPSILON * (double)m->nt;
+        return ttd_mesh_winding(m, x);
+    }
     const double q[3] = {x[0] - m->origin[0], x[1] - m->origin[1], x[2] - m->origin[2]};
     double sum = 0, mag = 0, bound = 0;
     int32_t stack[WN_STACK];
@@ -52,7 +57,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
             child = ((const ttd_node_f *)m->nodes)[n].child;
             count = ((const ttd_node_f *)m->nodes)[n].count;
         }
-        const double *w = pd->moments + (size_t)n * WM_COUNT * TTD_NODE_WIDTH;
+        const double *w = moments + (size_t)n * WM_COUNT * TTD_NODE_WIDTH;
         for (int j = 0; j < count; ++j) {
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
             const double y[3] = {W(WM_C) - q[0], W(WM_C + 1) - q[1], W(WM_C + 2) - q[2]};
