@@ -246,6 +246,9 @@ TTD_POINTS_CONTAINS(float, f)
 TTD_SIGNED_BODY(double, d)
 TTD_SIGNED_BODY(float, f)
 
+/* Points per chunk of a signed distance without the caller's results. */
+#define PTS_CHUNK 8192
+
 #define TTD_POINTS_SIGNED(real, sfx)                                                               \
     ttd_status ttd_points_signed_distance_##sfx(const ttd_options *opt, const ttd_mesh *mesh, size_t n, \
                                                 const real *points, const real *pose, real upper_bound, \
@@ -257,8 +260,17 @@ TTD_SIGNED_BODY(float, f)
                                   sizeof(ttd_point_result_##sfx), upper_bound >= 0, &cfg, &in); \
         if (st != TTD_OK)                                                                      \
             return st;                                                                         \
-        ttd_point_result_##sfx *r = results ? results : malloc(n * sizeof *r);                 \
-        st = r ? signed_##sfx(&cfg, mesh, n, &in, upper_bound, distance, r) : TTD_ERR_OUT_OF_MEMORY; \
+        /* without the caller's results, a scratch of PTS_CHUNK results, reused chunk by chunk (it   \
+         * stays in the cache, and a large one would cost its page faults on every call) */      \
+        const size_t chunk = results ? (n ? n : 1) : (n < PTS_CHUNK ? (n ? n : 1) : PTS_CHUNK);  \
+        ttd_point_result_##sfx *r = results ? results : malloc(chunk * sizeof *r);             \
+        st = r ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;                                               \
+        for (size_t i0 = 0; st == TTD_OK && i0 < n; i0 += chunk) {                             \
+            const size_t k = n - i0 < chunk ? n - i0 : chunk;                                  \
+            const pts_in part = {(const real *)in.pts + 3 * i0, NULL, 0};                      \
+            st = signed_##sfx(&cfg, mesh, k, &part, upper_bound, distance ? distance + i0 : NULL, \
+                              results ? results + i0 : r);                                     \
+        }                                                                                      \
         for (size_t i = 0; st == TTD_OK && results && pose != NULL && i < n; ++i)              \
             PTS_BACK(real, pose, results[i].point);                                            \
         if (r != results)                                                                      \
