@@ -15,7 +15,8 @@
  *
  * Lines come out sorted by (i, j), then by the triangles (ia, ib): the library's order, sorted
  * again here so that the output is a documented function of the input (a manifold's points are
- * kept in the library, deepest first and then spread, and printed in triangle order). */
+ * kept in the library, deepest first and then spread, and printed in triangle order, then by
+ * point: a triangle pair may give several). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -62,6 +63,10 @@ static const char ttd_scene_usage_text[] =
     "        (default: group 1, mask 0xffffffff)\n"
     "    exclude BODY BODY\n"
     "        the two bodies are not a pair\n"
+    "    solid BODY\n"
+    "        the body is a solid (its mesh must be closed): a pair of solids collides when one lies\n"
+    "        inside the other (distance 0), and its manifold has points of each inside the other\n"
+    "        at negative d, depth M - d past M (docs/scenes.md, section 5b)\n"
     "    '#' starts a comment (a whole line, or after a statement); blank lines are ignored.\n"
     "  Bodies are numbered 0, 1, 2, ... in file order; BODY is a body's name or number, from a body\n"
     "  line above. A mesh may serve any number of bodies. Names and FILE are one word each (no\n"
@@ -81,13 +86,16 @@ static const char ttd_scene_usage_outputs[] =
     "                                            is within M (or the scene has fewer than two bodies)\n"
     "  contacts   i j ia ib d px py pz qx qy qz  every triangle pair within M\n"
     "  manifold   i j px py pz nx ny nz d depth  per body pair within M, at most K contact points:\n"
-    "                                            the midpoint of a triangle pair's closest points, the\n"
-    "                                            unit normal from body i towards body j, the pair's\n"
-    "                                            distance d and depth M - d; no two points within 1e-3\n"
+    "                                            the midpoint of a point of each body (a triangle pair's\n"
+    "                                            closest points, or a corner where faces lie on faces:\n"
+    "                                            a vertex within M of the other face, a crossing of\n"
+    "                                            edges), the\n"
+    "                                            unit normal from body i towards body j, the two\n"
+    "                                            points' distance d and depth M - d; no two within 1e-3\n"
     "                                            of the smaller body's radius; the K kept are the\n"
     "                                            deepest, then spread by area; normals from the\n"
     "                                            bodies' faces and real edges (docs/scenes-cli.md;\n"
-    "                                            printed in triangle order)\n"
+    "                                            printed in triangle order, then by point)\n"
     "  i and j are body numbers; with --names, a named body's name.\n";
 
 static const char ttd_scene_usage_options[] =
@@ -115,6 +123,7 @@ static const char ttd_scene_usage_options[] =
     "                    to the exact method, results) and its time (wall and process CPU, ms)\n"
     "  --repeat N        run each query N times (the answer printed once), for profiling one query;\n"
     "                    with --stats the times are the fastest and the median of the N\n"
+    "  --solid           every body a solid, as a 'solid BODY' line for each would make it\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
     "                    per file by default)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
@@ -153,7 +162,7 @@ typedef struct ttd_scene_args {
     const char *margin_s;
     double margin; /* float-rounded with --precision float; distance: +inf without --margin */
     size_t max_points;
-    int count, orthonormalize, strict, names, stats;
+    int count, orthonormalize, strict, names, stats, solid;
     long repeat;   /* --repeat: runs of each query (the last one printed) */
 } ttd_scene_args;
 
@@ -193,10 +202,12 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             continue;
         }
         if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0 ||
-            strcmp(arg, "--stats") == 0) {
-            *(arg[2] == 'o'   ? &a->orthonormalize
-              : arg[3] == 't' ? (arg[4] == 'r' ? &a->strict : &a->stats)
-                              : &a->names) = 1;
+            strcmp(arg, "--stats") == 0 || strcmp(arg, "--solid") == 0) {
+            *(strcmp(arg, "--orthonormalize") == 0 ? &a->orthonormalize
+              : strcmp(arg, "--strict") == 0       ? &a->strict
+              : strcmp(arg, "--names") == 0        ? &a->names
+              : strcmp(arg, "--stats") == 0        ? &a->stats
+                                                   : &a->solid) = 1;
             continue;
         }
         static const char *const valued[] = {"--margin", "--max-points", "--motion", "--precision",
@@ -592,24 +603,27 @@ static int ttd_scene_u32(const char *word, size_t len, uint32_t *out)
     return 0;
 }
 
-/* `filter BODY GROUP MASK` (exclude = 0) or `exclude BODY BODY` (exclude = 1) at line `line`:
- * the library's ttd_scene_set_filter or ttd_scene_exclude_pair on the bodies named. 0, or -1
- * when out of memory. */
-static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line, int exclude, const char *p,
+/* `filter BODY GROUP MASK` (rule 0), `exclude BODY BODY` (1) or `solid BODY` (2) at line
+ * `line`: the library's ttd_scene_set_filter, ttd_scene_exclude_pair or ttd_scene_set_solid on
+ * the bodies named. 0, or -1 when out of memory. */
+static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line, int rule, const char *p,
                                     const char *end)
 {
-    const char *what = exclude ? "exclude" : "filter";
+    static const char *const whats[3] = {"filter", "exclude", "solid"};
+    static const char *const forms[3] = {"filter BODY GROUP MASK", "exclude BODY BODY", "solid BODY"};
+    static const int wants[3] = {3, 2, 1};
+    const char *what = whats[rule];
+    const int exclude = rule == 1;
     const char *w[4];
     size_t len[4] = {0};
     int n = 0;
     while (n < 4 && (w[n] = ttd_scene_word(&p, end, &len[n])) != NULL)
         ++n;
-    const int want = exclude ? 2 : 3;
+    const int want = wants[rule];
     if (n != want) {
-        static const char *const missing[2][3] = {{"no BODY", "no GROUP", "no MASK"}, {"no BODY", "one BODY", ""}};
-        ttd_scene_bad_line(st, st->fname, line, "expected '%s', found %s",
-                           exclude ? "exclude BODY BODY" : "filter BODY GROUP MASK",
-                           n > want ? "more words" : missing[exclude][n]);
+        static const char *const missing[3][3] = {{"no BODY", "no GROUP", "no MASK"}, {"no BODY", "one BODY", ""}, {"no BODY", "", ""}};
+        ttd_scene_bad_line(st, st->fname, line, "expected '%s', found %s", forms[rule],
+                           n > want ? "more words" : missing[rule][n]);
         return 0;
     }
     const long b0 = ttd_scene_body_ref(st, line, what, w[0], len[0]);
@@ -627,6 +641,10 @@ static int ttd_scene_pair_rule_line(ttd_scene_state *st, unsigned long long line
         const uint32_t i = st->lines[b0].id, j = st->lines[b1].id;
         if (st->bad == 0 && i != UINT32_MAX && j != UINT32_MAX)
             s = ttd_scene_exclude_pair(st->scene, i, j, 1);
+    } else if (rule == 2) {
+        const uint32_t i = st->lines[b0].id;
+        if (st->bad == 0 && i != UINT32_MAX)
+            s = ttd_scene_set_solid(st->scene, i, 1);
     } else {
         uint32_t group, mask;
         for (int k = 1; k < 3; ++k)
@@ -687,13 +705,14 @@ static int ttd_scene_read(ttd_scene_state *st)
                 mem = ttd_scene_mesh_line(st, r->line_no, p, end);
             else if (ttd_scene_is(key, klen, "body"))
                 mem = ttd_scene_body_line(st, r->line_no, p, end);
-            else if (ttd_scene_is(key, klen, "filter") || ttd_scene_is(key, klen, "exclude"))
-                mem = ttd_scene_pair_rule_line(st, r->line_no, key[0] == 'e', p, end);
+            else if (ttd_scene_is(key, klen, "filter") || ttd_scene_is(key, klen, "exclude") ||
+                     ttd_scene_is(key, klen, "solid"))
+                mem = ttd_scene_pair_rule_line(st, r->line_no, key[0] == 'f' ? 0 : key[0] == 'e' ? 1 : 2, p, end);
             else {
                 char word[64];
                 snprintf(word, sizeof word, "%.*s%s", klen > 40 ? 40 : (int)klen, key, klen > 40 ? "..." : "");
-                ttd_scene_bad_line(st, st->fname, r->line_no, "unknown statement '%s' (mesh, body, filter or exclude)",
-                                   word);
+                ttd_scene_bad_line(st, st->fname, r->line_no,
+                                   "unknown statement '%s' (mesh, body, filter, exclude or solid)", word);
             }
             if (mem != 0) {
                 ttd_cli_error("%s:%llu: out of memory", st->fname, r->line_no);
@@ -905,6 +924,14 @@ static void ttd_scene_put_body(FILE *out, char *const *names, uint32_t id, const
         fprintf(out, "%s%lu", sep, (unsigned long)id);
 }
 
+/* Triangles ia and ib after a space each: -1 for UINT32_MAX (no triangle: the outer body of two
+ * nested solids). */
+static void ttd_scene_put_tris(FILE *out, uint32_t ia, uint32_t ib)
+{
+    fprintf(out, ia == UINT32_MAX ? " -1" : " %lu", (unsigned long)ia);
+    fprintf(out, ib == UINT32_MAX ? " -1" : " %lu", (unsigned long)ib);
+}
+
 /* Items of one query, widened to double, for sorting and printing. */
 typedef struct ttd_scene_item {
     uint32_t i, j, ti, tj;
@@ -920,7 +947,12 @@ static int ttd_scene_item_cmp(const void *x, const void *y)
         return u->j < v->j ? -1 : 1;
     if (u->ti != v->ti)
         return u->ti < v->ti ? -1 : 1;
-    return (u->tj > v->tj) - (u->tj < v->tj);
+    if (u->tj != v->tj)
+        return u->tj < v->tj ? -1 : 1;
+    for (int r = 0; r < 3; ++r) /* a manifold's corners: several points of one triangle pair */
+        if (u->p[r] != v->p[r])
+            return u->p[r] < v->p[r] ? -1 : 1;
+    return (u->d > v->d) - (u->d < v->d);
 }
 
 /* What the query loop reuses from step to step. */
@@ -1024,7 +1056,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
         fprintf(out, f ? "%.9g" : "%.17g", d);
         ttd_scene_put_body(out, names, f ? cf.i : cd.i, " ");
         ttd_scene_put_body(out, names, j, " ");
-        fprintf(out, " %lu %lu", (unsigned long)(f ? cf.tri_i : cd.tri_i), (unsigned long)(f ? cf.tri_j : cd.tri_j));
+        ttd_scene_put_tris(out, f ? cf.tri_i : cd.tri_i, f ? cf.tri_j : cd.tri_j);
         ttd_scene_put_reals(out, f, pq + 1, 6);
         fputc('\n', out);
         return 0;
@@ -1096,7 +1128,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
             ttd_scene_put_reals(out, f, &it->d, 1);
             ttd_scene_put_reals(out, f, &it->depth, 1);
         } else {
-            fprintf(out, " %lu %lu", (unsigned long)it->ti, (unsigned long)it->tj);
+            ttd_scene_put_tris(out, it->ti, it->tj);
             if (a->cmd == TTD_SCENE_CONTACTS) {
                 ttd_scene_put_reals(out, f, &it->d, 1);
                 ttd_scene_put_reals(out, f, it->p, 3);
@@ -1162,6 +1194,14 @@ int ttd_cli_scene(int argc, char **argv)
         return TTD_EXIT_INPUT;
     }
     rc = ttd_scene_read(&st);
+    for (size_t k = 0; rc == 0 && a.solid && k < st.nlines; ++k) { /* --solid: every body a solid */
+        s = ttd_scene_set_solid(st.scene, st.lines[k].id, 1);
+        if (s != TTD_OK) {
+            ttd_cli_error("%s: --solid: body %zu%s%s: %s", st.fname, k, st.lines[k].name ? " " : "",
+                          st.lines[k].name ? st.lines[k].name : "", ttd_status_string(s));
+            rc = TTD_EXIT_INPUT;
+        }
+    }
     if (rc == 0 && a.motion_path != NULL)
         rc = ttd_scene_read_motion(&st, &mo);
     char *const *names = a.names ? st.id_name : NULL;

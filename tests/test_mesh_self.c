@@ -214,6 +214,42 @@ static void sliver_soup(ttd_gen_mesh *out)
     }
 }
 
+/* Two pleated fans, one above the other: 40 triangles each around a centre vertex, their rims
+ * compressed into a third of a turn and pleated up and down, so that triangles sharing only the
+ * centre come within a margin of each other (without TTD_SELF_SHARED_VERTEX nothing of one fan
+ * counts: a leaf of it skips every node test, mesh/query_impl.h self_leaf), and the second fan,
+ * 0.03 above with its own centre, near the first (pairs that share nothing). */
+static void pleated_fans(ttd_gen_mesh *out)
+{
+    const int n = 40, fans = 2;
+    out->nv = (size_t)fans * (size_t)(n + 2);
+    out->nt = (size_t)fans * (size_t)n;
+    out->verts = malloc(3 * out->nv * sizeof *out->verts);
+    out->tris = malloc(3 * out->nt * sizeof *out->tris);
+    if (!out->verts || !out->tris)
+        abort();
+    for (int f = 0; f < fans; ++f) {
+        double *c = out->verts + 3 * (size_t)f * (size_t)(n + 2);
+        c[0] = 0.01 * f;
+        c[1] = 0;
+        c[2] = 0.03 * f;
+        for (int k = 0; k <= n; ++k) {
+            const double a = 2.0944 * k / n; /* a third of a turn */
+            double *v = c + 3 * (size_t)(k + 1);
+            v[0] = cos(a) + c[0];
+            v[1] = sin(a);
+            v[2] = (k % 2 ? 0.08 : -0.08) + c[2];
+        }
+        for (int k = 0; k < n; ++k) {
+            uint32_t *t = out->tris + 3 * ((size_t)f * (size_t)n + (size_t)k);
+            const uint32_t base = (uint32_t)(f * (n + 2));
+            t[0] = base;
+            t[1] = base + (uint32_t)k + 1;
+            t[2] = base + (uint32_t)k + 2;
+        }
+    }
+}
+
 /* ---- tests ------------------------------------------------------------------------------------ */
 
 static int self_contacts_match_brute_force(void)
@@ -222,7 +258,7 @@ static int self_contacts_match_brute_force(void)
         const char *name;
         ttd_gen_mesh g;
         double wide;
-    } cases[16];
+    } cases[20];
     int n = 0;
     const double gaps[3] = {1e-2, 1e-9, 0};
     for (int gi = 0; gi < 3; ++gi)
@@ -262,6 +298,9 @@ static int self_contacts_match_brute_force(void)
     cases[n].name = "sliver soup";
     sliver_soup(&cases[n].g);
     cases[n++].wide = 0.02;
+    cases[n].name = "pleated fans";
+    pleated_fans(&cases[n].g);
+    cases[n++].wide = 0.05;
     cases[n].name = "folded sheet at scale 1e-6, offset 1";
     if (ttd_gen_folded_sheet(8, 3, 0.02, 1.0, &cases[n].g))
         abort();

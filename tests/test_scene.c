@@ -24,6 +24,7 @@
 
 #include "meshes.h"
 #include "pairs.h"
+#include "scene_corners_ref.h"
 #include "test_macros.h"
 #include <ttd/ttd.h>
 
@@ -382,6 +383,8 @@ static double dist3(const double *a, const double *b)
     return hypot(hypot(a[0] - b[0], a[1] - b[1]), a[2] - b[2]);
 }
 
+static size_t npoints_corner; /* the corners the brute force found (scene_corners_ref.h), for the summary */
+
 static int check_against_brute(const world *W, const brute *B, const answers *A)
 {
     const double m = round_to(W->bytes, MARGIN);
@@ -462,40 +465,89 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                        A->nearest[id].d, partner, nb);
         }
     }
-    /* manifolds (docs/scenes.md, section 5): the contacts merged in depth order (a contact within
-     * 1e-3 of the smaller radius of a point kept before it goes), min(K, those kept) points of
-     * them, the first within the seed's window of the smallest distance, the second the farthest
-     * from it, the third the largest triangle with those two; no two points within the
-     * tolerance; unit normals (their rule: tests/test_scene_contacts.c) */
+    /* manifolds (docs/scenes.md, section 5): the contacts and the corners they add
+     * (scene_corners_ref.h) merged in depth order (a point within 1e-3 of the smaller radius of a
+     * point kept before it goes), min(K, those kept) points of them, the first within the seed's
+     * window of the smallest distance, the second the farthest from it, the third the largest
+     * triangle with those two; no two points within the tolerance; unit normals (their rule:
+     * tests/test_scene_contacts.c) */
     size_t at = 0;
     const double eps = W->bytes == 8 ? DBL_EPSILON : (double)FLT_EPSILON;
     const double window = W->bytes == 8 ? 0x1p-30 : 0x1p-16;
+    corner_mesh shape[5];
+    for (int k = 0; k < 5; ++k)
+        ENSURE(corner_mesh_make(W->gm[k].verts, W->gm[k].tris, W->gm[k].nt, &shape[k]));
     for (size_t k = 0; k < B->n; ++k) {
         const pairinfo *P = &B->pairs[k];
-        const double ri = mesh_radius(&W->gm[W->mesh_of[P->i]]), rj = mesh_radius(&W->gm[W->mesh_of[P->j]]);
+        const ttd_gen_mesh *gi = &W->gm[W->mesh_of[P->i]], *gj = &W->gm[W->mesh_of[P->j]];
+        const double ri = mesh_radius(gi), rj = mesh_radius(gj);
         const double tol = 1e-3 * (ri < rj ? ri : rj), big = ri > rj ? ri : rj;
-        /* the contacts in depth order, then merged */
+        /* the contacts and their corners */
         size_t nc = 0;
+        unsigned char *in = malloc(P->nt_i * P->nt_j);
+        ENSURE(in != NULL);
         for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
-            nc += P->d[x] <= m;
-        if (nc == 0)
+            nc += (in[x] = P->d[x] <= m);
+        if (nc == 0) {
+            free(in);
             continue;
-        size_t *ord = malloc(nc * sizeof *ord), *kept = malloc(nc * sizeof *kept), nk = 0;
-        double (*mid)[3] = malloc(nc * sizeof *mid);
-        ENSURE(ord && kept && mid);
+        }
+        double *wi = malloc(9 * P->nt_i * sizeof *wi), *wj = malloc(9 * P->nt_j * sizeof *wj);
+        ENSURE(wi && wj);
+        for (size_t t = 0; t < P->nt_i; ++t)
+            for (int v = 0; v < 3; ++v)
+                world_vertex(W, P->i, gi->tris[3 * t + (size_t)v], wi + 9 * t + 3 * v);
+        for (size_t t = 0; t < P->nt_j; ++t)
+            for (int v = 0; v < 3; ++v)
+                world_vertex(W, P->j, gj->tris[3 * t + (size_t)v], wj + 9 * t + 3 * v);
+        corner_rec *corner;
+        const size_t ncorner = corner_refs(&shape[W->mesh_of[P->i]], wi, &shape[W->mesh_of[P->j]], wj, in, m, W->bytes, &corner);
+        ENSURE(ncorner != SIZE_MAX);
+        free(in);
+        free(wi);
+        free(wj);
+        corner_rec *rec = malloc((nc + ncorner) * sizeof *rec);
+        size_t *ord = malloc((nc + ncorner) * sizeof *ord), *kept = malloc((nc + ncorner) * sizeof *kept), nk = 0;
+        double (*mid)[3] = malloc((nc + ncorner) * sizeof *mid), (*exact_mid)[3] = malloc((nc + ncorner) * sizeof *exact_mid);
+        ENSURE(rec && ord && kept && mid && exact_mid);
         nc = 0;
         for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
-            if (P->d[x] <= m)
-                ord[nc++] = x;
-        for (size_t a = 1; a < nc; ++a) /* insertion sort by (distance, triangles): stable on x */
-            for (size_t b = a; b > 0 && P->d[ord[b]] < P->d[ord[b - 1]]; --b) {
+            if (P->d[x] <= m) {
+                corner_rec r = {(uint32_t)(x / P->nt_j), (uint32_t)(x % P->nt_j), P->d[x], {0}, {0}};
+                memcpy(r.p, P->p + 3 * x, sizeof r.p);
+                memcpy(r.q, P->q + 3 * x, sizeof r.q);
+                rec[nc++] = r;
+            }
+        if (ncorner > 0)
+            memcpy(rec + nc, corner, ncorner * sizeof *rec);
+        nc += ncorner;
+        free(corner);
+        for (size_t a = 0; a < nc; ++a) {
+            ord[a] = a;
+            for (int r = 0; r < 3; ++r)
+                exact_mid[a][r] = 0.5 * rec[a].p[r] + 0.5 * rec[a].q[r];
+        }
+        /* depth order: distance, triangles, midpoint (insertion sort) */
+        for (size_t a = 1; a < nc; ++a)
+            for (size_t b = a; b > 0; --b) {
+                const corner_rec *x = &rec[ord[b]], *y = &rec[ord[b - 1]];
+                int before = x->d != y->d ? x->d < y->d : x->ti != y->ti ? x->ti < y->ti : x->tj != y->tj ? x->tj < y->tj : 0;
+                if (x->d == y->d && x->ti == y->ti && x->tj == y->tj)
+                    for (int r = 2; r >= 0; --r)
+                        if (exact_mid[ord[b]][r] != exact_mid[ord[b - 1]][r])
+                            before = exact_mid[ord[b]][r] < exact_mid[ord[b - 1]][r];
+                if (!before)
+                    break;
                 const size_t t = ord[b];
                 ord[b] = ord[b - 1];
                 ord[b - 1] = t;
             }
         for (size_t a = 0; a < nc; ++a)
-            for (int r = 0; r < 3; ++r)
-                mid[a][r] = round_to(W->bytes, 0.5 * P->p[3 * ord[a] + r] + 0.5 * P->q[3 * ord[a] + r]);
+            for (int r = 0; r < 3; ++r) {
+                volatile double x = exact_mid[ord[a]][r]; /* gcc 12 -O3 vectorised this loop wrongly: the
+                                                           * last point kept its double value */
+                mid[a][r] = round_to(W->bytes, x);
+            }
         for (size_t a = 0; a < nc; ++a) {
             int near = 0;
             for (size_t b = 0; b < nk && !near; ++b)
@@ -506,28 +558,31 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
         const size_t want = nk < MAX_POINTS ? nk : MAX_POINTS;
         /* the deepest level the spread works in first: within a quarter of the margin left below
          * the smallest distance (or the seed's window) */
-        const double d0 = P->d[ord[kept[0]]];
+        const double d0 = rec[ord[kept[0]]].d;
         size_t nl = 0;
-        while (nl < nk && (P->d[ord[kept[nl]]] - d0 <= 0.25 * (m - d0) || P->d[ord[kept[nl]]] - d0 <= window * big))
+        while (nl < nk && (rec[ord[kept[nl]]].d - d0 <= 0.25 * (m - d0) || rec[ord[kept[nl]]].d - d0 <= window * big))
             ++nl;
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
             ENSURE(pt->i == P->i && pt->j == P->j && pt->ti < P->nt_i && pt->tj < P->nt_j);
-            const size_t x = pt->ti * P->nt_j + pt->tj;
-            ENSURE(P->d[x] <= m && pt->d == P->d[x] && pt->depth == round_to(W->bytes, m - pt->d));
-            for (int r = 0; r < 3; ++r)
-                ENSURE(pt->x[r] == round_to(W->bytes, 0.5 * P->p[3 * x + r] + 0.5 * P->q[3 * x + r]));
+            /* one of those kept by the merge: its triangles, point, distance and depth */
+            size_t me = SIZE_MAX;
+            for (size_t b = 0; b < nk && me == SIZE_MAX; ++b) {
+                const corner_rec *x = &rec[ord[kept[b]]];
+                me = x->ti == pt->ti && x->tj == pt->tj && x->d == pt->d && mid[kept[b]][0] == pt->x[0] &&
+                             mid[kept[b]][1] == pt->x[1] && mid[kept[b]][2] == pt->x[2]
+                         ? b
+                         : me;
+            }
+            ENSURE_MSG(me != SIZE_MAX, "manifold (%u, %u): triangles (%u, %u) at (%.17g, %.17g, %.17g) d %.17g is none "
+                       "of the contacts and corners kept by the merge", P->i, P->j, pt->ti, pt->tj, pt->x[0], pt->x[1],
+                       pt->x[2], pt->d);
+            ENSURE(pt->d <= m && pt->depth == round_to(W->bytes, m - pt->d));
             const double nn = pt->n[0] * pt->n[0] + pt->n[1] * pt->n[1] + pt->n[2] * pt->n[2];
             ENSURE_NEAR(nn, 1.0, 16 * eps);
-            /* one of those kept by the merge */
-            size_t me = SIZE_MAX;
-            for (size_t b = 0; b < nk && me == SIZE_MAX; ++b)
-                me = ord[kept[b]] == x ? b : me;
-            ENSURE_MSG(me != SIZE_MAX, "manifold (%u, %u): triangles (%u, %u) were merged into a deeper point", P->i,
-                       P->j, pt->ti, pt->tj);
             if (n == 0)
-                ENSURE_MSG(pt->d - P->d[ord[0]] <= window * big, "manifold (%u, %u): first point not the deepest", P->i,
+                ENSURE_MSG(pt->d - rec[ord[0]].d <= window * big, "manifold (%u, %u): first point not the deepest", P->i,
                            P->j);
             for (size_t b = at - n; b < at; ++b)
                 ENSURE_MSG(dist3(pt->x, A->points[b].x) > tol * (1 - 1e-9), "manifold (%u, %u): points %zu and %zu within %g",
@@ -561,10 +616,15 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                                P->i, P->j, n, mine, other);
             }
         }
+        npoints_corner += ncorner;
+        free(rec);
         free(ord);
         free(kept);
         free(mid);
+        free(exact_mid);
     }
+    for (int k = 0; k < 5; ++k)
+        corner_mesh_free(&shape[k]);
     ENSURE_MSG(at == A->npoints, "manifold: %zu points, expected %zu", A->npoints, at);
     return 0;
 }
@@ -577,6 +637,7 @@ static int check_world(const world *W, const char *what, size_t *ncontacts)
     ENSURE(brute_force(W, &B) == 0);
     answers ref;
     ENSURE(ask(W, TTD_ISA_SCALAR, 1, &ref) == 0);
+    npoints_corner = 0;
     const int bad = check_against_brute(W, &B, &ref);
     brute_free(&B);
     ENSURE_MSG(!bad, "%s (%s): scalar row against brute force", what, W->bytes == 8 ? "double" : "float");
@@ -597,8 +658,9 @@ static int check_world(const world *W, const char *what, size_t *ncontacts)
         }
     }
     *ncontacts = ref.ncontacts;
-    printf("  %s, %s: %zu bodies, %zu colliding pairs, %zu contacts, %zu manifold points, closest %.3g\n", what,
-           W->bytes == 8 ? "double" : "float", W->nbody, ref.nhits, ref.ncontacts, ref.npoints, ref.closest.d);
+    printf("  %s, %s: %zu bodies, %zu colliding pairs, %zu contacts (and %zu corners), %zu manifold points, closest %.3g\n",
+           what, W->bytes == 8 ? "double" : "float", W->nbody, ref.nhits, ref.ncontacts, npoints_corner, ref.npoints,
+           ref.closest.d);
     answers_free(&ref);
     return 0;
 }
@@ -788,6 +850,50 @@ static int scenes_match_brute_force(void)
             ENSURE(ttd_scene_set_pose_f(W.scene, 0, pf) == TTD_OK);
         }
         ENSURE(check_world(&W, "one body onto another", &n3) == 0);
+        free_world(&W);
+    }
+    return 0;
+}
+
+/* Cubes stacked face on face, tilted, turned, offset, flush and at a gap within the margin (the
+ * pile's other bodies moved away): the manifolds, with their corners of flat contact, against the
+ * brute force in both precisions, every instruction set and thread count. */
+static int stacked_cubes_match_brute_force(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        ENSURE(make_world(&W, bytes, 12, 1.25, 0) == 0);
+        double lo[3], hi[3];
+        ENSURE(ttd_gen_mesh_bounds(&W.gm[1], lo, hi) == 0);
+        const double side = hi[2] - lo[2];
+        /* cubes (mesh 1) are bodies 1, 5 and 9: yaw about z after a tilt about x, centre */
+        static const double place[3][4] = {{0, 0, 0, 0}, {0.4, 0.01, 0.05, 0.004}, {-0.3, 0, -0.04, 0}};
+        double z = 0;
+        for (size_t id = 0; id < W.nbody; ++id) {
+            double *P = W.pose[id];
+            if (W.mesh_of[id] != 1) {
+                const double far[12] = {1, 0, 0, 10 + 3 * (double)id, 0, 1, 0, 0, 0, 0, 1, 0};
+                memcpy(P, far, sizeof far);
+            } else {
+                const double *q = place[id / 4];
+                const double cy = cos(q[0]), sy = sin(q[0]), ct = cos(q[1]), st = sin(q[1]);
+                const double R[9] = {cy, -sy * ct, sy * st, sy, cy * ct, -cy * st, 0, st, ct};
+                const double c[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+                const double at[3] = {q[2], -q[2], z};
+                for (int r = 0; r < 3; ++r) {
+                    for (int k = 0; k < 3; ++k)
+                        P[4 * r + k] = R[3 * r + k];
+                    P[4 * r + 3] = at[r] - (R[3 * r] * c[0] + R[3 * r + 1] * c[1] + R[3 * r + 2] * c[2]);
+                }
+                z += side + q[3] + 0.5 * side * fabs(q[1]) + 0.004; /* the next one's rest, within the margin */
+            }
+            for (int k = 0; k < 12; ++k)
+                P[k] = round_to(bytes, P[k]);
+        }
+        ENSURE(set_all_poses(&W) == 0);
+        size_t n;
+        ENSURE(check_world(&W, "stacked cubes", &n) == 0);
+        ENSURE(n > 0 && npoints_corner > 0);
         free_world(&W);
     }
     return 0;
@@ -1069,6 +1175,27 @@ static int bad_input(void)
     ENSURE(ttd_scene_add_d(s, mf, id, &b) == TTD_ERR_PRECISION_MISMATCH);
     const float idf[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     ENSURE(ttd_scene_add_f(s, mf, idf, &b) == TTD_ERR_PRECISION_MISMATCH);
+    /* solids: a closed mesh only, a present body only; a refused call leaves the body as it was */
+    {
+        ttd_gen_mesh tri;
+        ENSURE(ttd_gen_mesh_triangle(&tri) == 0);
+        ttd_mesh *open_m;
+        ENSURE(ttd_mesh_create_d(NULL, tri.verts, tri.nv, tri.tris, tri.nt, &open_m) == TTD_OK);
+        uint32_t bc, bo;
+        ttd_scene *ss;
+        ENSURE(ttd_scene_create_d(&ss) == TTD_OK);
+        ENSURE(ttd_scene_add_d(ss, m, id, &bc) == TTD_OK && ttd_scene_add_d(ss, open_m, id, &bo) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(NULL, bc, 1) == TTD_ERR_NULL_POINTER);
+        ENSURE(ttd_scene_set_solid(ss, bo + 1, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+        ENSURE(ttd_scene_set_solid(ss, bo, 1) == TTD_ERR_MESH_NOT_CLOSED);
+        ENSURE(ttd_scene_set_solid(ss, bo, 0) == TTD_OK); /* a surface may always be a surface */
+        ENSURE(ttd_scene_set_solid(ss, bc, 1) == TTD_OK && ttd_scene_set_solid(ss, bc, 0) == TTD_OK);
+        ENSURE(ttd_scene_remove(ss, bo) == TTD_OK && ttd_scene_remove(ss, bc) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(ss, bc, 1) == TTD_ERR_INDEX_OUT_OF_RANGE);
+        ttd_scene_destroy(ss);
+        ttd_mesh_destroy(open_m);
+        ttd_gen_mesh_free(&tri);
+    }
     ENSURE(ttd_scene_body_count(s) == 0 && ttd_scene_id_limit(s) == 0); /* nothing was added */
     ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 0);
     ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 1);
@@ -1114,6 +1241,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(scenes_match_brute_force);
+    RUN_TEST(stacked_cubes_match_brute_force);
     RUN_TEST(sparse_scene_distances);
     RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);

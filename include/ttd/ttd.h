@@ -656,6 +656,15 @@ TTD_API ttd_status ttd_scene_set_poses_f(ttd_scene *scene, size_t n, const float
 TTD_API ttd_status ttd_scene_set_filter(ttd_scene *scene, uint32_t id, uint32_t group, uint32_t mask);
 /// Excludes (excluded != 0) or includes again the pair of bodies i and j (i != j, either order).
 TTD_API ttd_status ttd_scene_exclude_pair(ttd_scene *scene, uint32_t i, uint32_t j, int excluded);
+/// Marks body id a solid (solid != 0) or a surface again (0; bodies start as surfaces). A solid's
+/// mesh must be closed (every edge shared by two triangles running it the two ways:
+/// TTD_ERR_MESH_NOT_CLOSED otherwise, the body unchanged); inside is its winding number's side,
+/// as for ttd_options.solid. A pair of solids is a solid pair: collide finds it when one lies
+/// inside the other (its witness: the inner body's triangle 0, UINT32_MAX for the outer), distance
+/// is then 0 (the inner body's first vertex as p = q, its triangle 0, UINT32_MAX for the outer),
+/// and a manifold carries the points of each body inside the other with negative distances
+/// (docs/scenes.md, section 5b). contacts is the same for solids and surfaces.
+TTD_API ttd_status ttd_scene_set_solid(ttd_scene *scene, uint32_t id, int solid);
 /// Bodies present.
 TTD_API size_t ttd_scene_body_count(const ttd_scene *scene);
 /// One more than the largest id given so far (0 for an empty or NULL scene).
@@ -713,9 +722,9 @@ TTD_API ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene
 typedef struct ttd_scene_point_d {
     uint32_t i, j;         ///< the bodies, i < j
     uint32_t tri_i, tri_j; ///< the triangle pair it comes from
-    double point[3];       ///< world point: the midpoint of the pair's closest points
+    double point[3];       ///< world point: the midpoint of a point of each body (the pair's closest points, or a corner of flat contact)
     double normal[3];      ///< unit normal from body i towards body j, from the bodies' shapes (docs/scenes.md, 5a)
-    double distance;       ///< the pair's separation d (0 touching or crossing)
+    double distance;       ///< the exact distance d between those two points (0 touching or crossing)
     double depth;          ///< margin - d
 } ttd_scene_point_d;
 typedef struct ttd_scene_point_f {
@@ -728,10 +737,16 @@ typedef struct ttd_scene_point_f {
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
-/// merged (in depth order, a contact within 1e-3 of the smaller body's mesh radius of a point
-/// kept before it goes) and reduced to at most max_points points (0: all of them): the deepest,
-/// then spread over the contact region of its level (within a quarter of the margin left below
-/// it: the farthest, the largest triangle, the largest area added). Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
+/// and the corners of flat contact they add (where two triangles lie face on face, normals
+/// opposite within 0.1 radians: each vertex within the margin of the other triangle, at its
+/// closest point; each two edges whose closest points lie inside both within the margin;
+/// vertices and edges inside flat faces left out: a box on a box gets the corners of the faces'
+/// overlap), merged (in depth order, a point within 1e-3 of the smaller body's mesh radius of a
+/// point kept before it goes) and reduced to at most max_points points (0: all of them): the
+/// deepest, then spread over the contact region of its level (within a quarter of the margin
+/// left below it: the farthest, the largest triangle, the largest area added). Every point is a
+/// real point of contact: a point of each body at their exact distance, within the margin.
+/// Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
 /// face of one body lies within the margin of the other, across edges only where both are real
 /// edges of their bodies, never outside the normal cones of the contact's features where they
 /// meet; the same for any triangulation of a flat face; negated when the bodies swap

@@ -93,9 +93,9 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"j", "uint32, shape (n,): the second body"},
     {"tri_i", "uint32, shape (n,): the triangle of body i this point comes from"},
     {"tri_j", "uint32, shape (n,): the triangle of body j"},
-    {"point", "shape (n, 3): the contact point in the world, the midpoint of the pair's closest points"},
+    {"point", "shape (n, 3): the contact point in the world, the midpoint of a point of each body (the pair's closest points, or a corner of flat contact)"},
     {"normal", "shape (n, 3): unit normal from body i towards body j, from the bodies' shapes: a face's normal where a face of one body lies within the margin of the other, across two real edges, within the normal cones of the contact's features where they meet (docs/scenes.md, section 5a)"},
-    {"distance", "shape (n,): the pair's separation d (0 touching or crossing)"},
+    {"distance", "shape (n,): the exact distance d between those two points (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
     {NULL, NULL},
 };
@@ -826,6 +826,43 @@ static PyObject *ttd_py_scene_exclude(PyObject *obj, PyObject *args, PyObject *k
     Py_RETURN_NONE;
 }
 
+PyDoc_STRVAR(ttd_py_scene_set_solid_doc,
+"set_solid($self, id, solid=True)\n--\n\n"
+"Makes body id a solid (its mesh must be closed: ValueError otherwise, the body unchanged), or\n"
+"with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
+"one lies inside the other (distance 0; the inner body's triangle 0 as witness, NO_TRIANGLE for\n"
+"the outer), and its manifold holds the vertices of each body inside the other at negative\n"
+"distances: minus their exact distance to the other's surface, depth = margin - distance past\n"
+"the margin, normals out of the other body (docs/scenes.md, section 5b).");
+
+static PyObject *ttd_py_scene_set_solid(PyObject *obj, PyObject *args, PyObject *kwargs)
+{
+    ttd_py_scene *s = (ttd_py_scene *)obj;
+    static char *kwlist[] = {"id", "solid", NULL};
+    PyObject *id_obj;
+    int solid = 1;
+    uint32_t id;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|p:set_solid", kwlist, &id_obj, &solid) ||
+        ttd_py_scene_id(id_obj, "id", &id) < 0)
+        return NULL;
+    ttd_py_scene_lock(s);
+    ttd_status st = TTD_ERR_INDEX_OUT_OF_RANGE;
+    if (ttd_py_scene_present(s, id))
+        st = ttd_scene_set_solid(s->scene, id, solid);
+    ttd_py_scene_unlock(s);
+    if (st == TTD_ERR_INDEX_OUT_OF_RANGE)
+        ttd_py_scene_no_body(s, "id", id);
+    else if (st == TTD_ERR_MESH_NOT_CLOSED)
+        PyErr_Format(PyExc_ValueError, "body %u cannot be a solid: %s", (unsigned)id, ttd_status_string(st));
+    else if (st == TTD_ERR_OUT_OF_MEMORY)
+        PyErr_NoMemory();
+    else if (st != TTD_OK)
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from ttd_scene_set_solid", (int)st);
+    if (st != TTD_OK)
+        return NULL;
+    Py_RETURN_NONE;
+}
+
 /* ---- the queries ------------------------------------------------------------------------- */
 
 typedef enum ttd_py_scene_kind { TTD_PY_SCOLLIDE, TTD_PY_SDISTANCE, TTD_PY_SCONTACTS, TTD_PY_SMANIFOLD } ttd_py_scene_kind;
@@ -1011,16 +1048,18 @@ static PyObject *ttd_py_scene_contacts(PyObject *obj, PyObject *args, PyObject *
 PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "manifold($self, margin, max_points=4, *, isa='auto', threads=0)\n--\n\n"
 "Contact manifolds, what a simulator consumes: for every eligible body pair with triangle\n"
-"pairs within margin (finite, >= 0), its contacts merged (in depth order, a contact within\n"
+"pairs within margin (finite, >= 0), its contacts and the corners of flat contact they add\n"
+"(where faces lie on faces: vertices within the margin of the other face, crossings of edges;\n"
+"a box on a box: the corners of the faces' overlap) merged (in depth order, a point within\n"
 "1e-3 of the smaller body's radius of a point kept goes) and at most max_points of them kept\n"
-"(0: all): the deepest, then among the contacts of its level (within a quarter of the margin\n"
-"left below it) the farthest from it, the largest triangle, the largest area added (a box on\n"
-"a box: its corners). A ttd.SceneManifold of parallel (n,) arrays\n"
-"i, j, tri_i, tri_j (uint32), point (n, 3) (the midpoint of the pair's closest points),\n"
+"(0: all): the deepest, then among the points of its level (within a quarter of the margin\n"
+"left below it) the farthest from it, the largest triangle, the largest area added. A\n"
+"ttd.SceneManifold of parallel (n,) arrays i, j, tri_i, tri_j (uint32), point (n, 3) (the\n"
+"midpoint of a point of each body, at their exact distance),\n"
 "normal (n, 3) (unit, from body i towards body j, from the bodies' shapes: a face's normal\n"
 "where a face of one body lies within the margin of the other, across two real edges, never\n"
 "outside the normal cones of the contact's features where they meet; the same for any\n"
-"triangulation of a flat face; docs/scenes.md, section 5a), distance (the pair's d) and\n"
+"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d) and\n"
 "depth (margin - d), grouped by body pair in (i, j) order. isa, threads: as in collide.");
 
 static PyObject *ttd_py_scene_manifold(PyObject *obj, PyObject *args, PyObject *kwargs)
@@ -1191,6 +1230,8 @@ static PyMethodDef ttd_py_scene_type_methods[] = {
     {"set_pose", ttd_py_scene_set_pose, METH_VARARGS, ttd_py_scene_set_pose_doc},
     {"set_poses", ttd_py_scene_set_poses, METH_O, ttd_py_scene_set_poses_doc},
     {"set_filter", ttd_py_scene_set_filter, METH_VARARGS, ttd_py_scene_set_filter_doc},
+    {"set_solid", (PyCFunction)(void (*)(void))ttd_py_scene_set_solid, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_scene_set_solid_doc},
     {"exclude", (PyCFunction)(void (*)(void))ttd_py_scene_exclude, METH_VARARGS | METH_KEYWORDS,
      ttd_py_scene_exclude_doc},
     {"collide", (PyCFunction)(void (*)(void))ttd_py_scene_collide, METH_VARARGS | METH_KEYWORDS,

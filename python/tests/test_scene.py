@@ -3,8 +3,8 @@
 eligible body pairs in the world frame (ttd.distance on each body's vertices moved exactly as
 include/ttd/ttd.h documents, ((r0 x + r1 y) + r2 z) + t per coordinate in the scene's dtype,
 body i's triangle first): equal bit for bit where the library promises it (distances, points,
-triangles; the manifolds' points drawn from the contacts merged as the library documents,
-re-done here in numpy); filters, exclusions, removals and
+triangles; the manifolds' points drawn from the contacts and their corners merged as the
+library documents, re-done here in numpy); filters, exclusions, removals and
 additions, set_poses, both dtypes, 1 and 2 threads identical, the lock released, bad input."""
 import math
 import threading
@@ -88,24 +88,177 @@ def mesh_radius(mesh):
     return math.sqrt(np.max(np.sum((v - c) ** 2, axis=1))) * (1 + 4 * np.finfo(np.float64).eps)
 
 
+FLAT_ANGLE = 1e-3  # mesh/edges.h's TTD_FLAT_ANGLE, as docs/scenes.md documents it
+CORNER_ANGLE = 0.1  # face on face (docs/scenes.md, section 5, step 0)
+
+
+def mesh_shape(mesh):
+    """A mesh's shape around each triangle, found here by comparing triangles (docs/scenes.md 5a,
+    "the edge information"): each corner's place (the smallest corner index 3 t + k at the same
+    point), its first triangle, whether the place lies inside a flat part, whether each edge k
+    (corner k to k + 1) is flat, and the triangle across each real (convex or concave) edge."""
+    X = mesh.vertices.astype(np.float64)[mesh.faces]  # (nt, 3, 3), the mesh's own values
+    nt = len(X)
+    corners = X.reshape(-1, 3)
+    index = {}
+    place = np.empty(3 * nt, dtype=np.int64)
+    for c, x in enumerate(map(tuple, (corners + 0.0).tolist())):  # + 0.0: -0 is 0
+        place[c] = index.setdefault(x, c)
+    place = place.reshape(nt, 3)
+    normal = np.zeros((nt, 3))
+    has = np.zeros(nt, dtype=bool)
+    for t in range(nt):
+        e1, e2 = X[t, 1] - X[t, 0], X[t, 2] - X[t, 0]
+        m = max(np.abs(e1).max(), np.abs(e2).max())
+        if len(set(place[t])) < 3 or not m > 0:
+            continue
+        e1, e2 = e1 / m, e2 / m
+        c = np.cross(e1, e2)
+        ln = math.sqrt(c @ c)
+        if ln > 64 * np.finfo(np.float64).eps * math.sqrt(e1 @ e1) * math.sqrt(e2 @ e2):
+            has[t], normal[t] = True, c / ln
+    cos_flat = math.cos(FLAT_ANGLE)
+    around = {}
+    for t in range(nt):
+        for k in range(3):
+            around.setdefault(place[t, k], []).append(t)
+    flat_edge = np.zeros((nt, 3), dtype=bool)
+    real_edge = np.zeros((nt, 3), dtype=bool)
+    across = np.full((nt, 3), -1, dtype=np.int64)
+    for t in range(nt):
+        for k in range(3):
+            a, b = place[t, k], place[t, (k + 1) % 3]
+            others = [u for u in sorted(set(around[a])) if u != t and b in place[u]] if has[t] else []
+            if len(others) != 1 or not has[others[0]]:
+                continue
+            u = others[0]
+            ia, ib = list(place[u]).index(a), list(place[u]).index(b)
+            if (ib + 1) % 3 != ia:
+                continue  # not running the other way
+            far = [q for q in range(3) if place[u, q] not in (a, b)][0]
+            side = (X[u, far] - X[t, k]) @ normal[t]
+            if normal[t] @ normal[u] >= cos_flat:
+                flat_edge[t, k] = True
+            elif side != 0:
+                real_edge[t, k], across[t, k] = True, u
+    flat_vertex = np.zeros((nt, 3), dtype=bool)
+    for t in range(nt):
+        for k in range(3):
+            ring = around[place[t, k]]
+            t0 = min(ring)
+            flat_vertex[t, k] = all(
+                has[u] and has[t0] and normal[u] @ normal[t0] >= cos_flat and flat_edge[u, q] and flat_edge[u, (q + 2) % 3]
+                for u in set(ring) for q in range(3) if place[u, q] == place[t, k])
+    first = place // 3
+    return place, first, flat_vertex, flat_edge, across, has
+
+
+def unit_normals(X):
+    """The unit normals of triangles X (n, 3, 3) in float64; 0 where a triangle has none."""
+    X = np.asarray(X, dtype=np.float64)
+    c = np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0])
+    ln = np.sqrt(np.sum(c * c, axis=1))
+    return np.where(ln[:, None] > 0, c / np.where(ln > 0, ln, 1)[:, None], 0)
+
+
+def corners(world, i, j, margin):
+    """The corners of flat contact body pair (i, j) adds to its contacts (docs/scenes.md 5, step
+    0; tests/scene_corners_ref.h in C), where a contact's triangles lie face on face (both have a
+    normal, opposite within CORNER_ANGLE): each vertex not inside a flat part within the margin of
+    the other triangle; each two edges not between coplanar triangles whose closest points lie
+    inside both within the margin. The same question (a vertex's place and the other triangle;
+    two edges' places) once, with the smallest triangles asking it; each vertex once, at its
+    smallest distance (ties to the smaller triangle). The exact method on the scalar row, the
+    vertex as a triangle of three equal vertices, each edge from its smaller end, the smaller
+    first. [(a, b, d, p, q)]"""
+    real = world.dtype
+    m = real(margin)
+    r = world.pairs[i, j]
+    S, T = world.tris[i], world.tris[j]
+    shape = [mesh_shape(world.ms[i]), mesh_shape(world.ms[j])]
+    tri = [S, T]
+    verts, edges = {}, {}  # question -> the smallest triangles asking it
+    NS, NT = unit_normals(S), unit_normals(T)
+    for a, b in np.argwhere(r.distance <= m):
+        if not (shape[0][5][a] and shape[1][5][b] and NS[a] @ NT[b] <= -math.cos(CORNER_ANGLE)):
+            continue
+        t = (a, b)
+        for side in (0, 1):
+            place, _, flat_vertex, _, _, _ = shape[side]
+            for k in range(3):
+                if not flat_vertex[t[side], k]:
+                    key = (side, place[t[side], k], t[1 - side])
+                    verts[key] = min(verts.get(key, (a, b, k)), (a, b, k))
+        pa, _, _, flat_e, _, _ = shape[0]
+        pb, _, _, flat_f, _, _ = shape[1]
+        for k in range(3):
+            ea = tuple(sorted((pa[a, k], pa[a, (k + 1) % 3])))
+            if flat_e[a, k] or ea[0] == ea[1]:
+                continue
+            for l in range(3):
+                eb = tuple(sorted((pb[b, l], pb[b, (l + 1) % 3])))
+                if flat_f[b, l] or eb[0] == eb[1]:
+                    continue
+                edges[ea, eb] = min(edges.get((ea, eb), (a, b, k, l)), (a, b, k, l))
+    out = []
+    if verts:
+        keys = sorted(verts)
+        P = np.array([[tri[side][verts[key][side], verts[key][2]]] * 3 for key in keys for side in [key[0]]], dtype=real)
+        Q = np.array([tri[1 - key[0]][key[2]] for key in keys], dtype=real)
+        res = ttd.distance(P, Q, points=True, isa="scalar")
+        best = {}
+        for key, x, d, q in zip(keys, P[:, 0], res.distance, res.q):
+            side, pl, other = key
+            if not d <= m:
+                continue
+            if (side, pl) not in best or (d, other) < best[side, pl][:2]:
+                a, b, _ = verts[key]
+                far = x if d == 0 else q
+                best[side, pl] = (d, other, (a, b, d, x if side == 0 else far, far if side == 0 else x))
+        out += [best[k][2] for k in sorted(best)]
+    if edges:
+        def canon(e0, e1):
+            return (e0, e1) if tuple(e0) <= tuple(e1) else (e1, e0)
+        segs = []
+        for key in sorted(edges):
+            a, b, k, l = edges[key]
+            s_, t_ = canon(S[a, k], S[a, (k + 1) % 3]), canon(T[b, l], T[b, (l + 1) % 3])
+            second = (tuple(s_[0]), tuple(s_[1])) > (tuple(t_[0]), tuple(t_[1]))
+            segs.append((a, b, second, t_ if second else s_, s_ if second else t_))
+        A = np.array([[x[3][0], x[3][1], x[3][1]] for x in segs], dtype=real)
+        B = np.array([[x[4][0], x[4][1], x[4][1]] for x in segs], dtype=real)
+        res = ttd.distance(A, B, points=True, isa="scalar")
+        for (a, b, second, _, _), d, p, q, wp, wq in zip(segs, res.distance, res.p, res.q, res.bary_p, res.bary_q):
+            if not (d <= m and 0 < wp[0] < 1 and 0 < wq[0] < 1):
+                continue
+            first_pt, other = p, (p if d == 0 else q)
+            out.append((a, b, d, other if second else first_pt, first_pt if second else other))
+    return out
+
+
 def manifold_kept(world, margin):
-    """The contacts a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, in
-    depth order (distance, then triangles), a contact whose point lies within 1e-3 of the
-    smaller radius of a point kept before it goes. {(i, j): (tolerance, [(a, b, point, d, depth)])}"""
+    """The points a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, its
+    contacts and the corners they add, in depth order (distance, triangles, midpoint), a point
+    within 1e-3 of the smaller radius of a point kept before it goes.
+    {(i, j): (tolerance, [(a, b, point, d, depth)])}"""
     real = world.dtype
     by_pair = {}
     for row in world.contacts(margin):
-        by_pair.setdefault(row[:2], []).append(row)
+        by_pair.setdefault(row[:2], []).append(row[2:])
     out = {}
     for (i, j), cs in sorted(by_pair.items()):
-        cs = sorted(cs, key=lambda c: (c[4], c[2], c[3]))
+        cs = cs + corners(world, i, j, margin)
+
+        def mid(c):
+            return 0.5 * np.asarray(c[3], dtype=np.float64) + 0.5 * np.asarray(c[4], dtype=np.float64)
+        cs = sorted(cs, key=lambda c: (c[2], c[0], c[1], tuple(mid(c))))
         tol = 1e-3 * min(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
         kept = []
         for c in cs:
-            point = (0.5 * c[5].astype(np.float64) + 0.5 * c[6].astype(np.float64)).astype(real)
+            point = mid(c).astype(real)
             x = point.astype(np.float64)
             if all(math.sqrt(np.sum((x - k[2].astype(np.float64)) ** 2)) > tol for k in kept):
-                kept.append((c[2], c[3], point, c[4], real(real(margin) - c[4])))
+                kept.append((c[0], c[1], point, c[2], real(real(margin) - c[2])))
         out[i, j] = (tol, kept)
     return out
 
@@ -122,7 +275,7 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
         assert list(zip(hit.i.tolist(), hit.j.tolist())) == pairs
         for i, j, a, b in zip(hit.i, hit.j, hit.tri_i, hit.tri_j):
             assert world.pairs[i, j].distance[a, b] <= dtype(margin)
-        # manifold: min(K, kept) points per body pair, each a kept contact (triangles, point,
+        # manifold: min(K, kept) points per body pair, each a kept contact or corner (triangles, point,
         # distance, depth bit for bit), the first within the seed's window of the smallest
         # distance, no two within the tolerance, unit normals (the rule: tests/test_scene_contacts.c)
         kept = manifold_kept(world, margin)
@@ -134,12 +287,12 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
                 want = len(ks) if max_points == 0 else min(max_points, len(ks))
                 rows = range(at, at + want)
                 at += want
-                by_tri = {(a, b): k for a, b, *k in ks}
                 big = max(mesh_radius(world.ms[i]), mesh_radius(world.ms[j]))
                 for n, k in enumerate(rows):
                     assert (m.i[k], m.j[k]) == (i, j), (margin, max_points, k)
-                    point, d, depth = by_tri[m.tri_i[k], m.tri_j[k]]
-                    np.testing.assert_array_equal(m.point[k], point)
+                    same = [x for x in ks if (x[0], x[1]) == (m.tri_i[k], m.tri_j[k]) and np.array_equal(x[2], m.point[k])]
+                    assert len(same) == 1, (margin, max_points, k)
+                    _, _, point, d, depth = same[0]
                     assert m.distance[k] == d and m.depth[k] == depth
                     nv = m.normal[k].astype(np.float64)
                     assert abs(np.sqrt(nv @ nv) - 1) < 1e-5
@@ -195,6 +348,33 @@ def test_queries_equal_the_brute_force(dtype):
 
 
 @pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_stacked_cubes_corners(dtype):
+    """Unit cubes stacked face on face on a flat floor (turned, tilted by up to 0.02, offset,
+    flush and at gaps within the margin): the manifolds with their corners of flat contact
+    against the brute force."""
+    cube_mesh = ttd.Mesh(*cube(), precision=dtype)
+    fv, ff = grid(4)
+    fv[:, 2] = 0
+    floor = ttd.Mesh(fv * [4, 4, 1] - [2, 2, 0], ff, precision=dtype)
+    P = [np.eye(4)]
+    z = 0.003
+    for yaw, tilt, off, gap in ((0.3, 0.0, 0.1, 0.0), (-0.2, 0.02, -0.15, 0.004), (0.0, 0.0, 0.3, 0.002)):
+        cy, sy, ct, st = math.cos(yaw), math.sin(yaw), math.cos(tilt), math.sin(tilt)
+        R = np.array([[cy, -sy * ct, sy * st], [sy, cy * ct, -cy * st], [0, st, ct]])
+        Q = np.eye(4)
+        Q[:3, :3] = R
+        Q[:3, 3] = np.array([off, -off, z + gap + 0.5]) - R @ [0.5, 0.5, 0.5]
+        P.append(Q)
+        z += 1 + gap + 0.5 * abs(tilt) + 0.01
+    ms = [floor] + [cube_mesh] * 3
+    scene = ttd.Scene(ms, np.array(P))
+    world = World(ms, np.array(P), dtype)
+    n = sum(len(corners(world, i, j, 0.05)) for (i, j), r in world.pairs.items() if (r.distance <= dtype(0.05)).any())
+    assert n > 0, "the stack has corners of flat contact"
+    check_all(scene, world, margins=(0.0, 0.05))
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
 def test_poses_3x4_and_builder_give_the_same_scene(dtype):
     ms, P = scene_setup(dtype)
     a = ttd.Scene(ms, P[:, :3, :])
@@ -217,6 +397,57 @@ def test_set_poses_moves_every_body(dtype):
     scene.set_pose(2, np.eye(4))
     Q[2] = np.eye(4)
     check_all(scene, World(ms, Q, dtype), margins=(0.1,))
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_solids(dtype):
+    """Solid bodies (docs/scenes.md, section 5b): a unit cube sunk 0.1 into another has its
+    deepest point at depth margin + 0.1 with normal +z (as surfaces: no point below 0); a half cube
+    inside a cube is found by collide(0) (the inner body's triangle 0), distance 0, and its
+    manifold's points are its 8 vertices at minus their exact distance to the outer cube
+    (ttd.closest_points with the outer body's pose); an open mesh cannot be a solid."""
+    unit = ttd.Mesh(*cube(), precision=dtype)
+    v, f = cube()
+    half = ttd.Mesh(0.5 * v, f, precision=dtype)
+    up = np.eye(4)
+    up[:3, 3] = [0.25, 0.25, 0.9]
+    scene = ttd.Scene([unit, half], np.array([np.eye(4), up]))
+    assert np.all(scene.manifold(0.01, 0).distance >= 0)
+    scene.set_solid(0)
+    scene.set_solid(1, solid=True)
+    m = scene.manifold(0.01, 4)
+    k = int(np.argmax(m.depth))
+    assert abs(float(m.depth[k]) - 0.11) <= (1e-12 if dtype == np.float64 else 1e-6)
+    np.testing.assert_allclose(m.normal[k].astype(np.float64), [0, 0, 1], atol=1e-6)
+    assert np.sum(m.distance < 0) == 4  # the half cube's bottom corners, the deepest level
+    scene.set_solid(1, solid=False)
+    assert np.all(scene.manifold(0.01, 0).distance >= 0)
+    # nested
+    inner = np.eye(4)
+    inner[:3, 3] = [0.25, 0.25, 0.25]
+    nest = ttd.Scene([unit, half], np.array([np.eye(4), inner]))
+    assert len(nest.collide().i) == 0
+    nest.set_solid(0)
+    nest.set_solid(1)
+    hit = nest.collide()
+    assert (hit.i.tolist(), hit.j.tolist(), hit.tri_i.tolist(), hit.tri_j.tolist()) == ([0], [1], [NO], [0])
+    d = nest.distance(nearest=True)
+    assert d.distance == 0 and np.all(d.nearest.distance == 0)
+    m = nest.manifold(0.01, 0)
+    assert len(m.i) == 8 and np.all(m.distance < 0)
+    corners = move(half.vertices, inner)
+    want = ttd.closest_points(unit, corners, pose=np.eye(4)).distance
+    got = sorted(float(-x) for x in m.distance)
+    assert got == sorted(float(x) for x in want)
+    # an open mesh is no solid
+    gv, gf = grid(2)
+    flat = ttd.Scene([ttd.Mesh(gv, gf, precision=dtype)], np.array([np.eye(4)]))
+    with pytest.raises(ValueError, match="cannot be a solid"):
+        flat.set_solid(0)
+    flat.set_solid(0, solid=False)
+    flat.remove(0)
+    with pytest.raises((ValueError, IndexError)):
+        flat.set_solid(0)
 
 
 @pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])

@@ -295,9 +295,11 @@ class SceneDistance(NamedTuple):
     nearest: Optional[SceneContacts]
 
 class SceneManifold(NamedTuple):
-    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j); no two
-    within 1e-3 of the smaller body's radius; normals from the bodies' shapes (face normals where
-    a face lies within the margin, across real edges only; docs/scenes.md, section 5a)."""
+    """Scene.manifold's result: at most max_points points per body pair, grouped by (i, j), drawn
+    from the contacts and the corners of flat contact (a box on a box: the corners of the faces'
+    overlap); no two within 1e-3 of the smaller body's radius; normals from the bodies' shapes
+    (face normals where a face lies within the margin, across real edges only; docs/scenes.md,
+    section 5a)."""
 
     i: npt.NDArray[np.uint32]
     j: npt.NDArray[np.uint32]
@@ -305,8 +307,7 @@ class SceneManifold(NamedTuple):
     tri_j: npt.NDArray[np.uint32]
     point: npt.NDArray[np.floating]
     normal: npt.NDArray[np.floating]
-    """Unit, from body i towards body j: (q - p) / |q - p| where distance > 0; at distance 0
-    (touching or crossing) the library's rule, in docs/scenes.md section 5 ("normal")."""
+    """Unit, from body i towards body j, from the bodies' shapes (docs/scenes.md, section 5a)."""
     distance: npt.NDArray[np.floating]
     depth: npt.NDArray[np.floating]
 
@@ -335,6 +336,7 @@ class Scene:
     def set_poses(self, poses: npt.ArrayLike, /) -> None: ...
     def set_filter(self, id: int, group: int, mask: int, /) -> None: ...
     def exclude(self, i: int, j: int, excluded: bool = True) -> None: ...
+    def set_solid(self, id: int, solid: bool = True) -> None: ...
     def collide(
         self, margin: float = 0.0, *, isa: Union[IsaName, str] = "auto", threads: int = 0
     ) -> SceneCollision: ...

@@ -288,20 +288,6 @@ static void first_vertex(const ttd_mesh *m, double x[3])
                              : (double)((const float *)m->verts)[3 * (size_t)m->tris[0] + (size_t)c];
 }
 
-/* Whether x lies inside closed mesh m: within its bounding sphere (the cheap test that settles
- * far poses), then its winding number: hierarchical with its error certified below 1/4
- * (points/winding.c), so a traversal rather than a pass over the triangles; the pass
- * (mesh/solid.c) only when the point data cannot be had (out of memory). */
-static int inside(const ttd_mesh *m, const double x[3])
-{
-    double d2 = 0;
-    for (int c = 0; c < 3; ++c)
-        d2 += (x[c] - m->origin[c]) * (x[c] - m->origin[c]);
-    if (!(d2 <= m->radius * m->radius * (1 + 1e-9)))
-        return 0;
-    const ttd_points_data *pd = ttd_points_data_get(m, 0);
-    return fabs(pd != NULL ? ttd_points_winding_certified(m, pd, x) : ttd_mesh_winding(m, x)) > 0.5;
-}
 
 /* Under pose i (b into a's frame; 12 reals of `bytes`), with the surfaces apart: 1 when b lies
  * inside a, 2 when a lies inside b, 0 otherwise; at[] gets the inner mesh's first vertex in a's
@@ -322,13 +308,13 @@ static int nested(const ttd_mesh *a, const ttd_mesh *b, const void *poses, size_
             at[r] = (double)((((float)P[4 * r] * x + (float)P[4 * r + 1] * y) + (float)P[4 * r + 2] * z) + (float)P[4 * r + 3]);
         }
     }
-    if (inside(a, at))
+    if (ttd_points_inside(a, at))
         return 1;
     first_vertex(a, va);
     double inb[3]; /* a's vertex in b's frame: R^T (x - t) */
     for (int r = 0; r < 3; ++r)
         inb[r] = P[r] * (va[0] - P[3]) + P[4 + r] * (va[1] - P[7]) + P[8 + r] * (va[2] - P[11]);
-    if (inside(b, inb)) {
+    if (ttd_points_inside(b, inb)) {
         memcpy(at, va, sizeof va);
         return 2;
     }

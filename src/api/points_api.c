@@ -23,18 +23,6 @@ typedef struct pts_in {
     size_t nonfinite;
 } pts_in;
 
-/* x in the mesh's frame for pose [R | t]: x_c = ((r0c (p0 - t0) + r1c (p1 - t1)) + r2c (p2 - t2)). */
-#define PTS_INTO(P, p, x)                                                                          \
-    for (int c_ = 0; c_ < 3; ++c_)                                                             \
-        (x)[c_] = ((P)[c_] * ((p)[0] - (P)[3]) + (P)[4 + c_] * ((p)[1] - (P)[7])) + (P)[8 + c_] * ((p)[2] - (P)[11]);
-/* y back into the points' frame: ((rc0 y0 + rc1 y1) + rc2 y2) + tc. */
-#define PTS_BACK(real, P, y)                                                                       \
-    do {                                                                                       \
-        const real y_[3] = {(y)[0], (y)[1], (y)[2]};                                           \
-        for (int c_ = 0; c_ < 3; ++c_)                                                         \
-            (y)[c_] = (((P)[4 * c_] * y_[0] + (P)[4 * c_ + 1] * y_[1]) + (P)[4 * c_ + 2] * y_[2]) + (P)[4 * c_ + 3]; \
-    } while (0)
-
 static void pts_end(pts_in *in)
 {
     free(in->moved);
@@ -64,9 +52,9 @@ static ttd_status pts_begin(const ttd_options *opt, const ttd_mesh *mesh, size_t
             return TTD_ERR_OUT_OF_MEMORY;
         for (size_t i = 0; i < n; ++i) {
             if (bytes == 8) {
-                PTS_INTO((const double *)pose, (const double *)points + 3 * i, (double *)in->moved + 3 * i)
+                TTD_POINT_INTO((const double *)pose, (const double *)points + 3 * i, (double *)in->moved + 3 * i)
             } else {
-                PTS_INTO((const float *)pose, (const float *)points + 3 * i, (float *)in->moved + 3 * i)
+                TTD_POINT_INTO((const float *)pose, (const float *)points + 3 * i, (float *)in->moved + 3 * i)
             }
         }
         in->pts = in->moved;
@@ -142,7 +130,7 @@ TTD_POINT_TRIANGLE(float, f, FLT_EPSILON)
             return st;                                                                         \
         st = ttd_points_query_closest_##sfx(&cfg, mesh, n, in.pts, upper_bound, results);      \
         for (size_t i = 0; st == TTD_OK && pose != NULL && i < n; ++i)                         \
-            PTS_BACK(real, pose, results[i].point);                                            \
+            TTD_POINT_BACK(real, pose, results[i].point);                                            \
         pts_end(&in);                                                                          \
         return pts_status(st, &in);                                                            \
     }
@@ -272,7 +260,7 @@ TTD_SIGNED_BODY(float, f)
                               results ? results + i0 : r);                                     \
         }                                                                                      \
         for (size_t i = 0; st == TTD_OK && results && pose != NULL && i < n; ++i)              \
-            PTS_BACK(real, pose, results[i].point);                                            \
+            TTD_POINT_BACK(real, pose, results[i].point);                                            \
         if (r != results)                                                                      \
             free(r);                                                                           \
         pts_end(&in);                                                                          \

@@ -195,6 +195,23 @@ ttd_status ttd_scene_set_filter(ttd_scene *scene, uint32_t id, uint32_t group, u
     return TTD_OK;
 }
 
+ttd_status ttd_scene_set_solid(ttd_scene *scene, uint32_t id, int solid)
+{
+    if (scene == NULL)
+        return TTD_ERR_NULL_POINTER;
+    if (!present(scene, id))
+        return TTD_ERR_INDEX_OUT_OF_RANGE;
+    if (solid) {
+        const int closed = ttd_mesh_closed(scene->body[id].mesh);
+        if (closed < 0)
+            return TTD_ERR_OUT_OF_MEMORY;
+        if (!closed)
+            return TTD_ERR_MESH_NOT_CLOSED;
+    }
+    scene->body[id].solid = solid != 0;
+    return TTD_OK;
+}
+
 ttd_status ttd_scene_exclude_pair(ttd_scene *scene, uint32_t i, uint32_t j, int excluded)
 {
     if (scene == NULL)

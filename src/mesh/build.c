@@ -160,8 +160,11 @@ static int orthogonalize(double u[9])
  * the computed normal of a thin triangle is not perpendicular to its edge (its cross product
  * is mostly rounding), so it is made so, or replaced by any perpendicular direction. A box only
  * has to hold its triangle (fit_extents sees to that about any axes); orthonormal axes are what
- * the node test's bound assumes (docs/mesh-queries.md, section 4). */
-static void triangle_axes(double p[3][3], double u[9])
+ * the node test's bound assumes (docs/mesh-queries.md, section 4). *area2 gets twice the
+ * triangle's area (the length of its edges' cross product, to rounding; 0 when it has none to
+ * speak of): the normal u[6..8] times it is its oriented normal, the same way round for every
+ * triangle (each takes -(p1 - p0) x (p2 - p0) in its vertices' order). */
+static void triangle_axes(double p[3][3], double u[9], double *area2)
 {
     double e[3][3], len[3];
     for (int i = 0; i < 3; ++i) {
@@ -172,6 +175,7 @@ static void triangle_axes(double p[3][3], double u[9])
     int k = 0;
     if (len[1] > len[k]) k = 1;
     if (len[2] > len[k]) k = 2;
+    *area2 = 0;
     if (!normalize3(e[k], u)) {
         static const double id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
         memcpy(u, id, sizeof id);
@@ -183,6 +187,7 @@ static void triangle_axes(double p[3][3], double u[9])
         complete_frame(u);
         return;
     }
+    *area2 = dot3(n, u + 6); /* |n|, twice the area, to rounding: a refit's sums (fitsum) */
     /* the common case, a triangle that is not thin: the computed normal is perpendicular to the
      * edge within 2 eps already, and so is their cross product, of length 1 within 3 u; the
      * frame is orthonormal to 2 eps as it is (half of a refit's time was these square roots) */
@@ -195,6 +200,7 @@ static void triangle_axes(double p[3][3], double u[9])
         normalize3(u + 3, u + 3);
         return;
     }
+    *area2 = 0; /* the normal was rounding noise */
     complete_frame(u);
 }
 
@@ -390,13 +396,43 @@ static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
     }
 }
 
+/* The box of triangle p (vertices relative to the origin; radius: the mesh's): its axes
+ * (triangle_axes), centre and extents computed exactly as fit_extents computes them for one
+ * triangle (the same operations in the same order), without going through a builder's arrays: a
+ * refit calls it for every triangle, and gives the build's bits. */
+static void triangle_fit(double p[3][3], double radius, obb *b, double *area2)
+{
+    triangle_axes(p, b->u, area2);
+    const double *u = b->u;
+    double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) {
+            const double d = u[3 * a] * p[k][0] + u[3 * a + 1] * p[k][1] + u[3 * a + 2] * p[k][2];
+            mn[a] = dmin(mn[a], d);
+            mx[a] = dmax(mx[a], d);
+        }
+    for (int c = 0; c < 3; ++c)
+        b->c[c] = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double mid = 0.5 * (mn[a] + mx[a]);
+        for (int c = 0; c < 3; ++c)
+            b->c[c] += mid * u[3 * a + c];
+    }
+    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
+    const double slack = 4 * DBL_EPSILON * (2 * radius + c1);
+    for (int a = 0; a < 3; ++a) {
+        const double pc = dot3(u + 3 * a, b->c);
+        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
+    }
+}
+
 /* The box of the triangle at position i, and its moments. */
 static void triangle_box(const builder *B, size_t i, obb *b, moments *mo)
 {
     double p[3][3];
     pos_vertices(B, i, p);
-    triangle_axes(p, b->u);
-    fit_extents(B, i, i + 1, b);
+    double area2;
+    triangle_fit(p, B->mesh->radius, b, &area2);
     tri_moments(p, mo);
 }
 
@@ -801,8 +837,32 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
-    ttd_mesh_edges_free(&mesh->edges);
+    if (mesh->edges != NULL) {
+        ttd_mesh_edges_free(mesh->edges);
+        free(mesh->edges);
+    }
     free(mesh);
+}
+
+const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
+{
+    /* a cache of what the immutable mesh determines, not a change to it */
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    ttd_mesh_edges *e = __atomic_load_n(&m->edges, __ATOMIC_ACQUIRE);
+    if (e != NULL)
+        return e;
+    e = malloc(sizeof *e);
+    if (e == NULL || !ttd_mesh_edges_build(m->bytes, m->verts, m->nv, m->tris, m->nt, e)) {
+        free(e);
+        return NULL;
+    }
+    ttd_mesh_edges *expected = NULL;
+    if (!__atomic_compare_exchange_n(&m->edges, &expected, e, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        ttd_mesh_edges_free(e); /* another thread made it first: the same arrays */
+        free(e);
+        return expected;
+    }
+    return e;
 }
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
@@ -832,12 +892,15 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
     int e = 0;
     if (big > 0)
         frexp(big, &e);
+    /* x * 2^-e is ldexp(x, -e) (one correctly rounded product) without a library call per
+     * coordinate (they were 5% of a refit); 2^-e overflows only for a subnormal big */
+    const double scale = e >= -1023 ? ldexp(1.0, -e) : 0;
     double r2 = 0;
     for (size_t i = 0; i < nv; ++i) {
         double d2 = 0;
         for (int c = 0; c < 3; ++c) {
             const double x = m->bytes == 8 ? ((const double *)verts)[3 * i + c] : (double)((const float *)verts)[3 * i + c];
-            const double d = ldexp(x - m->origin[c], -e);
+            const double d = scale > 0 ? (x - m->origin[c]) * scale : ldexp(x - m->origin[c], -e);
             d2 += d * d;
         }
         r2 = dmax(r2, d2);
@@ -947,8 +1010,6 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-    if (!ttd_mesh_edges_build(bytes, verts, nv, tris, nt, &m->edges))
-        goto nomem;
     place(m, verts, vrel);
     B.vrel = vrel;
     int e;
@@ -1000,18 +1061,123 @@ nomem:
 
 /* ---- refit: new vertex positions, the same triangles -------------------------------------- */
 
-/* A refit keeps the tree's shape (which triangles lie below which box) and fits every box again:
- * a triangle's box from its vertices exactly as the build fits it (the same functions on the
- * same numbers: a refit to unchanged vertices gives the build's bits there); a leaf's (a node of
- * triangles) from its vertices about the principal axes of its area, found from the box's axes
- * before the move; the box of a larger subtree likewise, around its children's boxes
- * (docs/mesh-queries.md, section 2b). Around boxes instead of vertices: each level above the
- * leaves costs a few corners per child instead of a pass over every vertex below it, which made
- * a refit a third of a build. */
+/* A refit keeps the tree's shape (which triangles lie below which box) and fits every box again,
+ * bottom-up (docs/mesh-queries.md, section 2b):
+ *   - a triangle's box from its vertices exactly as the build fits it (triangle_fit: a refit to
+ *     unchanged vertices gives the build's bits there);
+ *   - a leaf's (a node of triangles) from its vertices, about axes found from its triangles' sums
+ *     (refit_axes) and its axes before the move;
+ *   - a larger subtree's likewise, around its children's boxes instead of its vertices (a few
+ *     corners per child instead of a pass over every vertex below it).
+ * The sums a parent's axes need (fitsum) are the triangles' normals and the vertices' moments,
+ * which cost a few products a triangle: the build's area moments and Jacobi rotations per leaf
+ * were most of a refit (docs/mesh-queries.md, section 6). */
+
+/* A subtree's sums for its box's axes: its triangles' normals (cross products of their edges,
+ * oriented by their vertices' order: twice their areas) summed, with the sum of their lengths,
+ * and its triangles' vertices' moments (three per triangle: the count, the sums of x and of
+ * x x^T, the last as sym_r / sym_c's 6 entries), all relative to the mesh's origin. */
+typedef struct fitsum {
+    double n[3], nlen;
+    double m[10];
+} fitsum;
+
+static void fitsum_add(fitsum *sum, const fitsum *x)
+{
+    for (int k = 0; k < 3; ++k)
+        sum->n[k] += x->n[k];
+    sum->nlen += x->nlen;
+    for (int k = 0; k < 10; ++k)
+        sum->m[k] += x->m[k];
+}
+
+/* Adds triangle p's normal (unit normal u, twice its area area2: triangle_axes's) and its
+ * vertices' moments to *s. */
+static void fitsum_triangle(fitsum *s, double p[3][3], const double u[3], double area2)
+{
+    for (int k = 0; k < 3; ++k)
+        s->n[k] += area2 * u[k];
+    s->nlen += area2;
+    s->m[0] += 3;
+    for (int v = 0; v < 3; ++v) {
+        for (int c = 0; c < 3; ++c)
+            s->m[1 + c] += p[v][c];
+        for (int k = 0; k < 6; ++k)
+            s->m[4 + k] += p[v][sym_r[k]] * p[v][sym_c[k]];
+    }
+}
+
+/* A patch counts as nearly flat for refit_axes when its normals' sum is at least this part of
+ * their lengths' sum (for two equal halves, normals within about 50 degrees of each other). */
+#define REFIT_FLAT 0.9
+
+/* A refitted box's axes from its subtree's sums, starting from its axes before the move (old:
+ * unit rows, orthonormal to a few eps); any axes are valid (the extents hold the vertices about
+ * whatever axes they get), these make the box tight. A nearly flat patch (REFIT_FLAT) takes its
+ * normals' sum as an axis and, across it, the principal axes of its vertices in that plane: the
+ * old first axis made perpendicular to the normal (Gram-Schmidt twice), then turned by one
+ * Jacobi rotation of the 2x2 covariance, which diagonalises it. Anything else (a curved patch, a
+ * soup of facing triangles, no area) takes the principal axes of its vertices by Jacobi
+ * rotations from the old axes (eigen_sym3). Either way the axes are closed as eigen_sym3 closes
+ * them: orthonormal to a few eps. */
+static void refit_axes(const fitsum *s, const double old[9], double u[9])
+{
+    double cov[3][3];
+    const double k = s->m[0];
+    for (int q = 0; q < 6; ++q) {
+        const int r = sym_r[q], c = sym_c[q];
+        cov[r][c] = cov[c][r] = s->m[4 + q] / k - (s->m[1 + r] / k) * (s->m[1 + c] / k);
+    }
+    double f[9];
+    const int flat = s->nlen > 0 && dot3(s->n, s->n) >= REFIT_FLAT * REFIT_FLAT * s->nlen * s->nlen;
+    if (!flat || !normalize3(s->n, f)) {
+        eigen_sym3(cov, u, old);
+        return;
+    }
+    /* f[0..2]: the normal; f[6..8]: the old first axis (or second) made perpendicular to it */
+    memcpy(f + 6, old, 3 * sizeof *f);
+    if (!orthogonalize(f)) {
+        memcpy(f + 6, old + 3, 3 * sizeof *f);
+        if (!orthogonalize(f)) {
+            complete_frame(f);
+            memcpy(f + 6, f + 3, 3 * sizeof *f);
+        }
+    }
+    double a[3], b[3];
+    memcpy(a, f + 6, sizeof a);
+    cross3(f, a, b);
+    double ca[3], cb[3];
+    for (int i = 0; i < 3; ++i) {
+        ca[i] = cov[i][0] * a[0] + cov[i][1] * a[1] + cov[i][2] * a[2];
+        cb[i] = cov[i][0] * b[0] + cov[i][1] * b[1] + cov[i][2] * b[2];
+    }
+    double vaa = dot3(a, ca), vbb = dot3(b, cb);
+    const double vab = dot3(a, cb);
+    if (vab != 0) {
+        const double theta = (vbb - vaa) / (2 * vab);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1));
+        const double c = 1 / sqrt(t * t + 1), sn = t * c;
+        for (int i = 0; i < 3; ++i) {
+            const double ai = a[i], bi = b[i];
+            a[i] = c * ai - sn * bi;
+            b[i] = sn * ai + c * bi;
+        }
+        vaa -= t * vab;
+        vbb += t * vab;
+    }
+    /* the larger spread first, as eigen_sym3 orders them; then closed as it closes them */
+    normalize3(vaa >= vbb ? a : b, u);
+    normalize3(vaa >= vbb ? b : a, u + 3);
+    double w[3];
+    cross3(u, u + 3, w);
+    normalize3(w, u + 6);
+    cross3(u + 6, u, u + 3);
+    normalize3(u + 3, u + 3);
+}
 
 typedef struct refit {
     const struct ttd_mesh *mesh;
-    moments *mo;          /* per node: its triangles' moments, once the node is refitted */
+    fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
 
@@ -1129,22 +1295,28 @@ static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const
 }
 
 /* Refits slot j of node n (the node's child there refitted already, unless it is a leaf) and
- * returns the moments of its triangles. A lone triangle and a leaf are fitted from their
- * vertices (the leaf's own slots too); a larger subtree around its children's boxes. */
-static moments refit_slot(const refit *R, int32_t n, int j)
+ * returns its subtree's sums. A lone triangle and a leaf are fitted from their vertices (the
+ * leaf's own slots too); a larger subtree around its children's boxes. */
+static fitsum refit_slot(const refit *R, int32_t n, int j)
 {
     const struct ttd_mesh *m = R->mesh;
     const int32_t c = slot_child(m, (size_t)n, j);
     local_tris L;
-    obb b;
-    moments sum = {{0}}, mo;
+    obb b, old;
+    fitsum sum;
+    memset(&sum, 0, sizeof sum);
     if (c < 0) {
         const uint32_t t = (uint32_t)(-1 - c);
+        double p[3][3];
         gather(m, &L, &t, 1);
-        triangle_box(&L.B, 0, &b, &sum);
+        pos_vertices(&L.B, 0, p);
+        double area2;
+        triangle_fit(p, m->radius, &b, &area2);
+        fitsum_triangle(&sum, p, b.u + 6, area2);
         store_box(&L.B, n, j, &b, c, 0, 1);
         return sum;
     }
+    slot_box(m, (size_t)n, j, &old);
     if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
         const int count = slot_count(m, (size_t)c);
         uint32_t t[TTD_NODE_WIDTH];
@@ -1152,30 +1324,26 @@ static moments refit_slot(const refit *R, int32_t n, int j)
             t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
         gather(m, &L, t, count);
         for (int i = 0; i < count; ++i) {
-            triangle_box(&L.B, (size_t)i, &b, &mo);
+            double p[3][3];
+            pos_vertices(&L.B, (size_t)i, p);
+            double area2;
+            triangle_fit(p, m->radius, &b, &area2);
+            fitsum_triangle(&sum, p, b.u + 6, area2);
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
-            moments_add(&sum, &mo);
         }
-        obb old;
-        slot_box(m, (size_t)n, j, &old);
-        surface_axes(&L.B, 0, (size_t)count, &sum, old.u, b.u); /* group_box's, from the old axes */
+        refit_axes(&sum, old.u, b.u);
         fit_extents(&L.B, 0, (size_t)count, &b);
         store_box(&L.B, n, j, &b, c, 0, (size_t)count);
         return sum;
     }
-    sum = R->mo[c];
-    obb old;
-    slot_box(m, (size_t)n, j, &old);
-    if (sum.m[0] > 0) /* the area's axes (no area: the box keeps its axes) */
-        surface_axes(&L.B, 0, 0, &sum, old.u, b.u);
-    else
-        memcpy(b.u, old.u, sizeof b.u);
+    sum = R->sums[c];
+    refit_axes(&sum, old.u, b.u);
     store_box_of_boxes(m, n, j, b.u, c);
     return sum;
 }
 
 /* Refits the slots of the nodes first..last-1 that are not leaves, the last first (pre-order:
- * children after their parent), keeping each node's moments; skips the nodes of the first nlist
+ * children after their parent), keeping each node's sums; skips the nodes of the first nlist
  * listed subtrees (the top of the tree, refitted after them). */
 static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
 {
@@ -1193,12 +1361,13 @@ static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
         }
         if (slot_child(R->mesh, n, 0) < 0)
             continue; /* a leaf: its parent refits it */
-        moments sum = {{0}};
+        fitsum sum;
+        memset(&sum, 0, sizeof sum);
         for (int j = 0; j < slot_count(R->mesh, n); ++j) {
-            const moments mo = refit_slot(R, (int32_t)n, j);
-            moments_add(&sum, &mo);
+            const fitsum s = refit_slot(R, (int32_t)n, j);
+            fitsum_add(&sum, &s);
         }
-        R->mo[n] = sum;
+        R->sums[n] = sum;
     }
 }
 
@@ -1247,39 +1416,38 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
  *   2. refit_boxes: the hierarchy's boxes;
  *   3. tree_quality: the measure that decides a rebuild (ttd_mesh_refit);
  *   4. the edge information (mesh/edges.c: flat, convex and concave edges, corners, flat pieces,
- *      welded places: all from the positions), made beforehand into *edges by ttd_mesh_refit so
- *      that running out of memory leaves the mesh as it was.
+ *      welded places, normals: all from the positions) is dropped, for the next manifold to make
+ *      again from the new positions (ttd_mesh_edges_get): a refit that no manifold follows does
+ *      not pay for it, and dropping cannot run out of memory.
  * The point queries' data (src/points/, per node and per triangle) is refreshed by the API entry
  * after this (ttd_points_data_refresh: mesh/ does not include points/). A rebuild
  * (ttd_mesh_build) recomputes it all by itself. What depends on the triangles alone (the closed
  * flag, mesh/solid.c) stays as it is. */
-static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R,
-                          ttd_mesh_edges *edges)
+static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R)
 {
     place(m, verts, NULL);
     refit_boxes(cfg, m, R);
     m->quality = tree_quality(m);
-    ttd_mesh_edges_free(&m->edges);
-    m->edges = *edges;
-    memset(edges, 0, sizeof *edges);
+    if (m->edges != NULL) {
+        ttd_mesh_edges_free(m->edges);
+        free(m->edges);
+        m->edges = NULL;
+    }
 }
 
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
-    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(moments)), malloc(64 * sizeof(subtree))};
-    ttd_mesh_edges edges;
-    memset(&edges, 0, sizeof edges);
-    if (R.mo == NULL || R.list == NULL || !ttd_mesh_edges_build(m->bytes, verts, m->nv, m->tris, m->nt, &edges)) {
-        free(R.mo);
+    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(fitsum)), malloc(64 * sizeof(subtree))};
+    if (R.sums == NULL || R.list == NULL) {
+        free(R.sums);
         free(R.list);
-        ttd_mesh_edges_free(&edges);
         return TTD_ERR_OUT_OF_MEMORY;
     }
     memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
     m->generation++;
-    refit_derived(cfg, m, verts, &R, &edges);
-    free(R.mo);
+    refit_derived(cfg, m, verts, &R);
+    free(R.sums);
     free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);

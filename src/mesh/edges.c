@@ -122,6 +122,7 @@ void ttd_mesh_edges_free(ttd_mesh_edges *e)
     free(e->ring);
     free(e->piece);
     free(e->piece_area);
+    free(e->normal);
     memset(e, 0, sizeof *e);
 }
 
@@ -133,11 +134,12 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
     double *normal = NULL;   /* 3 nt unit normals */
     unsigned char *has_normal = NULL; /* nt: 1 when the triangle has a normal */
     E.across = malloc((3 * nt + 1) * sizeof *E.across);
+    E.normal = malloc((3 * nt + 1) * sizeof *E.normal);
     E.shape = calloc(nt + 1, sizeof *E.shape);
     E.weld = malloc((nv + 1) * sizeof *E.weld);
     normal = malloc((3 * nt + 1) * sizeof *normal);
     has_normal = malloc(nt + 1);
-    if (!E.across || !E.shape || !E.weld || !normal || !has_normal)
+    if (!E.across || !E.shape || !E.weld || !normal || !has_normal || !E.normal)
         goto nomem;
     E.nw = weld_vertices(bytes, verts, nv, E.weld);
     if (E.nw == SIZE_MAX)
@@ -168,6 +170,8 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
         const uint32_t *w = E.weld;
         const uint32_t a = w[tris[3 * t]], b = w[tris[3 * t + 1]], c = w[tris[3 * t + 2]];
         has_normal[t] = (unsigned char)(a != b && b != c && a != c && unit_normal(x[0], x[1], x[2], normal + 3 * t));
+        for (int r = 0; r < 3; ++r)
+            E.normal[3 * t + (size_t)r] = has_normal[t] ? (float)normal[3 * t + (size_t)r] : 0.0f;
     }
     const double cos_flat = cos(TTD_FLAT_ANGLE);
     /* edges: the one triangle across, and the class */

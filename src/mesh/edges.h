@@ -8,9 +8,12 @@
  *
  * Flat pieces: the triangles joined by flat edges, with their area, so that where two faces
  * meet the larger flat part of a body can be told (the same for any triangulation of a face).
+ * Each triangle's unit normal (in float), for the manifold's cheap test of whether two triangles
+ * lie face on face.
  *
  * ttd_mesh_edges_build is a function of the vertices and triangles alone (no other state of
- * the mesh), computed when a mesh is built; a mesh whose vertices change calls it again. */
+ * the mesh), made on the first query that reads it (ttd_mesh_edges_get, mesh/mesh.h), so that a
+ * mesh build does not pay for it; a mesh whose vertices change drops it and has it made again. */
 #ifndef TTD_MESH_EDGES_H
 #define TTD_MESH_EDGES_H
 
@@ -56,6 +59,8 @@ typedef struct ttd_mesh_edges {
                            * numbered by their first triangle's turn */
     double *piece_area;   /* per piece: log2 of its area (-inf for none) */
     size_t npieces;
+    float *normal;        /* 3 nt: each triangle's unit normal in the mesh's frame (0 for none),
+                           * for a cheap test of how two triangles face each other */
 } ttd_mesh_edges;
 
 static inline int ttd_edge_class(const ttd_mesh_edges *e, uint32_t t, int k)

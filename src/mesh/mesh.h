@@ -33,8 +33,9 @@ struct ttd_mesh {
     double origin[3];   /* the boxes' origin, in the mesh's coordinates */
     double radius;      /* every vertex is within radius of origin (rounded up) */
     int closed;         /* solid queries: 0 not known yet, 1 closed, 2 not (mesh/solid.c; atomic) */
-    ttd_mesh_edges edges; /* neighbours across edges, flat or real edges and corners (mesh/edges.h;
-                           * ttd_mesh_edges_build of verts and tris) */
+    ttd_mesh_edges *edges; /* neighbours across edges, flat or real edges and corners, normals
+                            * (mesh/edges.h): made on first use by ttd_mesh_edges_get (atomically:
+                            * meshes are shared between threads); NULL until then */
     /* the point queries' data (src/points/points.h: prepared triangles, winding-number moments),
      * made on first use (atomic); its first member is the function that frees it */
     void *points;
@@ -71,6 +72,13 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *mesh, c
 
 /// Frees a mesh built by ttd_mesh_build.
 void ttd_mesh_free(struct ttd_mesh *mesh);
+
+/// The mesh's edge information (mesh/edges.h), made on first use from its vertices and triangles
+/// (ttd_mesh_edges_build) and kept: the first caller's, set by compare-and-swap, so that any number
+/// of threads may ask at once (a thread that loses the race frees its copy, the same arrays).
+/// NULL when out of memory. A mesh build does not pay for it: only the scene's manifolds read it.
+/// A mesh whose vertices change frees it (and sets NULL) for the next use to make again.
+const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh);
 
 /* The queries, from checked arguments (meshes of the query's precision, k >= 1 rigid poses,
  * outputs present); defects[i] is max |R^T R - I| of pose i, which the traversal's rounding

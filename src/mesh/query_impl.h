@@ -397,6 +397,9 @@ static void pose_forget(qwork *W)
  * in, through the walk's cache. */
 static const ttd_box_query *walk_box_query(const qpose *P, qwork *W, int side_b, int32_t n, int j)
 {
+    /* a self query's two sides are one mesh under the identity, (r, t) = (ri, ti) = (I, +0): a
+     * box's view is the same bits from either side, so it is kept once */
+    side_b = P->self ? 0 : side_b;
     const uint64_t key = ((uint64_t)n * TTD_NODE_WIDTH + (uint64_t)j) * 2 + (uint64_t)side_b; /* exact: no two boxes share it */
     const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & (QUERY_SLOTS - 1); /* Knuth's multiplier */
     ttd_box_query *q = &W->query[slot];
@@ -517,32 +520,60 @@ static void queue_entry(qwork *W, int kind, int32_t ta, int32_t tb, uint32_t sha
  * SELF_SHARED and another vertex on each triangle, two entries, each triangle's edge opposite the
  * shared vertex against the other triangle (the pair's distance away from that vertex, the
  * nearer of the two); more, nothing (an edge or the whole triangle in common). */
-static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb)
+/* What a self query computes for its triangles ia, ib (vertex indices): SELF_NONE, nothing (an
+ * edge or more in common, or one vertex without SELF_SHARED or with a triangle that has no other
+ * vertex); SELF_PAIR, the two triangles; SELF_EDGES, each one's edge opposite the shared vertex
+ * *v against the other. */
+enum { SELF_NONE, SELF_PAIR, SELF_EDGES };
+
+static int self_kind(unsigned self, const uint32_t *ia, const uint32_t *ib, uint32_t *v)
 {
-    const int batch = w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN;
-    if (!P->self) {
+    int any = 0; /* the common case first, without branches: no vertex in common */
+    for (int k = 0; k < 3; ++k)
+        any |= (ia[k] == ib[0]) | (ia[k] == ib[1]) | (ia[k] == ib[2]);
+    if (!any)
+        return SELF_PAIR;
+    if (!(self & SELF_SHARED))
+        return SELF_NONE;
+    const int n = shared_vertices(ia, ib, v);
+    if (n == 0)
+        return SELF_PAIR;
+    return n == 1 && (self & SELF_SHARED) && has_other_vertex(ia, *v) && has_other_vertex(ib, *v) ? SELF_EDGES
+                                                                                                  : SELF_NONE;
+}
+
+/* Queues a self query's pair ta < tb of kind SELF_PAIR or SELF_EDGES (shared vertex v); sends the
+ * queue through the kernel when it is full. */
+static void queue_self(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb, int kind, uint32_t v)
+{
+    if (kind == SELF_PAIR) {
         queue_entry(W, ENTRY_PAIR, ta, tb, 0);
     } else {
+        if (W->nb + 2 > BATCH_MAX) /* the two entries in one batch */
+            flush(C, P, W, w);
+        queue_entry(W, ENTRY_EDGE_A, ta, tb, v);
+        queue_entry(W, ENTRY_EDGE_B, ta, tb, v);
+    }
+    if (W->nb >= (w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN))
+        flush(C, P, W, w);
+}
+
+static void queue_pair(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ta, int32_t tb)
+{
+    if (P->self) {
         if (ta > tb) {
             const int32_t t = ta;
             ta = tb;
             tb = t;
         }
-        const uint32_t *ia = P->a.tris + 3 * (size_t)ta, *ib = P->b.tris + 3 * (size_t)tb;
         uint32_t v = 0;
-        const int n = shared_vertices(ia, ib, &v);
-        if (n == 0) {
-            queue_entry(W, ENTRY_PAIR, ta, tb, 0);
-        } else if (n == 1 && (P->self & SELF_SHARED) && has_other_vertex(ia, v) && has_other_vertex(ib, v)) {
-            if (W->nb + 2 > BATCH_MAX) /* the two entries in one batch */
-                flush(C, P, W, w);
-            queue_entry(W, ENTRY_EDGE_A, ta, tb, v);
-            queue_entry(W, ENTRY_EDGE_B, ta, tb, v);
-        } else {
-            return;
-        }
+        const int kind = self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->b.tris + 3 * (size_t)tb, &v);
+        if (kind != SELF_NONE)
+            queue_self(C, P, W, w, ta, tb, kind, v);
+        return;
     }
-    if (W->nb >= batch)
+    queue_entry(W, ENTRY_PAIR, ta, tb, 0);
+    if (W->nb >= (w->mode == MODE_CONTACTS ? BATCH_MAX : BATCH_MIN))
         flush(C, P, W, w);
 }
 
@@ -568,14 +599,62 @@ static item child_item(const item *it, int open_b, int32_t node, int j, real lb2
  * aside; a leaf facing a triangle queues its pairs at once, and for the minimum and collision
  * the queue goes to the kernel as soon as it fills a vector, so that the next items meet a
  * fresh limit. In the best-first phase the children come unordered: the heap orders them. */
+/* ---- self queries: a leaf against itself ---------------------------------------------------
+ * A leaf's triangles are neighbours: most of its pairs share a vertex, which the rule of
+ * docs/mesh-queries.md section 3b drops whatever their distance. So a leaf against itself first
+ * finds, by vertex indices, which of triangle i's pairs (i, j > i) can count (self_kind), and
+ * makes the node test of triangle i's box against the leaf only when one can (on the benchmark's
+ * folded sheet a quarter of the rows need none: docs/mesh-queries.md section 6). */
+
+/* Queues the pairs (ti, t[j]) of row `bits` (bit j) whose node test lanes are within the limit,
+ * each ordered (the smaller index first) and of kind kind[j] (shared vertex v[j]). */
+static void queue_row(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t ti, const int32_t *t, unsigned bits,
+                      const real *lb2, const uint8_t *kind, const uint32_t *v)
+{
+    for (int j = 0; j < TTD_NODE_WIDTH && !w->hit; ++j)
+        if ((bits >> j & 1u) && lb2[j] <= w->limit2)
+            queue_self(C, P, W, w, ti < t[j] ? ti : t[j], ti < t[j] ? t[j] : ti, kind[j], v[j]);
+}
+
+/* A self query's leaf (node c, whose children are triangles) against itself: its pairs i < j. */
+static void self_leaf(const qctx *C, const qpose *P, qwork *W, walk *w, int32_t c)
+{
+    const ttd_node *y = P->a.nodes + c;
+    int32_t t[TTD_NODE_WIDTH];
+    const int k = y->count;
+    for (int i = 0; i < k; ++i)
+        t[i] = -1 - y->child[i];
+    for (int i = 0; i + 1 < k && !w->hit; ++i) {
+        uint8_t kind[TTD_NODE_WIDTH];
+        uint32_t v[TTD_NODE_WIDTH];
+        unsigned row = 0;
+        const uint32_t *ia = P->a.tris + 3 * (size_t)t[i];
+        for (int j = i + 1; j < k; ++j) {
+            kind[j] = (uint8_t)self_kind(P->self, ia, P->a.tris + 3 * (size_t)t[j], &v[j]);
+            row |= (unsigned)(kind[j] != SELF_NONE) << j;
+        }
+        if (row == 0)
+            continue;
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+        C->node_test(walk_box_query(P, W, 0, c, i), y, lb2, sep);
+        ++w->node_tests;
+        queue_row(C, P, W, w, t[i], t, row, lb2, kind, v);
+    }
+}
+
 /* Opens a self query's item of one box against itself: its children against themselves (as
  * items; a triangle against itself is no pair) and every two of its children within the limit,
- * each pair of children once, found by one node test of each child against the others. */
+ * each pair of children once, found by one node test of each child against the others. A leaf
+ * (outside the cutting of a contact query into sub-walks, where pairs stay items) is self_leaf's. */
 static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
 {
     const int32_t c = P->a.nodes[it->an].child[it->as];
     if (c < 0)
         return 0;
+    if (!w->cutting && P->a.nodes[c].child[0] < 0) {
+        self_leaf(C, P, W, w, c);
+        return 0;
+    }
     const ttd_node *y = P->b.nodes + c;
     int n = 0;
     for (int i = 0; i < y->count; ++i) {
@@ -634,7 +713,9 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
         if (lb2[j] > w->limit2)
             continue;
         const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
-        if (!w->ordered) {
+        /* a self query's contacts come in the walk's order whatever it is (it depends on the
+         * mesh alone): no nearest-first ordering there */
+        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS)) {
             dst[n++] = c;
             continue;
         }

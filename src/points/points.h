@@ -126,8 +126,8 @@ int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *p
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
 
 /* The winding number the queries report about x: for a closed mesh (closed = ttd_mesh_closed's 1)
- * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that cannot be made exact) the
- * hierarchical walk's. */
+ * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that
+ * cannot be made exact) the hierarchical walk's. */
 double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                 const double x[3]);
 
@@ -139,6 +139,26 @@ double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_da
  * everywhere, gets 0 and proven at once. docs/points.md, section 5. */
 double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                const double x[3], int *proven);
+
+/* Whether x (the mesh's coordinates) lies inside closed mesh m: within its bounding sphere (the
+ * cheap test that settles far points), then its winding number, certified (above): a traversal
+ * rather than a pass over the triangles; the pass (mesh/solid.c, ttd_mesh_winding) only when the
+ * point data cannot be had (out of memory). For the solid modes of the mesh and scene queries. */
+int ttd_points_inside(const struct ttd_mesh *m, const double x[3]);
+
+/* A point p of the points' frame moved into the mesh's frame for the mesh's pose P = [R | t]
+ * (12 reals of the query's precision): x_c = ((r0c (p0 - t0) + r1c (p1 - t1)) + r2c (p2 - t2));
+ * and a point y of the mesh's frame moved back: ((rc0 y0 + rc1 y1) + rc2 y2) + tc, in place. The
+ * arithmetic of the point queries' poses (include/ttd/ttd.h), written once. */
+#define TTD_POINT_INTO(P, p, x)                                                                    \
+    for (int c_ = 0; c_ < 3; ++c_)                                                             \
+        (x)[c_] = ((P)[c_] * ((p)[0] - (P)[3]) + (P)[4 + c_] * ((p)[1] - (P)[7])) + (P)[8 + c_] * ((p)[2] - (P)[11]);
+#define TTD_POINT_BACK(real, P, y)                                                                 \
+    do {                                                                                       \
+        const real y_[3] = {(y)[0], (y)[1], (y)[2]};                                           \
+        for (int c_ = 0; c_ < 3; ++c_)                                                         \
+            (y)[c_] = (((P)[4 * c_] * y_[0] + (P)[4 * c_ + 1] * y_[1]) + (P)[4 * c_ + 2] * y_[2]) + (P)[4 * c_ + 3]; \
+    } while (0)
 
 /* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
  * winding (double), over the threads: ttd_points_winding_value's, or with proven not NULL

@@ -164,6 +164,17 @@ double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_da
     return ttd_points_winding(mesh, pd, x, NULL);
 }
 
+int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
+{
+    double d2 = 0;
+    for (int c = 0; c < 3; ++c)
+        d2 += (x[c] - m->origin[c]) * (x[c] - m->origin[c]);
+    if (!(d2 <= m->radius * m->radius * (1 + 1e-9)))
+        return 0;
+    const ttd_points_data *pd = ttd_points_data_get(m, 0);
+    return fabs(pd != NULL ? ttd_points_winding_certified(m, pd, x) : ttd_mesh_winding(m, x)) > 0.5;
+}
+
 /* ---- many points over the threads ------------------------------------------------------- */
 
 #define WN_BLOCK 64

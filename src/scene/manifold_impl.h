@@ -3,8 +3,19 @@
  * included by scene/query_impl.h. A function of the pair's contacts and the scene alone, so that
  * it may run wherever the pair's contacts are found.
  *
- * 1. Depth order: smaller distance first, ties by triangles.
- * 2. No point twice: in that order, a contact is dropped when its point lies within the merge
+ * 0. The corners of flat contact: a contact's point is its triangle pair's closest point, and
+ *    where a face lies on a face the pair's points within the margin are a whole region, of which
+ *    the closest point is one. So each contact whose triangles lie face on face (CORNER_ANGLE)
+ *    adds the other points of its region's rim that are points of the bodies: the vertices within
+ *    the margin of the other triangle (each vertex once, at its smallest distance) and the
+ *    crossings of edges within the margin (two edges, one of each body, whose closest points lie
+ *    inside both), as clipping does in GImpact. Vertices inside a flat part and edges between
+ *    coplanar triangles (mesh/edges.h) are never corners and are left out; a question asked by
+ *    several contacts is asked once, for the smallest triangles. Each point carries the exact
+ *    distance between its two points (the exact method on the vertex or the edges as degenerate
+ *    triangles), so it is a real point of contact within the margin.
+ * 1. Depth order: smaller distance first, ties by triangles, then by point.
+ * 2. No point twice: in that order, a point is dropped when it lies within the merge
  *    tolerance (MERGE_FRACTION of the smaller body's radius) of a point kept before it; a grid
  *    of cells that wide finds the points near it. So no two points kept are that close, and
  *    each kept one is the deepest of those it stands for.
@@ -40,7 +51,44 @@ typedef struct manifold_work {
     size_t *sel;         /* the points chosen */
     unsigned char *taken;
     size_t cap, cell_cap;
+    struct manifold_rec *all; /* the pair's points: its contacts, the corners they add (step 0),
+                               * the points of solids inside each other (5b) */
+    size_t all_n, all_cap;
+    int solid;               /* the pair is a solid pair */
+    unsigned char *inner[2]; /* solid pairs: the places of body i's (0) and j's (1) vertices found
+                              * inside the other body (2), or outside (1), or not asked (0) */
+    size_t inner_cap[2];
+    uint32_t *queue;         /* 5b: places to ask, then those inside */
+    real *pts;               /* 5b: the inside vertices in the other body's frame */
+    uint32_t *pts_place;
+    ttd_point_result *res;   /* 5b: their closest points */
+    size_t queue_cap, pts_cap;
+    struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
+    size_t key_n, key_cap;
+    struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
+    struct manifold_rec *sorted;
+    size_t keys_cap;
 } manifold_work;
+
+/* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
+ * solid inside the other (inside 0: p, a vertex of body i inside body j; 1: q, a vertex of body j
+ * inside body i; -1 for the others), whose distance is then negative. */
+typedef struct manifold_rec {
+    ttd_scene_contact c;
+    int inside;
+} manifold_rec;
+
+/* A vertex or a pair of edges step 0 asks about. A vertex: side 0 a vertex of body i (corner k of
+ * its triangle ti), 1 of body j (corner k of tj), against the other body's triangle; its place
+ * (mesh/edges.h) in a and the other triangle in b. Edges: edge k of ti and edge l of tj, their
+ * ends' places (smaller first) in a and b. Equal keys ask the same question: it is asked once,
+ * for the smallest triangles. */
+typedef struct corner_key {
+    uint32_t kind;       /* 0 vertex of i, 1 vertex of j, 2 edges */
+    uint64_t a, b;
+    uint32_t ti, tj;
+    int k, l;
+} corner_key;
 
 static void manifold_work_free(manifold_work *w)
 {
@@ -51,6 +99,16 @@ static void manifold_work_free(manifold_work *w)
     free(w->cell_key);
     free(w->sel);
     free(w->taken);
+    free(w->all);
+    free(w->inner[0]);
+    free(w->inner[1]);
+    free(w->queue);
+    free(w->keys);
+    free(w->sorted);
+    free(w->pts);
+    free(w->pts_place);
+    free(w->res);
+    free(w->key);
     memset(w, 0, sizeof *w);
 }
 
@@ -99,13 +157,485 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
     return 1;
 }
 
-/* Orders contacts deepest first: smaller distance, then triangles. */
+/* Orders contacts deepest first: smaller distance, then triangles, then the midpoint of their
+ * points (a triangle pair's corners, step 0; the midpoint is the same when the bodies swap). */
 static int depth_cmp(const void *x, const void *y)
 {
-    const ttd_scene_contact *a = x, *b = y;
+    const ttd_scene_contact *a = &((const manifold_rec *)x)->c, *b = &((const manifold_rec *)y)->c;
     if (a->distance != b->distance)
         return a->distance < b->distance ? -1 : 1;
-    return scene_contact_cmp(x, y);
+    const int t = scene_contact_cmp(a, b);
+    if (t != 0)
+        return t;
+    for (int r = 0; r < 3; ++r) {
+        const double ma = 0.5 * (double)a->p[r] + 0.5 * (double)a->q[r], mb = 0.5 * (double)b->p[r] + 0.5 * (double)b->q[r];
+        if (ma != mb)
+            return ma < mb ? -1 : 1;
+    }
+    return 0;
+}
+
+/* Step 1's order as keys, sorted in place of the points: the distance's bits made to order as the
+ * numbers do, the triangles, the point's index (the midpoint only where those tie). */
+typedef struct depth_key {
+    uint64_t d, t;
+    size_t at;
+} depth_key;
+
+static uint64_t order_bits(double x)
+{
+    x += 0.0; /* -0 is +0 */
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return u >> 63 ? ~u : u | 0x8000000000000000ULL;
+}
+
+static int key_before(const depth_key *a, const depth_key *b, const manifold_rec *rc)
+{
+    if (a->d != b->d)
+        return a->d < b->d;
+    if (a->t != b->t)
+        return a->t < b->t;
+    return depth_cmp(&rc[a->at], &rc[b->at]) < 0;
+}
+
+/* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
+ * place of qsort on the records). 0 out of memory. */
+static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
+{
+    if (2 * n > w->keys_cap) {
+        depth_key *k = realloc(w->keys, 2 * n * sizeof *k);
+        if (k != NULL)
+            w->keys = k;
+        manifold_rec *r = k != NULL ? realloc(w->sorted, n * sizeof *r) : NULL;
+        if (r == NULL)
+            return 0;
+        w->sorted = r;
+        w->keys_cap = 2 * n;
+    }
+    depth_key *a = w->keys, *b = w->keys + n;
+    for (size_t k = 0; k < n; ++k) {
+        a[k].d = order_bits((double)rc[k].c.distance);
+        a[k].t = (uint64_t)rc[k].c.tri_i << 32 | rc[k].c.tri_j;
+        a[k].at = k;
+    }
+    for (size_t run = 1; run < n; run *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * run) {
+            const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
+            size_t x = lo, y = mid, o = lo;
+            while (x < mid && y < hi)
+                b[o++] = key_before(&a[y], &a[x], rc) ? a[y++] : a[x++];
+            while (x < mid)
+                b[o++] = a[x++];
+            while (y < hi)
+                b[o++] = a[y++];
+        }
+        depth_key *t = a;
+        a = b;
+        b = t;
+    }
+    for (size_t k = 0; k < n; ++k)
+        w->sorted[k] = rc[a[k].at];
+    memcpy(rc, w->sorted, n * sizeof *rc);
+    return 1;
+}
+
+/* ---- step 0: the corners of flat contact ---------------------------------------------------- */
+
+/* Two triangles lie face on face when their normals are opposite within this angle (radians):
+ * about 5.7 degrees, a box resting on a box or a floor however it has settled. Curved bodies'
+ * triangles rarely are (an icosphere of 1,280 triangles: 0.2% of the contacts of a pile). */
+#define CORNER_ANGLE 0.1
+
+/* A world triangle's plane for a cheap test that a point is farther than the margin from the
+ * triangle (it is at least as far from its plane): the unit normal n about the first vertex a;
+ * err bounds how far a computed height may be off, per unit of the point's distance from a
+ * (the normal's direction is known to about 16 eps |e1| |e2| / |e1 x e2|). ok = 0 where the
+ * triangle has no plane to speak of (a direction known no better than 2^-20): no test. */
+typedef struct corner_plane {
+    double a[3], n[3], err, size;
+    int ok;
+} corner_plane;
+
+static void corner_plane_make(const real x[9], corner_plane *P)
+{
+    double v[3][3], cr[3], e11, e22;
+    P->ok = 0;
+    for (int k = 0; k < 9; ++k)
+        v[k / 3][k % 3] = (double)x[k];
+    memcpy(P->a, v[0], sizeof P->a);
+    if (!unit_cross((const double (*)[3])v, cr, &e11, &e22, &P->size))
+        return;
+    const double l = sqrt(dot3d(cr, cr)), l12 = sqrt(e11) * sqrt(e22);
+    if (!(l > 0x1p-20 * l12))
+        return;
+    for (int r = 0; r < 3; ++r)
+        P->n[r] = cr[r] / l;
+    P->err = (16 * l12 / l + 8) * DBL_EPSILON;
+    P->ok = 1;
+}
+
+/* Whether world point y may lie within lim of plane P's triangle: +1 or -1 when it is farther
+ * than lim above or below the plane (surely, with every rounding of the height, of y's world
+ * coordinates and of the exact method's distance allowed for), 0 when it may not be. */
+static int corner_side(const corner_plane *P, const real y[3], double lim)
+{
+    if (!P->ok)
+        return 0;
+    double d[3], far = 0;
+    for (int r = 0; r < 3; ++r) {
+        d[r] = (double)y[r] - P->a[r];
+        far = fmax(far, fabs(d[r]));
+    }
+    const double h = dot3d(d, P->n), slack = 2 * (far + P->size) * (P->err + 64 * (double)TTD_REAL_EPS);
+    return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
+}
+
+/* Whether 3 reals x come after y (lexicographically). */
+static int point_after(const real *x, const real *y)
+{
+    for (int r = 0; r < 3; ++r)
+        if (x[r] != y[r])
+            return x[r] > y[r];
+    return 0;
+}
+
+static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
+{
+    if (w->all_n == w->all_cap) {
+        const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
+        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->all = v;
+        w->all_cap = cap;
+    }
+    w->all[w->all_n].c = *c;
+    w->all[w->all_n++].inside = inside;
+    return 1;
+}
+
+static int key_push(manifold_work *w, const corner_key *k)
+{
+    if (w->key_n == w->key_cap) {
+        const size_t cap = w->key_cap ? 2 * w->key_cap : 64;
+        corner_key *v = realloc(w->key, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->key = v;
+        w->key_cap = cap;
+    }
+    w->key[w->key_n++] = *k;
+    return 1;
+}
+
+/* By the question (kind, a, b), then the triangles that ask it. */
+static int corner_key_cmp(const void *x, const void *y)
+{
+    const corner_key *u = x, *v = y;
+    if (u->kind != v->kind)
+        return u->kind < v->kind ? -1 : 1;
+    if (u->a != v->a)
+        return u->a < v->a ? -1 : 1;
+    if (u->b != v->b)
+        return u->b < v->b ? -1 : 1;
+    if (u->ti != v->ti)
+        return u->ti < v->ti ? -1 : 1;
+    return (u->tj > v->tj) - (u->tj < v->tj);
+}
+
+/* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
+ * and a vertex or an edge may lie within the margin of the other triangle. rel: R_i^T R_j, body
+ * j's rotation in body i's frame. 0 out of memory. */
+static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, const double rel[9],
+                           manifold_work *w)
+{
+    const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
+    /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
+     * body i's frame) */
+    const float *ni = s->body[c->i].mesh->edges->normal + 3 * (size_t)c->tri_i;
+    const float *nj = s->body[c->j].mesh->edges->normal + 3 * (size_t)c->tri_j;
+    double facing = 0;
+    for (int r = 0; r < 3; ++r)
+        facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+    if (!(facing <= -cos(CORNER_ANGLE)))
+        return 1;
+    real x[2][9];
+    corner_plane P[2];
+    const ttd_mesh_edges *E[2];
+    const uint32_t *tris[2];
+    for (int side = 0; side < 2; ++side) {
+        world_triangle(s, id[side], tri[side], x[side]);
+        corner_plane_make(x[side], &P[side]);
+        E[side] = s->body[id[side]].mesh->edges;
+        tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
+    }
+    int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k)
+            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, (double)margin);
+    /* vertices not inside a flat part that may lie within the margin of the other triangle */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k)
+            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT) {
+                const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
+                if (!key_push(w, &key))
+                    return 0;
+            }
+    /* real edges (not between coplanar triangles), each of which may come within the margin of
+     * the other triangle's plane */
+    for (int k = 0; k < 3; ++k) {
+        const int k1 = (k + 1) % 3;
+        if (ttd_edge_class(E[0], tri[0], k) == TTD_EDGE_FLAT || (h[0][k] != 0 && h[0][k] == h[0][k1]))
+            continue;
+        const uint64_t pa = E[0]->weld[tris[0][k]], pb = E[0]->weld[tris[0][k1]];
+        if (pa == pb)
+            continue;
+        for (int l = 0; l < 3; ++l) {
+            const int l1 = (l + 1) % 3;
+            if (ttd_edge_class(E[1], tri[1], l) == TTD_EDGE_FLAT || (h[1][l] != 0 && h[1][l] == h[1][l1]))
+                continue;
+            const uint64_t qa = E[1]->weld[tris[1][l]], qb = E[1]->weld[tris[1][l1]];
+            if (qa == qb)
+                continue;
+            const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
+                                    c->tri_i, c->tri_j, k, l};
+            if (!key_push(w, &key))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
+static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const corner_key *q, real margin,
+                      ttd_scene_contact *out)
+{
+    real x[2][9];
+    world_triangle(s, i, q->ti, x[0]);
+    world_triangle(s, j, q->tj, x[1]);
+    *out = (ttd_scene_contact){i, j, q->ti, q->tj, 0, {0, 0, 0}, {0, 0, 0}};
+    ttd_result r;
+    if (q->kind < 2) {
+        const int side = (int)q->kind;
+        const real *v = x[side] + 3 * q->k;
+        const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
+        TTD_EXACT_PAIR(pt, x[!side], &r);
+        if (!(r.distance <= margin))
+            return 0;
+        out->distance = r.distance;
+        for (int t = 0; t < 3; ++t) {
+            const real other = r.distance == 0 ? v[t] : r.q[t]; /* touching: the vertex itself */
+            out->p[t] = side ? other : v[t];
+            out->q[t] = side ? v[t] : other;
+        }
+        return 1;
+    }
+    /* each edge from its smaller end, the smaller edge first: the same call when the bodies swap */
+    real seg[2][9];
+    const real *e[2][2] = {{x[0] + 3 * q->k, x[0] + 3 * ((q->k + 1) % 3)}, {x[1] + 3 * q->l, x[1] + 3 * ((q->l + 1) % 3)}};
+    for (int g = 0; g < 2; ++g) {
+        const int f = point_after(e[g][0], e[g][1]);
+        for (int t = 0; t < 3; ++t) {
+            seg[g][t] = e[g][f][t];
+            seg[g][3 + t] = seg[g][6 + t] = e[g][!f][t];
+        }
+    }
+    const int second = point_after(seg[0], seg[1]) ||
+                       (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 && point_after(seg[0] + 3, seg[1] + 3));
+    TTD_EXACT_PAIR(seg[second], seg[!second], &r);
+    if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
+        return 0;
+    out->distance = r.distance;
+    for (int t = 0; t < 3; ++t) {
+        const real on_first = r.p[t], on_second = r.distance == 0 ? r.p[t] : r.q[t];
+        out->p[t] = second ? on_second : on_first; /* body i's edge is seg[0] */
+        out->q[t] = second ? on_first : on_second;
+    }
+    return 1;
+}
+
+/* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
+ * inside the other body left out: they have their negative distances). 0 out of memory. */
+static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
+{
+    w->key_n = 0;
+    if (n == 0)
+        return 1;
+    double rel[9]; /* R_i^T R_j */
+    const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
+    for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q)
+            rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
+    for (size_t k = 0; k < n; ++k)
+        if (!contact_corners(s, &c[k], margin, rel, w))
+            return 0;
+    if (w->key_n == 0)
+        return 1;
+    /* each question once, for its smallest triangles; each vertex kept once, at its smallest
+     * distance (ties: the smaller triangle of the other body) */
+    qsort(w->key, w->key_n, sizeof *w->key, corner_key_cmp);
+    int have = 0; /* a vertex corner waiting in `best` */
+    ttd_scene_contact best = c[0];
+    const corner_key *best_q = NULL;
+    for (size_t k = 0; k < w->key_n; ++k) {
+        const corner_key *q = &w->key[k];
+        if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
+            continue; /* asked already */
+        if (q->kind < 2 && w->solid && w->inner[q->kind][q->a] == 2)
+            continue; /* a solid's vertex inside the other */
+        if (have && (q->kind != best_q->kind || q->a != best_q->a)) {
+            if (!all_push(w, &best, -1))
+                return 0;
+            have = 0;
+        }
+        ttd_scene_contact got;
+        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got))
+            continue;
+        if (q->kind == 2) {
+            if (!all_push(w, &got, -1))
+                return 0;
+        } else if (!have || got.distance < best.distance) { /* keys come in the order of the other triangle */
+            best = got;
+            best_q = q;
+            have = 1;
+        }
+    }
+    return !have || all_push(w, &best, -1);
+}
+
+/* ---- 5b: the points of solids inside each other --------------------------------------------- */
+
+/* Room for side's flags over nw places and a queue of nw places. */
+static int inner_reserve(manifold_work *w, int side, size_t nw)
+{
+    if (nw + 1 > w->inner_cap[side]) {
+        unsigned char *f = realloc(w->inner[side], nw + 1);
+        if (f == NULL)
+            return 0;
+        w->inner[side] = f;
+        w->inner_cap[side] = nw + 1;
+    }
+    if (nw + 1 > w->queue_cap) {
+        uint32_t *q = realloc(w->queue, (nw + 1) * sizeof *q);
+        if (q == NULL)
+            return 0;
+        w->queue = q;
+        w->queue_cap = nw + 1;
+    }
+    if (nw + 1 > w->pts_cap) {
+        real *p = realloc(w->pts, 3 * (nw + 1) * sizeof *p);
+        if (p != NULL)
+            w->pts = p;
+        uint32_t *pl = p != NULL ? realloc(w->pts_place, (nw + 1) * sizeof *pl) : NULL;
+        if (pl != NULL)
+            w->pts_place = pl;
+        ttd_point_result *r = pl != NULL ? realloc(w->res, (nw + 1) * sizeof *r) : NULL;
+        if (r == NULL)
+            return 0;
+        w->res = r;
+        w->pts_cap = nw + 1;
+    }
+    return 1;
+}
+
+/* The vertex at place pl of a mesh (edge information E, triangles tris): a corner of the first
+ * triangle around it, that triangle into *tri. */
+static uint32_t place_vertex(const ttd_mesh_edges *E, const uint32_t *tris, uint32_t pl, uint32_t *tri)
+{
+    const uint32_t t = E->ring[E->ring_start[pl]];
+    *tri = t;
+    for (int k = 0; k < 3; ++k)
+        if (E->weld[tris[3 * (size_t)t + (size_t)k]] == pl)
+            return tris[3 * (size_t)t + (size_t)k];
+    return tris[3 * (size_t)t];
+}
+
+/* The vertices of one body of solid pair (i, j) inside the other (side 0: body i's inside j; 1:
+ * j's inside i), each with its closest point on the other's surface at a negative distance,
+ * into w->all. nested: the body lies wholly inside the other (every vertex); else the vertices
+ * of its triangles in the contacts c[0..n) and, from those found inside, their neighbours, as
+ * long as they are inside: the part of a surface inside the other solid is bounded where the
+ * surfaces cross, at triangles that are contacts. Inside: the winding number of the other body
+ * about the vertex moved into its frame as the point queries move points; the distance: the
+ * point query's exact distance there (the closest point moved back into the world). */
+static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, uint32_t i, uint32_t j, int side,
+                      const ttd_scene_contact *c, size_t n, int nested, manifold_work *w)
+{
+    const uint32_t b = side ? j : i, a = side ? i : j;
+    const struct ttd_mesh *mb = s->body[b].mesh;
+    const ttd_mesh_edges *E = mb->edges;
+    if (!inner_reserve(w, side, E->nw))
+        return 0;
+    unsigned char *state = w->inner[side];
+    memset(state, 0, E->nw);
+    size_t nq = 0, nin = 0;
+    if (nested) {
+        for (uint32_t pl = 0; pl < E->nw; ++pl)
+            if (E->ring_start[pl] < E->ring_start[pl + 1]) {
+                state[pl] = 2;
+                w->queue[nin++] = pl;
+            }
+    } else {
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t t = side ? c[k].tri_j : c[k].tri_i;
+            for (int v = 0; v < 3; ++v) {
+                const uint32_t pl = E->weld[mb->tris[3 * (size_t)t + (size_t)v]];
+                if (state[pl] == 0) {
+                    state[pl] = 1;
+                    w->queue[nq++] = pl;
+                }
+            }
+        }
+        /* breadth first over the places asked: those inside go to the front of the queue */
+        for (size_t head = 0; head < nq; ++head) {
+            const uint32_t pl = w->queue[head];
+            uint32_t tri;
+            real x[3];
+            body_vertex(s, b, place_vertex(E, mb->tris, pl, &tri), x);
+            if (!body_inside(s, a, x))
+                continue;
+            state[pl] = 2;
+            for (uint32_t r = E->ring_start[pl]; r < E->ring_start[pl + 1]; ++r)
+                for (int v = 0; v < 3; ++v) {
+                    const uint32_t q = E->weld[mb->tris[3 * (size_t)E->ring[r] + (size_t)v]];
+                    if (state[q] == 0) {
+                        state[q] = 1;
+                        w->queue[nq++] = q;
+                    }
+                }
+        }
+        for (size_t k = 0; k < nq; ++k)
+            if (state[w->queue[k]] == 2)
+                w->queue[nin++] = w->queue[k];
+    }
+    if (nin == 0)
+        return 1;
+    const real *P = body_pose(s, a);
+    for (size_t k = 0; k < nin; ++k) {
+        uint32_t tri;
+        real x[3];
+        body_vertex(s, b, place_vertex(E, mb->tris, w->queue[k], &tri), x);
+        TTD_POINT_INTO(P, x, w->pts + 3 * k)
+        w->pts_place[k] = tri;
+    }
+    if (TTD_POINTS_CLOSEST(cfg, s->body[a].mesh, nin, w->pts, (real)INFINITY, w->res) != TTD_OK)
+        return 0;
+    for (size_t k = 0; k < nin; ++k) {
+        const ttd_point_result *r = &w->res[k];
+        if (!(r->distance > 0))
+            continue; /* on the surface: a contact */
+        uint32_t tri;
+        real x[3], y[3] = {r->point[0], r->point[1], r->point[2]};
+        body_vertex(s, b, place_vertex(E, mb->tris, w->queue[k], &tri), x);
+        TTD_POINT_BACK(real, P, y);
+        ttd_scene_contact rec = {i, j, side ? r->triangle : tri, side ? tri : r->triangle, -r->distance, {0, 0, 0}, {0, 0, 0}};
+        memcpy(rec.p, side ? y : x, sizeof rec.p);
+        memcpy(rec.q, side ? x : y, sizeof rec.q);
+        if (!all_push(w, &rec, side))
+            return 0;
+    }
+    return 1;
 }
 
 static double dist2(const double *a, const double *b)
@@ -115,34 +645,44 @@ static double dist2(const double *a, const double *b)
 }
 
 /* The cell of scaled point z, each coordinate in cells of width `cell` (saturated far out:
- * the cells there only gather more points to compare). */
-static void cell_of(const double z[3], double cell, int64_t c[3])
+ * the cells there only gather more points to compare), and per axis the neighbour on the side of
+ * the half of its cell z lies in (-1 or +1). */
+static void cell_of(const double z[3], double cell, int64_t c[3], int side[3])
 {
     for (int r = 0; r < 3; ++r) {
-        const double x = floor(z[r] / cell);
+        const double q = z[r] / cell, x = floor(q);
         c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : (int64_t)x;
+        side[r] = q - x < 0.5 ? -1 : 1;
     }
 }
 
+/* A cell's key: its coordinates mixed (splitmix64's finisher), never 0 (0 marks an empty slot). */
 static uint64_t cell_key(const int64_t c[3])
 {
-    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL;
-    h ^= (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL + (h << 6) + (h >> 2);
-    h ^= (uint64_t)c[2] * 0x165667b19e3779f9ULL + (h << 6) + (h >> 2);
-    return h | 1; /* never 0: 0 marks an empty slot */
+    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL ^ (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL ^
+                 (uint64_t)c[2] * 0x165667b19e3779f9ULL;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+    return (h ^ (h >> 31)) | 1;
 }
 
-/* The slot of cell key k in the open-addressing table (its own, or the empty one where it goes). */
-static size_t cell_slot(const manifold_work *w, size_t cells, uint64_t k)
+/* The slot of cell key k in the open-addressing table of 2^bits slots (its own, or the empty one
+ * where it goes): from the key's top bits, then the next ones. */
+static size_t cell_slot(const manifold_work *w, int bits, uint64_t k)
 {
-    size_t at = (size_t)(k ^ (k >> 29)) & (cells - 1);
+    const size_t mask = ((size_t)1 << bits) - 1;
+    size_t at = (size_t)(k >> (64 - bits));
     while (w->cell_key[at] != 0 && w->cell_key[at] != k)
-        at = (at + 1) & (cells - 1);
+        at = (at + 1) & mask;
     return at;
 }
 
 /* Step 2: the contacts to keep (indices into c, depth order) into w->kept; returns how many.
- * z holds the scaled points, tol2 the squared scaled tolerance. */
+ * z holds the scaled points, tol the scaled tolerance. The grid's cells are 2.5 tolerances
+ * wide, so that the points within the tolerance of a point lie in 8 cells: its own and, per
+ * axis, the neighbour on the side of the half of its cell it lies in (the tolerance reaches at
+ * most 0.4 of a cell out of the point, which leaves 0.1 of a cell for the rounding of the cell
+ * coordinates). */
 static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
 {
     const double tol2 = tol * tol;
@@ -157,32 +697,30 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         }
         return nk;
     }
-    size_t cells = 64;
-    while (cells < 2 * n)
-        cells *= 2;
-    memset(w->cell_key, 0, cells * sizeof *w->cell_key);
-    /* cells as wide as the tolerance (a tolerance of 0 merges equal points only: any width) */
-    const double width = tol > 0 ? tol : 1;
+    int bits = 6;
+    while (((size_t)1 << bits) < 2 * n)
+        ++bits;
+    memset(w->cell_key, 0, ((size_t)1 << bits) * sizeof *w->cell_key);
+    /* (a tolerance of 0 merges equal points only: any width) */
+    const double width = tol > 0 ? 2.5 * tol : 1;
     for (size_t k = 0; k < n; ++k) {
         int64_t c[3];
-        cell_of(w->z + 3 * k, width, c);
+        int side[3];
+        cell_of(w->z + 3 * k, width, c, side);
         int near = 0;
-        for (int dx = -1; dx <= 1 && !near; ++dx)
-            for (int dy = -1; dy <= 1 && !near; ++dy)
-                for (int dz = -1; dz <= 1 && !near; ++dz) {
-                    const int64_t cc[3] = {c[0] + dx, c[1] + dy, c[2] + dz};
-                    const uint64_t key = cell_key(cc);
-                    const size_t at = cell_slot(w, cells, key);
-                    if (w->cell_key[at] == 0)
-                        continue;
-                    for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
-                        near = dist2(w->z + 3 * k, w->z + 3 * a) <= tol2;
-                }
+        for (int m = 0; m < 8 && !near; ++m) {
+            const int64_t cc[3] = {c[0] + (m & 1 ? side[0] : 0), c[1] + (m & 2 ? side[1] : 0), c[2] + (m & 4 ? side[2] : 0)};
+            const size_t at = cell_slot(w, bits, cell_key(cc));
+            if (w->cell_key[at] == 0)
+                continue;
+            for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
+                near = dist2(w->z + 3 * k, w->z + 3 * a) <= tol2;
+        }
         if (near)
             continue;
         w->kept[nk++] = k;
         const uint64_t key = cell_key(c);
-        const size_t at = cell_slot(w, cells, key);
+        const size_t at = cell_slot(w, bits, key);
         if (w->cell_key[at] == 0) {
             w->cell_key[at] = key;
             w->cell_head[at] = SIZE_MAX;
@@ -321,35 +859,69 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-/* Body pair's manifold: its n >= 1 contacts c (reordered here) reduced to at most max points (0:
- * all) into out[0..), in the order chosen; returns how many. w: scratch for n contacts. */
-static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_t n, real margin, size_t max,
-                          manifold_work *w, ttd_scene_point *out)
+/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
+ * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
+ * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
+static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
+                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
+                       ttd_scene_array *out)
 {
-    qsort(c, n, sizeof *c, depth_cmp);
-    const double ri = s->body[c[0].i].mesh->radius, rj = s->body[c[0].j].mesh->radius;
+    w->all_n = 0;
+    for (size_t k = 0; k < n0; ++k)
+        if (!all_push(w, &c0[k], -1))
+            return 0;
+    w->solid = solid_pair(s, p->i, p->j);
+    if (w->solid) {
+        real at[3];
+        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
+        if (n0 == 0 && nest == 0)
+            return 1;
+        for (int side = 0; side < 2; ++side) {
+            if (n0 == 0 && nest != (side ? 1 : 2)) {
+                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
+                    memset(w->inner[side], 0, w->inner_cap[side]);
+                continue;
+            }
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
+                return 0;
+        }
+    }
+    if (!pair_corners(s, c0, n0, margin, w))
+        return 0;
+    if (w->all_n == 0)
+        return 1;
+    manifold_rec *rc = w->all;
+    const size_t n = w->all_n;
+    if (!manifold_work_reserve(w, n))
+        return 0;
+    if (!depth_sort(w, rc, n))
+        return 0;
+    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
     int ex = 0;
     if (big > 0 && isfinite(big))
         frexp(big, &ex);
-    /* the points as a point record holds them, relative to the deepest, at the larger body's scale */
-    double *z = w->z, origin[3];
+    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
+     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
+    double *z = w->z, origin[3] = {0, 0, 0};
+    const int one = ex >= -1021 && ex <= 1021;
+    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
-            const double x = (double)(real)(0.5 * (double)c[k].p[r] + 0.5 * (double)c[k].q[r]);
+            const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
             if (k == 0)
                 origin[r] = x;
-            z[3 * k + (size_t)r] = ldexp(x - origin[r], -ex);
+            z[3 * k + (size_t)r] = (x - origin[r]) * f1 * f2;
         }
     const size_t nk = merge_points(w, n, ldexp(MERGE_FRACTION * small, -ex), n > 32);
     for (size_t a = 0; a < nk; ++a) /* compact: kept[a] >= a, increasing */
         memmove(z + 3 * a, z + 3 * w->kept[a], 3 * sizeof *z);
     /* the seed: among the kept within FEATURE_TOL of the larger radius of the smallest distance,
      * the farthest from their centroid */
-    const double d0 = (double)c[w->kept[0]].distance, window = FEATURE_TOL * big;
+    const double d0 = (double)rc[w->kept[0]].c.distance, window = FEATURE_TOL * big;
     double g[3] = {0, 0, 0};
     size_t ntie = 0;
-    for (size_t a = 0; a < nk && (double)c[w->kept[a]].distance - d0 <= window; ++a, ++ntie)
+    for (size_t a = 0; a < nk && (double)rc[w->kept[a]].c.distance - d0 <= window; ++a, ++ntie)
         for (int r = 0; r < 3; ++r)
             g[r] += z[3 * a + (size_t)r];
     for (int r = 0; r < 3; ++r)
@@ -376,7 +948,7 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
          * every contact of the seed's window) */
         const double level = LEVEL_FRACTION * ((double)margin - d0);
         size_t nl = ntie;
-        while (nl < nk && (double)c[w->kept[nl]].distance - d0 <= level)
+        while (nl < nk && (double)rc[w->kept[nl]].c.distance - d0 <= level)
             ++nl;
         memset(w->taken, 0, nk);
         if (nl >= max) {
@@ -397,11 +969,14 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
             }
         }
     }
+    if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
+        return 0;
     for (size_t k = 0; k < ns; ++k) {
-        const ttd_scene_contact *x = &c[w->kept[w->sel[k]]];
-        ttd_scene_point *pt = out + k;
+        const manifold_rec *xr = &rc[w->kept[w->sel[k]]];
+        const ttd_scene_contact *x = &xr->c;
+        ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count + k;
         double normal[3];
-        contact_normal(s, x, normal);
+        contact_normal(s, x, xr->inside, normal);
         pt->i = x->i;
         pt->j = x->j;
         pt->tri_i = x->tri_i;
@@ -413,5 +988,6 @@ static size_t reduce_pair(const struct ttd_scene *s, ttd_scene_contact *c, size_
         pt->distance = x->distance;
         pt->depth = margin - x->distance;
     }
-    return ns;
+    out->count += ns;
+    return 1;
 }

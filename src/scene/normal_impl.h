@@ -26,10 +26,10 @@
  * are symmetric. Every vector is formed at unit scale (scaled by a power of two first), so that
  * tiny and huge scenes get the normals of the same scene at size 1.
  *
- * The solid pairs of a later round (a point of one body inside the other, its closest point on
- * the other's surface) fit the same rule: the inside point's side is nothing, the surface
- * point's side its feature (contact_side), u the direction from the surface point to the
- * inside one. */
+ * The points of solids inside each other (a vertex of one body inside the other, its closest
+ * point on the other's surface; docs/scenes.md, section 5b) fit the same rule: the inside
+ * point's side is nothing, the surface point's side its feature (contact_side), u the direction
+ * from the inside point to the surface one, out of the other body. */
 
 /* A barycentric weight this close to 0 is 0: the world coordinates' rounding (relative to the
  * triangle, for coordinates up to about 1e6 times its size in double, 1e3 in float). */
@@ -120,7 +120,32 @@ static void world_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri,
     }
 }
 
-/* Adds the constraint v . (to - from) <= 0 (or = 0) to f. */
+/* The cross product of triangle v's edges from v[0], formed at unit scale (the edges scaled by a
+ * power of two), into cr, and the edges' squared lengths at that scale into e11, e22; the
+ * triangle's extent (its largest coordinate difference) into *extent. 0 when it has no extent. */
+static int unit_cross(const double v[3][3], double cr[3], double *e11, double *e22, double *extent)
+{
+    double e1[3], e2[3], m = 0;
+    for (int r = 0; r < 3; ++r) {
+        e1[r] = v[1][r] - v[0][r];
+        e2[r] = v[2][r] - v[0][r];
+        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
+    }
+    *extent = m;
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    int ex;
+    frexp(m, &ex);
+    for (int r = 0; r < 3; ++r) {
+        e1[r] = ldexp(e1[r], -ex);
+        e2[r] = ldexp(e2[r], -ex);
+    }
+    cross3d(e1, e2, cr);
+    *e11 = dot3d(e1, e1);
+    *e22 = dot3d(e2, e2);
+    return 1;
+}
+
 /* Barycentric weights of x in triangle v (double), formed at unit scale; 0 when v has no area. */
 static int weights_in(const double v[3][3], const double x[3], double w[3])
 {
@@ -171,7 +196,7 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
     f->id = id;
     f->tri = tri;
     const struct ttd_mesh *mesh = s->body[id].mesh;
-    f->area = mesh->edges.piece_area[mesh->edges.piece[tri]];
+    f->area = mesh->edges->piece_area[mesh->edges->piece[tri]];
     for (int k = 0; k < 3; ++k) {
         if (x != NULL)
             for (int r = 0; r < 3; ++r)
@@ -179,24 +204,11 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
         else
             world_vertex(s, id, mesh->tris[3 * (size_t)tri + (size_t)k], f->v[k]);
     }
-    double e1[3], e2[3], m = 0;
-    for (int r = 0; r < 3; ++r) {
-        e1[r] = f->v[1][r] - f->v[0][r];
-        e2[r] = f->v[2][r] - f->v[0][r];
-        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
-    }
-    if (!(m > 0) || !isfinite(m))
+    double cr[3], e11, e22, m;
+    if (!unit_cross((const double (*)[3])f->v, cr, &e11, &e22, &m))
         return;
-    int ex;
-    frexp(m, &ex);
-    for (int r = 0; r < 3; ++r) {
-        e1[r] = ldexp(e1[r], -ex);
-        e2[r] = ldexp(e2[r], -ex);
-    }
-    double cr[3];
-    cross3d(e1, e2, cr);
     const double area = sqrt(dot3d(cr, cr));
-    if (!(area > 64 * DBL_EPSILON * sqrt(dot3d(e1, e1) * dot3d(e2, e2))))
+    if (!(area > 64 * DBL_EPSILON * sqrt(e11 * e22)))
         return; /* no area: no normal, no feature */
     f->has_normal = 1;
     for (int r = 0; r < 3; ++r)
@@ -208,7 +220,7 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
 static void side_feature(const struct ttd_scene *s, body_feature *f, const int on[3])
 {
     const struct ttd_mesh *mesh = s->body[f->id].mesh;
-    const ttd_mesh_edges *E = &mesh->edges;
+    const ttd_mesh_edges *E = mesh->edges;
     const uint32_t *tri = mesh->tris + 3 * (size_t)f->tri;
     for (int k = 0; k < 3; ++k)
         f->on[k] = on[k];
@@ -315,7 +327,7 @@ static int face_rim(const struct ttd_scene *s, const body_feature *f, const doub
     for (int r = 0; r < 3; ++r)
         foot[r] = x[r] - h * f->n[r];
     const struct ttd_mesh *mesh = s->body[f->id].mesh;
-    const ttd_mesh_edges *E = &mesh->edges;
+    const ttd_mesh_edges *E = mesh->edges;
     double m = 0; /* one scale for every candidate: f's triangle's */
     for (int k = 1; k < 3; ++k)
         for (int r = 0; r < 3; ++r)
@@ -556,17 +568,21 @@ static int triangle_after(const real x[9], const real y[9])
     return 0;
 }
 
-/* The normal of contact c, from body i towards body j (docs/scenes.md, section 5). */
-static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, double n[3])
+/* The normal of contact c, from body i towards body j (docs/scenes.md, section 5). inside: -1,
+ * or which of c's points is a vertex of one solid inside the other (0: p, body i's; 1: q, body
+ * j's; c's distance negative): that side has no feature, and the normal comes out of the other
+ * body at its surface point (5b). */
+static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c, int inside, double n[3])
 {
     real tri[2][9];
     world_triangle(s, c->i, c->tri_i, tri[0]);
     world_triangle(s, c->j, c->tri_j, tri[1]);
-    /* u: from p to q, else between the world boxes' centres, else +z */
+    /* u: from p to q (inside: from q to p, out of the other body), else between the world boxes'
+     * centres, else +z */
     double u[3], d[3];
     for (int r = 0; r < 3; ++r)
-        d[r] = (double)c->q[r] - (double)c->p[r];
-    if (!(c->distance > 0 && unit3(d, u))) {
+        d[r] = c->distance < 0 ? (double)c->p[r] - (double)c->q[r] : (double)c->q[r] - (double)c->p[r];
+    if (!(c->distance != 0 && unit3(d, u))) {
         const double *bi = s->box + 6 * (size_t)c->i, *bj = s->box + 6 * (size_t)c->j;
         for (int r = 0; r < 3; ++r)
             d[r] = (0.5 * bj[r] + 0.5 * bj[3 + r]) - (0.5 * bi[r] + 0.5 * bi[3 + r]);
@@ -581,8 +597,14 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
     const uint32_t t[2] = {swap ? c->tri_j : c->tri_i, swap ? c->tri_i : c->tri_j};
     const real *x[2] = {tri[swap], tri[!swap]}, *pt[2] = {swap ? c->q : c->p, swap ? c->p : c->q};
     body_feature f[2];
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2; ++k) {
         contact_side(s, id[k], t[k], x[k], pt[k], &f[k]);
+        if (inside >= 0 && k == (swap ? !inside : inside)) { /* a point inside the other solid: nothing */
+            f[k].kind = SIDE_FREE;
+            f[k].has_normal = 0;
+            f[k].ncon = f[k].neq = 0;
+        }
+    }
     /* the triangles about a's point, at one scale, for the face-face test */
     double tt[2][9], m = 0;
     for (int k = 0; k < 2; ++k)

@@ -11,6 +11,7 @@
 #include "core/precision.h"
 #include "engine/parallel.h"
 #include "mesh/mesh.h"
+#include "points/points.h"
 #include "scalar/scalar.h"
 #include "scene/scene.h"
 
@@ -23,6 +24,8 @@ typedef ttd_mesh_result_d ttd_mesh_result;
 #define TTD_CONTACTS_FREE ttd_contacts_free_d
 #define TTD_EXACT_PAIR ttd_exact_pair_d
 typedef ttd_result_d ttd_result;
+typedef ttd_point_result_d ttd_point_result;
+#define TTD_POINTS_CLOSEST ttd_points_query_closest_d
 #include "scene/query_impl.h"
 
 ttd_status ttd_scene_query_collide_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin, ttd_scene_array *out)

@@ -19,6 +19,51 @@ static const real *body_pose(const struct ttd_scene *s, uint32_t id)
 #endif
 }
 
+/* Vertex v of body id in the world, as the kernel computes it: ((r0 x + r1 y) + r2 z) + t per
+ * coordinate, in the scene's precision. */
+static void body_vertex(const struct ttd_scene *s, uint32_t id, uint32_t v, real out[3])
+{
+    const struct ttd_mesh *m = s->body[id].mesh;
+    const real *src = (const real *)m->verts + 3 * (size_t)v, *pose = body_pose(s, id);
+    for (int r = 0; r < 3; ++r)
+        out[r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
+}
+
+/* ---- solids (ttd_scene_set_solid; docs/scenes.md, section 5b) ------------------------------ */
+
+/* Whether bodies i and j are both solids. */
+static int solid_pair(const struct ttd_scene *s, uint32_t i, uint32_t j)
+{
+    return s->body[i].solid && s->body[j].solid;
+}
+
+/* Whether world point x (the scene's precision) lies inside solid body id: x moved into its
+ * mesh's frame as the point queries move points (points/points.h), then the mesh's certified
+ * winding number (ttd_points_inside). */
+static int body_inside(const struct ttd_scene *s, uint32_t id, const real x[3])
+{
+    const real *P = body_pose(s, id);
+    real y[3];
+    TTD_POINT_INTO(P, x, y)
+    const double yd[3] = {(double)y[0], (double)y[1], (double)y[2]};
+    return ttd_points_inside(s->body[id].mesh, yd);
+}
+
+/* Solid bodies i and j whose surfaces are apart: 1 when j lies inside i, 2 when i lies inside j,
+ * 0 when neither; at[] gets the inner body's first vertex (of its triangle 0) in the world.
+ * Surfaces that do not meet leave one body wholly inside the other or wholly outside it, so one
+ * vertex each way decides (as for the mesh queries' ttd_options.solid). */
+static int solid_nested(const struct ttd_scene *s, uint32_t i, uint32_t j, real at[3])
+{
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t inner = side ? i : j, outer = side ? j : i;
+        body_vertex(s, inner, s->body[inner].mesh->tris[0], at);
+        if (body_inside(s, outer, at))
+            return side ? 2 : 1;
+    }
+    return 0;
+}
+
 /* How far from a rotation body j's pose in body i's frame, R_i^T R_j, may be: with R_i^T R_i =
  * I + E_i (entries within d_i), |R_i R_i^T - I| <= 3 d_i in norm, so the relative pose's entries
  * are within d_j + 3 d_i (1 + 3 d_j). */
@@ -94,6 +139,13 @@ static void pair_task(void *ctx, size_t k, int worker)
     } else if (J->mode == MODE_COLLIDE) {
         st = TTD_QUERY(collide)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, J->limit,
                                 &J->hit[k]);
+        real at[3];
+        int side;
+        if (st == TTD_OK && !J->hit[k].hit && solid_pair(J->s, p->i, p->j) && (side = solid_nested(J->s, p->i, p->j, at))) {
+            J->hit[k].hit = 1; /* one solid inside the other: the inner body's triangle 0 */
+            J->hit[k].tri_a = side == 2 ? 0 : UINT32_MAX;
+            J->hit[k].tri_b = side == 1 ? 0 : UINT32_MAX;
+        }
         if (st == TTD_OK && J->closest_only && J->hit[k].hit) {
             atomic_min_size(&J->first_zero, k);
         }
@@ -106,6 +158,18 @@ static void pair_task(void *ctx, size_t k, int worker)
         const real bound = J->closest_only ? bits_real(atomic_load(&J->best_bits)) : J->limit;
         st = TTD_QUERY(distance)(J->cfg, a, b, 1, body_pose(J->s, p->j), body_pose(J->s, p->i), &defect, bound, 0,
                                  &J->dist[k]);
+        real at[3];
+        int side;
+        if (st == TTD_OK && !(J->dist[k].distance == 0) && solid_pair(J->s, p->i, p->j) &&
+            (side = solid_nested(J->s, p->i, p->j, at))) {
+            ttd_mesh_result *r = &J->dist[k]; /* one solid inside the other: distance 0 at the inner's vertex */
+            r->distance = 0;
+            memcpy(r->p, at, sizeof r->p);
+            memcpy(r->q, at, sizeof r->q);
+            r->tri_a = side == 2 ? 0 : UINT32_MAX;
+            r->tri_b = side == 1 ? 0 : UINT32_MAX;
+            r->flags = TTD_MESH_INTERSECTING | TTD_MESH_CONTAINED;
+        }
         const real d = J->dist[k].distance;
         if (st == TTD_OK && J->closest_only && d <= bound) {
             uint64_t old = atomic_load(&J->best_bits);
@@ -390,17 +454,21 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
     out->count = 0;
     pair_contacts_set c;
     manifold_work w = {0};
+    const ttd_engine_config one = one_thread(cfg);
     ttd_status st = all_contacts(cfg, s, margin, &c);
+    /* the meshes' edge information, made on their first manifold (mesh/mesh.h) */
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
+        if (c.nfound[k] > 0 || solid_pair(s, c.pairs[k].i, c.pairs[k].j))
+            if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
+                st = TTD_ERR_OUT_OF_MEMORY;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
         const size_t n = c.nfound[k];
-        if (n == 0)
+        if (n == 0 && !solid_pair(s, c.pairs[k].i, c.pairs[k].j))
             continue;
-        const size_t most = max_points == 0 || max_points > n ? n : max_points;
-        if (!manifold_work_reserve(&w, n) || !array_reserve(out, out->count + most, sizeof(ttd_scene_point))) {
+        if (!reduce_pair(s, &one, &c.pairs[k], c.found[k], n, margin, max_points, &w, out)) {
             st = TTD_ERR_OUT_OF_MEMORY;
             break;
         }
-        out->count += reduce_pair(s, c.found[k], n, margin, max_points, &w, (ttd_scene_point *)out->data + out->count);
     }
     manifold_work_free(&w);
     pair_contacts_free(&c);
@@ -445,9 +513,18 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
             best = k;
         /* not swapped: v is sorted by (tri_i, tri_j), the first at d is the smallest */
     }
-    if (best == n) { /* cannot happen: the distance query found a pair at d */
+    if (best == n) { /* no triangle pair at d: one solid inside the other (else cannot happen) */
         free(v);
-        return 0;
+        real at[3];
+        const int side = d == 0 && solid_pair(s, p->i, p->j) ? solid_nested(s, p->i, p->j, at) : 0;
+        if (side == 0)
+            return 0;
+        const uint32_t ti = side == 2 ? 0 : UINT32_MAX, tj = side == 1 ? 0 : UINT32_MAX;
+        *rec = swap ? (ttd_scene_contact){p->j, p->i, tj, ti, 0, {0, 0, 0}, {0, 0, 0}}
+                    : (ttd_scene_contact){p->i, p->j, ti, tj, 0, {0, 0, 0}, {0, 0, 0}};
+        memcpy(rec->p, at, sizeof rec->p);
+        memcpy(rec->q, at, sizeof rec->q);
+        return 1;
     }
     *rec = v[best];
     if (swap) {

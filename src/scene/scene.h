@@ -26,6 +26,7 @@ typedef struct scene_body {
     float pose_f[12];            /* a float scene's, as given */
     double defect;               /* max |R^T R - I| */
     uint32_t group, mask;
+    int solid;                   /* a solid (its mesh closed): pairs of solids are solid pairs */
     uint64_t generation;         /* the mesh's generation (vertex updates) its world box was
                                   * computed for: a query recomputes the box when they differ */
 } scene_body;

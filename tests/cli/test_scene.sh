@@ -10,10 +10,11 @@
 #   - collide: the body pairs that have a contact within the margin, each witness one of them;
 #   - distance: the smallest contact distance over all pairs (also the `ttd mesh distance`
 #     minimum), ties to the smallest (i, j) then (ia, ib), its points;
-#   - manifold: against the mesh contacts merged here in awk (in depth order, a contact within
-#     1e-3 of the smaller mesh radius of a point kept before goes): min(K, kept) points per body
-#     pair, each a kept contact's midpoint with its d and depth, unit normals, no two points
-#     within the tolerance (the normal rule itself: tests/test_scene_contacts.c);
+#   - manifold: at most K points per body pair, each a mesh contact's midpoint with its d and
+#     depth or a corner of flat contact (a vertex, or two edges' closest points, at distance d,
+#     checked here in awk to 1e-9), unit normals, no two points within 1e-3 of the smaller mesh
+#     radius (which points are kept: tests/test_scene.c; the normal rule:
+#     tests/test_scene_contacts.c);
 #   - filter and exclude statements: every query equal to the unfiltered scene's lines less the
 #     body pairs that the group/mask rule (computed here in awk) or an exclusion removes; body
 #     names (referred to by name or number; --names prints them for i and j);
@@ -193,14 +194,18 @@ ref_distance_d() {
     done | awk 'NR == 1 || $1 + 0 < m + 0 { m = $1 } END { print m }'
 }
 # check_manifold GOT MARGIN K BODIES WHAT < contacts: GOT's manifold lines against the contact
-# lines (double), per body pair: the contacts merged in depth order (a contact within 1e-3 of the
-# smaller mesh radius of a point kept before it goes; radius: from the vertices' bounding-box
-# centre to the farthest vertex), min(K, kept) lines (all where K = 0), each point the midpoint of
-# a kept contact with its d and depth M - d, a unit normal, no two points within the tolerance.
+# lines (double) and the world meshes ($DIR/world), per body pair: at most K lines (all kept where
+# K = 0), at least one; each point either a contact's midpoint with its d and depth M - d, or a
+# corner of flat contact (docs/scenes.md 5, step 0), checked here in double to 1e-9: a vertex of
+# one body at d/2 from the point whose mirror image lies on the other body, or the midpoint of
+# two edges' closest points (inside both) at distance d; a unit normal; no two points within the
+# merge tolerance (1e-3 of the smaller mesh radius: from the vertices' bounding-box centre to the
+# farthest vertex). Which points the reduction keeps is checked against brute force in
+# tests/test_scene.c.
 check_manifold() {
     echo "$4" > "$DIR/bodies.txt"
     awk -v m="$2" -v K="$3" -v got="$1" -v bodies="$DIR/bodies.txt" -v cube="$DIR/cube.mesh" -v tet="$DIR/tet.mesh" \
-        -v wedge="$DIR/wedge.mesh" "$LIB"'
+        -v wedge="$DIR/wedge.mesh" -v world="$DIR/world" "$LIB"'
     function radius(k,    v, r, lo, hi, c, d2, best) {
         for (r = 0; r < 3; r++) { lo[r] = 1e300; hi[r] = -1e300 }
         for (v = 0; v < NV[k]; v++) { X[0] = VX[k, v]; X[1] = VY[k, v]; X[2] = VZ[k, v]
@@ -210,39 +215,85 @@ check_manifold() {
         for (v = 0; v < NV[k]; v++) { X[0] = VX[k, v]; X[1] = VY[k, v]; X[2] = VZ[k, v]
             d2 = 0; for (r = 0; r < 3; r++) d2 += (X[r] - c[r]) * (X[r] - c[r]); if (d2 > best) best = d2 }
         return sqrt(best) * (1 + 4 * 2.220446049250313e-16) }
+    function wload(b,    file, line, f) { file = world "/" b ".obj"; WN[b] = 0; WNT[b] = 0
+        while ((getline line < file) > 0) { split(line, f, " ")
+            if (f[1] == "v") { WX[b, WN[b], 0] = f[2] + 0; WX[b, WN[b], 1] = f[3] + 0; WX[b, WN[b], 2] = f[4] + 0; WN[b]++ }
+            else if (f[1] == "f") { WF[b, WNT[b], 0] = f[2] - 1; WF[b, WNT[b], 1] = f[3] - 1; WF[b, WNT[b], 2] = f[4] - 1; WNT[b]++ } }
+        close(file) }
+    function clamp01(x) { return x < 0 ? 0 : x > 1 ? 1 : x }
+    # the distance from point P[0..2] to segment A B (arrays), and its parameter in SPAR
+    function pseg(P, A, B,    r, ab, ap, L, t, d2) { L = 0; t = 0
+        for (r = 0; r < 3; r++) { ab[r] = B[r] - A[r]; ap[r] = P[r] - A[r]; L += ab[r] * ab[r]; t += ab[r] * ap[r] }
+        t = L > 0 ? clamp01(t / L) : 0; SPAR = t; d2 = 0
+        for (r = 0; r < 3; r++) d2 += (ap[r] - t * ab[r]) ^ 2
+        return sqrt(d2) }
+    # the distance between segments A B and C D (Ericson: the closest points of two segments)
+    function segseg(A, B, C, D,    r, d1, d2, w, a, e, f, c, b, den, s, t, x) {
+        a = e = f = c = b = 0
+        for (r = 0; r < 3; r++) { d1[r] = B[r] - A[r]; d2[r] = D[r] - C[r]; w[r] = A[r] - C[r]
+            a += d1[r] * d1[r]; e += d2[r] * d2[r]; f += d2[r] * w[r]; c += d1[r] * w[r]; b += d1[r] * d2[r] }
+        den = a * e - b * b; s = den > 1e-30 * a * e ? clamp01((b * f - c * e) / den) : 0
+        t = (b * s + f) / e
+        if (t < 0) { t = 0; s = clamp01(-c / a) } else if (t > 1) { t = 1; s = clamp01((b - c) / a) }
+        x = 0; for (r = 0; r < 3; r++) x += (w[r] + s * d1[r] - t * d2[r]) ^ 2
+        return sqrt(x) }
+    # the distance from point P to triangle u of body b, as the largest of its distances to the
+    # plane (inside the triangle) or the smallest to its edges
+    function ptri(P, b, u,    r, k, A, B, C, e1, e2, n, ln, h, w, best, x, s0, s1, s2) {
+        for (r = 0; r < 3; r++) { A[r] = WX[b, WF[b, u, 0], r]; B[r] = WX[b, WF[b, u, 1], r]; C[r] = WX[b, WF[b, u, 2], r]
+            e1[r] = B[r] - A[r]; e2[r] = C[r] - A[r]; w[r] = P[r] - A[r] }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1]; n[1] = e1[2] * e2[0] - e1[0] * e2[2]; n[2] = e1[0] * e2[1] - e1[1] * e2[0]
+        ln = sqrt(n[0] ^ 2 + n[1] ^ 2 + n[2] ^ 2); h = (w[0] * n[0] + w[1] * n[1] + w[2] * n[2]) / ln
+        s0 = side(A, B, P, n); s1 = side(B, C, P, n); s2 = side(C, A, P, n)
+        if (s0 >= 0 && s1 >= 0 && s2 >= 0) return h < 0 ? -h : h
+        best = pseg(P, A, B); x = pseg(P, B, C); if (x < best) best = x; x = pseg(P, C, A); if (x < best) best = x
+        return best }
+    function side(A, B, P, n,    ab, ap, c) {
+        ab[0] = B[0] - A[0]; ab[1] = B[1] - A[1]; ab[2] = B[2] - A[2]; ap[0] = P[0] - A[0]; ap[1] = P[1] - A[1]; ap[2] = P[2] - A[2]
+        c[0] = ab[1] * ap[2] - ab[2] * ap[1]; c[1] = ab[2] * ap[0] - ab[0] * ap[2]; c[2] = ab[0] * ap[1] - ab[1] * ap[0]
+        return c[0] * n[0] + c[1] * n[1] + c[2] * n[2] }
+    # whether point X at distance d is a corner of body pair (bi, bj): a vertex or two edges
+    function corner(X, d, bi, bj,    sd, b, o, v, r, V, Q, u, best, x, ti, tj, k, l, A, B, C, D, pa, pb) {
+        for (sd = 0; sd < 2; sd++) { b = sd ? bj : bi; o = sd ? bi : bj
+            for (v = 0; v < WN[b]; v++) { x = 0
+                for (r = 0; r < 3; r++) { V[r] = WX[b, v, r]; Q[r] = 2 * X[r] - V[r]; x += (X[r] - V[r]) ^ 2 }
+                if ((sqrt(x) - d / 2) ^ 2 > 1e-18) continue
+                best = 1e300; for (u = 0; u < WNT[o]; u++) { x = ptri(Q, o, u); if (x < best) best = x }
+                if (best <= 1e-9) return 1 } }
+        for (ti = 0; ti < WNT[bi]; ti++) for (k = 0; k < 3; k++) {
+            for (r = 0; r < 3; r++) { A[r] = WX[bi, WF[bi, ti, k], r]; B[r] = WX[bi, WF[bi, ti, (k + 1) % 3], r] }
+            x = pseg(X, A, B); pa = SPAR; if ((x - d / 2) ^ 2 > 1e-18 || pa <= 1e-12 || pa >= 1 - 1e-12) continue
+            for (tj = 0; tj < WNT[bj]; tj++) for (l = 0; l < 3; l++) {
+                for (r = 0; r < 3; r++) { C[r] = WX[bj, WF[bj, tj, l], r]; D[r] = WX[bj, WF[bj, tj, (l + 1) % 3], r] }
+                x = pseg(X, C, D); pb = SPAR; if ((x - d / 2) ^ 2 > 1e-18 || pb <= 1e-12 || pb >= 1 - 1e-12) continue
+                if ((segseg(A, B, C, D) - d) ^ 2 <= 1e-18) return 1 } }
+        return 0 }
     BEGIN { load(1, cube); load(2, tet); load(3, wedge); for (k = 1; k <= 3; k++) RAD[k] = radius(k); nb = 0
         while ((getline line < bodies) > 0) { n = split(line, f, " "); if (n < 13) continue
-            MB[nb++] = f[1] == "cube" ? 1 : f[1] == "tet" ? 2 : 3 }
+            wload(nb); MB[nb++] = f[1] == "cube" ? 1 : f[1] == "tet" ? 2 : 3 }
         while ((getline line < got) > 0) { split(line, f, " "); key = f[1] " " f[2]
             G[key, NG[key]++] = line; if (!(key in SEEN)) { SEEN[key] = 1; gorder[ng++] = key } } }
     { key = $1 " " $2; if (!(key in N)) { order[np++] = key; N[key] = 0 }
-      L[key, N[key]++] = $0 }
+      L[key, N[key]++] = $0
+      OWN[key, sprintf("%.17g %.17g %.17g %.17g %.17g", 0.5 * ($6 + 0) + 0.5 * ($9 + 0), 0.5 * ($7 + 0) + 0.5 * ($10 + 0),
+                       0.5 * ($8 + 0) + 0.5 * ($11 + 0), $5 + 0, m - $5)] = 1 }
     END {
         for (q = 0; q < ng; q++) if (!(gorder[q] in N)) { print "points for pair " gorder[q] " without contacts"; exit 1 }
         for (q = 0; q < np; q++) { key = order[q]; n = N[key]; split(key, ij, " ")
             ri = RAD[MB[ij[1]]]; rj = RAD[MB[ij[2]]]; tol = 1e-3 * (ri < rj ? ri : rj)
-            # depth order (stable: the input is in (ia, ib) order), then the merge
-            for (a = 0; a < n; a++) { split(L[key, a], f, " "); D[a] = f[5] + 0; S[a] = a }
-            for (a = 1; a < n; a++) { x = S[a]; c = a - 1
-                while (c >= 0 && D[S[c]] > D[x]) { S[c + 1] = S[c]; c-- } S[c + 1] = x }
-            nk = 0; delete KEPT
-            for (a = 0; a < n; a++) { split(L[key, S[a]], f, " ")
-                for (r = 0; r < 3; r++) M[a, r] = 0.5 * (f[6 + r] + 0) + 0.5 * (f[9 + r] + 0)
-                near = 0
-                for (b = 0; b < nk && !near; b++) { d2 = 0
-                    for (r = 0; r < 3; r++) { e = M[a, r] - M[KI[b], r]; d2 += e * e }
-                    near = sqrt(d2) <= tol }
-                if (!near) { KI[nk++] = a
-                    KEPT[sprintf("%.17g %.17g %.17g %.17g %.17g", M[a, 0], M[a, 1], M[a, 2], f[5] + 0, m - f[5])] = 1 } }
-            want = (K == 0 || K > nk) ? nk : K
-            if (NG[key] != want) { print "pair " key ": " NG[key] " points, want " want " (of " nk " kept)"; exit 1 }
+            if (NG[key] < 1 || (K > 0 && NG[key] > K)) { print "pair " key ": " NG[key] " points, K " K; exit 1 }
             for (a = 0; a < NG[key]; a++) { split(G[key, a], f, " ")
-                if (!((f[3] " " f[4] " " f[5] " " f[9] " " f[10]) in KEPT)) { print "pair " key ": not a kept contact: " G[key, a]; exit 1 }
+                if (!((key, f[3] " " f[4] " " f[5] " " f[9] " " f[10]) in OWN)) {
+                    X[0] = f[3] + 0; X[1] = f[4] + 0; X[2] = f[5] + 0
+                    if (!(f[9] + 0 <= m && f[10] + 0 == m - f[9]) || !corner(X, f[9] + 0, ij[1], ij[2])) {
+                        print "pair " key ": neither a contact nor a corner: " G[key, a]; exit 1 }
+                    ++CORNERS }
                 l = f[6] * f[6] + f[7] * f[7] + f[8] * f[8]
                 if (l < 1 - 1e-12 || l > 1 + 1e-12) { print "normal not unit: " G[key, a]; exit 1 }
                 for (b = 0; b < a; b++) { split(G[key, b], g, " "); d2 = 0
                     for (r = 3; r <= 5; r++) d2 += (f[r] - g[r]) * (f[r] - g[r])
-                    if (sqrt(d2) <= tol * (1 - 1e-9)) { print "pair " key ": two points within " tol; exit 1 } } } } }' \
+                    if (sqrt(d2) <= tol * (1 - 1e-9)) { print "pair " key ": two points within " tol; exit 1 } } } }
+        print CORNERS + 0 >> (world "/../corners") }' \
         > "$DIR/diff" || fail "$5: $(cat "$DIR/diff")"
 }
 
@@ -260,6 +311,7 @@ wedgeb 1 0 0 0  0 1 0 0  0 0 1 -0.5'
 NB=6
 write_scene "$DIR/scene.txt" "$BODIES"
 world "$BODIES"
+rm -f "$DIR/corners"
 for m in 0 0.15 0.35; do
     ref_contacts $NB $m > "$DIR/want"
     [ -s "$DIR/want" ] || fail "reference: no contacts at margin $m"
@@ -298,7 +350,8 @@ for p in "0 1," "0 2," "0 3," "0 5,"; do grep -q "$p" "$DIR/pairs" || fail "scen
 ! grep -q "4" "$DIR/pairs" || fail "scene pairs at 0.35 include the far body: $(cat "$DIR/pairs")"
 [ "$(awk '$1 == 0 && $2 == 5 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no touching pair (0, 5)"
 [ "$(awk '$1 == 0 && $2 == 3 && $5 == 0' "$DIR/want" | wc -l)" -gt 0 ] || fail "no crossing pair (0, 3)"
-pass "contacts, collide, manifold (K 4, 2, all), --count at margins 0, 0.15, 0.35: equal to (manifold: drawn from) the world meshes' mesh contacts"
+[ "$(awk '{ s += $1 } END { print s + 0 }' "$DIR/corners")" -gt 0 ] || fail "manifold: no corner of flat contact among the points"
+pass "contacts, collide, manifold (K 4, 2, all), --count at margins 0, 0.15, 0.35: equal to (manifold: drawn from) the world meshes' mesh contacts and their corners"
 
 # distance: the smallest contact over all pairs (a margin holding every pair), ties to the
 # smallest (i, j) then (ia, ib): the first such line in the sorted contacts.
@@ -528,6 +581,48 @@ awk '{ for (k = 1; k <= NF; k++) { s = $k; sub(/e.*/, "", s); gsub(/[-.]/, "", s
     fail "float manifold: more than 9 digits"
 pass "--precision float: contacts, collide, distance equal to ttd mesh --precision float on the world meshes; manifold well formed"
 
+# ---- solids ------------------------------------------------------------------------------
+# A unit cube sunk 0.1 into another (offset 0.1, 0.2), solid by --solid or by 'solid' lines: the
+# same lines; the deepest point at depth M + 0.1 with normal +z, every point below 0 at d = -0.1
+# (a corner of one cube inside the other) with depth M - d; as surfaces, no point below 0.
+awk '/^v/ { print "v", $2 * 0.5, $3 * 0.5, $4 * 0.5; next } { print }' "$DIR/cube.obj" > "$DIR/half.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$DIR/open.obj"
+SOLID_HEAD='mesh cube cube.obj
+mesh half half.obj
+mesh open open.obj'
+printf '%s\nbody cube 1 0 0 0  0 1 0 0  0 0 1 0 name low\nbody cube 1 0 0 0.1  0 1 0 0.2  0 0 1 0.9\n' "$SOLID_HEAD" > "$DIR/sunk.txt"
+run 0 scene manifold "$DIR/sunk.txt" --margin 0.01 --solid --max-points 0
+cp "$DIR/out" "$DIR/sunk_solid"
+awk 'BEGIN { deepest = -1 } { d = $9 + 0; depth = $10 + 0; if (depth > deepest) { deepest = depth; nz = $8 + 0 }
+     e = depth - (0.01 - d); if (e < 0) e = -e; if (e > 1e-15) { print "depth " $0; exit 1 }
+     if (d < 0 && (d + 0.1 > 1e-12 || d + 0.1 < -1e-12)) { print "d " $0; exit 1 } if (d < 0) below++ }
+     END { e = deepest - 0.11; if (e < 0) e = -e; if (e > 1e-12 || nz != 1 || below < 2) { print "deepest " deepest " nz " nz " below " below; exit 1 } }' \
+    "$DIR/sunk_solid" > "$DIR/diff" || fail "sunk cube, --solid: $(cat "$DIR/diff")"
+{ cat "$DIR/sunk.txt"; echo "solid low"; echo "solid 1  # by number"; } > "$DIR/sunk2.txt"
+run 0 scene manifold "$DIR/sunk2.txt" --margin 0.01 --max-points 0
+same "$DIR/out" "$DIR/sunk_solid" "sunk cube: 'solid' lines against --solid"
+run 0 scene manifold "$DIR/sunk.txt" --margin 0.01 --max-points 0
+awk '$9 < 0 { exit 1 }' "$DIR/out" || fail "sunk cube as surfaces: a point below 0"
+# A half cube inside the unit cube: as solids, collide at 0 finds the pair (the inner body's
+# triangle 0, -1 for the outer), distance is 0 at the inner body's first vertex, the manifold's
+# points lie below 0; as surfaces, nothing collides.
+printf '%s\nbody cube 1 0 0 0  0 1 0 0  0 0 1 0\nbody half 1 0 0 0.25  0 1 0 0.25  0 0 1 0.25\n' "$SOLID_HEAD" > "$DIR/nest.txt"
+run 0 scene collide "$DIR/nest.txt" --solid
+[ "$(cat "$DIR/out")" = "0 1 -1 0" ] || fail "nested solids, collide: $(cat "$DIR/out")"
+run 0 scene distance "$DIR/nest.txt" --solid
+[ "$(cat "$DIR/out")" = "0 0 1 -1 0 0.25 0.25 0.25 0.25 0.25 0.25" ] || fail "nested solids, distance: $(cat "$DIR/out")"
+run 0 scene manifold "$DIR/nest.txt" --solid --max-points 0
+[ "$(wc -l < "$DIR/out" | tr -d ' ')" = 8 ] && awk '!($9 < 0) { exit 1 }' "$DIR/out" || fail "nested solids, manifold: $(cat "$DIR/out")"
+run 0 scene collide "$DIR/nest.txt"; no_output "nested surfaces collide"
+# An open mesh cannot be a solid.
+printf '%s\nbody open 1 0 0 0  0 1 0 0  0 0 1 0\n' "$SOLID_HEAD" > "$DIR/open.txt"
+run 1 scene collide "$DIR/open.txt" --solid; no_output "--solid on an open mesh"
+err_has "open.txt: --solid: body 0: a mesh is not closed" "--solid on an open mesh"
+{ cat "$DIR/open.txt"; echo "solid 0"; } > "$DIR/open2.txt"
+run 1 scene collide "$DIR/open2.txt"; no_output "solid on an open mesh"
+err_has "open2.txt:5: solid: a mesh is not closed" "solid on an open mesh"
+pass "solids: a cube sunk 0.1 (depth M + 0.1, +z; --solid and 'solid' lines alike), a cube inside a cube (collide, distance 0, points below 0), open meshes refused"
+
 # ---- errors: the scene file ------------------------------------------------------------------
 P0='1 0 0 0  0 1 0 0  0 0 1 0'
 bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, refused with PATTERN
@@ -536,7 +631,10 @@ bad_scene() { # bad_scene WHAT PATTERN LINES...: a scene of the head and LINES, 
     run 1 scene contacts "$DIR/bad.txt" --margin 1; no_output "$what"; err_has "$pat" "$what"
     err_has "bad.txt: [0-9]* bad lines\{0,1\}; nothing computed" "$what (summary)"
 }
-bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh, body, filter or exclude)" "bodies cube $P0"
+bad_scene "unknown statement" "bad.txt:6: unknown statement 'bodies' (mesh, body, filter, exclude or solid)" "bodies cube $P0"
+bad_scene "solid without BODY" "bad.txt:6: expected 'solid BODY', found no BODY" "solid"
+bad_scene "solid with more" "bad.txt:7: expected 'solid BODY', found more words" "body cube $P0" "solid 0 1"
+bad_scene "solid of no body" "bad.txt:7: solid: no body 3 (the body lines above this one are 0 to 0)" "body cube $P0" "solid 3"
 bad_scene "unknown mesh" "bad.txt:7: body 1: unknown mesh 'cub' (a 'mesh NAME FILE' line must come first)" "body cube $P0" "body cub $P0"
 bad_scene "duplicate mesh" "bad.txt:6: mesh 'tet' is already defined" "mesh tet cube.obj"
 bad_scene "mesh without FILE" "bad.txt:6: expected 'mesh NAME FILE', found no FILE" "mesh foo  # a comment"
