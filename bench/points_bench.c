@@ -32,7 +32,7 @@ typedef struct pb_row {
     double ttd_d, ttd_f, ttd_s;     /* seconds per point */
     double ref[REF_COUNT];          /* seconds per point, NaN when not run */
     double ref_diff[REF_COUNT];     /* largest |d_ref - d_ttd| / diagonal */
-    double build_ttd, build_ref[REF_COUNT];
+    double build_ttd, build_points, build_ref[REF_COUNT]; /* ttd: the mesh; its point data apart */
     double nodes, tris;             /* per point, ttd double */
 } pb_row;
 
@@ -222,6 +222,7 @@ int bench_points_main(int argc, char **argv)
 {
     size_t n = 100000;
     int all = 0, quick = 0;
+    unsigned meshes = 15; /* bit w: workload w of names[] below */
     pb_env E;
     memset(&E, 0, sizeof E);
     bench_mesh_config mc;
@@ -234,14 +235,28 @@ int bench_points_main(int argc, char **argv)
             n = (size_t)strtoull(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
             all = atoi(argv[++i]);
+        } else if (strcmp(argv[i], "--meshes") == 0 && i + 1 < argc) {
+            static const char *const keys[4] = {"triangle", "bunny", "bunny-sub", "torus"};
+            meshes = 0;
+            for (char *tok = strtok(argv[++i], ","); tok; tok = strtok(NULL, ",")) {
+                int w = 0;
+                while (w < 4 && strcmp(tok, keys[w]) != 0)
+                    ++w;
+                if (w == 4) {
+                    fprintf(stderr, "ttd bench points: unknown mesh '%s' (triangle, bunny, bunny-sub, torus)\n", tok);
+                    return 2;
+                }
+                meshes |= 1u << w;
+            }
         } else if (strcmp(argv[i], "--no-refs") == 0) {
             E.no_refs = 1;
         } else if (strcmp(argv[i], "--bunny") == 0 && i + 1 < argc) {
             snprintf(mc.bunny, sizeof mc.bunny, "%s", argv[++i]);
         } else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--no-refs] [--bunny PATH]\n"
+            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--meshes LIST] [--no-refs] [--bunny PATH]\n"
                    "The point queries against Embree, CGAL and Open3D (docs/points.md): N points per set\n"
-                   "(default 100000; --quick 10000), one thread and N threads (default: every core).\n");
+                   "(default 100000; --quick 10000), one thread and N threads (default: every core);\n"
+                   "LIST: comma-separated, from triangle, bunny, bunny-sub, torus (default: all four).\n");
             return 0;
         } else {
             fprintf(stderr, "ttd bench points: unknown option '%s' (ttd bench points --help)\n", argv[i]);
@@ -285,6 +300,8 @@ int bench_points_main(int argc, char **argv)
     }
     static const char *const names[4] = {"one triangle", "bunny", "bunny subdivided", "torus 1M"};
     for (int w = 0; w < 4; ++w) {
+        if (!(meshes >> w & 1u))
+            continue;
         ttd_gen_mesh m = {0};
         char what[1600];
         int rc;
@@ -310,8 +327,10 @@ int bench_points_main(int argc, char **argv)
         ttd_mesh *md, *mfl;
         double t0 = bench_now();
         ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &md);
-        ttd_points_closest_d(NULL, md, 1, m.verts, NULL, INFINITY, rd); /* the point data, made on first use */
         const double build = bench_now() - t0;
+        t0 = bench_now();
+        ttd_points_closest_d(NULL, md, 1, m.verts, NULL, INFINITY, rd); /* the point data, made on first use */
+        const double build_points = bench_now() - t0;
         ttd_mesh_create_f(NULL, vf, m.nv, m.tris, m.nt, &mfl);
         const float v0[3] = {vf[0], vf[1], vf[2]};
         ttd_points_closest_f(NULL, mfl, 1, v0, NULL, INFINITY, rf);
@@ -338,6 +357,7 @@ int bench_points_main(int argc, char **argv)
                 r->nt = m.nt;
                 r->threads = threads;
                 r->build_ttd = build;
+                r->build_points = build_points;
                 ttd_options o = ttd_default_options();
                 o.threads = threads;
                 pb_call c = {0, &o, md, mfl, n, p, pf, rd, rf, sd};
@@ -370,16 +390,16 @@ int bench_points_main(int argc, char **argv)
     pb_print_rows(rows, nrows, 1);
     if (all > 1)
         pb_print_rows(rows, nrows, all);
-    printf("\nBuild (seconds, first row of each mesh: ttd's mesh and point data; the others' structure), "
-           "ttd's tests per point, and the largest |d - d_ttd| (diagonal 1):\n");
-    printf("%-18s %9s %9s %9s %9s %8s %8s %10s %10s %10s\n", "mesh", "ttd", "Embree", "CGAL", "Open3D", "nodes", "tris",
-           "Embree", "CGAL", "Open3D");
+    printf("\nBuild (seconds, every core: ttd's mesh, then its point data on the first point query; the others'\n"
+           "structure), ttd's tests per point, and the largest |d - d_ttd| (diagonal 1):\n");
+    printf("%-18s %9s %9s %9s %9s %9s %8s %8s %10s %10s %10s\n", "mesh", "ttd", "points", "Embree", "CGAL", "Open3D",
+           "nodes", "tris", "Embree", "CGAL", "Open3D");
     for (size_t i = 0; i < nrows; ++i) {
         const pb_row *r = &rows[i];
         if (r->threads != 1)
             continue;
-        printf("%-18s %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g  (%s)\n", r->mesh, r->build_ttd,
-               r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes, r->tris,
+        printf("%-18s %9.4f %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g  (%s)\n", r->mesh, r->build_ttd,
+               r->build_points, r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes, r->tris,
                r->ref_diff[REF_EMBREE], r->ref_diff[REF_CGAL], r->ref_diff[REF_OPEN3D], r->points);
     }
     char load_end[64];

@@ -539,9 +539,12 @@ static int winding_and_signs(void)
             ENSURE_MSG(fabs(w - exact) <= bound, "mesh %d point %zu: %.17g vs exact %.17g, bound %.3g", mi, i, w, exact, bound);
             worst_err = fmax(worst_err, fabs(w - exact));
             const double wc = ttd_points_winding_certified(mesh, pd, x);
-            ENSURE(fabs(wc - exact) <= 0.25);
             if (r[i].distance < 1e-9)
                 continue; /* on the surface (to rounding): either side, and no ray parity */
+            /* closed: the exact count, an integer, the linear sum's nearest */
+            ENSURE_MSG(wc == nearbyint(exact) && fabs(wc - exact) <= 0.25, "mesh %d point %zu: certified %g, exact sum %.17g",
+                       mi, i, wc, exact);
+            ENSURE(!(r[i].flags & TTD_POINT_SIGN_UNPROVEN));
             const int inside = parity_inside(&m, x, &rng);
             ENSURE_MSG(in[i] == inside, "mesh %d point %zu (distance %.3g): contains %d, ray parity %d, w %.6f", mi, i,
                        r[i].distance, in[i], inside, w);
@@ -557,6 +560,135 @@ static int winding_and_signs(void)
     printf("  %zu points off 3 closed meshes: inside agrees with ray parity; winding within its bound of the exact sum "
            "(worst error %.2g; %zu of the signs certified by the fast walk's own bound)\n",
            checked, worst_err, certified_by_bound);
+    return 0;
+}
+
+/* The winding number of closed meshes is the exact count of a ray's crossings (points/ray.c): it
+ * equals the linear sum of solid angles, rounded, for points off the surface by 1e-3 down to 1e-12
+ * of the size (at faces, edges and vertices), for a grid of points whose rays run along the
+ * cube's faces and through its edges and corners (the cases the perturbation decides), at scales
+ * 1e-8..1e8 and an offset of 1e6, in both precisions; and every signed distance's side is proven. */
+static int exact_count_near_surface(void)
+{
+    size_t checked = 0, skipped = 0;
+    for (int mi = 0; mi < 3; ++mi)
+        for (int sc = 0; sc < 4; ++sc)
+            for (int prec = 0; prec < 2; ++prec) {
+                ttd_gen_mesh m;
+                ENSURE((mi == 0   ? ttd_gen_icosphere(2, &m)
+                        : mi == 1 ? ttd_gen_torus(1.0, 0.3, 24, 12, &m)
+                                  : ttd_gen_mesh_cube(&m)) == 0);
+                ENSURE(ttd_gen_normalize(&m) == 0);
+                double lo[3], hi[3];
+                ENSURE(ttd_gen_mesh_bounds(&m, lo, hi) == 0);
+                /* points: off faces, edge midpoints and vertices along a triangle's normal by
+                 * +-delta, and a grid over the box whose lines hit the cube's faces, edges, corners */
+                const size_t per = 48, ngrid = 7 * 7 * 7, n = 4 * 3 * 2 * per + ngrid;
+                double *p = malloc(3 * n * sizeof *p);
+                float *pf = malloc(3 * n * sizeof *pf);
+                ttd_gen_rng r = ttd_gen_rng_make(77, (uint64_t)(mi * 8 + sc * 2 + prec));
+                size_t i = 0;
+                static const double deltas[4] = {1e-3, 1e-6, 1e-9, 1e-12};
+                for (int di = 0; di < 4; ++di)
+                    for (int where = 0; where < 3; ++where)
+                        for (int side = -1; side <= 1; side += 2)
+                            for (size_t q = 0; q < per; ++q, ++i) {
+                                const size_t t = ttd_gen_rng_u64(&r) % m.nt;
+                                const double *v[3];
+                                for (int k = 0; k < 3; ++k)
+                                    v[k] = m.verts + 3 * m.tris[3 * t + (size_t)k];
+                                double a = ttd_gen_rng_uniform(&r), b = ttd_gen_rng_uniform(&r);
+                                if (a + b > 1) {
+                                    a = 1 - a;
+                                    b = 1 - b;
+                                }
+                                if (where == 1)
+                                    a = 0.5, b = 0;
+                                else if (where == 2)
+                                    a = b = 0;
+                                double e1[3], e2[3], nn[3];
+                                for (int c = 0; c < 3; ++c) {
+                                    e1[c] = v[1][c] - v[0][c];
+                                    e2[c] = v[2][c] - v[0][c];
+                                }
+                                nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+                                nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+                                nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                                const double l = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+                                for (int c = 0; c < 3; ++c)
+                                    p[3 * i + (size_t)c] = v[0][c] + a * e1[c] + b * e2[c] + side * deltas[di] * nn[c] / l;
+                            }
+                for (int gx = 0; gx < 7; ++gx)
+                    for (int gy = 0; gy < 7; ++gy)
+                        for (int gz = 0; gz < 7; ++gz, ++i) {
+                            const int g[3] = {gx, gy, gz};
+                            for (int c = 0; c < 3; ++c) /* -1/4 .. 5/4 of the box in quarters */
+                                p[3 * i + (size_t)c] = lo[c] + (hi[c] - lo[c]) * (g[c] - 1) / 4.0;
+                        }
+                double scale, offset;
+                scale_case(sc, &scale, &offset);
+                for (size_t k = 0; k < 3 * m.nv; ++k)
+                    m.verts[k] = m.verts[k] * scale + offset;
+                for (size_t k = 0; k < 3 * n; ++k) {
+                    p[k] = p[k] * scale + offset;
+                    pf[k] = (float)p[k];
+                    if (prec)
+                        p[k] = pf[k];
+                }
+                float *vf = malloc(3 * m.nv * sizeof *vf);
+                for (size_t k = 0; k < 3 * m.nv; ++k) {
+                    vf[k] = (float)m.verts[k];
+                    if (prec)
+                        m.verts[k] = vf[k];
+                }
+                ttd_mesh *mesh;
+                ENSURE((prec ? ttd_mesh_create_f(NULL, vf, m.nv, m.tris, m.nt, &mesh)
+                             : ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &mesh)) == TTD_OK);
+                double *w = malloc(n * sizeof *w);
+                float *wf = malloc(n * sizeof *wf);
+                uint8_t *in = malloc(n);
+                ttd_point_result_d *rd = malloc(n * sizeof *rd);
+                ttd_point_result_f *rf = malloc(n * sizeof *rf);
+                if (prec) {
+                    ENSURE(ttd_points_winding_number_f(NULL, mesh, n, pf, NULL, wf) == TTD_OK);
+                    ENSURE(ttd_points_contains_f(NULL, mesh, n, pf, NULL, in) == TTD_OK);
+                    ENSURE(ttd_points_signed_distance_f(NULL, mesh, n, pf, NULL, INFINITY, NULL, rf) == TTD_OK);
+                } else {
+                    ENSURE(ttd_points_winding_number_d(NULL, mesh, n, p, NULL, w) == TTD_OK);
+                    ENSURE(ttd_points_contains_d(NULL, mesh, n, p, NULL, in) == TTD_OK);
+                    ENSURE(ttd_points_signed_distance_d(NULL, mesh, n, p, NULL, INFINITY, NULL, rd) == TTD_OK);
+                }
+                /* the reference's distances in double, on the same (float) coordinates */
+                ttd_mesh *md;
+                ttd_point_result_d *ref = malloc(n * sizeof *ref);
+                ENSURE(ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &md) == TTD_OK);
+                ENSURE(ttd_points_closest_d(NULL, md, n, p, NULL, INFINITY, ref) == TTD_OK);
+                const struct ttd_mesh *im = (const struct ttd_mesh *)md;
+                for (size_t k = 0; k < n; ++k) {
+                    const double wk = prec ? (double)wf[k] : w[k];
+                    const double dist = ref[k].distance;
+                    const int flags = prec ? rf[k].flags : rd[k].flags;
+                    ENSURE(wk == nearbyint(wk));            /* an integer: the count */
+                    ENSURE(!(flags & TTD_POINT_SIGN_UNPROVEN)); /* closed: always proven */
+                    ENSURE(((flags & TTD_POINT_INSIDE) != 0) == in[k]);
+                    ENSURE(in[k] == (wk >= 0.5));
+                    const double exact = ttd_mesh_winding(im, p + 3 * k);
+                    if (!(dist > 1e-13 * scale) || fabs(exact - nearbyint(exact)) > 0.05) {
+                        ++skipped; /* on the surface to rounding: the linear sum is no reference there */
+                        continue;
+                    }
+                    ENSURE_MSG(wk == nearbyint(exact), "mesh %d scale %d prec %d point %zu (%.17g %.17g %.17g): count %g, "
+                               "sum %.17g, distance %.3g", mi, sc, prec, k, p[3 * k], p[3 * k + 1], p[3 * k + 2], wk, exact,
+                               dist);
+                    ++checked;
+                }
+                ttd_mesh_destroy(mesh);
+                ttd_mesh_destroy(md);
+                free(p), free(pf), free(vf), free(w), free(wf), free(in), free(rd), free(rf), free(ref);
+                ttd_gen_mesh_free(&m);
+            }
+    printf("  %zu points near and around 3 closed meshes x 4 scales x 2 precisions: the ray's count is the solid "
+           "angles' sum, rounded (%zu on the surface or ill-conditioned left out)\n", checked, skipped);
     return 0;
 }
 
@@ -591,6 +723,77 @@ static int grid_matches_signed(void)
     return 0;
 }
 
+/* Signed distances without the caller's results (made in chunks of 8,192 points) equal those with
+ * them (one pass), bit for bit, under a pose, on a closed mesh (the ray count) and an open one (the
+ * walk), both precisions; a NaN point in the second chunk is flagged in both. The posed query equals
+ * the query of the points moved by the documented formula. */
+#define CHUNKS(real, sfx)                                                                          \
+    static int chunks_##sfx(const ttd_gen_mesh *m, const double *p64, size_t n, const double pose64[12], size_t *inside) \
+    {                                                                                              \
+        real *v = malloc(3 * m->nv * sizeof *v), *p = malloc(3 * n * sizeof *p), *y = malloc(3 * n * sizeof *y); \
+        real *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), *c = malloc(n * sizeof *c), pose[12]; \
+        ttd_point_result_##sfx *r = malloc(n * sizeof *r);                                         \
+        ENSURE(v && p && y && a && b && c && r);                                                  \
+        for (size_t i = 0; i < 3 * m->nv; ++i)                                                     \
+            v[i] = (real)m->verts[i];                                                              \
+        for (int k = 0; k < 12; ++k)                                                               \
+            pose[k] = (real)pose64[k];                                                             \
+        for (size_t i = 0; i < n; ++i) /* the points near the mesh taken out of its frame */     \
+            for (int k = 0; k < 3; ++k) {                                                          \
+                const double *x = p64 + 3 * i;                                                     \
+                p[3 * i + (size_t)k] = (real)(pose64[4 * k] * x[0] + pose64[4 * k + 1] * x[1] +    \
+                                              pose64[4 * k + 2] * x[2] + pose64[4 * k + 3]);       \
+            }                                                                                      \
+        for (size_t i = 0; i < n; ++i)                                                             \
+            for (int k = 0; k < 3; ++k) {                                                          \
+                const real *x = p + 3 * i;                                                         \
+                y[3 * i + (size_t)k] = (pose[k] * (x[0] - pose[3]) + pose[4 + k] * (x[1] - pose[7])) + \
+                                       pose[8 + k] * (x[2] - pose[11]);                            \
+            }                                                                                      \
+        ttd_mesh *mesh;                                                                            \
+        ENSURE(ttd_mesh_create_##sfx(NULL, v, m->nv, m->tris, m->nt, &mesh) == TTD_OK);            \
+        ENSURE(ttd_points_signed_distance_##sfx(NULL, mesh, n, p, pose, INFINITY, a, NULL) == TTD_ERR_NONFINITE_INPUT); \
+        ENSURE(ttd_points_signed_distance_##sfx(NULL, mesh, n, p, pose, INFINITY, b, r) == TTD_ERR_NONFINITE_INPUT); \
+        ENSURE(ttd_points_signed_distance_##sfx(NULL, mesh, n, y, NULL, INFINITY, c, NULL) == TTD_ERR_NONFINITE_INPUT); \
+        ENSURE(memcmp(a, b, n * sizeof *a) == 0 && memcmp(a, c, n * sizeof *a) == 0);              \
+        *inside = 0;                                                                               \
+        for (size_t i = 0; i < n; ++i) {                                                           \
+            const int nan = isnan(p[3 * i]);                                                       \
+            ENSURE_MSG(nan == ((r[i].flags & TTD_POINT_NONFINITE) != 0) && nan == (isnan(a[i]) != 0), "point %zu", i); \
+            if (!nan)                                                                              \
+                ENSURE_MSG(a[i] == (r[i].flags & TTD_POINT_INSIDE ? -r[i].distance : r[i].distance), "point %zu", i); \
+            *inside += (r[i].flags & TTD_POINT_INSIDE) != 0;                                       \
+        }                                                                                          \
+        ENSURE(ttd_points_signed_distance_##sfx(NULL, mesh, 0, p, pose, INFINITY, a, NULL) == TTD_ERR_EMPTY); \
+        ttd_mesh_destroy(mesh);                                                                    \
+        free(v), free(p), free(y), free(a), free(b), free(c), free(r);                             \
+        return 0;                                                                                  \
+    }
+CHUNKS(double, d)
+CHUNKS(float, f)
+
+static int chunks_equal_one_pass(void)
+{
+    double pose[12];
+    ttd_gen_pose(7, 1, 2.0, pose);
+    for (int mi = 1; mi <= 3; mi += 2) { /* the torus (closed), the grid (open) */
+        ttd_gen_mesh m;
+        ENSURE(test_mesh(mi, &m) == 0);
+        size_t n;
+        double *p = test_points(&m, 31, 3000, &n); /* 18,000 points: three chunks */
+        ENSURE(n > 2 * 8192);
+        p[3 * 9000] = NAN;
+        size_t in_d, in_f;
+        ENSURE(chunks_d(&m, p, n, pose, &in_d) == 0 && chunks_f(&m, p, n, pose, &in_f) == 0);
+        ENSURE(mi == 3 || (in_d > 0 && in_f > 0));
+        printf("  %s: %zu posed points, inside %zu (double) %zu (float): chunked = one pass\n",
+               mi == 1 ? "torus" : "grid", n, in_d, in_f);
+        free(p);
+        ttd_gen_mesh_free(&m);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -601,6 +804,8 @@ int main(int argc, char **argv)
     RUN_TEST(bad_input_refused);
     RUN_TEST(pose_applied);
     RUN_TEST(winding_and_signs);
+    RUN_TEST(exact_count_near_surface);
     RUN_TEST(grid_matches_signed);
+    RUN_TEST(chunks_equal_one_pass);
     TEST_MAIN_END();
 }

@@ -501,11 +501,14 @@ TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mes
  * coordinate gets NaN outputs and TTD_POINT_NONFINITE while the others are computed; the call then
  * returns TTD_ERR_NONFINITE_INPUT.
  *
- * Inside means a generalized winding number of at least 1/2 (Jacobson et al. 2013), computed
- * hierarchically (Barill et al. 2018) to a bounded error: for a closed, consistently oriented
- * mesh it is the solid's inside (outward normals: counter-clockwise seen from outside), and an
- * open or imperfect mesh still gets a sensible side. docs/points.md gives the error bound and
- * where it guarantees the sign.
+ * Inside means a generalized winding number of at least 1/2 (Jacobson et al. 2013). For a closed
+ * mesh (every directed edge once, and its reverse once) it is counted exactly, by a ray's
+ * crossings with exact predicates: an integer, the solid's inside for a consistently oriented
+ * mesh (outward normals: counter-clockwise seen from outside), exact for every point off the
+ * surface (short of products that underflow, answered as for an open mesh). An open or imperfect
+ * mesh gets it hierarchically (Barill et al. 2018) with a rigorous error bound, tightened until it
+ * settles the side of 1/2 where it can (TTD_POINT_SIGN_UNPROVEN where rounding leaves it open).
+ * docs/points.md, section 5.
  * @{ */
 
 /// Flags of a point result.
@@ -513,7 +516,9 @@ enum {
     TTD_POINT_NONFINITE = 1u << 0,   ///< the point had a NaN or infinite coordinate: outputs NaN
     TTD_POINT_ABOVE_BOUND = 1u << 1, ///< no triangle within upper_bound: distance +inf, no point, triangle UINT32_MAX
     TTD_POINT_INSIDE = 1u << 2,      ///< signed distance: the point is inside (winding number >= 1/2)
-    TTD_POINT_DEGENERATE = 1u << 3   ///< the closest triangle has no area (a segment or a point)
+    TTD_POINT_DEGENERATE = 1u << 3,  ///< the closest triangle has no area (a segment or a point)
+    TTD_POINT_SIGN_UNPROVEN = 1u << 4 ///< signed distance: the side is not proven (an open mesh's winding
+                                      ///< number within rounding of 1/2; never for a closed mesh)
 };
 
 /// The closest point of a mesh to one query point (double precision).
@@ -557,8 +562,9 @@ TTD_API ttd_status ttd_points_closest_d(const ttd_options *opt, const ttd_mesh *
 TTD_API ttd_status ttd_points_closest_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const float *points,
                                         const float *pose, float upper_bound, ttd_point_result_f *results);
 
-/// The generalized winding number of mesh about each of n points into winding[i]: about 1 inside
-/// a closed mesh oriented outwards, 0 outside, fractions for open meshes (NaN for a NaN point).
+/// The generalized winding number of mesh about each of n points into winding[i]: for a closed
+/// mesh the exact integer (1 inside one oriented outwards, 0 outside), fractions for open meshes
+/// within the hierarchical walk's bound (NaN for a NaN point).
 TTD_API ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
                                                const double *points, const double *pose, double *winding);
 TTD_API ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n,

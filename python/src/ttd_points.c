@@ -17,7 +17,7 @@ static PyStructSequence_Field cp_fields[NCP + 1] = {
     {"triangle", "uint32: the triangle it lies on (ttd.NO_TRIANGLE beyond the bound or for a NaN point)"},
     {"bary", "the weights of the triangle's vertices that give point, shape (..., 3)"},
     {"feature", "uint8: vertex bits with a non-zero weight (1 bit: a vertex, 2: an edge, 3: the face)"},
-    {"flags", "uint8: ttd.POINT_* bits (NONFINITE, ABOVE_BOUND, INSIDE, DEGENERATE)"},
+    {"flags", "uint8: ttd.POINT_* bits (NONFINITE, ABOVE_BOUND, INSIDE, DEGENERATE, SIGN_UNPROVEN)"},
     {"node_tests", "uint32: hierarchy nodes tested for the point"},
     {"triangle_tests", "uint32: triangles measured exactly for the point"},
     {NULL, NULL},
@@ -93,7 +93,8 @@ int ttd_py_points_init(PyObject *module)
     if (PyModule_AddIntConstant(module, "POINT_NONFINITE", TTD_POINT_NONFINITE) < 0 ||
         PyModule_AddIntConstant(module, "POINT_ABOVE_BOUND", TTD_POINT_ABOVE_BOUND) < 0 ||
         PyModule_AddIntConstant(module, "POINT_INSIDE", TTD_POINT_INSIDE) < 0 ||
-        PyModule_AddIntConstant(module, "POINT_DEGENERATE", TTD_POINT_DEGENERATE) < 0)
+        PyModule_AddIntConstant(module, "POINT_DEGENERATE", TTD_POINT_DEGENERATE) < 0 ||
+        PyModule_AddIntConstant(module, "POINT_SIGN_UNPROVEN", TTD_POINT_SIGN_UNPROVEN) < 0)
         return -1;
     return 0;
 }

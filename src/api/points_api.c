@@ -140,12 +140,14 @@ TTD_POINTS_CLOSEST(float, f)
 
 /* ---- winding numbers, inside, signed distances ------------------------------------------- */
 
-/* The winding numbers of the checked points into w (n doubles, allocated here when *w is NULL). */
-static ttd_status pts_winding(const ttd_engine_config *cfg, const ttd_mesh *mesh, size_t n, const pts_in *in, double **w)
+/* The winding numbers of the checked points into w (n doubles, allocated here when *w is NULL);
+ * with proven not NULL, for their side of 1/2 (points/points.h), and whether it is proven. */
+static ttd_status pts_winding(const ttd_engine_config *cfg, const ttd_mesh *mesh, size_t n, const pts_in *in, double **w,
+                              uint8_t *proven)
 {
     if (*w == NULL && (*w = malloc(n * sizeof **w)) == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    return ttd_points_query_winding(cfg, mesh, n, in->pts, *w);
+    return ttd_points_query_winding(cfg, mesh, n, in->pts, *w, proven);
 }
 
 ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const double *points,
@@ -156,7 +158,7 @@ ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *m
     ttd_status st = pts_begin(opt, mesh, n, points, pose, 8, winding != NULL, sizeof(double), 1, &cfg, &in);
     if (st != TTD_OK)
         return st;
-    st = pts_winding(&cfg, mesh, n, &in, &winding);
+    st = pts_winding(&cfg, mesh, n, &in, &winding, NULL);
     pts_end(&in);
     return pts_status(st, &in);
 }
@@ -170,7 +172,7 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
     if (st != TTD_OK)
         return st;
     double *w = NULL;
-    st = pts_winding(&cfg, mesh, n, &in, &w);
+    st = pts_winding(&cfg, mesh, n, &in, &w, NULL);
     for (size_t i = 0; st == TTD_OK && i < n; ++i)
         winding[i] = (float)w[i];
     free(w);
@@ -189,7 +191,7 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
         if (st != TTD_OK)                                                                      \
             return st;                                                                         \
         double *w = NULL;                                                                      \
-        st = pts_winding(&cfg, mesh, n, &in, &w);                                              \
+        st = pts_winding(&cfg, mesh, n, &in, &w, inside);                                      \
         for (size_t i = 0; st == TTD_OK && i < n; ++i)                                         \
             inside[i] = w[i] >= 0.5;                                                           \
         free(w);                                                                               \
@@ -208,21 +210,32 @@ TTD_POINTS_CONTAINS(float, f)
     {                                                                                          \
         ttd_status st = ttd_points_query_closest_##sfx(cfg, mesh, n, in->pts, upper_bound, r);  \
         double *w = NULL;                                                                      \
-        if (st == TTD_OK)                                                                      \
-            st = pts_winding(cfg, mesh, n, in, &w);                                            \
-        for (size_t i = 0; st == TTD_OK && i < n; ++i) {                                       \
+        uint8_t *proven = NULL;                                                                \
+        /* a mesh of one triangle contains no point (its |w| is below 1/2): no winding number */ \
+        const int one = mesh->nt == 1;                                                         \
+        if (st == TTD_OK && !one)                                                              \
+            st = (proven = malloc(n ? n : 1)) ? pts_winding(cfg, mesh, n, in, &w, proven) : TTD_ERR_OUT_OF_MEMORY; \
+        for (size_t i = 0; st == TTD_OK && !one && i < n; ++i) {                               \
             const int inside = w[i] >= 0.5;                                                    \
             if (inside)                                                                        \
                 r[i].flags |= TTD_POINT_INSIDE;                                                \
+            if (!proven[i] && !(r[i].flags & TTD_POINT_NONFINITE))                             \
+                r[i].flags |= TTD_POINT_SIGN_UNPROVEN;                                         \
             if (distance)                                                                      \
                 distance[i] = inside ? -r[i].distance : r[i].distance;                         \
         }                                                                                      \
+        for (size_t i = 0; st == TTD_OK && one && distance && i < n; ++i)                      \
+            distance[i] = r[i].distance;                                                       \
         free(w);                                                                               \
+        free(proven);                                                                          \
         return st;                                                                             \
     }
 
 TTD_SIGNED_BODY(double, d)
 TTD_SIGNED_BODY(float, f)
+
+/* Points per chunk of a signed distance without the caller's results. */
+#define PTS_CHUNK 8192
 
 #define TTD_POINTS_SIGNED(real, sfx)                                                               \
     ttd_status ttd_points_signed_distance_##sfx(const ttd_options *opt, const ttd_mesh *mesh, size_t n, \
@@ -235,8 +248,17 @@ TTD_SIGNED_BODY(float, f)
                                   sizeof(ttd_point_result_##sfx), upper_bound >= 0, &cfg, &in); \
         if (st != TTD_OK)                                                                      \
             return st;                                                                         \
-        ttd_point_result_##sfx *r = results ? results : malloc(n * sizeof *r);                 \
-        st = r ? signed_##sfx(&cfg, mesh, n, &in, upper_bound, distance, r) : TTD_ERR_OUT_OF_MEMORY; \
+        /* without the caller's results, a scratch of PTS_CHUNK results, reused chunk by chunk (it   \
+         * stays in the cache, and a large one would cost its page faults on every call) */      \
+        const size_t chunk = results ? (n ? n : 1) : (n < PTS_CHUNK ? (n ? n : 1) : PTS_CHUNK);  \
+        ttd_point_result_##sfx *r = results ? results : malloc(chunk * sizeof *r);             \
+        st = r ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;                                               \
+        for (size_t i0 = 0; st == TTD_OK && i0 < n; i0 += chunk) {                             \
+            const size_t k = n - i0 < chunk ? n - i0 : chunk;                                  \
+            const pts_in part = {(const real *)in.pts + 3 * i0, NULL, 0};                      \
+            st = signed_##sfx(&cfg, mesh, k, &part, upper_bound, distance ? distance + i0 : NULL, \
+                              results ? results + i0 : r);                                     \
+        }                                                                                      \
         for (size_t i = 0; st == TTD_OK && results && pose != NULL && i < n; ++i)              \
             TTD_POINT_BACK(real, pose, results[i].point);                                            \
         if (r != results)                                                                      \

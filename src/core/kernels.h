@@ -114,19 +114,31 @@ typedef void (*ttd_node_test_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y
                                    float sep[TTD_NODE_WIDTH]);
 
 /* ---- The point queries' kernels (src/points/, docs/points.md) ------------------------------
- * point_node: lb2[j] = a lower bound on the squared distance from point p (in the mesh's box
- * frame, relative to its origin) to child box j of node y, up to rounding (the caller's margin
- * covers it), the same bits on every row; returns the mask of children (bit j) with lb2[j] <=
- * lim2 (unused slots included: the caller masks them). point_block: d[j] = the exact distance from
+ * point_node (float rows only; the double walk calls the float row's): lb2[j] = a lower bound on
+ * the squared distance from point p (in the frame of the walk's nodes, core/point_layout.h) to
+ * child box j of walk node y, up to rounding the caller's margin covers, the same bits on every
+ * row; returns the mask of children (bit j) with lb2[j] <= lim2 (an unused slot is never within). point_block: d[j] = the exact distance from
  * point p (the mesh's coordinates) to triangle j of a prepared block (core/point_layout.h:
  * TTD_PT_ROWS rows of TTD_PT_LANES reals), and par[0..2][j] the candidate that gives it (id, u, v):
  * the scalar reference's bits (scalar/point_impl.h's point_select). */
-typedef unsigned (*ttd_point_node_d_fn)(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH]);
-typedef unsigned (*ttd_point_node_f_fn)(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH]);
+struct ttd_pnode;
+struct ttd_rnode;
+/* ray_node (float rows only): the mask of the child slots of ray node y whose boxes meet the box
+ * [lo, hi] across axis k (the other two coordinates) and reach lo[k] (sigma > 0) or hi[k] (sigma <
+ * 0) along it: exact comparisons, the same on every row. */
+typedef unsigned (*ttd_ray_node_fn)(const float lo[3], const float hi[3], int k, int sigma, const struct ttd_rnode *y);
+typedef unsigned (*ttd_point_node_fn)(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_d_fn)(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                                      double par[3][TTD_NODE_WIDTH]);
 typedef void (*ttd_point_block_f_fn)(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
                                      float par[3][TTD_NODE_WIDTH]);
+/* point_lanes: d[i] as point_block's for point i of 8 (P[c][i]) against one prepared triangle f
+ * (stride 1), and the closest point q[c][i] and weights w[c][i] of its candidate (point_rebuild's
+ * bits): points per lane, for meshes of a few triangles. */
+typedef void (*ttd_point_lanes_d_fn)(const double *f, const double P[3][TTD_NODE_WIDTH], double d[TTD_NODE_WIDTH],
+                                     double q[3][TTD_NODE_WIDTH], double w[3][TTD_NODE_WIDTH]);
+typedef void (*ttd_point_lanes_f_fn)(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
+                                     float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH]);
 
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
@@ -136,8 +148,8 @@ typedef struct ttd_kernels_d {
     int lanes;                          ///< double lanes per vector (1 for scalar)
     ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_d_fn node_test;       ///< never NULL
-    ttd_point_node_d_fn point_node;     ///< never NULL
     ttd_point_block_d_fn point_block;   ///< never NULL
+    ttd_point_lanes_d_fn point_lanes;   ///< never NULL
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.
@@ -146,8 +158,10 @@ typedef struct ttd_kernels_f {
     int lanes;                          ///< float lanes per vector (1 for scalar)
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_f_fn node_test;
-    ttd_point_node_f_fn point_node;
+    ttd_point_node_fn point_node;         ///< never NULL; the double walk's too
+    ttd_ray_node_fn ray_node;             ///< never NULL
     ttd_point_block_f_fn point_block;
+    ttd_point_lanes_f_fn point_lanes;
 } ttd_kernels_f;
 
 /// What the engine must know of a method beyond its kernels (ttd_method_traits in core/traits.c).

@@ -13,6 +13,8 @@
 #ifndef TTD_CORE_POINT_LAYOUT_H
 #define TTD_CORE_POINT_LAYOUT_H
 
+#include <stdint.h>
+
 enum {
     TTD_PT_V0 = 0,     /* 3: vertex 0, unscaled */
     TTD_PT_S = 3,      /* s = 2^-e (0: a point triangle) */
@@ -34,6 +36,34 @@ enum {
  * a whole vector from the last field. */
 #define TTD_PT_LANES 8
 #define TTD_PT_ROWS (TTD_PT_COUNT + 1)
+
+/* The point walk's node (src/points/, docs/points.md section 3): a mesh node's child boxes in
+ * float, in the mesh's frame moved to its origin and scaled by a power of two
+ * (ttd_points_data.scale), in the slab form of the mesh's boxes ({x : |u_a . (x - c)| <= e_a}),
+ * the extents widened so that each holds what the mesh's box holds about the rounded centre and
+ * axes; 576 bytes, so that a node is nine cache lines instead of the double mesh node's sixteen.
+ * An unused slot has e = -inf: no point is within it. */
+typedef struct ttd_pnode {
+    float c[3][8];     /* c[k][j]: slot j's centre, coordinate k */
+    float u[9][8];     /* u[3a + k][j]: component k of axis a */
+    float e[3][8];     /* half extents along the axes */
+    int32_t child[8];  /* the mesh node's: >= 0 a node, < 0 triangle -1 - child, 0 unused */
+    int32_t block;     /* the node's prepared triangle block (points/points.h), -1 when none */
+    uint32_t tmask;    /* the slots that hold triangles (bit j) */
+    uint32_t ntri;     /* how many (bits in tmask) */
+    uint32_t nslots;   /* slots in use */
+    int32_t pad[12];
+} ttd_pnode;
+
+/* The ray walk's node (src/points/ray.c): a mesh node's child slots as axis-aligned float boxes in the
+ * walk nodes' frame (ttd_points_data.scale), rounded outward around the vertices as the tree sees
+ * them; an unused slot holds the empty box (lo = +inf, hi = -inf). 256 bytes. */
+typedef struct ttd_rnode {
+    float lo[3][8];
+    float hi[3][8];
+    int32_t child[8]; /* the mesh node's (0 in an unused slot) */
+    int32_t pad[8];
+} ttd_rnode;
 
 /* Beyond this scaled distance from vertex 0 (2^400 in double, 2^40 in float) the triangle is
  * smaller than the rounding of the distance: the point is measured to vertex 0, which avoids

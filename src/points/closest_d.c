@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The closest-point query in double: points/closest_impl.h compiled for this precision, and its
  * entry (points/points.h) written out. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>

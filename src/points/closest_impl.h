@@ -22,48 +22,57 @@ typedef struct closest_job {
     const struct ttd_mesh *m;
     const ttd_points_data *pd;
     const TTD_ROW *row;
+    ttd_point_node_fn node; /* the float row's node test */
     const real *points;
     size_t n;
     real upper_bound;
     ttd_point_result *out;
 } closest_job;
 
+/* A node waiting to be walked, and its key (the node test's lb2 or depth) when pushed. */
 typedef struct citem {
     int32_t node;
-    real lb2;
+    float key;
 } citem;
 
 /* A walk's state: the best triangle so far (its distance, index, block and slot, and the
- * candidate the kernel chose there), the limit, the margin and the squared limit. */
+ * candidate the kernel chose there), the limit, the margin, and the squared limit a box's computed
+ * squared distance (in the walk nodes' float frame) must not exceed to be opened. */
 typedef struct cbest {
     real d;
     uint32_t t;
     int32_t blk, j;
     real par[3];
-    double lim, delta, lim2;
-    real lim2r; /* lim2 in the query's precision, rounded up: lb2 <= lim2r iff lb2 <= lim2 */
+    double lim, delta, scale;
+    float lim2f;
 } cbest;
 
-/* The squared limit a box's computed squared bound must not exceed to be opened: (lim + delta)^2
- * rounded up, at least 64 REAL_MIN (below it the bounds' own underflow is not covered). */
+/* The node test's squared limit: ((lim + delta) scale)^2 rounded up to float (scale: the walk nodes'
+ * scale times their axes' stretch times 1 + 8 eps_f, for the test's relative rounding), at
+ * least 2^-100 (below it the float squares' underflow is not covered) and at most FLT_MAX (an
+ * empty slot's +inf is never within). docs/points.md, section 3. */
 static void closest_limit(cbest *B)
 {
-    const double x = (B->lim + B->delta) * (1 + 4 * DBL_EPSILON);
-    const double x2 = x * x * (1 + 4 * DBL_EPSILON);
-    B->lim2 = x2 > 64 * (double)TTD_REAL_MIN ? x2 : 64 * (double)TTD_REAL_MIN;
-    real r = (real)B->lim2;
-    if ((double)r < B->lim2)
-        r = TTD_NEXTUP(r);
-    B->lim2r = r;
+    const double x = (B->lim + B->delta) * B->scale;
+    double x2 = x * x * (1 + 4 * DBL_EPSILON);
+    x2 = x2 > 0x1p-100 ? x2 : 0x1p-100;
+    x2 = x2 < (double)FLT_MAX ? x2 : (double)FLT_MAX;
+    float r = (float)x2;
+    if ((double)r < x2) { /* the next float up: r is positive, finite and below FLT_MAX here */
+        uint32_t bits;
+        memcpy(&bits, &r, sizeof r);
+        ++bits;
+        memcpy(&r, &bits, sizeof r);
+    }
+    B->lim2f = r;
 }
 
-/* Measures the triangles of block blk (the slots in tm of node y) and keeps the best: the
+/* Measures the triangles of walk node y (its block, the slots in tm) and keeps the best: the
  * smallest distance within the bound, ties to the smallest triangle. */
-static void closest_measure(const closest_job *J, const real P[3], const ttd_node *y, int32_t blk, unsigned tm,
-                            real ub, cbest *B)
+static void closest_measure(const closest_job *J, const real P[3], const ttd_pnode *y, unsigned tm, real ub, cbest *B)
 {
     real d[TTD_NODE_WIDTH], par[3][TTD_NODE_WIDTH];
-    J->row->point_block(P, (const real *)J->pd->blocks + (size_t)blk * TTD_PT_ROWS * TTD_PT_LANES, d, par);
+    J->row->point_block(P, (const real *)J->pd->blocks + (size_t)y->block * TTD_PT_ROWS * TTD_PT_LANES, d, par);
     int better = 0;
     for (; tm; tm &= tm - 1) {
         const int j = __builtin_ctz(tm);
@@ -73,7 +82,7 @@ static void closest_measure(const closest_job *J, const real P[3], const ttd_nod
         if (d[j] < B->d || t < B->t) {
             B->d = d[j];
             B->t = t;
-            B->blk = blk;
+            B->blk = y->block;
             B->j = j;
             for (int k = 0; k < 3; ++k)
                 B->par[k] = par[k][j];
@@ -86,86 +95,91 @@ static void closest_measure(const closest_job *J, const real P[3], const ttd_nod
     }
 }
 
+/* Writes a point's result for a point with no triangle within the bound, or a NaN point. */
+static void closest_none(ttd_point_result *r, real distance, uint8_t flags)
+{
+    r->distance = distance;
+    for (int c = 0; c < 3; ++c)
+        r->point[c] = r->bary[c] = (real)NAN;
+    r->triangle = UINT32_MAX;
+    r->feature = 0;
+    r->flags = flags;
+}
+
 static void closest_one(const closest_job *J, const real P[3], ttd_point_result *r)
 {
     const struct ttd_mesh *m = J->m;
-    const ttd_node *nodes = m->nodes;
     const ttd_points_data *pd = J->pd;
+    const ttd_pnode *pn = pd->pnodes;
     if (!(isfinite(P[0]) && isfinite(P[1]) && isfinite(P[2]))) {
         memset(r, 0, sizeof *r);
-        r->distance = (real)NAN;
-        for (int c = 0; c < 3; ++c)
-            r->point[c] = r->bary[c] = (real)NAN;
-        r->triangle = UINT32_MAX;
-        r->flags = TTD_POINT_NONFINITE;
+        closest_none(r, (real)NAN, TTD_POINT_NONFINITE);
         return;
     }
-    /* the point in the tree's frame (relative to the mesh's origin) and the margin delta =
-     * 64 eps S, S bounding every magnitude of the walk (docs/points.md, section 3) */
-    real pt[3];
+    /* the point in the walk nodes' frame (relative to the mesh's origin, scaled, clamped to
+     * [-2^60, 2^60]: every box lies within [-1, 1], so the clamp only brings the point nearer to
+     * all of them), and the margin delta = 64 eps S + 16 eps_f S, S bounding every magnitude of the
+     * walk (docs/points.md, section 3) */
+    float pf[3];
     double s2 = 0;
     for (int c = 0; c < 3; ++c) {
         const double x = (double)P[c] - m->origin[c];
-        pt[c] = (real)x;
+        double xs = x * pd->scale;
+        xs = xs < -0x1p60 ? -0x1p60 : (xs > 0x1p60 ? 0x1p60 : xs);
+        pf[c] = (float)xs;
         s2 += x * x;
     }
     const real ub = J->upper_bound;
+    const double S = sqrt(s2) + m->radius;
     cbest B = {(real)INFINITY, UINT32_MAX, -1, 0, {0, 0, 0}, (double)ub,
-               64 * (double)TTD_REAL_EPS * (sqrt(s2) + m->radius), 0, 0};
+               (64 * (double)TTD_REAL_EPS + 16 * (double)FLT_EPSILON) * S, pd->scale * pd->stretch * (1 + 8 * (double)FLT_EPSILON), 0};
     closest_limit(&B);
     uint32_t node_tests = 0, tri_tests = 0;
     citem stack[CLOSEST_STACK];
     int sp = 0;
-    /* node 0 holds the root's box alone: the walk starts at its child (or measures the mesh's one
-     * triangle) */
-    if (nodes[0].child[0] < 0) {
-        closest_measure(J, P, &nodes[0], pd->block_of[0], 1u, ub, &B);
-        tri_tests = 1;
-    } else {
-        stack[sp++] = (citem){nodes[0].child[0], 0};
-    }
-    while (sp > 0) {
-        const citem it = stack[--sp];
-        if (it.lb2 > B.lim2r)
-            continue;
-        const ttd_node *y = &nodes[it.node];
-        real lb2[TTD_NODE_WIDTH];
-        const unsigned live = pd->live_mask[it.node], tmask = pd->tri_mask[it.node];
-        const unsigned within = J->row->point_node(pt, y, B.lim2r, lb2) & live;
+    /* Depth first, the nearest child first (boxes that hold the point by how deep they hold it);
+     * the other children within the limit wait on the stack with their bounds, and are dropped
+     * when the walk comes back to them beyond the limit. */
+    int32_t node = 0; /* node 0 holds the root's box (or the mesh's one triangle) */
+    for (;;) {
+        const ttd_pnode *y = &pn[node];
+        float key[TTD_NODE_WIDTH];
+        const unsigned within = J->node(pf, y, B.lim2f, key);
         ++node_tests;
-        if (within & tmask) {
-            closest_measure(J, P, y, pd->block_of[it.node], tmask, ub, &B);
-            tri_tests += (uint32_t)__builtin_popcount(tmask);
+        if (within & y->tmask) {
+            closest_measure(J, P, y, y->tmask, ub, &B);
+            tri_tests += y->ntri;
         }
-        /* the node children still within the limit, the nearest pushed last (walked first) */
-        int idx[TTD_NODE_WIDTH], k = 0;
-        for (unsigned nm = within & ~tmask; nm; nm &= nm - 1) {
+        int jbest = -1;
+        float best = INFINITY;
+        for (unsigned nm = within & ~y->tmask; nm; nm &= nm - 1) {
             const int j = __builtin_ctz(nm);
-            if (lb2[j] > B.lim2r)
+            if (key[j] > B.lim2f)
                 continue;
-            int at = k++;
-            while (at > 0 && lb2[idx[at - 1]] < lb2[j]) {
-                idx[at] = idx[at - 1];
-                --at;
+            if (key[j] < best) {
+                if (jbest >= 0 && sp < CLOSEST_STACK)
+                    stack[sp++] = (citem){y->child[jbest], best};
+                best = key[j];
+                jbest = j;
+            } else if (sp < CLOSEST_STACK) {
+                stack[sp++] = (citem){y->child[j], key[j]};
             }
-            idx[at] = j;
         }
-        for (int i = 0; i < k && sp < CLOSEST_STACK; ++i)
-            stack[sp++] = (citem){y->child[idx[i]], lb2[idx[i]]};
-        if (k > 0) /* the next node walked: its boxes' first lines on their way */
-            for (int l = 0; l < (int)sizeof(ttd_node); l += 128)
-                __builtin_prefetch((const char *)&nodes[stack[sp - 1].node] + l);
+        if (jbest >= 0) {
+            node = y->child[jbest];
+            continue;
+        }
+        while (sp > 0 && stack[sp - 1].key > B.lim2f)
+            --sp;
+        if (sp == 0)
+            break;
+        node = stack[--sp].node;
     }
     r->node_tests = node_tests;
     r->triangle_tests = tri_tests;
     r->reserved = 0;
     if (B.t == UINT32_MAX) {
-        r->distance = (real)INFINITY;
-        for (int c = 0; c < 3; ++c)
-            r->point[c] = r->bary[c] = (real)NAN;
-        r->triangle = UINT32_MAX;
-        r->feature = 0;
-        r->flags = TTD_POINT_ABOVE_BOUND;
+        closest_none(r, (real)INFINITY, TTD_POINT_ABOVE_BOUND);
         return;
     }
     /* the winner's point and weights from the candidate the kernel chose (the reference's code) */
@@ -177,11 +191,78 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
     r->flags = f[TTD_PT_INN * TTD_PT_LANES] > 0 ? 0 : TTD_POINT_DEGENERATE;
 }
 
+/* Points i0 .. i1 - 1 against a mesh of a few triangles (ttd_points_data.tiny): 8 points at a
+ * time, one per lane, against every triangle in index order, each point keeping the smallest
+ * distance within the bound (ties to the smallest triangle): the brute force itself. */
+static void closest_tiny(const closest_job *J, size_t i0, size_t i1)
+{
+    const struct ttd_mesh *m = J->m;
+    const real *tiny = (const real *)J->pd->tiny;
+    const real ub = J->upper_bound;
+    for (size_t g = i0; g < i1; g += TTD_NODE_WIDTH) {
+        const int cnt = (int)(i1 - g < TTD_NODE_WIDTH ? i1 - g : TTD_NODE_WIDTH);
+        real P[3][TTD_NODE_WIDTH], best[TTD_NODE_WIDTH], bq[3][TTD_NODE_WIDTH], bw[3][TTD_NODE_WIDTH];
+        uint32_t bt[TTD_NODE_WIDTH];
+        int finite[TTD_NODE_WIDTH];
+        for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+            const real *p = J->points + 3 * (g + (size_t)(i < cnt ? i : 0));
+            /* x - x is 0 for a finite x, NaN for an infinite or NaN one; a NaN point's lane measures
+             * the origin (its result is NaN) */
+            finite[i] = (p[0] - p[0] == 0) & (p[1] - p[1] == 0) & (p[2] - p[2] == 0);
+            for (int c = 0; c < 3; ++c)
+                P[c][i] = finite[i] ? p[c] : (real)0;
+            best[i] = (real)INFINITY;
+            bt[i] = UINT32_MAX;
+        }
+        for (uint32_t t = 0; t < (uint32_t)m->nt; ++t) {
+            real d[TTD_NODE_WIDTH], q[3][TTD_NODE_WIDTH], w[3][TTD_NODE_WIDTH];
+            J->row->point_lanes(tiny + (size_t)t * TTD_PT_COUNT, (const real(*)[TTD_NODE_WIDTH])P, d, q, w);
+            for (int i = 0; i < cnt; ++i)
+                if (d[i] < best[i] && d[i] <= ub) {
+                    best[i] = d[i];
+                    bt[i] = t;
+                    for (int c = 0; c < 3; ++c) {
+                        bq[c][i] = q[c][i];
+                        bw[c][i] = w[c][i];
+                    }
+                }
+        }
+        for (int i = 0; i < cnt; ++i) {
+            ttd_point_result *r = &J->out[g + (size_t)i];
+            if (!finite[i]) {
+                memset(r, 0, sizeof *r);
+                closest_none(r, (real)NAN, TTD_POINT_NONFINITE);
+                continue;
+            }
+            r->node_tests = 0;
+            r->triangle_tests = (uint32_t)m->nt;
+            r->reserved = 0;
+            if (bt[i] == UINT32_MAX) {
+                closest_none(r, (real)INFINITY, TTD_POINT_ABOVE_BOUND);
+                continue;
+            }
+            const real *f = tiny + (size_t)bt[i] * TTD_PT_COUNT;
+            for (int c = 0; c < 3; ++c) {
+                r->point[c] = bq[c][i];
+                r->bary[c] = bw[c][i];
+            }
+            r->distance = best[i];
+            r->triangle = bt[i];
+            r->feature = (uint8_t)((r->bary[0] > 0 ? 1u : 0u) | (r->bary[1] > 0 ? 2u : 0u) | (r->bary[2] > 0 ? 4u : 0u));
+            r->flags = f[TTD_PT_INN] > 0 ? 0 : TTD_POINT_DEGENERATE;
+        }
+    }
+}
+
 static void closest_block(void *ctx, size_t b, int worker)
 {
     (void)worker;
     const closest_job *J = ctx;
     const size_t i1 = (b + 1) * CLOSEST_BLOCK < J->n ? (b + 1) * CLOSEST_BLOCK : J->n;
+    if (J->pd->tiny != NULL) {
+        closest_tiny(J, b * CLOSEST_BLOCK, i1);
+        return;
+    }
     for (size_t i = b * CLOSEST_BLOCK; i < i1; ++i)
         closest_one(J, J->points + 3 * i, &J->out[i]);
 }
@@ -192,7 +273,7 @@ static ttd_status closest_run(const ttd_engine_config *cfg, const struct ttd_mes
     const ttd_points_data *pd = ttd_points_data_get(m, cfg->threads);
     if (pd == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    closest_job J = {m, pd, TTD_DISPATCH_ROW(cfg->isa), points, n, upper_bound, out};
+    closest_job J = {m, pd, TTD_DISPATCH_ROW(cfg->isa), ttd_dispatch_row_f(cfg->isa)->point_node, points, n, upper_bound, out};
     ttd_parallel_for((n + CLOSEST_BLOCK - 1) / CLOSEST_BLOCK, cfg->threads, closest_block, &J);
     return TTD_OK;
 }

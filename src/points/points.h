@@ -4,6 +4,8 @@
  *
  * A mesh's point data is made from its hierarchy and vertices on the first point query and kept
  * in the mesh (struct ttd_mesh.points, set atomically: meshes are shared between threads):
+ *  - the walk's nodes (core/point_layout.h's ttd_pnode): the hierarchy's nodes, one for one,
+ *    with every child slot's box made axis-aligned, in float, from the vertices below it;
  *  - every node's triangle children prepared for the point kernel (core/point_layout.h), one
  *    block of TTD_PT_LANES per node that has any (the other slots hold a copy of its first
  *    triangle, harmless in the lanes), so a node's triangles are measured in one kernel call;
@@ -15,38 +17,82 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
+#include "core/point_layout.h"
 #include "engine/batch.h"
 #include "mesh/mesh.h"
 
 /* Winding-number moments of one child slot (a triangle or a subtree), in double, relative to the
  * mesh's origin: the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
  * centroid), the second moment M[i][j] = integral of (x - pc)_i n_j dA (row-major), the
- * (unsigned) area and a radius about pc that holds every vertex below. */
+ * (unsigned) area, a radius about pc that holds every vertex below, and the polar moment
+ * I = integral of |x - pc|^2 dA (rounded up), which the remainder's bound uses. */
 enum {
     WM_N = 0,      /* 3 */
     WM_C = 3,      /* 3 */
     WM_M = 6,      /* 9 */
     WM_AREA = 15,
     WM_RADIUS = 16,
-    WM_COUNT = 17
+    WM_I = 17,
+    WM_COUNT = 18
 };
+
+/* x rounded to float downwards, upwards (|x| <= 2^100). The round trip goes through a volatile: the
+ * rounding must really happen (docs/mesh-queries.md, 4.1, saw gcc drop it). */
+static inline float ttd_float_down(double x)
+{
+    volatile float f = (float)x;
+    float r = f;
+    if ((double)r > x) { /* one float step down: r is finite and nonzero here unless x rounds to 0 */
+        uint32_t b;
+        memcpy(&b, &r, sizeof b);
+        if (r > 0)
+            --b;
+        else if (r < 0)
+            ++b;
+        else
+            b = 0x80000001u; /* -0 -> the smallest negative subnormal */
+        memcpy(&r, &b, sizeof r);
+    }
+    return r;
+}
+
+static inline float ttd_float_up(double x)
+{
+    return -ttd_float_down(-x);
+}
+
+/* Meshes of at most this many triangles measure their points 8 at a time, one per lane, against
+ * every triangle (points/closest_impl.h; docs/points.md, section 4). */
+#define TTD_POINTS_TINY 8
 
 typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
     int bytes;             /* the mesh's precision */
     size_t nnodes;
-    int32_t *block_of;     /* per node: its block of prepared triangles, or -1 */
-    uint8_t *tri_mask;     /* per node: the slots that hold triangles (bit j) */
-    uint8_t *live_mask;    /* per node: the slots in use (the walk reads it here, not from the node's last line) */
+    ttd_pnode *pnodes;     /* nnodes walk nodes, 64-byte aligned: node n's slots' boxes, children,
+                            * block and triangle mask */
+    double scale;          /* the walk nodes' frame: x -> (x - the mesh's origin) scale, a power of
+                            * two that puts every vertex within [-1, 1] */
+    double stretch;        /* every walk box's axes U have |U| <= stretch (1 + a few float eps) */
+    ttd_rnode *rnodes;     /* nnodes ray walk nodes (points/ray.c) */
+    double coord_max;      /* the largest vertex coordinate's magnitude (the ray's exact signs) */
+    void *tiny;            /* a mesh of at most TTD_POINTS_TINY triangles: each prepared (stride 1),
+                            * in index order, for the points-per-lane path (else NULL) */
     size_t nblocks;
     void *blocks;          /* nblocks x TTD_PT_ROWS x TTD_PT_LANES reals of the mesh's precision */
     double *moments;       /* nnodes x WM_COUNT x TTD_NODE_WIDTH: moment f of slot j of node n at
-                            * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j] */
+                            * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j]; made by the first winding
+                            * walk (ttd_points_moments; NULL until then, atomic): a closed mesh's
+                            * winding number is counted by a ray and seldom needs them */
 } ttd_points_data;
 
 /// The mesh's point data, made on first use with `threads` workers; NULL when out of memory.
 const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int threads);
+
+/// The point data's winding-number moments, made on first use (NULL when out of memory).
+const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd);
 
 /// Recomputes the point data of a mesh whose vertices changed in place (same triangles, same
 /// hierarchy shape, refitted boxes): a no-op when no point query has made it yet. The one function
@@ -67,10 +113,32 @@ ttd_status ttd_points_query_closest_f(const ttd_engine_config *cfg, const struct
  * *bound (when not NULL) gets a rigorous bound on the error of the far-field terms. */
 double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double *bound);
 
+/* The winding number of a closed mesh about x (the mesh's coordinates), exactly: the signed count
+ * of the triangles an axis-aligned ray from x crosses, with exact predicates (points/ray.c). For x
+ * on the surface, the count of x moved by an infinitesimal across the ray. Returns 0 with *w set,
+ * or -1 where it cannot be made exact (products below the subnormal range, or a stack overflow). */
+int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                           const double x[3], int *w);
+
 /* The winding number with its error certified below 1/4 (points/winding.c): the far-field
  * criterion is tightened until the bound is, down to every triangle exactly. For the solid mode
  * of the mesh queries, where one point decides a pose. */
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
+
+/* The winding number the queries report about x: for a closed mesh (closed = ttd_mesh_closed's 1)
+ * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that
+ * cannot be made exact) the hierarchical walk's. */
+double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                                const double x[3]);
+
+/* The winding number about x for its side of 1/2: the exact count for a closed mesh; else the fast
+ * walk, and where its bound does not settle the side, the walk tightened until it does (down to
+ * every triangle exactly). *proven: 1 when the side of 1/2 is proven (always off the surface of a
+ * closed mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of
+ * where an open mesh's winding number is 1/2). A mesh of one triangle, whose |w| is below 1/2
+ * everywhere, gets 0 and proven at once. docs/points.md, section 5. */
+double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                               const double x[3], int *proven);
 
 /* Whether x (the mesh's coordinates) lies inside closed mesh m: within its bounding sphere (the
  * cheap test that settles far points), then its winding number, certified (above): a traversal
@@ -93,8 +161,10 @@ int ttd_points_inside(const struct ttd_mesh *m, const double x[3]);
     } while (0)
 
 /* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
- * winding (double), over the threads: TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN for a NaN point. */
+ * winding (double), over the threads: ttd_points_winding_value's, or with proven not NULL
+ * ttd_points_winding_sign's and whether each side is proven. TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN
+ * for a NaN point. */
 ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
-                                    const void *points, double *winding);
+                                    const void *points, double *winding, uint8_t *proven);
 
 #endif /* TTD_POINTS_POINTS_H */

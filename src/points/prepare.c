@@ -2,6 +2,7 @@
 /* A mesh's point data (points/points.h): prepared triangle blocks and winding-number moments,
  * computed from the hierarchy and the vertices by one function (points_compute), made on first use
  * and kept in the mesh. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,10 +18,10 @@ static void points_free(void *p)
     ttd_points_data *pd = p;
     if (pd == NULL)
         return;
-    free(pd->block_of);
-    free(pd->tri_mask);
-    free(pd->live_mask);
+    free(pd->pnodes);
+    free(pd->rnodes);
     free(pd->blocks);
+    free(pd->tiny);
     free(pd->moments);
     free(pd);
 }
@@ -49,14 +50,71 @@ static void tri_vertex(const struct ttd_mesh *m, size_t t, int k, int rel, doubl
     }
 }
 
+/* Slot j of mesh node n (either precision) as the walk's float box, scaled by `scale`, into y; its
+ * axes' norm bound into *stretch (the largest so far).
+ *
+ * The mesh's box holds its vertices as the tree sees them (docs/mesh-queries.md, 4.1): |u_a . (x -
+ * c)| <= e_a for every vertex x below it, in exact arithmetic, with axes orthonormal to a few eps of
+ * the mesh's precision. Scaled (exactly, a power of two), with the centre rounded to c' = c +
+ * gamma and the axes to u'_a = u_a + eps_a (both differences exact in double), for such an x:
+ *     |u'_a . (x - c')| <= e_a + |u_a| |gamma| + |eps_a| (|x - c| + |gamma|),
+ * and |x - c| <= (1 + eta) |e| (eta <= 8 eps, test_mesh_boxes). The extent stored is that bound,
+ * formed in double with a relative slack for its own rounding and rounded up to float. */
+static void slot_box(const struct ttd_mesh *m, size_t n, int j, double scale, ttd_pnode *y, double *stretch)
+{
+    double c[3], u[9], e[3];
+    for (int k = 0; k < 3; ++k) {
+        c[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].c[k][j] : (double)((const ttd_node_f *)m->nodes)[n].c[k][j];
+        e[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[k][j] : (double)((const ttd_node_f *)m->nodes)[n].e[k][j];
+    }
+    for (int k = 0; k < 9; ++k)
+        u[k] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].u[k][j] : (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
+    const double eta = 8 * (m->bytes == 8 ? DBL_EPSILON : (double)FLT_EPSILON);
+    double g2 = 0, ee = 0;
+    for (int k = 0; k < 3; ++k) {
+        volatile float cf = (float)(c[k] * scale); /* the rounding must happen (docs/mesh-queries.md, 4.1) */
+        y->c[k][j] = cf;
+        const double gk = (double)y->c[k][j] - c[k] * scale;
+        g2 += gk * gk;
+        ee += e[k] * scale * e[k] * scale;
+    }
+    const double gamma = sqrt(g2) * (1 + 1e-12), span = sqrt(ee) * (1 + eta) * (1 + 1e-12);
+    double uf[9];
+    for (int a = 0; a < 3; ++a) {
+        double d2 = 0, n2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            volatile float x = (float)u[3 * a + k];
+            y->u[3 * a + k][j] = x;
+            uf[3 * a + k] = (double)y->u[3 * a + k][j];
+            const double dk = uf[3 * a + k] - u[3 * a + k];
+            d2 += dk * dk;
+            n2 += u[3 * a + k] * u[3 * a + k];
+        }
+        const double ext = (e[a] * scale + sqrt(n2) * (1 + 1e-12) * gamma + sqrt(d2) * (1 + 1e-12) * (span + gamma)) *
+                           (1 + 1e-12);
+        y->e[a][j] = ttd_float_up(ext);
+    }
+    /* |U'| <= sqrt(1 + |U' U'^T - I|_F), the Gram matrix's error formed in double (its own rounding,
+     * near 1e-16, is far below the float axes' 1e-7) */
+    double f2 = 0;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            const double g = uf[3 * a] * uf[3 * b] + uf[3 * a + 1] * uf[3 * b + 1] + uf[3 * a + 2] * uf[3 * b + 2] - (a == b);
+            f2 += g * g;
+        }
+    const double st = sqrt(1 + sqrt(f2) * (1 + 1e-6)) * (1 + 1e-12);
+    *stretch = st > *stretch ? st : *stretch;
+}
+
 typedef struct prep_job {
     const struct ttd_mesh *m;
     ttd_points_data *pd;
+    double *stretch; /* per block of nodes: the largest axes' norm bound there */
 } prep_job;
 
 #define PREP_NODES 256 /* nodes per block of the parallel preparation */
 
-/* The prepared blocks of nodes [256 b, 256 b + 256). */
+/* The walk nodes' boxes and the prepared blocks of nodes [256 b, 256 b + 256). */
 static void prepare_blocks(void *ctx, size_t b, int worker)
 {
     (void)worker;
@@ -64,8 +122,14 @@ static void prepare_blocks(void *ctx, size_t b, int worker)
     const struct ttd_mesh *m = J->m;
     const ttd_points_data *pd = J->pd;
     const size_t n1 = (b + 1) * PREP_NODES < pd->nnodes ? (b + 1) * PREP_NODES : pd->nnodes;
+    double stretch = 1;
+    for (size_t n = b * PREP_NODES; n < n1; ++n)
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+            if ((uint32_t)j < pd->pnodes[n].nslots)
+                slot_box(m, n, j, pd->scale, &pd->pnodes[n], &stretch);
+    J->stretch[b] = stretch;
     for (size_t n = b * PREP_NODES; n < n1; ++n) {
-        const int32_t blk = pd->block_of[n];
+        const int32_t blk = pd->pnodes[n].block;
         if (blk < 0)
             continue;
         int count;
@@ -91,6 +155,34 @@ static void prepare_blocks(void *ctx, size_t b, int worker)
                 ((float *)pd->blocks)[off + (size_t)TTD_PT_COUNT * TTD_PT_LANES] = 0;
             }
         }
+    }
+}
+
+/* Slot j of ray node y holds triangle t: its box from the vertices as the tree sees them (minus the
+ * origin, rounded to double), scaled (exactly) and rounded outward. */
+static void triangle_rbox(const struct ttd_mesh *m, double scale, size_t t, ttd_rnode *y, int j)
+{
+    double v[3][3];
+    for (int k = 0; k < 3; ++k)
+        tri_vertex(m, t, k, 1, v[k]);
+    for (int c = 0; c < 3; ++c) {
+        const double lo = fmin(fmin(v[0][c], v[1][c]), v[2][c]), hi = fmax(fmax(v[0][c], v[1][c]), v[2][c]);
+        y->lo[c][j] = ttd_float_down(lo * scale);
+        y->hi[c][j] = ttd_float_up(hi * scale);
+    }
+}
+
+/* Slot j of ray node y holds node x: the union of x's boxes (exact in float). */
+static void node_rbox(const ttd_rnode *x, ttd_rnode *y, int j)
+{
+    for (int c = 0; c < 3; ++c) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+            lo = x->lo[c][i] < lo ? x->lo[c][i] : lo;
+            hi = x->hi[c][i] > hi ? x->hi[c][i] : hi;
+        }
+        y->lo[c][j] = lo;
+        y->hi[c][j] = hi;
     }
 }
 
@@ -122,16 +214,29 @@ static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
     }
     for (int i = 0; i < 9; ++i) /* the first moment about the centroid vanishes */
         w[(WM_M + i) * TTD_NODE_WIDTH] = 0;
-    w[WM_AREA * TTD_NODE_WIDTH] = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    w[WM_AREA * TTD_NODE_WIDTH] = area;
     w[WM_RADIUS * TTD_NODE_WIDTH] = sqrt(r2) * (1 + 1e-12);
+    /* the polar moment about the stored centre g': (A / 12) (|v0 - g'|^2 + |v1 - g'|^2 + |v2 - g'|^2)
+     * is it about the exact centroid g plus A |g - g'|^2 / 4, against A |g - g'|^2 about g': the
+     * difference, with |g - g'| below 2 eps |v|_max per coordinate, is added */
+    double s = 0, big = 0;
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) {
+            const double d = v[k][c] - w[(WM_C + c) * TTD_NODE_WIDTH];
+            s += d * d;
+            big = fmax(big, fabs(v[k][c]));
+        }
+    const double off = 2 * DBL_EPSILON * big;
+    w[WM_I * TTD_NODE_WIDTH] = (area / 12 * s + area * 3 * off * off) * (1 + 1e-12);
 }
 
 /* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors
  * and areas add, the centre is the area-weighted mean (the plain mean without area), the second
  * moments move to it (M += (c_i - pc) n_i^T), and the radius holds every child's ball. */
-static void node_moments(const ttd_points_data *pd, size_t c, int count, double *w)
+static void node_moments(const double *moments, size_t c, int count, double *w)
 {
-    const double *x = pd->moments + c * WM_COUNT * TTD_NODE_WIDTH;
+    const double *x = moments + c * WM_COUNT * TTD_NODE_WIDTH;
 #define X(f, j) x[(size_t)(f) * TTD_NODE_WIDTH + (size_t)(j)]
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH]
     double area = 0, pc[3] = {0, 0, 0}, mean[3] = {0, 0, 0};
@@ -144,7 +249,7 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
     }
     for (int k = 0; k < 3; ++k)
         pc[k] = area > 0 ? pc[k] / area : mean[k];
-    double radius = 0, M[9] = {0}, N[3] = {0};
+    double radius = 0, M[9] = {0}, N[3] = {0}, polar = 0;
     for (int j = 0; j < count; ++j) {
         double d[3], d2 = 0;
         for (int k = 0; k < 3; ++k) {
@@ -152,6 +257,10 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
             d2 += d[k] * d[k];
             N[k] += X(WM_N + k, j);
         }
+        /* the parallel axis theorem (about any centre); d's rounding (below 2 eps |c_j| per
+         * coordinate) is added */
+        const double off = 2 * DBL_EPSILON * (fabs(X(WM_C, j)) + fabs(X(WM_C + 1, j)) + fabs(X(WM_C + 2, j)));
+        polar += X(WM_I, j) + X(WM_AREA, j) * (d2 + 2 * sqrt(d2) * off * 1.8 + 3 * off * off);
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
                 M[3 * a + b] += X(WM_M + 3 * a + b, j) + d[a] * X(WM_N + b, j);
@@ -166,20 +275,19 @@ static void node_moments(const ttd_points_data *pd, size_t c, int count, double 
         W(WM_M + i) = M[i];
     W(WM_AREA) = area;
     W(WM_RADIUS) = radius * (1 + 1e-12); /* covers the rounding of the sums above */
+    W(WM_I) = polar * (1 + 1e-12);
 #undef X
 #undef W
 }
 
-/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the moments bottom-up
- * (a node's children come after it in the pre-order numbering, so a reverse pass sees them first). */
-static void points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
+/* The winding-number moments of every slot, bottom-up (a node's children come after it in the
+ * pre-order numbering, so a reverse pass sees them first). */
+static void moments_compute(const struct ttd_mesh *m, double *moments)
 {
-    prep_job J = {m, pd};
-    ttd_parallel_for((pd->nnodes + PREP_NODES - 1) / PREP_NODES, threads, prepare_blocks, &J);
-    for (size_t n = pd->nnodes; n-- > 0;) {
+    for (size_t n = m->nnodes; n-- > 0;) {
         int count;
         const int32_t *child = node_child(m, n, &count);
-        double *w = pd->moments + n * WM_COUNT * TTD_NODE_WIDTH;
+        double *w = moments + n * WM_COUNT * TTD_NODE_WIDTH;
         memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
         for (int j = 0; j < count; ++j) {
             if (child[j] < 0) {
@@ -187,10 +295,87 @@ static void points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int th
             } else {
                 int cc;
                 (void)node_child(m, (size_t)child[j], &cc);
-                node_moments(pd, (size_t)child[j], cc, w + j);
+                node_moments(moments, (size_t)child[j], cc, w + j);
             }
         }
     }
+}
+
+/* Everything, from the hierarchy and the vertices: the blocks in parallel, then the ray boxes
+ * bottom-up, and the moments where a winding walk has made them (moments_get). */
+static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int threads)
+{
+    /* the walk nodes' scale: the power of two at or above the radius (at least 2^-1000) */
+    int e;
+    (void)frexp(m->radius, &e);
+    pd->scale = ldexp(1.0, -(e < -1000 ? -1000 : e));
+    const size_t nb = (pd->nnodes + PREP_NODES - 1) / PREP_NODES;
+    prep_job J = {m, pd, malloc(nb * sizeof(double))};
+    if (J.stretch == NULL)
+        return -1;
+    ttd_parallel_for(nb, threads, prepare_blocks, &J);
+    for (size_t t = 0; pd->tiny != NULL && t < m->nt; ++t) {
+        if (m->bytes == 8) {
+            double v[9];
+            for (int k = 0; k < 9; ++k)
+                v[k] = ((const double *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+            ttd_point_prepare_d(v, (double *)pd->tiny + t * TTD_PT_COUNT, 1);
+        } else {
+            float v[9];
+            for (int k = 0; k < 9; ++k)
+                v[k] = ((const float *)m->verts)[3 * (size_t)m->tris[3 * t + (size_t)(k / 3)] + (size_t)(k % 3)];
+            ttd_point_prepare_f(v, (float *)pd->tiny + t * TTD_PT_COUNT, 1);
+        }
+    }
+    pd->coord_max = 0;
+    for (size_t i = 0; i < 3 * m->nv; ++i) {
+        const double x = fabs(m->bytes == 8 ? ((const double *)m->verts)[i] : (double)((const float *)m->verts)[i]);
+        pd->coord_max = x > pd->coord_max ? x : pd->coord_max;
+    }
+    pd->stretch = 1;
+    for (size_t b = 0; b < nb; ++b)
+        pd->stretch = J.stretch[b] > pd->stretch ? J.stretch[b] : pd->stretch;
+    free(J.stretch);
+    for (size_t n = pd->nnodes; n-- > 0;) {
+        int count;
+        const int32_t *child = node_child(m, n, &count);
+        ttd_rnode *y = &pd->rnodes[n];
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            y->child[j] = j < count ? child[j] : 0;
+            for (int c = 0; c < 3; ++c) {
+                y->lo[c][j] = INFINITY;
+                y->hi[c][j] = -INFINITY;
+            }
+        }
+        for (int j = 0; j < count; ++j) {
+            if (child[j] < 0)
+                triangle_rbox(m, pd->scale, (size_t)(-1 - child[j]), y, j);
+            else
+                node_rbox(&pd->rnodes[child[j]], y, j);
+        }
+    }
+    if (pd->moments != NULL)
+        moments_compute(m, pd->moments);
+    return 0;
+}
+
+const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd)
+{
+    /* a cache of what the mesh determines, as the point data itself */
+    ttd_points_data *p = (ttd_points_data *)(uintptr_t)pd;
+    double *w = __atomic_load_n(&p->moments, __ATOMIC_ACQUIRE);
+    if (w != NULL)
+        return w;
+    w = ttd_big_alloc(mesh->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
+    if (w == NULL)
+        return NULL;
+    moments_compute(mesh, w);
+    double *expected = NULL;
+    if (!__atomic_compare_exchange_n(&p->moments, &expected, w, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        free(w); /* another thread made them first: the same numbers */
+        return expected;
+    }
+    return w;
 }
 
 static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
@@ -201,26 +386,39 @@ static ttd_points_data *points_make(const struct ttd_mesh *m, int threads)
     pd->destroy = points_free;
     pd->bytes = m->bytes;
     pd->nnodes = m->nnodes;
-    pd->block_of = malloc(m->nnodes * sizeof *pd->block_of);
-    pd->tri_mask = malloc(m->nnodes);
-    pd->live_mask = malloc(m->nnodes);
-    if (pd->block_of == NULL || pd->tri_mask == NULL || pd->live_mask == NULL)
+    pd->pnodes = ttd_big_alloc(m->nnodes * sizeof *pd->pnodes);
+    pd->rnodes = ttd_big_alloc(m->nnodes * sizeof *pd->rnodes);
+    if (pd->pnodes == NULL || pd->rnodes == NULL)
         goto fail;
+
     for (size_t n = 0; n < m->nnodes; ++n) {
         int count;
         const int32_t *child = node_child(m, n, &count);
+        ttd_pnode *y = &pd->pnodes[n];
+        memset(y, 0, sizeof *y);
         unsigned mask = 0;
-        for (int j = 0; j < count; ++j)
-            mask |= (unsigned)(child[j] < 0) << j;
-        pd->tri_mask[n] = (uint8_t)mask;
-        pd->live_mask[n] = (uint8_t)((1u << count) - 1u);
-        pd->block_of[n] = mask ? (int32_t)pd->nblocks++ : -1;
+        y->nslots = (uint32_t)count;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            for (int a = 0; a < 3; ++a) /* an unused slot: no point is within it */
+                y->e[a][j] = -INFINITY;
+            if (j < count) {
+                y->child[j] = child[j];
+                mask |= (unsigned)(child[j] < 0) << j;
+            }
+        }
+        y->tmask = mask;
+        y->ntri = (uint32_t)__builtin_popcount(mask);
+        y->block = mask ? (int32_t)pd->nblocks++ : -1;
     }
+
     pd->blocks = ttd_big_alloc(pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes);
-    pd->moments = ttd_big_alloc(m->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
-    if (pd->blocks == NULL || pd->moments == NULL)
+    if (m->nt <= TTD_POINTS_TINY && (pd->tiny = malloc(m->nt * TTD_PT_COUNT * (size_t)m->bytes)) == NULL)
         goto fail;
-    points_compute(m, pd, threads);
+    if (pd->blocks == NULL)
+        goto fail;
+    if (points_compute(m, pd, threads) != 0)
+        goto fail;
+    (void)ttd_mesh_closed(m); /* the winding number's choice (points/ray.c), kept in the mesh */
     return pd;
 fail:
     points_free(pd);
@@ -247,6 +445,10 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads)
 {
-    if (mesh->points != NULL)
-        points_compute(mesh, mesh->points, threads);
+    if (mesh->points != NULL && points_compute(mesh, mesh->points, threads) != 0) {
+        /* out of memory: drop the point data (the next point query makes it again) */
+        ttd_points_data *pd = mesh->points;
+        mesh->points = NULL;
+        points_free(pd);
+    }
 }

@@ -8,14 +8,19 @@
  * about its centre c, seen from q at R = |c - q| > r, is replaced by the first two terms of the
  * Taylor series of f about c: f(c) . N + J(c) : M, J = (I R^2 - 3 y y^T) / R^5, y = c - q, with the
  * area vector N and the second moment M of its triangles (points/prepare.c). The remainder is at most
- * 3 A r^2 / (R - r)^4 (the third derivatives of 1 / |x| are bounded by 3! / |x|^4, A the subtree's
- * area), which the walk adds up. Triangles too near for that are measured exactly (their solid
- * angles, mesh/solid.c). The walk's own rounding is small next to those bounds and is added too:
- * 32 eps times the sum of the terms' magnitudes. */
+ * I (3R - 2r) / (R^3 (R - r)^2), I the subtree's polar moment about c (docs/points.md, section 5:
+ * the integral form of Taylor's remainder with the third derivatives of 1 / |x| bounded by
+ * 3! / |x|^4), which the walk adds up. Triangles too near for that are measured exactly (their
+ * solid angles, mesh/solid.c). The walk's own rounding is small next to those bounds and is added
+ * too: 32 eps times the sum of the terms' magnitudes.
+ *
+ * A closed mesh's winding number is an integer, counted exactly by a ray (points/ray.c): the
+ * queries use that, and the walk for open meshes (and where the count cannot be made exact). */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
 
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "points/points.h"
 
@@ -31,6 +36,11 @@
 static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double beta, double tau,
                       double *err)
 {
+    const double *moments = ttd_points_moments(m, pd);
+    if (moments == NULL) { /* out of memory: the linear sum, its rounding alone */
+        *err = 64 * DBL_EPSILON * (double)m->nt;
+        return ttd_mesh_winding(m, x);
+    }
     const double q[3] = {x[0] - m->origin[0], x[1] - m->origin[1], x[2] - m->origin[2]};
     double sum = 0, mag = 0, bound = 0;
     int32_t stack[WN_STACK];
@@ -47,7 +57,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
             child = ((const ttd_node_f *)m->nodes)[n].child;
             count = ((const ttd_node_f *)m->nodes)[n].count;
         }
-        const double *w = pd->moments + (size_t)n * WM_COUNT * TTD_NODE_WIDTH;
+        const double *w = moments + (size_t)n * WM_COUNT * TTD_NODE_WIDTH;
         for (int j = 0; j < count; ++j) {
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
             const double y[3] = {W(WM_C) - q[0], W(WM_C + 1) - q[1], W(WM_C + 2) - q[2]};
@@ -57,7 +67,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
             double rem = 0;
             if (far) {
                 const double g = R - r;
-                rem = 3 * A * r * r / (g * g * g * g);
+                rem = W(WM_I) * (3 * R - 2 * r) / (R2 * R * g * g) * (1 + 16 * DBL_EPSILON);
                 if (tau >= 0 && !(rem <= tau * A / ((R + r) * (R + r))))
                     far = 0;
             }
@@ -100,17 +110,58 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
     return w;
 }
 
+/* The walk tightened until its bound is below `want` (every triangle exactly at tau = 0). */
+static double wn_tight(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double want, double *err)
+{
+    for (double tau = 1.0 / 16;; tau = tau > 1e-6 ? tau / 16 : 0) {
+        const double w = wn_walk(mesh, pd, x, WN_BETA, tau, err);
+        if (*err < want || tau == 0)
+            return w;
+    }
+}
+
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3])
 {
     if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
         return NAN;
-    /* tighter until the bound is below 1/4 (every triangle exactly at tau = 0) */
-    for (double tau = 1.0 / 16;; tau = tau > 1e-6 ? tau / 16 : 0) {
-        double err;
-        const double w = wn_walk(mesh, pd, x, WN_BETA, tau, &err);
-        if (err < 0.25 || tau == 0)
-            return w;
+    int w;
+    if (ttd_mesh_closed(mesh) == 1 && ttd_points_ray_winding(mesh, pd, ttd_kernels_scalar_f.ray_node, x, &w) == 0)
+        return w;
+    double err;
+    return wn_tight(mesh, pd, x, 0.25, &err);
+}
+
+double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                               const double x[3], int *proven)
+{
+    *proven = 0;
+    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
+        return NAN;
+    if (mesh->nt == 1) { /* a triangle's solid angle is below 2 pi: |w| < 1/2, outside (w given as 0) */
+        *proven = 1;
+        return 0;
     }
+    int c;
+    if (closed && ttd_points_ray_winding(mesh, pd, ray, x, &c) == 0) {
+        *proven = 1;
+        return c;
+    }
+    /* the fast walk; where its bound does not settle the side of 1/2, the tightened one */
+    double err;
+    double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err);
+    if (!(fabs(w - 0.5) > err))
+        w = wn_tight(mesh, pd, x, fmax(fabs(w - 0.5) / 2, 1e-3), &err);
+    *proven = fabs(w - 0.5) > err;
+    return w;
+}
+
+double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                                const double x[3])
+{
+    int c;
+    if (closed && isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]) && ttd_points_ray_winding(mesh, pd, ray, x, &c) == 0)
+        return c;
+    return ttd_points_winding(mesh, pd, x, NULL);
 }
 
 int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
@@ -133,8 +184,10 @@ typedef struct wn_job {
     const ttd_points_data *pd;
     size_t n;
     const void *points;
-    int bytes;
+    int bytes, closed;
+    ttd_ray_node_fn ray;
     double *out;
+    uint8_t *proven;
 } wn_job;
 
 static void wn_block(void *ctx, size_t b, int worker)
@@ -147,17 +200,22 @@ static void wn_block(void *ctx, size_t b, int worker)
         for (int c = 0; c < 3; ++c)
             x[c] = J->bytes == 8 ? ((const double *)J->points)[3 * i + (size_t)c]
                                  : (double)((const float *)J->points)[3 * i + (size_t)c];
-        J->out[i] = ttd_points_winding(J->m, J->pd, x, NULL);
+        int proven = 0;
+        J->out[i] = J->proven ? ttd_points_winding_sign(J->m, J->pd, J->closed, J->ray, x, &proven)
+                              : ttd_points_winding_value(J->m, J->pd, J->closed, J->ray, x);
+        if (J->proven)
+            J->proven[i] = (uint8_t)proven;
     }
 }
 
 ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
-                                    const void *points, double *winding)
+                                    const void *points, double *winding, uint8_t *proven)
 {
     const ttd_points_data *pd = ttd_points_data_get(mesh, cfg->threads);
-    if (pd == NULL)
+    const int closed = ttd_mesh_closed(mesh);
+    if (pd == NULL || closed < 0)
         return TTD_ERR_OUT_OF_MEMORY;
-    wn_job J = {mesh, pd, n, points, mesh->bytes, winding};
+    wn_job J = {mesh, pd, n, points, mesh->bytes, closed, ttd_dispatch_row_f(cfg->isa)->ray_node, winding, proven};
     ttd_parallel_for((n + WN_BLOCK - 1) / WN_BLOCK, cfg->threads, wn_block, &J);
     return TTD_OK;
 }

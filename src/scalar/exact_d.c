@@ -32,13 +32,14 @@ void ttd_point_rebuild_d(const double *f, size_t stride, int id, double u, doubl
     point_rebuild(f, stride, id, u, v, q, w);
 }
 
+void ttd_point_lanes_scalar_d(const double *f, const double P[3][TTD_NODE_WIDTH], double d[TTD_NODE_WIDTH],
+                               double q[3][TTD_NODE_WIDTH], double w[3][TTD_NODE_WIDTH])
+{
+    point_lanes_scalar(f, P, d, q, w);
+}
+
 void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                                 double par[3][TTD_NODE_WIDTH])
 {
     point_block_scalar(p, block, d, par);
-}
-
-unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH])
-{
-    return point_node_scalar(p, y, lim2, lb2);
 }

@@ -32,13 +32,24 @@ void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v
     point_rebuild(f, stride, id, u, v, q, w);
 }
 
+void ttd_point_lanes_scalar_f(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
+                               float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH])
+{
+    point_lanes_scalar(f, P, d, q, w);
+}
+
 void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH],
                                 float par[3][TTD_NODE_WIDTH])
 {
     point_block_scalar(p, block, d, par);
 }
 
-unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH])
+unsigned ttd_ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const ttd_rnode *y)
+{
+    return ray_node_scalar(lo, hi, k, sigma, y);
+}
+
+unsigned ttd_point_node_scalar(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {
     return point_node_scalar(p, y, lim2, lb2);
 }

@@ -221,8 +221,8 @@ static real point_eval(const real *f, size_t stride, const real P[3], real q[3],
     return d;
 }
 
-/* The scalar row's point kernels (core/kernels.h): a loop over point_eval's distance, and the
- * node test one child at a time with the lanes' operations (simd/kernel_point.h). */
+/* The scalar row's point kernels (core/kernels.h): a loop over point_eval's distance, and (float
+ * only) the walk's node test one child at a time with the lanes' operations (simd/kernel_point.h). */
 static void point_block_scalar(const real P[3], const real *blk, real d[TTD_NODE_WIDTH], real par[3][TTD_NODE_WIDTH])
 {
     for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
@@ -232,19 +232,47 @@ static void point_block_scalar(const real P[3], const real *blk, real d[TTD_NODE
     }
 }
 
-static unsigned point_node_scalar(const real p[3], const ttd_node *y, real lim2, real lb2[TTD_NODE_WIDTH])
+static void point_lanes_scalar(const real *f, const real P[3][TTD_NODE_WIDTH], real d[TTD_NODE_WIDTH],
+                               real q[3][TTD_NODE_WIDTH], real w[3][TTD_NODE_WIDTH])
+{
+    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+        const real p[3] = {P[0][i], P[1][i], P[2][i]};
+        real qi[3], wi[3];
+        d[i] = point_eval(f, 1, p, qi, wi);
+        for (int c = 0; c < 3; ++c) {
+            q[c][i] = qi[c];
+            w[c][i] = wi[c];
+        }
+    }
+}
+
+#ifndef TTD_PRECISION_DOUBLE
+static unsigned point_node_scalar(const float p[3], const ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH])
 {
     unsigned within = 0;
     for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
-        const real dx = p[0] - y->c[0][j], dy = p[1] - y->c[1][j], dz = p[2] - y->c[2][j];
-        real s = 0;
+        const float dx = p[0] - y->c[0][j], dy = p[1] - y->c[1][j], dz = p[2] - y->c[2][j];
+        float s = 0, sep = 0;
         for (int a = 0; a < 3; ++a) {
-            const real z = (y->u[3 * a][j] * dx + y->u[3 * a + 1][j] * dy) + y->u[3 * a + 2][j] * dz;
-            const real g = exact_max(TTD_FABS(z) - y->e[a][j], (real)0);
+            const float z = (y->u[3 * a][j] * dx + y->u[3 * a + 1][j] * dy) + y->u[3 * a + 2][j] * dz;
+            const float gap = TTD_FABS(z) - y->e[a][j], g = exact_max(gap, 0.0f);
             s = a == 0 ? g * g : s + g * g;
+            sep = a == 0 ? gap : exact_max(sep, gap);
         }
-        lb2[j] = s;
+        lb2[j] = s > 0 ? s : sep;
         within |= (unsigned)(s <= lim2) << j;
     }
     return within;
 }
+
+static unsigned ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const ttd_rnode *y)
+{
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    unsigned hit = 0;
+    for (int s = 0; s < TTD_NODE_WIDTH; ++s)
+        hit |= (unsigned)((y->lo[i][s] <= hi[i]) & (y->hi[i][s] >= lo[i]) & (y->lo[j][s] <= hi[j]) & (y->hi[j][s] >= lo[j]) &
+                          (sigma > 0 ? y->hi[k][s] >= lo[k] : y->lo[k][s] <= hi[k]))
+               << s;
+    return hit;
+}
+#endif

@@ -50,11 +50,17 @@ float ttd_point_eval_f(const float *f, size_t stride, const float p[3], float q[
 void ttd_point_rebuild_d(const double *f, size_t stride, int id, double u, double v, double q[3], double w[3]);
 void ttd_point_rebuild_f(const float *f, size_t stride, int id, float u, float v, float q[3], float w[3]);
 /* The scalar row's point kernels (core/kernels.h). */
+void ttd_point_lanes_scalar_d(const double *f, const double P[3][TTD_NODE_WIDTH], double d[TTD_NODE_WIDTH],
+                               double q[3][TTD_NODE_WIDTH], double w[3][TTD_NODE_WIDTH]);
 void ttd_point_block_scalar_d(const double p[3], const double *block, double d[TTD_NODE_WIDTH],
                               double par[3][TTD_NODE_WIDTH]);
+void ttd_point_lanes_scalar_f(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
+                               float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH]);
 void ttd_point_block_scalar_f(const float p[3], const float *block, float d[TTD_NODE_WIDTH], float par[3][TTD_NODE_WIDTH]);
-unsigned ttd_point_node_scalar_d(const double p[3], const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH]);
-unsigned ttd_point_node_scalar_f(const float p[3], const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH]);
+struct ttd_pnode;
+struct ttd_rnode;
+unsigned ttd_ray_node_scalar(const float lo[3], const float hi[3], int k, int sigma, const struct ttd_rnode *y);
+unsigned ttd_point_node_scalar(const float p[3], const struct ttd_pnode *y, float lim2, float lb2[TTD_NODE_WIDTH]);
 
 /* Precision-generic code (the scalar _impl.h files, one precision per translation unit) calls the other
  * methods of its own precision by these names. */

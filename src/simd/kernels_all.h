@@ -35,6 +35,11 @@
                [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref,                            \
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
         .node_test = node_test,                                                                \
-        .point_node = point_node,                                                              \
-        .point_block = point_block,                                                            \
+        TTD_LANE_ROW_POINT_NODE                                                                 \
+        .point_block = point_block, .point_lanes = point_lanes,                                \
     }
+#ifdef TTD_PRECISION_DOUBLE
+#define TTD_LANE_ROW_POINT_NODE
+#else
+#define TTD_LANE_ROW_POINT_NODE .point_node = point_node, .ray_node = ray_node,
+#endif

@@ -1,0 +1,293 @@
+/* SPDX-License-Identifier: MIT */
+/* The exact winding number of a closed mesh about a point (points/points.h; docs/points.md,
+ * section 5): the signed count of the triangles an axis-aligned ray from the point crosses.
+ *
+ * For a closed mesh (every directed edge (u, v) of a triangle appears once and (v, u) once: a
+ * chain without boundary) the winding number about x is an integer, constant off the surface, and
+ * it changes by the orientation of the surface wherever a path crosses it. A ray from x to
+ * infinity, where the winding number is 0, therefore crosses triangles whose orientations along
+ * the ray add up to w(x). The count is made exact:
+ *  - the ray is x + s d, s > 0, d = +-e_k: its crossing of a triangle is decided in the plane of
+ *    the two other coordinates, where the triangle is crossed when the point lies strictly inside
+ *    its projection, and ahead of x along d. Both are signs of polynomials of the coordinates
+ *    (2D orientations; the orientations times the triangle's coordinates along d, a degree-3
+ *    polynomial), evaluated in double with an error bound and, where that cannot tell the sign,
+ *    exactly, with Shewchuk's expansions (each product split by fma into its rounded value and
+ *    its exact error, and the terms summed without loss);
+ *  - where a sign is exactly zero (the ray through an edge or a vertex, a grid of points against
+ *    an axis-aligned mesh), the point is moved by (eps, eps^2) in the two other coordinates,
+ *    eps infinitesimal (simulation of simplicity): the sign is then that of the first nonzero
+ *    coefficient of eps's powers, plain comparisons of coordinates. An edge shared by two
+ *    triangles gets opposite signs from them, so the perturbed ray crosses exactly one of two
+ *    triangles meeting along an edge it grazes, and none whose projection is a segment;
+ *  - the tree is walked with axis-aligned float boxes around every slot, rounded outward and
+ *    widened by the rounding of the point's and the vertices' shift to the mesh's origin, so that
+ *    no triangle the exact ray crosses is skipped.
+ * So the count is w of the point moved by (eps, eps^2) across the ray: w(x) itself for every x
+ * off the surface. A point exactly on the plane of a triangle it would cross (on the surface) is
+ * taken as behind it. The one case left out is a product that underflows (coordinates that differ
+ * by less than about 2^-450 of the largest): the function then says so, and the caller uses the
+ * hierarchical winding number. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "points/points.h"
+
+/* ---- exact signs of sums of products ------------------------------------------------------ */
+
+/* a + b = *s + *e exactly (Knuth's two-sum). */
+static inline void two_sum(double a, double b, double *s, double *e)
+{
+    const double x = a + b, bv = x - a, av = x - bv;
+    *s = x;
+    *e = (a - av) + (b - bv);
+}
+
+/* A list of doubles whose exact sum's sign is wanted, and whether a product underflowed (then
+ * its error term is not exact). */
+typedef struct xsum {
+    double t[200];
+    int n, bad;
+} xsum;
+
+/* Appends a b exactly: its rounded value and its error (fma is exact). */
+static inline void xs_prod(xsum *x, double a, double b)
+{
+    const double p = a * b;
+    if (a != 0 && b != 0 && !(fabs(p) >= 0x1p-900))
+        x->bad = 1; /* the error term may have lost bits below the subnormal range */
+    x->t[x->n++] = p;
+    x->t[x->n++] = fma(a, b, -p);
+}
+
+/* The sign of the exact sum (Shewchuk's grow-expansion with zero elimination: the components stay
+ * nonoverlapping and increasing, so the last one's sign is the sum's). */
+static int xs_sign(const xsum *x)
+{
+    double h[200];
+    int m = 0;
+    for (int i = 0; i < x->n; ++i) {
+        double q = x->t[i];
+        int k = 0;
+        for (int j = 0; j < m; ++j) {
+            double s, e;
+            two_sum(q, h[j], &s, &e);
+            q = s;
+            if (e != 0)
+                h[k++] = e;
+        }
+        if (q != 0)
+            h[k++] = q;
+        m = k;
+    }
+    return m == 0 ? 0 : (h[m - 1] > 0 ? 1 : -1);
+}
+
+/* The exact terms of orient(q, a, b) = (a0 - q0)(b1 - q1) - (a1 - q1)(b0 - q0) appended to x,
+ * times f (f = 1: the orientation itself; else each term times f's two parts, for the plane). */
+static void orient_terms(xsum *x, const double q[2], const double a[2], const double b[2], const double *f)
+{
+    double d[4][2];
+    two_sum(a[0], -q[0], &d[0][0], &d[0][1]);
+    two_sum(b[1], -q[1], &d[1][0], &d[1][1]);
+    two_sum(a[1], -q[1], &d[2][0], &d[2][1]);
+    two_sum(b[0], -q[0], &d[3][0], &d[3][1]);
+    for (int side = 0; side < 2; ++side) {
+        const double *u = d[2 * side], *v = d[2 * side + 1];
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j) {
+                xsum one;
+                one.n = 0;
+                one.bad = 0;
+                xs_prod(&one, side ? -u[i] : u[i], v[j]);
+                x->bad |= one.bad;
+                for (int k = 0; k < 2; ++k) {
+                    if (f == NULL) {
+                        x->t[x->n++] = one.t[k];
+                    } else {
+                        xs_prod(x, one.t[k], f[0]);
+                        xs_prod(x, one.t[k], f[1]);
+                    }
+                }
+            }
+    }
+}
+
+/* The orientation of (q, a, b) in 2D: its value in double (*val) and the sum of its two products'
+ * magnitudes (*perm, for the plane's error bound), and its exact sign, the point moved by (eps,
+ * eps^2) where it is zero (simulation of simplicity). */
+static int orient2(const double q[2], const double a[2], const double b[2], double *val, double *perm, int *bad)
+{
+    const double l = (a[0] - q[0]) * (b[1] - q[1]), r = (a[1] - q[1]) * (b[0] - q[0]), det = l - r;
+    *val = det;
+    *perm = fabs(l) + fabs(r);
+    /* the rounding of the two differences, the products and the subtraction: below 3.3e-16 perm
+     * (Shewchuk's ccwerrboundA), taken twice */
+    const double bound = 4 * DBL_EPSILON * *perm;
+    if (*perm >= 0x1p-900 && det > bound) /* (below, the products may have underflowed) */
+        return 1;
+    if (*perm >= 0x1p-900 && det < -bound)
+        return -1;
+    xsum x;
+    x.n = 0;
+    x.bad = 0;
+    orient_terms(&x, q, a, b, NULL);
+    *bad |= x.bad;
+    const int s = xs_sign(&x);
+    if (s != 0)
+        return s;
+    *val = 0;
+    /* exactly zero: the coefficients of eps ((a1 - b1)) and of eps^2 ((b0 - a0)) */
+    if (a[1] != b[1])
+        return a[1] > b[1] ? 1 : -1;
+    if (a[0] != b[0])
+        return b[0] > a[0] ? 1 : -1;
+    return 0;
+}
+
+/* ---- one triangle against the ray -------------------------------------------------------- */
+
+/* The ray from p along sigma e_k against triangle v (3 vertices): +-1, its crossing counted with
+ * the orientation of the triangle along the ray, or 0. */
+static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3], int *bad)
+{
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double q[2] = {p[i], p[j]};
+    double w[3][2];
+    for (int t = 0; t < 3; ++t) {
+        w[t][0] = v[t][i];
+        w[t][1] = v[t][j];
+    }
+    /* o[t]: the orientation of q against the edge opposite vertex t (its barycentric weight) */
+    double o[3], perm[3];
+    int s[3];
+    for (int t = 0; t < 3; ++t) {
+        s[t] = orient2(q, w[(t + 1) % 3], w[(t + 2) % 3], &o[t], &perm[t], bad);
+        if (s[t] == 0 || s[t] != s[0])
+            return 0;
+    }
+    /* ahead: sign(sum o_t (v_t,k - p_k)) = sign(hit - p_k) times s[0] (the o_t add up to the
+     * projected area, of sign s[0]) */
+    double val = 0, mag = 0, dk[3];
+    for (int t = 0; t < 3; ++t) {
+        dk[t] = v[t][k] - p[k];
+        val += o[t] * dk[t];
+        mag += perm[t] * fabs(dk[t]);
+    }
+    int side;
+    const double bound = 8 * DBL_EPSILON * mag;
+    if (mag >= 0x1p-800 && val > bound) {
+        side = 1;
+    } else if (mag >= 0x1p-800 && val < -bound) {
+        side = -1;
+    } else {
+        xsum x;
+        x.n = 0;
+        x.bad = 0;
+        for (int t = 0; t < 3; ++t) {
+            double f[2];
+            two_sum(v[t][k], -p[k], &f[0], &f[1]);
+            orient_terms(&x, q, w[(t + 1) % 3], w[(t + 2) % 3], f);
+        }
+        *bad |= x.bad;
+        side = xs_sign(&x);
+    }
+    /* hit - p_k has the sign side * s[0]; crossed when that is sigma's (0: on the plane, behind) */
+    if (side * s[0] != sigma)
+        return 0;
+    return sigma * s[0];
+}
+
+/* ---- the walk ----------------------------------------------------------------------------- */
+
+#define RAY_STACK 256
+
+int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                           const double x[3], int *w)
+{
+    const ttd_rnode *rn = pd->rnodes;
+    /* the point in the walk's frame, and the margin m = 2 eps (|x - origin| + radius) scale that
+     * covers the rounding of the point's and the vertices' shift to the origin */
+    double xs[3], s2 = 0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = x[c] - m->origin[c];
+        xs[c] = d * pd->scale;
+        s2 += d * d;
+    }
+    const double margin = 2 * DBL_EPSILON * (sqrt(s2) + m->radius) * pd->scale * (1 + 1e-9);
+    float lo[3], hi[3];
+    for (int c = 0; c < 3; ++c) {
+        double a = xs[c] - margin, b = xs[c] + margin;
+        a = a < -0x1p60 ? -0x1p60 : (a > 0x1p60 ? 0x1p60 : a);
+        b = b < -0x1p60 ? -0x1p60 : (b > 0x1p60 ? 0x1p60 : b);
+        lo[c] = ttd_float_down(a);
+        hi[c] = ttd_float_up(b);
+    }
+    /* the direction: the axis and sense along which the point leaves the mesh's box soonest */
+    int k = 0, sigma = 1;
+    double best = INFINITY;
+    for (int c = 0; c < 3; ++c)
+        for (int sg = 1; sg >= -1; sg -= 2) {
+            const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];
+            const double e = exit > 0 ? exit : 0;
+            if (e < best) {
+                best = e;
+                k = c;
+                sigma = sg;
+            }
+        }
+    /* Signs do not change under a power-of-two scale: the coordinates are kept within 2^+-300, so
+     * that no product of three differences overflows (the scale is 1 unless the mesh or the point
+     * lies beyond, and a coordinate the scale would push into the subnormal range is reported). */
+    double big = pd->coord_max;
+    for (int c = 0; c < 3; ++c)
+        big = fabs(x[c]) > big ? fabs(x[c]) : big;
+    int e = 0;
+    if (big > 0x1p300 || (big > 0 && big < 0x1p-300))
+        (void)frexp(big, &e);
+    double xe[3];
+    int bad = 0;
+    for (int c = 0; c < 3; ++c) {
+        xe[c] = e != 0 ? ldexp(x[c], -e) : x[c];
+        bad |= xe[c] != 0 && fabs(xe[c]) < 0x1p-1000;
+    }
+    int count = 0;
+    int32_t stack[RAY_STACK];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const ttd_rnode *y = &rn[stack[--sp]];
+        /* the slots whose boxes meet the ray's tube: across it, and ahead along sigma e_k */
+        unsigned hit = ray_node(lo, hi, k, sigma, y);
+        for (; hit; hit &= hit - 1) {
+            const int s = __builtin_ctz(hit);
+            const int32_t ch = y->child[s];
+            if (ch >= 0) {
+                if (sp == RAY_STACK)
+                    return -1;
+                stack[sp++] = ch;
+                continue;
+            }
+            const size_t t = (size_t)(-1 - ch);
+            double v[3][3];
+            for (int a = 0; a < 3; ++a) {
+                const size_t vi = m->tris[3 * t + (size_t)a];
+                for (int c = 0; c < 3; ++c) {
+                    v[a][c] = m->bytes == 8 ? ((const double *)m->verts)[3 * vi + (size_t)c]
+                                            : (double)((const float *)m->verts)[3 * vi + (size_t)c];
+                    if (e != 0) {
+                        v[a][c] = ldexp(v[a][c], -e);
+                        bad |= v[a][c] != 0 && fabs(v[a][c]) < 0x1p-1000;
+                    }
+                }
+            }
+            count += ray_triangle(xe, k, sigma, (const double(*)[3])v, &bad);
+        }
+    }
+    if (bad)
+        return -1;
+    *w = count;
+    return 0;
+}
