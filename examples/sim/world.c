@@ -20,7 +20,7 @@ sim_settings sim_default_settings(void)
     s.margin = 0.04;
     s.rest_gap = 0.01;
     s.max_points = 4;
-    s.substeps = 8;
+    s.substeps = 16;
     s.iterations = 1;
     s.friction = 0.6;
     s.contact_hertz = 240;
