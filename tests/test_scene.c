@@ -557,11 +557,23 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
         }
         const size_t want = nk < MAX_POINTS ? nk : MAX_POINTS;
         /* the deepest level the spread works in first: within a quarter of the margin left below
-         * the smallest distance (or the seed's window) */
+         * the smallest distance (or the seed's window), each point rising above every deeper one
+         * of the level by at most 0.1 of the distance between them (the seed's window whole) */
         const double d0 = rec[ord[kept[0]]].d;
+        unsigned char *lvl = calloc(nk + 1, 1);
+        ENSURE(lvl);
         size_t nl = 0;
-        while (nl < nk && (rec[ord[kept[nl]]].d - d0 <= 0.25 * (m - d0) || rec[ord[kept[nl]]].d - d0 <= window * big))
-            ++nl;
+        for (size_t b = 0; b < nk; ++b) {
+            const double db = rec[ord[kept[b]]].d;
+            if (db - d0 <= window * big) {
+                lvl[b] = 1;
+            } else if (db - d0 <= 0.25 * (m - d0)) {
+                lvl[b] = 1;
+                for (size_t a = 0; a < b && lvl[b]; ++a)
+                    lvl[b] = !lvl[a] || db - rec[ord[kept[a]]].d <= 0.1 * dist3(mid[kept[a]], mid[kept[b]]);
+            }
+            nl += lvl[b];
+        }
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
@@ -588,13 +600,15 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                 ENSURE_MSG(dist3(pt->x, A->points[b].x) > tol * (1 - 1e-9), "manifold (%u, %u): points %zu and %zu within %g",
                            P->i, P->j, b - (at - n), n, tol);
             if (nk > MAX_POINTS && nl < MAX_POINTS && n < nl) /* a short level: all of it first */
-                ENSURE_MSG(me < nl, "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
+                ENSURE_MSG(lvl[me], "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
             if (nk > MAX_POINTS && nl >= MAX_POINTS && (n == 1 || n == 2)) {
                 /* within the level: farthest from the first; the largest triangle with the first two */
-                ENSURE_MSG(me < nl, "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
+                ENSURE_MSG(lvl[me], "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
                 const double *x0 = A->points[at - n].x, *x1 = n == 2 ? A->points[at - 1].x : NULL;
                 double mine = 0, other = 0;
-                for (size_t b = 0; b < nl; ++b) {
+                for (size_t b = 0; b < nk; ++b) {
+                    if (!lvl[b])
+                        continue;
                     const double *y = mid[kept[b]];
                     double v;
                     if (n == 1) {
@@ -617,6 +631,7 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
             }
         }
         npoints_corner += ncorner;
+        free(lvl);
         free(rec);
         free(ord);
         free(kept);

@@ -21,7 +21,7 @@
 static void usage(FILE *f)
 {
     fprintf(f, "usage: ttd_sim [--scenario NAME]... [--seconds S] [--settle S] [--check] [--obj DIR] [--threads N]\n"
-               "               [--jig S] [--vertical-normals] [--points K] [--hertz F] [--substeps N] [--iterations N] [--dt S] [--no-warm-start]\n"
+               "               [--jig S] [--vertical-normals] [--points K] [--hertz F] [--substeps N] [--iterations N] [--dt S] [--no-warm-start] [--surfaces]\n"
                "scenarios:");
     for (int k = 0; sim_scenarios[k]; ++k)
         fprintf(f, " %s", sim_scenarios[k]);
@@ -95,6 +95,9 @@ int main(int argc, char **argv)
             continue;
         } else if (!strcmp(a, "--no-warm-start")) {
             set.warm_start = 0;
+            continue;
+        } else if (!strcmp(a, "--surfaces")) {
+            set.solid = 0;
             continue;
         } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);

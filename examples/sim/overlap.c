@@ -118,7 +118,11 @@ int sim_world_overlap(sim_world *w, double *depth, uint32_t *pair_a, uint32_t *p
     const ttd_scene_hit *h = hits.data;
     *depth = 0;
     *pair_a = *pair_b = UINT32_MAX;
-    *touching = hits.count;
+    /* surfaces touching or crossing; a solid pair held one inside the other is a hit too, its
+       witness the outer body's UINT32_MAX, and not counted here */
+    *touching = 0;
+    for (size_t k = 0; k < hits.count; ++k)
+        *touching += (size_t)(h[k].tri_i != UINT32_MAX && h[k].tri_j != UINT32_MAX);
     size_t next = 0; /* hits are sorted by (i, j), as this loop meets the pairs */
     for (uint32_t i = 0; i < w->n; ++i)
         for (uint32_t j = i + 1; j < w->n; ++j) {

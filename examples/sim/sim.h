@@ -117,6 +117,7 @@ typedef struct sim_settings {
     double max_push;      ///< the largest separating speed a deficit asks for, m/s
     double match_distance; ///< a contact keeps its impulses when the previous step had one this close
     int warm_start;       ///< 0: every step's impulses start at 0
+    int solid;            ///< bodies are solids (ttd_scene_set_solid: depth through crossing); 0: surfaces
     int threads;          ///< ttd's thread count (results do not depend on it)
     int vertical_normals; ///< diagnostic: every normal replaced by +z (a stack's exact normal)
     double jig;           ///< the stacks' offsets and turns are this times their defaults (1)
@@ -159,7 +160,8 @@ void sim_body_pose(const sim_body *b, double pose[12]);
 /// bodies' convex pieces (0 when none overlap), among the pairs whose surfaces ttd's collide at
 /// 0 finds touching or crossing, and the pairs whose boxes overlap with one body's vertex inside
 /// the other (nested). *pair_a, *pair_b name the deepest pair (UINT32_MAX when none);
-/// *touching counts the pairs collide at 0 reports. -1 when ttd refuses a call.
+/// *touching counts the pairs whose surfaces collide at 0 finds touching or crossing (not a solid held
+/// inside another). -1 when ttd refuses a call.
 int sim_world_overlap(sim_world *w, double *depth, uint32_t *pair_a, uint32_t *pair_b, size_t *touching);
 
 /// The separating-axis overlap of two convex pieces placed by poses: the smallest overlap of
@@ -177,7 +179,7 @@ typedef struct sim_figures {
     size_t drift_body;   ///< the body of the largest drift
     double overlap;      ///< deepest interpenetration at a sample / margin
     uint32_t overlap_a, overlap_b;
-    size_t touching;     ///< most body pairs collide at 0 found at a sample
+    size_t touching;     ///< most body pairs with surfaces touching or crossing at a sample
     double kinetic;      ///< kinetic energy at the end
     double max_tilt_deg; ///< largest angle of a contact normal from vertical over the run (stacks: 0 is right)
 } sim_figures;

@@ -20,7 +20,7 @@ sim_settings sim_default_settings(void)
     s.margin = 0.04;
     s.rest_gap = 0.01;
     s.max_points = 4;
-    s.substeps = 8;
+    s.substeps = 16;
     s.iterations = 1;
     s.friction = 0.6;
     s.contact_hertz = 240;
@@ -28,6 +28,7 @@ sim_settings sim_default_settings(void)
     s.max_push = 3;
     s.match_distance = 0.05;
     s.warm_start = 1;
+    s.solid = 1;
     s.threads = 1;
     s.jig = 1;
     return s;
@@ -134,6 +135,10 @@ long sim_world_add(sim_world *w, const sim_shape *shape, const double x[3], cons
         return -1;
     /* static bodies: group 2, meeting group 1 only (never each other); moving: group 1, both */
     if (ttd_scene_set_filter(w->scene, id, is_static ? 2 : 1, is_static ? 1 : 3) != TTD_OK)
+        return -1;
+    /* every shape is closed: as solids, bodies that cross get points of negative distance (their
+       depth through the crossing), which the solver's spring pushes out like a deficit */
+    if (w->set.solid && ttd_scene_set_solid(w->scene, id, 1) != TTD_OK)
         return -1;
     return (long)w->n++;
 }

@@ -744,7 +744,8 @@ typedef struct ttd_scene_point_f {
 /// overlap), merged (in depth order, a point within 1e-3 of the smaller body's mesh radius of a
 /// point kept before it goes) and reduced to at most max_points points (0: all of them): the
 /// deepest, then spread over the contact region of its level (within a quarter of the margin
-/// left below it: the farthest, the largest triangle, the largest area added). Every point is a
+/// left below it, none rising above a deeper one by more than 0.1 of their distance: the
+/// farthest, the largest triangle, the largest area added). Every point is a
 /// real point of contact: a point of each body at their exact distance, within the margin.
 /// Normals come from the bodies' shapes, not the triangle pair's: a face's normal where a
 /// face of one body lies within the margin of the other, across edges only where both are real

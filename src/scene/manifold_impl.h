@@ -23,7 +23,8 @@
  *    depth (faces resting on faces: many at one depth), the one farthest from their centroid.
  * 4. Spread (when more than K remain), first over the contacts of the deepest level (within
  *    LEVEL_FRACTION of the rest of the margin, M - d, of the deepest distance d: where a body
- *    rests, rather than a speculative contact farther inside the margin): the seed; the point
+ *    rests, rather than a speculative contact farther inside the margin; and on the resting
+ *    plane, LEVEL_SLOPE, not a point across an edge beside a deeper one): the seed; the point
  *    farthest from it; the point making the largest triangle with those two; then, one at a
  *    time, the point that adds the most area to the polygon of those kept (on the plane of the
  *    first three), as PhysX's reduction keeps a box's four corners on a face; where no point
@@ -39,6 +40,9 @@
  * resting 0.01 inside a margin of 0.04 spreads its points over contacts within 0.0175, not over
  * the torus-side contacts at 0.03 that a simulator found rocking the body). */
 #define LEVEL_FRACTION 0.25
+/* The level's plane: a point of it rises above a deeper one by at most this times the distance
+ * between them (the flat angle of step 0, CORNER_ANGLE, as a slope). */
+#define LEVEL_SLOPE 0.1
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -947,21 +951,42 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         /* the deepest level: the kept within LEVEL_FRACTION of the margin left below d0 (and
          * every contact of the seed's window) */
         const double level = LEVEL_FRACTION * ((double)margin - d0);
-        size_t nl = ntie;
-        while (nl < nk && (double)rc[w->kept[nl]].c.distance - d0 <= level)
-            ++nl;
+        size_t nd = ntie;
+        while (nd < nk && (double)rc[w->kept[nd]].c.distance - d0 <= level)
+            ++nd;
+        /* of those, the level: the points on the resting plane, each rising above every deeper
+         * point of the level by at most LEVEL_SLOPE of the distance between them (a plane
+         * tilted by less than the flat angle); a point rising steeply from a deeper one beside it
+         * is across an edge (an overhanging edge's closest point, farther than the faces' gap
+         * beside it) and would hold the body up only after it sank. taken[a] = 2: not of it. */
         memset(w->taken, 0, nk);
+        const double slope2 = LEVEL_SLOPE * LEVEL_SLOPE;
+        size_t nl = 0;
+        for (size_t b = 0; b < nd; ++b) {
+            const double db = (double)rc[w->kept[b]].c.distance;
+            int on = 1; /* the seed's window is of the level whole */
+            for (size_t a = 0; a < b && on && b >= ntie; ++a) {
+                const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
+                on = w->taken[a] == 2 || rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+            }
+            w->taken[b] = on ? 0 : 2;
+            nl += (size_t)on;
+        }
+        for (size_t b = nd; b < nk; ++b)
+            w->taken[b] = 2;
         if (nl >= max) {
-            ns = spread_points(z, nl, seed, max, w->sel, w->taken);
+            ns = spread_points(z, nk, seed, max, w->sel, w->taken);
         } else {
             w->sel[0] = seed;
             w->taken[seed] = 1;
             ns = 1;
-            for (size_t a = 0; a < nl; ++a)
-                if (a != seed) {
+            for (size_t a = 0; a < nk; ++a)
+                if (a != seed && w->taken[a] == 0) {
                     w->sel[ns++] = a;
                     w->taken[a] = 1;
                 }
+            for (size_t a = 0; a < nk; ++a)
+                w->taken[a] = w->taken[a] == 1;
             while (ns < max) {
                 const size_t pick = farthest_point(z, nk, w->sel, ns, w->taken);
                 w->sel[ns++] = pick;
