@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
-enum { NCP = 8, NSD = 4, NWN = 2, NCT = 1 };
+enum { NCP = 8, NSD = 5, NWN = 2, NCT = 1 };
 
 static PyStructSequence_Field cp_fields[NCP + 1] = {
     {"distance", "the exact distance to the mesh, shape (...); inf beyond upper_bound, NaN for a NaN point"},
@@ -33,6 +33,7 @@ static PyStructSequence_Field sd_fields[NSD + 1] = {
     {"point", "the closest point on the mesh, shape (..., 3)"},
     {"triangle", "uint32: the triangle it lies on"},
     {"inside", "bool: the point is inside (winding number >= 1/2)"},
+    {"flags", "uint8: ttd.POINT_* bits (INSIDE; SIGN_UNPROVEN where an open mesh's side is not proven)"},
     {NULL, NULL},
 };
 static PyStructSequence_Desc sd_desc = {
@@ -275,7 +276,8 @@ PyDoc_STRVAR(signed_distance_doc,
 "Signed distances: the exact closest-point distance, negative inside the mesh (generalized\n"
 "winding number >= 1/2; for a closed mesh oriented outwards, its solid).\n\n"
 "Arguments as ttd.closest_points. Returns a ttd.SignedDistance: distance (...), point (..., 3),\n"
-"triangle (...), inside (...) bool.");
+"triangle (...), inside (...) bool, flags (...) uint8 (ttd.POINT_INSIDE, ttd.POINT_SIGN_UNPROVEN:\n"
+"an open mesh's side that rounding leaves unproven).");
 
 static PyObject *py_signed_distance(PyObject *self, PyObject *args, PyObject *kwargs)
 {
@@ -309,13 +311,15 @@ static PyObject *py_signed_distance(PyObject *self, PyObject *args, PyObject *kw
         goto done;
     PyTuple_SET_ITEM(result, 0, (PyObject *)sd);
     sd = NULL;
-    PyObject *pt = PyTuple_GET_ITEM(views, 1), *tri = PyTuple_GET_ITEM(views, 2);
+    PyObject *pt = PyTuple_GET_ITEM(views, 1), *tri = PyTuple_GET_ITEM(views, 2), *fl = PyTuple_GET_ITEM(views, 5);
     Py_INCREF(pt);
     Py_INCREF(tri);
+    Py_INCREF(fl);
     PyTuple_SET_ITEM(result, 1, pt);
     PyTuple_SET_ITEM(result, 2, tri);
     PyTuple_SET_ITEM(result, 3, (PyObject *)inside);
     inside = NULL;
+    PyTuple_SET_ITEM(result, 4, fl);
 done:
     Py_XDECREF(views);
     Py_XDECREF(rec);

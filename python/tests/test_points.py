@@ -120,6 +120,10 @@ def test_signs_on_a_convex_mesh(dtype):
     np.testing.assert_array_equal(s.inside[clear], inside[clear])
     np.testing.assert_array_equal(np.abs(s.distance), ttd.closest_points(mesh, pts).distance)
     np.testing.assert_array_equal(s.distance < 0, s.inside)
+    # the flags carry the side; a closed mesh's side is the exact ray count, never unproven
+    assert s.flags.dtype == np.uint8 and s.flags.shape == s.distance.shape
+    np.testing.assert_array_equal((s.flags & ttd.POINT_INSIDE) != 0, s.inside)
+    assert not np.any(s.flags & ttd.POINT_SIGN_UNPROVEN)
     w = ttd.winding_number(mesh, pts)
     np.testing.assert_array_equal(w.inside, s.inside)
     assert np.all(np.abs(w.winding - np.round(w.winding)) < 0.1)

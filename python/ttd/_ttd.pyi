@@ -386,6 +386,7 @@ class SignedDistance(NamedTuple):
     point: npt.NDArray[np.floating]
     triangle: npt.NDArray[np.uint32]
     inside: npt.NDArray[np.bool_]
+    flags: npt.NDArray[np.uint8]
 
 class WindingNumber(NamedTuple):
     """ttd.winding_number's result."""
