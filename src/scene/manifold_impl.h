@@ -295,6 +295,28 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
     return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
 }
 
+/* Whether the boxes of na points a and nb points b (3 reals each) lie farther apart than lim
+ * along an axis, so surely that the exact method finds the points' hulls farther apart than lim
+ * (their distance is at least the gap, and lim carries the rounding of the gap and of the
+ * distance the exact method returns): then no corner of step 0 lies between them. */
+static int boxes_apart(const real *a, int na, const real *b, int nb, double lim)
+{
+    for (int r = 0; r < 3; ++r) {
+        double alo = (double)a[r], ahi = alo, blo = (double)b[r], bhi = blo;
+        for (int k = 1; k < na; ++k) {
+            alo = fmin(alo, (double)a[3 * k + r]);
+            ahi = fmax(ahi, (double)a[3 * k + r]);
+        }
+        for (int k = 1; k < nb; ++k) {
+            blo = fmin(blo, (double)b[3 * k + r]);
+            bhi = fmax(bhi, (double)b[3 * k + r]);
+        }
+        if (blo - ahi > lim || alo - bhi > lim)
+            return 1;
+    }
+    return 0;
+}
+
 /* Whether 3 reals x come after y (lexicographically). */
 static int point_after(const real *x, const real *y)
 {
@@ -374,6 +396,9 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
         E[side] = s->body[id[side]].mesh->edges;
         tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
+    /* the boxes' test: beyond the margin by a relative 16 ulps of real (the exact distance's
+     * rounding) and a tiny absolute amount (a distance too small to square), asked of neither */
+    const double lim = (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + 0x1p-400;
     int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
@@ -381,7 +406,8 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     /* vertices not inside a flat part that may lie within the margin of the other triangle */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
-            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT) {
+            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT &&
+                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, lim)) {
                 const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
                 if (!key_push(w, &key))
                     return 0;
@@ -401,6 +427,10 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 continue;
             const uint64_t qa = E[1]->weld[tris[1][l]], qb = E[1]->weld[tris[1][l1]];
             if (qa == qb)
+                continue;
+            const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
+            const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
+            if (boxes_apart(ek, 2, el, 2, lim))
                 continue;
             const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
                                     c->tri_i, c->tri_j, k, l};
@@ -648,26 +678,42 @@ static double dist2(const double *a, const double *b)
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
-/* The cell of scaled point z, each coordinate in cells of width `cell` (saturated far out:
+/* The cell of scaled point z, each coordinate in cells of width 1 / inv (saturated far out:
  * the cells there only gather more points to compare), and per axis the neighbour on the side of
- * the half of its cell z lies in (-1 or +1). */
-static void cell_of(const double z[3], double cell, int64_t c[3], int side[3])
+ * the half of its cell z lies in (-1 or +1). (The product by the reciprocal rounds once more
+ * than a quotient: a few ulps of a cell coordinate, well inside the grid's slack.) */
+static void cell_of(const double z[3], double inv, int64_t c[3], int side[3])
 {
     for (int r = 0; r < 3; ++r) {
-        const double q = z[r] / cell, x = floor(q);
-        c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : (int64_t)x;
+        /* floor(q) by a conversion (libm's floor is a call on the baseline ISA), on q held
+         * within 2^41, where every double is the floor's own or has an integer part in int64 */
+        const double q = z[r] * inv, h = q > 0x1p41 ? 0x1p41 : q < -0x1p41 ? -0x1p41 : q;
+        int64_t t = (int64_t)h;
+        t -= (double)t > h;
+        const double x = (double)t;
+        c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : t;
         side[r] = q - x < 0.5 ? -1 : 1;
     }
 }
 
-/* A cell's key: its coordinates mixed (splitmix64's finisher), never 0 (0 marks an empty slot). */
-static uint64_t cell_key(const int64_t c[3])
+/* A cell's key from its coordinates' products with the axes' odd constants (cell_axes), XORed:
+ * mixed once more, never 0 (0 marks an empty slot). Two cells with one key share a list: their
+ * points are only compared more, so any mixing gives the same points kept. */
+static uint64_t cell_key(uint64_t h)
 {
-    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL ^ (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL ^
-                 (uint64_t)c[2] * 0x165667b19e3779f9ULL;
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
-    return (h ^ (h >> 31)) | 1;
+    h = (h ^ (h >> 29)) * 0xbf58476d1ce4e5b9ULL;
+    return (h ^ (h >> 32)) | 1;
+}
+
+/* Per axis r, the products of cell coordinate c[r] (x[r][0]) and of its neighbour's (x[r][1])
+ * with the axis's constant: a cell of the 8 probed is one XOR of three. */
+static void cell_axes(const int64_t c[3], const int side[3], uint64_t x[3][2])
+{
+    static const uint64_t mul[3] = {0x9e3779b97f4a7c15ULL, 0xc2b2ae3d27d4eb4fULL, 0x165667b19e3779f9ULL};
+    for (int r = 0; r < 3; ++r) {
+        x[r][0] = (uint64_t)c[r] * mul[r];
+        x[r][1] = (uint64_t)(c[r] + side[r]) * mul[r];
+    }
 }
 
 /* The slot of cell key k in the open-addressing table of 2^bits slots (its own, or the empty one
@@ -706,15 +752,16 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         ++bits;
     memset(w->cell_key, 0, ((size_t)1 << bits) * sizeof *w->cell_key);
     /* (a tolerance of 0 merges equal points only: any width) */
-    const double width = tol > 0 ? 2.5 * tol : 1;
+    const double inv = 1 / (tol > 0 ? 2.5 * tol : 1);
     for (size_t k = 0; k < n; ++k) {
         int64_t c[3];
         int side[3];
-        cell_of(w->z + 3 * k, width, c, side);
+        uint64_t x[3][2];
+        cell_of(w->z + 3 * k, inv, c, side);
+        cell_axes(c, side, x);
         int near = 0;
         for (int m = 0; m < 8 && !near; ++m) {
-            const int64_t cc[3] = {c[0] + (m & 1 ? side[0] : 0), c[1] + (m & 2 ? side[1] : 0), c[2] + (m & 4 ? side[2] : 0)};
-            const size_t at = cell_slot(w, bits, cell_key(cc));
+            const size_t at = cell_slot(w, bits, cell_key(x[0][m & 1] ^ x[1][(m >> 1) & 1] ^ x[2][(m >> 2) & 1]));
             if (w->cell_key[at] == 0)
                 continue;
             for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
@@ -723,7 +770,7 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         if (near)
             continue;
         w->kept[nk++] = k;
-        const uint64_t key = cell_key(c);
+        const uint64_t key = cell_key(x[0][0] ^ x[1][0] ^ x[2][0]);
         const size_t at = cell_slot(w, bits, key);
         if (w->cell_key[at] == 0) {
             w->cell_key[at] = key;
