@@ -72,6 +72,8 @@ typedef struct manifold_work {
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
     struct manifold_rec *sorted;
     size_t keys_cap;
+    struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
+    size_t near_cap;
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -113,6 +115,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->pts_place);
     free(w->res);
     free(w->key);
+    free(w->near);
     memset(w, 0, sizeof *w);
 }
 
@@ -295,26 +298,121 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
     return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
 }
 
-/* Whether the boxes of na points a and nb points b (3 reals each) lie farther apart than lim
- * along an axis, so surely that the exact method finds the points' hulls farther apart than lim
- * (their distance is at least the gap, and lim carries the rounding of the gap and of the
- * distance the exact method returns): then no corner of step 0 lies between them. */
-static int boxes_apart(const real *a, int na, const real *b, int nb, double lim)
+/* Cheap tests that a question of step 0 has no corner, asked before the exact method: each
+ * only where the exact method surely agrees, whatever its rounding. That method works on the
+ * points relative to one of them and scaled to their box (scalar/exact_impl.h), so its distance
+ * may be off by a few ulps of real times the box's extent: SCREEN_SLACK of them is allowed, on
+ * top of 16 ulps of the margin. */
+#define SCREEN_SLACK 1024
+
+/* The box of na points a and nb points b (3 reals each): lo, hi of each set, and the largest
+ * side of the box around both. */
+static double screen_boxes(const real *a, int na, const real *b, int nb, double lo[2][3], double hi[2][3])
 {
+    double ext = 0;
     for (int r = 0; r < 3; ++r) {
-        double alo = (double)a[r], ahi = alo, blo = (double)b[r], bhi = blo;
+        lo[0][r] = hi[0][r] = (double)a[r];
+        lo[1][r] = hi[1][r] = (double)b[r];
         for (int k = 1; k < na; ++k) {
-            alo = fmin(alo, (double)a[3 * k + r]);
-            ahi = fmax(ahi, (double)a[3 * k + r]);
+            const double x = (double)a[3 * k + r];
+            lo[0][r] = x < lo[0][r] ? x : lo[0][r];
+            hi[0][r] = x > hi[0][r] ? x : hi[0][r];
         }
         for (int k = 1; k < nb; ++k) {
-            blo = fmin(blo, (double)b[3 * k + r]);
-            bhi = fmax(bhi, (double)b[3 * k + r]);
+            const double x = (double)b[3 * k + r];
+            lo[1][r] = x < lo[1][r] ? x : lo[1][r];
+            hi[1][r] = x > hi[1][r] ? x : hi[1][r];
         }
-        if (blo - ahi > lim || alo - bhi > lim)
+        const double l = lo[0][r] < lo[1][r] ? lo[0][r] : lo[1][r], h = hi[0][r] > hi[1][r] ? hi[0][r] : hi[1][r];
+        ext = h - l > ext ? h - l : ext;
+    }
+    return ext;
+}
+
+/* The distance within which the exact method may find points whose true distance is beyond it
+ * by at most margin: margin, its rounding, the method's rounding on a box of extent ext. */
+static double screen_lim(real margin, double ext)
+{
+    return (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + SCREEN_SLACK * (double)TTD_REAL_EPS * ext + 0x1p-400;
+}
+
+/* Whether the boxes of na points a and nb points b lie so far apart along an axis that the
+ * exact method finds the points' hulls farther apart than the margin. */
+static int boxes_apart(const real *a, int na, const real *b, int nb, real margin)
+{
+    double lo[2][3], hi[2][3];
+    const double lim = screen_lim(margin, screen_boxes(a, na, b, nb, lo, hi));
+    for (int r = 0; r < 3; ++r)
+        if (lo[1][r] - hi[0][r] > lim || lo[0][r] - hi[1][r] > lim)
+            return 1;
+    return 0;
+}
+
+/* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
+ * than the margin, so surely that the exact method finds it farther than the margin from the
+ * triangle (the triangle lies inside each edge's half-space). Triangles whose normal is known
+ * poorly (thinner than SCREEN_THIN) are not screened. */
+#define SCREEN_THIN 1e-3
+static int vertex_beside(const real *y, const real *x, real margin)
+{
+    double v[3][3], p[3], e[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r)
+            v[k][r] = (double)x[3 * k + r];
+    for (int r = 0; r < 3; ++r) {
+        p[r] = (double)y[r];
+        for (int k = 0; k < 3; ++k)
+            e[k][r] = v[(k + 1) % 3][r] - v[k][r];
+    }
+    double N[3];
+    cross3d(e[0], e[1], N);
+    const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
+    if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
+        return 0;
+    double lo[2][3], hi[2][3], far = 0;
+    for (int r = 0; r < 3; ++r)
+        far = fmax(far, fabs(p[r] - v[0][r]));
+    const double ext = screen_boxes(y, 1, x, 3, lo, hi);
+    const double lim = screen_lim(margin, ext);
+    /* each height formed with a relative error of some 8 ulps of double per factor, the
+     * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
+    const double err = 0x1p-30 * (far + ext);
+    const double nl = sqrt(nn);
+    for (int k = 0; k < 3; ++k) {
+        double o[3], d[3];
+        cross3d(e[k], N, o); /* outward from edge k for a counter-clockwise triangle about N */
+        for (int r = 0; r < 3; ++r)
+            d[r] = p[r] - v[k][r];
+        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
+        const double h = dot3d(d, o) / (sqrt(lk) * nl);
+        if (h > lim + err)
             return 1;
     }
     return 0;
+}
+
+/* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
+ * the closest points of their lines lie beyond an end of one of them by SCREEN_OUT of its
+ * length, the edges far from parallel (at least SCREEN_THIN in sine) and their distance apart
+ * within 1 / SCREEN_THIN of the shorter, so that the parameters are known to 2^-30. The exact
+ * method then finds no pair of closest points inside both (its edge-edge candidate needs both
+ * parameters in [0, 1]; its others are at an end). */
+#define SCREEN_OUT 0.01
+static int edges_miss(const real *a, const real *b)
+{
+    double u[3], v[3], w[3];
+    for (int r = 0; r < 3; ++r) {
+        u[r] = (double)a[3 + r] - (double)a[r];
+        v[r] = (double)b[3 + r] - (double)b[r];
+        w[r] = (double)a[r] - (double)b[r];
+    }
+    const double uu = dot3d(u, u), vv = dot3d(v, v), uv = dot3d(u, v), uw = dot3d(u, w), vw = dot3d(v, w);
+    const double ww = dot3d(w, w), den = uu * vv - uv * uv, shorter = uu < vv ? uu : vv, longer = uu < vv ? vv : uu;
+    if (!(den > SCREEN_THIN * SCREEN_THIN * uu * vv) || !(ww < shorter / (SCREEN_THIN * SCREEN_THIN)) ||
+        !(longer < shorter / (SCREEN_THIN * SCREEN_THIN)))
+        return 0;
+    const double s = (uv * vw - vv * uw) / den, t = (uu * vw - uv * uw) / den;
+    return s < -SCREEN_OUT || s > 1 + SCREEN_OUT || t < -SCREEN_OUT || t > 1 + SCREEN_OUT;
 }
 
 /* Whether 3 reals x come after y (lexicographically). */
@@ -396,9 +494,6 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
         E[side] = s->body[id[side]].mesh->edges;
         tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
-    /* the boxes' test: beyond the margin by a relative 16 ulps of real (the exact distance's
-     * rounding) and a tiny absolute amount (a distance too small to square), asked of neither */
-    const double lim = (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + 0x1p-400;
     int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
@@ -407,7 +502,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
             if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT &&
-                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, lim)) {
+                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, margin) && !vertex_beside(x[side] + 3 * k, x[!side], margin)) {
                 const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
                 if (!key_push(w, &key))
                     return 0;
@@ -430,7 +525,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 continue;
             const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
             const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
-            if (boxes_apart(ek, 2, el, 2, lim))
+            if (boxes_apart(ek, 2, el, 2, margin) || edges_miss(ek, el))
                 continue;
             const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
                                     c->tri_i, c->tri_j, k, l};
@@ -490,8 +585,12 @@ static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const c
 }
 
 /* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
- * inside the other body left out: they have their negative distances). 0 out of memory. */
-static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
+ * inside the other body left out: they have their negative distances). reach: NULL, or those
+ * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
+ * than each contact that asks for it, so these are all the corners within that reach, each
+ * asked for the same smallest triangles and kept at the same distance). 0 out of memory. */
+static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin,
+                        const double *reach, manifold_work *w)
 {
     w->key_n = 0;
     if (n == 0)
@@ -502,7 +601,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         for (int q = 0; q < 3; ++q)
             rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
     for (size_t k = 0; k < n; ++k)
-        if (!contact_corners(s, &c[k], margin, rel, w))
+        if ((reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) && !contact_corners(s, &c[k], margin, rel, w))
             return 0;
     if (w->key_n == 0)
         return 1;
@@ -910,53 +1009,26 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
- * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
- * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
-static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
-                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
-                       ttd_scene_array *out)
+static int near_reserve(manifold_work *w, size_t n)
 {
-    w->all_n = 0;
-    for (size_t k = 0; k < n0; ++k)
-        if (!all_push(w, &c0[k], -1))
+    if (n > w->near_cap) {
+        manifold_rec *f = realloc(w->near, n * sizeof *f);
+        if (f == NULL)
             return 0;
-    w->solid = solid_pair(s, p->i, p->j);
-    if (w->solid) {
-        real at[3];
-        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
-        if (n0 == 0 && nest == 0)
-            return 1;
-        for (int side = 0; side < 2; ++side) {
-            if (n0 == 0 && nest != (side ? 1 : 2)) {
-                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
-                    memset(w->inner[side], 0, w->inner_cap[side]);
-                continue;
-            }
-            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
-                return 0;
-        }
+        w->near = f;
+        w->near_cap = n;
     }
-    if (!pair_corners(s, c0, n0, margin, w))
+    return 1;
+}
+
+/* Steps 1 and 2 on the n points rc (n > 0): rc into depth order, their points relative to the
+ * first and scaled by f1 f2 into w->z, the kept (merge tolerance tol, scaled) into w->kept with
+ * z compacted to them. Returns how many are kept; 0 out of memory. */
+static size_t order_merge(manifold_work *w, manifold_rec *rc, size_t n, double f1, double f2, double tol)
+{
+    if (!manifold_work_reserve(w, n) || !depth_sort(w, rc, n))
         return 0;
-    if (w->all_n == 0)
-        return 1;
-    manifold_rec *rc = w->all;
-    const size_t n = w->all_n;
-    if (!manifold_work_reserve(w, n))
-        return 0;
-    if (!depth_sort(w, rc, n))
-        return 0;
-    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
-    const double big = fmax(ri, rj), small = fmin(ri, rj);
-    int ex = 0;
-    if (big > 0 && isfinite(big))
-        frexp(big, &ex);
-    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
-     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
     double *z = w->z, origin[3] = {0, 0, 0};
-    const int one = ex >= -1021 && ex <= 1021;
-    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
             const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
@@ -964,9 +1036,21 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 origin[r] = x;
             z[3 * k + (size_t)r] = (x - origin[r]) * f1 * f2;
         }
-    const size_t nk = merge_points(w, n, ldexp(MERGE_FRACTION * small, -ex), n > 32);
+    const size_t nk = merge_points(w, n, tol, n > 32);
     for (size_t a = 0; a < nk; ++a) /* compact: kept[a] >= a, increasing */
-        memmove(z + 3 * a, z + 3 * w->kept[a], 3 * sizeof *z);
+        for (int r = 0; r < 3; ++r)
+            z[3 * a + (size_t)r] = z[3 * w->kept[a] + (size_t)r];
+    return nk;
+}
+
+/* Steps 3 and 4 on the nk points kept (w->kept into rc, w->z): the points chosen into w->sel
+ * (indices into w->kept); returns how many. part: rc holds the deepest level's points alone,
+ * and the answer is 0 where the choice would look beyond them (max or fewer kept, or fewer
+ * than max on the level). */
+static size_t choose_points(manifold_work *w, const manifold_rec *rc, size_t nk, real margin, size_t max, double big,
+                            double f1, double f2, int part)
+{
+    const double *z = w->z;
     /* the seed: among the kept within FEATURE_TOL of the larger radius of the smallest distance,
      * the farthest from their centroid */
     const double d0 = (double)rc[w->kept[0]].c.distance, window = FEATURE_TOL * big;
@@ -988,6 +1072,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
     }
     /* the points: all of them (the seed, then depth order), or the spread */
     size_t ns;
+    if (part && nk <= max)
+        return 0;
     if (max == 0 || nk <= max) {
         w->sel[0] = seed;
         ns = 1;
@@ -1023,6 +1109,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             w->taken[b] = 2;
         if (nl >= max) {
             ns = spread_points(z, nk, seed, max, w->sel, w->taken);
+        } else if (part) {
+            return 0;
         } else {
             w->sel[0] = seed;
             w->taken[seed] = 1;
@@ -1040,6 +1128,92 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 w->taken[pick] = 1;
             }
         }
+    }
+    return ns;
+}
+
+/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
+ * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
+ * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
+static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
+                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
+                       ttd_scene_array *out)
+{
+    w->all_n = 0;
+    for (size_t k = 0; k < n0; ++k)
+        if (!all_push(w, &c0[k], -1))
+            return 0;
+    w->solid = solid_pair(s, p->i, p->j);
+    if (w->solid) {
+        real at[3];
+        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
+        if (n0 == 0 && nest == 0)
+            return 1;
+        for (int side = 0; side < 2; ++side) {
+            if (n0 == 0 && nest != (side ? 1 : 2)) {
+                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
+                    memset(w->inner[side], 0, w->inner_cap[side]);
+                continue;
+            }
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
+                return 0;
+        }
+    }
+    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
+    const double big = fmax(ri, rj), small = fmin(ri, rj);
+    int ex = 0;
+    if (big > 0 && isfinite(big))
+        frexp(big, &ex);
+    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
+     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
+    const int one = ex >= -1021 && ex <= 1021;
+    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
+    const double tol = ldexp(MERGE_FRACTION * small, -ex);
+    const size_t n_pre = w->all_n; /* the contacts and a solid pair's inside points */
+    manifold_rec *rc = w->all;
+    size_t nk = 0, ns = 0;
+    int corners = 0; /* step 0 done for every contact */
+    if (max > 0 && n_pre > 0) {
+        /* the deepest level's points alone first (those within the seed's window or the level
+         * of the smallest distance, step 4): the merge keeps a point by the points before it in
+         * depth order and step 4 chooses among the level, so where more than max are kept and
+         * max are on the level, the points beyond it change nothing; else all of them, as
+         * without this. The smallest distance is a contact's or an inside point's: a corner
+         * lies no nearer than the contact asking for it. */
+        double d0 = HUGE_VAL;
+        for (size_t k = 0; k < n_pre; ++k)
+            if ((double)w->all[k].c.distance < d0)
+                d0 = (double)w->all[k].c.distance;
+        const double window = FEATURE_TOL * big, level = LEVEL_FRACTION * ((double)margin - d0);
+        const double reach[2] = {d0, window > level ? window : level};
+        if (!pair_corners(s, c0, n0, margin, reach, w))
+            return 0;
+        const size_t n = w->all_n;
+        if (!near_reserve(w, n))
+            return 0;
+        size_t m = 0;
+        for (size_t k = 0; k < n; ++k)
+            if ((double)w->all[k].c.distance - d0 <= reach[1])
+                w->near[m++] = w->all[k];
+        corners = m == n; /* every contact asked */
+        if (m > 0 && m < n) {
+            if ((nk = order_merge(w, w->near, m, f1, f2, tol)) == 0)
+                return 0;
+            ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
+            if (ns > 0)
+                rc = w->near;
+            else
+                w->all_n = n_pre; /* all the points: step 0 again, for every contact */
+        }
+    }
+    if (ns == 0) {
+        if (!corners && !pair_corners(s, c0, n0, margin, NULL, w))
+            return 0;
+        if (w->all_n == 0)
+            return 1;
+        if ((nk = order_merge(w, rc, w->all_n, f1, f2, tol)) == 0)
+            return 0;
+        ns = choose_points(w, rc, nk, margin, max, big, f1, f2, 0);
     }
     if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
         return 0;
