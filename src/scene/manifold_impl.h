@@ -777,10 +777,19 @@ static double dist2(const double *a, const double *b)
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
+/* The grid's cells are CELL_TOLS tolerances wide: the points within the tolerance of a point
+ * lie in its own cell and, per axis where it lies within the tolerance of its cell's side, the
+ * neighbour across that side; NEAR_SIDE (of a cell) allows for the rounding of the cell
+ * coordinates with room to spare. Wide cells leave most points one cell to look in (8 at
+ * most), at the price of comparing the few points that share a cell. */
+#define CELL_TOLS 8.0
+#define NEAR_SIDE (1.0 / CELL_TOLS + 0.05)
+
 /* The cell of scaled point z, each coordinate in cells of width 1 / inv (saturated far out:
- * the cells there only gather more points to compare), and per axis the neighbour on the side of
- * the half of its cell z lies in (-1 or +1). (The product by the reciprocal rounds once more
- * than a quotient: a few ulps of a cell coordinate, well inside the grid's slack.) */
+ * the cells there only gather more points to compare), and per axis the neighbour to look in
+ * too: -1 or +1 where z lies within NEAR_SIDE of that side, else 0. (The product by the
+ * reciprocal rounds once more than a quotient: a few ulps of a cell coordinate, well inside
+ * the slack.) */
 static void cell_of(const double z[3], double inv, int64_t c[3], int side[3])
 {
     for (int r = 0; r < 3; ++r) {
@@ -791,7 +800,7 @@ static void cell_of(const double z[3], double inv, int64_t c[3], int side[3])
         t -= (double)t > h;
         const double x = (double)t;
         c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : t;
-        side[r] = q - x < 0.5 ? -1 : 1;
+        side[r] = q - x < NEAR_SIDE ? -1 : q - x > 1 - NEAR_SIDE ? 1 : 0;
     }
 }
 
@@ -827,11 +836,9 @@ static size_t cell_slot(const manifold_work *w, int bits, uint64_t k)
 }
 
 /* Step 2: the contacts to keep (indices into c, depth order) into w->kept; returns how many.
- * z holds the scaled points, tol the scaled tolerance. The grid's cells are 2.5 tolerances
- * wide, so that the points within the tolerance of a point lie in 8 cells: its own and, per
- * axis, the neighbour on the side of the half of its cell it lies in (the tolerance reaches at
- * most 0.4 of a cell out of the point, which leaves 0.1 of a cell for the rounding of the cell
- * coordinates). */
+ * z holds the scaled points, tol the scaled tolerance. The grid's cells are CELL_TOLS
+ * tolerances wide, so that the points within the tolerance of a point lie in its own cell and
+ * the neighbours cell_of names (8 cells at most). */
 static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
 {
     const double tol2 = tol * tol;
@@ -851,7 +858,7 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         ++bits;
     memset(w->cell_key, 0, ((size_t)1 << bits) * sizeof *w->cell_key);
     /* (a tolerance of 0 merges equal points only: any width) */
-    const double inv = 1 / (tol > 0 ? 2.5 * tol : 1);
+    const double inv = 1 / (tol > 0 ? CELL_TOLS * tol : 1);
     for (size_t k = 0; k < n; ++k) {
         int64_t c[3];
         int side[3];
@@ -859,7 +866,10 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         cell_of(w->z + 3 * k, inv, c, side);
         cell_axes(c, side, x);
         int near = 0;
+        const int look = (side[0] != 0) | (side[1] != 0) << 1 | (side[2] != 0) << 2;
         for (int m = 0; m < 8 && !near; ++m) {
+            if ((m & look) != m)
+                continue;
             const size_t at = cell_slot(w, bits, cell_key(x[0][m & 1] ^ x[1][(m >> 1) & 1] ^ x[2][(m >> 2) & 1]));
             if (w->cell_key[at] == 0)
                 continue;
