@@ -439,6 +439,29 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
     return 1;
 }
 
+/* The n contacts c into w->all before the points already there. 0 out of memory. */
+static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
+{
+    if (w->all_n + n > w->all_cap) {
+        size_t cap = w->all_cap ? w->all_cap : 256;
+        while (cap < w->all_n + n)
+            cap *= 2;
+        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->all = v;
+        w->all_cap = cap;
+    }
+    if (w->all_n > 0)
+        memmove(w->all + n, w->all, w->all_n * sizeof *w->all);
+    for (size_t k = 0; k < n; ++k) {
+        w->all[k].c = c[k];
+        w->all[k].inside = -1;
+    }
+    w->all_n += n;
+    return 1;
+}
+
 static int key_push(manifold_work *w, const corner_key *k)
 {
     if (w->key_n == w->key_cap) {
@@ -1149,8 +1172,10 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                        const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
                        ttd_scene_array *out)
 {
+    /* the points into w->all: the contacts (where max > 0, only when all the points are needed,
+     * below), a solid pair's inside points, the corners */
     w->all_n = 0;
-    for (size_t k = 0; k < n0; ++k)
+    for (size_t k = 0; max == 0 && k < n0; ++k)
         if (!all_push(w, &c0[k], -1))
             return 0;
     w->solid = solid_pair(s, p->i, p->j);
@@ -1179,11 +1204,11 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
     const int one = ex >= -1021 && ex <= 1021;
     const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
     const double tol = ldexp(MERGE_FRACTION * small, -ex);
-    const size_t n_pre = w->all_n; /* the contacts and a solid pair's inside points */
-    manifold_rec *rc = w->all;
+    const size_t n_pre = w->all_n; /* the contacts (max = 0) and a solid pair's inside points */
+    manifold_rec *rc = NULL;
     size_t nk = 0, ns = 0;
     int corners = 0; /* step 0 done for every contact */
-    if (max > 0 && n_pre > 0) {
+    if (max > 0 && n0 + n_pre > 0) {
         /* the deepest level's points alone first (those within the seed's window or the level
          * of the smallest distance, step 4): the merge keeps a point by the points before it in
          * depth order and step 4 chooses among the level, so where more than max are kept and
@@ -1191,6 +1216,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
          * without this. The smallest distance is a contact's or an inside point's: a corner
          * lies no nearer than the contact asking for it. */
         double d0 = HUGE_VAL;
+        for (size_t k = 0; k < n0; ++k)
+            if ((double)c0[k].distance < d0)
+                d0 = (double)c0[k].distance;
         for (size_t k = 0; k < n_pre; ++k)
             if ((double)w->all[k].c.distance < d0)
                 d0 = (double)w->all[k].c.distance;
@@ -1198,11 +1226,16 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const double reach[2] = {d0, window > level ? window : level};
         if (!pair_corners(s, c0, n0, margin, reach, w))
             return 0;
-        const size_t n = w->all_n;
+        const size_t n = n0 + w->all_n;
         if (!near_reserve(w, n))
             return 0;
-        size_t m = 0;
-        for (size_t k = 0; k < n; ++k)
+        size_t m = 0; /* in the order of w->all were the contacts in it: contacts, inside points, corners */
+        for (size_t k = 0; k < n0; ++k)
+            if ((double)c0[k].distance - d0 <= reach[1]) {
+                w->near[m].c = c0[k];
+                w->near[m++].inside = -1;
+            }
+        for (size_t k = 0; k < w->all_n; ++k)
             if ((double)w->all[k].c.distance - d0 <= reach[1])
                 w->near[m++] = w->all[k];
         corners = m == n; /* every contact asked */
@@ -1210,10 +1243,14 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             if ((nk = order_merge(w, w->near, m, f1, f2, tol)) == 0)
                 return 0;
             ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
-            if (ns > 0)
-                rc = w->near;
-            else
-                w->all_n = n_pre; /* all the points: step 0 again, for every contact */
+            rc = w->near;
+        }
+        if (ns == 0) {
+            /* all the points: the contacts before the others, step 0 again unless done for all */
+            if (!corners)
+                w->all_n = n_pre;
+            if (!all_front(w, c0, n0))
+                return 0;
         }
     }
     if (ns == 0) {
@@ -1221,6 +1258,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             return 0;
         if (w->all_n == 0)
             return 1;
+        rc = w->all;
         if ((nk = order_merge(w, rc, w->all_n, f1, f2, tol)) == 0)
             return 0;
         ns = choose_points(w, rc, nk, margin, max, big, f1, f2, 0);
