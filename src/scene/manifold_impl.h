@@ -70,8 +70,8 @@ typedef struct manifold_work {
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
-    struct manifold_rec *sorted;
-    size_t keys_cap;
+    struct manifold_rec *sorted; /* the points in depth order, before they trade places */
+    size_t keys_cap, sorted_cap;
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
 } manifold_work;
@@ -206,20 +206,26 @@ static int key_before(const depth_key *a, const depth_key *b, const manifold_rec
     return depth_cmp(&rc[a->at], &rc[b->at]) < 0;
 }
 
-/* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
- * place of qsort on the records). 0 out of memory. */
-static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
+/* Sorts the n points *buf (an array of *cap) into depth order (depth_cmp's; a merge sort of
+ * 24-byte keys, stable, in place of qsort on the records): the points are written in order
+ * into w->sorted, which then trades places with *buf. 0 out of memory. */
+static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n)
 {
     if (2 * n > w->keys_cap) {
         depth_key *k = realloc(w->keys, 2 * n * sizeof *k);
-        if (k != NULL)
-            w->keys = k;
-        manifold_rec *r = k != NULL ? realloc(w->sorted, n * sizeof *r) : NULL;
+        if (k == NULL)
+            return 0;
+        w->keys = k;
+        w->keys_cap = 2 * n;
+    }
+    if (n > w->sorted_cap) {
+        manifold_rec *r = realloc(w->sorted, n * sizeof *r);
         if (r == NULL)
             return 0;
         w->sorted = r;
-        w->keys_cap = 2 * n;
+        w->sorted_cap = n;
     }
+    const manifold_rec *rc = *buf;
     depth_key *a = w->keys, *b = w->keys + n;
     for (size_t k = 0; k < n; ++k) {
         a[k].d = order_bits((double)rc[k].c.distance);
@@ -243,7 +249,12 @@ static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
     }
     for (size_t k = 0; k < n; ++k)
         w->sorted[k] = rc[a[k].at];
-    memcpy(rc, w->sorted, n * sizeof *rc);
+    manifold_rec *t = *buf;
+    const size_t tc = *cap;
+    *buf = w->sorted;
+    *cap = w->sorted_cap;
+    w->sorted = t;
+    w->sorted_cap = tc;
     return 1;
 }
 
@@ -1054,13 +1065,15 @@ static int near_reserve(manifold_work *w, size_t n)
     return 1;
 }
 
-/* Steps 1 and 2 on the n points rc (n > 0): rc into depth order, their points relative to the
+/* Steps 1 and 2 on the n points *buf (n > 0, an array of *cap): *buf into depth order (another
+ * array of scratch), their points relative to the
  * first and scaled by f1 f2 into w->z, the kept (merge tolerance tol, scaled) into w->kept with
  * z compacted to them. Returns how many are kept; 0 out of memory. */
-static size_t order_merge(manifold_work *w, manifold_rec *rc, size_t n, double f1, double f2, double tol)
+static size_t order_merge(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n, double f1, double f2, double tol)
 {
-    if (!manifold_work_reserve(w, n) || !depth_sort(w, rc, n))
+    if (!manifold_work_reserve(w, n) || !depth_sort(w, buf, cap, n))
         return 0;
+    const manifold_rec *rc = *buf;
     double *z = w->z, origin[3] = {0, 0, 0};
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
@@ -1240,7 +1253,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 w->near[m++] = w->all[k];
         corners = m == n; /* every contact asked */
         if (m > 0 && m < n) {
-            if ((nk = order_merge(w, w->near, m, f1, f2, tol)) == 0)
+            if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
                 return 0;
             ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
             rc = w->near;
@@ -1258,9 +1271,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             return 0;
         if (w->all_n == 0)
             return 1;
-        rc = w->all;
-        if ((nk = order_merge(w, rc, w->all_n, f1, f2, tol)) == 0)
+        if ((nk = order_merge(w, &w->all, &w->all_cap, w->all_n, f1, f2, tol)) == 0)
             return 0;
+        rc = w->all;
         ns = choose_points(w, rc, nk, margin, max, big, f1, f2, 0);
     }
     if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
