@@ -53,6 +53,7 @@ typedef struct manifold_work {
     size_t *cell_head;   /* grid: open addressing, one kept point per cell (or SIZE_MAX) */
     uint64_t *cell_key;
     size_t *sel;         /* the points chosen */
+    size_t *ord;         /* step 4: the level's points by their first coordinate */
     unsigned char *taken;
     size_t cap, cell_cap;
     struct manifold_rec *all; /* the pair's points: its contacts, the corners they add (step 0),
@@ -104,6 +105,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->cell_head);
     free(w->cell_key);
     free(w->sel);
+    free(w->ord);
     free(w->taken);
     free(w->all);
     free(w->inner[0]);
@@ -141,6 +143,10 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
         if (sel == NULL)
             return 0;
         w->sel = sel;
+        size_t *ord = realloc(w->ord, cap * sizeof *ord);
+        if (ord == NULL)
+            return 0;
+        w->ord = ord;
         unsigned char *tk = realloc(w->taken, cap);
         if (tk == NULL)
             return 0;
@@ -1141,15 +1147,47 @@ static size_t choose_points(manifold_work *w, const manifold_rec *rc, size_t nk,
         memset(w->taken, 0, nk);
         const double slope2 = LEVEL_SLOPE * LEVEL_SLOPE;
         size_t nl = 0;
+        /* A point a breaks b's slope only within rb / LEVEL_SLOPE of it, rb b's rise above the
+         * deepest (a's rise is no more, with every rounding): so only the level's points so far
+         * within that of b along the first axis are looked at, from w->ord (those points by
+         * their first coordinate; its differences are dist2's, monotone). Rises too small to
+         * square look at every point. */
+        size_t no = 0;
         for (size_t b = 0; b < nd; ++b) {
             const double db = (double)rc[w->kept[b]].c.distance;
             int on = 1; /* the seed's window is of the level whole */
-            for (size_t a = 0; a < b && on && b >= ntie; ++a) {
-                const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
-                on = w->taken[a] == 2 || rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+            const double rb = (db - d0) * f1 * f2, xb = z[3 * b];
+            if (b >= ntie && rb > 0x1p-300) {
+                const double reach = rb / LEVEL_SLOPE * 1.001;
+                size_t lo = 0, hi = no; /* the first with a difference above -reach */
+                while (lo < hi) {
+                    const size_t mid = lo + (hi - lo) / 2;
+                    if (z[3 * w->ord[mid]] - xb > -reach)
+                        hi = mid;
+                    else
+                        lo = mid + 1;
+                }
+                for (size_t k = lo; k < no && on && z[3 * w->ord[k]] - xb < reach; ++k) {
+                    const size_t a = w->ord[k];
+                    const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
+                    on = rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+                }
+            } else {
+                for (size_t a = 0; a < b && on && b >= ntie; ++a) {
+                    const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
+                    on = w->taken[a] == 2 || rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+                }
             }
             w->taken[b] = on ? 0 : 2;
             nl += (size_t)on;
+            if (on) { /* into the order, after its equals */
+                size_t at = no;
+                while (at > 0 && z[3 * w->ord[at - 1]] > xb)
+                    --at;
+                memmove(w->ord + at + 1, w->ord + at, (no - at) * sizeof *w->ord);
+                w->ord[at] = b;
+                ++no;
+            }
         }
         for (size_t b = nd; b < nk; ++b)
             w->taken[b] = 2;
