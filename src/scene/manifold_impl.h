@@ -33,7 +33,11 @@
  *    farthest from every point kept among the rest.
  * Distances between points are formed on coordinates relative to the deepest point, scaled by a
  * power of two to the larger body's size, so that no square underflows or overflows at any scale
- * of the coordinate range. */
+ * of the coordinate range.
+ * Cost (docs/scene-speed.md section 5): with K > 0, steps 0-4 run first on the deepest level's
+ * points alone, which decide the answer wherever more than K of them are kept and K lie on the
+ * level; step 0's questions are screened before the exact method where it surely finds no
+ * corner. Neither changes a bit of the answer. */
 
 #define MERGE_FRACTION 1e-3
 /* The deepest level of step 4: a quarter of the margin left below the deepest contact (a box
@@ -53,6 +57,7 @@ typedef struct manifold_work {
     size_t *cell_head;   /* grid: open addressing, one kept point per cell (or SIZE_MAX) */
     uint64_t *cell_key;
     size_t *sel;         /* the points chosen */
+    size_t *ord;         /* step 4: the level's points by their first coordinate */
     unsigned char *taken;
     size_t cap, cell_cap;
     struct manifold_rec *all; /* the pair's points: its contacts, the corners they add (step 0),
@@ -70,8 +75,10 @@ typedef struct manifold_work {
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
-    struct manifold_rec *sorted;
-    size_t keys_cap;
+    struct manifold_rec *sorted; /* the points in depth order, before they trade places */
+    size_t keys_cap, sorted_cap;
+    struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
+    size_t near_cap;
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -102,6 +109,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->cell_head);
     free(w->cell_key);
     free(w->sel);
+    free(w->ord);
     free(w->taken);
     free(w->all);
     free(w->inner[0]);
@@ -113,6 +121,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->pts_place);
     free(w->res);
     free(w->key);
+    free(w->near);
     memset(w, 0, sizeof *w);
 }
 
@@ -138,6 +147,10 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
         if (sel == NULL)
             return 0;
         w->sel = sel;
+        size_t *ord = realloc(w->ord, cap * sizeof *ord);
+        if (ord == NULL)
+            return 0;
+        w->ord = ord;
         unsigned char *tk = realloc(w->taken, cap);
         if (tk == NULL)
             return 0;
@@ -203,20 +216,26 @@ static int key_before(const depth_key *a, const depth_key *b, const manifold_rec
     return depth_cmp(&rc[a->at], &rc[b->at]) < 0;
 }
 
-/* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
- * place of qsort on the records). 0 out of memory. */
-static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
+/* Sorts the n points *buf (an array of *cap) into depth order (depth_cmp's; a merge sort of
+ * 24-byte keys, stable, in place of qsort on the records): the points are written in order
+ * into w->sorted, which then trades places with *buf. 0 out of memory. */
+static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n)
 {
     if (2 * n > w->keys_cap) {
         depth_key *k = realloc(w->keys, 2 * n * sizeof *k);
-        if (k != NULL)
-            w->keys = k;
-        manifold_rec *r = k != NULL ? realloc(w->sorted, n * sizeof *r) : NULL;
+        if (k == NULL)
+            return 0;
+        w->keys = k;
+        w->keys_cap = 2 * n;
+    }
+    if (n > w->sorted_cap) {
+        manifold_rec *r = realloc(w->sorted, n * sizeof *r);
         if (r == NULL)
             return 0;
         w->sorted = r;
-        w->keys_cap = 2 * n;
+        w->sorted_cap = n;
     }
+    const manifold_rec *rc = *buf;
     depth_key *a = w->keys, *b = w->keys + n;
     for (size_t k = 0; k < n; ++k) {
         a[k].d = order_bits((double)rc[k].c.distance);
@@ -240,7 +259,12 @@ static int depth_sort(manifold_work *w, manifold_rec *rc, size_t n)
     }
     for (size_t k = 0; k < n; ++k)
         w->sorted[k] = rc[a[k].at];
-    memcpy(rc, w->sorted, n * sizeof *rc);
+    manifold_rec *t = *buf;
+    const size_t tc = *cap;
+    *buf = w->sorted;
+    *cap = w->sorted_cap;
+    w->sorted = t;
+    w->sorted_cap = tc;
     return 1;
 }
 
@@ -295,6 +319,123 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
     return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
 }
 
+/* Cheap tests that a question of step 0 has no corner, asked before the exact method: each
+ * only where the exact method surely agrees, whatever its rounding. That method works on the
+ * points relative to one of them and scaled to their box (scalar/exact_impl.h), so its distance
+ * may be off by a few ulps of real times the box's extent: SCREEN_SLACK of them is allowed, on
+ * top of 16 ulps of the margin. */
+#define SCREEN_SLACK 1024
+
+/* The box of na points a and nb points b (3 reals each): lo, hi of each set, and the largest
+ * side of the box around both. */
+static double screen_boxes(const real *a, int na, const real *b, int nb, double lo[2][3], double hi[2][3])
+{
+    double ext = 0;
+    for (int r = 0; r < 3; ++r) {
+        lo[0][r] = hi[0][r] = (double)a[r];
+        lo[1][r] = hi[1][r] = (double)b[r];
+        for (int k = 1; k < na; ++k) {
+            const double x = (double)a[3 * k + r];
+            lo[0][r] = x < lo[0][r] ? x : lo[0][r];
+            hi[0][r] = x > hi[0][r] ? x : hi[0][r];
+        }
+        for (int k = 1; k < nb; ++k) {
+            const double x = (double)b[3 * k + r];
+            lo[1][r] = x < lo[1][r] ? x : lo[1][r];
+            hi[1][r] = x > hi[1][r] ? x : hi[1][r];
+        }
+        const double l = lo[0][r] < lo[1][r] ? lo[0][r] : lo[1][r], h = hi[0][r] > hi[1][r] ? hi[0][r] : hi[1][r];
+        ext = h - l > ext ? h - l : ext;
+    }
+    return ext;
+}
+
+/* The distance within which the exact method may find points whose true distance is beyond it
+ * by at most margin: margin, its rounding, the method's rounding on a box of extent ext. */
+static double screen_lim(real margin, double ext)
+{
+    return (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + SCREEN_SLACK * (double)TTD_REAL_EPS * ext + 0x1p-400;
+}
+
+/* Whether the boxes of na points a and nb points b lie so far apart along an axis that the
+ * exact method finds the points' hulls farther apart than the margin. */
+static int boxes_apart(const real *a, int na, const real *b, int nb, real margin)
+{
+    double lo[2][3], hi[2][3];
+    const double lim = screen_lim(margin, screen_boxes(a, na, b, nb, lo, hi));
+    for (int r = 0; r < 3; ++r)
+        if (lo[1][r] - hi[0][r] > lim || lo[0][r] - hi[1][r] > lim)
+            return 1;
+    return 0;
+}
+
+/* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
+ * than the margin, so surely that the exact method finds it farther than the margin from the
+ * triangle (the triangle lies inside each edge's half-space). Triangles whose normal is known
+ * poorly (thinner than SCREEN_THIN) are not screened. */
+#define SCREEN_THIN 1e-3
+static int vertex_beside(const real *y, const real *x, real margin)
+{
+    double v[3][3], p[3], e[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r)
+            v[k][r] = (double)x[3 * k + r];
+    for (int r = 0; r < 3; ++r) {
+        p[r] = (double)y[r];
+        for (int k = 0; k < 3; ++k)
+            e[k][r] = v[(k + 1) % 3][r] - v[k][r];
+    }
+    double N[3];
+    cross3d(e[0], e[1], N);
+    const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
+    if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
+        return 0;
+    double lo[2][3], hi[2][3], far = 0;
+    for (int r = 0; r < 3; ++r)
+        far = fmax(far, fabs(p[r] - v[0][r]));
+    const double ext = screen_boxes(y, 1, x, 3, lo, hi);
+    const double lim = screen_lim(margin, ext);
+    /* each height formed with a relative error of some 8 ulps of double per factor, the
+     * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
+    const double err = 0x1p-30 * (far + ext);
+    const double nl = sqrt(nn);
+    for (int k = 0; k < 3; ++k) {
+        double o[3], d[3];
+        cross3d(e[k], N, o); /* outward from edge k for a counter-clockwise triangle about N */
+        for (int r = 0; r < 3; ++r)
+            d[r] = p[r] - v[k][r];
+        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
+        const double h = dot3d(d, o) / (sqrt(lk) * nl);
+        if (h > lim + err)
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
+ * the closest points of their lines lie beyond an end of one of them by SCREEN_OUT of its
+ * length, the edges far from parallel (at least SCREEN_THIN in sine) and their distance apart
+ * within 1 / SCREEN_THIN of the shorter, so that the parameters are known to 2^-30. The exact
+ * method then finds no pair of closest points inside both (its edge-edge candidate needs both
+ * parameters in [0, 1]; its others are at an end). */
+#define SCREEN_OUT 0.01
+static int edges_miss(const real *a, const real *b)
+{
+    double u[3], v[3], w[3];
+    for (int r = 0; r < 3; ++r) {
+        u[r] = (double)a[3 + r] - (double)a[r];
+        v[r] = (double)b[3 + r] - (double)b[r];
+        w[r] = (double)a[r] - (double)b[r];
+    }
+    const double uu = dot3d(u, u), vv = dot3d(v, v), uv = dot3d(u, v), uw = dot3d(u, w), vw = dot3d(v, w);
+    const double ww = dot3d(w, w), den = uu * vv - uv * uv, shorter = uu < vv ? uu : vv, longer = uu < vv ? vv : uu;
+    if (!(den > SCREEN_THIN * SCREEN_THIN * uu * vv) || !(ww < shorter / (SCREEN_THIN * SCREEN_THIN)) ||
+        !(longer < shorter / (SCREEN_THIN * SCREEN_THIN)))
+        return 0;
+    const double s = (uv * vw - vv * uw) / den, t = (uu * vw - uv * uw) / den;
+    return s < -SCREEN_OUT || s > 1 + SCREEN_OUT || t < -SCREEN_OUT || t > 1 + SCREEN_OUT;
+}
+
 /* Whether 3 reals x come after y (lexicographically). */
 static int point_after(const real *x, const real *y)
 {
@@ -316,6 +457,29 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
     }
     w->all[w->all_n].c = *c;
     w->all[w->all_n++].inside = inside;
+    return 1;
+}
+
+/* The n contacts c into w->all before the points already there. 0 out of memory. */
+static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
+{
+    if (w->all_n + n > w->all_cap) {
+        size_t cap = w->all_cap ? w->all_cap : 256;
+        while (cap < w->all_n + n)
+            cap *= 2;
+        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->all = v;
+        w->all_cap = cap;
+    }
+    if (w->all_n > 0)
+        memmove(w->all + n, w->all, w->all_n * sizeof *w->all);
+    for (size_t k = 0; k < n; ++k) {
+        w->all[k].c = c[k];
+        w->all[k].inside = -1;
+    }
+    w->all_n += n;
     return 1;
 }
 
@@ -381,7 +545,8 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     /* vertices not inside a flat part that may lie within the margin of the other triangle */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
-            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT) {
+            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT &&
+                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, margin) && !vertex_beside(x[side] + 3 * k, x[!side], margin)) {
                 const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
                 if (!key_push(w, &key))
                     return 0;
@@ -401,6 +566,10 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 continue;
             const uint64_t qa = E[1]->weld[tris[1][l]], qb = E[1]->weld[tris[1][l1]];
             if (qa == qb)
+                continue;
+            const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
+            const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
+            if (boxes_apart(ek, 2, el, 2, margin) || edges_miss(ek, el))
                 continue;
             const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
                                     c->tri_i, c->tri_j, k, l};
@@ -460,8 +629,12 @@ static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const c
 }
 
 /* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
- * inside the other body left out: they have their negative distances). 0 out of memory. */
-static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin, manifold_work *w)
+ * inside the other body left out: they have their negative distances). reach: NULL, or those
+ * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
+ * than each contact that asks for it, so these are all the corners within that reach, each
+ * asked for the same smallest triangles and kept at the same distance). 0 out of memory. */
+static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin,
+                        const double *reach, manifold_work *w)
 {
     w->key_n = 0;
     if (n == 0)
@@ -472,7 +645,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         for (int q = 0; q < 3; ++q)
             rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
     for (size_t k = 0; k < n; ++k)
-        if (!contact_corners(s, &c[k], margin, rel, w))
+        if ((reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) && !contact_corners(s, &c[k], margin, rel, w))
             return 0;
     if (w->key_n == 0)
         return 1;
@@ -648,26 +821,51 @@ static double dist2(const double *a, const double *b)
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
-/* The cell of scaled point z, each coordinate in cells of width `cell` (saturated far out:
- * the cells there only gather more points to compare), and per axis the neighbour on the side of
- * the half of its cell z lies in (-1 or +1). */
-static void cell_of(const double z[3], double cell, int64_t c[3], int side[3])
+/* The grid's cells are CELL_TOLS tolerances wide: the points within the tolerance of a point
+ * lie in its own cell and, per axis where it lies within the tolerance of its cell's side, the
+ * neighbour across that side; NEAR_SIDE (of a cell) allows for the rounding of the cell
+ * coordinates with room to spare. Wide cells leave most points one cell to look in (8 at
+ * most), at the price of comparing the few points that share a cell. */
+#define CELL_TOLS 8.0
+#define NEAR_SIDE (1.0 / CELL_TOLS + 0.05)
+
+/* The cell of scaled point z, each coordinate in cells of width 1 / inv (saturated far out:
+ * the cells there only gather more points to compare), and per axis the neighbour to look in
+ * too: -1 or +1 where z lies within NEAR_SIDE of that side, else 0. (The product by the
+ * reciprocal rounds once more than a quotient: a few ulps of a cell coordinate, well inside
+ * the slack.) */
+static void cell_of(const double z[3], double inv, int64_t c[3], int side[3])
 {
     for (int r = 0; r < 3; ++r) {
-        const double q = z[r] / cell, x = floor(q);
-        c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : (int64_t)x;
-        side[r] = q - x < 0.5 ? -1 : 1;
+        /* floor(q) by a conversion (libm's floor is a call on the baseline ISA), on q held
+         * within 2^41, where every double is the floor's own or has an integer part in int64 */
+        const double q = z[r] * inv, h = q > 0x1p41 ? 0x1p41 : q < -0x1p41 ? -0x1p41 : q;
+        int64_t t = (int64_t)h;
+        t -= (double)t > h;
+        const double x = (double)t;
+        c[r] = x > 0x1p40 ? (int64_t)0x1p40 : x < -0x1p40 ? -(int64_t)0x1p40 : t;
+        side[r] = q - x < NEAR_SIDE ? -1 : q - x > 1 - NEAR_SIDE ? 1 : 0;
     }
 }
 
-/* A cell's key: its coordinates mixed (splitmix64's finisher), never 0 (0 marks an empty slot). */
-static uint64_t cell_key(const int64_t c[3])
+/* A cell's key from its coordinates' products with the axes' odd constants (cell_axes), XORed:
+ * mixed once more, never 0 (0 marks an empty slot). Two cells with one key share a list: their
+ * points are only compared more, so any mixing gives the same points kept. */
+static uint64_t cell_key(uint64_t h)
 {
-    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ULL ^ (uint64_t)c[1] * 0xc2b2ae3d27d4eb4fULL ^
-                 (uint64_t)c[2] * 0x165667b19e3779f9ULL;
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
-    return (h ^ (h >> 31)) | 1;
+    h = (h ^ (h >> 29)) * 0xbf58476d1ce4e5b9ULL;
+    return (h ^ (h >> 32)) | 1;
+}
+
+/* Per axis r, the products of cell coordinate c[r] (x[r][0]) and of its neighbour's (x[r][1])
+ * with the axis's constant: a cell of the 8 probed is one XOR of three. */
+static void cell_axes(const int64_t c[3], const int side[3], uint64_t x[3][2])
+{
+    static const uint64_t mul[3] = {0x9e3779b97f4a7c15ULL, 0xc2b2ae3d27d4eb4fULL, 0x165667b19e3779f9ULL};
+    for (int r = 0; r < 3; ++r) {
+        x[r][0] = (uint64_t)c[r] * mul[r];
+        x[r][1] = (uint64_t)(c[r] + side[r]) * mul[r];
+    }
 }
 
 /* The slot of cell key k in the open-addressing table of 2^bits slots (its own, or the empty one
@@ -682,11 +880,9 @@ static size_t cell_slot(const manifold_work *w, int bits, uint64_t k)
 }
 
 /* Step 2: the contacts to keep (indices into c, depth order) into w->kept; returns how many.
- * z holds the scaled points, tol the scaled tolerance. The grid's cells are 2.5 tolerances
- * wide, so that the points within the tolerance of a point lie in 8 cells: its own and, per
- * axis, the neighbour on the side of the half of its cell it lies in (the tolerance reaches at
- * most 0.4 of a cell out of the point, which leaves 0.1 of a cell for the rounding of the cell
- * coordinates). */
+ * z holds the scaled points, tol the scaled tolerance. The grid's cells are CELL_TOLS
+ * tolerances wide, so that the points within the tolerance of a point lie in its own cell and
+ * the neighbours cell_of names (8 cells at most). */
 static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
 {
     const double tol2 = tol * tol;
@@ -706,15 +902,19 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         ++bits;
     memset(w->cell_key, 0, ((size_t)1 << bits) * sizeof *w->cell_key);
     /* (a tolerance of 0 merges equal points only: any width) */
-    const double width = tol > 0 ? 2.5 * tol : 1;
+    const double inv = 1 / (tol > 0 ? CELL_TOLS * tol : 1);
     for (size_t k = 0; k < n; ++k) {
         int64_t c[3];
         int side[3];
-        cell_of(w->z + 3 * k, width, c, side);
+        uint64_t x[3][2];
+        cell_of(w->z + 3 * k, inv, c, side);
+        cell_axes(c, side, x);
         int near = 0;
+        const int look = (side[0] != 0) | (side[1] != 0) << 1 | (side[2] != 0) << 2;
         for (int m = 0; m < 8 && !near; ++m) {
-            const int64_t cc[3] = {c[0] + (m & 1 ? side[0] : 0), c[1] + (m & 2 ? side[1] : 0), c[2] + (m & 4 ? side[2] : 0)};
-            const size_t at = cell_slot(w, bits, cell_key(cc));
+            if ((m & look) != m)
+                continue;
+            const size_t at = cell_slot(w, bits, cell_key(x[0][m & 1] ^ x[1][(m >> 1) & 1] ^ x[2][(m >> 2) & 1]));
             if (w->cell_key[at] == 0)
                 continue;
             for (size_t a = w->cell_head[at]; a != SIZE_MAX && !near; a = w->next[a])
@@ -723,7 +923,7 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         if (near)
             continue;
         w->kept[nk++] = k;
-        const uint64_t key = cell_key(c);
+        const uint64_t key = cell_key(x[0][0] ^ x[1][0] ^ x[2][0]);
         const size_t at = cell_slot(w, bits, key);
         if (w->cell_key[at] == 0) {
             w->cell_key[at] = key;
@@ -863,53 +1063,28 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
- * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
- * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
-static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
-                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
-                       ttd_scene_array *out)
+static int near_reserve(manifold_work *w, size_t n)
 {
-    w->all_n = 0;
-    for (size_t k = 0; k < n0; ++k)
-        if (!all_push(w, &c0[k], -1))
+    if (n > w->near_cap) {
+        manifold_rec *f = realloc(w->near, n * sizeof *f);
+        if (f == NULL)
             return 0;
-    w->solid = solid_pair(s, p->i, p->j);
-    if (w->solid) {
-        real at[3];
-        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
-        if (n0 == 0 && nest == 0)
-            return 1;
-        for (int side = 0; side < 2; ++side) {
-            if (n0 == 0 && nest != (side ? 1 : 2)) {
-                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
-                    memset(w->inner[side], 0, w->inner_cap[side]);
-                continue;
-            }
-            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
-                return 0;
-        }
+        w->near = f;
+        w->near_cap = n;
     }
-    if (!pair_corners(s, c0, n0, margin, w))
+    return 1;
+}
+
+/* Steps 1 and 2 on the n points *buf (n > 0, an array of *cap): *buf into depth order (another
+ * array of scratch), their points relative to the
+ * first and scaled by f1 f2 into w->z, the kept (merge tolerance tol, scaled) into w->kept with
+ * z compacted to them. Returns how many are kept; 0 out of memory. */
+static size_t order_merge(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n, double f1, double f2, double tol)
+{
+    if (!manifold_work_reserve(w, n) || !depth_sort(w, buf, cap, n))
         return 0;
-    if (w->all_n == 0)
-        return 1;
-    manifold_rec *rc = w->all;
-    const size_t n = w->all_n;
-    if (!manifold_work_reserve(w, n))
-        return 0;
-    if (!depth_sort(w, rc, n))
-        return 0;
-    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
-    const double big = fmax(ri, rj), small = fmin(ri, rj);
-    int ex = 0;
-    if (big > 0 && isfinite(big))
-        frexp(big, &ex);
-    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
-     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
+    const manifold_rec *rc = *buf;
     double *z = w->z, origin[3] = {0, 0, 0};
-    const int one = ex >= -1021 && ex <= 1021;
-    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
             const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
@@ -917,9 +1092,21 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 origin[r] = x;
             z[3 * k + (size_t)r] = (x - origin[r]) * f1 * f2;
         }
-    const size_t nk = merge_points(w, n, ldexp(MERGE_FRACTION * small, -ex), n > 32);
+    const size_t nk = merge_points(w, n, tol, n > 32);
     for (size_t a = 0; a < nk; ++a) /* compact: kept[a] >= a, increasing */
-        memmove(z + 3 * a, z + 3 * w->kept[a], 3 * sizeof *z);
+        for (int r = 0; r < 3; ++r)
+            z[3 * a + (size_t)r] = z[3 * w->kept[a] + (size_t)r];
+    return nk;
+}
+
+/* Steps 3 and 4 on the nk points kept (w->kept into rc, w->z): the points chosen into w->sel
+ * (indices into w->kept); returns how many. part: rc holds the deepest level's points alone,
+ * and the answer is 0 where the choice would look beyond them (max or fewer kept, or fewer
+ * than max on the level). */
+static size_t choose_points(manifold_work *w, const manifold_rec *rc, size_t nk, real margin, size_t max, double big,
+                            double f1, double f2, int part)
+{
+    const double *z = w->z;
     /* the seed: among the kept within FEATURE_TOL of the larger radius of the smallest distance,
      * the farthest from their centroid */
     const double d0 = (double)rc[w->kept[0]].c.distance, window = FEATURE_TOL * big;
@@ -941,6 +1128,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
     }
     /* the points: all of them (the seed, then depth order), or the spread */
     size_t ns;
+    if (part && nk <= max)
+        return 0;
     if (max == 0 || nk <= max) {
         w->sel[0] = seed;
         ns = 1;
@@ -962,20 +1151,54 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         memset(w->taken, 0, nk);
         const double slope2 = LEVEL_SLOPE * LEVEL_SLOPE;
         size_t nl = 0;
+        /* A point a breaks b's slope only within rb / LEVEL_SLOPE of it, rb b's rise above the
+         * deepest (a's rise is no more, with every rounding): so only the level's points so far
+         * within that of b along the first axis are looked at, from w->ord (those points by
+         * their first coordinate; its differences are dist2's, monotone). Rises too small to
+         * square look at every point. */
+        size_t no = 0;
         for (size_t b = 0; b < nd; ++b) {
             const double db = (double)rc[w->kept[b]].c.distance;
             int on = 1; /* the seed's window is of the level whole */
-            for (size_t a = 0; a < b && on && b >= ntie; ++a) {
-                const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
-                on = w->taken[a] == 2 || rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+            const double rb = (db - d0) * f1 * f2, xb = z[3 * b];
+            if (b >= ntie && rb > 0x1p-300) {
+                const double reach = rb / LEVEL_SLOPE * 1.001;
+                size_t lo = 0, hi = no; /* the first with a difference above -reach */
+                while (lo < hi) {
+                    const size_t mid = lo + (hi - lo) / 2;
+                    if (z[3 * w->ord[mid]] - xb > -reach)
+                        hi = mid;
+                    else
+                        lo = mid + 1;
+                }
+                for (size_t k = lo; k < no && on && z[3 * w->ord[k]] - xb < reach; ++k) {
+                    const size_t a = w->ord[k];
+                    const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
+                    on = rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+                }
+            } else {
+                for (size_t a = 0; a < b && on && b >= ntie; ++a) {
+                    const double rise = (db - (double)rc[w->kept[a]].c.distance) * f1 * f2;
+                    on = w->taken[a] == 2 || rise * rise <= slope2 * dist2(z + 3 * a, z + 3 * b);
+                }
             }
             w->taken[b] = on ? 0 : 2;
             nl += (size_t)on;
+            if (on) { /* into the order, after its equals */
+                size_t at = no;
+                while (at > 0 && z[3 * w->ord[at - 1]] > xb)
+                    --at;
+                memmove(w->ord + at + 1, w->ord + at, (no - at) * sizeof *w->ord);
+                w->ord[at] = b;
+                ++no;
+            }
         }
         for (size_t b = nd; b < nk; ++b)
             w->taken[b] = 2;
         if (nl >= max) {
             ns = spread_points(z, nk, seed, max, w->sel, w->taken);
+        } else if (part) {
+            return 0;
         } else {
             w->sel[0] = seed;
             w->taken[seed] = 1;
@@ -993,6 +1216,107 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 w->taken[pick] = 1;
             }
         }
+    }
+    return ns;
+}
+
+/* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
+ * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
+ * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
+static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, const scene_pair *p,
+                       const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
+                       ttd_scene_array *out)
+{
+    /* the points into w->all: the contacts (where max > 0, only when all the points are needed,
+     * below), a solid pair's inside points, the corners */
+    w->all_n = 0;
+    for (size_t k = 0; max == 0 && k < n0; ++k)
+        if (!all_push(w, &c0[k], -1))
+            return 0;
+    w->solid = solid_pair(s, p->i, p->j);
+    if (w->solid) {
+        real at[3];
+        const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
+        if (n0 == 0 && nest == 0)
+            return 1;
+        for (int side = 0; side < 2; ++side) {
+            if (n0 == 0 && nest != (side ? 1 : 2)) {
+                if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
+                    memset(w->inner[side], 0, w->inner_cap[side]);
+                continue;
+            }
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
+                return 0;
+        }
+    }
+    const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
+    const double big = fmax(ri, rj), small = fmin(ri, rj);
+    int ex = 0;
+    if (big > 0 && isfinite(big))
+        frexp(big, &ex);
+    /* the points as a point record holds them, relative to the deepest, at the larger body's scale
+     * (times 2^-ex: one multiplication, ldexp's bits, where 2^-ex is a normal number; two beyond) */
+    const int one = ex >= -1021 && ex <= 1021;
+    const double f1 = one ? ldexp(1.0, -ex) : ldexp(1.0, -ex / 2), f2 = one ? 1.0 : ldexp(1.0, -ex - (-ex / 2));
+    const double tol = ldexp(MERGE_FRACTION * small, -ex);
+    const size_t n_pre = w->all_n; /* the contacts (max = 0) and a solid pair's inside points */
+    manifold_rec *rc = NULL;
+    size_t nk = 0, ns = 0;
+    int corners = 0; /* step 0 done for every contact */
+    if (max > 0 && n0 + n_pre > 0) {
+        /* the deepest level's points alone first (those within the seed's window or the level
+         * of the smallest distance, step 4): the merge keeps a point by the points before it in
+         * depth order and step 4 chooses among the level, so where more than max are kept and
+         * max are on the level, the points beyond it change nothing; else all of them, as
+         * without this. The smallest distance is a contact's or an inside point's: a corner
+         * lies no nearer than the contact asking for it. */
+        double d0 = HUGE_VAL;
+        for (size_t k = 0; k < n0; ++k)
+            if ((double)c0[k].distance < d0)
+                d0 = (double)c0[k].distance;
+        for (size_t k = 0; k < n_pre; ++k)
+            if ((double)w->all[k].c.distance < d0)
+                d0 = (double)w->all[k].c.distance;
+        const double window = FEATURE_TOL * big, level = LEVEL_FRACTION * ((double)margin - d0);
+        const double reach[2] = {d0, window > level ? window : level};
+        if (!pair_corners(s, c0, n0, margin, reach, w))
+            return 0;
+        const size_t n = n0 + w->all_n;
+        if (!near_reserve(w, n))
+            return 0;
+        size_t m = 0; /* in the order of w->all were the contacts in it: contacts, inside points, corners */
+        for (size_t k = 0; k < n0; ++k)
+            if ((double)c0[k].distance - d0 <= reach[1]) {
+                w->near[m].c = c0[k];
+                w->near[m++].inside = -1;
+            }
+        for (size_t k = 0; k < w->all_n; ++k)
+            if ((double)w->all[k].c.distance - d0 <= reach[1])
+                w->near[m++] = w->all[k];
+        corners = m == n; /* every contact asked */
+        if (m > 0 && m < n) {
+            if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
+                return 0;
+            ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
+            rc = w->near;
+        }
+        if (ns == 0) {
+            /* all the points: the contacts before the others, step 0 again unless done for all */
+            if (!corners)
+                w->all_n = n_pre;
+            if (!all_front(w, c0, n0))
+                return 0;
+        }
+    }
+    if (ns == 0) {
+        if (!corners && !pair_corners(s, c0, n0, margin, NULL, w))
+            return 0;
+        if (w->all_n == 0)
+            return 1;
+        if ((nk = order_merge(w, &w->all, &w->all_cap, w->all_n, f1, f2, tol)) == 0)
+            return 0;
+        rc = w->all;
+        ns = choose_points(w, rc, nk, margin, max, big, f1, f2, 0);
     }
     if (!array_reserve(out, out->count + ns, sizeof(ttd_scene_point)))
         return 0;

@@ -63,6 +63,18 @@ typedef struct body_feature {
     double g[TTD_CORNER_MAX][3]; /* unit */
 } body_feature;
 
+/* x 2^e: ldexp's bits (one rounding, where the result is subnormal) by a product with 2^e
+ * where that is a normal number (ldexp is a call into libm), ldexp beyond. */
+static double scale2(double x, int e)
+{
+    if (e < -1022 || e > 1023)
+        return ldexp(x, e);
+    const uint64_t bits = (uint64_t)(e + 1023) << 52;
+    double f;
+    memcpy(&f, &bits, sizeof f);
+    return x * f;
+}
+
 /* a / |a| into out, formed at unit scale; 0 when a is 0. */
 static int unit3(const double a[3], double out[3])
 {
@@ -80,7 +92,7 @@ static int unit3(const double a[3], double out[3])
     frexp(m, &e);
     double b[3];
     for (int r = 0; r < 3; ++r)
-        b[r] = ldexp(a[r], -e);
+        b[r] = scale2(a[r], -e);
     const double len = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
     for (int r = 0; r < 3; ++r)
         out[r] = b[r] / len;
@@ -137,8 +149,8 @@ static int unit_cross(const double v[3][3], double cr[3], double *e11, double *e
     int ex;
     frexp(m, &ex);
     for (int r = 0; r < 3; ++r) {
-        e1[r] = ldexp(e1[r], -ex);
-        e2[r] = ldexp(e2[r], -ex);
+        e1[r] = scale2(e1[r], -ex);
+        e2[r] = scale2(e2[r], -ex);
     }
     cross3d(e1, e2, cr);
     *e11 = dot3d(e1, e1);
@@ -161,9 +173,9 @@ static int weights_in(const double v[3][3], const double x[3], double w[3])
     int ex;
     frexp(m, &ex);
     for (int r = 0; r < 3; ++r) {
-        e1[r] = ldexp(e1[r], -ex);
-        e2[r] = ldexp(e2[r], -ex);
-        d[r] = ldexp(d[r], -ex);
+        e1[r] = scale2(e1[r], -ex);
+        e2[r] = scale2(e2[r], -ex);
+        d[r] = scale2(d[r], -ex);
     }
     double cr[3], c1[3], c2[3];
     cross3d(e1, e2, cr);
@@ -270,9 +282,9 @@ static double closest_in_triangle(const double v[3][3], const double x[3], int e
 {
     double ab[3], ac[3], ap[3], bp[3], cp[3];
     for (int r = 0; r < 3; ++r) {
-        ab[r] = ldexp(v[1][r] - v[0][r], -ex);
-        ac[r] = ldexp(v[2][r] - v[0][r], -ex);
-        ap[r] = ldexp(x[r] - v[0][r], -ex);
+        ab[r] = scale2(v[1][r] - v[0][r], -ex);
+        ac[r] = scale2(v[2][r] - v[0][r], -ex);
+        ap[r] = scale2(x[r] - v[0][r], -ex);
         bp[r] = ap[r] - ab[r];
         cp[r] = ap[r] - ac[r];
     }
@@ -617,7 +629,7 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
         frexp(m, &ex);
         for (int k = 0; k < 2; ++k)
             for (int l = 0; l < 9; ++l)
-                tt[k][l] = ldexp(tt[k][l], -ex);
+                tt[k][l] = scale2(tt[k][l], -ex);
     }
     double ua[3];
     for (int r = 0; r < 3; ++r)
