@@ -884,10 +884,10 @@ static int box_on_box_level(void)
  * two boxes) at the gap on both sides, the groove's sides 35 to 60 degrees from horizontal, the
  * ball turned about z: K = 4 holds a point of each side touching (within 1/64 of the margin left
  * above the gap: 4.7e-4), with that side's normal; K = 0 one at the gap (to 1e-9). The
- * deepest level (a quarter of the margin left) holds a ring of the ball's vertices around each
- * side's touching one, 2.4e-3 above it; spread over the level, the four points went to the
- * rings' far ends and missed a side's touching point (in ttd_sim's bin, an icosphere on two
- * parts of a torus and a box on a torus's ring rested on one point and crept). */
+ * deepest level (a quarter of the margin left) holds the ball's vertices around each side's
+ * touching one, millimetres above it; spread over the whole level, the four points went to the
+ * far ones and left a side with no point within 4.7e-4 of the gap (in ttd_sim's bin, an
+ * icosphere on two parts of a torus and a box on a torus's ring rested on one side and crept). */
 static int ball_in_groove(void)
 {
     const double gap = 0.01, margin = 0.04, touch = (margin - gap) / 64; /* docs/scenes.md: touching */
