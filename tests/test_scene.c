@@ -574,6 +574,14 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
             }
             nl += lvl[b];
         }
+        /* of the level, the touching points: within 1/64 of the margin left above the smallest
+         * distance; the spread is over them when MAX_POINTS or more touch */
+        size_t nt = 0;
+        for (size_t b = 0; b < nk; ++b)
+            if (lvl[b] && rec[ord[kept[b]]].d - d0 <= (m - d0) / 64) {
+                lvl[b] = 2;
+                ++nt;
+            }
         for (size_t n = 0; n < want; ++n, ++at) {
             ENSURE(at < A->npoints);
             const point *pt = &A->points[at];
@@ -601,13 +609,17 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
                            P->i, P->j, b - (at - n), n, tol);
             if (nk > MAX_POINTS && nl < MAX_POINTS && n < nl) /* a short level: all of it first */
                 ENSURE_MSG(lvl[me], "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
-            if (nk > MAX_POINTS && nl >= MAX_POINTS && (n == 1 || n == 2)) {
-                /* within the level: farthest from the first; the largest triangle with the first two */
-                ENSURE_MSG(lvl[me], "manifold (%u, %u): point %zu not of the deepest level", P->i, P->j, n);
+            if (nk > MAX_POINTS && nl >= MAX_POINTS && nt < MAX_POINTS) /* few touch: they first, then the level */
+                ENSURE_MSG(n < nt ? lvl[me] == 2 : lvl[me] == 1, "manifold (%u, %u): point %zu not %s", P->i, P->j, n,
+                           n < nt ? "touching" : "of the level");
+            if (nk > MAX_POINTS && nt >= MAX_POINTS && (n == 1 || n == 2)) {
+                /* within the touching points: farthest from the first; the largest triangle with
+                 * the first two */
+                ENSURE_MSG(lvl[me] == 2, "manifold (%u, %u): point %zu not touching", P->i, P->j, n);
                 const double *x0 = A->points[at - n].x, *x1 = n == 2 ? A->points[at - 1].x : NULL;
                 double mine = 0, other = 0;
                 for (size_t b = 0; b < nk; ++b) {
-                    if (!lvl[b])
+                    if (lvl[b] != 2)
                         continue;
                     const double *y = mid[kept[b]];
                     double v;

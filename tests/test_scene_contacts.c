@@ -8,6 +8,7 @@
  *     (unturned: exactly its rectangle's), K = 0 holds every corner of it, and no two points of
  *     any manifold are within the merge tolerance;
  *   - a sphere near a floor's diagonal edge (and on a grid floor): every normal is the floor's;
+ *   - a ball resting in a groove (one body of two plates): K = 4 holds each side's touching point;
  *   - symmetry: the same scene with its bodies in the other order gives each contact the
  *     negated normal, bit for bit, over random scenes;
  *   - the normal rule's properties over random scenes, against features and cones found here
@@ -879,6 +880,84 @@ static int box_on_box_level(void)
     return 0;
 }
 
+/* A ball (icosphere, 5120 triangles, radius 1) resting in a groove of two plates (one body of
+ * two boxes) at the gap on both sides, the groove's sides 35 to 60 degrees from horizontal, the
+ * ball turned about z: K = 4 holds a point of each side touching (within 1/64 of the margin left
+ * above the gap: 4.7e-4), with that side's normal; K = 0 one at the gap (to 1e-9). The
+ * deepest level (a quarter of the margin left) holds the ball's vertices around each side's
+ * touching one, millimetres above it; spread over the whole level, the four points went to the
+ * far ones and left a side with no point within 4.7e-4 of the gap (in ttd_sim's bin, an
+ * icosphere on two parts of a torus and a box on a torus's ring rested on one side and crept). */
+static int ball_in_groove(void)
+{
+    const double gap = 0.01, margin = 0.04, touch = (margin - gap) / 64; /* docs/scenes.md: touching */
+    ttd_gen_mesh ball = {NULL, 0, NULL, 0}, cube = {NULL, 0, NULL, 0};
+    ENSURE(ttd_gen_icosphere(4, &ball) == 0 && cube_mesh(CUBE_DIAG_A, &cube) == 0);
+    ttd_mesh *mb = make_mesh(&ball, 8);
+    ENSURE(mb != NULL);
+    size_t cases = 0;
+    for (int ai = 0; ai < 3; ++ai)
+        for (int turn = 0; turn < 4; ++turn) {
+            const double a = (35.0 + 12.5 * ai) * 3.141592653589793 / 180, t = 0.37 * turn;
+            const double pose[12] = {cos(t), -sin(t), 0, 0, sin(t), cos(t), 0, 0, 0, 0, 1, 0};
+            /* side k's normal n (towards the ball), its plate's top face at gap below the ball's
+             * lowest vertex along -n */
+            double n[2][3] = {{0, -sin(a), cos(a)}, {0, sin(a), cos(a)}};
+            builder b = {0};
+            for (int k = 0; k < 2; ++k) {
+                double h = -INFINITY;
+                for (size_t v = 0; v < ball.nv; ++v) {
+                    double x[3];
+                    for (int r = 0; r < 3; ++r)
+                        x[r] = pose[4 * r] * ball.verts[3 * v] + pose[4 * r + 1] * ball.verts[3 * v + 1] +
+                               pose[4 * r + 2] * ball.verts[3 * v + 2];
+                    h = fmax(h, -(x[0] * n[k][0] + x[1] * n[k][1] + x[2] * n[k][2]));
+                }
+                const double e1[3] = {1, 0, 0}, e2[3] = {0, n[k][2], -n[k][1]}; /* e1 x e2 = n */
+                for (size_t f = 0; f < cube.nt; ++f) {
+                    double x[3][3];
+                    for (int c = 0; c < 3; ++c) {
+                        const double *X = cube.verts + 3 * cube.tris[3 * f + (size_t)c];
+                        const double u = 3 * X[0] - 1.5, w = 1.6 * X[1] - 0.8, z = 0.2 * X[2] - 0.2;
+                        for (int r = 0; r < 3; ++r)
+                            x[c][r] = -(h + gap) * n[k][r] + u * e1[r] + w * e2[r] + z * n[k][r];
+                    }
+                    add_triangle(&b, x[0], x[1], x[2]);
+                }
+            }
+            ttd_mesh *mp;
+            ENSURE(ttd_mesh_create_d(NULL, b.v, b.nv, b.t, b.nt, &mp) == TTD_OK);
+            free(b.v);
+            free(b.t);
+            const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+            ttd_scene *s;
+            ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+            ENSURE(add_body(s, 8, mb, pose) == 0 && add_body(s, 8, mp, id) == 0);
+            for (int all = 1; all >= 0; --all) { /* K = 0 holds both (the test's own check), then K = 4 */
+                mpoint *p;
+                const size_t np = ask_manifold(s, 8, NULL, margin, all ? 0 : 4, &p);
+                ENSURE(np != SIZE_MAX && (all || np == 4));
+                for (int k = 0; k < 2; ++k) {
+                    int held = 0;
+                    for (size_t q = 0; q < np; ++q) /* the normal from the ball (body 0) to the plate: -n */
+                        held |= p[q].d - gap <= (all ? 1e-9 : touch) &&
+                                -(p[q].n[0] * n[k][0] + p[q].n[1] * n[k][1] + p[q].n[2] * n[k][2]) >= cos(0.1);
+                    ENSURE_MSG(held, "groove at %.1f degrees, turn %d, K = %d: no point touching side %d (of %zu)",
+                               a * 180 / 3.141592653589793, turn, all ? 0 : 4, k, np);
+                }
+                free(p);
+            }
+            ttd_scene_destroy(s);
+            ttd_mesh_destroy(mp);
+            ++cases;
+        }
+    ttd_mesh_destroy(mb);
+    ttd_gen_mesh_free(&ball);
+    ttd_gen_mesh_free(&cube);
+    printf("  %zu balls in grooves: four points hold a touching point of each side\n", cases);
+    return 0;
+}
+
 /* An icosphere near a floor's diagonal edge (two triangles; and a grid of 32), touching and at
  * gaps, turned at random: every point's normal is the floor's. */
 static int sphere_on_floor_diagonal(void)
@@ -1587,6 +1666,7 @@ int main(int argc, char **argv)
     RUN_TEST(box_on_box_level);
     RUN_TEST(sphere_on_floor_diagonal);
     RUN_TEST(torus_on_floor_level);
+    RUN_TEST(ball_in_groove);
     RUN_TEST(random_scenes_rule);
     RUN_TEST(sunk_cube_depth);
     RUN_TEST(solid_pairs_brute_force);

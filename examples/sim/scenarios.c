@@ -131,7 +131,9 @@ static int build_bin(sim_run *run)
         if (sim_world_add(&run->world, run->shape + kind[(k + layer) % 5], x, q, 0) < 0)
             return -1;
     }
-    run->settle = 5.0;
+    /* the drop is over in about 2 s, but faceted balls and tori rock for seconds after (a torus
+       until about 10 s: docs/simulator.md, section 5) */
+    run->settle = 12.0;
     return 0;
 }
 

@@ -29,8 +29,11 @@
  *    time, the point that adds the most area to the polygon of those kept (on the plane of the
  *    first three), as PhysX's reduction keeps a box's four corners on a face; where no point
  *    adds area (points on a line, or inside), the point farthest from every point kept. Ties to
- *    the earlier in depth order. When the level holds fewer than K, all of them, then the
- *    farthest from every point kept among the rest.
+ *    the earlier in depth order. Of the level, the touching points come first (within
+ *    TOUCH_FRACTION of the margin left above the deepest: where a body resting on two parts of
+ *    the other is held): the spread is over them when they are K or more; when fewer, all of
+ *    them, then the level's farthest from every point kept. When the level holds fewer than K,
+ *    all of them, then the farthest from every point kept among the rest.
  * Distances between points are formed on coordinates relative to the deepest point, scaled by a
  * power of two to the larger body's size, so that no square underflows or overflows at any scale
  * of the coordinate range.
@@ -47,6 +50,10 @@
 /* The level's plane: a point of it rises above a deeper one by at most this times the distance
  * between them (the flat angle of step 0, CORNER_ANGLE, as a slope). */
 #define LEVEL_SLOPE 0.1
+/* The touching points of step 4's level: within this fraction of the margin left below the
+ * deepest contact (M = 0.04 and a rest gap of 0.01: 4.7e-4; a resting body's supports agree to
+ * far less, and a point a millimetre above them holds nothing) */
+#define TOUCH_FRACTION (1.0 / 64)
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -1195,23 +1202,43 @@ static size_t choose_points(manifold_work *w, const manifold_rec *rc, size_t nk,
         }
         for (size_t b = nd; b < nk; ++b)
             w->taken[b] = 2;
-        if (nl >= max) {
+        /* of the level, the touching points: within TOUCH_FRACTION of the margin left below d0,
+         * where a resting body's supports lie (two parts of a torus, a ball in a groove); a
+         * point of the level farther above the deepest holds nothing until the body sinks, so
+         * the spread is over these when they are K or more. taken[a] = 3: of the level, not
+         * touching (made 0 again when they are fewer). */
+        const double touch = TOUCH_FRACTION * ((double)margin - d0);
+        size_t nt = 0;
+        for (size_t b = 0; b < nd; ++b)
+            if (w->taken[b] == 0) {
+                if ((double)rc[w->kept[b]].c.distance - d0 <= touch)
+                    ++nt;
+                else
+                    w->taken[b] = 3;
+            }
+        if (nt >= max) {
             ns = spread_points(z, nk, seed, max, w->sel, w->taken);
         } else if (part) {
             return 0;
         } else {
+            /* fewer than K touch: every touching point (the seed first, then by depth), then
+             * the level's point farthest from every point kept; when the level holds fewer
+             * than K, all of it, then the farthest among the rest */
+            const int whole = nl < max;
             w->sel[0] = seed;
             w->taken[seed] = 1;
             ns = 1;
             for (size_t a = 0; a < nk; ++a)
-                if (a != seed && w->taken[a] == 0) {
+                if (a != seed && (w->taken[a] == 0 || (whole && w->taken[a] == 3))) {
                     w->sel[ns++] = a;
                     w->taken[a] = 1;
                 }
-            for (size_t a = 0; a < nk; ++a)
-                w->taken[a] = w->taken[a] == 1;
+            for (size_t a = 0; a < nk; ++a) /* 0: may be picked next */
+                w->taken[a] = whole ? w->taken[a] == 1 : w->taken[a] == 3 ? 0 : w->taken[a];
             while (ns < max) {
                 const size_t pick = farthest_point(z, nk, w->sel, ns, w->taken);
+                if (pick == SIZE_MAX)
+                    break;
                 w->sel[ns++] = pick;
                 w->taken[pick] = 1;
             }
