@@ -15,8 +15,9 @@
 
 /* Points per block of the parallel loop. */
 #define CLOSEST_BLOCK 64
-/* Batches of at least this many points go in spatial order. */
-#define CLOSEST_SORTED 256
+/* Batches of at least this many points go in spatial order (the sort costs three passes over 1,024
+ * counters: a few walks; so the fuzzer's batches of up to 48 points reach it too). */
+#define CLOSEST_SORTED 32
 /* Deepest stack a walk needs: at most 7 siblings wait per level of a tree of depth <= 16. */
 #define CLOSEST_STACK 128
 
