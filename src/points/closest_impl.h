@@ -147,9 +147,11 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
     closest_limit(&B);
     uint32_t node_tests = 0, tri_tests = 0;
     const int32_t seeded = *seed;
+    int32_t skip = -1; /* a seed node of triangles only: measured whole, so never walked into */
     if (seeded >= 0) {
         closest_measure(J, P, seeded, pn[seeded].tmask, ub, &B);
         tri_tests += pn[seeded].ntri;
+        skip = pn[seeded].ntri == pn[seeded].nslots ? seeded : -1;
     }
     citem stack[CLOSEST_STACK];
     int sp = 0;
@@ -170,7 +172,7 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
         float best = INFINITY;
         for (unsigned nm = within & ~y->tmask; nm; nm &= nm - 1) {
             const int j = __builtin_ctz(nm);
-            if (key[j] > B.lim2f)
+            if (key[j] > B.lim2f || y->child[j] == skip)
                 continue;
             if (key[j] < best) {
                 if (jbest >= 0 && sp < CLOSEST_STACK)
