@@ -10,8 +10,10 @@
  * lanes over the triangles). The best distance so far, plus the rounding margin delta, is the
  * limit a box must come within to be opened. Every triangle at the final distance lies in boxes
  * within the limit, so the walk meets all of them and keeps the smallest index: the brute force's
- * answer, bit for bit (the kernel's distances are the reference's). Points are dealt to the
- * threads in fixed blocks; a point's walk does not depend on which thread runs it. */
+ * answer, bit for bit (the kernel's distances are the reference's). A batch goes in spatial order,
+ * each walk's limit seeded by the previous point's answer (closest_order, closest_one); the
+ * points are dealt to the threads in fixed blocks of that order, so a point's walk depends on its
+ * batch but not on which thread runs it, and its answer on neither. */
 
 /* Points per block of the parallel loop. */
 #define CLOSEST_BLOCK 64
