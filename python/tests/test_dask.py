@@ -174,8 +174,13 @@ def test_point_queries_in_chunks_equal_one_call(client, dtype):
     dP = da.from_array(P, chunks=(3_001, 3))
     r = client.compute(ttd.dask.closest_points(mesh, dP, threads=1)).result()
     one = ttd.closest_points(mesh, P)
+    # every answer bit for bit; the counts of tests depend on the batch a point came in (its walk
+    # is seeded by its neighbour in the batch's spatial order, docs/points.md section 3)
     for name in r.dtype.names:
-        np.testing.assert_array_equal(r[name], getattr(one, name))
+        if name in ("node_tests", "triangle_tests"):
+            assert np.all(r[name] > 0) and np.all(getattr(one, name) > 0)
+        else:
+            np.testing.assert_array_equal(r[name], getattr(one, name))
     sd = client.compute(ttd.dask.signed_distance(mesh, dP, threads=1)).result()
     np.testing.assert_array_equal(sd, ttd.signed_distance(mesh, P).distance)
     w = client.compute(ttd.dask.winding_number(mesh, dP)).result()

@@ -10,11 +10,16 @@
  * lanes over the triangles). The best distance so far, plus the rounding margin delta, is the
  * limit a box must come within to be opened. Every triangle at the final distance lies in boxes
  * within the limit, so the walk meets all of them and keeps the smallest index: the brute force's
- * answer, bit for bit (the kernel's distances are the reference's). Points are dealt to the
- * threads in fixed blocks; a point's walk does not depend on which thread runs it. */
+ * answer, bit for bit (the kernel's distances are the reference's). A batch goes in spatial order,
+ * each walk's limit seeded by the previous point's answer (closest_order, closest_one); the
+ * points are dealt to the threads in fixed blocks of that order, so a point's walk depends on its
+ * batch but not on which thread runs it, and its answer on neither. */
 
 /* Points per block of the parallel loop. */
 #define CLOSEST_BLOCK 64
+/* Batches of at least this many points go in spatial order (the sort costs three passes over 1,024
+ * counters: a few walks; so the fuzzer's batches of up to 48 points reach it too). */
+#define CLOSEST_SORTED 32
 /* Deepest stack a walk needs: at most 7 siblings wait per level of a tree of depth <= 16. */
 #define CLOSEST_STACK 128
 
@@ -27,6 +32,7 @@ typedef struct closest_job {
     size_t n;
     real upper_bound;
     ttd_point_result *out;
+    const size_t *order; /* the points in spatial (Morton) order, or NULL: input order */
 } closest_job;
 
 /* A node waiting to be walked, and its key (the node test's lb2 or depth) when pushed. */
@@ -41,7 +47,7 @@ typedef struct citem {
 typedef struct cbest {
     real d;
     uint32_t t;
-    int32_t blk, j;
+    int32_t node, blk, j;
     real par[3];
     double lim, delta, scale;
     float lim2f;
@@ -69,8 +75,9 @@ static void closest_limit(cbest *B)
 
 /* Measures the triangles of walk node y (its block, the slots in tm) and keeps the best: the
  * smallest distance within the bound, ties to the smallest triangle. */
-static void closest_measure(const closest_job *J, const real P[3], const ttd_pnode *y, unsigned tm, real ub, cbest *B)
+static void closest_measure(const closest_job *J, const real P[3], int32_t node, unsigned tm, real ub, cbest *B)
 {
+    const ttd_pnode *y = &J->pd->pnodes[node];
     real d[TTD_NODE_WIDTH], par[3][TTD_NODE_WIDTH];
     J->row->point_block(P, (const real *)J->pd->blocks + (size_t)y->block * TTD_PT_ROWS * TTD_PT_LANES, d, par);
     int better = 0;
@@ -82,6 +89,7 @@ static void closest_measure(const closest_job *J, const real P[3], const ttd_pno
         if (d[j] < B->d || t < B->t) {
             B->d = d[j];
             B->t = t;
+            B->node = node;
             B->blk = y->block;
             B->j = j;
             for (int k = 0; k < 3; ++k)
@@ -106,7 +114,12 @@ static void closest_none(ttd_point_result *r, real distance, uint8_t flags)
     r->flags = flags;
 }
 
-static void closest_one(const closest_job *J, const real P[3], ttd_point_result *r)
+/* The closest point of P into r. *seed: a walk node whose triangles are measured first (the
+ * previous point's winner's, in spatial order: their distances start the limit near the answer, so
+ * the first descent already prunes), or -1; it gets this point's winner's node. Only the limit
+ * depends on it: every triangle within the final limit is still measured, so the answer (ties to
+ * the smallest index) is the same bits; the counts of tests depend on it. */
+static void closest_one(const closest_job *J, const real P[3], ttd_point_result *r, int32_t *seed)
 {
     const struct ttd_mesh *m = J->m;
     const ttd_points_data *pd = J->pd;
@@ -131,10 +144,17 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
     }
     const real ub = J->upper_bound;
     const double S = sqrt(s2) + m->radius;
-    cbest B = {(real)INFINITY, UINT32_MAX, -1, 0, {0, 0, 0}, (double)ub,
+    cbest B = {(real)INFINITY, UINT32_MAX, -1, -1, 0, {0, 0, 0}, (double)ub,
                (64 * (double)TTD_REAL_EPS + 16 * (double)FLT_EPSILON) * S, pd->scale * pd->stretch * (1 + 8 * (double)FLT_EPSILON), 0};
     closest_limit(&B);
     uint32_t node_tests = 0, tri_tests = 0;
+    const int32_t seeded = *seed;
+    int32_t skip = -1; /* a seed node of triangles only: measured whole, so never walked into */
+    if (seeded >= 0) {
+        closest_measure(J, P, seeded, pn[seeded].tmask, ub, &B);
+        tri_tests += pn[seeded].ntri;
+        skip = pn[seeded].ntri == pn[seeded].nslots ? seeded : -1;
+    }
     citem stack[CLOSEST_STACK];
     int sp = 0;
     /* Depth first, the nearest child first (boxes that hold the point by how deep they hold it);
@@ -146,15 +166,15 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
         float key[TTD_NODE_WIDTH];
         const unsigned within = J->node(pf, y, B.lim2f, key);
         ++node_tests;
-        if (within & y->tmask) {
-            closest_measure(J, P, y, y->tmask, ub, &B);
+        if ((within & y->tmask) && node != seeded) {
+            closest_measure(J, P, node, y->tmask, ub, &B);
             tri_tests += y->ntri;
         }
         int jbest = -1;
         float best = INFINITY;
         for (unsigned nm = within & ~y->tmask; nm; nm &= nm - 1) {
             const int j = __builtin_ctz(nm);
-            if (key[j] > B.lim2f)
+            if (key[j] > B.lim2f || y->child[j] == skip)
                 continue;
             if (key[j] < best) {
                 if (jbest >= 0 && sp < CLOSEST_STACK)
@@ -182,6 +202,7 @@ static void closest_one(const closest_job *J, const real P[3], ttd_point_result 
         closest_none(r, (real)INFINITY, TTD_POINT_ABOVE_BOUND);
         return;
     }
+    *seed = B.node;
     /* the winner's point and weights from the candidate the kernel chose (the reference's code) */
     const real *f = (const real *)pd->blocks + (size_t)B.blk * TTD_PT_ROWS * TTD_PT_LANES + B.j;
     POINT_REBUILD(f, TTD_PT_LANES, (int)B.par[0], B.par[1], B.par[2], r->point, r->bary);
@@ -263,8 +284,71 @@ static void closest_block(void *ctx, size_t b, int worker)
         closest_tiny(J, b * CLOSEST_BLOCK, i1);
         return;
     }
-    for (size_t i = b * CLOSEST_BLOCK; i < i1; ++i)
-        closest_one(J, J->points + 3 * i, &J->out[i]);
+    int32_t seed = -1; /* each block starts afresh: a point's answer does not depend on the threads */
+    for (size_t i = b * CLOSEST_BLOCK; i < i1; ++i) {
+        const size_t k = J->order != NULL ? J->order[i] : i;
+        if (J->order == NULL)
+            seed = -1; /* points in input order are not near each other */
+        closest_one(J, J->points + 3 * k, &J->out[k], &seed);
+    }
+}
+
+/* The points' order along a Morton curve over the mesh's box (10 bits an axis, the walk nodes'
+ * frame [-1, 1]^3; points outside are clamped, a NaN point goes first), sorted stably by
+ * three passes of radix sort: consecutive points are near each other, so the previous point's
+ * answer seeds the next walk and the nodes they share stay in cache. NULL when out of memory
+ * (the points then go in input order: the same results). */
+static size_t *closest_order(const struct ttd_mesh *m, const ttd_points_data *pd, size_t n, const real *points)
+{
+    size_t *order = malloc(2 * n * sizeof *order);
+    uint32_t *code = malloc(2 * n * sizeof *code);
+    size_t *count = calloc(1024, sizeof *count);
+    if (order == NULL || code == NULL || count == NULL) {
+        free(order), free(code), free(count);
+        return NULL;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t c = 0;
+        for (int a = 0; a < 3; ++a) {
+            const double x = ((double)points[3 * i + (size_t)a] - m->origin[a]) * pd->scale;
+            const double g = (x + 1) * 512; /* NaN fails both tests below: cell 0 */
+            uint32_t q = g > 0 ? (g < 1023 ? (uint32_t)g : 1023u) : 0u;
+            q = (q | q << 16) & 0x030000FFu; /* the bits of q spread to every third place */
+            q = (q | q << 8) & 0x0300F00Fu;
+            q = (q | q << 4) & 0x030C30C3u;
+            q = (q | q << 2) & 0x09249249u;
+            c |= q << a;
+        }
+        code[i] = c;
+        order[i] = i;
+    }
+    size_t *src = order, *dst = order + n;
+    uint32_t *csrc = code, *cdst = code + n;
+    for (int pass = 0; pass < 3; ++pass) {
+        const int sh = 10 * pass;
+        memset(count, 0, 1024 * sizeof *count);
+        for (size_t i = 0; i < n; ++i)
+            ++count[csrc[i] >> sh & 1023u];
+        size_t sum = 0;
+        for (int b = 0; b < 1024; ++b) {
+            const size_t c = count[b];
+            count[b] = sum;
+            sum += c;
+        }
+        for (size_t i = 0; i < n; ++i) {
+            const size_t at = count[csrc[i] >> sh & 1023u]++;
+            dst[at] = src[i];
+            cdst[at] = csrc[i];
+        }
+        size_t *t = src;
+        src = dst, dst = t;
+        uint32_t *ct = csrc;
+        csrc = cdst, cdst = ct;
+    }
+    /* three passes: the sorted order is in the second half */
+    memmove(order, src, n * sizeof *order);
+    free(code), free(count);
+    return order;
 }
 
 static ttd_status closest_run(const ttd_engine_config *cfg, const struct ttd_mesh *m, size_t n, const real *points,
@@ -273,7 +357,11 @@ static ttd_status closest_run(const ttd_engine_config *cfg, const struct ttd_mes
     const ttd_points_data *pd = ttd_points_data_get(m, cfg->threads);
     if (pd == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    closest_job J = {m, pd, TTD_DISPATCH_ROW(cfg->isa), ttd_dispatch_row_f(cfg->isa)->point_node, points, n, upper_bound, out};
+    /* a batch large enough to share nodes goes in spatial order (a few radix passes a point) */
+    size_t *order = pd->tiny == NULL && n >= CLOSEST_SORTED ? closest_order(m, pd, n, points) : NULL;
+    closest_job J = {m, pd, TTD_DISPATCH_ROW(cfg->isa), ttd_dispatch_row_f(cfg->isa)->point_node, points, n, upper_bound, out,
+                     order};
     ttd_parallel_for((n + CLOSEST_BLOCK - 1) / CLOSEST_BLOCK, cfg->threads, closest_block, &J);
+    free(order);
     return TTD_OK;
 }
