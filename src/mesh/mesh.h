@@ -80,6 +80,14 @@ void ttd_mesh_free(struct ttd_mesh *mesh);
 /// A mesh whose vertices change frees it (and sets NULL) for the next use to make again.
 const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh);
 
+/// The edge information once ttd_mesh_edges_get has made it (NULL before), read as it is
+/// published: an acquire load, so that a reader on one thread and another thread's
+/// compare-and-swap (which ThreadSanitizer counts as a write even when it fails) are ordered.
+static inline const ttd_mesh_edges *ttd_mesh_edges_made(const struct ttd_mesh *mesh)
+{
+    return __atomic_load_n(&mesh->edges, __ATOMIC_ACQUIRE);
+}
+
 /* The queries, from checked arguments (meshes of the query's precision, k >= 1 rigid poses,
  * outputs present); defects[i] is max |R^T R - I| of pose i, which the traversal's rounding
  * margin covers. poses_a is NULL (b's poses map it into a's frame, and results are in a's frame)

@@ -528,8 +528,8 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
     /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
      * body i's frame) */
-    const float *ni = s->body[c->i].mesh->edges->normal + 3 * (size_t)c->tri_i;
-    const float *nj = s->body[c->j].mesh->edges->normal + 3 * (size_t)c->tri_j;
+    const float *ni = ttd_mesh_edges_made(s->body[c->i].mesh)->normal + 3 * (size_t)c->tri_i;
+    const float *nj = ttd_mesh_edges_made(s->body[c->j].mesh)->normal + 3 * (size_t)c->tri_j;
     double facing = 0;
     for (int r = 0; r < 3; ++r)
         facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
@@ -542,7 +542,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     for (int side = 0; side < 2; ++side) {
         world_triangle(s, id[side], tri[side], x[side]);
         corner_plane_make(x[side], &P[side]);
-        E[side] = s->body[id[side]].mesh->edges;
+        E[side] = ttd_mesh_edges_made(s->body[id[side]].mesh);
         tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
     int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
@@ -748,7 +748,7 @@ static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, u
 {
     const uint32_t b = side ? j : i, a = side ? i : j;
     const struct ttd_mesh *mb = s->body[b].mesh;
-    const ttd_mesh_edges *E = mb->edges;
+    const ttd_mesh_edges *E = ttd_mesh_edges_made(mb);
     if (!inner_reserve(w, side, E->nw))
         return 0;
     unsigned char *state = w->inner[side];

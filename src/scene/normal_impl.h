@@ -208,7 +208,8 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
     f->id = id;
     f->tri = tri;
     const struct ttd_mesh *mesh = s->body[id].mesh;
-    f->area = mesh->edges->piece_area[mesh->edges->piece[tri]];
+    const ttd_mesh_edges *E = ttd_mesh_edges_made(mesh);
+    f->area = E->piece_area[E->piece[tri]];
     for (int k = 0; k < 3; ++k) {
         if (x != NULL)
             for (int r = 0; r < 3; ++r)
@@ -232,7 +233,7 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
 static void side_feature(const struct ttd_scene *s, body_feature *f, const int on[3])
 {
     const struct ttd_mesh *mesh = s->body[f->id].mesh;
-    const ttd_mesh_edges *E = mesh->edges;
+    const ttd_mesh_edges *E = ttd_mesh_edges_made(mesh);
     const uint32_t *tri = mesh->tris + 3 * (size_t)f->tri;
     for (int k = 0; k < 3; ++k)
         f->on[k] = on[k];
@@ -339,7 +340,7 @@ static int face_rim(const struct ttd_scene *s, const body_feature *f, const doub
     for (int r = 0; r < 3; ++r)
         foot[r] = x[r] - h * f->n[r];
     const struct ttd_mesh *mesh = s->body[f->id].mesh;
-    const ttd_mesh_edges *E = mesh->edges;
+    const ttd_mesh_edges *E = ttd_mesh_edges_made(mesh);
     double m = 0; /* one scale for every candidate: f's triangle's */
     for (int k = 1; k < 3; ++k)
         for (int r = 0; r < 3; ++r)
