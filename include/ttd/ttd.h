@@ -530,7 +530,9 @@ typedef struct ttd_point_result_d {
     uint8_t feature;     ///< bit i when vertex i has a non-zero weight: 1 bit a vertex, 2 an edge, 3 the face
     uint8_t flags;       ///< TTD_POINT_* bits
     uint16_t reserved;
-    uint32_t node_tests; ///< nodes of the hierarchy tested (each against up to 8 boxes)
+    uint32_t node_tests; ///< nodes of the hierarchy tested (each against up to 8 boxes); with
+                         ///< triangle_tests, depends on the batch the point came in (the walk is
+                         ///< seeded by its neighbour's answer), never on the threads
     uint32_t triangle_tests; ///< triangles measured exactly
 } ttd_point_result_d;
 
