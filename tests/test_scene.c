@@ -927,15 +927,25 @@ static int stacked_cubes_match_brute_force(void)
 }
 
 /* Bodies far apart (no contacts): the closest pair and each body's nearest come from margins
- * grown until they hold them. */
+ * grown until they hold them, then best first per body (boxes' gaps as lower bounds); at unit
+ * scale, tiny and huge scales and far from the origin, where the gaps' rounding and scaling
+ * matter. */
 static int sparse_scene_distances(void)
 {
-    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+    static const struct { int bytes; double scale, offset; } cases[] = {
+        {8, 1, 0}, {4, 1, 0}, {8, 1e-150, 0}, {8, 1e150, 0}, {8, 1, 1e6}, {4, 1e-15, 0}, {4, 1e15, 0}, {4, 1, 1e3}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        world_scale = cases[c].scale;
+        world_offset = cases[c].offset;
         world W;
-        ENSURE(make_world(&W, bytes, 14, 12, 0) == 0);
+        char what[96];
+        snprintf(what, sizeof what, "sparse at scale %g, offset %g", world_scale, world_offset);
         size_t n;
-        ENSURE(check_world(&W, "sparse", &n) == 0);
+        const int bad = make_world(&W, cases[c].bytes, 14, 12, 0) != 0 || check_world(&W, what, &n) != 0;
         free_world(&W);
+        world_scale = 1;
+        world_offset = 0;
+        ENSURE_MSG(!bad, "%s", what);
     }
     return 0;
 }
