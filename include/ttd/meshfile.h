@@ -75,6 +75,14 @@ TTD_API int ttd_meshfile_parse(const char *name, const unsigned char *data, size
 /// Frees the arrays and zeroes *m (NULL is allowed).
 TTD_API void ttd_meshfile_free(ttd_meshfile *m);
 
+/// Welds a mesh read from a file in place (include/ttd/ttd.h, ttd_mesh_weld_d, says what is
+/// merged, which vertex is kept and which triangles are dropped): the classes are decided on
+/// the double coordinates, and verts_f, when present, takes the float of the vertex kept.
+/// *dropped (may be NULL) receives the number of collapsed triangles dropped. Returns 0, or -1
+/// with a message in err and *m unchanged: a tolerance that is negative, NaN or infinite, out of
+/// memory, or every triangle collapsing (the mesh would have none).
+TTD_API int ttd_meshfile_weld(ttd_meshfile *m, double tolerance, size_t *dropped, char *err, size_t errsize);
+
 /// "obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary"; NULL when out of range.
 TTD_API const char *ttd_meshfile_format_name(ttd_meshfile_format f);
 

@@ -284,6 +284,40 @@ typedef struct ttd_mesh_refit_info {
 /// Fills *info for mesh (TTD_ERR_NULL_POINTER for NULL).
 TTD_API ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info);
 
+/// Welding: vertices within `tolerance` of each other become one vertex, for meshes whose
+/// triangles each carry their own copies of shared corners with last-bit differences (STL and
+/// many CAD exports), which are otherwise open (docs/mesh-files.md, "Welding").
+///
+/// - Within: Euclidean, |u - v| <= tolerance, evaluated in double as
+///   (dx/t)^2 + (dy/t)^2 + (dz/t)^2 <= 1 with every |d| <= t first; tolerance 0 merges
+///   vertices equal by value only (so -0 and +0 are one vertex).
+/// - Chained: the classes are the connected pieces of "within" (u near v and v near w puts u,
+///   v and w in one vertex, even when u and w are farther apart than tolerance). The classes
+///   do not depend on the order of the vertices.
+/// - Each class's vertex is its lexicographically smallest member by value (x, then y, then z),
+///   coordinates copied exactly, a zero written as +0: the output's coordinates do not depend
+///   on the order either. Classes are numbered by their smallest old index (the input's order
+///   kept: with nothing to merge, the vertices come out as they went in, -0 made +0).
+/// - Triangles keep their order and corner order, renumbered; one with two corners in one
+///   class (collapsed to an edge or a point) is dropped: *nt_out = nt - dropped. Vertices used
+///   by no triangle are kept.
+///
+/// verts_out has room for 3 nv reals and tris_out for 3 nt indices; each may be the same array
+/// as its input (welding in place). vertex_map, when not NULL, receives nv entries: each old
+/// vertex's new index. nt may be 0 (tris and tris_out may then be NULL). Statuses:
+/// TTD_ERR_NULL_POINTER, TTD_ERR_EMPTY (nv = 0), TTD_ERR_BAD_OPTIONS (tolerance negative, NaN
+/// or infinite), TTD_ERR_NONFINITE_MESH, TTD_ERR_INDEX_OUT_OF_RANGE (an index >= nv),
+/// TTD_ERR_TOO_LARGE (nv >= 2^32), TTD_ERR_OUT_OF_MEMORY; nothing is written on an error. Time:
+/// a sort, then a grid of cubes 0.577 tolerance wide, each cube one class without a test and a
+/// pair of cubes already joined skipped, so a tolerance larger than the mesh costs about the sort.
+TTD_API ttd_status ttd_mesh_weld_d(const double *verts, size_t nv, const uint32_t *tris, size_t nt,
+                                   double tolerance, double *verts_out, size_t *nv_out, uint32_t *tris_out,
+                                   size_t *nt_out, uint32_t *vertex_map);
+/// ttd_mesh_weld_d on float vertices: the same classes, decided on the floats' exact values.
+TTD_API ttd_status ttd_mesh_weld_f(const float *verts, size_t nv, const uint32_t *tris, size_t nt,
+                                   float tolerance, float *verts_out, size_t *nv_out, uint32_t *tris_out,
+                                   size_t *nt_out, uint32_t *vertex_map);
+
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
 /// *bad the index of the first pose refused. *bad is k when no pose is at fault (TTD_OK, or

@@ -20,6 +20,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "io/weld.h"
+
 typedef unsigned char uchar;
 
 /* ---- context: messages and the mesh being built -------------------------------------- */
@@ -1217,4 +1219,78 @@ const char *ttd_meshfile_format_name(ttd_meshfile_format f)
 {
     static const char *const names[TTD_MESHFILE_FORMAT_COUNT] = {"obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary"};
     return (unsigned)f < TTD_MESHFILE_FORMAT_COUNT ? names[f] : NULL;
+}
+
+int ttd_meshfile_weld(ttd_meshfile *m, double tolerance, size_t *dropped, char *err, size_t errsize)
+{
+    if (err && errsize)
+        err[0] = '\0';
+    if (dropped)
+        *dropped = 0;
+    if (!m || !m->verts || m->nv == 0 || (m->nt > 0 && !m->tris)) {
+        if (err && errsize)
+            snprintf(err, errsize, "weld: no mesh given");
+        return -1;
+    }
+    if (!(tolerance >= 0) || !isfinite(tolerance)) {
+        if (err && errsize)
+            snprintf(err, errsize, "weld: the tolerance %g is not a finite number >= 0", tolerance);
+        return -1;
+    }
+    uint32_t *map = malloc(m->nv * sizeof *map), *rep = malloc(m->nv * sizeof *rep);
+    double *v = malloc(3 * m->nv * sizeof *v);
+    float *vf = m->verts_f ? malloc(3 * m->nv * sizeof *vf) : NULL;
+    size_t n = 0;
+    if (!map || !rep || !v || (m->verts_f && !vf) || ttd_weld_classes(m->verts, m->nv, tolerance, map, rep, &n) != 0) {
+        free(map);
+        free(rep);
+        free(v);
+        free(vf);
+        if (err && errsize)
+            snprintf(err, errsize, "weld: out of memory (%zu vertices)", m->nv);
+        return -1;
+    }
+    size_t k = 0;
+    for (size_t t = 0; t < m->nt; ++t) {
+        uint32_t a = map[m->tris[3 * t]], b = map[m->tris[3 * t + 1]], c = map[m->tris[3 * t + 2]];
+        if (a != b && b != c && a != c)
+            ++k;
+    }
+    if (k == 0) {
+        if (err && errsize)
+            snprintf(err, errsize, "weld: every one of the %zu triangles collapses at tolerance %g", m->nt, tolerance);
+        free(map);
+        free(rep);
+        free(v);
+        free(vf);
+        return -1;
+    }
+    k = 0;
+    for (size_t t = 0; t < m->nt; ++t) {
+        uint32_t a = map[m->tris[3 * t]], b = map[m->tris[3 * t + 1]], c = map[m->tris[3 * t + 2]];
+        if (a == b || b == c || a == c)
+            continue;
+        m->tris[3 * k] = a;
+        m->tris[3 * k + 1] = b;
+        m->tris[3 * k + 2] = c;
+        ++k;
+    }
+    /* the representative's coordinates in both precisions (its float rounded from its own text) */
+    for (size_t j = 0; j < n; ++j)
+        for (int d = 0; d < 3; ++d) {
+            v[3 * j + (size_t)d] = m->verts[3 * (size_t)rep[j] + (size_t)d] + 0.0;
+            if (vf)
+                vf[3 * j + (size_t)d] = m->verts_f[3 * (size_t)rep[j] + (size_t)d] + 0.0f;
+        }
+    free(m->verts);
+    free(m->verts_f);
+    m->verts = v;
+    m->verts_f = vf;
+    if (dropped)
+        *dropped = m->nt - k;
+    m->nv = n;
+    m->nt = k;
+    free(map);
+    free(rep);
+    return 0;
 }
