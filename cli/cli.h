@@ -59,6 +59,13 @@ int ttd_cli_parse_real(const char *s, double *out);
 /// With ortho (--orthonormalize) R is first replaced by the nearest rotation when it is within
 /// 1e-2 of orthonormal with det R > 0 (p is then changed). Shared by `ttd mesh` and `ttd scene`.
 int ttd_cli_pose_problem(double p[12], int ortho, char *err, size_t errsize);
+/// --weld TOL of the commands that read mesh files: a finite number >= 0 (0 on success, -1
+/// otherwise; nothing printed).
+int ttd_cli_parse_weld(const char *s, double *out);
+struct ttd_meshfile;
+/// Welds a mesh just read from name at tolerance tol (ttd_meshfile_weld): 0, with a note on
+/// stderr when collapsed triangles were dropped, or -1 after the reader's message.
+int ttd_cli_weld(struct ttd_meshfile *m, const char *name, double tol);
 /// Lines "built: ...", "cpu:   ...", "auto:  ..." (the instruction sets).
 void ttd_cli_print_isas(FILE *f);
 /// Warns on stderr ("COMMAND: warning: ...") when the library is ignoring TTD_ISA.

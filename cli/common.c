@@ -2,6 +2,8 @@
 /* Helpers shared by the ttd commands: messages and option values (cli/cli.h). */
 #include "cli.h"
 
+#include "ttd/meshfile.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -129,5 +131,28 @@ int ttd_cli_valued_option(const char *command, const char *const *valued, int ar
         ttd_cli_error("%s: %s needs a value", command, *opt);
         return -1;
     }
+    return 0;
+}
+
+int ttd_cli_parse_weld(const char *s, double *out)
+{
+    double v;
+    if (ttd_cli_parse_real(s, &v) != 0 || !(v >= 0))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+int ttd_cli_weld(struct ttd_meshfile *m, const char *name, double tol)
+{
+    char err[512];
+    size_t dropped = 0, nv = m->nv;
+    if (ttd_meshfile_weld(m, tol, &dropped, err, sizeof err) != 0) {
+        ttd_cli_error("%s: %s", name, err);
+        return -1;
+    }
+    if (dropped > 0)
+        ttd_cli_error("%s: --weld %g merged %zu vertices into %zu and dropped %zu collapsed triangle%s", name, tol, nv,
+                      m->nv, dropped, dropped == 1 ? "" : "s");
     return 0;
 }

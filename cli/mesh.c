@@ -151,6 +151,9 @@ static const char ttd_mesh_usage_common[] =
     "  --strict          refuse an OBJ line that is not an OBJ statement (such as FCL's header\n"
     "                    line of two counts); by default such lines are skipped, counted, and\n"
     "                    reported once on standard error\n"
+    "  --weld TOL        merge the vertices of each mesh within distance TOL of each other (chained),\n"
+    "                    dropping triangles that collapse, for STL-like files whose facets repeat\n"
+    "                    their corners with last-bit differences (docs/mesh-files.md, Welding)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
     "                    coordinates rounded once from the file's text, poses, margin and bounds\n"
     "                    parsed with strtof, the queries run in float, printed with %%.9g\n"
@@ -203,6 +206,8 @@ typedef struct ttd_mesh_args {
     int per_triangle, count;
     int orthonormalize;               /* --orthonormalize: R replaced by the nearest rotation */
     int strict;                       /* --strict: OBJ lines that are not statements refused */
+    const char *weld_s;               /* --weld TOL: vertices within TOL merged after reading */
+    double weld;
     unsigned self_flags;              /* --shared-vertex: TTD_SELF_SHARED_VERTEX */
 } ttd_mesh_args;
 
@@ -280,7 +285,7 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             continue;
         }
         static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
-                                             "--rel-tol", "--precision", "--isa",    "--threads", NULL};
+                                             "--rel-tol", "--precision", "--isa",    "--threads", "--weld", NULL};
         const char *opt, *val;
         if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
@@ -292,7 +297,10 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             a->pose = val;
         else if (strcmp(opt, "--poses") == 0)
             a->poses_path = val;
-        else if (strcmp(opt, "--margin") == 0) {
+        else if (strcmp(opt, "--weld") == 0) {
+            a->weld_s = val;
+            bad = ttd_cli_parse_weld(val, &a->weld) != 0;
+        } else if (strcmp(opt, "--margin") == 0) {
             if (a->cmd == TTD_MESH_DISTANCE) {
                 ttd_cli_error("%s: --margin is an option of mesh contacts and mesh collide", name);
                 return -1;
@@ -559,6 +567,8 @@ static int ttd_mesh_load(const ttd_mesh_args *a, const char *path, ttd_meshfile 
                       one ? "line that is not an OBJ statement" : "lines that are not OBJ statements", name,
                       file->first_skipped_line);
     }
+    if (a->weld_s && ttd_cli_weld(file, strcmp(path, "-") == 0 ? "<stdin>" : path, a->weld) != 0)
+        return TTD_EXIT_INPUT;
     ttd_status st = a->use_float ? ttd_mesh_create_f(&a->opt, file->verts_f, file->nv, file->tris, file->nt, out)
                                  : ttd_mesh_create_d(&a->opt, file->verts, file->nv, file->tris, file->nt, out);
     if (st != TTD_OK) {

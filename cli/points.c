@@ -60,6 +60,9 @@ static const char ttd_points_usage[] =
     "                    rounded once to float, the queries run in float\n"
     "  --isa I           an instruction set (ttd info lists them; default auto)\n"
     "  --threads N       worker threads, 0 = every core (default); results do not depend on N\n"
+    "  --weld TOL        merge the mesh's vertices within distance TOL of each other (chained),\n"
+    "                    dropping collapsed triangles: an STL-like file becomes closed\n"
+    "                    (docs/mesh-files.md, Welding)\n"
     "  --help            this text\n"
     "\n"
     "Exit status: 0 done; 1 a file that cannot be read or is malformed (nothing printed), a point\n"
@@ -74,6 +77,8 @@ typedef struct points_args {
     double pose[12], upper_bound, origin[3], step[3];
     size_t dims[3];
     int has_origin, has_step, has_dims;
+    int has_weld; /* --weld TOL: the mesh's vertices within TOL merged after reading */
+    double weld;
 } points_args;
 
 /* n numbers (1..3) separated by blanks from s, all finite; want_one_or_three accepts 1 (repeated). */
@@ -123,7 +128,7 @@ static int parse_args(int argc, char **argv, points_args *a)
     }
     a->cmd = (points_cmd)cmd;
     static const char *const valued[] = {"--pose", "--upper-bound", "--precision", "--isa", "--threads",
-                                         "--origin", "--step", "--dims", "--out", NULL};
+                                         "--origin", "--step", "--dims", "--out", "--weld", NULL};
     int operands = 0;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
@@ -172,6 +177,9 @@ static int parse_args(int argc, char **argv, points_args *a)
                 a->has_dims = 1;
             } else if (strcmp(opt, "--out") == 0) {
                 a->out_path = val;
+            } else if (strcmp(opt, "--weld") == 0) {
+                bad = ttd_cli_parse_weld(val, &a->weld);
+                a->has_weld = 1;
             }
         }
         if (bad) {
@@ -491,6 +499,11 @@ int ttd_cli_points(int argc, char **argv)
     char err[1024];
     if (ttd_meshfile_read(a.mesh_path, a.use_float ? TTD_MESHFILE_FLOAT : 0, &file, err, sizeof err) != 0) {
         ttd_cli_error("%s", err);
+        free(P.d), free(P.f);
+        return TTD_EXIT_INPUT;
+    }
+    if (a.has_weld && ttd_cli_weld(&file, strcmp(a.mesh_path, "-") == 0 ? "<stdin>" : a.mesh_path, a.weld) != 0) {
+        ttd_meshfile_free(&file);
         free(P.d), free(P.f);
         return TTD_EXIT_INPUT;
     }

@@ -130,6 +130,9 @@ static const char ttd_scene_usage_options[] =
     "  --solid           every body a solid, as a 'solid BODY' line for each would make it\n"
     "  --strict          refuse an OBJ line that is not an OBJ statement (skipped and reported once\n"
     "                    per file by default)\n"
+    "  --weld TOL        merge each mesh's vertices within distance TOL of each other (chained),\n"
+    "                    dropping collapsed triangles, before the bodies are made\n"
+    "                    (docs/mesh-files.md, Welding)\n"
     "  --precision P     double (default; printed with %%.17g) or float: meshes read with float\n"
     "                    coordinates rounded once from the file's text, poses and margin parsed with\n"
     "                    strtof, the queries run in float, printed with %%.9g\n"
@@ -168,6 +171,8 @@ typedef struct ttd_scene_args {
     size_t max_points;
     int count, orthonormalize, strict, names, stats, solid, nearest;
     long repeat;   /* --repeat: runs of each query (the last one printed) */
+    const char *weld_s; /* --weld TOL: every mesh's vertices within TOL merged after reading */
+    double weld;
 } ttd_scene_args;
 
 /* Options of `ttd scene CMD`; --name value and --name=value both work. Returns 0, 1 after
@@ -223,7 +228,7 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             continue;
         }
         static const char *const valued[] = {"--margin", "--max-points", "--motion", "--precision",
-                                             "--isa",    "--threads",    "--repeat", NULL};
+                                             "--isa",    "--threads",    "--repeat", "--weld", NULL};
         const char *opt, *val;
         if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
             return -1;
@@ -235,6 +240,10 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             a->motion_path = val;
         else if (strcmp(opt, "--repeat") == 0)
             bad = ttd_cli_parse_int(val, 1, 1L << 20, &a->repeat);
+        else if (strcmp(opt, "--weld") == 0) {
+            a->weld_s = val;
+            bad = ttd_cli_parse_weld(val, &a->weld);
+        }
         else if (strcmp(opt, "--max-points") == 0) {
             if (a->cmd != TTD_SCENE_MANIFOLD) {
                 ttd_cli_error("%s: --max-points is an option of scene manifold only", name);
@@ -418,6 +427,14 @@ static int ttd_scene_mesh_line(ttd_scene_state *st, unsigned long long line, con
             ttd_cli_error("%s: skipped %zu %s, first at %s:%zu (--strict refuses them)", path, mf.skipped_lines,
                           one ? "line that is not an OBJ statement" : "lines that are not OBJ statements", path,
                           mf.first_skipped_line);
+        }
+        char werr[512];
+        size_t dropped = 0;
+        if (a->weld_s && ttd_meshfile_weld(&mf, a->weld, &dropped, werr, sizeof werr) != 0) {
+            ttd_scene_bad_line(st, st->fname, line, "mesh '%s': %s: %s", m->name, path, werr);
+            ttd_meshfile_free(&mf);
+            free(path);
+            return 0;
         }
         ttd_status s = a->use_float ? ttd_mesh_create_f(&a->opt, mf.verts_f, mf.nv, mf.tris, mf.nt, &m->mesh)
                                     : ttd_mesh_create_d(&a->opt, mf.verts, mf.nv, mf.tris, mf.nt, &m->mesh);

@@ -764,6 +764,38 @@ run 1 mesh distance "$A" "$DIR/open.obj" --solid; err_has "not closed" "--solid 
 run 2 mesh contacts "$A" "$DIR/inner.obj" --margin 1 --solid; err_has "--solid" "contacts --solid"
 pass "--solid: a mesh inside another at 0 as solids, 0.4 as surfaces; open meshes refused"
 
+# ---- --weld ----------------------------------------------------------------------------------
+# The cube as an STL soup whose facets write their corners with last-bit differences (1 as
+# 1.0000000000000002 or 0.99999999999999989, 0 as -0 or 1e-17, by facet): open as read (no two
+# facets share a vertex with the same bits), closed after --weld 1e-9.
+awk -v file="$DIR/cube.mesh" "$LIB"'function jit(x, t, c, d,    k) { k = (t * 7 + c * 3 + d) % 3
+        if (x == 1) return k == 0 ? "1" : k == 1 ? "1.0000000000000002" : "0.99999999999999989"
+        return k == 0 ? "-0" : k == 1 ? "0" : "1e-17" }
+    BEGIN { load(1, file); print "solid soup"
+        for (t = 0; t < NT[1]; t++) { print " facet normal 0 0 0"; print "  outer loop"
+            for (c = 0; c < 3; c++) { i = TI[1, t, c]; print "   vertex", jit(VX[1, i], t, c, 0), jit(VY[1, i], t, c, 1), jit(VZ[1, i], t, c, 2) }
+            print "  endloop"; print " endfacet" }
+        print "endsolid soup" }' > "$DIR/soup.stl"
+run 1 mesh distance "$DIR/soup.stl" "$DIR/inner.obj" --solid; err_has "not closed" "--solid on the unwelded soup"
+run 0 mesh distance "$DIR/soup.stl" "$DIR/inner.obj" --solid --weld 1e-9
+expect "welded soup, solids" "$(cat "$DIR/out")" '0 0.4 0.4 0.4 0.4 0.4 0.4 -1 0'
+run 0 mesh distance "$DIR/soup.stl" "$DIR/inner.obj" --solid --weld=1e-9 --precision float
+expect "welded soup, solids, float" "$(cat "$DIR/out")" '0 0.4 0.4 0.4 0.4 0.4 0.4 -1 0' 1e-7
+run 0 mesh distance "$A" "$DIR/inner.obj" --weld 0
+cmp -s "$DIR/out" "$("$TTD" mesh distance "$A" "$DIR/inner.obj" > "$DIR/out2"; echo "$DIR/out2")" || fail "--weld 0 changed a welded mesh"
+run 1 mesh distance "$DIR/soup.stl" "$DIR/inner.obj" --weld 5; err_has "collapses" "--weld larger than the mesh"
+run 2 mesh distance "$A" "$B" --weld -1; err_has "--weld" "--weld -1"
+run 2 mesh distance "$A" "$B" --weld nan; err_has "--weld" "--weld nan"
+printf '0.5 0.5 0.5\n' > "$DIR/mid.txt"
+run 0 points signed "$DIR/soup.stl" "$DIR/mid.txt" --weld 1e-9
+expect "points signed --weld" "$(cat "$DIR/out")" '-0.5 * * * *'
+printf 'mesh c %s\nmesh t %s\nbody c 1 0 0 0  0 1 0 0  0 0 1 0\nbody t 1 0 0 0  0 1 0 0  0 0 1 0\n' \
+    "$DIR/soup.stl" "$DIR/inner.obj" > "$DIR/soup.scene"
+run 1 scene collide "$DIR/soup.scene" --solid; err_has "closed" "scene --solid on the unwelded soup"
+run 0 scene collide "$DIR/soup.scene" --solid --weld 1e-9
+[ "$(cat "$DIR/out")" = "0 1 -1 0" ] || fail "scene collide --solid --weld: $(cat "$DIR/out")"
+pass "--weld: an STL soup of the cube closed by welding (solids, float, points signed, scene), its errors"
+
 # ---- self-contacts, self-collide ----------------------------------------------------------
 # Two 12 x 12 grids 0.01 apart (each its own vertices), the upper one with a corner bent down
 # through the lower: self-contacts against `ttd mesh contacts S S` (the same pairs, computed the
