@@ -444,18 +444,20 @@ static PyGetSetDef ttd_py_mesh_getset[] = {
 
 static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwargs);
 
-/* Mesh.from_file(path, *, precision='float64', threads=0, strict=False): the file read by the
- * library's reader, then the mesh built (the reader's precision is the mesh's). */
+/* Mesh.from_file(path, *, precision='float64', threads=0, strict=False, weld=None): the file read
+ * by the library's reader (welded when asked), then the mesh built (the reader's precision is the
+ * mesh's). */
 static PyObject *ttd_py_mesh_from_file(PyObject *cls, PyObject *args, PyObject *kwargs)
 {
-    static char *kwlist[] = {"path", "precision", "threads", "strict", NULL};
-    PyObject *path, *threads = NULL;
+    static char *kwlist[] = {"path", "precision", "threads", "strict", "weld", NULL};
+    PyObject *path, *threads = NULL, *weld = Py_None;
     const char *precision = "float64";
     int strict = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$sOp:from_file", kwlist, &path, &precision, &threads, &strict))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$sOpO:from_file", kwlist, &path, &precision, &threads, &strict,
+                                     &weld))
         return NULL;
-    PyObject *largs = Py_BuildValue("(O)", path), *lkw = Py_BuildValue("{s:s,s:O}", "precision", precision, "strict",
-                                                                       strict ? Py_True : Py_False);
+    PyObject *largs = Py_BuildValue("(O)", path), *lkw = Py_BuildValue("{s:s,s:O,s:O}", "precision", precision, "strict",
+                                                                       strict ? Py_True : Py_False, "weld", weld);
     PyObject *read = largs && lkw ? ttd_py_load_mesh(NULL, largs, lkw) : NULL, *mesh = NULL;
     Py_XDECREF(largs);
     Py_XDECREF(lkw);
@@ -477,8 +479,9 @@ static PyMethodDef ttd_py_mesh_type_methods[] = {
     {"set_vertices", (PyCFunction)(void (*)(void))ttd_py_mesh_set_vertices, METH_VARARGS | METH_KEYWORDS,
      ttd_py_mesh_set_vertices_doc},
     {"from_file", (PyCFunction)(void (*)(void))ttd_py_mesh_from_file, METH_CLASS | METH_VARARGS | METH_KEYWORDS,
-     "from_file(path, *, precision='float64', threads=0, strict=False)\n--\n\n"
-     "The mesh in an OBJ, STL or PLY file (ttd.load_mesh reads it), built in that precision."},
+     "from_file(path, *, precision='float64', threads=0, strict=False, weld=None)\n--\n\n"
+     "The mesh in an OBJ, STL or PLY file (ttd.load_mesh reads it), built in that precision; with\n"
+     "weld=tol its vertices within tol merged first (ttd.weld), as an STL file needs to be closed."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -1423,29 +1426,125 @@ done:
     return result;
 }
 
+/* ---- welding ----------------------------------------------------------------------------- */
+
+PyDoc_STRVAR(ttd_py_weld_doc,
+"weld(vertices, faces, tolerance, *, precision=None, return_index=False)\n"
+"--\n\n"
+"Merges vertices within tolerance of each other into one, for meshes whose triangles carry their\n"
+"own copies of shared corners (STL, many CAD exports); include/ttd/ttd.h, ttd_mesh_weld_d, and\n"
+"docs/mesh-files.md say exactly what is merged and kept:\n"
+"- within: Euclidean distance <= tolerance; tolerance 0 merges equal values (-0 and +0 too);\n"
+"- chained: a near b and b near c puts a, b, c in one vertex; the result does not depend on the\n"
+"  vertices' order;\n"
+"- kept: each class's lexicographically smallest vertex (x, then y, then z), exactly, zero as +0;\n"
+"  classes numbered by their first vertex in the input;\n"
+"- faces renumbered in their order; a face with two corners in one class is dropped (so the\n"
+"  number dropped is len(faces) - len(new faces)).\n\n"
+"vertices, faces and precision as for ttd.Mesh (float32 vertices are welded in float32).\n"
+"tolerance : a real >= 0, finite.\n"
+"Returns (vertices, faces), new arrays, and with return_index=True also index, an (n,) uint32\n"
+"array: each old vertex's new index. Raises ValueError (a shape, a non-finite coordinate, a\n"
+"tolerance that is negative or not finite), IndexError (an index out of range), TypeError.");
+
+static PyObject *ttd_py_weld(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"vertices", "faces", "tolerance", "precision", "return_index", NULL};
+    PyObject *v_obj, *f_obj, *tol_obj, *precision = NULL, *result = NULL;
+    int return_index = 0, t;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|$Op:weld", kwlist, &v_obj, &f_obj, &tol_obj, &precision,
+                                     &return_index))
+        return NULL;
+    double tol;
+    if (ttd_py_real_arg(tol_obj, "tolerance", &tol) < 0 || ttd_py_precision(precision, &t) < 0)
+        return NULL;
+    if (!(tol >= 0) || !isfinite(tol)) {
+        PyErr_Format(PyExc_ValueError, "tolerance must be a finite number >= 0, not %R", tol_obj);
+        return NULL;
+    }
+    PyArrayObject *v = ttd_py_mesh_vertices(v_obj, t, &t), *f = NULL, *vo = NULL, *fo = NULL, *map = NULL;
+    if (v == NULL)
+        return NULL;
+    if ((f = ttd_py_mesh_faces(f_obj, PyArray_DIM(v, 0))) == NULL)
+        goto done;
+    const npy_intp nv = PyArray_DIM(v, 0), nt = PyArray_DIM(f, 0);
+    npy_intp vd[2] = {nv, 3}, fd[2] = {nt, 3}, md[1] = {nv};
+    if ((vo = (PyArrayObject *)PyArray_SimpleNew(2, vd, t)) == NULL ||
+        (fo = (PyArrayObject *)PyArray_SimpleNew(2, fd, NPY_UINT32)) == NULL ||
+        (map = (PyArrayObject *)PyArray_SimpleNew(1, md, NPY_UINT32)) == NULL)
+        goto done;
+    size_t nvo = 0, nto = 0;
+    ttd_status st;
+    const float tf = ttd_py_to_float(tol);
+    Py_BEGIN_ALLOW_THREADS
+    st = t == NPY_DOUBLE ? ttd_mesh_weld_d(PyArray_DATA(v), (size_t)nv, PyArray_DATA(f), (size_t)nt, tol,
+                                           PyArray_DATA(vo), &nvo, PyArray_DATA(fo), &nto, PyArray_DATA(map))
+                         : ttd_mesh_weld_f(PyArray_DATA(v), (size_t)nv, PyArray_DATA(f), (size_t)nt, tf,
+                                           PyArray_DATA(vo), &nvo, PyArray_DATA(fo), &nto, PyArray_DATA(map));
+    Py_END_ALLOW_THREADS
+    if (st != TTD_OK) {
+        if (ttd_py_raise_fatal(st, NULL) == 0)
+            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d welding", (int)st);
+        goto done;
+    }
+    /* the arrays cut to the classes and the faces kept (copies: a view would keep the rest) */
+    {
+        PyObject *vs = PySequence_GetSlice((PyObject *)vo, 0, (Py_ssize_t)nvo);
+        PyObject *fs = PySequence_GetSlice((PyObject *)fo, 0, (Py_ssize_t)nto);
+        PyObject *vc = vs ? PyArray_NewCopy((PyArrayObject *)vs, NPY_CORDER) : NULL;
+        PyObject *fc = fs ? PyArray_NewCopy((PyArrayObject *)fs, NPY_CORDER) : NULL;
+        if (vc && fc)
+            result = return_index ? PyTuple_Pack(3, vc, fc, (PyObject *)map) : PyTuple_Pack(2, vc, fc);
+        Py_XDECREF(vs);
+        Py_XDECREF(fs);
+        Py_XDECREF(vc);
+        Py_XDECREF(fc);
+    }
+done:
+    Py_XDECREF(v);
+    Py_XDECREF(f);
+    Py_XDECREF(vo);
+    Py_XDECREF(fo);
+    Py_XDECREF(map);
+    return result;
+}
+
 /* ---- mesh files ---------------------------------------------------------------------------- */
 
 PyDoc_STRVAR(ttd_py_load_mesh_doc,
-"load_mesh(path, *, precision='float64', strict=False)\n"
+"load_mesh(path, *, precision='float64', strict=False, weld=None)\n"
 "--\n\n"
 "Reads a triangle mesh from an OBJ, STL (ASCII or binary) or PLY (ASCII or binary) file, the\n"
 "format told by the content, with the C library's reader (include/ttd/meshfile.h,\n"
 "docs/mesh-files.md): polygons fan-triangulated, STL's repeated vertices merged.\n\n"
 "precision : 'float64' (default) or 'float32' (coordinates rounded once from the file's text).\n"
-"strict : bool: refuse OBJ lines that are not OBJ statements (default: skip them).\n\n"
-"Returns (vertices, faces, skipped): vertices (N, 3) of that dtype, faces (M, 3) uint32, and\n"
-"skipped, the number of OBJ lines skipped. Raises ValueError naming FILE:LINE or the byte\n"
+"strict : bool: refuse OBJ lines that are not OBJ statements (default: skip them).\n"
+"weld : None (default) or a tolerance >= 0: the vertices within it merged as ttd.weld does,\n"
+"decided on the double coordinates (float32 ones are those of the vertex kept).\n\n"
+"Returns (vertices, faces, skipped, dropped): vertices (N, 3) of that dtype, faces (M, 3)\n"
+"uint32, skipped, the number of OBJ lines skipped, and dropped, the faces welding dropped. Raises ValueError naming FILE:LINE or the byte\n"
 "(a malformed or unreadable file), TypeError for a path that is not str or os.PathLike.");
 
 static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kwlist[] = {"path", "precision", "strict", NULL};
-    PyObject *path_obj, *bytes = NULL;
+    static char *kwlist[] = {"path", "precision", "strict", "weld", NULL};
+    PyObject *path_obj, *bytes = NULL, *weld_obj = Py_None;
     const char *precision = "float64";
     int strict = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$sp:load_mesh", kwlist, &path_obj, &precision, &strict))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$spO:load_mesh", kwlist, &path_obj, &precision, &strict,
+                                     &weld_obj))
         return NULL;
+    double weld = 0;
+    if (weld_obj != Py_None) {
+        if (ttd_py_real_arg(weld_obj, "weld", &weld) < 0)
+            return NULL;
+        if (!(weld >= 0) || !isfinite(weld)) {
+            PyErr_Format(PyExc_ValueError, "weld must be None or a finite tolerance >= 0, not %R", weld_obj);
+            return NULL;
+        }
+    }
     const int f32 = strcmp(precision, "float32") == 0;
     if (!f32 && strcmp(precision, "float64") != 0) {
         PyErr_Format(PyExc_ValueError, "precision must be 'float64' or 'float32', not '%s'", precision);
@@ -1454,12 +1553,18 @@ static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwar
     if (!PyUnicode_FSConverter(path_obj, &bytes))
         return NULL;
     ttd_meshfile m;
-    char err[512];
+    char err[512], werr[256];
+    size_t dropped = 0;
     int rc;
     const char *path = PyBytes_AS_STRING(bytes);
     Py_BEGIN_ALLOW_THREADS
     rc = ttd_meshfile_read(path, (f32 ? TTD_MESHFILE_FLOAT : 0) | (strict ? TTD_MESHFILE_STRICT : 0), &m, err,
                            sizeof err);
+    if (rc == 0 && weld_obj != Py_None && ttd_meshfile_weld(&m, weld, &dropped, werr, sizeof werr) != 0) {
+        snprintf(err, sizeof err, "%s: %s", path, werr);
+        ttd_meshfile_free(&m);
+        rc = -1;
+    }
     Py_END_ALLOW_THREADS
     Py_DECREF(bytes);
     if (rc != 0) {
@@ -1476,7 +1581,7 @@ static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwar
         else
             memcpy(PyArray_DATA(v), m.verts, 3 * m.nv * sizeof(double));
         memcpy(PyArray_DATA(t), m.tris, 3 * m.nt * sizeof(uint32_t));
-        result = Py_BuildValue("(OOn)", v, t, (Py_ssize_t)m.skipped_lines);
+        result = Py_BuildValue("(OOnn)", v, t, (Py_ssize_t)m.skipped_lines, (Py_ssize_t)dropped);
     }
     Py_XDECREF(v);
     Py_XDECREF(t);
@@ -1627,6 +1732,7 @@ static PyObject *ttd_py_mesh_self_collide(PyObject *self, PyObject *args, PyObje
 
 PyMethodDef ttd_py_mesh_methods[] = {
     {"load_mesh", (PyCFunction)(void (*)(void))ttd_py_load_mesh, METH_VARARGS | METH_KEYWORDS, ttd_py_load_mesh_doc},
+    {"weld", (PyCFunction)(void (*)(void))ttd_py_weld, METH_VARARGS | METH_KEYWORDS, ttd_py_weld_doc},
     {"mesh_distance", (PyCFunction)(void (*)(void))ttd_py_mesh_distance, METH_VARARGS | METH_KEYWORDS,
      ttd_py_mesh_distance_doc},
     {"mesh_contacts", (PyCFunction)(void (*)(void))ttd_py_mesh_contacts, METH_VARARGS | METH_KEYWORDS,

@@ -93,6 +93,7 @@ try:
         isa_available,
         isa_lanes,
         isa_selected,
+        weld,
         mesh_self_collide,
         mesh_self_contacts,
         version,
@@ -228,4 +229,5 @@ __all__ = [
     "orthonormalize",
     "pose",
     "version",
+    "weld",
 ]

@@ -259,14 +259,15 @@ for _f in (mesh_distance, mesh_contacts, mesh_closest, mesh_collide):
 del _f, _doc
 
 
-def load_mesh(path: Any, *, precision: str = "float64", strict: bool = False
+def load_mesh(path: Any, *, precision: str = "float64", strict: bool = False, weld: Optional[float] = None
               ) -> Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32]]:
     """(vertices, faces) of the OBJ, STL or PLY file at path, read by the C library's reader
     (docs/mesh-files.md): vertices (N, 3) float64 (or float32 with precision="float32"),
     faces (M, 3) uint32. OBJ lines that are not OBJ statements (FCL's header line of two counts,
-    say) are skipped with a warning saying how many (strict=True refuses them). A malformed
-    file is a ValueError naming FILE:LINE or the byte."""
-    vertices, faces, skipped = _ttd.load_mesh(path, precision=precision, strict=strict)
+    say) are skipped with a warning saying how many (strict=True refuses them). weld=tol merges
+    the vertices within tol of each other as ttd.weld does (an STL soup becomes closed). A
+    malformed file is a ValueError naming FILE:LINE or the byte."""
+    vertices, faces, skipped, _dropped = _ttd.load_mesh(path, precision=precision, strict=strict, weld=weld)
     if skipped:
         import warnings
 
