@@ -297,7 +297,7 @@ static int obj_errors(void)
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "bad.obj:4: face has 2 vertices, at least 3 needed", 0},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/4/5/6\n", "bad.obj:4: bad vertex reference '3/4/5/6'", 0},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "bad.obj:4: bad vertex reference 'x'", 0},
-        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/\n", "bad.obj:4: bad vertex reference '3/'", 0},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/x\n", "bad.obj:4: bad vertex reference '3/x'", 0},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n", "bad.obj:4: bad vertex reference", 0},
         {"v 0 0 0\nv 1 0\n", "bad.obj:2: vertex has 2 coordinates, 3 needed", 0},
         {"v 0 0 0\n# c\nv 1 nan 0\n", "bad.obj:3: coordinate 'nan' is not finite", 0},

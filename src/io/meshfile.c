@@ -20,28 +20,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "io/reader.h"
 #include "io/weld.h"
 
-typedef unsigned char uchar;
 
 /* ---- context: messages and the mesh being built -------------------------------------- */
 
-typedef struct ctx {
-    const char *name;
-    char *err;
-    size_t errsize;
-    int want_float;
-    double *v;
-    float *vf;
-    size_t nv, cap_v;
-    uint32_t *t;
-    size_t nt, cap_t;
-    uint32_t *merge;   /* STL only: open-addressing table of vertex indices, UINT32_MAX empty */
-    size_t merge_mask; /* table size - 1 */
-    int strict;        /* TTD_MESHFILE_STRICT */
-    size_t skipped, first_skipped; /* OBJ: lines that are not statements, and the first's number */
-    char why[96];      /* appended to every message: why the format was assumed, or "" */
-} ctx;
+/* ctx (the messages and the mesh being built) is in io/reader.h, shared with io/gltf.c. */
 
 static int vfail(ctx *c, const char *where, const char *fmt, va_list ap)
 {
@@ -178,6 +163,31 @@ static int push_t(ctx *c, uint32_t a, uint32_t b, uint32_t d)
     t[2] = d;
     return 0;
 }
+
+/* The helpers io/reader.h exports to the other readers. */
+int ttd_io_fail(ctx *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vfail(c, "", fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int ttd_io_fail_at(ctx *c, size_t off, const char *fmt, ...)
+{
+    char where[40];
+    snprintf(where, sizeof where, ": byte %zu", off);
+    va_list ap;
+    va_start(ap, fmt);
+    vfail(c, where, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int ttd_io_push_v(ctx *c, const double *x, const float *f) { return push_v(c, x, f); }
+int ttd_io_push_t(ctx *c, uint32_t a, uint32_t b, uint32_t d) { return push_t(c, a, b, d); }
+int ttd_io_oom(ctx *c) { return oom(c); }
 
 /* ---- STL's vertex merging: bitwise-identical double coordinates become one vertex ------ */
 /* The key is the doubles alone, so the vertex numbering does not depend on want_float. Two
@@ -364,16 +374,17 @@ static int obj_ref(const uchar *p, size_t len, long long *idx)
         return -1;
     if (k == len)
         return 0; /* i */
+    /* j and k may be empty (i/, i//, i/j/, i//k: written by some exporters, read by others) */
     size_t j0 = ++k;
     while (k < len && p[k] != '/')
         ++k;
     long long ignored;
-    if (k == len) /* i/j */
-        return parse_int(p + j0, k - j0, -(1ll << 62), 1ll << 62, &ignored);
     if (k > j0 && parse_int(p + j0, k - j0, -(1ll << 62), 1ll << 62, &ignored) != 0)
-        return -1; /* i/j/k with a bad j */
-    ++k;           /* i//k or i/j/k */
-    return parse_int(p + k, len - k, -(1ll << 62), 1ll << 62, &ignored);
+        return -1; /* a bad j */
+    if (k == len) /* i/j or i/ */
+        return 0;
+    ++k; /* i//k, i/j/k, i// or i/j/ */
+    return k == len ? 0 : parse_int(p + k, len - k, -(1ll << 62), 1ll << 62, &ignored);
 }
 
 /// The next blank-separated token of [*p, end); 0 at the end of the line or at a comment.
@@ -410,10 +421,49 @@ static int parse_obj(ctx *c, const uchar *data, size_t size)
     if (size >= 3 && p[0] == 0xEF && p[1] == 0xBB && p[2] == 0xBF)
         p += 3;
     char q[128];
-    for (size_t line = 1; p < end; ++line) {
+    uchar *joined = NULL; /* a statement continued over lines by a final '\\', joined */
+    size_t jcap = 0;
+    int rc = 0;
+    for (size_t line = 1, next = 1; p < end; line = next) {
         const uchar *nl = memchr(p, '\n', (size_t)(end - p));
         const uchar *le = nl ? nl : end, *s = p;
         p = nl ? nl + 1 : end;
+        ++next;
+        const uchar *last = le;
+        while (last > s && last[-1] == '\r')
+            --last;
+        if (last > s && last[-1] == '\\' && p < end) {
+            /* the lines up to one that does not end in '\\', each backslash a blank */
+            size_t jn = 0;
+            for (;;) {
+                size_t part = (size_t)(last - s);
+                if (jn + part + 1 > jcap) {
+                    size_t ncap = 2 * (jn + part + 1) + 64;
+                    uchar *nj = realloc(joined, ncap);
+                    if (!nj) {
+                        rc = oom(c);
+                        goto out;
+                    }
+                    joined = nj;
+                    jcap = ncap;
+                }
+                memcpy(joined + jn, s, part);
+                jn += part;
+                if (!(part > 0 && s[part - 1] == '\\') || p >= end)
+                    break;
+                joined[jn - 1] = ' ';
+                nl = memchr(p, '\n', (size_t)(end - p));
+                s = p;
+                le = nl ? nl : end;
+                p = nl ? nl + 1 : end;
+                ++next;
+                last = le;
+                while (last > s && last[-1] == '\r')
+                    --last;
+            }
+            s = joined;
+            le = joined + jn;
+        }
         const uchar *kw;
         size_t kwlen;
         if (!line_token(&s, le, &kw, &kwlen))
@@ -424,13 +474,19 @@ static int parse_obj(ctx *c, const uchar *data, size_t size)
             for (int k = 0; k < 3; ++k) {
                 const uchar *tk;
                 size_t tl;
-                if (!line_token(&s, le, &tk, &tl))
-                    return fail_line(c, line, "vertex has %d coordinates, 3 needed", k);
-                if (parse_coord(c, tk, tl, line, x + k, f + k) != 0)
-                    return -1;
+                if (!line_token(&s, le, &tk, &tl)) {
+                    rc = fail_line(c, line, "vertex has %d coordinates, 3 needed", k);
+                    goto out;
+                }
+                if (parse_coord(c, tk, tl, line, x + k, f + k) != 0) {
+                    rc = -1;
+                    goto out;
+                }
             }
-            if (push_v(c, x, f) != 0) /* further numbers (w, or r g b) are ignored */
-                return -1;
+            if (push_v(c, x, f) != 0) { /* further numbers (w, or r g b) are ignored */
+                rc = -1;
+                goto out;
+            }
         } else if (tok_is(kw, kwlen, "f", 0)) {
             const uchar *tk;
             size_t tl;
@@ -438,33 +494,47 @@ static int parse_obj(ctx *c, const uchar *data, size_t size)
             size_t n = 0;
             while (line_token(&s, le, &tk, &tl)) {
                 long long i;
-                if (obj_ref(tk, tl, &i) != 0)
-                    return fail_line(c, line, "bad vertex reference '%s' (expected i, i/j, i//k or i/j/k)", quote(tk, tl, q));
-                if (i == 0)
-                    return fail_line(c, line, "face index 0 is invalid (OBJ indices start at 1)");
-                if ((i > 0 && (unsigned long long)i > c->nv) || (i < 0 && (unsigned long long)-i > c->nv))
-                    return fail_line(c, line, "face index %lld out of range (the file has %zu vertices so far)", i, c->nv);
+                if (obj_ref(tk, tl, &i) != 0) {
+                    rc = fail_line(c, line, "bad vertex reference '%s' (expected i, i/j, i//k or i/j/k)", quote(tk, tl, q));
+                    goto out;
+                }
+                if (i == 0) {
+                    rc = fail_line(c, line, "face index 0 is invalid (OBJ indices start at 1)");
+                    goto out;
+                }
+                if ((i > 0 && (unsigned long long)i > c->nv) || (i < 0 && (unsigned long long)-i > c->nv)) {
+                    rc = fail_line(c, line, "face index %lld out of range (the file has %zu vertices so far)", i, c->nv);
+                    goto out;
+                }
                 uint32_t v = (uint32_t)(i > 0 ? (size_t)i - 1 : c->nv - (size_t)-i);
                 if (n == 0)
                     first = v;
-                else if (n >= 2 && push_t(c, first, prev, v) != 0)
-                    return -1;
+                else if (n >= 2 && push_t(c, first, prev, v) != 0) {
+                    rc = -1;
+                    goto out;
+                }
                 prev = v;
                 ++n;
             }
-            if (n < 3)
-                return fail_line(c, line, "face has %zu vertices, at least 3 needed", n);
+            if (n < 3) {
+                rc = fail_line(c, line, "face has %zu vertices, at least 3 needed", n);
+                goto out;
+            }
         } else if (!is_identifier(kw, kwlen)) {
             /* Not a statement (FCL's test meshes begin with a line of two counts): skipped and
              * counted, as FCL's loader, tinyobjloader and trimesh skip it; refused when strict. */
-            if (c->strict)
-                return fail_line(c, line, "unexpected '%s' (not an OBJ statement)", quote(kw, kwlen, q));
+            if (c->strict) {
+                rc = fail_line(c, line, "unexpected '%s' (not an OBJ statement)", quote(kw, kwlen, q));
+                goto out;
+            }
             if (c->skipped++ == 0)
                 c->first_skipped = line;
         }
         /* any other statement (vt vn vp l p o g s usemtl mtllib ...) is ignored */
     }
-    return 0;
+out:
+    free(joined);
+    return rc;
 }
 
 /* ---- STL --------------------------------------------------------------------------- */
@@ -1060,18 +1130,189 @@ static int parse_ply(ctx *c, const uchar *data, size_t size, ttd_meshfile_format
     return rc;
 }
 
+/* ---- OFF --------------------------------------------------------------------------- */
+/* The header keyword [ST][C][N]OFF (texture coordinates, colours, normals: numbers after x y z
+ * on a vertex line, ignored), the counts nv nf [ne] (on the header line or the next), nv vertex
+ * lines (x y z first), nf face lines (n, then n indices from 0, then an optional colour). '#'
+ * starts a comment; blank lines are skipped. 4OFF, nOFF and binary OFF are refused by name. */
+
+/* The next line with a token: [*s, *le) and its number; 0 at the end of the data. */
+static int off_line(const uchar **p, const uchar *end, size_t *line, const uchar **s, const uchar **le)
+{
+    while (*p < end) {
+        const uchar *nl = memchr(*p, '\n', (size_t)(end - *p));
+        *s = *p;
+        *le = nl ? nl : end;
+        *p = nl ? nl + 1 : end;
+        ++*line;
+        const uchar *q = *s, *tk;
+        size_t tl;
+        if (line_token(&q, *le, &tk, &tl))
+            return 1;
+    }
+    return 0;
+}
+
+/* The OFF keyword's prefix letters: 0 for a keyword this reader takes, else -1 (not OFF) or the
+ * letter that makes it one it does not ('4' or 'n'). */
+static int off_keyword(const uchar *p, size_t len)
+{
+    if (len < 3 || memcmp(p + len - 3, "OFF", 3) != 0)
+        return -1;
+    size_t k = 0;
+    if (k + 1 < len - 2 && p[k] == 'S' && p[k + 1] == 'T')
+        k += 2;
+    if (k < len - 3 && p[k] == 'C')
+        ++k;
+    if (k < len - 3 && p[k] == 'N')
+        ++k;
+    if (k < len - 3 && p[k] == 'C') /* NCOFF as some write it */
+        ++k;
+    if (k < len - 3 && (p[k] == '4' || p[k] == 'n'))
+        return p[k];
+    return k == len - 3 ? 0 : -1;
+}
+
+static int parse_off(ctx *c, const uchar *data, size_t size)
+{
+    const uchar *p = data, *end = data + size, *s, *le, *tk;
+    size_t line = 0, tl;
+    char q[128];
+    if (size >= 3 && p[0] == 0xEF && p[1] == 0xBB && p[2] == 0xBF)
+        p += 3;
+    if (!off_line(&p, end, &line, &s, &le) || !line_token(&s, le, &tk, &tl))
+        return fail(c, "empty file");
+    int kw = off_keyword(tk, tl);
+    if (kw != 0)
+        return fail_line(c, line, "'%s': %s", quote(tk, tl, q),
+                         kw > 0 ? "an OFF variant this reader does not take (4OFF and nOFF are not 3D triangle meshes)"
+                                : "not an OFF header");
+    long long count[3] = {0, 0, 0};
+    int have = 0;
+    size_t count_line = line;
+    while (have < 3) {
+        const uchar *ct;
+        size_t cl;
+        if (!line_token(&s, le, &ct, &cl)) {
+            if (have >= 2)
+                break;
+            if (!off_line(&p, end, &line, &s, &le))
+                return fail_line(c, line, "truncated: the counts (vertices faces edges) are missing");
+            count_line = line;
+            continue;
+        }
+        if (have == 0 && tok_is(ct, cl, "BINARY", 0))
+            return fail_line(c, line, "binary OFF is not read (write it as text)");
+        if (parse_int(ct, cl, 0, (1ll << 62), count + have) != 0)
+            return fail_line(c, line, "'%s' is not a count (vertices faces edges)", quote(ct, cl, q));
+        ++have;
+    }
+    if (line_token(&s, le, &tk, &tl))
+        return fail_line(c, count_line, "unexpected '%s' after the counts", quote(tk, tl, q));
+    const size_t left = (size_t)(end - p);
+    /* every vertex and face is a line of at least 2 bytes: nothing is allocated past what the
+     * file could hold */
+    if ((unsigned long long)count[0] > left / 2 + 1 || (unsigned long long)count[1] > left / 2 + 1 ||
+        (unsigned long long)count[0] + (unsigned long long)count[1] > (unsigned long long)left / 2 + 1)
+        return fail_line(c, count_line, "%lld vertices and %lld faces declared, but only %zu bytes follow", count[0], count[1], left);
+    if (count[0] >= (long long)UINT32_MAX)
+        return fail_line(c, count_line, "%lld vertices: indices would not fit in 32 bits", count[0]);
+    const size_t nv = (size_t)count[0], nf = (size_t)count[1];
+    if (reserve_v(c, nv ? nv : 1) != 0 || reserve_t(c, nf ? nf : 1) != 0)
+        return -1;
+    for (size_t i = 0; i < nv; ++i) {
+        if (!off_line(&p, end, &line, &s, &le))
+            return fail_line(c, line, "truncated: file ends at vertex %zu of %zu", i, nv);
+        double x[3];
+        float f[3] = {0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+            if (!line_token(&s, le, &tk, &tl))
+                return fail_line(c, line, "vertex %zu has %d coordinates, 3 needed", i, k);
+            if (parse_coord(c, tk, tl, line, x + k, f + k) != 0)
+                return -1;
+        }
+        if (push_v(c, x, f) != 0)
+            return -1;
+    }
+    for (size_t i = 0; i < nf; ++i) {
+        if (!off_line(&p, end, &line, &s, &le))
+            return fail_line(c, line, "truncated: file ends at face %zu of %zu", i, nf);
+        long long n;
+        if (!line_token(&s, le, &tk, &tl) || parse_int(tk, tl, 0, 1ll << 62, &n) != 0)
+            return fail_line(c, line, "face %zu: '%s' is not a vertex count", i, quote(tk, tl, q));
+        if (n < 3)
+            return fail_line(c, line, "face %zu has %lld vertices, at least 3 needed", i, n);
+        uint32_t first = 0, prev = 0;
+        for (long long k = 0; k < n; ++k) {
+            long long v;
+            if (!line_token(&s, le, &tk, &tl))
+                return fail_line(c, line, "face %zu: %lld vertices declared, %lld given", i, n, k);
+            if (parse_int(tk, tl, -(1ll << 62), 1ll << 62, &v) != 0)
+                return fail_line(c, line, "face %zu: '%s' is not a vertex index", i, quote(tk, tl, q));
+            if (v < 0 || (unsigned long long)v >= nv)
+                return fail_line(c, line, "face %zu: vertex index %lld out of range (the file has %zu vertices)", i, v, nv);
+            if (k == 0)
+                first = (uint32_t)v;
+            else if (k >= 2 && push_t(c, first, prev, (uint32_t)v) != 0)
+                return -1;
+            prev = (uint32_t)v;
+        }
+        /* a colour may follow */
+    }
+    if (off_line(&p, end, &line, &s, &le) && line_token(&s, le, &tk, &tl))
+        return fail_line(c, line, "data after the last face: '%s'", quote(tk, tl, q));
+    return 0;
+}
+
 /* ---- detection and entry points ---------------------------------------------------- */
 
+/* Formats recognised by their first bytes and not read: their names, for the message. */
+static const char *foreign_format(const uchar *data, size_t size)
+{
+    static const struct {
+        const char *magic;
+        size_t len;
+        const char *name;
+    } known[] = {
+        {"PK\x03\x04", 4, "a zip archive (a 3MF file is one: convert it, e.g. `assimp export in.3mf out.ply`)"},
+        {"PK\x05\x06", 4, "an empty zip archive"},
+        {"\x1f\x8b", 2, "gzip-compressed data (decompress it first)"},
+        {"(\xb5/\xfd", 4, "zstd-compressed data (decompress it first)"},
+        {"BZh", 3, "bzip2-compressed data (decompress it first)"},
+        {"\xfd" "7zXZ", 5, "xz-compressed data (decompress it first)"},
+        {"Kaydara FBX Binary", 18, "a binary FBX file"},
+        {"ISO-10303-21", 12, "a STEP file (CAD boundary representation, not triangles)"},
+        {"#VRML", 5, "a VRML file"},
+        {"%PDF", 4, "a PDF document"},
+        {"\x89PNG", 4, "a PNG image"},
+        {"\xff\xd8\xff", 3, "a JPEG image"},
+        {"<?xml", 5, "an XML file (COLLADA, X3D, or a 3MF's model: not read)"},
+        {"glTF", 4, "binary glTF"}, /* reaches here only with a version or length that does not fit */
+    };
+    for (size_t k = 0; k < sizeof known / sizeof known[0]; ++k)
+        if (size >= known[k].len && memcmp(data, known[k].magic, known[k].len) == 0)
+            return known[k].name;
+    return NULL;
+}
+
 /* The format of the content; why receives, for a binary STL assumed from bytes that no text
- * holds, the words that say so (appended to the parser's messages), else "". */
-static ttd_meshfile_format detect(const uchar *data, size_t size, char *why, size_t whysize)
+ * holds, the words that say so (appended to the parser's messages), else "". *foreign: a format
+ * recognised and not read (its description), else NULL. */
+static ttd_meshfile_format detect(const uchar *data, size_t size, char *why, size_t whysize, const char **foreign)
 {
     why[0] = '\0';
+    *foreign = NULL;
     size_t s = size >= 3 && data[0] == 0xEF && data[1] == 0xBB && data[2] == 0xBF ? 3 : 0;
     if (size - s >= 4 && memcmp(data + s, "ply", 3) == 0 && (data[s + 3] == '\n' || data[s + 3] == '\r'))
         return TTD_MESHFILE_PLY_ASCII; /* the header says which PLY */
+    if (size >= 12 && memcmp(data, "glTF", 4) == 0 && le32(data + 4) == 2 && le32(data + 8) == size)
+        return TTD_MESHFILE_GLB; /* its header states the file's size */
     if (size >= 84 && (size - 84) % 50 == 0 && (size - 84) / 50 == le32(data + 80))
         return TTD_MESHFILE_STL_BINARY; /* even when the header begins with "solid" */
+    if (size >= 4 && memcmp(data, "glTF", 4) == 0)
+        return TTD_MESHFILE_GLB; /* a broken one: its reader says what is wrong */
+    if ((*foreign = foreign_format(data, size)) != NULL)
+        return TTD_MESHFILE_FORMAT_COUNT;
     /* Bytes no text file has (NUL, control characters other than white space, bytes that
      * never occur in UTF-8) in the first 84: a binary STL whose size does not match (its
      * parser then says so). */
@@ -1085,8 +1326,15 @@ static ttd_meshfile_format detect(const uchar *data, size_t size, char *why, siz
     }
     while (s < size && is_space(data[s]))
         ++s;
+    size_t w = s;
+    while (w < size && !is_space(data[w]))
+        ++w;
+    if (off_keyword(data + s, w - s) >= 0)
+        return TTD_MESHFILE_OFF;
     if (size - s >= 5 && tok_is(data + s, 5, "solid", 1) && (size - s == 5 || is_space(data[s + 5])))
         return TTD_MESHFILE_STL_ASCII;
+    if (s < size && data[s] == '{')
+        return TTD_MESHFILE_GLTF;
     return TTD_MESHFILE_OBJ;
 }
 
@@ -1098,12 +1346,13 @@ static void free_ctx(ctx *c)
     free(c->merge);
 }
 
-int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
-                       ttd_meshfile *out, char *err, size_t errsize)
+static int parse_in(const char *name, const char *dir, const unsigned char *data, size_t size, int flags,
+                    ttd_meshfile *out, char *err, size_t errsize)
 {
     ctx c;
     memset(&c, 0, sizeof c);
     c.name = name ? name : "<input>";
+    c.dir = dir;
     c.err = err;
     c.errsize = errsize;
     c.want_float = (flags & TTD_MESHFILE_FLOAT) != 0;
@@ -1117,10 +1366,16 @@ int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size,
         return fail(&c, "no data given");
     if (size == 0)
         return fail(&c, "empty file");
-    ttd_meshfile_format fmt = detect(data, size, c.why, sizeof c.why);
+    const char *foreign;
+    ttd_meshfile_format fmt = detect(data, size, c.why, sizeof c.why, &foreign);
+    if (foreign)
+        return fail(&c, "%s, not a mesh format this reader takes (OBJ, STL, PLY, OFF, glTF)", foreign);
     int rc;
     switch (fmt) {
     case TTD_MESHFILE_PLY_ASCII: rc = parse_ply(&c, data, size, &fmt); break;
+    case TTD_MESHFILE_OFF: rc = parse_off(&c, data, size); break;
+    case TTD_MESHFILE_GLB: rc = ttd_io_parse_gltf(&c, data, size, 1); break;
+    case TTD_MESHFILE_GLTF: rc = ttd_io_parse_gltf(&c, data, size, 0); break;
     case TTD_MESHFILE_STL_BINARY: rc = parse_stl_binary(&c, data, size); break;
     case TTD_MESHFILE_STL_ASCII: rc = parse_stl_ascii(&c, data, size); break;
     default: rc = parse_obj(&c, data, size); break;
@@ -1141,6 +1396,12 @@ int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size,
     out->skipped_lines = c.skipped;
     out->first_skipped_line = c.first_skipped;
     return 0;
+}
+
+int ttd_meshfile_parse(const char *name, const unsigned char *data, size_t size, int flags,
+                       ttd_meshfile *out, char *err, size_t errsize)
+{
+    return parse_in(name, NULL, data, size, flags, out, err, errsize);
 }
 
 int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err, size_t errsize)
@@ -1197,7 +1458,19 @@ int ttd_meshfile_read(const char *path, int flags, ttd_meshfile *out, char *err,
             break;
         }
     }
-    rc = ttd_meshfile_parse(c.name, buf, n, flags, out, err, errsize);
+    {
+        /* the folder a glTF's external buffers are named from */
+        char *dir = is_stdin ? NULL : strdup(path);
+        if (dir) {
+            char *slash = strrchr(dir, '/');
+            if (slash)
+                *(slash == dir ? slash + 1 : slash) = '\0';
+            else
+                strcpy(dir, ".");
+        }
+        rc = parse_in(c.name, dir, buf, n, flags, out, err, errsize);
+        free(dir);
+    }
 done:
     free(buf);
     if (!is_stdin)
@@ -1217,7 +1490,8 @@ void ttd_meshfile_free(ttd_meshfile *m)
 
 const char *ttd_meshfile_format_name(ttd_meshfile_format f)
 {
-    static const char *const names[TTD_MESHFILE_FORMAT_COUNT] = {"obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary"};
+    static const char *const names[TTD_MESHFILE_FORMAT_COUNT] = {"obj", "stl-ascii", "stl-binary", "ply-ascii",
+                                                                  "ply-binary", "off", "glb", "gltf"};
     return (unsigned)f < TTD_MESHFILE_FORMAT_COUNT ? names[f] : NULL;
 }
 
