@@ -526,7 +526,7 @@ static int place_mesh(gltf *g, size_t mi, const double *M)
             for (int d = 0; d < 3; ++d) {
                 uint32_t b = rd32(e + 4 * d);
                 memcpy(f + d, &b, sizeof(float));
-                x[d] = f[d];
+                x[d] = (double)f[d];
                 if (!isfinite(x[d]))
                     return ttd_io_fail(g->c, "glTF: accessor %zu: position %zu is not finite", pa, k);
             }
@@ -535,8 +535,11 @@ static int place_mesh(gltf *g, size_t mi, const double *M)
                     y[r] = ((M[r] * x[0] + M[4 + r] * x[1]) + M[8 + r] * x[2]) + M[12 + r];
                 for (int d = 0; d < 3; ++d) {
                     f[d] = (float)y[d];
-                    if (!isfinite(y[d]) || (g->c->want_float && !isfinite(f[d])))
-                        return ttd_io_fail(g->c, "glTF: node transform moves position %zu of accessor %zu out of range", k, pa);
+                    if (!isfinite(y[d]))
+                        return ttd_io_fail(g->c, "glTF: a node's transform moves position %zu of accessor %zu out of range", k, pa);
+                    if (g->c->want_float && !isfinite(f[d]))
+                        return ttd_io_fail(g->c, "glTF: a node's transform moves position %zu of accessor %zu out of range for float",
+                                           k, pa);
                     x[d] = y[d];
                 }
             }

@@ -317,7 +317,7 @@ ttd_status ttd_mesh_weld_d(const double *verts, size_t nv, const uint32_t *tris,
 ttd_status ttd_mesh_weld_f(const float *verts, size_t nv, const uint32_t *tris, size_t nt, float tolerance,
                            float *verts_out, size_t *nv_out, uint32_t *tris_out, size_t *nt_out, uint32_t *vertex_map)
 {
-    ttd_status st = weld_args(verts, nv, tris, nt, tolerance, verts_out, nv_out, tris_out, nt_out);
+    ttd_status st = weld_args(verts, nv, tris, nt, (double)tolerance, verts_out, nv_out, tris_out, nt_out);
     if (st != TTD_OK)
         return st;
     for (size_t i = 0; i < 3 * nv; ++i)

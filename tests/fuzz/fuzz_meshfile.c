@@ -5,8 +5,10 @@
  * least one vertex and triangle, every index below nv, every coordinate finite, each float
  * within one float step of its double (both are roundings of the same number); the two reads
  * agree (a float read may fail only where a value overflows float, and then says so); on
- * failure a non-empty message that starts with the file's name and an empty mesh. Build and run:
- * scripts/fuzz.sh. */
+ * failure a non-empty message that starts with the file's name and an empty mesh. A mesh read is
+ * then welded (ttd_meshfile_weld) at tolerance 0 and at a tolerance taken from the input: no more
+ * vertices than before, every index below the new count, no triangle with a repeated vertex, the
+ * triangles kept plus those dropped equal to those read. Build and run: scripts/fuzz.sh. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -41,6 +43,24 @@ static void check(int rc, const ttd_meshfile *m, const char *err, int want_float
     }
 }
 
+static void check_weld(ttd_meshfile *m, double tol)
+{
+    size_t nv = m->nv, nt = m->nt, dropped = 0;
+    char err[256];
+    if (ttd_meshfile_weld(m, tol, &dropped, err, sizeof err) != 0) {
+        if (m->nv != nv || m->nt != nt || !strstr(err, "collapses"))
+            abort(); /* only a mesh whose every triangle collapses is refused, and left as it was */
+        return;
+    }
+    if (m->nv == 0 || m->nv > nv || m->nt == 0 || m->nt + dropped != nt)
+        abort();
+    for (size_t t = 0; t < m->nt; ++t) {
+        const uint32_t *x = m->tris + 3 * t;
+        if (x[0] >= m->nv || x[1] >= m->nv || x[2] >= m->nv || x[0] == x[1] || x[1] == x[2] || x[0] == x[2])
+            abort();
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char err0[256], err1[256];
@@ -57,6 +77,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     if (r0 != 0 && r1 != 0 && strcmp(err0, err1) != 0 && !strstr(err1, "float"))
         abort(); /* the same error, unless the float read stopped earlier at an overflow */
+    if (r0 == 0)
+        check_weld(&m0, 0.0);
+    if (r1 == 0)
+        check_weld(&m1, size > 0 ? ldexp(1.0, (int)(data[size - 1] % 64) - 40) : 1e-9);
     ttd_meshfile_free(&m0);
     ttd_meshfile_free(&m1);
     return 0;
