@@ -424,6 +424,189 @@ static int test_gltf(void)
     return 0;
 }
 
+/* ---- 3MF --------------------------------------------------------------------------------- */
+
+static uint32_t crc32_of(const unsigned char *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; ++i) {
+        c ^= p[i];
+        for (int k = 0; k < 8; ++k)
+            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1)));
+    }
+    return ~c;
+}
+
+static void put16(buf *b, unsigned v)
+{
+    unsigned char x[2] = {(unsigned char)v, (unsigned char)(v >> 8)};
+    put(b, x, 2);
+}
+
+/* A zip of stored entries (names[k] holding parts[k]). */
+static void zip_stored(buf *z, const char *const *names, const buf *parts, int n)
+{
+    size_t off[8];
+    for (int k = 0; k < n; ++k) {
+        off[k] = z->n;
+        put32(z, 0x04034b50u), put16(z, 20), put16(z, 0), put16(z, 0), put16(z, 0), put16(z, 0);
+        put32(z, crc32_of(parts[k].p, parts[k].n)), put32(z, (uint32_t)parts[k].n), put32(z, (uint32_t)parts[k].n);
+        put16(z, (unsigned)strlen(names[k])), put16(z, 0);
+        put(z, names[k], strlen(names[k]));
+        put(z, parts[k].p, parts[k].n);
+    }
+    size_t cd = z->n;
+    for (int k = 0; k < n; ++k) {
+        put32(z, 0x02014b50u), put16(z, 20), put16(z, 20), put16(z, 0), put16(z, 0), put16(z, 0), put16(z, 0);
+        put32(z, crc32_of(parts[k].p, parts[k].n)), put32(z, (uint32_t)parts[k].n), put32(z, (uint32_t)parts[k].n);
+        put16(z, (unsigned)strlen(names[k])), put16(z, 0), put16(z, 0), put16(z, 0), put16(z, 0), put32(z, 0);
+        put32(z, (uint32_t)off[k]);
+        put(z, names[k], strlen(names[k]));
+    }
+    size_t cdlen = z->n - cd;
+    put32(z, 0x06054b50u), put16(z, 0), put16(z, 0), put16(z, (unsigned)n), put16(z, (unsigned)n);
+    put32(z, (uint32_t)cdlen), put32(z, (uint32_t)cd), put16(z, 0);
+}
+
+/* g as a 3MF: one object placed once (translated by t when not NULL). */
+static void threemf_mesh(buf *out, const ttd_gen_mesh *g, const double *t, const char *model_name)
+{
+    buf parts[3] = {{0}, {0}, {0}};
+    putf(&parts[0], "<?xml version=\"1.0\" encoding=\"UTF-8\"?><Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\"/>");
+    putf(&parts[1], "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+                    "<Relationship Target=\"/%s\" Id=\"rel0\" Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>",
+         model_name);
+    buf *m = &parts[2];
+    putf(m, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!-- written by test_meshfile_formats -->\n"
+            "<model unit=\"millimeter\" xml:lang=\"en-US\" xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\">\n"
+            "<resources><object id=\"7\" type=\"model\"><mesh><vertices>\n");
+    for (size_t i = 0; i < g->nv; ++i)
+        putf(m, "<vertex x=\"%.17g\" y=\"%.17g\" z=\"%.17g\" />\n", g->verts[3 * i], g->verts[3 * i + 1], g->verts[3 * i + 2]);
+    putf(m, "</vertices><triangles>\n");
+    for (size_t k = 0; k < g->nt; ++k)
+        putf(m, "<triangle v1=\"%u\" v2=\"%u\" v3=\"%u\"/>\n", g->tris[3 * k], g->tris[3 * k + 1], g->tris[3 * k + 2]);
+    putf(m, "</triangles></mesh></object></resources>\n<build>");
+    if (t)
+        putf(m, "<item objectid=\"7\" transform=\"1 0 0 0 1 0 0 0 1 %.17g %.17g %.17g\"/>", t[0], t[1], t[2]);
+    else
+        putf(m, "<item objectid=\"7\"/>");
+    putf(m, "</build></model>\n");
+    const char *names[3] = {"[Content_Types].xml", "_rels/.rels", model_name};
+    zip_stored(out, names, parts, 3);
+    for (int k = 0; k < 3; ++k)
+        free(parts[k].p);
+}
+
+static int test_3mf(void)
+{
+    ttd_gen_mesh s = {0}, t = {0};
+    ENSURE(ttd_gen_icosphere(2, &s) == 0 && ttd_gen_torus(1, 0.3, 16, 8, &t) == 0);
+    char err[512];
+    ttd_meshfile m;
+    const ttd_gen_mesh *gs[2] = {&s, &t};
+    for (int k = 0; k < 2; ++k) {
+        buf b = {0};
+        threemf_mesh(&b, gs[k], NULL, "3D/3dmodel.model");
+        ENSURE_MSG(parse("a.3mf", &b, &m, err, sizeof err) == 0, "%s", err);
+        ENSURE(m.format == TTD_MESHFILE_3MF && same_mesh(&m, gs[k], 0, NULL) == 0);
+        for (size_t i = 0; i < 3 * m.nv; ++i) /* floats by strtof on the text: the double's rounding */
+            ENSURE(m.verts_f[i] == (float)gs[k]->verts[i]);
+        ttd_meshfile_free(&m);
+        free(b.p);
+    }
+    {
+        const double shift[3] = {4, 0.25, -8};
+        buf b = {0};
+        threemf_mesh(&b, &s, shift, "3D/Model.model");
+        ENSURE_MSG(parse("t.3mf", &b, &m, err, sizeof err) == 0, "%s", err);
+        ENSURE(m.nv == s.nv && m.nt == s.nt);
+        for (size_t i = 0; i < 3 * s.nv; ++i)
+            ENSURE(m.verts[i] == s.verts[i] + shift[i % 3]);
+        ttd_meshfile_free(&m);
+        /* every prefix fails with a message */
+        for (size_t n = 0; n < b.n; n += 1 + n / 64)
+            ENSURE_MSG(ttd_meshfile_parse("cut.3mf", b.p, n, 0, &m, err, sizeof err) == -1 && err[0], "cut at %zu", n);
+        free(b.p);
+    }
+    /* malformed models */
+    static const struct {
+        const char *from, *to, *want;
+    } edits[] = {
+        {"v3=\"2\"", "v3=\"99\"", "v3 = 99 out of range (the object has 42 vertices)"},
+        {"<item objectid=\"7\"/>", "<item objectid=\"8\"/>", "object 8 does not exist"},
+        {"<item objectid=\"7\"/>", "", "the model's build places no object"},
+        {"<item objectid=\"7\"/>", "<item objectid=\"7\" transform=\"1 0 0\"/>", "is not 12 finite numbers"},
+        {"x=\"0\"", "x=\"abc\"", "'x' = 'abc' is not a finite number"},
+        {"</model>", "<object", "ends inside a tag"},
+        {"3D/3dmodel.model\" Id", "3D/other.model\" Id", "'3D/other.model' is named but absent"},
+    };
+    ttd_gen_mesh small = {0};
+    ENSURE(ttd_gen_icosphere(1, &small) == 0);
+    for (size_t k = 0; k < sizeof edits / sizeof edits[0]; ++k) {
+        buf b = {0};
+        threemf_mesh(&b, &small, NULL, "3D/3dmodel.model");
+        /* edit inside the stored zip: same-length edits keep the sizes; others are rebuilt */
+        unsigned char *at = NULL;
+        for (size_t q = 0; q + strlen(edits[k].from) <= b.n && !at; ++q)
+            if (memcmp(b.p + q, edits[k].from, strlen(edits[k].from)) == 0)
+                at = b.p + q;
+        ENSURE_MSG(at != NULL, "edit %zu: '%s' absent", k, edits[k].from);
+        /* rebuild with the edit applied to the text of the part that holds it */
+        buf e = {0};
+        put(&e, b.p, (size_t)(at - b.p));
+        put(&e, edits[k].to, strlen(edits[k].to));
+        size_t rest = (size_t)(at - b.p) + strlen(edits[k].from);
+        put(&e, b.p + rest, b.n - rest);
+        /* sizes in the headers are now off by the difference: rewrite the archive from its parts */
+        free(b.p);
+        {
+            /* re-split: find the three local entries by their names and take their data up to
+             * the next local header (the edit changed one part's length) */
+            const char *names[3] = {"[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"};
+            buf parts[3] = {{0}, {0}, {0}};
+            size_t pos = 0;
+            for (int q = 0; q < 3; ++q) {
+                size_t nl = (size_t)(e.p[pos + 26] | e.p[pos + 27] << 8);
+                size_t start = pos + 30 + nl, stop = start;
+                while (stop + 4 <= e.n && !(e.p[stop] == 'P' && e.p[stop + 1] == 'K' && (e.p[stop + 2] == 3 || e.p[stop + 2] == 1)))
+                    ++stop;
+                put(&parts[q], e.p + start, stop - start);
+                pos = stop;
+            }
+            buf z = {0};
+            zip_stored(&z, names, parts, 3);
+            ENSURE_FAILS(parse("bad.3mf", &z, &m_, err_, sizeof err_), edits[k].want);
+            for (int q = 0; q < 3; ++q)
+                free(parts[q].p);
+            free(z.p);
+        }
+        free(e.p);
+    }
+    /* a zip without a model, and an unknown compression method */
+    {
+        const char *names[1] = {"readme.txt"};
+        buf parts[1] = {{0}};
+        putf(&parts[0], "hello");
+        buf z = {0};
+        zip_stored(&z, names, parts, 1);
+        ENSURE_FAILS(parse("x.zip", &z, &m_, err_, sizeof err_), "a zip archive without a 3D model part: not a 3MF file");
+        free(z.p);
+        free(parts[0].p);
+        buf b = {0};
+        threemf_mesh(&b, &small, NULL, "3D/3dmodel.model");
+        b.p[8] = 14; /* the first local header's method: LZMA; the model's central entry too */
+        for (size_t q = 0; q + 4 <= b.n; ++q)
+            if (b.p[q] == 'P' && b.p[q + 1] == 'K' && b.p[q + 2] == 1 && b.p[q + 3] == 2)
+                b.p[q + 10] = 14;
+        ENSURE_FAILS(parse("m.3mf", &b, &m_, err_, sizeof err_), "compressed by method 14");
+        free(b.p);
+    }
+    ttd_gen_mesh_free(&small);
+    ttd_gen_mesh_free(&s);
+    ttd_gen_mesh_free(&t);
+    return 0;
+}
+
 /* ---- formats recognised and refused by name ---------------------------------------------- */
 
 static int test_magic(void)
@@ -433,7 +616,8 @@ static int test_magic(void)
         size_t n;
         const char *want;
     } cases[] = {
-        {"PK\x03\x04\x14\0\0\0\x08\0" "3D/3dmodel.model", 26, "a zip archive (a 3MF file is one"},
+        {"PK\x03\x04\x14\0\0\0\x08\0" "3D/3dmodel.model", 26, "truncated or damaged zip archive (3MF)"},
+        {"PK\x05\x06\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 22, "an empty zip archive"},
         {"\x1f\x8b\x08\0\0\0\0\0", 8, "gzip-compressed data"},
         {"Kaydara FBX Binary  \0\x1a\0", 23, "a binary FBX file"},
         {"ISO-10303-21;\nHEADER;\n", 22, "a STEP file"},
@@ -532,17 +716,18 @@ static int test_against_assimp(void)
     char path[512], out[512], err[512];
     for (int k = 0; k < 2; ++k) {
         /* the files written here: our count equals assimp's */
-        buf off = {0}, glb = {0}, bin = {0}, json = {0};
+        buf off = {0}, glb = {0}, bin = {0}, json = {0}, tmf = {0};
         write_off(&off, gs[k], "OFF", 0);
+        threemf_mesh(&tmf, gs[k], NULL, "3D/3dmodel.model");
         glb_mesh(&glb, gs[k], 4, NULL);
         gltf_bin(&bin, gs[k], 4);
         gltf_json(&json, gs[k], 4, bin.n, "m.bin", NULL);
         const struct {
             const char *name;
             const buf *b;
-        } files[] = {{"m.off", &off}, {"m.glb", &glb}, {"m.gltf", &json}};
+        } files[] = {{"m.off", &off}, {"m.glb", &glb}, {"m.gltf", &json}, {"m.3mf", &tmf}};
         ENSURE(write_file("m.bin", &bin, path, sizeof path) == 0);
-        for (int f = 0; f < 3; ++f) {
+        for (int f = 0; f < 4; ++f) {
             ENSURE(write_file(files[f].name, files[f].b, path, sizeof path) == 0);
             ttd_meshfile m;
             ENSURE_MSG(ttd_meshfile_read(path, 0, &m, err, sizeof err) == 0, "%s", err);
@@ -576,13 +761,9 @@ static int test_against_assimp(void)
             free(got);
             ttd_meshfile_free(&m);
         }
-        /* 3MF: assimp writes a zip, which is named as such */
-        snprintf(out, sizeof out, "%s/x.3mf", tmpdir);
-        if (aiExportScene(sc, "3mf", out, 0) == aiReturn_SUCCESS)
-            ENSURE_FAILS(ttd_meshfile_read(out, 0, &m_, err_, sizeof err_), "a zip archive (a 3MF file is one");
         aiReleaseImport(sc);
         free(want);
-        free(off.p), free(glb.p), free(bin.p), free(json.p);
+        free(off.p), free(glb.p), free(bin.p), free(json.p), free(tmf.p);
     }
     ttd_gen_mesh_free(&s);
     ttd_gen_mesh_free(&t);
@@ -593,7 +774,7 @@ static int test_against_assimp(void)
 static int remove_tmpdir(void)
 {
     static const char *const names[] = {"my mesh.bin", "e.gltf", "m.off", "m.glb", "m.gltf", "m.bin", "x.glb",
-                                        "x.gltf", "x.bin", "x.obj", "x.mtl", "x.stl", "xb.stl", "x.ply", "xb.ply", "x.3mf"};
+                                        "x.gltf", "x.bin", "x.obj", "x.mtl", "x.stl", "xb.stl", "x.ply", "xb.ply", "m.3mf"};
     char path[512];
     for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) {
         snprintf(path, sizeof path, "%s/%s", tmpdir, names[k]);
@@ -614,6 +795,7 @@ int main(int argc, char **argv)
     RUN_TEST(test_obj_forms);
     RUN_TEST(test_off);
     RUN_TEST(test_gltf);
+    RUN_TEST(test_3mf);
     RUN_TEST(test_magic);
     RUN_TEST(test_against_assimp);
     RUN_TEST(remove_tmpdir);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Reading triangle meshes from files: OBJ, STL (ASCII and binary), PLY (ASCII, binary
- * little- and big-endian), OFF and glTF 2.0 (GLB, and .gltf with its buffers) into one indexed mesh, the public reader of the library that `ttd mesh`,
+ * little- and big-endian), OFF, glTF 2.0 (GLB, and .gltf with its buffers) and 3MF into one indexed mesh, the public reader of the library that `ttd mesh`,
  * `ttd scene` and the Python package use. The
  * format is recognised by content, never by the file name; docs/mesh-files.md has the rules
  * (what is accepted, merged, skipped, and the error messages).
@@ -40,6 +40,7 @@ typedef enum ttd_meshfile_format {
     TTD_MESHFILE_OFF,  ///< OFF text ([ST][C][N]OFF)
     TTD_MESHFILE_GLB,  ///< binary glTF 2.0
     TTD_MESHFILE_GLTF, ///< glTF 2.0 JSON, its buffers data: URIs or files beside it
+    TTD_MESHFILE_3MF,  ///< 3MF: a zip archive of an XML model
     TTD_MESHFILE_FORMAT_COUNT
 } ttd_meshfile_format;
 
@@ -86,8 +87,8 @@ TTD_API void ttd_meshfile_free(ttd_meshfile *m);
 /// memory, or every triangle collapsing (the mesh would have none).
 TTD_API int ttd_meshfile_weld(ttd_meshfile *m, double tolerance, size_t *dropped, char *err, size_t errsize);
 
-/// "obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary", "off", "glb", "gltf"; NULL when out
-/// of range.
+/// "obj", "stl-ascii", "stl-binary", "ply-ascii", "ply-binary", "off", "glb", "gltf", "3mf"; NULL
+/// when out of range.
 TTD_API const char *ttd_meshfile_format_name(ttd_meshfile_format f);
 
 #ifdef __cplusplus

@@ -1274,7 +1274,6 @@ static const char *foreign_format(const uchar *data, size_t size)
         size_t len;
         const char *name;
     } known[] = {
-        {"PK\x03\x04", 4, "a zip archive (a 3MF file is one: convert it, e.g. `assimp export in.3mf out.ply`)"},
         {"PK\x05\x06", 4, "an empty zip archive"},
         {"\x1f\x8b", 2, "gzip-compressed data (decompress it first)"},
         {"(\xb5/\xfd", 4, "zstd-compressed data (decompress it first)"},
@@ -1311,6 +1310,8 @@ static ttd_meshfile_format detect(const uchar *data, size_t size, char *why, siz
         return TTD_MESHFILE_STL_BINARY; /* even when the header begins with "solid" */
     if (size >= 4 && memcmp(data, "glTF", 4) == 0)
         return TTD_MESHFILE_GLB; /* a broken one: its reader says what is wrong */
+    if (size >= 4 && memcmp(data, "PK\x03\x04", 4) == 0)
+        return TTD_MESHFILE_3MF; /* a zip archive: its reader says when it holds no 3D model */
     if ((*foreign = foreign_format(data, size)) != NULL)
         return TTD_MESHFILE_FORMAT_COUNT;
     /* Bytes no text file has (NUL, control characters other than white space, bytes that
@@ -1369,13 +1370,14 @@ static int parse_in(const char *name, const char *dir, const unsigned char *data
     const char *foreign;
     ttd_meshfile_format fmt = detect(data, size, c.why, sizeof c.why, &foreign);
     if (foreign)
-        return fail(&c, "%s, not a mesh format this reader takes (OBJ, STL, PLY, OFF, glTF)", foreign);
+        return fail(&c, "%s, not a mesh format this reader takes (OBJ, STL, PLY, OFF, glTF, 3MF)", foreign);
     int rc;
     switch (fmt) {
     case TTD_MESHFILE_PLY_ASCII: rc = parse_ply(&c, data, size, &fmt); break;
     case TTD_MESHFILE_OFF: rc = parse_off(&c, data, size); break;
     case TTD_MESHFILE_GLB: rc = ttd_io_parse_gltf(&c, data, size, 1); break;
     case TTD_MESHFILE_GLTF: rc = ttd_io_parse_gltf(&c, data, size, 0); break;
+    case TTD_MESHFILE_3MF: rc = ttd_io_parse_3mf(&c, data, size); break;
     case TTD_MESHFILE_STL_BINARY: rc = parse_stl_binary(&c, data, size); break;
     case TTD_MESHFILE_STL_ASCII: rc = parse_stl_ascii(&c, data, size); break;
     default: rc = parse_obj(&c, data, size); break;
@@ -1491,7 +1493,7 @@ void ttd_meshfile_free(ttd_meshfile *m)
 const char *ttd_meshfile_format_name(ttd_meshfile_format f)
 {
     static const char *const names[TTD_MESHFILE_FORMAT_COUNT] = {"obj", "stl-ascii", "stl-binary", "ply-ascii",
-                                                                  "ply-binary", "off", "glb", "gltf"};
+                                                                  "ply-binary", "off", "glb", "gltf", "3mf"};
     return (unsigned)f < TTD_MESHFILE_FORMAT_COUNT ? names[f] : NULL;
 }
 

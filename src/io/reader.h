@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* What the mesh-file readers share (io/meshfile.c holds the reader and the text formats,
- * io/gltf.c glTF): the context of one read, its messages and the mesh being built. */
+ * io/gltf.c glTF, io/threemf.c 3MF): the context of one read, its messages and the mesh being built. */
 #ifndef TTD_IO_READER_H
 #define TTD_IO_READER_H
 
@@ -40,5 +40,8 @@ int ttd_io_oom(ctx *c);
 
 /// glTF 2.0: a GLB container (glb != 0) or a .gltf JSON text (io/gltf.c).
 int ttd_io_parse_gltf(ctx *c, const uchar *data, size_t size, int glb);
+
+/// 3MF: a zip archive holding a 3D model part (io/threemf.c).
+int ttd_io_parse_3mf(ctx *c, const uchar *data, size_t size);
 
 #endif
