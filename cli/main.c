@@ -23,7 +23,7 @@ static const char ttd_usage[] =
     "  dist [options] [FILE]   distances of the triangle pairs in FILE or standard input\n"
     "                          (ttd dist --help for the format and options)\n"
     "  mesh distance A B       minimum distance between the meshes in files A and B (OBJ, STL,\n"
-    "                          PLY, OFF, glTF), closest points and triangles, under poses of B\n"
+    "                          PLY, OFF, glTF, 3MF), closest points and triangles, poses of B\n"
     "  mesh contacts A B       every triangle pair within a margin (--margin M), or per triangle\n"
     "                          its closest partner (--per-triangle), or their number (--count)\n"
     "  mesh collide A B        whether the meshes touch, cross or come within --margin M\n"

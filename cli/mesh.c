@@ -69,7 +69,7 @@ static int ttd_mesh_is_self(ttd_mesh_cmd cmd)
 static const char ttd_mesh_usage_head[] =
     "Queries between two triangle meshes read from the files A and B ('-' for standard input, once\n"
     "for both when A and B are the same path): OBJ, STL (ASCII or binary), PLY (ASCII or binary),\n"
-    "OFF or glTF 2.0 (GLB, .gltf), recognised by content (docs/mesh-files.md). Triangle indices ia (of A) and ib\n"
+    "OFF, glTF 2.0 (GLB, .gltf) or 3MF, recognised by content (docs/mesh-files.md). Triangle indices ia (of A) and ib\n"
     "(of B) are 0-based in file order, polygons fan-triangulated. Every query is exact: the answer of\n"
     "the exact method over all triangle pairs.\n";
 

@@ -35,7 +35,7 @@ static const char ttd_points_usage[] =
     "       ttd points winding MESH POINTS [--pose P] [options]\n"
     "       ttd points grid MESH --origin \"X Y Z\" --step \"S\" --dims \"NX NY NZ\" --out FILE [options]\n"
     "\n"
-    "Points against the triangle mesh in the file MESH (OBJ, STL, PLY, OFF or glTF, recognised by content:\n"
+    "Points against the triangle mesh in the file MESH (OBJ, STL, PLY, OFF, glTF or 3MF, recognised by content:\n"
     "docs/mesh-files.md; '-' for standard input). POINTS is a text file of three numbers a line\n"
     "(x y z; blank lines and '#' comments skipped; '-' for standard input) or a NumPy .npy file of\n"
     "shape (n, 3), float64 or float32, C order. Triangle indices are 0-based in file order.\n"

@@ -480,7 +480,8 @@ static PyMethodDef ttd_py_mesh_type_methods[] = {
      ttd_py_mesh_set_vertices_doc},
     {"from_file", (PyCFunction)(void (*)(void))ttd_py_mesh_from_file, METH_CLASS | METH_VARARGS | METH_KEYWORDS,
      "from_file(path, *, precision='float64', threads=0, strict=False, weld=None)\n--\n\n"
-     "The mesh in an OBJ, STL, PLY, OFF or glTF file (ttd.load_mesh reads it), built in that precision; with\n"
+     "The mesh in an OBJ, STL, PLY, OFF, glTF or 3MF file (ttd.load_mesh reads it), built in that\n"
+     "precision; with\n"
      "weld=tol its vertices within tol merged first (ttd.weld), as an STL file needs to be closed."},
     {NULL, NULL, 0, NULL},
 };
@@ -1516,7 +1517,7 @@ PyDoc_STRVAR(ttd_py_load_mesh_doc,
 "load_mesh(path, *, precision='float64', strict=False, weld=None)\n"
 "--\n\n"
 "Reads a triangle mesh from an OBJ, STL (ASCII or binary), PLY (ASCII or binary), OFF or glTF 2.0\n"
-"(GLB, .gltf with its buffers) file, the\n"
+"(GLB, .gltf with its buffers) or 3MF file, the\n"
 "format told by the content, with the C library's reader (include/ttd/meshfile.h,\n"
 "docs/mesh-files.md): polygons fan-triangulated, STL's repeated vertices merged.\n\n"
 "precision : 'float64' (default) or 'float32' (coordinates rounded once from the file's text).\n"

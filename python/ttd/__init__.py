@@ -11,7 +11,7 @@ numpy arrays in, numpy arrays out::
     r.distance, r.p, r.q, r.flags & ttd.Flag.INTERSECTING
 
     A = ttd.Mesh(vertices, faces)           # (n, 3) float32/float64, (m, 3) integers
-    A = ttd.Mesh.from_file("bunny.obj")     # or an OBJ, STL, PLY, OFF or glTF file (ttd.load_mesh reads one)
+    A = ttd.Mesh.from_file("bunny.obj")     # or an OBJ, STL, PLY, OFF, glTF or 3MF file (ttd.load_mesh reads one)
     B = ttd.Mesh(vertices2, faces2)
     d = ttd.mesh_distance(A, B, poses)      # poses (K, 4, 4) or (K, 3, 4): B in A's frame
     d.distance, d.p, d.q, d.tri_a, d.tri_b  # (K,), (K, 3), (K, 3), (K,), (K,)

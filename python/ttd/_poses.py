@@ -261,7 +261,7 @@ del _f, _doc
 
 def load_mesh(path: Any, *, precision: str = "float64", strict: bool = False, weld: Optional[float] = None
               ) -> Tuple[npt.NDArray[np.floating], npt.NDArray[np.uint32]]:
-    """(vertices, faces) of the OBJ, STL, PLY, OFF or glTF file at path, read by the C library's reader
+    """(vertices, faces) of the OBJ, STL, PLY, OFF, glTF or 3MF file at path, read by the C library's reader
     (docs/mesh-files.md): vertices (N, 3) float64 (or float32 with precision="float32"),
     faces (M, 3) uint32. OBJ lines that are not OBJ statements (FCL's header line of two counts,
     say) are skipped with a warning saying how many (strict=True refuses them). weld=tol merges
