@@ -35,7 +35,7 @@ echo "ok   $count examples of docs/mesh-files.md print what the page shows"
 # order; it is built by the README's own link block (an install into a temporary prefix, then
 # pkg-config) and run. The shell blocks run with `sh -e` in a folder laid out as the
 # repository's (build/ the build under test, docs/examples/ copied, app.c), so each command's
-# status must be 0. Not run here: the Python blocks and the Python install block (run by
+# status must be 0. Not run here: the Python blocks and the Python install and wheel blocks (run by
 # python/tests/test_readme.py, which needs the Python package), and the block of the two
 # commands scripts/bench.sh and scripts/test.sh (this test is part of the second; the scripts
 # must exist and be executable).
@@ -67,7 +67,7 @@ for b in "$W"/blocks/*; do
         for s in $(awk '{ print $1 }' "$b"); do [ -x "$REPO/$s" ] || fail "README.md names $s, which is not an executable script"; done
         continue
     fi
-    if grep -q 'python3 -m venv' "$b"; then deferred=$((deferred + 1)); continue; fi
+    if grep -q 'python3 -m venv\|pip wheel' "$b"; then deferred=$((deferred + 1)); continue; fi
     # The link block as written needs pkg-config, and a plain program cannot link a sanitized
     # library (scripts/test-sanitize.sh leaves ttd.install out for that reason): then app.c is
     # built against the build's archive, with the sanitizers where the build has them.
