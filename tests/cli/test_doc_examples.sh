@@ -98,3 +98,22 @@ grep -q '^2 between (0 0 0) and (0 0 2)$' "$W/app.out" && grep -q '^batch: 2 1$'
     grep -q '^meshes: distance 0, [1-9][0-9]* contact pairs$' "$W/app.out" && grep -q '^scene: [1-9][0-9]* manifold points$' "$W/app.out" ||
     fail "README.md: app.c printed $(cat "$W/app.out")"
 echo "ok   README.md: its C program built and run, $ran shell blocks run, $deferred Python blocks left to python/tests/test_readme.py"
+
+# ---- the documents' index ---------------------------------------------------------------------
+# docs/README.md links every document of docs/ (each on its own line), the README's "Where things
+# are" names the index and docs/anchors.md, and no document names a program under /tmp (a
+# throwaway that is not in the repository: such programs live in the repository, or the page says
+# in words what was measured).
+DOCS="$REPO/docs"
+for d in "$DOCS"/*.md; do
+    name=$(basename "$d")
+    [ "$name" = README.md ] && continue
+    grep -q "](${name})" "$DOCS/README.md" || fail "docs/README.md does not name docs/$name"
+done
+where=$(sed -n '/^## Where things are/,/^## /p' "$README")
+for name in docs/README.md docs/anchors.md; do
+    printf '%s\n' "$where" | grep -q "]($name)" || fail "README.md's 'Where things are' does not name $name"
+done
+tmp_refs=$(grep -n '/tmp/' "$README" "$REPO/python/README.md" "$DOCS"/*.md || true)
+[ -z "$tmp_refs" ] || fail "documents name paths under /tmp: $tmp_refs"
+echo "ok   docs/README.md names every document; README names it and docs/anchors.md; no /tmp paths in the docs"
