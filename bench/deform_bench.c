@@ -486,11 +486,13 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
             "refit_ms", "fcl_build", "fcl_refit", "x_rebuild", "x_fcl", "rebuilds", "note");
     for (int i = 0; i < R->nrefit; ++i) {
         const refit_row *r = &R->refit[i];
-        fprintf(f, "%-12s %9zu %5d %10s %10s %10s %10s %9s %9s %8llu  %s\n", r->workload, r->tris, r->runs,
+        char slower[64];
+        bench_slower_note(slower, sizeof slower, r->fcl_refit_ms / r->refit_ms, "FCL's refit");
+        fprintf(f, "%-12s %9zu %5d %10s %10s %10s %10s %9s %9s %8llu  %s%s%s\n", r->workload, r->tris, r->runs,
                 bench_num(b[0], 40, r->build_ms, "%.3f"), bench_num(b[1], 40, r->refit_ms, "%.3f"),
                 bench_num(b[2], 40, r->fcl_build_ms, "%.3f"), bench_num(b[3], 40, r->fcl_refit_ms, "%.3f"),
                 bench_num(b[4], 40, r->build_ms / r->refit_ms, "%.2f"), bench_num(b[5], 40, r->fcl_refit_ms / r->refit_ms, "%.2f"),
-                r->rebuilds, r->fcl_note);
+                r->rebuilds, r->fcl_note, r->fcl_note[0] && slower[0] ? "; " : "", slower);
     }
     fprintf(f, "\nself-contacts: a sheet folded into 4 layers (gen: ttd_gen_folded_sheet, the fold going from 0.85 to "
                "1 of flat over the steps), margin half an edge, the layers 1.5 or 0.8 margins apart; per step: "
@@ -509,9 +511,15 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
                "them):\n");
     for (int i = 0; i < NTARGET; ++i) {
         const target *t = &R->targets[i];
-        fprintf(f, "  %-50s %-12s measured %9s  %s\n", t->what, t->need,
+        char slower[64] = "";
+        if (i == 1)
+            bench_slower_note(slower, sizeof slower, t->measured, "FCL's refit");
+        else if (i == 3)
+            bench_slower_note(slower, sizeof slower, t->measured, "the grid");
+        fprintf(f, "  %-50s %-12s measured %9s  %s%s%s\n", t->what, t->need,
                 bench_num(b[0], 40, t->measured, i == 2 ? "%.2f ms" : "%.2fx"),
-                i == 3 ? "" : !isfinite(t->measured) ? "not measured" : t->met ? "met" : "MISSED");
+                i == 3 ? "" : !isfinite(t->measured) ? "not measured" : t->met ? "met" : "MISSED",
+                slower[0] && i != 3 ? "; " : "", slower);
     }
 }
 

@@ -19,6 +19,15 @@ void bench_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+const char *bench_slower_note(char *buf, size_t size, double x, const char *other)
+{
+    if (isfinite(x) && x > 0.0 && x < 1.0)
+        snprintf(buf, size, "%s faster: ttd took %.2fx its time", other, 1.0 / x);
+    else if (size)
+        buf[0] = '\0';
+    return buf;
+}
+
 const char *bench_num(char *buf, size_t size, double v, const char *fmt)
 {
     if (!isfinite(v))

@@ -15,4 +15,9 @@ void bench_json_string(FILE *f, const char *s);
 /// returns buf.
 const char *bench_num(char *buf, size_t size, double v, const char *fmt);
 
+/// For a ratio x = the other's time / ttd's: when x < 1 (the other library was faster), writes
+/// "OTHER faster: ttd took N.NNx its time" into buf, else "" (finite x only); returns buf. A row or
+/// target line where ttd lost says so in words, not only by a ratio below 1.
+const char *bench_slower_note(char *buf, size_t size, double x, const char *other);
+
 #endif /* TTD_BENCH_JSON_H */

@@ -1425,8 +1425,11 @@ void bench_mesh_write_table(FILE *f, const bench_mesh_results *R)
             R->quick ? ", --quick: small meshes, not the issue's workloads" : "");
     for (int i = 0; i < T_COUNT; ++i) {
         const target *t = &R->targets[i];
-        fprintf(f, "  %-48s %-36s measured %7s  %-6s  %s\n", t->what, t->need, num(b[0], 40, t->measured, "%.2fx"),
-                verdict(t), t->where);
+        char slower[64] = "";
+        if (i != T_POSES_2T) /* every other target is a ratio over FCL */
+            bench_slower_note(slower, sizeof slower, t->measured, "FCL");
+        fprintf(f, "  %-48s %-36s measured %7s  %-6s  %s%s%s\n", t->what, t->need, num(b[0], 40, t->measured, "%.2fx"),
+                verdict(t), t->where, slower[0] ? "; " : "", slower);
     }
 }
 

@@ -7,8 +7,9 @@
 interpreter with ttd installed will do). It measures, in one process:
 
 1. one pair per call: ttd.distance(s, t) in a Python loop against the same library call
-   (ttd_batch_d with n = 1, the same options) in a C loop (ttd._ctiming, built with the
-   package for this benchmark only). The C loop runs in the same process on the same arrays,
+   (ttd_batch_d with n = 1, the same options) in a C loop (ttd._ctiming, built into the
+   package for this benchmark only when TTD_PYTHON_CTIMING=1, as scripts/test-python.sh does;
+   wheels and plain installs leave it out). The C loop runs in the same process on the same arrays,
    so the difference is what Python adds per call: argument parsing, array checks, the output
    array and the lock release. (Timing the C call through ctypes instead would charge ctypes'
    own per-call cost, about a microsecond, to the C side.) Target: at most 5 us per call.

@@ -46,6 +46,7 @@
 #include "bullet_scene_link.h"
 #include "fcl_scene_link.h"
 #include "meshes.h"
+#include "json.h"
 
 /* ---- workloads ------------------------------------------------------------------------ */
 
@@ -1258,9 +1259,15 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
             snprintf(x, sizeof x, "%.2f", r->x_bullet);
         else
             num(x, sizeof x, r->x_fcl, "%.2f");
-        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-24s %s\n", r->workload, r->bodies, r->tris,
+        char slower[64];
+        if (isfinite(r->x_bullet))
+            bench_slower_note(slower, sizeof slower, r->x_bullet, "Bullet");
+        else
+            bench_slower_note(slower, sizeof slower, r->x_fcl, "FCL");
+        fprintf(f, "%-10s %6zu %8zu %-9s %-6s %3d %-26s %10s %10s %7s %-24s %s%s%s\n", r->workload, r->bodies, r->tris,
                 r->query, r->bytes == 8 ? "double" : "float", r->threads, r->result, num(a, sizeof a, r->ms, "%.4g"),
-                num(b, sizeof b, isfinite(r->bullet_ms) ? r->bullet_ms : r->fcl_ms, "%.4g"), x, t, r->note);
+                num(b, sizeof b, isfinite(r->bullet_ms) ? r->bullet_ms : r->fcl_ms, "%.4g"), x, t, r->note,
+                r->note[0] && slower[0] ? "; " : "", slower);
     }
     fprintf(f, "ms per query (motion: per step, set_poses + collide at the margin); x_fcl = FCL's time / ttd's "
                "(manifold-4: Bullet's time in the fcl_ms column and Bullet's / ttd's in x_fcl); targets (issue 17): "

@@ -91,7 +91,7 @@ static const char ttd_mesh_usage_contacts[] =
     "    ia ib d px py pz qx qy qz\n"
     "  p on triangle ia of A, q on triangle ib of B, in A's frame.\n"
     "  --margin M        M >= 0, finite (required)\n"
-    "  --count           print only the number of pairs, one line per pose\n"
+    "  --count           print only the number of pairs, one line per pose (counted, not held)\n"
     "  --per-triangle    instead of pairs, for each triangle its closest partner within M (ties: the\n"
     "                    smaller index); first the triangles of A that have one, by ia, then those\n"
     "                    of B, by ib:\n"
@@ -116,7 +116,7 @@ static const char ttd_mesh_usage_self[] =
     "    i j d px py pz qx qy qz\n"
     "  p on triangle i, q on triangle j.\n"
     "  --margin M        M >= 0, finite (required)\n"
-    "  --count           print only the number of pairs\n"
+    "  --count           print only the number of pairs (counted, not held)\n"
     "self-collide: whether A comes within M of itself (0: intersects itself), by those pairs: '1 i j'\n"
     "with the first pair found (i < j), or '0'.\n"
     "  --margin M        M >= 0, finite (default 0)\n"
@@ -749,9 +749,38 @@ static size_t ttd_mesh_next_chunk(size_t pairs_seen, size_t poses_seen, size_t l
     return chunk < left ? chunk : left;
 }
 
+/* --count: the library counts each pose's pairs without holding them (ttd_mesh_contacts_count_*),
+ * so a count of millions of pairs takes no memory for them. */
+static int ttd_mesh_run_contacts_count(const ttd_mesh_run *r)
+{
+    const ttd_mesh_args *a = r->a;
+    size_t counts[TTD_MESH_POSE_CHUNK];
+    int rc = 0;
+    for (size_t first = 0, k; first < r->ps->k && !ferror(r->out); first += k) {
+        k = ttd_mesh_is_self(a->cmd) ? 1 : r->ps->k - first < TTD_MESH_POSE_CHUNK ? r->ps->k - first : TTD_MESH_POSE_CHUNK;
+        ttd_status st;
+        if (ttd_mesh_is_self(a->cmd)) /* one pose, the identity */
+            st = a->use_float ? ttd_mesh_self_contacts_count_f(&a->opt, r->ma, (float)a->margin, a->self_flags, counts)
+                              : ttd_mesh_self_contacts_count_d(&a->opt, r->ma, a->margin, a->self_flags, counts);
+        else
+            st = a->use_float
+                     ? ttd_mesh_contacts_count_f(&a->opt, r->ma, r->mb, k, r->ps->f + 12 * first, (float)a->margin, counts)
+                     : ttd_mesh_contacts_count_d(&a->opt, r->ma, r->mb, k, r->ps->d + 12 * first, a->margin, counts);
+        if (st != TTD_OK) {
+            rc = ttd_mesh_failed(r, st, first, k);
+            break;
+        }
+        for (size_t i = 0; i < k; ++i)
+            fprintf(r->out, "%zu\n", counts[i]);
+    }
+    return rc;
+}
+
 static int ttd_mesh_run_contacts(const ttd_mesh_run *r)
 {
     const ttd_mesh_args *a = r->a;
+    if (a->count)
+        return ttd_mesh_run_contacts_count(r);
     const int indexed = a->poses_path != NULL;
     ttd_contacts_d sd = {0};
     ttd_contacts_f sf = {0};

@@ -13,10 +13,15 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include <ttd/meshfile.h>
@@ -43,14 +48,20 @@ static const char ttd_points_usage[] =
     "closest: the exact closest point of the mesh, one line per point:\n"
     "    d tri px py pz\n"
     "  d the distance, (px, py, pz) the closest point, on triangle tri. Beyond --upper-bound X:\n"
-    "  'inf -1 nan nan nan' (signed: '-inf' inside). A line that is not 3 finite numbers is an error.\n"
+    "  'inf -1 nan nan nan' (signed: '-inf' inside). A line that is not 3 finite numbers is an error\n"
+    "  (the whole file is refused, nothing printed; Python's ttd.closest_points gives such a point\n"
+    "  NaN and a warning instead: docs/python.md says why).\n"
     "signed: the same with d negative inside the mesh (generalized winding number >= 1/2)\n"
     "winding: the generalized winding number, one number a line (1 inside a closed mesh oriented\n"
     "  outwards, 0 outside)\n"
     "grid: signed distances on the grid point (i, j, k) = origin + (i, j, k) * step, i < NX, j < NY,\n"
     "  k < NZ, written to FILE: a .npy file of shape (NX, NY, NZ) when FILE ends in .npy, else raw\n"
-    "  little-endian numbers in that (C) order. --step takes one number or three. Grids of 2^20\n"
-    "  points or more show their progress on standard error (--progress: always; --quiet: never).\n"
+    "  little-endian numbers in that (C) order. --step takes one number or three, each > 0. The\n"
+    "  sizes are checked first (the point count, one x slab against memory, the file against the\n"
+    "  free disk); FILE is written under a temporary name and renamed at the end, so a failed or\n"
+    "  interrupted run (Ctrl-C) leaves no partial file. Grids of 2^20 points or more show their\n"
+    "  progress on standard error when it is a terminal, at most 4 updates a second (--progress:\n"
+    "  also when it is not, one line an update; --quiet: never).\n"
     "\n"
     "options:\n"
     "  --pose P          the mesh's pose in the points' frame, 12 numbers [R | t] row by row (or\n"
@@ -165,7 +176,7 @@ static int parse_args(int argc, char **argv, points_args *a)
                 bad = parse_vec(val, a->origin, 0);
                 a->has_origin = 1;
             } else if (strcmp(opt, "--step") == 0) {
-                bad = parse_vec(val, a->step, 1);
+                bad = parse_vec(val, a->step, 1) || !(a->step[0] > 0 && a->step[1] > 0 && a->step[2] > 0);
                 a->has_step = 1;
             } else if (strcmp(opt, "--dims") == 0) {
                 double d[3];
@@ -429,21 +440,117 @@ static int write_npy_header(FILE *f, const points_args *a)
     return fputc('\n', f) == EOF ? -1 : 0;
 }
 
-static int run_grid(const points_args *a, const ttd_mesh *mesh)
+/* Set by SIGINT / SIGTERM while a grid is written: the loop stops after the slab at hand and
+ * removes its temporary file, so an interrupted run leaves no partial grid behind. */
+static volatile sig_atomic_t grid_stop;
+
+static void grid_on_signal(int sig)
 {
-    const size_t slab = a->dims[1] * a->dims[2], total = a->dims[0] * slab;
-    const size_t l = strlen(a->out_path);
-    const int npy = l >= 4 && strcmp(a->out_path + l - 4, ".npy") == 0;
-    FILE *f = fopen(a->out_path, "wb");
-    if (f == NULL) {
-        ttd_cli_error("%s: %s", a->out_path, strerror(errno));
+    grid_stop = sig;
+}
+
+/* mkstemp makes the file 0600; the grid gets the permissions a plain fopen would give it */
+static mode_t grid_umask(void)
+{
+    const mode_t m = umask(0);
+    umask(m);
+    return m;
+}
+
+static double grid_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The grid's size, checked before anything is written: the point count and the file's bytes must
+ * not overflow, one slab's buffer must fit in memory and the file on its disk. Returns 0, or
+ * prints why not and returns an exit status. */
+static int grid_check_sizes(const points_args *a, const char *dir)
+{
+    const size_t sz = a->use_float ? sizeof(float) : sizeof(double);
+    const size_t d0 = a->dims[0], d1 = a->dims[1], d2 = a->dims[2];
+    if (d1 > SIZE_MAX / d2 || d0 > SIZE_MAX / (d1 * d2) || d0 * d1 * d2 > (SIZE_MAX - 128) / sz) {
+        ttd_cli_error("points grid: --dims \"%zu %zu %zu\": the point count or the file's size overflows %zu bits", d0, d1,
+                      d2, 8 * sizeof(size_t));
+        return TTD_EXIT_USAGE;
+    }
+    const size_t slab_bytes = d1 * d2 * sz, bytes = d0 * d1 * d2 * sz + 128;
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0 && (double)slab_bytes > 0.5 * (double)pages * (double)page) {
+        ttd_cli_error("points grid: one slab of %zu x %zu points needs %.3g GB, more than half this machine's memory "
+                      "(%.3g GB): put the longest dimension first (--dims NX NY NZ, computed one x index at a time)",
+                      d1, d2, 1e-9 * (double)slab_bytes, 1e-9 * (double)pages * (double)page);
+        return TTD_EXIT_USAGE;
+    }
+    struct statvfs fs;
+    if (statvfs(dir, &fs) == 0 && (double)bytes > (double)fs.f_bavail * (double)fs.f_frsize) {
+        ttd_cli_error("points grid: %s needs %.4g GB and its disk has %.4g GB free", a->out_path, 1e-9 * (double)bytes,
+                      1e-9 * (double)fs.f_bavail * (double)fs.f_frsize);
         return TTD_EXIT_INPUT;
     }
+    return 0;
+}
+
+static int run_grid(const points_args *a, const ttd_mesh *mesh)
+{
+    const size_t slab = a->dims[1] * a->dims[2];
+    const size_t l = strlen(a->out_path);
+    const int npy = l >= 4 && strcmp(a->out_path + l - 4, ".npy") == 0;
+    /* the output is written to a temporary file beside it and renamed over it at the end */
+    char *tmp = malloc(l + 16), *dir = malloc(l + 2);
+    if (tmp == NULL || dir == NULL) {
+        free(tmp), free(dir);
+        ttd_cli_error("points grid: out of memory");
+        return TTD_EXIT_INPUT;
+    }
+    snprintf(tmp, l + 16, "%s.tmp.XXXXXX", a->out_path);
+    const char *slash = strrchr(a->out_path, '/');
+    if (slash == NULL)
+        snprintf(dir, l + 2, ".");
+    else
+        snprintf(dir, l + 2, "%.*s", slash == a->out_path ? 1 : (int)(slash - a->out_path), a->out_path);
+    int rc = grid_check_sizes(a, dir);
+    free(dir);
+    if (rc) {
+        free(tmp);
+        return rc;
+    }
+    const int fd = mkstemp(tmp);
+    FILE *f = fd < 0 ? NULL : fdopen(fd, "wb");
+    if (f == NULL) {
+        ttd_cli_error("%s: %s", a->out_path, strerror(errno));
+        if (fd >= 0)
+            close(fd), unlink(tmp);
+        free(tmp);
+        return TTD_EXIT_INPUT;
+    }
+    fchmod(fd, 0666 & ~grid_umask());
     void *buf = malloc(slab * (a->use_float ? sizeof(float) : sizeof(double)));
-    int rc = buf == NULL || (npy && write_npy_header(f, a)) ? TTD_EXIT_INPUT : 0;
-    const int show = a->progress == 1 || (a->progress == -1 && total >= TTD_POINTS_PROGRESS_MIN);
+    if (buf == NULL)
+        ttd_cli_error("points grid: out of memory for a slab of %zu points", slab);
+    rc = buf == NULL || (npy && write_npy_header(f, a)) ? TTD_EXIT_INPUT : 0;
+    /* progress: on a terminal for large grids (or --progress), at most 4 updates a second */
+    const size_t total = a->dims[0] * slab;
+    const int tty = isatty(STDERR_FILENO);
+    const int show = a->progress == 1 || (a->progress == -1 && tty && total >= TTD_POINTS_PROGRESS_MIN);
+    double next_show = grid_now() + 0.25;
+    int shown = 0;
+    grid_stop = 0;
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = grid_on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
     const size_t dims1[3] = {1, a->dims[1], a->dims[2]};
     for (size_t i = 0; i < a->dims[0] && rc == 0; ++i) {
+        if (grid_stop) {
+            ttd_cli_error("points grid: interrupted after %zu of %zu slabs; %s not written", i, a->dims[0], a->out_path);
+            rc = TTD_EXIT_INPUT;
+            break;
+        }
         ttd_status st;
         if (a->use_float) {
             /* the slab's origin: origin + i step in float, as the whole grid's call computes x */
@@ -461,19 +568,31 @@ static int run_grid(const points_args *a, const ttd_mesh *mesh)
         }
         const size_t sz = a->use_float ? sizeof(float) : sizeof(double);
         if (fwrite(buf, sz, slab, f) != slab) {
-            ttd_cli_error("%s: cannot write", a->out_path);
+            ttd_cli_error("%s: cannot write: %s", a->out_path, strerror(errno));
             rc = TTD_EXIT_INPUT;
         }
-        if (show)
-            fprintf(stderr, "\rttd points grid: %3d%% (%zu of %zu slabs)", (int)(100 * (i + 1) / a->dims[0]), i + 1,
-                    a->dims[0]);
+        if (show && (i + 1 == a->dims[0] || grid_now() >= next_show)) {
+            fprintf(stderr, "%sttd points grid: %3d%% (%zu of %zu slabs)%s", tty ? "\r" : "",
+                    (int)((double)(i + 1) / (double)a->dims[0] * 100.0), i + 1, a->dims[0], tty ? "" : "\n");
+            next_show = grid_now() + 0.25;
+            shown = 1;
+        }
     }
-    if (show)
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    if (shown && tty)
         fputc('\n', stderr);
     if (fclose(f) != 0 && rc == 0) {
-        ttd_cli_error("%s: cannot write", a->out_path);
+        ttd_cli_error("%s: cannot write: %s", a->out_path, strerror(errno));
         rc = TTD_EXIT_INPUT;
     }
+    if (rc == 0 && rename(tmp, a->out_path) != 0) {
+        ttd_cli_error("%s: cannot rename %s to it: %s", a->out_path, tmp, strerror(errno));
+        rc = TTD_EXIT_INPUT;
+    }
+    if (rc != 0)
+        unlink(tmp);
+    free(tmp);
     free(buf);
     return rc;
 }

@@ -106,16 +106,22 @@ def extension(name: str, sources: list, numpy_api: bool) -> Extension:
     )
 
 
+EXTENSIONS = [
+    extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c"],
+              numpy_api=True),
+]
+# The benchmark's C-side timer (bench/python_overhead.py, and the tests that check it): not part
+# of the API, so a wheel or an install leaves it out unless TTD_PYTHON_CTIMING=1 asks for it
+# (scripts/test-python.sh does, for its own venv).
+if os.environ.get("TTD_PYTHON_CTIMING") == "1":
+    EXTENSIONS.append(extension("ttd._ctiming", ["ttd_ctiming.c"], numpy_api=False))
+
 setup(
     version=version(ROOT),
     packages=["ttd"],
     package_data={"ttd": ["py.typed", "*.pyi"]},
     zip_safe=False,
     options={"build": {"build_base": os.environ.get("TTD_PYTHON_BUILD_BASE", "build")}},
-    ext_modules=[
-        extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c"], numpy_api=True),
-        # The benchmark's C-side timer (bench/python_overhead.py); not part of the API.
-        extension("ttd._ctiming", ["ttd_ctiming.c"], numpy_api=False),
-    ],
+    ext_modules=EXTENSIONS,
     cmdclass={"build_ext": BuildWithLibrary},
 )

@@ -109,7 +109,9 @@ if ! [ -x "$venv/bin/python" ] || [ "$("$venv/bin/python" -c "$real" 2> /dev/nul
     "$py" -m venv --system-site-packages "$venv"
 fi
 echo "test-python.sh: building and installing python/ into $venv (interpreter $py)" >&2
-TTD_CMAKE_BUILD_DIR=$build TTD_PYTHON_BUILD_BASE=$build/python-build \
+# TTD_PYTHON_CTIMING=1: with the benchmark's C-side timer (ttd._ctiming), which bench/python_overhead.py
+# and two tests use; wheels and plain installs leave it out.
+TTD_CMAKE_BUILD_DIR=$build TTD_PYTHON_BUILD_BASE=$build/python-build TTD_PYTHON_CTIMING=1 \
     "$venv/bin/python" -m pip install --quiet --no-build-isolation --no-index --disable-pip-version-check ./python
 
 # From the repository root, so that python/ttd (the sources) does not shadow the installed

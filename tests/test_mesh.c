@@ -293,6 +293,9 @@ static int contacts_and_collision_match_brute_force(void)
                 }
             }
             ENSURE_MSG(set.count == want, "%s margin %.17g: %zu pairs, brute force %zu", c->name, margin, set.count, want);
+            size_t counted = SIZE_MAX; /* the count without the pairs */
+            ENSURE(ttd_mesh_contacts_count_d(NULL, a, b, 1, c->pose, margin, &counted) == TTD_OK);
+            ENSURE_MSG(counted == want, "%s margin %.17g: counted %zu, brute force %zu", c->name, margin, counted, want);
             pairs_checked += want;
             /* collision with this margin */
             ttd_collision col;
@@ -365,6 +368,22 @@ static int poses_threads_isas_identical(void)
     ENSURE(ttd_mesh_distance_d(&o, a, b, K, poses, HUGE_VAL, 0, ref) == TTD_OK);
     ENSURE(ttd_mesh_collide_d(&o, a, b, K, poses, 0.01, cref) == TTD_OK);
     ENSURE(ttd_mesh_contacts_d(&o, a, b, K, poses, 0.05, &sref) == TTD_OK);
+    size_t counts[K]; /* each pose's count without the pairs, at 1 and 2 threads */
+    for (int threads = 1; threads <= 2; ++threads) {
+        ttd_options oc = o;
+        oc.threads = threads;
+        ENSURE(ttd_mesh_contacts_count_d(&oc, a, b, K, poses, 0.05, counts) == TTD_OK);
+        for (int i = 0; i < K; ++i)
+            ENSURE(counts[i] == sref.pose_start[i + 1] - sref.pose_start[i]);
+    }
+    {
+        float pf[12 * K];
+        for (int i = 0; i < 12 * K; ++i)
+            pf[i] = (float)poses[i];
+        ENSURE(ttd_mesh_contacts_count_f(&o, a, b, K, pf, 0.05f, counts) == TTD_ERR_PRECISION_MISMATCH);
+        ENSURE(ttd_mesh_contacts_count_d(&o, a, b, K, poses, 0.05, NULL) == TTD_ERR_NULL_POINTER);
+        ENSURE(ttd_mesh_contacts_count_d(&o, a, b, K, poses, -1.0, counts) == TTD_ERR_BAD_OPTIONS);
+    }
     for (int i = 0; i < K; ++i) { /* a loop of single poses */
         ENSURE(ttd_mesh_distance_d(&o, a, b, 1, poses + 12 * i, HUGE_VAL, 0, &got[i]) == TTD_OK);
         ENSURE(memcmp(&got[i], &ref[i], sizeof got[i]) == 0);

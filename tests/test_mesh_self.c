@@ -71,6 +71,9 @@ static int check_margin(const char *what, const ttd_mesh *m, int fl, unsigned fl
             ENSURE(memcmp(c->p, all[k].p, sizeof c->p) == 0 && memcmp(c->q, all[k].q, sizeof c->q) == 0);
         }
         ENSURE_MSG(count == set.count, "%s margin %.17g: %zu pairs, brute force %zu", what, margin, set.count, count);
+        size_t counted = SIZE_MAX; /* the count without the pairs: the brute force's */
+        ENSURE(ttd_mesh_self_contacts_count_d(NULL, m, margin, flags, &counted) == TTD_OK);
+        ENSURE_MSG(counted == count, "%s margin %.17g: counted %zu, brute force %zu", what, margin, counted, count);
         ttd_contacts_free_d(&set);
         ENSURE(ttd_mesh_self_collide_d(NULL, m, margin, flags, &col) == TTD_OK);
     } else {
@@ -88,6 +91,9 @@ static int check_margin(const char *what, const ttd_mesh *m, int fl, unsigned fl
         }
         ENSURE_MSG(count == set.count, "%s (float) margin %.9g: %zu pairs, brute force %zu", what, margin, set.count,
                    count);
+        size_t counted = SIZE_MAX;
+        ENSURE(ttd_mesh_self_contacts_count_f(NULL, m, (float)margin, flags, &counted) == TTD_OK);
+        ENSURE_MSG(counted == count, "%s (float) margin %.9g: counted %zu, brute force %zu", what, margin, counted, count);
         ttd_contacts_free_f(&set);
         ENSURE(ttd_mesh_self_collide_f(NULL, m, (float)margin, flags, &col) == TTD_OK);
         margin = (double)(float)margin;
@@ -415,6 +421,15 @@ static int bad_input_refused(void)
     bad.method = TTD_METHOD_PENALTY;
     ENSURE(ttd_mesh_self_contacts_d(&bad, m, 0.1, 0, &set) == TTD_ERR_BAD_OPTIONS);
     ENSURE(set.count == 0);
+    /* the count-only query: the same checks */
+    size_t n = 0;
+    ENSURE(ttd_mesh_self_contacts_count_d(NULL, NULL, 0.1, 0, &n) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_self_contacts_count_d(NULL, m, 0.1, 0, NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_self_contacts_count_d(NULL, m, -1, 0, &n) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_contacts_count_d(NULL, m, (double)NAN, 0, &n) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_contacts_count_d(NULL, m, 0.1, 4, &n) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_contacts_count_f(NULL, m, 0.1f, 0, &n) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_mesh_self_contacts_count_d(&bad, m, 0.1, 0, &n) == TTD_ERR_BAD_OPTIONS);
     /* one triangle: nothing; a flat grid at margin 0: nothing (neighbours share vertices) */
     ENSURE(ttd_mesh_self_contacts_f(NULL, mf, 1.0f, TTD_SELF_SHARED_VERTEX, &setf) == TTD_OK && setf.count == 0);
     ENSURE(ttd_mesh_self_collide_d(NULL, m, 0, TTD_SELF_SHARED_VERTEX, &col) == TTD_OK && col.hit == 0);

@@ -121,6 +121,7 @@ static double *test_points(const ttd_gen_mesh *m, uint64_t seed, size_t per, siz
     static void brute_##sfx(const real *verts, const uint32_t *tris, size_t nt, const real p[3],  \
                             ttd_point_result_##sfx *out)                                          \
     {                                                                                             \
+        memset(out, 0, sizeof *out); /* every field set, even where no triangle is nearer */      \
         out->distance = (real)INFINITY;                                                           \
         out->triangle = UINT32_MAX;                                                               \
         for (size_t t = 0; t < nt; ++t) {                                                         \

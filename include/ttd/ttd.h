@@ -424,6 +424,14 @@ TTD_API ttd_status ttd_mesh_contacts_d(const ttd_options *opt, const ttd_mesh *a
 /// ttd_mesh_contacts_d in single precision.
 TTD_API ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                        const float *poses, float margin, ttd_contacts_f *out);
+/// The number of pairs ttd_mesh_contacts_d finds under each of k poses, into counts[0 .. k),
+/// without holding the pairs: the same walk, whose pairs are counted and dropped, so its memory
+/// does not grow with the count. Same checks and statuses as ttd_mesh_contacts_d.
+TTD_API ttd_status ttd_mesh_contacts_count_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                             const double *poses, double margin, size_t *counts);
+/// ttd_mesh_contacts_count_d in single precision.
+TTD_API ttd_status ttd_mesh_contacts_count_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                             const float *poses, float margin, size_t *counts);
 /// Frees what a contact query allocated and zeroes the set (NULL is fine).
 TTD_API void ttd_contacts_free_d(ttd_contacts_d *contacts);
 TTD_API void ttd_contacts_free_f(ttd_contacts_f *contacts);
@@ -502,6 +510,13 @@ TTD_API ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_me
 /// ttd_mesh_self_contacts_d in single precision (a mesh from ttd_mesh_create_f).
 TTD_API ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
                                             ttd_contacts_f *out);
+/// The number of pairs ttd_mesh_self_contacts_d finds, into *count, without holding them (as
+/// ttd_mesh_contacts_count_d). Same checks and statuses as ttd_mesh_self_contacts_d.
+TTD_API ttd_status ttd_mesh_self_contacts_count_d(const ttd_options *opt, const ttd_mesh *mesh, double margin,
+                                                  unsigned flags, size_t *count);
+/// ttd_mesh_self_contacts_count_d in single precision.
+TTD_API ttd_status ttd_mesh_self_contacts_count_f(const ttd_options *opt, const ttd_mesh *mesh, float margin,
+                                                  unsigned flags, size_t *count);
 /// Whether a mesh comes within margin (>= 0; 0: does it intersect itself?) of itself, by the
 /// pairs and rules of ttd_mesh_self_contacts_d: stops at the first such pair, out->tri_a <
 /// out->tri_b its triangles (UINT32_MAX when none); the witness depends on the mesh alone.

@@ -14,12 +14,14 @@
 #include "ttd_py.h"
 #include <ttd/meshfile.h>
 
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* ---- the Mesh type (its struct is in ttd_py.h: ttd.Scene's bodies refer to it) ------------ */
 
@@ -959,7 +961,7 @@ static void ttd_py_raise_bad_param(const char *what, double x, int type, const c
 /* For a status other than TTD_OK: the exception that names the problem; returns -1. */
 static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_query *q, double x, double y)
 {
-    if (st == TTD_PY_IN_USE) /* raised already */
+    if (st == TTD_PY_IN_USE || st == TTD_PY_INTERRUPTED) /* raised already */
         return -1;
     switch (st) {
     case TTD_ERR_BAD_POSE:
@@ -989,6 +991,25 @@ static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_quer
     }
 }
 
+/* Poses [b, e) of a query: one library call on them, its outputs at their offsets. */
+typedef struct ttd_py_pose_piece {
+    ttd_py_kind kind;
+    const ttd_py_query *q;
+    double x, y;
+    void *out, *out2;
+    size_t pose_stride, out_stride, out2_stride; /* bytes per pose */
+} ttd_py_pose_piece;
+
+static ttd_status ttd_py_pose_piece_run(void *ctx, size_t b, size_t e)
+{
+    const ttd_py_pose_piece *c = ctx;
+    const ttd_py_query *q = c->q;
+    const char *poses = (const char *)PyArray_DATA(q->poses) + b * c->pose_stride;
+    void *out = c->out ? (char *)c->out + b * c->out_stride : NULL;
+    void *out2 = c->out2 ? (char *)c->out2 + b * c->out2_stride : NULL;
+    return ttd_py_call(c->kind, &q->opt, q->type, q->a->mesh, q->b->mesh, e - b, poses, c->x, c->y, out, out2);
+}
+
 /* The call of kind on q's poses, with the lock released; K = 0 runs the checks on the probe. */
 static ttd_status ttd_py_query_call(ttd_py_kind kind, const ttd_py_query *q, double x, double y, void *out, void *out2)
 {
@@ -999,9 +1020,24 @@ static ttd_status ttd_py_query_call(ttd_py_kind kind, const ttd_py_query *q, dou
     PyObject *const meshes[2] = {(PyObject *)q->a, (PyObject *)q->b};
     if (ttd_py_meshes_use(meshes, 2) < 0)
         return TTD_PY_IN_USE;
-    Py_BEGIN_ALLOW_THREADS
-    st = ttd_py_call(kind, &q->opt, q->type, q->a->mesh, q->b->mesh, (size_t)q->k, poses, x, y, out, out2);
-    Py_END_ALLOW_THREADS
+    if (kind == TTD_PY_CONTACTS) { /* one growing contact set: one call (no Ctrl-C inside it) */
+        Py_BEGIN_ALLOW_THREADS
+        st = ttd_py_call(kind, &q->opt, q->type, q->a->mesh, q->b->mesh, (size_t)q->k, poses, x, y, out, out2);
+        Py_END_ALLOW_THREADS
+    } else { /* poses in pieces, Ctrl-C checked between them (ttd_py_run_pieces) */
+        const int d = q->type == NPY_DOUBLE;
+        const size_t nta = (size_t)PyArray_DIM(q->a->faces, 0), ntb = (size_t)PyArray_DIM(q->b->faces, 0);
+        ttd_py_pose_piece c = {kind, q, x, y, out, out2, 12 * (d ? sizeof(double) : sizeof(float)), 0, 0};
+        if (kind == TTD_PY_DISTANCE)
+            c.out_stride = d ? sizeof(ttd_mesh_result_d) : sizeof(ttd_mesh_result_f);
+        else if (kind == TTD_PY_COLLIDE)
+            c.out_stride = sizeof(ttd_collision);
+        else
+            c.out_stride = nta * (d ? sizeof(ttd_closest_d) : sizeof(ttd_closest_f)),
+            c.out2_stride = ntb * (d ? sizeof(ttd_closest_d) : sizeof(ttd_closest_f));
+        if (ttd_py_run_pieces((size_t)q->k, 16, ttd_py_pose_piece_run, &c, &st) < 0)
+            st = TTD_PY_INTERRUPTED;
+    }
     ttd_py_meshes_release(meshes, 2);
     return st;
 }
@@ -1525,8 +1561,10 @@ PyDoc_STRVAR(ttd_py_load_mesh_doc,
 "weld : None (default) or a tolerance >= 0: the vertices within it merged as ttd.weld does,\n"
 "decided on the double coordinates (float32 ones are those of the vertex kept).\n\n"
 "Returns (vertices, faces, skipped, dropped): vertices (N, 3) of that dtype, faces (M, 3)\n"
-"uint32, skipped, the number of OBJ lines skipped, and dropped, the faces welding dropped. Raises ValueError naming FILE:LINE or the byte\n"
-"(a malformed or unreadable file), TypeError for a path that is not str or os.PathLike.");
+"uint32, skipped, the number of OBJ lines skipped, and dropped, the faces welding dropped.\n"
+"Raises an OSError subclass for a file that cannot be read (FileNotFoundError,\n"
+"PermissionError, IsADirectoryError, ...), ValueError naming FILE:LINE or the byte for a\n"
+"malformed one, TypeError for a path that is not str or os.PathLike.");
 
 static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwargs)
 {
@@ -1559,6 +1597,24 @@ static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwar
     size_t dropped = 0;
     int rc;
     const char *path = PyBytes_AS_STRING(bytes);
+    /* I/O errors as Python's OSError subclasses (FileNotFoundError, PermissionError,
+     * IsADirectoryError, ...), from errno: the file is opened once here first; what the reader
+     * refuses afterwards is the content (ValueError) */
+    if (strcmp(path, "-") != 0) {
+        FILE *probe = fopen(path, "rb");
+        int e = probe ? 0 : errno;
+        struct stat sb;
+        if (probe && fstat(fileno(probe), &sb) == 0 && S_ISDIR(sb.st_mode))
+            e = EISDIR;
+        if (probe)
+            fclose(probe);
+        if (e) {
+            errno = e;
+            PyErr_SetFromErrnoWithFilenameObject(PyExc_OSError, path_obj);
+            Py_DECREF(bytes);
+            return NULL;
+        }
+    }
     Py_BEGIN_ALLOW_THREADS
     rc = ttd_meshfile_read(path, (f32 ? TTD_MESHFILE_FLOAT : 0) | (strict ? TTD_MESHFILE_STRICT : 0), &m, err,
                            sizeof err);
@@ -1570,7 +1626,13 @@ static PyObject *ttd_py_load_mesh(PyObject *self, PyObject *args, PyObject *kwar
     Py_END_ALLOW_THREADS
     Py_DECREF(bytes);
     if (rc != 0) {
-        PyErr_SetString(PyExc_ValueError, err);
+        /* a read that failed part way (the reader says "read error") is an OSError too */
+        PyObject *io = strstr(err, ": read error: ") != NULL ? Py_BuildValue("(is)", EIO, err) : NULL;
+        if (io != NULL) {
+            PyErr_SetObject(PyExc_OSError, io);
+            Py_DECREF(io);
+        } else
+            PyErr_SetString(PyExc_ValueError, err);
         return NULL;
     }
     npy_intp vd[2] = {(npy_intp)m.nv, 3}, fd[2] = {(npy_intp)m.nt, 3};

@@ -78,21 +78,35 @@ int ttd_py_pairs_init(PyObject *module)
     return 0;
 }
 
+typedef struct pair_piece {
+    const ttd_options *opt;
+    int type;
+    const void *s, *t;
+    void *distance, *results;
+} pair_piece;
+
+static ttd_status pair_piece_run(void *ctx, size_t b, size_t e)
+{
+    const pair_piece *c = ctx;
+    if (c->type == NPY_DOUBLE)
+        return ttd_batch_d(c->opt, e - b, (const double *)c->s + 9 * b, (const double *)c->t + 9 * b,
+                           c->distance ? (double *)c->distance + b : NULL,
+                           c->results ? (ttd_result_d *)c->results + b : NULL);
+    return ttd_batch_f(c->opt, e - b, (const float *)c->s + 9 * b, (const float *)c->t + 9 * b,
+                       c->distance ? (float *)c->distance + b : NULL, c->results ? (ttd_result_f *)c->results + b : NULL);
+}
+
 /* The library call with the interpreter lock released; n == 0 gets the checks of a one-pair
  * call instead (options and instruction set), so that errors do not depend on n. */
 static ttd_status ttd_py_batch(const ttd_options *opt, int type, npy_intp n, const void *s, const void *t,
                                void *distance, void *results)
 {
-    ttd_status st;
     if (n == 0)
         return ttd_py_check_options(opt);
-    Py_BEGIN_ALLOW_THREADS
-    if (type == NPY_DOUBLE)
-        st = ttd_batch_d(opt, (size_t)n, s, t, distance, results);
-    else
-        st = ttd_batch_f(opt, (size_t)n, s, t, distance, results);
-    Py_END_ALLOW_THREADS
-    return st;
+    /* in pieces, Ctrl-C checked between them (ttd_py_run_pieces); results do not depend on them */
+    pair_piece c = {opt, type, s, t, distance, results};
+    ttd_status st;
+    return ttd_py_run_pieces((size_t)n, (size_t)1 << 20, pair_piece_run, &c, &st) < 0 ? TTD_PY_INTERRUPTED : st;
 }
 
 /* The warnings of the non-fatal statuses; -1 when one was turned into an error. */

@@ -56,6 +56,10 @@ static PyStructSequence_Desc ct_desc = {
 };
 
 static PyTypeObject *ClosestPoints, *SignedDistance, *WindingNumber, *Containment;
+/* Points in a batch's first piece between Ctrl-C checks (ttd_py_run_pieces): a batch this size
+ * or smaller is one library call. */
+#define TTD_PY_POINTS_PIECE 65536
+
 static PyObject *cp_names[NCP], *sd_names[NSD], *wn_names[NWN], *ct_names[NCT];
 static PyArray_Descr *cp_rec[2]; /* [0] float64, [1] float32 */
 
@@ -178,6 +182,8 @@ static void pq_end(pq *q)
 /* The status's exception or warning; -1 when one was raised. */
 static int pq_status(ttd_status st, const pq *q)
 {
+    if (st == TTD_PY_INTERRUPTED) /* raised already (KeyboardInterrupt) */
+        return -1;
     if (st == TTD_ERR_NONFINITE_INPUT) {
         return PyErr_WarnEx(ttd_py_NonFiniteInputWarning,
                             "ttd: some points had NaN or infinite coordinates; their outputs are NaN", 1) < 0
@@ -212,22 +218,41 @@ static PyArrayObject *pq_records(const pq *q)
     return (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, d, q->nd, q->dims, NULL, NULL, 0, NULL);
 }
 
-/* The library call (closest: sd NULL; signed: sd set) with the lock released. */
+/* The library call (closest: sd NULL; signed: sd set) on points [b, e), with the lock released
+ * (ttd_py_run_pieces: Ctrl-C between pieces). */
+typedef struct pq_piece {
+    const pq *q;
+    double ub;
+    void *rec, *sd;
+    double *w;
+    float *wf;
+} pq_piece;
+
+static ttd_status pq_closest_piece(void *ctx, size_t b, size_t e)
+{
+    const pq_piece *c = ctx;
+    const pq *q = c->q;
+    const char *pts = (const char *)PyArray_DATA(q->points) + 3 * b * (q->f ? sizeof(float) : sizeof(double));
+    if (q->f) {
+        ttd_point_result_f *rec = (ttd_point_result_f *)c->rec + b;
+        return c->sd ? ttd_points_signed_distance_f(&q->opt, q->mesh->mesh, e - b, (const float *)pts,
+                                                    q->has_pose ? q->pose_f : NULL, ttd_py_to_float(c->ub),
+                                                    (float *)c->sd + b, rec)
+                     : ttd_points_closest_f(&q->opt, q->mesh->mesh, e - b, (const float *)pts,
+                                            q->has_pose ? q->pose_f : NULL, ttd_py_to_float(c->ub), rec);
+    }
+    ttd_point_result_d *rec = (ttd_point_result_d *)c->rec + b;
+    return c->sd ? ttd_points_signed_distance_d(&q->opt, q->mesh->mesh, e - b, (const double *)pts,
+                                                q->has_pose ? q->pose_d : NULL, c->ub, (double *)c->sd + b, rec)
+                 : ttd_points_closest_d(&q->opt, q->mesh->mesh, e - b, (const double *)pts,
+                                        q->has_pose ? q->pose_d : NULL, c->ub, rec);
+}
+
 static ttd_status pq_closest(const pq *q, double ub, void *rec, void *sd)
 {
+    pq_piece c = {q, ub, rec, sd, NULL, NULL};
     ttd_status st;
-    const void *pts = PyArray_DATA(q->points);
-    const size_t n = (size_t)q->n;
-    Py_BEGIN_ALLOW_THREADS
-    if (q->f)
-        st = sd ? ttd_points_signed_distance_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL,
-                                               ttd_py_to_float(ub), sd, rec)
-                : ttd_points_closest_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL, ttd_py_to_float(ub), rec);
-    else
-        st = sd ? ttd_points_signed_distance_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, ub, sd, rec)
-                : ttd_points_closest_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, ub, rec);
-    Py_END_ALLOW_THREADS
-    return st;
+    return ttd_py_run_pieces((size_t)q->n, TTD_PY_POINTS_PIECE, pq_closest_piece, &c, &st) < 0 ? TTD_PY_INTERRUPTED : st;
 }
 
 PyDoc_STRVAR(closest_points_doc,
@@ -329,28 +354,37 @@ done:
     return result;
 }
 
+static ttd_status pq_winding_piece(void *ctx, size_t b, size_t e)
+{
+    const pq_piece *c = ctx;
+    const pq *q = c->q;
+    ttd_status st;
+    if (q->f) {
+        const float *pts = (const float *)PyArray_DATA(q->points) + 3 * b;
+        st = ttd_points_winding_number_f(&q->opt, q->mesh->mesh, e - b, pts, q->has_pose ? q->pose_f : NULL, c->wf + b);
+        for (size_t i = b; i < e && st < TTD_ERR_FIRST_FATAL; ++i)
+            c->w[i] = (double)c->wf[i];
+        return st;
+    }
+    const double *pts = (const double *)PyArray_DATA(q->points) + 3 * b;
+    return ttd_points_winding_number_d(&q->opt, q->mesh->mesh, e - b, pts, q->has_pose ? q->pose_d : NULL, c->w + b);
+}
+
 /* The winding numbers (as float64) into w; -1 with an exception. */
 static int pq_winding(const pq *q, double *w)
 {
     if (q->n == 0)
         return 0;
     ttd_status st;
-    const void *pts = PyArray_DATA(q->points);
     const size_t n = (size_t)q->n;
     float *wf = q->f ? PyMem_RawMalloc(n * sizeof *wf) : NULL;
     if (q->f && wf == NULL) {
         PyErr_NoMemory();
         return -1;
     }
-    Py_BEGIN_ALLOW_THREADS
-    if (q->f) {
-        st = ttd_points_winding_number_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL, wf);
-        for (size_t i = 0; i < n && st < TTD_ERR_FIRST_FATAL; ++i)
-            w[i] = (double)wf[i];
-    } else {
-        st = ttd_points_winding_number_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, w);
-    }
-    Py_END_ALLOW_THREADS
+    pq_piece c = {q, 0, NULL, NULL, w, wf};
+    if (ttd_py_run_pieces(n, TTD_PY_POINTS_PIECE, pq_winding_piece, &c, &st) < 0)
+        st = TTD_PY_INTERRUPTED;
     PyMem_RawFree(wf);
     return pq_status(st, q);
 }
@@ -422,7 +456,43 @@ PyDoc_STRVAR(sdf_grid_doc,
 "Signed distances on a regular grid, in the mesh's frame: an array of the given shape (nx, ny,\n"
 "nz) and the mesh's dtype whose [i, j, k] is the signed distance at origin + (i, j, k) * step\n"
 "(each coordinate computed as origin[c] + i * step[c] in the mesh's dtype). step is one number\n"
-"or three.");
+"or three, each > 0. Computed slab by slab (or row by row): Ctrl-C stops it (KeyboardInterrupt).");
+
+/* The grid's slabs (x index i), or rows (i, j), [b, e): each one library call on a grid of one slab
+ * or row whose origin is the point origin + (i, j, 0) * step computed as the library computes a
+ * whole grid's coordinates, so the pieces give the whole call's bits. */
+typedef struct grid_piece {
+    const ttd_options *opt;
+    const ttd_mesh *mesh;
+    int f;
+    double o[3], s[3];
+    float of[3], sf[3];
+    size_t dims[3];
+    int rows;
+    void *out;
+} grid_piece;
+
+static ttd_status grid_run_piece(void *ctx, size_t b, size_t e)
+{
+    const grid_piece *g = ctx;
+    const size_t per = g->rows ? g->dims[2] : g->dims[1] * g->dims[2];
+    const size_t d1[3] = {1, g->rows ? 1 : g->dims[1], g->dims[2]};
+    ttd_status st = TTD_OK;
+    for (size_t u = b; u < e && st < TTD_ERR_FIRST_FATAL; ++u) {
+        const size_t i = g->rows ? u / g->dims[1] : u, j = g->rows ? u % g->dims[1] : 0;
+        ttd_status s1;
+        if (g->f) {
+            const float o[3] = {g->of[0] + (float)i * g->sf[0], g->of[1] + (float)j * g->sf[1], g->of[2]};
+            s1 = ttd_sdf_grid_f(g->opt, g->mesh, o, g->sf, d1, (float *)g->out + u * per);
+        } else {
+            const double o[3] = {g->o[0] + (double)i * g->s[0], g->o[1] + (double)j * g->s[1], g->o[2]};
+            s1 = ttd_sdf_grid_d(g->opt, g->mesh, o, g->s, d1, (double *)g->out + u * per);
+        }
+        if (s1 > st)
+            st = s1;
+    }
+    return st;
+}
 
 static PyObject *py_sdf_grid(PyObject *self, PyObject *args, PyObject *kwargs)
 {
@@ -449,39 +519,66 @@ static PyObject *py_sdf_grid(PyObject *self, PyObject *args, PyObject *kwargs)
     Py_XDECREF(oa);
     Py_XDECREF(sa);
     Py_XDECREF(ha);
-    int ok = od && sdd && hd && PyArray_SIZE(od) == 3 && (PyArray_SIZE(sdd) == 3 || PyArray_SIZE(sdd) == 1) &&
-             PyArray_SIZE(hd) == 3;
+    /* each problem its own message */
+    int ok = od && sdd && hd;
+    if (ok && PyArray_SIZE(od) != 3) {
+        PyErr_Format(PyExc_ValueError, "sdf_grid: origin must be 3 numbers (x, y, z), not %zd", (Py_ssize_t)PyArray_SIZE(od));
+        ok = 0;
+    } else if (ok && PyArray_SIZE(sdd) != 3 && PyArray_SIZE(sdd) != 1) {
+        PyErr_Format(PyExc_ValueError, "sdf_grid: step must be 1 number or 3, not %zd", (Py_ssize_t)PyArray_SIZE(sdd));
+        ok = 0;
+    } else if (ok && PyArray_SIZE(hd) != 3) {
+        PyErr_Format(PyExc_ValueError, "sdf_grid: shape must be 3 integers (nx, ny, nz), not %zd", (Py_ssize_t)PyArray_SIZE(hd));
+        ok = 0;
+    }
+    char why[160];
     for (int c = 0; ok && c < 3; ++c) {
         o[c] = ((const double *)PyArray_DATA(od))[c];
         s[c] = ((const double *)PyArray_DATA(sdd))[PyArray_SIZE(sdd) == 1 ? 0 : c];
         const double h = ((const double *)PyArray_DATA(hd))[c];
-        ok = h >= 0 && h == floor(h) && h < 1e15;
-        dims[c] = (npy_intp)h;
+        PyObject *kind = PyExc_ValueError;
+        why[0] = '\0';
+        if (!isfinite(o[c]) || !isfinite(s[c]))
+            snprintf(why, sizeof why, "sdf_grid: origin and step must be finite");
+        else if (!(s[c] > 0))
+            snprintf(why, sizeof why, "sdf_grid: step must be > 0 on every axis, not %.17g on axis %d", s[c], c);
+        else if (h != floor(h))
+            kind = PyExc_TypeError, snprintf(why, sizeof why, "sdf_grid: shape must be integers, not %.17g on axis %d", h, c);
+        else if (!(h >= 0))
+            snprintf(why, sizeof why, "sdf_grid: shape must be >= 0 on every axis, not %.0f on axis %d", h, c);
+        else if (!(h < 1e15))
+            snprintf(why, sizeof why, "sdf_grid: shape %.0f on axis %d is beyond any array", h, c);
+        if (why[0]) {
+            PyErr_SetString(kind, why);
+            ok = 0;
+        }
+        dims[c] = ok ? (npy_intp)h : 0;
     }
     Py_XDECREF(od);
     Py_XDECREF(sdd);
     Py_XDECREF(hd);
-    if (!ok) {
-        if (!PyErr_Occurred())
-            PyErr_SetString(PyExc_ValueError, "sdf_grid: origin is 3 numbers, step 1 or 3, shape 3 non-negative integers");
+    if (!ok)
         return NULL;
-    }
     PyArrayObject *out = (PyArrayObject *)PyArray_SimpleNew(3, dims, m->type);
     if (out == NULL)
         return NULL;
     if (PyArray_SIZE(out) == 0)
         return (PyObject *)out;
-    const size_t sz[3] = {(size_t)dims[0], (size_t)dims[1], (size_t)dims[2]};
-    ttd_status st;
-    Py_BEGIN_ALLOW_THREADS
-    if (m->type == NPY_FLOAT) {
-        const float of[3] = {ttd_py_to_float(o[0]), ttd_py_to_float(o[1]), ttd_py_to_float(o[2])};
-        const float sf[3] = {ttd_py_to_float(s[0]), ttd_py_to_float(s[1]), ttd_py_to_float(s[2])};
-        st = ttd_sdf_grid_f(&opt, m->mesh, of, sf, sz, PyArray_DATA(out));
-    } else {
-        st = ttd_sdf_grid_d(&opt, m->mesh, o, s, sz, PyArray_DATA(out));
+    grid_piece g = {&opt, m->mesh, m->type == NPY_FLOAT, {0}, {0}, {0}, {0},
+                    {(size_t)dims[0], (size_t)dims[1], (size_t)dims[2]}, 0, PyArray_DATA(out)};
+    for (int c = 0; c < 3; ++c) {
+        g.o[c] = o[c], g.s[c] = s[c];
+        g.of[c] = ttd_py_to_float(o[c]), g.sf[c] = ttd_py_to_float(s[c]);
     }
-    Py_END_ALLOW_THREADS
+    /* the grid in pieces between Ctrl-C checks: whole x slabs, or rows of a slab when one slab is large */
+    g.rows = g.dims[1] * g.dims[2] > TTD_PY_POINTS_PIECE;
+    const size_t units = g.rows ? g.dims[0] * g.dims[1] : g.dims[0];
+    const size_t per = g.rows ? g.dims[2] : g.dims[1] * g.dims[2];
+    ttd_status st;
+    if (ttd_py_run_pieces(units, per >= TTD_PY_POINTS_PIECE ? 1 : TTD_PY_POINTS_PIECE / per, grid_run_piece, &g, &st) < 0) {
+        Py_DECREF(out);
+        return NULL;
+    }
     if (st == TTD_ERR_BAD_OPTIONS) {
         PyErr_SetString(PyExc_ValueError, "sdf_grid: origin and step must be finite");
         Py_DECREF(out);

@@ -98,6 +98,18 @@ int ttd_py_same_lead(PyArrayObject *a, int lead_a, PyArrayObject *b, int lead_b,
  * instruction set, for calls with nothing to compute (so that errors never depend on n). */
 ttd_status ttd_py_check_options(const ttd_options *opt);
 
+/* Ctrl-C in long calls. A batch of n items (points, poses, grid slabs, pairs) is computed by
+ * fn(ctx, begin, end) on the items [begin, end), with the interpreter lock released, in pieces:
+ * the first of `first` items (a batch that small is one call, as before), then pieces grown or
+ * shrunk so that each takes about a tenth of a second. Between pieces, with the lock held, it
+ * calls PyErr_CheckSignals() from the calling thread: a Ctrl-C (SIGINT) in the main thread raises
+ * KeyboardInterrupt there and the batch stops within about a piece. Returns 0 with *st the first
+ * fatal status (which stops the batch) or else the worst non-fatal one (TTD_ERR_NONFINITE_INPUT
+ * over TTD_WARN_NOT_CONVERGED over TTD_OK); -1 with the signal handler's exception set, when
+ * the caller must free what it made and return NULL. */
+typedef ttd_status (*ttd_py_piece_fn)(void *ctx, size_t begin, size_t end);
+int ttd_py_run_pieces(size_t n, size_t first, ttd_py_piece_fn fn, void *ctx, ttd_status *st);
+
 /* A ttd.Mesh (ttd_mesh.c): the C mesh and the arrays it was built from. */
 typedef struct ttd_py_mesh {
     PyObject_HEAD
@@ -120,6 +132,8 @@ extern PyTypeObject ttd_py_MeshType;
 int ttd_py_meshes_use(PyObject *const *objs, Py_ssize_t n);
 /* The status a query wrapper returns when ttd_py_meshes_use refused (the exception is set). */
 #define TTD_PY_IN_USE ((ttd_status)-1)
+/* The status a wrapper returns when ttd_py_run_pieces was interrupted (the exception is set). */
+#define TTD_PY_INTERRUPTED ((ttd_status)-2)
 void ttd_py_meshes_release(PyObject *const *objs, Py_ssize_t n);
 
 /* The mesh coordinate range, for messages. */

@@ -7,8 +7,10 @@
 #include "ttd_py.h"
 
 #include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* "'exact', 'penalty', ..." for messages; NULL with an exception set on failure. */
 static PyObject *ttd_py_name_list(const char *(*name_of)(int), int count)
@@ -479,6 +481,8 @@ static void ttd_py_raise_isa_unavailable(const ttd_options *opt)
 
 int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt)
 {
+    if (st == TTD_PY_INTERRUPTED) /* raised already (ttd_py_run_pieces) */
+        return -1;
     if (st < TTD_ERR_FIRST_FATAL)
         return 0;
     switch (st) {
@@ -510,4 +514,46 @@ int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt)
         break;
     }
     return -1;
+}
+
+/* ---- pieces between signal checks (ttd_py.h) ---------------------------------------------- */
+
+static double ttd_py_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int ttd_py_run_pieces(size_t n, size_t first, ttd_py_piece_fn fn, void *ctx, ttd_status *st)
+{
+    ttd_status worst = TTD_OK;
+    size_t begin = 0, piece = first ? first : 1;
+    while (begin < n) {
+        const size_t end = n - begin > piece ? begin + piece : n;
+        ttd_status s;
+        double took;
+        Py_BEGIN_ALLOW_THREADS
+        const double t0 = ttd_py_seconds();
+        s = fn(ctx, begin, end);
+        took = ttd_py_seconds() - t0;
+        Py_END_ALLOW_THREADS
+        if (s >= TTD_ERR_FIRST_FATAL) {
+            *st = s;
+            return 0;
+        }
+        if (s > worst)
+            worst = s;
+        begin = end;
+        /* the signal check, where a Ctrl-C's KeyboardInterrupt is raised (main thread only) */
+        if (begin < n && PyErr_CheckSignals() < 0)
+            return -1;
+        /* about 0.1 s a piece: a stop within a second, and few enough calls not to cost time */
+        if (took < 0.05 && piece <= SIZE_MAX / 2)
+            piece *= 2;
+        else if (took > 0.2 && piece > 1)
+            piece /= 2;
+    }
+    *st = worst;
+    return 0;
 }

@@ -4,8 +4,22 @@ results that shares nothing with the extension (its own declarations of the stru
 argument handling), so that the tests can hold the extension to the library's exact bits.
 Pairs (ttd_batch_d/f) and meshes (ttd_mesh_create_* and the mesh queries)."""
 import ctypes
+import os
 
 import numpy as np
+
+
+def ctiming_module():
+    """ttd._ctiming, the benchmark's C-side timer: built only with TTD_PYTHON_CTIMING=1 (as
+    scripts/test-python.sh does, which also sets TTD_TEST_BUILD_DIR: then it must be there);
+    a package built without it skips the tests that use it."""
+    import pytest
+
+    if os.environ.get("TTD_TEST_BUILD_DIR"):
+        from ttd import _ctiming
+
+        return _ctiming
+    return pytest.importorskip("ttd._ctiming", reason="ttd._ctiming is built only with TTD_PYTHON_CTIMING=1")
 
 
 class Options(ctypes.Structure):

@@ -185,3 +185,6 @@ def test_point_queries_in_chunks_equal_one_call(client, dtype):
     np.testing.assert_array_equal(sd, ttd.signed_distance(mesh, P).distance)
     w = client.compute(ttd.dask.winding_number(mesh, dP)).result()
     np.testing.assert_array_equal(w, ttd.winding_number(mesh, P).winding)
+    inside = client.compute(ttd.dask.contains(mesh, dP)).result()
+    assert inside.dtype == np.bool_ and inside.any() and not inside.all()
+    np.testing.assert_array_equal(inside, ttd.contains(mesh, P).inside)

@@ -155,3 +155,40 @@ def test_grid_equals_signed_distance(dtype):
     pts = np.stack([o[0] + i * s, o[1] + j * s, o[2] + k * s], axis=-1)
     np.testing.assert_array_equal(g, ttd.signed_distance(mesh, pts).distance)
     assert (g < 0).any() and (g > 0).any()
+
+
+def test_grid_argument_errors_are_distinct():
+    v, f = torus(nu=12, nv=8)
+    mesh = ttd.Mesh(v, f)
+    with pytest.raises(ValueError, match="shape must be >= 0 on every axis, not -2 on axis 1"):
+        ttd.sdf_grid(mesh, [0, 0, 0], 0.1, (3, -2, 4))
+    with pytest.raises(TypeError, match="shape must be integers, not 2.5 on axis 0"):
+        ttd.sdf_grid(mesh, [0, 0, 0], 0.1, (2.5, 3, 4))
+    with pytest.raises(ValueError, match=r"origin must be 3 numbers \(x, y, z\), not 2"):
+        ttd.sdf_grid(mesh, [0, 0], 0.1, (3, 3, 3))
+    with pytest.raises(ValueError, match="step must be 1 number or 3, not 2"):
+        ttd.sdf_grid(mesh, [0, 0, 0], [0.1, 0.1], (3, 3, 3))
+    with pytest.raises(ValueError, match="shape must be 3 integers"):
+        ttd.sdf_grid(mesh, [0, 0, 0], 0.1, (3, 3))
+    for step in (0, -0.1, [0.1, 0.0, 0.1], [0.1, 0.1, -1]):
+        with pytest.raises(ValueError, match="step must be > 0 on every axis"):
+            ttd.sdf_grid(mesh, [0, 0, 0], step, (3, 3, 3))
+    with pytest.raises(ValueError, match="finite"):
+        ttd.sdf_grid(mesh, [0, np.nan, 0], 0.1, (3, 3, 3))
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("shape", [(3, 300, 250), (7000, 2, 3)], ids=["rows", "slabs"])
+def test_grid_in_pieces_equals_its_points(dtype, shape):
+    # sdf_grid runs in pieces between Ctrl-C checks: rows of a slab when a slab is large, many
+    # slabs a piece when slabs are small; every point must still be the one at origin + (i, j, k) *
+    # step as the grid computes it, with the signed distance of that point.
+    v, f = torus(nu=24, nv=12)
+    mesh = ttd.Mesh(v.astype(dtype), f)
+    origin, step = np.array([-1.3, -1.1, -0.45]), np.array([0.9 / shape[0], 2.3 / shape[1], 0.3 / shape[2]])
+    g = ttd.sdf_grid(mesh, origin, step, shape)
+    o, s = origin.astype(dtype), step.astype(dtype)
+    i, j, k = np.meshgrid(*[np.arange(n, dtype=dtype) for n in shape], indexing="ij")
+    pts = np.stack([o[0] + i * s[0], o[1] + j * s[1], o[2] + k * s[2]], axis=-1)
+    np.testing.assert_array_equal(g, ttd.signed_distance(mesh, pts).distance)
+    assert (g < 0).any() and (g > 0).any()

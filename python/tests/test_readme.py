@@ -64,3 +64,40 @@ def test_install_block_runs_as_written(tmp_path):
                            cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert check.returncode == 0 and float(check.stdout) == pytest.approx(2 * 3 ** 0.5), check.stdout + check.stderr
     shutil.rmtree(tmp_path / ".venv", ignore_errors=True)
+
+
+def test_wheel_block_runs_as_written(tmp_path):
+    # The README's offline wheel: built without an index, installed from the file into a venv
+    # that sees Debian's numpy; the benchmark-only ttd._ctiming is not in it.
+    (block,) = [b for b in blocks("") if "pip wheel" in b]
+    if not os.path.exists("/usr/bin/python3"):
+        pytest.skip("the README's wheel block names /usr/bin/python3, which this machine lacks")
+    build = os.environ.get("TTD_TEST_BUILD_DIR")
+    if not build:
+        pytest.skip("TTD_TEST_BUILD_DIR is not set (scripts/test-python.sh sets it): the block would compile the "
+                    "library again")
+    (tmp_path / "python").symlink_to(REPO / "python")
+    env = dict(os.environ, TTD_CMAKE_BUILD_DIR=str(pathlib.Path(build).resolve()),
+               TTD_PYTHON_BUILD_BASE=str(tmp_path / "python-build"), PIP_DISABLE_PIP_VERSION_CHECK="1")
+    for name in ("VIRTUAL_ENV", "PIP_NO_INDEX", "TTD_PYTHON_CTIMING"):
+        env.pop(name, None)
+    venv = subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", ".venv"], cwd=tmp_path,
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert venv.returncode == 0, venv.stdout + venv.stderr
+    done = subprocess.run(["sh", "-e", "-c", block], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    (wheel,) = (tmp_path / "dist").glob("ttd-*.whl")
+    import zipfile
+
+    names = zipfile.ZipFile(wheel).namelist()
+    assert any(n.startswith("ttd/_ttd") and n.endswith(".so") for n in names), names
+    assert not [n for n in names if "_ctiming" in n], names
+    check = subprocess.run([str(tmp_path / ".venv/bin/python"), "-c",
+                            "import importlib.util, ttd, numpy as np; s = np.eye(3)[None]; "
+                            "print(ttd.distance(s, s + 2)[0], importlib.util.find_spec('ttd._ctiming') is None)"],
+                           cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert check.returncode == 0, check.stdout + check.stderr
+    d, absent = check.stdout.split()
+    assert float(d) == pytest.approx(2 * 3 ** 0.5) and absent == "True", check.stdout
+    shutil.rmtree(tmp_path / ".venv", ignore_errors=True)

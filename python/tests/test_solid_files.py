@@ -67,8 +67,12 @@ def test_load_mesh_and_from_file(tmp_path):
     bad.write_text("v 0 0 0\nv 1 0 0\nf 1 2 9\n")
     with pytest.raises(ValueError, match=r"bad.obj:3"):
         ttd.load_mesh(bad)
-    with pytest.raises(ValueError):
+    with pytest.raises(FileNotFoundError):  # I/O errors are OSError subclasses
         ttd.load_mesh(tmp_path / "missing.stl")
+    with pytest.raises(FileNotFoundError):
+        ttd.Mesh.from_file(tmp_path / "missing.stl")
+    with pytest.raises(IsADirectoryError):
+        ttd.load_mesh(tmp_path)
     with pytest.raises(ValueError, match="precision"):
         ttd.load_mesh(obj, precision="float16")
     with pytest.raises(TypeError):

@@ -20,6 +20,7 @@ queries over poses chunk by chunk.
     P = da.from_zarr("points.zarr")           # (n, 3), chunked along the points
     r = ttd.dask.closest_points(A, P)         # lazy: (n,) records of ttd.POINT_RESULT_DTYPE_*
     sd = ttd.dask.signed_distance(A, P)       # lazy: (n,) signed distances
+    inside = ttd.dask.contains(A, P)          # lazy: (n,) bool
     parts = ttd.dask.mesh_contacts(A, B, poses, 0.01)       # a dask.bag: one MeshContacts per chunk
     contacts = ttd.dask.concatenate_contacts(parts.compute())  # = ttd.mesh_contacts on all poses
 
@@ -44,8 +45,8 @@ import numpy as np
 
 import ttd
 
-__all__ = ["COLLISION_DTYPE", "closest_points", "concatenate_contacts", "distance", "mesh_collide", "mesh_contacts",
-           "mesh_distance", "signed_distance", "winding_number"]
+__all__ = ["COLLISION_DTYPE", "closest_points", "concatenate_contacts", "contains", "distance", "mesh_collide",
+           "mesh_contacts", "mesh_distance", "signed_distance", "winding_number"]
 
 #: The records of ttd.dask.mesh_collide: ttd.COLLISION_DTYPE's fields with hit as bool (as
 #: ttd.mesh_collide's hit is), packed.
@@ -238,6 +239,8 @@ def _points_block(points, mesh, query, options):
         return out
     if query == "signed":
         return ttd.signed_distance(mesh, points, **options).distance
+    if query == "contains":
+        return ttd.contains(mesh, points, **options).inside
     return ttd.winding_number(mesh, points, **options).winding
 
 
@@ -253,6 +256,9 @@ def _points(mesh, points, query, options):
     elif query == "signed":
         ttd.signed_distance(mesh, empty, **options)
         dtype = mesh.dtype
+    elif query == "contains":
+        ttd.contains(mesh, empty, **options)
+        dtype = np.dtype(np.bool_)
     else:
         ttd.winding_number(mesh, empty, **options)
         dtype = np.dtype(np.float64)
@@ -280,3 +286,9 @@ def winding_number(mesh, points, **options):
     """ttd.winding_number over a dask array of points (n, 3), chunk by chunk: a lazy float64 dask array
     of the n winding numbers. Equal, bit for bit, to one call."""
     return _points(mesh, points, "winding", options)
+
+
+def contains(mesh, points, **options):
+    """ttd.contains over a dask array of points (n, 3), chunk by chunk: a lazy bool dask array, True
+    where a point is inside the mesh (winding number >= 1/2). Equal to one call."""
+    return _points(mesh, points, "contains", options)

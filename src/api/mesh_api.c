@@ -426,6 +426,24 @@ ttd_status ttd_mesh_contacts_f(const ttd_options *opt, const ttd_mesh *a, const 
     return st;
 }
 
+ttd_status ttd_mesh_contacts_count_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                     const double *poses, double margin, size_t *counts)
+{
+    TTD_QUERY_BEGIN(8, counts != NULL, ttd_nonneg(margin, 0))
+    st = ttd_mesh_query_contacts_count_d(&cfg, a, b, k, poses, defects, margin, counts);
+    TTD_QUERY_END();
+    return st;
+}
+
+ttd_status ttd_mesh_contacts_count_f(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
+                                     const float *poses, float margin, size_t *counts)
+{
+    TTD_QUERY_BEGIN(4, counts != NULL, ttd_nonneg((double)margin, 0))
+    st = ttd_mesh_query_contacts_count_f(&cfg, a, b, k, poses, defects, margin, counts);
+    TTD_QUERY_END();
+    return st;
+}
+
 /* ---- self queries ------------------------------------------------------------------------ */
 
 /* The checks of the self queries: pointers, options (the exact method), the precision, the
@@ -449,6 +467,24 @@ ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh
     ttd_engine_config cfg;
     const ttd_status st = self_prepare(opt, mesh, 8, out != NULL, margin, flags, &cfg);
     return st == TTD_OK ? ttd_mesh_query_self_contacts_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, out) : st;
+}
+
+ttd_status ttd_mesh_self_contacts_count_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
+                                          size_t *count)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 8, count != NULL, margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_count_d(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, count)
+                        : st;
+}
+
+ttd_status ttd_mesh_self_contacts_count_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,
+                                          size_t *count)
+{
+    ttd_engine_config cfg;
+    const ttd_status st = self_prepare(opt, mesh, 4, count != NULL, (double)margin, flags, &cfg);
+    return st == TTD_OK ? ttd_mesh_query_self_contacts_count_f(&cfg, mesh, margin, flags & TTD_SELF_SHARED_VERTEX, count)
+                        : st;
 }
 
 ttd_status ttd_mesh_self_contacts_f(const ttd_options *opt, const ttd_mesh *mesh, float margin, unsigned flags,

@@ -114,6 +114,14 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
                                      size_t k, const float *poses, const float *poses_a, const double *defects, float margin,
                                      ttd_contacts_f *out);
 
+/* Only each pose's number of contacts, into counts[0 .. k): the pairs are counted, not held. */
+ttd_status ttd_mesh_query_contacts_count_d(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                           size_t k, const double *poses, const double *defects, double margin,
+                                           size_t *counts);
+ttd_status ttd_mesh_query_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                           size_t k, const float *poses, const double *defects, float margin,
+                                           size_t *counts);
+
 /* One pose's contacts (pose_a as above, or NULL), walked from the root on the calling thread, into
  * out in the walk's order: the same set as ttd_mesh_query_contacts_*, in another order, for a
  * caller that sorts them (a scene's body pair); tests[0] and [1]: the walk's node tests and the
@@ -133,6 +141,10 @@ ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const st
                                           unsigned shared, ttd_contacts_d *out);
 ttd_status ttd_mesh_query_self_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
                                           unsigned shared, ttd_contacts_f *out);
+ttd_status ttd_mesh_query_self_contacts_count_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                                unsigned shared, size_t *count);
+ttd_status ttd_mesh_query_self_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                                unsigned shared, size_t *count);
 ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
                                          unsigned shared, ttd_collision *out);
 ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,

@@ -45,6 +45,19 @@ ttd_status ttd_mesh_query_contacts_d(const ttd_engine_config *cfg, const struct 
     return query_contacts(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }
 
+ttd_status ttd_mesh_query_contacts_count_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                           const struct ttd_mesh *b, size_t k, const double *poses,
+                                           const double *defects, double margin, size_t *counts)
+{
+    return query_contacts_count(cfg, a, b, k, poses, defects, margin, counts);
+}
+
+ttd_status ttd_mesh_query_self_contacts_count_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                                unsigned shared, size_t *count)
+{
+    return query_self_contacts_count(cfg, m, margin, shared, count);
+}
+
 ttd_status ttd_mesh_query_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
                                           const struct ttd_mesh *b, const double *pose, const double *pose_a, double defect,
                                           double margin, ttd_contacts_d *out,

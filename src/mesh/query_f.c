@@ -45,6 +45,19 @@ ttd_status ttd_mesh_query_contacts_f(const ttd_engine_config *cfg, const struct 
     return query_contacts(cfg, a, b, k, poses, poses_a, defects, margin, out);
 }
 
+ttd_status ttd_mesh_query_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                           const struct ttd_mesh *b, size_t k, const float *poses,
+                                           const double *defects, float margin, size_t *counts)
+{
+    return query_contacts_count(cfg, a, b, k, poses, defects, margin, counts);
+}
+
+ttd_status ttd_mesh_query_self_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                                unsigned shared, size_t *count)
+{
+    return query_self_contacts_count(cfg, m, margin, shared, count);
+}
+
 ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
                                           const struct ttd_mesh *b, const float *pose, const float *pose_a, double defect,
                                           float margin, ttd_contacts_f *out,

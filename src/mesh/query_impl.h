@@ -107,6 +107,7 @@ typedef struct clist {
     size_t n;                     /* contacts in all */
     size_t in_last;               /* contacts in the last chunk */
     ttd_contacts *direct;         /* when not NULL: append to this set instead */
+    int count_only;               /* only count them (n), holding none: the *_count queries */
 } clist;
 
 /* A thread's working memory, reused across the walks it runs. */
@@ -286,6 +287,10 @@ static void heap_down(item *h, size_t n, size_t i)
 
 static int clist_push(clist *l, const contact *c)
 {
+    if (l->count_only) {
+        ++l->n;
+        return 1;
+    }
     if (l->direct != NULL) {
         ttd_contacts *o = l->direct;
         if (o->count == o->capacity) {
@@ -1131,6 +1136,7 @@ typedef struct contact_job {
     qwork *work;
     ttd_contacts *direct;  /* one worker: every task appends to the caller's set, in order */
     atomic_int nomem;
+    int count_only;        /* the lists count their pairs and hold none */
 } contact_job;
 
 static void contact_task_run(const contact_job *J, contact_pose *cp, size_t i, qwork *W)
@@ -1152,6 +1158,8 @@ static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
     pose_forget(W);
     if (!contact_tasks(J->C, W, cp, &w))
         return 0;
+    for (size_t t = 0; J->count_only && t < cp->ntasks; ++t)
+        cp->lists[t].count_only = 1;
     if (J->direct != NULL) { /* one worker: the poses come in order */
         J->direct->pose_start[i] = J->direct->count;
         for (size_t t = 0; t < cp->ntasks; ++t)
@@ -1232,20 +1240,25 @@ static int contacts_join(const contact_job *J, size_t k, ttd_contacts *out)
     return 1;
 }
 
+/* The contacts of k poses into out; or, with counts (out NULL), only each pose's number of pairs
+ * into counts[0 .. k): the same walks, whose lists count instead of holding the pairs, so that
+ * counting millions of pairs takes no memory for them. */
 static ttd_status run_contacts(const qctx *Cq, size_t k, const real *poses, const real *poses_a, const double *defects,
-                               real margin, ttd_contacts *out)
+                               real margin, ttd_contacts *out, size_t *counts)
 {
     const qctx C = *Cq;
-    out->count = 0;
-    out->poses = 0;
-    if (!contacts_offsets(out, k))
-        return TTD_ERR_OUT_OF_MEMORY;
+    if (out != NULL) {
+        out->count = 0;
+        out->poses = 0;
+        if (!contacts_offsets(out, k))
+            return TTD_ERR_OUT_OF_MEMORY;
+    }
     /* one pose: its tasks over the threads; several: the poses over the threads */
     const size_t ntask_guess = k == 1 ? CONTACT_TASKS : k;
     const int workers = ttd_parallel_task_workers(ntask_guess, C.threads);
     qwork one;
     contact_job J = {&C, calloc(k, sizeof(contact_pose)), poses, poses_a, defects, margin, SIZE_MAX,
-                     qwork_new(workers, &one), workers == 1 ? out : NULL, 0};
+                     qwork_new(workers, &one), workers == 1 && counts == NULL ? out : NULL, 0, counts != NULL};
     atomic_init(&J.nomem, J.cp == NULL || J.work == NULL);
     if (!atomic_load(&J.nomem)) {
         if (k == 1) {
@@ -1259,7 +1272,16 @@ static ttd_status run_contacts(const qctx *Cq, size_t k, const real *poses, cons
         }
     }
     /* one worker walked the poses and their tasks in order, into the set; several: join */
-    int ok = !atomic_load(&J.nomem) && (J.direct != NULL || contacts_join(&J, k, out));
+    int ok = !atomic_load(&J.nomem);
+    if (ok && counts != NULL) {
+        for (size_t i = 0; i < k; ++i) {
+            counts[i] = 0;
+            for (size_t t = 0; t < J.cp[i].ntasks; ++t)
+                counts[i] += J.cp[i].lists[t].n;
+        }
+    } else if (ok) {
+        ok = J.direct != NULL || contacts_join(&J, k, out);
+    }
     for (size_t i = 0; J.cp != NULL && i < k; ++i) {
         for (size_t t = 0; J.cp[i].lists != NULL && t < J.cp[i].ntasks; ++t)
             clist_drain(&J.cp[i].lists[t], NULL);
@@ -1268,6 +1290,8 @@ static ttd_status run_contacts(const qctx *Cq, size_t k, const real *poses, cons
     }
     qwork_free(J.work, workers, &one);
     free(J.cp);
+    if (counts != NULL)
+        return ok ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;
     if (!ok) {
         out->count = 0;
         return TTD_ERR_OUT_OF_MEMORY;
@@ -1282,7 +1306,14 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, const struct ttd_
                                  ttd_contacts *out)
 {
     const qctx C = qctx_make(cfg, a, b);
-    return run_contacts(&C, k, poses, poses_a, defects, margin, out);
+    return run_contacts(&C, k, poses, poses_a, defects, margin, out, NULL);
+}
+
+static ttd_status query_contacts_count(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                       size_t k, const real *poses, const double *defects, real margin, size_t *counts)
+{
+    const qctx C = qctx_make(cfg, a, b);
+    return run_contacts(&C, k, poses, NULL, defects, margin, NULL, counts);
 }
 
 /* ---- self queries: one mesh against itself ------------------------------------------------ */
@@ -1301,7 +1332,14 @@ static ttd_status query_self_contacts(const ttd_engine_config *cfg, const struct
                                       unsigned shared, ttd_contacts *out)
 {
     const qctx C = self_ctx(cfg, m, shared);
-    return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, out);
+    return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, out, NULL);
+}
+
+static ttd_status query_self_contacts_count(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,
+                                            unsigned shared, size_t *count)
+{
+    const qctx C = self_ctx(cfg, m, shared);
+    return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, NULL, count);
 }
 
 static ttd_status query_self_collide(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,

@@ -223,4 +223,11 @@ TTD_BENCH_LOADAVG="$tmp/loadavg" "$ttd" bench --quick --no-probes --no-fcl --wor
   --precision double --isa scalar > "$tmp/table.txt" 2> "$tmp/err.txt" || fail "quiet run exited with $?"
 grep -qi "load average .*exceeds" "$tmp/err.txt" "$tmp/table.txt" && fail "load warning at load 0"
 
+# `ttd bench points`: each mesh's label matches the triangles it has (--quick's torus is 10,000
+# triangles, not the full run's million).
+"$ttd" bench points --quick --no-refs --meshes torus --points 200 --threads 1 > "$tmp/points.txt" 2> "$tmp/points_err.txt" ||
+  fail "ttd bench points --quick exited with $?"
+grep -q "torus 10k (10000 triangles)" "$tmp/points_err.txt" || fail "points bench torus label: $(cat "$tmp/points_err.txt")"
+grep -q "torus 1M" "$tmp/points.txt" "$tmp/points_err.txt" && fail "--quick's 10,000-triangle torus labelled 1M"
+
 echo "test_bench: ok ($rows rows)"

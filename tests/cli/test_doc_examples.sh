@@ -35,7 +35,7 @@ echo "ok   $count examples of docs/mesh-files.md print what the page shows"
 # order; it is built by the README's own link block (an install into a temporary prefix, then
 # pkg-config) and run. The shell blocks run with `sh -e` in a folder laid out as the
 # repository's (build/ the build under test, docs/examples/ copied, app.c), so each command's
-# status must be 0. Not run here: the Python blocks and the Python install block (run by
+# status must be 0. Not run here: the Python blocks and the Python install and wheel blocks (run by
 # python/tests/test_readme.py, which needs the Python package), and the block of the two
 # commands scripts/bench.sh and scripts/test.sh (this test is part of the second; the scripts
 # must exist and be executable).
@@ -67,7 +67,7 @@ for b in "$W"/blocks/*; do
         for s in $(awk '{ print $1 }' "$b"); do [ -x "$REPO/$s" ] || fail "README.md names $s, which is not an executable script"; done
         continue
     fi
-    if grep -q 'python3 -m venv' "$b"; then deferred=$((deferred + 1)); continue; fi
+    if grep -q 'python3 -m venv\|pip wheel' "$b"; then deferred=$((deferred + 1)); continue; fi
     # The link block as written needs pkg-config, and a plain program cannot link a sanitized
     # library (scripts/test-sanitize.sh leaves ttd.install out for that reason): then app.c is
     # built against the build's archive, with the sanitizers where the build has them.
@@ -98,3 +98,22 @@ grep -q '^2 between (0 0 0) and (0 0 2)$' "$W/app.out" && grep -q '^batch: 2 1$'
     grep -q '^meshes: distance 0, [1-9][0-9]* contact pairs$' "$W/app.out" && grep -q '^scene: [1-9][0-9]* manifold points$' "$W/app.out" ||
     fail "README.md: app.c printed $(cat "$W/app.out")"
 echo "ok   README.md: its C program built and run, $ran shell blocks run, $deferred Python blocks left to python/tests/test_readme.py"
+
+# ---- the documents' index ---------------------------------------------------------------------
+# docs/README.md links every document of docs/ (each on its own line), the README's "Where things
+# are" names the index and docs/anchors.md, and no document names a program under /tmp (a
+# throwaway that is not in the repository: such programs live in the repository, or the page says
+# in words what was measured).
+DOCS="$REPO/docs"
+for d in "$DOCS"/*.md; do
+    name=$(basename "$d")
+    [ "$name" = README.md ] && continue
+    grep -q "](${name})" "$DOCS/README.md" || fail "docs/README.md does not name docs/$name"
+done
+where=$(sed -n '/^## Where things are/,/^## /p' "$README")
+for name in docs/README.md docs/anchors.md; do
+    printf '%s\n' "$where" | grep -q "]($name)" || fail "README.md's 'Where things are' does not name $name"
+done
+tmp_refs=$(grep -n '/tmp/' "$README" "$REPO/python/README.md" "$DOCS"/*.md || true)
+[ -z "$tmp_refs" ] || fail "documents name paths under /tmp: $tmp_refs"
+echo "ok   docs/README.md names every document; README names it and docs/anchors.md; no /tmp paths in the docs"

@@ -878,3 +878,23 @@ run 0 mesh contacts --help; grep -q -e "--per-triangle" "$DIR/out" || fail "mesh
 run 0 mesh collide -h; grep -q "1 ia ib" "$DIR/out" || fail "mesh collide -h"
 run 0 --help; grep -q "mesh distance A B" "$DIR/out" || fail "ttd --help lacks mesh"
 pass "help: ttd mesh --help, per command, ttd --help"
+
+# --count counts without holding the pairs: a flat sheet of 4,050 triangles at a margin wider than
+# the sheet has 8,175,640 self-contact pairs (every pair sharing no vertex: (4050 choose 2) =
+# 8,199,225 less the 23,585 pairs that share one, counted from the grid), and against a copy of itself
+# 0.5 above, 4050^2. Held, they would take over 500 MB (64 bytes each); counted, under a 400 MB
+# limit on the process's address space they must still come out.
+awk 'BEGIN { n = 45; for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) printf "v %g %g 0\n", i / n, j / n;
+             for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i + 1; b = a + 1; c = a + n + 1;
+                 printf "f %d %d %d\nf %d %d %d\n", a, b, c + 1, a, c + 1, c } }' > "$DIR/sheet.obj"
+# (A sanitizer build reserves terabytes of address space for its shadow memory: there the counts
+# are checked without the limit.)
+limit=400000
+grep -q '^TTD_SANITIZE:BOOL=ON' "$(dirname "$TTD")/../CMakeCache.txt" 2> /dev/null && limit=unlimited
+got=$(ulimit -v $limit 2>/dev/null; "$TTD" mesh self-contacts "$DIR/sheet.obj" --margin 10 --count 2> "$DIR/err") ||
+    fail "self-contacts --count under a $limit KB limit: $(cat "$DIR/err")"
+[ "$got" = "8175640" ] || fail "self-contacts --count of the sheet: $got"
+got=$(ulimit -v $limit 2>/dev/null; "$TTD" mesh contacts "$DIR/sheet.obj" "$DIR/sheet.obj" --margin 10 --count \
+    --pose "1 0 0 0  0 1 0 0  0 0 1 0.5" 2> "$DIR/err") || fail "contacts --count under a $limit KB limit: $(cat "$DIR/err")"
+[ "$got" = "16402500" ] || fail "contacts --count of the sheets: $got"
+pass "--count: 8.2 and 16.4 million pairs counted under an address-space limit of $limit KB"

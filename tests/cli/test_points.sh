@@ -110,6 +110,48 @@ v=$(od -A n -t f4 -j $(((36 * 7 + 4) * 4)) -N 4 "$DIR/g.raw" | awk '{ print $1 }
 [ "$v" = "-0.5" ] || fail "grid centre $v"
 pass "grid: .npy and raw"
 
+# grid sizes are checked before anything is written, with a message; a file already there is kept
+printf 'old\n' > "$DIR/keep.npy"
+grid_refused() { # want-status message-pattern dims [more options]
+    want=$1 pat=$2 dims=$3
+    shift 3
+    "$TTD" points grid "$DIR/cube.obj" --origin "0 0 0" --step 0.1 --dims "$dims" --out "$DIR/keep.npy" "$@" 2> "$DIR/err"
+    rc=$?
+    [ $rc -eq "$want" ] || fail "grid --dims '$dims' $*: exit $rc, want $want"
+    grep -q "$pat" "$DIR/err" || fail "grid --dims '$dims' $*: message $(cat "$DIR/err")"
+    [ "$(cat "$DIR/keep.npy")" = "old" ] || fail "grid --dims '$dims' $*: the file there was overwritten"
+    ls "$DIR" | grep -q 'keep.npy.tmp' && fail "grid --dims '$dims' $*: a temporary file was left"
+    return 0
+}
+grid_refused 2 "overflows" "4294967296 4294967296 4294967296"   # 2^96 points
+grid_refused 2 "memory" "1 1000000 1000000"                     # one slab of 8 TB
+grid_refused 1 "free" "100000000000 10 10"                      # 80 TB on the disk
+grid_refused 2 "bad value for --step" "10 10 10" --step 0
+grid_refused 2 "bad value for --step" "10 10 10" --step "0.1 -0.1 0.1"
+pass "grid: overflowing dims, a slab beyond memory, a file beyond the free disk, zero and negative steps refused"
+
+# Interrupted (SIGINT, as Ctrl-C) while it runs: exit 1, the file there untouched, no temporary
+# file; --progress on a pipe writes a line an update, at most 4 a second.
+"$TTD" points grid "$DIR/cube.obj" --origin "0 0 0" --step 0.001 --dims "100000000 1 1" --out "$DIR/keep.npy" \
+    --progress 2> "$DIR/err" &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc -eq 1 ] || fail "interrupted grid: exit $rc, want 1"
+grep -q "interrupted" "$DIR/err" || fail "interrupted grid: message $(tail -n 2 "$DIR/err")"
+[ "$(cat "$DIR/keep.npy")" = "old" ] || fail "interrupted grid: the file there was overwritten"
+ls "$DIR" | grep -q 'keep.npy.tmp' && fail "interrupted grid: a temporary file was left"
+lines=$(grep -c "ttd points grid: .*slabs" "$DIR/err")
+[ "$lines" -ge 1 ] && [ "$lines" -le 12 ] || fail "interrupted grid: $lines progress lines in about 2 s, want 1..12"
+# without --progress, standard error not a terminal: no progress lines, even for 2^20 points
+"$TTD" points grid "$DIR/cube.obj" --origin "0 0 0" --step 0.01 --dims "128 128 64" --out "$DIR/big.npy" 2> "$DIR/err" ||
+    fail "grid of 2^20 points: exit status"
+[ ! -s "$DIR/err" ] || fail "grid of 2^20 points to a pipe printed progress: $(head -c 200 "$DIR/err")"
+[ "$(wc -c < "$DIR/big.npy")" -eq $((128 + 128 * 128 * 64 * 8)) ] || fail "grid of 2^20 points: size"
+pass "grid: interrupted, progress throttled and only on a terminal (or --progress)"
+
 for args in "closest" "closest $DIR/cube.obj" "nosuch $DIR/cube.obj $DIR/p.txt" "closest $DIR/cube.obj $DIR/p.txt --upper-bound -1" \
     "closest $DIR/cube.obj $DIR/p.txt --pose 1" "grid $DIR/cube.obj --origin 0" "closest $DIR/cube.obj $DIR/p.txt --bogus 1"; do
     out=$("$TTD" points $args 2>/dev/null)

@@ -17,6 +17,18 @@ if [ -d "$work/prefix/bin" ]; then
         exit 1
     fi
 fi
+# The installed program starts as installed: it finds libttd_gpu (and any other shared library of
+# ours) through its relative RPATH, with no LD_LIBRARY_PATH.
+if [ -x "$work/prefix/bin/ttd" ]; then
+    if ! env -u LD_LIBRARY_PATH "$work/prefix/bin/ttd" --version >/dev/null; then
+        echo "test_install: the installed bin/ttd does not start without LD_LIBRARY_PATH" >&2
+        exit 1
+    fi
+    # and still when the whole prefix moves (the RPATH is relative to the program)
+    mv "$work/prefix" "$work/moved"
+    env -u LD_LIBRARY_PATH "$work/moved/bin/ttd" --version >/dev/null
+    mv "$work/moved" "$work/prefix"
+fi
 cmake -S "$src/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 libdir=$(dirname "$(find "$work/prefix" -name 'libttd.so*' | head -n 1)")
