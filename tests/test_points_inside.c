@@ -12,6 +12,8 @@
  *    outward (the distances to rounding), equal to the outward mesh's exact ray count and to a long double ray parity; the
  *    solid mode and the scene's solids take the same inside; self-overlap (2) counts as inside,
  *    a cavity (0) as outside;
+ *  - scene manifolds of a box on a floor, each wound either way: normals out of the floor, the
+ *    all-outward manifold's points;
  *  - a finite point that the pose moves past the floating-point range: TTD_ERR_COORDINATE_RANGE. */
 #include <float.h>
 #include <math.h>
@@ -532,6 +534,110 @@ static int solids_take_the_rule(void)
     return 0;
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Scene manifolds: a unit box resting on, touching and sunk into a floor box, flat and tilted, in
+ * either body order, each body wound outward or inward: every normal points out of the floor
+ * (the floor below: +z from the floor to the box), and the manifold is the all-outward one's (its
+ * distances, and normals, to rounding; the points up to the reduction's ties between mirror-image
+ * corners). The reference is the construction: the floor's
+ * top is the plane z = 0. */
+static int scene_normals_inward_solids(void)
+{
+    ttd_gen_mesh box, floor_m;
+    ENSURE(ttd_gen_mesh_cube(&box) == 0 && ttd_gen_mesh_cube(&floor_m) == 0);
+    for (size_t v = 0; v < floor_m.nv; ++v) { /* [-2, 2] x [-2, 2] x [-1, 0] */
+        floor_m.verts[3 * v] = 4 * floor_m.verts[3 * v] - 2;
+        floor_m.verts[3 * v + 1] = 4 * floor_m.verts[3 * v + 1] - 2;
+        floor_m.verts[3 * v + 2] -= 1;
+    }
+    size_t checked = 0;
+    static const double sinks[] = {0.01, 0.0, -0.02, -0.3};
+    for (int order = 0; order < 2; ++order)
+        for (size_t si = 0; si < sizeof sinks / sizeof *sinks; ++si)
+            for (int tilt = 0; tilt < 2; ++tilt) {
+                ttd_scene_array ref = {0};
+                for (int wind = 0; wind < 4; ++wind) { /* bit 0: the box inward, bit 1: the floor */
+                    ttd_gen_mesh b, f;
+                    ENSURE(ttd_gen_mesh_copy(&box, &b) == 0 && ttd_gen_mesh_copy(&floor_m, &f) == 0);
+                    if (wind & 1)
+                        reverse_faces(&b);
+                    if (wind & 2)
+                        reverse_faces(&f);
+                    ttd_mesh *mb, *mf;
+                    ENSURE(ttd_mesh_create_d(NULL, b.verts, b.nv, b.tris, b.nt, &mb) == TTD_OK);
+                    ENSURE(ttd_mesh_create_d(NULL, f.verts, f.nv, f.tris, f.nt, &mf) == TTD_OK);
+                    const double a = tilt ? 0.2 : 0, c = cos(a), sn = sin(a);
+                    /* rotated about y, its lowest corner (x = 1, z = 0 before) at z = sink */
+                    const double lowest = fmin(0.0, -sn);
+                    const double pose[12] = {c, 0, sn, -0.5, 0, 1, 0, -0.5, -sn, 0, c, sinks[si] - lowest};
+                    const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+                    ttd_scene *s;
+                    uint32_t ib, iff;
+                    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+                    if (order) {
+                        ENSURE(ttd_scene_add_d(s, mb, pose, &ib) == TTD_OK && ttd_scene_add_d(s, mf, id, &iff) == TTD_OK);
+                    } else {
+                        ENSURE(ttd_scene_add_d(s, mf, id, &iff) == TTD_OK && ttd_scene_add_d(s, mb, pose, &ib) == TTD_OK);
+                    }
+                    ENSURE(ttd_scene_set_solid(s, ib, 1) == TTD_OK && ttd_scene_set_solid(s, iff, 1) == TTD_OK);
+                    ttd_scene_array out = {0};
+                    ENSURE(ttd_scene_manifold_d(NULL, s, 0.05, 4, &out) == TTD_OK);
+                    ENSURE(out.count > 0);
+                    const ttd_scene_point_d *pt = out.data;
+                    for (size_t k = 0; k < out.count; ++k) {
+                        const double up = pt[k].j == ib ? pt[k].normal[2] : -pt[k].normal[2]; /* floor -> box */
+                        ENSURE_MSG(up > 0.9, "order %d sink %g tilt %d wind %d point %zu: normal (%g %g %g), distance %g",
+                                   order, sinks[si], tilt, wind, k, pt[k].normal[0], pt[k].normal[1], pt[k].normal[2],
+                                   pt[k].distance);
+                        ++checked;
+                    }
+                    if (wind == 0) {
+                        ref = out;
+                        out.data = NULL;
+                    } else {
+                        const ttd_scene_point_d *r = ref.data;
+                        ENSURE_MSG(out.count == ref.count, "wind %d: %zu points, outward %zu", wind, out.count, ref.count);
+                        /* the same points up to the reduction's ties (a corner for its mirror
+                         * image): the same distances, each normal one of the outward's */
+                        double da[64], db[64];
+                        ENSURE(out.count <= 64);
+                        for (size_t k = 0; k < out.count; ++k) {
+                            da[k] = pt[k].distance;
+                            db[k] = r[k].distance;
+                            int found = 0;
+                            for (size_t l = 0; l < ref.count; ++l)
+                                found |= fabs(pt[k].normal[0] - r[l].normal[0]) <= 1e-12 &&
+                                         fabs(pt[k].normal[1] - r[l].normal[1]) <= 1e-12 &&
+                                         fabs(pt[k].normal[2] - r[l].normal[2]) <= 1e-12;
+                            ENSURE_MSG(found, "order %d sink %g tilt %d wind %d point %zu: normal (%g %g %g) not the outward's",
+                                       order, sinks[si], tilt, wind, k, pt[k].normal[0], pt[k].normal[1], pt[k].normal[2]);
+                        }
+                        qsort(da, out.count, sizeof *da, cmp_double);
+                        qsort(db, out.count, sizeof *db, cmp_double);
+                        for (size_t k = 0; k < out.count; ++k)
+                            ENSURE_MSG(fabs(da[k] - db[k]) <= 1e-12, "wind %d: distance %g, outward %g", wind, da[k], db[k]);
+                    }
+                    ttd_scene_array_free(&out);
+                    ttd_scene_destroy(s);
+                    ttd_mesh_destroy(mb);
+                    ttd_mesh_destroy(mf);
+                    ttd_gen_mesh_free(&b);
+                    ttd_gen_mesh_free(&f);
+                }
+                ttd_scene_array_free(&ref);
+            }
+    ttd_gen_mesh_free(&box);
+    ttd_gen_mesh_free(&floor_m);
+    printf("  %zu manifold points of a box on a floor (resting, touching, sunk; flat and tilted; both orders; each "
+           "body outward or inward): every normal out of the floor, each manifold the all-outward one's\n", checked);
+    return 0;
+}
+
 /* A finite point that the pose moves past the floating-point range: out of range, not NaN. */
 static int pose_overflow_is_range(void)
 {
@@ -575,6 +681,7 @@ int main(int argc, char **argv)
     RUN_TEST(inward_same_inside);
     RUN_TEST(overlap_and_cavity);
     RUN_TEST(solids_take_the_rule);
+    RUN_TEST(scene_normals_inward_solids);
     RUN_TEST(pose_overflow_is_range);
     TEST_MAIN_END();
 }

@@ -53,6 +53,35 @@ static int unit_normal(const double a[3], const double b[3], const double c[3], 
     return 1;
 }
 
+/* The sign of the volume the triangles enclose (the sum of det(A - O, B - O, C - O), O the first
+ * vertex, at unit scale so that no product overflows or underflows): for a closed surface, +
+ * wound outward, - inward. */
+static int volume_sign(int bytes, const void *verts, const uint32_t *tris, size_t nt)
+{
+    double o[3], x[3], m = 0, sum = 0;
+    vertex_at(bytes, verts, tris[0], o);
+    for (size_t i = 0; i < 3 * nt; ++i) {
+        vertex_at(bytes, verts, tris[i], x);
+        for (int r = 0; r < 3; ++r)
+            m = fmax(m, fabs(x[r] - o[r]));
+    }
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    int ex;
+    frexp(m, &ex);
+    for (size_t t = 0; t < nt; ++t) {
+        double a[3][3];
+        for (int k = 0; k < 3; ++k) {
+            vertex_at(bytes, verts, tris[3 * t + (size_t)k], a[k]);
+            for (int r = 0; r < 3; ++r)
+                a[k][r] = ldexp(a[k][r] - o[r], -ex);
+        }
+        sum += a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    }
+    return (sum > 0) - (sum < 0);
+}
+
 /* The root of t's set, halving the path on the way. */
 static uint32_t find_root(uint32_t *up, uint32_t t)
 {
@@ -174,6 +203,7 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
             E.normal[3 * t + (size_t)r] = has_normal[t] ? (float)normal[3 * t + (size_t)r] : 0.0f;
     }
     const double cos_flat = cos(TTD_FLAT_ANGLE);
+    int closed = 1; /* every edge of a triangle with a normal has one neighbour, running it back */
     /* edges: the one triangle across, and the class */
     for (size_t t = 0; t < nt; ++t) {
         for (int k = 0; k < 3; ++k) {
@@ -197,6 +227,7 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
                 found = u;
                 reversed = (ib + 1) % 3 == ia; /* u runs b -> a */
             }
+            closed &= !has_normal[t] || (count == 1 && reversed);
             int cls = TTD_EDGE_OPEN;
             if (count == 1 && reversed && has_normal[found]) {
                 const double *nt_ = normal + 3 * t, *nu = normal + 3 * (size_t)found;
@@ -222,6 +253,20 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
             }
             E.across[3 * t + (size_t)k] = cls == TTD_EDGE_OPEN ? TTD_NO_TRIANGLE : found;
             E.shape[t] |= (uint16_t)(cls << (2 * k));
+        }
+    }
+    /* a closed surface wound inward (negative volume) is the solid wound outward (the one inside
+     * rule, points/winding.c): its normals turned out and its convex and concave edges swapped */
+    E.inward = closed && nt > 0 && volume_sign(bytes, verts, tris, nt) < 0;
+    for (size_t t = 0; E.inward && t < nt; ++t) {
+        for (int r = 0; r < 3; ++r) {
+            normal[3 * t + (size_t)r] = -normal[3 * t + (size_t)r];
+            E.normal[3 * t + (size_t)r] = -E.normal[3 * t + (size_t)r];
+        }
+        for (int k = 0; k < 3; ++k) {
+            const int cls = ttd_edge_class(&E, (uint32_t)t, k);
+            const int swapped = cls == TTD_EDGE_CONVEX ? TTD_EDGE_CONCAVE : cls == TTD_EDGE_CONCAVE ? TTD_EDGE_CONVEX : cls;
+            E.shape[t] = (uint16_t)((E.shape[t] & ~(3u << (2 * k))) | (unsigned)swapped << (2 * k));
         }
     }
     /* flat pieces: triangles joined by flat edges (union by the smaller root, so that a piece's

@@ -60,7 +60,10 @@ typedef struct ttd_mesh_edges {
     double *piece_area;   /* per piece: log2 of its area (-inf for none) */
     size_t npieces;
     float *normal;        /* 3 nt: each triangle's unit normal in the mesh's frame (0 for none),
-                           * for a cheap test of how two triangles face each other */
+                           * for a cheap test of how two triangles face each other; outward */
+    int inward;           /* a closed surface wound inward: normal and the convex/concave classes
+                           * are those of the mesh wound outward (its triangles' own normals,
+                           * negated, are its outward ones) */
 } ttd_mesh_edges;
 
 static inline int ttd_edge_class(const ttd_mesh_edges *e, uint32_t t, int k)

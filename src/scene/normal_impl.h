@@ -224,8 +224,8 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
     if (!(area > 64 * DBL_EPSILON * sqrt(e11 * e22)))
         return; /* no area: no normal, no feature */
     f->has_normal = 1;
-    for (int r = 0; r < 3; ++r)
-        f->n[r] = cr[r] / area;
+    for (int r = 0; r < 3; ++r) /* outward: a mesh wound inward is the solid wound outward */
+        f->n[r] = (E->inward ? -cr[r] : cr[r]) / area;
 }
 
 /* f's feature from the vertices of its triangle that it spans (on): a face, or the cone of a
