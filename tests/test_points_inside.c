@@ -14,9 +14,11 @@
  *    a cavity (0) as outside;
  *  - scene manifolds of a box on a floor, each wound either way: normals out of the floor, the
  *    all-outward manifold's points;
- *  - a finite point that the pose moves past the floating-point range: TTD_ERR_COORDINATE_RANGE. */
+ *  - a finite point that the pose moves past the floating-point range: TTD_ERR_COORDINATE_RANGE;
+ *  - threads asking a fresh mesh's first point queries at once (scripts/test-tsan.sh). */
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -673,6 +675,81 @@ static int pose_overflow_is_range(void)
     return 0;
 }
 
+/* Threads that ask a fresh mesh's first point queries at once (the point data, the winding
+ * moments and the closedness flag made on first use, set by compare-and-swap), each with 2
+ * workers, and its orientation: every thread's answers equal those of the same mesh asked alone.
+ * Run under ThreadSanitizer by scripts/test-tsan.sh. */
+#define CONC_THREADS 4
+#define CONC_POINTS 3000
+typedef struct conc_job {
+    const ttd_mesh *mesh;
+    const double *p;
+    uint8_t in[CONC_POINTS];
+    double w[CONC_POINTS], sd[CONC_POINTS];
+    ttd_orientation o;
+    int rc;
+} conc_job;
+
+static void *conc_run(void *arg)
+{
+    conc_job *J = arg;
+    ttd_options o = ttd_default_options();
+    o.threads = 2;
+    J->rc = ttd_points_winding_number_d(&o, J->mesh, CONC_POINTS, J->p, NULL, J->w) != TTD_OK ||
+            ttd_points_contains_d(&o, J->mesh, CONC_POINTS, J->p, NULL, J->in) != TTD_OK ||
+            ttd_points_signed_distance_d(&o, J->mesh, CONC_POINTS, J->p, NULL, INFINITY, J->sd, NULL) != TTD_OK ||
+            ttd_mesh_orientation(J->mesh, &J->o) != TTD_OK;
+    return NULL;
+}
+
+static int concurrent_first_use(void)
+{
+    for (int kind = 0; kind < 2; ++kind) { /* an open sphere (the walk, its moments); an inward torus (the ray) */
+        ttd_gen_mesh m;
+        ENSURE(closed_mesh(kind, &m) == 0);
+        uint32_t *holes = malloc(3 * m.nt * sizeof *holes);
+        size_t nh;
+        if (kind == 0)
+            remove_faces(&m, 37, holes, &nh);
+        else
+            reverse_faces(&m);
+        double *p = malloc(3 * CONC_POINTS * sizeof *p);
+        ttd_gen_rng rng = ttd_gen_rng_make(17, (uint64_t)kind);
+        for (size_t k = 0; k < 3 * CONC_POINTS; ++k)
+            p[k] = 1.2 * (ttd_gen_rng_uniform(&rng) - 0.5);
+        ttd_mesh *alone, *shared;
+        ENSURE(ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &alone) == TTD_OK);
+        ENSURE(ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &shared) == TTD_OK);
+        static conc_job ref, jobs[CONC_THREADS];
+        ref.mesh = alone;
+        ref.p = p;
+        conc_run(&ref);
+        ENSURE(ref.rc == 0);
+        pthread_t th[CONC_THREADS];
+        for (int t = 0; t < CONC_THREADS; ++t) {
+            jobs[t].mesh = shared;
+            jobs[t].p = p;
+            ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
+        }
+        for (int t = 0; t < CONC_THREADS; ++t)
+            ENSURE(pthread_join(th[t], NULL) == 0);
+        for (int t = 0; t < CONC_THREADS; ++t) {
+            ENSURE(jobs[t].rc == 0 && jobs[t].o == ref.o);
+            ENSURE(memcmp(jobs[t].in, ref.in, sizeof ref.in) == 0);
+            ENSURE(memcmp(jobs[t].w, ref.w, sizeof ref.w) == 0);
+            ENSURE(memcmp(jobs[t].sd, ref.sd, sizeof ref.sd) == 0);
+        }
+        ENSURE(ref.o == (kind == 0 ? TTD_ORIENTATION_OPEN : TTD_ORIENTATION_INWARD));
+        ttd_mesh_destroy(alone);
+        ttd_mesh_destroy(shared);
+        free(p), free(holes);
+        ttd_gen_mesh_free(&m);
+    }
+    printf("  %d threads' first point queries on a fresh open sphere and an inward torus: the answers of the mesh "
+           "asked alone\n", CONC_THREADS);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -683,5 +760,6 @@ int main(int argc, char **argv)
     RUN_TEST(solids_take_the_rule);
     RUN_TEST(scene_normals_inward_solids);
     RUN_TEST(pose_overflow_is_range);
+    RUN_TEST(concurrent_first_use);
     TEST_MAIN_END();
 }
