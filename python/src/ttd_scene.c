@@ -842,8 +842,9 @@ static PyObject *ttd_py_scene_exclude(PyObject *obj, PyObject *args, PyObject *k
 
 PyDoc_STRVAR(ttd_py_scene_set_solid_doc,
 "set_solid($self, id, solid=True)\n--\n\n"
-"Makes body id a solid (its mesh must be closed: ValueError otherwise, the body unchanged), or\n"
-"with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
+"Makes body id a solid (its mesh must be closed, wound outward or inward alike: ValueError\n"
+"naming its Mesh.orientation for an open or inconsistently oriented mesh, the body unchanged),\n"
+"or with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
 "one lies inside the other (distance 0; the inner body's triangle 0 as witness, NO_TRIANGLE for\n"
 "the outer), and its manifold holds the vertices of each body inside the other at negative\n"
 "distances: minus their exact distance to the other's surface, depth = margin - distance past\n"
