@@ -13,7 +13,7 @@
  *    solid mode and the scene's solids take the same inside; self-overlap (2) counts as inside,
  *    a cavity (0) as outside;
  *  - scene manifolds of a box on a floor, each wound either way: normals out of the floor, the
- *    all-outward manifold's points;
+ *    all-outward manifold's points; a room (a surface wound inward) keeps its own normals;
  *  - a finite point that the pose moves past the floating-point range: TTD_ERR_COORDINATE_RANGE;
  *  - threads asking a fresh mesh's first point queries at once (scripts/test-tsan.sh). */
 #include <float.h>
@@ -633,10 +633,43 @@ static int scene_normals_inward_solids(void)
                 }
                 ttd_scene_array_free(&ref);
             }
+    /* a room: a closed box wound inward as a surface body (its normals face its inside, where the
+     * free space is), a small solid box resting on its floor: the normals are the room's, +z into
+     * the room (a surface keeps its own winding; only solids take the rule's outward) */
+    {
+        ttd_gen_mesh room;
+        ENSURE(ttd_gen_mesh_copy(&box, &room) == 0);
+        for (size_t v = 0; v < room.nv; ++v)
+            for (int r = 0; r < 3; ++r)
+                room.verts[3 * v + (size_t)r] = 4 * room.verts[3 * v + (size_t)r] - 2; /* [-2, 2]^3 */
+        reverse_faces(&room);
+        ttd_mesh *mr, *mb;
+        ENSURE(ttd_mesh_create_d(NULL, room.verts, room.nv, room.tris, room.nt, &mr) == TTD_OK);
+        ENSURE(ttd_mesh_create_d(NULL, box.verts, box.nv, box.tris, box.nt, &mb) == TTD_OK);
+        const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, pose[12] = {1, 0, 0, -0.5, 0, 1, 0, -0.5, 0, 0, 1, -1.99};
+        ttd_scene *s;
+        uint32_t ir, ib;
+        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+        ENSURE(ttd_scene_add_d(s, mr, id, &ir) == TTD_OK && ttd_scene_add_d(s, mb, pose, &ib) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(s, ib, 1) == TTD_OK);
+        ttd_scene_array out = {0};
+        ENSURE(ttd_scene_manifold_d(NULL, s, 0.05, 4, &out) == TTD_OK && out.count == 4);
+        const ttd_scene_point_d *pt = out.data;
+        for (size_t k = 0; k < out.count; ++k)
+            ENSURE_MSG(pt[k].i == ir && pt[k].normal[2] > 0.999 && fabs(pt[k].distance - 0.01) < 1e-12,
+                       "room point %zu: normal (%g %g %g) distance %g", k, pt[k].normal[0], pt[k].normal[1], pt[k].normal[2],
+                       pt[k].distance);
+        checked += out.count;
+        ttd_scene_array_free(&out);
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(mr);
+        ttd_mesh_destroy(mb);
+        ttd_gen_mesh_free(&room);
+    }
     ttd_gen_mesh_free(&box);
     ttd_gen_mesh_free(&floor_m);
     printf("  %zu manifold points of a box on a floor (resting, touching, sunk; flat and tilted; both orders; each "
-           "body outward or inward): every normal out of the floor, each manifold the all-outward one's\n", checked);
+           "body outward or inward) and of a box in a room (a surface wound inward): every normal out of the floor\n", checked);
     return 0;
 }
 

@@ -152,6 +152,7 @@ void ttd_mesh_edges_free(ttd_mesh_edges *e)
     free(e->piece);
     free(e->piece_area);
     free(e->normal);
+    free(e->shape_solid);
     memset(e, 0, sizeof *e);
 }
 
@@ -255,18 +256,18 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
             E.shape[t] |= (uint16_t)(cls << (2 * k));
         }
     }
-    /* a closed surface wound inward (negative volume) is the solid wound outward (the one inside
-     * rule, points/winding.c): its normals turned out and its convex and concave edges swapped */
+    /* a closed surface wound inward (negative volume): as a solid it is the solid wound outward
+     * (the one inside rule, points/winding.c), seen from which its convex and concave edges swap
+     * (shape_solid; its vertices' classes below) */
     E.inward = closed && nt > 0 && volume_sign(bytes, verts, tris, nt) < 0;
+    if (E.inward && (E.shape_solid = malloc((nt + 1) * sizeof *E.shape_solid)) == NULL)
+        goto nomem;
     for (size_t t = 0; E.inward && t < nt; ++t) {
-        for (int r = 0; r < 3; ++r) {
-            normal[3 * t + (size_t)r] = -normal[3 * t + (size_t)r];
-            E.normal[3 * t + (size_t)r] = -E.normal[3 * t + (size_t)r];
-        }
+        E.shape_solid[t] = E.shape[t];
         for (int k = 0; k < 3; ++k) {
             const int cls = ttd_edge_class(&E, (uint32_t)t, k);
             const int swapped = cls == TTD_EDGE_CONVEX ? TTD_EDGE_CONCAVE : cls == TTD_EDGE_CONCAVE ? TTD_EDGE_CONVEX : cls;
-            E.shape[t] = (uint16_t)((E.shape[t] & ~(3u << (2 * k))) | (unsigned)swapped << (2 * k));
+            E.shape_solid[t] = (uint16_t)((E.shape_solid[t] & ~(3u << (2 * k))) | (unsigned)swapped << (2 * k));
         }
     }
     /* flat pieces: triangles joined by flat edges (union by the smaller root, so that a piece's
@@ -338,7 +339,8 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
         const uint32_t r0 = E.ring_start[w], r1 = E.ring_start[w + 1];
         if (r0 == r1)
             continue;
-        int all_flat = 1, convex = r1 - r0 <= TTD_CORNER_MAX;
+        int all_flat = 1, convex = r1 - r0 <= TTD_CORNER_MAX, concave = convex; /* concave: a corner of the
+                                                                                  * solid an inward mesh bounds */
         const double *n0 = normal + 3 * (size_t)E.ring[r0];
         for (uint32_t r = r0; r < r1; ++r) {
             const uint32_t u = E.ring[r];
@@ -355,15 +357,22 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
                 all_flat &= before == TTD_EDGE_FLAT && after == TTD_EDGE_FLAT;
                 convex &= (before == TTD_EDGE_FLAT || before == TTD_EDGE_CONVEX) &&
                           (after == TTD_EDGE_FLAT || after == TTD_EDGE_CONVEX);
+                concave &= (before == TTD_EDGE_FLAT || before == TTD_EDGE_CONCAVE) &&
+                           (after == TTD_EDGE_FLAT || after == TTD_EDGE_CONCAVE);
             }
         }
         const int cls = all_flat ? TTD_VERTEX_FLAT : convex ? TTD_VERTEX_CORNER : TTD_VERTEX_OTHER;
+        const int cls_solid = all_flat ? TTD_VERTEX_FLAT : concave ? TTD_VERTEX_CORNER : TTD_VERTEX_OTHER;
         for (uint32_t r = r0; r < r1; ++r) {
             const uint32_t u = E.ring[r];
             for (int m = 0; m < 3; ++m)
                 if (E.weld[tris[3 * (size_t)u + (size_t)m]] == w) {
                     E.shape[u] &= (uint16_t)~(3u << (6 + 2 * m));
                     E.shape[u] |= (uint16_t)(cls << (6 + 2 * m));
+                    if (E.inward) {
+                        E.shape_solid[u] &= (uint16_t)~(3u << (6 + 2 * m));
+                        E.shape_solid[u] |= (uint16_t)(cls_solid << (6 + 2 * m));
+                    }
                 }
         }
     }
