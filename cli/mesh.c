@@ -621,6 +621,17 @@ typedef struct ttd_mesh_run {
 /* A library error: its message, with the poses of the call; returns the exit status. */
 static int ttd_mesh_failed(const ttd_mesh_run *r, ttd_status st, size_t first, size_t k)
 {
+    if (st == TTD_ERR_MESH_NOT_CLOSED) { /* --solid: name the mesh, and what it is */
+        ttd_orientation oa = TTD_ORIENTATION_OUTWARD, ob = TTD_ORIENTATION_OUTWARD;
+        (void)ttd_mesh_orientation(r->ma, &oa);
+        (void)ttd_mesh_orientation(r->mb, &ob);
+        const int bad_a = oa == TTD_ORIENTATION_OPEN || oa == TTD_ORIENTATION_INCONSISTENT;
+        ttd_cli_error("%s: --solid: mesh %s (%s) is %s: %s", r->a->name, bad_a ? "A" : "B",
+                      bad_a ? r->a->path_a : r->a->path_b,
+                      (bad_a ? oa : ob) == TTD_ORIENTATION_INCONSISTENT ? "inconsistently oriented" : "open",
+                      ttd_status_string(st));
+        return TTD_EXIT_INPUT;
+    }
     if (r->ps->k > 1)
         ttd_cli_error("%s: poses %zu..%zu: %s", r->a->name, first, first + k - 1, ttd_status_string(st));
     else

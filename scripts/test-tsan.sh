@@ -4,7 +4,8 @@
 # two threads of a scene's pool, kept across steps and scenes, each body's nearest best first
 # on them; test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
 # information made on first use; test_mesh_self: a self query's
-# sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads) with
+# sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads;
+# test_points_inside: four threads' first point queries on one fresh mesh, 2 workers each) with
 # ThreadSanitizer and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
 # space layouts make its runtime refuse to start).
 # Usage: scripts/test-tsan.sh      (build folder: build-tsan/, or $TTD_TSAN_BUILD_DIR)
@@ -21,7 +22,8 @@ if ! { cc -fsanitize=thread -pthread "$probe_dir/p.c" -o "$probe_dir/p" && "$pro
 fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
-cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform
+cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform \
+    test_points_inside
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
@@ -32,3 +34,5 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
 "$build/tests/test_mesh_deform" refit_bits
+# the point data, winding moments and closedness made on first use by four threads at once
+"$build/tests/test_points_inside" concurrent_first_use

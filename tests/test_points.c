@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine/dispatch.h"
 #include "meshes.h"
 #include "pairs.h"
 #include "points/points.h"
@@ -539,7 +540,8 @@ static int winding_and_signs(void)
             const double w = ttd_points_winding(mesh, pd, x, &bound), exact = ttd_mesh_winding(mesh, x);
             ENSURE_MSG(fabs(w - exact) <= bound, "mesh %d point %zu: %.17g vs exact %.17g, bound %.3g", mi, i, w, exact, bound);
             worst_err = fmax(worst_err, fabs(w - exact));
-            const double wc = ttd_points_winding_certified(mesh, pd, x);
+            int proven;
+            const double wc = ttd_points_winding_sign(mesh, pd, 1, ttd_dispatch_row_f(TTD_ISA_SCALAR)->ray_node, x, &proven);
             if (r[i].distance < 1e-9)
                 continue; /* on the surface (to rounding): either side, and no ray parity */
             /* closed: the exact count, an integer, the linear sum's nearest */
@@ -672,7 +674,7 @@ static int exact_count_near_surface(void)
                     ENSURE(wk == nearbyint(wk));            /* an integer: the count */
                     ENSURE(!(flags & TTD_POINT_SIGN_UNPROVEN)); /* closed: always proven */
                     ENSURE(((flags & TTD_POINT_INSIDE) != 0) == in[k]);
-                    ENSURE(in[k] == (wk >= 0.5));
+                    ENSURE(in[k] == ttd_winding_inside(wk));
                     const double exact = ttd_mesh_winding(im, p + 3 * k);
                     if (!(dist > 1e-13 * scale) || fabs(exact - nearbyint(exact)) > 0.05) {
                         ++skipped; /* on the surface to rounding: the linear sum is no reference there */

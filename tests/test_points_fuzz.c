@@ -2,7 +2,8 @@
 /* The point queries' differential fuzzer (tests/pointfuzz/) on seeded cases: hostile meshes at
  * scales 1e-8..1e8 and offsets to 1e6, points on and near every feature, bounds and poses; the
  * closest point equals the brute force over every triangle bit for bit, on the scalar row and the
- * automatic choice with 1 and 2 threads. `test_points_fuzz N SEED` runs N cases from SEED
+ * automatic choice with 1 and 2 threads; and closed boxes wound outward, inward, inconsistently
+ * and open: orientation, the one inside rule, inward = outward, and a long double reference. `test_points_fuzz N SEED` runs N cases from SEED
  * (default 400 from 20261127); `test_points_fuzz --input FILE` reruns a libFuzzer input. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -317,6 +317,34 @@ TTD_API ttd_status ttd_mesh_weld_d(const double *verts, size_t nv, const uint32_
 TTD_API ttd_status ttd_mesh_weld_f(const float *verts, size_t nv, const uint32_t *tris, size_t nt,
                                    float tolerance, float *verts_out, size_t *nv_out, uint32_t *tris_out,
                                    size_t *nt_out, uint32_t *vertex_map);
+/// How a mesh's triangles are oriented (ttd_mesh_orientation). Closed: every directed edge (u, v)
+/// of a triangle appears once and so does (v, u), by vertex index (what ttd_options.solid and
+/// ttd_scene_set_solid require).
+typedef enum ttd_orientation {
+    TTD_ORIENTATION_OUTWARD = 0,      ///< closed, enclosing a positive volume: counter-clockwise seen from outside
+    TTD_ORIENTATION_INWARD = 1,       ///< closed, enclosing a negative volume: every face wound the other way
+    TTD_ORIENTATION_INCONSISTENT = 2, ///< every edge on exactly two triangles, but some edge run the same way by both
+    TTD_ORIENTATION_OPEN = 3,         ///< some edge on one triangle (a boundary) or on more than two, or a
+                                      ///< triangle with a repeated vertex index: no inside to orient
+    TTD_ORIENTATION_FLAT = 4          ///< closed, but its volume is zero within rounding (e.g. a doubled sheet)
+} ttd_orientation;
+
+/// The orientation of mesh into *orientation: closedness by vertex indices (no welding), then the
+/// sign of the enclosed volume (divergence theorem, compensated sum, with a bound on its rounding).
+/// Computed on each call (O(n log n)): a vertex update can turn a mesh inside out. The inside of a
+/// closed mesh does not depend on it (the point queries' rule, |winding number| >= 1/2, gives an
+/// inward mesh the same inside as the outward one). TTD_ERR_NULL_POINTER, TTD_ERR_OUT_OF_MEMORY.
+TTD_API ttd_status ttd_mesh_orientation(const ttd_mesh *mesh, ttd_orientation *orientation);
+/// The orientation's name: "outward", "inward", "inconsistent", "open", "flat" ("unknown" else).
+TTD_API const char *ttd_orientation_string(ttd_orientation orientation);
+
+/// The one inside rule of every query that decides a side (point queries, the solid modes of the
+/// mesh and scene queries): a point is inside when the magnitude of the mesh's winding number
+/// about it is at least 1/2. Returns 1 or 0 (0 for NaN). For a closed mesh, whichever way it is
+/// wound as a whole, that is its solid; a count of 2 (self-overlapping parts, overlapping shells)
+/// is inside, unlike an odd-even ray count; a count of 0 (a cavity, shells of opposite windings
+/// cancelling) is outside. docs/points.md, section 5.
+TTD_API int ttd_winding_inside(double winding);
 
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
@@ -550,13 +578,15 @@ TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mes
  * coordinate gets NaN outputs and TTD_POINT_NONFINITE while the others are computed; the call then
  * returns TTD_ERR_NONFINITE_INPUT.
  *
- * Inside means a generalized winding number of at least 1/2 (Jacobson et al. 2013). For a closed
- * mesh (every directed edge once, and its reverse once) it is counted exactly, by a ray's
- * crossings with exact predicates: an integer, the solid's inside for a consistently oriented
- * mesh (outward normals: counter-clockwise seen from outside), exact for every point off the
- * surface (short of products that underflow, answered as for an open mesh). An open or imperfect
- * mesh gets it hierarchically (Barill et al. 2018) with a rigorous error bound, tightened until it
- * settles the side of 1/2 where it can (TTD_POINT_SIGN_UNPROVEN where rounding leaves it open).
+ * Inside means a generalized winding number w (Jacobson et al. 2013) with |w| >= 1/2: the one
+ * rule of ttd_winding_inside, for every query. For a closed mesh (every directed edge once, and its
+ * reverse once) w is counted exactly, by a ray's crossings with exact predicates: an integer, +1
+ * inside a mesh wound outwards and -1 inside one wound inwards (the same inside either way), exact
+ * for every point off the surface (short of products that underflow, answered as for an open
+ * mesh). An open or inconsistently oriented mesh gets w hierarchically (Barill et al. 2018) with
+ * a rigorous error bound, tightened until it settles the side of |w| = 1/2 where it can
+ * (TTD_POINT_SIGN_UNPROVEN where rounding leaves it open); the winding number every entry reports
+ * is that tightened one, so that its |w| >= 1/2 is the side contains and signed distances give.
  * docs/points.md, section 5.
  * @{ */
 
@@ -564,10 +594,10 @@ TTD_API ttd_status ttd_mesh_self_collide_f(const ttd_options *opt, const ttd_mes
 enum {
     TTD_POINT_NONFINITE = 1u << 0,   ///< the point had a NaN or infinite coordinate: outputs NaN
     TTD_POINT_ABOVE_BOUND = 1u << 1, ///< no triangle within upper_bound: distance +inf, no point, triangle UINT32_MAX
-    TTD_POINT_INSIDE = 1u << 2,      ///< signed distance: the point is inside (winding number >= 1/2)
+    TTD_POINT_INSIDE = 1u << 2,      ///< signed distance: the point is inside (|winding number| >= 1/2)
     TTD_POINT_DEGENERATE = 1u << 3,  ///< the closest triangle has no area (a segment or a point)
-    TTD_POINT_SIGN_UNPROVEN = 1u << 4 ///< signed distance: the side is not proven (an open mesh's winding
-                                      ///< number within rounding of 1/2; never for a closed mesh)
+    TTD_POINT_SIGN_UNPROVEN = 1u << 4 ///< signed distance: the side is not proven (an open mesh's |winding
+                                      ///< number| within rounding of 1/2; never for a closed mesh)
 };
 
 /// The closest point of a mesh to one query point (double precision).
@@ -614,20 +644,23 @@ TTD_API ttd_status ttd_points_closest_f(const ttd_options *opt, const ttd_mesh *
                                         const float *pose, float upper_bound, ttd_point_result_f *results);
 
 /// The generalized winding number of mesh about each of n points into winding[i]: for a closed
-/// mesh the exact integer (1 inside one oriented outwards, 0 outside), fractions for open meshes
-/// within the hierarchical walk's bound (NaN for a NaN point).
+/// mesh the exact integer (1 inside one oriented outwards, -1 inside one oriented inwards, 0
+/// outside), fractions for open meshes within the hierarchical walk's bound, tightened until it
+/// settles the side of |w| = 1/2 (NaN for a NaN point). The float entry rounds each to float on
+/// its side of the inside rule.
 TTD_API ttd_status ttd_points_winding_number_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
                                                const double *points, const double *pose, double *winding);
 TTD_API ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
                                                const float *points, const float *pose, float *winding);
 
-/// inside[i] = 1 when point i is inside mesh (winding number >= 1/2), else 0 (0 for a NaN point).
+/// inside[i] = 1 when point i is inside mesh (ttd_winding_inside: |winding number| >= 1/2), else 0
+/// (0 for a NaN point).
 TTD_API ttd_status ttd_points_contains_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const double *points,
                                          const double *pose, uint8_t *inside);
 TTD_API ttd_status ttd_points_contains_f(const ttd_options *opt, const ttd_mesh *mesh, size_t n, const float *points,
                                          const float *pose, uint8_t *inside);
 
-/// Signed distances: the closest point's distance, negative inside (winding number >= 1/2), into
+/// Signed distances: the closest point's distance, negative inside (|winding number| >= 1/2), into
 /// distance[i]; when results is not NULL, the closest points too, with TTD_POINT_INSIDE set for
 /// points inside. Either output may be NULL, not both. Beyond upper_bound: +-inf.
 TTD_API ttd_status ttd_points_signed_distance_d(const ttd_options *opt, const ttd_mesh *mesh, size_t n,
@@ -709,8 +742,9 @@ TTD_API ttd_status ttd_scene_set_filter(ttd_scene *scene, uint32_t id, uint32_t 
 TTD_API ttd_status ttd_scene_exclude_pair(ttd_scene *scene, uint32_t i, uint32_t j, int excluded);
 /// Marks body id a solid (solid != 0) or a surface again (0; bodies start as surfaces). A solid's
 /// mesh must be closed (every edge shared by two triangles running it the two ways:
-/// TTD_ERR_MESH_NOT_CLOSED otherwise, the body unchanged); inside is its winding number's side,
-/// as for ttd_options.solid. A pair of solids is a solid pair: collide finds it when one lies
+/// TTD_ERR_MESH_NOT_CLOSED otherwise, the body unchanged: an open or inconsistently oriented mesh,
+/// ttd_mesh_orientation tells which); inside is ttd_winding_inside's, as for ttd_options.solid,
+/// so a mesh wound inwards is the same solid as wound outwards. A pair of solids is a solid pair: collide finds it when one lies
 /// inside the other (its witness: the inner body's triangle 0, UINT32_MAX for the outer), distance
 /// is then 0 (the inner body's first vertex as p = q, its triangle 0, UINT32_MAX for the outer),
 /// and a manifold carries the points of each body inside the other with negative distances

@@ -432,9 +432,33 @@ static PyObject *ttd_py_mesh_get_count(PyObject *obj, void *closure)
                                                : ttd_mesh_node_count(m));
 }
 
+/* Mesh.orientation: ttd_mesh_orientation's name, computed with the interpreter lock released
+ * and the mesh marked in use (set_vertices may not move it meanwhile). */
+static PyObject *ttd_py_mesh_get_orientation(PyObject *obj, void *closure)
+{
+    (void)closure;
+    if (ttd_py_meshes_use(&obj, 1) < 0)
+        return NULL;
+    const ttd_mesh *m = ((ttd_py_mesh *)obj)->mesh;
+    ttd_orientation o = TTD_ORIENTATION_OPEN;
+    ttd_status st;
+    Py_BEGIN_ALLOW_THREADS
+    st = ttd_mesh_orientation(m, &o);
+    Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(&obj, 1);
+    if (st != TTD_OK)
+        return PyErr_NoMemory();
+    return PyUnicode_FromString(ttd_orientation_string(o));
+}
+
 static PyGetSetDef ttd_py_mesh_getset[] = {
     {"vertices", ttd_py_mesh_get_vertices, NULL, "(n, 3) read-only copy of the vertices, in the mesh's dtype", NULL},
     {"faces", ttd_py_mesh_get_faces, NULL, "(m, 3) read-only copy of the faces, uint32", NULL},
+    {"orientation", ttd_py_mesh_get_orientation, NULL,
+     "'outward', 'inward' (closed, enclosing a positive or negative volume), 'inconsistent' (every edge on two "
+     "triangles, some run the same way by both), 'open' (a boundary edge, or an edge on more than two), 'flat' "
+     "(closed, no volume). Computed on each read. The inside the queries give a closed mesh is the same "
+     "outward or inward (|winding number| >= 1/2)", NULL},
     {"dtype", ttd_py_mesh_get_dtype, NULL, "numpy.dtype float32 or float64: the precision of its queries", NULL},
     {"vertex_count", ttd_py_mesh_get_count, NULL, "number of vertices", "v"},
     {"triangle_count", ttd_py_mesh_get_count, NULL, "number of triangles (faces)", "t"},
@@ -970,10 +994,17 @@ static int ttd_py_query_raise(ttd_status st, ttd_py_kind kind, const ttd_py_quer
     case TTD_ERR_COORDINATE_RANGE:
         ttd_py_raise_pose_range(q);
         return -1;
-    case TTD_ERR_MESH_NOT_CLOSED:
-        PyErr_Format(PyExc_ValueError,
-                     "ttd: solid=True needs closed meshes: %s", ttd_status_string(st));
+    case TTD_ERR_MESH_NOT_CLOSED: { /* name the mesh, and what it is */
+        ttd_orientation oa = TTD_ORIENTATION_OUTWARD, ob = TTD_ORIENTATION_OUTWARD;
+        (void)ttd_mesh_orientation(q->a->mesh, &oa);
+        (void)ttd_mesh_orientation(q->b->mesh, &ob);
+        const int bad_a = oa == TTD_ORIENTATION_OPEN || oa == TTD_ORIENTATION_INCONSISTENT;
+        PyErr_Format(PyExc_ValueError, "ttd: solid=True needs closed meshes: mesh %s is %s (Mesh.orientation '%s'): %s",
+                     bad_a ? "a" : "b",
+                     (bad_a ? oa : ob) == TTD_ORIENTATION_INCONSISTENT ? "inconsistently oriented" : "open",
+                     ttd_orientation_string(bad_a ? oa : ob), ttd_status_string(st));
         return -1;
+    }
     case TTD_ERR_BAD_OPTIONS:
         if (ttd_py_check_options(&q->opt) == TTD_ERR_BAD_OPTIONS) /* threads */
             return ttd_py_raise_fatal(st, &q->opt);

@@ -29,10 +29,10 @@ static PyStructSequence_Desc cp_desc = {
     cp_fields, NCP,
 };
 static PyStructSequence_Field sd_fields[NSD + 1] = {
-    {"distance", "the signed distance, negative inside (winding number >= 1/2), shape (...)"},
+    {"distance", "the signed distance, negative inside (|winding number| >= 1/2), shape (...)"},
     {"point", "the closest point on the mesh, shape (..., 3)"},
     {"triangle", "uint32: the triangle it lies on"},
-    {"inside", "bool: the point is inside (winding number >= 1/2)"},
+    {"inside", "bool: the point is inside (|winding number| >= 1/2)"},
     {"flags", "uint8: ttd.POINT_* bits (INSIDE; SIGN_UNPROVEN where an open mesh's side is not proven)"},
     {NULL, NULL},
 };
@@ -41,14 +41,14 @@ static PyStructSequence_Desc sd_desc = {
 };
 static PyStructSequence_Field wn_fields[NWN + 1] = {
     {"winding", "float64: the generalized winding number, shape (...) (about 1 inside a closed mesh, 0 outside)"},
-    {"inside", "bool: winding >= 1/2"},
+    {"inside", "bool: |winding| >= 1/2 (the inside rule of every query)"},
     {NULL, NULL},
 };
 static PyStructSequence_Desc wn_desc = {
     "ttd.WindingNumber", "The result of ttd.winding_number: a named tuple of arrays over the points.", wn_fields, NWN,
 };
 static PyStructSequence_Field ct_fields[NCT + 1] = {
-    {"inside", "bool: the point is inside the mesh (winding number >= 1/2), shape (...)"},
+    {"inside", "bool: the point is inside the mesh (|winding number| >= 1/2), shape (...)"},
     {NULL, NULL},
 };
 static PyStructSequence_Desc ct_desc = {
@@ -116,6 +116,7 @@ typedef struct pq {
     double pose_d[12];
     float pose_f[12];
     int has_pose;
+    int in_use;             /* the mesh marked in use (ttd_py_meshes_use): set_vertices refuses */
 } pq;
 
 static int pq_begin(PyObject *mesh, PyObject *points, PyObject *pose, PyObject *isa, PyObject *threads, pq *q)
@@ -171,12 +172,24 @@ static int pq_begin(PyObject *mesh, PyObject *points, PyObject *pose, PyObject *
         Py_DECREF(pd);
         q->has_pose = 1;
     }
+    /* as the mesh queries: not while Mesh.set_vertices moves it (RuntimeError), and set_vertices
+     * refuses to start until this query ends (pq_end) */
+    if (ttd_py_meshes_use(&mesh, 1) < 0) {
+        Py_CLEAR(q->points);
+        return -1;
+    }
+    q->in_use = 1;
     return 0;
 }
 
 static void pq_end(pq *q)
 {
     Py_CLEAR(q->points);
+    if (q->in_use) {
+        PyObject *mesh = (PyObject *)q->mesh;
+        ttd_py_meshes_release(&mesh, 1);
+        q->in_use = 0;
+    }
 }
 
 /* The status's exception or warning; -1 when one was raised. */
@@ -298,8 +311,8 @@ done:
 PyDoc_STRVAR(signed_distance_doc,
 "signed_distance(mesh, points, *, pose=None, upper_bound=None, isa='auto', threads=0)\n"
 "--\n\n"
-"Signed distances: the exact closest-point distance, negative inside the mesh (generalized\n"
-"winding number >= 1/2; for a closed mesh oriented outwards, its solid).\n\n"
+"Signed distances: the exact closest-point distance, negative inside the mesh (|generalized\n"
+"winding number| >= 1/2: for a closed mesh, its solid whichever way it is wound).\n\n"
 "Arguments as ttd.closest_points. Returns a ttd.SignedDistance: distance (...), point (..., 3),\n"
 "triangle (...), inside (...) bool, flags (...) uint8 (ttd.POINT_INSIDE, ttd.POINT_SIGN_UNPROVEN:\n"
 "an open mesh's side that rounding leaves unproven).");
@@ -389,17 +402,36 @@ static int pq_winding(const pq *q, double *w)
     return pq_status(st, q);
 }
 
+/* Whether each point is inside (ttd_points_contains) into in; -1 with an exception. */
+static int pq_contains(const pq *q, npy_bool *in)
+{
+    if (q->n == 0)
+        return 0;
+    ttd_status st;
+    const void *pts = PyArray_DATA(q->points);
+    const size_t n = (size_t)q->n;
+    Py_BEGIN_ALLOW_THREADS
+    if (q->f)
+        st = ttd_points_contains_f(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_f : NULL, (uint8_t *)in);
+    else
+        st = ttd_points_contains_d(&q->opt, q->mesh->mesh, n, pts, q->has_pose ? q->pose_d : NULL, (uint8_t *)in);
+    Py_END_ALLOW_THREADS
+    return pq_status(st, q);
+}
+
 PyDoc_STRVAR(winding_number_doc,
 "winding_number(mesh, points, *, pose=None, isa='auto', threads=0)\n"
 "--\n\n"
 "The generalized winding number of mesh about each point, computed hierarchically (Barill et al.\n"
 "2018) with a bounded error (docs/points.md). Returns a ttd.WindingNumber: winding (...) float64,\n"
-"inside (...) bool (winding >= 1/2).");
+"inside (...) bool (|winding| >= 1/2, ttd.contains's rule: the winding number is tightened until\n"
+"it settles that side).");
 
 PyDoc_STRVAR(contains_doc,
 "contains(mesh, points, *, pose=None, isa='auto', threads=0)\n"
 "--\n\n"
-"Whether each point is inside mesh (generalized winding number >= 1/2). Returns a\n"
+"Whether each point is inside mesh (|generalized winding number| >= 1/2: a closed mesh's solid\n"
+"whichever way it is wound). Returns a\n"
 "ttd.Containment: inside (...) bool.");
 
 static PyObject *winding_or_contains(PyObject *args, PyObject *kwargs, int contains)
@@ -413,13 +445,20 @@ static PyObject *winding_or_contains(PyObject *args, PyObject *kwargs, int conta
     if (pq_begin(mesh, points, pose, isa, threads, &q) < 0)
         return NULL;
     PyObject *result = NULL;
-    PyArrayObject *w = pq_array(&q, NPY_DOUBLE), *inside = pq_array(&q, NPY_BOOL);
-    if (w == NULL || inside == NULL || pq_winding(&q, PyArray_DATA(w)) < 0)
+    PyArrayObject *w = contains ? NULL : pq_array(&q, NPY_DOUBLE), *inside = pq_array(&q, NPY_BOOL);
+    if ((!contains && w == NULL) || inside == NULL)
         goto done;
-    const double *wv = PyArray_DATA(w);
-    npy_bool *in = PyArray_DATA(inside);
-    for (npy_intp i = 0; i < q.n; ++i)
-        in[i] = wv[i] >= 0.5;
+    if (contains) { /* the library's decision, as it is */
+        if (pq_contains(&q, PyArray_DATA(inside)) < 0)
+            goto done;
+    } else { /* the library's winding numbers (side-tightened), and its one rule on them */
+        if (pq_winding(&q, PyArray_DATA(w)) < 0)
+            goto done;
+        const double *wv = PyArray_DATA(w);
+        npy_bool *in = PyArray_DATA(inside);
+        for (npy_intp i = 0; i < q.n; ++i)
+            in[i] = (npy_bool)ttd_winding_inside(wv[i]);
+    }
     result = ttd_py_named_new(contains ? Containment : WindingNumber, contains ? NCT : NWN);
     if (result == NULL)
         goto done;
@@ -575,7 +614,13 @@ static PyObject *py_sdf_grid(PyObject *self, PyObject *args, PyObject *kwargs)
     const size_t units = g.rows ? g.dims[0] * g.dims[1] : g.dims[0];
     const size_t per = g.rows ? g.dims[2] : g.dims[1] * g.dims[2];
     ttd_status st;
-    if (ttd_py_run_pieces(units, per >= TTD_PY_POINTS_PIECE ? 1 : TTD_PY_POINTS_PIECE / per, grid_run_piece, &g, &st) < 0) {
+    if (ttd_py_meshes_use(&mesh, 1) < 0) { /* as every query: not while set_vertices moves it */
+        Py_DECREF(out);
+        return NULL;
+    }
+    const int run = ttd_py_run_pieces(units, per >= TTD_PY_POINTS_PIECE ? 1 : TTD_PY_POINTS_PIECE / per, grid_run_piece, &g, &st);
+    ttd_py_meshes_release(&mesh, 1);
+    if (run < 0) {
         Py_DECREF(out);
         return NULL;
     }

@@ -562,6 +562,20 @@ static int ttd_py_scene_present(const ttd_py_scene *s, uint32_t id)
     return s->scene != NULL && id < ttd_scene_id_limit(s->scene) && PyList_GET_ITEM(s->meshes, id) != Py_None;
 }
 
+/* The orientation's name of body id's mesh (for set_solid's refusal; id present). */
+static const char *ttd_scene_body_orientation(const ttd_py_scene *s, uint32_t id)
+{
+    ttd_orientation o;
+    PyObject *mesh = PyList_GET_ITEM(s->meshes, id);
+    if (ttd_py_meshes_use(&mesh, 1) < 0) { /* being moved: its vertices cannot be read now */
+        PyErr_Clear();
+        return "unknown";
+    }
+    const ttd_status st = ttd_mesh_orientation(((const ttd_py_mesh *)mesh)->mesh, &o);
+    ttd_py_meshes_release(&mesh, 1);
+    return st == TTD_OK ? ttd_orientation_string(o) : "unknown";
+}
+
 PyDoc_STRVAR(ttd_py_scene_add_doc,
 "add($self, mesh, pose=None)\n--\n\n"
 "Adds a body of mesh (a ttd.Mesh of the scene's dtype) at the world pose ((4, 4) or (3, 4);\n"
@@ -828,8 +842,9 @@ static PyObject *ttd_py_scene_exclude(PyObject *obj, PyObject *args, PyObject *k
 
 PyDoc_STRVAR(ttd_py_scene_set_solid_doc,
 "set_solid($self, id, solid=True)\n--\n\n"
-"Makes body id a solid (its mesh must be closed: ValueError otherwise, the body unchanged), or\n"
-"with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
+"Makes body id a solid (its mesh must be closed, wound outward or inward alike: ValueError\n"
+"naming its Mesh.orientation for an open or inconsistently oriented mesh, the body unchanged),\n"
+"or with solid=False a surface again (bodies start as surfaces). A pair of solids collides when\n"
 "one lies inside the other (distance 0; the inner body's triangle 0 as witness, NO_TRIANGLE for\n"
 "the outer), and its manifold holds the vertices of each body inside the other at negative\n"
 "distances: minus their exact distance to the other's surface, depth = margin - distance past\n"
@@ -853,7 +868,8 @@ static PyObject *ttd_py_scene_set_solid(PyObject *obj, PyObject *args, PyObject 
     if (st == TTD_ERR_INDEX_OUT_OF_RANGE)
         ttd_py_scene_no_body(s, "id", id);
     else if (st == TTD_ERR_MESH_NOT_CLOSED)
-        PyErr_Format(PyExc_ValueError, "body %u cannot be a solid: %s", (unsigned)id, ttd_status_string(st));
+        PyErr_Format(PyExc_ValueError, "body %u cannot be a solid: its mesh is %s (Mesh.orientation): %s", (unsigned)id,
+                     ttd_scene_body_orientation(s, id), ttd_status_string(st));
     else if (st == TTD_ERR_OUT_OF_MEMORY)
         PyErr_NoMemory();
     else if (st != TTD_OK)

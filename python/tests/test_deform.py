@@ -116,6 +116,62 @@ def test_set_vertices_and_queries_from_threads_never_overlap():
     np.testing.assert_array_equal(ttd.mesh_distance(A, A, poses).distance, ttd.mesh_distance(fresh, fresh, poses).distance)
 
 
+def test_point_queries_and_set_vertices_never_overlap():
+    """Point queries wait for nothing and refuse a concurrent Mesh.set_vertices as the mesh queries
+    do (RuntimeError either way round): every answer a point query returns is the answer for one
+    of the two vertex sets, never a mix, and no crash (the moves alternate between the mesh and its
+    vertices shuffled, which rebuilds the hierarchy)."""
+    v, f = MESHES["torus"]
+    big_v = np.concatenate([v + [3.0 * k, 0, 0] for k in range(30)])
+    big_f = np.concatenate([f + len(v) * k for k in range(30)])
+    shuffled = big_v[np.random.default_rng(1).permutation(len(big_v))]
+    rng = np.random.default_rng(2)
+    P = np.column_stack([rng.uniform(-1.5, 90, 4000), rng.uniform(-1.5, 1.5, 4000), rng.uniform(-0.6, 0.6, 4000)])
+    queries = {
+        "closest": lambda m: ttd.closest_points(m, P, threads=1).distance,
+        "signed": lambda m: ttd.signed_distance(m, P, threads=1).distance,
+        "winding": lambda m: ttd.winding_number(m, P, threads=1).winding,
+        "contains": lambda m: ttd.contains(m, P, threads=1).inside,
+        "grid": lambda m: ttd.sdf_grid(m, [-1.5, -1.5, -0.6], 0.5, [8, 7, 4], threads=1),
+    }
+    want = {k: (q(ttd.Mesh(big_v, big_f)), q(ttd.Mesh(shuffled, big_f))) for k, q in queries.items()}
+    A = ttd.Mesh(big_v, big_f)
+    stop = threading.Event()
+    moved = [0, 0]  # done, refused
+
+    def mover():
+        k = 0
+        while not stop.is_set():
+            try:
+                A.set_vertices(shuffled if k % 2 == 0 else big_v, threads=1)
+                moved[0] += 1
+                k += 1
+            except RuntimeError as e:
+                assert "in use" in str(e)
+                moved[1] += 1
+            time.sleep(0.0002)
+
+    th = threading.Thread(target=mover)
+    th.start()
+    answered = refused = 0
+    try:
+        end = time.monotonic() + 1.5
+        while time.monotonic() < end or moved[0] < 4:
+            for name, q in queries.items():
+                try:
+                    got = q(A)
+                except RuntimeError as e:
+                    assert "set_vertices" in str(e)
+                    refused += 1
+                    continue
+                answered += 1
+                assert any(np.array_equal(got, w) for w in want[name]), f"{name}: an answer of neither vertex set"
+    finally:
+        stop.set()
+        th.join()
+    assert moved[0] >= 4 and answered > 0
+
+
 def self_brute_force(m, shared_vertex):
     """Every counting pair (i < j) of mesh m by the header's rules, with its ttd.distance result:
     no shared vertex (by index): (T_i, T_j); exactly one, v, and each triangle another vertex

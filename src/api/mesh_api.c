@@ -267,6 +267,17 @@ static int ttd_nonneg(double x, int inf_ok)
             free(defects);                                                                     \
     } while (0)
 
+ttd_status ttd_mesh_orientation(const ttd_mesh *mesh, ttd_orientation *orientation)
+{
+    if (mesh == NULL || orientation == NULL)
+        return TTD_ERR_NULL_POINTER;
+    const ttd_orientation o = ttd_mesh_orientation_of(mesh);
+    if ((int)o < 0)
+        return TTD_ERR_OUT_OF_MEMORY;
+    *orientation = o;
+    return TTD_OK;
+}
+
 /* ---- solids (ttd_options.solid) ----------------------------------------------------------- */
 
 /* TTD_OK when opt does not ask for solids or both meshes are closed. */

@@ -65,6 +65,18 @@ static ttd_status pts_begin(const ttd_options *opt, const ttd_mesh *mesh, size_t
         for (int c = 0; c < 3; ++c)
             x[c] = bytes == 8 ? ((const double *)in->pts)[3 * i + (size_t)c] : (double)((const float *)in->pts)[3 * i + (size_t)c];
         if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) {
+            /* a finite point that the pose moved past the floating-point range is out of range,
+             * not a NaN input */
+            int given_finite = 1;
+            for (int c = 0; c < 3; ++c) {
+                const double g = bytes == 8 ? ((const double *)points)[3 * i + (size_t)c]
+                                            : (double)((const float *)points)[3 * i + (size_t)c];
+                given_finite &= isfinite(g) != 0;
+            }
+            if (given_finite) {
+                pts_end(in);
+                return TTD_ERR_COORDINATE_RANGE;
+            }
             ++in->nonfinite;
         } else if (fabs(x[0]) > range || fabs(x[1]) > range || fabs(x[2]) > range) {
             pts_end(in);
@@ -173,8 +185,13 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
         return st;
     double *w = NULL;
     st = pts_winding(&cfg, mesh, n, &in, &w, NULL);
-    for (size_t i = 0; st == TTD_OK && i < n; ++i)
-        winding[i] = (float)w[i];
+    for (size_t i = 0; st == TTD_OK && i < n; ++i) {
+        /* rounded to float on its side of the inside rule: |w| just below 1/2 must not become 1/2 */
+        float f = (float)w[i];
+        if (ttd_winding_inside((double)f) != ttd_winding_inside(w[i]))
+            f = nextafterf(f, 0.0f);
+        winding[i] = f;
+    }
     free(w);
     pts_end(&in);
     return pts_status(st, &in);
@@ -193,7 +210,7 @@ ttd_status ttd_points_winding_number_f(const ttd_options *opt, const ttd_mesh *m
         double *w = NULL;                                                                      \
         st = pts_winding(&cfg, mesh, n, &in, &w, inside);                                      \
         for (size_t i = 0; st == TTD_OK && i < n; ++i)                                         \
-            inside[i] = w[i] >= 0.5;                                                           \
+            inside[i] = (uint8_t)ttd_winding_inside(w[i]);                                     \
         free(w);                                                                               \
         pts_end(&in);                                                                          \
         return pts_status(st, &in);                                                            \
@@ -216,7 +233,7 @@ TTD_POINTS_CONTAINS(float, f)
         if (st == TTD_OK && !one)                                                              \
             st = (proven = malloc(n ? n : 1)) ? pts_winding(cfg, mesh, n, in, &w, proven) : TTD_ERR_OUT_OF_MEMORY; \
         for (size_t i = 0; st == TTD_OK && !one && i < n; ++i) {                               \
-            const int inside = w[i] >= 0.5;                                                    \
+            const int inside = ttd_winding_inside(w[i]);                                       \
             if (inside)                                                                        \
                 r[i].flags |= TTD_POINT_INSIDE;                                                \
             if (!proven[i] && !(r[i].flags & TTD_POINT_NONFINITE))                             \

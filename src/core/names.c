@@ -47,3 +47,15 @@ const char *ttd_isa_name(ttd_isa isa)
     };
     return (int)isa >= 0 && (int)isa < TTD_ISA_COUNT ? names[isa] : NULL;
 }
+
+const char *ttd_orientation_string(ttd_orientation orientation)
+{
+    switch (orientation) {
+    case TTD_ORIENTATION_OUTWARD: return "outward";
+    case TTD_ORIENTATION_INWARD: return "inward";
+    case TTD_ORIENTATION_INCONSISTENT: return "inconsistent";
+    case TTD_ORIENTATION_OPEN: return "open";
+    case TTD_ORIENTATION_FLAT: return "flat";
+    }
+    return "unknown";
+}

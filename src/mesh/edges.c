@@ -53,6 +53,35 @@ static int unit_normal(const double a[3], const double b[3], const double c[3], 
     return 1;
 }
 
+/* The sign of the volume the triangles enclose (the sum of det(A - O, B - O, C - O), O the first
+ * vertex, at unit scale so that no product overflows or underflows): for a closed surface, +
+ * wound outward, - inward. */
+static int volume_sign(int bytes, const void *verts, const uint32_t *tris, size_t nt)
+{
+    double o[3], x[3], m = 0, sum = 0;
+    vertex_at(bytes, verts, tris[0], o);
+    for (size_t i = 0; i < 3 * nt; ++i) {
+        vertex_at(bytes, verts, tris[i], x);
+        for (int r = 0; r < 3; ++r)
+            m = fmax(m, fabs(x[r] - o[r]));
+    }
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    int ex;
+    frexp(m, &ex);
+    for (size_t t = 0; t < nt; ++t) {
+        double a[3][3];
+        for (int k = 0; k < 3; ++k) {
+            vertex_at(bytes, verts, tris[3 * t + (size_t)k], a[k]);
+            for (int r = 0; r < 3; ++r)
+                a[k][r] = ldexp(a[k][r] - o[r], -ex);
+        }
+        sum += a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    }
+    return (sum > 0) - (sum < 0);
+}
+
 /* The root of t's set, halving the path on the way. */
 static uint32_t find_root(uint32_t *up, uint32_t t)
 {
@@ -123,6 +152,7 @@ void ttd_mesh_edges_free(ttd_mesh_edges *e)
     free(e->piece);
     free(e->piece_area);
     free(e->normal);
+    free(e->shape_solid);
     memset(e, 0, sizeof *e);
 }
 
@@ -174,6 +204,7 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
             E.normal[3 * t + (size_t)r] = has_normal[t] ? (float)normal[3 * t + (size_t)r] : 0.0f;
     }
     const double cos_flat = cos(TTD_FLAT_ANGLE);
+    int closed = 1; /* every edge of a triangle with a normal has one neighbour, running it back */
     /* edges: the one triangle across, and the class */
     for (size_t t = 0; t < nt; ++t) {
         for (int k = 0; k < 3; ++k) {
@@ -197,6 +228,7 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
                 found = u;
                 reversed = (ib + 1) % 3 == ia; /* u runs b -> a */
             }
+            closed &= !has_normal[t] || (count == 1 && reversed);
             int cls = TTD_EDGE_OPEN;
             if (count == 1 && reversed && has_normal[found]) {
                 const double *nt_ = normal + 3 * t, *nu = normal + 3 * (size_t)found;
@@ -222,6 +254,20 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
             }
             E.across[3 * t + (size_t)k] = cls == TTD_EDGE_OPEN ? TTD_NO_TRIANGLE : found;
             E.shape[t] |= (uint16_t)(cls << (2 * k));
+        }
+    }
+    /* a closed surface wound inward (negative volume): as a solid it is the solid wound outward
+     * (the one inside rule, points/winding.c), seen from which its convex and concave edges swap
+     * (shape_solid; its vertices' classes below) */
+    E.inward = closed && nt > 0 && volume_sign(bytes, verts, tris, nt) < 0;
+    if (E.inward && (E.shape_solid = malloc((nt + 1) * sizeof *E.shape_solid)) == NULL)
+        goto nomem;
+    for (size_t t = 0; E.inward && t < nt; ++t) {
+        E.shape_solid[t] = E.shape[t];
+        for (int k = 0; k < 3; ++k) {
+            const int cls = ttd_edge_class(&E, (uint32_t)t, k);
+            const int swapped = cls == TTD_EDGE_CONVEX ? TTD_EDGE_CONCAVE : cls == TTD_EDGE_CONCAVE ? TTD_EDGE_CONVEX : cls;
+            E.shape_solid[t] = (uint16_t)((E.shape_solid[t] & ~(3u << (2 * k))) | (unsigned)swapped << (2 * k));
         }
     }
     /* flat pieces: triangles joined by flat edges (union by the smaller root, so that a piece's
@@ -293,7 +339,8 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
         const uint32_t r0 = E.ring_start[w], r1 = E.ring_start[w + 1];
         if (r0 == r1)
             continue;
-        int all_flat = 1, convex = r1 - r0 <= TTD_CORNER_MAX;
+        int all_flat = 1, convex = r1 - r0 <= TTD_CORNER_MAX, concave = convex; /* concave: a corner of the
+                                                                                  * solid an inward mesh bounds */
         const double *n0 = normal + 3 * (size_t)E.ring[r0];
         for (uint32_t r = r0; r < r1; ++r) {
             const uint32_t u = E.ring[r];
@@ -310,15 +357,22 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
                 all_flat &= before == TTD_EDGE_FLAT && after == TTD_EDGE_FLAT;
                 convex &= (before == TTD_EDGE_FLAT || before == TTD_EDGE_CONVEX) &&
                           (after == TTD_EDGE_FLAT || after == TTD_EDGE_CONVEX);
+                concave &= (before == TTD_EDGE_FLAT || before == TTD_EDGE_CONCAVE) &&
+                           (after == TTD_EDGE_FLAT || after == TTD_EDGE_CONCAVE);
             }
         }
         const int cls = all_flat ? TTD_VERTEX_FLAT : convex ? TTD_VERTEX_CORNER : TTD_VERTEX_OTHER;
+        const int cls_solid = all_flat ? TTD_VERTEX_FLAT : concave ? TTD_VERTEX_CORNER : TTD_VERTEX_OTHER;
         for (uint32_t r = r0; r < r1; ++r) {
             const uint32_t u = E.ring[r];
             for (int m = 0; m < 3; ++m)
                 if (E.weld[tris[3 * (size_t)u + (size_t)m]] == w) {
                     E.shape[u] &= (uint16_t)~(3u << (6 + 2 * m));
                     E.shape[u] |= (uint16_t)(cls << (6 + 2 * m));
+                    if (E.inward) {
+                        E.shape_solid[u] &= (uint16_t)~(3u << (6 + 2 * m));
+                        E.shape_solid[u] |= (uint16_t)(cls_solid << (6 + 2 * m));
+                    }
                 }
         }
     }

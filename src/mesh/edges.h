@@ -61,7 +61,21 @@ typedef struct ttd_mesh_edges {
     size_t npieces;
     float *normal;        /* 3 nt: each triangle's unit normal in the mesh's frame (0 for none),
                            * for a cheap test of how two triangles face each other */
+    int inward;           /* a closed surface wound inward (negative volume): a solid of it is the
+                           * solid it bounds, whose outward normals are its triangles' negated */
+    uint16_t *shape_solid; /* inward: shape as that solid sees it (convex and concave edges
+                            * swapped, its corners), else NULL */
 } ttd_mesh_edges;
+
+/* e as a body sees it: a solid body of an inward mesh sees shape_solid (view: scratch). */
+static inline const ttd_mesh_edges *ttd_mesh_edges_seen(const ttd_mesh_edges *e, int solid, ttd_mesh_edges *view)
+{
+    if (!solid || !e->inward)
+        return e;
+    *view = *e;
+    view->shape = e->shape_solid;
+    return view;
+}
 
 static inline int ttd_edge_class(const ttd_mesh_edges *e, uint32_t t, int k)
 {

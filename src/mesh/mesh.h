@@ -155,6 +155,11 @@ ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const str
  * shared between threads: the flag is written atomically, and racing first uses compute the same
  * answer). */
 int ttd_mesh_closed(const struct ttd_mesh *mesh); /* 1, 0, or -1 out of memory */
+/* How the mesh's triangles are oriented (include/ttd/ttd.h, ttd_mesh_orientation): closed (above)
+ * and by the sign of its volume outward, inward or flat; else inconsistent where every edge is on
+ * two triangles, open otherwise. (ttd_orientation)-1 when out of memory. Not kept: the volume's
+ * sign is the vertices'. */
+ttd_orientation ttd_mesh_orientation_of(const struct ttd_mesh *mesh);
 /* The winding number of a closed mesh about point x (the mesh's own coordinates): the sum of
  * its triangles' signed solid angles over 4 pi; near +-1 inside, near 0 outside, for x not on
  * the surface. */

@@ -120,30 +120,21 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
 int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                            const double x[3], int *w);
 
-/* The winding number with its error certified below 1/4 (points/winding.c): the far-field
- * criterion is tightened until the bound is, down to every triangle exactly. For the solid mode
- * of the mesh queries, where one point decides a pose. */
-double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
-
-/* The winding number the queries report about x: for a closed mesh (closed = ttd_mesh_closed's 1)
- * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that
- * cannot be made exact) the hierarchical walk's. */
-double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
-                                const double x[3]);
-
-/* The winding number about x for its side of 1/2: the exact count for a closed mesh; else the fast
- * walk, and where its bound does not settle the side, the walk tightened until it does (down to
- * every triangle exactly). *proven: 1 when the side of 1/2 is proven (always off the surface of a
- * closed mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of
- * where an open mesh's winding number is 1/2). A mesh of one triangle, whose |w| is below 1/2
- * everywhere, gets 0 and proven at once. docs/points.md, section 5. */
+/* The winding number about x, the one every query reports and decides a side by (the inside rule,
+ * ttd_winding_inside: |w| >= 1/2): the exact count for a closed mesh; else the fast walk, and where
+ * its bound does not settle the side of |w| = 1/2, the walk tightened until it does (down to every
+ * triangle exactly). *proven: 1 when that side is proven (always off the surface of a closed
+ * mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of where an
+ * open mesh's |w| is 1/2). A mesh of one triangle, whose |w| is below 1/2 everywhere, gets 0 and
+ * proven at once. docs/points.md, section 5. */
 double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                const double x[3], int *proven);
 
 /* Whether x (the mesh's coordinates) lies inside closed mesh m: within its bounding sphere (the
- * cheap test that settles far points), then its winding number, certified (above): a traversal
- * rather than a pass over the triangles; the pass (mesh/solid.c, ttd_mesh_winding) only when the
- * point data cannot be had (out of memory). For the solid modes of the mesh and scene queries. */
+ * cheap test that settles far points), then the inside rule on ttd_points_winding_sign's winding
+ * number (a traversal rather than a pass over the triangles; the pass, mesh/solid.c's
+ * ttd_mesh_winding, only when the point data cannot be had: out of memory). For the solid modes
+ * of the mesh and scene queries, so that they decide as the point queries do. */
 int ttd_points_inside(const struct ttd_mesh *m, const double x[3]);
 
 /* A point p of the points' frame moved into the mesh's frame for the mesh's pose P = [R | t]
@@ -161,8 +152,8 @@ int ttd_points_inside(const struct ttd_mesh *m, const double x[3]);
     } while (0)
 
 /* The winding numbers of mesh about n points (3n reals of the mesh's precision, in its frame) into
- * winding (double), over the threads: ttd_points_winding_value's, or with proven not NULL
- * ttd_points_winding_sign's and whether each side is proven. TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN
+ * winding (double), over the threads: ttd_points_winding_sign's, and with proven not NULL
+ * whether each side is proven. TTD_OK or TTD_ERR_OUT_OF_MEMORY. NaN
  * for a NaN point. */
 ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct ttd_mesh *mesh, size_t n,
                                     const void *points, double *winding, uint8_t *proven);

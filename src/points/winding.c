@@ -120,17 +120,6 @@ static double wn_tight(const struct ttd_mesh *mesh, const ttd_points_data *pd, c
     }
 }
 
-double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3])
-{
-    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
-        return NAN;
-    int w;
-    if (ttd_mesh_closed(mesh) == 1 && ttd_points_ray_winding(mesh, pd, ttd_kernels_scalar_f.ray_node, x, &w) == 0)
-        return w;
-    double err;
-    return wn_tight(mesh, pd, x, 0.25, &err);
-}
-
 double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                const double x[3], int *proven)
 {
@@ -146,22 +135,27 @@ double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_dat
         *proven = 1;
         return c;
     }
-    /* the fast walk; where its bound does not settle the side of 1/2, the tightened one */
+    /* the fast walk; where its bound does not settle the side of |w| = 1/2 (the inside rule's),
+     * the tightened one */
     double err;
     double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err);
-    if (!(fabs(w - 0.5) > err))
-        w = wn_tight(mesh, pd, x, fmax(fabs(w - 0.5) / 2, 1e-3), &err);
-    *proven = fabs(w - 0.5) > err;
+    if (!(fabs(fabs(w) - 0.5) > err))
+        w = wn_tight(mesh, pd, x, fmax(fabs(fabs(w) - 0.5) / 2, 1e-3), &err);
+    if (!(fabs(fabs(w) - 0.5) > err)) /* within 1e-3 of the level: down to every triangle exactly */
+        w = wn_tight(mesh, pd, x, 0, &err);
+    *proven = fabs(fabs(w) - 0.5) > err;
     return w;
 }
 
-double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
-                                const double x[3])
+/* The one inside rule (include/ttd/ttd.h; docs/points.md, section 5): inside where the magnitude
+ * of the winding number is at least 1/2. The magnitude makes the inside of a closed mesh the same
+ * whichever way it is wound as a whole (an inward mesh counts -1 inside); a count of 2 (a
+ * self-overlapping mesh, two overlapping shells) is inside too, and 0 (shells of opposite
+ * windings cancelling, a cavity) outside. Every query that decides a side asks this function,
+ * about ttd_points_winding_sign's value, whose side of |w| = 1/2 that function settles. */
+int ttd_winding_inside(double w)
 {
-    int c;
-    if (closed && isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]) && ttd_points_ray_winding(mesh, pd, ray, x, &c) == 0)
-        return c;
-    return ttd_points_winding(mesh, pd, x, NULL);
+    return fabs(w) >= 0.5;
 }
 
 int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
@@ -172,7 +166,10 @@ int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
     if (!(d2 <= m->radius * m->radius * (1 + 1e-9)))
         return 0;
     const ttd_points_data *pd = ttd_points_data_get(m, 0);
-    return fabs(pd != NULL ? ttd_points_winding_certified(m, pd, x) : ttd_mesh_winding(m, x)) > 0.5;
+    if (pd == NULL) /* out of memory: the pass over the triangles (a closed mesh: within rounding of an integer) */
+        return ttd_winding_inside(ttd_mesh_winding(m, x));
+    int proven;
+    return ttd_winding_inside(ttd_points_winding_sign(m, pd, ttd_mesh_closed(m) == 1, ttd_kernels_scalar_f.ray_node, x, &proven));
 }
 
 /* ---- many points over the threads ------------------------------------------------------- */
@@ -201,8 +198,7 @@ static void wn_block(void *ctx, size_t b, int worker)
             x[c] = J->bytes == 8 ? ((const double *)J->points)[3 * i + (size_t)c]
                                  : (double)((const float *)J->points)[3 * i + (size_t)c];
         int proven = 0;
-        J->out[i] = J->proven ? ttd_points_winding_sign(J->m, J->pd, J->closed, J->ray, x, &proven)
-                              : ttd_points_winding_value(J->m, J->pd, J->closed, J->ray, x);
+        J->out[i] = ttd_points_winding_sign(J->m, J->pd, J->closed, J->ray, x, &proven);
         if (J->proven)
             J->proven[i] = (uint8_t)proven;
     }

@@ -528,11 +528,15 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
     /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
      * body i's frame) */
-    const float *ni = ttd_mesh_edges_made(s->body[c->i].mesh)->normal + 3 * (size_t)c->tri_i;
-    const float *nj = ttd_mesh_edges_made(s->body[c->j].mesh)->normal + 3 * (size_t)c->tri_j;
+    const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c->i].mesh), *Ej = ttd_mesh_edges_made(s->body[c->j].mesh);
+    const float *ni = Ei->normal + 3 * (size_t)c->tri_i;
+    const float *nj = Ej->normal + 3 * (size_t)c->tri_j;
     double facing = 0;
     for (int r = 0; r < 3; ++r)
         facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+    /* a solid of an inward mesh faces the other way (edges.h, inward) */
+    if ((Ei->inward && s->body[c->i].solid) != (Ej->inward && s->body[c->j].solid))
+        facing = -facing;
     if (!(facing <= -cos(CORNER_ANGLE)))
         return 1;
     real x[2][9];

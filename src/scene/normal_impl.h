@@ -224,8 +224,9 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
     if (!(area > 64 * DBL_EPSILON * sqrt(e11 * e22)))
         return; /* no area: no normal, no feature */
     f->has_normal = 1;
+    const int out = E->inward && s->body[id].solid; /* a solid of an inward mesh: outward is the other way */
     for (int r = 0; r < 3; ++r)
-        f->n[r] = cr[r] / area;
+        f->n[r] = (out ? -cr[r] : cr[r]) / area;
 }
 
 /* f's feature from the vertices of its triangle that it spans (on): a face, or the cone of a
@@ -233,7 +234,8 @@ static void side_triangle(const struct ttd_scene *s, uint32_t id, uint32_t tri, 
 static void side_feature(const struct ttd_scene *s, body_feature *f, const int on[3])
 {
     const struct ttd_mesh *mesh = s->body[f->id].mesh;
-    const ttd_mesh_edges *E = ttd_mesh_edges_made(mesh);
+    ttd_mesh_edges view;
+    const ttd_mesh_edges *E = ttd_mesh_edges_seen(ttd_mesh_edges_made(mesh), s->body[f->id].solid, &view);
     const uint32_t *tri = mesh->tris + 3 * (size_t)f->tri;
     for (int k = 0; k < 3; ++k)
         f->on[k] = on[k];

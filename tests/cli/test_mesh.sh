@@ -761,8 +761,19 @@ expect "solids apart" "$(cat "$DIR/out")" "$("$TTD" mesh distance "$A" "$DIR/inn
 # Not closed: refused, naming why; contacts take no --solid.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$DIR/open.obj"
 run 1 mesh distance "$A" "$DIR/open.obj" --solid; err_has "not closed" "--solid with an open mesh"
+err_has "mesh B ($DIR/open.obj) is open" "--solid names the open mesh"
+run 1 mesh distance "$DIR/open.obj" "$A" --solid; err_has "mesh A ($DIR/open.obj) is open" "--solid names mesh A"
+# The inner tetrahedron with one face flipped: inconsistently oriented, named; wound inward
+# (every face reversed): the same solid.
+sed 's/^f 1 3 2$/f 1 2 3/' "$DIR/inner.obj" > "$DIR/flipped.obj"
+run 1 mesh distance "$A" "$DIR/flipped.obj" --solid; err_has "mesh B ($DIR/flipped.obj) is inconsistently oriented" "--solid, inconsistent"
+awk '$1 == "f" { print "f", $2, $4, $3; next } { print }' "$DIR/inner.obj" > "$DIR/inward.obj"
+run 0 mesh distance "$A" "$DIR/inward.obj" --solid
+expect "an inward solid" "$(cat "$DIR/out")" '0 0.4 0.4 0.4 0.4 0.4 0.4 -1 0'
+run 0 mesh distance "$DIR/inward.obj" "$A" --solid
+expect "inside an inward solid... the other way" "$(cat "$DIR/out")" '0 0.4 0.4 0.4 0.4 0.4 0.4 0 -1'
 run 2 mesh contacts "$A" "$DIR/inner.obj" --margin 1 --solid; err_has "--solid" "contacts --solid"
-pass "--solid: a mesh inside another at 0 as solids, 0.4 as surfaces; open meshes refused"
+pass "--solid: a mesh inside another at 0 as solids, 0.4 as surfaces (wound inward too); open and inconsistent meshes refused, named"
 
 # ---- --weld ----------------------------------------------------------------------------------
 # The cube as an STL soup whose facets write their corners with last-bit differences (1 as

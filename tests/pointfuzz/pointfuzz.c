@@ -49,6 +49,10 @@ static int pf_int(pf_src *s, int n)
 
 typedef struct pf_case {
     int use_float, has_pose;
+    int orient;                    /* -1: the hostile soup; else a closed jittered box made
+                                    * ttd_orientation orient: outward as drawn, inward (every face
+                                    * reversed), inconsistent (some reversed), open (one removed) */
+    uint32_t t0[3 * PF_MAX_TRIS];  /* a box's triangles as drawn (outward) */
     size_t nv, nt, n;
     double v[9 * PF_MAX_TRIS];
     uint32_t t[3 * PF_MAX_TRIS];
@@ -92,6 +96,84 @@ static void pf_mesh(pf_src *s, pf_case *c)
     }
 }
 
+/* A closed box: the unit cube's corners (corner k at (k >> 2, k >> 1 & 1, k & 1)) jittered by up to
+ * 0.1, wound outward (t0); then made c->orient: every face reversed, some (not all, not none)
+ * reversed, or one face removed. */
+static void pf_box(pf_src *s, pf_case *c)
+{
+    static const uint32_t faces[36] = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
+                                       2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
+    c->nv = 8;
+    for (uint32_t k = 0; k < 8; ++k) {
+        const double corner[3] = {(double)(k >> 2), (double)(k >> 1 & 1), (double)(k & 1)};
+        for (int r = 0; r < 3; ++r)
+            c->v[3 * k + (uint32_t)r] = corner[r] + 0.2 * (pf_unit(s) - 0.5);
+    }
+    c->nt = 12;
+    memcpy(c->t0, faces, sizeof faces);
+    memcpy(c->t, faces, sizeof faces);
+    if (c->orient == TTD_ORIENTATION_INWARD || c->orient == TTD_ORIENTATION_INCONSISTENT) {
+        const int some = c->orient == TTD_ORIENTATION_INCONSISTENT;
+        const uint32_t keep = some ? 1u + (uint32_t)pf_int(s, 12) : 0; /* this one never reversed */
+        const uint32_t flip = some ? (keep + 1u + (uint32_t)pf_int(s, 11)) % 12 : 0; /* this one always */
+        for (uint32_t t = 0; t < 12; ++t)
+            if (!some || t == flip || (t != keep - 1 && pf_int(s, 2))) {
+                const uint32_t x = c->t[3 * t + 1];
+                c->t[3 * t + 1] = c->t[3 * t + 2];
+                c->t[3 * t + 2] = x;
+            }
+    } else if (c->orient == TTD_ORIENTATION_OPEN) {
+        const size_t gone = (size_t)pf_int(s, 12);
+        memmove(c->t + 3 * gone, c->t + 3 * (gone + 1), 3 * (11 - gone) * sizeof *c->t);
+        c->nt = 11;
+    }
+}
+
+/* The winding number of the case's mesh (v: its vertices in the query's precision, as doubles)
+ * about x: the solid angles summed in long double (the fuzzer's reference for inconsistent and
+ * open boxes). */
+static long double pf_winding(const pf_case *c, const double *v, const double x[3])
+{
+    long double sum = 0;
+    for (size_t t = 0; t < c->nt; ++t) {
+        long double a[3][3], l[3];
+        for (int k = 0; k < 3; ++k) {
+            for (int r = 0; r < 3; ++r)
+                a[k][r] = (long double)v[3 * c->t[3 * t + (size_t)k] + (size_t)r] - (long double)x[r];
+            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
+        }
+        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
+        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
+        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
+        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
+    }
+    return sum / (4 * 3.14159265358979323846264338327950288L);
+}
+
+/* Whether the box's vertices v (of the query's precision, `bytes`) enclose no volume: the sum of
+ * the drawn (outward) triangles' determinants about vertex 0, in long double, within 1e-12 of
+ * the box's size cubed (rounding has collapsed it). */
+static int pf_flat(const pf_case *c, const void *v, size_t bytes)
+{
+    long double sum = 0, size = 0, x[8][3];
+    for (int k = 0; k < 8; ++k)
+        for (int r = 0; r < 3; ++r)
+            x[k][r] = bytes == 8 ? (long double)((const double *)v)[3 * k + r] : (long double)((const float *)v)[3 * k + r];
+    for (int k = 7; k >= 0; --k) /* about vertex 0 (exact in long double) */
+        for (int r = 0; r < 3; ++r) {
+            x[k][r] -= x[0][r];
+            size = fmaxl(size, fabsl(x[k][r]));
+        }
+    for (int t = 0; t < 12; ++t) {
+        const long double *a = x[c->t0[3 * t]], *b = x[c->t0[3 * t + 1]], *d = x[c->t0[3 * t + 2]];
+        sum += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+    }
+    return !(fabsl(sum) > 1e-12L * size * size * size);
+}
+
 /* Points: on a triangle's face, edge or vertex, 10^-k off it, in the box, far. */
 static void pf_points(pf_src *s, pf_case *c)
 {
@@ -127,7 +209,12 @@ static void pf_case_draw(pf_src *s, pf_case *c)
 {
     memset(c, 0, sizeof *c);
     c->use_float = pf_int(s, 2);
-    pf_mesh(s, c);
+    /* a third of the cases: a closed box, outward, inward, inconsistent or open */
+    c->orient = pf_int(s, 3) == 0 ? (int)pf_int(s, 4) : -1;
+    if (c->orient >= 0)
+        pf_box(s, c);
+    else
+        pf_mesh(s, c);
     pf_points(s, c);
     /* scale and offset */
     const double scale = pow(10.0, (double)(pf_int(s, 17) - 8));
@@ -147,8 +234,9 @@ static void pf_case_draw(pf_src *s, pf_case *c)
 
 static void pf_dump(FILE *out, const pf_case *c)
 {
-    fprintf(out, "  case: %s, %zu triangles, %zu points, bound %.17g%s\n", c->use_float ? "float" : "double", c->nt, c->n,
-            c->ub, c->has_pose ? ", posed" : "");
+    fprintf(out, "  case: %s, %zu triangles, %zu points, bound %.17g%s%s%s\n", c->use_float ? "float" : "double", c->nt,
+            c->n, c->ub, c->has_pose ? ", posed" : "", c->orient >= 0 ? ", a box " : "",
+            c->orient >= 0 ? ttd_orientation_string((ttd_orientation)c->orient) : "");
     for (size_t t = 0; t < c->nt; ++t) {
         fprintf(out, "    tri %zu:", t);
         for (int k = 0; k < 3; ++k) {
@@ -248,6 +336,55 @@ static void pf_dump(FILE *out, const pf_case *c)
                 const real d = ref[i].triangle == UINT32_MAX ? (real)INFINITY : ref[i].distance;       \
                 if (!(sd[i] == (in[i] ? -d : d)) || ((got[i].flags & TTD_POINT_INSIDE) != 0) != (in[i] != 0)) \
                     PF_FAIL("point %zu: signed %.17g, distance %.17g, inside %d", i, (double)sd[i], (double)d, in[i]); \
+            }                                                                                          \
+        }                                                                                              \
+        if (c.orient >= 0) {                                                                           \
+            real w[PF_MAX_POINTS], sd0[PF_MAX_POINTS];                                                 \
+            uint8_t in0[PF_MAX_POINTS];                                                                \
+            ttd_orientation o;                                                                         \
+            /* rounding to the query's precision may have flattened the box (float, 1e-8 at 1e6) */    \
+            const int drawn = c.orient != TTD_ORIENTATION_OPEN && c.orient != TTD_ORIENTATION_INCONSISTENT && \
+                                      pf_flat(&c, v, sizeof(real))                                     \
+                                  ? TTD_ORIENTATION_FLAT                                               \
+                                  : c.orient;                                                          \
+            if (ttd_mesh_orientation(mesh, &o) != TTD_OK || (int)o != drawn)                           \
+                PF_FAIL("orientation %s, drawn %s", ttd_orientation_string(o),                        \
+                        ttd_orientation_string((ttd_orientation)drawn));                               \
+            if (ttd_points_winding_number_##sfx(NULL, mesh, c.n, p, c.has_pose ? pose : NULL, w) != TTD_OK) \
+                PF_FAIL("winding number refused the case");                                            \
+            for (size_t i = 0; i < c.n; ++i) /* one rule: contains is the reported winding's side */  \
+                if (in[i] != ttd_winding_inside((double)w[i]))                                         \
+                    PF_FAIL("point %zu: contains %d, winding %.17g", i, in[i], (double)w[i]);         \
+            ttd_mesh *m0;                                                                              \
+            if (drawn == TTD_ORIENTATION_INWARD) { /* the outward box's inside, exactly */             \
+                if (ttd_mesh_create_##sfx(NULL, v, c.nv, c.t0, c.nt, &m0) != TTD_OK ||                \
+                    ttd_points_contains_##sfx(NULL, m0, c.n, p, c.has_pose ? pose : NULL, in0) != TTD_OK || \
+                    ttd_points_signed_distance_##sfx(NULL, m0, c.n, p, c.has_pose ? pose : NULL, ub, sd0, NULL) != TTD_OK) { \
+                    PF_FAIL("the outward box refused the case");                                      \
+                } else {                                                                               \
+                    for (size_t i = 0; i < c.n; ++i)                                                   \
+                        if (in[i] != in0[i] || signbit(sd[i]) != signbit(sd0[i]))                      \
+                            PF_FAIL("point %zu: inward contains %d signed %.17g, outward %d %.17g", i, in[i], \
+                                    (double)sd[i], in0[i], (double)sd0[i]);                            \
+                }                                                                                      \
+                ttd_mesh_destroy(m0);                                                                  \
+            } else if (c.orient != TTD_ORIENTATION_OUTWARD) { /* against the long double sum */        \
+                double vd[3 * 8];                                                                      \
+                for (size_t i = 0; i < 3 * c.nv; ++i)                                                  \
+                    vd[i] = (double)v[i];                                                              \
+                for (size_t i = 0; i < c.n; ++i) {                                                     \
+                    const double xd[3] = {(double)x[3 * i], (double)x[3 * i + 1], (double)x[3 * i + 2]}; \
+                    const long double gap = fabsl(pf_winding(&c, vd, xd)) - 0.5L;                      \
+                    const double d = (double)ref[i].distance, size = (double)fabs(v[0] - v[3 * 7]);    \
+                    if (!(d > 1e-6 * size) || got[i].flags & TTD_POINT_ABOVE_BOUND)                   \
+                        continue; /* on the surface to rounding: no reference; or no side asked */    \
+                    if (got[i].flags & TTD_POINT_SIGN_UNPROVEN) {                                      \
+                        if (!(fabsl(gap) < 1e-6L))                                                     \
+                            PF_FAIL("point %zu: unproven %.3Lg from |w| = 1/2", i, gap);              \
+                    } else if (fabsl(gap) > 1e-9L && in[i] != (gap >= 0)) {                            \
+                        PF_FAIL("point %zu: contains %d, reference |w| - 1/2 = %.3Lg", i, in[i], gap); \
+                    }                                                                                  \
+                }                                                                                      \
             }                                                                                          \
         }                                                                                              \
         ttd_mesh_destroy(mesh);                                                                        \
