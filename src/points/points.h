@@ -67,6 +67,16 @@ static inline float ttd_float_up(double x)
  * every triangle (points/closest_impl.h; docs/points.md, section 4). */
 #define TTD_POINTS_TINY 8
 
+typedef struct ttd_points_data ttd_points_data_s;
+
+/* The caps of an open mesh (points/caps.c; docs/points.md, section 5.4): a cone from each boundary
+ * loop's mean vertex over its edges, so that the mesh and its caps have no boundary. */
+typedef struct ttd_points_caps {
+    size_t ntri;               /* the caps' triangles: one per boundary edge (0: no boundary) */
+    struct ttd_mesh *mesh;     /* the caps as a mesh of the mesh's precision (NULL when ntri = 0) */
+    const ttd_points_data_s *pd; /* its point data, moments made */
+} ttd_points_caps;
+
 typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
     int bytes;             /* the mesh's precision */
@@ -86,6 +96,8 @@ typedef struct ttd_points_data {
                             * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j]; made by the first winding
                             * walk (ttd_points_moments; NULL until then, atomic): a closed mesh's
                             * winding number is counted by a ray and seldom needs them */
+    ttd_points_caps *caps; /* an open mesh's caps, made by its first winding number
+                            * (ttd_points_caps_get; NULL until then, atomic) */
 } ttd_points_data;
 
 /// The mesh's point data, made on first use with `threads` workers; NULL when out of memory.
@@ -93,6 +105,10 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 /// The point data's winding-number moments, made on first use (NULL when out of memory).
 const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd);
+
+/// The caps of the mesh (points/caps.c), made on first use and kept in pd; NULL when out of memory.
+const ttd_points_caps *ttd_points_caps_get(const struct ttd_mesh *mesh, const ttd_points_data *pd);
+void ttd_points_caps_free(ttd_points_caps *caps);
 
 /// Recomputes the point data of a mesh whose vertices changed in place (same triangles, same
 /// hierarchy shape, refitted boxes): a no-op when no point query has made it yet. The one function
@@ -119,6 +135,13 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
  * or -1 where it cannot be made exact (products below the subnormal range, or a stack overflow). */
 int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                            const double x[3], int *w);
+/* The ray's axis k and sense sigma for x that ttd_points_ray_winding takes (where x leaves the
+ * mesh's box soonest), and the signed count of the crossings of the ray x + s sigma e_k, s > 0,
+ * for any mesh, any axis (for an open mesh the count is not its winding number: points/caps.c).
+ * ttd_points_ray_count returns 0, or -1 as ttd_points_ray_winding. */
+void ttd_points_ray_direction(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], int *k, int *sigma);
+int ttd_points_ray_count(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                         const double x[3], int k, int sigma, int *count);
 
 /* The winding number with its error certified below 1/4 (points/winding.c): the far-field
  * criterion is tightened until the bound is, down to every triangle exactly. For the solid mode
@@ -126,10 +149,12 @@ int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *p
 double ttd_points_winding_certified(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3]);
 
 /* The winding number the queries report about x: for a closed mesh (closed = ttd_mesh_closed's 1)
- * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), else (or where that
- * cannot be made exact) the hierarchical walk's. */
+ * the exact count of ttd_points_ray_winding (ray: a float row's ray_node), for an open one the
+ * exact counts through it and its caps less the caps' hierarchical walk (points/caps.c), else
+ * (where those cannot be made exact) the hierarchical walk's. *bound (when not NULL): a bound on
+ * its error (0 for a count). */
 double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
-                                const double x[3]);
+                                const double x[3], double *bound);
 
 /* The winding number about x for its side of 1/2: the exact count for a closed mesh; else the fast
  * walk, and where its bound does not settle the side, the walk tightened until it does (down to

@@ -23,6 +23,7 @@ static void points_free(void *p)
     free(pd->blocks);
     free(pd->tiny);
     free(pd->moments);
+    ttd_points_caps_free(pd->caps);
     free(pd);
 }
 
@@ -445,6 +446,11 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads)
 {
+    if (mesh->points != NULL) { /* the caps' apexes and boundary follow the vertices: made again on use */
+        ttd_points_data *pd = mesh->points;
+        ttd_points_caps_free(pd->caps);
+        pd->caps = NULL;
+    }
     if (mesh->points != NULL && points_compute(mesh, mesh->points, threads) != 0) {
         /* out of memory: drop the point data (the next point query makes it again) */
         ttd_points_data *pd = mesh->points;

@@ -204,8 +204,38 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
 
 #define RAY_STACK 256
 
+void ttd_points_ray_direction(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], int *k, int *sigma)
+{
+    const ttd_rnode *rn = pd->rnodes;
+    double xs[3];
+    for (int c = 0; c < 3; ++c)
+        xs[c] = (x[c] - m->origin[c]) * pd->scale;
+    /* the axis and sense along which the point leaves the mesh's box soonest */
+    *k = 0;
+    *sigma = 1;
+    double best = INFINITY;
+    for (int c = 0; c < 3; ++c)
+        for (int sg = 1; sg >= -1; sg -= 2) {
+            const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];
+            const double e = exit > 0 ? exit : 0;
+            if (e < best) {
+                best = e;
+                *k = c;
+                *sigma = sg;
+            }
+        }
+}
+
 int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                            const double x[3], int *w)
+{
+    int k, sigma;
+    ttd_points_ray_direction(m, pd, x, &k, &sigma);
+    return ttd_points_ray_count(m, pd, ray_node, x, k, sigma, w);
+}
+
+int ttd_points_ray_count(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                         const double x[3], int k, int sigma, int *w)
 {
     const ttd_rnode *rn = pd->rnodes;
     /* the point in the walk's frame, and the margin m = 2 eps (|x - origin| + radius) scale that
@@ -225,19 +255,6 @@ int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, 
         lo[c] = ttd_float_down(a);
         hi[c] = ttd_float_up(b);
     }
-    /* the direction: the axis and sense along which the point leaves the mesh's box soonest */
-    int k = 0, sigma = 1;
-    double best = INFINITY;
-    for (int c = 0; c < 3; ++c)
-        for (int sg = 1; sg >= -1; sg -= 2) {
-            const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];
-            const double e = exit > 0 ? exit : 0;
-            if (e < best) {
-                best = e;
-                k = c;
-                sigma = sg;
-            }
-        }
     /* Signs do not change under a power-of-two scale: the coordinates are kept within 2^+-300, so
      * that no product of three differences overflows (the scale is 1 unless the mesh or the point
      * lies beyond, and a coordinate the scale would push into the subnormal range is reported). */

@@ -7,7 +7,8 @@
  * bound and pose. Every case checks, on the scalar row and the automatic choice with 1 and 2
  * threads: the closest point against the brute force over every triangle with ttd_point_triangle
  * (bit for bit, ties to the smallest index, the bound), the rows and thread counts against each
- * other, signed distances against the closest distance and the winding number's side, and the
+ * other, signed distances against the closest distance and the winding number's side, every
+ * proven side against a long double sum of the solid angles (the meshes are open), and the
  * statuses. Used by tests/test_points_fuzz.c (CTest, seeded) and tests/fuzz/fuzz_points.c
  * (libFuzzer). */
 #ifndef TTD_TESTS_POINTFUZZ_H
@@ -25,6 +26,10 @@ typedef struct pf_src {
 
 /// A source reading data first, then a stream seeded by its hash (data may be NULL).
 void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed);
+
+/// The open meshes' sides checked against the long double winding number so far (every case's
+/// mesh is a soup, so open): points 1e-9 of the mesh's size or more off it, proven by the library.
+extern size_t pf_sides_checked;
 
 /// Runs one case; prints what failed to out (with the case when dump is set). Returns the number
 /// of failed checks (0: the case passed). *points, when not NULL, gets the points checked.
