@@ -23,8 +23,9 @@
 #include "engine/batch.h"
 #include "mesh/mesh.h"
 
-/* Winding-number moments of one child slot (a triangle or a subtree), in double, relative to the
- * mesh's origin: the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
+/* Winding-number moments of one child slot (a triangle or a subtree), in double, in the walk's
+ * frame ((x - the mesh's origin) times ttd_points_data.scale, so that their powers stay in range at
+ * every scale): the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
  * centroid), the second moment M[i][j] = integral of (x - pc)_i n_j dA (row-major), the
  * (unsigned) area, a radius about pc that holds every vertex below, and the polar moment
  * I = integral of |x - pc|^2 dA (rounded up), which the remainder's bound uses. */

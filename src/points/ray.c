@@ -120,6 +120,25 @@ static void orient_terms(xsum *x, const double q[2], const double a[2], const do
  * eps^2) where it is zero (simulation of simplicity). */
 static int orient2(const double q[2], const double a[2], const double b[2], double *val, double *perm, int *bad)
 {
+    /* a point within 2^-200 of both vertices (at the walk's scale) but far from others of its
+     * triangle: the three scaled up by a power of two first (exact, the same sign), so that the
+     * products of their differences stay far above the subnormal range; *val and *perm scaled back */
+    const double dm = fmax(fmax(fabs(a[0] - q[0]), fabs(b[1] - q[1])), fmax(fabs(a[1] - q[1]), fabs(b[0] - q[0])));
+    if (dm > 0 && dm < 0x1p-200) {
+        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        int em, eb;
+        (void)frexp(dm, &em);
+        (void)frexp(big, &eb);
+        const int f = -em < 1000 - eb ? -em : 1000 - eb;
+        if (f > 0) {
+            const double qs[2] = {ldexp(q[0], f), ldexp(q[1], f)}, as[2] = {ldexp(a[0], f), ldexp(a[1], f)},
+                         bs[2] = {ldexp(b[0], f), ldexp(b[1], f)};
+            const int sg = orient2(qs, as, bs, val, perm, bad);
+            *val = ldexp(*val, -2 * f);
+            *perm = ldexp(*perm, -2 * f);
+            return sg;
+        }
+    }
     const double l = (a[0] - q[0]) * (b[1] - q[1]), r = (a[1] - q[1]) * (b[0] - q[0]), det = l - r;
     *val = det;
     *perm = fabs(l) + fabs(r);
@@ -134,6 +153,22 @@ static int orient2(const double q[2], const double a[2], const double b[2], doub
     x.n = 0;
     x.bad = 0;
     orient_terms(&x, q, a, b, NULL);
+    if (x.bad) {
+        /* a term below the subnormal range (differences of very different sizes, such as a point
+         * 1e-170 from a vertex of a unit triangle): all three scaled up by a power of two that
+         * keeps them below 2^500 (exact, the same sign) and the terms formed again */
+        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        int eb;
+        (void)frexp(big, &eb);
+        if (500 - eb > 0) {
+            const int f = 500 - eb;
+            const double qs[2] = {ldexp(q[0], f), ldexp(q[1], f)}, as[2] = {ldexp(a[0], f), ldexp(a[1], f)},
+                         bs[2] = {ldexp(b[0], f), ldexp(b[1], f)};
+            x.n = 0;
+            x.bad = 0;
+            orient_terms(&x, qs, as, bs, NULL);
+        }
+    }
     *bad |= x.bad;
     const int s = xs_sign(&x);
     if (s != 0)
@@ -184,12 +219,30 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
         side = -1;
     } else {
         xsum x;
-        x.n = 0;
-        x.bad = 0;
-        for (int t = 0; t < 3; ++t) {
-            double f[2];
-            two_sum(v[t][k], -p[k], &f[0], &f[1]);
-            orient_terms(&x, q, w[(t + 1) % 3], w[(t + 2) % 3], f);
+        /* as orient2's: where a term falls below the subnormal range, everything scaled up by a
+         * power of two that keeps it below 2^330 (products of three below 2^1000) and formed again */
+        double big = 0;
+        for (int t = 0; t < 3; ++t)
+            for (int c = 0; c < 3; ++c)
+                big = fmax(big, fmax(fabs(v[t][c]), fabs(p[c])));
+        int eb;
+        (void)frexp(big, &eb);
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            const int sc = attempt == 0 ? 0 : 330 - eb;
+            if (attempt == 1 && sc <= 0)
+                break;
+            const double qs[2] = {ldexp(q[0], sc), ldexp(q[1], sc)}, pk = ldexp(p[k], sc);
+            x.n = 0;
+            x.bad = 0;
+            for (int t = 0; t < 3; ++t) {
+                double f[2];
+                two_sum(ldexp(v[t][k], sc), -pk, &f[0], &f[1]);
+                const double ws[2][2] = {{ldexp(w[(t + 1) % 3][0], sc), ldexp(w[(t + 1) % 3][1], sc)},
+                                         {ldexp(w[(t + 2) % 3][0], sc), ldexp(w[(t + 2) % 3][1], sc)}};
+                orient_terms(&x, qs, ws[0], ws[1], f);
+            }
+            if (!x.bad)
+                break;
         }
         *bad |= x.bad;
         side = xs_sign(&x);
@@ -198,6 +251,37 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
     if (side * s[0] != sigma)
         return 0;
     return sigma * s[0];
+}
+
+/* ray_triangle with the point and the triangle scaled up by a power of two (exact: no sign
+ * changes) where they lie within 2^-100 of one another at the walk's scale, so that the products
+ * of their differences stay far above the subnormal range: a part of the mesh 2^-1000 the size of
+ * the rest is counted exactly too (coordinates are kept below 2^1000). */
+static int ray_triangle_local(const double p[3], int k, int sigma, const double v[3][3], int *bad)
+{
+    double m = 0, big = 0;
+    for (int c = 0; c < 3; ++c) {
+        big = fmax(big, fabs(p[c]));
+        for (int t = 0; t < 3; ++t) {
+            m = fmax(m, fabs(v[t][c] - p[c]));
+            big = fmax(big, fabs(v[t][c]));
+        }
+    }
+    if (!(m > 0 && m < 0x1p-100))
+        return ray_triangle(p, k, sigma, v, bad);
+    int em, eb;
+    (void)frexp(m, &em);
+    (void)frexp(big, &eb);
+    const int f = -em < 1000 - eb ? -em : 1000 - eb;
+    if (f <= 0)
+        return ray_triangle(p, k, sigma, v, bad);
+    double ps[3], vs[3][3];
+    for (int c = 0; c < 3; ++c) {
+        ps[c] = ldexp(p[c], f);
+        for (int t = 0; t < 3; ++t)
+            vs[t][c] = ldexp(v[t][c], f);
+    }
+    return ray_triangle(ps, k, sigma, (const double(*)[3])vs, bad);
 }
 
 /* ---- the walk ----------------------------------------------------------------------------- */
@@ -300,7 +384,7 @@ int ttd_points_ray_count(const struct ttd_mesh *m, const ttd_points_data *pd, tt
                     }
                 }
             }
-            count += ray_triangle(xe, k, sigma, (const double(*)[3])v, &bad);
+            count += ray_triangle_local(xe, k, sigma, (const double(*)[3])v, &bad);
         }
     }
     if (bad)

@@ -91,6 +91,26 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
     return 2 * atan2(det, den);
 }
 
+/* x in the moments' frame (points/points.h): q = (x - origin) scale. Returns 1 (with *err) for a
+ * point beyond 2^100 radii of the mesh, whose winding number is 0 within A / (4 pi (R - 1)^2), A
+ * the mesh's area (in that frame) and R its distance: far below any rounding of the sums. */
+static int wn_frame(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double q[3], double *err)
+{
+    double far = 0;
+    for (int c = 0; c < 3; ++c) {
+        q[c] = (x[c] - m->origin[c]) * pd->scale;
+        far = fmax(far, fabs(q[c]));
+    }
+    if (!(far > 0x1p100))
+        return 0;
+    const double *w = ttd_points_moments(m, pd);
+    double area = 0;
+    for (int j = 0; w != NULL && j < TTD_NODE_WIDTH; ++j)
+        area += w[(size_t)WM_AREA * TTD_NODE_WIDTH + (size_t)j];
+    *err = (area / (far - 1)) / (far - 1) / (4 * WN_PI) * 2 + 0x1p-1000;
+    return 1;
+}
+
 /* The far field of all 8 slots of a node (moments w, point q relative to the mesh's origin) at once,
  * lane by lane with no branch, so that the compiler makes it vector code (the same operations in
  * every lane: the same bits on every instruction set): each slot's distance R, its remainder's
@@ -134,7 +154,9 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
         *err = 64 * DBL_EPSILON * (double)m->nt;
         return ttd_mesh_winding(m, x);
     }
-    const double q[3] = {x[0] - m->origin[0], x[1] - m->origin[1], x[2] - m->origin[2]};
+    double q[3];
+    if (wn_frame(m, pd, x, q, err))
+        return 0;
     double sum = 0, mag = 0, bound = 0;
     int32_t stack[WN_STACK];
     int sp = 0;
@@ -156,7 +178,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
         for (int j = 0; j < count; ++j) {
             const double R = lr[j], r = W(WM_RADIUS), A = W(WM_AREA), rem = lrem[j];
-            int far = R > beta * r && R > r;
+            int far = R > beta * r && R > r && rem < HUGE_VAL; /* (a tiny slot's is +inf: prepare.c) */
             if (far && tau >= 0 && !(rem <= tau * A / ((R + r) * (R + r))))
                 far = 0;
             if (far) {
@@ -172,6 +194,15 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
             }
         }
 #undef W
+    }
+    if (!(fabs(sum) < HUGE_VAL && bound < HUGE_VAL && mag < HUGE_VAL)) {
+        /* a power out of range all the same: every triangle's solid angle, scaled alone */
+        sum = mag = bound = 0;
+        for (size_t t = 0; t < m->nt; ++t) {
+            const double om = wn_solid_angle(m, t, x, amb);
+            sum += om;
+            mag += fabs(om);
+        }
     }
     *err = (bound + 32 * DBL_EPSILON * mag) / (4 * WN_PI);
     return sum / (4 * WN_PI);
@@ -257,7 +288,11 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
     const double *moments = ttd_points_moments(m, pd);
     if (moments == NULL)
         return -1;
-    const double q[3] = {x[0] - m->origin[0], x[1] - m->origin[1], x[2] - m->origin[2]};
+    double q[3];
+    if (wn_frame(m, pd, x, q, err)) {
+        *w = 0;
+        return 0;
+    }
     const double scale = 1 / (4 * WN_PI), half4 = half * 4 * WN_PI;
     wn_item heap[WN_HEAP];
     int nh = 0, ninf = 0;
@@ -315,6 +350,8 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             if (fabs(*w - half) > *err)
                 return 0;
         }
+        if (!(fabs(S) < HUGE_VAL && B < HUGE_VAL))
+            return -1; /* a power out of range: the caller's walk measures every triangle */
         if (nh == 0) {
             *w = exact * scale;
             *err = 32 * DBL_EPSILON * emag * scale;
