@@ -25,9 +25,12 @@
  *    no triangle the exact ray crosses is skipped.
  * So the count is w of the point moved by (eps, eps^2) across the ray: w(x) itself for every x
  * off the surface. A point exactly on the plane of a triangle it would cross (on the surface) is
- * taken as behind it. The one case left out is a product that underflows (coordinates that differ
- * by less than about 2^-450 of the largest): the function then says so, and the caller uses the
- * hierarchical winding number. */
+ * taken as behind it. Differences far smaller than the coordinates are scaled up by powers of two
+ * (ray_triangle_local, orient2, and the exact sums formed again), so that a part of a mesh down to
+ * about 2^-600 the size of the rest is counted exactly; the one case left out is a product that
+ * underflows all the same: the function then says so, and the caller uses the hierarchical
+ * winding number. A count through a mesh that is not closed is no winding number, but it is exact
+ * all the same: points/caps.c adds one through the caps that close it (ttd_points_ray_count). */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>

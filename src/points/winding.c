@@ -122,22 +122,27 @@ static int wn_frame(const struct ttd_mesh *m, const ttd_points_data *pd, const d
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 #endif
-static void wn_lanes(const double *w, const double q[3], double lr[TTD_NODE_WIDTH], double lrem[TTD_NODE_WIDTH],
-                     double lt1[TTD_NODE_WIDTH], double lt2[TTD_NODE_WIDTH])
+static void wn_lanes(const double *restrict w, const double q[3], double *restrict lr, double *restrict lrem,
+                     double *restrict lt1, double *restrict lt2)
 {
+    const double q0 = q[0], q1 = q[1], q2 = q[2];
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
         for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
-            const double y0 = W(WM_C) - q[0], y1 = W(WM_C + 1) - q[1], y2 = W(WM_C + 2) - q[2];
+            const double y0 = W(WM_C) - q0, y1 = W(WM_C + 1) - q1, y2 = W(WM_C + 2) - q2;
             const double R2 = y0 * y0 + y1 * y1 + y2 * y2, R = sqrt(R2);
-            const double r = W(WM_RADIUS), g = R - r, R3 = R2 * R;
+            const double r = W(WM_RADIUS), g = R - r, R3 = R2 * R, g2 = g * g;
+            /* one division for the three quotients (a division costs several multiplications in
+             * vector code): d = 1 / (R^5 g^2); where that leaves the range (g or R tiny) the
+             * remainder's bound is +inf or NaN and the slot is never expanded */
+            const double d = 1 / (R3 * R2 * g2);
             lr[j] = R;
-            lrem[j] = W(WM_I) * (3 * R - 2 * r) / (R3 * g * g) * (1 + 16 * DBL_EPSILON);
-            lt1[j] = (y0 * W(WM_N) + y1 * W(WM_N + 1) + y2 * W(WM_N + 2)) / R3;
+            lrem[j] = W(WM_I) * (3 * R - 2 * r) * (R2 * d) * (1 + 16 * DBL_EPSILON);
+            lt1[j] = (y0 * W(WM_N) + y1 * W(WM_N + 1) + y2 * W(WM_N + 2)) * (R2 * g2 * d);
             const double yMy = (y0 * ((W(WM_M) * y0 + W(WM_M + 1) * y1) + W(WM_M + 2) * y2) +
                                 y1 * ((W(WM_M + 3) * y0 + W(WM_M + 4) * y1) + W(WM_M + 5) * y2)) +
                                y2 * ((W(WM_M + 6) * y0 + W(WM_M + 7) * y1) + W(WM_M + 8) * y2);
             const double tr = W(WM_M) + W(WM_M + 4) + W(WM_M + 8);
-            lt2[j] = (R2 * tr - 3 * yMy) / (R3 * R2);
+            lt2[j] = (R2 * tr - 3 * yMy) * (g2 * d);
         }
 #undef W
 }
