@@ -39,6 +39,7 @@ int main(int argc, char **argv)
         }
         points += k;
     }
-    printf("%lu cases, %zu points: %zu failed\n", n, points, failed);
+    printf("%lu cases, %zu points: %zu failed; %zu open meshes' sides against the long double winding number\n", n, points,
+           failed, pf_sides_checked);
     return failed != 0;
 }

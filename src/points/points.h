@@ -23,8 +23,9 @@
 #include "engine/batch.h"
 #include "mesh/mesh.h"
 
-/* Winding-number moments of one child slot (a triangle or a subtree), in double, relative to the
- * mesh's origin: the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
+/* Winding-number moments of one child slot (a triangle or a subtree), in double, in the walk's
+ * frame ((x - the mesh's origin) times ttd_points_data.scale, so that their powers stay in range at
+ * every scale): the area vector N = sum of (1/2) cross(B - A, C - A), the centre pc (area-weighted
  * centroid), the second moment M[i][j] = integral of (x - pc)_i n_j dA (row-major), the
  * (unsigned) area, a radius about pc that holds every vertex below, and the polar moment
  * I = integral of |x - pc|^2 dA (rounded up), which the remainder's bound uses. */
@@ -67,6 +68,16 @@ static inline float ttd_float_up(double x)
  * every triangle (points/closest_impl.h; docs/points.md, section 4). */
 #define TTD_POINTS_TINY 8
 
+typedef struct ttd_points_data ttd_points_data_s;
+
+/* The caps of an open mesh (points/caps.c; docs/points.md, section 5.4): a cone from each boundary
+ * loop's mean vertex over its edges, so that the mesh and its caps have no boundary. */
+typedef struct ttd_points_caps {
+    size_t ntri;               /* the caps' triangles: one per boundary edge (0: no boundary) */
+    struct ttd_mesh *mesh;     /* the caps as a mesh of the mesh's precision (NULL when ntri = 0) */
+    const ttd_points_data_s *pd; /* its point data, moments made */
+} ttd_points_caps;
+
 typedef struct ttd_points_data {
     void (*destroy)(void *self); /* first: the mesh frees its point data through it (mesh/build.c) */
     int bytes;             /* the mesh's precision */
@@ -86,6 +97,8 @@ typedef struct ttd_points_data {
                             * [(n * WM_COUNT + f) * TTD_NODE_WIDTH + j]; made by the first winding
                             * walk (ttd_points_moments; NULL until then, atomic): a closed mesh's
                             * winding number is counted by a ray and seldom needs them */
+    ttd_points_caps *caps; /* an open mesh's caps, made by its first winding number
+                            * (ttd_points_caps_get; NULL until then, atomic) */
 } ttd_points_data;
 
 /// The mesh's point data, made on first use with `threads` workers; NULL when out of memory.
@@ -93,6 +106,10 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 /// The point data's winding-number moments, made on first use (NULL when out of memory).
 const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_data *pd);
+
+/// The caps of the mesh (points/caps.c), made on first use and kept in pd; NULL when out of memory.
+const ttd_points_caps *ttd_points_caps_get(const struct ttd_mesh *mesh, const ttd_points_data *pd);
+void ttd_points_caps_free(ttd_points_caps *caps);
 
 /// Recomputes the point data of a mesh whose vertices changed in place (same triangles, same
 /// hierarchy shape, refitted boxes): a no-op when no point query has made it yet. The one function
@@ -119,6 +136,13 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
  * or -1 where it cannot be made exact (products below the subnormal range, or a stack overflow). */
 int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                            const double x[3], int *w);
+/* The ray's axis k and sense sigma for x that ttd_points_ray_winding takes (where x leaves the
+ * mesh's box soonest), and the signed count of the crossings of the ray x + s sigma e_k, s > 0,
+ * for any mesh, any axis (for an open mesh the count is not its winding number: points/caps.c).
+ * ttd_points_ray_count returns 0, or -1 as ttd_points_ray_winding. */
+void ttd_points_ray_direction(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], int *k, int *sigma);
+int ttd_points_ray_count(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                         const double x[3], int k, int sigma, int *count);
 
 /* The winding number about x, the one every query reports and decides a side by (the inside rule,
  * ttd_winding_inside: |w| >= 1/2): the exact count for a closed mesh; else the fast walk, and where
@@ -127,6 +151,10 @@ int ttd_points_ray_winding(const struct ttd_mesh *mesh, const ttd_points_data *p
  * mesh), 0 where rounding leaves it open (a point within rounding of the surface, or of where an
  * open mesh's |w| is 1/2). A mesh of one triangle, whose |w| is below 1/2 everywhere, gets 0 and
  * proven at once. docs/points.md, section 5. */
+/* ttd_points_winding_sign's value with *bound (when not NULL), a bound on its error: 0 for an exact
+ * count, the walk's or the caps' bound otherwise (1/2 for a mesh of one triangle, given as 0). */
+double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                                const double x[3], int *proven, double *bound);
 double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
                                const double x[3], int *proven);
 

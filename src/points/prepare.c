@@ -23,6 +23,7 @@ static void points_free(void *p)
     free(pd->blocks);
     free(pd->tiny);
     free(pd->moments);
+    ttd_points_caps_free(pd->caps);
     free(pd);
 }
 
@@ -186,12 +187,23 @@ static void node_rbox(const ttd_rnode *x, ttd_rnode *y, int j)
     }
 }
 
-/* The moments of triangle t (relative to the origin) into w[f * TTD_NODE_WIDTH] (slot j's base). */
-static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
+/* A slot this much smaller than the mesh (in the walk's frame, where the mesh's radius is about 1)
+ * has moments whose powers may leave the range of doubles (its polar moment, a fourth power, below
+ * 2^-1000): its remainder's bound is made +inf, so that the walk always opens it (and its ancestors)
+ * and measures its triangles exactly (points/winding.c). */
+#define WM_TINY 0x1p-200
+
+/* The moments of triangle t (relative to the origin, times scale: the walk's frame, where powers
+ * of the mesh's size neither overflow nor underflow at any scale of the coordinate range) into
+ * w[f * TTD_NODE_WIDTH] (slot j's base). */
+static void triangle_moments(const struct ttd_mesh *m, double scale, size_t t, double *w)
 {
     double v[3][3], e1[3], e2[3], n[3];
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
         tri_vertex(m, t, k, 1, v[k]);
+        for (int c = 0; c < 3; ++c)
+            v[k][c] *= scale; /* a power of two: exact */
+    }
     for (int c = 0; c < 3; ++c) {
         e1[c] = v[1][c] - v[0][c];
         e2[c] = v[2][c] - v[0][c];
@@ -229,6 +241,8 @@ static void triangle_moments(const struct ttd_mesh *m, size_t t, double *w)
         }
     const double off = 2 * DBL_EPSILON * big;
     w[WM_I * TTD_NODE_WIDTH] = (area / 12 * s + area * 3 * off * off) * (1 + 1e-12);
+    if (!(w[WM_RADIUS * TTD_NODE_WIDTH] >= WM_TINY))
+        w[WM_I * TTD_NODE_WIDTH] = INFINITY;
 }
 
 /* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors
@@ -275,14 +289,14 @@ static void node_moments(const double *moments, size_t c, int count, double *w)
         W(WM_M + i) = M[i];
     W(WM_AREA) = area;
     W(WM_RADIUS) = radius * (1 + 1e-12); /* covers the rounding of the sums above */
-    W(WM_I) = polar * (1 + 1e-12);
+    W(WM_I) = radius >= WM_TINY ? polar * (1 + 1e-12) : HUGE_VAL;
 #undef X
 #undef W
 }
 
 /* The winding-number moments of every slot, bottom-up (a node's children come after it in the
  * pre-order numbering, so a reverse pass sees them first). */
-static void moments_compute(const struct ttd_mesh *m, double *moments)
+static void moments_compute(const struct ttd_mesh *m, double scale, double *moments)
 {
     for (size_t n = m->nnodes; n-- > 0;) {
         int count;
@@ -291,7 +305,7 @@ static void moments_compute(const struct ttd_mesh *m, double *moments)
         memset(w, 0, WM_COUNT * TTD_NODE_WIDTH * sizeof *w);
         for (int j = 0; j < count; ++j) {
             if (child[j] < 0) {
-                triangle_moments(m, (size_t)(-1 - child[j]), w + j);
+                triangle_moments(m, scale, (size_t)(-1 - child[j]), w + j);
             } else {
                 int cc;
                 (void)node_child(m, (size_t)child[j], &cc);
@@ -355,7 +369,7 @@ static int points_compute(const struct ttd_mesh *m, ttd_points_data *pd, int thr
         }
     }
     if (pd->moments != NULL)
-        moments_compute(m, pd->moments);
+        moments_compute(m, pd->scale, pd->moments);
     return 0;
 }
 
@@ -369,7 +383,7 @@ const double *ttd_points_moments(const struct ttd_mesh *mesh, const ttd_points_d
     w = ttd_big_alloc(mesh->nnodes * WM_COUNT * TTD_NODE_WIDTH * sizeof(double));
     if (w == NULL)
         return NULL;
-    moments_compute(mesh, w);
+    moments_compute(mesh, pd->scale, w);
     double *expected = NULL;
     if (!__atomic_compare_exchange_n(&p->moments, &expected, w, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
         free(w); /* another thread made them first: the same numbers */
@@ -445,6 +459,11 @@ const ttd_points_data *ttd_points_data_get(const struct ttd_mesh *mesh, int thre
 
 void ttd_points_data_refresh(struct ttd_mesh *mesh, int threads)
 {
+    if (mesh->points != NULL) { /* the caps' apexes and boundary follow the vertices: made again on use */
+        ttd_points_data *pd = mesh->points;
+        ttd_points_caps_free(pd->caps);
+        pd->caps = NULL;
+    }
     if (mesh->points != NULL && points_compute(mesh, mesh->points, threads) != 0) {
         /* out of memory: drop the point data (the next point query makes it again) */
         ttd_points_data *pd = mesh->points;

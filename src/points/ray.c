@@ -25,9 +25,12 @@
  *    no triangle the exact ray crosses is skipped.
  * So the count is w of the point moved by (eps, eps^2) across the ray: w(x) itself for every x
  * off the surface. A point exactly on the plane of a triangle it would cross (on the surface) is
- * taken as behind it. The one case left out is a product that underflows (coordinates that differ
- * by less than about 2^-450 of the largest): the function then says so, and the caller uses the
- * hierarchical winding number. */
+ * taken as behind it. Differences far smaller than the coordinates are scaled up by powers of two
+ * (ray_triangle_local, orient2, and the exact sums formed again), so that a part of a mesh down to
+ * about 2^-600 the size of the rest is counted exactly; the one case left out is a product that
+ * underflows all the same: the function then says so, and the caller uses the hierarchical
+ * winding number. A count through a mesh that is not closed is no winding number, but it is exact
+ * all the same: points/caps.c adds one through the caps that close it (ttd_points_ray_count). */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -120,6 +123,25 @@ static void orient_terms(xsum *x, const double q[2], const double a[2], const do
  * eps^2) where it is zero (simulation of simplicity). */
 static int orient2(const double q[2], const double a[2], const double b[2], double *val, double *perm, int *bad)
 {
+    /* a point within 2^-200 of both vertices (at the walk's scale) but far from others of its
+     * triangle: the three scaled up by a power of two first (exact, the same sign), so that the
+     * products of their differences stay far above the subnormal range; *val and *perm scaled back */
+    const double dm = fmax(fmax(fabs(a[0] - q[0]), fabs(b[1] - q[1])), fmax(fabs(a[1] - q[1]), fabs(b[0] - q[0])));
+    if (dm > 0 && dm < 0x1p-200) {
+        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        int em, eb;
+        (void)frexp(dm, &em);
+        (void)frexp(big, &eb);
+        const int f = -em < 1000 - eb ? -em : 1000 - eb;
+        if (f > 0) {
+            const double qs[2] = {ldexp(q[0], f), ldexp(q[1], f)}, as[2] = {ldexp(a[0], f), ldexp(a[1], f)},
+                         bs[2] = {ldexp(b[0], f), ldexp(b[1], f)};
+            const int sg = orient2(qs, as, bs, val, perm, bad);
+            *val = ldexp(*val, -2 * f);
+            *perm = ldexp(*perm, -2 * f);
+            return sg;
+        }
+    }
     const double l = (a[0] - q[0]) * (b[1] - q[1]), r = (a[1] - q[1]) * (b[0] - q[0]), det = l - r;
     *val = det;
     *perm = fabs(l) + fabs(r);
@@ -134,6 +156,22 @@ static int orient2(const double q[2], const double a[2], const double b[2], doub
     x.n = 0;
     x.bad = 0;
     orient_terms(&x, q, a, b, NULL);
+    if (x.bad) {
+        /* a term below the subnormal range (differences of very different sizes, such as a point
+         * 1e-170 from a vertex of a unit triangle): all three scaled up by a power of two that
+         * keeps them below 2^500 (exact, the same sign) and the terms formed again */
+        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        int eb;
+        (void)frexp(big, &eb);
+        if (500 - eb > 0) {
+            const int f = 500 - eb;
+            const double qs[2] = {ldexp(q[0], f), ldexp(q[1], f)}, as[2] = {ldexp(a[0], f), ldexp(a[1], f)},
+                         bs[2] = {ldexp(b[0], f), ldexp(b[1], f)};
+            x.n = 0;
+            x.bad = 0;
+            orient_terms(&x, qs, as, bs, NULL);
+        }
+    }
     *bad |= x.bad;
     const int s = xs_sign(&x);
     if (s != 0)
@@ -184,12 +222,30 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
         side = -1;
     } else {
         xsum x;
-        x.n = 0;
-        x.bad = 0;
-        for (int t = 0; t < 3; ++t) {
-            double f[2];
-            two_sum(v[t][k], -p[k], &f[0], &f[1]);
-            orient_terms(&x, q, w[(t + 1) % 3], w[(t + 2) % 3], f);
+        /* as orient2's: where a term falls below the subnormal range, everything scaled up by a
+         * power of two that keeps it below 2^330 (products of three below 2^1000) and formed again */
+        double big = 0;
+        for (int t = 0; t < 3; ++t)
+            for (int c = 0; c < 3; ++c)
+                big = fmax(big, fmax(fabs(v[t][c]), fabs(p[c])));
+        int eb;
+        (void)frexp(big, &eb);
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            const int sc = attempt == 0 ? 0 : 330 - eb;
+            if (attempt == 1 && sc <= 0)
+                break;
+            const double qs[2] = {ldexp(q[0], sc), ldexp(q[1], sc)}, pk = ldexp(p[k], sc);
+            x.n = 0;
+            x.bad = 0;
+            for (int t = 0; t < 3; ++t) {
+                double f[2];
+                two_sum(ldexp(v[t][k], sc), -pk, &f[0], &f[1]);
+                const double ws[2][2] = {{ldexp(w[(t + 1) % 3][0], sc), ldexp(w[(t + 1) % 3][1], sc)},
+                                         {ldexp(w[(t + 2) % 3][0], sc), ldexp(w[(t + 2) % 3][1], sc)}};
+                orient_terms(&x, qs, ws[0], ws[1], f);
+            }
+            if (!x.bad)
+                break;
         }
         *bad |= x.bad;
         side = xs_sign(&x);
@@ -200,12 +256,73 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
     return sigma * s[0];
 }
 
+/* ray_triangle with the point and the triangle scaled up by a power of two (exact: no sign
+ * changes) where they lie within 2^-100 of one another at the walk's scale, so that the products
+ * of their differences stay far above the subnormal range: a part of the mesh 2^-1000 the size of
+ * the rest is counted exactly too (coordinates are kept below 2^1000). */
+static int ray_triangle_local(const double p[3], int k, int sigma, const double v[3][3], int *bad)
+{
+    double m = 0, big = 0;
+    for (int c = 0; c < 3; ++c) {
+        big = fmax(big, fabs(p[c]));
+        for (int t = 0; t < 3; ++t) {
+            m = fmax(m, fabs(v[t][c] - p[c]));
+            big = fmax(big, fabs(v[t][c]));
+        }
+    }
+    if (!(m > 0 && m < 0x1p-100))
+        return ray_triangle(p, k, sigma, v, bad);
+    int em, eb;
+    (void)frexp(m, &em);
+    (void)frexp(big, &eb);
+    const int f = -em < 1000 - eb ? -em : 1000 - eb;
+    if (f <= 0)
+        return ray_triangle(p, k, sigma, v, bad);
+    double ps[3], vs[3][3];
+    for (int c = 0; c < 3; ++c) {
+        ps[c] = ldexp(p[c], f);
+        for (int t = 0; t < 3; ++t)
+            vs[t][c] = ldexp(v[t][c], f);
+    }
+    return ray_triangle(ps, k, sigma, (const double(*)[3])vs, bad);
+}
+
 /* ---- the walk ----------------------------------------------------------------------------- */
 
 #define RAY_STACK 256
 
+void ttd_points_ray_direction(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], int *k, int *sigma)
+{
+    const ttd_rnode *rn = pd->rnodes;
+    double xs[3];
+    for (int c = 0; c < 3; ++c)
+        xs[c] = (x[c] - m->origin[c]) * pd->scale;
+    /* the axis and sense along which the point leaves the mesh's box soonest */
+    *k = 0;
+    *sigma = 1;
+    double best = INFINITY;
+    for (int c = 0; c < 3; ++c)
+        for (int sg = 1; sg >= -1; sg -= 2) {
+            const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];
+            const double e = exit > 0 ? exit : 0;
+            if (e < best) {
+                best = e;
+                *k = c;
+                *sigma = sg;
+            }
+        }
+}
+
 int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                            const double x[3], int *w)
+{
+    int k, sigma;
+    ttd_points_ray_direction(m, pd, x, &k, &sigma);
+    return ttd_points_ray_count(m, pd, ray_node, x, k, sigma, w);
+}
+
+int ttd_points_ray_count(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
+                         const double x[3], int k, int sigma, int *w)
 {
     const ttd_rnode *rn = pd->rnodes;
     /* the point in the walk's frame, and the margin m = 2 eps (|x - origin| + radius) scale that
@@ -225,19 +342,6 @@ int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, 
         lo[c] = ttd_float_down(a);
         hi[c] = ttd_float_up(b);
     }
-    /* the direction: the axis and sense along which the point leaves the mesh's box soonest */
-    int k = 0, sigma = 1;
-    double best = INFINITY;
-    for (int c = 0; c < 3; ++c)
-        for (int sg = 1; sg >= -1; sg -= 2) {
-            const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];
-            const double e = exit > 0 ? exit : 0;
-            if (e < best) {
-                best = e;
-                k = c;
-                sigma = sg;
-            }
-        }
     /* Signs do not change under a power-of-two scale: the coordinates are kept within 2^+-300, so
      * that no product of three differences overflows (the scale is 1 unless the mesh or the point
      * lies beyond, and a coordinate the scale would push into the subnormal range is reported). */
@@ -283,7 +387,7 @@ int ttd_points_ray_winding(const struct ttd_mesh *m, const ttd_points_data *pd, 
                     }
                 }
             }
-            count += ray_triangle(xe, k, sigma, (const double(*)[3])v, &bad);
+            count += ray_triangle_local(xe, k, sigma, (const double(*)[3])v, &bad);
         }
     }
     if (bad)

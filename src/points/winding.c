@@ -30,18 +30,138 @@
 #define WN_BETA 2.0
 #define WN_STACK 256
 
+/* The signed solid angle of triangle t seen from x (van Oosterom and Strackee, as
+ * ttd_mesh_solid_angle), its vectors scaled by a power of two to unit size first, so that no length
+ * or product underflows or overflows at any scale of the coordinate range (lengths formed from
+ * squares would underflow below about 1e-154). *amb (when not NULL) is set where x lies within
+ * rounding of the triangle's plane inside (or on) it, or on a vertex: there the angle jumps by
+ * 4 pi and its computed value cannot tell from which side. */
+static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[3], int *amb)
+{
+    double a[3][3], big = 0;
+    for (int k = 0; k < 3; ++k) {
+        const size_t v = m->tris[3 * t + (size_t)k];
+        for (int c = 0; c < 3; ++c) {
+            const double p = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
+                                           : (double)((const float *)m->verts)[3 * v + (size_t)c];
+            a[k][c] = p - x[c];
+            big = fmax(big, fabs(a[k][c]));
+        }
+    }
+    if (!(big > 0)) { /* x is the (point) triangle itself */
+        if (amb)
+            *amb = 1;
+        return 0;
+    }
+    /* a power of two first (exact), then ttd_mesh_solid_angle's steps: the same bits wherever its
+     * squares neither underflow nor overflow */
+    int e;
+    (void)frexp(big, &e);
+    const double f = e > -1000 && e < 1000 ? ldexp(1.0, -e) : 0;
+    double len[3];
+    for (int k = 0; k < 3; ++k) {
+        for (int c = 0; c < 3; ++c) /* exact but for parts below 2^-1074 of the largest */
+            a[k][c] = f != 0 ? a[k][c] * f : ldexp(a[k][c], -e);
+        len[k] = sqrt(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
+    }
+    const double sc = fmax(len[0], fmax(len[1], len[2]));
+    for (int k = 0; k < 3; ++k) {
+        len[k] /= sc;
+        for (int c = 0; c < 3; ++c)
+            a[k][c] /= sc;
+    }
+    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    const double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
+    const double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
+    const double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
+    const double den = len[0] * len[1] * len[2] + ab * len[2] + ac * len[1] + bc * len[0];
+    if (amb) {
+        /* det's rounding is below 8 eps times its terms' magnitudes, den's below 16 eps times its
+         * (the lengths' square roots included): taken twice */
+        const double detmag = fabs(a[0][0]) * (fabs(a[1][1] * a[2][2]) + fabs(a[1][2] * a[2][1])) +
+                              fabs(a[0][1]) * (fabs(a[1][0] * a[2][2]) + fabs(a[1][2] * a[2][0])) +
+                              fabs(a[0][2]) * (fabs(a[1][0] * a[2][1]) + fabs(a[1][1] * a[2][0]));
+        const double denmag = 4 * len[0] * len[1] * len[2];
+        if (len[0] == 0 || len[1] == 0 || len[2] == 0 ||
+            (fabs(det) <= 16 * DBL_EPSILON * detmag && !(den > 32 * DBL_EPSILON * denmag)))
+            *amb = 1;
+    }
+    return 2 * atan2(det, den);
+}
+
+/* x in the moments' frame (points/points.h): q = (x - origin) scale. Returns 1 (with *err) for a
+ * point beyond 2^100 radii of the mesh, whose winding number is 0 within A / (4 pi (R - 1)^2), A
+ * the mesh's area (in that frame) and R its distance: far below any rounding of the sums. */
+static int wn_frame(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double q[3], double *err)
+{
+    double far = 0;
+    for (int c = 0; c < 3; ++c) {
+        q[c] = (x[c] - m->origin[c]) * pd->scale;
+        far = fmax(far, fabs(q[c]));
+    }
+    if (!(far > 0x1p100))
+        return 0;
+    const double *w = ttd_points_moments(m, pd);
+    double area = 0;
+    for (int j = 0; w != NULL && j < TTD_NODE_WIDTH; ++j)
+        area += w[(size_t)WM_AREA * TTD_NODE_WIDTH + (size_t)j];
+    *err = (area / (far - 1)) / (far - 1) / (4 * WN_PI) * 2 + 0x1p-1000;
+    return 1;
+}
+
+/* The far field of all 8 slots of a node (moments w, point q relative to the mesh's origin) at once,
+ * lane by lane with no branch, so that the compiler makes it vector code (the same operations in
+ * every lane: the same bits on every instruction set): each slot's distance R, its remainder's
+ * bound and its two terms (unused slots: whatever their zero moments give, never read). */
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__has_attribute)
+#if __has_attribute(target_clones) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+/* AVX2 and AVX-512 copies chosen by the loader where the processor has them: 4 or 8 lanes a step
+ * instead of SSE2's 2, the same operations in each lane */
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+#endif
+static void wn_lanes(const double *restrict w, const double q[3], double *restrict lr, double *restrict lrem,
+                     double *restrict lt1, double *restrict lt2)
+{
+    const double q0 = q[0], q1 = q[1], q2 = q[2];
+#define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            const double y0 = W(WM_C) - q0, y1 = W(WM_C + 1) - q1, y2 = W(WM_C + 2) - q2;
+            const double R2 = y0 * y0 + y1 * y1 + y2 * y2, R = sqrt(R2);
+            const double r = W(WM_RADIUS), g = R - r, R3 = R2 * R, g2 = g * g;
+            /* one division for the three quotients (a division costs several multiplications in
+             * vector code): d = 1 / (R^5 g^2); where that leaves the range (g or R tiny) the
+             * remainder's bound is +inf or NaN and the slot is never expanded */
+            const double d = 1 / (R3 * R2 * g2);
+            lr[j] = R;
+            lrem[j] = W(WM_I) * (3 * R - 2 * r) * (R2 * d) * (1 + 16 * DBL_EPSILON);
+            lt1[j] = (y0 * W(WM_N) + y1 * W(WM_N + 1) + y2 * W(WM_N + 2)) * (R2 * g2 * d);
+            const double yMy = (y0 * ((W(WM_M) * y0 + W(WM_M + 1) * y1) + W(WM_M + 2) * y2) +
+                                y1 * ((W(WM_M + 3) * y0 + W(WM_M + 4) * y1) + W(WM_M + 5) * y2)) +
+                               y2 * ((W(WM_M + 6) * y0 + W(WM_M + 7) * y1) + W(WM_M + 8) * y2);
+            const double tr = W(WM_M) + W(WM_M + 4) + W(WM_M + 8);
+            lt2[j] = (R2 * tr - 3 * yMy) * (g2 * d);
+        }
+#undef W
+}
+
 /* The walk: every subtree with R > beta r, and with tau >= 0 also a remainder bound at most tau
  * times A / (R + r)^2 (its share of the unsigned solid angle), is expanded; the rest is opened.
- * Returns the sum of solid angles; *err gets the bound on its error. */
+ * Returns the sum of solid angles; *err gets the bound on its error; *amb (when not NULL) is set
+ * where a triangle measured exactly has x within rounding of it (wn_solid_angle). */
 static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double beta, double tau,
-                      double *err)
+                      double *err, int *amb)
 {
     const double *moments = ttd_points_moments(m, pd);
     if (moments == NULL) { /* out of memory: the linear sum, its rounding alone */
         *err = 64 * DBL_EPSILON * (double)m->nt;
         return ttd_mesh_winding(m, x);
     }
-    const double q[3] = {x[0] - m->origin[0], x[1] - m->origin[1], x[2] - m->origin[2]};
+    double q[3];
+    if (wn_frame(m, pd, x, q, err))
+        return 0;
     double sum = 0, mag = 0, bound = 0;
     int32_t stack[WN_STACK];
     int sp = 0;
@@ -58,38 +178,35 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
             count = ((const ttd_node_f *)m->nodes)[n].count;
         }
         const double *w = moments + (size_t)n * WM_COUNT * TTD_NODE_WIDTH;
-        for (int j = 0; j < count; ++j) {
+        double lr[TTD_NODE_WIDTH], lrem[TTD_NODE_WIDTH], lt1[TTD_NODE_WIDTH], lt2[TTD_NODE_WIDTH];
+        wn_lanes(w, q, lr, lrem, lt1, lt2);
 #define W(f) w[(size_t)(f) * TTD_NODE_WIDTH + (size_t)j]
-            const double y[3] = {W(WM_C) - q[0], W(WM_C + 1) - q[1], W(WM_C + 2) - q[2]};
-            const double R2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2], R = sqrt(R2);
-            const double r = W(WM_RADIUS), A = W(WM_AREA);
-            int far = R > beta * r && R > r;
-            double rem = 0;
+        for (int j = 0; j < count; ++j) {
+            const double R = lr[j], r = W(WM_RADIUS), A = W(WM_AREA), rem = lrem[j];
+            int far = R > beta * r && R > r && rem < HUGE_VAL; /* (a tiny slot's is +inf: prepare.c) */
+            if (far && tau >= 0 && !(rem <= tau * A / ((R + r) * (R + r))))
+                far = 0;
             if (far) {
-                const double g = R - r;
-                rem = W(WM_I) * (3 * R - 2 * r) / (R2 * R * g * g) * (1 + 16 * DBL_EPSILON);
-                if (tau >= 0 && !(rem <= tau * A / ((R + r) * (R + r))))
-                    far = 0;
-            }
-            if (far) {
-                const double R3 = R2 * R;
-                const double t1 = (y[0] * W(WM_N) + y[1] * W(WM_N + 1) + y[2] * W(WM_N + 2)) / R3;
-                double yMy = 0;
-                for (int a = 0; a < 3; ++a)
-                    yMy += y[a] * ((W(WM_M + 3 * a) * y[0] + W(WM_M + 3 * a + 1) * y[1]) + W(WM_M + 3 * a + 2) * y[2]);
-                const double tr = W(WM_M) + W(WM_M + 4) + W(WM_M + 8);
-                const double t2 = (R2 * tr - 3 * yMy) / (R3 * R2);
-                sum += t1 + t2;
-                mag += fabs(t1) + fabs(t2);
+                sum += lt1[j] + lt2[j];
+                mag += fabs(lt1[j]) + fabs(lt2[j]);
                 bound += rem;
             } else if (child[j] < 0) {
-                const double om = ttd_mesh_solid_angle(m, (size_t)(-1 - child[j]), x);
+                const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb);
                 sum += om;
                 mag += fabs(om);
             } else if (sp < WN_STACK) {
                 stack[sp++] = child[j];
             }
+        }
 #undef W
+    }
+    if (!(fabs(sum) < HUGE_VAL && bound < HUGE_VAL && mag < HUGE_VAL)) {
+        /* a power out of range all the same: every triangle's solid angle, scaled alone */
+        sum = mag = bound = 0;
+        for (size_t t = 0; t < m->nt; ++t) {
+            const double om = wn_solid_angle(m, t, x, amb);
+            sum += om;
+            mag += fabs(om);
         }
     }
     *err = (bound + 32 * DBL_EPSILON * mag) / (4 * WN_PI);
@@ -104,30 +221,215 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
         return NAN;
     }
     double err;
-    const double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err);
+    const double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err, NULL);
     if (bound)
         *bound = err;
     return w;
 }
 
 /* The walk tightened until its bound is below `want` (every triangle exactly at tau = 0). */
-static double wn_tight(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double want, double *err)
+static double wn_tight(const struct ttd_mesh *mesh, const ttd_points_data *pd, const double x[3], double want, double *err,
+                       int *amb)
 {
     for (double tau = 1.0 / 16;; tau = tau > 1e-6 ? tau / 16 : 0) {
-        const double w = wn_walk(mesh, pd, x, WN_BETA, tau, err);
+        const double w = wn_walk(mesh, pd, x, WN_BETA, tau, err, amb);
         if (*err < want || tau == 0)
             return w;
     }
 }
 
-double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
-                               const double x[3], int *proven)
+/* ---- the side of 1/2 by refinement, largest bound first --------------------------------- */
+
+/* A slot of the frontier: its far-field term, the term's magnitude and its remainder's bound
+ * (+inf for a subtree whose ball holds the point: it must be opened), and what opening it means
+ * (a node, or -1 - t for triangle t). */
+typedef struct wn_item {
+    double bound, term, mag;
+    int32_t child;
+} wn_item;
+
+#define WN_HEAP 1024
+
+static void wn_heap_push(wn_item *h, int *n, wn_item it)
 {
+    int i = (*n)++;
+    while (i > 0 && h[(i - 1) / 2].bound < it.bound) {
+        h[i] = h[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h[i] = it;
+}
+
+static wn_item wn_heap_pop(wn_item *h, int *n)
+{
+    const wn_item top = h[0], last = h[--*n];
+    int i = 0;
+    for (;;) {
+        int c = 2 * i + 1;
+        if (c >= *n)
+            break;
+        if (c + 1 < *n && h[c + 1].bound > h[c].bound)
+            ++c;
+        if (!(h[c].bound > last.bound))
+            break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (*n > 0)
+        h[i] = last;
+    return top;
+}
+
+/* The winding number about x as far as its side of `half` needs (for the caps: half = N - 1/2, N
+ * the counts): every slot of the root far-field expanded where the point is outside its ball, then
+ * the slot with the largest bound opened (a node into its slots, a triangle measured exactly) until
+ * the bound leaves `half` outside [w - err, w + err], or nothing is left to open. The sum and the
+ * bound are formed again from the final frontier, in heap order, so that the running sums' own
+ * rounding never decides. Returns 0 with *w and *err (the side may still be open: the caller
+ * compares), -1 when the frontier outgrows its heap. *amb as wn_walk's. */
+static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double half, double *w,
+                        double *err, int *amb)
+{
+    const double *moments = ttd_points_moments(m, pd);
+    if (moments == NULL)
+        return -1;
+    double q[3];
+    if (wn_frame(m, pd, x, q, err)) {
+        *w = 0;
+        return 0;
+    }
+    const double scale = 1 / (4 * WN_PI), half4 = half * 4 * WN_PI;
+    wn_item heap[WN_HEAP];
+    int nh = 0, ninf = 0;
+    double exact = 0, emag = 0, S = 0, B = 0, M = 0;
+    int32_t open = 0;
+    for (;;) {
+        if (open >= 0) {
+            const int32_t *child;
+            int count;
+            if (m->bytes == 8) {
+                child = ((const ttd_node_d *)m->nodes)[open].child;
+                count = ((const ttd_node_d *)m->nodes)[open].count;
+            } else {
+                child = ((const ttd_node_f *)m->nodes)[open].child;
+                count = ((const ttd_node_f *)m->nodes)[open].count;
+            }
+            if (nh + count > WN_HEAP)
+                return -1;
+            const double *wm = moments + (size_t)open * WM_COUNT * TTD_NODE_WIDTH;
+            double lr[TTD_NODE_WIDTH], lrem[TTD_NODE_WIDTH], lt1[TTD_NODE_WIDTH], lt2[TTD_NODE_WIDTH];
+            wn_lanes(wm, q, lr, lrem, lt1, lt2);
+            for (int j = 0; j < count; ++j) {
+                const double r = wm[(size_t)WM_RADIUS * TTD_NODE_WIDTH + (size_t)j];
+                if (lr[j] > r && lrem[j] < HUGE_VAL) { /* the expansion and its bound hold */
+                    const wn_item it = {lrem[j], lt1[j] + lt2[j], fabs(lt1[j]) + fabs(lt2[j]), child[j]};
+                    wn_heap_push(heap, &nh, it);
+                    S += it.term;
+                    B += it.bound;
+                    M += it.mag;
+                } else if (child[j] < 0) {
+                    const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb);
+                    exact += om;
+                    emag += fabs(om);
+                } else {
+                    const wn_item it = {INFINITY, 0, 0, child[j]};
+                    wn_heap_push(heap, &nh, it);
+                    ++ninf;
+                }
+            }
+        } else {
+            const double om = wn_solid_angle(m, (size_t)(-1 - open), x, amb);
+            exact += om;
+            emag += fabs(om);
+        }
+        if (ninf == 0 && !(fabs(half4 - (exact + S)) <= B + 32 * DBL_EPSILON * (emag + M) + 1e-300)) {
+            /* settled by the running sums: form them again from the frontier */
+            double s = 0, b = 0, mg = 0;
+            for (int i = 0; i < nh; ++i) {
+                s += heap[i].term;
+                b += heap[i].bound;
+                mg += heap[i].mag;
+            }
+            *w = (exact + s) * scale;
+            *err = (b + 32 * DBL_EPSILON * (emag + mg)) * scale;
+            if (fabs(*w - half) > *err)
+                return 0;
+        }
+        if (!(fabs(S) < HUGE_VAL && B < HUGE_VAL))
+            return -1; /* a power out of range: the caller's walk measures every triangle */
+        if (nh == 0) {
+            *w = exact * scale;
+            *err = 32 * DBL_EPSILON * emag * scale;
+            return 0;
+        }
+        const wn_item it = wn_heap_pop(heap, &nh);
+        if (it.bound == HUGE_VAL) {
+            --ninf;
+        } else {
+            S -= it.term;
+            B -= it.bound;
+            M -= it.mag;
+        }
+        open = it.child;
+    }
+}
+
+/* An open mesh's winding number from its caps (points/caps.c): the exact counts of one ray through
+ * the mesh and through its caps, less the caps' winding number (the hierarchical walk on the caps,
+ * and for `sign` tightened until its bound settles the side of 1/2 or every cap triangle is
+ * measured exactly). 0 with *w and its bound *err; -1 where it cannot answer (out of memory, a
+ * count that cannot be made exact, x within rounding of a cap: the caller's walk answers). */
+static int wn_caps(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_node_fn ray, const double x[3], int sign,
+                   double *w, double *err)
+{
+    const ttd_points_caps *cp = ttd_points_caps_get(m, pd);
+    if (cp == NULL)
+        return -1;
+    int k, sigma, cm, cc;
+    ttd_points_ray_direction(m, pd, x, &k, &sigma);
+    if (ttd_points_ray_count(m, pd, ray, x, k, sigma, &cm) != 0)
+        return -1;
+    if (cp->ntri == 0) { /* no boundary by coordinates: the count is the winding number */
+        *w = cm;
+        *err = 0;
+        return 0;
+    }
+    if (ttd_points_ray_count(cp->mesh, cp->pd, ray, x, k, sigma, &cc) != 0)
+        return -1;
+    int amb = 0;
+    const double N = (double)cm + (double)cc;
+    double wc;
+    if (sign && wn_side_walk(cp->mesh, cp->pd, x, N - 0.5, &wc, err, &amb) == 0) {
+        *w = N - wc; /* settled, or every cap triangle measured exactly */
+    } else {
+        amb = 0;
+        wc = wn_walk(cp->mesh, cp->pd, x, WN_BETA, -1, err, &amb);
+        *w = N - wc;
+        if (sign && !(fabs(*w - 0.5) > *err)) {
+            amb = 0;
+            *w = N - wn_tight(cp->mesh, cp->pd, x, fmax(fabs(*w - 0.5) / 2, 1e-3), err, &amb);
+        }
+    }
+    /* the sum's own rounding: cm + cc is exact, the difference rounds by half an ulp of w */
+    *err += DBL_EPSILON * fabs(*w);
+    return amb ? -1 : 0;
+}
+
+double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                                const double x[3], int *proven, double *bound)
+{
+    double err = 0, w;
+    if (bound == NULL)
+        bound = &err;
+    *bound = 0;
     *proven = 0;
-    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2])))
+    if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) {
+        *bound = NAN;
         return NAN;
+    }
     if (mesh->nt == 1) { /* a triangle's solid angle is below 2 pi: |w| < 1/2, outside (w given as 0) */
         *proven = 1;
+        *bound = 0.5;
         return 0;
     }
     int c;
@@ -135,16 +437,28 @@ double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_dat
         *proven = 1;
         return c;
     }
+    /* an open mesh: the caps' exact counts, their walk tightened for the side of 1/2; where that
+     * does not settle the side of |w| = 1/2 (a point within rounding, or w near -1/2 on a mesh
+     * wound inward), the walk below */
+    if (!closed && wn_caps(mesh, pd, ray, x, 1, &w, bound) == 0 && fabs(fabs(w) - 0.5) > *bound) {
+        *proven = 1;
+        return w;
+    }
     /* the fast walk; where its bound does not settle the side of |w| = 1/2 (the inside rule's),
      * the tightened one */
-    double err;
-    double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err);
-    if (!(fabs(fabs(w) - 0.5) > err))
-        w = wn_tight(mesh, pd, x, fmax(fabs(fabs(w) - 0.5) / 2, 1e-3), &err);
-    if (!(fabs(fabs(w) - 0.5) > err)) /* within 1e-3 of the level: down to every triangle exactly */
-        w = wn_tight(mesh, pd, x, 0, &err);
-    *proven = fabs(fabs(w) - 0.5) > err;
+    w = wn_walk(mesh, pd, x, WN_BETA, -1, bound, NULL);
+    if (!(fabs(fabs(w) - 0.5) > *bound))
+        w = wn_tight(mesh, pd, x, fmax(fabs(fabs(w) - 0.5) / 2, 1e-3), bound, NULL);
+    if (!(fabs(fabs(w) - 0.5) > *bound)) /* within 1e-3 of the level: down to every triangle exactly */
+        w = wn_tight(mesh, pd, x, 0, bound, NULL);
+    *proven = fabs(fabs(w) - 0.5) > *bound;
     return w;
+}
+
+double ttd_points_winding_sign(const struct ttd_mesh *mesh, const ttd_points_data *pd, int closed, ttd_ray_node_fn ray,
+                               const double x[3], int *proven)
+{
+    return ttd_points_winding_value(mesh, pd, closed, ray, x, proven, NULL);
 }
 
 /* The one inside rule (include/ttd/ttd.h; docs/points.md, section 5): inside where the magnitude

@@ -8,6 +8,8 @@
 
 #include "ttd/ttd.h"
 
+size_t pf_sides_checked;
+
 void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed)
 {
     src->data = data;
@@ -249,6 +251,29 @@ static void pf_dump(FILE *out, const pf_case *c)
         fprintf(out, "    point %zu: %.17g %.17g %.17g\n", i, c->p[3 * i], c->p[3 * i + 1], c->p[3 * i + 2]);
 }
 
+/* The winding number about x in long double, every triangle's solid angle (van Oosterom and
+ * Strackee), written apart from the library: the reference for an open mesh's side. */
+static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt, const double x[3])
+{
+    long double sum = 0;
+    for (size_t i = 0; i < nt; ++i) {
+        long double a[3][3], l[3];
+        for (int k = 0; k < 3; ++k) {
+            for (int c = 0; c < 3; ++c)
+                a[k][c] = (long double)v[3 * t[3 * i + (size_t)k] + (size_t)c] - (long double)x[c];
+            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
+        }
+        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
+        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
+        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
+        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
+    }
+    return sum / (4 * 3.14159265358979323846264338327950288L);
+}
+
 #define PF_FAIL(...)                                                                                   \
     do {                                                                                               \
         if (out) {                                                                                     \
@@ -337,6 +362,27 @@ static void pf_dump(FILE *out, const pf_case *c)
                 if (!(sd[i] == (in[i] ? -d : d)) || ((got[i].flags & TTD_POINT_INSIDE) != 0) != (in[i] != 0)) \
                     PF_FAIL("point %zu: signed %.17g, distance %.17g, inside %d", i, (double)sd[i], (double)d, in[i]); \
             }                                                                                          \
+            /* the meshes are open (soups): every proven side against the long double sum, for points \
+             * 1e-9 of the mesh's size or more off it, where that sum is 1e-9 or more from 1/2 */     \
+            double vv[9 * PF_MAX_TRIS], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}; \
+            for (size_t i = 0; i < 3 * c.nv; ++i) {                                                    \
+                vv[i] = (double)v[i];                                                                  \
+                lo[i % 3] = fmin(lo[i % 3], vv[i]);                                                    \
+                hi[i % 3] = fmax(hi[i % 3], vv[i]);                                                    \
+            }                                                                                          \
+            const double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + \
+                                     (hi[2] - lo[2]) * (hi[2] - lo[2]));                               \
+            for (size_t i = 0; i < c.n; ++i) {                                                         \
+                if (ref[i].triangle == UINT32_MAX || !((double)ref[i].distance > 1e-9 * size) ||      \
+                    (got[i].flags & (TTD_POINT_SIGN_UNPROVEN | TTD_POINT_NONFINITE)))                  \
+                    continue;                                                                          \
+                const double xd[3] = {(double)x[3 * i], (double)x[3 * i + 1], (double)x[3 * i + 2]};   \
+                const long double wr = pf_ref_winding(vv, c.t, c.nt, xd);                              \
+                if (fabsl(fabsl(wr) - 0.5L) > 1e-9L && ((got[i].flags & TTD_POINT_INSIDE) != 0) != (fabsl(wr) >= 0.5L)) \
+                    PF_FAIL("point %zu: inside %d, the long double winding number %.17Lg", i,           \
+                            (got[i].flags & TTD_POINT_INSIDE) != 0, wr);                               \
+                ++*sides;                                                                              \
+            }                                                                                          \
         }                                                                                              \
         if (c.orient >= 0) {                                                                           \
             real w[PF_MAX_POINTS], sd0[PF_MAX_POINTS];                                                 \
@@ -392,6 +438,7 @@ static void pf_dump(FILE *out, const pf_case *c)
 
 int pf_run_case(pf_src *src, FILE *out, int dump, size_t *points)
 {
+    size_t *sides = &pf_sides_checked;
     pf_case c;
     pf_case_draw(src, &c);
     int fails = 0;

@@ -7,8 +7,8 @@
  * bound and pose. Every case checks, on the scalar row and the automatic choice with 1 and 2
  * threads: the closest point against the brute force over every triangle with ttd_point_triangle
  * (bit for bit, ties to the smallest index, the bound), the rows and thread counts against each
- * other, signed distances against the closest distance and the winding number's side, and the
- * statuses. A third of the cases are a closed box (corners jittered by 0.1 of its size) wound
+ * other, signed distances against the closest distance and the winding number's side, every
+ * proven side of an open mesh against a long double sum of the solid angles, and the statuses. A third of the cases are a closed box (corners jittered by 0.1 of its size) wound
  * outward, inward (every face reversed), inconsistently (some faces reversed) or open (a face
  * removed): its ttd_mesh_orientation, contains equal to the inside rule on the reported winding
  * number, an inward box's contains and signs those of the outward one, and an inconsistent or
@@ -30,6 +30,10 @@ typedef struct pf_src {
 
 /// A source reading data first, then a stream seeded by its hash (data may be NULL).
 void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed);
+
+/// The open meshes' sides checked against the long double winding number so far (every case's
+/// mesh is a soup, so open): points 1e-9 of the mesh's size or more off it, proven by the library.
+extern size_t pf_sides_checked;
 
 /// Runs one case; prints what failed to out (with the case when dump is set). Returns the number
 /// of failed checks (0: the case passed). *points, when not NULL, gets the points checked.
