@@ -32,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "mesh/memory.h"
 #include "mesh/mesh.h"
@@ -1177,6 +1178,7 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
 
 typedef struct refit {
     const struct ttd_mesh *mesh;
+    ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
@@ -1205,6 +1207,9 @@ static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, i
                 L->p[3 * k + c][i] = x - m->origin[c]; /* as place() computes vrel */
             }
     }
+    for (int k = 0; k < 9; ++k) /* lanes past the last triangle: defined numbers for tri_fit */
+        for (int i = count; i < TTD_NODE_WIDTH; ++i)
+            L->p[k][i] = 0;
 }
 
 /* Child slot j of node n read back in double (the stored values, exactly). */
@@ -1323,11 +1328,24 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         for (int i = 0; i < count; ++i)
             t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
         gather(m, &L, t, count);
+        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit) */
+        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], A2[TTD_NODE_WIDTH];
+        const unsigned lanes = R->tri_fit != NULL ? R->tri_fit((const double *const *)L.B.p, count, m->radius, U, C, E, A2) : 0;
         for (int i = 0; i < count; ++i) {
             double p[3][3];
             pos_vertices(&L.B, (size_t)i, p);
             double area2;
-            triangle_fit(p, m->radius, &b, &area2);
+            if (lanes >> i & 1) {
+                for (int k = 0; k < 3; ++k) {
+                    b.c[k] = C[k][i];
+                    b.e[k] = E[k][i];
+                }
+                for (int k = 0; k < 9; ++k)
+                    b.u[k] = U[k][i];
+                area2 = A2[i];
+            } else {
+                triangle_fit(p, m->radius, &b, &area2);
+            }
             fitsum_triangle(&sum, p, b.u + 6, area2);
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
         }
@@ -1438,7 +1456,9 @@ static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
-    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(fitsum)), malloc(64 * sizeof(subtree))};
+    const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
+    refit R = {m, row != NULL ? row->tri_fit : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
+               malloc(64 * sizeof(subtree))};
     if (R.sums == NULL || R.list == NULL) {
         free(R.sums);
         free(R.list);
