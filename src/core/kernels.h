@@ -149,6 +149,11 @@ typedef unsigned (*ttd_tri_fit_fn)(const double *const p[9], int count, double r
                                    double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH],
                                    double area2[TTD_NODE_WIDTH]);
 
+/* leaf_span (double rows only; NULL on the scalar row): the range [mn[a], mx[a]] of u_a . v over
+ * the vertices v of triangles 0..count-1 (p as tri_fit's), as mesh/build.c's fit_extents computes
+ * it, bit for bit. */
+typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const double u[9], double mn[3], double mx[3]);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -160,6 +165,7 @@ typedef struct ttd_kernels_d {
     ttd_point_block_d_fn point_block;   ///< never NULL
     ttd_point_lanes_d_fn point_lanes;   ///< never NULL
     ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
+    ttd_leaf_span_fn leaf_span;         ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

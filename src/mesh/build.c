@@ -351,6 +351,25 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *
     eigen_sym3(cov, u, start);
 }
 
+/* Box b's centre and extents (its axes b->u) from the range [mn[a], mx[a]] of its vertices'
+ * projections on each axis (fit_extents; a refit's leaf_span in lanes gives the same range). */
+static void span_extents(const double mn[3], const double mx[3], double radius, obb *b)
+{
+    for (int c = 0; c < 3; ++c)
+        b->c[c] = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double mid = 0.5 * (mn[a] + mx[a]);
+        for (int c = 0; c < 3; ++c)
+            b->c[c] += mid * b->u[3 * a + c];
+    }
+    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
+    const double slack = 4 * DBL_EPSILON * (2 * radius + c1);
+    for (int a = 0; a < 3; ++a) {
+        const double pc = dot3(b->u + 3 * a, b->c);
+        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
+    }
+}
+
 /* The box with axes b->u around the vertices of positions [lo, hi): centre and extents from the
  * range of their projections. Every level of the tree runs this over every vertex: the
  * coordinates are read in order, one array each, and the bounds kept in locals.
@@ -382,19 +401,7 @@ static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
         }
     }
     const double mn[3] = {mn0, mn1, mn2}, mx[3] = {mx0, mx1, mx2};
-    for (int c = 0; c < 3; ++c)
-        b->c[c] = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double mid = 0.5 * (mn[a] + mx[a]);
-        for (int c = 0; c < 3; ++c)
-            b->c[c] += mid * b->u[3 * a + c];
-    }
-    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
-    const double slack = 4 * DBL_EPSILON * (2 * B->mesh->radius + c1);
-    for (int a = 0; a < 3; ++a) {
-        const double pc = dot3(b->u + 3 * a, b->c);
-        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
-    }
+    span_extents(mn, mx, B->mesh->radius, b);
 }
 
 /* The box of triangle p (vertices relative to the origin; radius: the mesh's): its axes
@@ -1179,6 +1186,7 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
 typedef struct refit {
     const struct ttd_mesh *mesh;
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
+    ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
@@ -1328,29 +1336,44 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         for (int i = 0; i < count; ++i)
             t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
         gather(m, &L, t, count);
-        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit) */
+        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit); a
+         * full leaf of a double mesh takes them straight into its node */
+        const double *const *pl = (const double *const *)L.B.p;
+        ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
         double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], A2[TTD_NODE_WIDTH];
-        const unsigned lanes = R->tri_fit != NULL ? R->tri_fit((const double *const *)L.B.p, count, m->radius, U, C, E, A2) : 0;
+        double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
+        unsigned lanes = 0;
+        if (R->tri_fit != NULL)
+            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, A2);
         for (int i = 0; i < count; ++i) {
             double p[3][3];
             pos_vertices(&L.B, (size_t)i, p);
-            double area2;
             if (lanes >> i & 1) {
+                const double nrm[3] = {u[6][i], u[7][i], u[8][i]};
+                fitsum_triangle(&sum, p, nrm, A2[i]);
+                if (leaf != NULL)
+                    continue; /* stored already */
                 for (int k = 0; k < 3; ++k) {
                     b.c[k] = C[k][i];
                     b.e[k] = E[k][i];
                 }
                 for (int k = 0; k < 9; ++k)
                     b.u[k] = U[k][i];
-                area2 = A2[i];
             } else {
+                double area2;
                 triangle_fit(p, m->radius, &b, &area2);
+                fitsum_triangle(&sum, p, b.u + 6, area2);
             }
-            fitsum_triangle(&sum, p, b.u + 6, area2);
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
         }
         refit_axes(&sum, old.u, b.u);
-        fit_extents(&L.B, 0, (size_t)count, &b);
+        if (R->leaf_span != NULL) {
+            double mn[3], mx[3];
+            R->leaf_span(pl, count, b.u, mn, mx);
+            span_extents(mn, mx, m->radius, &b);
+        } else {
+            fit_extents(&L.B, 0, (size_t)count, &b);
+        }
         store_box(&L.B, n, j, &b, c, 0, (size_t)count);
         return sum;
     }
@@ -1457,7 +1480,7 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
     const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
-    refit R = {m, row != NULL ? row->tri_fit : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
                malloc(64 * sizeof(subtree))};
     if (R.sums == NULL || R.list == NULL) {
         free(R.sums);

@@ -119,7 +119,45 @@ static unsigned tri_fit(const double *const p[9], int count, double radius, doub
     return done & ((1u << (count < TTD_NODE_WIDTH ? count : TTD_NODE_WIDTH)) - 1u);
 }
 
-#define TTD_LANE_ROW_TRI_FIT .tri_fit = tri_fit,
+/* The range of the projections u_a . v (a = 0, 1, 2; three products, two sums, as
+ * mesh/build.c's fit_extents computes them) over the vertices of triangles 0..count-1, into
+ * mn[a], mx[a]: a leaf's box about its refitted axes. The minimum and maximum of a set do not
+ * depend on the order it is read in (a zero's sign aside, which the extents' slack absorbs), so
+ * these are fit_extents's bits. */
+static void leaf_span(const double *const p[9], int count, const double u[9], double mn[3], double mx[3])
+{
+    ttdw_vd ua[9], lo[3], hi[3];
+    for (int k = 0; k < 9; ++k)
+        ua[k] = ttdw_set1_d(u[k]);
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = ttdw_set1_d(HUGE_VAL);
+        hi[a] = ttdw_set1_d(-HUGE_VAL);
+    }
+    for (int j = 0; j < TTD_NODE_WIDTH && j < count; j += TTDW_LANES_D) {
+        const ttdw_md live = ttdw_mfirst_d(count - j);
+        for (int k = 0; k < 3; ++k) {
+            const ttdw_vd x = ttdw_loadu_d(p[3 * k] + j), y = ttdw_loadu_d(p[3 * k + 1] + j), z = ttdw_loadu_d(p[3 * k + 2] + j);
+            for (int a = 0; a < 3; ++a) {
+                const ttdw_vd d = ua[3 * a] * x + ua[3 * a + 1] * y + ua[3 * a + 2] * z;
+                lo[a] = ttdw_sel_d(live, trifit_min(lo[a], d), lo[a]);
+                hi[a] = ttdw_sel_d(live, trifit_max(hi[a], d), hi[a]);
+            }
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        double l[TTDW_LANES_D], h[TTDW_LANES_D];
+        ttdw_storeu_d(l, lo[a]);
+        ttdw_storeu_d(h, hi[a]);
+        mn[a] = l[0];
+        mx[a] = h[0];
+        for (int i = 1; i < TTDW_LANES_D; ++i) {
+            mn[a] = l[i] < mn[a] ? l[i] : mn[a];
+            mx[a] = h[i] > mx[a] ? h[i] : mx[a];
+        }
+    }
+}
+
+#define TTD_LANE_ROW_TRI_FIT .tri_fit = tri_fit, .leaf_span = leaf_span,
 #else
 #define TTD_LANE_ROW_TRI_FIT
 #endif
