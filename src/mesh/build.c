@@ -873,27 +873,62 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
     return e;
 }
 
+/* place's passes over vertices of type T (double or float): the range of each coordinate into
+ * mn, mx; then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
+ * vrel unless NULL). One loop per precision, the coordinates unrolled: a branch on the precision
+ * and an index modulo 3 per coordinate were most of place's instructions (a 10th of a refit). */
+#define PLACE_RANGE(T)                                                                             \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i)                                                            \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double x = (double)v[3 * i + (size_t)c];                                     \
+                mn[c] = dmin(mn[c], x);                                                            \
+                mx[c] = dmax(mx[c], x);                                                            \
+            }                                                                                      \
+    } while (0)
+#define PLACE_BIG(T)                                                                               \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i)                                                            \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double d = (double)v[3 * i + (size_t)c] - m->origin[c];                      \
+                if (vrel != NULL)                                                                  \
+                    vrel[3 * i + (size_t)c] = d;                                                   \
+                big = dmax(big, fabs(d));                                                          \
+            }                                                                                      \
+    } while (0)
+#define PLACE_R2(T)                                                                                \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i) {                                                          \
+            double d2 = 0;                                                                         \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double x = (double)v[3 * i + (size_t)c];                                     \
+                const double d = scale > 0 ? (x - m->origin[c]) * scale : ldexp(x - m->origin[c], -e); \
+                d2 += d * d;                                                                       \
+            }                                                                                      \
+            r2 = dmax(r2, d2);                                                                     \
+        }                                                                                          \
+    } while (0)
+
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
  * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL). */
 static void place(struct ttd_mesh *m, const void *verts, double *vrel)
 {
     const size_t nv = m->nv;
     double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
-        mn[i % 3] = dmin(mn[i % 3], x);
-        mx[i % 3] = dmax(mx[i % 3], x);
-    }
+    if (m->bytes == 8)
+        PLACE_RANGE(double);
+    else
+        PLACE_RANGE(float);
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
-        const double d = x - m->origin[i % 3];
-        if (vrel != NULL)
-            vrel[i] = d;
-        big = dmax(big, fabs(d));
-    }
+    if (m->bytes == 8)
+        PLACE_BIG(double);
+    else
+        PLACE_BIG(float);
     /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
      * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
      * pair, at 1e-163) */
@@ -904,17 +939,15 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
      * coordinate (they were 5% of a refit); 2^-e overflows only for a subnormal big */
     const double scale = e >= -1023 ? ldexp(1.0, -e) : 0;
     double r2 = 0;
-    for (size_t i = 0; i < nv; ++i) {
-        double d2 = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double x = m->bytes == 8 ? ((const double *)verts)[3 * i + c] : (double)((const float *)verts)[3 * i + c];
-            const double d = scale > 0 ? (x - m->origin[c]) * scale : ldexp(x - m->origin[c], -e);
-            d2 += d * d;
-        }
-        r2 = dmax(r2, d2);
-    }
+    if (m->bytes == 8)
+        PLACE_R2(double);
+    else
+        PLACE_R2(float);
     m->radius = ldexp(sqrt(r2), e) * (1 + 4 * DBL_EPSILON);
 }
+#undef PLACE_RANGE
+#undef PLACE_BIG
+#undef PLACE_R2
 
 /* The boxes, bottom-up, from the vertices in hierarchy order (B->p): the subtrees the shape
  * pass listed in parallel (their moments into done), then the levels above them, then the root's
@@ -1115,6 +1148,23 @@ static void fitsum_triangle(fitsum *s, double p[3][3], const double u[3], double
     }
 }
 
+/* fitsum_triangle for triangle i of a leaf's coordinate arrays (p9[3k + c][i], local_tris):
+ * the same sums in the same order, without copying its vertices out first. */
+static inline void fitsum_lane(fitsum *s, double *const p9[9], int i, const double u[3], double area2)
+{
+    for (int k = 0; k < 3; ++k)
+        s->n[k] += area2 * u[k];
+    s->nlen += area2;
+    s->m[0] += 3;
+    for (int v = 0; v < 3; ++v) {
+        const double x[3] = {p9[3 * v][i], p9[3 * v + 1][i], p9[3 * v + 2][i]};
+        for (int c = 0; c < 3; ++c)
+            s->m[1 + c] += x[c];
+        for (int k = 0; k < 6; ++k)
+            s->m[4 + k] += x[sym_r[k]] * x[sym_c[k]];
+    }
+}
+
 /* A patch counts as nearly flat for refit_axes when its normals' sum is at least this part of
  * their lengths' sum (for two equal halves, normals within about 50 degrees of each other). */
 #define REFIT_FLAT 0.9
@@ -1205,15 +1255,18 @@ static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, i
     L->B = (builder){.mesh = m, .ord = L->ord};
     for (int k = 0; k < 9; ++k)
         L->B.p[k] = L->p[k];
+    const double o[3] = {m->origin[0], m->origin[1], m->origin[2]};
     for (int i = 0; i < count; ++i) {
         L->ord[i] = t[i];
         const uint32_t *ix = m->tris + 3 * (size_t)t[i];
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c) {
-                const size_t at = 3 * (size_t)ix[k] + (size_t)c;
-                const double x = m->bytes == 8 ? ((const double *)m->verts)[at] : (double)((const float *)m->verts)[at];
-                L->p[3 * k + c][i] = x - m->origin[c]; /* as place() computes vrel */
+        for (int k = 0; k < 3; ++k) {
+            const size_t at = 3 * (size_t)ix[k];
+            for (int c = 0; c < 3; ++c) { /* as place() computes vrel */
+                const double x = m->bytes == 8 ? ((const double *)m->verts)[at + (size_t)c]
+                                               : (double)((const float *)m->verts)[at + (size_t)c];
+                L->p[3 * k + c][i] = x - o[c];
             }
+        }
     }
     for (int k = 0; k < 9; ++k) /* lanes past the last triangle: defined numbers for tri_fit */
         for (int i = count; i < TTD_NODE_WIDTH; ++i)
@@ -1346,11 +1399,9 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         if (R->tri_fit != NULL)
             lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, A2);
         for (int i = 0; i < count; ++i) {
-            double p[3][3];
-            pos_vertices(&L.B, (size_t)i, p);
             if (lanes >> i & 1) {
                 const double nrm[3] = {u[6][i], u[7][i], u[8][i]};
-                fitsum_triangle(&sum, p, nrm, A2[i]);
+                fitsum_lane(&sum, L.B.p, i, nrm, A2[i]);
                 if (leaf != NULL)
                     continue; /* stored already */
                 for (int k = 0; k < 3; ++k) {
@@ -1360,7 +1411,8 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
                 for (int k = 0; k < 9; ++k)
                     b.u[k] = U[k][i];
             } else {
-                double area2;
+                double area2, p[3][3];
+                pos_vertices(&L.B, (size_t)i, p);
                 triangle_fit(p, m->radius, &b, &area2);
                 fitsum_triangle(&sum, p, b.u + 6, area2);
             }
