@@ -986,12 +986,6 @@ static int slot_count(const struct ttd_mesh *m, size_t n)
     return m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].count : ((const ttd_node_f *)m->nodes)[n].count;
 }
 
-static void slot_extents(const struct ttd_mesh *m, size_t n, int j, double e[3])
-{
-    for (int i = 0; i < 3; ++i)
-        e[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[i][j] : (double)((const ttd_node_f *)m->nodes)[n].e[i][j];
-}
-
 /* A box's surface area over 2 (half extents e). */
 static double half_area(const double e[3])
 {
@@ -1006,19 +1000,31 @@ static double half_area(const double e[3])
  * triangle's area), so that a geometry whose fresh tree has thick boxes (a crumpled sheet) is
  * not held against one whose fresh tree has thin ones. Summed in node order; 0 when the
  * triangles have no area at all. */
+/* tree_quality's sums over nodes of type T, one pointer per precision (a branch on the
+ * precision per slot and per extent was most of its time, a 12th of a refit) */
+#define QUALITY_SUMS(T)                                                                            \
+    do {                                                                                           \
+        const T *nd = (const T *)m->nodes;                                                         \
+        for (size_t n = 0; n < m->nnodes; ++n)                                                     \
+            for (int j = 0; j < nd[n].count; ++j) {                                                \
+                const double e[3] = {(double)nd[n].e[0][j], (double)nd[n].e[1][j], (double)nd[n].e[2][j]}; \
+                if (nd[n].child[j] >= 0)                                                           \
+                    sub += half_area(e);                                                           \
+                else                                                                               \
+                    tri += half_area(e);                                                           \
+            }                                                                                      \
+    } while (0)
+
 static double tree_quality(const struct ttd_mesh *m)
 {
-    double e[3], sub = 0, tri = 0;
-    for (size_t n = 0; n < m->nnodes; ++n)
-        for (int j = 0; j < slot_count(m, n); ++j) {
-            slot_extents(m, n, j, e);
-            if (slot_child(m, n, j) >= 0)
-                sub += half_area(e);
-            else
-                tri += half_area(e);
-        }
+    double sub = 0, tri = 0;
+    if (m->bytes == 8)
+        QUALITY_SUMS(ttd_node_d);
+    else
+        QUALITY_SUMS(ttd_node_f);
     return tri > 0 ? sub / tri : 0;
 }
+#undef QUALITY_SUMS
 
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
                           const uint32_t *tris, size_t nt, struct ttd_mesh **out)
@@ -1368,7 +1374,8 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
     const struct ttd_mesh *m = R->mesh;
     const int32_t c = slot_child(m, (size_t)n, j);
     local_tris L;
-    obb b, old;
+    obb b;
+    double old[9]; /* the slot's axes before the move: where refit_axes starts */
     fitsum sum;
     memset(&sum, 0, sizeof sum);
     if (c < 0) {
@@ -1382,7 +1389,13 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         store_box(&L.B, n, j, &b, c, 0, 1);
         return sum;
     }
-    slot_box(m, (size_t)n, j, &old);
+    if (m->bytes == 8) {
+        for (int i = 0; i < 9; ++i)
+            old[i] = ((const ttd_node_d *)m->nodes)[n].u[i][j];
+    } else {
+        for (int i = 0; i < 9; ++i)
+            old[i] = (double)((const ttd_node_f *)m->nodes)[n].u[i][j];
+    }
     if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
         const int count = slot_count(m, (size_t)c);
         uint32_t t[TTD_NODE_WIDTH];
@@ -1418,7 +1431,7 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
             }
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
         }
-        refit_axes(&sum, old.u, b.u);
+        refit_axes(&sum, old, b.u);
         if (R->leaf_span != NULL) {
             double mn[3], mx[3];
             R->leaf_span(pl, count, b.u, mn, mx);
@@ -1430,7 +1443,7 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         return sum;
     }
     sum = R->sums[c];
-    refit_axes(&sum, old.u, b.u);
+    refit_axes(&sum, old, b.u);
     store_box_of_boxes(m, n, j, b.u, c);
     return sum;
 }
