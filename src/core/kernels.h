@@ -143,11 +143,12 @@ typedef void (*ttd_point_lanes_f_fn)(const float *f, const float P[3][TTD_NODE_W
 /* tri_fit (double rows only; NULL on the scalar row): the boxes of triangles 0..count-1 of a leaf
  * (p[3k + c][i]: coordinate c of vertex k of triangle i, relative to the mesh's origin; radius:
  * the mesh's), as mesh/build.c's triangle_fit fits them, bit for bit: axes u[9], centre c[3],
- * extents e[3] and twice the area area2, lane i each. Returns the mask of the triangles (bit i)
+ * extents e[3], lane i each, and the triangle's terms of its leaf's sums (terms[0..12][i]: mesh/build.c's
+ * fitsum_terms, the same bits; those of a triangle outside the mask are the caller's to redo). Returns the mask of the triangles (bit i)
  * it fitted: the common case only (simd/kernel_trifit.h); the caller fits the others itself. */
 typedef unsigned (*ttd_tri_fit_fn)(const double *const p[9], int count, double radius, double u[9][TTD_NODE_WIDTH],
                                    double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH],
-                                   double area2[TTD_NODE_WIDTH]);
+                                   double terms[13][TTD_NODE_WIDTH]);
 
 /* leaf_span (double rows only; NULL on the scalar row): the range [mn[a], mx[a]] of u_a . v over
  * the vertices v of triangles 0..count-1 (p as tri_fit's), as mesh/build.c's fit_extents computes

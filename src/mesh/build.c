@@ -1154,21 +1154,52 @@ static void fitsum_triangle(fitsum *s, double p[3][3], const double u[3], double
     }
 }
 
-/* fitsum_triangle for triangle i of a leaf's coordinate arrays (p9[3k + c][i], local_tris):
- * the same sums in the same order, without copying its vertices out first. */
-static inline void fitsum_lane(fitsum *s, double *const p9[9], int i, const double u[3], double area2)
+/* A leaf's sums (fitsum) are summed in a fixed order that lanes can follow: each triangle's terms
+ * first (terms[q][i], triangle i: its oriented normal area2 u and area2, q = 0..3; its vertices'
+ * sum, q = 4..6, and moments, q = 7..12, each over its three vertices in order), then each term
+ * over the leaf's 8 slots by pairs, ((0+1) + (2+3)) + ((4+5) + (6+7)), empty slots +0. The SIMD
+ * rows compute the terms in lanes with the fit (simd/kernel_trifit.h, the same operations); the
+ * scalar row and the triangles the lanes leave out compute them here. Summed one triangle after
+ * another instead, with 16 chains of dependent additions through memory, the sums were a third
+ * of a refit once the boxes were fitted in lanes (docs/mesh-queries.md, section 6). */
+static void fitsum_terms(double terms[13][TTD_NODE_WIDTH], int i, double *const p9[9], const double u[3], double area2,
+                         int vertices)
 {
+    for (int q = 0; q < 3; ++q)
+        terms[q][i] = area2 * u[q];
+    terms[3][i] = area2;
+    if (!vertices)
+        return;
+    double v[3][3];
     for (int k = 0; k < 3; ++k)
-        s->n[k] += area2 * u[k];
-    s->nlen += area2;
-    s->m[0] += 3;
-    for (int v = 0; v < 3; ++v) {
-        const double x[3] = {p9[3 * v][i], p9[3 * v + 1][i], p9[3 * v + 2][i]};
         for (int c = 0; c < 3; ++c)
-            s->m[1 + c] += x[c];
-        for (int k = 0; k < 6; ++k)
-            s->m[4 + k] += x[sym_r[k]] * x[sym_c[k]];
+            v[k][c] = p9[3 * k + c][i];
+    for (int q = 0; q < 3; ++q)
+        terms[4 + q][i] = v[0][q] + v[1][q] + v[2][q];
+    for (int q = 0; q < 6; ++q) {
+        const int r = sym_r[q], c = sym_c[q];
+        terms[7 + q][i] = v[0][r] * v[0][c] + v[1][r] * v[1][c] + v[2][r] * v[2][c];
     }
+}
+
+/* The leaf's sums from its count triangles' terms (fitsum_terms), in the order described there. */
+static fitsum fitsum_leaf(double terms[13][TTD_NODE_WIDTH], int count)
+{
+    double x[13];
+    for (int q = 0; q < 13; ++q) {
+        double *t = terms[q];
+        for (int i = count; i < TTD_NODE_WIDTH; ++i)
+            t[i] = 0;
+        x[q] = ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
+    }
+    fitsum s;
+    for (int k = 0; k < 3; ++k)
+        s.n[k] = x[k];
+    s.nlen = x[3];
+    s.m[0] = 3.0 * count;
+    for (int k = 0; k < 9; ++k)
+        s.m[1 + k] = x[4 + k];
+    return s;
 }
 
 /* A patch counts as nearly flat for refit_axes when its normals' sum is at least this part of
@@ -1406,15 +1437,13 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
          * full leaf of a double mesh takes them straight into its node */
         const double *const *pl = (const double *const *)L.B.p;
         ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
-        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], A2[TTD_NODE_WIDTH];
+        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
         double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
         unsigned lanes = 0;
         if (R->tri_fit != NULL)
-            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, A2);
+            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
         for (int i = 0; i < count; ++i) {
             if (lanes >> i & 1) {
-                const double nrm[3] = {u[6][i], u[7][i], u[8][i]};
-                fitsum_lane(&sum, L.B.p, i, nrm, A2[i]);
                 if (leaf != NULL)
                     continue; /* stored already */
                 for (int k = 0; k < 3; ++k) {
@@ -1427,10 +1456,12 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
                 double area2, p[3][3];
                 pos_vertices(&L.B, (size_t)i, p);
                 triangle_fit(p, m->radius, &b, &area2);
-                fitsum_triangle(&sum, p, b.u + 6, area2);
+                /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
+                fitsum_terms(T, i, L.B.p, b.u + 6, area2, R->tri_fit == NULL);
             }
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
         }
+        sum = fitsum_leaf(T, count);
         refit_axes(&sum, old, b.u);
         if (R->leaf_span != NULL) {
             double mn[3], mx[3];

@@ -3,7 +3,8 @@
  * a deforming mesh (mesh/build.c, refit_slot) fits them here, 8 at a time, where the build fits
  * them one by one (triangle_fit). Read it next to triangle_axes and triangle_fit in mesh/build.c:
  * the same operations in the same order (no FMA; the build has -ffp-contract=off), so a lane's
- * box has that function's bits. Only the common case is done in lanes: edges and normal whose
+ * box has that function's bits; and each triangle's terms of its leaf's sums (fitsum_terms there, the
+ * same operations). Only the common case is done in lanes: edges and normal whose
  * squares are within [2^-900, 2^900] (normalize3 without its rescaling) and a normal
  * perpendicular to the longest edge within 2 eps (no Gram-Schmidt pass). A lane outside it is
  * left out of the returned mask, for the caller's scalar function, which handles every case.
@@ -30,7 +31,7 @@ TTDW_FN ttdw_vd trifit_min(ttdw_vd a, ttdw_vd b) { return ttdw_sel_d(ttdw_lt_d(a
 TTDW_FN ttdw_vd trifit_max(ttdw_vd a, ttdw_vd b) { return ttdw_sel_d(ttdw_gt_d(a, b), a, b); }
 
 static unsigned tri_fit(const double *const p[9], int count, double radius, double u[9][TTD_NODE_WIDTH],
-                        double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH], double area2[TTD_NODE_WIDTH])
+                        double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH], double terms[13][TTD_NODE_WIDTH])
 {
     unsigned done = 0;
     const ttdw_vd lo = ttdw_set1_d(0x1p-900), hi = ttdw_set1_d(0x1p900), one = ttdw_set1_d(1.0);
@@ -113,7 +114,16 @@ static unsigned tri_fit(const double *const p[9], int count, double radius, doub
             ttdw_storeu_d(c[q] + j, cc[q]);
             ttdw_storeu_d(e[q] + j, ex[q]);
         }
-        ttdw_storeu_d(area2 + j, ar);
+        /* each triangle's terms of its leaf's sums (mesh/build.c, fitsum_terms: the same
+         * operations): its oriented normal and twice its area, its vertices' sum and moments */
+        for (int q = 0; q < 3; ++q)
+            ttdw_storeu_d(terms[q] + j, ar * w[q]);
+        ttdw_storeu_d(terms[3] + j, ar);
+        for (int q = 0; q < 3; ++q)
+            ttdw_storeu_d(terms[4 + q] + j, v[0][q] + v[1][q] + v[2][q]);
+        static const int r6[6] = {0, 0, 0, 1, 1, 2}, c6[6] = {0, 1, 2, 1, 2, 2};
+        for (int q = 0; q < 6; ++q)
+            ttdw_storeu_d(terms[7 + q] + j, v[0][r6[q]] * v[0][c6[q]] + v[1][r6[q]] * v[1][c6[q]] + v[2][r6[q]] * v[2][c6[q]]);
         done |= ttdw_mbits_d(ok) << j;
     }
     return done & ((1u << (count < TTD_NODE_WIDTH ? count : TTD_NODE_WIDTH)) - 1u);
