@@ -1111,14 +1111,16 @@ nomem:
 /* A refit keeps the tree's shape (which triangles lie below which box) and fits every box again,
  * bottom-up (docs/mesh-queries.md, section 2b):
  *   - a triangle's box from its vertices exactly as the build fits it (triangle_fit: a refit to
- *     unchanged vertices gives the build's bits there);
+ *     unchanged vertices gives the build's bits there); on the SIMD rows a leaf's 8 triangles at
+ *     once, one per lane (tri_fit, simd/kernel_trifit.h: the same bits), with their terms of the
+ *     leaf's sums (fitsum_terms, summed by fitsum_leaf in a fixed order);
  *   - a leaf's (a node of triangles) from its vertices, about axes found from its triangles' sums
  *     (refit_axes) and its axes before the move;
  *   - a larger subtree's likewise, around its children's boxes instead of its vertices (a few
  *     corners per child instead of a pass over every vertex below it).
  * The sums a parent's axes need (fitsum) are the triangles' normals and the vertices' moments,
  * which cost a few products a triangle: the build's area moments and Jacobi rotations per leaf
- * were most of a refit (docs/mesh-queries.md, section 6). */
+ * were most of a refit (docs/mesh-queries.md, section 6, where the lanes' round is measured). */
 
 /* A subtree's sums for its box's axes: its triangles' normals (cross products of their edges,
  * oriented by their vertices' order: twice their areas) summed, with the sum of their lengths,
