@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "deform_bench.h"
 #include "fcl_mesh_link.h"
@@ -20,6 +21,8 @@ typedef struct refit_row {
     size_t tris;
     int runs;
     double build_ms, refit_ms;         /* ttd: a rebuild (ttd_mesh_create_d), a refit; medians */
+    double build_cpu_ms, refit_cpu_ms; /* the same calls' CPU time (the calling thread's): steadier
+                                          than wall-clock time on a loaded machine */
     double fcl_build_ms, fcl_refit_ms; /* FCL 0.7 BVHModel<OBBRSS>; NaN without FCL */
     unsigned long long rebuilds;       /* rebuilds the refits triggered */
     char fcl_note[600];
@@ -57,6 +60,8 @@ int bench_deform_option(bench_deform_config *c, const char *a)
         c->disabled = 1;
     else if (strcmp(a, "--deform-only") == 0)
         c->only = 1;
+    else if (strcmp(a, "--refit-only") == 0)
+        c->only = c->refit_only = 1;
     else
         return 0;
     return 1;
@@ -67,7 +72,8 @@ void bench_deform_usage(FILE *f)
     fputs("  --no-deform          leave out the deforming-mesh section (refit against rebuild and FCL's\n"
           "                       refit on tori of 10k-1M triangles; self-contacts on a folding 100k sheet\n"
           "                       against a uniform-grid brute force)\n"
-          "  --deform-only        run that section alone\n",
+          "  --deform-only        run that section alone\n"
+          "  --refit-only         run that section's refit rows alone (no self-contacts)\n",
           f);
 }
 
@@ -130,6 +136,14 @@ static void twist(const ttd_gen_mesh *g, double *out)
     }
 }
 
+/* The calling thread's CPU time in seconds (the library's calls run on it with one thread). */
+static double thread_cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static void refit_row_run(const bench_deform_env *env, const char *name, size_t nu, int runs, const char *fcl,
                           refit_row *r)
 {
@@ -137,11 +151,12 @@ static void refit_row_run(const bench_deform_env *env, const char *name, size_t 
     r->workload = name;
     r->runs = runs;
     r->build_ms = r->refit_ms = r->fcl_build_ms = r->fcl_refit_ms = BENCH_NAN;
+    r->build_cpu_ms = r->refit_cpu_ms = BENCH_NAN;
     ttd_gen_mesh g;
     if (ttd_gen_torus(1.0, 0.3, nu, nu / 2, &g) != 0)
         return;
     r->tris = g.nt;
-    double *moved = malloc(3 * g.nv * sizeof *moved), t[32];
+    double *moved = malloc(3 * g.nv * sizeof *moved), t[32], tr[32], tc[32], trc[32];
     const ttd_options o = one_thread();
     ttd_mesh *m = NULL;
     if (moved == NULL || ttd_mesh_create_d(&o, g.verts, g.nv, g.tris, g.nt, &m) != TTD_OK) {
@@ -150,25 +165,29 @@ static void refit_row_run(const bench_deform_env *env, const char *name, size_t 
         return;
     }
     twist(&g, moved);
-    say(env, "%s: %zu triangles, %d rebuilds and refits", name, g.nt, runs);
-    for (int k = 0; k < runs; ++k) { /* a rebuild: what a caller without refit does each step */
+    say(env, "%s: %zu triangles, %d rebuilds and refits, alternating", name, g.nt, runs);
+    /* a rebuild (what a caller without refit does each step), then a refit (to the twist and back,
+     * in turn): alternating, so that both see the same load */
+    for (int k = 0; k < runs; ++k) {
         ttd_mesh *fresh = NULL;
-        const double a = bench_now();
-        const ttd_status st = ttd_mesh_create_d(&o, k % 2 ? g.verts : moved, g.nv, g.tris, g.nt, &fresh);
+        double a = bench_now(), ac = thread_cpu_s();
+        ttd_status st = ttd_mesh_create_d(&o, k % 2 ? g.verts : moved, g.nv, g.tris, g.nt, &fresh);
+        tc[k] = (thread_cpu_s() - ac) * 1e3;
         t[k] = (bench_now() - a) * 1e3;
         ttd_mesh_destroy(fresh);
         if (st != TTD_OK)
             goto done;
-    }
-    r->build_ms = median(t, runs);
-    for (int k = 0; k < runs; ++k) { /* to the twist and back, in turn */
-        const double a = bench_now();
-        const ttd_status st = ttd_mesh_set_vertices_d(&o, m, k % 2 ? g.verts : moved);
-        t[k] = (bench_now() - a) * 1e3;
+        a = bench_now(), ac = thread_cpu_s();
+        st = ttd_mesh_set_vertices_d(&o, m, k % 2 ? g.verts : moved);
+        trc[k] = (thread_cpu_s() - ac) * 1e3;
+        tr[k] = (bench_now() - a) * 1e3;
         if (st != TTD_OK)
             goto done;
     }
-    r->refit_ms = median(t, runs);
+    r->build_ms = median(t, runs);
+    r->build_cpu_ms = median(tc, runs);
+    r->refit_cpu_ms = median(trc, runs);
+    r->refit_ms = median(tr, runs);
     ttd_mesh_refit_info info;
     if (ttd_mesh_get_refit_info(m, &info) == TTD_OK)
         r->rebuilds = info.rebuilds;
@@ -430,7 +449,6 @@ done:
 
 bench_deform_results *bench_deform_run(const bench_deform_config *c, const bench_deform_env *env)
 {
-    (void)c;
     bench_deform_results *R = calloc(1, sizeof *R);
     if (R == NULL)
         return NULL;
@@ -449,9 +467,13 @@ bench_deform_results *bench_deform_run(const bench_deform_config *c, const bench
     for (int i = 0; i < R->nrefit; ++i)
         refit_row_run(env, names[i], nu[i], i == 2 ? 5 : R->quick ? 7 : 15, fcl, &R->refit[i]);
     const size_t n = R->quick ? 100 : 224; /* 2 n^2 triangles: 20,000 or 100,352 */
-    R->nself = 2;
-    self_row_run(env, R->quick ? "sheet-20k, apart" : "sheet-100k, apart", n, 1.5, R->quick ? 5 : 10, &R->self[0]);
-    self_row_run(env, R->quick ? "sheet-20k, touching" : "sheet-100k, touching", n, 0.8, R->quick ? 5 : 10, &R->self[1]);
+    R->nself = c->refit_only ? 0 : 2;
+    if (c->refit_only) {
+        R->self[0].ttd_ms = R->self[0].grid_ms = BENCH_NAN;
+    } else {
+        self_row_run(env, R->quick ? "sheet-20k, apart" : "sheet-100k, apart", n, 1.5, R->quick ? 5 : 10, &R->self[0]);
+        self_row_run(env, R->quick ? "sheet-20k, touching" : "sheet-100k, touching", n, 0.8, R->quick ? 5 : 10, &R->self[1]);
+    }
 
     /* the issue's targets (issue 25) */
     double worst_rebuild = HUGE_VAL, worst_fcl = HUGE_VAL;
@@ -482,17 +504,21 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
                "0.7's BVHModel<OBBRSS> refit (beginUpdateModel / updateSubModel / endUpdateModel, bottom-up), each "
                "to a torus twisted by 0.3 along its length (and stretched 2%%) and back in turn; medians\n");
     fprintf(f, "FCL mesh program: %s\n", R->fcl);
-    fprintf(f, "\n%-12s %9s %5s %10s %10s %10s %10s %9s %9s %8s  %s\n", "workload", "tris", "runs", "rebuild_ms",
-            "refit_ms", "fcl_build", "fcl_refit", "x_rebuild", "x_fcl", "rebuilds", "note");
+    fprintf(f, "(cpu_*: the calling thread's CPU time of the same calls, x_cpu their ratio: steadier than wall-clock "
+               "time when other work shares the cores; a rebuild and a refit alternate)\n");
+    fprintf(f, "\n%-12s %9s %5s %10s %10s %10s %10s %9s %9s %9s %9s %9s %8s  %s\n", "workload", "tris", "runs", "rebuild_ms",
+            "refit_ms", "fcl_build", "fcl_refit", "x_rebuild", "x_fcl", "cpu_build", "cpu_refit", "x_cpu", "rebuilds", "note");
     for (int i = 0; i < R->nrefit; ++i) {
         const refit_row *r = &R->refit[i];
-        char slower[64];
+        char slower[64], c[3][40];
         bench_slower_note(slower, sizeof slower, r->fcl_refit_ms / r->refit_ms, "FCL's refit");
-        fprintf(f, "%-12s %9zu %5d %10s %10s %10s %10s %9s %9s %8llu  %s%s%s\n", r->workload, r->tris, r->runs,
+        fprintf(f, "%-12s %9zu %5d %10s %10s %10s %10s %9s %9s %9s %9s %9s %8llu  %s%s%s\n", r->workload, r->tris, r->runs,
                 bench_num(b[0], 40, r->build_ms, "%.3f"), bench_num(b[1], 40, r->refit_ms, "%.3f"),
                 bench_num(b[2], 40, r->fcl_build_ms, "%.3f"), bench_num(b[3], 40, r->fcl_refit_ms, "%.3f"),
                 bench_num(b[4], 40, r->build_ms / r->refit_ms, "%.2f"), bench_num(b[5], 40, r->fcl_refit_ms / r->refit_ms, "%.2f"),
-                r->rebuilds, r->fcl_note, r->fcl_note[0] && slower[0] ? "; " : "", slower);
+                bench_num(c[0], 40, r->build_cpu_ms, "%.3f"), bench_num(c[1], 40, r->refit_cpu_ms, "%.3f"),
+                bench_num(c[2], 40, r->build_cpu_ms / r->refit_cpu_ms, "%.2f"), r->rebuilds, r->fcl_note,
+                r->fcl_note[0] && slower[0] ? "; " : "", slower);
     }
     fprintf(f, "\nself-contacts: a sheet folded into 4 layers (gen: ttd_gen_folded_sheet, the fold going from 0.85 to "
                "1 of flat over the steps), margin half an edge, the layers 1.5 or 0.8 margins apart; per step: "
@@ -547,6 +573,8 @@ void bench_deform_write_json(FILE *f, const bench_deform_results *R)
                 r->runs);
         json_num(f, "rebuild_ms", r->build_ms), fputs(", ", f);
         json_num(f, "refit_ms", r->refit_ms), fputs(", ", f);
+        json_num(f, "rebuild_cpu_ms", r->build_cpu_ms), fputs(", ", f);
+        json_num(f, "refit_cpu_ms", r->refit_cpu_ms), fputs(", ", f);
         json_num(f, "fcl_build_ms", r->fcl_build_ms), fputs(", ", f);
         json_num(f, "fcl_refit_ms", r->fcl_refit_ms);
         fprintf(f, ", \"rebuilds\": %llu}", r->rebuilds);

@@ -487,6 +487,53 @@ static int degraded_trees_rebuild(void)
     return 0;
 }
 
+/* The triangles' boxes of a refit are fitted 8 at a time in lanes on the SIMD rows
+ * (simd/kernel_trifit.h) and one by one on the scalar row (mesh/build.c, triangle_fit): every
+ * node the same bits on every row, over every deformation family (planes, lines and points
+ * included: their triangles take the scalar fallback inside a lane row), in both precisions,
+ * along a sequence (each refit starts its boxes' axes from the last ones). */
+static int refit_bits_every_isa(void)
+{
+    ttd_gen_mesh g, moved;
+    ENSURE(ttd_gen_torus(1.0, 0.3, 30, 15, &g) == 0 && ttd_gen_mesh_copy(&g, &moved) == 0);
+    int rows = 0;
+    for (int prec = 0; prec < 2; ++prec)
+        for (int isa = 1; isa < TTD_ISA_COUNT; ++isa) {
+            if (!ttd_isa_available((ttd_isa)isa))
+                continue;
+            ttd_options o = ttd_default_options(), os = ttd_default_options();
+            o.isa = (ttd_isa)isa;
+            os.isa = TTD_ISA_SCALAR;
+            mesh_f f = to_float(&g);
+            ttd_mesh *m, *ms;
+            ENSURE((prec == 0 ? ttd_mesh_create_d(&o, g.verts, g.nv, g.tris, g.nt, &m)
+                              : ttd_mesh_create_f(&o, f.verts, f.nv, f.tris, f.nt, &m)) == TTD_OK);
+            ENSURE((prec == 0 ? ttd_mesh_create_d(&os, g.verts, g.nv, g.tris, g.nt, &ms)
+                              : ttd_mesh_create_f(&os, f.verts, f.nv, f.tris, f.nt, &ms)) == TTD_OK);
+            for (int def = 0; def < DEF_COUNT; ++def)
+                for (int step = 1; step <= 2; ++step) {
+                    rng = (uint64_t)(100 * def + step);
+                    deform(&g, def, 0.4 * step, moved.verts);
+                    mesh_f fm = to_float(&moved);
+                    ENSURE((prec == 0 ? ttd_mesh_set_vertices_d(&o, m, moved.verts)
+                                      : ttd_mesh_set_vertices_f(&o, m, fm.verts)) == TTD_OK);
+                    ENSURE((prec == 0 ? ttd_mesh_set_vertices_d(&os, ms, moved.verts)
+                                      : ttd_mesh_set_vertices_f(&os, ms, fm.verts)) == TTD_OK);
+                    ENSURE_MSG(nodes_equal(m, ms), "%s, step %d, %s row, %s", def_names[def], step,
+                               ttd_isa_name((ttd_isa)isa), prec == 0 ? "double" : "float");
+                    free(fm.verts);
+                }
+            ttd_mesh_destroy(m);
+            ttd_mesh_destroy(ms);
+            free(f.verts);
+            ++rows;
+        }
+    printf("  %d rows and precisions: every refitted node the scalar row's bits\n", rows);
+    ttd_gen_mesh_free(&g);
+    ttd_gen_mesh_free(&moved);
+    return 0;
+}
+
 /* After a refit, every query gives the same bits on every instruction set and thread count. */
 static int refit_threads_isas_identical(void)
 {
@@ -850,6 +897,7 @@ int main(int argc, char **argv)
     RUN_TEST(refit_bits);
     RUN_TEST(degraded_trees_rebuild);
     RUN_TEST(refit_threads_isas_identical);
+    RUN_TEST(refit_bits_every_isa);
     RUN_TEST(bad_vertices_refused);
     RUN_TEST(solids_after_refit);
     RUN_TEST(derived_data_after_refit);

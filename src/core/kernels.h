@@ -140,6 +140,21 @@ typedef void (*ttd_point_lanes_d_fn)(const double *f, const double P[3][TTD_NODE
 typedef void (*ttd_point_lanes_f_fn)(const float *f, const float P[3][TTD_NODE_WIDTH], float d[TTD_NODE_WIDTH],
                                      float q[3][TTD_NODE_WIDTH], float w[3][TTD_NODE_WIDTH]);
 
+/* tri_fit (double rows only; NULL on the scalar row): the boxes of triangles 0..count-1 of a leaf
+ * (p[3k + c][i]: coordinate c of vertex k of triangle i, relative to the mesh's origin; radius:
+ * the mesh's), as mesh/build.c's triangle_fit fits them, bit for bit: axes u[9], centre c[3],
+ * extents e[3], lane i each, and the triangle's terms of its leaf's sums (terms[0..12][i]: mesh/build.c's
+ * fitsum_terms, the same bits; those of a triangle outside the mask are the caller's to redo). Returns the mask of the triangles (bit i)
+ * it fitted: the common case only (simd/kernel_trifit.h); the caller fits the others itself. */
+typedef unsigned (*ttd_tri_fit_fn)(const double *const p[9], int count, double radius, double u[9][TTD_NODE_WIDTH],
+                                   double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH],
+                                   double terms[13][TTD_NODE_WIDTH]);
+
+/* leaf_span (double rows only; NULL on the scalar row): the range [mn[a], mx[a]] of u_a . v over
+ * the vertices v of triangles 0..count-1 (p as tri_fit's), as mesh/build.c's fit_extents computes
+ * it, bit for bit. */
+typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const double u[9], double mn[3], double mx[3]);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -150,6 +165,8 @@ typedef struct ttd_kernels_d {
     ttd_node_test_d_fn node_test;       ///< never NULL
     ttd_point_block_d_fn point_block;   ///< never NULL
     ttd_point_lanes_d_fn point_lanes;   ///< never NULL
+    ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
+    ttd_leaf_span_fn leaf_span;         ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

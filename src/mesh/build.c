@@ -32,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "mesh/memory.h"
 #include "mesh/mesh.h"
@@ -350,6 +351,25 @@ static void surface_axes(const builder *B, size_t lo, size_t hi, const moments *
     eigen_sym3(cov, u, start);
 }
 
+/* Box b's centre and extents (its axes b->u) from the range [mn[a], mx[a]] of its vertices'
+ * projections on each axis (fit_extents; a refit's leaf_span in lanes gives the same range). */
+static void span_extents(const double mn[3], const double mx[3], double radius, obb *b)
+{
+    for (int c = 0; c < 3; ++c)
+        b->c[c] = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double mid = 0.5 * (mn[a] + mx[a]);
+        for (int c = 0; c < 3; ++c)
+            b->c[c] += mid * b->u[3 * a + c];
+    }
+    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
+    const double slack = 4 * DBL_EPSILON * (2 * radius + c1);
+    for (int a = 0; a < 3; ++a) {
+        const double pc = dot3(b->u + 3 * a, b->c);
+        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
+    }
+}
+
 /* The box with axes b->u around the vertices of positions [lo, hi): centre and extents from the
  * range of their projections. Every level of the tree runs this over every vertex: the
  * coordinates are read in order, one array each, and the bounds kept in locals.
@@ -381,19 +401,7 @@ static void fit_extents(const builder *B, size_t lo, size_t hi, obb *b)
         }
     }
     const double mn[3] = {mn0, mn1, mn2}, mx[3] = {mx0, mx1, mx2};
-    for (int c = 0; c < 3; ++c)
-        b->c[c] = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double mid = 0.5 * (mn[a] + mx[a]);
-        for (int c = 0; c < 3; ++c)
-            b->c[c] += mid * b->u[3 * a + c];
-    }
-    const double c1 = fabs(b->c[0]) + fabs(b->c[1]) + fabs(b->c[2]);
-    const double slack = 4 * DBL_EPSILON * (2 * B->mesh->radius + c1);
-    for (int a = 0; a < 3; ++a) {
-        const double pc = dot3(b->u + 3 * a, b->c);
-        b->e[a] = dmax(mx[a] - pc, pc - mn[a]) + slack;
-    }
+    span_extents(mn, mx, B->mesh->radius, b);
 }
 
 /* The box of triangle p (vertices relative to the origin; radius: the mesh's): its axes
@@ -865,27 +873,62 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
     return e;
 }
 
+/* place's passes over vertices of type T (double or float): the range of each coordinate into
+ * mn, mx; then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
+ * vrel unless NULL). One loop per precision, the coordinates unrolled: a branch on the precision
+ * and an index modulo 3 per coordinate were most of place's instructions (a 10th of a refit). */
+#define PLACE_RANGE(T)                                                                             \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i)                                                            \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double x = (double)v[3 * i + (size_t)c];                                     \
+                mn[c] = dmin(mn[c], x);                                                            \
+                mx[c] = dmax(mx[c], x);                                                            \
+            }                                                                                      \
+    } while (0)
+#define PLACE_BIG(T)                                                                               \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i)                                                            \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double d = (double)v[3 * i + (size_t)c] - m->origin[c];                      \
+                if (vrel != NULL)                                                                  \
+                    vrel[3 * i + (size_t)c] = d;                                                   \
+                big = dmax(big, fabs(d));                                                          \
+            }                                                                                      \
+    } while (0)
+#define PLACE_R2(T)                                                                                \
+    do {                                                                                           \
+        const T *v = verts;                                                                        \
+        for (size_t i = 0; i < nv; ++i) {                                                          \
+            double d2 = 0;                                                                         \
+            for (int c = 0; c < 3; ++c) {                                                          \
+                const double x = (double)v[3 * i + (size_t)c];                                     \
+                const double d = scale > 0 ? (x - m->origin[c]) * scale : ldexp(x - m->origin[c], -e); \
+                d2 += d * d;                                                                       \
+            }                                                                                      \
+            r2 = dmax(r2, d2);                                                                     \
+        }                                                                                          \
+    } while (0)
+
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
  * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL). */
 static void place(struct ttd_mesh *m, const void *verts, double *vrel)
 {
     const size_t nv = m->nv;
     double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
-        mn[i % 3] = dmin(mn[i % 3], x);
-        mx[i % 3] = dmax(mx[i % 3], x);
-    }
+    if (m->bytes == 8)
+        PLACE_RANGE(double);
+    else
+        PLACE_RANGE(float);
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-        const double x = m->bytes == 8 ? ((const double *)verts)[i] : (double)((const float *)verts)[i];
-        const double d = x - m->origin[i % 3];
-        if (vrel != NULL)
-            vrel[i] = d;
-        big = dmax(big, fabs(d));
-    }
+    if (m->bytes == 8)
+        PLACE_BIG(double);
+    else
+        PLACE_BIG(float);
     /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
      * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
      * pair, at 1e-163) */
@@ -896,17 +939,15 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
      * coordinate (they were 5% of a refit); 2^-e overflows only for a subnormal big */
     const double scale = e >= -1023 ? ldexp(1.0, -e) : 0;
     double r2 = 0;
-    for (size_t i = 0; i < nv; ++i) {
-        double d2 = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double x = m->bytes == 8 ? ((const double *)verts)[3 * i + c] : (double)((const float *)verts)[3 * i + c];
-            const double d = scale > 0 ? (x - m->origin[c]) * scale : ldexp(x - m->origin[c], -e);
-            d2 += d * d;
-        }
-        r2 = dmax(r2, d2);
-    }
+    if (m->bytes == 8)
+        PLACE_R2(double);
+    else
+        PLACE_R2(float);
     m->radius = ldexp(sqrt(r2), e) * (1 + 4 * DBL_EPSILON);
 }
+#undef PLACE_RANGE
+#undef PLACE_BIG
+#undef PLACE_R2
 
 /* The boxes, bottom-up, from the vertices in hierarchy order (B->p): the subtrees the shape
  * pass listed in parallel (their moments into done), then the levels above them, then the root's
@@ -945,12 +986,6 @@ static int slot_count(const struct ttd_mesh *m, size_t n)
     return m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].count : ((const ttd_node_f *)m->nodes)[n].count;
 }
 
-static void slot_extents(const struct ttd_mesh *m, size_t n, int j, double e[3])
-{
-    for (int i = 0; i < 3; ++i)
-        e[i] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].e[i][j] : (double)((const ttd_node_f *)m->nodes)[n].e[i][j];
-}
-
 /* A box's surface area over 2 (half extents e). */
 static double half_area(const double e[3])
 {
@@ -965,19 +1000,31 @@ static double half_area(const double e[3])
  * triangle's area), so that a geometry whose fresh tree has thick boxes (a crumpled sheet) is
  * not held against one whose fresh tree has thin ones. Summed in node order; 0 when the
  * triangles have no area at all. */
+/* tree_quality's sums over nodes of type T, one pointer per precision (a branch on the
+ * precision per slot and per extent was most of its time, a 12th of a refit) */
+#define QUALITY_SUMS(T)                                                                            \
+    do {                                                                                           \
+        const T *nd = (const T *)m->nodes;                                                         \
+        for (size_t n = 0; n < m->nnodes; ++n)                                                     \
+            for (int j = 0; j < nd[n].count; ++j) {                                                \
+                const double e[3] = {(double)nd[n].e[0][j], (double)nd[n].e[1][j], (double)nd[n].e[2][j]}; \
+                if (nd[n].child[j] >= 0)                                                           \
+                    sub += half_area(e);                                                           \
+                else                                                                               \
+                    tri += half_area(e);                                                           \
+            }                                                                                      \
+    } while (0)
+
 static double tree_quality(const struct ttd_mesh *m)
 {
-    double e[3], sub = 0, tri = 0;
-    for (size_t n = 0; n < m->nnodes; ++n)
-        for (int j = 0; j < slot_count(m, n); ++j) {
-            slot_extents(m, n, j, e);
-            if (slot_child(m, n, j) >= 0)
-                sub += half_area(e);
-            else
-                tri += half_area(e);
-        }
+    double sub = 0, tri = 0;
+    if (m->bytes == 8)
+        QUALITY_SUMS(ttd_node_d);
+    else
+        QUALITY_SUMS(ttd_node_f);
     return tri > 0 ? sub / tri : 0;
 }
+#undef QUALITY_SUMS
 
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
                           const uint32_t *tris, size_t nt, struct ttd_mesh **out)
@@ -1064,14 +1111,16 @@ nomem:
 /* A refit keeps the tree's shape (which triangles lie below which box) and fits every box again,
  * bottom-up (docs/mesh-queries.md, section 2b):
  *   - a triangle's box from its vertices exactly as the build fits it (triangle_fit: a refit to
- *     unchanged vertices gives the build's bits there);
+ *     unchanged vertices gives the build's bits there); on the SIMD rows a leaf's 8 triangles at
+ *     once, one per lane (tri_fit, simd/kernel_trifit.h: the same bits), with their terms of the
+ *     leaf's sums (fitsum_terms, summed by fitsum_leaf in a fixed order);
  *   - a leaf's (a node of triangles) from its vertices, about axes found from its triangles' sums
  *     (refit_axes) and its axes before the move;
  *   - a larger subtree's likewise, around its children's boxes instead of its vertices (a few
  *     corners per child instead of a pass over every vertex below it).
  * The sums a parent's axes need (fitsum) are the triangles' normals and the vertices' moments,
  * which cost a few products a triangle: the build's area moments and Jacobi rotations per leaf
- * were most of a refit (docs/mesh-queries.md, section 6). */
+ * were most of a refit (docs/mesh-queries.md, section 6, where the lanes' round is measured). */
 
 /* A subtree's sums for its box's axes: its triangles' normals (cross products of their edges,
  * oriented by their vertices' order: twice their areas) summed, with the sum of their lengths,
@@ -1105,6 +1154,54 @@ static void fitsum_triangle(fitsum *s, double p[3][3], const double u[3], double
         for (int k = 0; k < 6; ++k)
             s->m[4 + k] += p[v][sym_r[k]] * p[v][sym_c[k]];
     }
+}
+
+/* A leaf's sums (fitsum) are summed in a fixed order that lanes can follow: each triangle's terms
+ * first (terms[q][i], triangle i: its oriented normal area2 u and area2, q = 0..3; its vertices'
+ * sum, q = 4..6, and moments, q = 7..12, each over its three vertices in order), then each term
+ * over the leaf's 8 slots by pairs, ((0+1) + (2+3)) + ((4+5) + (6+7)), empty slots +0. The SIMD
+ * rows compute the terms in lanes with the fit (simd/kernel_trifit.h, the same operations); the
+ * scalar row and the triangles the lanes leave out compute them here. Summed one triangle after
+ * another instead, with 16 chains of dependent additions through memory, the sums were a third
+ * of a refit once the boxes were fitted in lanes (docs/mesh-queries.md, section 6). */
+static void fitsum_terms(double terms[13][TTD_NODE_WIDTH], int i, double *const p9[9], const double u[3], double area2,
+                         int vertices)
+{
+    for (int q = 0; q < 3; ++q)
+        terms[q][i] = area2 * u[q];
+    terms[3][i] = area2;
+    if (!vertices)
+        return;
+    double v[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+            v[k][c] = p9[3 * k + c][i];
+    for (int q = 0; q < 3; ++q)
+        terms[4 + q][i] = v[0][q] + v[1][q] + v[2][q];
+    for (int q = 0; q < 6; ++q) {
+        const int r = sym_r[q], c = sym_c[q];
+        terms[7 + q][i] = v[0][r] * v[0][c] + v[1][r] * v[1][c] + v[2][r] * v[2][c];
+    }
+}
+
+/* The leaf's sums from its count triangles' terms (fitsum_terms), in the order described there. */
+static fitsum fitsum_leaf(double terms[13][TTD_NODE_WIDTH], int count)
+{
+    double x[13];
+    for (int q = 0; q < 13; ++q) {
+        double *t = terms[q];
+        for (int i = count; i < TTD_NODE_WIDTH; ++i)
+            t[i] = 0;
+        x[q] = ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
+    }
+    fitsum s;
+    for (int k = 0; k < 3; ++k)
+        s.n[k] = x[k];
+    s.nlen = x[3];
+    s.m[0] = 3.0 * count;
+    for (int k = 0; k < 9; ++k)
+        s.m[1 + k] = x[4 + k];
+    return s;
 }
 
 /* A patch counts as nearly flat for refit_axes when its normals' sum is at least this part of
@@ -1177,6 +1274,8 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
 
 typedef struct refit {
     const struct ttd_mesh *mesh;
+    ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
+    ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
@@ -1195,16 +1294,22 @@ static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, i
     L->B = (builder){.mesh = m, .ord = L->ord};
     for (int k = 0; k < 9; ++k)
         L->B.p[k] = L->p[k];
+    const double o[3] = {m->origin[0], m->origin[1], m->origin[2]};
     for (int i = 0; i < count; ++i) {
         L->ord[i] = t[i];
         const uint32_t *ix = m->tris + 3 * (size_t)t[i];
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c) {
-                const size_t at = 3 * (size_t)ix[k] + (size_t)c;
-                const double x = m->bytes == 8 ? ((const double *)m->verts)[at] : (double)((const float *)m->verts)[at];
-                L->p[3 * k + c][i] = x - m->origin[c]; /* as place() computes vrel */
+        for (int k = 0; k < 3; ++k) {
+            const size_t at = 3 * (size_t)ix[k];
+            for (int c = 0; c < 3; ++c) { /* as place() computes vrel */
+                const double x = m->bytes == 8 ? ((const double *)m->verts)[at + (size_t)c]
+                                               : (double)((const float *)m->verts)[at + (size_t)c];
+                L->p[3 * k + c][i] = x - o[c];
             }
+        }
     }
+    for (int k = 0; k < 9; ++k) /* lanes past the last triangle: defined numbers for tri_fit */
+        for (int i = count; i < TTD_NODE_WIDTH; ++i)
+            L->p[k][i] = 0;
 }
 
 /* Child slot j of node n read back in double (the stored values, exactly). */
@@ -1302,7 +1407,8 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
     const struct ttd_mesh *m = R->mesh;
     const int32_t c = slot_child(m, (size_t)n, j);
     local_tris L;
-    obb b, old;
+    obb b;
+    double old[9]; /* the slot's axes before the move: where refit_axes starts */
     fitsum sum;
     memset(&sum, 0, sizeof sum);
     if (c < 0) {
@@ -1316,28 +1422,61 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         store_box(&L.B, n, j, &b, c, 0, 1);
         return sum;
     }
-    slot_box(m, (size_t)n, j, &old);
+    if (m->bytes == 8) {
+        for (int i = 0; i < 9; ++i)
+            old[i] = ((const ttd_node_d *)m->nodes)[n].u[i][j];
+    } else {
+        for (int i = 0; i < 9; ++i)
+            old[i] = (double)((const ttd_node_f *)m->nodes)[n].u[i][j];
+    }
     if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
         const int count = slot_count(m, (size_t)c);
         uint32_t t[TTD_NODE_WIDTH];
         for (int i = 0; i < count; ++i)
             t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
         gather(m, &L, t, count);
+        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit); a
+         * full leaf of a double mesh takes them straight into its node */
+        const double *const *pl = (const double *const *)L.B.p;
+        ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
+        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
+        double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
+        unsigned lanes = 0;
+        if (R->tri_fit != NULL)
+            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
         for (int i = 0; i < count; ++i) {
-            double p[3][3];
-            pos_vertices(&L.B, (size_t)i, p);
-            double area2;
-            triangle_fit(p, m->radius, &b, &area2);
-            fitsum_triangle(&sum, p, b.u + 6, area2);
+            if (lanes >> i & 1) {
+                if (leaf != NULL)
+                    continue; /* stored already */
+                for (int k = 0; k < 3; ++k) {
+                    b.c[k] = C[k][i];
+                    b.e[k] = E[k][i];
+                }
+                for (int k = 0; k < 9; ++k)
+                    b.u[k] = U[k][i];
+            } else {
+                double area2, p[3][3];
+                pos_vertices(&L.B, (size_t)i, p);
+                triangle_fit(p, m->radius, &b, &area2);
+                /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
+                fitsum_terms(T, i, L.B.p, b.u + 6, area2, R->tri_fit == NULL);
+            }
             store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
         }
-        refit_axes(&sum, old.u, b.u);
-        fit_extents(&L.B, 0, (size_t)count, &b);
+        sum = fitsum_leaf(T, count);
+        refit_axes(&sum, old, b.u);
+        if (R->leaf_span != NULL) {
+            double mn[3], mx[3];
+            R->leaf_span(pl, count, b.u, mn, mx);
+            span_extents(mn, mx, m->radius, &b);
+        } else {
+            fit_extents(&L.B, 0, (size_t)count, &b);
+        }
         store_box(&L.B, n, j, &b, c, 0, (size_t)count);
         return sum;
     }
     sum = R->sums[c];
-    refit_axes(&sum, old.u, b.u);
+    refit_axes(&sum, old, b.u);
     store_box_of_boxes(m, n, j, b.u, c);
     return sum;
 }
@@ -1438,7 +1577,9 @@ static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
-    refit R = {m, ttd_big_alloc(m->nnodes * sizeof(fitsum)), malloc(64 * sizeof(subtree))};
+    const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
+               malloc(64 * sizeof(subtree))};
     if (R.sums == NULL || R.list == NULL) {
         free(R.sums);
         free(R.list);

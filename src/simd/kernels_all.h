@@ -23,6 +23,7 @@
 #include "simd/kernel_certified.h"
 #include "simd/kernel_node.h"
 #include "simd/kernel_point.h"
+#include "simd/kernel_trifit.h"
 #include "simd/probe_impl.h"
 
 /* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
@@ -36,6 +37,7 @@
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
         .node_test = node_test,                                                                \
         TTD_LANE_ROW_POINT_NODE                                                                 \
+        TTD_LANE_ROW_TRI_FIT                                                                    \
         .point_block = point_block, .point_lanes = point_lanes,                                \
     }
 #ifdef TTD_PRECISION_DOUBLE

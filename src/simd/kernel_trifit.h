@@ -1,0 +1,173 @@
+/* SPDX-License-Identifier: MIT */
+/* The boxes of a leaf's triangles (core/kernels.h, tri_fit), one triangle per lane: the refit of
+ * a deforming mesh (mesh/build.c, refit_slot) fits them here, 8 at a time, where the build fits
+ * them one by one (triangle_fit). Read it next to triangle_axes and triangle_fit in mesh/build.c:
+ * the same operations in the same order (no FMA; the build has -ffp-contract=off), so a lane's
+ * box has that function's bits; and each triangle's terms of its leaf's sums (fitsum_terms there, the
+ * same operations). Only the common case is done in lanes: edges and normal whose
+ * squares are within [2^-900, 2^900] (normalize3 without its rescaling) and a normal
+ * perpendicular to the longest edge within 2 eps (no Gram-Schmidt pass). A lane outside it is
+ * left out of the returned mask, for the caller's scalar function, which handles every case.
+ * Double rows only: the build fits in double for both precisions. */
+#ifdef TTD_PRECISION_DOUBLE
+#include <float.h>
+#include <math.h>
+
+TTDW_FN ttdw_vd trifit_dot3(const ttdw_vd a[3], const ttdw_vd b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+TTDW_FN void trifit_cross3(const ttdw_vd a[3], const ttdw_vd b[3], ttdw_vd out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* a < b ? a : b and a > b ? a : b, spelled out (dmin / dmax in mesh/build.c): the ISA's min and
+ * max may differ from them on signed zeros */
+TTDW_FN ttdw_vd trifit_min(ttdw_vd a, ttdw_vd b) { return ttdw_sel_d(ttdw_lt_d(a, b), a, b); }
+TTDW_FN ttdw_vd trifit_max(ttdw_vd a, ttdw_vd b) { return ttdw_sel_d(ttdw_gt_d(a, b), a, b); }
+
+static unsigned tri_fit(const double *const p[9], int count, double radius, double u[9][TTD_NODE_WIDTH],
+                        double c[3][TTD_NODE_WIDTH], double e[3][TTD_NODE_WIDTH], double terms[13][TTD_NODE_WIDTH])
+{
+    unsigned done = 0;
+    const ttdw_vd lo = ttdw_set1_d(0x1p-900), hi = ttdw_set1_d(0x1p900), one = ttdw_set1_d(1.0);
+    const ttdw_vd perp = ttdw_set1_d(2 * DBL_EPSILON), half = ttdw_set1_d(0.5);
+    const ttdw_vd r2 = ttdw_set1_d(2 * radius), eps4 = ttdw_set1_d(4 * DBL_EPSILON);
+    for (int j = 0; j < TTD_NODE_WIDTH && j < count; j += TTDW_LANES_D) {
+        ttdw_vd v[3][3], ed[3][3], len[3];
+        for (int k = 0; k < 3; ++k)
+            for (int q = 0; q < 3; ++q)
+                v[k][q] = ttdw_loadu_d(p[3 * k + q] + j);
+        for (int i = 0; i < 3; ++i) {
+            for (int q = 0; q < 3; ++q)
+                ed[i][q] = v[(i + 1) % 3][q] - v[i][q];
+            len[i] = trifit_dot3(ed[i], ed[i]);
+        }
+        /* the longest edge (the first of equals) and the edge before it */
+        ttdw_vd lk = len[0], ek[3], em[3];
+        for (int q = 0; q < 3; ++q) {
+            ek[q] = ed[0][q];
+            em[q] = ed[2][q];
+        }
+        const ttdw_md k1 = ttdw_gt_d(len[1], lk);
+        lk = ttdw_sel_d(k1, len[1], lk);
+        for (int q = 0; q < 3; ++q) {
+            ek[q] = ttdw_sel_d(k1, ed[1][q], ek[q]);
+            em[q] = ttdw_sel_d(k1, ed[0][q], em[q]);
+        }
+        const ttdw_md k2 = ttdw_gt_d(len[2], lk);
+        for (int q = 0; q < 3; ++q) {
+            ek[q] = ttdw_sel_d(k2, ed[2][q], ek[q]);
+            em[q] = ttdw_sel_d(k2, ed[1][q], em[q]);
+        }
+        /* normalize3 of the edge and of the normal, their common case */
+        ttdw_vd a[3], n[3], w[3], b[3];
+        const ttdw_vd de = trifit_dot3(ek, ek);
+        ttdw_md ok = ttdw_mand_d(ttdw_gt_d(de, lo), ttdw_lt_d(de, hi));
+        const ttdw_vd ie = one / ttdw_sqrt_d(de);
+        for (int q = 0; q < 3; ++q)
+            a[q] = ek[q] * ie;
+        trifit_cross3(ek, em, n);
+        const ttdw_vd dn = trifit_dot3(n, n);
+        ok = ttdw_mand_d(ok, ttdw_mand_d(ttdw_gt_d(dn, lo), ttdw_lt_d(dn, hi)));
+        const ttdw_vd in = one / ttdw_sqrt_d(dn);
+        for (int q = 0; q < 3; ++q)
+            w[q] = n[q] * in;
+        const ttdw_vd ar = trifit_dot3(n, w);
+        ok = ttdw_mand_d(ok, ttdw_le_d(ttdw_abs_d(trifit_dot3(a, w)), perp));
+        trifit_cross3(w, a, b);
+        const ttdw_vd *ax[3] = {a, b, w};
+        /* the extents about those axes, as triangle_fit computes them */
+        ttdw_vd mn[3], mx[3], cc[3];
+        for (int t = 0; t < 3; ++t) {
+            mn[t] = ttdw_set1_d(HUGE_VAL);
+            mx[t] = ttdw_set1_d(-HUGE_VAL);
+        }
+        for (int k = 0; k < 3; ++k)
+            for (int t = 0; t < 3; ++t) {
+                const ttdw_vd d = ax[t][0] * v[k][0] + ax[t][1] * v[k][1] + ax[t][2] * v[k][2];
+                mn[t] = trifit_min(mn[t], d);
+                mx[t] = trifit_max(mx[t], d);
+            }
+        for (int q = 0; q < 3; ++q)
+            cc[q] = ttdw_zero_d();
+        for (int t = 0; t < 3; ++t) {
+            const ttdw_vd mid = half * (mn[t] + mx[t]);
+            for (int q = 0; q < 3; ++q)
+                cc[q] = cc[q] + mid * ax[t][q];
+        }
+        const ttdw_vd c1 = ttdw_abs_d(cc[0]) + ttdw_abs_d(cc[1]) + ttdw_abs_d(cc[2]);
+        const ttdw_vd slack = eps4 * (r2 + c1);
+        ttdw_vd ex[3];
+        for (int t = 0; t < 3; ++t) {
+            const ttdw_vd pc = trifit_dot3(ax[t], cc);
+            ex[t] = trifit_max(mx[t] - pc, pc - mn[t]) + slack;
+        }
+        for (int t = 0; t < 3; ++t)
+            for (int q = 0; q < 3; ++q)
+                ttdw_storeu_d(u[3 * t + q] + j, ax[t][q]);
+        for (int q = 0; q < 3; ++q) {
+            ttdw_storeu_d(c[q] + j, cc[q]);
+            ttdw_storeu_d(e[q] + j, ex[q]);
+        }
+        /* each triangle's terms of its leaf's sums (mesh/build.c, fitsum_terms: the same
+         * operations): its oriented normal and twice its area, its vertices' sum and moments */
+        for (int q = 0; q < 3; ++q)
+            ttdw_storeu_d(terms[q] + j, ar * w[q]);
+        ttdw_storeu_d(terms[3] + j, ar);
+        for (int q = 0; q < 3; ++q)
+            ttdw_storeu_d(terms[4 + q] + j, v[0][q] + v[1][q] + v[2][q]);
+        static const int r6[6] = {0, 0, 0, 1, 1, 2}, c6[6] = {0, 1, 2, 1, 2, 2};
+        for (int q = 0; q < 6; ++q)
+            ttdw_storeu_d(terms[7 + q] + j, v[0][r6[q]] * v[0][c6[q]] + v[1][r6[q]] * v[1][c6[q]] + v[2][r6[q]] * v[2][c6[q]]);
+        done |= ttdw_mbits_d(ok) << j;
+    }
+    return done & ((1u << (count < TTD_NODE_WIDTH ? count : TTD_NODE_WIDTH)) - 1u);
+}
+
+/* The range of the projections u_a . v (a = 0, 1, 2; three products, two sums, as
+ * mesh/build.c's fit_extents computes them) over the vertices of triangles 0..count-1, into
+ * mn[a], mx[a]: a leaf's box about its refitted axes. The minimum and maximum of a set do not
+ * depend on the order it is read in (a zero's sign aside, which the extents' slack absorbs), so
+ * these are fit_extents's bits. */
+static void leaf_span(const double *const p[9], int count, const double u[9], double mn[3], double mx[3])
+{
+    ttdw_vd ua[9], lo[3], hi[3];
+    for (int k = 0; k < 9; ++k)
+        ua[k] = ttdw_set1_d(u[k]);
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = ttdw_set1_d(HUGE_VAL);
+        hi[a] = ttdw_set1_d(-HUGE_VAL);
+    }
+    for (int j = 0; j < TTD_NODE_WIDTH && j < count; j += TTDW_LANES_D) {
+        const ttdw_md live = ttdw_mfirst_d(count - j);
+        for (int k = 0; k < 3; ++k) {
+            const ttdw_vd x = ttdw_loadu_d(p[3 * k] + j), y = ttdw_loadu_d(p[3 * k + 1] + j), z = ttdw_loadu_d(p[3 * k + 2] + j);
+            for (int a = 0; a < 3; ++a) {
+                const ttdw_vd d = ua[3 * a] * x + ua[3 * a + 1] * y + ua[3 * a + 2] * z;
+                lo[a] = ttdw_sel_d(live, trifit_min(lo[a], d), lo[a]);
+                hi[a] = ttdw_sel_d(live, trifit_max(hi[a], d), hi[a]);
+            }
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        double l[TTDW_LANES_D], h[TTDW_LANES_D];
+        ttdw_storeu_d(l, lo[a]);
+        ttdw_storeu_d(h, hi[a]);
+        mn[a] = l[0];
+        mx[a] = h[0];
+        for (int i = 1; i < TTDW_LANES_D; ++i) {
+            mn[a] = l[i] < mn[a] ? l[i] : mn[a];
+            mx[a] = h[i] > mx[a] ? h[i] : mx[a];
+        }
+    }
+}
+
+#define TTD_LANE_ROW_TRI_FIT .tri_fit = tri_fit, .leaf_span = leaf_span,
+#else
+#define TTD_LANE_ROW_TRI_FIT
+#endif
