@@ -728,6 +728,11 @@ typedef struct ttd_scene_point_d {
     double normal[3];      ///< unit normal from body i towards body j, from the bodies' shapes (docs/scenes.md, 5a)
     double distance;       ///< the exact distance d between those two points (0 touching or crossing)
     double depth;          ///< margin - d
+    double point_i[3];     ///< the point of body i (world): point is the midpoint of point_i and point_j
+    double point_j[3];     ///< the point of body j, at distance d from point_i (below 0: inside, docs/scenes.md 5b)
+    uint64_t key;          ///< the contact's features on both bodies: the same while the contact persists
+                           ///< (bits 32-63 body i's, 0-31 body j's; each: 2 bits vertex 0, edge 1, face 2,
+                           ///< then 30 bits the vertex's place, the edge, the flat piece; docs/scenes.md 5c)
 } ttd_scene_point_d;
 typedef struct ttd_scene_point_f {
     uint32_t i, j;
@@ -736,6 +741,9 @@ typedef struct ttd_scene_point_f {
     float normal[3];
     float distance;
     float depth;
+    float point_i[3];
+    float point_j[3];
+    uint64_t key;
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
@@ -753,8 +761,9 @@ typedef struct ttd_scene_point_f {
 /// face of one body lies within the margin of the other, across edges only where both are real
 /// edges of their bodies, never outside the normal cones of the contact's features where they
 /// meet; the same for any triangulation of a flat face; negated when the bodies swap
-/// (docs/scenes.md, section 5a). As ttd_scene_point_d (or _f) items, grouped by body pair in
-/// (i, j) order.
+/// (docs/scenes.md, section 5a). Each point carries both bodies' points and a key of the
+/// features they lie on (section 5c). As ttd_scene_point_d (or _f) items, grouped by body pair
+/// in (i, j) order.
 TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t max_points,
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,

@@ -32,7 +32,7 @@ static PyTypeObject ttd_py_SceneType;
 
 /* ---- result types and record dtypes ------------------------------------------------------ */
 
-enum { TTD_PY_NHIT = 4, TTD_PY_NSCONT = 7, TTD_PY_NSDIST = 8, TTD_PY_NPOINT = 8 };
+enum { TTD_PY_NHIT = 4, TTD_PY_NSCONT = 7, TTD_PY_NSDIST = 8, TTD_PY_NPOINT = 11 };
 
 static PyStructSequence_Field ttd_py_hit_fields[TTD_PY_NHIT + 1] = {
     {"i", "uint32, shape (n,): the first body of each pair within the margin (i < j)"},
@@ -97,6 +97,9 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"normal", "shape (n, 3): unit normal from body i towards body j, from the bodies' shapes: a face's normal where a face of one body lies within the margin of the other, across two real edges, within the normal cones of the contact's features where they meet (docs/scenes.md, section 5a)"},
     {"distance", "shape (n,): the exact distance d between those two points (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
+    {"point_i", "shape (n, 3): the point of body i (point is the midpoint of point_i and point_j)"},
+    {"point_j", "shape (n, 3): the point of body j, at distance d from point_i (negative: the solids' points inside each other)"},
+    {"key", "uint64, shape (n,): the contact's key, from the features of both bodies it lies on (vertex, edge, flat piece): the same while the contact persists (docs/scenes.md, section 5c)"},
     {NULL, NULL},
 };
 static PyStructSequence_Desc ttd_py_point_desc = {
@@ -132,7 +135,8 @@ static int ttd_py_scene_add_object(PyObject *module, const char *name, PyObject 
      offsetof(T, p), offsetof(T, q)}
 #define TTD_PY_POINT_OFFSETS(T)                                                                     \
     {offsetof(T, i), offsetof(T, j), offsetof(T, tri_i), offsetof(T, tri_j), offsetof(T, point),    \
-     offsetof(T, normal), offsetof(T, distance), offsetof(T, depth)}
+     offsetof(T, normal), offsetof(T, distance), offsetof(T, depth), offsetof(T, point_i), offsetof(T, point_j),  \
+     offsetof(T, key)}
 
 static int ttd_py_scene_records(PyObject *module)
 {
@@ -152,7 +156,8 @@ static int ttd_py_scene_records(PyObject *module)
         return -1;
     for (int f = 0; f < 2; ++f) {
         const char *cont_fmt[TTD_PY_NSCONT] = {"u4", "u4", "u4", "u4", reals[f], vecs[f], vecs[f]};
-        const char *point_fmt[TTD_PY_NPOINT] = {"u4", "u4", "u4", "u4", vecs[f], vecs[f], reals[f], reals[f]};
+        const char *point_fmt[TTD_PY_NPOINT] = {"u4", "u4", "u4", "u4", vecs[f], vecs[f], reals[f], reals[f],
+                                                vecs[f], vecs[f], "u8"};
         ttd_py_scont_rec[f] = ttd_py_record_descr(TTD_PY_NSCONT, ttd_py_scont_names, cont_fmt, cont_off[f], cont_size[f]);
         ttd_py_point_rec[f] =
             ttd_py_record_descr(TTD_PY_NPOINT, ttd_py_point_names, point_fmt, point_off[f], point_size[f]);
@@ -1060,8 +1065,10 @@ PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "normal (n, 3) (unit, from body i towards body j, from the bodies' shapes: a face's normal\n"
 "where a face of one body lies within the margin of the other, across two real edges, never\n"
 "outside the normal cones of the contact's features where they meet; the same for any\n"
-"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d) and\n"
-"depth (margin - d), grouped by body pair in (i, j) order. isa, threads: as in collide.");
+"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d),\n"
+"depth (margin - d), point_i and point_j (n, 3) (the point of each body) and key (uint64: the\n"
+"features of both bodies the point lies on, unchanged while the contact persists; section\n"
+"5c), grouped by body pair in (i, j) order. isa, threads: as in collide.");
 
 static PyObject *ttd_py_scene_manifold(PyObject *obj, PyObject *args, PyObject *kwargs)
 {

@@ -310,6 +310,11 @@ class SceneManifold(NamedTuple):
     """Unit, from body i towards body j, from the bodies' shapes (docs/scenes.md, section 5a)."""
     distance: npt.NDArray[np.floating]
     depth: npt.NDArray[np.floating]
+    point_i: npt.NDArray[np.floating]
+    """The point of body i (point is the midpoint of point_i and point_j)."""
+    point_j: npt.NDArray[np.floating]
+    key: npt.NDArray[np.uint64]
+    """The features of both bodies the point lies on: the same while the contact persists."""
 
 class Scene:
     """Bodies (ttd.Mesh objects at world poses) and the queries over every eligible pair of bodies."""

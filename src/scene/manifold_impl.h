@@ -94,6 +94,10 @@ typedef struct manifold_work {
 typedef struct manifold_rec {
     ttd_scene_contact c;
     int inside;
+    /* the features of tri_i (feat[0]) and tri_j (feat[1]) the points lie on, as the exact method's
+     * feature bits (a vertex: one bit; an edge: two; the face: three), or 0 where not yet known
+     * (a contact: its triangle pair asked again for the points chosen, section 5c) */
+    uint8_t feat[2];
 } manifold_rec;
 
 /* A vertex or a pair of edges step 0 asks about. A vertex: side 0 a vertex of body i (corner k of
@@ -452,7 +456,7 @@ static int point_after(const real *x, const real *y)
     return 0;
 }
 
-static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
+static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside, unsigned fi, unsigned fj)
 {
     if (w->all_n == w->all_cap) {
         const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
@@ -463,6 +467,8 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside)
         w->all_cap = cap;
     }
     w->all[w->all_n].c = *c;
+    w->all[w->all_n].feat[0] = (uint8_t)fi;
+    w->all[w->all_n].feat[1] = (uint8_t)fj;
     w->all[w->all_n++].inside = inside;
     return 1;
 }
@@ -485,6 +491,7 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
     for (size_t k = 0; k < n; ++k) {
         w->all[k].c = c[k];
         w->all[k].inside = -1;
+        w->all[k].feat[0] = w->all[k].feat[1] = 0;
     }
     w->all_n += n;
     return 1;
@@ -589,7 +596,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
 
 /* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
 static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const corner_key *q, real margin,
-                      ttd_scene_contact *out)
+                      ttd_scene_contact *out, uint8_t feat[2])
 {
     real x[2][9];
     world_triangle(s, i, q->ti, x[0]);
@@ -604,6 +611,8 @@ static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const c
         if (!(r.distance <= margin))
             return 0;
         out->distance = r.distance;
+        feat[side] = (uint8_t)(1u << q->k);
+        feat[!side] = r.feature_q;
         for (int t = 0; t < 3; ++t) {
             const real other = r.distance == 0 ? v[t] : r.q[t]; /* touching: the vertex itself */
             out->p[t] = side ? other : v[t];
@@ -627,6 +636,8 @@ static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const c
     if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
         return 0;
     out->distance = r.distance;
+    feat[0] = (uint8_t)(1u << q->k | 1u << (q->k + 1) % 3);
+    feat[1] = (uint8_t)(1u << q->l | 1u << (q->l + 1) % 3);
     for (int t = 0; t < 3; ++t) {
         const real on_first = r.p[t], on_second = r.distance == 0 ? r.p[t] : r.q[t];
         out->p[t] = second ? on_second : on_first; /* body i's edge is seg[0] */
@@ -661,6 +672,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     qsort(w->key, w->key_n, sizeof *w->key, corner_key_cmp);
     int have = 0; /* a vertex corner waiting in `best` */
     ttd_scene_contact best = c[0];
+    uint8_t best_f[2] = {0, 0};
     const corner_key *best_q = NULL;
     for (size_t k = 0; k < w->key_n; ++k) {
         const corner_key *q = &w->key[k];
@@ -669,23 +681,26 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         if (q->kind < 2 && w->solid && w->inner[q->kind][q->a] == 2)
             continue; /* a solid's vertex inside the other */
         if (have && (q->kind != best_q->kind || q->a != best_q->a)) {
-            if (!all_push(w, &best, -1))
+            if (!all_push(w, &best, -1, best_f[0], best_f[1]))
                 return 0;
             have = 0;
         }
         ttd_scene_contact got;
-        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got))
+        uint8_t f[2];
+        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got, f))
             continue;
         if (q->kind == 2) {
-            if (!all_push(w, &got, -1))
+            if (!all_push(w, &got, -1, f[0], f[1]))
                 return 0;
         } else if (!have || got.distance < best.distance) { /* keys come in the order of the other triangle */
             best = got;
+            best_f[0] = f[0];
+            best_f[1] = f[1];
             best_q = q;
             have = 1;
         }
     }
-    return !have || all_push(w, &best, -1);
+    return !have || all_push(w, &best, -1, best_f[0], best_f[1]);
 }
 
 /* ---- 5b: the points of solids inside each other --------------------------------------------- */
@@ -811,12 +826,16 @@ static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, u
             continue; /* on the surface: a contact */
         uint32_t tri;
         real x[3], y[3] = {r->point[0], r->point[1], r->point[2]};
-        body_vertex(s, b, place_vertex(E, mb->tris, w->queue[k], &tri), x);
+        const uint32_t v = place_vertex(E, mb->tris, w->queue[k], &tri);
+        body_vertex(s, b, v, x);
         TTD_POINT_BACK(real, P, y);
         ttd_scene_contact rec = {i, j, side ? r->triangle : tri, side ? tri : r->triangle, -r->distance, {0, 0, 0}, {0, 0, 0}};
         memcpy(rec.p, side ? y : x, sizeof rec.p);
         memcpy(rec.q, side ? x : y, sizeof rec.q);
-        if (!all_push(w, &rec, side))
+        unsigned fv = 0; /* the vertex's corner of tri */
+        for (int t = 0; t < 3; ++t)
+            fv |= mb->tris[3 * (size_t)tri + (size_t)t] == v ? 1u << t : 0;
+        if (!all_push(w, &rec, side, side ? r->feature : fv, side ? fv : r->feature))
             return 0;
     }
     return 1;
@@ -1247,6 +1266,73 @@ static size_t choose_points(manifold_work *w, const manifold_rec *rc, size_t nk,
     return ns;
 }
 
+/* ---- 5c: persistent keys --------------------------------------------------------------------- */
+
+/* A feature's 30-bit number: its own where it fits, else folded (a key then stands for several
+ * features of a mesh of over 2^30 places, edges or pieces: keys may collide, never change). */
+static uint32_t key_fold(uint64_t x)
+{
+    if (x < ((uint64_t)1 << 30))
+        return (uint32_t)x;
+    x = (x ^ (x >> 31)) * 0x9e3779b97f4a7c15ULL;
+    return (uint32_t)(x >> 34);
+}
+
+/* The feature of a body that a point on triangle t lies on (bits: the exact method's feature
+ * bits of t), as 32 bits: 2 bits of kind (KEY_VERTEX, KEY_EDGE, KEY_FACE) above 30 of number.
+ * A feature is named by what the mesh's edge information says about its place on the body, not
+ * by the triangle: a vertex by its place (mesh/edges.h: the same for every triangle around it);
+ * an edge by the smaller of its two triangles and its index there; a face by its flat piece. A
+ * vertex inside a flat part, or an edge between coplanar triangles, is of the face: a point
+ * sliding over a triangulated face keeps its key whichever triangle it crosses. */
+enum { KEY_VERTEX = 0, KEY_EDGE = 1, KEY_FACE = 2 };
+static uint32_t feature_key(const struct ttd_mesh *m, const ttd_mesh_edges *E, uint32_t t, unsigned bits)
+{
+    bits &= 7;
+    if (t == UINT32_MAX || bits == 0)
+        return (uint32_t)3 << 30; /* none (not reached: every point lies on a triangle) */
+    const uint32_t face = (uint32_t)KEY_FACE << 30 | key_fold(E->piece[t]);
+    if (bits == 1 || bits == 2 || bits == 4) {
+        const int k = bits == 1 ? 0 : bits == 2 ? 1 : 2;
+        if (ttd_vertex_class(E, t, k) == TTD_VERTEX_FLAT)
+            return face;
+        return (uint32_t)KEY_VERTEX << 30 | key_fold(E->weld[m->tris[3 * (size_t)t + (size_t)k]]);
+    }
+    if (bits == 7)
+        return face;
+    const int k = bits == 3 ? 0 : bits == 6 ? 1 : 2; /* edge k joins corners k and k + 1 */
+    if (ttd_edge_class(E, t, k) == TTD_EDGE_FLAT)
+        return face;
+    uint64_t id = 3 * (uint64_t)t + (uint64_t)k;
+    const uint32_t u = E->across[3 * (size_t)t + (size_t)k];
+    if (u != TTD_NO_TRIANGLE && u < t) /* the same edge named from the other side */
+        for (int l = 0; l < 3; ++l)
+            if (E->across[3 * (size_t)u + (size_t)l] == t) {
+                id = 3 * (uint64_t)u + (uint64_t)l;
+                break;
+            }
+    return (uint32_t)KEY_EDGE << 30 | key_fold(id);
+}
+
+/* Point x's key (section 5c): body i's feature in the high half, body j's in the low. A contact
+ * whose features are not known (a triangle pair's closest points) asks its pair again. */
+static uint64_t point_key(const struct ttd_scene *s, const manifold_rec *x)
+{
+    unsigned fi = x->feat[0], fj = x->feat[1];
+    if (fi == 0 || fj == 0) {
+        real a[9], b[9];
+        ttd_result r;
+        world_triangle(s, x->c.i, x->c.tri_i, a);
+        world_triangle(s, x->c.j, x->c.tri_j, b);
+        TTD_EXACT_PAIR(a, b, &r);
+        fi = r.feature_p;
+        fj = r.feature_q;
+    }
+    const struct ttd_mesh *mi = s->body[x->c.i].mesh, *mj = s->body[x->c.j].mesh;
+    return (uint64_t)feature_key(mi, ttd_mesh_edges_made(mi), x->c.tri_i, fi) << 32 |
+           feature_key(mj, ttd_mesh_edges_made(mj), x->c.tri_j, fj);
+}
+
 /* Body pair p's manifold: its n0 contacts c0, the corners they add (step 0) and, for a solid
  * pair, the points of each body inside the other (5b), reduced to at most max points (0: all)
  * appended to out, in the order chosen. cfg: one thread. w: scratch. 0 out of memory. */
@@ -1258,7 +1344,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
      * below), a solid pair's inside points, the corners */
     w->all_n = 0;
     for (size_t k = 0; max == 0 && k < n0; ++k)
-        if (!all_push(w, &c0[k], -1))
+        if (!all_push(w, &c0[k], -1, 0, 0))
             return 0;
     w->solid = solid_pair(s, p->i, p->j);
     if (w->solid) {
@@ -1315,6 +1401,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         for (size_t k = 0; k < n0; ++k)
             if ((double)c0[k].distance - d0 <= reach[1]) {
                 w->near[m].c = c0[k];
+                w->near[m].feat[0] = w->near[m].feat[1] = 0;
                 w->near[m++].inside = -1;
             }
         for (size_t k = 0; k < w->all_n; ++k)
@@ -1360,9 +1447,12 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         for (int r = 0; r < 3; ++r) {
             pt->point[r] = (real)(0.5 * (double)x->p[r] + 0.5 * (double)x->q[r]);
             pt->normal[r] = (real)normal[r];
+            pt->point_i[r] = x->p[r];
+            pt->point_j[r] = x->q[r];
         }
         pt->distance = x->distance;
         pt->depth = margin - x->distance;
+        pt->key = point_key(s, xr);
     }
     out->count += ns;
     return 1;
