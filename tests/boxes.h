@@ -17,7 +17,7 @@ typedef struct test_box {
     size_t nv, nt;
 } test_box;
 
-static uint32_t test_box_vertex(test_box *b, const double x[3])
+static inline uint32_t test_box_vertex(test_box *b, const double x[3])
 {
     for (size_t k = 0; k < b->nv; ++k)
         if (memcmp(b->v + 3 * k, x, 3 * sizeof *x) == 0)
@@ -27,7 +27,7 @@ static uint32_t test_box_vertex(test_box *b, const double x[3])
 }
 
 /* The box; 0, or 1 out of memory. */
-static int test_box_make(double a, double bb, double c, int n, test_box *b)
+static inline int test_box_make(double a, double bb, double c, int n, test_box *b)
 {
     const double h[3] = {a / 2, bb / 2, c / 2};
     const size_t nt = 12 * (size_t)n * (size_t)n;
@@ -60,7 +60,7 @@ static int test_box_make(double a, double bb, double c, int n, test_box *b)
     return 0;
 }
 
-static void test_box_free(test_box *b)
+static inline void test_box_free(test_box *b)
 {
     free(b->v);
     free(b->t);
@@ -68,7 +68,7 @@ static void test_box_free(test_box *b)
 }
 
 /* A pose turned by yaw about z, then moved to centre c. */
-static void test_yaw_pose(double yaw, const double c[3], double pose[12])
+static inline void test_yaw_pose(double yaw, const double c[3], double pose[12])
 {
     const double cs = cos(yaw), sn = sin(yaw);
     const double P[12] = {cs, -sn, 0, c[0], sn, cs, 0, c[1], 0, 0, 1, c[2]};
@@ -76,19 +76,19 @@ static void test_yaw_pose(double yaw, const double c[3], double pose[12])
 }
 
 /* x moved by pose. */
-static void test_pose_apply(const double pose[12], const double x[3], double out[3])
+static inline void test_pose_apply(const double pose[12], const double x[3], double out[3])
 {
     for (int r = 0; r < 3; ++r)
         out[r] = pose[4 * r] * x[0] + pose[4 * r + 1] * x[1] + pose[4 * r + 2] * x[2] + pose[4 * r + 3];
 }
 
-static double test_dot(const double a[3], const double b[3])
+static inline double test_dot(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* The distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
-static double test_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3])
+static inline double test_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3])
 {
     double ab[3], ac[3], ap[3], bp[3], cp[3], x[3];
     for (int r = 0; r < 3; ++r) {
@@ -126,7 +126,7 @@ static double test_point_triangle(const double p[3], const double a[3], const do
 }
 
 /* The distance from p to segment (a, b). */
-static double test_point_segment(const double p[3], const double a[3], const double b[3])
+static inline double test_point_segment(const double p[3], const double a[3], const double b[3])
 {
     double ab[3], ap[3];
     for (int r = 0; r < 3; ++r) {

@@ -284,6 +284,27 @@ typedef struct ttd_mesh_refit_info {
 /// Fills *info for mesh (TTD_ERR_NULL_POINTER for NULL).
 TTD_API ttd_status ttd_mesh_get_refit_info(const ttd_mesh *mesh, ttd_mesh_refit_info *info);
 
+/// A closed mesh's mass properties as a solid of uniform density (docs/mass-properties.md).
+typedef struct ttd_mass_properties {
+    double mass;       ///< density * |volume|
+    double volume;     ///< the signed volume: negative for a mesh wound inward (its orientation)
+    double area;       ///< the surface's area
+    double center[3];  ///< the centre of mass, in the mesh's coordinates
+    double inertia[9]; ///< the inertia tensor about the centre (row-major, symmetric, kg m^2 if mass is kg)
+} ttd_mass_properties;
+
+/// The mass properties of a closed mesh (built by ttd_mesh_create_d; _f: by ttd_mesh_create_f)
+/// of uniform density (finite, > 0) into *out, by the divergence theorem over its triangles
+/// with compensated sums, in double (a float mesh's vertices are exact in double): each
+/// quantity to a few roundings of its terms. Closed: every edge, between vertices' places (equal
+/// coordinates are one place), runs once each way (a mesh wound inward is closed, its volume
+/// negative; one with faces of both windings is not). Errors: NULL pointers, density not
+/// finite or <= 0 (TTD_ERR_BAD_OPTIONS), the other precision's mesh, not closed
+/// (TTD_ERR_MESH_NOT_CLOSED), out of memory; *out untouched. A closed mesh enclosing no
+/// volume gives volume and mass 0 and a NaN centre and inertia.
+TTD_API ttd_status ttd_mesh_mass_properties_d(const ttd_mesh *mesh, double density, ttd_mass_properties *out);
+TTD_API ttd_status ttd_mesh_mass_properties_f(const ttd_mesh *mesh, double density, ttd_mass_properties *out);
+
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
 /// *bad the index of the first pose refused. *bad is k when no pose is at fault (TTD_OK, or
