@@ -48,8 +48,8 @@ static inline int test_box_make(double a, double bb, double c, int n, test_box *
                         for (int dv = 0; dv < 2; ++dv) {
                             double x[3];
                             x[axis] = sgn * h[axis];
-                            x[U] = -h[U] + 2 * h[U] * (double)(iu + du) / n;
-                            x[V] = -h[V] + 2 * h[V] * (double)(iv + dv) / n;
+                            x[U] = -h[U] + 2 * h[U] * ((double)(iu + du) / n); /* 1 exactly at the far edge */
+                            x[V] = -h[V] + 2 * h[V] * ((double)(iv + dv) / n);
                             q[du][dv] = test_box_vertex(b, x);
                         }
                     const uint32_t tr[6] = {q[0][0], q[1][0], q[1][1], q[0][0], q[1][1], q[0][1]};
