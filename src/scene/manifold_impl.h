@@ -42,6 +42,9 @@
  * level; step 0's questions are screened before the exact method where it surely finds no
  * corner. Neither changes a bit of the answer. */
 
+#include "scene/body_impl.h"
+#include "scene/normal_impl.h"
+
 #define MERGE_FRACTION 1e-3
 /* The deepest level of step 4: a quarter of the margin left below the deepest contact (a box
  * resting 0.01 inside a margin of 0.04 spreads its points over contacts within 0.0175, not over

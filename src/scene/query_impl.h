@@ -9,7 +9,10 @@
  * which), and their answers are joined in (i, j) order: results do not depend on the threads.
  * docs/scenes.md has the design. */
 
+/* the bodies' helpers, then the manifold's reduction and normals, which stand on them alone;
+ * the walk below hands them each body pair's contacts */
 #include "scene/body_impl.h"
+#include "scene/manifold_impl.h"
 
 /* ---- collide and distance: one mesh query per body pair ------------------------------------ */
 
@@ -359,8 +362,6 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
-#include "scene/normal_impl.h"
-#include "scene/manifold_impl.h"
 
 /* Body pairs' reductions on the threads: each worker appends to its own array with its own
  * scratch, and the pairs' points are joined in pair order afterwards, so the answer does not
