@@ -262,7 +262,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                     memset(w->inner[side], 0, w->inner_cap[side]);
                 continue;
             }
-            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w) ||
+                (n0 > 0 && !solid_edges(s, cfg, p->i, p->j, side, c0, n0, w)))
                 return 0;
         }
     }
