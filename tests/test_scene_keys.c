@@ -174,6 +174,75 @@ static void stack_poses(size_t nb, double gap, double (*P)[12])
     }
 }
 
+/* One ttd_scene_array reused by queries whose items differ in size (contacts, then the larger
+ * manifold points, then collide) gives each the answer a fresh array gets. Its capacity counted
+ * items of the last query's size, so the manifold wrote past the end of collide's buffer
+ * (seen as a crash of `ttd bench --quick`'s mixed scene once the points grew; AddressSanitizer
+ * builds, scripts/test-sanitize.sh, report it on the old code). */
+static int array_reused_across_queries(void)
+{
+    ttd_gen_mesh sp;
+    ENSURE(ttd_gen_icosphere(2, &sp) == 0);
+    ttd_mesh *m = mesh_of(8, sp.verts, sp.nv, sp.tris, sp.nt);
+    ENSURE(m != NULL);
+    ttd_scene *s = NULL;
+    ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+    for (int k = 0; k < 6; ++k) {
+        double P[12];
+        const double c[3] = {1.9 * k, 0.1 * k, 0};
+        test_yaw_pose(0.3 * k, c, P);
+        uint32_t id;
+        ENSURE(ttd_scene_add_d(s, m, P, &id) == TTD_OK);
+    }
+    /* and a stack of boxes, whose corners make more manifold points than contacts */
+    test_box fl, bx;
+    ENSURE(test_box_make(6, 6, 1, 1, &fl) == 0 && test_box_make(1, 1, 0.5, 1, &bx) == 0);
+    ttd_mesh *mf = mesh_of(8, fl.v, fl.nv, fl.t, fl.nt), *mb = mesh_of(8, bx.v, bx.nv, bx.t, bx.nt);
+    ENSURE(mf != NULL && mb != NULL);
+    double P[5][12];
+    stack_poses(4, 1e-3, P);
+    ttd_mesh *const ms[5] = {mf, mb, mb, mb, mb};
+    ttd_scene *t = make_scene(8, 5, ms, (const double (*)[12])P, 0);
+    ENSURE(t != NULL);
+    ttd_scene *const scenes[2] = {s, t};
+    const double margins[2] = {0.3, 0.01};
+    const size_t pairs[2] = {5, 4};
+    for (int q = 0; q < 2; ++q) {
+        ttd_scene_array reused = {0}, fresh = {0};
+        for (int round = 0; round < 2; ++round) {
+            /* collide's small items first: their capacity, in items, held 1,024 bytes; the
+             * manifold's 136-byte points then wrote past them */
+            ENSURE(ttd_scene_collide_d(NULL, scenes[q], margins[q], &reused) == TTD_OK && reused.count == pairs[q]);
+            ENSURE(ttd_scene_manifold_d(NULL, scenes[q], margins[q], 0, &reused) == TTD_OK && reused.count > 0);
+            ENSURE(ttd_scene_manifold_d(NULL, scenes[q], margins[q], 0, &fresh) == TTD_OK && fresh.count == reused.count);
+            ENSURE(memcmp(fresh.data, reused.data, fresh.count * sizeof(ttd_scene_point_d)) == 0);
+            ttd_scene_array_free(&fresh);
+            ENSURE(ttd_scene_contacts_d(NULL, scenes[q], margins[q], &reused) == TTD_OK && reused.count > 0);
+            ENSURE(ttd_scene_contacts_d(NULL, scenes[q], margins[q], &fresh) == TTD_OK && fresh.count == reused.count);
+            ENSURE(memcmp(fresh.data, reused.data, fresh.count * sizeof(ttd_scene_contact_d)) == 0);
+            ttd_scene_array_free(&fresh);
+            const size_t ncont = reused.count;
+            ENSURE(ttd_scene_manifold_d(NULL, scenes[q], margins[q], 0, &reused) == TTD_OK && reused.count > 0);
+            if (getenv("TTD_KEYS_DEBUG"))
+                printf("  scene %d: %zu contacts, %zu manifold points\n", q, ncont, reused.count);
+            ENSURE(ttd_scene_manifold_d(NULL, scenes[q], margins[q], 0, &fresh) == TTD_OK && fresh.count == reused.count);
+            ENSURE(memcmp(fresh.data, reused.data, fresh.count * sizeof(ttd_scene_point_d)) == 0);
+            ttd_scene_array_free(&fresh);
+            ENSURE(ttd_scene_collide_d(NULL, scenes[q], margins[q], &reused) == TTD_OK && reused.count == pairs[q]);
+        }
+        ttd_scene_array_free(&reused);
+    }
+    ttd_scene_destroy(s);
+    ttd_scene_destroy(t);
+    ttd_mesh_destroy(mf);
+    ttd_mesh_destroy(mb);
+    test_box_free(&fl);
+    test_box_free(&bx);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&sp);
+    return 0;
+}
+
 static int points_on_bodies(void)
 {
     size_t checked = 0;
@@ -561,6 +630,7 @@ static int keys_persist_sliding(void)
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(array_reused_across_queries);
     RUN_TEST(points_on_bodies);
     RUN_TEST(keys_name_features_and_persist);
     RUN_TEST(keys_persist_sliding);

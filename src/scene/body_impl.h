@@ -87,15 +87,20 @@ static int scene_contact_cmp(const void *x, const void *y)
     return (a->tri_j > b->tri_j) - (a->tri_j < b->tri_j);
 }
 
-/* Room for n items of `size` bytes in a caller's array. */
+/* Room for n items of `size` bytes in a caller's array. Its capacity counts bytes: one array
+ * may serve queries whose items differ in size (contacts, then a manifold's larger points), and
+ * a capacity in items of the last query's size overflowed the next one's (issue 32). */
 static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
 {
-    if (n <= a->capacity)
+    if (n > SIZE_MAX / size)
+        return 0;
+    const size_t need = n * size;
+    if (need <= a->capacity)
         return 1;
-    size_t cap = a->capacity ? a->capacity : 64;
-    while (cap < n)
-        cap *= 2;
-    void *v = realloc(a->data, cap * size);
+    size_t cap = a->capacity ? a->capacity : 64 * size;
+    while (cap < need)
+        cap = cap > SIZE_MAX / 2 ? need : 2 * cap;
+    void *v = realloc(a->data, cap);
     if (v == NULL)
         return 0;
     a->data = v;

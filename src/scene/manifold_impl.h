@@ -256,16 +256,21 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const int nest = n0 == 0 ? solid_nested(s, p->i, p->j, at) : 0;
         if (n0 == 0 && nest == 0)
             return 1;
+        const size_t before = w->all_n;
         for (int side = 0; side < 2; ++side) {
             if (n0 == 0 && nest != (side ? 1 : 2)) {
                 if (w->inner_cap[side]) /* memset(NULL, 0, 0) is undefined */
                     memset(w->inner[side], 0, w->inner_cap[side]);
                 continue;
             }
-            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w) ||
-                (n0 > 0 && !solid_edges(s, cfg, p->i, p->j, side, c0, n0, w)))
+            if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
                 return 0;
         }
+        /* no vertex of either inside the other, yet the surfaces cross: the edges' deepest points */
+        const int none_inside = w->all_n == before;
+        for (int side = 0; side < 2 && n0 > 0 && none_inside; ++side)
+            if (!solid_edges(s, cfg, p->i, p->j, side, c0, n0, w))
+                return 0;
     }
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
