@@ -85,7 +85,8 @@ static const char ttd_scene_usage_outputs[] =
     "                                            'inf -1 -1 -1 -1 nan nan nan nan nan nan' when no pair\n"
     "                                            is within M (or the scene has fewer than two bodies)\n"
     "  contacts   i j ia ib d px py pz qx qy qz  every triangle pair within M\n"
-    "  manifold   i j px py pz nx ny nz d depth  per body pair within M, at most K contact points:\n"
+    "  manifold   i j px py pz nx ny nz d depth ix iy iz jx jy jz key\n"
+    "                                            per body pair within M, at most K contact points:\n"
     "                                            the midpoint of a point of each body (a triangle pair's\n"
     "                                            closest points, or a corner where faces lie on faces:\n"
     "                                            a vertex within M of the other face, a crossing of\n"
@@ -95,7 +96,10 @@ static const char ttd_scene_usage_outputs[] =
     "                                            of the smaller body's radius; the K kept are the\n"
     "                                            deepest, then spread by area; normals from the\n"
     "                                            bodies' faces and real edges (docs/scenes-cli.md;\n"
-    "                                            printed in triangle order, then by point)\n"
+    "                                            printed in triangle order, then by point); then the\n"
+    "                                            point of body i, that of body j, and the contact's key\n"
+    "                                            (16 hex digits: the features of both bodies it lies on,\n"
+    "                                            the same while the contact persists)\n"
     "  i and j are body numbers; with --names, a named body's name.\n";
 
 static const char ttd_scene_usage_options[] =
@@ -965,6 +969,8 @@ static void ttd_scene_put_tris(FILE *out, uint32_t ia, uint32_t ib)
 typedef struct ttd_scene_item {
     uint32_t i, j, ti, tj;
     double d, depth, p[3], q[3]; /* manifold: p the point, q the normal */
+    double pi[3], pj[3];         /* manifold: each body's point */
+    uint64_t key;                /* manifold: the contact's key */
 } ttd_scene_item;
 
 static int ttd_scene_item_cmp(const void *x, const void *y)
@@ -1152,13 +1158,19 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
             for (int r = 0; r < 3; ++r) {
                 it->p[r] = (double)c->point[r];
                 it->q[r] = (double)c->normal[r];
+                it->pi[r] = (double)c->point_i[r];
+                it->pj[r] = (double)c->point_j[r];
             }
+            it->key = c->key;
         } else {
             const ttd_scene_point_d *c = (const ttd_scene_point_d *)b->arr.data + k;
             *it = (ttd_scene_item){.i = c->i, .j = c->j, .ti = c->tri_i, .tj = c->tri_j, .d = c->distance,
                                    .depth = c->depth};
             memcpy(it->p, c->point, sizeof it->p);
             memcpy(it->q, c->normal, sizeof it->q);
+            memcpy(it->pi, c->point_i, sizeof it->pi);
+            memcpy(it->pj, c->point_j, sizeof it->pj);
+            it->key = c->key;
         }
     }
     if (n > 1)
@@ -1174,6 +1186,9 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
             ttd_scene_put_reals(out, f, it->q, 3);
             ttd_scene_put_reals(out, f, &it->d, 1);
             ttd_scene_put_reals(out, f, &it->depth, 1);
+            ttd_scene_put_reals(out, f, it->pi, 3);
+            ttd_scene_put_reals(out, f, it->pj, 3);
+            fprintf(out, " %016llx", (unsigned long long)it->key);
         } else {
             ttd_scene_put_tris(out, it->ti, it->tj);
             if (a->cmd == TTD_SCENE_CONTACTS) {

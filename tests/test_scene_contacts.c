@@ -1527,7 +1527,9 @@ static int solid_pairs_brute_force(void)
                     size_t below = 0;
                     for (size_t k = 0; k < n; ++k)
                         below += pt[k].d < 0;
-                    ENSURE_MSG(found == want && below == want,
+                    /* the points below 0 beyond the vertices: the deepest points of edges inside
+                     * the other body (5b; checked against separating axes in test_scene_depth.c) */
+                    ENSURE_MSG(found == want && below >= want,
                                "%s pair %d (%d in %d) trial %d order %d: %zu vertices inside, %zu found, %zu points below 0",
                                bytes == 8 ? "double" : "float", (int)ki, a, b, trial, order, want, found, below);
                     inside_points += found;

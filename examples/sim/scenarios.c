@@ -9,7 +9,8 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *const sim_scenarios[] = {"stack-a", "stack-b", "stack-fan", "stack-mixed", "pyramid", "bin", NULL};
+const char *const sim_scenarios[] = {"stack-a", "stack-b", "stack-fan", "stack-mixed", "pyramid", "bin",
+                                     "tower-a", "tower-fan", NULL};
 
 static const double identity[4] = {1, 0, 0, 0};
 
@@ -88,6 +89,28 @@ static int build_pyramid(sim_run *run)
     return 0;
 }
 
+/// Issue 32's tower: 18 boxes 3 x 1 x 0.6, three a layer side by side at the rest gap, each
+/// layer turned by 90 degrees from the one below, on the floor; triangulation tri.
+static int build_tower(sim_run *run, sim_box_tri tri)
+{
+    const double h[3] = {1.5, 0.5, 0.3}, gap = run->world.set.rest_gap;
+    if (add_floor(run) != 0 || sim_shape_box(run->shape + 1, h, tri) != 0)
+        return -1;
+    run->nshape = 2;
+    const double z[3] = {0, 0, 1};
+    double turned[4];
+    quat_axis_angle(z, 0.5 * 3.141592653589793, turned);
+    for (int layer = 0; layer < 6; ++layer)
+        for (int k = -1; k <= 1; ++k) {
+            const double off = k * (1 + gap), up = 0.3 + gap + layer * (0.6 + gap);
+            const double x[3] = {layer % 2 ? off : 0, layer % 2 ? 0 : off, up};
+            if (sim_world_add(&run->world, run->shape + 1, x, layer % 2 ? turned : identity, 0) < 0)
+                return -1;
+        }
+    run->settle = 1.0;
+    return 0;
+}
+
 /// splitmix64: the bin's orientations.
 static double uniform(uint64_t *state)
 {
@@ -156,6 +179,10 @@ int sim_run_build(sim_run *run, const char *name, const sim_settings *set)
         rc = build_pyramid(run);
     else if (!strcmp(name, "bin"))
         rc = build_bin(run);
+    else if (!strcmp(name, "tower-a"))
+        rc = build_tower(run, SIM_BOX_DIAG_A);
+    else if (!strcmp(name, "tower-fan"))
+        rc = build_tower(run, SIM_BOX_FAN);
     if (rc != 0)
         sim_run_free(run);
     return rc;

@@ -345,6 +345,26 @@ TTD_API const char *ttd_orientation_string(ttd_orientation orientation);
 /// is inside, unlike an odd-even ray count; a count of 0 (a cavity, shells of opposite windings
 /// cancelling) is outside. docs/points.md, section 5.
 TTD_API int ttd_winding_inside(double winding);
+/// A closed mesh's mass properties as a solid of uniform density (docs/mass-properties.md).
+typedef struct ttd_mass_properties {
+    double mass;       ///< density * |volume|
+    double volume;     ///< the signed volume: negative for a mesh wound inward (its orientation)
+    double area;       ///< the surface's area
+    double center[3];  ///< the centre of mass, in the mesh's coordinates
+    double inertia[9]; ///< the inertia tensor about the centre (row-major, symmetric, kg m^2 if mass is kg)
+} ttd_mass_properties;
+
+/// The mass properties of a closed mesh (built by ttd_mesh_create_d; _f: by ttd_mesh_create_f)
+/// of uniform density (finite, > 0) into *out, by the divergence theorem over its triangles
+/// with compensated sums, in double (a float mesh's vertices are exact in double): each
+/// quantity to a few roundings of its terms. Closed: every edge, between vertices' places (equal
+/// coordinates are one place), runs once each way (a mesh wound inward is closed, its volume
+/// negative; one with faces of both windings is not). Errors: NULL pointers, density not
+/// finite or <= 0 (TTD_ERR_BAD_OPTIONS), the other precision's mesh, not closed
+/// (TTD_ERR_MESH_NOT_CLOSED), out of memory; *out untouched. A closed mesh enclosing no
+/// volume gives volume and mass 0 and a NaN centre and inertia.
+TTD_API ttd_status ttd_mesh_mass_properties_d(const ttd_mesh *mesh, double density, ttd_mass_properties *out);
+TTD_API ttd_status ttd_mesh_mass_properties_f(const ttd_mesh *mesh, double density, ttd_mass_properties *out);
 
 /// Checks k poses of b in a's frame as every query does, computing nothing: TTD_OK, or the
 /// status a query would return for them (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE), with
@@ -811,6 +831,11 @@ typedef struct ttd_scene_point_d {
     double normal[3];      ///< unit normal from body i towards body j, from the bodies' shapes (docs/scenes.md, 5a)
     double distance;       ///< the exact distance d between those two points (0 touching or crossing)
     double depth;          ///< margin - d
+    double point_i[3];     ///< the point of body i (world): point is the midpoint of point_i and point_j
+    double point_j[3];     ///< the point of body j, at distance d from point_i (below 0: inside, docs/scenes.md 5b)
+    uint64_t key;          ///< the contact's features on both bodies: the same while the contact persists
+                           ///< (bits 32-63 body i's, 0-31 body j's; each: 2 bits vertex 0, edge 1, face 2,
+                           ///< then 30 bits the vertex's place, the edge, the flat piece; docs/scenes.md 5c)
 } ttd_scene_point_d;
 typedef struct ttd_scene_point_f {
     uint32_t i, j;
@@ -819,6 +844,9 @@ typedef struct ttd_scene_point_f {
     float normal[3];
     float distance;
     float depth;
+    float point_i[3];
+    float point_j[3];
+    uint64_t key;
 } ttd_scene_point_f;
 
 /// Contact manifolds within margin (>= 0, finite): for every eligible body pair, its contacts
@@ -836,8 +864,9 @@ typedef struct ttd_scene_point_f {
 /// face of one body lies within the margin of the other, across edges only where both are real
 /// edges of their bodies, never outside the normal cones of the contact's features where they
 /// meet; the same for any triangulation of a flat face; negated when the bodies swap
-/// (docs/scenes.md, section 5a). As ttd_scene_point_d (or _f) items, grouped by body pair in
-/// (i, j) order.
+/// (docs/scenes.md, section 5a). Each point carries both bodies' points and a key of the
+/// features they lie on (section 5c). As ttd_scene_point_d (or _f) items, grouped by body pair
+/// in (i, j) order.
 TTD_API ttd_status ttd_scene_manifold_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t max_points,
                                         ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_manifold_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t max_points,

@@ -32,7 +32,7 @@ static PyTypeObject ttd_py_SceneType;
 
 /* ---- result types and record dtypes ------------------------------------------------------ */
 
-enum { TTD_PY_NHIT = 4, TTD_PY_NSCONT = 7, TTD_PY_NSDIST = 8, TTD_PY_NPOINT = 8 };
+enum { TTD_PY_NHIT = 4, TTD_PY_NSCONT = 7, TTD_PY_NSDIST = 8, TTD_PY_NPOINT = 11 };
 
 static PyStructSequence_Field ttd_py_hit_fields[TTD_PY_NHIT + 1] = {
     {"i", "uint32, shape (n,): the first body of each pair within the margin (i < j)"},
@@ -97,6 +97,9 @@ static PyStructSequence_Field ttd_py_point_fields[TTD_PY_NPOINT + 1] = {
     {"normal", "shape (n, 3): unit normal from body i towards body j, from the bodies' shapes: a face's normal where a face of one body lies within the margin of the other, across two real edges, within the normal cones of the contact's features where they meet (docs/scenes.md, section 5a)"},
     {"distance", "shape (n,): the exact distance d between those two points (0 touching or crossing)"},
     {"depth", "shape (n,): margin - d"},
+    {"point_i", "shape (n, 3): the point of body i (point is the midpoint of point_i and point_j)"},
+    {"point_j", "shape (n, 3): the point of body j, at distance d from point_i (negative: the solids' points inside each other)"},
+    {"key", "uint64, shape (n,): the contact's key, from the features of both bodies it lies on (vertex, edge, flat piece): the same while the contact persists (docs/scenes.md, section 5c)"},
     {NULL, NULL},
 };
 static PyStructSequence_Desc ttd_py_point_desc = {
@@ -132,7 +135,8 @@ static int ttd_py_scene_add_object(PyObject *module, const char *name, PyObject 
      offsetof(T, p), offsetof(T, q)}
 #define TTD_PY_POINT_OFFSETS(T)                                                                     \
     {offsetof(T, i), offsetof(T, j), offsetof(T, tri_i), offsetof(T, tri_j), offsetof(T, point),    \
-     offsetof(T, normal), offsetof(T, distance), offsetof(T, depth)}
+     offsetof(T, normal), offsetof(T, distance), offsetof(T, depth), offsetof(T, point_i), offsetof(T, point_j),  \
+     offsetof(T, key)}
 
 static int ttd_py_scene_records(PyObject *module)
 {
@@ -152,7 +156,8 @@ static int ttd_py_scene_records(PyObject *module)
         return -1;
     for (int f = 0; f < 2; ++f) {
         const char *cont_fmt[TTD_PY_NSCONT] = {"u4", "u4", "u4", "u4", reals[f], vecs[f], vecs[f]};
-        const char *point_fmt[TTD_PY_NPOINT] = {"u4", "u4", "u4", "u4", vecs[f], vecs[f], reals[f], reals[f]};
+        const char *point_fmt[TTD_PY_NPOINT] = {"u4", "u4", "u4", "u4", vecs[f], vecs[f], reals[f], reals[f],
+                                                vecs[f], vecs[f], "u8"};
         ttd_py_scont_rec[f] = ttd_py_record_descr(TTD_PY_NSCONT, ttd_py_scont_names, cont_fmt, cont_off[f], cont_size[f]);
         ttd_py_point_rec[f] =
             ttd_py_record_descr(TTD_PY_NPOINT, ttd_py_point_names, point_fmt, point_off[f], point_size[f]);
@@ -1076,8 +1081,10 @@ PyDoc_STRVAR(ttd_py_scene_manifold_doc,
 "normal (n, 3) (unit, from body i towards body j, from the bodies' shapes: a face's normal\n"
 "where a face of one body lies within the margin of the other, across two real edges, never\n"
 "outside the normal cones of the contact's features where they meet; the same for any\n"
-"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d) and\n"
-"depth (margin - d), grouped by body pair in (i, j) order. isa, threads: as in collide.");
+"triangulation of a flat face; docs/scenes.md, section 5a), distance (those points' d),\n"
+"depth (margin - d), point_i and point_j (n, 3) (the point of each body) and key (uint64: the\n"
+"features of both bodies the point lies on, unchanged while the contact persists; section\n"
+"5c), grouped by body pair in (i, j) order. isa, threads: as in collide.");
 
 static PyObject *ttd_py_scene_manifold(PyObject *obj, PyObject *args, PyObject *kwargs)
 {
@@ -1280,8 +1287,112 @@ static PyTypeObject ttd_py_SceneType = {
     .tp_new = ttd_py_scene_new,
 };
 
+/* ---- mass properties (ttd_mesh_mass_properties_d/_f) -------------------------------------- */
+
+static PyStructSequence_Field ttd_py_mass_fields[] = {
+    {"mass", "float: density * |volume|"},
+    {"volume", "float: the signed volume (negative for a mesh wound inward)"},
+    {"area", "float: the surface's area"},
+    {"center", "float64, shape (3,): the centre of mass, in the mesh's coordinates"},
+    {"inertia", "float64, shape (3, 3): the inertia tensor about the centre of mass"},
+    {NULL, NULL},
+};
+static PyStructSequence_Desc ttd_py_mass_desc = {
+    "ttd.MassProperties",
+    "The result of ttd.mass_properties: a closed mesh's mass properties as a solid of uniform\n"
+    "density (docs/mass-properties.md).",
+    ttd_py_mass_fields, 5,
+};
+static PyTypeObject *ttd_py_MassProperties;
+static PyObject *ttd_py_mass_names[5];
+
+PyDoc_STRVAR(ttd_py_mass_properties_doc,
+"mass_properties(mesh, density=1.0)\n--\n\n"
+"The mass properties of a closed ttd.Mesh as a solid of uniform density (finite, > 0): a\n"
+"ttd.MassProperties of mass (density * |volume|), volume (signed: negative for a mesh wound\n"
+"inward), area, center (3,) and inertia (3, 3) about the center, in float64 for meshes of\n"
+"either dtype, by the divergence theorem with compensated sums (docs/mass-properties.md).\n"
+"Closed: every edge between two distinct vertex positions runs once each way; otherwise\n"
+"ValueError. A closed mesh enclosing no volume has center and inertia NaN.");
+
+static PyObject *ttd_py_mass_properties(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = {"mesh", "density", NULL};
+    PyObject *mesh, *dens = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|O:mass_properties", kwlist, &mesh, &dens))
+        return NULL;
+    if (!PyObject_TypeCheck(mesh, &ttd_py_MeshType)) {
+        PyErr_Format(PyExc_TypeError, "mesh must be a ttd.Mesh, not %.100s", Py_TYPE(mesh)->tp_name);
+        return NULL;
+    }
+    double density = 1.0;
+    if (dens != NULL && ttd_py_real_arg(dens, "density", &density) < 0)
+        return NULL;
+    if (!isfinite(density) || !(density > 0)) {
+        PyErr_Format(PyExc_ValueError, "density=%R is out of range: a density is finite and > 0", dens);
+        return NULL;
+    }
+    const ttd_py_mesh *m = (const ttd_py_mesh *)mesh;
+    if (ttd_py_meshes_use(&mesh, 1) < 0)
+        return NULL;
+    ttd_mass_properties p;
+    ttd_status st;
+    Py_BEGIN_ALLOW_THREADS
+    st = m->type == NPY_FLOAT ? ttd_mesh_mass_properties_f(m->mesh, density, &p)
+                              : ttd_mesh_mass_properties_d(m->mesh, density, &p);
+    Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(&mesh, 1);
+    if (st == TTD_ERR_MESH_NOT_CLOSED) {
+        PyErr_SetString(PyExc_ValueError, "mass_properties: the mesh is not closed (every edge between two vertex "
+                                          "positions must run once each way, with one orientation)");
+        return NULL;
+    }
+    if (st == TTD_ERR_OUT_OF_MEMORY)
+        return PyErr_NoMemory();
+    if (st != TTD_OK) {
+        PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from mass_properties", (int)st);
+        return NULL;
+    }
+    npy_intp d3 = 3, d33[2] = {3, 3};
+    PyObject *c = PyArray_SimpleNew(1, &d3, NPY_DOUBLE), *I = PyArray_SimpleNew(2, d33, NPY_DOUBLE);
+    PyObject *r = c && I ? ttd_py_named_new(ttd_py_MassProperties, 5) : NULL;
+    if (r == NULL) {
+        Py_XDECREF(c);
+        Py_XDECREF(I);
+        return NULL;
+    }
+    memcpy(PyArray_DATA((PyArrayObject *)c), p.center, sizeof p.center);
+    memcpy(PyArray_DATA((PyArrayObject *)I), p.inertia, sizeof p.inertia);
+    PyObject *mass = PyFloat_FromDouble(p.mass), *vol = PyFloat_FromDouble(p.volume), *area = PyFloat_FromDouble(p.area);
+    if (!mass || !vol || !area) {
+        Py_XDECREF(mass);
+        Py_XDECREF(vol);
+        Py_XDECREF(area);
+        Py_DECREF(c);
+        Py_DECREF(I);
+        Py_DECREF(r);
+        return NULL;
+    }
+    PyTuple_SET_ITEM(r, 0, mass);
+    PyTuple_SET_ITEM(r, 1, vol);
+    PyTuple_SET_ITEM(r, 2, area);
+    PyTuple_SET_ITEM(r, 3, c);
+    PyTuple_SET_ITEM(r, 4, I);
+    return r;
+}
+
+static PyMethodDef ttd_py_mass_methods[] = {
+    {"mass_properties", (PyCFunction)(void (*)(void))ttd_py_mass_properties, METH_VARARGS | METH_KEYWORDS,
+     ttd_py_mass_properties_doc},
+    {NULL, NULL, 0, NULL},
+};
+
 int ttd_py_scene_init(PyObject *module)
 {
+    if (!(ttd_py_MassProperties = ttd_py_named_tuple(module, &ttd_py_mass_desc, ttd_py_mass_names)) ||
+        PyModule_AddFunctions(module, ttd_py_mass_methods) < 0)
+        return -1;
     if (PyType_Ready(&ttd_py_SceneType) < 0 || ttd_py_scene_add_object(module, "Scene", (PyObject *)&ttd_py_SceneType) < 0)
         return -1;
     if (!(ttd_py_SceneCollision = ttd_py_named_tuple(module, &ttd_py_hit_desc, ttd_py_hit_names)) ||

@@ -294,6 +294,11 @@ def check_all(scene, world, margins=(0.0, 0.05, 0.3)):
                     assert len(same) == 1, (margin, max_points, k)
                     _, _, point, d, depth = same[0]
                     assert m.distance[k] == d and m.depth[k] == depth
+                    # each body's point: point their midpoint, |point_i - point_j| = |d|
+                    pi, pj = m.point_i[k].astype(np.float64), m.point_j[k].astype(np.float64)
+                    assert np.array_equal((0.5 * pi + 0.5 * pj).astype(dtype), m.point[k])
+                    gap = math.sqrt((pi - pj) @ (pi - pj))
+                    assert abs(gap - abs(float(d))) <= (1e-12 if dtype == np.float64 else 1e-6) * big
                     nv = m.normal[k].astype(np.float64)
                     assert abs(np.sqrt(nv @ nv) - 1) < 1e-5
                     if n == 0:
@@ -436,6 +441,12 @@ def test_solids(dtype):
     m = nest.manifold(0.01, 0)
     assert len(m.i) == 8 and np.all(m.distance < 0)
     corners = move(half.vertices, inner)
+    # the inner body's points are its corners; the outer's lie on its faces, -d from them
+    np.testing.assert_array_equal(sorted(map(tuple, m.point_j.astype(np.float64))),
+                                  sorted(map(tuple, corners.astype(dtype).astype(np.float64))))
+    out = m.point_i.astype(np.float64)
+    assert np.all(np.min(np.minimum(np.abs(out), np.abs(out - 1)), axis=1) <= 1e-6)
+    np.testing.assert_allclose(np.linalg.norm(out - m.point_j, axis=1), -m.distance.astype(np.float64), atol=1e-6)
     want = ttd.closest_points(unit, corners, pose=np.eye(4)).distance
     got = sorted(float(-x) for x in m.distance)
     assert got == sorted(float(x) for x in want)
@@ -840,3 +851,33 @@ def test_against_the_c_scene_api(libttd, dtype):
     finally:
         lib.ttd_scene_destroy.argtypes = [ctypes.c_void_p]
         lib.ttd_scene_destroy(handle)
+
+
+@pytest.mark.parametrize("dtype", DTYPES, ids=["float64", "float32"])
+def test_manifold_keys(dtype):
+    """Manifold keys (docs/scenes.md, section 5c): uint64, one per point; a stack of three turned
+    cubes on a floor moved as a whole by 1e-9 (float: 1e-6) keeps every body pair's keys; a box
+    on a box keeps distinct keys for its four corners."""
+    unit = ttd.Mesh(*cube(), precision=dtype)
+    v, f = cube()
+    floor = ttd.Mesh(np.array([8.0, 8.0, 1.0]) * v - np.array([4.0, 4.0, 1.0]), f, precision=dtype)
+    poses = [np.eye(4)]
+    z = 0.0
+    for k in range(3):
+        a = 0.3 * k + 0.1
+        P = np.eye(4)
+        P[:2, :2] = [[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]
+        P[:3, 3] = [0.05 * k, -0.04 * k, z + 1e-3]
+        z += 1 + 1e-3
+        poses.append(P)
+    poses = np.array(poses)
+    scene = ttd.Scene([floor, unit, unit, unit], poses)
+    m = scene.manifold(0.01, 4)
+    assert m.key.dtype == np.uint64 and len(m.key) == 12
+    for i in range(3):  # a turned cube's four corners on the face below: four keys
+        assert len(set(m.key[m.j == i + 1].tolist())) == 4
+    moved = poses.copy()
+    moved[:, :3, 3] += 1e-9 if dtype == np.float64 else 1e-6
+    m2 = ttd.Scene([floor, unit, unit, unit], moved).manifold(0.01, 4)
+    assert sorted(zip(m.i.tolist(), m.j.tolist(), m.key.tolist())) == \
+        sorted(zip(m2.i.tolist(), m2.j.tolist(), m2.key.tolist()))

@@ -62,10 +62,12 @@ def test_cli_and_python_agree(tmp_path, ttd_program, dtype):
     d = scene.distance()
     assert cli("distance") == [" ".join([fmt(d.distance, dtype), str(d.i), str(d.j), str(d.tri_i), str(d.tri_j)]
                                         + [fmt(x, dtype) for x in d.p] + [fmt(x, dtype) for x in d.q])]
-    # manifold: i j point normal d depth; the CLI sorts each body pair's points by triangles
+    # manifold: i j point normal d depth point_i point_j key; the CLI sorts each body pair's points by triangles
     m = scene.manifold(margin, 4)
     rows = sorted(range(len(m.i)), key=lambda k: (m.i[k], m.j[k], m.tri_i[k], m.tri_j[k]))
     want = [" ".join([str(m.i[k]), str(m.j[k])] + [fmt(x, dtype) for x in m.point[k]]
-                     + [fmt(x, dtype) for x in m.normal[k]] + [fmt(m.distance[k], dtype), fmt(m.depth[k], dtype)])
+                     + [fmt(x, dtype) for x in m.normal[k]] + [fmt(m.distance[k], dtype), fmt(m.depth[k], dtype)]
+                     + [fmt(x, dtype) for x in m.point_i[k]] + [fmt(x, dtype) for x in m.point_j[k]]
+                     + [f"{int(m.key[k]):016x}"])
             for k in rows]
     assert cli("manifold", "--margin", str(margin), "--max-points", "4") == want

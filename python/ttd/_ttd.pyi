@@ -324,6 +324,24 @@ class SceneManifold(NamedTuple):
     """Unit, from body i towards body j, from the bodies' shapes (docs/scenes.md, section 5a)."""
     distance: npt.NDArray[np.floating]
     depth: npt.NDArray[np.floating]
+    point_i: npt.NDArray[np.floating]
+    """The point of body i (point is the midpoint of point_i and point_j)."""
+    point_j: npt.NDArray[np.floating]
+    key: npt.NDArray[np.uint64]
+    """The features of both bodies the point lies on: the same while the contact persists."""
+
+class MassProperties(NamedTuple):
+    """ttd.mass_properties' result (docs/mass-properties.md)."""
+
+    mass: float
+    volume: float
+    """Signed: negative for a mesh wound inward."""
+    area: float
+    center: npt.NDArray[np.float64]
+    inertia: npt.NDArray[np.float64]
+    """(3, 3), about the centre of mass."""
+
+def mass_properties(mesh: Mesh, density: float = 1.0) -> MassProperties: ...
 
 class Scene:
     """Bodies (ttd.Mesh objects at world poses) and the queries over every eligible pair of bodies."""

@@ -31,6 +31,11 @@
  * point's side is nothing, the surface point's side its feature (contact_side), u the direction
  * from the inside point to the surface one, out of the other body. */
 
+#ifndef TTD_SCENE_NORMAL_IMPL_H
+#define TTD_SCENE_NORMAL_IMPL_H
+
+#include "scene/body_impl.h"
+
 /* A barycentric weight this close to 0 is 0: the world coordinates' rounding (relative to the
  * triangle, for coordinates up to about 1e6 times its size in double, 1e3 in float). */
 #ifdef TTD_PRECISION_DOUBLE
@@ -656,3 +661,5 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
         for (int r = 0; r < 3; ++r)
             n[r] = -n[r];
 }
+
+#endif /* TTD_SCENE_NORMAL_IMPL_H */

@@ -9,77 +9,10 @@
  * which), and their answers are joined in (i, j) order: results do not depend on the threads.
  * docs/scenes.md has the design. */
 
-/* The pose of body id in the scene's precision. */
-static const real *body_pose(const struct ttd_scene *s, uint32_t id)
-{
-#ifdef TTD_PRECISION_DOUBLE
-    return s->body[id].pose;
-#else
-    return s->body[id].pose_f;
-#endif
-}
-
-/* Vertex v of body id in the world, as the kernel computes it: ((r0 x + r1 y) + r2 z) + t per
- * coordinate, in the scene's precision. */
-static void body_vertex(const struct ttd_scene *s, uint32_t id, uint32_t v, real out[3])
-{
-    const struct ttd_mesh *m = s->body[id].mesh;
-    const real *src = (const real *)m->verts + 3 * (size_t)v, *pose = body_pose(s, id);
-    for (int r = 0; r < 3; ++r)
-        out[r] = ((pose[4 * r] * src[0] + pose[4 * r + 1] * src[1]) + pose[4 * r + 2] * src[2]) + pose[4 * r + 3];
-}
-
-/* ---- solids (ttd_scene_set_solid; docs/scenes.md, section 5b) ------------------------------ */
-
-/* Whether bodies i and j are both solids. */
-static int solid_pair(const struct ttd_scene *s, uint32_t i, uint32_t j)
-{
-    return s->body[i].solid && s->body[j].solid;
-}
-
-/* Whether world point x (the scene's precision) lies inside solid body id: x moved into its
- * mesh's frame as the point queries move points (points/points.h), then the mesh's certified
- * winding number (ttd_points_inside). */
-static int body_inside(const struct ttd_scene *s, uint32_t id, const real x[3])
-{
-    const real *P = body_pose(s, id);
-    real y[3];
-    TTD_POINT_INTO(P, x, y)
-    const double yd[3] = {(double)y[0], (double)y[1], (double)y[2]};
-    return ttd_points_inside(s->body[id].mesh, yd);
-}
-
-/* Solid bodies i and j whose surfaces are apart: 1 when j lies inside i, 2 when i lies inside j,
- * 0 when neither; at[] gets the inner body's first vertex (of its triangle 0) in the world.
- * Surfaces that do not meet leave one body wholly inside the other or wholly outside it, so one
- * vertex each way decides (as for the mesh queries' ttd_options.solid). */
-static int solid_nested(const struct ttd_scene *s, uint32_t i, uint32_t j, real at[3])
-{
-    for (int side = 0; side < 2; ++side) {
-        const uint32_t inner = side ? i : j, outer = side ? j : i;
-        body_vertex(s, inner, s->body[inner].mesh->tris[0], at);
-        if (body_inside(s, outer, at))
-            return side ? 2 : 1;
-    }
-    return 0;
-}
-
-/* How far from a rotation body j's pose in body i's frame, R_i^T R_j, may be: with R_i^T R_i =
- * I + E_i (entries within d_i), |R_i R_i^T - I| <= 3 d_i in norm, so the relative pose's entries
- * are within d_j + 3 d_i (1 + 3 d_j). */
-static double pair_defect(const struct ttd_scene *s, uint32_t i, uint32_t j)
-{
-    const double di = s->body[i].defect, dj = s->body[j].defect;
-    return dj + 3 * di * (1 + 3 * dj);
-}
-
-/* One thread per body pair: the mesh queries inside run on one thread each. */
-static ttd_engine_config one_thread(const ttd_engine_config *cfg)
-{
-    ttd_engine_config c = *cfg;
-    c.threads = 1;
-    return c;
-}
+/* the bodies' helpers, then the manifold's reduction and normals, which stand on them alone;
+ * the walk below hands them each body pair's contacts */
+#include "scene/body_impl.h"
+#include "scene/manifold_impl.h"
 
 /* ---- collide and distance: one mesh query per body pair ------------------------------------ */
 
@@ -212,22 +145,6 @@ static ttd_status run_pairs(const ttd_engine_config *cfg, pair_job *J, size_t n)
     return TTD_OK;
 }
 
-/* Room for n items of `size` bytes in a caller's array. */
-static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
-{
-    if (n <= a->capacity)
-        return 1;
-    size_t cap = a->capacity ? a->capacity : 64;
-    while (cap < n)
-        cap *= 2;
-    void *v = realloc(a->data, cap * size);
-    if (v == NULL)
-        return 0;
-    a->data = v;
-    a->capacity = cap;
-    return 1;
-}
-
 static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, ttd_scene_array *out)
 {
     out->count = 0;
@@ -269,14 +186,6 @@ typedef struct contact_job {
     uint64_t *tests;              /* per pair: node tests and pair tests */
     atomic_int nomem;
 } contact_job;
-
-static int scene_contact_cmp(const void *x, const void *y)
-{
-    const ttd_scene_contact *a = x, *b = y;
-    if (a->tri_i != b->tri_i)
-        return a->tri_i < b->tri_i ? -1 : 1;
-    return (a->tri_j > b->tri_j) - (a->tri_j < b->tri_j);
-}
 
 /* A contact's place in its body pair's order, and where it is in the walk's order. */
 typedef struct sort_item {
@@ -453,8 +362,6 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
-#include "scene/normal_impl.h"
-#include "scene/manifold_impl.h"
 
 /* Body pairs' reductions on the threads: each worker appends to its own array with its own
  * scratch, and the pairs' points are joined in pair order afterwards, so the answer does not

@@ -290,6 +290,10 @@ check_manifold() {
                     ++CORNERS }
                 l = f[6] * f[6] + f[7] * f[7] + f[8] * f[8]
                 if (l < 1 - 1e-12 || l > 1 + 1e-12) { print "normal not unit: " G[key, a]; exit 1 }
+                # the points of both bodies: the point their midpoint, their distance |d|; the key 16 hex digits
+                l = 0; for (r = 0; r < 3; r++) { l += (f[11 + r] - f[14 + r]) ^ 2
+                    if ((0.5 * f[11 + r] + 0.5 * f[14 + r] - f[3 + r]) ^ 2 > 1e-24) { print "point not the midpoint of the points of its bodies: " G[key, a]; exit 1 } }
+                if ((sqrt(l) - (f[9] < 0 ? -f[9] : f[9])) ^ 2 > 1e-18 || length(f[17]) != 16 || f[17] !~ /^[0-9a-f]+$/) { print "points of the bodies or key: " G[key, a]; exit 1 }
                 for (b = 0; b < a; b++) { split(G[key, b], g, " "); d2 = 0
                     for (r = 3; r <= 5; r++) d2 += (f[r] - g[r]) * (f[r] - g[r])
                     if (sqrt(d2) <= tol * (1 - 1e-9)) { print "pair " key ": two points within " tol; exit 1 } } } }
@@ -608,11 +612,11 @@ ref_contacts 5 20 float | awk 'NR == 1 || $5 + 0 < m + 0 { m = $5; line = $0 } E
 run 0 scene distance "$DIR/fscene.txt" --precision float
 same "$DIR/out" "$DIR/want" "float distance"
 run 0 scene manifold "$DIR/fscene.txt" --margin 0.25 --precision float
-[ -s "$DIR/out" ] && awk 'NF != 10 { exit 1 } { for (k = 3; k <= 10; k++) if ($k !~ /^-?[0-9.e+-]+$/) exit 1
+[ -s "$DIR/out" ] && awk 'NF != 17 || length($17) != 16 || $17 !~ /^[0-9a-f]+$/ { exit 1 } { for (k = 3; k <= 16; k++) if ($k !~ /^-?[0-9.e+-]+$/) exit 1
      n = $6 * $6 + $7 * $7 + $8 * $8; if (n < 1 - 1e-6 || n > 1 + 1e-6) exit 1 }' "$DIR/out" ||
     fail "float manifold: $(head -3 "$DIR/out")"
 # float prints 9 significant digits at most
-awk '{ for (k = 1; k <= NF; k++) { s = $k; sub(/e.*/, "", s); gsub(/[-.]/, "", s); sub(/^0+/, "", s); if (length(s) > 9) exit 1 } }' "$DIR/out" ||
+awk '{ for (k = 1; k < NF; k++) { s = $k; sub(/e.*/, "", s); gsub(/[-.]/, "", s); sub(/^0+/, "", s); if (length(s) > 9) exit 1 } }' "$DIR/out" ||
     fail "float manifold: more than 9 digits"
 pass "--precision float: contacts, collide, distance equal to ttd mesh --precision float on the world meshes; manifold well formed"
 

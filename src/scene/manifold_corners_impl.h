@@ -1,0 +1,392 @@
+/* SPDX-License-Identifier: MIT */
+/* Step 0: the corners of flat contact a face lying on a face adds to its contacts
+ * (the vertices within the margin of the other triangle, the crossings of edges), each asked once
+ * with the exact method; cheap screens first where the exact method surely finds none. Part of a body pair's manifold
+ * (scene/manifold_impl.h, which includes it once per precision; docs/scenes.md, section 5). */
+
+/* ---- step 0: the corners of flat contact ---------------------------------------------------- */
+
+/* Two triangles lie face on face when their normals are opposite within this angle (radians):
+ * about 5.7 degrees, a box resting on a box or a floor however it has settled. Curved bodies'
+ * triangles rarely are (an icosphere of 1,280 triangles: 0.2% of the contacts of a pile). */
+#define CORNER_ANGLE 0.1
+
+/* A world triangle's plane for a cheap test that a point is farther than the margin from the
+ * triangle (it is at least as far from its plane): the unit normal n about the first vertex a;
+ * err bounds how far a computed height may be off, per unit of the point's distance from a
+ * (the normal's direction is known to about 16 eps |e1| |e2| / |e1 x e2|). ok = 0 where the
+ * triangle has no plane to speak of (a direction known no better than 2^-20): no test. */
+typedef struct corner_plane {
+    double a[3], n[3], err, size;
+    int ok;
+} corner_plane;
+
+static void corner_plane_make(const real x[9], corner_plane *P)
+{
+    double v[3][3], cr[3], e11, e22;
+    P->ok = 0;
+    for (int k = 0; k < 9; ++k)
+        v[k / 3][k % 3] = (double)x[k];
+    memcpy(P->a, v[0], sizeof P->a);
+    if (!unit_cross((const double (*)[3])v, cr, &e11, &e22, &P->size))
+        return;
+    const double l = sqrt(dot3d(cr, cr)), l12 = sqrt(e11) * sqrt(e22);
+    if (!(l > 0x1p-20 * l12))
+        return;
+    for (int r = 0; r < 3; ++r)
+        P->n[r] = cr[r] / l;
+    P->err = (16 * l12 / l + 8) * DBL_EPSILON;
+    P->ok = 1;
+}
+
+/* Whether world point y may lie within lim of plane P's triangle: +1 or -1 when it is farther
+ * than lim above or below the plane (surely, with every rounding of the height, of y's world
+ * coordinates and of the exact method's distance allowed for), 0 when it may not be. */
+static int corner_side(const corner_plane *P, const real y[3], double lim)
+{
+    if (!P->ok)
+        return 0;
+    double d[3], far = 0;
+    for (int r = 0; r < 3; ++r) {
+        d[r] = (double)y[r] - P->a[r];
+        far = fmax(far, fabs(d[r]));
+    }
+    const double h = dot3d(d, P->n), slack = 2 * (far + P->size) * (P->err + 64 * (double)TTD_REAL_EPS);
+    return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
+}
+
+/* Cheap tests that a question of step 0 has no corner, asked before the exact method: each
+ * only where the exact method surely agrees, whatever its rounding. That method works on the
+ * points relative to one of them and scaled to their box (scalar/exact_impl.h), so its distance
+ * may be off by a few ulps of real times the box's extent: SCREEN_SLACK of them is allowed, on
+ * top of 16 ulps of the margin. */
+#define SCREEN_SLACK 1024
+
+/* The box of na points a and nb points b (3 reals each): lo, hi of each set, and the largest
+ * side of the box around both. */
+static double screen_boxes(const real *a, int na, const real *b, int nb, double lo[2][3], double hi[2][3])
+{
+    double ext = 0;
+    for (int r = 0; r < 3; ++r) {
+        lo[0][r] = hi[0][r] = (double)a[r];
+        lo[1][r] = hi[1][r] = (double)b[r];
+        for (int k = 1; k < na; ++k) {
+            const double x = (double)a[3 * k + r];
+            lo[0][r] = x < lo[0][r] ? x : lo[0][r];
+            hi[0][r] = x > hi[0][r] ? x : hi[0][r];
+        }
+        for (int k = 1; k < nb; ++k) {
+            const double x = (double)b[3 * k + r];
+            lo[1][r] = x < lo[1][r] ? x : lo[1][r];
+            hi[1][r] = x > hi[1][r] ? x : hi[1][r];
+        }
+        const double l = lo[0][r] < lo[1][r] ? lo[0][r] : lo[1][r], h = hi[0][r] > hi[1][r] ? hi[0][r] : hi[1][r];
+        ext = h - l > ext ? h - l : ext;
+    }
+    return ext;
+}
+
+/* The distance within which the exact method may find points whose true distance is beyond it
+ * by at most margin: margin, its rounding, the method's rounding on a box of extent ext. */
+static double screen_lim(real margin, double ext)
+{
+    return (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + SCREEN_SLACK * (double)TTD_REAL_EPS * ext + 0x1p-400;
+}
+
+/* Whether the boxes of na points a and nb points b lie so far apart along an axis that the
+ * exact method finds the points' hulls farther apart than the margin. */
+static int boxes_apart(const real *a, int na, const real *b, int nb, real margin)
+{
+    double lo[2][3], hi[2][3];
+    const double lim = screen_lim(margin, screen_boxes(a, na, b, nb, lo, hi));
+    for (int r = 0; r < 3; ++r)
+        if (lo[1][r] - hi[0][r] > lim || lo[0][r] - hi[1][r] > lim)
+            return 1;
+    return 0;
+}
+
+/* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
+ * than the margin, so surely that the exact method finds it farther than the margin from the
+ * triangle (the triangle lies inside each edge's half-space). Triangles whose normal is known
+ * poorly (thinner than SCREEN_THIN) are not screened. */
+#define SCREEN_THIN 1e-3
+static int vertex_beside(const real *y, const real *x, real margin)
+{
+    double v[3][3], p[3], e[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r)
+            v[k][r] = (double)x[3 * k + r];
+    for (int r = 0; r < 3; ++r) {
+        p[r] = (double)y[r];
+        for (int k = 0; k < 3; ++k)
+            e[k][r] = v[(k + 1) % 3][r] - v[k][r];
+    }
+    double N[3];
+    cross3d(e[0], e[1], N);
+    const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
+    if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
+        return 0;
+    double lo[2][3], hi[2][3], far = 0;
+    for (int r = 0; r < 3; ++r)
+        far = fmax(far, fabs(p[r] - v[0][r]));
+    const double ext = screen_boxes(y, 1, x, 3, lo, hi);
+    const double lim = screen_lim(margin, ext);
+    /* each height formed with a relative error of some 8 ulps of double per factor, the
+     * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
+    const double err = 0x1p-30 * (far + ext);
+    const double nl = sqrt(nn);
+    for (int k = 0; k < 3; ++k) {
+        double o[3], d[3];
+        cross3d(e[k], N, o); /* outward from edge k for a counter-clockwise triangle about N */
+        for (int r = 0; r < 3; ++r)
+            d[r] = p[r] - v[k][r];
+        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
+        const double h = dot3d(d, o) / (sqrt(lk) * nl);
+        if (h > lim + err)
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
+ * the closest points of their lines lie beyond an end of one of them by SCREEN_OUT of its
+ * length, the edges far from parallel (at least SCREEN_THIN in sine) and their distance apart
+ * within 1 / SCREEN_THIN of the shorter, so that the parameters are known to 2^-30. The exact
+ * method then finds no pair of closest points inside both (its edge-edge candidate needs both
+ * parameters in [0, 1]; its others are at an end). */
+#define SCREEN_OUT 0.01
+static int edges_miss(const real *a, const real *b)
+{
+    double u[3], v[3], w[3];
+    for (int r = 0; r < 3; ++r) {
+        u[r] = (double)a[3 + r] - (double)a[r];
+        v[r] = (double)b[3 + r] - (double)b[r];
+        w[r] = (double)a[r] - (double)b[r];
+    }
+    const double uu = dot3d(u, u), vv = dot3d(v, v), uv = dot3d(u, v), uw = dot3d(u, w), vw = dot3d(v, w);
+    const double ww = dot3d(w, w), den = uu * vv - uv * uv, shorter = uu < vv ? uu : vv, longer = uu < vv ? vv : uu;
+    if (!(den > SCREEN_THIN * SCREEN_THIN * uu * vv) || !(ww < shorter / (SCREEN_THIN * SCREEN_THIN)) ||
+        !(longer < shorter / (SCREEN_THIN * SCREEN_THIN)))
+        return 0;
+    const double s = (uv * vw - vv * uw) / den, t = (uu * vw - uv * uw) / den;
+    return s < -SCREEN_OUT || s > 1 + SCREEN_OUT || t < -SCREEN_OUT || t > 1 + SCREEN_OUT;
+}
+
+/* Whether 3 reals x come after y (lexicographically). */
+static int point_after(const real *x, const real *y)
+{
+    for (int r = 0; r < 3; ++r)
+        if (x[r] != y[r])
+            return x[r] > y[r];
+    return 0;
+}
+
+static int key_push(manifold_work *w, const corner_key *k)
+{
+    if (w->key_n == w->key_cap) {
+        const size_t cap = w->key_cap ? 2 * w->key_cap : 64;
+        corner_key *v = realloc(w->key, cap * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->key = v;
+        w->key_cap = cap;
+    }
+    w->key[w->key_n++] = *k;
+    return 1;
+}
+
+/* By the question (kind, a, b), then the triangles that ask it. */
+static int corner_key_cmp(const void *x, const void *y)
+{
+    const corner_key *u = x, *v = y;
+    if (u->kind != v->kind)
+        return u->kind < v->kind ? -1 : 1;
+    if (u->a != v->a)
+        return u->a < v->a ? -1 : 1;
+    if (u->b != v->b)
+        return u->b < v->b ? -1 : 1;
+    if (u->ti != v->ti)
+        return u->ti < v->ti ? -1 : 1;
+    return (u->tj > v->tj) - (u->tj < v->tj);
+}
+
+/* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
+ * and a vertex or an edge may lie within the margin of the other triangle. rel: R_i^T R_j, body
+ * j's rotation in body i's frame. 0 out of memory. */
+static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, const double rel[9],
+                           manifold_work *w)
+{
+    const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
+    /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
+     * body i's frame) */
+    const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c->i].mesh), *Ej = ttd_mesh_edges_made(s->body[c->j].mesh);
+    const float *ni = Ei->normal + 3 * (size_t)c->tri_i;
+    const float *nj = Ej->normal + 3 * (size_t)c->tri_j;
+    double facing = 0;
+    for (int r = 0; r < 3; ++r)
+        facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+    /* a solid of an inward mesh faces the other way (edges.h, inward) */
+    if ((Ei->inward && s->body[c->i].solid) != (Ej->inward && s->body[c->j].solid))
+        facing = -facing;
+    if (!(facing <= -cos(CORNER_ANGLE)))
+        return 1;
+    real x[2][9];
+    corner_plane P[2];
+    const ttd_mesh_edges *E[2];
+    const uint32_t *tris[2];
+    for (int side = 0; side < 2; ++side) {
+        world_triangle(s, id[side], tri[side], x[side]);
+        corner_plane_make(x[side], &P[side]);
+        E[side] = ttd_mesh_edges_made(s->body[id[side]].mesh);
+        tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
+    }
+    int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k)
+            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, (double)margin);
+    /* vertices not inside a flat part that may lie within the margin of the other triangle */
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k)
+            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT &&
+                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, margin) && !vertex_beside(x[side] + 3 * k, x[!side], margin)) {
+                const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
+                if (!key_push(w, &key))
+                    return 0;
+            }
+    /* real edges (not between coplanar triangles), each of which may come within the margin of
+     * the other triangle's plane */
+    for (int k = 0; k < 3; ++k) {
+        const int k1 = (k + 1) % 3;
+        if (ttd_edge_class(E[0], tri[0], k) == TTD_EDGE_FLAT || (h[0][k] != 0 && h[0][k] == h[0][k1]))
+            continue;
+        const uint64_t pa = E[0]->weld[tris[0][k]], pb = E[0]->weld[tris[0][k1]];
+        if (pa == pb)
+            continue;
+        for (int l = 0; l < 3; ++l) {
+            const int l1 = (l + 1) % 3;
+            if (ttd_edge_class(E[1], tri[1], l) == TTD_EDGE_FLAT || (h[1][l] != 0 && h[1][l] == h[1][l1]))
+                continue;
+            const uint64_t qa = E[1]->weld[tris[1][l]], qb = E[1]->weld[tris[1][l1]];
+            if (qa == qb)
+                continue;
+            const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
+            const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
+            if (boxes_apart(ek, 2, el, 2, margin) || edges_miss(ek, el))
+                continue;
+            const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
+                                    c->tri_i, c->tri_j, k, l};
+            if (!key_push(w, &key))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
+static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const corner_key *q, real margin,
+                      ttd_scene_contact *out, uint8_t feat[2])
+{
+    real x[2][9];
+    world_triangle(s, i, q->ti, x[0]);
+    world_triangle(s, j, q->tj, x[1]);
+    *out = (ttd_scene_contact){i, j, q->ti, q->tj, 0, {0, 0, 0}, {0, 0, 0}};
+    ttd_result r;
+    if (q->kind < 2) {
+        const int side = (int)q->kind;
+        const real *v = x[side] + 3 * q->k;
+        const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
+        TTD_EXACT_PAIR(pt, x[!side], &r);
+        if (!(r.distance <= margin))
+            return 0;
+        out->distance = r.distance;
+        feat[side] = (uint8_t)(1u << q->k);
+        feat[!side] = r.feature_q;
+        for (int t = 0; t < 3; ++t) {
+            const real other = r.distance == 0 ? v[t] : r.q[t]; /* touching: the vertex itself */
+            out->p[t] = side ? other : v[t];
+            out->q[t] = side ? v[t] : other;
+        }
+        return 1;
+    }
+    /* each edge from its smaller end, the smaller edge first: the same call when the bodies swap */
+    real seg[2][9];
+    const real *e[2][2] = {{x[0] + 3 * q->k, x[0] + 3 * ((q->k + 1) % 3)}, {x[1] + 3 * q->l, x[1] + 3 * ((q->l + 1) % 3)}};
+    for (int g = 0; g < 2; ++g) {
+        const int f = point_after(e[g][0], e[g][1]);
+        for (int t = 0; t < 3; ++t) {
+            seg[g][t] = e[g][f][t];
+            seg[g][3 + t] = seg[g][6 + t] = e[g][!f][t];
+        }
+    }
+    const int second = point_after(seg[0], seg[1]) ||
+                       (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 && point_after(seg[0] + 3, seg[1] + 3));
+    TTD_EXACT_PAIR(seg[second], seg[!second], &r);
+    if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
+        return 0;
+    out->distance = r.distance;
+    feat[0] = (uint8_t)(1u << q->k | 1u << (q->k + 1) % 3);
+    feat[1] = (uint8_t)(1u << q->l | 1u << (q->l + 1) % 3);
+    for (int t = 0; t < 3; ++t) {
+        const real on_first = r.p[t], on_second = r.distance == 0 ? r.p[t] : r.q[t];
+        out->p[t] = second ? on_second : on_first; /* body i's edge is seg[0] */
+        out->q[t] = second ? on_first : on_second;
+    }
+    return 1;
+}
+
+/* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
+ * inside the other body left out: they have their negative distances). reach: NULL, or those
+ * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
+ * than each contact that asks for it, so these are all the corners within that reach, each
+ * asked for the same smallest triangles and kept at the same distance). 0 out of memory. */
+static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin,
+                        const double *reach, manifold_work *w)
+{
+    w->key_n = 0;
+    if (n == 0)
+        return 1;
+    double rel[9]; /* R_i^T R_j */
+    const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
+    for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q)
+            rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
+    for (size_t k = 0; k < n; ++k)
+        if ((reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) && !contact_corners(s, &c[k], margin, rel, w))
+            return 0;
+    if (w->key_n == 0)
+        return 1;
+    /* each question once, for its smallest triangles; each vertex kept once, at its smallest
+     * distance (ties: the smaller triangle of the other body) */
+    qsort(w->key, w->key_n, sizeof *w->key, corner_key_cmp);
+    int have = 0; /* a vertex corner waiting in `best` */
+    ttd_scene_contact best = c[0];
+    uint8_t best_f[2] = {0, 0};
+    const corner_key *best_q = NULL;
+    for (size_t k = 0; k < w->key_n; ++k) {
+        const corner_key *q = &w->key[k];
+        if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
+            continue; /* asked already */
+        if (q->kind < 2 && w->solid && w->inner[q->kind][q->a] == 2)
+            continue; /* a solid's vertex inside the other */
+        if (have && (q->kind != best_q->kind || q->a != best_q->a)) {
+            if (!all_push(w, &best, -1, best_f[0], best_f[1]))
+                return 0;
+            have = 0;
+        }
+        ttd_scene_contact got;
+        uint8_t f[2];
+        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got, f))
+            continue;
+        if (q->kind == 2) {
+            if (!all_push(w, &got, -1, f[0], f[1]))
+                return 0;
+        } else if (!have || got.distance < best.distance) { /* keys come in the order of the other triangle */
+            best = got;
+            best_f[0] = f[0];
+            best_f[1] = f[1];
+            best_q = q;
+            have = 1;
+        }
+    }
+    return !have || all_push(w, &best, -1, best_f[0], best_f[1]);
+}
