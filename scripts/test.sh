@@ -14,6 +14,9 @@ jobs=$(nproc 2>/dev/null || echo 2)
 missing=()
 command -v pkg-config > /dev/null 2>&1 || missing+=(pkg-config)
 [ -f /usr/include/bullet/btBulletDynamicsCommon.h ] || missing+=(libbullet-dev)
+# Optional: GMP (libgmp-dev) for the continuous-collision tests' exact rational reference
+# (tests/ccd_ref/); without it test_ccd runs its other checks and says what it skipped.
+ls /usr/include/gmp.h /usr/include/*/gmp.h > /dev/null 2>&1 || missing+=(libgmp-dev)
 scripts/install-optional.sh test.sh "${missing[@]}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"

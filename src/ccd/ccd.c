@@ -412,6 +412,54 @@ static void pass_direction(const double x0[12], const double x1[12], int ia, int
         memcpy(n, w0, sizeof w0);
 }
 
+/* ---- delta = 0: the four points never coplanar on the interval ----------------------------------
+ * A contact (distance 0) makes the four points coplanar: the vertex lies in the face's plane, or
+ * the two edges meet. Their coplanarity is f(t) = det(u, v, w) for three difference vectors, each
+ * linear in t; on [ta, tb] (s in [0, 1]) f is a cubic whose Bernstein coefficients are the
+ * trilinear form's values at the ends, averaged (its blossom). When all four have one strict sign,
+ * f has no root there and the interval holds no contact. Computed from the end positions, with
+ * the error bound of docs/ccd.md, section 3. */
+static double det3(const double u[3], const double v[3], const double w[3])
+{
+    double c[3];
+    cross3(c, u, v);
+    return dot3(c, w);
+}
+
+static int never_coplanar(int na, double xa[4][3], double xb[4][3], double S)
+{
+    /* The difference vectors at both ends: VF (b - a, c - a, p - a), EE (a1 - a0, b0 - a0, b1 - a0). */
+    static const int pick[2][4] = {{1, 2, 3, 0}, {0, 1, 2, 3}};
+    const int *k = pick[na - 1];
+    double w[2][3][3], V = 0;
+    for (int e = 0; e < 2; ++e) {
+        double(*x)[3] = e ? xb : xa;
+        for (int j = 0; j < 3; ++j) {
+            sub3(w[e][j], x[k[j + 1]], x[k[0]]);
+            V = fmax(V, dot3(w[e][j], w[e][j]));
+        }
+    }
+    /* Each component within 12uS of the exact difference (two positions within 5uS, one
+     * subtraction); V bounds every vector's exact length. */
+    const double ec = 12 * U_ROUND * S, en = 1.7321 * ec;
+    V = sqrt(V) * (1 + 4 * U_ROUND) + en;
+    if (!(V > 0x1p-300 && V < 0x1p300))
+        return 0;
+    const double err = (3 * en * V * V + 64 * U_ROUND * V * V * V) * (1 + 0x1p-40) + 0x1p-1000;
+    double B[4];
+    B[0] = det3(w[0][0], w[0][1], w[0][2]);
+    B[3] = det3(w[1][0], w[1][1], w[1][2]);
+    B[1] = (det3(w[1][0], w[0][1], w[0][2]) + det3(w[0][0], w[1][1], w[0][2]) + det3(w[0][0], w[0][1], w[1][2])) / 3;
+    B[2] = (det3(w[1][0], w[1][1], w[0][2]) + det3(w[1][0], w[0][1], w[1][2]) + det3(w[0][0], w[1][1], w[1][2])) / 3;
+    int pos = 1, neg = 1;
+    for (int i = 0; i < 4; ++i) {
+        const double e = err + 0x1p-51 * fabs(B[i]);
+        pos &= B[i] > e;
+        neg &= B[i] < -e;
+    }
+    return pos || neg;
+}
+
 void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
                    ttd_ccd_result *out)
 {
@@ -468,6 +516,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
         positions(&s, tm, xm);
+        if (delta == 0 && never_coplanar(s.na, xa, xb, S))
+            continue;
         double n1[3], n2[3], n3[3];
         int vv[2];
         const double d = directions(s.na, xm, n1, n2, vv);
