@@ -113,7 +113,7 @@ setup(
     zip_safe=False,
     options={"build": {"build_base": os.environ.get("TTD_PYTHON_BUILD_BASE", "build")}},
     ext_modules=[
-        extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c"], numpy_api=True),
+        extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c", "ttd_ccd.c"], numpy_api=True),
         # The benchmark's C-side timer (bench/python_overhead.py); not part of the API.
         extension("ttd._ctiming", ["ttd_ctiming.c"], numpy_api=False),
     ],
