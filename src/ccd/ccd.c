@@ -57,6 +57,7 @@ typedef struct ccd_state {
     double e_gap;      /* bound on the rounding error of a computed g_n, |n|_inf = 1, without the |g| term */
     const double *in0, *in1; /* the inputs, for the exact test */
     double ta, tb;     /* the interval being tested */
+    double cand_n[3], cand_g; /* the exact test's direction for this interval, its rounded gap */
 } ccd_state;
 
 /* Positions at time t: fl(x0 + fl(t fl(x1 - x0))); within 5 u S of the exact point for t in
@@ -375,7 +376,7 @@ static int exact_separated(const double x0[12], const double x1[12], int na, dou
 
 /* Whether dist > delta on all of the interval whose end positions are xa, xb, along n (any
  * finite nonzero vector). thr = delta times an upper bound of |n|_2 once n is scaled. */
-static int separated_along(const ccd_state *s, double xa[4][3], double xb[4][3],
+static int separated_along(ccd_state *s, double xa[4][3], double xb[4][3],
                            const double n_in[3], double delta)
 {
     const double m = fmax(fabs(n_in[0]), fmax(fabs(n_in[1]), fabs(n_in[2])));
@@ -389,9 +390,13 @@ static int separated_along(const ccd_state *s, double xa[4][3], double xb[4][3],
     const double ea = s->e_gap + 0x1p-52 * fabs(ga), eb = s->e_gap + 0x1p-52 * fabs(gb);
     if (ga - ea > thr && gb - eb > thr)
         return 1;
-    /* Within the rounding bound of separation at delta = 0: decide exactly. */
-    if (delta == 0 && ga + ea > 0 && gb + eb > 0)
-        return exact_separated(s->in0, s->in1, s->na, s->ta, s->tb, n);
+    /* Within the rounding bound of separation at delta = 0: a candidate for the exact test, which
+     * runs once an interval, on the direction whose rounded gap is largest. */
+    const double g = fmin(ga, gb);
+    if (delta == 0 && ga + ea > 0 && gb + eb > 0 && g > s->cand_g) {
+        s->cand_g = g;
+        memcpy(s->cand_n, n, sizeof n);
+    }
     return 0;
 }
 
@@ -520,6 +525,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             continue;
         double n1[3], n2[3], n3[3];
         int vv[2];
+        s.cand_g = -HUGE_VAL;
         const double d = directions(s.na, xm, n1, n2, vv);
         if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
             continue;
@@ -531,6 +537,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         /* The closest direction at an end serves where the middle's cannot (a crossing). */
         directions(s.na, xa, n1, n2, vv);
         if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
+            continue;
+        if (s.cand_g > -HUGE_VAL && exact_separated(x0, x1, s.na, ta, tb, s.cand_n))
             continue;
         if (tb - ta <= p->t_tol || !(tm > ta && tm < tb) || top + 2 > STACK) {
             out->hit = 1;
