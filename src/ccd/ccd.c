@@ -340,6 +340,19 @@ static int exact_side(const double x0[12], const double x1[12], int ia, int ib, 
     }
     if (x.bad || (t != 0 && fabs(t) < 0x1p-900))
         return 2;
+    /* First the compensated sum (Ogita, Rump and Oishi's Sum2): within u|sum| + gamma_{n-1}^2
+     * sum|t_i| of the exact sum, which settles the sign unless the sum is within about 2^-94 of
+     * the terms' size; the expansion only then. */
+    double sum = 0, comp = 0, mag = 0;
+    for (int i = 0; i < x.n; ++i) {
+        double e;
+        two_sum(sum, x.t[i], &sum, &e);
+        comp += e;
+        mag += fabs(x.t[i]);
+    }
+    const double res = sum + comp, g = 64 * U_ROUND;
+    if (fabs(res) > 4 * U_ROUND * fabs(res) + 4 * g * g * mag + 0x1p-1070)
+        return res > 0 ? 1 : -1;
     return xt_sign(&x);
 }
 
