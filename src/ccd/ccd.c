@@ -261,7 +261,7 @@ static double directions(int na, double x[4][3], double n1[3], double n2[3], int
 /* The computed g_n at positions x, n with |n|_inf = 1. */
 static double gap_along(int na, double x[4][3], const double n[3])
 {
-    double amin = INFINITY, bmax = -INFINITY;
+    double amin = HUGE_VAL, bmax = -HUGE_VAL;
     for (int i = 0; i < 4; ++i) {
         const double v = dot3(n, x[i]);
         if (i < na)
@@ -500,8 +500,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
 
     out->hit = 0;
     out->flags = 0;
-    out->toi = INFINITY;
-    out->gap = INFINITY;
+    out->toi = HUGE_VAL;
+    out->gap = HUGE_VAL;
     out->evals = 0;
 
     /* The stack of intervals still open, the earliest on top; each keeps its end positions. */

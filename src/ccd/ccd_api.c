@@ -44,7 +44,7 @@ static int load(const ccd_batch *b, const void *arr, size_t q, int np, double x[
 static void triangles_one(double a0[3][3], double b0[3][3], double a1[3][3], double b1[3][3], const ttd_ccd_params *base, ttd_ccd_result *out)
 {
     ttd_ccd_params p = *base;
-    ttd_ccd_result best = {INFINITY, INFINITY, 0, 0, 0, 0};
+    ttd_ccd_result best = {HUGE_VAL, HUGE_VAL, 0, 0, 0, 0};
     uint32_t evals = 0;
     for (int sub = 0; sub < 15; ++sub) {
         double x0[12], x1[12];

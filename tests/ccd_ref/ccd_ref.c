@@ -285,6 +285,16 @@ static int isolate(const poly *p, root *out, poly *sq_out)
         if (c == 1) {
             mpq_init(out[n].lo);
             mpq_init(out[n].hi);
+            /* lo may be the previous interval's root (it belongs to (.., lo]): move lo off it,
+             * keeping the one root in (lo, hi], so that sq's sign at lo tells the side. */
+            while (p_sign_at(&sq, hi) != 0 && p_sign_at(&sq, lo) == 0) {
+                mpq_add(mid, lo, hi);
+                mpq_div_2exp(mid, mid, 1);
+                if (sturm_count(&st, mid, hi) == 1)
+                    mpq_set(lo, mid);
+                else
+                    mpq_set(hi, mid);
+            }
             if (p_sign_at(&sq, hi) == 0) {
                 mpq_set(out[n].lo, hi);
                 out[n].exact = 1;
