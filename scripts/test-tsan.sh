@@ -21,7 +21,7 @@ if ! { cc -fsanitize=thread -pthread "$probe_dir/p.c" -o "$probe_dir/p" && "$pro
 fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
-cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform
+cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform test_ccd
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
@@ -32,3 +32,5 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
 "$build/tests/test_mesh_deform" refit_bits
+# continuous collision's batches on 1, 2 and all threads
+"$build/tests/test_ccd" threads_and_precision
