@@ -821,7 +821,7 @@ TTD_API const char *ttd_version_string(void);
  * negative, NaN or infinite: TTD_ERR_BAD_OPTIONS. */
 
 /// Time intervals this short that cannot be certified apart are reported as a hit.
-#define TTD_CCD_DEFAULT_T_TOL 0x1p-40
+#define TTD_CCD_DEFAULT_T_TOL 0x1p-52
 /// Intervals one query examines before it answers hit (at the earliest interval left) anyway.
 #define TTD_CCD_DEFAULT_MAX_EVALS 1000
 /// ttd_ccd_result.flags: the query used up TTD_CCD_DEFAULT_MAX_EVALS; its hit is conservative.
