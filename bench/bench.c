@@ -27,6 +27,7 @@
 #include "mesh_bench.h"
 #include "deform_bench.h"
 #include "points_bench.h"
+#include "ccd_bench.h"
 #include "scene_bench.h"
 #include "mesh_workload.h"
 #include "output.h"
@@ -812,6 +813,8 @@ int ttd_bench_main(int argc, char **argv)
 {
     if (argc > 1 && strcmp(argv[1], "points") == 0) /* the point queries' section (points_bench.c) */
         return bench_points_main(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "ccd") == 0) /* continuous collision (ccd_bench.c) */
+        return bench_ccd_main(argc - 1, argv + 1);
     bench_ctx *cx = calloc(1, sizeof *cx);
     bench_machine machine;
     int want_json = 0, want_csv = 0, no_fcl = 0, probes = 1, rc = 0;

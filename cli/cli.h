@@ -31,6 +31,16 @@ int ttd_cli_mesh(int argc, char **argv);
 int ttd_cli_scene(int argc, char **argv);
 /// `ttd points closest|signed|winding|grid` (points.c).
 int ttd_cli_points(int argc, char **argv);
+/// `ttd ccd FILE` (ccd.c): continuous collision of a CCD-benchmark CSV file.
+int ttd_cli_ccd(int argc, char **argv);
+/// Reads a CCD-benchmark CSV file (ccd.c): kind_hint 1 (vertex-face), 2 (edge-edge) or 0 (from
+/// the path); *x0, *x1: 12 numbers a query (4 points), *truth 0/1 a query, *inexact the rows
+/// whose rationals were rounded; malloc'd (the caller frees). 0, or -1 after a message.
+int ttd_cli_ccd_read(const char *path, int kind_hint, int *kind, size_t *nq, double **x0, double **x1,
+                     int **truth, size_t *inexact);
+/// Runs n queries of that layout through ttd_ccd_vertex_face_d / ttd_ccd_edge_edge_d; the status.
+int ttd_cli_ccd_run(const ttd_options *o, int kind, size_t n, const double *x0, const double *x1,
+                    double delta, ttd_ccd_result *out);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

@@ -42,6 +42,8 @@ static const char ttd_usage[] =
     "  scene manifold SCENE    contact points, normals and depths per body pair, at most\n"
     "                          --max-points K each; each query once, or per step of\n"
     "                          --motion FILE (ttd scene --help for the formats and options)\n"
+    "  ccd FILE                continuous collision of moving vertex-face or edge-edge queries in a\n"
+    "                          CSV file of the CCD benchmark's format (ttd ccd --help)\n"
     "  info                    version, instruction sets built and supported, the one chosen\n"
     "                          (ttd info --help)\n"
     "  bench [options]         the benchmark (ttd bench --help), when built in\n"
@@ -126,6 +128,8 @@ int main(int argc, char **argv)
         return ttd_cli_points(argc - 1, argv + 1);
     if (strcmp(cmd, "scene") == 0)
         return ttd_cli_scene(argc - 1, argv + 1);
+    if (strcmp(cmd, "ccd") == 0)
+        return ttd_cli_ccd(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {
         if (ttd_bench_main == NULL) {
             ttd_cli_error("bench: not built into this program");

@@ -107,7 +107,8 @@ def extension(name: str, sources: list, numpy_api: bool) -> Extension:
 
 
 EXTENSIONS = [
-    extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c"],
+    extension("ttd._ttd", ["ttd_module.c", "ttd_py_common.c", "ttd_pairs.c", "ttd_mesh.c", "ttd_scene.c", "ttd_points.c",
+                          "ttd_ccd.c"],
               numpy_api=True),
 ]
 # The benchmark's C-side timer (bench/python_overhead.py, and the tests that check it): not part

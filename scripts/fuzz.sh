@@ -52,12 +52,19 @@ CC="$CC_FUZZ" cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_FUZ
     -DTTD_BUILD_CLI=OFF -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link" > "$build/cmake.log" 2>&1 ||
     { cat "$build/cmake.log"; exit 1; }
 cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile fuzz_mesh fuzz_points
+# fuzz_ccd (continuous collision against the exact rational reference) needs GMP (libgmp-dev)
+targets="parse_line batch meshfile mesh points"
+if cmake --build "$build" -j "$jobs" --target fuzz_ccd > "$build/fuzz_ccd_build.log" 2>&1; then
+    targets="$targets ccd"
+else
+    echo "fuzz.sh: fuzz_ccd not built (GMP, libgmp-dev, not found?): skipped"
+fi
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 mkdir -p "$build/artifacts"
 status=0
-for target in parse_line batch meshfile mesh points; do
+for target in $targets; do
     work="$build/corpus/$target"
     rm -rf "$work"
     mkdir -p "$work"

@@ -18,6 +18,9 @@ command -v pkg-config > /dev/null 2>&1 || missing+=(pkg-config)
 # compares the OFF and glTF readers' triangle counts with, and the writer of glTF files it reads;
 # without it those checks are skipped, and the test says so.
 [ -f /usr/include/assimp/cimport.h ] || missing+=(libassimp-dev)
+# Optional: GMP (libgmp-dev) for the continuous-collision tests' exact rational reference
+# (tests/ccd_ref/); without it test_ccd runs its other checks and says what it skipped.
+ls /usr/include/gmp.h /usr/include/*/gmp.h > /dev/null 2>&1 || missing+=(libgmp-dev)
 scripts/install-optional.sh test.sh "${missing[@]}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"

@@ -918,6 +918,71 @@ TTD_API int ttd_method_lanes(ttd_method method, ttd_isa isa, int bytes_per_real)
 /// "0.1.0".
 TTD_API const char *ttd_version_string(void);
 
+/* ==== Continuous collision detection (issue 33; src/ccd/, docs/ccd.md) ====================
+ * Moving primitives under linear motion: each vertex goes from its position at t = 0 to its
+ * position at t = 1 along a straight line, all at once. A query asks whether the Euclidean
+ * distance between the two primitives comes to min_separation (delta >= 0) or less for some t in
+ * [0, 1], and the earliest such time. No contact is ever missed (the separation of every time
+ * before toi is certified with rounding error bounds); a hit is reported once a time interval of
+ * TTD_CCD_DEFAULT_T_TOL cannot be separated, so toi is never after the true first time and a
+ * reported hit comes within a tolerance of contact (docs/ccd.md states it). Coordinates: any
+ * finite doubles (floats are widened exactly); a query with a NaN or infinite coordinate is
+ * flagged TTD_CCD_NONFINITE with toi NaN and the call returns TTD_ERR_NONFINITE_INPUT after
+ * computing the others. opt: NULL or from ttd_default_options() (threads apply; results do not
+ * depend on them); n = 0: TTD_ERR_EMPTY; a NULL array: TTD_ERR_NULL_POINTER; min_separation
+ * negative, NaN or infinite: TTD_ERR_BAD_OPTIONS. */
+
+/// Time intervals this short that cannot be certified apart are reported as a hit.
+#define TTD_CCD_DEFAULT_T_TOL 0x1p-52
+/// Intervals one query examines before it answers hit (at the earliest interval left) anyway.
+#define TTD_CCD_DEFAULT_MAX_EVALS 1000
+/// ttd_ccd_result.flags: the query used up TTD_CCD_DEFAULT_MAX_EVALS; its hit is conservative.
+#define TTD_CCD_BUDGET 1u
+/// ttd_ccd_result.flags: a coordinate was NaN or infinite; nothing computed, toi NaN.
+#define TTD_CCD_NONFINITE 2u
+
+/// One continuous query's answer.
+typedef struct ttd_ccd_result {
+    /// Conservative time of impact in [0, 1]: the start of the first time interval that could not
+    /// be separated; INFINITY when there is no hit, NaN for a non-finite query.
+    double toi;
+    /// The distance computed (in double, approximate) at the middle of that interval; INFINITY
+    /// without a hit. A hit whose gap exceeds min_separation is a near contact within the tolerance.
+    double gap;
+    uint32_t hit;   ///< 1 when the distance may come to min_separation or less in [0, 1]
+    uint32_t flags; ///< TTD_CCD_BUDGET, TTD_CCD_NONFINITE
+    /// ttd_ccd_triangles only: the sub-query that gave toi: 0..2 vertex i of a against b, 3..5
+    /// vertex i of b against a, 6 + 3 i + j edge i of a against edge j of b (edge i runs from
+    /// vertex i to vertex (i + 1) % 3). 0 for the other entries.
+    uint32_t sub;
+    uint32_t evals; ///< time intervals examined (all sub-queries together for triangles)
+} ttd_ccd_result;
+
+/// Vertex-face: n queries; v_t0, v_t1: 3n (the vertex at t = 0 and t = 1); f_t0, f_t1: 9n (the
+/// face's three vertices).
+TTD_API ttd_status ttd_ccd_vertex_face_d(const ttd_options *opt, size_t n, const double *v_t0,
+                                         const double *f_t0, const double *v_t1, const double *f_t1,
+                                         double min_separation, ttd_ccd_result *out);
+TTD_API ttd_status ttd_ccd_vertex_face_f(const ttd_options *opt, size_t n, const float *v_t0,
+                                         const float *f_t0, const float *v_t1, const float *f_t1,
+                                         double min_separation, ttd_ccd_result *out);
+/// Edge-edge: n queries; ea_t0, eb_t0, ea_t1, eb_t1: 6n each (an edge's two endpoints).
+TTD_API ttd_status ttd_ccd_edge_edge_d(const ttd_options *opt, size_t n, const double *ea_t0,
+                                       const double *eb_t0, const double *ea_t1, const double *eb_t1,
+                                       double min_separation, ttd_ccd_result *out);
+TTD_API ttd_status ttd_ccd_edge_edge_f(const ttd_options *opt, size_t n, const float *ea_t0,
+                                       const float *eb_t0, const float *ea_t1, const float *eb_t1,
+                                       double min_separation, ttd_ccd_result *out);
+/// Triangle-triangle: n queries; ta_t0, tb_t0, ta_t1, tb_t1: 9n each. The 6 vertex-face and 9
+/// edge-edge sub-queries; toi the earliest, sub the one that gave it (the lowest index on a tie).
+TTD_API ttd_status ttd_ccd_triangles_d(const ttd_options *opt, size_t n, const double *ta_t0,
+                                       const double *tb_t0, const double *ta_t1, const double *tb_t1,
+                                       double min_separation, ttd_ccd_result *out);
+TTD_API ttd_status ttd_ccd_triangles_f(const ttd_options *opt, size_t n, const float *ta_t0,
+                                       const float *tb_t0, const float *ta_t1, const float *tb_t1,
+                                       double min_separation, ttd_ccd_result *out);
+/* ==== end of continuous collision detection ==================================================== */
+
 /** @} */
 
 #ifdef __cplusplus

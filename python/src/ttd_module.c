@@ -142,7 +142,7 @@ PyMODINIT_FUNC PyInit__ttd(void)
     if (m == NULL)
         return NULL;
     if (PyModule_AddFunctions(m, ttd_py_pairs_methods) < 0 || PyModule_AddFunctions(m, ttd_py_mesh_methods) < 0 ||
-        PyModule_AddFunctions(m, ttd_py_points_methods) < 0)
+        PyModule_AddFunctions(m, ttd_py_points_methods) < 0 || PyModule_AddFunctions(m, ttd_py_ccd_methods) < 0)
         goto fail;
     ttd_py_IsaUnavailableError = ttd_py_new_class(
         m, "ttd.IsaUnavailableError",

@@ -151,5 +151,6 @@ extern PyMethodDef ttd_py_mesh_methods[];
 int ttd_py_scene_init(PyObject *module); /* ttd.Scene and its result types (ttd_scene.c) */
 int ttd_py_points_init(PyObject *module); /* the point queries and their result types (ttd_points.c) */
 extern PyMethodDef ttd_py_points_methods[];
+extern PyMethodDef ttd_py_ccd_methods[]; /* continuous collision's private _ccd (ttd_ccd.c; ttd/_ccd.py) */
 
 #endif /* TTD_PY_H */

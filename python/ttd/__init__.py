@@ -102,6 +102,7 @@ try:
     )
     from . import _ttd
     from ._poses import load_mesh, mesh_closest, mesh_collide, mesh_contacts, mesh_distance, orthonormalize, pose
+    from ._ccd import CCDResult, ccd_edge_edge, ccd_triangles, ccd_vertex_face
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -162,6 +163,10 @@ class MeshFlag(enum.IntFlag):
 del enum  # used above only: not part of the package's namespace
 
 __all__ = [
+    "CCDResult",
+    "ccd_edge_edge",
+    "ccd_triangles",
+    "ccd_vertex_face",
     "CLOSEST_DTYPE_FLOAT32",
     "CLOSEST_DTYPE_FLOAT64",
     "COLLISION_DTYPE",

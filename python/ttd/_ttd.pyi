@@ -474,3 +474,8 @@ def sdf_grid(
     isa: Union[IsaName, str] = "auto",
     threads: int = 0,
 ) -> npt.NDArray[np.floating]: ...
+
+# Continuous collision: the private entry behind ttd.ccd (ttd/_ccd.py); arrays float64, C-contiguous.
+def _ccd(
+    kind: int, a0: Any, b0: Any, a1: Any, b1: Any, min_separation: float, threads: int, /
+) -> Tuple[Any, Any, Any, Any, Any, Any]: ...

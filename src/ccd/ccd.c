@@ -1,0 +1,571 @@
+/* SPDX-License-Identifier: MIT */
+/* The scalar reference of continuous collision (ccd/ccd.h; the argument in docs/ccd.md).
+ *
+ * Both primitives are convex hulls of moving points, A(t) and B(t). For any direction n, the
+ * separation of their projections,
+ *     g_n(t) = min over a in A of n.a(t) - max over b in B of n.b(t),
+ * bounds the distance from below: dist(t) >= g_n(t) / |n|. Each n.a(t) is linear in t, so the min
+ * is concave, the max convex, and g_n concave: its minimum over a time interval [ta, tb] is
+ * min(g_n(ta), g_n(tb)). So two evaluations at the ends, with their rounding error bounded,
+ * certify dist > delta over the whole interval whenever min(g_n(ta), g_n(tb)) > delta |n|. The
+ * direction is the one between the closest points at the interval's middle (computed in plain
+ * double: any n gives a valid bound, a good one a tight bound; at the middle it equals the
+ * distance, and near a minimum of the distance it loses only O(h^2)).
+ *
+ * The search bisects [0, t_max] depth first, earliest half first: an interval certified apart is
+ * dropped, one shorter than t_tol that is not is the hit, and its start is toi. Every time before
+ * toi was certified apart, so toi is never later than the true first time of contact. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "ccd/ccd.h"
+
+ttd_ccd_params ttd_ccd_default_params(void)
+{
+    ttd_ccd_params p = {0.0, 1.0, TTD_CCD_DEFAULT_T_TOL, TTD_CCD_DEFAULT_MAX_EVALS};
+    return p;
+}
+
+/* u: the unit roundoff of double. */
+#define U_ROUND 0x1p-53
+
+static inline double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void sub3(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+
+static inline void cross3(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The query's state: the motions, the positions at the ends of the current interval. */
+typedef struct ccd_state {
+    int na;            /* points [0, na) are A, [na, 4) are B */
+    double x0[4][3];   /* at t = 0 */
+    double dx[4][3];   /* fl(x1 - x0) */
+    double e_gap;      /* bound on the rounding error of a computed g_n, |n|_inf = 1, without the |g| term */
+    const double *in0, *in1; /* the inputs, for the exact test */
+    double ta, tb;     /* the interval being tested */
+    double cand_n[3], cand_g; /* the exact test's direction for this interval, its rounded gap */
+} ccd_state;
+
+/* Positions at time t: fl(x0 + fl(t fl(x1 - x0))); within 5 u S of the exact point for t in
+ * [0, 1], S the largest coordinate magnitude (docs/ccd.md, section 3). */
+static void positions(const ccd_state *s, double t, double x[4][3])
+{
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k)
+            x[i][k] = s->x0[i][k] + t * s->dx[i][k];
+}
+
+/* Closest points of a point p and a triangle abc (the Voronoi-region walk of Ericson's
+ * "Real-Time Collision Detection", 5.1.5); the weights are clamped so q stays in the triangle up
+ * to rounding even for a degenerate triangle. */
+enum { R_A, R_B, R_C, R_AB, R_AC, R_BC, R_FACE };
+
+static int closest_point_triangle(const double p[3], const double a[3], const double b[3],
+                                  const double c[3], double q[3])
+{
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    sub3(ab, b, a);
+    sub3(ac, c, a);
+    sub3(ap, p, a);
+    const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    if (d1 <= 0 && d2 <= 0) {
+        memcpy(q, a, sizeof(double) * 3);
+        return R_A;
+    }
+    sub3(bp, p, b);
+    const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        memcpy(q, b, sizeof(double) * 3);
+        return R_B;
+    }
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        v = v > 0 ? (v < 1 ? v : 1) : 0;
+        for (int k = 0; k < 3; ++k)
+            q[k] = a[k] + v * ab[k];
+        return R_AB;
+    }
+    sub3(cp, p, c);
+    const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        memcpy(q, c, sizeof(double) * 3);
+        return R_C;
+    }
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        w = w > 0 ? (w < 1 ? w : 1) : 0;
+        for (int k = 0; k < 3; ++k)
+            q[k] = a[k] + w * ac[k];
+        return R_AC;
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        w = w > 0 ? (w < 1 ? w : 1) : 0;
+        for (int k = 0; k < 3; ++k)
+            q[k] = b[k] + w * (c[k] - b[k]);
+        return R_BC;
+    }
+    const double sum = va + vb + vc;
+    double v = sum > 0 ? vb / sum : 0, w = sum > 0 ? vc / sum : 0;
+    v = v > 0 ? (v < 1 ? v : 1) : 0;
+    w = w > 0 ? (w < 1 - v ? w : 1 - v) : 0;
+    for (int k = 0; k < 3; ++k)
+        q[k] = a[k] + v * ab[k] + w * ac[k];
+    return R_FACE;
+}
+
+static inline double clamp01(double x)
+{
+    return x > 0 ? (x < 1 ? x : 1) : 0;
+}
+
+/* Closest points of segments p0p1 and q0q1 (Ericson, 5.1.9: the parameters clamped in turn;
+ * zero-length and parallel segments handled by the same clamping); *sp, *tp the parameters. */
+static void closest_segments(const double p0[3], const double p1[3], const double q0[3],
+                             const double q1[3], double cp[3], double cq[3], double *sp, double *tp)
+{
+    double d1[3], d2[3], r[3];
+    sub3(d1, p1, p0);
+    sub3(d2, q1, q0);
+    sub3(r, p0, q0);
+    const double a = dot3(d1, d1), e = dot3(d2, d2), f = dot3(d2, r);
+    double s, t;
+    if (a <= 0 && e <= 0) {
+        s = t = 0;
+    } else if (a <= 0) {
+        s = 0;
+        t = clamp01(f / e);
+    } else {
+        const double c = dot3(d1, r);
+        if (e <= 0) {
+            t = 0;
+            s = clamp01(-c / a);
+        } else {
+            const double b = dot3(d1, d2), denom = a * e - b * b;
+            s = denom > 0 ? clamp01((b * f - c * e) / denom) : 0;
+            t = (b * s + f) / e;
+            if (t < 0) {
+                t = 0;
+                s = clamp01(-c / a);
+            } else if (t > 1) {
+                t = 1;
+                s = clamp01((b - c) / a);
+            }
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        cp[k] = p0[k] + s * d1[k];
+        cq[k] = q0[k] + t * d2[k];
+    }
+    *sp = s;
+    *tp = t;
+}
+
+/* The part of p - u perpendicular to the line uv, times |v - u|^2: e x ((p - u) x e). Computed
+ * from differences of the points, not of nearly equal closest points, so its direction stays
+ * accurate when p is very near the line. */
+static void perp(double n[3], const double p[3], const double u[3], const double v[3])
+{
+    double e[3], w[3], c[3];
+    sub3(e, v, u);
+    sub3(w, p, u);
+    cross3(c, w, e);
+    cross3(n, e, c);
+}
+
+static inline void negate3(double n[3])
+{
+    n[0] = -n[0];
+    n[1] = -n[1];
+    n[2] = -n[2];
+}
+
+/* Two directions from B toward A at positions x: n1 the closest points' difference (returned: its
+ * length, the distance up to rounding) and n2 from the closest features (the face normal, an
+ * edge's perpendicular, the edges' cross product), accurate where n1's rounding is not small
+ * against the distance; n2 is zero where the features are two points, whose indices go to vv (else
+ * -1). Any direction gives a valid bound; these give tight ones. */
+static double directions(int na, double x[4][3], double n1[3], double n2[3], int vv[2])
+{
+    double ca[3], cb[3];
+    n2[0] = n2[1] = n2[2] = 0;
+    vv[0] = vv[1] = -1;
+    if (na == TTD_CCD_VF) {
+        memcpy(ca, x[0], sizeof ca);
+        const int r = closest_point_triangle(x[0], x[1], x[2], x[3], cb);
+        sub3(n1, ca, cb);
+        if (r == R_FACE) {
+            double ab[3], ac[3], ap[3];
+            sub3(ab, x[2], x[1]);
+            sub3(ac, x[3], x[1]);
+            sub3(ap, x[0], x[1]);
+            cross3(n2, ab, ac);
+            if (dot3(n2, ap) < 0)
+                negate3(n2);
+        } else if (r == R_AB) {
+            perp(n2, x[0], x[1], x[2]);
+        } else if (r == R_AC) {
+            perp(n2, x[0], x[1], x[3]);
+        } else if (r == R_BC) {
+            perp(n2, x[0], x[2], x[3]);
+        } else {
+            vv[0] = 0;
+            vv[1] = 1 + r; /* R_A, R_B, R_C are 0, 1, 2 */
+        }
+    } else {
+        double s, t;
+        closest_segments(x[0], x[1], x[2], x[3], ca, cb, &s, &t);
+        sub3(n1, ca, cb);
+        const int s_in = s > 0 && s < 1, t_in = t > 0 && t < 1;
+        if (s_in && t_in) {
+            double ea[3], eb[3], w[3];
+            sub3(ea, x[1], x[0]);
+            sub3(eb, x[3], x[2]);
+            sub3(w, x[0], x[2]);
+            cross3(n2, ea, eb);
+            /* Which side: a0 - b0 along the cross product (exact where the segments cross the
+             * common normal's plane; n1 is too short to tell). */
+            if (dot3(n2, w) < 0)
+                negate3(n2);
+        } else if (s_in) {
+            /* B's endpoint against A's segment: from B toward A is minus the perpendicular. */
+            perp(n2, t > 0 ? x[3] : x[2], x[0], x[1]);
+            negate3(n2);
+        } else if (t_in) {
+            perp(n2, s > 0 ? x[1] : x[0], x[2], x[3]);
+        } else {
+            vv[0] = s > 0 ? 1 : 0;
+            vv[1] = t > 0 ? 3 : 2;
+        }
+    }
+    return sqrt(dot3(n1, n1));
+}
+
+/* The computed g_n at positions x, n with |n|_inf = 1. */
+static double gap_along(int na, double x[4][3], const double n[3])
+{
+    double amin = HUGE_VAL, bmax = -HUGE_VAL;
+    for (int i = 0; i < 4; ++i) {
+        const double v = dot3(n, x[i]);
+        if (i < na)
+            amin = v < amin ? v : amin;
+        else
+            bmax = v > bmax ? v : bmax;
+    }
+    return amin - bmax;
+}
+
+/* ---- the exact test where the rounding bound cannot separate (delta = 0) ----------------------
+ * n.(a(t) - b(t)), for doubles t and n and the exact linear motions, is a sum of products of two
+ * or three doubles: each product is split into doubles that add up to it exactly (fma gives a
+ * product's rounding error), and the sign of their sum is taken exactly by Shewchuk's
+ * grow-expansion with zero elimination (the technique of src/points/ray.c). */
+
+static inline void two_sum(double a, double b, double *s, double *e)
+{
+    const double x = a + b, bv = x - a, av = x - bv;
+    *s = x;
+    *e = (a - av) + (b - bv);
+}
+
+typedef struct xterms {
+    double t[64];
+    int n, bad;
+} xterms;
+
+/* Appends a b exactly (bad when the error term may have lost bits below the normal range). */
+static inline void xt_prod(xterms *x, double a, double b)
+{
+    const double p = a * b;
+    if (a != 0 && b != 0 && !(fabs(p) >= 0x1p-960))
+        x->bad = 1;
+    x->t[x->n++] = p;
+    x->t[x->n++] = fma(a, b, -p);
+}
+
+static int xt_sign(const xterms *x)
+{
+    double h[64];
+    int m = 0;
+    for (int i = 0; i < x->n; ++i) {
+        double q = x->t[i];
+        int k = 0;
+        for (int j = 0; j < m; ++j) {
+            double sum, err;
+            two_sum(q, h[j], &sum, &err);
+            q = sum;
+            if (err != 0)
+                h[k++] = err;
+        }
+        if (q != 0)
+            h[k++] = q;
+        m = k;
+    }
+    return m == 0 ? 0 : (h[m - 1] > 0 ? 1 : -1);
+}
+
+/* The exact sign of n.(a(t) - b(t)) for points ia (of A) and ib (of B) of the query's inputs x0,
+ * x1; 2 when a product underflowed (the caller then does not rely on it). */
+static int exact_side(const double x0[12], const double x1[12], int ia, int ib, double t, const double n[3])
+{
+    xterms x = {.n = 0, .bad = 0};
+    for (int k = 0; k < 3; ++k) {
+        const double a0 = x0[3 * ia + k], a1 = x1[3 * ia + k], b0 = x0[3 * ib + k], b1 = x1[3 * ib + k];
+        /* n a0 - n b0 + t n (a1 - a0 - b1 + b0), with t n = th + tl exactly. */
+        const double th = t * n[k], tl = fma(t, n[k], -th);
+        xt_prod(&x, n[k], a0);
+        xt_prod(&x, -n[k], b0);
+        const double c[4] = {a1, -a0, -b1, b0};
+        for (int j = 0; j < 4; ++j) {
+            xt_prod(&x, th, c[j]);
+            xt_prod(&x, tl, c[j]);
+        }
+    }
+    if (x.bad || (t != 0 && fabs(t) < 0x1p-900))
+        return 2;
+    /* First the compensated sum (Ogita, Rump and Oishi's Sum2): within u|sum| + gamma_{n-1}^2
+     * sum|t_i| of the exact sum, which settles the sign unless the sum is within about 2^-94 of
+     * the terms' size; the expansion only then. */
+    double sum = 0, comp = 0, mag = 0;
+    for (int i = 0; i < x.n; ++i) {
+        double e;
+        two_sum(sum, x.t[i], &sum, &e);
+        comp += e;
+        mag += fabs(x.t[i]);
+    }
+    const double res = sum + comp, g = 64 * U_ROUND;
+    if (fabs(res) > 4 * U_ROUND * fabs(res) + 4 * g * g * mag + 0x1p-1070)
+        return res > 0 ? 1 : -1;
+    return xt_sign(&x);
+}
+
+/* Whether every point of A lies strictly on n's positive side of every point of B at both t,
+ * exactly: then A and B are disjoint over [ta, tb] (the argument at the top of this file). */
+static int exact_separated(const double x0[12], const double x1[12], int na, double ta, double tb,
+                           const double n[3])
+{
+    /* The pairs in the order of their rounded separation, the closest first: where the answer is
+     * no, the first test usually says so. */
+    double v[8];
+    int ord[8], m = 0;
+    for (int e = 0; e < 2; ++e)
+        for (int ia = 0; ia < na; ++ia)
+            for (int ib = na; ib < 4; ++ib) {
+                const double t = e ? tb : ta;
+                double d = 0;
+                for (int k = 0; k < 3; ++k)
+                    d += n[k] * ((x0[3 * ia + k] + t * (x1[3 * ia + k] - x0[3 * ia + k])) -
+                                 (x0[3 * ib + k] + t * (x1[3 * ib + k] - x0[3 * ib + k])));
+                int j = m++;
+                for (; j > 0 && v[j - 1] > d; --j) {
+                    v[j] = v[j - 1];
+                    ord[j] = ord[j - 1];
+                }
+                v[j] = d;
+                ord[j] = (e << 4) | (ia << 2) | ib;
+            }
+    for (int j = 0; j < m; ++j)
+        if (exact_side(x0, x1, (ord[j] >> 2) & 3, ord[j] & 3, (ord[j] >> 4) ? tb : ta, n) != 1)
+            return 0;
+    return 1;
+}
+
+/* Whether dist > delta on all of the interval whose end positions are xa, xb, along n (any
+ * finite nonzero vector). thr = delta times an upper bound of |n|_2 once n is scaled. */
+static int separated_along(ccd_state *s, double xa[4][3], double xb[4][3],
+                           const double n_in[3], double delta)
+{
+    const double m = fmax(fabs(n_in[0]), fmax(fabs(n_in[1]), fabs(n_in[2])));
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    /* Scaled so that its largest component is exactly +-1: |n|_2 in [1, sqrt 3]. */
+    const double n[3] = {n_in[0] / m, n_in[1] / m, n_in[2] / m};
+    const double thr = delta > 0 ? delta * sqrt(dot3(n, n)) * (1 + 0x1p-44) : 0.0;
+    const double ga = gap_along(s->na, xa, n), gb = gap_along(s->na, xb, n);
+    /* Computed g within e_gap + 2u|g| of the exact g_n of the exact positions. */
+    const double ea = s->e_gap + 0x1p-52 * fabs(ga), eb = s->e_gap + 0x1p-52 * fabs(gb);
+    if (ga - ea > thr && gb - eb > thr)
+        return 1;
+    /* Within the rounding bound of separation at delta = 0: a candidate for the exact test, which
+     * runs once an interval, on the direction whose rounded gap is largest. */
+    const double g = fmin(ga, gb);
+    if (delta == 0 && ga + ea > 0 && gb + eb > 0 && g > s->cand_g) {
+        s->cand_g = g;
+        memcpy(s->cand_n, n, sizeof n);
+    }
+    return 0;
+}
+
+/* For two points ia of A and ib of B: w(t) = a(t) - b(t) = w0 + t dw moves on a line, and
+ * dw x (w0 x dw) is the direction of that line's nearest approach to 0, from the inputs (not from
+ * rounded positions): the one direction that separates a point passing another within the
+ * rounding of its positions (a vertex sliding past a vertex). */
+static void pass_direction(const double x0[12], const double x1[12], int ia, int ib, double n[3])
+{
+    double w0[3], dw[3], c[3];
+    for (int k = 0; k < 3; ++k) {
+        w0[k] = x0[3 * ia + k] - x0[3 * ib + k];
+        dw[k] = (x1[3 * ia + k] - x0[3 * ia + k]) - (x1[3 * ib + k] - x0[3 * ib + k]);
+    }
+    cross3(c, w0, dw);
+    cross3(n, dw, c);
+    if (!(dot3(n, n) > 0))
+        memcpy(n, w0, sizeof w0);
+}
+
+/* ---- delta = 0: the four points never coplanar on the interval ----------------------------------
+ * A contact (distance 0) makes the four points coplanar: the vertex lies in the face's plane, or
+ * the two edges meet. Their coplanarity is f(t) = det(u, v, w) for three difference vectors, each
+ * linear in t; on [ta, tb] (s in [0, 1]) f is a cubic whose Bernstein coefficients are the
+ * trilinear form's values at the ends, averaged (its blossom). When all four have one strict sign,
+ * f has no root there and the interval holds no contact. Computed from the end positions, with
+ * the error bound of docs/ccd.md, section 3. */
+static double det3(const double u[3], const double v[3], const double w[3])
+{
+    double c[3];
+    cross3(c, u, v);
+    return dot3(c, w);
+}
+
+static int never_coplanar(int na, double xa[4][3], double xb[4][3], double S)
+{
+    /* The difference vectors at both ends: VF (b - a, c - a, p - a), EE (a1 - a0, b0 - a0, b1 - a0). */
+    static const int pick[2][4] = {{1, 2, 3, 0}, {0, 1, 2, 3}};
+    const int *k = pick[na - 1];
+    double w[2][3][3], V = 0;
+    for (int e = 0; e < 2; ++e) {
+        double(*x)[3] = e ? xb : xa;
+        for (int j = 0; j < 3; ++j) {
+            sub3(w[e][j], x[k[j + 1]], x[k[0]]);
+            V = fmax(V, dot3(w[e][j], w[e][j]));
+        }
+    }
+    /* Each component within 12uS of the exact difference (two positions within 5uS, one
+     * subtraction); V bounds every vector's exact length. */
+    const double ec = 12 * U_ROUND * S, en = 1.7321 * ec;
+    V = sqrt(V) * (1 + 4 * U_ROUND) + en;
+    if (!(V > 0x1p-300 && V < 0x1p300))
+        return 0;
+    const double err = (3 * en * V * V + 64 * U_ROUND * V * V * V) * (1 + 0x1p-40) + 0x1p-1000;
+    double B[4];
+    B[0] = det3(w[0][0], w[0][1], w[0][2]);
+    B[3] = det3(w[1][0], w[1][1], w[1][2]);
+    B[1] = (det3(w[1][0], w[0][1], w[0][2]) + det3(w[0][0], w[1][1], w[0][2]) + det3(w[0][0], w[0][1], w[1][2])) / 3;
+    B[2] = (det3(w[1][0], w[1][1], w[0][2]) + det3(w[1][0], w[0][1], w[1][2]) + det3(w[0][0], w[1][1], w[1][2])) / 3;
+    int pos = 1, neg = 1;
+    for (int i = 0; i < 4; ++i) {
+        const double e = err + 0x1p-51 * fabs(B[i]);
+        pos &= B[i] > e;
+        neg &= B[i] < -e;
+    }
+    return pos || neg;
+}
+
+void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
+                   ttd_ccd_result *out)
+{
+    ccd_state s;
+    s.na = kind;
+    s.in0 = x0;
+    s.in1 = x1;
+    double S = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) {
+            s.x0[i][k] = x0[3 * i + k];
+            s.dx[i][k] = x1[3 * i + k] - x0[3 * i + k];
+            S = fmax(S, fmax(fabs(x0[3 * i + k]), fabs(x1[3 * i + k])));
+        }
+    /* Positions within 5uS; a projection on n (|n_k| <= 1) adds 3.01u sum |n_k x_k| <= 9.1uS and
+     * carries 3 x 5uS of position error: 25uS each, 50uS for the difference of two, rounded up
+     * to 64uS; the absolute term covers products that underflow (docs/ccd.md, section 3). */
+    s.e_gap = 64 * U_ROUND * S + 0x1p-1000;
+    const double delta = p->delta;
+
+    out->hit = 0;
+    out->flags = 0;
+    out->toi = HUGE_VAL;
+    out->gap = HUGE_VAL;
+    out->evals = 0;
+
+    /* The stack of intervals still open, the earliest on top; each keeps its end positions. */
+    enum { STACK = 128 };
+    double st_ta[STACK], st_tb[STACK];
+    double xa[4][3], xb[4][3], xm[4][3];
+    int top = 0;
+    st_ta[0] = 0.0;
+    st_tb[0] = p->t_max;
+    top = 1;
+    int evals = 0;
+    while (top > 0) {
+        const double ta = st_ta[top - 1], tb = st_tb[top - 1];
+        if (evals >= p->max_evals) {
+            /* Out of budget: answer hit at the earliest interval not yet separated. */
+            out->hit = 1;
+            out->flags |= TTD_CCD_BUDGET;
+            out->toi = ta;
+            positions(&s, 0.5 * (ta + tb), xm);
+            double n1[3], n2[3];
+            int vv[2];
+            out->gap = directions(s.na, xm, n1, n2, vv);
+            break;
+        }
+        --top;
+        ++evals;
+        s.ta = ta;
+        s.tb = tb;
+        positions(&s, ta, xa);
+        positions(&s, tb, xb);
+        const double tm = 0.5 * (ta + tb);
+        positions(&s, tm, xm);
+        if (delta == 0 && never_coplanar(s.na, xa, xb, S))
+            continue;
+        double n1[3], n2[3], n3[3];
+        int vv[2];
+        s.cand_g = -HUGE_VAL;
+        const double d = directions(s.na, xm, n1, n2, vv);
+        if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
+            continue;
+        if (vv[0] >= 0) {
+            pass_direction(x0, x1, vv[0], vv[1], n3);
+            if (separated_along(&s, xa, xb, n3, delta))
+                continue;
+        }
+        /* The closest direction at an end serves where the middle's cannot (a crossing). */
+        directions(s.na, xa, n1, n2, vv);
+        if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
+            continue;
+        if (s.cand_g > -HUGE_VAL && exact_separated(x0, x1, s.na, ta, tb, s.cand_n))
+            continue;
+        if (tb - ta <= p->t_tol || !(tm > ta && tm < tb) || top + 2 > STACK) {
+            out->hit = 1;
+            out->toi = ta;
+            out->gap = d;
+            break;
+        }
+        /* Later half first, so the earlier one is on top. */
+        st_ta[top] = tm;
+        st_tb[top] = tb;
+        ++top;
+        st_ta[top] = ta;
+        st_tb[top] = tm;
+        ++top;
+    }
+    out->evals = (uint32_t)evals;
+}

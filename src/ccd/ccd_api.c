@@ -1,0 +1,194 @@
+/* SPDX-License-Identifier: MIT */
+/* The public continuous-collision entries (ttd.h, the block "Continuous collision detection"):
+ * argument checks, the batch over threads (blocks of queries; each query's answer depends on its
+ * inputs alone, so not on the threads), the float entries widened to double, and the
+ * triangle-triangle query as its 15 sub-queries. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ccd/ccd.h"
+#include "engine/parallel.h"
+
+enum { CCD_BLOCK = 64 };
+
+/* What a batch reads: the four arrays in one precision, how many floats one primitive has. */
+typedef struct ccd_batch {
+    int kind;             /* TTD_CCD_VF, TTD_CCD_EE, or 3 for triangles */
+    int is_float;
+    const void *a0, *b0, *a1, *b1;
+    size_t n;
+    double delta;
+    ttd_ccd_result *out;
+} ccd_batch;
+
+static double get(const ccd_batch *b, const void *arr, size_t i)
+{
+    return b->is_float ? (double)((const float *)arr)[i] : ((const double *)arr)[i];
+}
+
+/* The numbers of a primitive (na points) of query q from arr into x. */
+static int load(const ccd_batch *b, const void *arr, size_t q, int np, double x[][3])
+{
+    int finite = 1;
+    for (int i = 0; i < np; ++i)
+        for (int k = 0; k < 3; ++k) {
+            x[i][k] = get(b, arr, (q * (size_t)np + (size_t)i) * 3 + (size_t)k);
+            finite &= isfinite(x[i][k]) != 0;
+        }
+    return finite;
+}
+
+/* The triangle-triangle query: 6 vertex-face and 9 edge-edge, each searched only up to the
+ * earliest hit so far (a later contact cannot be the first). */
+static void triangles_one(double a0[3][3], double b0[3][3], double a1[3][3], double b1[3][3], const ttd_ccd_params *base, ttd_ccd_result *out)
+{
+    ttd_ccd_params p = *base;
+    ttd_ccd_result best = {HUGE_VAL, HUGE_VAL, 0, 0, 0, 0};
+    uint32_t evals = 0;
+    for (int sub = 0; sub < 15; ++sub) {
+        double x0[12], x1[12];
+        int kind;
+        if (sub < 6) {
+            double(*p0)[3] = sub < 3 ? a0 : b0, (*p1)[3] = sub < 3 ? a1 : b1;
+            double(*f0)[3] = sub < 3 ? b0 : a0, (*f1)[3] = sub < 3 ? b1 : a1;
+            const int v = sub % 3;
+            kind = TTD_CCD_VF;
+            memcpy(x0, p0[v], sizeof(double) * 3);
+            memcpy(x1, p1[v], sizeof(double) * 3);
+            memcpy(x0 + 3, f0, sizeof(double) * 9);
+            memcpy(x1 + 3, f1, sizeof(double) * 9);
+        } else {
+            const int i = (sub - 6) / 3, j = (sub - 6) % 3;
+            kind = TTD_CCD_EE;
+            const size_t d = sizeof(double) * 3;
+            memcpy(x0, a0[i], d);
+            memcpy(x0 + 3, a0[(i + 1) % 3], d);
+            memcpy(x0 + 6, b0[j], d);
+            memcpy(x0 + 9, b0[(j + 1) % 3], d);
+            memcpy(x1, a1[i], d);
+            memcpy(x1 + 3, a1[(i + 1) % 3], d);
+            memcpy(x1 + 6, b1[j], d);
+            memcpy(x1 + 9, b1[(j + 1) % 3], d);
+        }
+        ttd_ccd_result r;
+        ttd_ccd_query(kind, x0, x1, &p, &r);
+        evals += r.evals;
+        /* A hit at toi strictly before the best so far replaces it (ties keep the lower sub). */
+        if (r.hit && (!best.hit || r.toi < best.toi)) {
+            best = r;
+            best.sub = (uint32_t)sub;
+            p.t_max = r.toi;
+        }
+        best.flags |= r.flags;
+    }
+    best.evals = evals;
+    *out = best;
+}
+
+static void ccd_block(void *ctx, size_t block, int worker)
+{
+    (void)worker;
+    ccd_batch *b = ctx;
+    ttd_ccd_params p = ttd_ccd_default_params();
+    p.delta = b->delta;
+    const size_t end = (block + 1) * CCD_BLOCK < b->n ? (block + 1) * CCD_BLOCK : b->n;
+    for (size_t q = block * CCD_BLOCK; q < end; ++q) {
+        ttd_ccd_result *r = &b->out[q];
+        int finite;
+        if (b->kind == 3) {
+            double a0[3][3], b0[3][3], a1[3][3], b1[3][3];
+            finite = load(b, b->a0, q, 3, a0) & load(b, b->b0, q, 3, b0) & load(b, b->a1, q, 3, a1) &
+                     load(b, b->b1, q, 3, b1);
+            if (finite)
+                triangles_one(a0, b0, a1, b1, &p, r);
+        } else {
+            const int na = b->kind, nb = 4 - b->kind;
+            double x0[12], x1[12];
+            double(*p0)[3] = (double(*)[3])x0, (*p1)[3] = (double(*)[3])x1;
+            finite = load(b, b->a0, q, na, p0) & load(b, b->b0, q, nb, p0 + na) &
+                     load(b, b->a1, q, na, p1) & load(b, b->b1, q, nb, p1 + na);
+            if (finite) {
+                ttd_ccd_query(b->kind, x0, x1, &p, r);
+                r->sub = 0;
+            }
+        }
+        if (!finite) {
+            r->hit = 0;
+            r->toi = NAN;
+            r->gap = NAN;
+            r->flags = TTD_CCD_NONFINITE;
+            r->sub = 0;
+            r->evals = 0;
+        }
+    }
+}
+
+static ttd_status ccd_run(const ttd_options *opt, int kind, int is_float, size_t n, const void *a0,
+                          const void *b0, const void *a1, const void *b1, double delta,
+                          ttd_ccd_result *out)
+{
+    int threads = 0;
+    if (opt != NULL) {
+        if (opt->internal_cookie != ttd_default_options().internal_cookie || opt->threads < 0)
+            return TTD_ERR_BAD_OPTIONS;
+        threads = opt->threads;
+    }
+    if (a0 == NULL || b0 == NULL || a1 == NULL || b1 == NULL || out == NULL)
+        return TTD_ERR_NULL_POINTER;
+    if (n == 0)
+        return TTD_ERR_EMPTY;
+    if (!(delta >= 0) || !isfinite(delta))
+        return TTD_ERR_BAD_OPTIONS;
+    if (n > SIZE_MAX / (12 * sizeof(double)))
+        return TTD_ERR_TOO_LARGE;
+    ccd_batch b = {kind, is_float, a0, b0, a1, b1, n, delta, out};
+    const size_t blocks = (n + CCD_BLOCK - 1) / CCD_BLOCK;
+    ttd_parallel_for(blocks, threads, ccd_block, &b);
+    for (size_t q = 0; q < n; ++q)
+        if (out[q].flags & TTD_CCD_NONFINITE)
+            return TTD_ERR_NONFINITE_INPUT;
+    return TTD_OK;
+}
+
+ttd_status ttd_ccd_vertex_face_d(const ttd_options *opt, size_t n, const double *v_t0, const double *f_t0,
+                                 const double *v_t1, const double *f_t1, double min_separation,
+                                 ttd_ccd_result *out)
+{
+    return ccd_run(opt, TTD_CCD_VF, 0, n, v_t0, f_t0, v_t1, f_t1, min_separation, out);
+}
+
+ttd_status ttd_ccd_vertex_face_f(const ttd_options *opt, size_t n, const float *v_t0, const float *f_t0,
+                                 const float *v_t1, const float *f_t1, double min_separation,
+                                 ttd_ccd_result *out)
+{
+    return ccd_run(opt, TTD_CCD_VF, 1, n, v_t0, f_t0, v_t1, f_t1, min_separation, out);
+}
+
+ttd_status ttd_ccd_edge_edge_d(const ttd_options *opt, size_t n, const double *ea_t0, const double *eb_t0,
+                               const double *ea_t1, const double *eb_t1, double min_separation,
+                               ttd_ccd_result *out)
+{
+    return ccd_run(opt, TTD_CCD_EE, 0, n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out);
+}
+
+ttd_status ttd_ccd_edge_edge_f(const ttd_options *opt, size_t n, const float *ea_t0, const float *eb_t0,
+                               const float *ea_t1, const float *eb_t1, double min_separation,
+                               ttd_ccd_result *out)
+{
+    return ccd_run(opt, TTD_CCD_EE, 1, n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out);
+}
+
+ttd_status ttd_ccd_triangles_d(const ttd_options *opt, size_t n, const double *ta_t0, const double *tb_t0,
+                               const double *ta_t1, const double *tb_t1, double min_separation,
+                               ttd_ccd_result *out)
+{
+    return ccd_run(opt, 3, 0, n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out);
+}
+
+ttd_status ttd_ccd_triangles_f(const ttd_options *opt, size_t n, const float *ta_t0, const float *tb_t0,
+                               const float *ta_t1, const float *tb_t1, double min_separation,
+                               ttd_ccd_result *out)
+{
+    return ccd_run(opt, 3, 1, n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out);
+}
