@@ -822,6 +822,12 @@ TTD_API ttd_status ttd_scene_distance_f(const ttd_options *opt, ttd_scene *scene
 /// ttd_scene_contact_d (or _f) items.
 TTD_API ttd_status ttd_scene_contacts_d(const ttd_options *opt, ttd_scene *scene, double margin, ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene, float margin, ttd_scene_array *out);
+/// ttd_scene_contacts_d's number of contacts alone, into *count: each body pair's pairs are
+/// counted, not held (memory grows with the body pairs, not the contacts). Same checks and
+/// statuses as ttd_scene_contacts_d; the same number on any thread count.
+TTD_API ttd_status ttd_scene_contacts_count_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t *count);
+/// ttd_scene_contacts_count_d in single precision.
+TTD_API ttd_status ttd_scene_contacts_count_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t *count);
 
 /// One contact point of a manifold, what a simulator consumes.
 typedef struct ttd_scene_point_d {
