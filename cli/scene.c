@@ -997,6 +997,7 @@ typedef struct ttd_scene_buffers {
     size_t cap;
     ttd_scene_contact_d *near_d; /* --nearest: one per body id */
     ttd_scene_contact_f *near_f;
+    size_t counted;              /* contacts --count: the number, no contact held */
 } ttd_scene_buffers;
 
 static double ttd_scene_clock(clockid_t id)
@@ -1033,8 +1034,12 @@ static ttd_status ttd_scene_run(const ttd_scene_args *a, ttd_scene *scene, long 
                   : ttd_scene_collide_d(&a->opt, scene, a->margin, &b->arr);
             break;
         case TTD_SCENE_CONTACTS:
-            s = f ? ttd_scene_contacts_f(&a->opt, scene, (float)a->margin, &b->arr)
-                  : ttd_scene_contacts_d(&a->opt, scene, a->margin, &b->arr);
+            if (a->count) /* counted by the library: the contacts are never held */
+                s = f ? ttd_scene_contacts_count_f(&a->opt, scene, (float)a->margin, &b->counted)
+                      : ttd_scene_contacts_count_d(&a->opt, scene, a->margin, &b->counted);
+            else
+                s = f ? ttd_scene_contacts_f(&a->opt, scene, (float)a->margin, &b->arr)
+                      : ttd_scene_contacts_d(&a->opt, scene, a->margin, &b->arr);
             break;
         default:
             s = f ? ttd_scene_manifold_f(&a->opt, scene, (float)a->margin, a->max_points, &b->arr)
@@ -1117,7 +1122,7 @@ static int ttd_scene_query(const ttd_scene_args *a, ttd_scene *scene, char *cons
     s = ttd_scene_run(a, scene, step, b, NULL, NULL);
     if (s != TTD_OK)
         goto failed;
-    const size_t n = b->arr.count;
+    const size_t n = a->cmd == TTD_SCENE_CONTACTS && a->count ? b->counted : b->arr.count;
     if (a->count) {
         if (step >= 0)
             fprintf(out, "%lld ", step);
@@ -1248,7 +1253,7 @@ int ttd_cli_scene(int argc, char **argv)
     memset(&st, 0, sizeof st);
     st.a = &a;
     ttd_scene_motion mo = {0};
-    ttd_scene_buffers buf = {{0}, NULL, 0, NULL, NULL};
+    ttd_scene_buffers buf = {{0}, NULL, 0, NULL, NULL, 0};
     float *posef = NULL;
     ttd_status s = a.use_float ? ttd_scene_create_f(&st.scene) : ttd_scene_create_d(&st.scene);
     if (s != TTD_OK) {

@@ -417,6 +417,19 @@ static int bad_input_refused(void)
     const size_t dims[3] = {2, 2, 1}, zero[3] = {2, 0, 2};
     ENSURE(ttd_sdf_grid_d(NULL, md, o3, s3, zero, sd) == TTD_ERR_EMPTY);
     ENSURE(ttd_sdf_grid_d(NULL, md, nan3, s3, dims, sd) == TTD_ERR_BAD_OPTIONS);
+    /* a step of 0 or below on any axis (the CLI and Python refuse it too), even where the
+     * dimension is 1; and in float */
+    for (int c = 0; c < 3; ++c)
+        for (int sign = 0; sign < 2; ++sign) {
+            double sb[3] = {0.1, 0.1, 0.1};
+            sb[c] = sign ? -0.1 : 0;
+            ENSURE_MSG(ttd_sdf_grid_d(NULL, md, o3, sb, dims, sd) == TTD_ERR_BAD_OPTIONS, "step %g on axis %d", sb[c], c);
+            const float of[3] = {0, 0, 0};
+            float sf[3] = {0.1f, 0.1f, 0.1f}, gf[4];
+            sf[c] = sign ? -0.1f : -0.0f;
+            ENSURE_MSG(ttd_sdf_grid_f(NULL, mf, of, sf, dims, gf) == TTD_ERR_BAD_OPTIONS, "float step %g on axis %d",
+                       (double)sf[c], c);
+        }
     ENSURE(ttd_sdf_grid_d(NULL, md, o3, s3, NULL, sd) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_sdf_grid_d(NULL, mf, o3, s3, dims, sd) == TTD_ERR_PRECISION_MISMATCH);
     ttd_mesh_destroy(md);

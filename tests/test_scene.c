@@ -237,6 +237,16 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ENSURE(ttd_scene_collide_d(&opt, W->scene, MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_d(&opt, W->scene, MARGIN, &con) == TTD_OK);
         ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
+        /* the count alone: the stored query's number, and the same walks (the same stats) */
+        size_t counted = SIZE_MAX;
+        ttd_scene_stats count_stats;
+        ENSURE(ttd_scene_contacts_count_d(&opt, W->scene, MARGIN, &counted) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &count_stats) == TTD_OK);
+        ENSURE_MSG(counted == con.count && count_stats.results == A->contact_stats.results &&
+                       count_stats.body_pairs == A->contact_stats.body_pairs &&
+                       count_stats.node_tests == A->contact_stats.node_tests &&
+                       count_stats.pair_tests == A->contact_stats.pair_tests,
+                   "contacts count %zu, stored %zu", counted, con.count);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_d(&opt, W->scene, BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_d(&opt, W->scene, MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -260,6 +270,16 @@ static int ask(const world *W, ttd_isa isa, int threads, answers *A)
         ENSURE(ttd_scene_collide_f(&opt, W->scene, (float)MARGIN, &hits) == TTD_OK);
         ENSURE(ttd_scene_contacts_f(&opt, W->scene, (float)MARGIN, &con) == TTD_OK);
         ENSURE(ttd_scene_get_stats(W->scene, &A->contact_stats) == TTD_OK);
+        /* the count alone: the stored query's number, and the same walks (the same stats) */
+        size_t counted = SIZE_MAX;
+        ttd_scene_stats count_stats;
+        ENSURE(ttd_scene_contacts_count_f(&opt, W->scene, (float)MARGIN, &counted) == TTD_OK);
+        ENSURE(ttd_scene_get_stats(W->scene, &count_stats) == TTD_OK);
+        ENSURE_MSG(counted == con.count && count_stats.results == A->contact_stats.results &&
+                       count_stats.body_pairs == A->contact_stats.body_pairs &&
+                       count_stats.node_tests == A->contact_stats.node_tests &&
+                       count_stats.pair_tests == A->contact_stats.pair_tests,
+                   "contacts count %zu, stored %zu", counted, con.count);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, INFINITY, &c, near) == TTD_OK);
         ENSURE(ttd_scene_distance_f(&opt, W->scene, (float)BOUND, &b, NULL) == TTD_OK);
         ENSURE(ttd_scene_manifold_f(&opt, W->scene, (float)MARGIN, MAX_POINTS, &man) == TTD_OK);
@@ -1174,6 +1194,8 @@ static int small_scenes(void)
     uint32_t b;
     ENSURE(ttd_scene_add_d(s, m, id, &b) == TTD_OK && b == 0);
     ENSURE(ttd_scene_contacts_d(NULL, s, 1, &out) == TTD_OK && out.count == 0);
+    size_t counted = SIZE_MAX;
+    ENSURE(ttd_scene_contacts_count_d(NULL, s, 1, &counted) == TTD_OK && counted == 0);
     ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, near) == TTD_OK && isinf(c.distance));
     ENSURE(near[0].i == 0 && near[0].j == UINT32_MAX && isinf(near[0].distance));
     ENSURE(ttd_scene_body_count(s) == 1 && ttd_scene_id_limit(s) == 1);
@@ -1251,6 +1273,12 @@ static int bad_input(void)
     ENSURE(ttd_scene_collide_d(NULL, s, -1, &out) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_scene_collide_d(NULL, s, NAN, &out) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_scene_contacts_d(NULL, s, INFINITY, &out) == TTD_ERR_BAD_OPTIONS);
+    size_t counted;
+    ENSURE(ttd_scene_contacts_count_d(NULL, s, INFINITY, &counted) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_contacts_count_d(NULL, s, -1, &counted) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_contacts_count_d(NULL, s, 0, NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_contacts_count_f(NULL, s, 0, &counted) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_scene_contacts_count_d(NULL, NULL, 0, &counted) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_scene_distance_d(NULL, s, -1, &c, NULL) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_scene_collide_f(NULL, s, 0, &out) == TTD_ERR_PRECISION_MISMATCH);
     ENSURE(ttd_scene_collide_d(NULL, NULL, 0, &out) == TTD_ERR_NULL_POINTER);
@@ -1262,6 +1290,9 @@ static int bad_input(void)
     ttd_scene_stats stats;
     ENSURE(ttd_scene_get_stats(NULL, &stats) == TTD_ERR_NULL_POINTER);
     ENSURE(ttd_scene_get_stats(s, NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
+    ENSURE(ttd_scene_contacts_d(NULL, s, 0, &out) == TTD_OK && out.count > 0);
+    ENSURE(ttd_scene_contacts_count_d(NULL, s, 0, &counted) == TTD_OK && counted == out.count);
     ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
     ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 1 && stats.results == 1 &&
            stats.pair_tests >= 1);

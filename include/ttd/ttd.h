@@ -693,8 +693,8 @@ TTD_API ttd_status ttd_points_signed_distance_f(const ttd_options *opt, const tt
 /// Signed distances on a regular grid of dims[0] x dims[1] x dims[2] points, point (i, j, k) at
 /// origin + (i step[0], j step[1], k step[2]) (each coordinate computed as origin[c] + i step[c]
 /// in the query's precision), into out[(i dims[1] + j) dims[2] + k] (the C order of an (nx, ny,
-/// nz) array), in the mesh's frame. Any dimension 0: TTD_ERR_EMPTY; non-finite origin or step:
-/// TTD_ERR_BAD_OPTIONS.
+/// nz) array), in the mesh's frame. Any dimension 0: TTD_ERR_EMPTY; non-finite origin or step, or
+/// a step that is not > 0 on some axis (also one whose dimension is 1): TTD_ERR_BAD_OPTIONS.
 TTD_API ttd_status ttd_sdf_grid_d(const ttd_options *opt, const ttd_mesh *mesh, const double origin[3],
                                   const double step[3], const size_t dims[3], double *out);
 TTD_API ttd_status ttd_sdf_grid_f(const ttd_options *opt, const ttd_mesh *mesh, const float origin[3],
@@ -822,6 +822,12 @@ TTD_API ttd_status ttd_scene_distance_f(const ttd_options *opt, ttd_scene *scene
 /// ttd_scene_contact_d (or _f) items.
 TTD_API ttd_status ttd_scene_contacts_d(const ttd_options *opt, ttd_scene *scene, double margin, ttd_scene_array *out);
 TTD_API ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene, float margin, ttd_scene_array *out);
+/// ttd_scene_contacts_d's number of contacts alone, into *count: each body pair's pairs are
+/// counted, not held (memory grows with the body pairs, not the contacts). Same checks and
+/// statuses as ttd_scene_contacts_d; the same number on any thread count.
+TTD_API ttd_status ttd_scene_contacts_count_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t *count);
+/// ttd_scene_contacts_count_d in single precision.
+TTD_API ttd_status ttd_scene_contacts_count_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t *count);
 
 /// One contact point of a manifold, what a simulator consumes.
 typedef struct ttd_scene_point_d {

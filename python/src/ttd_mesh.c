@@ -1041,20 +1041,69 @@ static ttd_status ttd_py_pose_piece_run(void *ctx, size_t b, size_t e)
     return ttd_py_call(c->kind, &q->opt, q->type, q->a->mesh, q->b->mesh, e - b, poses, c->x, c->y, out, out2);
 }
 
+/* mesh_contacts' poses in pieces: the first piece straight into set (the library's memory, which
+ * the result views without a copy: a call of up to 16 poses is one piece); each later piece into
+ * scratch, reused, and appended to tail (malloc'd). starts: every pose's offset, k + 1. A pose's
+ * contacts and their order depend on that pose alone (ttd.h), so pieces change no answer. */
+typedef struct ttd_py_contact_pieces {
+    void *set, *scratch;   /* ttd_contacts_d or _f */
+    int f;
+    char *tail;
+    size_t tail_n, tail_cap;
+    size_t *starts;
+    const ttd_py_query *q;
+    double margin;
+} ttd_py_contact_pieces;
+
+static ttd_status ttd_py_contact_piece_run(void *ctx, size_t b, size_t e)
+{
+    ttd_py_contact_pieces *c = ctx;
+    const ttd_py_query *q = c->q;
+    const size_t elem = c->f ? sizeof(ttd_contact_f) : sizeof(ttd_contact_d);
+    const char *poses = (const char *)PyArray_DATA(q->poses) + b * 12 * (c->f ? sizeof(float) : sizeof(double));
+    void *into = b == 0 ? c->set : c->scratch;
+    const ttd_status st = ttd_py_call(TTD_PY_CONTACTS, &q->opt, q->type, q->a->mesh, q->b->mesh, e - b, poses, c->margin,
+                                      0, into, NULL);
+    if (st >= TTD_ERR_FIRST_FATAL)
+        return st;
+    const size_t n = c->f ? ((ttd_contacts_f *)into)->count : ((ttd_contacts_d *)into)->count;
+    const size_t *ps = c->f ? ((ttd_contacts_f *)into)->pose_start : ((ttd_contacts_d *)into)->pose_start;
+    const void *pairs = c->f ? (void *)((ttd_contacts_f *)into)->pairs : (void *)((ttd_contacts_d *)into)->pairs;
+    const size_t before = b == 0 ? 0 : c->starts[b];
+    for (size_t i = b; i < e; ++i)
+        c->starts[i + 1] = before + ps[i - b + 1];
+    if (b == 0 || n == 0)
+        return st;
+    if (c->tail_n + n > c->tail_cap) {
+        size_t cap = c->tail_cap ? c->tail_cap : 1024;
+        while (cap < c->tail_n + n)
+            cap *= 2;
+        char *t = cap <= SIZE_MAX / elem ? realloc(c->tail, cap * elem) : NULL;
+        if (t == NULL)
+            return TTD_ERR_OUT_OF_MEMORY;
+        c->tail = t;
+        c->tail_cap = cap;
+    }
+    memcpy(c->tail + c->tail_n * elem, pairs, n * elem);
+    c->tail_n += n;
+    return st;
+}
+
 /* The call of kind on q's poses, with the lock released; K = 0 runs the checks on the probe. */
 static ttd_status ttd_py_query_call(ttd_py_kind kind, const ttd_py_query *q, double x, double y, void *out, void *out2)
 {
     if (q->k == 0)
         return ttd_py_probe(kind, &q->opt, q->type, x, y);
     ttd_status st;
-    const void *poses = PyArray_DATA(q->poses);
     PyObject *const meshes[2] = {(PyObject *)q->a, (PyObject *)q->b};
     if (ttd_py_meshes_use(meshes, 2) < 0)
         return TTD_PY_IN_USE;
-    if (kind == TTD_PY_CONTACTS) { /* one growing contact set: one call (no Ctrl-C inside it) */
-        Py_BEGIN_ALLOW_THREADS
-        st = ttd_py_call(kind, &q->opt, q->type, q->a->mesh, q->b->mesh, (size_t)q->k, poses, x, y, out, out2);
-        Py_END_ALLOW_THREADS
+    if (kind == TTD_PY_CONTACTS) { /* out: a ttd_py_contact_pieces; Ctrl-C between pieces of poses */
+        ttd_py_contact_pieces *c = out;
+        c->q = q;
+        c->margin = x;
+        if (ttd_py_run_pieces((size_t)q->k, 16, ttd_py_contact_piece_run, c, &st) < 0)
+            st = TTD_PY_INTERRUPTED;
     } else { /* poses in pieces, Ctrl-C checked between them (ttd_py_run_pieces) */
         const int d = q->type == NPY_DOUBLE;
         const size_t nta = (size_t)PyArray_DIM(q->a->faces, 0), ntb = (size_t)PyArray_DIM(q->b->faces, 0);
@@ -1284,7 +1333,9 @@ PyDoc_STRVAR(ttd_py_mesh_contacts_doc,
 "k are the slice pose_start[k]:pose_start[k + 1]. Within a pose the order depends only on\n"
 "the meshes and the pose (not on threads or instruction set). The set equals the pairs\n"
 "whose ttd.distance is <= margin, with the same distances and points, bit for bit. tri_a,\n"
-"tri_b, distance, p and q are views of the buffer the C library filled (no copy). The\n"
+"tri_b, distance, p and q are views of the buffer the C library filled (no copy) when the\n"
+"poses ran as one piece (up to 16 poses; longer batches run in pieces, Ctrl-C checked between\n"
+"them, and their contacts are joined into one array). The\n"
 "interpreter lock is released while the library computes. Raises as ttd.mesh_distance does.");
 
 /* The first n contacts of a contact set (*set, ttd_contacts_f when f) as a record array that
@@ -1333,20 +1384,37 @@ static PyObject *ttd_py_mesh_contacts(PyObject *self, PyObject *args, PyObject *
     PyObject *result = NULL, *capsule = NULL;
     PyArrayObject *rec = NULL, *pose = NULL, *start = NULL;
     /* The set lives on the heap: the capsule that frees it becomes the base of the views. */
-    void *set = calloc(1, f ? sizeof(ttd_contacts_f) : sizeof(ttd_contacts_d));
-    if (set == NULL) {
+    const size_t set_bytes = f ? sizeof(ttd_contacts_f) : sizeof(ttd_contacts_d);
+    void *set = calloc(1, set_bytes);
+    ttd_py_contact_pieces pc_ = {set, calloc(1, set_bytes), f, NULL, 0, 0, calloc((size_t)q.k + 1, sizeof(size_t)),
+                                 &q, margin};
+    if (set == NULL || pc_.scratch == NULL || pc_.starts == NULL) {
         PyErr_NoMemory();
         goto done;
     }
-    ttd_status st = ttd_py_query_call(TTD_PY_CONTACTS, &q, margin, 0, set, NULL);
+    ttd_status st = ttd_py_query_call(TTD_PY_CONTACTS, &q, margin, 0, &pc_, NULL);
+    if (st == TTD_PY_INTERRUPTED)
+        goto done; /* KeyboardInterrupt raised between pieces */
     if (st != TTD_OK) {
         ttd_py_query_raise(st, TTD_PY_CONTACTS, &q, margin, 0);
         goto done;
     }
-    const size_t *ps = f ? ((ttd_contacts_f *)set)->pose_start : ((ttd_contacts_d *)set)->pose_start;
-    npy_intp n = q.k == 0 ? 0 : (npy_intp)(f ? ((ttd_contacts_f *)set)->count : ((ttd_contacts_d *)set)->count);
-    if ((rec = ttd_py_contact_records(&set, f, n, &capsule)) == NULL)
-        goto done;
+    const size_t *ps = pc_.starts;
+    npy_intp n = q.k == 0 ? 0 : (npy_intp)pc_.starts[q.k];
+    if (pc_.tail_n == 0) { /* one piece, or later pieces without contacts: a view of the library's set */
+        if ((rec = ttd_py_contact_records(&set, f, n, &capsule)) == NULL)
+            goto done;
+    } else { /* pieces: the first piece's contacts and the tail's, joined in an array of numpy's */
+        const size_t elem = f ? sizeof(ttd_contact_f) : sizeof(ttd_contact_d), first = (size_t)n - pc_.tail_n;
+        Py_INCREF(ttd_py_cont_rec[f]);
+        if ((rec = (PyArrayObject *)PyArray_NewFromDescr(&PyArray_Type, ttd_py_cont_rec[f], 1, &n, NULL, NULL,
+                                                         NPY_ARRAY_CARRAY, NULL)) == NULL)
+            goto done;
+        const void *pairs = f ? (void *)((ttd_contacts_f *)set)->pairs : (void *)((ttd_contacts_d *)set)->pairs;
+        if (first)
+            memcpy(PyArray_DATA(rec), pairs, first * elem);
+        memcpy((char *)PyArray_DATA(rec) + first * elem, pc_.tail, pc_.tail_n * elem);
+    }
     npy_intp k1 = q.k + 1;
     if ((pose = (PyArrayObject *)PyArray_SimpleNew(1, &n, NPY_INTP)) == NULL ||
         (start = (PyArrayObject *)PyArray_SimpleNew(1, &k1, NPY_INTP)) == NULL)
@@ -1367,13 +1435,18 @@ static PyObject *ttd_py_mesh_contacts(PyObject *self, PyObject *args, PyObject *
     if (ttd_py_set_views(result, 1, rec, ttd_py_contacts_names + 1, TTD_PY_NCONT - 2) < 0)
         Py_CLEAR(result);
 done:
-    if (set != NULL) {
+    for (int s = 0; s < 2; ++s) {
+        void *x = s ? pc_.scratch : set;
+        if (x == NULL)
+            continue;
         if (f)
-            ttd_contacts_free_f(set);
+            ttd_contacts_free_f(x);
         else
-            ttd_contacts_free_d(set);
-        free(set);
+            ttd_contacts_free_d(x);
+        free(x);
     }
+    free(pc_.tail);
+    free(pc_.starts);
     Py_XDECREF(capsule);
     Py_XDECREF(rec);
     Py_XDECREF(pose);

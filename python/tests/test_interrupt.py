@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Ctrl-C in long calls: a child process starts a call sized to take about 30 seconds
-(ttd.sdf_grid, ttd.closest_points on a large batch, ttd.mesh_distance over many poses), the test
+(ttd.sdf_grid, ttd.closest_points on a large batch, ttd.mesh_distance and ttd.mesh_contacts over
+many poses), the test
 sends it SIGINT a second in, and the call must end with KeyboardInterrupt within a few seconds
 (the extension checks for signals between pieces of the batch, from the calling thread), leaving
 the mesh usable (no query still marked in use) for the next call."""
@@ -32,6 +33,11 @@ elif what == "points":
     P = rng.uniform(-20, 20, (6_000_000, 3))    # far points: the longest walks
     work = lambda n: ttd.closest_points(M, P[:n])
     small, cap = 100_000, len(P)
+elif what == "contacts":
+    poses = np.tile(random_poses(2_000, seed=3, spread=0), (100, 1, 1))
+    poses[:, 0, 3] = 2.0                        # spheres all but touching: about 20 contacts a pose,
+    work = lambda n: ttd.mesh_contacts(M, M, poses[:n], 2e-4)  # 0.16 ms; 200 MB if not stopped
+    small, cap = 200, len(poses)
 else:
     poses = np.tile(random_poses(2_000, seed=3, spread=0), (100, 1, 1))
     poses[:, 0, 3] = 2.5                        # copies of a sphere of 81,920 triangles, 0.5 apart
@@ -53,7 +59,7 @@ except KeyboardInterrupt:
 
 
 @pytest.mark.skipif(not hasattr(signal, "SIGINT") or os.name != "posix", reason="POSIX signals")
-@pytest.mark.parametrize("what", ["grid", "points", "mesh"])
+@pytest.mark.parametrize("what", ["grid", "points", "mesh", "contacts"])
 def test_ctrl_c_stops_a_long_call(what):
     child = subprocess.Popen([sys.executable, "-c", CHILD, what, str(TESTS)], stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)

@@ -307,9 +307,9 @@ TTD_POINTS_SIGNED(float, f)
                                     &cfg);                                                     \
         if (st != TTD_OK)                                                                      \
             return st;                                                                         \
-        int finite = 1;                                                                        \
+        int finite = 1; /* and each step > 0, as the CLI and Python ask: a grid runs forward */ \
         for (int c = 0; c < 3; ++c)                                                            \
-            finite &= isfinite(origin[c]) && isfinite(step[c]);                                \
+            finite &= isfinite(origin[c]) && isfinite(step[c]) && step[c] > 0;                 \
         if (cfg.method != TTD_METHOD_EXACT || !finite)                                         \
             return TTD_ERR_BAD_OPTIONS;                                                        \
         if (mesh->bytes != (int)sizeof(real))                                                  \

@@ -323,6 +323,16 @@ ttd_status ttd_scene_contacts_f(const ttd_options *opt, ttd_scene *scene, float 
     TTD_SCENE_QUERY(4, out != NULL, margin, 0, ttd_scene_query_contacts_f(&cfg, scene, margin, out));
 }
 
+ttd_status ttd_scene_contacts_count_d(const ttd_options *opt, ttd_scene *scene, double margin, size_t *count)
+{
+    TTD_SCENE_QUERY(8, count != NULL, margin, 0, ttd_scene_query_contacts_count_d(&cfg, scene, margin, count));
+}
+
+ttd_status ttd_scene_contacts_count_f(const ttd_options *opt, ttd_scene *scene, float margin, size_t *count)
+{
+    TTD_SCENE_QUERY(4, count != NULL, margin, 0, ttd_scene_query_contacts_count_f(&cfg, scene, margin, count));
+}
+
 ttd_status ttd_scene_distance_d(const ttd_options *opt, ttd_scene *scene, double upper_bound,
                                 ttd_scene_contact_d *closest, ttd_scene_contact_d *nearest)
 {

@@ -134,6 +134,13 @@ ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const st
                                           const struct ttd_mesh *b, const float *pose, const float *pose_a,
                                           double defect, float margin, ttd_contacts_f *out,
                                           uint64_t tests[2]);
+/* ttd_mesh_query_contacts_walk_*'s number of contacts alone, into *count (counted, not held). */
+ttd_status ttd_mesh_query_contacts_walk_count_d(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                                const struct ttd_mesh *b, const double *pose, const double *pose_a,
+                                                double defect, double margin, size_t *count, uint64_t tests[2]);
+ttd_status ttd_mesh_query_contacts_walk_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                                const struct ttd_mesh *b, const float *pose, const float *pose_a,
+                                                double defect, float margin, size_t *count, uint64_t tests[2]);
 /* Self queries: pairs of one mesh's triangles (i < j) that share no vertex, and with shared
  * (TTD_SELF_SHARED_VERTEX) those that share one, by their edges opposite it (ttd/ttd.h); from
  * checked arguments. Written out in mesh/query_d.c and query_f.c. */

@@ -66,6 +66,13 @@ ttd_status ttd_mesh_query_contacts_walk_f(const ttd_engine_config *cfg, const st
     return query_contacts_walk(cfg, a, b, pose, pose_a, defect, margin, out, tests);
 }
 
+ttd_status ttd_mesh_query_contacts_walk_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                                const struct ttd_mesh *b, const float *pose, const float *pose_a,
+                                                double defect, float margin, size_t *count, uint64_t tests[2])
+{
+    return query_contacts_walk_count(cfg, a, b, pose, pose_a, defect, margin, count, tests);
+}
+
 ttd_status ttd_mesh_query_self_contacts_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
                                           unsigned shared, ttd_contacts_f *out)
 {

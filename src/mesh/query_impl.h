@@ -1355,27 +1355,20 @@ static ttd_status query_self_collide(const ttd_engine_config *cfg, const struct 
  * what makes the order of query_contacts independent of the thread count; on the pile of 1,000
  * icospheres it cost a scene a quarter of its contact query (256 lists allocated and zeroed per
  * body pair, the walk's caches reset per sub-walk, kernel calls of 4 pairs: docs/scene-speed.md). */
-static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
-                                      const real *pose, const real *pose_a, double defect, real margin,
-                                      ttd_contacts *out, uint64_t tests[2])
+/* The walk of query_contacts_walk into list l (the caller's set, or a count); 0 when out of
+ * memory. */
+static int walk_contacts_into(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                              const real *pose, const real *pose_a, double defect, real margin, clist *l,
+                              uint64_t tests[2])
 {
     const qctx C = qctx_make(cfg, a, b);
-    out->count = 0;
-    out->poses = 0;
-    tests[0] = tests[1] = 0;
-    if (!contacts_offsets(out, 1))
-        return TTD_ERR_OUT_OF_MEMORY;
     qwork W;
     qwork_init(&W);
     qpose P;
     qpose_make(&C, pose, pose_a, defect, &P);
     walk w;
     walk_init(&w, MODE_CONTACTS, &P, margin, 0);
-    clist l;
-    memset(&l, 0, sizeof l);
-    l.direct = out;
-    w.out = &l;
-    out->pose_start[0] = 0;
+    w.out = l;
     if (!spheres_apart(&C, &P, &w)) {
         const item root = root_item();
         walk_run(&C, &P, &W, &w, &root);
@@ -1383,11 +1376,43 @@ static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct
     tests[0] = w.node_tests;
     tests[1] = w.pair_tests;
     qwork_release(&W);
-    if (W.nomem) {
+    return !W.nomem;
+}
+
+static ttd_status query_contacts_walk(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b,
+                                      const real *pose, const real *pose_a, double defect, real margin,
+                                      ttd_contacts *out, uint64_t tests[2])
+{
+    out->count = 0;
+    out->poses = 0;
+    tests[0] = tests[1] = 0;
+    if (!contacts_offsets(out, 1))
+        return TTD_ERR_OUT_OF_MEMORY;
+    clist l;
+    memset(&l, 0, sizeof l);
+    l.direct = out;
+    out->pose_start[0] = 0;
+    if (!walk_contacts_into(cfg, a, b, pose, pose_a, defect, margin, &l, tests)) {
         out->count = 0;
         return TTD_ERR_OUT_OF_MEMORY;
     }
     out->pose_start[1] = out->count;
     out->poses = 1;
+    return TTD_OK;
+}
+
+/* query_contacts_walk's number of contacts alone, into *count: the pairs are counted, not held. */
+static ttd_status query_contacts_walk_count(const ttd_engine_config *cfg, const struct ttd_mesh *a,
+                                            const struct ttd_mesh *b, const real *pose, const real *pose_a,
+                                            double defect, real margin, size_t *count, uint64_t tests[2])
+{
+    clist l;
+    memset(&l, 0, sizeof l);
+    l.count_only = 1;
+    *count = 0;
+    tests[0] = tests[1] = 0;
+    if (!walk_contacts_into(cfg, a, b, pose, pose_a, defect, margin, &l, tests))
+        return TTD_ERR_OUT_OF_MEMORY;
+    *count = l.n;
     return TTD_OK;
 }

@@ -38,6 +38,12 @@ ttd_status ttd_scene_query_contacts_d(const ttd_engine_config *cfg, struct ttd_s
     return query_contacts(cfg, s, margin, out);
 }
 
+ttd_status ttd_scene_query_contacts_count_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin,
+                                            size_t *count)
+{
+    return query_contacts_count(cfg, s, margin, count);
+}
+
 ttd_status ttd_scene_query_distance_d(const ttd_engine_config *cfg, struct ttd_scene *s, double upper_bound,
                                       ttd_scene_contact_d *closest, ttd_scene_contact_d *nearest)
 {

@@ -38,6 +38,12 @@ ttd_status ttd_scene_query_contacts_f(const ttd_engine_config *cfg, struct ttd_s
     return query_contacts(cfg, s, margin, out);
 }
 
+ttd_status ttd_scene_query_contacts_count_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
+                                            size_t *count)
+{
+    return query_contacts_count(cfg, s, margin, count);
+}
+
 ttd_status ttd_scene_query_distance_f(const ttd_engine_config *cfg, struct ttd_scene *s, float upper_bound,
                                       ttd_scene_contact_f *closest, ttd_scene_contact_f *nearest)
 {

@@ -360,6 +360,62 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
     return st;
 }
 
+/* ---- contacts counted: query_contacts' number, no contact held --------------------------------- */
+
+typedef struct count_job {
+    const ttd_engine_config *cfg;
+    struct ttd_scene *s;
+    const scene_pair *pairs;
+    real margin;
+    size_t *counts;   /* per pair: its contacts; summed in pair order after the walks */
+    uint64_t *tests;  /* per pair: node tests and pair tests */
+    atomic_int nomem;
+} count_job;
+
+static void count_task(void *ctx, size_t k, int worker)
+{
+    (void)worker;
+    count_job *J = ctx;
+    const scene_pair *p = &J->pairs[k];
+    if (TTD_QUERY(contacts_walk_count)(J->cfg, J->s->body[p->i].mesh, J->s->body[p->j].mesh, body_pose(J->s, p->j),
+                                       body_pose(J->s, p->i), pair_defect(J->s, p->i, p->j), J->margin,
+                                       &J->counts[k], J->tests + 2 * k) != TTD_OK)
+        atomic_store(&J->nomem, 1);
+}
+
+/* The number of contacts query_contacts would give, into *count: each body pair's walk counts its
+ * pairs instead of holding them (memory: a count and two test counters per body pair). The same
+ * body pairs and the same walks, so the same number on any thread count. */
+static ttd_status query_contacts_count(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, size_t *count)
+{
+    *count = 0;
+    scene_pair *pairs;
+    size_t n;
+    if (!ttd_scene_sweep(s, (double)margin, NULL, &pairs, &n))
+        return TTD_ERR_OUT_OF_MEMORY;
+    const ttd_engine_config one = one_thread(cfg);
+    count_job J = {&one, s, pairs, margin, calloc(n ? n : 1, sizeof(size_t)), calloc(2 * (n ? n : 1), sizeof(uint64_t)),
+                   0};
+    atomic_init(&J.nomem, J.counts == NULL || J.tests == NULL);
+    if (!atomic_load(&J.nomem))
+        ttd_pool_tasks(s->pool, n, cfg->threads, count_task, &J);
+    const ttd_status st = atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+    s->stats = (ttd_scene_stats){0};
+    if (st == TTD_OK) {
+        s->stats.body_pairs = n;
+        for (size_t k = 0; k < n; ++k) {
+            *count += J.counts[k];
+            s->stats.node_tests += J.tests[2 * k];
+            s->stats.pair_tests += J.tests[2 * k + 1];
+        }
+        s->stats.results = *count;
+    }
+    free(J.counts);
+    free(J.tests);
+    free(pairs);
+    return st;
+}
+
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
 

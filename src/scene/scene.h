@@ -81,6 +81,10 @@ ttd_status ttd_scene_query_contacts_d(const ttd_engine_config *cfg, struct ttd_s
                                       ttd_scene_array *out);
 ttd_status ttd_scene_query_contacts_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
                                       ttd_scene_array *out);
+ttd_status ttd_scene_query_contacts_count_d(const ttd_engine_config *cfg, struct ttd_scene *s, double margin,
+                                            size_t *count);
+ttd_status ttd_scene_query_contacts_count_f(const ttd_engine_config *cfg, struct ttd_scene *s, float margin,
+                                            size_t *count);
 ttd_status ttd_scene_query_distance_d(const ttd_engine_config *cfg, struct ttd_scene *s, double upper_bound,
                                       ttd_scene_contact_d *closest, ttd_scene_contact_d *nearest);
 ttd_status ttd_scene_query_distance_f(const ttd_engine_config *cfg, struct ttd_scene *s, float upper_bound,

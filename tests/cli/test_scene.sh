@@ -323,6 +323,14 @@ for m in 0 0.15 0.35; do
     same "$DIR/out" "$DIR/want" "contacts --margin $m against the world meshes' mesh contacts"
     run 0 scene contacts "$DIR/scene.txt" --margin $m --count
     [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want" | tr -d ' ')" ] || fail "contacts --count $m: $(cat "$DIR/out")"
+    # counted without holding the contacts: the same number on 1 and 2 threads, in float too
+    for t in 1 2; do
+        run 0 scene contacts "$DIR/scene.txt" --margin $m --count --threads $t
+        [ "$(cat "$DIR/out")" = "$(wc -l < "$DIR/want" | tr -d ' ')" ] || fail "contacts --count --threads $t $m: $(cat "$DIR/out")"
+    done
+    "$TTD" scene contacts "$DIR/scene.txt" --margin $m --precision float | wc -l | tr -d ' ' > "$DIR/want_f"
+    run 0 scene contacts "$DIR/scene.txt" --margin $m --count --precision float
+    cmp -s "$DIR/out" "$DIR/want_f" || fail "contacts --count --float $m: $(cat "$DIR/out") against $(cat "$DIR/want_f")"
     # collide: the body pairs with contacts, each witness among them
     cut -d' ' -f1,2 "$DIR/want" | uniq > "$DIR/want_pairs"
     run 0 scene collide "$DIR/scene.txt" --margin $m
