@@ -36,7 +36,7 @@
  * squares would underflow below about 1e-154). *amb (when not NULL) is set where x lies within
  * rounding of the triangle's plane inside (or on) it, or on a vertex: there the angle jumps by
  * 4 pi and its computed value cannot tell from which side. */
-static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[3], int *amb)
+static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[3], int *amb, double *aerr)
 {
     double a[3][3], big = 0;
     for (int k = 0; k < 3; ++k) {
@@ -77,16 +77,28 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
     const double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
     const double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
     const double den = len[0] * len[1] * len[2] + ab * len[2] + ac * len[1] + bc * len[0];
-    if (amb) {
-        /* det's rounding is below 8 eps times its terms' magnitudes, den's below 16 eps times its
-         * (the lengths' square roots included): taken twice */
-        const double detmag = fabs(a[0][0]) * (fabs(a[1][1] * a[2][2]) + fabs(a[1][2] * a[2][1])) +
-                              fabs(a[0][1]) * (fabs(a[1][0] * a[2][2]) + fabs(a[1][2] * a[2][0])) +
-                              fabs(a[0][2]) * (fabs(a[1][0] * a[2][1]) + fabs(a[1][1] * a[2][0]));
-        const double denmag = 4 * len[0] * len[1] * len[2];
-        if (len[0] == 0 || len[1] == 0 || len[2] == 0 ||
-            (fabs(det) <= 16 * DBL_EPSILON * detmag && !(den > 32 * DBL_EPSILON * denmag)))
+    /* det's rounding is below 8 eps times its terms' magnitudes, den's below 16 eps times its
+     * (the lengths' square roots included): taken twice */
+    const double detmag = fabs(a[0][0]) * (fabs(a[1][1] * a[2][2]) + fabs(a[1][2] * a[2][1])) +
+                          fabs(a[0][1]) * (fabs(a[1][0] * a[2][2]) + fabs(a[1][2] * a[2][0])) +
+                          fabs(a[0][2]) * (fabs(a[1][0] * a[2][1]) + fabs(a[1][1] * a[2][0]));
+    const double denmag = 4 * len[0] * len[1] * len[2];
+    const double edet = 16 * DBL_EPSILON * detmag, eden = 32 * DBL_EPSILON * denmag;
+    if (amb && (len[0] == 0 || len[1] == 0 || len[2] == 0 || (fabs(det) <= edet && !(den > eden))))
+        *amb = 1;
+    if (aerr) {
+        /* the angle's error from det's and den's: |d atan2(y, x)| <= (|x| dy + |y| dx) / (x^2 + y^2)
+         * over the box of their rounding (its nearest point to the origin below); where that box
+         * holds the origin no bound holds (a needle or an edge seen in its plane: the angle can
+         * be anything), counted as ambiguous. The walks add it to their bounds. */
+        const double ny = fmax(fabs(det) - edet, 0), nx = fmax(fabs(den) - eden, 0);
+        const double r2 = nx * nx + ny * ny;
+        if (r2 > 0)
+            *aerr += 2 * ((fabs(den) + eden) * edet + (fabs(det) + edet) * eden) / r2;
+        else if (amb)
             *amb = 1;
+        else
+            *aerr = INFINITY;
     }
     return 2 * atan2(det, den);
 }
@@ -162,7 +174,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
     double q[3];
     if (wn_frame(m, pd, x, q, err))
         return 0;
-    double sum = 0, mag = 0, bound = 0;
+    double sum = 0, mag = 0, bound = 0, aerr = 0;
     int32_t stack[WN_STACK];
     int sp = 0;
     stack[sp++] = 0;
@@ -191,7 +203,7 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
                 mag += fabs(lt1[j]) + fabs(lt2[j]);
                 bound += rem;
             } else if (child[j] < 0) {
-                const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb);
+                const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb, &aerr);
                 sum += om;
                 mag += fabs(om);
             } else if (sp < WN_STACK) {
@@ -202,14 +214,14 @@ static double wn_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const
     }
     if (!(fabs(sum) < HUGE_VAL && bound < HUGE_VAL && mag < HUGE_VAL)) {
         /* a power out of range all the same: every triangle's solid angle, scaled alone */
-        sum = mag = bound = 0;
+        sum = mag = bound = aerr = 0;
         for (size_t t = 0; t < m->nt; ++t) {
-            const double om = wn_solid_angle(m, t, x, amb);
+            const double om = wn_solid_angle(m, t, x, amb, &aerr);
             sum += om;
             mag += fabs(om);
         }
     }
-    *err = (bound + 32 * DBL_EPSILON * mag) / (4 * WN_PI);
+    *err = (bound + 32 * DBL_EPSILON * mag + aerr) / (4 * WN_PI);
     return sum / (4 * WN_PI);
 }
 
@@ -301,7 +313,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
     const double scale = 1 / (4 * WN_PI), half4 = half * 4 * WN_PI;
     wn_item heap[WN_HEAP];
     int nh = 0, ninf = 0;
-    double exact = 0, emag = 0, S = 0, B = 0, M = 0;
+    double exact = 0, emag = 0, eang = 0, S = 0, B = 0, M = 0;
     int32_t open = 0;
     for (;;) {
         if (open >= 0) {
@@ -328,7 +340,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
                     B += it.bound;
                     M += it.mag;
                 } else if (child[j] < 0) {
-                    const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb);
+                    const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb, &eang);
                     exact += om;
                     emag += fabs(om);
                 } else {
@@ -338,11 +350,11 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
                 }
             }
         } else {
-            const double om = wn_solid_angle(m, (size_t)(-1 - open), x, amb);
+            const double om = wn_solid_angle(m, (size_t)(-1 - open), x, amb, &eang);
             exact += om;
             emag += fabs(om);
         }
-        if (ninf == 0 && !(fabs(half4 - (exact + S)) <= B + 32 * DBL_EPSILON * (emag + M) + 1e-300)) {
+        if (ninf == 0 && !(fabs(half4 - (exact + S)) <= B + 32 * DBL_EPSILON * (emag + M) + eang + 1e-300)) {
             /* settled by the running sums: form them again from the frontier */
             double s = 0, b = 0, mg = 0;
             for (int i = 0; i < nh; ++i) {
@@ -351,7 +363,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
                 mg += heap[i].mag;
             }
             *w = (exact + s) * scale;
-            *err = (b + 32 * DBL_EPSILON * (emag + mg)) * scale;
+            *err = (b + 32 * DBL_EPSILON * (emag + mg) + eang) * scale;
             if (fabs(*w - half) > *err)
                 return 0;
         }
@@ -359,7 +371,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             return -1; /* a power out of range: the caller's walk measures every triangle */
         if (nh == 0) {
             *w = exact * scale;
-            *err = 32 * DBL_EPSILON * emag * scale;
+            *err = (32 * DBL_EPSILON * emag + eang) * scale;
             return 0;
         }
         const wn_item it = wn_heap_pop(heap, &nh);

@@ -362,8 +362,9 @@ static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt,
                 if (!(sd[i] == (in[i] ? -d : d)) || ((got[i].flags & TTD_POINT_INSIDE) != 0) != (in[i] != 0)) \
                     PF_FAIL("point %zu: signed %.17g, distance %.17g, inside %d", i, (double)sd[i], (double)d, in[i]); \
             }                                                                                          \
-            /* the meshes are open (soups): every proven side against the long double sum, for points \
-             * 1e-9 of the mesh's size or more off it, where that sum is 1e-9 or more from 1/2 */     \
+            /* every proven side against the long double sum, for points 1e-9 of the mesh's size or \
+             * more off it (1e-5 in float, whose distances round by about 1e-7 of it: a point on a    \
+             * box's face read 1.1e-13 off it at size 1.7e-5), where that sum is 1e-9 or more from 1/2 */ \
             double vv[9 * PF_MAX_TRIS], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}; \
             for (size_t i = 0; i < 3 * c.nv; ++i) {                                                    \
                 vv[i] = (double)v[i];                                                                  \
@@ -373,7 +374,8 @@ static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt,
             const double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + \
                                      (hi[2] - lo[2]) * (hi[2] - lo[2]));                               \
             for (size_t i = 0; i < c.n; ++i) {                                                         \
-                if (ref[i].triangle == UINT32_MAX || !((double)ref[i].distance > 1e-9 * size) ||      \
+                if (ref[i].triangle == UINT32_MAX ||                                                   \
+                    !((double)ref[i].distance > (sizeof(real) == 4 ? 1e-5 : 1e-9) * size) ||            \
                     (got[i].flags & (TTD_POINT_SIGN_UNPROVEN | TTD_POINT_NONFINITE)))                  \
                     continue;                                                                          \
                 const double xd[3] = {(double)x[3 * i], (double)x[3 * i + 1], (double)x[3 * i + 2]};   \
