@@ -27,32 +27,16 @@
 #include "meshes.h"
 #include "pairs.h"
 #include "points/points.h"
+#include "ref_winding.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
 
 /* ---- references ------------------------------------------------------------------------- */
 
-/* The winding number of m about x: the triangles' solid angles (van Oosterom and Strackee) summed
- * in long double (64-bit significand on x86: 11 bits beyond double). */
+/* The winding number of m about x: the long double solid-angle sum (ref_winding.h). */
 static long double ref_winding(const ttd_gen_mesh *m, const double x[3])
 {
-    long double sum = 0;
-    for (size_t t = 0; t < m->nt; ++t) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c)
-                a[k][c] = (long double)m->verts[3 * m->tris[3 * t + (size_t)k] + (size_t)c] - (long double)x[c];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
+    return ref_winding_ld(m->verts, m->tris, m->nt, x);
 }
 
 /* Whether the ray x + s dir (s > 0) crosses triangle (a, b, c): 1, 0, or -1 when too near an

@@ -14,32 +14,10 @@
 #include "open_meshes.h"
 #include "engine/dispatch.h"
 #include "pairs.h"
+#include "ref_winding.h"
 #include "points/points.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
-
-/* The winding number about x: every triangle's solid angle (van Oosterom and Strackee) in long
- * double, written here apart from the library. */
-static long double ref_winding(const double *verts, const uint32_t *tris, size_t nt, const double x[3])
-{
-    long double sum = 0;
-    for (size_t t = 0; t < nt; ++t) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c)
-                a[k][c] = (long double)verts[3 * tris[3 * t + (size_t)k] + (size_t)c] - (long double)x[c];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
-}
 
 /* n points: near the surface (a point of a random triangle moved along its normal by N(0, 1%)),
  * uniform in the box enlarged by 10%, and (for the capsule) on and near the plane of its open end. */
@@ -135,7 +113,7 @@ static int open_sides_match_reference(void)
             const ttd_points_data *pd = ttd_points_data_get(mesh, 1);
             ENSURE(pd != NULL);
             for (size_t i = 0; i < n; ++i) {
-                const long double ref = ref_winding(vr, m.tris, m.nt, pr + 3 * i);
+                const long double ref = ref_winding_ld(vr, m.tris, m.nt, pr + 3 * i);
                 const int inside = (flags[i] & TTD_POINT_INSIDE) != 0;
                 if (flags[i] & TTD_POINT_SIGN_UNPROVEN) {
                     ++unproven;
@@ -186,7 +164,7 @@ static int open_extreme_scales(void)
     double *p = open_points(&m, 0, 77, 40, &n);
     long double *ref = malloc(n * sizeof *ref);
     for (size_t i = 0; i < n; ++i)
-        ref[i] = ref_winding(m.verts, m.tris, m.nt, p + 3 * i);
+        ref[i] = ref_winding_ld(m.verts, m.tris, m.nt, p + 3 * i);
     static const int exps[] = {-900, -700, -600, -548, -498, -333, -233, 233, 333, 498};
     double *vs = malloc(3 * m.nv * sizeof *vs), *ps = malloc(3 * n * sizeof *ps), *w = malloc(n * sizeof *w),
            *sd = malloc(n * sizeof *sd);

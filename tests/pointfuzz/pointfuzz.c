@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ref_winding.h"
 #include "ttd/ttd.h"
 
 size_t pf_sides_checked;
@@ -131,30 +132,6 @@ static void pf_box(pf_src *s, pf_case *c)
     }
 }
 
-/* The winding number of the case's mesh (v: its vertices in the query's precision, as doubles)
- * about x: the solid angles summed in long double (the fuzzer's reference for inconsistent and
- * open boxes). */
-static long double pf_winding(const pf_case *c, const double *v, const double x[3])
-{
-    long double sum = 0;
-    for (size_t t = 0; t < c->nt; ++t) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int r = 0; r < 3; ++r)
-                a[k][r] = (long double)v[3 * c->t[3 * t + (size_t)k] + (size_t)r] - (long double)x[r];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
-}
-
 /* Whether the box's vertices v (of the query's precision, `bytes`) enclose no volume: the sum of
  * the drawn (outward) triangles' determinants about vertex 0, in long double, within 1e-12 of
  * the box's size cubed (rounding has collapsed it). */
@@ -249,29 +226,6 @@ static void pf_dump(FILE *out, const pf_case *c)
     }
     for (size_t i = 0; i < c->n; ++i)
         fprintf(out, "    point %zu: %.17g %.17g %.17g\n", i, c->p[3 * i], c->p[3 * i + 1], c->p[3 * i + 2]);
-}
-
-/* The winding number about x in long double, every triangle's solid angle (van Oosterom and
- * Strackee), written apart from the library: the reference for an open mesh's side. */
-static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt, const double x[3])
-{
-    long double sum = 0;
-    for (size_t i = 0; i < nt; ++i) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c)
-                a[k][c] = (long double)v[3 * t[3 * i + (size_t)k] + (size_t)c] - (long double)x[c];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
 }
 
 #define PF_FAIL(...)                                                                                   \
@@ -379,7 +333,7 @@ static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt,
                     (got[i].flags & (TTD_POINT_SIGN_UNPROVEN | TTD_POINT_NONFINITE)))                  \
                     continue;                                                                          \
                 const double xd[3] = {(double)x[3 * i], (double)x[3 * i + 1], (double)x[3 * i + 2]};   \
-                const long double wr = pf_ref_winding(vv, c.t, c.nt, xd);                              \
+                const long double wr = ref_winding_ld(vv, c.t, c.nt, xd);                              \
                 if (fabsl(fabsl(wr) - 0.5L) > 1e-9L && ((got[i].flags & TTD_POINT_INSIDE) != 0) != (fabsl(wr) >= 0.5L)) \
                     PF_FAIL("point %zu: inside %d, the long double winding number %.17Lg", i,           \
                             (got[i].flags & TTD_POINT_INSIDE) != 0, wr);                               \
@@ -422,7 +376,7 @@ static long double pf_ref_winding(const double *v, const uint32_t *t, size_t nt,
                     vd[i] = (double)v[i];                                                              \
                 for (size_t i = 0; i < c.n; ++i) {                                                     \
                     const double xd[3] = {(double)x[3 * i], (double)x[3 * i + 1], (double)x[3 * i + 2]}; \
-                    const long double gap = fabsl(pf_winding(&c, vd, xd)) - 0.5L;                      \
+                    const long double gap = fabsl(ref_winding_ld(vd, c.t, c.nt, xd)) - 0.5L;          \
                     const double d = (double)ref[i].distance, size = (double)fabs(v[0] - v[3 * 7]);    \
                     if (!(d > 1e-6 * size) || got[i].flags & TTD_POINT_ABOVE_BOUND)                   \
                         continue; /* on the surface to rounding: no reference; or no side asked */    \
