@@ -26,6 +26,9 @@ typedef struct pf_src {
     const uint8_t *data;
     size_t size, pos;
     uint64_t state;
+    uint64_t *log;             /* when not NULL: the words drawn (caplog at most; nlog counts all) */
+    size_t nlog, caplog;
+    size_t nlog_first;         /* the words the first families' draws took (before pf_extras) */
 } pf_src;
 
 /// A source reading data first, then a stream seeded by its hash (data may be NULL).
@@ -35,8 +38,24 @@ void pf_src_init(pf_src *src, const uint8_t *data, size_t size, uint64_t seed);
 /// mesh is a soup, so open): points 1e-9 of the mesh's size or more off it, proven by the library.
 extern size_t pf_sides_checked;
 
+/// What the cases drawn so far held: boxes with a tiny box, unwelded boxes, of those welded back
+/// and checked again, cases scaled by a power of two (the least and largest exponent), and closed
+/// meshes' winding numbers checked equal to the rounded long double sum.
+typedef struct pf_counts {
+    size_t tiny, unwelded, welded, scaled, exact;
+    int exp_lo, exp_hi;
+} pf_counts;
+extern pf_counts pf_count;
+
 /// Runs one case; prints what failed to out (with the case when dump is set). Returns the number
 /// of failed checks (0: the case passed). *points, when not NULL, gets the points checked.
 int pf_run_case(pf_src *src, FILE *out, int dump, size_t *points);
+
+/// The words (8 bytes each) a case drawn from data (or from seed alone, data NULL) takes, into
+/// words (cap at most); returns their count, *first the count before the later families' draws.
+/// Written out, they are an input that draws the same case from its bytes alone: how
+/// `test_points_fuzz --write` keeps a seeded case, and `--extend` an input found before the later
+/// families (tests/fuzz/corpus/points/), in the corpus.
+size_t pf_case_words(const uint8_t *data, size_t size, uint64_t seed, uint64_t *words, size_t cap, size_t *first);
 
 #endif /* TTD_TESTS_POINTFUZZ_H */
