@@ -5,7 +5,8 @@
 # on them; test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
 # information made on first use; test_mesh_self: a self query's
 # sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads;
-# test_points_inside: four threads' first point queries on one fresh mesh, 2 workers each) with
+# test_points_inside: four threads' first point queries on one fresh mesh and on one moved by
+# ttd_mesh_set_vertices, 2 workers each) with
 # ThreadSanitizer and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
 # space layouts make its runtime refuse to start).
 # Usage: scripts/test-tsan.sh      (build folder: build-tsan/, or $TTD_TSAN_BUILD_DIR)
@@ -34,7 +35,9 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
 "$build/tests/test_mesh_deform" refit_bits
-# the point data, winding moments and closedness made on first use by four threads at once
+# the point data, winding moments and closedness made on first use by four threads at once, and
+# made again by four threads at once after ttd_mesh_set_vertices (a refit, then a rebuild)
 "$build/tests/test_points_inside" concurrent_first_use
+"$build/tests/test_points_inside" concurrent_after_update
 # continuous collision's batches on 1, 2 and all threads
 "$build/tests/test_ccd" threads_and_precision

@@ -718,6 +718,101 @@ static int concurrent_first_use(void)
     return 0;
 }
 
+/* The same after ttd_mesh_set_vertices: each mesh queried once (its point data, moments, caps and
+ * closedness made), then moved twice, by a small bend (a refit) and by every triangle moved to
+ * another's place as well (a rebuild: the meshes are soups, each triangle its own corners), and after each move four threads make the first point queries on it at
+ * once: every side, signed distance and orientation that of a mesh built from the moved vertices,
+ * every winding number that of the moved mesh asked again from one thread. Under
+ * ThreadSanitizer (scripts/test-tsan.sh) this is the C side of Python's threaded test of
+ * Mesh.set_vertices against point queries (python/tests/test_deform.py): the data dropped by an
+ * update and made again by whichever thread comes first. */
+static int concurrent_after_update(void)
+{
+    for (int kind = 0; kind < 2; ++kind) {
+        ttd_gen_mesh m;
+        ENSURE(closed_mesh(kind, &m) == 0);
+        uint32_t *holes = malloc(3 * m.nt * sizeof *holes);
+        size_t nh;
+        if (kind == 0)
+            remove_faces(&m, 37, holes, &nh);
+        else
+            reverse_faces(&m);
+        /* the mesh as a soup (each triangle its own corners: what lets a move rebuild its tree) */
+        const size_t nv = 3 * m.nt;
+        double *sv = malloc(3 * nv * sizeof *sv), *moved = malloc(3 * nv * sizeof *moved);
+        uint32_t *st = malloc(3 * m.nt * sizeof *st), *perm = malloc(m.nt * sizeof *perm);
+        double *p = malloc(3 * CONC_POINTS * sizeof *p);
+        for (size_t k = 0; k < 3 * m.nt; ++k) {
+            st[k] = (uint32_t)k;
+            memcpy(sv + 3 * k, m.verts + 3 * m.tris[k], 3 * sizeof *sv);
+        }
+        ttd_gen_rng rng = ttd_gen_rng_make(19, (uint64_t)kind);
+        for (size_t t = 0; t < m.nt; ++t)
+            perm[t] = (uint32_t)t;
+        for (size_t t = m.nt - 1; t > 0; --t) { /* Fisher-Yates */
+            const size_t u = (size_t)(ttd_gen_rng_uniform(&rng) * (double)(t + 1)) % (t + 1);
+            const uint32_t x = perm[t];
+            perm[t] = perm[u];
+            perm[u] = x;
+        }
+        for (size_t k = 0; k < 3 * CONC_POINTS; ++k)
+            p[k] = 1.2 * (ttd_gen_rng_uniform(&rng) - 0.5);
+        ttd_mesh *shared;
+        ENSURE(ttd_mesh_create_d(NULL, sv, nv, st, m.nt, &shared) == TTD_OK);
+        static conc_job ref, again, jobs[CONC_THREADS];
+        ref.mesh = shared;
+        ref.p = p;
+        conc_run(&ref); /* the data made once, for the updates to drop */
+        ENSURE(ref.rc == 0);
+        for (int move = 0; move < 2; ++move) {
+            /* a bend (a refit); then every triangle moved to another's place as well (a rebuild) */
+            for (size_t t = 0; t < m.nt; ++t)
+                for (size_t k = 0; k < 9; ++k) {
+                    const double *x = sv + 9 * (move == 0 ? t : perm[t]) + 3 * (k / 3);
+                    moved[9 * t + k] = x[k % 3] * (1 + 0.1 * x[2]);
+                }
+            ENSURE(ttd_mesh_set_vertices_d(NULL, shared, moved) == TTD_OK);
+            ttd_mesh *alone;
+            ENSURE(ttd_mesh_create_d(NULL, moved, nv, st, m.nt, &alone) == TTD_OK);
+            ref.mesh = alone;
+            conc_run(&ref);
+            ENSURE(ref.rc == 0);
+            pthread_t th[CONC_THREADS];
+            for (int t = 0; t < CONC_THREADS; ++t) {
+                jobs[t].mesh = shared;
+                jobs[t].p = p;
+                ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
+            }
+            for (int t = 0; t < CONC_THREADS; ++t)
+                ENSURE(pthread_join(th[t], NULL) == 0);
+            again.mesh = shared; /* asked again from one thread: an open mesh's winding numbers depend on its tree */
+            again.p = p;
+            conc_run(&again);
+            ENSURE(again.rc == 0);
+            for (int t = 0; t < CONC_THREADS; ++t) {
+                ENSURE(jobs[t].rc == 0 && jobs[t].o == ref.o);
+                ENSURE_MSG(memcmp(jobs[t].in, ref.in, sizeof ref.in) == 0, "kind %d move %d thread %d: contains", kind,
+                           move, t);
+                ENSURE_MSG(memcmp(jobs[t].w, again.w, sizeof ref.w) == 0, "kind %d move %d thread %d: winding", kind,
+                           move, t);
+                ENSURE_MSG(memcmp(jobs[t].sd, ref.sd, sizeof ref.sd) == 0, "kind %d move %d thread %d: signed", kind,
+                           move, t);
+            }
+            ttd_mesh_destroy(alone);
+        }
+        ttd_mesh_refit_info info;
+        ENSURE(ttd_mesh_get_refit_info(shared, &info) == TTD_OK);
+        ENSURE_MSG(info.generation == 2 && info.rebuilds == 1, "kind %d: %llu updates, %llu rebuilds", kind,
+                   (unsigned long long)info.generation, (unsigned long long)info.rebuilds);
+        ttd_mesh_destroy(shared);
+        free(p), free(moved), free(sv), free(st), free(perm), free(holes);
+        ttd_gen_mesh_free(&m);
+    }
+    printf("  %d threads' first point queries after a refit and after a rebuild of an open sphere and an inward torus "
+           "(soups): the sides and distances of a mesh built from the moved vertices\n", CONC_THREADS);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -729,5 +824,6 @@ int main(int argc, char **argv)
     RUN_TEST(scene_normals_inward_solids);
     RUN_TEST(pose_overflow_is_range);
     RUN_TEST(concurrent_first_use);
+    RUN_TEST(concurrent_after_update);
     TEST_MAIN_END();
 }
