@@ -345,9 +345,9 @@ static void pf_scale(pf_src *s, pf_case *c)
     c->size = ldexp(c->size, k);
     c->tiny = ldexp(c->tiny, k);
     c->scale_exp = k;
+    pf_count.exp_lo = pf_count.scaled == 0 || k < pf_count.exp_lo ? k : pf_count.exp_lo;
+    pf_count.exp_hi = pf_count.scaled == 0 || k > pf_count.exp_hi ? k : pf_count.exp_hi;
     ++pf_count.scaled;
-    pf_count.exp_lo = k < pf_count.exp_lo ? k : pf_count.exp_lo;
-    pf_count.exp_hi = k > pf_count.exp_hi ? k : pf_count.exp_hi;
 }
 
 /* The families added after the first ones, drawn after everything above so that an input found
