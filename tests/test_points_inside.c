@@ -670,17 +670,42 @@ static void *conc_run(void *arg)
     return NULL;
 }
 
+/* The concurrency tests' meshes: kind 0 an open sphere (the walk, its moments), 1 an inward torus
+ * (the ray). */
+static int conc_mesh(int kind, ttd_gen_mesh *m)
+{
+    ENSURE(closed_mesh(kind, m) == 0);
+    if (kind == 0) {
+        uint32_t *holes = malloc(3 * m->nt * sizeof *holes);
+        size_t nh;
+        ENSURE(holes != NULL);
+        remove_faces(m, 37, holes, &nh);
+        free(holes);
+    } else {
+        reverse_faces(m);
+    }
+    return 0;
+}
+
+/* CONC_THREADS threads running conc_run on mesh and p at once, into jobs. */
+static int conc_all(const ttd_mesh *mesh, const double *p, conc_job *jobs)
+{
+    pthread_t th[CONC_THREADS];
+    for (int t = 0; t < CONC_THREADS; ++t) {
+        jobs[t].mesh = mesh;
+        jobs[t].p = p;
+        ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
+    }
+    for (int t = 0; t < CONC_THREADS; ++t)
+        ENSURE(pthread_join(th[t], NULL) == 0);
+    return 0;
+}
+
 static int concurrent_first_use(void)
 {
     for (int kind = 0; kind < 2; ++kind) { /* an open sphere (the walk, its moments); an inward torus (the ray) */
         ttd_gen_mesh m;
-        ENSURE(closed_mesh(kind, &m) == 0);
-        uint32_t *holes = malloc(3 * m.nt * sizeof *holes);
-        size_t nh;
-        if (kind == 0)
-            remove_faces(&m, 37, holes, &nh);
-        else
-            reverse_faces(&m);
+        ENSURE(conc_mesh(kind, &m) == 0);
         double *p = malloc(3 * CONC_POINTS * sizeof *p);
         ttd_gen_rng rng = ttd_gen_rng_make(17, (uint64_t)kind);
         for (size_t k = 0; k < 3 * CONC_POINTS; ++k)
@@ -693,14 +718,7 @@ static int concurrent_first_use(void)
         ref.p = p;
         conc_run(&ref);
         ENSURE(ref.rc == 0);
-        pthread_t th[CONC_THREADS];
-        for (int t = 0; t < CONC_THREADS; ++t) {
-            jobs[t].mesh = shared;
-            jobs[t].p = p;
-            ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
-        }
-        for (int t = 0; t < CONC_THREADS; ++t)
-            ENSURE(pthread_join(th[t], NULL) == 0);
+        ENSURE(conc_all(shared, p, jobs) == 0);
         for (int t = 0; t < CONC_THREADS; ++t) {
             ENSURE(jobs[t].rc == 0 && jobs[t].o == ref.o);
             ENSURE(memcmp(jobs[t].in, ref.in, sizeof ref.in) == 0);
@@ -710,7 +728,7 @@ static int concurrent_first_use(void)
         ENSURE(ref.o == (kind == 0 ? TTD_ORIENTATION_OPEN : TTD_ORIENTATION_INWARD));
         ttd_mesh_destroy(alone);
         ttd_mesh_destroy(shared);
-        free(p), free(holes);
+        free(p);
         ttd_gen_mesh_free(&m);
     }
     printf("  %d threads' first point queries on a fresh open sphere and an inward torus: the answers of the mesh "
@@ -730,13 +748,7 @@ static int concurrent_after_update(void)
 {
     for (int kind = 0; kind < 2; ++kind) {
         ttd_gen_mesh m;
-        ENSURE(closed_mesh(kind, &m) == 0);
-        uint32_t *holes = malloc(3 * m.nt * sizeof *holes);
-        size_t nh;
-        if (kind == 0)
-            remove_faces(&m, 37, holes, &nh);
-        else
-            reverse_faces(&m);
+        ENSURE(conc_mesh(kind, &m) == 0);
         /* the mesh as a soup (each triangle its own corners: what lets a move rebuild its tree) */
         const size_t nv = 3 * m.nt;
         double *sv = malloc(3 * nv * sizeof *sv), *moved = malloc(3 * nv * sizeof *moved);
@@ -777,14 +789,7 @@ static int concurrent_after_update(void)
             ref.mesh = alone;
             conc_run(&ref);
             ENSURE(ref.rc == 0);
-            pthread_t th[CONC_THREADS];
-            for (int t = 0; t < CONC_THREADS; ++t) {
-                jobs[t].mesh = shared;
-                jobs[t].p = p;
-                ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
-            }
-            for (int t = 0; t < CONC_THREADS; ++t)
-                ENSURE(pthread_join(th[t], NULL) == 0);
+            ENSURE(conc_all(shared, p, jobs) == 0);
             again.mesh = shared; /* asked again from one thread: an open mesh's winding numbers depend on its tree */
             again.p = p;
             conc_run(&again);
@@ -805,7 +810,7 @@ static int concurrent_after_update(void)
         ENSURE_MSG(info.generation == 2 && info.rebuilds == 1, "kind %d: %llu updates, %llu rebuilds", kind,
                    (unsigned long long)info.generation, (unsigned long long)info.rebuilds);
         ttd_mesh_destroy(shared);
-        free(p), free(moved), free(sv), free(st), free(perm), free(holes);
+        free(p), free(moved), free(sv), free(st), free(perm);
         ttd_gen_mesh_free(&m);
     }
     printf("  %d threads' first point queries after a refit and after a rebuild of an open sphere and an inward torus "

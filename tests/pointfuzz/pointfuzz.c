@@ -174,6 +174,17 @@ static int pf_flat(const pf_case *c, const void *v, size_t bytes)
     return !(fabsl(sum) > 1e-12L * size * size * size);
 }
 
+/* Weights (u, w) of a point uniform on a triangle: u, w >= 0, u + w <= 1. */
+static void pf_barycentric(pf_src *s, double *u, double *w)
+{
+    *u = pf_unit(s);
+    *w = pf_unit(s);
+    if (*u + *w > 1) {
+        *u = 1 - *u;
+        *w = 1 - *w;
+    }
+}
+
 /* Points: on a triangle's face, edge or vertex, 10^-k off it, in the box, far. */
 static void pf_points(pf_src *s, pf_case *c)
 {
@@ -181,11 +192,8 @@ static void pf_points(pf_src *s, pf_case *c)
     for (size_t i = 0; i < c->n; ++i) {
         const size_t t = (size_t)pf_int(s, (int)c->nt);
         const double *a = c->v + 3 * c->t[3 * t], *b = c->v + 3 * c->t[3 * t + 1], *d = c->v + 3 * c->t[3 * t + 2];
-        double u = pf_unit(s), w = pf_unit(s);
-        if (u + w > 1) {
-            u = 1 - u;
-            w = 1 - w;
-        }
+        double u, w;
+        pf_barycentric(s, &u, &w);
         const int kind = pf_int(s, 7);
         const double off = pow(10.0, -(double)pf_int(s, 17));
         for (int k = 0; k < 3; ++k) {
@@ -276,11 +284,8 @@ static void pf_tiny(pf_src *s, pf_case *c)
     for (size_t i = 1; i < c->n; i += 2) {
         const size_t t = c->nt - 12 + (size_t)pf_int(s, 12);
         const double *a = c->v + 3 * c->t[3 * t], *b = c->v + 3 * c->t[3 * t + 1], *d = c->v + 3 * c->t[3 * t + 2];
-        double w0 = pf_unit(s), w1 = pf_unit(s);
-        if (w0 + w1 > 1) {
-            w0 = 1 - w0;
-            w1 = 1 - w1;
-        }
+        double w0, w1;
+        pf_barycentric(s, &w0, &w1);
         const int kind = pf_int(s, 4);
         const double off = st * pow(10.0, -(double)pf_int(s, 17));
         double x[3];
