@@ -89,7 +89,7 @@ int main(int argc, char **argv)
         }
         points += k;
     }
-    printf("%lu cases, %zu points: %zu failed; %zu open meshes' sides against the long double winding number\n", n, points,
+    printf("%lu cases, %zu points: %zu failed; %zu proven sides against the long double winding number\n", n, points,
            failed, pf_sides_checked);
     printf("  boxes with a tiny box %zu, unwelded %zu (welded back and checked %zu), scaled by 2^k %zu (k from %d to %d); "
            "%zu closed meshes' winding numbers equal to the rounded long double sum\n",
