@@ -19,8 +19,9 @@
  * stretched 8:1 at right angles, no vertex of either inside the other), and one nested inside a
  * bigger one. For every case, double and float, K = 0 and 4, solids:
  *   - a point below 0 wherever the depth is above 0, none deeper than the depth;
- *   - the deepest point's |d| equal to the deepest vertex inside the other (when some vertex is
- *     inside), else the deepest edge point (the docs' definition), from the reference;
+ *   - the deepest point's |d| equal to the deepest of the vertices inside the other and the
+ *     edges' points inside it, on the edges that cross its surface (the docs' definition), from
+ *     the reference;
  *   - where that deepest feature point reaches the penetration depth (the docs: the deepest
  *     point of the overlap on a vertex or an edge), the deepest point's |d| is the depth and its
  *     normal a direction along which B moves out of A by the depth (its overlap along the normal
@@ -336,9 +337,10 @@ static double edge_depth(const placed *S, const double p[3], const double e[3])
     return fmax(fmax(a, b), plane_depth(S, c));
 }
 
-/* The docs' deepest point from the reference: the deepest vertex of either inside the other
- * when there is one (*vertex = 1), else the deepest point of an edge of either inside the
- * other; <= 0 when none is inside. */
+/* The docs' deepest point from the reference: the deepest of the vertices of either inside the
+ * other and the deepest points of the edges that cross the other's surface (an end outside:
+ * for a convex body, an edge with both ends inside lies wholly inside and crosses nothing).
+ * *vertex = 1 when some vertex is inside. <= 0 when nothing is inside. */
 static double deepest_feature(const placed *A, const placed *B, const poly *a, const poly *b, int *vertex)
 {
     double best = 0;
@@ -353,15 +355,13 @@ static double deepest_feature(const placed *A, const placed *B, const poly *a, c
             }
         }
     }
-    if (*vertex)
-        return best;
     for (int side = 0; side < 2; ++side) {
         const placed *P = side ? B : A, *Q = side ? A : B;
         const poly *s = side ? b : a;
         for (size_t k = 0; k < s->nt; ++k)
             for (int e = 0; e < 3; ++e) {
                 const uint32_t u = s->t[3 * k + e], x = s->t[3 * k + (e + 1) % 3];
-                if (u > x)
+                if (u > x || (plane_depth(Q, P->v + 3 * u) > 0 && plane_depth(Q, P->v + 3 * x) > 0))
                     continue;
                 double d[3];
                 sub3(P->v + 3 * x, P->v + 3 * u, d);
@@ -468,8 +468,8 @@ static int check_pair(const char *what, const poly *a, const double Ra[9], const
                        count, dmin);
             ENSURE_MSG(-dmin <= pd + tol, "%s, %s, K %zu: a point %.12g deep, deeper than the depth %.12g", what, prec, K,
                        -dmin, pd);
-            ENSURE_MSG(fabs(-dmin - feature) <= tol, "%s, %s, K %zu: deepest point %.12g, the deepest %s inside %.12g", what,
-                       prec, K, -dmin, vertex ? "vertex" : "edge point", feature);
+            ENSURE_MSG(fabs(-dmin - feature) <= tol, "%s, %s, K %zu: deepest point %.12g, the deepest vertex or edge point inside %.12g",
+                       what, prec, K, -dmin, feature);
             if (bytes == 8)
                 t->worst_gap = fmax(t->worst_gap, fabs(-dmin - feature));
             if (equal) {

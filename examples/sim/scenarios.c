@@ -159,8 +159,9 @@ static int build_bin(sim_run *run)
             return -1;
     }
     /* the drop is over in about 2 s, but faceted balls and tori rock for seconds after (a torus
-       until about 10 s: docs/simulator.md, section 5) */
-    run->settle = 12.0;
+       until about 10 s; since the edges' points beside the vertices', an icosphere until 14-18 s:
+       docs/simulator.md, section 5) */
+    run->settle = 18.0;
     return 0;
 }
 
