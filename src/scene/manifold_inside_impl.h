@@ -294,9 +294,10 @@ static int solid_edges(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 cuts[nc++] = v[g].t;
         cuts[nc++] = 1;
         for (size_t piece = 0; piece + 1 < nc && ok; ++piece) {
-            /* only pieces between two crossings: a piece ending at a vertex inside the other has
-             * that vertex's point (solid_side), and a point beside it would crowd it out of the
-             * merge */
+            /* with no vertex inside, the pieces between two crossings; with one inside, those
+             * ending at a vertex too (that vertex has its point from solid_side), their points
+             * kept only where deeper than every vertex's, which they would otherwise crowd out
+             * of the merge where the vertices measure the depth */
             const double lo = cuts[piece], hi = cuts[piece + 1];
             const int ends = (piece == 0) + (piece + 2 == nc); /* ends at the edge's vertices: 0, 1 or 2 */
             if (!(hi - lo > 0x1p-30) || (vdepth < 0 ? ends != 0 : ends == 2))
