@@ -5,7 +5,10 @@ a bit of the manifold (issue 32, item 8): piles of icospheres, tori and boxes (c
 3 x 3) on a floor, turned and touching, crossing and resting; as surfaces and as solids; at
 margins 0.02 and 0.2, K = 4, 2 and 0, double and float. Prints one md5 per run and one over all.
 
-    /usr/bin/python3 scripts/manifold_md5.py build/cli/ttd [WORKDIR]
+    /usr/bin/python3 scripts/manifold_md5.py build/cli/ttd [WORKDIR] [--save DIR]
+
+--save DIR also writes each run's output to DIR/N.txt (N from 1, in the order printed), for
+scripts/manifold_edges_diff.py to compare two builds where the md5s differ.
 """
 import hashlib
 import math
@@ -100,8 +103,15 @@ def rot(rng):
 
 
 def main():
-    ttd = sys.argv[1]
-    work = sys.argv[2] if len(sys.argv) > 2 else "/tmp/ttd-manifold-md5"
+    args = sys.argv[1:]
+    save = None
+    if "--save" in args:
+        k = args.index("--save")
+        save = args[k + 1]
+        del args[k:k + 2]
+        os.makedirs(save, exist_ok=True)
+    ttd = args[0]
+    work = args[1] if len(args) > 1 else "/tmp/ttd-manifold-md5"
     os.makedirs(work, exist_ok=True)
     write_obj(f"{work}/ball.obj", *icosphere(2))
     write_obj(f"{work}/torus.obj", *torus(1.0, 0.3, 24, 12))
@@ -125,6 +135,7 @@ def main():
             n += 1
         scenes.append("\n".join(lines) + "\n")
     total = hashlib.md5()
+    runs = 0
     for s, text in enumerate(scenes):
         path = f"{work}/scene{s}.txt"
         with open(path, "w") as out:
@@ -137,6 +148,10 @@ def main():
                                "--precision", prec] + solid
                         out = subprocess.run(cmd, check=True, capture_output=True).stdout
                         total.update(out)
+                        runs += 1
+                        if save:
+                            with open(f"{save}/{runs}.txt", "wb") as f:
+                                f.write(out)
                         print(hashlib.md5(out).hexdigest(), len(out.splitlines()), " ".join(cmd[2:]).replace(work + "/", ""))
     print("all", total.hexdigest())
 

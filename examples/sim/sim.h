@@ -29,11 +29,13 @@
 extern "C" {
 #endif
 
-/// The three triangulations of a box's faces (docs/simulator.md).
+/// The triangulations of a box's faces (docs/simulator.md).
 typedef enum sim_box_tri {
     SIM_BOX_DIAG_A = 0, ///< python/README.md's cube: each face split along one diagonal
     SIM_BOX_DIAG_B = 1, ///< the same faces split along their other diagonals
-    SIM_BOX_FAN = 2     ///< docs/examples/cube.obj's quads, fanned from each quad's first corner
+    SIM_BOX_FAN = 2,    ///< docs/examples/cube.obj's quads, fanned from each quad's first corner
+    SIM_BOX_CENTRE = 3, ///< a vertex at each face's centre, four triangles a face
+    SIM_BOX_CUT = 4     ///< each face cut 4 x 4, its inner vertices moved in the face's plane (fixed generator)
 } sim_box_tri;
 
 /// A convex part of a shape, for the separating-axis test: its vertices, the outward normals of
@@ -72,6 +74,12 @@ int sim_shape_icosphere(sim_shape *s, double radius, int level);
 /// A torus around z (ttd_gen_torus: tube centre radius R, tube radius r, nu x nv segments), cut
 /// into nu convex pieces, one per segment.
 int sim_shape_torus(sim_shape *s, double R, double r, size_t nu, size_t nv);
+/// A bowl, static in the scenes: the shell between two concentric spheres (inner radius r, the
+/// outer r + thickness) from the bottom up to the polar angle rim (rad) from the lowest point,
+/// closed at the rim by a cone; nu segments around z, nseg along the arc. Each cell (a segment
+/// by an arc step) is a convex piece. *bottom receives the inner surface's lowest point's
+/// height in the shape's frame.
+int sim_shape_bowl(sim_shape *s, double r, double thickness, double rim, size_t nu, size_t nseg, double *bottom);
 /// Frees a shape (its ttd mesh too) and zeroes it.
 void sim_shape_free(sim_shape *s);
 /// The largest amount by which a vertex of a piece lies outside one of that piece's faces,
@@ -195,20 +203,46 @@ int sim_run_window(sim_world *w, double settle, double seconds, sim_step_fn step
 /// "g body_7"). 0 or -1.
 int sim_world_write_obj(const sim_world *w, const char *path);
 
-/// A scenario of issue 23 (scenarios.c): its world and shapes, and how long it settles before
-/// the rest window.
-typedef struct sim_run {
+typedef struct sim_run sim_run;
+/// After every step of a scenario that judges itself (judged.c): records what its verdict
+/// needs. 0, or -1 when ttd refuses a call.
+typedef int (*sim_observe_fn)(sim_run *run);
+/// Such a scenario's verdict on its run, in place of the rest figures' drift < 1e-3 and
+/// interpenetration < 0.1: 1 met, 0 not, with what was measured written to note.
+typedef int (*sim_verdict_fn)(const sim_run *run, const sim_figures *f, char *note, size_t size);
+
+/// A scenario (scenarios.c: issue 23's and the towers; judged.c: issue 32's dominoes, crossing
+/// rods, bowl and slope): its world and shapes, how long it settles before the rest window,
+/// and for the scenes that judge themselves, their observer, verdict and records.
+struct sim_run {
     char name[32];
     sim_world world;
     sim_shape shape[8];
     size_t nshape;
-    double settle; ///< seconds simulated before the rest window starts
-} sim_run;
+    double settle;  ///< seconds simulated before the rest window starts
+    double seconds; ///< the rest window's own length (0: the command's, 10 s by default)
+    sim_observe_fn observe; ///< NULL, or called after every step
+    sim_verdict_fn verdict; ///< NULL: the rest figures decide
+    double value[40];       ///< the observer's records (each scene's own layout)
+    double *trace;          ///< and a series (pairs of numbers), grown by sim_run_trace
+    size_t ntrace, trace_cap;
+};
 
-/// The scenarios' names, NULL-terminated: stack-a, stack-b, stack-fan, stack-mixed, pyramid, bin.
+/// The scenarios' names, NULL-terminated: stack-a, stack-b, stack-fan, stack-mixed, pyramid,
+/// bin, tower-a, tower-fan, tower-centre, tower-cut, dominoes, rods, bowl, slope-slide,
+/// slope-hold.
 extern const char *const sim_scenarios[];
 /// Builds scenario name with settings set. 0, or -1 (unknown name, or a failure).
 int sim_run_build(sim_run *run, const char *name, const sim_settings *set);
+/// A floor under run's world: the top of a static box 8.4 wide at z = 0 (its shape the run's
+/// next). 0 or -1.
+int sim_run_add_floor(sim_run *run);
+/// judged.c's scenes (run's world already made): 0, -1 on a failure, 1 when name is not one.
+int sim_run_build_judged(sim_run *run, const char *name);
+/// Appends the pair (a, b) to run's trace. 0 or -1.
+int sim_run_trace(sim_run *run, double a, double b);
+/// One step of run's world, then its observer: a sim_step_fn with run as its context.
+int sim_run_step(void *run, sim_world *w);
 void sim_run_free(sim_run *run);
 
 #ifdef __cplusplus

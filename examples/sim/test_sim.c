@@ -37,7 +37,7 @@ static void pose_of(const double q[4], const double t[3], double pose[12])
 static void test_mass(void)
 {
     const double h[3] = {0.5, 0.3, 0.2};
-    for (int tri = 0; tri < 3; ++tri) {
+    for (int tri = 0; tri < 5; ++tri) {
         sim_shape s;
         CHECK(sim_shape_box(&s, h, (sim_box_tri)tri) == 0, "box %d", tri);
         double v = 8 * h[0] * h[1] * h[2];
@@ -80,6 +80,21 @@ static void test_mass(void)
     double pappus = 2 * 3.141592653589793 * 3.141592653589793 * 0.35 * 0.15 * 0.15;
     CHECK(t.volume < pappus && t.volume > 0.9 * pappus, "%g vs %g", t.volume, pappus);
     sim_shape_free(&t);
+    /* the bowl: closed and wound outward (ttd_mesh_orientation), its cells convex, and
+     * its volume below the sphere shell's sector, (2 pi / 3) (R^3 - r^3) (1 - cos rim), which
+     * its facets inscribe, by less than the facets take */
+    sim_shape bowl;
+    double bottom = 0;
+    CHECK(sim_shape_bowl(&bowl, 2.5, 0.2, 1.0, 32, 10, &bottom) == 0, "bowl");
+    const double sector = 2 * 3.141592653589793 / 3 * (2.7 * 2.7 * 2.7 - 2.5 * 2.5 * 2.5) * (1 - cos(1.0));
+    CHECK(bowl.npieces == 320 && sim_shape_convexity_defect(&bowl) < 1e-14, "bowl pieces %zu, defect %g", bowl.npieces,
+          sim_shape_convexity_defect(&bowl));
+    CHECK(bowl.volume < sector && bowl.volume > 0.97 * sector, "bowl volume %.9g, sector %.9g", bowl.volume, sector);
+    ttd_orientation orient = TTD_ORIENTATION_FLAT;
+    CHECK(ttd_mesh_orientation(bowl.mesh, &orient) == TTD_OK && orient == TTD_ORIENTATION_OUTWARD, "bowl: %s",
+          ttd_orientation_string(orient));
+    CHECK(bottom < 0 && fabs(bowl.v[2] - bottom) == 0, "bottom %g", bottom);
+    sim_shape_free(&bowl);
 }
 
 static void test_overlap(void)

@@ -266,10 +266,14 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             if (!solid_side(s, cfg, p->i, p->j, side, c0, n0, n0 == 0, w))
                 return 0;
         }
-        /* no vertex of either inside the other, yet the surfaces cross: the edges' deepest points */
-        const int none_inside = w->all_n == before;
-        for (int side = 0; side < 2 && n0 > 0 && none_inside; ++side)
-            if (!solid_edges(s, cfg, p->i, p->j, side, c0, n0, w))
+        /* the edges' deepest points where the surfaces cross: with no vertex of either inside the
+           other, every piece between two crossings; else the pieces deeper than the deepest
+           vertex (vdepth: its depth; -1 when none is inside) */
+        double vdepth = -1;
+        for (size_t k = before; k < w->all_n; ++k)
+            vdepth = fmax(vdepth, -(double)w->all[k].c.distance);
+        for (int side = 0; side < 2 && n0 > 0; ++side)
+            if (!solid_edges(s, cfg, p->i, p->j, side, c0, n0, vdepth, w))
                 return 0;
     }
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;

@@ -151,7 +151,14 @@ static int solid_side(const struct ttd_scene *s, const ttd_engine_config *cfg, u
  * vertex's point) contributes its deepest point, the point of the piece farthest from the other's
  * surface (the point query's exact distance; found by EDGE_SAMPLES samples and a golden-section
  * search of EDGE_STEPS steps about the best, which is the maximum wherever the distance along
- * the piece has one peak: always inside a convex body), at minus that distance. */
+ * the piece has one peak: always inside a convex body), at minus that distance.
+ * Where some vertex is inside (its depth vdepth >= 0), a vertex just inside can stand beside an
+ * edge crossing far deeper (a tetrahedron's edge sunk into a face, a corner of the other body
+ * grazing it): then every piece with a crossing at one end or both (those ending at a vertex
+ * inside too) is searched, and its deepest point kept only where deeper than vdepth, so that the
+ * vertices' points stay the manifold's wherever they measure the depth. A piece's depth is at
+ * most its length from a crossing end (half its length between two): shorter pieces are not
+ * searched. */
 #define EDGE_SAMPLES 8
 #define EDGE_STEPS 64
 
@@ -214,7 +221,7 @@ static int edge_depth(const struct ttd_scene *s, const ttd_engine_config *cfg, u
 }
 
 static int solid_edges(const struct ttd_scene *s, const ttd_engine_config *cfg, uint32_t i, uint32_t j, int side,
-                       const ttd_scene_contact *c, size_t n, manifold_work *w)
+                       const ttd_scene_contact *c, size_t n, double vdepth, manifold_work *w)
 {
     const uint32_t b = side ? j : i, a = side ? i : j;
     const struct ttd_mesh *mb = s->body[b].mesh;
@@ -287,12 +294,21 @@ static int solid_edges(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 cuts[nc++] = v[g].t;
         cuts[nc++] = 1;
         for (size_t piece = 0; piece + 1 < nc && ok; ++piece) {
-            /* only pieces between two crossings: a piece ending at a vertex inside the other has
-             * that vertex's point (solid_side), and a point beside it would crowd it out of the
-             * merge */
+            /* with no vertex inside, the pieces between two crossings; with one inside, those
+             * ending at a vertex too (that vertex has its point from solid_side), their points
+             * kept only where deeper than every vertex's, which they would otherwise crowd out
+             * of the merge where the vertices measure the depth */
             const double lo = cuts[piece], hi = cuts[piece + 1];
-            if (piece == 0 || piece + 2 == nc || !(hi - lo > 0x1p-30))
+            const int ends = (piece == 0) + (piece + 2 == nc); /* ends at the edge's vertices: 0, 1 or 2 */
+            if (!(hi - lo > 0x1p-30) || (vdepth < 0 ? ends != 0 : ends == 2))
                 continue;
+            if (vdepth >= 0) { /* 1-Lipschitz from the crossing ends: no deeper than this */
+                double len = 0;
+                for (int r = 0; r < 3; ++r)
+                    len += ((double)x1[r] - (double)x0[r]) * ((double)x1[r] - (double)x0[r]);
+                if (!(sqrt(len) * (hi - lo) * (ends ? 1.0 : 0.5) > vdepth))
+                    continue;
+            }
             real x[3];
             edge_point(x0, x1, 0.5 * (lo + hi), x);
             if (!body_inside(s, a, x))
@@ -335,7 +351,7 @@ static int solid_edges(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                 else
                     L = m1;
             }
-            if (!ok || !(best > 0))
+            if (!ok || !(best > 0) || !(best > vdepth))
                 continue;
             real px[3], y[3] = {best_r.point[0], best_r.point[1], best_r.point[2]};
             edge_point(x0, x1, best_t, px);
