@@ -40,7 +40,18 @@ typedef struct pb_row {
     double ref_diff[REF_COUNT];     /* largest |d_ref - d_ttd| / diagonal */
     double build_ttd, build_points, build_ref[REF_COUNT]; /* ttd: the mesh; its point data apart */
     double nodes, tris;             /* per point, ttd double */
+    uint64_t answers;               /* FNV-1a of the signed distances' and winding numbers' bits */
 } pb_row;
+
+/* FNV-1a over the bytes of n doubles, continuing from h: a fingerprint of a run's answers, so that
+ * two builds can be compared bit for bit from their benchmark output. */
+static uint64_t pb_hash(uint64_t h, const double *x, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)x;
+    for (size_t i = 0; i < 8 * n; ++i)
+        h = (h ^ b[i]) * 0x100000001b3ull;
+    return h;
+}
 
 /* The best of 3 wall-clock times of fn. */
 typedef struct pb_call {
@@ -467,8 +478,10 @@ int bench_points_main(int argc, char **argv)
                 r->ttd_f = pb_time(&c) / (double)n;
                 c.kind = 2;
                 r->ttd_s = pb_time(&c) / (double)n;
+                r->answers = pb_hash(0xcbf29ce484222325ull, sd, n);
                 c.kind = 3;
                 r->ttd_w = pb_time(&c) / (double)n;
+                r->answers = pb_hash(r->answers, sd, n);
                 for (int k = 0; k < REF_COUNT; ++k) {
                     r->ref[k] = r->ref_diff[k] = r->build_ref[k] = NAN;
                     if (ok)
@@ -487,16 +500,18 @@ int bench_points_main(int argc, char **argv)
     if (all > 1)
         pb_print_rows(rows, nrows, all, 0);
     printf("\nBuild (seconds, every core: ttd's mesh, then its point data on the first point query; the others'\n"
-           "structure), ttd's tests per point, and the largest |d - d_ttd| (diagonal 1):\n");
-    printf("%-18s %9s %9s %9s %9s %9s %8s %8s %10s %10s %10s\n", "mesh", "ttd", "points", "Embree", "CGAL", "Open3D",
-           "nodes", "tris", "Embree", "CGAL", "Open3D");
+           "structure), ttd's tests per point, the largest |d - d_ttd| (diagonal 1), and a fingerprint of\n"
+           "ttd's signed distances and winding numbers (FNV-1a of their bits: equal fingerprints, equal answers):\n");
+    printf("%-18s %9s %9s %9s %9s %9s %8s %8s %10s %10s %10s %16s\n", "mesh", "ttd", "points", "Embree", "CGAL", "Open3D",
+           "nodes", "tris", "Embree", "CGAL", "Open3D", "answers");
     for (size_t i = 0; i < nrows; ++i) {
         const pb_row *r = &rows[i];
         if (r->threads != 1)
             continue;
-        printf("%-18s %9.4f %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g  (%s, %zu triangles)\n", r->mesh, r->build_ttd,
-               r->build_points, r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes, r->tris,
-               r->ref_diff[REF_EMBREE], r->ref_diff[REF_CGAL], r->ref_diff[REF_OPEN3D], r->points, r->nt);
+        printf("%-18s %9.4f %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g %016llx  (%s, %zu triangles)\n", r->mesh,
+               r->build_ttd, r->build_points, r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes,
+               r->tris, r->ref_diff[REF_EMBREE], r->ref_diff[REF_CGAL], r->ref_diff[REF_OPEN3D], (unsigned long long)r->answers,
+               r->points, r->nt);
     }
     char load_end[64];
     bench_load_average(load_end, sizeof load_end);
