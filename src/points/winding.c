@@ -19,6 +19,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
@@ -509,6 +510,8 @@ int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
 /* ---- many points over the threads ------------------------------------------------------- */
 
 #define WN_BLOCK 64
+/* Batches of at least this many points go in spatial order (as the closest point's). */
+#define WN_SORTED 32
 
 typedef struct wn_job {
     const struct ttd_mesh *m;
@@ -519,6 +522,7 @@ typedef struct wn_job {
     ttd_ray_node_fn ray;
     double *out;
     uint8_t *proven;
+    const size_t *order; /* the points in spatial order (ttd_points_order), or NULL: input order */
 } wn_job;
 
 static void wn_block(void *ctx, size_t b, int worker)
@@ -526,7 +530,8 @@ static void wn_block(void *ctx, size_t b, int worker)
     (void)worker;
     const wn_job *J = ctx;
     const size_t i1 = (b + 1) * WN_BLOCK < J->n ? (b + 1) * WN_BLOCK : J->n;
-    for (size_t i = b * WN_BLOCK; i < i1; ++i) {
+    for (size_t k = b * WN_BLOCK; k < i1; ++k) {
+        const size_t i = J->order != NULL ? J->order[k] : k;
         double x[3];
         for (int c = 0; c < 3; ++c)
             x[c] = J->bytes == 8 ? ((const double *)J->points)[3 * i + (size_t)c]
@@ -545,7 +550,11 @@ ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct t
     const int closed = ttd_mesh_closed(mesh);
     if (pd == NULL || closed < 0)
         return TTD_ERR_OUT_OF_MEMORY;
-    wn_job J = {mesh, pd, n, points, mesh->bytes, closed, ttd_dispatch_row_f(cfg->isa)->ray_node, winding, proven};
+    /* a batch in spatial order: consecutive points' walks (the rays through the mesh, the caps'
+     * walk) share nodes in the cache; each point's answer is its own, in any order */
+    size_t *order = n >= WN_SORTED ? ttd_points_order(mesh, pd, n, points, mesh->bytes) : NULL;
+    wn_job J = {mesh, pd, n, points, mesh->bytes, closed, ttd_dispatch_row_f(cfg->isa)->ray_node, winding, proven, order};
     ttd_parallel_for((n + WN_BLOCK - 1) / WN_BLOCK, cfg->threads, wn_block, &J);
+    free(order);
     return TTD_OK;
 }
