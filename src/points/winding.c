@@ -293,15 +293,16 @@ static wn_item wn_heap_pop(wn_item *h, int *n)
     return top;
 }
 
-/* The winding number about x as far as its side of `half` needs (for the caps: half = N - 1/2, N
- * the counts): every slot of the root far-field expanded where the point is outside its ball, then
- * the slot with the largest bound opened (a node into its slots, a triangle measured exactly) until
- * the bound leaves `half` outside [w - err, w + err], or nothing is left to open. The sum and the
+/* The winding number about x as far as its sides of two levels need (for the caps: N - 1/2 and
+ * N + 1/2, N the counts, where the mesh's w is +1/2 and -1/2: the inside rule asks about both):
+ * every slot of the root far-field expanded where the point is outside its ball, then the slot
+ * with the largest bound opened (a node into its slots, a triangle measured exactly) until the
+ * bound leaves both levels outside [w - err, w + err], or nothing is left to open. The sum and the
  * bound are formed again from the final frontier, in heap order, so that the running sums' own
  * rounding never decides. Returns 0 with *w and *err (the side may still be open: the caller
  * compares), -1 when the frontier outgrows its heap. *amb as wn_walk's. */
-static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double half, double *w,
-                        double *err, int *amb)
+static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double lo, double hi,
+                        double *w, double *err, int *amb)
 {
     const double *moments = ttd_points_moments(m, pd);
     if (moments == NULL)
@@ -311,7 +312,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
         *w = 0;
         return 0;
     }
-    const double scale = 1 / (4 * WN_PI), half4 = half * 4 * WN_PI;
+    const double scale = 1 / (4 * WN_PI), lo4 = lo * 4 * WN_PI, hi4 = hi * 4 * WN_PI;
     wn_item heap[WN_HEAP];
     int nh = 0, ninf = 0;
     double exact = 0, emag = 0, eang = 0, S = 0, B = 0, M = 0;
@@ -355,7 +356,8 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             exact += om;
             emag += fabs(om);
         }
-        if (ninf == 0 && !(fabs(half4 - (exact + S)) <= B + 32 * DBL_EPSILON * (emag + M) + eang + 1e-300)) {
+        const double run = B + 32 * DBL_EPSILON * (emag + M) + eang + 1e-300;
+        if (ninf == 0 && !(fabs(lo4 - (exact + S)) <= run) && !(fabs(hi4 - (exact + S)) <= run)) {
             /* settled by the running sums: form them again from the frontier */
             double s = 0, b = 0, mg = 0;
             for (int i = 0; i < nh; ++i) {
@@ -365,7 +367,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             }
             *w = (exact + s) * scale;
             *err = (b + 32 * DBL_EPSILON * (emag + mg) + eang) * scale;
-            if (fabs(*w - half) > *err)
+            if (fabs(*w - lo) > *err && fabs(*w - hi) > *err)
                 return 0;
         }
         if (!(fabs(S) < HUGE_VAL && B < HUGE_VAL))
@@ -412,15 +414,15 @@ static int wn_caps(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_
     int amb = 0;
     const double N = (double)cm + (double)cc;
     double wc;
-    if (sign && wn_side_walk(cp->mesh, cp->pd, x, N - 0.5, &wc, err, &amb) == 0) {
+    if (sign && wn_side_walk(cp->mesh, cp->pd, x, N - 0.5, N + 0.5, &wc, err, &amb) == 0) {
         *w = N - wc; /* settled, or every cap triangle measured exactly */
     } else {
         amb = 0;
         wc = wn_walk(cp->mesh, cp->pd, x, WN_BETA, -1, err, &amb);
         *w = N - wc;
-        if (sign && !(fabs(*w - 0.5) > *err)) {
+        if (sign && !(fabs(fabs(*w) - 0.5) > *err)) {
             amb = 0;
-            *w = N - wn_tight(cp->mesh, cp->pd, x, fmax(fabs(*w - 0.5) / 2, 1e-3), err, &amb);
+            *w = N - wn_tight(cp->mesh, cp->pd, x, fmax(fabs(fabs(*w) - 0.5) / 2, 1e-3), err, &amb);
         }
     }
     /* the sum's own rounding: cm + cc is exact, the difference rounds by half an ulp of w */
