@@ -46,7 +46,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
             const double p = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
                                            : (double)((const float *)m->verts)[3 * v + (size_t)c];
             a[k][c] = p - x[c];
-            big = fmax(big, fabs(a[k][c]));
+            big = ttd_max_nn(big, fabs(a[k][c]));
         }
     }
     if (!(big > 0)) { /* x is the (point) triangle itself */
@@ -65,7 +65,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
             a[k][c] = f != 0 ? a[k][c] * f : ldexp(a[k][c], -e);
         len[k] = sqrt(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
     }
-    const double sc = fmax(len[0], fmax(len[1], len[2]));
+    const double sc = ttd_max_nn(len[0], ttd_max_nn(len[1], len[2]));
     for (int k = 0; k < 3; ++k) {
         len[k] /= sc;
         for (int c = 0; c < 3; ++c)
@@ -92,7 +92,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
          * over the box of their rounding (its nearest point to the origin below); where that box
          * holds the origin no bound holds (a needle or an edge seen in its plane: the angle can
          * be anything), counted as ambiguous. The walks add it to their bounds. */
-        const double ny = fmax(fabs(det) - edet, 0), nx = fmax(fabs(den) - eden, 0);
+        const double ny = ttd_max_nn(fabs(det) - edet, 0), nx = ttd_max_nn(fabs(den) - eden, 0);
         const double r2 = nx * nx + ny * ny;
         if (r2 > 0)
             *aerr += 2 * ((fabs(den) + eden) * edet + (fabs(det) + edet) * eden) / r2;
