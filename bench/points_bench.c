@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "bench_internal.h"
@@ -24,6 +25,7 @@
 #include "open_meshes.h"
 #include "pairs.h"
 #include "points_bench.h"
+#include "ttd/meshfile.h"
 #include "ttd/ttd.h"
 
 enum { REF_EMBREE, REF_CGAL, REF_OPEN3D, REF_COUNT };
@@ -38,7 +40,18 @@ typedef struct pb_row {
     double ref_diff[REF_COUNT];     /* largest |d_ref - d_ttd| / diagonal */
     double build_ttd, build_points, build_ref[REF_COUNT]; /* ttd: the mesh; its point data apart */
     double nodes, tris;             /* per point, ttd double */
+    uint64_t answers[2];            /* FNV-1a of the signed distances' bits, and of the winding numbers' */
 } pb_row;
+
+/* FNV-1a over the bytes of n doubles, continuing from h: a fingerprint of a run's answers, so that
+ * two builds can be compared bit for bit from their benchmark output. */
+static uint64_t pb_hash(uint64_t h, const double *x, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)x;
+    for (size_t i = 0; i < 8 * n; ++i)
+        h = (h ^ b[i]) * 0x100000001b3ull;
+    return h;
+}
 
 /* The best of 3 wall-clock times of fn. */
 typedef struct pb_call {
@@ -51,13 +64,21 @@ typedef struct pb_call {
     ttd_point_result_d *rd;
     ttd_point_result_f *rf;
     double *sd;
+    int cpu; /* time by the process's CPU time (--cpu, one-thread rows), not wall clock */
 } pb_call;
+
+static double pb_cpu_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 static double pb_time(const pb_call *c)
 {
     double best = INFINITY;
     for (int rep = 0; rep < 3; ++rep) {
-        const double t0 = bench_now();
+        const double t0 = c->cpu ? pb_cpu_now() : bench_now();
         ttd_status st;
         if (c->kind == 0)
             st = ttd_points_closest_d(c->opt, c->md, c->n, c->pd, NULL, INFINITY, c->rd);
@@ -67,7 +88,7 @@ static double pb_time(const pb_call *c)
             st = ttd_points_signed_distance_d(c->opt, c->md, c->n, c->pd, NULL, INFINITY, c->sd, NULL);
         else
             st = ttd_points_winding_number_d(c->opt, c->md, c->n, c->pd, NULL, c->sd);
-        const double t = bench_now() - t0;
+        const double t = (c->cpu ? pb_cpu_now() : bench_now()) - t0;
         if (st != TTD_OK)
             return NAN;
         best = t < best ? t : best;
@@ -207,9 +228,10 @@ static void pb_ref(const pb_env *E, int r, const char *in, int threads, size_t n
     row->ref_diff[r] = worst;
 }
 
-static void pb_print_rows(const pb_row *rows, size_t nrows, int threads)
+static void pb_print_rows(const pb_row *rows, size_t nrows, int threads, int cpu)
 {
-    printf("\n%s, microseconds per point (fastest of 3), ratios in this run:\n", threads == 1 ? "One thread" : "All cores");
+    printf("\n%s, microseconds per point (fastest of 3%s), ratios in this run:\n", threads == 1 ? "One thread" : "All cores",
+           threads == 1 && cpu ? "; ttd's columns in process CPU time, the others wall clock" : "");
     printf("%-18s %-8s %9s %9s %9s %9s %9s %9s %9s  %-10s %-10s %-10s %-9s\n", "mesh", "points", "ttd", "float", "signed",
            "winding", "Embree", "CGAL", "Open3D", "Embree/ttd", "signed/ttd", "wind/ttd", "float/ttd");
     for (size_t i = 0; i < nrows; ++i) {
@@ -226,17 +248,66 @@ static void pb_print_rows(const pb_row *rows, size_t nrows, int threads)
     }
 }
 
-/* The workloads: --meshes keys and the rows' names; from 4 on the open meshes of gen/open_meshes.h. */
-#define PB_MESHES 9
-static const char *const pb_keys[PB_MESHES] = {"triangle", "bunny", "bunny-sub", "torus", "cad",
-                                                "chair", "capsule", "scan", "torus-holes"};
+/* The workloads: --meshes keys and the rows' names; 4 to 8 the open meshes of gen/open_meshes.h,
+ * 9 to 11 the public open models of scripts/fetch-open-models.sh (files, left out when absent). */
+#define PB_MESHES 12
+#define PB_GENERATED 0x1f0u /* bits of the generated open meshes */
+#define PB_PUBLIC 0xe00u    /* bits of the public open models */
+static const char *const pb_keys[PB_MESHES] = {"triangle", "bunny", "bunny-sub", "torus", "cad", "chair", "capsule",
+                                                "scan", "torus-holes", "bunny-scan", "snowden", "teapot"};
 static const char *const pb_names[PB_MESHES] = {"one triangle", "bunny", "bunny subdivided", "torus 1M", "open cad part",
-                                                "open chair", "open capsule", "open scan", "open torus"};
+                                                "open chair", "open capsule", "open scan", "open torus", "bunny scan",
+                                                "snowden bust", "teapot x16"};
+/* The public models' files (in $TTD_DATA_DIR, build/data or data/ beside ttd's folder) and how
+ * often each is subdivided flat (the teapot's 992 triangles become 15,872, its shape unchanged). */
+static const char *const pb_files[3] = {"bunny-scan.stl", "snowden.obj", "teapot.obj"};
+static const int pb_subdivide[3] = {0, 0, 2};
+
+/* Public model k (0..2): read, welded exactly (tolerance 0: an STL's repeated vertices become
+ * one), subdivided, normalised to diagonal 1. 0, or -1 with why in what. */
+static int pb_load_public(int k, ttd_gen_mesh *out, char *what, size_t size)
+{
+    memset(out, 0, sizeof *out);
+    char path[1200] = "", self[1024];
+    const char *env = getenv("TTD_DATA_DIR");
+    if (env && *env)
+        snprintf(path, sizeof path, "%s/%s", env, pb_files[k]);
+    if (!path[0] || access(path, R_OK) != 0)
+        snprintf(path, sizeof path, "build/data/%s", pb_files[k]);
+    if (access(path, R_OK) != 0) {
+        pb_self_dir(self, sizeof self);
+        snprintf(path, sizeof path, "%s../data/%s", self, pb_files[k]);
+    }
+    if (access(path, R_OK) != 0) {
+        snprintf(what, size, "not found (looked in $TTD_DATA_DIR, build/data and data/ beside ttd's folder; "
+                             "scripts/fetch-open-models.sh fetches it)");
+        return -1;
+    }
+    ttd_meshfile mf;
+    char err[512];
+    if (ttd_meshfile_read(path, 0, &mf, err, sizeof err) != 0) {
+        snprintf(what, size, "unreadable: %s", err);
+        return -1;
+    }
+    int rc = ttd_meshfile_weld(&mf, 0, NULL, err, sizeof err);
+    if (rc == 0) {
+        ttd_gen_mesh view = {mf.verts, mf.nv, mf.tris, mf.nt};
+        rc = pb_subdivide[k] ? ttd_gen_subdivide(&view, pb_subdivide[k], out) : ttd_gen_mesh_copy(&view, out);
+        rc = rc || ttd_gen_normalize(out) ? -1 : 0;
+        snprintf(what, size, rc ? "%s could not be normalised" : "%s", path);
+    } else {
+        snprintf(what, size, "%s could not be welded: %s", path, err);
+    }
+    ttd_meshfile_free(&mf);
+    if (rc)
+        ttd_gen_mesh_free(out);
+    return rc;
+}
 
 int bench_points_main(int argc, char **argv)
 {
     size_t n = 100000;
-    int all = 0, quick = 0;
+    int all = 0, quick = 0, cpu = 0;
     unsigned meshes = 15; /* bit w: workload w of names[] below */
     pb_env E;
     memset(&E, 0, sizeof E);
@@ -253,30 +324,34 @@ int bench_points_main(int argc, char **argv)
         } else if (strcmp(argv[i], "--meshes") == 0 && i + 1 < argc) {
             meshes = 0;
             for (char *tok = strtok(argv[++i], ","); tok; tok = strtok(NULL, ",")) {
-                if (strcmp(tok, "open") == 0) {
-                    meshes |= 0x1f0u;
+                if (strcmp(tok, "open") == 0 || strcmp(tok, "generated") == 0 || strcmp(tok, "public") == 0) {
+                    meshes |= (tok[0] != 'p' ? PB_GENERATED : 0) | (tok[0] != 'g' ? PB_PUBLIC : 0);
                     continue;
                 }
                 int w = 0;
                 while (w < PB_MESHES && strcmp(tok, pb_keys[w]) != 0)
                     ++w;
                 if (w == PB_MESHES) {
-                    fprintf(stderr, "ttd bench points: unknown mesh '%s' (triangle, bunny, bunny-sub, torus, open: cad, "
-                                    "chair, capsule, scan, torus-holes)\n", tok);
+                    fprintf(stderr, "ttd bench points: unknown mesh '%s' (triangle, bunny, bunny-sub, torus; generated: cad, "
+                                    "chair, capsule, scan, torus-holes; public: bunny-scan, snowden, teapot; open: both)\n", tok);
                     return 2;
                 }
                 meshes |= 1u << w;
             }
+        } else if (strcmp(argv[i], "--cpu") == 0) {
+            cpu = 1;
         } else if (strcmp(argv[i], "--no-refs") == 0) {
             E.no_refs = 1;
         } else if (strcmp(argv[i], "--bunny") == 0 && i + 1 < argc) {
             snprintf(mc.bunny, sizeof mc.bunny, "%s", argv[++i]);
         } else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--meshes LIST] [--no-refs] [--bunny PATH]\n"
+            printf("usage: ttd bench points [--quick] [--points N] [--threads N] [--meshes LIST] [--no-refs] [--cpu] [--bunny PATH]\n"
                    "The point queries against Embree, CGAL and Open3D (docs/points.md): N points per set\n"
                    "(default 100000; --quick 10000), one thread and N threads (default: every core);\n"
                    "LIST: comma-separated, from triangle, bunny, bunny-sub, torus (default: these four), and the\n"
-                   "open meshes cad, chair, capsule, scan, torus-holes (gen/open_meshes.h; 'open' for all five).\n");
+                   "open meshes cad, chair, capsule, scan, torus-holes (gen/open_meshes.h; 'generated' for all five)\n"
+                   "and bunny-scan, snowden, teapot (public models, scripts/fetch-open-models.sh; 'public' for the\n"
+                   "three); 'open' for all eight. --cpu: ttd's one-thread times in process CPU time, not wall clock.\n");
             return 0;
         } else {
             fprintf(stderr, "ttd bench points: unknown option '%s' (ttd bench points --help)\n", argv[i]);
@@ -330,6 +405,10 @@ int bench_points_main(int argc, char **argv)
         int rc;
         if (w == 0) {
             rc = ttd_gen_mesh_triangle(&m) || ttd_gen_normalize(&m);
+        } else if (w >= 9) {
+            rc = pb_load_public(w - 9, &m, what, sizeof what);
+            if (rc)
+                fprintf(stderr, "ttd bench points: %s (%s) is %s: its rows are left out\n", names[w], pb_files[w - 9], what);
         } else if (w >= 4) {
             rc = ttd_gen_open_mesh(pb_keys[w], &m);
         } else if (w == 3) {
@@ -386,7 +465,7 @@ int bench_points_main(int argc, char **argv)
                 r->build_points = build_points;
                 ttd_options o = ttd_default_options();
                 o.threads = threads;
-                pb_call c = {0, &o, md, mfl, n, p, pf, rd, rf, sd};
+                pb_call c = {0, &o, md, mfl, n, p, pf, rd, rf, sd, cpu && threads == 1};
                 r->ttd_d = pb_time(&c) / (double)n;
                 for (size_t i = 0; i < n; ++i) {
                     dd[i] = rd[i].distance;
@@ -399,8 +478,10 @@ int bench_points_main(int argc, char **argv)
                 r->ttd_f = pb_time(&c) / (double)n;
                 c.kind = 2;
                 r->ttd_s = pb_time(&c) / (double)n;
+                r->answers[0] = pb_hash(0xcbf29ce484222325ull, sd, n);
                 c.kind = 3;
                 r->ttd_w = pb_time(&c) / (double)n;
+                r->answers[1] = pb_hash(0xcbf29ce484222325ull, sd, n);
                 for (int k = 0; k < REF_COUNT; ++k) {
                     r->ref[k] = r->ref_diff[k] = r->build_ref[k] = NAN;
                     if (ok)
@@ -415,20 +496,22 @@ int bench_points_main(int argc, char **argv)
         free(vf);
         ttd_gen_mesh_free(&m);
     }
-    pb_print_rows(rows, nrows, 1);
+    pb_print_rows(rows, nrows, 1, cpu);
     if (all > 1)
-        pb_print_rows(rows, nrows, all);
+        pb_print_rows(rows, nrows, all, 0);
     printf("\nBuild (seconds, every core: ttd's mesh, then its point data on the first point query; the others'\n"
-           "structure), ttd's tests per point, and the largest |d - d_ttd| (diagonal 1):\n");
-    printf("%-18s %9s %9s %9s %9s %9s %8s %8s %10s %10s %10s\n", "mesh", "ttd", "points", "Embree", "CGAL", "Open3D",
-           "nodes", "tris", "Embree", "CGAL", "Open3D");
+           "structure), ttd's tests per point, the largest |d - d_ttd| (diagonal 1), and fingerprints of ttd's\n"
+           "signed distances and of its winding numbers (FNV-1a of their bits: equal fingerprints, equal answers):\n");
+    printf("%-18s %9s %9s %9s %9s %9s %8s %8s %10s %10s %10s %16s %16s\n", "mesh", "ttd", "points", "Embree", "CGAL", "Open3D",
+           "nodes", "tris", "Embree", "CGAL", "Open3D", "signed", "winding");
     for (size_t i = 0; i < nrows; ++i) {
         const pb_row *r = &rows[i];
         if (r->threads != 1)
             continue;
-        printf("%-18s %9.4f %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g  (%s, %zu triangles)\n", r->mesh, r->build_ttd,
-               r->build_points, r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes, r->tris,
-               r->ref_diff[REF_EMBREE], r->ref_diff[REF_CGAL], r->ref_diff[REF_OPEN3D], r->points, r->nt);
+        printf("%-18s %9.4f %9.4f %9.4f %9.4f %9.4f %8.1f %8.1f %10.2g %10.2g %10.2g %016llx %016llx  (%s, %zu triangles)\n", r->mesh,
+               r->build_ttd, r->build_points, r->build_ref[REF_EMBREE], r->build_ref[REF_CGAL], r->build_ref[REF_OPEN3D], r->nodes,
+               r->tris, r->ref_diff[REF_EMBREE], r->ref_diff[REF_CGAL], r->ref_diff[REF_OPEN3D], (unsigned long long)r->answers[0], (unsigned long long)r->answers[1],
+               r->points, r->nt);
     }
     char load_end[64];
     bench_load_average(load_end, sizeof load_end);

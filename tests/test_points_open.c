@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "meshes.h"
 #include "open_meshes.h"
@@ -144,6 +145,84 @@ static int open_sides_match_reference(void)
             ENSURE(unproven <= n / 20);
             ttd_mesh_destroy(mesh);
             free(vr), free(pr), free(vf), free(pf), free(w), free(flags);
+        }
+        free(p);
+        ttd_gen_mesh_free(&m);
+    }
+    return 0;
+}
+
+/* A batch's answers are each point's own, whatever batch they come in: signed distances of 10,000
+ * points (more than one of the signed distance's chunks, which go in the batch's spatial order and
+ * are gathered) without results, with results (one chunk), and point by point, the winding numbers
+ * in a batch and point by point, all the same bits; a NaN point among them gets NaN. Double and
+ * float, the capsule and the chair. */
+static int open_batch_answers_are_each_points(void)
+{
+    for (int f = 1; f < 3; ++f) {
+        ttd_gen_mesh m;
+        ENSURE(ttd_gen_open_mesh(families[f], &m) == 0);
+        size_t n;
+        double *p = open_points(&m, f == 2, 77 + (uint64_t)f, 5000, &n);
+        p[3 * 4321 + 1] = NAN;
+        for (int prec = 0; prec < 2; ++prec) {
+            ttd_mesh *mesh;
+            float *vf = malloc(3 * m.nv * sizeof *vf), *pf = malloc(3 * n * sizeof *pf);
+            for (size_t i = 0; i < 3 * m.nv; ++i)
+                vf[i] = (float)m.verts[i];
+            for (size_t i = 0; i < 3 * n; ++i)
+                pf[i] = (float)p[i];
+            ENSURE((prec ? ttd_mesh_create_f(NULL, vf, m.nv, m.tris, m.nt, &mesh)
+                         : ttd_mesh_create_d(NULL, m.verts, m.nv, m.tris, m.nt, &mesh)) == TTD_OK);
+            double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), *wa = malloc(n * sizeof *wa);
+            size_t checked = 0;
+            if (prec) {
+                float *sa = malloc(n * sizeof *sa), *sb = malloc(n * sizeof *sb), *wf = malloc(n * sizeof *wf);
+                ttd_point_result_f *res = malloc(n * sizeof *res);
+                ENSURE(ttd_points_signed_distance_f(NULL, mesh, n, pf, NULL, INFINITY, sa, NULL) == TTD_ERR_NONFINITE_INPUT);
+                ENSURE(ttd_points_signed_distance_f(NULL, mesh, n, pf, NULL, INFINITY, sb, res) == TTD_ERR_NONFINITE_INPUT);
+                ENSURE(ttd_points_winding_number_f(NULL, mesh, n, pf, NULL, wf) == TTD_ERR_NONFINITE_INPUT);
+                for (size_t i = 0; i < n; ++i)
+                    a[i] = sa[i], b[i] = sb[i], wa[i] = wf[i];
+                for (size_t i = 0; i < n; i += 37, ++checked) {
+                    float s1, w1;
+                    const ttd_status st = i == 4321 ? TTD_ERR_NONFINITE_INPUT : TTD_OK;
+                    ENSURE(ttd_points_signed_distance_f(NULL, mesh, 1, pf + 3 * i, NULL, INFINITY, &s1, NULL) == st);
+                    ENSURE(ttd_points_winding_number_f(NULL, mesh, 1, pf + 3 * i, NULL, &w1) == st);
+                    ENSURE_MSG(memcmp(&s1, &sa[i], sizeof s1) == 0 && memcmp(&w1, &wf[i], sizeof w1) == 0,
+                               "%s float point %zu: %.9g %.9g alone, %.9g %.9g in the batch", families[f], i, (double)s1, (double)w1,
+                               (double)sa[i], (double)wf[i]);
+                }
+                free(sa), free(sb), free(wf), free(res);
+            } else {
+                ttd_point_result_d *res = malloc(n * sizeof *res);
+                ENSURE(ttd_points_signed_distance_d(NULL, mesh, n, p, NULL, INFINITY, a, NULL) == TTD_ERR_NONFINITE_INPUT);
+                ENSURE(ttd_points_signed_distance_d(NULL, mesh, n, p, NULL, INFINITY, b, res) == TTD_ERR_NONFINITE_INPUT);
+                ENSURE(ttd_points_winding_number_d(NULL, mesh, n, p, NULL, wa) == TTD_ERR_NONFINITE_INPUT);
+                for (size_t i = 0; i < n; i += 37, ++checked) {
+                    double s1, w1;
+                    const ttd_status st = i == 4321 ? TTD_ERR_NONFINITE_INPUT : TTD_OK;
+                    ENSURE(ttd_points_signed_distance_d(NULL, mesh, 1, p + 3 * i, NULL, INFINITY, &s1, NULL) == st);
+                    ENSURE(ttd_points_winding_number_d(NULL, mesh, 1, p + 3 * i, NULL, &w1) == st);
+                    ENSURE_MSG(memcmp(&s1, &a[i], sizeof s1) == 0 && memcmp(&w1, &wa[i], sizeof w1) == 0,
+                               "%s double point %zu: %.17g %.17g alone, %.17g %.17g in the batch", families[f], i, s1, w1, a[i], wa[i]);
+                }
+                free(res);
+            }
+            size_t inside = 0;
+            for (size_t i = 0; i < n; ++i) {
+                ENSURE_MSG(memcmp(&a[i], &b[i], sizeof a[i]) == 0, "%s %s point %zu: %.17g without results, %.17g with",
+                           families[f], prec ? "float" : "double", i, a[i], b[i]);
+                ENSURE(isnan(a[i]) == (i == 4321) && isnan(wa[i]) == (i == 4321));
+                inside += a[i] < 0;
+                if (i != 4321) /* the side of the signed distance is the winding number's (the one rule) */
+                    ENSURE(a[i] == 0 || (a[i] < 0) == (fabs(wa[i]) >= 0.5));
+            }
+            printf("  %-8s %-6s %zu points (%zu inside), %zu alone: the same bits\n", families[f], prec ? "float" : "double", n,
+                   inside, checked);
+            ENSURE(inside > n / 20 && inside < n - n / 20);
+            ttd_mesh_destroy(mesh);
+            free(vf), free(pf), free(a), free(b), free(wa);
         }
         free(p);
         ttd_gen_mesh_free(&m);
@@ -378,6 +457,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(open_sides_match_reference);
+    RUN_TEST(open_batch_answers_are_each_points);
     RUN_TEST(open_extreme_scales);
     RUN_TEST(closed_tiny_cube);
     RUN_TEST(open_tiny_cube);

@@ -270,12 +270,28 @@ TTD_SIGNED_BODY(float, f)
         const size_t chunk = results ? (n ? n : 1) : (n < PTS_CHUNK ? (n ? n : 1) : PTS_CHUNK);  \
         ttd_point_result_##sfx *r = results ? results : malloc(chunk * sizeof *r);             \
         st = r ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;                                               \
+        /* more than one chunk: the chunks are runs of the whole batch's spatial order, gathered   \
+         * (a chunk of scattered points would lose the closest point's seeds and the cache: 8,192  \
+         * random points cost 1.3x a point of 50,000 in order); the answers are each point's own */ \
+        const ttd_points_data *pd_ = st == TTD_OK && n > chunk ? ttd_points_data_get(mesh, cfg.threads) : NULL; \
+        size_t *order = pd_ ? ttd_points_order(mesh, pd_, n, in.pts, (int)sizeof(real)) : NULL; \
+        real *gp = order ? malloc(chunk * 4 * sizeof *gp) : NULL, *gd = gp ? gp + 3 * chunk : NULL; \
         for (size_t i0 = 0; st == TTD_OK && i0 < n; i0 += chunk) {                             \
             const size_t k = n - i0 < chunk ? n - i0 : chunk;                                  \
-            const pts_in part = {(const real *)in.pts + 3 * i0, NULL, 0};                      \
-            st = signed_##sfx(&cfg, mesh, k, &part, upper_bound, distance ? distance + i0 : NULL, \
-                              results ? results + i0 : r);                                     \
+            pts_in part = {(const real *)in.pts + 3 * i0, NULL, 0};                            \
+            real *dk = distance ? distance + i0 : NULL;                                        \
+            if (gp != NULL) {                                                                  \
+                for (size_t j = 0; j < k; ++j)                                                 \
+                    memcpy(gp + 3 * j, (const real *)in.pts + 3 * order[i0 + j], 3 * sizeof *gp); \
+                part.pts = gp;                                                                 \
+                dk = distance ? gd : NULL;                                                     \
+            }                                                                                  \
+            st = signed_##sfx(&cfg, mesh, k, &part, upper_bound, dk, results ? results + i0 : r); \
+            for (size_t j = 0; st == TTD_OK && gp != NULL && distance && j < k; ++j)           \
+                distance[order[i0 + j]] = gd[j];                                               \
         }                                                                                      \
+        free(gp);                                                                              \
+        free(order);                                                                           \
         for (size_t i = 0; st == TTD_OK && results && pose != NULL && i < n; ++i)              \
             TTD_POINT_BACK(real, pose, results[i].point);                                            \
         if (r != results)                                                                      \

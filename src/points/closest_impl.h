@@ -11,7 +11,7 @@
  * limit a box must come within to be opened. Every triangle at the final distance lies in boxes
  * within the limit, so the walk meets all of them and keeps the smallest index: the brute force's
  * answer, bit for bit (the kernel's distances are the reference's). A batch goes in spatial order,
- * each walk's limit seeded by the previous point's answer (closest_order, closest_one); the
+ * each walk's limit seeded by the previous point's answer (ttd_points_order, closest_one); the
  * points are dealt to the threads in fixed blocks of that order, so a point's walk depends on its
  * batch but not on which thread runs it, and its answer on neither. */
 
@@ -293,63 +293,6 @@ static void closest_block(void *ctx, size_t b, int worker)
     }
 }
 
-/* The points' order along a Morton curve over the mesh's box (10 bits an axis, the walk nodes'
- * frame [-1, 1]^3; points outside are clamped, a NaN point goes first), sorted stably by
- * three passes of radix sort: consecutive points are near each other, so the previous point's
- * answer seeds the next walk and the nodes they share stay in cache. NULL when out of memory
- * (the points then go in input order: the same results). */
-static size_t *closest_order(const struct ttd_mesh *m, const ttd_points_data *pd, size_t n, const real *points)
-{
-    size_t *order = malloc(2 * n * sizeof *order);
-    uint32_t *code = malloc(2 * n * sizeof *code);
-    size_t *count = calloc(1024, sizeof *count);
-    if (order == NULL || code == NULL || count == NULL) {
-        free(order), free(code), free(count);
-        return NULL;
-    }
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t c = 0;
-        for (int a = 0; a < 3; ++a) {
-            const double x = ((double)points[3 * i + (size_t)a] - m->origin[a]) * pd->scale;
-            const double g = (x + 1) * 512; /* NaN fails both tests below: cell 0 */
-            uint32_t q = g > 0 ? (g < 1023 ? (uint32_t)g : 1023u) : 0u;
-            q = (q | q << 16) & 0x030000FFu; /* the bits of q spread to every third place */
-            q = (q | q << 8) & 0x0300F00Fu;
-            q = (q | q << 4) & 0x030C30C3u;
-            q = (q | q << 2) & 0x09249249u;
-            c |= q << a;
-        }
-        code[i] = c;
-        order[i] = i;
-    }
-    size_t *src = order, *dst = order + n;
-    uint32_t *csrc = code, *cdst = code + n;
-    for (int pass = 0; pass < 3; ++pass) {
-        const int sh = 10 * pass;
-        memset(count, 0, 1024 * sizeof *count);
-        for (size_t i = 0; i < n; ++i)
-            ++count[csrc[i] >> sh & 1023u];
-        size_t sum = 0;
-        for (int b = 0; b < 1024; ++b) {
-            const size_t c = count[b];
-            count[b] = sum;
-            sum += c;
-        }
-        for (size_t i = 0; i < n; ++i) {
-            const size_t at = count[csrc[i] >> sh & 1023u]++;
-            dst[at] = src[i];
-            cdst[at] = csrc[i];
-        }
-        size_t *t = src;
-        src = dst, dst = t;
-        uint32_t *ct = csrc;
-        csrc = cdst, cdst = ct;
-    }
-    /* three passes: the sorted order is in the second half */
-    memmove(order, src, n * sizeof *order);
-    free(code), free(count);
-    return order;
-}
 
 static ttd_status closest_run(const ttd_engine_config *cfg, const struct ttd_mesh *m, size_t n, const real *points,
                               real upper_bound, ttd_point_result *out)
@@ -358,7 +301,7 @@ static ttd_status closest_run(const ttd_engine_config *cfg, const struct ttd_mes
     if (pd == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
     /* a batch large enough to share nodes goes in spatial order (a few radix passes a point) */
-    size_t *order = pd->tiny == NULL && n >= CLOSEST_SORTED ? closest_order(m, pd, n, points) : NULL;
+    size_t *order = pd->tiny == NULL && n >= CLOSEST_SORTED ? ttd_points_order(m, pd, n, points, (int)sizeof(real)) : NULL;
     closest_job J = {m, pd, TTD_DISPATCH_ROW(cfg->isa), ttd_dispatch_row_f(cfg->isa)->point_node, points, n, upper_bound, out,
                      order};
     ttd_parallel_for((n + CLOSEST_BLOCK - 1) / CLOSEST_BLOCK, cfg->threads, closest_block, &J);

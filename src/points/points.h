@@ -144,6 +144,18 @@ void ttd_points_ray_direction(const struct ttd_mesh *mesh, const ttd_points_data
 int ttd_points_ray_count(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                          const double x[3], int k, int sigma, int *count);
 
+/* The larger of two numbers neither of which is NaN: fmax is a call into libm wherever the compiler
+ * must keep its NaN rule, and the ray's and the solid angle's scalings take several per triangle. */
+static inline double ttd_max_nn(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+/* The n points (3n reals, double when bytes is 8, else float, in the mesh's frame) in order along
+ * a Morton curve over the mesh's box (points/order.c): a malloc'd array of n indices (free it), or
+ * NULL when out of memory (the caller goes in input order: the same answers). */
+size_t *ttd_points_order(const struct ttd_mesh *mesh, const ttd_points_data *pd, size_t n, const void *points, int bytes);
+
 /* The winding number about x, the one every query reports and decides a side by (the inside rule,
  * ttd_winding_inside: |w| >= 1/2): the exact count for a closed mesh; else the fast walk, and where
  * its bound does not settle the side of |w| = 1/2, the walk tightened until it does (down to every

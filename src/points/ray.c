@@ -126,9 +126,11 @@ static int orient2(const double q[2], const double a[2], const double b[2], doub
     /* a point within 2^-200 of both vertices (at the walk's scale) but far from others of its
      * triangle: the three scaled up by a power of two first (exact, the same sign), so that the
      * products of their differences stay far above the subnormal range; *val and *perm scaled back */
-    const double dm = fmax(fmax(fabs(a[0] - q[0]), fabs(b[1] - q[1])), fmax(fabs(a[1] - q[1]), fabs(b[0] - q[0])));
+    const double dm = ttd_max_nn(ttd_max_nn(fabs(a[0] - q[0]), fabs(b[1] - q[1])),
+                                 ttd_max_nn(fabs(a[1] - q[1]), fabs(b[0] - q[0])));
     if (dm > 0 && dm < 0x1p-200) {
-        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        const double big = ttd_max_nn(ttd_max_nn(fabs(q[0]), fabs(q[1])),
+                                      ttd_max_nn(ttd_max_nn(fabs(a[0]), fabs(a[1])), ttd_max_nn(fabs(b[0]), fabs(b[1]))));
         int em, eb;
         (void)frexp(dm, &em);
         (void)frexp(big, &eb);
@@ -160,7 +162,8 @@ static int orient2(const double q[2], const double a[2], const double b[2], doub
         /* a term below the subnormal range (differences of very different sizes, such as a point
          * 1e-170 from a vertex of a unit triangle): all three scaled up by a power of two that
          * keeps them below 2^500 (exact, the same sign) and the terms formed again */
-        const double big = fmax(fmax(fabs(q[0]), fabs(q[1])), fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1]))));
+        const double big = ttd_max_nn(ttd_max_nn(fabs(q[0]), fabs(q[1])),
+                                      ttd_max_nn(ttd_max_nn(fabs(a[0]), fabs(a[1])), ttd_max_nn(fabs(b[0]), fabs(b[1]))));
         int eb;
         (void)frexp(big, &eb);
         if (500 - eb > 0) {
@@ -227,7 +230,7 @@ static int ray_triangle(const double p[3], int k, int sigma, const double v[3][3
         double big = 0;
         for (int t = 0; t < 3; ++t)
             for (int c = 0; c < 3; ++c)
-                big = fmax(big, fmax(fabs(v[t][c]), fabs(p[c])));
+                big = ttd_max_nn(big, ttd_max_nn(fabs(v[t][c]), fabs(p[c])));
         int eb;
         (void)frexp(big, &eb);
         for (int attempt = 0; attempt < 2; ++attempt) {
@@ -264,10 +267,10 @@ static int ray_triangle_local(const double p[3], int k, int sigma, const double 
 {
     double m = 0, big = 0;
     for (int c = 0; c < 3; ++c) {
-        big = fmax(big, fabs(p[c]));
+        big = ttd_max_nn(big, fabs(p[c]));
         for (int t = 0; t < 3; ++t) {
-            m = fmax(m, fabs(v[t][c] - p[c]));
-            big = fmax(big, fabs(v[t][c]));
+            m = ttd_max_nn(m, fabs(v[t][c] - p[c]));
+            big = ttd_max_nn(big, fabs(v[t][c]));
         }
     }
     if (!(m > 0 && m < 0x1p-100))

@@ -19,6 +19,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
@@ -45,7 +46,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
             const double p = m->bytes == 8 ? ((const double *)m->verts)[3 * v + (size_t)c]
                                            : (double)((const float *)m->verts)[3 * v + (size_t)c];
             a[k][c] = p - x[c];
-            big = fmax(big, fabs(a[k][c]));
+            big = ttd_max_nn(big, fabs(a[k][c]));
         }
     }
     if (!(big > 0)) { /* x is the (point) triangle itself */
@@ -64,7 +65,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
             a[k][c] = f != 0 ? a[k][c] * f : ldexp(a[k][c], -e);
         len[k] = sqrt(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
     }
-    const double sc = fmax(len[0], fmax(len[1], len[2]));
+    const double sc = ttd_max_nn(len[0], ttd_max_nn(len[1], len[2]));
     for (int k = 0; k < 3; ++k) {
         len[k] /= sc;
         for (int c = 0; c < 3; ++c)
@@ -91,7 +92,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
          * over the box of their rounding (its nearest point to the origin below); where that box
          * holds the origin no bound holds (a needle or an edge seen in its plane: the angle can
          * be anything), counted as ambiguous. The walks add it to their bounds. */
-        const double ny = fmax(fabs(det) - edet, 0), nx = fmax(fabs(den) - eden, 0);
+        const double ny = ttd_max_nn(fabs(det) - edet, 0), nx = ttd_max_nn(fabs(den) - eden, 0);
         const double r2 = nx * nx + ny * ny;
         if (r2 > 0)
             *aerr += 2 * ((fabs(den) + eden) * edet + (fabs(det) + edet) * eden) / r2;
@@ -250,57 +251,31 @@ static double wn_tight(const struct ttd_mesh *mesh, const ttd_points_data *pd, c
     }
 }
 
-/* ---- the side of 1/2 by refinement, largest bound first --------------------------------- */
+/* ---- the side of +-1/2 by refinement, largest bound first ------------------------------- */
 
-/* A slot of the frontier: its far-field term, the term's magnitude and its remainder's bound
- * (+inf for a subtree whose ball holds the point: it must be opened), and what opening it means
- * (a node, or -1 - t for triangle t). */
-typedef struct wn_item {
-    double bound, term, mag;
-    int32_t child;
-} wn_item;
+/* The frontier of the side walk: the slots whose far field is taken, each with its remainder's
+ * bound, its term, the term's magnitude and what opening it means (a node, or -1 - t for triangle
+ * t), side by side so that the largest bound is found by one pass over an array (a frontier holds
+ * tens of slots: cheaper than keeping a heap of them); and the subtrees whose ball holds the
+ * point, which must be opened whatever their size, on a stack of their own. */
+#define WN_FRONT 1024
 
-#define WN_HEAP 1024
+typedef struct wn_front {
+    double bound[WN_FRONT], term[WN_FRONT], mag[WN_FRONT];
+    int32_t child[WN_FRONT], must[WN_FRONT];
+    int n, nmust;
+} wn_front;
 
-static void wn_heap_push(wn_item *h, int *n, wn_item it)
-{
-    int i = (*n)++;
-    while (i > 0 && h[(i - 1) / 2].bound < it.bound) {
-        h[i] = h[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h[i] = it;
-}
-
-static wn_item wn_heap_pop(wn_item *h, int *n)
-{
-    const wn_item top = h[0], last = h[--*n];
-    int i = 0;
-    for (;;) {
-        int c = 2 * i + 1;
-        if (c >= *n)
-            break;
-        if (c + 1 < *n && h[c + 1].bound > h[c].bound)
-            ++c;
-        if (!(h[c].bound > last.bound))
-            break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (*n > 0)
-        h[i] = last;
-    return top;
-}
-
-/* The winding number about x as far as its side of `half` needs (for the caps: half = N - 1/2, N
- * the counts): every slot of the root far-field expanded where the point is outside its ball, then
- * the slot with the largest bound opened (a node into its slots, a triangle measured exactly) until
- * the bound leaves `half` outside [w - err, w + err], or nothing is left to open. The sum and the
- * bound are formed again from the final frontier, in heap order, so that the running sums' own
+/* The winding number about x as far as its sides of two levels need (for the caps: N - 1/2 and
+ * N + 1/2, N the counts, where the mesh's w is +1/2 and -1/2: the inside rule asks about both):
+ * every slot of the root far-field expanded where the point is outside its ball, then the slot
+ * with the largest bound opened (a node into its slots, a triangle measured exactly) until the
+ * bound leaves both levels outside [w - err, w + err], or nothing is left to open. The sum and the
+ * bound are formed again from the final frontier, in its order, so that the running sums' own
  * rounding never decides. Returns 0 with *w and *err (the side may still be open: the caller
- * compares), -1 when the frontier outgrows its heap. *amb as wn_walk's. */
-static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double half, double *w,
-                        double *err, int *amb)
+ * compares), -1 when the frontier outgrows its arrays. *amb as wn_walk's. */
+static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, const double x[3], double lo, double hi,
+                        double *w, double *err, int *amb)
 {
     const double *moments = ttd_points_moments(m, pd);
     if (moments == NULL)
@@ -310,9 +285,9 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
         *w = 0;
         return 0;
     }
-    const double scale = 1 / (4 * WN_PI), half4 = half * 4 * WN_PI;
-    wn_item heap[WN_HEAP];
-    int nh = 0, ninf = 0;
+    const double scale = 1 / (4 * WN_PI), lo4 = lo * 4 * WN_PI, hi4 = hi * 4 * WN_PI;
+    wn_front F;
+    F.n = F.nmust = 0;
     double exact = 0, emag = 0, eang = 0, S = 0, B = 0, M = 0;
     int32_t open = 0;
     for (;;) {
@@ -326,7 +301,7 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
                 child = ((const ttd_node_f *)m->nodes)[open].child;
                 count = ((const ttd_node_f *)m->nodes)[open].count;
             }
-            if (nh + count > WN_HEAP)
+            if (F.n + F.nmust + count > WN_FRONT)
                 return -1;
             const double *wm = moments + (size_t)open * WM_COUNT * TTD_NODE_WIDTH;
             double lr[TTD_NODE_WIDTH], lrem[TTD_NODE_WIDTH], lt1[TTD_NODE_WIDTH], lt2[TTD_NODE_WIDTH];
@@ -334,19 +309,20 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             for (int j = 0; j < count; ++j) {
                 const double r = wm[(size_t)WM_RADIUS * TTD_NODE_WIDTH + (size_t)j];
                 if (lr[j] > r && lrem[j] < HUGE_VAL) { /* the expansion and its bound hold */
-                    const wn_item it = {lrem[j], lt1[j] + lt2[j], fabs(lt1[j]) + fabs(lt2[j]), child[j]};
-                    wn_heap_push(heap, &nh, it);
-                    S += it.term;
-                    B += it.bound;
-                    M += it.mag;
+                    const double t = lt1[j] + lt2[j], mg = fabs(lt1[j]) + fabs(lt2[j]);
+                    F.bound[F.n] = lrem[j];
+                    F.term[F.n] = t;
+                    F.mag[F.n] = mg;
+                    F.child[F.n++] = child[j];
+                    S += t;
+                    B += lrem[j];
+                    M += mg;
                 } else if (child[j] < 0) {
                     const double om = wn_solid_angle(m, (size_t)(-1 - child[j]), x, amb, &eang);
                     exact += om;
                     emag += fabs(om);
                 } else {
-                    const wn_item it = {INFINITY, 0, 0, child[j]};
-                    wn_heap_push(heap, &nh, it);
-                    ++ninf;
+                    F.must[F.nmust++] = child[j];
                 }
             }
         } else {
@@ -354,35 +330,43 @@ static int wn_side_walk(const struct ttd_mesh *m, const ttd_points_data *pd, con
             exact += om;
             emag += fabs(om);
         }
-        if (ninf == 0 && !(fabs(half4 - (exact + S)) <= B + 32 * DBL_EPSILON * (emag + M) + eang + 1e-300)) {
+        const double run = B + 32 * DBL_EPSILON * (emag + M) + eang + 1e-300;
+        if (F.nmust == 0 && !(fabs(lo4 - (exact + S)) <= run) && !(fabs(hi4 - (exact + S)) <= run)) {
             /* settled by the running sums: form them again from the frontier */
             double s = 0, b = 0, mg = 0;
-            for (int i = 0; i < nh; ++i) {
-                s += heap[i].term;
-                b += heap[i].bound;
-                mg += heap[i].mag;
+            for (int i = 0; i < F.n; ++i) {
+                s += F.term[i];
+                b += F.bound[i];
+                mg += F.mag[i];
             }
             *w = (exact + s) * scale;
             *err = (b + 32 * DBL_EPSILON * (emag + mg) + eang) * scale;
-            if (fabs(*w - half) > *err)
+            if (fabs(*w - lo) > *err && fabs(*w - hi) > *err)
                 return 0;
         }
         if (!(fabs(S) < HUGE_VAL && B < HUGE_VAL))
             return -1; /* a power out of range: the caller's walk measures every triangle */
-        if (nh == 0) {
+        if (F.nmust > 0) { /* a subtree whose ball holds the point: opened first */
+            open = F.must[--F.nmust];
+            continue;
+        }
+        if (F.n == 0) {
             *w = exact * scale;
             *err = (32 * DBL_EPSILON * emag + eang) * scale;
             return 0;
         }
-        const wn_item it = wn_heap_pop(heap, &nh);
-        if (it.bound == HUGE_VAL) {
-            --ninf;
-        } else {
-            S -= it.term;
-            B -= it.bound;
-            M -= it.mag;
-        }
-        open = it.child;
+        int top = 0; /* the largest bound, opened next (its place taken by the last slot) */
+        for (int i = 1; i < F.n; ++i)
+            top = F.bound[i] > F.bound[top] ? i : top;
+        S -= F.term[top];
+        B -= F.bound[top];
+        M -= F.mag[top];
+        open = F.child[top];
+        --F.n;
+        F.bound[top] = F.bound[F.n];
+        F.term[top] = F.term[F.n];
+        F.mag[top] = F.mag[F.n];
+        F.child[top] = F.child[F.n];
     }
 }
 
@@ -411,15 +395,15 @@ static int wn_caps(const struct ttd_mesh *m, const ttd_points_data *pd, ttd_ray_
     int amb = 0;
     const double N = (double)cm + (double)cc;
     double wc;
-    if (sign && wn_side_walk(cp->mesh, cp->pd, x, N - 0.5, &wc, err, &amb) == 0) {
+    if (sign && wn_side_walk(cp->mesh, cp->pd, x, N - 0.5, N + 0.5, &wc, err, &amb) == 0) {
         *w = N - wc; /* settled, or every cap triangle measured exactly */
     } else {
         amb = 0;
         wc = wn_walk(cp->mesh, cp->pd, x, WN_BETA, -1, err, &amb);
         *w = N - wc;
-        if (sign && !(fabs(*w - 0.5) > *err)) {
+        if (sign && !(fabs(fabs(*w) - 0.5) > *err)) {
             amb = 0;
-            *w = N - wn_tight(cp->mesh, cp->pd, x, fmax(fabs(*w - 0.5) / 2, 1e-3), err, &amb);
+            *w = N - wn_tight(cp->mesh, cp->pd, x, fmax(fabs(fabs(*w) - 0.5) / 2, 1e-3), err, &amb);
         }
     }
     /* the sum's own rounding: cm + cc is exact, the difference rounds by half an ulp of w */
@@ -509,6 +493,8 @@ int ttd_points_inside(const struct ttd_mesh *m, const double x[3])
 /* ---- many points over the threads ------------------------------------------------------- */
 
 #define WN_BLOCK 64
+/* Batches of at least this many points go in spatial order (as the closest point's). */
+#define WN_SORTED 32
 
 typedef struct wn_job {
     const struct ttd_mesh *m;
@@ -519,6 +505,7 @@ typedef struct wn_job {
     ttd_ray_node_fn ray;
     double *out;
     uint8_t *proven;
+    const size_t *order; /* the points in spatial order (ttd_points_order), or NULL: input order */
 } wn_job;
 
 static void wn_block(void *ctx, size_t b, int worker)
@@ -526,7 +513,8 @@ static void wn_block(void *ctx, size_t b, int worker)
     (void)worker;
     const wn_job *J = ctx;
     const size_t i1 = (b + 1) * WN_BLOCK < J->n ? (b + 1) * WN_BLOCK : J->n;
-    for (size_t i = b * WN_BLOCK; i < i1; ++i) {
+    for (size_t k = b * WN_BLOCK; k < i1; ++k) {
+        const size_t i = J->order != NULL ? J->order[k] : k;
         double x[3];
         for (int c = 0; c < 3; ++c)
             x[c] = J->bytes == 8 ? ((const double *)J->points)[3 * i + (size_t)c]
@@ -545,7 +533,11 @@ ttd_status ttd_points_query_winding(const ttd_engine_config *cfg, const struct t
     const int closed = ttd_mesh_closed(mesh);
     if (pd == NULL || closed < 0)
         return TTD_ERR_OUT_OF_MEMORY;
-    wn_job J = {mesh, pd, n, points, mesh->bytes, closed, ttd_dispatch_row_f(cfg->isa)->ray_node, winding, proven};
+    /* a batch in spatial order: consecutive points' walks (the rays through the mesh, the caps'
+     * walk) share nodes in the cache; each point's answer is its own, in any order */
+    size_t *order = n >= WN_SORTED ? ttd_points_order(mesh, pd, n, points, mesh->bytes) : NULL;
+    wn_job J = {mesh, pd, n, points, mesh->bytes, closed, ttd_dispatch_row_f(cfg->isa)->ray_node, winding, proven, order};
     ttd_parallel_for((n + WN_BLOCK - 1) / WN_BLOCK, cfg->threads, wn_block, &J);
+    free(order);
     return TTD_OK;
 }
