@@ -1,0 +1,529 @@
+/* SPDX-License-Identifier: MIT */
+/* Continuous collision of deforming meshes (meshccd.h; docs/ccd.md, section 10).
+ *
+ * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
+ *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
+ * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
+ *    triangle of a, by its unwidened box, walks it. A triangle pair whose boxes do not overlap is
+ *    more than delta apart along an axis at every t, and so is every pair of their primitives.
+ * 3. Primitive pairs, each once: a vertex-face or edge-edge pair belongs to several triangle
+ *    pairs (a vertex to every triangle around it, an edge to two); it is queried only from its
+ *    owner, the smallest triangle pair (by index) that holds it and that the rule keeps. The
+ *    owner's boxes hold the primitives' boxes, so whenever the primitives' boxes overlap, the
+ *    owner is a candidate of step 2: nothing is lost, nothing repeated, and no sort is needed.
+ * 4. Narrow phase: the primitive query of src/ccd/ (ttd_ccd_query) over all of [0, 1], its answer
+ *    a function of the pair's numbers alone; each worker keeps the hits at or before its earliest
+ *    + TTD_CCD_DEFAULT_T_TOL; at the end the earliest of all, the hits within the tolerance of it,
+ *    sorted. So the result does not depend on the threads or on the order of the walk. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ccd/ccd.h"
+#include "engine/parallel.h"
+#include "meshccd/meshccd.h"
+#include "meshccd/sweep_tree.h"
+
+enum { MCCD_BLOCK = 64, MCCD_STACK = 128 };
+
+/* Per-triangle slot flags. */
+#define FIRST_V(k) (1u << (k))        /* slot k's vertex index does not appear in an earlier slot */
+#define FIRST_E(k) (1u << (3 + (k)))  /* edge k (slot k to k + 1) is not an earlier slot's edge */
+#define OWN_V(k) (1u << (6 + (k)))    /* and the triangle is the smallest that holds that vertex */
+#define OWN_E(k) (1u << (9 + (k)))    /* and the smallest that holds that edge */
+
+/* What one side's primitives need. */
+typedef struct side_data {
+    const meshccd_side *s;
+    sweep_box *vbox, *vwide;   /* per vertex: swept box, and widened by delta */
+    sweep_box *tbox, *twide;   /* per triangle */
+    uint32_t *vt_start;        /* nv + 1: vertex v's triangles are vt_list[vt_start[v] .. vt_start[v+1]) */
+    uint32_t *vt_list;         /* ascending (a triangle twice where it repeats the vertex) */
+    uint16_t *flags;           /* per triangle */
+} side_data;
+
+static void side_free(side_data *d)
+{
+    free(d->vbox);
+    free(d->vwide);
+    free(d->tbox);
+    free(d->twide);
+    free(d->vt_start);
+    free(d->vt_list);
+    free(d->flags);
+    memset(d, 0, sizeof *d);
+}
+
+static int tri_has(const uint32_t *t, uint32_t v)
+{
+    return t[0] == v || t[1] == v || t[2] == v;
+}
+
+static int side_make(const meshccd_side *s, double delta, side_data *d)
+{
+    memset(d, 0, sizeof *d);
+    d->s = s;
+    d->vbox = malloc(s->nv * sizeof *d->vbox);
+    d->vwide = malloc(s->nv * sizeof *d->vwide);
+    d->tbox = malloc(s->nt * sizeof *d->tbox);
+    d->twide = malloc(s->nt * sizeof *d->twide);
+    d->vt_start = calloc(s->nv + 1, sizeof *d->vt_start);
+    d->vt_list = malloc(3 * s->nt * sizeof *d->vt_list);
+    d->flags = malloc(s->nt * sizeof *d->flags);
+    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vt_start || !d->vt_list || !d->flags) {
+        side_free(d);
+        return -1;
+    }
+    for (size_t v = 0; v < s->nv; ++v) {
+        sweep_point_box(s->x0 + 3 * v, s->x1 + 3 * v, &d->vbox[v]);
+        d->vwide[v] = d->vbox[v];
+        sweep_box_widen(&d->vwide[v], delta);
+    }
+    const uint32_t *T = s->tris;
+    for (size_t t = 0; t < s->nt; ++t) {
+        d->tbox[t] = d->vbox[T[3 * t]];
+        d->twide[t] = d->vwide[T[3 * t]];
+        for (int k = 1; k < 3; ++k) {
+            sweep_box_join(&d->tbox[t], &d->vbox[T[3 * t + k]]);
+            sweep_box_join(&d->twide[t], &d->vwide[T[3 * t + k]]);
+        }
+    }
+    /* vertex -> triangles, ascending */
+    for (size_t i = 0; i < 3 * s->nt; ++i)
+        ++d->vt_start[T[i] + 1];
+    for (size_t v = 0; v < s->nv; ++v)
+        d->vt_start[v + 1] += d->vt_start[v];
+    uint32_t *fill = malloc(s->nv * sizeof *fill);
+    if (fill == NULL) {
+        side_free(d);
+        return -1;
+    }
+    memcpy(fill, d->vt_start, s->nv * sizeof *fill);
+    for (size_t i = 0; i < 3 * s->nt; ++i)
+        d->vt_list[fill[T[i]]++] = (uint32_t)(i / 3);
+    free(fill);
+    /* slot flags */
+    for (size_t t = 0; t < s->nt; ++t) {
+        const uint32_t *tr = T + 3 * t;
+        unsigned f = 0;
+        for (int k = 0; k < 3; ++k) {
+            int first = 1;
+            for (int j = 0; j < k; ++j)
+                first &= tr[j] != tr[k];
+            if (first) {
+                f |= FIRST_V(k);
+                if (d->vt_list[d->vt_start[tr[k]]] == t)
+                    f |= OWN_V(k);
+            }
+            const uint32_t p = tr[k], q = tr[(k + 1) % 3];
+            first = 1;
+            for (int j = 0; j < k; ++j) {
+                const uint32_t r = tr[j], w = tr[(j + 1) % 3];
+                first &= !((r == p && w == q) || (r == q && w == p));
+            }
+            if (first) {
+                f |= FIRST_E(k);
+                int own = 1;
+                for (uint32_t m = d->vt_start[p]; m < d->vt_start[p + 1] && d->vt_list[m] < t; ++m)
+                    own &= !tri_has(T + 3 * (size_t)d->vt_list[m], q);
+                if (own)
+                    f |= OWN_E(k);
+            }
+        }
+        d->flags[t] = (uint16_t)f;
+    }
+    return 0;
+}
+
+/* The query's shared state. */
+typedef struct job {
+    side_data *a, *b; /* b == a for a self query */
+    int self;
+    unsigned shared;  /* self: TTD_SELF_SHARED_VERTEX keeps triangle pairs that share one vertex */
+    sweep_tree tree;  /* over b's widened triangle boxes */
+    ttd_ccd_params params;
+    struct worker *workers;
+    int nworkers;
+} job;
+
+typedef struct worker {
+    ttd_mesh_ccd_pair *hits;
+    size_t n, cap;
+    double best;      /* the earliest toi this worker has seen */
+    uint64_t tri_pairs, queries;
+    int oom;
+} worker;
+
+/* Keeps a hit when it is at or before the worker's earliest + the tolerance; the list is thinned
+ * to that window before it grows. */
+static void keep_hit(worker *w, const ttd_mesh_ccd_pair *h)
+{
+    if (h->toi > w->best + TTD_CCD_DEFAULT_T_TOL)
+        return;
+    if (h->toi < w->best)
+        w->best = h->toi;
+    if (w->n == w->cap) {
+        size_t m = 0;
+        const double lim = w->best + TTD_CCD_DEFAULT_T_TOL;
+        for (size_t i = 0; i < w->n; ++i)
+            if (w->hits[i].toi <= lim)
+                w->hits[m++] = w->hits[i];
+        w->n = m;
+        if (w->n >= w->cap / 2) {
+            const size_t cap = w->cap ? 2 * w->cap : 64;
+            ttd_mesh_ccd_pair *p = realloc(w->hits, cap * sizeof *p);
+            if (p == NULL) {
+                w->oom = 1;
+                return;
+            }
+            w->hits = p;
+            w->cap = cap;
+        }
+    }
+    w->hits[w->n++] = *h;
+}
+
+/* Runs one primitive query: points pa[0 .. na) of side P, pb[0 .. 4 - na) of side Q. */
+static void query(const job *J, worker *w, uint32_t kind, const side_data *P, const uint32_t *pa, int na,
+                  const side_data *Q, const uint32_t *pb, const uint32_t ida[2], const uint32_t idb[2])
+{
+    double x0[12], x1[12];
+    for (int i = 0; i < 4; ++i) {
+        const side_data *S = i < na ? P : Q;
+        const uint32_t v = i < na ? pa[i] : pb[i - na];
+        memcpy(x0 + 3 * i, S->s->x0 + 3 * (size_t)v, 3 * sizeof(double));
+        memcpy(x1 + 3 * i, S->s->x1 + 3 * (size_t)v, 3 * sizeof(double));
+    }
+    ttd_ccd_result r;
+    ttd_ccd_query(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &J->params, &r);
+    ++w->queries;
+    if (!r.hit)
+        return;
+    ttd_mesh_ccd_pair h;
+    h.toi = r.toi;
+    h.gap = r.gap;
+    h.kind = kind;
+    h.flags = r.flags & TTD_CCD_BUDGET;
+    h.a[0] = ida[0];
+    h.a[1] = ida[1];
+    h.b[0] = idb[0];
+    h.b[1] = idb[1];
+    keep_hit(w, &h);
+}
+
+static void edge_of(const uint32_t *tr, int k, uint32_t e[2])
+{
+    const uint32_t p = tr[k], q = tr[(k + 1) % 3];
+    e[0] = p < q ? p : q;
+    e[1] = p < q ? q : p;
+}
+
+static void edge_box(const sweep_box *vb, const uint32_t e[2], sweep_box *out)
+{
+    *out = vb[e[0]];
+    sweep_box_join(out, &vb[e[1]]);
+}
+
+/* ---- two meshes ---- */
+
+static void pair_two(const job *J, worker *w, uint32_t ta, uint32_t tb)
+{
+    const side_data *A = J->a, *B = J->b;
+    const uint32_t *TA = A->s->tris + 3 * (size_t)ta, *TB = B->s->tris + 3 * (size_t)tb;
+    const unsigned fa = A->flags[ta], fb = B->flags[tb];
+    const uint32_t none = UINT32_MAX;
+    ++w->tri_pairs;
+    for (int k = 0; k < 3; ++k)
+        if ((fa & OWN_V(k)) && sweep_overlap(&A->vbox[TA[k]], &B->twide[tb])) {
+            const uint32_t ida[2] = {TA[k], none}, idb[2] = {tb, none};
+            query(J, w, TTD_MESH_CCD_VF, A, &TA[k], 1, B, TB, ida, idb);
+        }
+    for (int k = 0; k < 3; ++k)
+        if ((fb & OWN_V(k)) && sweep_overlap(&A->tbox[ta], &B->vwide[TB[k]])) {
+            const uint32_t ida[2] = {ta, none}, idb[2] = {TB[k], none};
+            query(J, w, TTD_MESH_CCD_FV, B, &TB[k], 1, A, TA, ida, idb);
+        }
+    for (int i = 0; i < 3; ++i) {
+        if (!(fa & OWN_E(i)))
+            continue;
+        uint32_t ea[2];
+        sweep_box boxa;
+        edge_of(TA, i, ea);
+        edge_box(A->vbox, ea, &boxa);
+        for (int j = 0; j < 3; ++j) {
+            if (!(fb & OWN_E(j)))
+                continue;
+            uint32_t eb[2];
+            sweep_box boxb;
+            edge_of(TB, j, eb);
+            edge_box(B->vwide, eb, &boxb);
+            if (sweep_overlap(&boxa, &boxb))
+                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, B, eb, ea, eb);
+        }
+    }
+}
+
+/* ---- one mesh ---- */
+
+/* Distinct vertices (by index) that triangles t and u share. */
+static int shared_count(const uint32_t *t, const uint32_t *u)
+{
+    int c = 0;
+    for (int k = 0; k < 3; ++k) {
+        int first = 1;
+        for (int j = 0; j < k; ++j)
+            first &= t[j] != t[k];
+        c += first && tri_has(u, t[k]);
+    }
+    return c;
+}
+
+/* Whether the self rule keeps the triangle pair (t != u). */
+static int eligible(const job *J, uint32_t t, uint32_t u)
+{
+    if (t == u)
+        return 0;
+    const uint32_t *T = J->a->s->tris;
+    const int c = shared_count(T + 3 * (size_t)t, T + 3 * (size_t)u);
+    return c == 0 || (c == 1 && J->shared);
+}
+
+/* The owner of vertex v (not in f) against triangle f: the smallest triangle around v that the
+ * rule pairs with f. */
+static uint32_t owner_vf(const job *J, uint32_t v, uint32_t f)
+{
+    const side_data *A = J->a;
+    for (uint32_t m = A->vt_start[v]; m < A->vt_start[v + 1]; ++m)
+        if (eligible(J, A->vt_list[m], f))
+            return A->vt_list[m];
+    return UINT32_MAX;
+}
+
+/* The owner of two edges that share no vertex: the smallest (min, max) over the triangle pairs
+ * (t around e, u around g) that the rule keeps, as min * 2^32 + max. */
+static uint64_t owner_ee(const job *J, const uint32_t e[2], const uint32_t g[2])
+{
+    const side_data *A = J->a;
+    const uint32_t *T = A->s->tris;
+    uint64_t best = UINT64_MAX;
+    for (uint32_t m = A->vt_start[e[0]]; m < A->vt_start[e[0] + 1]; ++m) {
+        const uint32_t t = A->vt_list[m];
+        if (!tri_has(T + 3 * (size_t)t, e[1]))
+            continue;
+        for (uint32_t n = A->vt_start[g[0]]; n < A->vt_start[g[0] + 1]; ++n) {
+            const uint32_t u = A->vt_list[n];
+            if (!tri_has(T + 3 * (size_t)u, g[1]) || !eligible(J, t, u))
+                continue;
+            const uint64_t key = t < u ? ((uint64_t)t << 32 | u) : ((uint64_t)u << 32 | t);
+            best = key < best ? key : best;
+        }
+    }
+    return best;
+}
+
+/* Triangle pair ta < tb, kept by the rule. */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
+{
+    const side_data *A = J->a;
+    const uint32_t *T = A->s->tris;
+    const uint32_t *TA = T + 3 * (size_t)ta, *TB = T + 3 * (size_t)tb;
+    const unsigned fa = A->flags[ta], fb = A->flags[tb];
+    const uint32_t none = UINT32_MAX;
+    ++w->tri_pairs;
+    /* vertices of one against the other's face */
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t *TV = side ? TB : TA, *TF = side ? TA : TB;
+        const uint32_t tv = side ? tb : ta, tf = side ? ta : tb;
+        const unsigned fv = side ? fb : fa;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = TV[k];
+            if (!(fv & FIRST_V(k)) || tri_has(TF, v) || !sweep_overlap(&A->vbox[v], &A->twide[tf]) ||
+                !sweep_overlap(&A->tbox[tf], &A->vwide[v]))
+                continue;
+            if (owner_vf(J, v, tf) != tv)
+                continue;
+            const uint32_t ida[2] = {v, none}, idb[2] = {tf, none};
+            query(J, w, TTD_MESH_CCD_VF, A, &TV[k], 1, A, TF, ida, idb);
+        }
+    }
+    /* edges against edges */
+    const uint64_t me = (uint64_t)ta << 32 | tb;
+    for (int i = 0; i < 3; ++i) {
+        if (!(fa & FIRST_E(i)))
+            continue;
+        uint32_t ea[2];
+        sweep_box boxa, widea;
+        edge_of(TA, i, ea);
+        edge_box(A->vbox, ea, &boxa);
+        edge_box(A->vwide, ea, &widea);
+        for (int j = 0; j < 3; ++j) {
+            if (!(fb & FIRST_E(j)))
+                continue;
+            uint32_t eb[2];
+            edge_of(TB, j, eb);
+            if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1])
+                continue;
+            sweep_box boxb, rawb;
+            edge_box(A->vwide, eb, &boxb);
+            edge_box(A->vbox, eb, &rawb);
+            if (!sweep_overlap(&boxa, &boxb) || !sweep_overlap(&rawb, &widea) || owner_ee(J, ea, eb) != me)
+                continue;
+            /* the smaller edge (by its vertex indices) first */
+            const int swap = eb[0] < ea[0] || (eb[0] == ea[0] && eb[1] < ea[1]);
+            if (swap)
+                query(J, w, TTD_MESH_CCD_EE, A, eb, 2, A, ea, eb, ea);
+            else
+                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, A, eb, ea, eb);
+        }
+    }
+}
+
+/* ---- the walk ---- */
+
+/* Triangle q of a (its unwidened box) against the tree; in a self query only the triangles after
+ * position from in the tree's order (each unordered pair once). */
+static void walk(const job *J, worker *w, uint32_t q, int self, uint32_t from)
+{
+    const sweep_box *qb = &J->a->tbox[q];
+    const sweep_tree *t = &J->tree;
+    const sweep_box *twide = J->b->twide;
+    uint32_t stack[MCCD_STACK];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const sweep_node *nd = &t->nodes[stack[--top]];
+        if ((self && nd->end <= from + 1) || !sweep_overlap(qb, &nd->box))
+            continue;
+        if (nd->left != 0) {
+            stack[top++] = nd->left + 1;
+            stack[top++] = nd->left;
+            continue;
+        }
+        for (uint32_t k = self && nd->begin <= from ? from + 1 : nd->begin; k < nd->end; ++k) {
+            const uint32_t u = t->order[k];
+            if (!sweep_overlap(qb, &twide[u]) || (self && !sweep_overlap(&J->a->tbox[u], &twide[q])))
+                continue;
+            if (!self)
+                pair_two(J, w, q, u);
+            else if (eligible(J, q, u))
+                pair_self(J, w, q < u ? q : u, q < u ? u : q);
+        }
+    }
+}
+
+static void run_block(void *ctx, size_t block, int wi)
+{
+    job *J = ctx;
+    worker *w = &J->workers[wi];
+    if (w->oom)
+        return;
+    if (J->self) {
+        const size_t n = J->tree.n, end = (block + 1) * MCCD_BLOCK < n ? (block + 1) * MCCD_BLOCK : n;
+        for (size_t k = block * MCCD_BLOCK; k < end; ++k)
+            walk(J, w, J->tree.order[k], 1, (uint32_t)k);
+    } else {
+        const size_t n = J->a->s->nt, end = (block + 1) * MCCD_BLOCK < n ? (block + 1) * MCCD_BLOCK : n;
+        for (size_t q = block * MCCD_BLOCK; q < end; ++q)
+            walk(J, w, (uint32_t)q, 0, 0);
+    }
+}
+
+static int pair_cmp(const void *x, const void *y)
+{
+    const ttd_mesh_ccd_pair *p = x, *q = y;
+    if (p->toi != q->toi)
+        return p->toi < q->toi ? -1 : 1;
+    if (p->kind != q->kind)
+        return p->kind < q->kind ? -1 : 1;
+    const uint32_t kp[4] = {p->a[0], p->a[1], p->b[0], p->b[1]}, kq[4] = {q->a[0], q->a[1], q->b[0], q->b[1]};
+    for (int i = 0; i < 4; ++i)
+        if (kp[i] != kq[i])
+            return kp[i] < kq[i] ? -1 : 1;
+    return 0;
+}
+
+ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_side *b, double delta, unsigned shared,
+                           ttd_mesh_ccd_result *out)
+{
+    memset(out, 0, sizeof *out);
+    out->toi = HUGE_VAL;
+    side_data da, db;
+    job J;
+    memset(&J, 0, sizeof J);
+    J.self = b == NULL;
+    J.shared = shared & TTD_SELF_SHARED_VERTEX;
+    J.params = ttd_ccd_default_params();
+    J.params.delta = delta;
+    if (side_make(a, delta, &da) != 0)
+        return TTD_ERR_OUT_OF_MEMORY;
+    if (!J.self && side_make(b, delta, &db) != 0) {
+        side_free(&da);
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    J.a = &da;
+    J.b = J.self ? &da : &db;
+    ttd_status st = TTD_OK;
+    if (sweep_tree_build(J.b->twide, J.b->s->nt, &J.tree) != 0) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    const size_t nq = J.self ? J.tree.n : a->nt;
+    const size_t blocks = (nq + MCCD_BLOCK - 1) / MCCD_BLOCK;
+    const int nw = ttd_parallel_workers(blocks, threads);
+    J.workers = calloc((size_t)nw, sizeof *J.workers);
+    J.nworkers = J.workers != NULL ? nw : 0;
+    if (J.workers == NULL) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    for (int i = 0; i < nw; ++i)
+        J.workers[i].best = HUGE_VAL;
+    ttd_parallel_for(blocks, threads, run_block, &J);
+    /* the earliest over the workers, then their hits within the tolerance of it */
+    double best = HUGE_VAL;
+    size_t total = 0;
+    for (int i = 0; i < nw; ++i) {
+        const worker *w = &J.workers[i];
+        if (w->oom)
+            st = TTD_ERR_OUT_OF_MEMORY;
+        best = w->best < best ? w->best : best;
+        out->triangle_pairs += w->tri_pairs;
+        out->queries += w->queries;
+        total += w->n;
+    }
+    if (st != TTD_OK)
+        goto done;
+    if (total > 0) {
+        out->pairs = malloc(total * sizeof *out->pairs);
+        if (out->pairs == NULL) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            goto done;
+        }
+        const double lim = best + TTD_CCD_DEFAULT_T_TOL;
+        for (int i = 0; i < nw; ++i)
+            for (size_t k = 0; k < J.workers[i].n; ++k)
+                if (J.workers[i].hits[k].toi <= lim) {
+                    out->pairs[out->count] = J.workers[i].hits[k];
+                    out->flags |= out->pairs[out->count].flags;
+                    ++out->count;
+                }
+        qsort(out->pairs, out->count, sizeof *out->pairs, pair_cmp);
+    }
+    out->toi = best;
+done:
+    if (J.workers != NULL) {
+        for (int i = 0; i < J.nworkers; ++i)
+            free(J.workers[i].hits);
+        free(J.workers);
+    }
+    if (st != TTD_OK) {
+        free(out->pairs);
+        memset(out, 0, sizeof *out);
+        out->toi = HUGE_VAL;
+    }
+    sweep_tree_free(&J.tree);
+    side_free(&da);
+    if (!J.self)
+        side_free(&db);
+    return st;
+}
