@@ -27,7 +27,8 @@ static const char mesh_ccd_usage[] =
     "  --float              read and compute the meshes in float (widened to double exactly)\n"
     "  --threads N          worker threads (default 0: all cores); the answer does not depend on it\n"
     "  --summary            only the first line\n"
-    "output: 'toi T pairs N triangle-pairs P queries Q time S' (T inf when nothing comes within D),\n"
+    "output: 'toi T pairs N triangle-pairs P queries Q searched R time S' (T inf when nothing comes\n"
+    "within D; Q primitive pairs whose boxes came within D, R of them searched in time),\n"
     "then a line per pair 'KIND A0 A1 B0 B1 TOI GAP': KIND vf (vertex A0 of A, triangle B0 of B),\n"
     "fv (triangle A0 of A, vertex B0 of B) or ee (edge A0-A1 of A, edge B0-B1 of B); unused ids\n"
     "are -1; A against itself names both as A. Exit 1 for an unreadable or mismatched file.\n";
@@ -144,8 +145,8 @@ int ttd_cli_mesh_ccd(int argc, char **argv)
         rc = st == TTD_ERR_BAD_OPTIONS ? TTD_EXIT_USAGE : TTD_EXIT_INPUT;
         goto done;
     }
-    printf("toi %.17g pairs %zu triangle-pairs %llu queries %llu time %.6f s%s\n", r.toi, r.count,
-           (unsigned long long)r.triangle_pairs, (unsigned long long)r.queries, secs,
+    printf("toi %.17g pairs %zu triangle-pairs %llu queries %llu searched %llu time %.6f s%s\n", r.toi, r.count,
+           (unsigned long long)r.triangle_pairs, (unsigned long long)r.queries, (unsigned long long)r.searches, secs,
            (r.flags & TTD_CCD_BUDGET) ? " (some pair used up its budget: a conservative hit)" : "");
     static const char *const kinds[3] = {"vf", "fv", "ee"};
     if (!summary)

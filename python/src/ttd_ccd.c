@@ -100,7 +100,7 @@ done:
 
 PyDoc_STRVAR(mesh_ccd_doc,
              "_mesh_ccd(a, a1, b, b1, min_separation, shared, threads) -> (toi, kind, a_ids, b_ids, pair_toi, gap, flags,\n"
-             "triangle_pairs, queries)\n"
+             "triangle_pairs, queries, searches)\n"
              "a, b ttd.Mesh (b None: self); a1, b1 C-contiguous (nv, 3) arrays of the mesh's dtype.\n"
              "Private: use ttd.mesh_ccd, ttd.mesh_self_ccd.");
 
@@ -189,8 +189,8 @@ static PyObject *py_mesh_ccd(PyObject *self, PyObject *args)
             ((double *)PyArray_DATA(gap))[i] = p->gap;
             ((uint32_t *)PyArray_DATA(fl))[i] = p->flags;
         }
-        res = Py_BuildValue("(dNNNNNNKK)", r.toi, kind, ia, ib, toi, gap, fl, (unsigned long long)r.triangle_pairs,
-                            (unsigned long long)r.queries);
+        res = Py_BuildValue("(dNNNNNNKKK)", r.toi, kind, ia, ib, toi, gap, fl, (unsigned long long)r.triangle_pairs,
+                            (unsigned long long)r.queries, (unsigned long long)r.searches);
     } else {
         Py_XDECREF(kind), Py_XDECREF(ia), Py_XDECREF(ib), Py_XDECREF(toi), Py_XDECREF(gap), Py_XDECREF(fl);
     }
