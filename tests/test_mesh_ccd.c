@@ -305,6 +305,35 @@ static int touching_ends(void)
     return rc;
 }
 
+/* Triangles that repeat an index: a zero-length edge (0, 0) belongs only to a triangle that
+ * repeats vertex 0, not to every triangle around 0 (found by fuzz_mesh_ccd: the edge of (0, 0, 0)
+ * was given to (3, 0, 1) as its owner and never queried). Every vertex at one point, so that every
+ * pair touches at t = 0 and every pair must be reported. */
+static int repeated_indices(void)
+{
+    double va[18], vb[9], va1[18], vb1[9];
+    for (int i = 0; i < 18; ++i)
+        va[i] = va1[i] = -2.0;
+    for (int i = 0; i < 9; ++i)
+        vb[i] = vb1[i] = -2.0;
+    va1[0] = 1.0; /* one vertex moves, the rest stay */
+    uint32_t ta[15] = {1, 2, 1, 3, 0, 1, 0, 2, 4, 0, 0, 0, 0, 0, 0}, tb[3] = {0, 0, 0};
+    ttd_gen_mesh a = {va, 6, ta, 5}, b = {vb, 3, tb, 1};
+    int rc = check_two(&a, va1, &b, vb1, 0.0, "repeated two", NULL) || check_two(&b, vb1, &a, va1, 0.375, "repeated back", NULL);
+    for (unsigned flags = 0; flags < 2 && !rc; ++flags)
+        rc = check_self(&a, va1, 0.0, flags, "repeated self", NULL);
+    /* self: (5, 0, 6) holds vertex 0 but not the edge (0, 0) of (0, 0, 0) */
+    double vc[21], vc1[21];
+    for (int i = 0; i < 21; ++i)
+        vc[i] = vc1[i] = 0.5;
+    vc1[20] = 3.0;
+    uint32_t tc[9] = {5, 0, 6, 0, 0, 0, 1, 2, 3};
+    ttd_gen_mesh c = {vc, 7, tc, 3};
+    for (unsigned flags = 0; flags < 2 && !rc; ++flags)
+        rc = check_self(&c, vc1, 0.0, flags, "repeated self 2", NULL);
+    return rc;
+}
+
 /* Float meshes give the double answer on the widened numbers, bit for bit. */
 static int float_matches_double(void)
 {
@@ -431,6 +460,7 @@ int main(int argc, char **argv)
     RUN_TEST(folding_sheet);
     RUN_TEST(random_self);
     RUN_TEST(touching_ends);
+    RUN_TEST(repeated_indices);
     RUN_TEST(float_matches_double);
     RUN_TEST(threads);
     TEST_MAIN_END();

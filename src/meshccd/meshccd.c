@@ -59,6 +59,15 @@ static int tri_has(const uint32_t *t, uint32_t v)
     return t[0] == v || t[1] == v || t[2] == v;
 }
 
+/* Whether triangle t has an edge between p and q: both among its vertices, and p twice when
+ * p == q (a zero-length edge of a triangle that repeats a vertex). */
+static int tri_has_edge(const uint32_t *t, uint32_t p, uint32_t q)
+{
+    if (p != q)
+        return tri_has(t, p) && tri_has(t, q);
+    return (t[0] == p) + (t[1] == p) + (t[2] == p) >= 2;
+}
+
 static int side_make(const meshccd_side *s, double delta, side_data *d)
 {
     memset(d, 0, sizeof *d);
@@ -125,7 +134,7 @@ static int side_make(const meshccd_side *s, double delta, side_data *d)
                 f |= FIRST_E(k);
                 int own = 1;
                 for (uint32_t m = d->vt_start[p]; m < d->vt_start[p + 1] && d->vt_list[m] < t; ++m)
-                    own &= !tri_has(T + 3 * (size_t)d->vt_list[m], q);
+                    own &= !tri_has_edge(T + 3 * (size_t)d->vt_list[m], p, q);
                 if (own)
                     f |= OWN_E(k);
             }
@@ -369,11 +378,11 @@ static uint64_t owner_ee(const job *J, const uint32_t e[2], const uint32_t g[2])
     uint64_t best = UINT64_MAX;
     for (uint32_t m = A->vt_start[e[0]]; m < A->vt_start[e[0] + 1]; ++m) {
         const uint32_t t = A->vt_list[m];
-        if (!tri_has(T + 3 * (size_t)t, e[1]))
+        if (!tri_has_edge(T + 3 * (size_t)t, e[0], e[1]))
             continue;
         for (uint32_t n = A->vt_start[g[0]]; n < A->vt_start[g[0] + 1]; ++n) {
             const uint32_t u = A->vt_list[n];
-            if (!tri_has(T + 3 * (size_t)u, g[1]) || !eligible(J, t, u))
+            if (!tri_has_edge(T + 3 * (size_t)u, g[0], g[1]) || !eligible(J, t, u))
                 continue;
             const uint64_t key = t < u ? ((uint64_t)t << 32 | u) : ((uint64_t)u << 32 | t);
             best = key < best ? key : best;
