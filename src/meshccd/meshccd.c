@@ -24,7 +24,7 @@
 #include "meshccd/meshccd.h"
 #include "meshccd/sweep_tree.h"
 
-enum { MCCD_BLOCK = 64, MCCD_STACK = 128 };
+enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
 
 /* Per-triangle slot flags. */
 #define FIRST_V(k) (1u << (k))        /* slot k's vertex index does not appear in an earlier slot */
@@ -150,6 +150,9 @@ typedef struct job {
     int self;
     unsigned shared;  /* self: TTD_SELF_SHARED_VERTEX keeps triangle pairs that share one vertex */
     sweep_tree tree;  /* over b's widened triangle boxes */
+    sweep_tree qtree; /* two meshes: over a's unwidened boxes, whose leaves group the walks */
+    uint32_t *leaves; /* the leaves of the query side's tree (qtree, or tree in a self query) */
+    size_t nleaves;
     ttd_ccd_params params;
     struct worker *workers;
     int nworkers;
@@ -195,52 +198,103 @@ static void keep_hit(worker *w, const ttd_mesh_ccd_pair *h)
 /* A cheap proof that a primitive pair stays more than delta apart over the whole step: for a
  * fixed direction n, the gap g(t) = min over the first set of n.x(t) - max over the second (or
  * the other way round) is concave in t (each n.x(t) is linear), so g > delta |n| at t = 0 and
- * t = 1 proves it for every t between (docs/ccd.md, section 3, whose argument this is). The
- * directions: the face's normal (vertex-face) or the edges' cross product (edge-edge), at t = 0
- * and at t = 1; any n gives a valid bound, so n's own rounding does not matter. The dot products
- * of n with input points err by at most 3.01 u sum |n_k x_k| <= 3.01 u |n|_1 S each (S the
- * largest coordinate), a gap by twice that plus its own rounding: 8 u |n|_1 S + 2 u |g| covers
- * it with the rounding of the bound itself, and 2^-1000 products that underflow. Most pairs the
- * boxes keep in a folding sheet are proved apart here, at a fraction of the full search. */
-static int apart_along_normals(int na, const double x0[12], const double x1[12], double delta)
+ * t = 1 proves it for every t between (docs/ccd.md, section 3, whose argument this is). Any n
+ * gives a valid bound, so n's own rounding does not matter. The dot products of n with input
+ * points err by at most 3.01 u sum |n_k x_k| <= 3.01 u |n|_1 S each (S the largest coordinate),
+ * a gap by twice that plus its own rounding: 8 u |n|_1 S + 2 u |g| covers it with the rounding of
+ * the bound itself, and 2^-1000 products that underflow. */
+static int gap_proves(const double n[3], int na, const double x0[12], const double x1[12], double S, double delta)
 {
     const double u = 0x1p-53;
+    const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
+    if (!(n1 > 0) || !isfinite(n1))
+        return 0;
+    const double need = delta * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (1 + 0x1p-40);
+    const double base = 8 * u * n1 * S + 0x1p-1000;
+    int ok_pos = 1, ok_neg = 1; /* first set above the second along n, or below */
+    for (int t = 0; t < 2; ++t) {
+        const double *y = t ? x1 : x0;
+        double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
+        for (int i = 0; i < 4; ++i) {
+            const double d = n[0] * y[3 * i] + n[1] * y[3 * i + 1] + n[2] * y[3 * i + 2];
+            if (i < na) {
+                amin = d < amin ? d : amin;
+                amax = d > amax ? d : amax;
+            } else {
+                bmin = d < bmin ? d : bmin;
+                bmax = d > bmax ? d : bmax;
+            }
+        }
+        const double gp = amin - bmax, gn = bmin - amax;
+        ok_pos &= gp - (base + 2 * u * fabs(gp)) > need;
+        ok_neg &= gn - (base + 2 * u * fabs(gn)) > need;
+        if (!ok_pos && !ok_neg)
+            return 0;
+    }
+    return 1;
+}
+
+static void cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* e x (w x e): w's part perpendicular to e (e times |e|^2). */
+static void perp3(const double e[3], const double w[3], double r[3])
+{
+    double c[3];
+    cross3(w, e, c);
+    cross3(e, c, r);
+}
+
+/* Directions tried, from the positions at t = 0 and then at t = 1: the face's normal
+ * (vertex-face) or the edges' cross product (edge-edge), and the directions within the face's
+ * plane that separate a vertex beyond one of its edges (each edge's perpendicular towards the
+ * vertex), or an edge beside the other (each edge's perpendicular towards the other's first
+ * point): neighbours in one flat layer of a sheet, coplanar, are separated by the second kind. */
+static int apart_cheaply(int na, const double x0[12], const double x1[12], double delta)
+{
     double S = 0;
-    for (int i = 0; i < 12; ++i)
-        S = fmax(S, fmax(fabs(x0[i]), fabs(x1[i])));
+    for (int i = 0; i < 12; ++i) {
+        const double m = fabs(x0[i]) > fabs(x1[i]) ? fabs(x0[i]) : fabs(x1[i]);
+        S = m > S ? m : S;
+    }
     for (int end = 0; end < 2; ++end) {
         const double *x = end ? x1 : x0;
         double e1[3], e2[3], n[3];
         for (int k = 0; k < 3; ++k) {
             /* vertex-face: the face's two edges from its first vertex; edge-edge: the two edges */
-            e1[k] = na == 1 ? x[3 + k] - x[6 + k] : x[3 + k] - x[k];
-            e2[k] = na == 1 ? x[3 + k] - x[9 + k] : x[9 + k] - x[6 + k];
+            e1[k] = na == 1 ? x[6 + k] - x[3 + k] : x[3 + k] - x[k];
+            e2[k] = na == 1 ? x[9 + k] - x[3 + k] : x[9 + k] - x[6 + k];
         }
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
-        if (!(n1 > 0) || !isfinite(n1))
-            continue;
-        const double need = delta * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (1 + 0x1p-40);
-        const double base = 8 * u * n1 * S + 0x1p-1000;
-        int ok_pos = 1, ok_neg = 1; /* first set above the second along n, or below */
-        for (int t = 0; t < 2; ++t) {
-            const double *y = t ? x1 : x0;
-            double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
-            for (int i = 0; i < 4; ++i) {
-                const double d = n[0] * y[3 * i] + n[1] * y[3 * i + 1] + n[2] * y[3 * i + 2];
-                if (i < na)
-                    amin = fmin(amin, d), amax = fmax(amax, d);
-                else
-                    bmin = fmin(bmin, d), bmax = fmax(bmax, d);
-            }
-            const double gp = amin - bmax, gn = bmin - amax;
-            ok_pos &= gp - (base + 2 * u * fabs(gp)) > need;
-            ok_neg &= gn - (base + 2 * u * fabs(gn)) > need;
-        }
-        if (ok_pos || ok_neg)
+        cross3(e1, e2, n);
+        if (gap_proves(n, na, x0, x1, S, delta))
             return 1;
+        if (na == 1) {
+            for (int j = 0; j < 3; ++j) {
+                const double *f = x + 3 + 3 * j, *g = x + 3 + 3 * ((j + 1) % 3);
+                double e[3], w[3], m[3];
+                for (int k = 0; k < 3; ++k)
+                    e[k] = g[k] - f[k], w[k] = x[k] - f[k];
+                perp3(e, w, m);
+                if (gap_proves(m, na, x0, x1, S, delta))
+                    return 1;
+            }
+        } else {
+            double w[3], m[3];
+            for (int k = 0; k < 3; ++k)
+                w[k] = x[6 + k] - x[k];
+            perp3(e1, w, m);
+            if (gap_proves(m, na, x0, x1, S, delta))
+                return 1;
+            for (int k = 0; k < 3; ++k)
+                w[k] = -w[k];
+            perp3(e2, w, m);
+            if (gap_proves(m, na, x0, x1, S, delta))
+                return 1;
+        }
     }
     return 0;
 }
@@ -260,7 +314,7 @@ static void query(const job *J, worker *w, uint32_t kind, const side_data *P, co
      * be reported (the final earliest is no later), and one that comes sooner gets the answer
      * of a full search (ccd.h, t_stop), so the result does not depend on the order of the walk. */
     ++w->queries;
-    if (apart_along_normals(na, x0, x1, J->params.delta))
+    if (apart_cheaply(na, x0, x1, J->params.delta))
         return;
     ++w->searches;
     ttd_ccd_params prm = J->params;
@@ -288,10 +342,15 @@ static void edge_of(const uint32_t *tr, int k, uint32_t e[2])
     e[1] = p < q ? q : p;
 }
 
+/* The join of the edge's two vertex boxes (written field by field: a struct copy became a slow
+ * rep movs here). */
 static void edge_box(const sweep_box *vb, const uint32_t e[2], sweep_box *out)
 {
-    *out = vb[e[0]];
-    sweep_box_join(out, &vb[e[1]]);
+    const sweep_box *p = &vb[e[0]], *q = &vb[e[1]];
+    for (int k = 0; k < 3; ++k) {
+        out->lo[k] = p->lo[k] < q->lo[k] ? p->lo[k] : q->lo[k];
+        out->hi[k] = p->hi[k] > q->hi[k] ? p->hi[k] : q->hi[k];
+    }
 }
 
 /* ---- two meshes ---- */
@@ -416,8 +475,15 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
             query(J, w, TTD_MESH_CCD_VF, A, &TV[k], 1, A, TF, ida, idb);
         }
     }
-    /* edges against edges */
+    /* edges against edges (tb's edges and boxes made once) */
     const uint64_t me = (uint64_t)ta << 32 | tb;
+    uint32_t eb[3][2];
+    sweep_box rawb[3], wideb[3];
+    for (int j = 0; j < 3; ++j) {
+        edge_of(TB, j, eb[j]);
+        edge_box(A->vbox, eb[j], &rawb[j]);
+        edge_box(A->vwide, eb[j], &wideb[j]);
+    }
     for (int i = 0; i < 3; ++i) {
         if (!(fa & FIRST_E(i)))
             continue;
@@ -429,56 +495,81 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
         for (int j = 0; j < 3; ++j) {
             if (!(fb & FIRST_E(j)))
                 continue;
-            uint32_t eb[2];
-            edge_of(TB, j, eb);
-            if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1])
+            const uint32_t *g = eb[j];
+            if (ea[0] == g[0] || ea[0] == g[1] || ea[1] == g[0] || ea[1] == g[1])
                 continue;
-            sweep_box boxb, rawb;
-            edge_box(A->vwide, eb, &boxb);
-            edge_box(A->vbox, eb, &rawb);
-            if (!sweep_overlap(&boxa, &boxb) || !sweep_overlap(&rawb, &widea) || owner_ee(J, ea, eb) != me)
+            if (!sweep_overlap(&boxa, &wideb[j]) || !sweep_overlap(&rawb[j], &widea) || owner_ee(J, ea, g) != me)
                 continue;
             /* the smaller edge (by its vertex indices) first */
-            const int swap = eb[0] < ea[0] || (eb[0] == ea[0] && eb[1] < ea[1]);
+            const int swap = g[0] < ea[0] || (g[0] == ea[0] && g[1] < ea[1]);
             if (swap)
-                query(J, w, TTD_MESH_CCD_EE, A, eb, 2, A, ea, eb, ea);
+                query(J, w, TTD_MESH_CCD_EE, A, g, 2, A, ea, g, ea);
             else
-                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, A, eb, ea, eb);
+                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, A, g, ea, g);
         }
     }
 }
 
 /* ---- the walk ---- */
 
-/* Triangle q of a (its unwidened box) against the tree; in a self query only the triangles after
- * position from in the tree's order (each unordered pair once). */
-static void walk(const job *J, worker *w, uint32_t q, int self, uint32_t from)
+/* The triangles of a at positions [gb, ge) of qorder (a leaf of a's tree, or of the tree itself in
+ * a self query), by their unwidened boxes, against the tree of b's widened boxes; in a self query
+ * only the pairs whose second triangle comes later in the order (each unordered pair once). One
+ * walk serves the whole leaf: its box first, then each triangle at the tree's leaves. */
+static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t gb, uint32_t ge)
 {
-    const sweep_box *qb = &J->a->tbox[q];
+    const int self = J->self;
+    const sweep_box *tbox = J->a->tbox, *twide = J->b->twide;
     const sweep_tree *t = &J->tree;
-    const sweep_box *twide = J->b->twide;
+    sweep_box R = tbox[qorder[gb]];
+    for (uint32_t k = gb + 1; k < ge; ++k)
+        sweep_box_join(&R, &tbox[qorder[k]]);
     uint32_t stack[MCCD_STACK];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const sweep_node *nd = &t->nodes[stack[--top]];
-        if ((self && nd->end <= from + 1) || !sweep_overlap(qb, &nd->box))
+        if ((self && nd->end <= gb + 1) || !sweep_overlap(&R, &nd->box))
             continue;
         if (nd->left != 0) {
             stack[top++] = nd->left + 1;
             stack[top++] = nd->left;
             continue;
         }
-        for (uint32_t k = self && nd->begin <= from ? from + 1 : nd->begin; k < nd->end; ++k) {
-            const uint32_t u = t->order[k];
-            if (!sweep_overlap(qb, &twide[u]) || (self && !sweep_overlap(&J->a->tbox[u], &twide[q])))
+        for (uint32_t kq = gb; kq < ge; ++kq) {
+            const uint32_t q = qorder[kq];
+            if (!sweep_overlap(&tbox[q], &nd->box))
                 continue;
-            if (!self)
-                pair_two(J, w, q, u);
-            else if (eligible(J, q, u))
-                pair_self(J, w, q < u ? q : u, q < u ? u : q);
+            for (uint32_t k = self && nd->begin <= kq ? kq + 1 : nd->begin; k < nd->end; ++k) {
+                const uint32_t u = t->order[k];
+                if (!sweep_overlap(&tbox[q], &twide[u]) || (self && !sweep_overlap(&tbox[u], &twide[q])))
+                    continue;
+                if (!self)
+                    pair_two(J, w, q, u);
+                else if (eligible(J, q, u))
+                    pair_self(J, w, q < u ? q : u, q < u ? u : q);
+            }
         }
     }
+}
+
+/* The leaves of a tree (node indices), in order. */
+static size_t tree_leaves(const sweep_tree *t, uint32_t *out)
+{
+    uint32_t stack[MCCD_STACK];
+    int top = 0;
+    size_t n = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const uint32_t i = stack[--top];
+        if (t->nodes[i].left != 0) {
+            stack[top++] = t->nodes[i].left + 1;
+            stack[top++] = t->nodes[i].left;
+        } else {
+            out[n++] = i;
+        }
+    }
+    return n;
 }
 
 static void run_block(void *ctx, size_t block, int wi)
@@ -487,14 +578,11 @@ static void run_block(void *ctx, size_t block, int wi)
     worker *w = &J->workers[wi];
     if (w->oom)
         return;
-    if (J->self) {
-        const size_t n = J->tree.n, end = (block + 1) * MCCD_BLOCK < n ? (block + 1) * MCCD_BLOCK : n;
-        for (size_t k = block * MCCD_BLOCK; k < end; ++k)
-            walk(J, w, J->tree.order[k], 1, (uint32_t)k);
-    } else {
-        const size_t n = J->a->s->nt, end = (block + 1) * MCCD_BLOCK < n ? (block + 1) * MCCD_BLOCK : n;
-        for (size_t q = block * MCCD_BLOCK; q < end; ++q)
-            walk(J, w, (uint32_t)q, 0, 0);
+    const sweep_tree *qt = J->self ? &J->tree : &J->qtree;
+    const size_t end = (block + 1) * MCCD_BLOCK_LEAVES < J->nleaves ? (block + 1) * MCCD_BLOCK_LEAVES : J->nleaves;
+    for (size_t i = block * MCCD_BLOCK_LEAVES; i < end; ++i) {
+        const sweep_node *leaf = &qt->nodes[J->leaves[i]];
+        walk_group(J, w, qt->order, leaf->begin, leaf->end);
     }
 }
 
@@ -537,8 +625,18 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    const size_t nq = J.self ? J.tree.n : a->nt;
-    const size_t blocks = (nq + MCCD_BLOCK - 1) / MCCD_BLOCK;
+    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, &J.qtree) != 0) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    const sweep_tree *qt = J.self ? &J.tree : &J.qtree;
+    J.leaves = malloc(qt->nnodes * sizeof *J.leaves);
+    if (J.leaves == NULL) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    J.nleaves = tree_leaves(qt, J.leaves);
+    const size_t blocks = (J.nleaves + MCCD_BLOCK_LEAVES - 1) / MCCD_BLOCK_LEAVES;
     const int nw = ttd_parallel_workers(blocks, threads);
     J.workers = calloc((size_t)nw, sizeof *J.workers);
     J.nworkers = J.workers != NULL ? nw : 0;
@@ -593,6 +691,8 @@ done:
         out->toi = HUGE_VAL;
     }
     sweep_tree_free(&J.tree);
+    sweep_tree_free(&J.qtree);
+    free(J.leaves);
     side_free(&da);
     if (!J.self)
         side_free(&db);
