@@ -417,37 +417,37 @@ static int eligible(const job *J, uint32_t t, uint32_t u)
     return c == 0 || (c == 1 && J->shared);
 }
 
-/* The owner of vertex v (not in f) against triangle f: the smallest triangle around v that the
- * rule pairs with f. */
-static uint32_t owner_vf(const job *J, uint32_t v, uint32_t f)
+/* Whether tv owns vertex v (not in f) against triangle f: no smaller triangle around v is one
+ * the rule pairs with f (tv itself is; the list is ascending). */
+static int owns_vf(const job *J, uint32_t v, uint32_t f, uint32_t tv)
 {
     const side_data *A = J->a;
-    for (uint32_t m = A->vt_start[v]; m < A->vt_start[v + 1]; ++m)
+    for (uint32_t m = A->vt_start[v]; m < A->vt_start[v + 1] && A->vt_list[m] < tv; ++m)
         if (eligible(J, A->vt_list[m], f))
-            return A->vt_list[m];
-    return UINT32_MAX;
+            return 0;
+    return 1;
 }
 
-/* The owner of two edges that share no vertex: the smallest (min, max) over the triangle pairs
- * (t around e, u around g) that the rule keeps, as min * 2^32 + max. */
-static uint64_t owner_ee(const job *J, const uint32_t e[2], const uint32_t g[2])
+/* Whether the triangle pair me = (min, max) owns two edges that share no vertex: no triangle pair
+ * (t around e, u around g) that the rule keeps is smaller, as (min, max) = min * 2^32 + max. */
+static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint64_t me)
 {
     const side_data *A = J->a;
     const uint32_t *T = A->s->tris;
-    uint64_t best = UINT64_MAX;
     for (uint32_t m = A->vt_start[e[0]]; m < A->vt_start[e[0] + 1]; ++m) {
         const uint32_t t = A->vt_list[m];
         if (!tri_has_edge(T + 3 * (size_t)t, e[0], e[1]))
             continue;
         for (uint32_t n = A->vt_start[g[0]]; n < A->vt_start[g[0] + 1]; ++n) {
             const uint32_t u = A->vt_list[n];
-            if (!tri_has_edge(T + 3 * (size_t)u, g[0], g[1]) || !eligible(J, t, u))
-                continue;
             const uint64_t key = t < u ? ((uint64_t)t << 32 | u) : ((uint64_t)u << 32 | t);
-            best = key < best ? key : best;
+            if (key >= me)
+                continue;
+            if (tri_has_edge(T + 3 * (size_t)u, g[0], g[1]) && eligible(J, t, u))
+                return 0;
         }
     }
-    return best;
+    return 1;
 }
 
 /* Triangle pair ta < tb, kept by the rule. */
@@ -469,7 +469,7 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
             if (!(fv & FIRST_V(k)) || tri_has(TF, v) || !sweep_overlap(&A->vbox[v], &A->twide[tf]) ||
                 !sweep_overlap(&A->tbox[tf], &A->vwide[v]))
                 continue;
-            if (owner_vf(J, v, tf) != tv)
+            if (!owns_vf(J, v, tf, tv))
                 continue;
             const uint32_t ida[2] = {v, none}, idb[2] = {tf, none};
             query(J, w, TTD_MESH_CCD_VF, A, &TV[k], 1, A, TF, ida, idb);
@@ -498,7 +498,7 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
             const uint32_t *g = eb[j];
             if (ea[0] == g[0] || ea[0] == g[1] || ea[1] == g[0] || ea[1] == g[1])
                 continue;
-            if (!sweep_overlap(&boxa, &wideb[j]) || !sweep_overlap(&rawb[j], &widea) || owner_ee(J, ea, g) != me)
+            if (!sweep_overlap(&boxa, &wideb[j]) || !sweep_overlap(&rawb[j], &widea) || !owns_ee(J, ea, g, me))
                 continue;
             /* the smaller edge (by its vertex indices) first */
             const int swap = g[0] < ea[0] || (g[0] == ea[0] && g[1] < ea[1]);
