@@ -5,8 +5,9 @@
 # on them; test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
 # information made on first use; test_mesh_self: a self query's
 # sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads;
-# test_points_inside: four threads' first point queries on one fresh mesh, 2 workers each) with
-# ThreadSanitizer and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
+# test_points_inside: four threads' first point queries on one fresh mesh and on one moved by
+# ttd_mesh_set_vertices, 2 workers each), and Python's threaded point queries against
+# Mesh.set_vertices (python/tests/test_deform.py), with ThreadSanitizer, and runs them. Skips with a message where ThreadSanitizer cannot run (some kernels' address
 # space layouts make its runtime refuse to start).
 # Usage: scripts/test-tsan.sh      (build folder: build-tsan/, or $TTD_TSAN_BUILD_DIR)
 set -euo pipefail
@@ -34,9 +35,35 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
 "$build/tests/test_mesh_deform" refit_bits
-# the point data, winding moments and closedness made on first use by four threads at once
+# the point data, winding moments and closedness made on first use by four threads at once, and
+# made again by four threads at once after ttd_mesh_set_vertices (a refit, then a rebuild)
 "$build/tests/test_points_inside" concurrent_first_use
+"$build/tests/test_points_inside" concurrent_after_update
 # continuous collision's batches on 1, 2 and all threads
 "$build/tests/test_ccd" threads_and_precision
 # mesh CCD's walk on 1, 2, 3 and 8 threads (each worker's hits and earliest, joined at the end)
 "$build/tests/test_mesh_ccd" threads
+
+# Python's threaded test of the point queries against a concurrent Mesh.set_vertices (the binding
+# refuses the overlap: python/tests/test_deform.py), its extension built with ThreadSanitizer
+# against this folder's library and run in Debian's python with the runtime preloaded (python
+# itself is not instrumented: the extension's and the library's accesses are checked, the GIL's
+# locks seen through their interceptors). With the binding's guard removed it reports the refit's
+# writes racing the point data's reads. Skipped, with a message, where python, numpy or pytest is
+# missing or python does not start under the runtime.
+py=${TTD_PYTHON:-/usr/bin/python3}
+tsan_rt=$(cc -print-file-name=libtsan.so)
+if ! "$py" -c "import numpy, pytest, setuptools" > /dev/null 2>&1; then
+    echo "test-tsan.sh: SKIPPED the Python threaded test: $py lacks numpy, pytest or setuptools (scripts/test-python.sh installs them)"
+elif ! LD_PRELOAD=$tsan_rt "$py" -c "import numpy" > /dev/null 2>&1; then
+    echo "test-tsan.sh: SKIPPED the Python threaded test: $py does not start with $tsan_rt preloaded"
+else
+    build_abs=$(cd "$build" && pwd)
+    pybuild=$build_abs/python
+    (cd python && TTD_CMAKE_BUILD_DIR="$build_abs" TTD_PYTHON_BUILD_BASE="$pybuild" CFLAGS=-fsanitize=thread \
+        LDFLAGS=-fsanitize=thread "$py" setup.py -q build > "$pybuild.log" 2>&1) || { cat "$pybuild.log"; exit 1; }
+    # -s: a report goes to standard error before the runtime ends the process (pytest's capture
+    # would lose it)
+    LD_PRELOAD=$tsan_rt PYTHONPATH=$(echo "$pybuild"/lib.*) PYTHONDONTWRITEBYTECODE=1 \
+        "$py" -m pytest -q -s -p no:cacheprovider python/tests/test_deform.py -k point_queries_and_set_vertices
+fi

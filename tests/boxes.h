@@ -2,7 +2,8 @@
 /* Boxes for the scene and mass tests: a box of sides a x b x c centred at the origin, faces wound
  * outward, each face cut n x n into squares of two triangles (n = 1: 12 triangles), vertices
  * shared by index; poses turned about z; the closest point of a triangle to a point (Ericson's
- * regions, written here, independent of the library). Header-only, static functions. */
+ * regions, written here, independent of the library); a ttd mesh of such vertices in double or
+ * float. Header-only, static functions. */
 #ifndef TTD_TESTS_BOXES_H
 #define TTD_TESTS_BOXES_H
 
@@ -10,6 +11,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <ttd/ttd.h>
 
 typedef struct test_box {
     double *v;   /* 3 nv */
@@ -138,6 +141,24 @@ static inline double test_point_segment(const double p[3], const double a[3], co
     t = t < 0 ? 0 : t > 1 ? 1 : t;
     const double d[3] = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
     return sqrt(test_dot(d, d));
+}
+
+/* A ttd mesh of v (3 nv doubles) and t: bytes 8 in double, 4 in float (v rounded to float); NULL
+ * where it cannot be built. */
+static inline ttd_mesh *test_mesh_of(int bytes, const double *v, size_t nv, const uint32_t *t, size_t nt)
+{
+    ttd_mesh *m = NULL;
+    if (bytes == 8)
+        return ttd_mesh_create_d(NULL, v, nv, t, nt, &m) == TTD_OK ? m : NULL;
+    float *f = malloc(3 * nv * sizeof *f);
+    if (f == NULL)
+        return NULL;
+    for (size_t k = 0; k < 3 * nv; ++k)
+        f[k] = (float)v[k];
+    if (ttd_mesh_create_f(NULL, f, nv, t, nt, &m) != TTD_OK)
+        m = NULL;
+    free(f);
+    return m;
 }
 
 #endif /* TTD_TESTS_BOXES_H */

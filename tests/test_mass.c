@@ -29,22 +29,6 @@
 
 static const double PI = 3.14159265358979323846;
 
-static ttd_mesh *mesh_of(int bytes, const double *v, size_t nv, const uint32_t *t, size_t nt)
-{
-    ttd_mesh *m = NULL;
-    if (bytes == 8)
-        return ttd_mesh_create_d(NULL, v, nv, t, nt, &m) == TTD_OK ? m : NULL;
-    float *f = malloc(3 * nv * sizeof *f);
-    if (f == NULL)
-        return NULL;
-    for (size_t k = 0; k < 3 * nv; ++k)
-        f[k] = (float)v[k];
-    if (ttd_mesh_create_f(NULL, f, nv, t, nt, &m) != TTD_OK)
-        m = NULL;
-    free(f);
-    return m;
-}
-
 static ttd_status mass(int bytes, const ttd_mesh *m, double density, ttd_mass_properties *out)
 {
     return bytes == 8 ? ttd_mesh_mass_properties_d(m, density, out) : ttd_mesh_mass_properties_f(m, density, out);
@@ -100,7 +84,7 @@ static int boxes_analytic(void)
                                         B.t[3 * t + 1] = B.t[3 * t + 2];
                                         B.t[3 * t + 2] = s;
                                     }
-                                ttd_mesh *m = mesh_of(bytes, B.v, B.nv, B.t, B.nt);
+                                ttd_mesh *m = test_mesh_of(bytes, B.v, B.nv, B.t, B.nt);
                                 ENSURE(m != NULL);
                                 const double rho = 2.5;
                                 ttd_mass_properties p;
@@ -154,7 +138,7 @@ static int boxes_unshared_and_refused(void)
 {
     test_box B;
     ENSURE(test_box_make(3, 1, 0.6, 1, &B) == 0);
-    ttd_mesh *m = mesh_of(8, B.v, B.nv, B.t, B.nt);
+    ttd_mesh *m = test_mesh_of(8, B.v, B.nv, B.t, B.nt);
     ENSURE(m != NULL);
     ttd_mass_properties want, got;
     ENSURE(ttd_mesh_mass_properties_d(m, 1, &want) == TTD_OK);
@@ -166,7 +150,7 @@ static int boxes_unshared_and_refused(void)
         memcpy(v + 3 * k, B.v + 3 * (size_t)B.t[k], 3 * sizeof *v);
         t[k] = (uint32_t)k;
     }
-    ttd_mesh *u = mesh_of(8, v, 3 * B.nt, t, B.nt);
+    ttd_mesh *u = test_mesh_of(8, v, 3 * B.nt, t, B.nt);
     ENSURE(u != NULL);
     ENSURE(ttd_mesh_mass_properties_d(u, 1, &got) == TTD_OK);
     ENSURE(memcmp(&got, &want, sizeof got) == 0);
@@ -175,7 +159,7 @@ static int boxes_unshared_and_refused(void)
     const uint32_t s = B.t[1];
     B.t[1] = B.t[2];
     B.t[2] = s;
-    ttd_mesh *flip = mesh_of(8, B.v, B.nv, B.t, B.nt), *open = mesh_of(8, B.v, B.nv, B.t + 3, B.nt - 1);
+    ttd_mesh *flip = test_mesh_of(8, B.v, B.nv, B.t, B.nt), *open = test_mesh_of(8, B.v, B.nv, B.t + 3, B.nt - 1);
     ENSURE(flip != NULL && open != NULL);
     memset(&got, 0x5a, sizeof got);
     ttd_mass_properties untouched;
@@ -189,7 +173,7 @@ static int boxes_unshared_and_refused(void)
         ENSURE(ttd_mesh_mass_properties_d(m, bad[k], &got) == TTD_ERR_BAD_OPTIONS);
     ENSURE(ttd_mesh_mass_properties_f(m, 1, &got) == TTD_ERR_PRECISION_MISMATCH);
     ENSURE(memcmp(&got, &untouched, sizeof got) == 0);
-    ttd_mesh *mf = mesh_of(4, B.v, B.nv, B.t, B.nt);
+    ttd_mesh *mf = test_mesh_of(4, B.v, B.nv, B.t, B.nt);
     ENSURE(mf != NULL && ttd_mesh_mass_properties_d(mf, 1, &got) == TTD_ERR_PRECISION_MISMATCH);
     ttd_mesh_destroy(mf);
     ttd_mesh_destroy(flip);
@@ -218,7 +202,7 @@ static int sphere_between_balls(void)
             const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
             rho = fmin(rho, fabs(test_dot(n, a)) / sqrt(test_dot(n, n)));
         }
-        ttd_mesh *m = mesh_of(8, g.verts, g.nv, g.tris, g.nt);
+        ttd_mesh *m = test_mesh_of(8, g.verts, g.nv, g.tris, g.nt);
         ENSURE(m != NULL);
         ttd_mass_properties p;
         ENSURE(ttd_mesh_mass_properties_d(m, 1, &p) == TTD_OK);
@@ -252,7 +236,7 @@ static int torus_converges(void)
     for (size_t nu = 16; nu <= 256; nu *= 2) {
         ttd_gen_mesh g;
         ENSURE(ttd_gen_torus(R, r, nu, nu / 2, &g) == 0);
-        ttd_mesh *m = mesh_of(8, g.verts, g.nv, g.tris, g.nt);
+        ttd_mesh *m = test_mesh_of(8, g.verts, g.nv, g.tris, g.nt);
         ENSURE(m != NULL);
         ttd_mass_properties p;
         ENSURE(ttd_mesh_mass_properties_d(m, 1, &p) == TTD_OK);

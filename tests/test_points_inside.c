@@ -27,82 +27,17 @@
 #include "meshes.h"
 #include "pairs.h"
 #include "points/points.h"
+#include "ref_parity.h"
+#include "ref_winding.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
 
 /* ---- references ------------------------------------------------------------------------- */
 
-/* The winding number of m about x: the triangles' solid angles (van Oosterom and Strackee) summed
- * in long double (64-bit significand on x86: 11 bits beyond double). */
+/* The winding number of m about x: the long double solid-angle sum (ref_winding.h). */
 static long double ref_winding(const ttd_gen_mesh *m, const double x[3])
 {
-    long double sum = 0;
-    for (size_t t = 0; t < m->nt; ++t) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c)
-                a[k][c] = (long double)m->verts[3 * m->tris[3 * t + (size_t)k] + (size_t)c] - (long double)x[c];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
-}
-
-/* Whether the ray x + s dir (s > 0) crosses triangle (a, b, c): 1, 0, or -1 when too near an
- * edge to tell (long double, Moller-Trumbore). */
-static int ray_crosses(const double x[3], const long double dir[3], const double *a, const double *b, const double *c)
-{
-    long double e1[3], e2[3], s[3], h[3], q[3];
-    for (int k = 0; k < 3; ++k) {
-        e1[k] = (long double)b[k] - a[k];
-        e2[k] = (long double)c[k] - a[k];
-        s[k] = (long double)x[k] - a[k];
-    }
-    h[0] = dir[1] * e2[2] - dir[2] * e2[1];
-    h[1] = dir[2] * e2[0] - dir[0] * e2[2];
-    h[2] = dir[0] * e2[1] - dir[1] * e2[0];
-    const long double det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
-    if (fabsl(det) < 1e-15L)
-        return -1;
-    const long double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / det;
-    q[0] = s[1] * e1[2] - s[2] * e1[1];
-    q[1] = s[2] * e1[0] - s[0] * e1[2];
-    q[2] = s[0] * e1[1] - s[1] * e1[0];
-    const long double v = (dir[0] * q[0] + dir[1] * q[1] + dir[2] * q[2]) / det;
-    const long double t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
-    const long double tol = 1e-9L;
-    if (u < -tol || v < -tol || u + v > 1 + tol || t < -tol)
-        return 0;
-    if (u < tol || v < tol || u + v > 1 - tol || t < tol)
-        return -1;
-    return 1;
-}
-
-/* Inside by a ray's crossing parity (what trimesh and Open3D answer; orientation plays no part). */
-static int parity_inside(const ttd_gen_mesh *m, const double x[3], ttd_gen_rng *r)
-{
-    for (;;) {
-        long double dir[3];
-        for (int k = 0; k < 3; ++k)
-            dir[k] = (long double)ttd_gen_rng_uniform(r) - 0.5L;
-        int crossings = 0, ok = 1;
-        for (size_t t = 0; t < m->nt && ok; ++t) {
-            const int c = ray_crosses(x, dir, m->verts + 3 * m->tris[3 * t], m->verts + 3 * m->tris[3 * t + 1],
-                                      m->verts + 3 * m->tris[3 * t + 2]);
-            if (c < 0)
-                ok = 0;
-            crossings += c > 0;
-        }
-        if (ok)
-            return crossings & 1;
-    }
+    return ref_winding_ld(m->verts, m->tris, m->nt, x);
 }
 
 /* ---- meshes ------------------------------------------------------------------------------ */
@@ -735,17 +670,42 @@ static void *conc_run(void *arg)
     return NULL;
 }
 
+/* The concurrency tests' meshes: kind 0 an open sphere (the walk, its moments), 1 an inward torus
+ * (the ray). */
+static int conc_mesh(int kind, ttd_gen_mesh *m)
+{
+    ENSURE(closed_mesh(kind, m) == 0);
+    if (kind == 0) {
+        uint32_t *holes = malloc(3 * m->nt * sizeof *holes);
+        size_t nh;
+        ENSURE(holes != NULL);
+        remove_faces(m, 37, holes, &nh);
+        free(holes);
+    } else {
+        reverse_faces(m);
+    }
+    return 0;
+}
+
+/* CONC_THREADS threads running conc_run on mesh and p at once, into jobs. */
+static int conc_all(const ttd_mesh *mesh, const double *p, conc_job *jobs)
+{
+    pthread_t th[CONC_THREADS];
+    for (int t = 0; t < CONC_THREADS; ++t) {
+        jobs[t].mesh = mesh;
+        jobs[t].p = p;
+        ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
+    }
+    for (int t = 0; t < CONC_THREADS; ++t)
+        ENSURE(pthread_join(th[t], NULL) == 0);
+    return 0;
+}
+
 static int concurrent_first_use(void)
 {
     for (int kind = 0; kind < 2; ++kind) { /* an open sphere (the walk, its moments); an inward torus (the ray) */
         ttd_gen_mesh m;
-        ENSURE(closed_mesh(kind, &m) == 0);
-        uint32_t *holes = malloc(3 * m.nt * sizeof *holes);
-        size_t nh;
-        if (kind == 0)
-            remove_faces(&m, 37, holes, &nh);
-        else
-            reverse_faces(&m);
+        ENSURE(conc_mesh(kind, &m) == 0);
         double *p = malloc(3 * CONC_POINTS * sizeof *p);
         ttd_gen_rng rng = ttd_gen_rng_make(17, (uint64_t)kind);
         for (size_t k = 0; k < 3 * CONC_POINTS; ++k)
@@ -758,14 +718,7 @@ static int concurrent_first_use(void)
         ref.p = p;
         conc_run(&ref);
         ENSURE(ref.rc == 0);
-        pthread_t th[CONC_THREADS];
-        for (int t = 0; t < CONC_THREADS; ++t) {
-            jobs[t].mesh = shared;
-            jobs[t].p = p;
-            ENSURE(pthread_create(&th[t], NULL, conc_run, &jobs[t]) == 0);
-        }
-        for (int t = 0; t < CONC_THREADS; ++t)
-            ENSURE(pthread_join(th[t], NULL) == 0);
+        ENSURE(conc_all(shared, p, jobs) == 0);
         for (int t = 0; t < CONC_THREADS; ++t) {
             ENSURE(jobs[t].rc == 0 && jobs[t].o == ref.o);
             ENSURE(memcmp(jobs[t].in, ref.in, sizeof ref.in) == 0);
@@ -775,11 +728,93 @@ static int concurrent_first_use(void)
         ENSURE(ref.o == (kind == 0 ? TTD_ORIENTATION_OPEN : TTD_ORIENTATION_INWARD));
         ttd_mesh_destroy(alone);
         ttd_mesh_destroy(shared);
-        free(p), free(holes);
+        free(p);
         ttd_gen_mesh_free(&m);
     }
     printf("  %d threads' first point queries on a fresh open sphere and an inward torus: the answers of the mesh "
            "asked alone\n", CONC_THREADS);
+    return 0;
+}
+
+/* The same after ttd_mesh_set_vertices: each mesh queried once (its point data, moments, caps and
+ * closedness made), then moved twice, by a small bend (a refit) and by every triangle moved to
+ * another's place as well (a rebuild: the meshes are soups, each triangle its own corners), and after each move four threads make the first point queries on it at
+ * once: every side, signed distance and orientation that of a mesh built from the moved vertices,
+ * every winding number that of the moved mesh asked again from one thread. Under
+ * ThreadSanitizer (scripts/test-tsan.sh) this is the C side of Python's threaded test of
+ * Mesh.set_vertices against point queries (python/tests/test_deform.py): the data dropped by an
+ * update and made again by whichever thread comes first. */
+static int concurrent_after_update(void)
+{
+    for (int kind = 0; kind < 2; ++kind) {
+        ttd_gen_mesh m;
+        ENSURE(conc_mesh(kind, &m) == 0);
+        /* the mesh as a soup (each triangle its own corners: what lets a move rebuild its tree) */
+        const size_t nv = 3 * m.nt;
+        double *sv = malloc(3 * nv * sizeof *sv), *moved = malloc(3 * nv * sizeof *moved);
+        uint32_t *st = malloc(3 * m.nt * sizeof *st), *perm = malloc(m.nt * sizeof *perm);
+        double *p = malloc(3 * CONC_POINTS * sizeof *p);
+        for (size_t k = 0; k < 3 * m.nt; ++k) {
+            st[k] = (uint32_t)k;
+            memcpy(sv + 3 * k, m.verts + 3 * m.tris[k], 3 * sizeof *sv);
+        }
+        ttd_gen_rng rng = ttd_gen_rng_make(19, (uint64_t)kind);
+        for (size_t t = 0; t < m.nt; ++t)
+            perm[t] = (uint32_t)t;
+        for (size_t t = m.nt - 1; t > 0; --t) { /* Fisher-Yates */
+            const size_t u = (size_t)(ttd_gen_rng_uniform(&rng) * (double)(t + 1)) % (t + 1);
+            const uint32_t x = perm[t];
+            perm[t] = perm[u];
+            perm[u] = x;
+        }
+        for (size_t k = 0; k < 3 * CONC_POINTS; ++k)
+            p[k] = 1.2 * (ttd_gen_rng_uniform(&rng) - 0.5);
+        ttd_mesh *shared;
+        ENSURE(ttd_mesh_create_d(NULL, sv, nv, st, m.nt, &shared) == TTD_OK);
+        static conc_job ref, again, jobs[CONC_THREADS];
+        ref.mesh = shared;
+        ref.p = p;
+        conc_run(&ref); /* the data made once, for the updates to drop */
+        ENSURE(ref.rc == 0);
+        for (int move = 0; move < 2; ++move) {
+            /* a bend (a refit); then every triangle moved to another's place as well (a rebuild) */
+            for (size_t t = 0; t < m.nt; ++t)
+                for (size_t k = 0; k < 9; ++k) {
+                    const double *x = sv + 9 * (move == 0 ? t : perm[t]) + 3 * (k / 3);
+                    moved[9 * t + k] = x[k % 3] * (1 + 0.1 * x[2]);
+                }
+            ENSURE(ttd_mesh_set_vertices_d(NULL, shared, moved) == TTD_OK);
+            ttd_mesh *alone;
+            ENSURE(ttd_mesh_create_d(NULL, moved, nv, st, m.nt, &alone) == TTD_OK);
+            ref.mesh = alone;
+            conc_run(&ref);
+            ENSURE(ref.rc == 0);
+            ENSURE(conc_all(shared, p, jobs) == 0);
+            again.mesh = shared; /* asked again from one thread: an open mesh's winding numbers depend on its tree */
+            again.p = p;
+            conc_run(&again);
+            ENSURE(again.rc == 0);
+            for (int t = 0; t < CONC_THREADS; ++t) {
+                ENSURE(jobs[t].rc == 0 && jobs[t].o == ref.o);
+                ENSURE_MSG(memcmp(jobs[t].in, ref.in, sizeof ref.in) == 0, "kind %d move %d thread %d: contains", kind,
+                           move, t);
+                ENSURE_MSG(memcmp(jobs[t].w, again.w, sizeof ref.w) == 0, "kind %d move %d thread %d: winding", kind,
+                           move, t);
+                ENSURE_MSG(memcmp(jobs[t].sd, ref.sd, sizeof ref.sd) == 0, "kind %d move %d thread %d: signed", kind,
+                           move, t);
+            }
+            ttd_mesh_destroy(alone);
+        }
+        ttd_mesh_refit_info info;
+        ENSURE(ttd_mesh_get_refit_info(shared, &info) == TTD_OK);
+        ENSURE_MSG(info.generation == 2 && info.rebuilds == 1, "kind %d: %llu updates, %llu rebuilds", kind,
+                   (unsigned long long)info.generation, (unsigned long long)info.rebuilds);
+        ttd_mesh_destroy(shared);
+        free(p), free(moved), free(sv), free(st), free(perm);
+        ttd_gen_mesh_free(&m);
+    }
+    printf("  %d threads' first point queries after a refit and after a rebuild of an open sphere and an inward torus "
+           "(soups): the sides and distances of a mesh built from the moved vertices\n", CONC_THREADS);
     return 0;
 }
 
@@ -794,5 +829,6 @@ int main(int argc, char **argv)
     RUN_TEST(scene_normals_inward_solids);
     RUN_TEST(pose_overflow_is_range);
     RUN_TEST(concurrent_first_use);
+    RUN_TEST(concurrent_after_update);
     TEST_MAIN_END();
 }

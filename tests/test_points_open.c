@@ -14,32 +14,10 @@
 #include "open_meshes.h"
 #include "engine/dispatch.h"
 #include "pairs.h"
+#include "ref_winding.h"
 #include "points/points.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
-
-/* The winding number about x: every triangle's solid angle (van Oosterom and Strackee) in long
- * double, written here apart from the library. */
-static long double ref_winding(const double *verts, const uint32_t *tris, size_t nt, const double x[3])
-{
-    long double sum = 0;
-    for (size_t t = 0; t < nt; ++t) {
-        long double a[3][3], l[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c)
-                a[k][c] = (long double)verts[3 * tris[3 * t + (size_t)k] + (size_t)c] - (long double)x[c];
-            l[k] = sqrtl(a[k][0] * a[k][0] + a[k][1] * a[k][1] + a[k][2] * a[k][2]);
-        }
-        const long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-        const long double ab = a[0][0] * a[1][0] + a[0][1] * a[1][1] + a[0][2] * a[1][2];
-        const long double ac = a[0][0] * a[2][0] + a[0][1] * a[2][1] + a[0][2] * a[2][2];
-        const long double bc = a[1][0] * a[2][0] + a[1][1] * a[2][1] + a[1][2] * a[2][2];
-        sum += 2 * atan2l(det, l[0] * l[1] * l[2] + ab * l[2] + ac * l[1] + bc * l[0]);
-    }
-    return sum / (4 * 3.14159265358979323846264338327950288L);
-}
 
 /* n points: near the surface (a point of a random triangle moved along its normal by N(0, 1%)),
  * uniform in the box enlarged by 10%, and (for the capsule) on and near the plane of its open end. */
@@ -135,7 +113,7 @@ static int open_sides_match_reference(void)
             const ttd_points_data *pd = ttd_points_data_get(mesh, 1);
             ENSURE(pd != NULL);
             for (size_t i = 0; i < n; ++i) {
-                const long double ref = ref_winding(vr, m.tris, m.nt, pr + 3 * i);
+                const long double ref = ref_winding_ld(vr, m.tris, m.nt, pr + 3 * i);
                 const int inside = (flags[i] & TTD_POINT_INSIDE) != 0;
                 if (flags[i] & TTD_POINT_SIGN_UNPROVEN) {
                     ++unproven;
@@ -186,7 +164,7 @@ static int open_extreme_scales(void)
     double *p = open_points(&m, 0, 77, 40, &n);
     long double *ref = malloc(n * sizeof *ref);
     for (size_t i = 0; i < n; ++i)
-        ref[i] = ref_winding(m.verts, m.tris, m.nt, p + 3 * i);
+        ref[i] = ref_winding_ld(m.verts, m.tris, m.nt, p + 3 * i);
     static const int exps[] = {-900, -700, -600, -548, -498, -333, -233, 233, 333, 498};
     double *vs = malloc(3 * m.nv * sizeof *vs), *ps = malloc(3 * n * sizeof *ps), *w = malloc(n * sizeof *w),
            *sd = malloc(n * sizeof *sd);
@@ -283,11 +261,126 @@ static int closed_tiny_cube(void)
     return 0;
 }
 
+/* A unit cube ([1/4, 5/4] x [-1/2, 1/2] x [1/4, 5/4]) with one triangle removed (open) or reversed
+ * (inconsistent), and a cube s its size, one triangle reversed, beside it ([-2s, -s]^3), s = 2^-30 .. 2^-180: points
+ * in and beside the small cube. The mesh's walk frame is its box's centre, (5/8, 0, 5/8) to
+ * rounding, so the small cube's vertices shifted there keep their y and lose x and z (below
+ * 2^-53): its triangles became segments, their moments and remainder bound 0 with a radius
+ * that let the walk take them as far, and it took the small cube for nothing there (the point fuzzer's tiny boxes found it: w = 0.504, proven, where the long double sum is
+ * 0.315). Every side (the signed distance's and the reported winding number's) must be the long
+ * double sum's, and proven. */
+static int open_tiny_cube(void)
+{
+    static const int exps[] = {-30, -67, -100, -137, -180};
+    size_t checked = 0;
+    for (int kind = 0; kind < 2; ++kind)
+        for (size_t e = 0; e < sizeof exps / sizeof exps[0]; ++e) {
+            const double s = ldexp(1.0, exps[e]);
+            ttd_gen_mesh c;
+            ENSURE(ttd_gen_mesh_cube(&c) == 0);
+            double v[48];
+            uint32_t t[72];
+            for (size_t i = 0; i < 24; ++i) {
+                v[i] = c.verts[i] + (i % 3 == 1 ? -0.5 : 0.25); /* 1/4 away in x and z: not within rounding of the small cube */
+                v[24 + i] = -2 * s + s * c.verts[i];
+            }
+            for (size_t i = 0; i < 36; ++i) {
+                t[i] = c.tris[i];
+                t[36 + i] = c.tris[i] + 8;
+            }
+            ttd_gen_mesh_free(&c);
+            size_t nt = 24;
+            const uint32_t *tp = t;
+            if (kind == 0) { /* open: the first triangle gone */
+                tp = t + 3;
+                nt = 23;
+            } else { /* inconsistent: the first triangle reversed */
+                const uint32_t x = t[1];
+                t[1] = t[2];
+                t[2] = x;
+            }
+            const uint32_t x = t[36 + 1]; /* the small cube inconsistent too */
+            t[36 + 1] = t[36 + 2];
+            t[36 + 2] = x;
+            const double pts[15] = {-1.5 * s, -1.5 * s, -1.5 * s, -0.5 * s, -0.5 * s, -0.5 * s, -2.5 * s, -1.5 * s, -1.5 * s,
+                                    -0.95 * s, -1.3 * s, -1.6 * s, -1.2 * s, -2.05 * s, -1.7 * s};
+            double w[5], sd[5];
+            ttd_point_result_d r[5];
+            ttd_mesh *mesh;
+            ENSURE(ttd_mesh_create_d(NULL, v, 16, tp, nt, &mesh) == TTD_OK);
+            ENSURE(ttd_points_winding_number_d(NULL, mesh, 5, pts, NULL, w) == TTD_OK);
+            ENSURE(ttd_points_signed_distance_d(NULL, mesh, 5, pts, NULL, INFINITY, sd, r) == TTD_OK);
+            for (int i = 0; i < 5; ++i) {
+                const long double ref = ref_winding_ld(v, tp, nt, pts + 3 * i);
+                ENSURE_MSG(!(r[i].flags & TTD_POINT_SIGN_UNPROVEN) &&
+                               ((r[i].flags & TTD_POINT_INSIDE) != 0) == (fabsl(ref) >= 0.5L) &&
+                               ttd_winding_inside(w[i]) == (fabsl(ref) >= 0.5L),
+                           "%s, 2^%d: point %d: winding number %.17g, flags %u, the long double sum %.17Lg",
+                           kind ? "inconsistent" : "open", exps[e], i, w[i], (unsigned)r[i].flags, ref);
+                ++checked;
+            }
+            ttd_mesh_destroy(mesh);
+        }
+    printf("  %zu points in and beside a cube 2^-30..2^-180 the size of an open or inconsistent one: the long double "
+           "sum's sides, proven\n", checked);
+    return 0;
+}
+
+/* The point fuzzer's case 3988 of seed 7 (tests/fuzz/corpus/points/tiny-box-inconsistent): an
+ * inconsistently wound box 1.2e-243 in size and, inside it, another 2^-137 its size (one of its
+ * faces reversed), scaled by 2^-798 and by 2^798 (about unit size): the point, 0.045 of the small
+ * box's size off it, has the long double winding number 0.3152 (outside). Before the fix the
+ * walk read 0.5039, proven inside: the small box's vertices shifted to the mesh's centre lost x
+ * and z, its triangles' moments came out 0 with a bound of 0 (points/prepare.c). */
+static int fuzz_tiny_box_found(void)
+{
+    static const double v[48] = {
+            -2.8762730787843111e-244, -3.4889085503133891e-244, -2.6604442147068057e-244,
+            -2.9369654149279326e-244, -3.011325454507531e-244, 3.2511721477249992e-244,
+            -2.8612331013803103e-244, 2.8545354836259177e-244, 2.8745590122655226e-244,
+            -3.174885209491762e-244, 3.4062650877019262e-244, -2.4145625100968744e-244,
+            3.1591040969646231e-244, -2.495601542913372e-244, -3.446251313559484e-244,
+            2.8762730787843111e-244, 3.4889085503133891e-244, 2.6604442147068057e-244,
+            3.3307735409063881e-244, 3.4315852173024199e-244, -3.0257013769735901e-244,
+            2.6298391984722803e-244, -2.5008839216506302e-244, 3.0226534179205126e-244,
+            -3.5578595720435039e-285, -3.9404017572449547e-285, -3.782367515158889e-285,
+            -3.7811883108860808e-285, 3.8639369566619685e-285, 3.7298183280750146e-285,
+            -3.5681333043610097e-285, -2.9504555409024347e-285, 3.20379353103987e-285,
+            -3.163061984910587e-285, 3.13980405898638e-285, -3.3306019948103817e-285,
+            2.7767942344501163e-285, -2.9266086005408668e-285, -2.9191939892682844e-285,
+            4.1099057474994738e-285, 3.893462026623473e-285, 2.9882208940988903e-285,
+            2.91259904657085e-285, 3.1612288112945131e-285, -2.8698885661029472e-285,
+            3.1582658283678764e-285, -2.9235967793894119e-285, 3.649202048772187e-285};
+    static const uint32_t t[72] = {0, 1, 2, 0, 3, 2, 4, 5, 6, 4, 5, 7, 0, 4, 7, 0, 7, 1, 3, 5, 2, 3, 5, 6, 0, 3, 6, 0, 4, 6, 1, 7, 5, 1, 2, 5, 8, 9, 10, 8, 11, 9, 12, 13, 14, 12, 13, 15, 8, 15, 12, 8, 10, 15, 11, 13, 9, 11, 13, 14, 8, 14, 11, 8, 14, 12, 10, 13, 15, 10, 9, 13};
+    static const double x[3] = {2.8296436621847745e-285, -1.6694229976019066e-285, 2.2202299618095403e-286};
+    for (int e = 0; e < 2; ++e) {
+        double vs[48], xs[3], w, sd;
+        for (int i = 0; i < 48; ++i)
+            vs[i] = ldexp(v[i], 798 * e);
+        for (int i = 0; i < 3; ++i)
+            xs[i] = ldexp(x[i], 798 * e);
+        const long double ref = ref_winding_ld(vs, t, 24, xs);
+        ENSURE(fabsl(ref - 0.3151802992579032L) < 1e-12L);
+        ttd_mesh *mesh;
+        ttd_point_result_d r;
+        ENSURE(ttd_mesh_create_d(NULL, vs, 16, t, 24, &mesh) == TTD_OK);
+        ENSURE(ttd_points_winding_number_d(NULL, mesh, 1, xs, NULL, &w) == TTD_OK);
+        ENSURE(ttd_points_signed_distance_d(NULL, mesh, 1, xs, NULL, INFINITY, &sd, &r) == TTD_OK);
+        ENSURE_MSG(!ttd_winding_inside(w) && !(r.flags & (TTD_POINT_INSIDE | TTD_POINT_SIGN_UNPROVEN)) && sd > 0,
+                   "scale 2^%d: winding number %.17g, flags %u, the long double sum %.17Lg", 798 * e, w,
+                   (unsigned)r.flags, ref);
+        ttd_mesh_destroy(mesh);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(open_sides_match_reference);
     RUN_TEST(open_extreme_scales);
     RUN_TEST(closed_tiny_cube);
+    RUN_TEST(open_tiny_cube);
+    RUN_TEST(fuzz_tiny_box_found);
     TEST_MAIN_END();
 }

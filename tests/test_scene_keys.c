@@ -53,22 +53,6 @@ static ttd_scene *make_scene(int bytes, size_t nb, ttd_mesh *const *m, const dou
     return s;
 }
 
-static ttd_mesh *mesh_of(int bytes, const double *v, size_t nv, const uint32_t *t, size_t nt)
-{
-    ttd_mesh *m = NULL;
-    if (bytes == 8)
-        return ttd_mesh_create_d(NULL, v, nv, t, nt, &m) == TTD_OK ? m : NULL;
-    float *f = malloc(3 * nv * sizeof *f);
-    if (f == NULL)
-        return NULL;
-    for (size_t k = 0; k < 3 * nv; ++k)
-        f[k] = (float)v[k];
-    if (ttd_mesh_create_f(NULL, f, nv, t, nt, &m) != TTD_OK)
-        m = NULL;
-    free(f);
-    return m;
-}
-
 /* x rounded to float (through a volatile: gcc 12 at -O3 was seen to keep the double here) */
 static double to_float(double x)
 {
@@ -183,7 +167,7 @@ static int array_reused_across_queries(void)
 {
     ttd_gen_mesh sp;
     ENSURE(ttd_gen_icosphere(2, &sp) == 0);
-    ttd_mesh *m = mesh_of(8, sp.verts, sp.nv, sp.tris, sp.nt);
+    ttd_mesh *m = test_mesh_of(8, sp.verts, sp.nv, sp.tris, sp.nt);
     ENSURE(m != NULL);
     ttd_scene *s = NULL;
     ENSURE(ttd_scene_create_d(&s) == TTD_OK);
@@ -197,7 +181,7 @@ static int array_reused_across_queries(void)
     /* and a stack of boxes, whose corners make more manifold points than contacts */
     test_box fl, bx;
     ENSURE(test_box_make(6, 6, 1, 1, &fl) == 0 && test_box_make(1, 1, 0.5, 1, &bx) == 0);
-    ttd_mesh *mf = mesh_of(8, fl.v, fl.nv, fl.t, fl.nt), *mb = mesh_of(8, bx.v, bx.nv, bx.t, bx.nt);
+    ttd_mesh *mf = test_mesh_of(8, fl.v, fl.nv, fl.t, fl.nt), *mb = test_mesh_of(8, bx.v, bx.nv, bx.t, bx.nt);
     ENSURE(mf != NULL && mb != NULL);
     double P[5][12];
     stack_poses(4, 1e-3, P);
@@ -253,7 +237,7 @@ static int points_on_bodies(void)
             for (int gi = 0; gi < 2; ++gi) {
                 test_box fl, bx;
                 ENSURE(test_box_make(6, 6, 1, 2, &fl) == 0 && test_box_make(1, 1, 0.5, n, &bx) == 0);
-                ttd_mesh *mf = mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt), *mb = mesh_of(bytes, bx.v, bx.nv, bx.t, bx.nt);
+                ttd_mesh *mf = test_mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt), *mb = test_mesh_of(bytes, bx.v, bx.nv, bx.t, bx.nt);
                 ENSURE(mf != NULL && mb != NULL);
                 double P[5][12];
                 stack_poses(4, gi ? 1e-3 : 0, P);
@@ -288,8 +272,8 @@ static int points_on_bodies(void)
             test_box fl, cu;
             ENSURE(ttd_gen_icosphere(3, &sp) == 0 && test_box_make(4, 4, 1, 5, &fl) == 0 &&
                    test_box_make(1, 1, 1, 2, &cu) == 0);
-            ttd_mesh *ms = mesh_of(bytes, sp.verts, sp.nv, sp.tris, sp.nt), *mf = mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt);
-            ttd_mesh *mc = mesh_of(bytes, cu.v, cu.nv, cu.t, cu.nt);
+            ttd_mesh *ms = test_mesh_of(bytes, sp.verts, sp.nv, sp.tris, sp.nt), *mf = test_mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt);
+            ttd_mesh *mc = test_mesh_of(bytes, cu.v, cu.nv, cu.t, cu.nt);
             ENSURE(ms != NULL && mf != NULL && mc != NULL);
             double P[2][12];
             const double cf[3] = {0, 0, -0.5}, cs[3] = {0.13, -0.21, 1.002};
@@ -459,7 +443,7 @@ static int keys_name_features_and_persist(void)
             for (int gi = 0; gi < 2; ++gi) {
                 test_box fl, bx;
                 ENSURE(test_box_make(6, 6, 1, 3, &fl) == 0 && test_box_make(1, 1, 0.5, n, &bx) == 0);
-                ttd_mesh *mf = mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt), *mb = mesh_of(bytes, bx.v, bx.nv, bx.t, bx.nt);
+                ttd_mesh *mf = test_mesh_of(bytes, fl.v, fl.nv, fl.t, fl.nt), *mb = test_mesh_of(bytes, bx.v, bx.nv, bx.t, bx.nt);
                 ENSURE(mf != NULL && mb != NULL);
                 double P[5][12], Q[5][12];
                 stack_poses(4, gi ? 2e-3 : 5e-4, P);
@@ -548,7 +532,7 @@ static int sliding_box(double rock, size_t *keys_out, size_t *tris_out, size_t *
 {
     test_box fl, bx;
     ENSURE(test_box_make(8, 8, 1, 24, &fl) == 0 && test_box_make(1, 0.4, 2, 2, &bx) == 0);
-    ttd_mesh *mf = mesh_of(8, fl.v, fl.nv, fl.t, fl.nt), *mb = mesh_of(8, bx.v, bx.nv, bx.t, bx.nt);
+    ttd_mesh *mf = test_mesh_of(8, fl.v, fl.nv, fl.t, fl.nt), *mb = test_mesh_of(8, bx.v, bx.nv, bx.t, bx.nt);
     ENSURE(mf != NULL && mb != NULL);
     ttd_scene *s = NULL;
     ENSURE(ttd_scene_create_d(&s) == TTD_OK);

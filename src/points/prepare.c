@@ -241,7 +241,13 @@ static void triangle_moments(const struct ttd_mesh *m, double scale, size_t t, d
         }
     const double off = 2 * DBL_EPSILON * big;
     w[WM_I * TTD_NODE_WIDTH] = (area / 12 * s + area * 3 * off * off) * (1 + 1e-12);
-    if (!(w[WM_RADIUS * TTD_NODE_WIDTH] >= WM_TINY))
+    /* A triangle below 2^-20 of its distance from the origin has vertices whose shift to it rounded
+     * by up to 2^-33 of its size or more (all of it, below 2^-53): its moments describe another
+     * triangle, and the remainder bound says nothing of the difference. A cube 2^-137 the size of
+     * a mesh beside it came out flat here (moments 0, bound 0), and a point near it got its side
+     * of |w| = 1/2 wrong, proven (the point fuzzer's tiny boxes). Such a triangle is measured
+     * exactly instead (its solid angle from the mesh's own coordinates), as a tiny slot is. */
+    if (!(w[WM_RADIUS * TTD_NODE_WIDTH] >= WM_TINY) || !(w[WM_RADIUS * TTD_NODE_WIDTH] >= 0x1p-20 * big))
         w[WM_I * TTD_NODE_WIDTH] = INFINITY;
 }
 
