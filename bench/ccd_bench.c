@@ -4,7 +4,9 @@
  * whole set with --queries DIR) and on generated families, beside a naive floating-point cubic
  * (the coplanarity cubic's roots in double, then an inside test in double): false negatives and
  * false positives against the files' truth, and time per query (mean, median, worst), one thread.
- * Tight-Inclusion is not linked in: docs/ccd.md says how it was built and run beside this. */
+ * Tight-Inclusion is not linked in: docs/ccd.md says how it was built and run beside this.
+ * Then deforming meshes (issue 34; docs/ccd.md, section 10): self-CCD of a sheet folding into
+ * layers, step by step, one thread. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -13,10 +15,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "bench_internal.h"
 #include "ccd_bench.h"
 #include "cli.h"
+#include "meshes.h"
 
 #ifndef TTD_CCD_SUBSET_DIR
 #define TTD_CCD_SUBSET_DIR "tests/data/ccd"
@@ -320,11 +324,91 @@ static void print_row(const char *name, const stats *t, const stats *nv, int tru
                t->total / nv->total);
 }
 
+
+/* ---- deforming meshes ----------------------------------------------------------------------- */
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Self-CCD of ttd_gen_folded_sheet(n) with 4 layers one grid edge (1/n) apart, the fold going from
+ * 0.85 to 1 of flat in `steps` steps (the layers close in, no contact), then a step from 1 to 1.05
+ * (the layers pass through one another; a long step, the ends moving about 0.02). Each step: ttd_mesh_self_ccd_d from the mesh at the
+ * step's start to the next positions (the mesh moved there by ttd_mesh_set_vertices_d after,
+ * untimed), one thread, the fastest of reps runs, in wall and CPU time. */
+static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
+{
+    const int layers = 4;
+    const double gap = 1.0 / (double)n;
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    ttd_gen_mesh g;
+    if (ttd_gen_folded_sheet(n, layers, gap, 0.85, &g) != 0)
+        return -1;
+    ttd_mesh *m = NULL;
+    if (ttd_mesh_create_d(&o, g.verts, g.nv, g.tris, g.nt, &m) != TTD_OK) {
+        ttd_gen_mesh_free(&g);
+        return -1;
+    }
+    printf("\nself-CCD of a folding sheet: %zu triangles, %d layers %.3g apart (one grid edge), %s; per step the "
+           "fastest of %d runs, one thread\n",
+           g.nt, layers, gap, flags ? "with the shared-vertex pairs" : "triangle pairs sharing no vertex", reps);
+    printf("%-18s %10s %10s %12s %12s %10s %6s %10s\n", "step (fold)", "wall_ms", "cpu_ms", "tri_pairs", "queries",
+           "searched", "pairs", "toi");
+    double sum_wall = 0, sum_cpu = 0;
+    int rc = 0;
+    for (int k = 0; k <= steps && rc == 0; ++k) {
+        /* the last step from flat to 1.05: through the other layers, a long step */
+        const double f0 = k < steps ? 0.85 + 0.15 * k / steps : 1.0;
+        const double f1 = k < steps ? 0.85 + 0.15 * (k + 1) / steps : 1.05;
+        ttd_gen_mesh a, b;
+        if (ttd_gen_folded_sheet(n, layers, gap, f0, &a) != 0 || ttd_gen_folded_sheet(n, layers, gap, f1, &b) != 0) {
+            rc = -1;
+            break;
+        }
+        double best_w = INFINITY, best_c = INFINITY;
+        ttd_mesh_ccd_result r = {0};
+        if (ttd_mesh_set_vertices_d(&o, m, a.verts) != TTD_OK)
+            rc = -1;
+        for (int rep = 0; rep < reps && rc == 0; ++rep) {
+            ttd_mesh_ccd_free(&r);
+            const double w0 = bench_now(), c0 = cpu_now();
+            if (ttd_mesh_self_ccd_d(&o, m, b.verts, 0.0, flags, &r) != TTD_OK)
+                rc = -1;
+            const double c = cpu_now() - c0, w = bench_now() - w0;
+            best_w = fmin(best_w, w);
+            best_c = fmin(best_c, c);
+        }
+        if (rc == 0) {
+            char name[32];
+            snprintf(name, sizeof name, "%.3f -> %.3f", f0, f1);
+            printf("%-18s %10.2f %10.2f %12llu %12llu %10llu %6zu %10.4g\n", name, best_w * 1e3, best_c * 1e3,
+                   (unsigned long long)r.triangle_pairs, (unsigned long long)r.queries,
+                   (unsigned long long)r.searches, r.count, r.toi);
+            if (k < steps)
+                sum_wall += best_w, sum_cpu += best_c;
+        }
+        ttd_mesh_ccd_free(&r);
+        ttd_gen_mesh_free(&a);
+        ttd_gen_mesh_free(&b);
+    }
+    if (rc == 0)
+        printf("mean of the %d closing steps: %.2f ms wall, %.2f ms CPU (the issue's target: 20 ms a step of about "
+               "100k triangles, one core)\n",
+               steps, sum_wall * 1e3 / steps, sum_cpu * 1e3 / steps);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return rc;
+}
+
 int bench_ccd_main(int argc, char **argv)
 {
     const char *dir = TTD_CCD_SUBSET_DIR;
-    int reps = 3;
-    size_t fam_n = 2000;
+    int reps = 3, mesh_only = 0, steps = 60;
+    size_t fam_n = 2000, sheet = 224;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--queries") == 0 && i + 1 < argc)
             dir = argv[++i];
@@ -332,11 +416,21 @@ int bench_ccd_main(int argc, char **argv)
             reps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
         else if (strcmp(argv[i], "--family-size") == 0 && i + 1 < argc)
             fam_n = (size_t)strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--sheet") == 0 && i + 1 < argc)
+            sheet = (size_t)strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc)
+            steps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
+        else if (strcmp(argv[i], "--mesh-only") == 0)
+            mesh_only = 1;
         else {
-            printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N]\n"
+            printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--sheet N] [--steps K] "
+                   "[--mesh-only]\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
-                   "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n",
+                   "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n"
+                   "  Then self-CCD of a folding sheet of 2 N^2 triangles (default N 224: 100,352), K closing\n"
+                   "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
+                   "  through itself; --mesh-only: that alone.\n",
                    TTD_CCD_SUBSET_DIR);
             return strcmp(argv[i], "--help") == 0 ? 0 : 2;
         }
@@ -345,6 +439,14 @@ int bench_ccd_main(int argc, char **argv)
     bench_machine_describe(&m);
     printf("ttd bench ccd: %s, %d cores, load %s, one thread, fastest of %d runs a query\n", m.cpu, m.cores,
            m.load_start, reps);
+    if (mesh_only) {
+        const int rc = sheet < 2 || bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
+                       bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX) != 0;
+        char load_end[64];
+        bench_load_average(load_end, sizeof load_end);
+        printf("\nload at the end %s\n", load_end);
+        return rc;
+    }
     qset *sets = NULL;
     size_t ns = 0, cap = 0;
     if (collect(dir, strlen(dir), &sets, &ns, &cap) != 0 || ns == 0) {
@@ -413,6 +515,9 @@ int bench_ccd_main(int argc, char **argv)
             print_row(name, &t, &nv, 0);
             free(ft), free(fh), free(s.x0), free(s.x1);
         }
+    if (sheet >= 2 && (bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
+                       bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX) != 0))
+        fprintf(stderr, "ttd bench ccd: the folding sheet failed\n");
     char load_end[64];
     bench_load_average(load_end, sizeof load_end);
     printf("\nload at the end %s\n", load_end);

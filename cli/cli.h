@@ -41,6 +41,8 @@ int ttd_cli_ccd_read(const char *path, int kind_hint, int *kind, size_t *nq, dou
 /// Runs n queries of that layout through ttd_ccd_vertex_face_d / ttd_ccd_edge_edge_d; the status.
 int ttd_cli_ccd_run(const ttd_options *o, int kind, size_t n, const double *x0, const double *x1,
                     double delta, ttd_ccd_result *out);
+/// `ttd mesh-ccd A_T0 A_T1 [B_T0 B_T1]` (mesh_ccd.c): continuous collision of deforming meshes.
+int ttd_cli_mesh_ccd(int argc, char **argv);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

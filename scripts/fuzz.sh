@@ -51,9 +51,9 @@ mkdir -p "$build"
 CC="$CC_FUZZ" cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_FUZZ=ON -DTTD_SANITIZE=ON \
     -DTTD_BUILD_CLI=OFF -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link" > "$build/cmake.log" 2>&1 ||
     { cat "$build/cmake.log"; exit 1; }
-cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile fuzz_mesh fuzz_points
+cmake --build "$build" -j "$jobs" --target fuzz_parse_line fuzz_batch fuzz_meshfile fuzz_mesh fuzz_points fuzz_mesh_ccd
 # fuzz_ccd (continuous collision against the exact rational reference) needs GMP (libgmp-dev)
-targets="parse_line batch meshfile mesh points"
+targets="parse_line batch meshfile mesh points mesh_ccd"
 if cmake --build "$build" -j "$jobs" --target fuzz_ccd > "$build/fuzz_ccd_build.log" 2>&1; then
     targets="$targets ccd"
 else

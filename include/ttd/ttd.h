@@ -987,6 +987,75 @@ TTD_API ttd_status ttd_ccd_triangles_d(const ttd_options *opt, size_t n, const d
 TTD_API ttd_status ttd_ccd_triangles_f(const ttd_options *opt, size_t n, const float *ta_t0,
                                        const float *tb_t0, const float *ta_t1, const float *tb_t1,
                                        double min_separation, ttd_ccd_result *out);
+
+/* ---- Continuous collision of deforming meshes (issue 34; src/meshccd/, docs/ccd.md section 10) ----
+ * A mesh's vertices move on straight lines from their positions in the mesh (t = 0) to a new
+ * array of positions (t = 1), the triangles unchanged. ttd_mesh_ccd_d asks, over every vertex-face
+ * and edge-edge pair of two meshes, and ttd_mesh_self_ccd_d over the pairs of one mesh that the
+ * self rule keeps, the earliest time any pair comes within min_separation (the primitive queries
+ * above, with their guarantee: toi is never after the true first time), and returns every pair
+ * whose own conservative time is at most that toi + TTD_CCD_DEFAULT_T_TOL. The set and its order
+ * depend on the inputs alone (not on threads). The hierarchy is one over swept boxes (each
+ * triangle's box around its vertices at t = 0 and t = 1) built per call. */
+
+/// ttd_mesh_ccd_pair.kind
+enum {
+    TTD_MESH_CCD_VF = 0, ///< a vertex (a[0]) of mesh a against a triangle (b[0]) of mesh b
+    TTD_MESH_CCD_FV = 1, ///< a triangle (a[0]) of mesh a against a vertex (b[0]) of mesh b
+    TTD_MESH_CCD_EE = 2  ///< an edge of a (vertices a[0] < a[1]) against an edge of b (b[0] < b[1])
+};
+
+/// One primitive pair that comes within min_separation. In a self query a and b name the same
+/// mesh: VF is a vertex a[0] against a triangle b[0]; EE two edges, (a[0], a[1]) < (b[0], b[1]).
+/// Unused ids (a[1], b[1] of VF and FV) are UINT32_MAX.
+typedef struct ttd_mesh_ccd_pair {
+    double toi;      ///< the pair's conservative time of impact (ttd_ccd_result.toi)
+    double gap;      ///< the distance computed near toi, for information (ttd_ccd_result.gap)
+    uint32_t kind;   ///< TTD_MESH_CCD_VF, TTD_MESH_CCD_FV, TTD_MESH_CCD_EE
+    uint32_t flags;  ///< TTD_CCD_BUDGET
+    uint32_t a[2], b[2];
+} ttd_mesh_ccd_pair;
+
+/// What a mesh CCD query answers. pairs is allocated by the library (free it with
+/// ttd_mesh_ccd_free); sorted by toi, then kind, a, b.
+typedef struct ttd_mesh_ccd_result {
+    double toi;              ///< the earliest time of impact in [0, 1]; INFINITY when none
+    ttd_mesh_ccd_pair *pairs;
+    size_t count;
+    uint64_t triangle_pairs; ///< triangle pairs whose swept boxes came within min_separation
+    uint64_t queries;        ///< primitive pairs whose swept boxes came within min_separation (each once)
+    uint64_t searches;       ///< of those, the ones not proved apart along a face normal or edge cross
+                             ///< product at t = 0 and t = 1, searched by the primitive query
+    uint32_t flags;          ///< TTD_CCD_BUDGET when some reported pair used up its budget
+} ttd_mesh_ccd_result;
+
+/// Deforming meshes a and b (built in double), a's vertices at t = 1 in a_vertices_t1 (3 nv_a
+/// doubles), b's in b_vertices_t1: every vertex of a against every triangle of b, every vertex of
+/// b against every triangle of a, every edge of a against every edge of b. min_separation >= 0.
+/// Checks: out, a, b or an array NULL: TTD_ERR_NULL_POINTER; options as ttd_ccd_vertex_face_d;
+/// min_separation negative, NaN or infinite: TTD_ERR_BAD_OPTIONS; a mesh of the other precision:
+/// TTD_ERR_PRECISION_MISMATCH; a NaN or infinite t = 1 coordinate: TTD_ERR_NONFINITE_MESH (nothing
+/// computed). out->count is 0 and out->pairs NULL on any error.
+TTD_API ttd_status ttd_mesh_ccd_d(const ttd_options *opt, const ttd_mesh *a, const double *a_vertices_t1,
+                                  const ttd_mesh *b, const double *b_vertices_t1, double min_separation,
+                                  ttd_mesh_ccd_result *out);
+/// ttd_mesh_ccd_d for meshes built in float, float t = 1 arrays (widened to double exactly).
+TTD_API ttd_status ttd_mesh_ccd_f(const ttd_options *opt, const ttd_mesh *a, const float *a_vertices_t1,
+                                  const ttd_mesh *b, const float *b_vertices_t1, double min_separation,
+                                  ttd_mesh_ccd_result *out);
+/// Self-CCD of one deforming mesh: the primitive pairs (vertex-face, edge-edge) of triangle pairs
+/// that share no vertex (by index), each pair once. With flags TTD_SELF_SHARED_VERTEX, also those
+/// of triangle pairs that share exactly one vertex s, less the sub-queries whose two primitives
+/// share a vertex (s against the other triangle, and two edges that both end at s): 4 vertex-face
+/// and 5 edge-edge sub-queries of the 15. Triangle pairs that share two or three vertices add
+/// nothing. Checks as ttd_mesh_ccd_d, and unknown flag bits: TTD_ERR_BAD_OPTIONS.
+TTD_API ttd_status ttd_mesh_self_ccd_d(const ttd_options *opt, const ttd_mesh *mesh, const double *vertices_t1,
+                                       double min_separation, unsigned flags, ttd_mesh_ccd_result *out);
+/// ttd_mesh_self_ccd_d for a mesh built in float.
+TTD_API ttd_status ttd_mesh_self_ccd_f(const ttd_options *opt, const ttd_mesh *mesh, const float *vertices_t1,
+                                       double min_separation, unsigned flags, ttd_mesh_ccd_result *out);
+/// Frees out->pairs and sets count 0 (NULL is fine).
+TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
 /* ==== end of continuous collision detection ==================================================== */
 
 /** @} */

@@ -97,7 +97,109 @@ done:
     return res;
 }
 
+
+PyDoc_STRVAR(mesh_ccd_doc,
+             "_mesh_ccd(a, a1, b, b1, min_separation, shared, threads) -> (toi, kind, a_ids, b_ids, pair_toi, gap, flags,\n"
+             "triangle_pairs, queries, searches)\n"
+             "a, b ttd.Mesh (b None: self); a1, b1 C-contiguous (nv, 3) arrays of the mesh's dtype.\n"
+             "Private: use ttd.mesh_ccd, ttd.mesh_self_ccd.");
+
+/* A mesh's t = 1 array: an (nv, 3) C-contiguous array of the mesh's dtype (the wrapper made it so). */
+static int t1_ok(const ttd_py_mesh *m, PyObject *o, const char *name)
+{
+    if (!PyArray_Check(o) || PyArray_TYPE((PyArrayObject *)o) != m->type || !PyArray_IS_C_CONTIGUOUS((PyArrayObject *)o) ||
+        PyArray_SIZE((PyArrayObject *)o) != 3 * PyArray_DIM(m->vertices, 0)) {
+        PyErr_Format(PyExc_ValueError, "ttd: %s must be a C-contiguous (%zd, 3) array of the mesh's dtype", name,
+                     (Py_ssize_t)PyArray_DIM(m->vertices, 0));
+        return 0;
+    }
+    return 1;
+}
+
+static PyObject *py_mesh_ccd(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *a, *a1, *b, *b1;
+    double delta;
+    int shared, threads;
+    if (!PyArg_ParseTuple(args, "OOOOdii", &a, &a1, &b, &b1, &delta, &shared, &threads))
+        return NULL;
+    const int is_self = b == Py_None;
+    if (!PyObject_TypeCheck(a, &ttd_py_MeshType) || (!is_self && !PyObject_TypeCheck(b, &ttd_py_MeshType))) {
+        PyErr_SetString(PyExc_TypeError, "ttd: the meshes must be ttd.Mesh objects");
+        return NULL;
+    }
+    const ttd_py_mesh *ma = (const ttd_py_mesh *)a, *mb = is_self ? NULL : (const ttd_py_mesh *)b;
+    if (!t1_ok(ma, a1, is_self ? "vertices_t1" : "a_vertices_t1") || (!is_self && !t1_ok(mb, b1, "b_vertices_t1")))
+        return NULL;
+    if (!is_self && ma->type != mb->type) {
+        PyErr_SetString(PyExc_ValueError, "ttd: both meshes must have one dtype (float32 or float64)");
+        return NULL;
+    }
+    ttd_options opt = ttd_default_options();
+    opt.threads = threads;
+    PyObject *meshes[2] = {a, is_self ? a : b};
+    if (ttd_py_meshes_use(meshes, 2) < 0)
+        return NULL;
+    ttd_mesh_ccd_result r;
+    ttd_status st;
+    const void *p1 = PyArray_DATA((PyArrayObject *)a1), *q1 = is_self ? NULL : PyArray_DATA((PyArrayObject *)b1);
+    const int d = ma->type == NPY_DOUBLE;
+    const unsigned flags = shared ? TTD_SELF_SHARED_VERTEX : 0u;
+    Py_BEGIN_ALLOW_THREADS
+    if (is_self)
+        st = d ? ttd_mesh_self_ccd_d(&opt, ma->mesh, p1, delta, flags, &r)
+               : ttd_mesh_self_ccd_f(&opt, ma->mesh, p1, delta, flags, &r);
+    else
+        st = d ? ttd_mesh_ccd_d(&opt, ma->mesh, p1, mb->mesh, q1, delta, &r)
+               : ttd_mesh_ccd_f(&opt, ma->mesh, p1, mb->mesh, q1, delta, &r);
+    Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(meshes, 2);
+    if (st == TTD_ERR_BAD_OPTIONS) {
+        PyErr_Format(PyExc_ValueError, "ttd: min_separation must be finite and >= 0 (got %g) and threads >= 0", delta);
+        return NULL;
+    }
+    if (st == TTD_ERR_NONFINITE_MESH) {
+        PyErr_SetString(PyExc_ValueError, "ttd: the vertices at t = 1 hold NaN or infinite coordinates");
+        return NULL;
+    }
+    if (st != TTD_OK) {
+        if (ttd_py_raise_fatal(st, &opt) == 0)
+            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from mesh CCD", (int)st);
+        return NULL;
+    }
+    const npy_intp n = (npy_intp)r.count;
+    npy_intp d1[1] = {n}, d2[2] = {n, 2};
+    PyArrayObject *kind = (PyArrayObject *)PyArray_SimpleNew(1, d1, NPY_UINT8);
+    PyArrayObject *ia = (PyArrayObject *)PyArray_SimpleNew(2, d2, NPY_INT64);
+    PyArrayObject *ib = (PyArrayObject *)PyArray_SimpleNew(2, d2, NPY_INT64);
+    PyArrayObject *toi = (PyArrayObject *)PyArray_SimpleNew(1, d1, NPY_DOUBLE);
+    PyArrayObject *gap = (PyArrayObject *)PyArray_SimpleNew(1, d1, NPY_DOUBLE);
+    PyArrayObject *fl = (PyArrayObject *)PyArray_SimpleNew(1, d1, NPY_UINT32);
+    PyObject *res = NULL;
+    if (kind && ia && ib && toi && gap && fl) {
+        for (npy_intp i = 0; i < n; ++i) {
+            const ttd_mesh_ccd_pair *p = &r.pairs[i];
+            ((uint8_t *)PyArray_DATA(kind))[i] = (uint8_t)p->kind;
+            for (int k = 0; k < 2; ++k) { /* unused ids (UINT32_MAX) as -1 */
+                ((int64_t *)PyArray_DATA(ia))[2 * i + k] = p->a[k] == UINT32_MAX ? -1 : (int64_t)p->a[k];
+                ((int64_t *)PyArray_DATA(ib))[2 * i + k] = p->b[k] == UINT32_MAX ? -1 : (int64_t)p->b[k];
+            }
+            ((double *)PyArray_DATA(toi))[i] = p->toi;
+            ((double *)PyArray_DATA(gap))[i] = p->gap;
+            ((uint32_t *)PyArray_DATA(fl))[i] = p->flags;
+        }
+        res = Py_BuildValue("(dNNNNNNKKK)", r.toi, kind, ia, ib, toi, gap, fl, (unsigned long long)r.triangle_pairs,
+                            (unsigned long long)r.queries, (unsigned long long)r.searches);
+    } else {
+        Py_XDECREF(kind), Py_XDECREF(ia), Py_XDECREF(ib), Py_XDECREF(toi), Py_XDECREF(gap), Py_XDECREF(fl);
+    }
+    ttd_mesh_ccd_free(&r);
+    return res;
+}
+
 PyMethodDef ttd_py_ccd_methods[] = {
     {"_ccd", py_ccd, METH_VARARGS, ccd_doc},
+    {"_mesh_ccd", py_mesh_ccd, METH_VARARGS, mesh_ccd_doc},
     {NULL, NULL, 0, NULL},
 };

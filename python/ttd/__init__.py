@@ -102,7 +102,18 @@ try:
     )
     from . import _ttd
     from ._poses import load_mesh, mesh_closest, mesh_collide, mesh_contacts, mesh_distance, orthonormalize, pose
-    from ._ccd import CCDResult, ccd_edge_edge, ccd_triangles, ccd_vertex_face
+    from ._ccd import (
+        MESH_CCD_EE,
+        MESH_CCD_FV,
+        MESH_CCD_VF,
+        CCDResult,
+        MeshCCDResult,
+        ccd_edge_edge,
+        ccd_triangles,
+        ccd_vertex_face,
+        mesh_ccd,
+        mesh_self_ccd,
+    )
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -167,6 +178,12 @@ __all__ = [
     "ccd_edge_edge",
     "ccd_triangles",
     "ccd_vertex_face",
+    "MeshCCDResult",
+    "MESH_CCD_VF",
+    "MESH_CCD_FV",
+    "MESH_CCD_EE",
+    "mesh_ccd",
+    "mesh_self_ccd",
     "CLOSEST_DTYPE_FLOAT32",
     "CLOSEST_DTYPE_FLOAT64",
     "COLLISION_DTYPE",

@@ -479,3 +479,8 @@ def sdf_grid(
 def _ccd(
     kind: int, a0: Any, b0: Any, a1: Any, b1: Any, min_separation: float, threads: int, /
 ) -> Tuple[Any, Any, Any, Any, Any, Any]: ...
+
+# Mesh CCD: the private entry behind ttd.mesh_ccd and ttd.mesh_self_ccd (ttd/_ccd.py); b None: self.
+def _mesh_ccd(
+    a: Mesh, a1: Any, b: Optional[Mesh], b1: Any, min_separation: float, shared: int, threads: int, /
+) -> Tuple[float, Any, Any, Any, Any, Any, Any, int, int, int]: ...

@@ -23,7 +23,7 @@
 
 ttd_ccd_params ttd_ccd_default_params(void)
 {
-    ttd_ccd_params p = {0.0, 1.0, TTD_CCD_DEFAULT_T_TOL, TTD_CCD_DEFAULT_MAX_EVALS};
+    ttd_ccd_params p = {0.0, 1.0, TTD_CCD_DEFAULT_T_TOL, TTD_CCD_DEFAULT_MAX_EVALS, HUGE_VAL};
     return p;
 }
 
@@ -515,6 +515,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
     int evals = 0;
     while (top > 0) {
         const double ta = st_ta[top - 1], tb = st_tb[top - 1];
+        if (ta > p->t_stop)
+            break; /* every open interval starts after t_stop (the earliest is on top) */
         if (evals >= p->max_evals) {
             /* Out of budget: answer hit at the earliest interval not yet separated. */
             out->hit = 1;

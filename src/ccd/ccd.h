@@ -20,9 +20,15 @@ typedef struct ttd_ccd_params {
     double t_max;     ///< search [0, t_max], t_max in [0, 1]
     double t_tol;     ///< a time interval this short that cannot be separated is a hit
     int max_evals;    ///< intervals examined before the query answers hit conservatively
+    /// Stop, answering no hit, at the first open interval that starts after t_stop (mesh CCD,
+    /// src/meshccd/: a pair whose contact comes after the earliest found cannot be reported).
+    /// The answer of a query whose toi is at most t_stop is the same as without (the same
+    /// intervals in the same order). Default HUGE_VAL.
+    double t_stop;
 } ttd_ccd_params;
 
-/// The defaults: delta 0, t_max 1, t_tol TTD_CCD_DEFAULT_T_TOL, max_evals TTD_CCD_DEFAULT_MAX_EVALS.
+/// The defaults: delta 0, t_max 1, t_tol TTD_CCD_DEFAULT_T_TOL, max_evals TTD_CCD_DEFAULT_MAX_EVALS,
+/// t_stop HUGE_VAL.
 ttd_ccd_params ttd_ccd_default_params(void);
 
 /// One query: x0[3i..3i+2], x1[3i..3i+2] are point i at t = 0 and t = 1; points [0, kind) are

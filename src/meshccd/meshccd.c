@@ -1,0 +1,700 @@
+/* SPDX-License-Identifier: MIT */
+/* Continuous collision of deforming meshes (meshccd.h; docs/ccd.md, section 10).
+ *
+ * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
+ *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
+ * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
+ *    triangle of a, by its unwidened box, walks it. A triangle pair whose boxes do not overlap is
+ *    more than delta apart along an axis at every t, and so is every pair of their primitives.
+ * 3. Primitive pairs, each once: a vertex-face or edge-edge pair belongs to several triangle
+ *    pairs (a vertex to every triangle around it, an edge to two); it is queried only from its
+ *    owner, the smallest triangle pair (by index) that holds it and that the rule keeps. The
+ *    owner's boxes hold the primitives' boxes, so whenever the primitives' boxes overlap, the
+ *    owner is a candidate of step 2: nothing is lost, nothing repeated, and no sort is needed.
+ * 4. Narrow phase: the primitive query of src/ccd/ (ttd_ccd_query) over all of [0, 1], its answer
+ *    a function of the pair's numbers alone; each worker keeps the hits at or before its earliest
+ *    + TTD_CCD_DEFAULT_T_TOL; at the end the earliest of all, the hits within the tolerance of it,
+ *    sorted. So the result does not depend on the threads or on the order of the walk. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ccd/ccd.h"
+#include "engine/parallel.h"
+#include "meshccd/meshccd.h"
+#include "meshccd/sweep_tree.h"
+
+enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
+
+/* Per-triangle slot flags. */
+#define FIRST_V(k) (1u << (k))        /* slot k's vertex index does not appear in an earlier slot */
+#define FIRST_E(k) (1u << (3 + (k)))  /* edge k (slot k to k + 1) is not an earlier slot's edge */
+#define OWN_V(k) (1u << (6 + (k)))    /* and the triangle is the smallest that holds that vertex */
+#define OWN_E(k) (1u << (9 + (k)))    /* and the smallest that holds that edge */
+
+/* What one side's primitives need. */
+typedef struct side_data {
+    const meshccd_side *s;
+    sweep_box *vbox, *vwide;   /* per vertex: swept box, and widened by delta */
+    sweep_box *tbox, *twide;   /* per triangle */
+    uint32_t *vt_start;        /* nv + 1: vertex v's triangles are vt_list[vt_start[v] .. vt_start[v+1]) */
+    uint32_t *vt_list;         /* ascending (a triangle twice where it repeats the vertex) */
+    uint16_t *flags;           /* per triangle */
+} side_data;
+
+static void side_free(side_data *d)
+{
+    free(d->vbox);
+    free(d->vwide);
+    free(d->tbox);
+    free(d->twide);
+    free(d->vt_start);
+    free(d->vt_list);
+    free(d->flags);
+    memset(d, 0, sizeof *d);
+}
+
+static int tri_has(const uint32_t *t, uint32_t v)
+{
+    return t[0] == v || t[1] == v || t[2] == v;
+}
+
+/* Whether triangle t has an edge between p and q: both among its vertices, and p twice when
+ * p == q (a zero-length edge of a triangle that repeats a vertex). */
+static int tri_has_edge(const uint32_t *t, uint32_t p, uint32_t q)
+{
+    if (p != q)
+        return tri_has(t, p) && tri_has(t, q);
+    return (t[0] == p) + (t[1] == p) + (t[2] == p) >= 2;
+}
+
+static int side_make(const meshccd_side *s, double delta, side_data *d)
+{
+    memset(d, 0, sizeof *d);
+    d->s = s;
+    d->vbox = malloc(s->nv * sizeof *d->vbox);
+    d->vwide = malloc(s->nv * sizeof *d->vwide);
+    d->tbox = malloc(s->nt * sizeof *d->tbox);
+    d->twide = malloc(s->nt * sizeof *d->twide);
+    d->vt_start = calloc(s->nv + 1, sizeof *d->vt_start);
+    d->vt_list = malloc(3 * s->nt * sizeof *d->vt_list);
+    d->flags = malloc(s->nt * sizeof *d->flags);
+    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vt_start || !d->vt_list || !d->flags) {
+        side_free(d);
+        return -1;
+    }
+    for (size_t v = 0; v < s->nv; ++v) {
+        sweep_point_box(s->x0 + 3 * v, s->x1 + 3 * v, &d->vbox[v]);
+        d->vwide[v] = d->vbox[v];
+        sweep_box_widen(&d->vwide[v], delta);
+    }
+    const uint32_t *T = s->tris;
+    for (size_t t = 0; t < s->nt; ++t) {
+        d->tbox[t] = d->vbox[T[3 * t]];
+        d->twide[t] = d->vwide[T[3 * t]];
+        for (int k = 1; k < 3; ++k) {
+            sweep_box_join(&d->tbox[t], &d->vbox[T[3 * t + k]]);
+            sweep_box_join(&d->twide[t], &d->vwide[T[3 * t + k]]);
+        }
+    }
+    /* vertex -> triangles, ascending */
+    for (size_t i = 0; i < 3 * s->nt; ++i)
+        ++d->vt_start[T[i] + 1];
+    for (size_t v = 0; v < s->nv; ++v)
+        d->vt_start[v + 1] += d->vt_start[v];
+    uint32_t *fill = malloc(s->nv * sizeof *fill);
+    if (fill == NULL) {
+        side_free(d);
+        return -1;
+    }
+    memcpy(fill, d->vt_start, s->nv * sizeof *fill);
+    for (size_t i = 0; i < 3 * s->nt; ++i)
+        d->vt_list[fill[T[i]]++] = (uint32_t)(i / 3);
+    free(fill);
+    /* slot flags */
+    for (size_t t = 0; t < s->nt; ++t) {
+        const uint32_t *tr = T + 3 * t;
+        unsigned f = 0;
+        for (int k = 0; k < 3; ++k) {
+            int first = 1;
+            for (int j = 0; j < k; ++j)
+                first &= tr[j] != tr[k];
+            if (first) {
+                f |= FIRST_V(k);
+                if (d->vt_list[d->vt_start[tr[k]]] == t)
+                    f |= OWN_V(k);
+            }
+            const uint32_t p = tr[k], q = tr[(k + 1) % 3];
+            first = 1;
+            for (int j = 0; j < k; ++j) {
+                const uint32_t r = tr[j], w = tr[(j + 1) % 3];
+                first &= !((r == p && w == q) || (r == q && w == p));
+            }
+            if (first) {
+                f |= FIRST_E(k);
+                int own = 1;
+                for (uint32_t m = d->vt_start[p]; m < d->vt_start[p + 1] && d->vt_list[m] < t; ++m)
+                    own &= !tri_has_edge(T + 3 * (size_t)d->vt_list[m], p, q);
+                if (own)
+                    f |= OWN_E(k);
+            }
+        }
+        d->flags[t] = (uint16_t)f;
+    }
+    return 0;
+}
+
+/* The query's shared state. */
+typedef struct job {
+    side_data *a, *b; /* b == a for a self query */
+    int self;
+    unsigned shared;  /* self: TTD_SELF_SHARED_VERTEX keeps triangle pairs that share one vertex */
+    sweep_tree tree;  /* over b's widened triangle boxes */
+    sweep_tree qtree; /* two meshes: over a's unwidened boxes, whose leaves group the walks */
+    uint32_t *leaves; /* the leaves of the query side's tree (qtree, or tree in a self query) */
+    size_t nleaves;
+    ttd_ccd_params params;
+    struct worker *workers;
+    int nworkers;
+} job;
+
+typedef struct worker {
+    ttd_mesh_ccd_pair *hits;
+    size_t n, cap;
+    double best;      /* the earliest toi this worker has seen */
+    uint64_t tri_pairs, queries, searches;
+    int oom;
+} worker;
+
+/* Keeps a hit when it is at or before the worker's earliest + the tolerance; the list is thinned
+ * to that window before it grows. */
+static void keep_hit(worker *w, const ttd_mesh_ccd_pair *h)
+{
+    if (h->toi > w->best + TTD_CCD_DEFAULT_T_TOL)
+        return;
+    if (h->toi < w->best)
+        w->best = h->toi;
+    if (w->n == w->cap) {
+        size_t m = 0;
+        const double lim = w->best + TTD_CCD_DEFAULT_T_TOL;
+        for (size_t i = 0; i < w->n; ++i)
+            if (w->hits[i].toi <= lim)
+                w->hits[m++] = w->hits[i];
+        w->n = m;
+        if (w->n >= w->cap / 2) {
+            const size_t cap = w->cap ? 2 * w->cap : 64;
+            ttd_mesh_ccd_pair *p = realloc(w->hits, cap * sizeof *p);
+            if (p == NULL) {
+                w->oom = 1;
+                return;
+            }
+            w->hits = p;
+            w->cap = cap;
+        }
+    }
+    w->hits[w->n++] = *h;
+}
+
+/* A cheap proof that a primitive pair stays more than delta apart over the whole step: for a
+ * fixed direction n, the gap g(t) = min over the first set of n.x(t) - max over the second (or
+ * the other way round) is concave in t (each n.x(t) is linear), so g > delta |n| at t = 0 and
+ * t = 1 proves it for every t between (docs/ccd.md, section 3, whose argument this is). Any n
+ * gives a valid bound, so n's own rounding does not matter. The dot products of n with input
+ * points err by at most 3.01 u sum |n_k x_k| <= 3.01 u |n|_1 S each (S the largest coordinate),
+ * a gap by twice that plus its own rounding: 8 u |n|_1 S + 2 u |g| covers it with the rounding of
+ * the bound itself, and 2^-1000 products that underflow. */
+static int gap_proves(const double n[3], int na, const double x0[12], const double x1[12], double S, double delta)
+{
+    const double u = 0x1p-53;
+    const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
+    if (!(n1 > 0) || !isfinite(n1))
+        return 0;
+    const double need = delta * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (1 + 0x1p-40);
+    const double base = 8 * u * n1 * S + 0x1p-1000;
+    int ok_pos = 1, ok_neg = 1; /* first set above the second along n, or below */
+    for (int t = 0; t < 2; ++t) {
+        const double *y = t ? x1 : x0;
+        double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
+        for (int i = 0; i < 4; ++i) {
+            const double d = n[0] * y[3 * i] + n[1] * y[3 * i + 1] + n[2] * y[3 * i + 2];
+            if (i < na) {
+                amin = d < amin ? d : amin;
+                amax = d > amax ? d : amax;
+            } else {
+                bmin = d < bmin ? d : bmin;
+                bmax = d > bmax ? d : bmax;
+            }
+        }
+        const double gp = amin - bmax, gn = bmin - amax;
+        ok_pos &= gp - (base + 2 * u * fabs(gp)) > need;
+        ok_neg &= gn - (base + 2 * u * fabs(gn)) > need;
+        if (!ok_pos && !ok_neg)
+            return 0;
+    }
+    return 1;
+}
+
+static void cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* e x (w x e): w's part perpendicular to e (e times |e|^2). */
+static void perp3(const double e[3], const double w[3], double r[3])
+{
+    double c[3];
+    cross3(w, e, c);
+    cross3(e, c, r);
+}
+
+/* Directions tried, from the positions at t = 0 and then at t = 1: the face's normal
+ * (vertex-face) or the edges' cross product (edge-edge), and the directions within the face's
+ * plane that separate a vertex beyond one of its edges (each edge's perpendicular towards the
+ * vertex), or an edge beside the other (each edge's perpendicular towards the other's first
+ * point): neighbours in one flat layer of a sheet, coplanar, are separated by the second kind. */
+static int apart_cheaply(int na, const double x0[12], const double x1[12], double delta)
+{
+    double S = 0;
+    for (int i = 0; i < 12; ++i) {
+        const double m = fabs(x0[i]) > fabs(x1[i]) ? fabs(x0[i]) : fabs(x1[i]);
+        S = m > S ? m : S;
+    }
+    for (int end = 0; end < 2; ++end) {
+        const double *x = end ? x1 : x0;
+        double e1[3], e2[3], n[3];
+        for (int k = 0; k < 3; ++k) {
+            /* vertex-face: the face's two edges from its first vertex; edge-edge: the two edges */
+            e1[k] = na == 1 ? x[6 + k] - x[3 + k] : x[3 + k] - x[k];
+            e2[k] = na == 1 ? x[9 + k] - x[3 + k] : x[9 + k] - x[6 + k];
+        }
+        cross3(e1, e2, n);
+        if (gap_proves(n, na, x0, x1, S, delta))
+            return 1;
+        if (na == 1) {
+            for (int j = 0; j < 3; ++j) {
+                const double *f = x + 3 + 3 * j, *g = x + 3 + 3 * ((j + 1) % 3);
+                double e[3], w[3], m[3];
+                for (int k = 0; k < 3; ++k)
+                    e[k] = g[k] - f[k], w[k] = x[k] - f[k];
+                perp3(e, w, m);
+                if (gap_proves(m, na, x0, x1, S, delta))
+                    return 1;
+            }
+        } else {
+            double w[3], m[3];
+            for (int k = 0; k < 3; ++k)
+                w[k] = x[6 + k] - x[k];
+            perp3(e1, w, m);
+            if (gap_proves(m, na, x0, x1, S, delta))
+                return 1;
+            for (int k = 0; k < 3; ++k)
+                w[k] = -w[k];
+            perp3(e2, w, m);
+            if (gap_proves(m, na, x0, x1, S, delta))
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* Runs one primitive query: points pa[0 .. na) of side P, pb[0 .. 4 - na) of side Q. */
+static void query(const job *J, worker *w, uint32_t kind, const side_data *P, const uint32_t *pa, int na,
+                  const side_data *Q, const uint32_t *pb, const uint32_t ida[2], const uint32_t idb[2])
+{
+    double x0[12], x1[12];
+    for (int i = 0; i < 4; ++i) {
+        const side_data *S = i < na ? P : Q;
+        const uint32_t v = i < na ? pa[i] : pb[i - na];
+        memcpy(x0 + 3 * i, S->s->x0 + 3 * (size_t)v, 3 * sizeof(double));
+        memcpy(x1 + 3 * i, S->s->x1 + 3 * (size_t)v, 3 * sizeof(double));
+    }
+    /* Searched up to the worker's earliest + the tolerance only: a pair that comes later cannot
+     * be reported (the final earliest is no later), and one that comes sooner gets the answer
+     * of a full search (ccd.h, t_stop), so the result does not depend on the order of the walk. */
+    ++w->queries;
+    if (apart_cheaply(na, x0, x1, J->params.delta))
+        return;
+    ++w->searches;
+    ttd_ccd_params prm = J->params;
+    prm.t_stop = w->best + TTD_CCD_DEFAULT_T_TOL;
+    ttd_ccd_result r;
+    ttd_ccd_query(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &prm, &r);
+    if (!r.hit)
+        return;
+    ttd_mesh_ccd_pair h;
+    h.toi = r.toi;
+    h.gap = r.gap;
+    h.kind = kind;
+    h.flags = r.flags & TTD_CCD_BUDGET;
+    h.a[0] = ida[0];
+    h.a[1] = ida[1];
+    h.b[0] = idb[0];
+    h.b[1] = idb[1];
+    keep_hit(w, &h);
+}
+
+static void edge_of(const uint32_t *tr, int k, uint32_t e[2])
+{
+    const uint32_t p = tr[k], q = tr[(k + 1) % 3];
+    e[0] = p < q ? p : q;
+    e[1] = p < q ? q : p;
+}
+
+/* The join of the edge's two vertex boxes (written field by field: a struct copy became a slow
+ * rep movs here). */
+static void edge_box(const sweep_box *vb, const uint32_t e[2], sweep_box *out)
+{
+    const sweep_box *p = &vb[e[0]], *q = &vb[e[1]];
+    for (int k = 0; k < 3; ++k) {
+        out->lo[k] = p->lo[k] < q->lo[k] ? p->lo[k] : q->lo[k];
+        out->hi[k] = p->hi[k] > q->hi[k] ? p->hi[k] : q->hi[k];
+    }
+}
+
+/* ---- two meshes ---- */
+
+static void pair_two(const job *J, worker *w, uint32_t ta, uint32_t tb)
+{
+    const side_data *A = J->a, *B = J->b;
+    const uint32_t *TA = A->s->tris + 3 * (size_t)ta, *TB = B->s->tris + 3 * (size_t)tb;
+    const unsigned fa = A->flags[ta], fb = B->flags[tb];
+    const uint32_t none = UINT32_MAX;
+    ++w->tri_pairs;
+    for (int k = 0; k < 3; ++k)
+        if ((fa & OWN_V(k)) && sweep_overlap(&A->vbox[TA[k]], &B->twide[tb])) {
+            const uint32_t ida[2] = {TA[k], none}, idb[2] = {tb, none};
+            query(J, w, TTD_MESH_CCD_VF, A, &TA[k], 1, B, TB, ida, idb);
+        }
+    for (int k = 0; k < 3; ++k)
+        if ((fb & OWN_V(k)) && sweep_overlap(&A->tbox[ta], &B->vwide[TB[k]])) {
+            const uint32_t ida[2] = {ta, none}, idb[2] = {TB[k], none};
+            query(J, w, TTD_MESH_CCD_FV, B, &TB[k], 1, A, TA, ida, idb);
+        }
+    for (int i = 0; i < 3; ++i) {
+        if (!(fa & OWN_E(i)))
+            continue;
+        uint32_t ea[2];
+        sweep_box boxa;
+        edge_of(TA, i, ea);
+        edge_box(A->vbox, ea, &boxa);
+        for (int j = 0; j < 3; ++j) {
+            if (!(fb & OWN_E(j)))
+                continue;
+            uint32_t eb[2];
+            sweep_box boxb;
+            edge_of(TB, j, eb);
+            edge_box(B->vwide, eb, &boxb);
+            if (sweep_overlap(&boxa, &boxb))
+                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, B, eb, ea, eb);
+        }
+    }
+}
+
+/* ---- one mesh ---- */
+
+/* Distinct vertices (by index) that triangles t and u share. */
+static int shared_count(const uint32_t *t, const uint32_t *u)
+{
+    int c = 0;
+    for (int k = 0; k < 3; ++k) {
+        int first = 1;
+        for (int j = 0; j < k; ++j)
+            first &= t[j] != t[k];
+        c += first && tri_has(u, t[k]);
+    }
+    return c;
+}
+
+/* Whether the self rule keeps the triangle pair (t != u). */
+static int eligible(const job *J, uint32_t t, uint32_t u)
+{
+    if (t == u)
+        return 0;
+    const uint32_t *T = J->a->s->tris;
+    const int c = shared_count(T + 3 * (size_t)t, T + 3 * (size_t)u);
+    return c == 0 || (c == 1 && J->shared);
+}
+
+/* Whether tv owns vertex v (not in f) against triangle f: no smaller triangle around v is one
+ * the rule pairs with f (tv itself is; the list is ascending). */
+static int owns_vf(const job *J, uint32_t v, uint32_t f, uint32_t tv)
+{
+    const side_data *A = J->a;
+    for (uint32_t m = A->vt_start[v]; m < A->vt_start[v + 1] && A->vt_list[m] < tv; ++m)
+        if (eligible(J, A->vt_list[m], f))
+            return 0;
+    return 1;
+}
+
+/* Whether the triangle pair me = (min, max) owns two edges that share no vertex: no triangle pair
+ * (t around e, u around g) that the rule keeps is smaller, as (min, max) = min * 2^32 + max. */
+static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint64_t me)
+{
+    const side_data *A = J->a;
+    const uint32_t *T = A->s->tris;
+    for (uint32_t m = A->vt_start[e[0]]; m < A->vt_start[e[0] + 1]; ++m) {
+        const uint32_t t = A->vt_list[m];
+        if (!tri_has_edge(T + 3 * (size_t)t, e[0], e[1]))
+            continue;
+        for (uint32_t n = A->vt_start[g[0]]; n < A->vt_start[g[0] + 1]; ++n) {
+            const uint32_t u = A->vt_list[n];
+            const uint64_t key = t < u ? ((uint64_t)t << 32 | u) : ((uint64_t)u << 32 | t);
+            if (key >= me)
+                continue;
+            if (tri_has_edge(T + 3 * (size_t)u, g[0], g[1]) && eligible(J, t, u))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Triangle pair ta < tb, kept by the rule. */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
+{
+    const side_data *A = J->a;
+    const uint32_t *T = A->s->tris;
+    const uint32_t *TA = T + 3 * (size_t)ta, *TB = T + 3 * (size_t)tb;
+    const unsigned fa = A->flags[ta], fb = A->flags[tb];
+    const uint32_t none = UINT32_MAX;
+    ++w->tri_pairs;
+    /* vertices of one against the other's face */
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t *TV = side ? TB : TA, *TF = side ? TA : TB;
+        const uint32_t tv = side ? tb : ta, tf = side ? ta : tb;
+        const unsigned fv = side ? fb : fa;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = TV[k];
+            if (!(fv & FIRST_V(k)) || tri_has(TF, v) || !sweep_overlap(&A->vbox[v], &A->twide[tf]) ||
+                !sweep_overlap(&A->tbox[tf], &A->vwide[v]))
+                continue;
+            if (!owns_vf(J, v, tf, tv))
+                continue;
+            const uint32_t ida[2] = {v, none}, idb[2] = {tf, none};
+            query(J, w, TTD_MESH_CCD_VF, A, &TV[k], 1, A, TF, ida, idb);
+        }
+    }
+    /* edges against edges (tb's edges and boxes made once) */
+    const uint64_t me = (uint64_t)ta << 32 | tb;
+    uint32_t eb[3][2];
+    sweep_box rawb[3], wideb[3];
+    for (int j = 0; j < 3; ++j) {
+        edge_of(TB, j, eb[j]);
+        edge_box(A->vbox, eb[j], &rawb[j]);
+        edge_box(A->vwide, eb[j], &wideb[j]);
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (!(fa & FIRST_E(i)))
+            continue;
+        uint32_t ea[2];
+        sweep_box boxa, widea;
+        edge_of(TA, i, ea);
+        edge_box(A->vbox, ea, &boxa);
+        edge_box(A->vwide, ea, &widea);
+        for (int j = 0; j < 3; ++j) {
+            if (!(fb & FIRST_E(j)))
+                continue;
+            const uint32_t *g = eb[j];
+            if (ea[0] == g[0] || ea[0] == g[1] || ea[1] == g[0] || ea[1] == g[1])
+                continue;
+            if (!sweep_overlap(&boxa, &wideb[j]) || !sweep_overlap(&rawb[j], &widea) || !owns_ee(J, ea, g, me))
+                continue;
+            /* the smaller edge (by its vertex indices) first */
+            const int swap = g[0] < ea[0] || (g[0] == ea[0] && g[1] < ea[1]);
+            if (swap)
+                query(J, w, TTD_MESH_CCD_EE, A, g, 2, A, ea, g, ea);
+            else
+                query(J, w, TTD_MESH_CCD_EE, A, ea, 2, A, g, ea, g);
+        }
+    }
+}
+
+/* ---- the walk ---- */
+
+/* The triangles of a at positions [gb, ge) of qorder (a leaf of a's tree, or of the tree itself in
+ * a self query), by their unwidened boxes, against the tree of b's widened boxes; in a self query
+ * only the pairs whose second triangle comes later in the order (each unordered pair once). One
+ * walk serves the whole leaf: its box first, then each triangle at the tree's leaves. */
+static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t gb, uint32_t ge)
+{
+    const int self = J->self;
+    const sweep_box *tbox = J->a->tbox, *twide = J->b->twide;
+    const sweep_tree *t = &J->tree;
+    sweep_box R = tbox[qorder[gb]];
+    for (uint32_t k = gb + 1; k < ge; ++k)
+        sweep_box_join(&R, &tbox[qorder[k]]);
+    uint32_t stack[MCCD_STACK];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const sweep_node *nd = &t->nodes[stack[--top]];
+        if ((self && nd->end <= gb + 1) || !sweep_overlap(&R, &nd->box))
+            continue;
+        if (nd->left != 0) {
+            stack[top++] = nd->left + 1;
+            stack[top++] = nd->left;
+            continue;
+        }
+        for (uint32_t kq = gb; kq < ge; ++kq) {
+            const uint32_t q = qorder[kq];
+            if (!sweep_overlap(&tbox[q], &nd->box))
+                continue;
+            for (uint32_t k = self && nd->begin <= kq ? kq + 1 : nd->begin; k < nd->end; ++k) {
+                const uint32_t u = t->order[k];
+                if (!sweep_overlap(&tbox[q], &twide[u]) || (self && !sweep_overlap(&tbox[u], &twide[q])))
+                    continue;
+                if (!self)
+                    pair_two(J, w, q, u);
+                else if (eligible(J, q, u))
+                    pair_self(J, w, q < u ? q : u, q < u ? u : q);
+            }
+        }
+    }
+}
+
+/* The leaves of a tree (node indices), in order. */
+static size_t tree_leaves(const sweep_tree *t, uint32_t *out)
+{
+    uint32_t stack[MCCD_STACK];
+    int top = 0;
+    size_t n = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const uint32_t i = stack[--top];
+        if (t->nodes[i].left != 0) {
+            stack[top++] = t->nodes[i].left + 1;
+            stack[top++] = t->nodes[i].left;
+        } else {
+            out[n++] = i;
+        }
+    }
+    return n;
+}
+
+static void run_block(void *ctx, size_t block, int wi)
+{
+    job *J = ctx;
+    worker *w = &J->workers[wi];
+    if (w->oom)
+        return;
+    const sweep_tree *qt = J->self ? &J->tree : &J->qtree;
+    const size_t end = (block + 1) * MCCD_BLOCK_LEAVES < J->nleaves ? (block + 1) * MCCD_BLOCK_LEAVES : J->nleaves;
+    for (size_t i = block * MCCD_BLOCK_LEAVES; i < end; ++i) {
+        const sweep_node *leaf = &qt->nodes[J->leaves[i]];
+        walk_group(J, w, qt->order, leaf->begin, leaf->end);
+    }
+}
+
+static int pair_cmp(const void *x, const void *y)
+{
+    const ttd_mesh_ccd_pair *p = x, *q = y;
+    if (p->toi != q->toi)
+        return p->toi < q->toi ? -1 : 1;
+    if (p->kind != q->kind)
+        return p->kind < q->kind ? -1 : 1;
+    const uint32_t kp[4] = {p->a[0], p->a[1], p->b[0], p->b[1]}, kq[4] = {q->a[0], q->a[1], q->b[0], q->b[1]};
+    for (int i = 0; i < 4; ++i)
+        if (kp[i] != kq[i])
+            return kp[i] < kq[i] ? -1 : 1;
+    return 0;
+}
+
+ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_side *b, double delta, unsigned shared,
+                           ttd_mesh_ccd_result *out)
+{
+    memset(out, 0, sizeof *out);
+    out->toi = HUGE_VAL;
+    side_data da, db;
+    job J;
+    memset(&J, 0, sizeof J);
+    J.self = b == NULL;
+    J.shared = shared & TTD_SELF_SHARED_VERTEX;
+    J.params = ttd_ccd_default_params();
+    J.params.delta = delta;
+    if (side_make(a, delta, &da) != 0)
+        return TTD_ERR_OUT_OF_MEMORY;
+    if (!J.self && side_make(b, delta, &db) != 0) {
+        side_free(&da);
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    J.a = &da;
+    J.b = J.self ? &da : &db;
+    ttd_status st = TTD_OK;
+    if (sweep_tree_build(J.b->twide, J.b->s->nt, &J.tree) != 0) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, &J.qtree) != 0) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    const sweep_tree *qt = J.self ? &J.tree : &J.qtree;
+    J.leaves = malloc(qt->nnodes * sizeof *J.leaves);
+    if (J.leaves == NULL) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    J.nleaves = tree_leaves(qt, J.leaves);
+    const size_t blocks = (J.nleaves + MCCD_BLOCK_LEAVES - 1) / MCCD_BLOCK_LEAVES;
+    const int nw = ttd_parallel_workers(blocks, threads);
+    J.workers = calloc((size_t)nw, sizeof *J.workers);
+    J.nworkers = J.workers != NULL ? nw : 0;
+    if (J.workers == NULL) {
+        st = TTD_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    for (int i = 0; i < nw; ++i)
+        J.workers[i].best = HUGE_VAL;
+    ttd_parallel_for(blocks, threads, run_block, &J);
+    /* the earliest over the workers, then their hits within the tolerance of it */
+    double best = HUGE_VAL;
+    size_t total = 0;
+    for (int i = 0; i < nw; ++i) {
+        const worker *w = &J.workers[i];
+        if (w->oom)
+            st = TTD_ERR_OUT_OF_MEMORY;
+        best = w->best < best ? w->best : best;
+        out->triangle_pairs += w->tri_pairs;
+        out->queries += w->queries;
+        out->searches += w->searches;
+        total += w->n;
+    }
+    if (st != TTD_OK)
+        goto done;
+    if (total > 0) {
+        out->pairs = malloc(total * sizeof *out->pairs);
+        if (out->pairs == NULL) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            goto done;
+        }
+        const double lim = best + TTD_CCD_DEFAULT_T_TOL;
+        for (int i = 0; i < nw; ++i)
+            for (size_t k = 0; k < J.workers[i].n; ++k)
+                if (J.workers[i].hits[k].toi <= lim) {
+                    out->pairs[out->count] = J.workers[i].hits[k];
+                    out->flags |= out->pairs[out->count].flags;
+                    ++out->count;
+                }
+        qsort(out->pairs, out->count, sizeof *out->pairs, pair_cmp);
+    }
+    out->toi = best;
+done:
+    if (J.workers != NULL) {
+        for (int i = 0; i < J.nworkers; ++i)
+            free(J.workers[i].hits);
+        free(J.workers);
+    }
+    if (st != TTD_OK) {
+        free(out->pairs);
+        memset(out, 0, sizeof *out);
+        out->toi = HUGE_VAL;
+    }
+    sweep_tree_free(&J.tree);
+    sweep_tree_free(&J.qtree);
+    free(J.leaves);
+    side_free(&da);
+    if (!J.self)
+        side_free(&db);
+    return st;
+}

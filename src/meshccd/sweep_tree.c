@@ -1,0 +1,155 @@
+/* SPDX-License-Identifier: MIT */
+/* The swept-box hierarchy (sweep_tree.h): Morton order by a stable radix sort, then halves. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshccd/sweep_tree.h"
+
+void sweep_box_widen(sweep_box *b, double delta)
+{
+    if (delta == 0)
+        return; /* x - 0 is exact */
+    for (int k = 0; k < 3; ++k) {
+        /* Rounded to nearest, then one step outward: the result is beyond the exact value. */
+        b->lo[k] = nextafter(b->lo[k] - delta, -HUGE_VAL);
+        b->hi[k] = nextafter(b->hi[k] + delta, HUGE_VAL);
+    }
+}
+
+/* Spreads the 10 low bits of v to every third bit. */
+static uint32_t spread3(uint32_t v)
+{
+    v &= 0x3ffu;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+/* Morton codes of the boxes' centres on a 1024^3 grid over the centres' bounding box. Any order
+ * gives a correct tree (the boxes hold what they hold); this one makes it a good one. */
+static void morton_codes(const sweep_box *boxes, size_t n, uint32_t *code)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double c = 0.5 * boxes[i].lo[k] + 0.5 * boxes[i].hi[k];
+            lo[k] = c < lo[k] ? c : lo[k];
+            hi[k] = c > hi[k] ? c : hi[k];
+        }
+    double scale[3];
+    for (int k = 0; k < 3; ++k) {
+        const double ext = hi[k] - lo[k]; /* inf for extreme boxes: then every code is 0 there */
+        scale[k] = ext > 0 && isfinite(ext) ? 1023.0 / ext : 0.0;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k) {
+            const double c = 0.5 * boxes[i].lo[k] + 0.5 * boxes[i].hi[k];
+            double g = (c - lo[k]) * scale[k];
+            g = g > 1023.0 ? 1023.0 : (g >= 0 ? g : 0.0); /* also catches NaN */
+            q[k] = (uint32_t)g;
+        }
+        code[i] = spread3(q[0]) | (spread3(q[1]) << 1) | (spread3(q[2]) << 2);
+    }
+}
+
+/* order[] sorted by code, ties by index (stable LSD radix sort, 3 passes of 10 bits). */
+static int radix_order(const uint32_t *code, size_t n, uint32_t *order)
+{
+    uint32_t *tmp = malloc(n * sizeof *tmp);
+    size_t *count = malloc(1025 * sizeof *count);
+    if (tmp == NULL || count == NULL) {
+        free(tmp);
+        free(count);
+        return -1;
+    }
+    for (size_t i = 0; i < n; ++i)
+        order[i] = (uint32_t)i;
+    uint32_t *src = order, *dst = tmp;
+    for (int pass = 0; pass < 3; ++pass) {
+        const int shift = 10 * pass;
+        memset(count, 0, 1025 * sizeof *count);
+        for (size_t i = 0; i < n; ++i)
+            ++count[((code[src[i]] >> shift) & 1023u) + 1];
+        for (int d = 0; d < 1024; ++d)
+            count[d + 1] += count[d];
+        for (size_t i = 0; i < n; ++i)
+            dst[count[(code[src[i]] >> shift) & 1023u]++] = src[i];
+        uint32_t *s = src;
+        src = dst;
+        dst = s;
+    }
+    if (src != order)
+        memcpy(order, src, n * sizeof *order);
+    free(tmp);
+    free(count);
+    return 0;
+}
+
+/* Node idx over order[begin, end), its children allocated from *used. */
+static void build_node(sweep_tree *t, const sweep_box *boxes, uint32_t idx, uint32_t begin, uint32_t end,
+                       size_t *used)
+{
+    sweep_node *nd = &t->nodes[idx];
+    nd->begin = begin;
+    nd->end = end;
+    nd->pad = 0;
+    if (end - begin <= SWEEP_LEAF) {
+        nd->left = 0;
+        nd->box = boxes[t->order[begin]];
+        for (uint32_t k = begin + 1; k < end; ++k)
+            sweep_box_join(&nd->box, &boxes[t->order[k]]);
+        return;
+    }
+    const uint32_t left = (uint32_t)*used;
+    *used += 2;
+    const uint32_t mid = begin + (end - begin) / 2;
+    build_node(t, boxes, left, begin, mid, used);
+    build_node(t, boxes, left + 1, mid, end, used);
+    nd = &t->nodes[idx]; /* (the array does not move; kept for clarity after the calls) */
+    nd->left = left;
+    nd->box = t->nodes[left].box;
+    sweep_box_join(&nd->box, &t->nodes[left + 1].box);
+}
+
+int sweep_tree_build(const sweep_box *boxes, size_t n, sweep_tree *t)
+{
+    memset(t, 0, sizeof *t);
+    /* A binary tree with leaves of at least SWEEP_LEAF / 2 + 1 boxes (halves of more than
+     * SWEEP_LEAF) has fewer than 2 n / 2 nodes; 2 n + 1 is plenty. */
+    const size_t cap = 2 * n + 1;
+    t->nodes = malloc(cap * sizeof *t->nodes);
+    t->order = malloc(n * sizeof *t->order);
+    t->pos = malloc(n * sizeof *t->pos);
+    uint32_t *code = malloc(n * sizeof *code);
+    if (t->nodes == NULL || t->order == NULL || t->pos == NULL || code == NULL) {
+        free(code);
+        sweep_tree_free(t);
+        return -1;
+    }
+    morton_codes(boxes, n, code);
+    if (radix_order(code, n, t->order) != 0) {
+        free(code);
+        sweep_tree_free(t);
+        return -1;
+    }
+    free(code);
+    for (size_t k = 0; k < n; ++k)
+        t->pos[t->order[k]] = (uint32_t)k;
+    size_t used = 1;
+    build_node(t, boxes, 0, 0, (uint32_t)n, &used);
+    t->nnodes = used;
+    t->n = n;
+    return 0;
+}
+
+void sweep_tree_free(sweep_tree *t)
+{
+    free(t->nodes);
+    free(t->order);
+    free(t->pos);
+    memset(t, 0, sizeof *t);
+}

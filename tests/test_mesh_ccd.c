@@ -1,0 +1,467 @@
+/* SPDX-License-Identifier: MIT */
+/* Continuous collision of deforming meshes (src/meshccd/, docs/ccd.md section 10) against the
+ * brute force over every triangle pair (tests/mesh_ccd_brute.h): the same earliest toi and the
+ * same pairs, bit for bit, on random deforming meshes, two meshes passing through each other, a
+ * folding sheet (self, with and without the shared-vertex pairs), contact at t = 0 and t = 1,
+ * min_separation > 0, degenerate triangles; threads and float against double; the checks. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "meshes.h"
+#include "mesh_ccd_brute.h"
+#include "test_macros.h"
+#include "ttd/ttd.h"
+
+static uint64_t rng_state = 0x243f6a8885a308d3ull;
+static double urand(void) /* [0, 1) */
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+static double srand1(void)
+{
+    return 2 * urand() - 1;
+}
+
+static ttd_options opts(int threads)
+{
+    ttd_options o = ttd_default_options();
+    o.threads = threads;
+    return o;
+}
+
+/* Two results the same, bit for bit (triangle_pairs and queries aside). */
+static int same(const ttd_mesh_ccd_result *r, const ttd_mesh_ccd_result *s, const char *what)
+{
+    ENSURE_MSG(memcmp(&r->toi, &s->toi, sizeof r->toi) == 0, "%s: toi %.17g vs %.17g", what, r->toi, s->toi);
+    ENSURE_MSG(r->count == s->count, "%s: %zu pairs vs %zu (toi %.17g)", what, r->count, s->count, r->toi);
+    ENSURE_MSG(r->flags == s->flags, "%s: flags", what);
+    for (size_t i = 0; i < r->count; ++i) {
+        const ttd_mesh_ccd_pair *p = &r->pairs[i], *q = &s->pairs[i];
+        ENSURE_MSG(memcmp(&p->toi, &q->toi, sizeof p->toi) == 0 && memcmp(&p->gap, &q->gap, sizeof p->gap) == 0 &&
+                       p->kind == q->kind && p->flags == q->flags && p->a[0] == q->a[0] && p->a[1] == q->a[1] &&
+                       p->b[0] == q->b[0] && p->b[1] == q->b[1],
+                   "%s: pair %zu: kind %u (%u %u | %u %u) toi %.17g vs kind %u (%u %u | %u %u) toi %.17g", what, i,
+                   p->kind, p->a[0], p->a[1], p->b[0], p->b[1], p->toi, q->kind, q->a[0], q->a[1], q->b[0], q->b[1],
+                   q->toi);
+    }
+    return 0;
+}
+
+/* Every pair's own toi within the window; the earliest is one of them. */
+static int well_formed(const ttd_mesh_ccd_result *r)
+{
+    if (r->count == 0) {
+        ENSURE(isinf(r->toi));
+        return 0;
+    }
+    ENSURE(r->toi >= 0 && r->toi <= 1);
+    ENSURE(r->pairs[0].toi == r->toi);
+    for (size_t i = 0; i < r->count; ++i)
+        ENSURE(r->pairs[i].toi >= r->toi && r->pairs[i].toi <= r->toi + TTD_CCD_DEFAULT_T_TOL);
+    return 0;
+}
+
+/* Mesh-mesh: the library with 1 and 3 threads and the brute force agree; counts hits into *hits. */
+static int check_two(const ttd_gen_mesh *a, const double *a1, const ttd_gen_mesh *b, const double *b1, double delta,
+                     const char *what, int *hits)
+{
+    ttd_mesh *ma = NULL, *mb = NULL;
+    ENSURE(ttd_mesh_create_d(NULL, a->verts, a->nv, a->tris, a->nt, &ma) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, b->verts, b->nv, b->tris, b->nt, &mb) == TTD_OK);
+    ttd_mesh_ccd_result r1, r3, ref;
+    const ttd_options o1 = opts(1), o3 = opts(3);
+    ENSURE(ttd_mesh_ccd_d(&o1, ma, a1, mb, b1, delta, &r1) == TTD_OK);
+    ENSURE(ttd_mesh_ccd_d(&o3, ma, a1, mb, b1, delta, &r3) == TTD_OK);
+    ENSURE(brute_mesh_ccd(a->verts, a1, a->tris, a->nt, b->verts, b1, b->tris, b->nt, delta, &ref) == 0);
+    int rc = same(&r1, &ref, what) || same(&r3, &r1, what) || well_formed(&r1);
+    if (hits)
+        *hits += r1.count > 0;
+    ttd_mesh_ccd_free(&r1);
+    ttd_mesh_ccd_free(&r3);
+    free(ref.pairs);
+    ttd_mesh_destroy(ma);
+    ttd_mesh_destroy(mb);
+    return rc;
+}
+
+static int check_self(const ttd_gen_mesh *m, const double *x1, double delta, unsigned flags, const char *what,
+                      int *hits)
+{
+    ttd_mesh *mm = NULL;
+    ENSURE(ttd_mesh_create_d(NULL, m->verts, m->nv, m->tris, m->nt, &mm) == TTD_OK);
+    ttd_mesh_ccd_result r1, r3, ref;
+    const ttd_options o1 = opts(1), o3 = opts(3);
+    ENSURE(ttd_mesh_self_ccd_d(&o1, mm, x1, delta, flags, &r1) == TTD_OK);
+    ENSURE(ttd_mesh_self_ccd_d(&o3, mm, x1, delta, flags, &r3) == TTD_OK);
+    ENSURE(brute_self_ccd(m->verts, x1, m->tris, m->nt, delta, (flags & TTD_SELF_SHARED_VERTEX) != 0, &ref) == 0);
+    int rc = same(&r1, &ref, what) || same(&r3, &r1, what) || well_formed(&r1);
+    if (hits)
+        *hits += r1.count > 0;
+    ttd_mesh_ccd_free(&r1);
+    ttd_mesh_ccd_free(&r3);
+    free(ref.pairs);
+    ttd_mesh_destroy(mm);
+    return rc;
+}
+
+static double *moved(const ttd_gen_mesh *m, const double shift[3], double jitter)
+{
+    double *x = malloc(3 * m->nv * sizeof *x);
+    for (size_t i = 0; i < 3 * m->nv; ++i)
+        x[i] = m->verts[i] + shift[i % 3] + jitter * srand1();
+    return x;
+}
+
+/* Two spheres (and a torus) with every vertex moving on its own random path, towards each other
+ * from random gaps: some meet, some do not. */
+static int random_meshes(void)
+{
+    int hits = 0, cases = 0;
+    for (int it = 0; it < 24; ++it) {
+        ttd_gen_mesh a, b;
+        ENSURE(ttd_gen_icosphere(1, &a) == 0);
+        if (it % 3 == 2)
+            ENSURE(ttd_gen_torus(1.0, 0.3, 10, 6, &b) == 0);
+        else
+            ENSURE(ttd_gen_icosphere(1, &b) == 0);
+        const double gap = 2.1 + 0.6 * urand();
+        for (size_t i = 0; i < 3 * b.nv; i += 3)
+            b.verts[i] += gap;
+        for (size_t i = 0; i < 3 * a.nv; ++i)
+            a.verts[i] += 0.05 * srand1();
+        const double sa[3] = {0.3 + 0.2 * srand1(), 0.1 * srand1(), 0.1 * srand1()};
+        const double sb[3] = {-0.3 + 0.2 * srand1(), 0.1 * srand1(), 0.1 * srand1()};
+        double *a1 = moved(&a, sa, 0.1), *b1 = moved(&b, sb, 0.1);
+        const double delta = it % 4 == 3 ? 0.05 : 0.0;
+        char what[64];
+        snprintf(what, sizeof what, "random %d", it);
+        const int rc = check_two(&a, a1, &b, b1, delta, what, &hits);
+        ++cases;
+        free(a1);
+        free(b1);
+        ttd_gen_mesh_free(&a);
+        ttd_gen_mesh_free(&b);
+        if (rc)
+            return 1;
+    }
+    printf("  random deforming meshes: %d of %d cases hit\n", hits, cases);
+    ENSURE(hits > 3 && hits < cases); /* both kinds of case were exercised */
+    return 0;
+}
+
+/* A sheet falling through another at an angle: the earliest contact is a known vertex's. */
+static int sheets_through(void)
+{
+    ttd_gen_mesh a, b;
+    ENSURE(ttd_gen_grid(6, &a) == 0 && ttd_gen_grid(5, &b) == 0);
+    for (size_t i = 0; i < b.nv; ++i) {
+        b.verts[3 * i] = 0.1 + 0.8 * b.verts[3 * i];
+        b.verts[3 * i + 1] = 0.1 + 0.8 * b.verts[3 * i + 1];
+        b.verts[3 * i + 2] = 0.5 + 0.25 * b.verts[3 * i]; /* tilted: the side x = 0.1 lowest */
+    }
+    double *a1 = malloc(3 * a.nv * sizeof *a1), *b1 = malloc(3 * b.nv * sizeof *b1);
+    memcpy(a1, a.verts, 3 * a.nv * sizeof *a1);
+    for (size_t i = 0; i < 3 * b.nv; ++i)
+        b1[i] = b.verts[i] - (i % 3 == 2 ? 1.0 : 0.0);
+    ttd_mesh *ma, *mb;
+    ENSURE(ttd_mesh_create_d(NULL, a.verts, a.nv, a.tris, a.nt, &ma) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, b.verts, b.nv, b.tris, b.nt, &mb) == TTD_OK);
+    ttd_mesh_ccd_result r;
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb, b1, 0.0, &r) == TTD_OK);
+    /* b's lowest vertices (x = 0.1, z = 0.525) reach z = 0 at t = 0.525 */
+    ENSURE(r.count > 0);
+    ENSURE(r.toi <= 0.525 && r.toi > 0.525 - 1e-9);
+    ENSURE(r.pairs[0].kind == TTD_MESH_CCD_FV || r.pairs[0].kind == TTD_MESH_CCD_EE);
+    ttd_mesh_ccd_free(&r);
+    ttd_mesh_destroy(ma);
+    ttd_mesh_destroy(mb);
+    const int rc = check_two(&a, a1, &b, b1, 0.0, "sheets", NULL) || check_two(&a, a1, &b, b1, 0.01, "sheets d", NULL);
+    free(a1);
+    free(b1);
+    ttd_gen_mesh_free(&a);
+    ttd_gen_mesh_free(&b);
+    return rc;
+}
+
+/* A sheet folded in three layers, folding on through itself (t 0.9 to 1.4, 0.95 to 1.25), and the fold
+ * stopping short (0.6 to 0.9), with and without the shared-vertex pairs and min_separation. */
+static int folding_sheet(void)
+{
+    const double fold[][2] = {{0.9, 1.4}, {0.6, 0.9}, {0.95, 1.25}};
+    int hits = 0;
+    for (int f = 0; f < 3; ++f) {
+        ttd_gen_mesh m0, m1;
+        ENSURE(ttd_gen_folded_sheet(12, 3, 0.1, fold[f][0], &m0) == 0);
+        ENSURE(ttd_gen_folded_sheet(12, 3, 0.1, fold[f][1], &m1) == 0);
+        ENSURE(m0.nv == m1.nv);
+        for (unsigned flags = 0; flags < 2; ++flags)
+            for (int d = 0; d < 2; ++d) {
+                char what[64];
+                snprintf(what, sizeof what, "fold %d flags %u delta %d", f, flags, d);
+                if (check_self(&m0, m1.verts, d ? 0.02 : 0.0, flags, what, &hits)) {
+                    ttd_gen_mesh_free(&m0);
+                    ttd_gen_mesh_free(&m1);
+                    return 1;
+                }
+            }
+        ttd_gen_mesh_free(&m0);
+        ttd_gen_mesh_free(&m1);
+    }
+    printf("  folding sheet: %d of 12 cases hit\n", hits);
+    ENSURE(hits >= 4);
+    return 0;
+}
+
+/* Random self motion: a sphere whose vertices move far and at random (it tangles), a grid
+ * crumpling, the degenerate mesh (repeated indices, zero-area triangles). */
+static int random_self(void)
+{
+    int hits = 0;
+    for (int it = 0; it < 12; ++it) {
+        ttd_gen_mesh m;
+        if (it % 3 == 0)
+            ENSURE(ttd_gen_icosphere(1, &m) == 0);
+        else if (it % 3 == 1)
+            ENSURE(ttd_gen_grid(7, &m) == 0);
+        else
+            ENSURE(ttd_gen_mesh_degenerate(&m) == 0);
+        const double zero[3] = {0, 0, 0};
+        double *x1 = moved(&m, zero, it % 3 == 0 ? 0.4 : 0.3);
+        char what[64];
+        snprintf(what, sizeof what, "self %d", it);
+        const int rc = check_self(&m, x1, it % 2 ? 0.01 : 0.0, (unsigned)(it / 6), what, &hits);
+        free(x1);
+        ttd_gen_mesh_free(&m);
+        if (rc)
+            return 1;
+    }
+    printf("  random self motion: %d of 12 cases hit\n", hits);
+    ENSURE(hits >= 3);
+    return 0;
+}
+
+/* Contact exactly at t = 0 (a vertex of b on a's face, moving away: toi 0) and exactly at t = 1
+ * (arriving: toi within the tolerance of 1, never after). */
+static int touching_ends(void)
+{
+    ttd_gen_mesh a, b;
+    ENSURE(ttd_gen_grid(4, &a) == 0 && ttd_gen_mesh_tetrahedron(&b) == 0);
+    /* the tetrahedron's vertex 0 at (0.375, 0.3125, 0): inside a face of the grid, exactly */
+    for (size_t i = 0; i < b.nv; ++i) {
+        b.verts[3 * i] = 0.375 + 0.25 * b.verts[3 * i];
+        b.verts[3 * i + 1] = 0.3125 + 0.25 * b.verts[3 * i + 1];
+        b.verts[3 * i + 2] = 0.25 * b.verts[3 * i + 2];
+    }
+    double *a1 = malloc(3 * a.nv * sizeof *a1), *b1 = malloc(3 * b.nv * sizeof *b1);
+    memcpy(a1, a.verts, 3 * a.nv * sizeof *a1);
+    for (size_t i = 0; i < 3 * b.nv; ++i)
+        b1[i] = b.verts[i] + (i % 3 == 2 ? 0.5 : 0.0);
+    ttd_mesh *ma, *mb;
+    ENSURE(ttd_mesh_create_d(NULL, a.verts, a.nv, a.tris, a.nt, &ma) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, b.verts, b.nv, b.tris, b.nt, &mb) == TTD_OK);
+    ttd_mesh_ccd_result r;
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb, b1, 0.0, &r) == TTD_OK);
+    ENSURE(r.toi == 0 && r.count >= 1);
+    ttd_mesh_ccd_free(&r);
+    int rc = check_two(&a, a1, &b, b1, 0.0, "touch t0", NULL);
+    /* reversed: b comes down onto the grid and touches at t = 1 (b's t = 0 is the old t = 1) */
+    ttd_gen_mesh b_up;
+    ENSURE(ttd_gen_mesh_copy(&b, &b_up) == 0);
+    memcpy(b_up.verts, b1, 3 * b.nv * sizeof *b1);
+    ttd_mesh *mb_up;
+    ENSURE(ttd_mesh_create_d(NULL, b_up.verts, b_up.nv, b_up.tris, b_up.nt, &mb_up) == TTD_OK);
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb_up, b.verts, 0.0, &r) == TTD_OK);
+    ENSURE(r.count >= 1 && r.toi <= 1 && r.toi >= 1 - 1e-12);
+    ttd_mesh_ccd_free(&r);
+    /* a gap of 0.1 kept at t = 1: a miss at delta 0.05, a hit at delta 0.1 exactly and 0.15 */
+    double *b_near = malloc(3 * b.nv * sizeof *b_near);
+    for (size_t i = 0; i < 3 * b.nv; ++i)
+        b_near[i] = b.verts[i] + (i % 3 == 2 ? 0.125 : 0.0);
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb_up, b_near, 0.0625, &r) == TTD_OK);
+    ENSURE(r.count == 0 && isinf(r.toi));
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb_up, b_near, 0.125, &r) == TTD_OK);
+    ENSURE(r.count >= 1 && r.toi <= 1 && r.toi > 0.99);
+    ttd_mesh_ccd_free(&r);
+    ENSURE(ttd_mesh_ccd_d(NULL, ma, a1, mb_up, b_near, 0.25, &r) == TTD_OK);
+    ENSURE(r.count >= 1 && r.toi < 1);
+    ttd_mesh_ccd_free(&r);
+    rc = rc || check_two(&a, a1, &b_up, b.verts, 0.0, "touch t1", NULL) ||
+         check_two(&a, a1, &b_up, b_near, 0.125, "near t1", NULL);
+    ttd_mesh_destroy(ma);
+    ttd_mesh_destroy(mb);
+    ttd_mesh_destroy(mb_up);
+    free(a1);
+    free(b1);
+    free(b_near);
+    ttd_gen_mesh_free(&a);
+    ttd_gen_mesh_free(&b);
+    ttd_gen_mesh_free(&b_up);
+    return rc;
+}
+
+/* Triangles that repeat an index: a zero-length edge (0, 0) belongs only to a triangle that
+ * repeats vertex 0, not to every triangle around 0 (found by fuzz_mesh_ccd: the edge of (0, 0, 0)
+ * was given to (3, 0, 1) as its owner and never queried). Every vertex at one point, so that every
+ * pair touches at t = 0 and every pair must be reported. */
+static int repeated_indices(void)
+{
+    double va[18], vb[9], va1[18], vb1[9];
+    for (int i = 0; i < 18; ++i)
+        va[i] = va1[i] = -2.0;
+    for (int i = 0; i < 9; ++i)
+        vb[i] = vb1[i] = -2.0;
+    va1[0] = 1.0; /* one vertex moves, the rest stay */
+    uint32_t ta[15] = {1, 2, 1, 3, 0, 1, 0, 2, 4, 0, 0, 0, 0, 0, 0}, tb[3] = {0, 0, 0};
+    ttd_gen_mesh a = {va, 6, ta, 5}, b = {vb, 3, tb, 1};
+    int rc = check_two(&a, va1, &b, vb1, 0.0, "repeated two", NULL) || check_two(&b, vb1, &a, va1, 0.375, "repeated back", NULL);
+    for (unsigned flags = 0; flags < 2 && !rc; ++flags)
+        rc = check_self(&a, va1, 0.0, flags, "repeated self", NULL);
+    /* self: (5, 0, 6) holds vertex 0 but not the edge (0, 0) of (0, 0, 0) */
+    double vc[21], vc1[21];
+    for (int i = 0; i < 21; ++i)
+        vc[i] = vc1[i] = 0.5;
+    vc1[20] = 3.0;
+    uint32_t tc[9] = {5, 0, 6, 0, 0, 0, 1, 2, 3};
+    ttd_gen_mesh c = {vc, 7, tc, 3};
+    for (unsigned flags = 0; flags < 2 && !rc; ++flags)
+        rc = check_self(&c, vc1, 0.0, flags, "repeated self 2", NULL);
+    return rc;
+}
+
+/* Float meshes give the double answer on the widened numbers, bit for bit. */
+static int float_matches_double(void)
+{
+    ttd_gen_mesh m0, m1;
+    ENSURE(ttd_gen_folded_sheet(6, 3, 0.1, 0.9, &m0) == 0 && ttd_gen_folded_sheet(6, 3, 0.1, 1.4, &m1) == 0);
+    const size_t n = 3 * m0.nv;
+    float *f0 = malloc(n * sizeof *f0), *f1 = malloc(n * sizeof *f1);
+    double *d0 = malloc(n * sizeof *d0), *d1 = malloc(n * sizeof *d1);
+    for (size_t i = 0; i < n; ++i) {
+        f0[i] = (float)m0.verts[i];
+        f1[i] = (float)m1.verts[i];
+        d0[i] = f0[i];
+        d1[i] = f1[i];
+    }
+    ttd_mesh *mf, *md;
+    ENSURE(ttd_mesh_create_f(NULL, f0, m0.nv, m0.tris, m0.nt, &mf) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, d0, m0.nv, m0.tris, m0.nt, &md) == TTD_OK);
+    ttd_mesh_ccd_result rf, rd;
+    ENSURE(ttd_mesh_self_ccd_f(NULL, mf, f1, 0.0, 0, &rf) == TTD_OK);
+    ENSURE(ttd_mesh_self_ccd_d(NULL, md, d1, 0.0, 0, &rd) == TTD_OK);
+    ENSURE(rd.count > 0);
+    int rc = same(&rf, &rd, "float self");
+    ttd_mesh_ccd_free(&rf);
+    ttd_mesh_ccd_free(&rd);
+    ENSURE(ttd_mesh_ccd_f(NULL, mf, f0, mf, f1, 0.0, &rf) == TTD_OK);
+    ENSURE(ttd_mesh_ccd_d(NULL, md, d0, md, d1, 0.0, &rd) == TTD_OK);
+    rc = rc || same(&rf, &rd, "float two");
+    ENSURE(rd.count > 0 && rd.toi == 0); /* the mesh against a copy of itself touches at t = 0 */
+    ttd_mesh_ccd_free(&rf);
+    ttd_mesh_ccd_free(&rd);
+    ttd_mesh_destroy(mf);
+    ttd_mesh_destroy(md);
+    free(f0), free(f1), free(d0), free(d1);
+    ttd_gen_mesh_free(&m0);
+    ttd_gen_mesh_free(&m1);
+    return rc;
+}
+
+/* Results do not depend on the thread count (a larger sheet than the brute force can take). */
+static int threads(void)
+{
+    ttd_gen_mesh m0, m1;
+    ENSURE(ttd_gen_folded_sheet(40, 4, 0.05, 0.95, &m0) == 0 && ttd_gen_folded_sheet(40, 4, 0.05, 1.3, &m1) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, m0.verts, m0.nv, m0.tris, m0.nt, &m) == TTD_OK);
+    ttd_mesh_ccd_result r[4];
+    const int th[4] = {1, 2, 3, 8};
+    for (int i = 0; i < 4; ++i) {
+        const ttd_options o = opts(th[i]);
+        ENSURE(ttd_mesh_self_ccd_d(&o, m, m1.verts, 0.001, TTD_SELF_SHARED_VERTEX, &r[i]) == TTD_OK);
+    }
+    ENSURE(r[0].count > 0);
+    printf("  sheet of %zu triangles: toi %.17g, %zu pairs, %llu triangle pairs, %llu queries\n", m0.nt, r[0].toi,
+           r[0].count, (unsigned long long)r[0].triangle_pairs, (unsigned long long)r[0].queries);
+    int rc = 0;
+    for (int i = 1; i < 4; ++i) {
+        rc = rc || same(&r[i], &r[0], "threads");
+        ENSURE(r[i].triangle_pairs == r[0].triangle_pairs && r[i].queries == r[0].queries);
+    }
+    for (int i = 0; i < 4; ++i)
+        ttd_mesh_ccd_free(&r[i]);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&m0);
+    ttd_gen_mesh_free(&m1);
+    return rc;
+}
+
+static int checks(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_grid(2, &g) == 0);
+    ttd_mesh *m, *mf;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    float fv[27];
+    for (int i = 0; i < 27; ++i)
+        fv[i] = (float)g.verts[i];
+    ENSURE(ttd_mesh_create_f(NULL, fv, g.nv, g.tris, g.nt, &mf) == TTD_OK);
+    double *x1 = g.verts;
+    ttd_mesh_ccd_result r;
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, x1, 0.0, NULL) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_ccd_d(NULL, NULL, x1, m, x1, 0.0, &r) == TTD_ERR_NULL_POINTER && r.count == 0 && !r.pairs);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, NULL, m, x1, 0.0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, NULL, x1, 0.0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, NULL, 0.0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_self_ccd_d(NULL, m, NULL, 0.0, 0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_self_ccd_d(NULL, NULL, x1, 0.0, 0, &r) == TTD_ERR_NULL_POINTER);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, x1, -1.0, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, x1, NAN, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, x1, INFINITY, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_self_ccd_d(NULL, m, x1, 0.0, 2u, &r) == TTD_ERR_BAD_OPTIONS);
+    ttd_options bad;
+    memset(&bad, 0, sizeof bad);
+    ENSURE(ttd_mesh_ccd_d(&bad, m, x1, m, x1, 0.0, &r) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_mesh_ccd_d(NULL, mf, x1, m, x1, 0.0, &r) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_mesh_ccd_f(NULL, m, fv, mf, fv, 0.0, &r) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_mesh_self_ccd_f(NULL, m, fv, 0.0, 0, &r) == TTD_ERR_PRECISION_MISMATCH);
+    double y[27];
+    memcpy(y, g.verts, sizeof y);
+    y[13] = NAN;
+    ENSURE(ttd_mesh_ccd_d(NULL, m, x1, m, y, 0.0, &r) == TTD_ERR_NONFINITE_MESH && r.count == 0);
+    y[13] = -INFINITY;
+    ENSURE(ttd_mesh_self_ccd_d(NULL, m, y, 0.0, 0, &r) == TTD_ERR_NONFINITE_MESH);
+    fv[5] = INFINITY;
+    ENSURE(ttd_mesh_self_ccd_f(NULL, mf, fv, 0.0, 0, &r) == TTD_ERR_NONFINITE_MESH);
+    /* extreme but finite coordinates: answered, not refused */
+    for (int i = 0; i < 27; ++i)
+        y[i] = g.verts[i] * 1e300 - 1e300;
+    ENSURE(ttd_mesh_self_ccd_d(NULL, m, y, 1e300, TTD_SELF_SHARED_VERTEX, &r) == TTD_OK);
+    ENSURE(well_formed(&r) == 0);
+    ttd_mesh_ccd_free(&r);
+    ttd_mesh_ccd_free(NULL);
+    ttd_mesh_destroy(m);
+    ttd_mesh_destroy(mf);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(checks);
+    RUN_TEST(random_meshes);
+    RUN_TEST(sheets_through);
+    RUN_TEST(folding_sheet);
+    RUN_TEST(random_self);
+    RUN_TEST(touching_ends);
+    RUN_TEST(repeated_indices);
+    RUN_TEST(float_matches_double);
+    RUN_TEST(threads);
+    TEST_MAIN_END();
+}
