@@ -673,9 +673,7 @@ static int jump_to_root(ccd_state *s, double ta, double tb, int zero_at_tb, doub
         hi = tb;
         lo = tb - s->t_tol;
     } else {
-        double c[5];
-        ttd_ccd_xpoly_approx(P, c);
-        const double r = approx_first_root(c, ta, tb);
+        const double r = approx_first_root(P->a, ta, tb);
         if (!(r >= ta && r <= tb))
             return 0;
         lo = r - 0.5 * s->t_tol;

@@ -199,10 +199,29 @@ void ttd_ccd_xpoly_make(ttd_ccd_xpoly *P, int form, const int pts[4][2], const d
             dot_x(&val, c01[e0][e1], c23[e2][e3]);
         xe_add(&P->c[popcount4(mask)], &val);
     }
-    for (int j = 0; j <= m; ++j) {
+    for (int j = 0; j <= 4; ++j) {
         xe_compress(&P->c[j]);
         P->bad |= P->c[j].bad;
+        /* Summed from the smallest term up: within 2u of the exact coefficient (4u is used). */
+        double sum = 0;
+        for (int i = 0; i < P->c[j].n; ++i)
+            sum += P->c[j].v[i];
+        P->a[j] = sum;
     }
+}
+
+/* p(t)'s sign from the rounded coefficients where their error and Horner's rounding cannot change
+ * it (4u |c_k| each, gamma_8 < 8.1u of sum |a_k| |t|^k for Horner, 32u used), else 0. */
+static int approx_sign(const ttd_ccd_xpoly *P, double t)
+{
+    double v = P->a[P->deg], m = fabs(P->a[P->deg]);
+    const double at = fabs(t);
+    for (int k = P->deg - 1; k >= 0; --k) {
+        v = v * t + P->a[k];
+        m = m * at + fabs(P->a[k]);
+    }
+    const double bound = 32 * 0x1p-53 * m + 0x1p-1000;
+    return v > bound ? 1 : (v < -bound ? -1 : 0);
 }
 
 /* r = p(t) exactly, by Horner's rule. */
@@ -222,6 +241,9 @@ int ttd_ccd_xpoly_sign_at(const ttd_ccd_xpoly *P, double t)
 {
     if (P->bad)
         return 2;
+    const int sa = approx_sign(P, t);
+    if (sa != 0)
+        return sa;
     xe r;
     xpoly_value(P, t, &r);
     return r.bad ? 2 : xe_sign(&r);
@@ -233,18 +255,17 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
         return 2;
     const int d = P->deg;
     /* b_0 = p(ta) and b_d = p(tb) first: they usually tell a "no". */
-    xe r;
-    xpoly_value(P, ta, &r);
-    if (r.bad)
+    const int s0 = ttd_ccd_xpoly_sign_at(P, ta);
+    if (s0 == 2)
         return 2;
     if (want == 0)
-        want = xe_sign(&r); /* either sign: the one of p(ta) */
-    if (want == 0 || xe_sign(&r) != want)
+        want = s0; /* either sign: the one of p(ta) */
+    if (want == 0 || s0 != want)
         return 0;
-    xpoly_value(P, tb, &r);
-    if (r.bad)
+    const int s1 = ttd_ccd_xpoly_sign_at(P, tb);
+    if (s1 == 2)
         return 2;
-    if (xe_sign(&r) != want)
+    if (s1 != want)
         return 0;
     /* The Taylor coefficients at ta (repeated synthetic division), then of s -> p(ta + h s) on
      * [0, 1] (times h^k, h = tb - ta as two doubles), then the Bernstein coefficients
@@ -291,12 +312,3 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
     return want;
 }
 
-void ttd_ccd_xpoly_approx(const ttd_ccd_xpoly *P, double c[5])
-{
-    for (int k = 0; k <= 4; ++k) {
-        double v = 0;
-        for (int i = 0; k <= P->deg && i < P->c[k].n; ++i)
-            v += P->c[k].v[i];
-        c[k] = v;
-    }
-}

@@ -24,6 +24,7 @@ typedef struct ttd_ccd_xe {
 typedef struct ttd_ccd_xpoly {
     int deg, bad;
     ttd_ccd_xe c[5];
+    double a[5]; ///< the coefficients rounded to double (each within 4u of c[k]), for a first filter
 } ttd_ccd_xpoly;
 
 /// Forms the polynomial of a form over the query's motion.
@@ -37,8 +38,5 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *p, double ta, double tb, int want);
 
 /// The exact sign (-1, 0, +1) of p(t), or 2 where the arithmetic cannot be trusted.
 int ttd_ccd_xpoly_sign_at(const ttd_ccd_xpoly *p, double t);
-
-/// The coefficients rounded to double (c[k] for k <= deg, 0 above).
-void ttd_ccd_xpoly_approx(const ttd_ccd_xpoly *p, double c[5]);
 
 #endif /* TTD_CCD_CCD_EXACT_H */
