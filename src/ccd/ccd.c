@@ -698,6 +698,24 @@ static int jump_to_root(ccd_state *s, double ta, double tb, int zero_at_tb, doub
     return 1;
 }
 
+/* Where f changes sign on the interval (or may vanish at its end), its first root there guessed in
+ * double; NAN otherwise. */
+static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
+{
+    if (ci->never)
+        return NAN;
+    if (!(ci->change || ci->end_zero)) {
+        /* f too small for the rounded test (nearly coplanar motion): its exact signs. */
+        if (!ci->undecided)
+            return NAN;
+        const int s0 = f_sign_at(s, ta), s1 = f_sign_at(s, tb);
+        if (s0 == 2 || s1 == 2 || s0 == 0 || !(s1 == 0 || s1 == -s0))
+            return NAN;
+    }
+    const ttd_ccd_xpoly *P = xpoly(s, 0);
+    return P->bad ? (double)NAN : approx_first_root(P->a, ta, tb);
+}
+
 /* The exact proofs of an interval free of contact at delta = 0 (ccd_exact.c): the coplanarity cubic
  * of one strict sign (where the rounding bound left it undecided), or a contact condition negative
  * throughout (where the rounded one may be). */
@@ -804,7 +822,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         positions(&s, ta, xa);
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
-        double d = HUGE_VAL;
+        double d = HUGE_VAL, root = NAN;
         if (delta == 0) {
             cop_info ci;
             never_coplanar(s.na, xa, xb, S, &ci);
@@ -814,6 +832,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
                 /* Inside a certified interval only f's roots matter. */
                 if (exact_free(&s, &ci, NULL))
                     continue;
+                root = root_guess(&s, &ci, ta, tb);
                 goto split;
             }
             int csign[4] = {0, 0, 0, 0};
@@ -832,6 +851,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
                     out->gap = directions(s.na, xt, n1, n2, vv);
                     break;
                 }
+                root = root_guess(&s, &ci, ta, tb);
                 goto split;
             }
             if (directions_separate(&s, xa, xb, tm, delta, &d))
@@ -840,6 +860,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
                 conditions(s.na, xa, xb, S, csign); /* for the exact test: not formed above */
             if (exact_free(&s, &ci, csign))
                 continue;
+            root = root_guess(&s, &ci, ta, tb);
         } else if (directions_separate(&s, xa, xb, tm, delta, &d)) {
             continue;
         }
@@ -857,6 +878,33 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             }
             out->gap = d;
             break;
+        }
+        /* Where f seems to have a root, the interval is cut at it: [ta, lo], [lo, lo + t_tol] and
+         * the rest, so that the stretch before the root is tried whole and the contact (or the near
+         * miss) is met in one step rather than after bisecting to t_tol (the order, earliest on
+         * top, and so every guarantee, is that of the halves). */
+        if (root > ta && root <= tb && tb - ta > 4 * p->t_tol && top + 3 <= STACK) {
+            double lo = root - 0.5 * p->t_tol, hi = lo + p->t_tol;
+            if (hi >= tb) {
+                hi = tb;
+                lo = tb - p->t_tol;
+            }
+            while (hi - lo > p->t_tol)
+                lo = nextafter(lo, hi);
+            if (lo > ta && hi > lo) {
+                if (hi < tb) {
+                    st_ta[top] = hi;
+                    st_tb[top] = tb;
+                    ++top;
+                }
+                st_ta[top] = lo;
+                st_tb[top] = hi;
+                ++top;
+                st_ta[top] = ta;
+                st_tb[top] = lo;
+                ++top;
+                continue;
+            }
         }
         /* Later half first, so the earlier one is on top. */
         st_ta[top] = tm;
