@@ -3,12 +3,17 @@
  * sample queries (a folder of its CSV files: the kept subset tests/data/ccd, or a clone of the
  * whole set with --queries DIR) and on generated families, beside a naive floating-point cubic
  * (the coplanarity cubic's roots in double, then an inside test in double): false negatives and
- * false positives against the files' truth, and time per query (mean, median, worst), one thread.
- * Tight-Inclusion is not linked in: docs/ccd.md says how it was built and run beside this.
+ * false positives against the files' truth, and time per query (mean, median, worst), one thread;
+ * and Tight-Inclusion on the same queries where its helper program ttd_ti_ccd_bench was built
+ * (bench/ti/; optional, a message says when it is absent).
  * Then deforming meshes (issue 34; docs/ccd.md, section 10): self-CCD of a sheet folding into
  * layers, step by step, one thread. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <errno.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -217,6 +222,83 @@ static void time_set(const qset *s, int method, int reps, stats *st, double *tim
     st->median = times[s->n / 2];
 }
 
+/* ---- Tight-Inclusion, through its helper program (bench/ti/ti_ccd_bench.cpp) ------------------- */
+
+extern char **environ;
+
+/* Runs TI on the set's queries: 0 with times and hits filled, -1 where the program fails. */
+static int ti_run(const char *program, const qset *s, int reps, double *times, unsigned char *hit)
+{
+    const char *dir = getenv("TMPDIR");
+    char in_name[512], out_name[512];
+    snprintf(in_name, sizeof in_name, "%s/ttd-bench-ccd-XXXXXX", dir && *dir ? dir : "/tmp");
+    snprintf(out_name, sizeof out_name, "%s/ttd-bench-ccd-ti-XXXXXX", dir && *dir ? dir : "/tmp");
+    const int fd = mkstemp(in_name);
+    if (fd < 0)
+        return -1;
+    const int fo = mkstemp(out_name);
+    if (fo < 0) {
+        close(fd);
+        unlink(in_name);
+        return -1;
+    }
+    close(fo);
+    FILE *f = fdopen(fd, "wb");
+    const int32_t kind = s->kind, r32 = reps;
+    const uint64_t n = s->n;
+    int ok = f != NULL && fwrite("TTDCCDQ1", 1, 8, f) == 8 && fwrite(&kind, sizeof kind, 1, f) == 1 &&
+             fwrite(&r32, sizeof r32, 1, f) == 1 && fwrite(&n, sizeof n, 1, f) == 1;
+    for (size_t q = 0; ok && q < s->n; ++q)
+        ok = fwrite(s->x0 + 12 * q, sizeof(double), 12, f) == 12 && fwrite(s->x1 + 12 * q, sizeof(double), 12, f) == 12;
+    ok = (f != NULL && fclose(f) == 0) && ok;
+    if (f == NULL)
+        close(fd);
+    pid_t pid;
+    char prog[4096];
+    snprintf(prog, sizeof prog, "%s", program);
+    char *argv[] = {prog, in_name, out_name, NULL};
+    int status = 0;
+    if (ok && posix_spawn(&pid, program, NULL, NULL, argv, environ) == 0) {
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    } else {
+        ok = 0;
+    }
+    FILE *g = ok ? fopen(out_name, "rb") : NULL;
+    for (size_t q = 0; g != NULL && ok && q < s->n; ++q) {
+        double rec[3];
+        ok = fread(rec, sizeof(double), 3, g) == 3;
+        hit[q] = rec[0] != 0;
+        times[q] = rec[2];
+    }
+    if (g != NULL)
+        fclose(g);
+    unlink(in_name);
+    unlink(out_name);
+    return ok && g != NULL ? 0 : -1;
+}
+
+/* TI's counts and times for a set, as time_set gives ttd's. */
+static int ti_set(const char *program, const qset *s, int reps, stats *st, double *times, unsigned char *hit)
+{
+    if (ti_run(program, s, reps, times, hit) != 0)
+        return -1;
+    memset(st, 0, sizeof *st);
+    st->n = s->n;
+    for (size_t q = 0; q < s->n; ++q) {
+        st->hits += hit[q];
+        st->fn += s->truth[q] && !hit[q];
+        st->fp += !s->truth[q] && hit[q];
+        st->total += times[q];
+        st->worst = times[q] > st->worst ? times[q] : st->worst;
+    }
+    st->mean = st->total / (double)s->n;
+    qsort(times, s->n, sizeof *times, cmp_double);
+    st->median = times[s->n / 2];
+    return 0;
+}
+
 /* Every CSV file under dir (recursively) whose path names its kind. */
 static int collect(const char *dir, size_t root, qset **sets, size_t *ns, size_t *cap)
 {
@@ -312,12 +394,17 @@ static void make_family(qset *s, const char *name, int kind, size_t n, int what)
     }
 }
 
-static void print_row(const char *name, const stats *t, const stats *nv, int truth)
+static void print_row(const char *name, const stats *t, const stats *nv, int truth, const stats *ti)
 {
-    if (truth)
-        printf("%-44s %6zu %5zu | %3zu %4zu %8.3f %7.3f %9.1f | %3zu %4zu %7.3f %8.3f | %6.1fx\n", name, t->n,
+    if (truth) {
+        printf("%-44s %6zu %5zu | %3zu %4zu %8.3f %7.3f %9.1f | %3zu %4zu %7.3f %8.3f | %6.1fx", name, t->n,
                t->hits, t->fn, t->fp, 1e6 * t->mean, 1e6 * t->median, 1e6 * t->worst, nv->fn, nv->fp,
                1e6 * nv->mean, 1e6 * nv->worst, t->total / nv->total);
+        if (ti)
+            printf(" | %3zu %4zu %10.3f %7.3f %11.1f", ti->fn, ti->fp, 1e6 * ti->mean, 1e6 * ti->median,
+                   1e6 * ti->worst);
+        printf("\n");
+    }
     else
         printf("%-44s %6zu %5zu |   -    - %8.3f %7.3f %9.1f |   -    - %7.3f %8.3f | %6.1fx\n", name, t->n,
                t->hits, 1e6 * t->mean, 1e6 * t->median, 1e6 * t->worst, 1e6 * nv->mean, 1e6 * nv->worst,
@@ -407,8 +494,9 @@ static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
 int bench_ccd_main(int argc, char **argv)
 {
     const char *dir = TTD_CCD_SUBSET_DIR;
-    int reps = 3, mesh_only = 0, steps = 60;
+    int reps = 3, mesh_only = 0, steps = 60, use_ti = 1;
     size_t fam_n = 2000, sheet = 224;
+    const char *ti_path = NULL;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--queries") == 0 && i + 1 < argc)
             dir = argv[++i];
@@ -422,12 +510,19 @@ int bench_ccd_main(int argc, char **argv)
             steps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
         else if (strcmp(argv[i], "--mesh-only") == 0)
             mesh_only = 1;
+        else if (strcmp(argv[i], "--ti") == 0 && i + 1 < argc)
+            ti_path = argv[++i];
+        else if (strcmp(argv[i], "--no-ti") == 0)
+            use_ti = 0;
         else {
-            printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--sheet N] [--steps K] "
-                   "[--mesh-only]\n"
+            printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
+                   "                     [--sheet N] [--steps K] [--mesh-only]\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
                    "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n"
+                   "  Tight-Inclusion runs on the same queries through ttd_ti_ccd_bench (beside ttd, or\n"
+                   "  $TTD_TI_BENCH, or --ti; built with cmake -DTTD_TIGHT_INCLUSION_DIR=<checkout>, see\n"
+                   "  scripts/get-tight-inclusion.sh); skipped with a message when it is absent.\n"
                    "  Then self-CCD of a folding sheet of 2 N^2 triangles (default N 224: 100,352), K closing\n"
                    "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
                    "  through itself; --mesh-only: that alone.\n",
@@ -460,15 +555,32 @@ int bench_ccd_main(int argc, char **argv)
             qset t = sets[j];
             sets[j] = sets[j - 1], sets[j - 1] = t;
         }
-    printf("\n%-44s %6s %5s | %3s %4s %8s %7s %9s | %3s %4s %7s %8s | %7s\n", "queries (us a query)", "n", "hits",
-           "FN", "FP", "mean", "median", "worst", "FN", "FP", "mean", "worst", "ttd/naive");
-    printf("%-44s %6s %5s | %-32s | %-24s |\n", "", "", "", "ttd", "naive cubic");
+    char ti_prog[4096];
+    const int have_ti = use_ti && bench_fcl_find_program("ttd_ti_ccd_bench", "TTD_TI_BENCH", ti_path, ti_prog,
+                                                         sizeof ti_prog) == 0;
+    if (!use_ti)
+        printf("Tight-Inclusion: skipped (--no-ti)\n");
+    else if (!have_ti)
+        printf("Tight-Inclusion: skipped: ttd_ti_ccd_bench not found beside ttd (configure with "
+               "-DTTD_TIGHT_INCLUSION_DIR=<checkout>; scripts/get-tight-inclusion.sh fetches one)\n");
+    else
+        printf("Tight-Inclusion: %s (double, err -1, minimum separation 0, tolerance 1e-6, max_itr 1e6), "
+               "the same queries, fastest of %d runs\n", ti_prog, reps);
+    printf("\n%-44s %6s %5s | %3s %4s %8s %7s %9s | %3s %4s %7s %8s | %7s%s\n", "queries (us a query)", "n", "hits",
+           "FN", "FP", "mean", "median", "worst", "FN", "FP", "mean", "worst", "ttd/naive",
+           have_ti ? " |  FN   FP       mean  median       worst" : "");
+    printf("%-44s %6s %5s | %-32s | %-24s |%s\n", "", "", "", "ttd", "naive cubic",
+           have_ti ? "         | Tight-Inclusion" : "");
+    stats all_ti = {0};
+    int ti_ok = have_ti;
     stats all_t = {0}, all_n = {0};
     size_t total = 0;
     for (size_t i = 0; i < ns; ++i)
         total += sets[i].n;
     double *all_times = malloc(total * sizeof(double)), *times = malloc(total * sizeof(double));
     unsigned char *hit = malloc(total);
+    double *ti_times = malloc(total * sizeof(double));
+    size_t ti_off = 0;
     size_t off = 0;
     for (size_t i = 0; i < ns; ++i) {
         stats t, nv;
@@ -477,7 +589,18 @@ int bench_ccd_main(int argc, char **argv)
         memcpy(all_times + off, times, sets[i].n * sizeof(double));
         off += sets[i].n;
         time_set(&sets[i], 1, reps, &nv, times, hit);
-        print_row(sets[i].name, &t, &nv, 1);
+        stats ti;
+        if (ti_ok && ti_set(ti_prog, &sets[i], reps, &ti, times, hit) != 0) {
+            printf("Tight-Inclusion: %s failed on %s; the rows go on without it\n", ti_prog, sets[i].name);
+            ti_ok = 0;
+        }
+        if (ti_ok) {
+            memcpy(ti_times + ti_off, times, sets[i].n * sizeof(double));
+            ti_off += sets[i].n;
+            all_ti.n += ti.n, all_ti.hits += ti.hits, all_ti.fn += ti.fn, all_ti.fp += ti.fp, all_ti.total += ti.total;
+            all_ti.worst = fmax(all_ti.worst, ti.worst);
+        }
+        print_row(sets[i].name, &t, &nv, 1, ti_ok ? &ti : NULL);
         all_t.n += t.n, all_t.hits += t.hits, all_t.fn += t.fn, all_t.fp += t.fp, all_t.total += t.total;
         all_t.worst = fmax(all_t.worst, t.worst);
         all_n.n += nv.n, all_n.hits += nv.hits, all_n.fn += nv.fn, all_n.fp += nv.fp, all_n.total += nv.total;
@@ -487,7 +610,15 @@ int bench_ccd_main(int argc, char **argv)
     all_n.mean = all_n.total / (double)all_n.n;
     qsort(all_times, total, sizeof(double), cmp_double);
     all_t.median = all_times[total / 2];
-    print_row("all sample queries", &all_t, &all_n, 1);
+    if (ti_ok) {
+        all_ti.mean = all_ti.total / (double)all_ti.n;
+        qsort(ti_times, ti_off, sizeof(double), cmp_double);
+        all_ti.median = ti_times[ti_off / 2];
+    }
+    print_row("all sample queries", &all_t, &all_n, 1, ti_ok ? &all_ti : NULL);
+    if (ti_ok)
+        printf("(Tight-Inclusion: total %.3f s, %.0fx ttd's; ttd's false positives %zu against its %zu)\n",
+               all_ti.total, all_ti.total / all_t.total, all_t.fp, all_ti.fp);
     size_t positives = 0;
     for (size_t i = 0; i < ns; ++i)
         for (size_t q = 0; q < sets[i].n; ++q)
@@ -512,7 +643,7 @@ int bench_ccd_main(int argc, char **argv)
             stats t, nv;
             time_set(&s, 0, reps, &t, ft, fh);
             time_set(&s, 1, reps, &nv, ft, fh);
-            print_row(name, &t, &nv, 0);
+            print_row(name, &t, &nv, 0, NULL);
             free(ft), free(fh), free(s.x0), free(s.x1);
         }
     if (sheet >= 2 && (bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
@@ -523,6 +654,6 @@ int bench_ccd_main(int argc, char **argv)
     printf("\nload at the end %s\n", load_end);
     for (size_t i = 0; i < ns; ++i)
         free(sets[i].x0), free(sets[i].x1), free(sets[i].truth);
-    free(sets), free(all_times), free(times), free(hit);
+    free(sets), free(all_times), free(times), free(hit), free(ti_times);
     return 0;
 }

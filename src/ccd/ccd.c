@@ -17,9 +17,16 @@
  * toi was certified apart, so toi is never later than the true first time of contact. */
 #include <float.h>
 #include <math.h>
+
+/* The number of bits set in a 4-bit mask. */
+static inline int popcount4(int m)
+{
+    return (m & 1) + ((m >> 1) & 1) + ((m >> 2) & 1) + ((m >> 3) & 1);
+}
 #include <string.h>
 
 #include "ccd/ccd.h"
+#include "ccd/ccd_exact.h"
 
 ttd_ccd_params ttd_ccd_default_params(void)
 {
@@ -58,6 +65,12 @@ typedef struct ccd_state {
     const double *in0, *in1; /* the inputs, for the exact test */
     double ta, tb;     /* the interval being tested */
     double cand_n[3], cand_g; /* the exact test's direction for this interval, its rounded gap */
+    double t_tol;      /* the search's resolution */
+    int near_miss;     /* an exact contact condition proved a final interval free */
+    int made[5];       /* whether poly[i] is formed: f, then the contact conditions */
+    double last_t;     /* the last time f's exact sign was taken at, and that sign */
+    int last_sign;
+    ttd_ccd_xpoly poly[5];
 } ccd_state;
 
 /* Positions at time t: fl(x0 + fl(t fl(x1 - x0))); within 5 u S of the exact point for t in
@@ -444,8 +457,18 @@ static double det3(const double u[3], const double v[3], const double w[3])
     return dot3(c, w);
 }
 
-static int never_coplanar(int na, double xa[4][3], double xb[4][3], double S)
+/* What the rounded Bernstein coefficients of the coplanarity cubic f say about an interval. */
+typedef struct cop_info {
+    int never;    /* every coefficient beyond its rounding bound, one sign: f != 0, no contact */
+    int undecided;/* no two coefficients of strict opposite signs: the exact test may prove it */
+    int sgn;      /* then the sign a proof would have (0: either) */
+    int change;   /* f(ta) and f(tb) of strict opposite signs: f has a root in the interval */
+    int end_zero; /* f(ta) strict, f(tb) within its bound of 0 (maybe a root at tb) */
+} cop_info;
+
+static void never_coplanar(int na, double xa[4][3], double xb[4][3], double S, cop_info *ci)
 {
+    memset(ci, 0, sizeof *ci);
     /* The difference vectors at both ends: VF (b - a, c - a, p - a), EE (a1 - a0, b0 - a0, b1 - a0). */
     static const int pick[2][4] = {{1, 2, 3, 0}, {0, 1, 2, 3}};
     const int *k = pick[na - 1];
@@ -462,20 +485,280 @@ static int never_coplanar(int na, double xa[4][3], double xb[4][3], double S)
     const double ec = 12 * U_ROUND * S, en = 1.7321 * ec;
     V = sqrt(V) * (1 + 4 * U_ROUND) + en;
     if (!(V > 0x1p-300 && V < 0x1p300))
-        return 0;
+        return;
     const double err = (3 * en * V * V + 64 * U_ROUND * V * V * V) * (1 + 0x1p-40) + 0x1p-1000;
     double B[4];
     B[0] = det3(w[0][0], w[0][1], w[0][2]);
     B[3] = det3(w[1][0], w[1][1], w[1][2]);
     B[1] = (det3(w[1][0], w[0][1], w[0][2]) + det3(w[0][0], w[1][1], w[0][2]) + det3(w[0][0], w[0][1], w[1][2])) / 3;
     B[2] = (det3(w[1][0], w[1][1], w[0][2]) + det3(w[1][0], w[0][1], w[1][2]) + det3(w[0][0], w[1][1], w[1][2])) / 3;
-    int pos = 1, neg = 1;
+    int pos = 1, neg = 1, any_pos = 0, any_neg = 0, sg[4];
     for (int i = 0; i < 4; ++i) {
         const double e = err + 0x1p-51 * fabs(B[i]);
-        pos &= B[i] > e;
-        neg &= B[i] < -e;
+        sg[i] = B[i] > e ? 1 : (B[i] < -e ? -1 : 0);
+        pos &= sg[i] > 0;
+        neg &= sg[i] < 0;
+        any_pos |= sg[i] > 0;
+        any_neg |= sg[i] < 0;
     }
-    return pos || neg;
+    ci->never = pos || neg;
+    ci->undecided = !ci->never && !(any_pos && any_neg);
+    ci->sgn = any_neg ? -1 : (any_pos ? 1 : 0);
+    ci->change = sg[0] * sg[3] < 0;
+    ci->end_zero = sg[0] != 0 && sg[3] == 0;
+}
+
+/* ---- delta = 0: the contact conditions -----------------------------------------------------------
+ * A contact also needs the vertex inside the face (each edge's condition
+ * ((v_{i+1} - v_i) x (p - v_i)).((v1 - v0) x (v2 - v0)) >= 0), or the edges crossing (with
+ * n = ea x eb: (eb x (a0 - b0)).n, (eb x (b0 - a1)).n, (ea x (a0 - b0)).n, (ea x (b1 - a0)).n all
+ * >= 0), whenever the points are coplanar and the face has area or the edges are not parallel; a
+ * strictly negative condition gives both. So one condition < 0 over the whole interval proves it
+ * free of contact; all > 0 over it, with f changing sign there, prove a contact in it, and the first
+ * contact there is f's first root. Each is (v0 x v1).(v2 x v3) of difference vectors (point pairs
+ * below), a quartic in t. */
+static const int cond_pts[2][4][4][2] = {
+    {{{2, 1}, {0, 1}, {2, 1}, {3, 1}}, {{3, 2}, {0, 2}, {2, 1}, {3, 1}}, {{1, 3}, {0, 3}, {2, 1}, {3, 1}}, {{0, 0}}},
+    {{{3, 2}, {0, 2}, {1, 0}, {3, 2}}, {{3, 2}, {2, 1}, {1, 0}, {3, 2}}, {{1, 0}, {0, 2}, {1, 0}, {3, 2}},
+     {{1, 0}, {3, 0}, {1, 0}, {3, 2}}}};
+static const int cop_pts[2][4][2] = {{{2, 1}, {3, 1}, {0, 1}, {0, 0}}, {{1, 0}, {2, 0}, {3, 0}, {0, 0}}};
+
+/* A condition's Bernstein coefficients on the interval in double from the rounded end positions:
+ * +1 when all exceed their rounding bound (the condition is > 0 on the whole interval), -1 when
+ * none is positive beyond it (it may be < 0 throughout: a candidate for the exact test), else 0.
+ * The bound: each vector component within 21uS of the exact one (12uS, docs/ccd.md, section 3),
+ * so |v| <= V and a value of the form moves by at most 4 (sqrt 3 21uS) V^3 from it, plus 40uV^4
+ * of rounding; a coefficient sums at most 6 values (5.01uV^4 more). */
+static int condition_sign(const int pts[4][2], double xa[4][3], double xb[4][3], double S)
+{
+    double v[4][2][3], V = 0;
+    for (int k = 0; k < 4; ++k)
+        for (int e = 0; e < 2; ++e) {
+            double(*x)[3] = e ? xb : xa;
+            sub3(v[k][e], x[pts[k][0]], x[pts[k][1]]);
+            V = fmax(V, dot3(v[k][e], v[k][e]));
+        }
+    V = sqrt(V) * (1 + 4 * U_ROUND) + 37 * U_ROUND * S;
+    if (!(V < 0x1p200))
+        return 0;
+    const double bound = (6 * (8 * 21 * U_ROUND * S * V * V * V + 48 * U_ROUND * V * V * V * V)) * (1 + 0x1p-40) + 0x1p-1000;
+    double c01[2][2][3], c23[2][2][3], B[5] = {0, 0, 0, 0, 0};
+    for (int e0 = 0; e0 < 2; ++e0)
+        for (int e1 = 0; e1 < 2; ++e1) {
+            cross3(c01[e0][e1], v[0][e0], v[1][e1]);
+            cross3(c23[e0][e1], v[2][e0], v[3][e1]);
+        }
+    for (int mask = 0; mask < 16; ++mask)
+        B[popcount4(mask)] +=
+            dot3(c01[mask & 1][(mask >> 1) & 1], c23[(mask >> 2) & 1][(mask >> 3) & 1]);
+    int pos = 1, mayneg = 1;
+    for (int j = 0; j < 5; ++j) {
+        pos &= B[j] > bound;
+        mayneg &= B[j] <= bound;
+    }
+    return pos ? 1 : (mayneg ? -1 : 0);
+}
+
+/* The conditions' signs on the interval (condition_sign); returns 1 when all are > 0. */
+static int conditions(int na, double xa[4][3], double xb[4][3], double S, int sign[4])
+{
+    const int nc = na == TTD_CCD_VF ? 3 : 4;
+    int all = 1;
+    for (int c = 0; c < nc; ++c) {
+        sign[c] = condition_sign(cond_pts[na - 1][c], xa, xb, S);
+        all &= sign[c] == 1;
+    }
+    for (int c = nc; c < 4; ++c)
+        sign[c] = 0;
+    return all;
+}
+
+/* The exact polynomial f (which 0) or contact condition which - 1, formed when first needed. */
+static const ttd_ccd_xpoly *xpoly(ccd_state *s, int which)
+{
+    if (!s->made[which]) {
+        if (which == 0)
+            ttd_ccd_xpoly_make(&s->poly[0], TTD_CCD_FORM_DET, cop_pts[s->na - 1], s->in0, s->in1);
+        else
+            ttd_ccd_xpoly_make(&s->poly[which], TTD_CCD_FORM_CROSS_DOT, cond_pts[s->na - 1][which - 1], s->in0, s->in1);
+        s->made[which] = 1;
+    }
+    return &s->poly[which];
+}
+
+/* f's exact sign at t (2: untrusted), remembered for the last t (the ends of nested intervals
+ * repeat). */
+static int f_sign_at(ccd_state *s, double t)
+{
+    if (t != s->last_t) {
+        s->last_t = t;
+        s->last_sign = ttd_ccd_xpoly_sign_at(xpoly(s, 0), t);
+    }
+    return s->last_sign;
+}
+
+/* The first root of the cubic c0 + c1 t + c2 t^2 + c3 t^3 in [lo, hi] in double, approximately:
+ * the pieces between the roots of its derivative in turn, the first whose ends differ in sign
+ * bisected to the end. NAN if no piece changes sign. Only a guess: the caller checks it exactly. */
+static double approx_first_root(const double c[4], double lo, double hi)
+{
+    double cut[4];
+    int n = 0;
+    const double A = 3 * c[3], B = 2 * c[2], C = c[1];
+    if (A != 0) {
+        const double disc = B * B - 4 * A * C;
+        if (disc >= 0) {
+            const double q = -0.5 * (B + copysign(sqrt(disc), B));
+            if (q != 0) {
+                cut[n++] = q / A;
+                cut[n++] = C / q;
+            }
+        }
+    } else if (B != 0) {
+        cut[n++] = -C / B;
+    }
+    if (n == 2 && cut[0] > cut[1]) {
+        const double t = cut[0];
+        cut[0] = cut[1];
+        cut[1] = t;
+    }
+    double pts[4];
+    int np = 0;
+    pts[np++] = lo;
+    for (int i = 0; i < n; ++i)
+        if (cut[i] > lo && cut[i] < hi)
+            pts[np++] = cut[i];
+    pts[np++] = hi;
+    for (int i = 0; i + 1 < np; ++i) {
+        double a = pts[i], b = pts[i + 1];
+        double fa = ((c[3] * a + c[2]) * a + c[1]) * a + c[0];
+        const double fb = ((c[3] * b + c[2]) * b + c[1]) * b + c[0];
+        if (fa == 0)
+            return a;
+        if ((fa < 0) == (fb < 0) && fb != 0)
+            continue;
+        for (int it = 0; it < 200; ++it) {
+            const double m = 0.5 * (a + b);
+            if (!(m > a && m < b))
+                break;
+            const double fm = ((c[3] * m + c[2]) * m + c[1]) * m + c[0];
+            if (fm != 0 && (fm < 0) == (fa < 0)) {
+                a = m;
+                fa = fm;
+            } else {
+                b = m;
+            }
+        }
+        return b;
+    }
+    return NAN;
+}
+
+/* In an interval [ta, tb] certain to hold a contact, whose first contact is f's first root there
+ * (the conditions hold throughout): a root guessed in double and checked exactly gives toi at
+ * once, in place of bisecting down to the tolerance. f(ta) nonzero; f has no root in [ta, lo]
+ * (its Bernstein coefficients there, exactly) and has one in (lo, lo + t_tol] (f(lo + t_tol) not
+ * of f(ta)'s sign, or zero_at_tb: f(tb) = 0 exactly with lo = tb - t_tol). Returns 1 with *toi = lo,
+ * 0 where a check fails (the search then bisects). */
+static int jump_to_root(ccd_state *s, double ta, double tb, int zero_at_tb, double *toi)
+{
+    const ttd_ccd_xpoly *P = xpoly(s, 0);
+    if (P->bad)
+        return 0;
+    const int s0 = ttd_ccd_xpoly_sign_at(P, ta);
+    if (s0 != 1 && s0 != -1)
+        return 0;
+    double lo, hi;
+    if (zero_at_tb) {
+        hi = tb;
+        lo = tb - s->t_tol;
+    } else {
+        const double r = approx_first_root(P->a, ta, tb);
+        if (!(r >= ta && r <= tb))
+            return 0;
+        lo = r - 0.5 * s->t_tol;
+        hi = lo + s->t_tol;
+        if (hi > tb) {
+            hi = tb;
+            lo = tb - s->t_tol;
+        }
+    }
+    while (hi - lo > s->t_tol)
+        lo = nextafter(lo, hi);
+    if (!(lo > ta && hi > lo))
+        return 0;
+    if (!zero_at_tb) {
+        const int sh = ttd_ccd_xpoly_sign_at(P, hi);
+        if (sh == 2 || sh == s0)
+            return 0;
+    }
+    if (ttd_ccd_xpoly_sign(P, ta, lo, s0) != s0)
+        return 0;
+    *toi = lo;
+    return 1;
+}
+
+/* Where f changes sign on the interval (or may vanish at its end), its first root there guessed in
+ * double; NAN otherwise. */
+static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
+{
+    if (ci->never)
+        return NAN;
+    if (!(ci->change || ci->end_zero)) {
+        /* f too small for the rounded test (nearly coplanar motion): its exact signs. */
+        if (!ci->undecided)
+            return NAN;
+        const int s0 = f_sign_at(s, ta), s1 = f_sign_at(s, tb);
+        if (s0 == 2 || s1 == 2 || s0 == 0 || !(s1 == 0 || s1 == -s0))
+            return NAN;
+    }
+    const ttd_ccd_xpoly *P = xpoly(s, 0);
+    return P->bad ? (double)NAN : approx_first_root(P->a, ta, tb);
+}
+
+/* The exact proofs of an interval free of contact at delta = 0 (ccd_exact.c): the coplanarity cubic
+ * of one strict sign (where the rounding bound left it undecided), or a contact condition negative
+ * throughout (where the rounded one may be). */
+static int exact_free(ccd_state *s, const cop_info *ci, const int csign[4])
+{
+    /* The conditions only on an interval that would otherwise be the hit, and, once one proved such
+     * an interval free (a near miss: the primitives slide past each other), on every interval. */
+    const int final = s->tb - s->ta <= s->t_tol;
+    if (ci->undecided && !(ci->end_zero && f_sign_at(s, s->tb) == 0)) {
+        const int r = ttd_ccd_xpoly_sign(xpoly(s, 0), s->ta, s->tb, ci->sgn);
+        if (r == 1 || r == -1)
+            return 1;
+    }
+    if (csign == NULL || !(s->near_miss || final))
+        return 0;
+    for (int c = 0; c < 4; ++c)
+        if (csign[c] == -1 &&
+            ttd_ccd_xpoly_sign(xpoly(s, 1 + c), s->ta, s->tb, -1) == -1) {
+            s->near_miss = 1;
+            return 1;
+        }
+    return 0;
+}
+
+/* The directions' tests of an interval (the middle's closest points and features, a vertex pair's
+ * pass direction, the start's); *d the distance computed at the middle. */
+static int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], double tm, double delta, double *d)
+{
+    double xm[4][3], n1[3], n2[3], n3[3];
+    int vv[2];
+    positions(s, tm, xm);
+    s->cand_g = -HUGE_VAL;
+    *d = directions(s->na, xm, n1, n2, vv);
+    if (separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta))
+        return 1;
+    if (vv[0] >= 0) {
+        pass_direction(s->in0, s->in1, vv[0], vv[1], n3);
+        if (separated_along(s, xa, xb, n3, delta))
+            return 1;
+    }
+    /* The closest direction at an end serves where the middle's cannot (a crossing). */
+    directions(s->na, xa, n1, n2, vv);
+    return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
 }
 
 void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
@@ -485,6 +768,11 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
     s.na = kind;
     s.in0 = x0;
     s.in1 = x1;
+    s.t_tol = p->t_tol;
+    s.near_miss = 0;
+    memset(s.made, 0, sizeof s.made);
+    s.last_t = NAN;
+    s.last_sign = 2;
     double S = 0;
     for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k) {
@@ -513,6 +801,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
     st_tb[0] = p->t_max;
     top = 1;
     int evals = 0;
+    double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
         const double ta = st_ta[top - 1], tb = st_tb[top - 1];
         if (ta > p->t_stop)
@@ -535,31 +824,89 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         positions(&s, ta, xa);
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
-        positions(&s, tm, xm);
-        if (delta == 0 && never_coplanar(s.na, xa, xb, S))
-            continue;
-        double n1[3], n2[3], n3[3];
-        int vv[2];
-        s.cand_g = -HUGE_VAL;
-        const double d = directions(s.na, xm, n1, n2, vv);
-        if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
-            continue;
-        if (vv[0] >= 0) {
-            pass_direction(x0, x1, vv[0], vv[1], n3);
-            if (separated_along(&s, xa, xb, n3, delta))
+        double d = HUGE_VAL, root = NAN;
+        if (delta == 0) {
+            cop_info ci;
+            never_coplanar(s.na, xa, xb, S, &ci);
+            if (ci.never)
                 continue;
-        }
-        /* The closest direction at an end serves where the middle's cannot (a crossing). */
-        directions(s.na, xa, n1, n2, vv);
-        if (separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta))
+            if (ta >= cert_ta && tb <= cert_tb) {
+                /* Inside a certified interval only f's roots matter. */
+                if (exact_free(&s, &ci, NULL))
+                    continue;
+                root = root_guess(&s, &ci, ta, tb);
+                goto split;
+            }
+            int csign[4] = {0, 0, 0, 0};
+            if ((ci.change || (ci.end_zero && f_sign_at(&s, tb) == 0)) && conditions(s.na, xa, xb, S, csign)) {
+                /* A contact in [ta, tb] for sure (f has a root there, the conditions hold
+                 * throughout): the first one is f's first root; no direction can separate. */
+                cert_ta = ta;
+                cert_tb = tb;
+                double toi;
+                if (jump_to_root(&s, ta, tb, !ci.change, &toi)) {
+                    out->hit = 1;
+                    out->toi = toi;
+                    double n1[3], n2[3], xt[4][3];
+                    int vv[2];
+                    positions(&s, toi, xt);
+                    out->gap = directions(s.na, xt, n1, n2, vv);
+                    break;
+                }
+                root = root_guess(&s, &ci, ta, tb);
+                goto split;
+            }
+            if (directions_separate(&s, xa, xb, tm, delta, &d))
+                continue;
+            if (!(ci.change || ci.end_zero) && (s.near_miss || tb - ta <= p->t_tol))
+                conditions(s.na, xa, xb, S, csign); /* for the exact test: not formed above */
+            if (exact_free(&s, &ci, csign))
+                continue;
+            root = root_guess(&s, &ci, ta, tb);
+        } else if (directions_separate(&s, xa, xb, tm, delta, &d)) {
             continue;
+        }
         if (s.cand_g > -HUGE_VAL && exact_separated(x0, x1, s.na, ta, tb, s.cand_n))
             continue;
+    split:
         if (tb - ta <= p->t_tol || !(tm > ta && tm < tb) || top + 2 > STACK) {
             out->hit = 1;
             out->toi = ta;
+            if (d == HUGE_VAL) {
+                double n1[3], n2[3];
+                int vv[2];
+                positions(&s, tm, xm);
+                d = directions(s.na, xm, n1, n2, vv);
+            }
             out->gap = d;
             break;
+        }
+        /* Where f seems to have a root, the interval is cut at it: [ta, lo], [lo, lo + t_tol] and
+         * the rest, so that the stretch before the root is tried whole and the contact (or the near
+         * miss) is met in one step rather than after bisecting to t_tol (the order, earliest on
+         * top, and so every guarantee, is that of the halves). */
+        if (root > ta && root <= tb && tb - ta > 4 * p->t_tol && top + 3 <= STACK) {
+            double lo = root - 0.5 * p->t_tol, hi = lo + p->t_tol;
+            if (hi >= tb) {
+                hi = tb;
+                lo = tb - p->t_tol;
+            }
+            while (hi - lo > p->t_tol)
+                lo = nextafter(lo, hi);
+            if (lo > ta && hi > lo) {
+                if (hi < tb) {
+                    st_ta[top] = hi;
+                    st_tb[top] = tb;
+                    ++top;
+                }
+                st_ta[top] = lo;
+                st_tb[top] = hi;
+                ++top;
+                st_ta[top] = ta;
+                st_tb[top] = lo;
+                ++top;
+                continue;
+            }
         }
         /* Later half first, so the earlier one is on top. */
         st_ta[top] = tm;
