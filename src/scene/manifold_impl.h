@@ -89,6 +89,8 @@ typedef struct manifold_work {
     size_t keys_cap, sorted_cap;
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
+    struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
+    uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -136,6 +138,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->res);
     free(w->key);
     free(w->near);
+    free(w->ctri);
     memset(w, 0, sizeof *w);
 }
 
