@@ -197,9 +197,9 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         cell_axes(c, side, x);
         int near = 0;
         const int look = (side[0] != 0) | (side[1] != 0) << 1 | (side[2] != 0) << 2;
-        for (int m = 0; m < 8 && !near; ++m) {
-            if ((m & look) != m)
-                continue;
+        /* the cells of look's submasks m (0 first, then upward: m - look & look steps to the
+         * next), not all 8 values of m each tested against look: most points look in one cell */
+        for (int m = 0, first = 1; (first || m != 0) && !near; m = (m - look) & look, first = 0) {
             const size_t at = cell_slot(w, bits, cell_key(x[0][m & 1] ^ x[1][(m >> 1) & 1] ^ x[2][(m >> 2) & 1]));
             if (w->cell_key[at] == 0)
                 continue;
