@@ -110,9 +110,10 @@ static int boxes_apart(const screen_box *a, const screen_box *b, real margin)
 }
 
 /* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
- * than the margin (ext: the largest side of the box around y and x, boxes_ext), so surely that the exact method finds it farther than the margin from the
- * triangle (the triangle lies inside each edge's half-space). Triangles whose normal is known
- * poorly (thinner than SCREEN_THIN) are not screened. */
+ * than the margin, so surely that the exact method finds it farther than the margin from the
+ * triangle (the triangle lies inside each edge's half-space). ext: the largest side of the box
+ * around y and x (boxes_ext). Triangles whose normal is known poorly (thinner than SCREEN_THIN)
+ * are not screened. */
 #define SCREEN_THIN 1e-3
 static int vertex_beside(const real *y, const real *x, double ext, real margin)
 {
@@ -213,8 +214,8 @@ static int corner_key_before(const corner_key *u, const corner_key *v)
 }
 
 /* w->key[0..key_n) in corner_key_before's order, stably (equal keys as pushed): a merge sort
- * with the comparison inline, where the C library's qsort called a function per comparison
- * (6% of a sliver tower's reduction). 0 out of memory. */
+ * with the comparison inline, where the C library's qsort called a function per comparison.
+ * 0 out of memory. */
 static int corner_keys_sort(manifold_work *w)
 {
     const size_t n = w->key_n;
