@@ -99,10 +99,10 @@ static double boxes_ext(const screen_box *a, const screen_box *b)
 }
 
 /* Whether the boxes a and b (of a's and b's points) lie so far apart along an axis that the
- * exact method finds the points' hulls farther apart than the margin. */
-static int boxes_apart(const screen_box *a, const screen_box *b, real margin)
+ * exact method finds the points' hulls farther apart than the margin; ext: boxes_ext(a, b). */
+static int boxes_apart(const screen_box *a, const screen_box *b, double ext, real margin)
 {
-    const double lim = screen_lim(margin, boxes_ext(a, b));
+    const double lim = screen_lim(margin, ext);
     for (int r = 0; r < 3; ++r)
         if (b->lo[r] - a->hi[r] > lim || a->lo[r] - b->hi[r] > lim)
             return 1;
@@ -317,7 +317,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
             screen_box vb;
             box_of(x[side] + 3 * k, 1, &vb);
             const double ext = boxes_ext(&vb, &T[!side]->box);
-            if (!boxes_apart(&vb, &T[!side]->box, margin) && !vertex_beside(x[side] + 3 * k, x[!side], ext, margin)) {
+            if (!boxes_apart(&vb, &T[!side]->box, ext, margin) && !vertex_beside(x[side] + 3 * k, x[!side], ext, margin)) {
                 const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
                 if (!key_push(w, &key))
                     return 0;
@@ -350,7 +350,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 continue;
             const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
             const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
-            if (boxes_apart(&eb[0][k], &eb[1][l], margin) || edges_miss(ek, el))
+            if (boxes_apart(&eb[0][k], &eb[1][l], boxes_ext(&eb[0][k], &eb[1][l]), margin) || edges_miss(ek, el))
                 continue;
             const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
                                     c->tri_i, c->tri_j, k, l};
