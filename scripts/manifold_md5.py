@@ -3,7 +3,9 @@
 """The md5 of `ttd scene manifold` over a fixed set of scenes, for refactors that must not change
 a bit of the manifold (issue 32, item 8): piles of icospheres, tori and boxes (cut 1 x 1 and
 3 x 3) on a floor, turned and touching, crossing and resting; as surfaces and as solids; at
-margins 0.02 and 0.2, K = 4, 2 and 0, double and float. Prints one md5 per run and one over all.
+margins 0.02 and 0.2, K = 4, 2 and 0, double and float. Prints one md5 per run and one over all;
+then issue 32's tower in four triangulations (scripts/tower_scene.py) at margin 0.01, K = 4 and 0,
+double and float, with its own md5 over those ("tower").
 
     /usr/bin/python3 scripts/manifold_md5.py build/cli/ttd [WORKDIR] [--save DIR]
 
@@ -154,6 +156,22 @@ def main():
                                 f.write(out)
                         print(hashlib.md5(out).hexdigest(), len(out.splitlines()), " ".join(cmd[2:]).replace(work + "/", ""))
     print("all", total.hexdigest())
+    # issue 32's tower in its four triangulations (scripts/tower_scene.py; the bench's tower-KIND
+    # scenes), summed apart so that "all" stays comparable with the figures recorded before it
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import tower_scene
+    sys.argv = [sys.argv[0], work]
+    tower_scene.main()
+    tower = hashlib.md5()
+    for kind in ("plain", "centre", "cut", "sliver"):
+        for prec in ("double", "float"):
+            for k in ("4", "0"):
+                cmd = [ttd, "scene", "manifold", f"{work}/tower-{kind}.txt", "--margin", "0.01", "--max-points", k,
+                       "--precision", prec]
+                out = subprocess.run(cmd, check=True, capture_output=True).stdout
+                tower.update(out)
+                print(hashlib.md5(out).hexdigest(), len(out.splitlines()), " ".join(cmd[2:]).replace(work + "/", ""))
+    print("tower", tower.hexdigest())
 
 
 if __name__ == "__main__":

@@ -5,12 +5,12 @@ manifold against the contacts with `ttd scene ... --stats --repeat` (issue 32, i
 3 x 1 x 0.6, three per layer, the layers turned by 90 degrees in turn, on a floor, resting 1e-3
 apart (under a margin of 0.01), in four triangulations of the boxes: 12 triangles ("plain"); a
 centre vertex per face ("centre"); faces cut 4 x 4 with in-plane jitter ("cut"); faces fanned
-from a corner into long slivers ("sliver").
+from a corner into long slivers ("sliver"). The same scenes as `ttd bench`'s tower-KIND workloads
+(bench/scene_bench.c), which `ttd bench --scene-workloads tower-cut --scene-write DIR` also writes.
 
     /usr/bin/python3 scripts/tower_scene.py DIR      # writes DIR/tower-<kind>.txt and the meshes
 """
 import os
-import random
 import sys
 
 
@@ -33,9 +33,26 @@ def face_frames(h):
     return out
 
 
+class SplitMix:
+    """splitmix64 and a uniform double in [0, 1) from its top 53 bits: the generator of `ttd bench`'s
+    tower (bench/scene_bench.c), so that both make the same jitter."""
+
+    def __init__(self, seed):
+        self.s = seed
+
+    def uniform(self):
+        m = (1 << 64) - 1
+        self.s = (self.s + 0x9E3779B97F4A7C15) & m
+        z = self.s
+        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & m
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & m
+        z ^= z >> 31
+        return (z >> 11) * 2.0 ** -53
+
+
 def box_mesh(dims, kind, seed=3):
     h = [d / 2 for d in dims]
-    rng = random.Random(seed)
+    rng = SplitMix(seed)
     verts, index, tris = [], {}, []
 
     def vid(p):
@@ -64,8 +81,8 @@ def box_mesh(dims, kind, seed=3):
             for a in range(n + 1):
                 for b in range(n + 1):
                     rim = a in (0, n) or b in (0, n)  # the rim kept, so faces share its vertices
-                    ja = 0 if rim else rng.uniform(-0.3, 0.3) / n  # in the face's plane
-                    jb = 0 if rim else rng.uniform(-0.3, 0.3) / n
+                    ja = 0 if rim else (2.0 * rng.uniform() - 1.0) * 0.3 / n  # in the face's plane
+                    jb = 0 if rim else (2.0 * rng.uniform() - 1.0) * 0.3 / n
                     g[a, b] = vid(at(o, eu, ev, a / n + ja, b / n + jb))
             for a in range(n):
                 for b in range(n):

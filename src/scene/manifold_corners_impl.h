@@ -49,7 +49,7 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
     double d[3], far = 0;
     for (int r = 0; r < 3; ++r) {
         d[r] = (double)y[r] - P->a[r];
-        far = fmax(far, fabs(d[r]));
+        far = fabs(d[r]) > far ? fabs(d[r]) : far; /* fmax's value (no NaN here), without its call */
     }
     const double h = dot3d(d, P->n), slack = 2 * (far + P->size) * (P->err + 64 * (double)TTD_REAL_EPS);
     return h > lim + slack ? 1 : h < -(lim + slack) ? -1 : 0;
@@ -62,30 +62,6 @@ static int corner_side(const corner_plane *P, const real y[3], double lim)
  * top of 16 ulps of the margin. */
 #define SCREEN_SLACK 1024
 
-/* The box of na points a and nb points b (3 reals each): lo, hi of each set, and the largest
- * side of the box around both. */
-static double screen_boxes(const real *a, int na, const real *b, int nb, double lo[2][3], double hi[2][3])
-{
-    double ext = 0;
-    for (int r = 0; r < 3; ++r) {
-        lo[0][r] = hi[0][r] = (double)a[r];
-        lo[1][r] = hi[1][r] = (double)b[r];
-        for (int k = 1; k < na; ++k) {
-            const double x = (double)a[3 * k + r];
-            lo[0][r] = x < lo[0][r] ? x : lo[0][r];
-            hi[0][r] = x > hi[0][r] ? x : hi[0][r];
-        }
-        for (int k = 1; k < nb; ++k) {
-            const double x = (double)b[3 * k + r];
-            lo[1][r] = x < lo[1][r] ? x : lo[1][r];
-            hi[1][r] = x > hi[1][r] ? x : hi[1][r];
-        }
-        const double l = lo[0][r] < lo[1][r] ? lo[0][r] : lo[1][r], h = hi[0][r] > hi[1][r] ? hi[0][r] : hi[1][r];
-        ext = h - l > ext ? h - l : ext;
-    }
-    return ext;
-}
-
 /* The distance within which the exact method may find points whose true distance is beyond it
  * by at most margin: margin, its rounding, the method's rounding on a box of extent ext. */
 static double screen_lim(real margin, double ext)
@@ -93,24 +69,53 @@ static double screen_lim(real margin, double ext)
     return (double)margin * (1 + 16 * (double)TTD_REAL_EPS) + SCREEN_SLACK * (double)TTD_REAL_EPS * ext + 0x1p-400;
 }
 
-/* Whether the boxes of na points a and nb points b lie so far apart along an axis that the
- * exact method finds the points' hulls farther apart than the margin. */
-static int boxes_apart(const real *a, int na, const real *b, int nb, real margin)
+/* The box of na points a (3 reals each): made once per triangle (corner_tri), vertex and edge
+ * of a contact, where it was made again for every question asked of them. */
+typedef struct screen_box {
+    double lo[3], hi[3];
+} screen_box;
+
+static void box_of(const real *a, int na, screen_box *b)
 {
-    double lo[2][3], hi[2][3];
-    const double lim = screen_lim(margin, screen_boxes(a, na, b, nb, lo, hi));
+    for (int r = 0; r < 3; ++r) {
+        b->lo[r] = b->hi[r] = (double)a[r];
+        for (int k = 1; k < na; ++k) {
+            const double x = (double)a[3 * k + r];
+            b->lo[r] = x < b->lo[r] ? x : b->lo[r];
+            b->hi[r] = x > b->hi[r] ? x : b->hi[r];
+        }
+    }
+}
+
+/* The largest side of the box around boxes a and b. */
+static double boxes_ext(const screen_box *a, const screen_box *b)
+{
+    double ext = 0;
+    for (int r = 0; r < 3; ++r) {
+        const double l = a->lo[r] < b->lo[r] ? a->lo[r] : b->lo[r], h = a->hi[r] > b->hi[r] ? a->hi[r] : b->hi[r];
+        ext = h - l > ext ? h - l : ext;
+    }
+    return ext;
+}
+
+/* Whether the boxes a and b (of a's and b's points) lie so far apart along an axis that the
+ * exact method finds the points' hulls farther apart than the margin; ext: boxes_ext(a, b). */
+static int boxes_apart(const screen_box *a, const screen_box *b, double ext, real margin)
+{
+    const double lim = screen_lim(margin, ext);
     for (int r = 0; r < 3; ++r)
-        if (lo[1][r] - hi[0][r] > lim || lo[0][r] - hi[1][r] > lim)
+        if (b->lo[r] - a->hi[r] > lim || a->lo[r] - b->hi[r] > lim)
             return 1;
     return 0;
 }
 
 /* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
  * than the margin, so surely that the exact method finds it farther than the margin from the
- * triangle (the triangle lies inside each edge's half-space). Triangles whose normal is known
- * poorly (thinner than SCREEN_THIN) are not screened. */
+ * triangle (the triangle lies inside each edge's half-space). ext: the largest side of the box
+ * around y and x (boxes_ext). Triangles whose normal is known poorly (thinner than SCREEN_THIN)
+ * are not screened. */
 #define SCREEN_THIN 1e-3
-static int vertex_beside(const real *y, const real *x, real margin)
+static int vertex_beside(const real *y, const real *x, double ext, real margin)
 {
     double v[3][3], p[3], e[3][3];
     for (int k = 0; k < 3; ++k)
@@ -126,10 +131,9 @@ static int vertex_beside(const real *y, const real *x, real margin)
     const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
     if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
         return 0;
-    double lo[2][3], hi[2][3], far = 0;
+    double far = 0;
     for (int r = 0; r < 3; ++r)
-        far = fmax(far, fabs(p[r] - v[0][r]));
-    const double ext = screen_boxes(y, 1, x, 3, lo, hi);
+        far = fabs(p[r] - v[0][r]) > far ? fabs(p[r] - v[0][r]) : far;
     const double lim = screen_lim(margin, ext);
     /* each height formed with a relative error of some 8 ulps of double per factor, the
      * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
@@ -195,19 +199,82 @@ static int key_push(manifold_work *w, const corner_key *k)
     return 1;
 }
 
-/* By the question (kind, a, b), then the triangles that ask it. */
-static int corner_key_cmp(const void *x, const void *y)
+/* Whether key u comes before key v: by the question (kind, a, b), then the triangles that ask it. */
+static int corner_key_before(const corner_key *u, const corner_key *v)
 {
-    const corner_key *u = x, *v = y;
     if (u->kind != v->kind)
-        return u->kind < v->kind ? -1 : 1;
+        return u->kind < v->kind;
     if (u->a != v->a)
-        return u->a < v->a ? -1 : 1;
+        return u->a < v->a;
     if (u->b != v->b)
-        return u->b < v->b ? -1 : 1;
+        return u->b < v->b;
     if (u->ti != v->ti)
-        return u->ti < v->ti ? -1 : 1;
-    return (u->tj > v->tj) - (u->tj < v->tj);
+        return u->ti < v->ti;
+    return u->tj < v->tj;
+}
+
+/* w->key[0..key_n) in corner_key_before's order, stably (equal keys as pushed): a merge sort
+ * with the comparison inline, where the C library's qsort called a function per comparison.
+ * 0 out of memory. */
+static int corner_keys_sort(manifold_work *w)
+{
+    const size_t n = w->key_n;
+    if (n > w->key_tmp_cap) {
+        corner_key *t = realloc(w->key_tmp, n * sizeof *t);
+        if (t == NULL)
+            return 0;
+        w->key_tmp = t;
+        w->key_tmp_cap = n;
+    }
+    corner_key *a = w->key, *b = w->key_tmp;
+    for (size_t run = 1; run < n; run *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * run) {
+            const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
+            size_t x = lo, y = mid, o = lo;
+            while (x < mid && y < hi)
+                b[o++] = corner_key_before(&a[y], &a[x]) ? a[y++] : a[x++];
+            while (x < mid)
+                b[o++] = a[x++];
+            while (y < hi)
+                b[o++] = a[y++];
+        }
+        corner_key *t = a;
+        a = b;
+        b = t;
+    }
+    if (a != w->key) { /* the sorted keys trade places with the scratch */
+        w->key_tmp = w->key;
+        w->key = a;
+        const size_t c = w->key_cap;
+        w->key_cap = w->key_tmp_cap;
+        w->key_tmp_cap = c;
+    }
+    return 1;
+}
+
+/* A triangle of a body in the world, its plane and box, kept for the pair's other contacts on it
+ * (a face on a face meets many triangles of the other face: in a tower of sliver-cut boxes each
+ * triangle was made and measured again for every contact, a fifth of step 0). Direct-mapped by
+ * triangle, a table a side; tag: the pair's number (manifold_work.ctri_pair) and the triangle. */
+#define CORNER_CACHE 256
+typedef struct corner_tri {
+    uint64_t tag;
+    real x[9];
+    corner_plane P;
+    screen_box box;
+} corner_tri;
+
+static const corner_tri *corner_tri_get(const struct ttd_scene *s, manifold_work *w, int side, uint32_t id, uint32_t tri)
+{
+    corner_tri *e = &w->ctri[(size_t)side * CORNER_CACHE + (tri & (CORNER_CACHE - 1))];
+    const uint64_t tag = w->ctri_pair << 32 | tri;
+    if (e->tag != tag) {
+        world_triangle(s, id, tri, e->x);
+        corner_plane_make(e->x, &e->P);
+        box_of(e->x, 3, &e->box);
+        e->tag = tag;
+    }
+    return e;
 }
 
 /* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
@@ -230,29 +297,41 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
         facing = -facing;
     if (!(facing <= -cos(CORNER_ANGLE)))
         return 1;
-    real x[2][9];
-    corner_plane P[2];
+    const corner_tri *T[2] = {corner_tri_get(s, w, 0, c->i, c->tri_i), corner_tri_get(s, w, 1, c->j, c->tri_j)};
+    const real *x[2] = {T[0]->x, T[1]->x};
     const ttd_mesh_edges *E[2];
     const uint32_t *tris[2];
     for (int side = 0; side < 2; ++side) {
-        world_triangle(s, id[side], tri[side], x[side]);
-        corner_plane_make(x[side], &P[side]);
         E[side] = ttd_mesh_edges_made(s->body[id[side]].mesh);
         tris[side] = s->body[id[side]].mesh->tris + 3 * (size_t)tri[side];
     }
     int h[2][3]; /* each vertex's side of the other triangle's plane beyond the margin, or 0 */
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 3; ++k)
-            h[side][k] = corner_side(&P[!side], x[side] + 3 * k, (double)margin);
+            h[side][k] = corner_side(&T[!side]->P, x[side] + 3 * k, (double)margin);
     /* vertices not inside a flat part that may lie within the margin of the other triangle */
     for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 3; ++k)
-            if (h[side][k] == 0 && ttd_vertex_class(E[side], tri[side], k) != TTD_VERTEX_FLAT &&
-                !boxes_apart(x[side] + 3 * k, 1, x[!side], 3, margin) && !vertex_beside(x[side] + 3 * k, x[!side], margin)) {
+        for (int k = 0; k < 3; ++k) {
+            if (h[side][k] != 0 || ttd_vertex_class(E[side], tri[side], k) == TTD_VERTEX_FLAT)
+                continue;
+            screen_box vb;
+            box_of(x[side] + 3 * k, 1, &vb);
+            const double ext = boxes_ext(&vb, &T[!side]->box);
+            if (!boxes_apart(&vb, &T[!side]->box, ext, margin) && !vertex_beside(x[side] + 3 * k, x[!side], ext, margin)) {
                 const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
                 if (!key_push(w, &key))
                     return 0;
             }
+        }
+    /* each edge's box (edge k from vertex k to k + 1), for the screens below */
+    screen_box eb[2][3];
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k) {
+            const int k1 = (k + 1) % 3;
+            const real e[6] = {x[side][3 * k], x[side][3 * k + 1], x[side][3 * k + 2],
+                               x[side][3 * k1], x[side][3 * k1 + 1], x[side][3 * k1 + 2]};
+            box_of(e, 2, &eb[side][k]);
+        }
     /* real edges (not between coplanar triangles), each of which may come within the margin of
      * the other triangle's plane */
     for (int k = 0; k < 3; ++k) {
@@ -271,7 +350,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 continue;
             const real ek[6] = {x[0][3 * k], x[0][3 * k + 1], x[0][3 * k + 2], x[0][3 * k1], x[0][3 * k1 + 1], x[0][3 * k1 + 2]};
             const real el[6] = {x[1][3 * l], x[1][3 * l + 1], x[1][3 * l + 2], x[1][3 * l1], x[1][3 * l1 + 1], x[1][3 * l1 + 2]};
-            if (boxes_apart(ek, 2, el, 2, margin) || edges_miss(ek, el))
+            if (boxes_apart(&eb[0][k], &eb[1][l], boxes_ext(&eb[0][k], &eb[1][l]), margin) || edges_miss(ek, el))
                 continue;
             const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
                                     c->tri_i, c->tri_j, k, l};
@@ -283,12 +362,10 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
 }
 
 /* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
-static int corner_ask(const struct ttd_scene *s, uint32_t i, uint32_t j, const corner_key *q, real margin,
-                      ttd_scene_contact *out, uint8_t feat[2])
+static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, uint32_t j, const corner_key *q,
+                      real margin, ttd_scene_contact *out, uint8_t feat[2])
 {
-    real x[2][9];
-    world_triangle(s, i, q->ti, x[0]);
-    world_triangle(s, j, q->tj, x[1]);
+    const real *x[2] = {corner_tri_get(s, w, 0, i, q->ti)->x, corner_tri_get(s, w, 1, j, q->tj)->x};
     *out = (ttd_scene_contact){i, j, q->ti, q->tj, 0, {0, 0, 0}, {0, 0, 0}};
     ttd_result r;
     if (q->kind < 2) {
@@ -345,6 +422,9 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     w->key_n = 0;
     if (n == 0)
         return 1;
+    if (w->ctri == NULL && (w->ctri = calloc(2 * CORNER_CACHE, sizeof *w->ctri)) == NULL)
+        return 0;
+    w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
     for (int r = 0; r < 3; ++r)
@@ -357,7 +437,8 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         return 1;
     /* each question once, for its smallest triangles; each vertex kept once, at its smallest
      * distance (ties: the smaller triangle of the other body) */
-    qsort(w->key, w->key_n, sizeof *w->key, corner_key_cmp);
+    if (!corner_keys_sort(w))
+        return 0;
     int have = 0; /* a vertex corner waiting in `best` */
     ttd_scene_contact best = c[0];
     uint8_t best_f[2] = {0, 0};
@@ -375,7 +456,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         }
         ttd_scene_contact got;
         uint8_t f[2];
-        if (!corner_ask(s, c[0].i, c[0].j, q, margin, &got, f))
+        if (!corner_ask(s, w, c[0].i, c[0].j, q, margin, &got, f))
             continue;
         if (q->kind == 2) {
             if (!all_push(w, &got, -1, f[0], f[1]))

@@ -84,11 +84,15 @@ typedef struct manifold_work {
     size_t queue_cap, pts_cap;
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
+    struct corner_key *key_tmp; /* step 0: scratch of the keys' sort */
+    size_t key_tmp_cap;
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
     struct manifold_rec *sorted; /* the points in depth order, before they trade places */
     size_t keys_cap, sorted_cap;
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
+    struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
+    uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -135,7 +139,9 @@ static void manifold_work_free(manifold_work *w)
     free(w->pts_place);
     free(w->res);
     free(w->key);
+    free(w->key_tmp);
     free(w->near);
+    free(w->ctri);
     memset(w, 0, sizeof *w);
 }
 

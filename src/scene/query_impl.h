@@ -181,9 +181,10 @@ typedef struct contact_job {
     const scene_pair *pairs;
     real margin;
     ttd_mesh_contacts *sets;      /* one per worker, reused */
-    ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles */
+    ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles (or see walk_order) */
     size_t *nfound;
     uint64_t *tests;              /* per pair: node tests and pair tests */
+    int walk_order;               /* a manifold's: pairs not of solids in the walk's order (pair_contacts) */
     atomic_int nomem;
 } contact_job;
 
@@ -216,9 +217,12 @@ static sort_item *radix_sort(sort_item *x, sort_item *y, size_t n, uint64_t larg
     return x;
 }
 
-/* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array. */
+/* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array; with
+ * walk_order, in the walk's order (a manifold's pair that is not a pair of solids: its reduction
+ * orders its points itself by a total order, the questions of step 0 too, so it gives the same
+ * bits from contacts in any order; the sort was a few percent of the contacts' cost). */
 static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
-                         ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n, uint64_t tests[2])
+                         int walk_order, ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n, uint64_t tests[2])
 {
     *out = NULL;
     *n = 0;
@@ -232,6 +236,21 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     if (set->count == 0)
         return 1;
     ttd_scene_contact *v = malloc(set->count * sizeof *v);
+    if (v != NULL && walk_order) {
+        for (size_t k = 0; k < set->count; ++k) {
+            const ttd_mesh_contact *c = &set->pairs[k];
+            v[k].i = p->i;
+            v[k].j = p->j;
+            v[k].tri_i = c->tri_a;
+            v[k].tri_j = c->tri_b;
+            v[k].distance = c->distance;
+            memcpy(v[k].p, c->p, sizeof v[k].p);
+            memcpy(v[k].q, c->q, sizeof v[k].q);
+        }
+        *out = v;
+        *n = set->count;
+        return 1;
+    }
     sort_item *order = malloc(2 * set->count * sizeof *order);
     if (v == NULL || order == NULL) {
         free(v);
@@ -262,8 +281,9 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
 static void contact_task(void *ctx, size_t k, int worker)
 {
     contact_job *J = ctx;
-    if (!pair_contacts(J->cfg, J->s, &J->pairs[k], J->margin, &J->sets[worker], &J->found[k], &J->nfound[k],
-                       J->tests + 2 * k))
+    const scene_pair *p = &J->pairs[k];
+    if (!pair_contacts(J->cfg, J->s, p, J->margin, J->walk_order && !solid_pair(J->s, p->i, p->j), &J->sets[worker],
+                       &J->found[k], &J->nfound[k], J->tests + 2 * k))
         atomic_store(&J->nomem, 1);
 }
 
@@ -286,8 +306,9 @@ static void pair_contacts_free(pair_contacts_set *c)
 }
 
 /* The set of every eligible body pair's contacts within margin (the caller frees it with
- * pair_contacts_free, whatever the status). */
-static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, pair_contacts_set *c)
+ * pair_contacts_free, whatever the status); walk_order: see contact_job. */
+static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, int walk_order,
+                               pair_contacts_set *c)
 {
     *c = (pair_contacts_set){NULL, 0, NULL, NULL};
     if (!ttd_scene_sweep(s, (double)margin, NULL, &c->pairs, &c->n))
@@ -296,7 +317,7 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
     contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
                      calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)),
-                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), 0};
+                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), walk_order, 0};
     atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
     if (!atomic_load(&J.nomem))
         ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
@@ -336,7 +357,7 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
 {
     out->count = 0;
     pair_contacts_set c;
-    ttd_status st = all_contacts(cfg, s, margin, &c);
+    ttd_status st = all_contacts(cfg, s, margin, 0, &c);
     size_t total = 0;
     size_t *at = st == TTD_OK ? malloc((c.n ? c.n : 1) * sizeof *at) : NULL;
     if (st == TTD_OK && at == NULL)
@@ -457,7 +478,7 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
     out->count = 0;
     pair_contacts_set c;
     const ttd_engine_config one = one_thread(cfg);
-    ttd_status st = all_contacts(cfg, s, margin, &c);
+    ttd_status st = all_contacts(cfg, s, margin, 1, &c);
     /* the meshes' edge information, made on their first manifold (mesh/mesh.h), before the
      * threads read it */
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
@@ -524,7 +545,7 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
     size_t n;
     const ttd_engine_config one = one_thread(cfg);
     uint64_t tests[2];
-    const int ok = pair_contacts(&one, s, p, d, &set, &v, &n, tests);
+    const int ok = pair_contacts(&one, s, p, d, 0, &set, &v, &n, tests);
     TTD_CONTACTS_FREE(&set);
     if (!ok)
         return 0;

@@ -128,6 +128,15 @@ for w in icospheres mixed sparse; do
     grep "\"workload\": \"$w\"" "$tmp/scene.rows" | grep -q "\"query\": \"$q\"" || fail "no scene row $w $q"
   done
 done
+# issue 32's tower in four triangulations: its contacts and manifold rows, the manifold's ratio
+# to the contacts in CPU time too
+for w in tower-plain tower-centre tower-cut tower-sliver; do
+  for q in contacts manifold-4; do
+    grep "\"workload\": \"$w\"" "$tmp/scene.rows" | grep -q "\"query\": \"$q\"" || fail "no scene row $w $q"
+  done
+  grep "\"workload\": \"$w\"" "$tmp/scene.rows" | grep '"query": "manifold-4"' | grep -q '"x_ref_cpu": [0-9]' ||
+    fail "no $w manifold-4 row with its CPU-time ratio"
+done
 grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"precision": "float"' || fail "no float scene contacts row"
 grep '"query": "motion"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread motion row"
 for q in manifold-4 manifold-0 distance+n; do # issue 23's ratios: against ttd's contacts and distance
@@ -164,6 +173,15 @@ for q in contacts collide+m; do
   got=$("$ttd" scene $cmd "$tmp/scenes/icospheres.txt" --margin 0.01 --count) || fail "ttd scene $cmd on the written scene"
   [ "$got" = "$want" ] || fail "--scene-write: ttd scene $cmd counts $got, the benchmark's $q row $want"
 done
+# the tower the benchmark writes is scripts/tower_scene.py's (the same meshes and poses, so the
+# same manifold to the bit)
+"$ttd" bench --quick --no-probes --no-fcl --scene-workloads tower-cut --scene-write "$tmp/scenes" > /dev/null 2>&1 ||
+  fail "--scene-write tower-cut exited with $?"
+if /usr/bin/python3 "$(dirname "$0")/../../scripts/tower_scene.py" "$tmp/towers" 2> /dev/null; then
+  a=$("$ttd" scene manifold "$tmp/scenes/tower-cut.txt" --margin 0.01 | cksum)
+  b=$("$ttd" scene manifold "$tmp/towers/tower-cut.txt" --margin 0.01 | cksum)
+  [ "$a" = "$b" ] || fail "the benchmark's tower-cut is not scripts/tower_scene.py's"
+fi
 rc=0
 "$ttd" bench --quick --scene-workloads icospheres,nosuch > /dev/null 2> "$tmp/err.txt" || rc=$?
 [ "$rc" -eq 2 ] || fail "--scene-workloads nosuch: exit status $rc, want 2"
