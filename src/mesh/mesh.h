@@ -152,6 +152,13 @@ ttd_status ttd_mesh_query_self_contacts_count_d(const ttd_engine_config *cfg, co
                                                 unsigned shared, size_t *count);
 ttd_status ttd_mesh_query_self_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
                                                 unsigned shared, size_t *count);
+/* The self-contacts by the walk alone (query_impl.h): what ttd_mesh_query_self_contacts_* give
+ * where the grid of leaves would do no better (mesh/self_grid_impl.h), for the tests to compare
+ * the two ways. */
+ttd_status ttd_mesh_query_self_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                               unsigned shared, ttd_contacts_d *out);
+ttd_status ttd_mesh_query_self_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                               unsigned shared, ttd_contacts_f *out);
 ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
                                          unsigned shared, ttd_collision *out);
 ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,

@@ -1,0 +1,412 @@
+/* SPDX-License-Identifier: MIT */
+/* Self-contacts by a grid of leaves (precision-generic; included by mesh/query_impl.h, whose
+ * queue and kernel calls it shares). docs/mesh-queries.md, section 3b and issue 36's notes.
+ *
+ * The walk of query_impl.h meets every pair of a mesh's triangles at the node where their paths
+ * part; on a sheet most of its node tests show that neighbours are neighbours (5.5 a triangle,
+ * about 130 ns each). Here the tree's leaves are only groups of 8 nearby triangles:
+ *   1. every triangle's axis-aligned box (its vertices' minima, and their maxima raised by the
+ *      limit L = margin + the walk's rounding margin) and vertex indices, 8 lanes per leaf;
+ *   2. the leaves' boxes counted into a uniform grid whose cell is at least the largest leaf box
+ *      plus L, so that two leaves within L of each other lie in one cell or two neighbouring
+ *      ones; each leaf meets itself, the leaves after it in its cell, and those of the 13 cells
+ *      after its own (half of its 26 neighbours);
+ *   3. two leaves whose boxes are within L screen their triangles 8 at a time (the row's
+ *      self_screen: box and vertex-index comparisons); the pairs left go to the exact kernel by
+ *      queue_self, as the walk's do, so each pair's distance and points are the same bits.
+ * Rounding: the screen compares exact minima with fl(max + L); where the exact gap between two
+ * boxes on an axis is at most L, lo <= max + L exactly, so lo <= fl(max + L) (rounding is
+ * monotone): no pair the walk would give the kernel within L is dropped, and L covers what the
+ * kernel's rounding needs (the walk's delta). The set is the brute force's; its order is the
+ * grid's (cells, then leaves, then triangles), fixed by the mesh. Cells are cut into a fixed
+ * list of runs, each with its own list, joined in order: the thread count changes nothing.
+ * Where one leaf's box is so large that the grid would put most leaves together, the caller
+ * keeps the walk (self_grid_make returns 0). */
+
+/* A self query's grid. Every box is in double, for both precisions (float coordinates convert
+ * exactly, and L is rounded up in double as in real). */
+typedef struct self_grid {
+    size_t ngroups;
+    ttd_self_block *blk;       /* per leaf: its triangles' boxes and indices (lanes) */
+    int32_t (*tri)[TTD_NODE_WIDTH]; /* per leaf: its triangles, -1 past its count */
+    double *sbox;              /* the leaves' boxes in the grid's order, one array per bound:
+                                  lo x, y, z, raised hi x, y, z, each ngroups + 8 (padding) */
+    uint32_t *start;           /* ncells + 1: cell c's leaves are order[start[c] .. start[c+1]) */
+    uint32_t *order;
+    size_t dim[3], ncells;
+    ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
+    ttd_box_screen_fn boxes;
+} self_grid;
+
+static void self_grid_free(self_grid *G)
+{
+    free(G->blk);
+    free(G->tri);
+    free(G->sbox);
+    free(G->start);
+    free(G->order);
+}
+
+/* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
+static unsigned self_screen_scalar(const ttd_self_block *b, const double q[6], const double ix[3])
+{
+    unsigned n = 0, s = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+        int near = 1, share = 0;
+        for (int c = 0; c < 3; ++c) {
+            near &= (b->lo[c][j] <= q[3 + c]) & (q[c] <= b->hi[c][j]);
+            share |= (b->ix[c][j] == ix[0]) | (b->ix[c][j] == ix[1]) | (b->ix[c][j] == ix[2]);
+        }
+        n |= (unsigned)near << j;
+        s |= (unsigned)(near & share) << j;
+    }
+    return (n & ~s) | s << 8;
+}
+
+static unsigned box_screen_scalar(const double *const lo[3], const double *const hi[3], const double q[6])
+{
+    unsigned n = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+        n |= (unsigned)((lo[0][j] <= q[3]) & (q[0] <= hi[0][j]) & (lo[1][j] <= q[4]) & (q[1] <= hi[1][j]) &
+                        (lo[2][j] <= q[5]) & (q[2] <= hi[2][j]))
+             << j;
+    return n;
+}
+
+/* Leaf tests per leaf above which the grid is no better than the walk (one huge leaf box makes
+ * cells that hold most of the mesh). */
+#define SELF_GRID_WORK 256
+
+/* Builds G for the mesh of P at limit L (double): 1 done, 0 the walk is better (or L is not
+ * finite), -1 out of memory. */
+static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_kernels_d *row, self_grid *G)
+{
+    memset(G, 0, sizeof *G);
+    G->screen = row != NULL ? row->self_screen : NULL;
+    G->boxes = row != NULL ? row->box_screen : NULL;
+    if (!isfinite(L))
+        return 0;
+    size_t ng = 0;
+    for (size_t n = 0; n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
+        for (int j = 0; j < P->a.nodes[n].count; ++j)
+            if (P->a.nodes[n].child[j] < 0) {
+                ++ng;
+                break;
+            }
+    G->ngroups = ng;
+    G->blk = ttd_big_alloc((ng ? ng : 1) * sizeof *G->blk);
+    G->tri = malloc((ng ? ng : 1) * sizeof *G->tri);
+    G->sbox = ttd_big_alloc(6 * (ng + TTD_NODE_WIDTH) * sizeof *G->sbox);
+    G->order = malloc((ng ? ng : 1) * sizeof *G->order);
+    double (*gbox)[6] = malloc((ng ? ng : 1) * sizeof *gbox);
+    uint32_t *cell = malloc((ng ? ng : 1) * sizeof *cell);
+    int ret = -1;
+    if (G->blk == NULL || G->tri == NULL || G->sbox == NULL || G->order == NULL || gbox == NULL || cell == NULL)
+        goto out;
+    double ext = 0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    size_t g = 0;
+    for (size_t n = 0; n < nnodes; ++n) {
+        const ttd_node *y = P->a.nodes + n;
+        int k = 0;
+        ttd_self_block *b = &G->blk[g];
+        double *gb = gbox[g];
+        for (int c = 0; c < 3; ++c)
+            gb[c] = INFINITY, gb[3 + c] = -INFINITY;
+        for (int j = 0; j < y->count; ++j) {
+            if (y->child[j] >= 0)
+                continue;
+            const uint32_t t = (uint32_t)(-1 - y->child[j]);
+            const uint32_t *ix = P->a.tris + 3 * (size_t)t;
+            G->tri[g][k] = (int32_t)t;
+            for (int c = 0; c < 3; ++c) {
+                const double x0 = (double)P->a.verts[3 * (size_t)ix[0] + c], x1 = (double)P->a.verts[3 * (size_t)ix[1] + c],
+                             x2 = (double)P->a.verts[3 * (size_t)ix[2] + c];
+                double mn = x0 < x1 ? x0 : x1, mx = x0 < x1 ? x1 : x0;
+                mn = x2 < mn ? x2 : mn;
+                mx = x2 > mx ? x2 : mx;
+                b->lo[c][k] = mn;
+                b->hi[c][k] = mx + L;
+                b->ix[c][k] = (double)ix[c];
+                gb[c] = mn < gb[c] ? mn : gb[c];
+                gb[3 + c] = b->hi[c][k] > gb[3 + c] ? b->hi[c][k] : gb[3 + c];
+            }
+            ++k;
+        }
+        if (k == 0)
+            continue;
+        for (; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
+            G->tri[g][k] = -1;
+            for (int c = 0; c < 3; ++c) {
+                b->lo[c][k] = INFINITY;
+                b->hi[c][k] = -INFINITY;
+                b->ix[c][k] = -1;
+            }
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double e = gb[3 + c] - gb[c]; /* the leaf's extent with L */
+            ext = e > ext ? e : ext;
+            lo[c] = gb[c] < lo[c] ? gb[c] : lo[c];
+            hi[c] = gb[c] > hi[c] ? gb[c] : hi[c];
+        }
+        ++g;
+    }
+    /* two leaves within L on axis c: their low corners differ by at most the larger's extent
+     * with L (ext); a cell a little wider than that keeps their cells' indices within 1 despite
+     * the rounding of (lo - lo_min) / h */
+    double h = ext * (1 + 0x1p-20);
+    ret = 0;
+    if (!(h > 0) || !isfinite(h))
+        goto out;
+    for (;;) {
+        double cells = 1;
+        for (int c = 0; c < 3; ++c)
+            cells *= floor((hi[c] - lo[c]) / h) + 1;
+        if (cells <= 4.0 * (double)ng + 64)
+            break;
+        h *= 1.5;
+    }
+    G->ncells = 1;
+    for (int c = 0; c < 3; ++c) {
+        G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h) + 1;
+        G->ncells *= G->dim[c];
+    }
+    ret = -1;
+    G->start = calloc(G->ncells + 2, sizeof *G->start);
+    if (G->start == NULL)
+        goto out;
+    for (size_t i = 0; i < ng; ++i) {
+        size_t at = 0;
+        for (int c = 2; c >= 0; --c) {
+            size_t q = (size_t)floor((gbox[i][c] - lo[c]) / h);
+            q = q < G->dim[c] ? q : G->dim[c] - 1;
+            at = at * G->dim[c] + q;
+        }
+        cell[i] = (uint32_t)at;
+        G->start[at + 2]++;
+    }
+    for (size_t c = 0; c < G->ncells; ++c)
+        G->start[c + 2] += G->start[c + 1];
+    for (size_t i = 0; i < ng; ++i) /* start[c + 1] runs through cell c, then is its end */
+        G->order[G->start[cell[i] + 1]++] = (uint32_t)i;
+    const size_t stride = ng + TTD_NODE_WIDTH;
+    for (size_t p = 0; p < stride; ++p)
+        for (int c = 0; c < 6; ++c)
+            G->sbox[c * stride + p] = p < ng ? gbox[G->order[p]][c] : c < 3 ? (double)INFINITY : -(double)INFINITY;
+    /* the work: each leaf's tests against its cell and the 13 after it, estimated by the cells'
+     * counts; past SELF_GRID_WORK a leaf, the walk */
+    double work = 0;
+    for (size_t z = 0; z < G->dim[2]; ++z)
+        for (size_t y = 0; y < G->dim[1]; ++y)
+            for (size_t x = 0; x < G->dim[0]; ++x) {
+                const size_t c = (z * G->dim[1] + y) * G->dim[0] + x;
+                const double nc = (double)(G->start[c + 1] - G->start[c]);
+                if (nc == 0)
+                    continue;
+                double around = 0;
+                for (int dz = 0; dz <= 1; ++dz)
+                    for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                        for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                            if (x + (size_t)dx >= G->dim[0] || y + (size_t)dy >= G->dim[1] || z + (size_t)dz >= G->dim[2])
+                                continue; /* (size_t)-1 wraps past the end too */
+                            const size_t d = ((z + (size_t)dz) * G->dim[1] + (y + (size_t)dy)) * G->dim[0] + x + (size_t)dx;
+                            around += (double)(G->start[d + 1] - G->start[d]);
+                        }
+                work += nc * (around + (nc + 1) / 2);
+            }
+    ret = work <= SELF_GRID_WORK * (double)ng + 1024 ? 1 : 0;
+out:
+    free(gbox);
+    free(cell);
+    return ret;
+}
+
+/* Leaves g and h (g <= h; their boxes near): their triangle pairs near by the screen (for g == h,
+ * i < j), queued. */
+static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t g,
+                             uint32_t h)
+{
+    const ttd_self_block *bg = &G->blk[g], *bh = &G->blk[h];
+    for (int i = 0; i < TTD_NODE_WIDTH && G->tri[g][i] >= 0 && !w->hit; ++i) {
+        const int32_t ti = G->tri[g][i];
+        const double q[6] = {bg->lo[0][i], bg->lo[1][i], bg->lo[2][i], bg->hi[0][i], bg->hi[1][i], bg->hi[2][i]};
+        const double ix[3] = {bg->ix[0][i], bg->ix[1][i], bg->ix[2][i]};
+        unsigned m = G->screen ? G->screen(bh, q, ix) : self_screen_scalar(bh, q, ix);
+        if (g == h) { /* j > i, in both halves */
+            const unsigned after = (0xFEu << i) & 0xFFu;
+            m &= after | after << 8;
+        }
+        if (!(P->self & SELF_SHARED))
+            m &= 0xFFu;
+        for (; m != 0; m &= m - 1) {
+            const int bit = __builtin_ctz(m), j = bit & 7;
+            const int32_t tj = G->tri[h][j], ta = ti < tj ? ti : tj, tb = ti < tj ? tj : ti;
+            uint32_t v = 0;
+            const int kind = bit < 8 ? SELF_PAIR
+                                     : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
+            if (kind != SELF_NONE)
+                queue_self(C, P, W, w, ta, tb, kind, v);
+        }
+    }
+}
+
+/* Leaf g (at grid position p) against the leaves at positions [q0, q1) whose boxes are near its
+ * own, 8 at a time. */
+static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                            uint32_t q0, uint32_t q1)
+{
+    const size_t stride = G->ngroups + TTD_NODE_WIDTH;
+    const double *s = G->sbox;
+    const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
+    const uint32_t g = G->order[p];
+    for (uint32_t r = q0; r < q1; r += TTD_NODE_WIDTH) {
+        const double *const lo[3] = {s + r, s + stride + r, s + 2 * stride + r};
+        const double *const hi[3] = {s + 3 * stride + r, s + 4 * stride + r, s + 5 * stride + r};
+        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
+        if (q1 - r < TTD_NODE_WIDTH)
+            m &= (1u << (q1 - r)) - 1;
+        for (; m != 0; m &= m - 1) {
+            const uint32_t o = G->order[r + (uint32_t)__builtin_ctz(m)];
+            /* the leaf pair as (smaller, larger) so that g == h is the only self case */
+            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
+        }
+    }
+}
+
+/* The leaves of cells [c0, c1) against their neighbours, into w's list. */
+static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t c0, size_t c1)
+{
+    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2];
+    for (size_t c = c0; c < c1 && !W->nomem && !w->hit; ++c) {
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        for (uint32_t p = G->start[c]; p < G->start[c + 1]; ++p) {
+            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
+            for (int dz = 0; dz <= 1; ++dz)
+                for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                    for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                        if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
+                            continue;
+                        const size_t d = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
+                        self_grid_range(C, P, W, w, G, p, G->start[d], G->start[d + 1]);
+                    }
+        }
+    }
+    flush(C, P, W, w);
+}
+
+/* Runs of cells, each one task with its own list (joined in order). */
+#define SELF_GRID_TASKS 64
+
+typedef struct self_grid_job {
+    const qctx *C;
+    const qpose *P;
+    const self_grid *G;
+    real margin;
+    size_t cut[SELF_GRID_TASKS + 1]; /* task t: cells [cut[t], cut[t + 1]) */
+    clist *lists;
+    qwork *work;
+    atomic_int nomem;
+} self_grid_job;
+
+static void self_grid_task(void *ctx, size_t t, int worker)
+{
+    self_grid_job *J = ctx;
+    qwork *W = &J->work[worker];
+    if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
+        return;
+    pose_forget(W);
+    walk w;
+    walk_init(&w, MODE_CONTACTS, J->P, J->margin, 0);
+    w.out = &J->lists[t];
+    self_grid_cells(J->C, J->P, W, &w, J->G, J->cut[t], J->cut[t + 1]);
+    if (W->nomem)
+        atomic_store(&J->nomem, 1);
+}
+
+/* Self-contacts (out) or their count (count) by the grid: TTD_OK, TTD_ERR_OUT_OF_MEMORY, or -1
+ * when the walk should answer instead (nothing written). */
+static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, size_t *count)
+{
+    qpose P;
+    qpose_make(C, identity_pose, NULL, no_defect, &P);
+    self_grid G;
+    /* L: the walk's limit with its rounding margin, rounded up in double */
+    const double L = ((double)margin + (double)P.delta) * (1 + 0x1p-50);
+    const int made = self_grid_make(&P, C->ma->nnodes, L, ttd_dispatch_row_d(C->isa), &G);
+    if (made <= 0) {
+        self_grid_free(&G);
+        return made == 0 ? -1 : TTD_ERR_OUT_OF_MEMORY;
+    }
+    self_grid_job J = {C, &P, &G, margin, {0}, NULL, NULL, 0};
+    /* runs of about equal numbers of leaves, cut at cells */
+    size_t nt = 0;
+    for (size_t t = 1; t <= SELF_GRID_TASKS; ++t) {
+        const size_t want = G.ngroups * t / SELF_GRID_TASKS;
+        size_t c = J.cut[nt];
+        while (c < G.ncells && G.start[c] < want)
+            ++c;
+        if (t == SELF_GRID_TASKS)
+            c = G.ncells;
+        if (c > J.cut[nt])
+            J.cut[++nt] = c;
+    }
+    const int workers = ttd_parallel_task_workers(nt, C->threads);
+    qwork one;
+    J.work = qwork_new(workers, &one);
+    J.lists = calloc(nt ? nt : 1, sizeof *J.lists);
+    atomic_init(&J.nomem, J.work == NULL || J.lists == NULL);
+    if (out != NULL) {
+        out->count = 0;
+        out->poses = 0;
+        if (!contacts_offsets(out, 1))
+            atomic_store(&J.nomem, 1);
+    }
+    if (!atomic_load(&J.nomem)) {
+        for (size_t t = 0; t < nt; ++t) {
+            J.lists[t].count_only = out == NULL;
+            J.lists[t].direct = workers == 1 && out != NULL ? out : NULL;
+        }
+        if (out != NULL)
+            out->pose_start[0] = 0;
+        ttd_parallel_tasks(nt, C->threads, self_grid_task, &J);
+    }
+    int ok = !atomic_load(&J.nomem);
+    size_t total = 0;
+    for (size_t t = 0; ok && t < nt; ++t)
+        total += J.lists[t].n;
+    if (ok && count != NULL) {
+        *count = total;
+    } else if (ok && workers > 1) { /* join the lists in task order */
+        if (total > out->capacity) {
+            contact *v = ttd_big_alloc(total * sizeof *v);
+            if (v == NULL) {
+                ok = 0;
+            } else {
+                free(out->pairs);
+                out->pairs = v;
+                out->capacity = total;
+            }
+        }
+        size_t at = 0;
+        for (size_t t = 0; ok && t < nt; ++t) {
+            const size_t n = J.lists[t].n;
+            clist_drain(&J.lists[t], n > 0 ? out->pairs + at : NULL);
+            at += n;
+        }
+        out->count = at;
+    }
+    for (size_t t = 0; J.lists != NULL && t < nt; ++t)
+        clist_drain(&J.lists[t], NULL);
+    free(J.lists);
+    qwork_free(J.work, workers, &one);
+    self_grid_free(&G);
+    if (!ok) {
+        if (out != NULL)
+            out->count = 0;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    if (out != NULL) {
+        out->pose_start[1] = out->count;
+        out->poses = 1;
+    }
+    return TTD_OK;
+}
