@@ -34,6 +34,7 @@ typedef struct self_grid {
     uint32_t *start;           /* ncells + 1: cell c's leaves are order[start[c] .. start[c+1]) */
     uint32_t *order;
     size_t dim[3], ncells;
+    double R;                  /* the diagonal screen's limit (diag_apart) */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
 } self_grid;
@@ -48,19 +49,24 @@ static void self_grid_free(self_grid *G)
 }
 
 /* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
-static unsigned self_screen_scalar(const ttd_self_block *b, const double q[6], const double ix[3])
+static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
 {
-    unsigned n = 0, s = 0;
-    for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
-        int near = 1, share = 0;
-        for (int c = 0; c < 3; ++c) {
-            near &= (b->lo[c][j] <= q[3 + c]) & (q[c] <= b->hi[c][j]);
-            share |= (b->ix[c][j] == ix[0]) | (b->ix[c][j] == ix[1]) | (b->ix[c][j] == ix[2]);
+    unsigned any = 0;
+    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+        unsigned n = 0, s = 0;
+        for (int j = same ? i + 1 : 0; j < TTD_NODE_WIDTH; ++j) {
+            int near = 1, share = 0;
+            for (int c = 0; c < 3; ++c) {
+                near &= (h->lo[c][j] <= g->hi[c][i]) & (g->lo[c][i] <= h->hi[c][j]);
+                share |= (h->ix[c][j] == g->ix[0][i]) | (h->ix[c][j] == g->ix[1][i]) | (h->ix[c][j] == g->ix[2][i]);
+            }
+            n |= (unsigned)near << j;
+            s |= (unsigned)(near & share) << j;
         }
-        n |= (unsigned)near << j;
-        s |= (unsigned)(near & share) << j;
+        out[i] = (uint16_t)((n & ~s) | s << 8);
+        any |= out[i];
     }
-    return (n & ~s) | s << 8;
+    return any != 0;
 }
 
 static unsigned box_screen_scalar(const double *const lo[3], const double *const hi[3], const double q[6])
@@ -220,30 +226,55 @@ out:
     return ret;
 }
 
+/* Whether triangles ta and tb are farther apart than the limit along one of the six diagonal
+ * directions x +- y, x +- z, y +- z: the boxes' screen passes in-plane neighbours of a sheet whose
+ * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
+ * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
+ * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
+ * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
+ * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
+ * and of the comparison's sum. In double for both precisions. */
+static int diag_apart(const qpose *P, int32_t ta, int32_t tb, double R)
+{
+    double lo[2][6], hi[2][6];
+    for (int s = 0; s < 2; ++s) {
+        const uint32_t *ix = P->a.tris + 3 * (size_t)(s ? tb : ta);
+        for (int k = 0; k < 3; ++k) {
+            const real *v = P->a.verts + 3 * (size_t)ix[k];
+            const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
+            const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
+            for (int d = 0; d < 6; ++d) {
+                lo[s][d] = k == 0 || p[d] < lo[s][d] ? p[d] : lo[s][d];
+                hi[s][d] = k == 0 || p[d] > hi[s][d] ? p[d] : hi[s][d];
+            }
+        }
+    }
+    int apart = 0;
+    for (int d = 0; d < 6; ++d)
+        apart |= (lo[1][d] > hi[0][d] + R) | (lo[0][d] > hi[1][d] + R);
+    return apart;
+}
+
 /* Leaves g and h (g <= h; their boxes near): their triangle pairs near by the screen (for g == h,
  * i < j), queued. */
 static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t g,
                              uint32_t h)
 {
-    const ttd_self_block *bg = &G->blk[g], *bh = &G->blk[h];
-    for (int i = 0; i < TTD_NODE_WIDTH && G->tri[g][i] >= 0 && !w->hit; ++i) {
+    uint16_t near[TTD_NODE_WIDTH];
+    const int any = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
+                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
+    if (!any)
+        return;
+    const unsigned keep = P->self & SELF_SHARED ? 0xFFFFu : 0xFFu;
+    for (int i = 0; i < TTD_NODE_WIDTH && !w->hit; ++i) {
         const int32_t ti = G->tri[g][i];
-        const double q[6] = {bg->lo[0][i], bg->lo[1][i], bg->lo[2][i], bg->hi[0][i], bg->hi[1][i], bg->hi[2][i]};
-        const double ix[3] = {bg->ix[0][i], bg->ix[1][i], bg->ix[2][i]};
-        unsigned m = G->screen ? G->screen(bh, q, ix) : self_screen_scalar(bh, q, ix);
-        if (g == h) { /* j > i, in both halves */
-            const unsigned after = (0xFEu << i) & 0xFFu;
-            m &= after | after << 8;
-        }
-        if (!(P->self & SELF_SHARED))
-            m &= 0xFFu;
-        for (; m != 0; m &= m - 1) {
+        for (unsigned m = near[i] & keep; m != 0; m &= m - 1) {
             const int bit = __builtin_ctz(m), j = bit & 7;
             const int32_t tj = G->tri[h][j], ta = ti < tj ? ti : tj, tb = ti < tj ? tj : ti;
             uint32_t v = 0;
             const int kind = bit < 8 ? SELF_PAIR
                                      : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
-            if (kind != SELF_NONE)
+            if (kind != SELF_NONE && !diag_apart(P, ta, tb, G->R))
                 queue_self(C, P, W, w, ta, tb, kind, v);
         }
     }
@@ -332,6 +363,7 @@ static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, siz
     /* L: the walk's limit with its rounding margin, rounded up in double */
     const double L = ((double)margin + (double)P.delta) * (1 + 0x1p-50);
     const int made = self_grid_make(&P, C->ma->nnodes, L, ttd_dispatch_row_d(C->isa), &G);
+    G.R = 1.5 * L;
     if (made <= 0) {
         self_grid_free(&G);
         return made == 0 ? -1 : TTD_ERR_OUT_OF_MEMORY;

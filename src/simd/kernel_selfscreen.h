@@ -16,23 +16,33 @@ TTDW_FN ttdw_md screen_near(const double *const lo[3], const double *const hi[3]
     return m;
 }
 
-static unsigned self_screen(const ttd_self_block *b, const double q[6], const double ix[3])
+static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
 {
-    const double *const lo[3] = {b->lo[0], b->lo[1], b->lo[2]}, *const hi[3] = {b->hi[0], b->hi[1], b->hi[2]};
-    const ttdw_vd i0 = ttdw_set1_d(ix[0]), i1 = ttdw_set1_d(ix[1]), i2 = ttdw_set1_d(ix[2]);
-    unsigned n = 0, s = 0;
-    for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D) {
-        const ttdw_md near = screen_near(lo, hi, j, q);
-        ttdw_md share = ttdw_mtrue_d();
-        share = ttdw_mandnot_d(share, share); /* none */
-        for (int c = 0; c < 3; ++c) {
-            const ttdw_vd x = ttdw_loadu_d(b->ix[c] + j);
-            share = ttdw_mor_d(share, ttdw_mor_d(ttdw_eq_d(x, i0), ttdw_mor_d(ttdw_eq_d(x, i1), ttdw_eq_d(x, i2))));
+    const double *const lo[3] = {h->lo[0], h->lo[1], h->lo[2]}, *const hi[3] = {h->hi[0], h->hi[1], h->hi[2]};
+    unsigned any = 0;
+    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+        const double q[6] = {g->lo[0][i], g->lo[1][i], g->lo[2][i], g->hi[0][i], g->hi[1][i], g->hi[2][i]};
+        const ttdw_vd i0 = ttdw_set1_d(g->ix[0][i]), i1 = ttdw_set1_d(g->ix[1][i]), i2 = ttdw_set1_d(g->ix[2][i]);
+        unsigned n = 0, s = 0;
+        for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D) {
+            const ttdw_md near = screen_near(lo, hi, j, q);
+            ttdw_md share = ttdw_eq_d(ttdw_loadu_d(h->ix[0] + j), i0);
+            for (int c = 0; c < 3; ++c) {
+                const ttdw_vd x = ttdw_loadu_d(h->ix[c] + j);
+                share = ttdw_mor_d(share, ttdw_mor_d(ttdw_eq_d(x, i0), ttdw_mor_d(ttdw_eq_d(x, i1), ttdw_eq_d(x, i2))));
+            }
+            n |= ttdw_mbits_d(near) << j;
+            s |= ttdw_mbits_d(ttdw_mand_d(near, share)) << j;
         }
-        n |= ttdw_mbits_d(near) << j;
-        s |= ttdw_mbits_d(ttdw_mand_d(near, share)) << j;
+        if (same) {
+            const unsigned after = (0xFEu << i) & 0xFFu;
+            n &= after;
+            s &= after;
+        }
+        out[i] = (uint16_t)((n & ~s) | s << 8);
+        any |= out[i];
     }
-    return (n & ~s) | s << 8;
+    return any != 0;
 }
 
 static unsigned box_screen(const double *const lo[3], const double *const hi[3], const double q[6])
