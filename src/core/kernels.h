@@ -162,12 +162,13 @@ typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const doub
  * -inf. A lane is near a box q (q[0..2] its lo, q[3..5] its raised hi) when on every axis lo[c] <=
  * q[3 + c] and q[c] <= hi[c]: comparisons only, the same bits on every row.
  * self_screen: every triangle i of leaf g against the 8 triangles of leaf h (with same, g is h and
- * only lanes j > i count): out[i] gets, bits 0-7, the lanes near triangle i that share no vertex
+ * only lanes j > i count; rows i whose box is not near h's leaf box are skipped, out[i] = 0): out[i] gets, bits 0-7, the lanes near triangle i that share no vertex
  * index with it, bits 8-15 the near lanes that share one or more; returns whether any out[i] is
  * not 0. box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
 typedef struct ttd_self_block {
     double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
     double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
+    double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
 } ttd_self_block;
 typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);

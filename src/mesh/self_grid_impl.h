@@ -34,7 +34,8 @@ typedef struct self_grid {
     uint32_t *start;           /* ncells + 1: cell c's leaves are order[start[c] .. start[c+1]) */
     uint32_t *order;
     size_t dim[3], ncells;
-    double R;                  /* the diagonal screen's limit (diag_apart) */
+    double (*dg)[12][TTD_NODE_WIDTH]; /* per leaf: its triangles' projections on the six diagonal
+                                  directions (diag_apart): minima, then maxima raised by 1.5 L */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
 } self_grid;
@@ -46,6 +47,7 @@ static void self_grid_free(self_grid *G)
     free(G->sbox);
     free(G->start);
     free(G->order);
+    free(G->dg);
 }
 
 /* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
@@ -54,6 +56,12 @@ static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, 
     unsigned any = 0;
     for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
         unsigned n = 0, s = 0;
+        out[i] = 0;
+        int row = 1; /* triangle i near h's leaf box */
+        for (int c = 0; c < 3; ++c)
+            row &= (h->box[c] <= g->hi[c][i]) & (g->lo[c][i] <= h->box[3 + c]);
+        if (!row)
+            continue;
         for (int j = same ? i + 1 : 0; j < TTD_NODE_WIDTH; ++j) {
             int near = 1, share = 0;
             for (int c = 0; c < 3; ++c) {
@@ -77,6 +85,40 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
                         (lo[2][j] <= q[5]) & (q[2] <= hi[2][j]))
              << j;
     return n;
+}
+
+/* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
+ * directions x +- y, x +- z, y +- z (diag_apart, from each triangle's projections made once per
+ * query by diag_extents): the boxes' screen passes in-plane neighbours of a sheet whose
+ * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
+ * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
+ * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
+ * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
+ * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
+ * and of the comparison's sum. In double for both precisions. */
+static void diag_extents(const qpose *P, const uint32_t *ix, double R, double dg[12][TTD_NODE_WIDTH], int lane)
+{
+    for (int k = 0; k < 3; ++k) {
+        const real *v = P->a.verts + 3 * (size_t)ix[k];
+        const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
+        const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
+        for (int d = 0; d < 6; ++d) {
+            dg[d][lane] = k == 0 || p[d] < dg[d][lane] ? p[d] : dg[d][lane];
+            dg[6 + d][lane] = k == 0 || p[d] > dg[6 + d][lane] ? p[d] : dg[6 + d][lane];
+        }
+    }
+    for (int d = 0; d < 6; ++d)
+        dg[6 + d][lane] += R;
+}
+
+/* Whether lane i of leaf g and lane j of leaf h are apart along a diagonal direction. */
+static int diag_apart(const self_grid *G, uint32_t g, int i, uint32_t h, int j)
+{
+    const double *a = &G->dg[g][0][i], *b = &G->dg[h][0][j]; /* direction d at [d * 8] */
+    int apart = 0;
+    for (int d = 0; d < 6; ++d)
+        apart |= (b[d * TTD_NODE_WIDTH] > a[(6 + d) * TTD_NODE_WIDTH]) | (a[d * TTD_NODE_WIDTH] > b[(6 + d) * TTD_NODE_WIDTH]);
+    return apart;
 }
 
 /* Leaf tests per leaf above which the grid is no better than the walk (one huge leaf box makes
@@ -103,11 +145,13 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
     G->blk = ttd_big_alloc((ng ? ng : 1) * sizeof *G->blk);
     G->tri = malloc((ng ? ng : 1) * sizeof *G->tri);
     G->sbox = ttd_big_alloc(6 * (ng + TTD_NODE_WIDTH) * sizeof *G->sbox);
+    G->dg = ttd_big_alloc((ng ? ng : 1) * sizeof *G->dg);
     G->order = malloc((ng ? ng : 1) * sizeof *G->order);
     double (*gbox)[6] = malloc((ng ? ng : 1) * sizeof *gbox);
     uint32_t *cell = malloc((ng ? ng : 1) * sizeof *cell);
     int ret = -1;
-    if (G->blk == NULL || G->tri == NULL || G->sbox == NULL || G->order == NULL || gbox == NULL || cell == NULL)
+    if (G->blk == NULL || G->tri == NULL || G->sbox == NULL || G->dg == NULL || G->order == NULL || gbox == NULL ||
+        cell == NULL)
         goto out;
     double ext = 0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     size_t g = 0;
@@ -136,12 +180,16 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
                 gb[c] = mn < gb[c] ? mn : gb[c];
                 gb[3 + c] = b->hi[c][k] > gb[3 + c] ? b->hi[c][k] : gb[3 + c];
             }
+            diag_extents(P, ix, 1.5 * L, G->dg[g], k);
             ++k;
         }
         if (k == 0)
             continue;
+        memcpy(b->box, gb, sizeof b->box);
         for (; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
             G->tri[g][k] = -1;
+            for (int d = 0; d < 12; ++d)
+                G->dg[g][d][k] = 0;
             for (int c = 0; c < 3; ++c) {
                 b->lo[c][k] = INFINITY;
                 b->hi[c][k] = -INFINITY;
@@ -226,35 +274,6 @@ out:
     return ret;
 }
 
-/* Whether triangles ta and tb are farther apart than the limit along one of the six diagonal
- * directions x +- y, x +- z, y +- z: the boxes' screen passes in-plane neighbours of a sheet whose
- * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
- * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
- * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
- * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
- * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
- * and of the comparison's sum. In double for both precisions. */
-static int diag_apart(const qpose *P, int32_t ta, int32_t tb, double R)
-{
-    double lo[2][6], hi[2][6];
-    for (int s = 0; s < 2; ++s) {
-        const uint32_t *ix = P->a.tris + 3 * (size_t)(s ? tb : ta);
-        for (int k = 0; k < 3; ++k) {
-            const real *v = P->a.verts + 3 * (size_t)ix[k];
-            const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
-            const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
-            for (int d = 0; d < 6; ++d) {
-                lo[s][d] = k == 0 || p[d] < lo[s][d] ? p[d] : lo[s][d];
-                hi[s][d] = k == 0 || p[d] > hi[s][d] ? p[d] : hi[s][d];
-            }
-        }
-    }
-    int apart = 0;
-    for (int d = 0; d < 6; ++d)
-        apart |= (lo[1][d] > hi[0][d] + R) | (lo[0][d] > hi[1][d] + R);
-    return apart;
-}
-
 /* Leaves g and h (g <= h; their boxes near): their triangle pairs near by the screen (for g == h,
  * i < j), queued. */
 static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t g,
@@ -274,7 +293,7 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
             uint32_t v = 0;
             const int kind = bit < 8 ? SELF_PAIR
                                      : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
-            if (kind != SELF_NONE && !diag_apart(P, ta, tb, G->R))
+            if (kind != SELF_NONE && !diag_apart(G, g, i, h, j))
                 queue_self(C, P, W, w, ta, tb, kind, v);
         }
     }
@@ -363,7 +382,6 @@ static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, siz
     /* L: the walk's limit with its rounding margin, rounded up in double */
     const double L = ((double)margin + (double)P.delta) * (1 + 0x1p-50);
     const int made = self_grid_make(&P, C->ma->nnodes, L, ttd_dispatch_row_d(C->isa), &G);
-    G.R = 1.5 * L;
     if (made <= 0) {
         self_grid_free(&G);
         return made == 0 ? -1 : TTD_ERR_OUT_OF_MEMORY;

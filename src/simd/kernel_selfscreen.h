@@ -19,8 +19,15 @@ TTDW_FN ttdw_md screen_near(const double *const lo[3], const double *const hi[3]
 static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
 {
     const double *const lo[3] = {h->lo[0], h->lo[1], h->lo[2]}, *const hi[3] = {h->hi[0], h->hi[1], h->hi[2]};
+    /* the rows of g near h's leaf box (on a sheet, those along the leaves' common border) */
+    const double *const glo[3] = {g->lo[0], g->lo[1], g->lo[2]}, *const ghi[3] = {g->hi[0], g->hi[1], g->hi[2]};
+    unsigned rows = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D)
+        rows |= ttdw_mbits_d(screen_near(glo, ghi, j, h->box)) << j;
     unsigned any = 0;
-    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+    memset(out, 0, TTD_NODE_WIDTH * sizeof *out);
+    for (; rows != 0; rows &= rows - 1) {
+        const int i = __builtin_ctz(rows);
         const double q[6] = {g->lo[0][i], g->lo[1][i], g->lo[2][i], g->hi[0][i], g->hi[1][i], g->hi[2][i]};
         const ttdw_vd i0 = ttdw_set1_d(g->ix[0][i]), i1 = ttdw_set1_d(g->ix[1][i]), i2 = ttdw_set1_d(g->ix[2][i]);
         unsigned n = 0, s = 0;
