@@ -361,11 +361,12 @@ static int query_equals_walk(const char *what, const ttd_mesh *m, double margin,
     return 0;
 }
 
-/* The two ways a self-contact query goes (docs/mesh-queries.md, section 3b): the grid of leaves,
- * on issue 36's sheet folded into 7 layers (a smaller strip), the layers 1.5 and 0.8 margins
- * apart, against the brute force and the walk; and the walk, which the query keeps when one
- * leaf's box is so large that the grid would put every leaf in one cell: the same kind of sheet
- * with one triangle across all of it, whose records come in the walk's order. */
+/* The ways a self-contact query goes (docs/mesh-queries.md, section 3b): the grid of leaves, on
+ * issue 36's sheet folded into 7 layers (a smaller strip), the layers 1.5 and 0.8 margins apart,
+ * against the brute force and the walk; a sheet with one triangle across all of it, whose leaf
+ * the grid tests against every leaf (a large leaf), against the walk; and the walk itself, which
+ * the query keeps when the leaves are so large alike that the grid would put them all in one
+ * cell (6,000 slivers across a cube): its records come in the walk's order. */
 static int grid_and_walk_match_brute_force(void)
 {
     const size_t nx = 70, ny = 10;
@@ -388,8 +389,7 @@ static int grid_and_walk_match_brute_force(void)
         ttd_mesh_destroy(m);
         ttd_gen_mesh_free(&g);
     }
-    /* 5,000 triangles (625 leaves) and one across them all: 625 leaves in one cell is past the
-     * grid's work limit (256 leaf tests a leaf), so the walk answers */
+    /* 5,000 triangles and one across them all: the grid, with that triangle's leaf apart */
     ttd_gen_mesh g;
     ENSURE(ttd_gen_folded_sheet(50, 3, 0.01, 1.0, &g) == 0);
     double *v = realloc(g.verts, 3 * (g.nv + 3) * sizeof *v);
@@ -408,11 +408,36 @@ static int grid_and_walk_match_brute_force(void)
     ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
     size_t n;
     for (int shared = 0; shared < 2; ++shared)
-        if (query_equals_walk("sheet with one triangle across it", m, 0.011, shared ? TTD_SELF_SHARED_VERTEX : 0u, 1, &n))
+        if (query_equals_walk("sheet with one triangle across it", m, 0.011, shared ? TTD_SELF_SHARED_VERTEX : 0u, 0, &n))
             return 1;
     ENSURE(n > 5000);
     ttd_mesh_destroy(m);
     ttd_gen_mesh_free(&g);
+    /* 6,000 slivers from z = 0 to z = 1 (750 leaves about as large as the cube, in one cell: past
+     * the grid's work limit of 256 leaf tests a leaf): the walk */
+    const size_t ns = 6000;
+    double *sv = malloc(9 * ns * sizeof *sv);
+    uint32_t *st = malloc(3 * ns * sizeof *st);
+    ENSURE(sv != NULL && st != NULL);
+    uint64_t r = 12345;
+    for (size_t i = 0; i < 9 * ns; ++i) {
+        r = r * 6364136223846793005u + 1442695040888963407u;
+        sv[i] = (double)(r >> 11) * 0x1p-53;
+    }
+    for (size_t i = 0; i < ns; ++i) {
+        sv[9 * i + 2] = 0, sv[9 * i + 5] = 1; /* from the floor to the ceiling */
+        for (int k = 0; k < 3; ++k) /* the third vertex beside the second */
+            sv[9 * i + 6 + k] = sv[9 * i + 3 + k] + 0.01 * (sv[9 * i + 6 + k] - 0.5);
+        for (int k = 0; k < 3; ++k)
+            st[3 * i + k] = (uint32_t)(3 * i + (size_t)k);
+    }
+    ENSURE(ttd_mesh_create_d(NULL, sv, 3 * ns, st, ns, &m) == TTD_OK);
+    if (query_equals_walk("slivers across a cube", m, 1e-3, 0u, 1, &n))
+        return 1;
+    ENSURE(n > 1000);
+    ttd_mesh_destroy(m);
+    free(sv);
+    free(st);
     return 0;
 }
 

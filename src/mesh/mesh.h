@@ -39,6 +39,9 @@ struct ttd_mesh {
     /* the point queries' data (src/points/points.h: prepared triangles, winding-number moments),
      * made on first use (atomic); its first member is the function that frees it */
     void *points;
+    /* the self-contact queries' arrays (mesh/self_grid_impl.h), kept between queries; taken and
+     * given back atomically; its first member is the function that frees it; NULL until then */
+    void *self_scratch;
     /* Deforming meshes (ttd_mesh_refit): */
     uint64_t generation; /* vertex updates so far: a scene's bodies compare it with theirs */
     uint64_t rebuilds;   /* of those, the ones whose refit triggered a rebuild */

@@ -23,6 +23,77 @@
  * Where one leaf's box is so large that the grid would put most leaves together, the caller
  * keeps the walk (self_grid_make returns 0). */
 
+/* A self query's arrays, kept with the mesh between queries (ttd_mesh.self_scratch): a query on a
+ * 100k-triangle mesh needs about 18 MB of them, and fresh memory each time cost it the clearing
+ * of every page. Taken by one query at a time (an atomic exchange; a query that finds none, as
+ * when two run at once, makes its own and keeps or frees it after); freed with the mesh by its
+ * first member. Only arrays: nothing a query leaves in them is read by the next. */
+typedef struct self_scratch {
+    void (*free_fn)(void *);
+    size_t cap_g, cap_c;       /* leaves and cells they hold */
+    ttd_self_block *blk;
+    int32_t (*tri)[TTD_NODE_WIDTH];
+    double *sbox;
+    double (*dg)[12][TTD_NODE_WIDTH];
+    uint32_t *order, *cell;
+    double (*gbox)[6];
+    double *ext;               /* per leaf: its largest side with L */
+    uint32_t *start;
+} self_scratch;
+
+static void self_scratch_free(void *p)
+{
+    self_scratch *S = p;
+    if (S == NULL)
+        return;
+    free(S->blk);
+    free(S->tri);
+    free(S->sbox);
+    free(S->dg);
+    free(S->order);
+    free(S->cell);
+    free(S->gbox);
+    free(S->ext);
+    free(S->start);
+    free(S);
+}
+
+/* The mesh's scratch with room for ng leaves, or NULL out of memory. */
+static self_scratch *self_scratch_take(const struct ttd_mesh *mesh, size_t ng)
+{
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh; /* a cache, not a change to the mesh */
+    self_scratch *S = __atomic_exchange_n((self_scratch **)&m->self_scratch, NULL, __ATOMIC_ACQ_REL);
+    if (S == NULL && (S = calloc(1, sizeof *S)) != NULL)
+        S->free_fn = self_scratch_free;
+    if (S == NULL || S->cap_g >= ng)
+        return S;
+    free(S->blk), free(S->tri), free(S->sbox), free(S->dg), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
+    const size_t n = ng ? ng : 1;
+    S->blk = ttd_big_alloc(n * sizeof *S->blk);
+    S->tri = malloc(n * sizeof *S->tri);
+    S->sbox = ttd_big_alloc(6 * (n + TTD_NODE_WIDTH) * sizeof *S->sbox);
+    S->dg = ttd_big_alloc(n * sizeof *S->dg);
+    S->order = malloc(n * sizeof *S->order);
+    S->cell = malloc(n * sizeof *S->cell);
+    S->gbox = malloc(n * sizeof *S->gbox);
+    S->ext = malloc(n * sizeof *S->ext);
+    S->cap_g = n;
+    if (!S->blk || !S->tri || !S->sbox || !S->dg || !S->order || !S->cell || !S->gbox || !S->ext) {
+        self_scratch_free(S);
+        return NULL;
+    }
+    return S;
+}
+
+/* Gives the scratch back to the mesh (or frees it where another query's is there already). */
+static void self_scratch_give(const struct ttd_mesh *mesh, self_scratch *S)
+{
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    void *none = NULL;
+    if (S != NULL && !__atomic_compare_exchange_n(&m->self_scratch, &none, (void *)S, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
+        self_scratch_free(S);
+}
+
 /* A self query's grid. Every box is in double, for both precisions (float coordinates convert
  * exactly, and L is rounded up in double as in real). */
 typedef struct self_grid {
@@ -34,21 +105,14 @@ typedef struct self_grid {
     uint32_t *start;           /* ncells + 1: cell c's leaves are order[start[c] .. start[c+1]) */
     uint32_t *order;
     size_t dim[3], ncells;
+    size_t nsmall;             /* leaves in cells: positions [0, nsmall) of order; the large
+                                  leaves after them, each tested against every leaf */
     double (*dg)[12][TTD_NODE_WIDTH]; /* per leaf: its triangles' projections on the six diagonal
                                   directions (diag_apart): minima, then maxima raised by 1.5 L */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
+    self_scratch *S;           /* where the arrays are */
 } self_grid;
-
-static void self_grid_free(self_grid *G)
-{
-    free(G->blk);
-    free(G->tri);
-    free(G->sbox);
-    free(G->start);
-    free(G->order);
-    free(G->dg);
-}
 
 /* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
 static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
@@ -127,13 +191,15 @@ static int diag_apart(const self_grid *G, uint32_t g, int i, uint32_t h, int j)
 
 /* Builds G for the mesh of P at limit L (double): 1 done, 0 the walk is better (or L is not
  * finite), -1 out of memory. */
-static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_kernels_d *row, self_grid *G)
+static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L, const ttd_kernels_d *row,
+                          self_grid *G)
 {
     memset(G, 0, sizeof *G);
     G->screen = row != NULL ? row->self_screen : NULL;
     G->boxes = row != NULL ? row->box_screen : NULL;
     if (!isfinite(L))
         return 0;
+    const size_t nnodes = mesh->nnodes;
     size_t ng = 0;
     for (size_t n = 0; n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
         for (int j = 0; j < P->a.nodes[n].count; ++j)
@@ -142,18 +208,17 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
                 break;
             }
     G->ngroups = ng;
-    G->blk = ttd_big_alloc((ng ? ng : 1) * sizeof *G->blk);
-    G->tri = malloc((ng ? ng : 1) * sizeof *G->tri);
-    G->sbox = ttd_big_alloc(6 * (ng + TTD_NODE_WIDTH) * sizeof *G->sbox);
-    G->dg = ttd_big_alloc((ng ? ng : 1) * sizeof *G->dg);
-    G->order = malloc((ng ? ng : 1) * sizeof *G->order);
-    double (*gbox)[6] = malloc((ng ? ng : 1) * sizeof *gbox);
-    uint32_t *cell = malloc((ng ? ng : 1) * sizeof *cell);
-    int ret = -1;
-    if (G->blk == NULL || G->tri == NULL || G->sbox == NULL || G->dg == NULL || G->order == NULL || gbox == NULL ||
-        cell == NULL)
-        goto out;
-    double ext = 0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    self_scratch *S = G->S = self_scratch_take(mesh, ng);
+    if (S == NULL)
+        return -1;
+    G->blk = S->blk;
+    G->tri = S->tri;
+    G->sbox = S->sbox;
+    G->dg = S->dg;
+    G->order = S->order;
+    double(*gbox)[6] = S->gbox;
+    uint32_t *cell = S->cell;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
     size_t g = 0;
     for (size_t n = 0; n < nnodes; ++n) {
         const ttd_node *y = P->a.nodes + n;
@@ -196,21 +261,33 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
                 b->ix[c][k] = -1;
             }
         }
+        double e = 0; /* the leaf's extent with L: its largest side */
         for (int c = 0; c < 3; ++c) {
-            const double e = gb[3 + c] - gb[c]; /* the leaf's extent with L */
-            ext = e > ext ? e : ext;
+            e = gb[3 + c] - gb[c] > e ? gb[3 + c] - gb[c] : e;
             lo[c] = gb[c] < lo[c] ? gb[c] : lo[c];
             hi[c] = gb[c] > hi[c] ? gb[c] : hi[c];
         }
+        S->ext[g] = e;
+        sum += e;
         ++g;
     }
-    /* two leaves within L on axis c: their low corners differ by at most the larger's extent
-     * with L (ext); a cell a little wider than that keeps their cells' indices within 1 despite
-     * the rounding of (lo - lo_min) / h */
+    /* Leaves up to 4 times the mean extent go into cells as wide as the largest of them; two of
+     * them within L on axis c have low corners at most that apart, and a cell a little wider
+     * keeps their cells' indices within 1 despite the rounding of (lo - lo_min) / h. The larger
+     * leaves (a few, where a refitted tree has stretched ones) are each tested against all. */
+    const double cut = 4 * sum / (double)(ng ? ng : 1);
+    double ext = 0;
+    size_t nbig = 0;
+    for (size_t i = 0; i < ng; ++i) {
+        if (S->ext[i] <= cut)
+            ext = S->ext[i] > ext ? S->ext[i] : ext;
+        else
+            ++nbig;
+    }
+    G->nsmall = ng - nbig;
     double h = ext * (1 + 0x1p-20);
-    ret = 0;
     if (!(h > 0) || !isfinite(h))
-        goto out;
+        return 0;
     for (;;) {
         double cells = 1;
         for (int c = 0; c < 3; ++c)
@@ -224,11 +301,18 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
         G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h) + 1;
         G->ncells *= G->dim[c];
     }
-    ret = -1;
-    G->start = calloc(G->ncells + 2, sizeof *G->start);
-    if (G->start == NULL)
-        goto out;
+    if (S->cap_c < G->ncells + 2) {
+        free(S->start);
+        S->start = malloc((G->ncells + 2) * sizeof *S->start);
+        S->cap_c = S->start ? G->ncells + 2 : 0;
+        if (S->start == NULL)
+            return -1;
+    }
+    G->start = S->start;
+    memset(G->start, 0, (G->ncells + 2) * sizeof *G->start);
     for (size_t i = 0; i < ng; ++i) {
+        if (S->ext[i] > cut)
+            continue;
         size_t at = 0;
         for (int c = 2; c >= 0; --c) {
             size_t q = (size_t)floor((gbox[i][c] - lo[c]) / h);
@@ -240,8 +324,8 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
     }
     for (size_t c = 0; c < G->ncells; ++c)
         G->start[c + 2] += G->start[c + 1];
-    for (size_t i = 0; i < ng; ++i) /* start[c + 1] runs through cell c, then is its end */
-        G->order[G->start[cell[i] + 1]++] = (uint32_t)i;
+    for (size_t i = 0, big = G->nsmall; i < ng; ++i) /* start[c + 1] runs through cell c, then is its end */
+        G->order[S->ext[i] > cut ? big++ : G->start[cell[i] + 1]++] = (uint32_t)i;
     const size_t stride = ng + TTD_NODE_WIDTH;
     for (size_t p = 0; p < stride; ++p)
         for (int c = 0; c < 6; ++c)
@@ -267,11 +351,8 @@ static int self_grid_make(const qpose *P, size_t nnodes, double L, const ttd_ker
                         }
                 work += nc * (around + (nc + 1) / 2);
             }
-    ret = work <= SELF_GRID_WORK * (double)ng + 1024 ? 1 : 0;
-out:
-    free(gbox);
-    free(cell);
-    return ret;
+    work += (double)nbig * (double)ng / TTD_NODE_WIDTH; /* the large leaves' row calls */
+    return work <= SELF_GRID_WORK * (double)ng + 1024 ? 1 : 0;
 }
 
 /* Leaves g and h (g <= h; their boxes near): their triangle pairs near by the screen (for g == h,
@@ -322,11 +403,13 @@ static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, co
     }
 }
 
-/* The leaves of cells [c0, c1) against their neighbours, into w's list. */
-static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t c0, size_t c1)
+/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
+ * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
+ * and the large leaves from itself on. */
+static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
 {
     const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2];
-    for (size_t c = c0; c < c1 && !W->nomem && !w->hit; ++c) {
+    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
         const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
         for (uint32_t p = G->start[c]; p < G->start[c + 1]; ++p) {
             self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
@@ -340,6 +423,11 @@ static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, co
                     }
         }
     }
+    for (size_t u = u1 > G->ncells ? (u0 > G->ncells ? u0 : G->ncells) : u1; u < u1 && !W->nomem && !w->hit; ++u) {
+        const uint32_t p = (uint32_t)(G->nsmall + (u - G->ncells));
+        self_grid_range(C, P, W, w, G, p, 0, (uint32_t)G->nsmall);
+        self_grid_range(C, P, W, w, G, p, p, (uint32_t)G->ngroups);
+    }
     flush(C, P, W, w);
 }
 
@@ -351,7 +439,7 @@ typedef struct self_grid_job {
     const qpose *P;
     const self_grid *G;
     real margin;
-    size_t cut[SELF_GRID_TASKS + 1]; /* task t: cells [cut[t], cut[t + 1]) */
+    size_t cut[SELF_GRID_TASKS + 1]; /* task t: units [cut[t], cut[t + 1]) (self_grid_cells) */
     clist *lists;
     qwork *work;
     atomic_int nomem;
@@ -381,9 +469,9 @@ static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, siz
     self_grid G;
     /* L: the walk's limit with its rounding margin, rounded up in double */
     const double L = ((double)margin + (double)P.delta) * (1 + 0x1p-50);
-    const int made = self_grid_make(&P, C->ma->nnodes, L, ttd_dispatch_row_d(C->isa), &G);
+    const int made = self_grid_make(&P, C->ma, L, ttd_dispatch_row_d(C->isa), &G);
     if (made <= 0) {
-        self_grid_free(&G);
+        self_scratch_give(C->ma, G.S);
         return made == 0 ? -1 : TTD_ERR_OUT_OF_MEMORY;
     }
     self_grid_job J = {C, &P, &G, margin, {0}, NULL, NULL, 0};
@@ -391,11 +479,12 @@ static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, siz
     size_t nt = 0;
     for (size_t t = 1; t <= SELF_GRID_TASKS; ++t) {
         const size_t want = G.ngroups * t / SELF_GRID_TASKS;
-        size_t c = J.cut[nt];
-        while (c < G.ncells && G.start[c] < want)
+        const size_t units = G.ncells + (G.ngroups - G.nsmall);
+        size_t c = J.cut[nt]; /* the leaves before unit c: start[c], or nsmall + (c - ncells) */
+        while (c < units && (c < G.ncells ? G.start[c] : G.nsmall + (c - G.ncells)) < want)
             ++c;
         if (t == SELF_GRID_TASKS)
-            c = G.ncells;
+            c = units;
         if (c > J.cut[nt])
             J.cut[++nt] = c;
     }
@@ -448,7 +537,7 @@ static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, siz
         clist_drain(&J.lists[t], NULL);
     free(J.lists);
     qwork_free(J.work, workers, &one);
-    self_grid_free(&G);
+    self_scratch_give(C->ma, G.S);
     if (!ok) {
         if (out != NULL)
             out->count = 0;
