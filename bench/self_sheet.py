@@ -104,7 +104,7 @@ def main():
             c1, t1 = time.thread_time(), time.perf_counter()
             wall.append((t1 - t0) * 1e3)
             cpu.append((c1 - c0) * 1e3)
-            n = len(res)
+            n = len(res.distance)
         print("%-9s %9d %9d %10.2f %10.2f %10.1f" % (name, len(F), n, np.median(wall), np.median(cpu),
                                                      np.median(cpu) * 1e6 / max(n, 1)))
 
