@@ -276,29 +276,37 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
      * keeps their cells' indices within 1 despite the rounding of (lo - lo_min) / h. The larger
      * leaves (a few, where a refitted tree has stretched ones) are each tested against all. */
     const double cut = 4 * sum / (double)(ng ? ng : 1);
-    double ext = 0;
+    double hc[3] = {0, 0, 0}; /* per axis: the largest side of the leaves in cells */
     size_t nbig = 0;
     for (size_t i = 0; i < ng; ++i) {
-        if (S->ext[i] <= cut)
-            ext = S->ext[i] > ext ? S->ext[i] : ext;
-        else
+        if (S->ext[i] > cut) {
             ++nbig;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c)
+            hc[c] = gbox[i][3 + c] - gbox[i][c] > hc[c] ? gbox[i][3 + c] - gbox[i][c] : hc[c];
     }
     G->nsmall = ng - nbig;
-    double h = ext * (1 + 0x1p-20);
-    if (!(h > 0) || !isfinite(h))
+    double h[3];
+    for (int c = 0; c < 3; ++c)
+        h[c] = hc[c] * (1 + 0x1p-20);
+    const double ext = h[0] > h[1] ? (h[0] > h[2] ? h[0] : h[2]) : (h[1] > h[2] ? h[1] : h[2]);
+    if (!(ext > 0) || !isfinite(ext))
         return 0;
+    for (int c = 0; c < 3; ++c) /* an axis the leaves have no width on: cells of the largest */
+        h[c] = h[c] > 0 ? h[c] : ext;
     for (;;) {
         double cells = 1;
         for (int c = 0; c < 3; ++c)
-            cells *= floor((hi[c] - lo[c]) / h) + 1;
+            cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
         if (cells <= 4.0 * (double)ng + 64)
             break;
-        h *= 1.5;
+        for (int c = 0; c < 3; ++c)
+            h[c] *= 1.5;
     }
     G->ncells = 1;
     for (int c = 0; c < 3; ++c) {
-        G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h) + 1;
+        G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h[c]) + 1;
         G->ncells *= G->dim[c];
     }
     if (S->cap_c < G->ncells + 2) {
@@ -315,7 +323,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
             continue;
         size_t at = 0;
         for (int c = 2; c >= 0; --c) {
-            size_t q = (size_t)floor((gbox[i][c] - lo[c]) / h);
+            size_t q = (size_t)floor((gbox[i][c] - lo[c]) / h[c]);
             q = q < G->dim[c] ? q : G->dim[c] - 1;
             at = at * G->dim[c] + q;
         }
