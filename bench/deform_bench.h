@@ -24,6 +24,7 @@ typedef struct bench_deform_config {
     int disabled; ///< --no-deform
     int only;     ///< --deform-only: the other sections are not run
     int refit_only; ///< --refit-only: --deform-only without the self-contact rows
+    int self_only;  ///< --self-only: --deform-only without the refit rows
 } bench_deform_config;
 
 /// What the rest of the benchmark decided, for this section.

@@ -448,13 +448,45 @@ int ttd_gen_grid(size_t n, ttd_gen_mesh *out)
     return 0;
 }
 
+/* An nx x ny grid of square quads of edge 1/nx (vertex (i, j) = index j*(nx+1) + i at (i/nx, j/nx, 0)),
+ * each split along its diagonal from (i, j) to (i+1, j+1): ttd_gen_grid's layout for any width. */
+static int grid_rect(size_t nx, size_t ny, ttd_gen_mesh *out)
+{
+    const size_t w = nx + 1, h = ny + 1;
+    if (nx < 1 || ny < 1 || nx >= 65535 || ny >= 65535 || w * h >= ((size_t)1 << 32))
+        return -1;
+    if (mesh_alloc(out, w * h, 2 * nx * ny) != 0)
+        return -1;
+    for (size_t j = 0; j < h; ++j)
+        for (size_t i = 0; i < w; ++i) {
+            double *p = out->verts + 3 * (j * w + i);
+            p[0] = (double)i / (double)nx;
+            p[1] = (double)j / (double)nx;
+            p[2] = 0.0;
+        }
+    uint32_t *t = out->tris;
+    for (size_t j = 0; j < ny; ++j)
+        for (size_t i = 0; i < nx; ++i) {
+            uint32_t a = (uint32_t)(j * w + i), b = a + 1, c = (uint32_t)((j + 1) * w + i + 1), d = c - 1;
+            t[0] = a; t[1] = b; t[2] = c;
+            t[3] = a; t[4] = c; t[5] = d;
+            t += 6;
+        }
+    return 0;
+}
+
 int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mesh *out)
+{
+    return ttd_gen_folded_strip(n, n, layers, gap, t, out);
+}
+
+int ttd_gen_folded_strip(size_t nx, size_t ny, int layers, double gap, double t, ttd_gen_mesh *out)
 {
     if (!out)
         return -1;
     memset(out, 0, sizeof *out);
     if (layers < 1 || layers > 64 || !(gap >= 0) || !(t >= 0 && t <= 2) || !isfinite(gap) ||
-        ttd_gen_grid(n, out) != 0)
+        grid_rect(nx, ny, out) != 0)
         return -1;
     /* the path in the xz-plane: layers flat runs of length a joined by arcs of radius r turning by
      * theta, left and right in turn; arc length x along it */
@@ -464,9 +496,9 @@ int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mes
         ttd_gen_mesh_free(out);
         return -1;
     }
-    const size_t w = n + 1;
+    const size_t w = nx + 1;
     for (size_t i = 0; i < w; ++i) {
-        double s = (double)i / (double)n, x = 0, z = 0, phi = 0;
+        double s = (double)i / (double)nx, x = 0, z = 0, phi = 0;
         for (int k = 0; k < layers; ++k) {
             const double run = s < a || k == layers - 1 ? s : a;
             x += run * cos(phi);
@@ -484,7 +516,7 @@ int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mes
             if (s <= 0)
                 break;
         }
-        for (size_t j = 0; j < w; ++j) {
+        for (size_t j = 0; j <= ny; ++j) {
             double *p = out->verts + 3 * (j * w + i);
             p[0] = x;
             p[2] = z;

@@ -87,6 +87,11 @@ int ttd_gen_grid(size_t n, ttd_gen_mesh *out);
 /// sheet. Uses sin and cos (see the determinism note above). Fails when the arcs would be longer
 /// than the sheet.
 int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mesh *out);
+/// The same fold on a strip of nx x ny square quads of edge 1/nx (x in [0, 1] along the fold's
+/// path, y in [0, ny/nx]; vertex (i, j) = index j*(nx+1) + i; nx, ny in 1..65534): ttd_gen_folded_sheet
+/// is ttd_gen_folded_strip(n, n, ...). The benchmark's 7-layer sheet is 595 x 85 (101,150
+/// triangles, layers of about 85 x 85 quads).
+int ttd_gen_folded_strip(size_t nx, size_t ny, int layers, double gap, double t, ttd_gen_mesh *out);
 
 /* ---- operations ---------------------------------------------------------------------- */
 

@@ -616,6 +616,35 @@ static int bad_arguments(void)
     return 0;
 }
 
+/* The folded strip: a square strip is the folded sheet, bit for bit; a 7-layer strip folded flat
+ * has its layers gap apart (every vertex at one of 7 heights away from the folds, those heights
+ * gap apart); bad sizes are refused. */
+static int folded_strip(void)
+{
+    ttd_gen_mesh a, b;
+    ENSURE(ttd_gen_folded_sheet(12, 3, 0.02, 0.9, &a) == 0 && ttd_gen_folded_strip(12, 12, 3, 0.02, 0.9, &b) == 0);
+    ENSURE(a.nv == b.nv && a.nt == b.nt && memcmp(a.verts, b.verts, 3 * a.nv * sizeof *a.verts) == 0 &&
+           memcmp(a.tris, b.tris, 3 * a.nt * sizeof *a.tris) == 0);
+    ttd_gen_mesh_free(&a);
+    ttd_gen_mesh_free(&b);
+    const size_t nx = 595, ny = 85;
+    const double gap = 0.75 / (double)nx;
+    ENSURE(ttd_gen_folded_strip(nx, ny, 7, gap, 1.0, &a) == 0);
+    ENSURE(a.nt == 101150 && a.nv == (nx + 1) * (ny + 1));
+    int on_layer = 0;
+    for (size_t i = 0; i < a.nv; ++i) {
+        const double z = a.verts[3 * i + 2], k = z / gap; /* layer k at height k gap */
+        if (fabs(k - floor(k + 0.5)) < 1e-6)
+            ++on_layer;
+        ENSURE(a.verts[3 * i + 1] == (double)(i / (nx + 1)) / (double)nx);
+    }
+    ENSURE(on_layer > (int)(0.9 * (double)a.nv));
+    ttd_gen_mesh_free(&a);
+    ENSURE(ttd_gen_folded_strip(0, 5, 2, 0.1, 1.0, &a) == -1 && ttd_gen_folded_strip(5, 0, 2, 0.1, 1.0, &a) == -1);
+    ENSURE(ttd_gen_folded_strip(65535, 2, 2, 0.1, 1.0, &a) == -1 && ttd_gen_folded_strip(4, 4, 2, 10.0, 1.0, &a) == -1);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -631,5 +660,6 @@ int main(int argc, char **argv)
     RUN_TEST(determinism);
     RUN_TEST(pose_at_gap);
     RUN_TEST(bad_arguments);
+    RUN_TEST(folded_strip);
     TEST_MAIN_END();
 }

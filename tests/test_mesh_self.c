@@ -21,7 +21,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine/batch.h"
 #include "meshes.h"
+#include "mesh/mesh.h"
 #include "self_brute.h"
 #include "test_macros.h"
 #include "ttd/ttd.h"
@@ -326,6 +328,119 @@ static int self_contacts_match_brute_force(void)
     return 0;
 }
 
+/* Contact records by (tri_a, tri_b). */
+static int cmp_contact(const void *x, const void *y)
+{
+    const ttd_contact_d *a = x, *b = y;
+    return a->tri_a != b->tri_a ? (a->tri_a < b->tri_a ? -1 : 1) : (a->tri_b > b->tri_b) - (a->tri_b < b->tri_b);
+}
+
+/* The query's set against the walk's (mesh/mesh.h, ttd_mesh_query_self_contacts_walk_d): the same
+ * records, bit for bit, once sorted; with same_order, in the same order too (the query kept the
+ * walk); the number of records in *n. */
+static int query_equals_walk(const char *what, const ttd_mesh *m, double margin, unsigned flags, int same_order,
+                             size_t *n)
+{
+    const ttd_engine_config cfg = {TTD_ISA_SCALAR, TTD_METHOD_EXACT, {0, 0, 1}, 1};
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    ttd_contacts_d got = {0}, walk = {0};
+    ENSURE(ttd_mesh_self_contacts_d(&o, m, margin, flags, &got) == TTD_OK);
+    ENSURE(ttd_mesh_query_self_contacts_walk_d(&cfg, m, margin, flags & TTD_SELF_SHARED_VERTEX, &walk) == TTD_OK);
+    ENSURE_MSG(got.count == walk.count, "%s margin %.17g: %zu pairs, the walk %zu", what, margin, got.count, walk.count);
+    if (same_order)
+        ENSURE_MSG(got.count == 0 || memcmp(got.pairs, walk.pairs, got.count * sizeof *got.pairs) == 0,
+                   "%s: not the walk's records in the walk's order", what);
+    qsort(got.pairs, got.count, sizeof *got.pairs, cmp_contact);
+    qsort(walk.pairs, walk.count, sizeof *walk.pairs, cmp_contact);
+    ENSURE_MSG(got.count == 0 || memcmp(got.pairs, walk.pairs, got.count * sizeof *got.pairs) == 0,
+               "%s margin %.17g: the records differ from the walk's", what, margin);
+    *n = got.count;
+    ttd_contacts_free_d(&got);
+    ttd_contacts_free_d(&walk);
+    return 0;
+}
+
+/* The ways a self-contact query goes (docs/mesh-queries.md, section 3b): the grid of leaves, on
+ * issue 36's sheet folded into 7 layers (a smaller strip), the layers 1.5 and 0.8 margins apart,
+ * against the brute force and the walk; a sheet with one triangle across all of it, whose leaf
+ * the grid tests against every leaf (a large leaf), against the walk; and the walk itself, which
+ * the query keeps when the leaves are so large alike that the grid would put them all in one
+ * cell (6,000 slivers across a cube): its records come in the walk's order. */
+static int grid_and_walk_match_brute_force(void)
+{
+    const size_t nx = 70, ny = 10;
+    const double margin = 0.5 / (double)nx;
+    for (int gi = 0; gi < 2; ++gi) {
+        ttd_gen_mesh g;
+        ENSURE(ttd_gen_folded_strip(nx, ny, 7, (gi ? 0.8 : 1.5) * margin, 1.0, &g) == 0);
+        ENSURE(g.nt == 2 * nx * ny);
+        if (check_mesh(gi ? "7 layers 0.8 margins apart (grid)" : "7 layers 1.5 margins apart (grid)", &g, margin))
+            return 1;
+        ttd_mesh *m;
+        ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+        for (int shared = 0; shared < 2; ++shared)
+            for (int k = 0; k < 3; ++k) {
+                size_t n;
+                if (query_equals_walk("7 layers", m, margin * (k + 1), shared ? TTD_SELF_SHARED_VERTEX : 0u, 0, &n))
+                    return 1;
+                ENSURE(k > 0 || n > 0);
+            }
+        ttd_mesh_destroy(m);
+        ttd_gen_mesh_free(&g);
+    }
+    /* 5,000 triangles and one across them all: the grid, with that triangle's leaf apart */
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_folded_sheet(50, 3, 0.01, 1.0, &g) == 0);
+    double *v = realloc(g.verts, 3 * (g.nv + 3) * sizeof *v);
+    ENSURE(v != NULL);
+    g.verts = v;
+    uint32_t *t = realloc(g.tris, 3 * (g.nt + 1) * sizeof *t);
+    ENSURE(t != NULL);
+    g.tris = t;
+    const double big[9] = {-0.1, -0.1, 0.004, 1.2, -0.1, 0.004, -0.1, 1.2, 0.004};
+    memcpy(g.verts + 3 * g.nv, big, sizeof big);
+    for (int k = 0; k < 3; ++k)
+        g.tris[3 * g.nt + (size_t)k] = (uint32_t)(g.nv + (size_t)k);
+    g.nv += 3;
+    g.nt += 1;
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    size_t n;
+    for (int shared = 0; shared < 2; ++shared)
+        if (query_equals_walk("sheet with one triangle across it", m, 0.011, shared ? TTD_SELF_SHARED_VERTEX : 0u, 0, &n))
+            return 1;
+    ENSURE(n > 5000);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    /* 6,000 slivers from z = 0 to z = 1 (750 leaves about as large as the cube, in one cell: past
+     * the grid's work limit of 256 leaf tests a leaf): the walk */
+    const size_t ns = 6000;
+    double *sv = malloc(9 * ns * sizeof *sv);
+    uint32_t *st = malloc(3 * ns * sizeof *st);
+    ENSURE(sv != NULL && st != NULL);
+    uint64_t r = 12345;
+    for (size_t i = 0; i < 9 * ns; ++i) {
+        r = r * 6364136223846793005u + 1442695040888963407u;
+        sv[i] = (double)(r >> 11) * 0x1p-53;
+    }
+    for (size_t i = 0; i < ns; ++i) {
+        sv[9 * i + 2] = 0, sv[9 * i + 5] = 1; /* from the floor to the ceiling */
+        for (int k = 0; k < 3; ++k) /* the third vertex beside the second */
+            sv[9 * i + 6 + k] = sv[9 * i + 3 + k] + 0.01 * (sv[9 * i + 6 + k] - 0.5);
+        for (int k = 0; k < 3; ++k)
+            st[3 * i + k] = (uint32_t)(3 * i + (size_t)k);
+    }
+    ENSURE(ttd_mesh_create_d(NULL, sv, 3 * ns, st, ns, &m) == TTD_OK);
+    if (query_equals_walk("slivers across a cube", m, 1e-3, 0u, 1, &n))
+        return 1;
+    ENSURE(n > 1000);
+    ttd_mesh_destroy(m);
+    free(sv);
+    free(st);
+    return 0;
+}
+
 /* A sheet folding over 30 steps, refitted each step, against the brute force every step. */
 static int refitted_self_contacts_match_brute_force(void)
 {
@@ -445,6 +560,7 @@ int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(self_contacts_match_brute_force);
+    RUN_TEST(grid_and_walk_match_brute_force);
     RUN_TEST(refitted_self_contacts_match_brute_force);
     RUN_TEST(self_queries_threads_isas_identical);
     RUN_TEST(bad_input_refused);

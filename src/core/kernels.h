@@ -155,6 +155,24 @@ typedef unsigned (*ttd_tri_fit_fn)(const double *const p[9], int count, double r
  * it, bit for bit. */
 typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const double u[9], double mn[3], double mx[3]);
 
+/* self_screen and box_screen (double rows only; NULL on the scalar row, whose loops are in
+ * mesh/self_grid_impl.h): a self-contact query's screens, in double for both precisions (float
+ * coordinates convert exactly). Boxes are axis-aligned: lo the minima of a triangle's vertices,
+ * hi the maxima raised by the query's limit L (fl(hi + L)); padding lanes hold lo = +inf, hi =
+ * -inf. A lane is near a box q (q[0..2] its lo, q[3..5] its raised hi) when on every axis lo[c] <=
+ * q[3 + c] and q[c] <= hi[c]: comparisons only, the same bits on every row.
+ * self_screen: every triangle i of leaf g against the 8 triangles of leaf h (with same, g is h and
+ * only lanes j > i count; rows i whose box is not near h's leaf box are skipped, out[i] = 0): out[i] gets, bits 0-7, the lanes near triangle i that share no vertex
+ * index with it, bits 8-15 the near lanes that share one or more; returns whether any out[i] is
+ * not 0. box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
+typedef struct ttd_self_block {
+    double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
+    double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
+    double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
+} ttd_self_block;
+typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
+typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -167,6 +185,8 @@ typedef struct ttd_kernels_d {
     ttd_point_lanes_d_fn point_lanes;   ///< never NULL
     ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
     ttd_leaf_span_fn leaf_span;         ///< NULL on the scalar row
+    ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
+    ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

@@ -842,6 +842,8 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
         return;
     if (mesh->points != NULL) /* its first member frees it (src/points/points.h) */
         (*(void (**)(void *))mesh->points)(mesh->points);
+    if (mesh->self_scratch != NULL) /* likewise (mesh/self_grid_impl.h) */
+        (*(void (**)(void *))mesh->self_scratch)(mesh->self_scratch);
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
@@ -1532,6 +1534,8 @@ static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
     m->generation = old.generation;
     m->rebuilds = old.rebuilds + 1;
     m->closed = old.closed;
+    m->self_scratch = old.self_scratch; /* arrays only: sized again by the next self query */
+    old.self_scratch = NULL;
     *fresh = old;
     ttd_mesh_free(fresh);
 }

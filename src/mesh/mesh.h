@@ -39,6 +39,9 @@ struct ttd_mesh {
     /* the point queries' data (src/points/points.h: prepared triangles, winding-number moments),
      * made on first use (atomic); its first member is the function that frees it */
     void *points;
+    /* the self-contact queries' arrays (mesh/self_grid_impl.h), kept between queries; taken and
+     * given back atomically; its first member is the function that frees it; NULL until then */
+    void *self_scratch;
     /* Deforming meshes (ttd_mesh_refit): */
     uint64_t generation; /* vertex updates so far: a scene's bodies compare it with theirs */
     uint64_t rebuilds;   /* of those, the ones whose refit triggered a rebuild */
@@ -152,6 +155,13 @@ ttd_status ttd_mesh_query_self_contacts_count_d(const ttd_engine_config *cfg, co
                                                 unsigned shared, size_t *count);
 ttd_status ttd_mesh_query_self_contacts_count_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
                                                 unsigned shared, size_t *count);
+/* The self-contacts by the walk alone (query_impl.h): what ttd_mesh_query_self_contacts_* give
+ * where the grid of leaves would do no better (mesh/self_grid_impl.h), for the tests to compare
+ * the two ways. */
+ttd_status ttd_mesh_query_self_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                               unsigned shared, ttd_contacts_d *out);
+ttd_status ttd_mesh_query_self_contacts_walk_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,
+                                               unsigned shared, ttd_contacts_f *out);
 ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
                                          unsigned shared, ttd_collision *out);
 ttd_status ttd_mesh_query_self_collide_f(const ttd_engine_config *cfg, const struct ttd_mesh *m, float margin,

@@ -79,6 +79,12 @@ ttd_status ttd_mesh_query_self_contacts_d(const ttd_engine_config *cfg, const st
     return query_self_contacts(cfg, m, margin, shared, out);
 }
 
+ttd_status ttd_mesh_query_self_contacts_walk_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
+                                               unsigned shared, ttd_contacts_d *out)
+{
+    return query_self_contacts_walk(cfg, m, margin, shared, out);
+}
+
 ttd_status ttd_mesh_query_self_collide_d(const ttd_engine_config *cfg, const struct ttd_mesh *m, double margin,
                                          unsigned shared, ttd_collision *out)
 {

@@ -89,6 +89,7 @@ typedef struct qctx {
     TTD_KERNEL_FN kernel;
     int threads;
     unsigned self;     /* 0, or SELF_QUERY (ma == mb) with SELF_SHARED or not */
+    ttd_isa isa;       /* the row's (self-contacts by the grid take the double row's screens) */
 } qctx;
 
 /* A contact found, before it is copied into the caller's set. */
@@ -936,7 +937,7 @@ static void walk_init(walk *w, int mode, const qpose *P, real limit, real rel_to
 static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b)
 {
     const TTD_ROW *row = TTD_DISPATCH_ROW(cfg->isa);
-    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads, 0};
+    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads, 0, cfg->isa};
     return C;
 }
 
@@ -1321,6 +1322,8 @@ static ttd_status query_contacts_count(const ttd_engine_config *cfg, const struc
 static const real identity_pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 static const double no_defect = 0;
 
+#include "mesh/self_grid_impl.h"
+
 static qctx self_ctx(const ttd_engine_config *cfg, const struct ttd_mesh *m, unsigned shared)
 {
     qctx C = qctx_make(cfg, m, m);
@@ -1332,6 +1335,14 @@ static ttd_status query_self_contacts(const ttd_engine_config *cfg, const struct
                                       unsigned shared, ttd_contacts *out)
 {
     const qctx C = self_ctx(cfg, m, shared);
+    const int st = self_grid_contacts(&C, margin, out, NULL);
+    return st >= 0 ? (ttd_status)st : run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, out, NULL);
+}
+
+static ttd_status query_self_contacts_walk(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,
+                                           unsigned shared, ttd_contacts *out)
+{
+    const qctx C = self_ctx(cfg, m, shared);
     return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, out, NULL);
 }
 
@@ -1339,7 +1350,8 @@ static ttd_status query_self_contacts_count(const ttd_engine_config *cfg, const 
                                             unsigned shared, size_t *count)
 {
     const qctx C = self_ctx(cfg, m, shared);
-    return run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, NULL, count);
+    const int st = self_grid_contacts(&C, margin, NULL, count);
+    return st >= 0 ? (ttd_status)st : run_contacts(&C, 1, identity_pose, NULL, &no_defect, margin, NULL, count);
 }
 
 static ttd_status query_self_collide(const ttd_engine_config *cfg, const struct ttd_mesh *m, real margin,

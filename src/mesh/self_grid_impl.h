@@ -1,0 +1,559 @@
+/* SPDX-License-Identifier: MIT */
+/* Self-contacts by a grid of leaves (precision-generic; included by mesh/query_impl.h, whose
+ * queue and kernel calls it shares). docs/mesh-queries.md, section 3b and issue 36's notes.
+ *
+ * The walk of query_impl.h meets every pair of a mesh's triangles at the node where their paths
+ * part; on a sheet most of its node tests show that neighbours are neighbours (5.5 a triangle,
+ * about 130 ns each). Here the tree's leaves are only groups of 8 nearby triangles:
+ *   1. every triangle's axis-aligned box (its vertices' minima, and their maxima raised by the
+ *      limit L = margin + the walk's rounding margin) and vertex indices, 8 lanes per leaf;
+ *   2. the leaves' boxes counted into a uniform grid whose cell is at least the largest leaf box
+ *      plus L, so that two leaves within L of each other lie in one cell or two neighbouring
+ *      ones; each leaf meets itself, the leaves after it in its cell, and those of the 13 cells
+ *      after its own (half of its 26 neighbours);
+ *   3. two leaves whose boxes are within L screen their triangles 8 at a time (the row's
+ *      self_screen: box and vertex-index comparisons); the pairs left go to the exact kernel by
+ *      queue_self, as the walk's do, so each pair's distance and points are the same bits.
+ * Rounding: the screen compares exact minima with fl(max + L); where the exact gap between two
+ * boxes on an axis is at most L, lo <= max + L exactly, so lo <= fl(max + L) (rounding is
+ * monotone): no pair the walk would give the kernel within L is dropped, and L covers what the
+ * kernel's rounding needs (the walk's delta). The set is the brute force's; its order is the
+ * grid's (cells, then leaves, then triangles), fixed by the mesh. Cells are cut into a fixed
+ * list of runs, each with its own list, joined in order: the thread count changes nothing.
+ * Where one leaf's box is so large that the grid would put most leaves together, the caller
+ * keeps the walk (self_grid_make returns 0). */
+
+/* A self query's arrays, kept with the mesh between queries (ttd_mesh.self_scratch): a query on a
+ * 100k-triangle mesh needs about 18 MB of them, and fresh memory each time cost it the clearing
+ * of every page. Taken by one query at a time (an atomic exchange; a query that finds none, as
+ * when two run at once, makes its own and keeps or frees it after); freed with the mesh by its
+ * first member. Only arrays: nothing a query leaves in them is read by the next. */
+typedef struct self_scratch {
+    void (*free_fn)(void *);
+    size_t cap_g, cap_c;       /* leaves and cells they hold */
+    ttd_self_block *blk;
+    int32_t (*tri)[TTD_NODE_WIDTH];
+    double *sbox;
+    double (*dg)[12][TTD_NODE_WIDTH];
+    uint32_t *order, *cell;
+    double (*gbox)[6];
+    double *ext;               /* per leaf: its largest side with L */
+    uint32_t *start;
+} self_scratch;
+
+static void self_scratch_free(void *p)
+{
+    self_scratch *S = p;
+    if (S == NULL)
+        return;
+    free(S->blk);
+    free(S->tri);
+    free(S->sbox);
+    free(S->dg);
+    free(S->order);
+    free(S->cell);
+    free(S->gbox);
+    free(S->ext);
+    free(S->start);
+    free(S);
+}
+
+/* The mesh's scratch with room for ng leaves, or NULL out of memory. */
+static self_scratch *self_scratch_take(const struct ttd_mesh *mesh, size_t ng)
+{
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh; /* a cache, not a change to the mesh */
+    self_scratch *S = __atomic_exchange_n((self_scratch **)&m->self_scratch, NULL, __ATOMIC_ACQ_REL);
+    if (S == NULL && (S = calloc(1, sizeof *S)) != NULL)
+        S->free_fn = self_scratch_free;
+    if (S == NULL || S->cap_g >= ng)
+        return S;
+    free(S->blk), free(S->tri), free(S->sbox), free(S->dg), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
+    const size_t n = ng ? ng : 1;
+    S->blk = ttd_big_alloc(n * sizeof *S->blk);
+    S->tri = malloc(n * sizeof *S->tri);
+    S->sbox = ttd_big_alloc(6 * (n + TTD_NODE_WIDTH) * sizeof *S->sbox);
+    S->dg = ttd_big_alloc(n * sizeof *S->dg);
+    S->order = malloc(n * sizeof *S->order);
+    S->cell = malloc(n * sizeof *S->cell);
+    S->gbox = malloc(n * sizeof *S->gbox);
+    S->ext = malloc(n * sizeof *S->ext);
+    S->cap_g = n;
+    if (!S->blk || !S->tri || !S->sbox || !S->dg || !S->order || !S->cell || !S->gbox || !S->ext) {
+        self_scratch_free(S);
+        return NULL;
+    }
+    return S;
+}
+
+/* Gives the scratch back to the mesh (or frees it where another query's is there already). */
+static void self_scratch_give(const struct ttd_mesh *mesh, self_scratch *S)
+{
+    struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh;
+    void *none = NULL;
+    if (S != NULL && !__atomic_compare_exchange_n(&m->self_scratch, &none, (void *)S, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
+        self_scratch_free(S);
+}
+
+/* A self query's grid. Every box is in double, for both precisions (float coordinates convert
+ * exactly, and L is rounded up in double as in real). */
+typedef struct self_grid {
+    size_t ngroups;
+    ttd_self_block *blk;       /* per leaf: its triangles' boxes and indices (lanes) */
+    int32_t (*tri)[TTD_NODE_WIDTH]; /* per leaf: its triangles, -1 past its count */
+    double *sbox;              /* the leaves' boxes in the grid's order, one array per bound:
+                                  lo x, y, z, raised hi x, y, z, each ngroups + 8 (padding) */
+    uint32_t *start;           /* ncells + 1: cell c's leaves are order[start[c] .. start[c+1]) */
+    uint32_t *order;
+    size_t dim[3], ncells;
+    size_t nsmall;             /* leaves in cells: positions [0, nsmall) of order; the large
+                                  leaves after them, each tested against every leaf */
+    double (*dg)[12][TTD_NODE_WIDTH]; /* per leaf: its triangles' projections on the six diagonal
+                                  directions (diag_apart): minima, then maxima raised by 1.5 L */
+    ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
+    ttd_box_screen_fn boxes;
+    self_scratch *S;           /* where the arrays are */
+} self_grid;
+
+/* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
+static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
+{
+    unsigned any = 0;
+    for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
+        unsigned n = 0, s = 0;
+        out[i] = 0;
+        int row = 1; /* triangle i near h's leaf box */
+        for (int c = 0; c < 3; ++c)
+            row &= (h->box[c] <= g->hi[c][i]) & (g->lo[c][i] <= h->box[3 + c]);
+        if (!row)
+            continue;
+        for (int j = same ? i + 1 : 0; j < TTD_NODE_WIDTH; ++j) {
+            int near = 1, share = 0;
+            for (int c = 0; c < 3; ++c) {
+                near &= (h->lo[c][j] <= g->hi[c][i]) & (g->lo[c][i] <= h->hi[c][j]);
+                share |= (h->ix[c][j] == g->ix[0][i]) | (h->ix[c][j] == g->ix[1][i]) | (h->ix[c][j] == g->ix[2][i]);
+            }
+            n |= (unsigned)near << j;
+            s |= (unsigned)(near & share) << j;
+        }
+        out[i] = (uint16_t)((n & ~s) | s << 8);
+        any |= out[i];
+    }
+    return any != 0;
+}
+
+static unsigned box_screen_scalar(const double *const lo[3], const double *const hi[3], const double q[6])
+{
+    unsigned n = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+        n |= (unsigned)((lo[0][j] <= q[3]) & (q[0] <= hi[0][j]) & (lo[1][j] <= q[4]) & (q[1] <= hi[1][j]) &
+                        (lo[2][j] <= q[5]) & (q[2] <= hi[2][j]))
+             << j;
+    return n;
+}
+
+/* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
+ * directions x +- y, x +- z, y +- z (diag_apart, from each triangle's projections made once per
+ * query by diag_extents): the boxes' screen passes in-plane neighbours of a sheet whose
+ * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
+ * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
+ * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
+ * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
+ * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
+ * and of the comparison's sum. In double for both precisions. */
+static void diag_extents(const qpose *P, const uint32_t *ix, double R, double dg[12][TTD_NODE_WIDTH], int lane)
+{
+    for (int k = 0; k < 3; ++k) {
+        const real *v = P->a.verts + 3 * (size_t)ix[k];
+        const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
+        const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
+        for (int d = 0; d < 6; ++d) {
+            dg[d][lane] = k == 0 || p[d] < dg[d][lane] ? p[d] : dg[d][lane];
+            dg[6 + d][lane] = k == 0 || p[d] > dg[6 + d][lane] ? p[d] : dg[6 + d][lane];
+        }
+    }
+    for (int d = 0; d < 6; ++d)
+        dg[6 + d][lane] += R;
+}
+
+/* Whether lane i of leaf g and lane j of leaf h are apart along a diagonal direction. */
+static int diag_apart(const self_grid *G, uint32_t g, int i, uint32_t h, int j)
+{
+    const double *a = &G->dg[g][0][i], *b = &G->dg[h][0][j]; /* direction d at [d * 8] */
+    int apart = 0;
+    for (int d = 0; d < 6; ++d)
+        apart |= (b[d * TTD_NODE_WIDTH] > a[(6 + d) * TTD_NODE_WIDTH]) | (a[d * TTD_NODE_WIDTH] > b[(6 + d) * TTD_NODE_WIDTH]);
+    return apart;
+}
+
+/* Leaf tests per leaf above which the grid is no better than the walk (one huge leaf box makes
+ * cells that hold most of the mesh). */
+#define SELF_GRID_WORK 256
+
+/* Builds G for the mesh of P at limit L (double): 1 done, 0 the walk is better (or L is not
+ * finite), -1 out of memory. */
+static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L, const ttd_kernels_d *row,
+                          self_grid *G)
+{
+    memset(G, 0, sizeof *G);
+    G->screen = row != NULL ? row->self_screen : NULL;
+    G->boxes = row != NULL ? row->box_screen : NULL;
+    if (!isfinite(L))
+        return 0;
+    const size_t nnodes = mesh->nnodes;
+    size_t ng = 0;
+    for (size_t n = 0; n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
+        for (int j = 0; j < P->a.nodes[n].count; ++j)
+            if (P->a.nodes[n].child[j] < 0) {
+                ++ng;
+                break;
+            }
+    G->ngroups = ng;
+    self_scratch *S = G->S = self_scratch_take(mesh, ng);
+    if (S == NULL)
+        return -1;
+    G->blk = S->blk;
+    G->tri = S->tri;
+    G->sbox = S->sbox;
+    G->dg = S->dg;
+    G->order = S->order;
+    double(*gbox)[6] = S->gbox;
+    uint32_t *cell = S->cell;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    size_t g = 0;
+    for (size_t n = 0; n < nnodes; ++n) {
+        const ttd_node *y = P->a.nodes + n;
+        int k = 0;
+        ttd_self_block *b = &G->blk[g];
+        double *gb = gbox[g];
+        for (int c = 0; c < 3; ++c)
+            gb[c] = INFINITY, gb[3 + c] = -INFINITY;
+        for (int j = 0; j < y->count; ++j) {
+            if (y->child[j] >= 0)
+                continue;
+            const uint32_t t = (uint32_t)(-1 - y->child[j]);
+            const uint32_t *ix = P->a.tris + 3 * (size_t)t;
+            G->tri[g][k] = (int32_t)t;
+            for (int c = 0; c < 3; ++c) {
+                const double x0 = (double)P->a.verts[3 * (size_t)ix[0] + c], x1 = (double)P->a.verts[3 * (size_t)ix[1] + c],
+                             x2 = (double)P->a.verts[3 * (size_t)ix[2] + c];
+                double mn = x0 < x1 ? x0 : x1, mx = x0 < x1 ? x1 : x0;
+                mn = x2 < mn ? x2 : mn;
+                mx = x2 > mx ? x2 : mx;
+                b->lo[c][k] = mn;
+                b->hi[c][k] = mx + L;
+                b->ix[c][k] = (double)ix[c];
+                gb[c] = mn < gb[c] ? mn : gb[c];
+                gb[3 + c] = b->hi[c][k] > gb[3 + c] ? b->hi[c][k] : gb[3 + c];
+            }
+            diag_extents(P, ix, 1.5 * L, G->dg[g], k);
+            ++k;
+        }
+        if (k == 0)
+            continue;
+        memcpy(b->box, gb, sizeof b->box);
+        for (; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
+            G->tri[g][k] = -1;
+            for (int d = 0; d < 12; ++d)
+                G->dg[g][d][k] = 0;
+            for (int c = 0; c < 3; ++c) {
+                b->lo[c][k] = INFINITY;
+                b->hi[c][k] = -INFINITY;
+                b->ix[c][k] = -1;
+            }
+        }
+        double e = 0; /* the leaf's extent with L: its largest side */
+        for (int c = 0; c < 3; ++c) {
+            e = gb[3 + c] - gb[c] > e ? gb[3 + c] - gb[c] : e;
+            lo[c] = gb[c] < lo[c] ? gb[c] : lo[c];
+            hi[c] = gb[c] > hi[c] ? gb[c] : hi[c];
+        }
+        S->ext[g] = e;
+        sum += e;
+        ++g;
+    }
+    /* Leaves up to 4 times the mean extent go into cells as wide as the largest of them; two of
+     * them within L on axis c have low corners at most that apart, and a cell a little wider
+     * keeps their cells' indices within 1 despite the rounding of (lo - lo_min) / h. The larger
+     * leaves (a few, where a refitted tree has stretched ones) are each tested against all. */
+    const double cut = 4 * sum / (double)(ng ? ng : 1);
+    double hc[3] = {0, 0, 0}; /* per axis: the largest side of the leaves in cells */
+    size_t nbig = 0;
+    for (size_t i = 0; i < ng; ++i) {
+        if (S->ext[i] > cut) {
+            ++nbig;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c)
+            hc[c] = gbox[i][3 + c] - gbox[i][c] > hc[c] ? gbox[i][3 + c] - gbox[i][c] : hc[c];
+    }
+    G->nsmall = ng - nbig;
+    double h[3];
+    for (int c = 0; c < 3; ++c)
+        h[c] = hc[c] * (1 + 0x1p-20);
+    const double ext = h[0] > h[1] ? (h[0] > h[2] ? h[0] : h[2]) : (h[1] > h[2] ? h[1] : h[2]);
+    if (!(ext > 0) || !isfinite(ext))
+        return 0;
+    for (int c = 0; c < 3; ++c) /* an axis the leaves have no width on: cells of the largest */
+        h[c] = h[c] > 0 ? h[c] : ext;
+    for (;;) {
+        double cells = 1;
+        for (int c = 0; c < 3; ++c)
+            cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
+        if (cells <= 4.0 * (double)ng + 64)
+            break;
+        for (int c = 0; c < 3; ++c)
+            h[c] *= 1.5;
+    }
+    G->ncells = 1;
+    for (int c = 0; c < 3; ++c) {
+        G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h[c]) + 1;
+        G->ncells *= G->dim[c];
+    }
+    if (S->cap_c < G->ncells + 2) {
+        free(S->start);
+        S->start = malloc((G->ncells + 2) * sizeof *S->start);
+        S->cap_c = S->start ? G->ncells + 2 : 0;
+        if (S->start == NULL)
+            return -1;
+    }
+    G->start = S->start;
+    memset(G->start, 0, (G->ncells + 2) * sizeof *G->start);
+    for (size_t i = 0; i < ng; ++i) {
+        if (S->ext[i] > cut)
+            continue;
+        size_t at = 0;
+        for (int c = 2; c >= 0; --c) {
+            size_t q = (size_t)floor((gbox[i][c] - lo[c]) / h[c]);
+            q = q < G->dim[c] ? q : G->dim[c] - 1;
+            at = at * G->dim[c] + q;
+        }
+        cell[i] = (uint32_t)at;
+        G->start[at + 2]++;
+    }
+    for (size_t c = 0; c < G->ncells; ++c)
+        G->start[c + 2] += G->start[c + 1];
+    for (size_t i = 0, big = G->nsmall; i < ng; ++i) /* start[c + 1] runs through cell c, then is its end */
+        G->order[S->ext[i] > cut ? big++ : G->start[cell[i] + 1]++] = (uint32_t)i;
+    const size_t stride = ng + TTD_NODE_WIDTH;
+    for (size_t p = 0; p < stride; ++p)
+        for (int c = 0; c < 6; ++c)
+            G->sbox[c * stride + p] = p < ng ? gbox[G->order[p]][c] : c < 3 ? (double)INFINITY : -(double)INFINITY;
+    /* the work: each leaf's tests against its cell and the 13 after it, estimated by the cells'
+     * counts; past SELF_GRID_WORK a leaf, the walk */
+    double work = 0;
+    for (size_t z = 0; z < G->dim[2]; ++z)
+        for (size_t y = 0; y < G->dim[1]; ++y)
+            for (size_t x = 0; x < G->dim[0]; ++x) {
+                const size_t c = (z * G->dim[1] + y) * G->dim[0] + x;
+                const double nc = (double)(G->start[c + 1] - G->start[c]);
+                if (nc == 0)
+                    continue;
+                double around = 0;
+                for (int dz = 0; dz <= 1; ++dz)
+                    for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                        for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                            if (x + (size_t)dx >= G->dim[0] || y + (size_t)dy >= G->dim[1] || z + (size_t)dz >= G->dim[2])
+                                continue; /* (size_t)-1 wraps past the end too */
+                            const size_t d = ((z + (size_t)dz) * G->dim[1] + (y + (size_t)dy)) * G->dim[0] + x + (size_t)dx;
+                            around += (double)(G->start[d + 1] - G->start[d]);
+                        }
+                work += nc * (around + (nc + 1) / 2);
+            }
+    work += (double)nbig * (double)ng / TTD_NODE_WIDTH; /* the large leaves' row calls */
+    return work <= SELF_GRID_WORK * (double)ng + 1024 ? 1 : 0;
+}
+
+/* Leaves g and h (g <= h; their boxes near): their triangle pairs near by the screen (for g == h,
+ * i < j), queued. */
+static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t g,
+                             uint32_t h)
+{
+    uint16_t near[TTD_NODE_WIDTH];
+    const int any = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
+                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
+    if (!any)
+        return;
+    const unsigned keep = P->self & SELF_SHARED ? 0xFFFFu : 0xFFu;
+    for (int i = 0; i < TTD_NODE_WIDTH && !w->hit; ++i) {
+        const int32_t ti = G->tri[g][i];
+        for (unsigned m = near[i] & keep; m != 0; m &= m - 1) {
+            const int bit = __builtin_ctz(m), j = bit & 7;
+            const int32_t tj = G->tri[h][j], ta = ti < tj ? ti : tj, tb = ti < tj ? tj : ti;
+            uint32_t v = 0;
+            const int kind = bit < 8 ? SELF_PAIR
+                                     : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
+            if (kind != SELF_NONE && !diag_apart(G, g, i, h, j))
+                queue_self(C, P, W, w, ta, tb, kind, v);
+        }
+    }
+}
+
+/* Leaf g (at grid position p) against the leaves at positions [q0, q1) whose boxes are near its
+ * own, 8 at a time. */
+static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                            uint32_t q0, uint32_t q1)
+{
+    const size_t stride = G->ngroups + TTD_NODE_WIDTH;
+    const double *s = G->sbox;
+    const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
+    const uint32_t g = G->order[p];
+    for (uint32_t r = q0; r < q1; r += TTD_NODE_WIDTH) {
+        const double *const lo[3] = {s + r, s + stride + r, s + 2 * stride + r};
+        const double *const hi[3] = {s + 3 * stride + r, s + 4 * stride + r, s + 5 * stride + r};
+        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
+        if (q1 - r < TTD_NODE_WIDTH)
+            m &= (1u << (q1 - r)) - 1;
+        for (; m != 0; m &= m - 1) {
+            const uint32_t o = G->order[r + (uint32_t)__builtin_ctz(m)];
+            /* the leaf pair as (smaller, larger) so that g == h is the only self case */
+            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
+        }
+    }
+}
+
+/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
+ * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
+ * and the large leaves from itself on. */
+static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
+{
+    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2];
+    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        for (uint32_t p = G->start[c]; p < G->start[c + 1]; ++p) {
+            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
+            for (int dz = 0; dz <= 1; ++dz)
+                for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                    for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                        if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
+                            continue;
+                        const size_t d = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
+                        self_grid_range(C, P, W, w, G, p, G->start[d], G->start[d + 1]);
+                    }
+        }
+    }
+    for (size_t u = u1 > G->ncells ? (u0 > G->ncells ? u0 : G->ncells) : u1; u < u1 && !W->nomem && !w->hit; ++u) {
+        const uint32_t p = (uint32_t)(G->nsmall + (u - G->ncells));
+        self_grid_range(C, P, W, w, G, p, 0, (uint32_t)G->nsmall);
+        self_grid_range(C, P, W, w, G, p, p, (uint32_t)G->ngroups);
+    }
+    flush(C, P, W, w);
+}
+
+/* Runs of cells, each one task with its own list (joined in order). */
+#define SELF_GRID_TASKS 64
+
+typedef struct self_grid_job {
+    const qctx *C;
+    const qpose *P;
+    const self_grid *G;
+    real margin;
+    size_t cut[SELF_GRID_TASKS + 1]; /* task t: units [cut[t], cut[t + 1]) (self_grid_cells) */
+    clist *lists;
+    qwork *work;
+    atomic_int nomem;
+} self_grid_job;
+
+static void self_grid_task(void *ctx, size_t t, int worker)
+{
+    self_grid_job *J = ctx;
+    qwork *W = &J->work[worker];
+    if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
+        return;
+    pose_forget(W);
+    walk w;
+    walk_init(&w, MODE_CONTACTS, J->P, J->margin, 0);
+    w.out = &J->lists[t];
+    self_grid_cells(J->C, J->P, W, &w, J->G, J->cut[t], J->cut[t + 1]);
+    if (W->nomem)
+        atomic_store(&J->nomem, 1);
+}
+
+/* Self-contacts (out) or their count (count) by the grid: TTD_OK, TTD_ERR_OUT_OF_MEMORY, or -1
+ * when the walk should answer instead (nothing written). */
+static int self_grid_contacts(const qctx *C, real margin, ttd_contacts *out, size_t *count)
+{
+    qpose P;
+    qpose_make(C, identity_pose, NULL, no_defect, &P);
+    self_grid G;
+    /* L: the walk's limit with its rounding margin, rounded up in double */
+    const double L = ((double)margin + (double)P.delta) * (1 + 0x1p-50);
+    const int made = self_grid_make(&P, C->ma, L, ttd_dispatch_row_d(C->isa), &G);
+    if (made <= 0) {
+        self_scratch_give(C->ma, G.S);
+        return made == 0 ? -1 : TTD_ERR_OUT_OF_MEMORY;
+    }
+    self_grid_job J = {C, &P, &G, margin, {0}, NULL, NULL, 0};
+    /* runs of about equal numbers of leaves, cut at cells */
+    size_t nt = 0;
+    for (size_t t = 1; t <= SELF_GRID_TASKS; ++t) {
+        const size_t want = G.ngroups * t / SELF_GRID_TASKS;
+        const size_t units = G.ncells + (G.ngroups - G.nsmall);
+        size_t c = J.cut[nt]; /* the leaves before unit c: start[c], or nsmall + (c - ncells) */
+        while (c < units && (c < G.ncells ? G.start[c] : G.nsmall + (c - G.ncells)) < want)
+            ++c;
+        if (t == SELF_GRID_TASKS)
+            c = units;
+        if (c > J.cut[nt])
+            J.cut[++nt] = c;
+    }
+    const int workers = ttd_parallel_task_workers(nt, C->threads);
+    qwork one;
+    J.work = qwork_new(workers, &one);
+    J.lists = calloc(nt ? nt : 1, sizeof *J.lists);
+    atomic_init(&J.nomem, J.work == NULL || J.lists == NULL);
+    if (out != NULL) {
+        out->count = 0;
+        out->poses = 0;
+        if (!contacts_offsets(out, 1))
+            atomic_store(&J.nomem, 1);
+    }
+    if (!atomic_load(&J.nomem)) {
+        for (size_t t = 0; t < nt; ++t) {
+            J.lists[t].count_only = out == NULL;
+            J.lists[t].direct = workers == 1 && out != NULL ? out : NULL;
+        }
+        if (out != NULL)
+            out->pose_start[0] = 0;
+        ttd_parallel_tasks(nt, C->threads, self_grid_task, &J);
+    }
+    int ok = !atomic_load(&J.nomem);
+    size_t total = 0;
+    for (size_t t = 0; ok && t < nt; ++t)
+        total += J.lists[t].n;
+    if (ok && count != NULL) {
+        *count = total;
+    } else if (ok && workers > 1) { /* join the lists in task order */
+        if (total > out->capacity) {
+            contact *v = ttd_big_alloc(total * sizeof *v);
+            if (v == NULL) {
+                ok = 0;
+            } else {
+                free(out->pairs);
+                out->pairs = v;
+                out->capacity = total;
+            }
+        }
+        size_t at = 0;
+        for (size_t t = 0; ok && t < nt; ++t) {
+            const size_t n = J.lists[t].n;
+            clist_drain(&J.lists[t], n > 0 ? out->pairs + at : NULL);
+            at += n;
+        }
+        out->count = at;
+    }
+    for (size_t t = 0; J.lists != NULL && t < nt; ++t)
+        clist_drain(&J.lists[t], NULL);
+    free(J.lists);
+    qwork_free(J.work, workers, &one);
+    self_scratch_give(C->ma, G.S);
+    if (!ok) {
+        if (out != NULL)
+            out->count = 0;
+        return TTD_ERR_OUT_OF_MEMORY;
+    }
+    if (out != NULL) {
+        out->pose_start[1] = out->count;
+        out->poses = 1;
+    }
+    return TTD_OK;
+}
