@@ -138,8 +138,14 @@ static void pf_box(pf_src *s, pf_case *c)
     memcpy(c->t, faces, sizeof pf_box_faces);
     if (c->orient == TTD_ORIENTATION_INWARD || c->orient == TTD_ORIENTATION_INCONSISTENT) {
         const int some = c->orient == TTD_ORIENTATION_INCONSISTENT;
-        const uint32_t keep = some ? 1u + (uint32_t)pf_int(s, 12) : 0; /* this one never reversed */
-        const uint32_t flip = some ? (keep + 1u + (uint32_t)pf_int(s, 11)) % 12 : 0; /* this one always */
+        const uint32_t keep = some ? 1u + (uint32_t)pf_int(s, 12) : 0; /* face keep - 1 never reversed */
+        /* face flip always: one of the 11 others. The draw j = 0..9 gives keep + 1 .. keep + 10 (as
+         * before, so the corpus's inputs draw the same boxes) and j = 10 the one left, keep; it gave
+         * (keep + 11) % 12 = keep - 1 once, which reversed the kept face too, and every face where
+         * the coin said so for the other 11 (a consistent, inward box called inconsistent:
+         * tests/fuzz/corpus/points/box-inconsistent-all-reversed). */
+        const uint32_t j = some ? (uint32_t)pf_int(s, 11) : 0;
+        const uint32_t flip = some ? (j == 10 ? keep : keep + 1u + j) % 12 : 0;
         for (uint32_t t = 0; t < 12; ++t)
             if (!some || t == flip || (t != keep - 1 && pf_int(s, 2))) {
                 const uint32_t x = c->t[3 * t + 1];
