@@ -545,6 +545,117 @@ static int triangles(void)
     return 0;
 }
 
+/* The distance of p to the segment uv (a point where u = v), in plain double: the test's own. */
+static double dist_point_segment(const double p[3], const double u[3], const double v[3])
+{
+    double e[3], w[3], ee = 0, we = 0;
+    for (int k = 0; k < 3; ++k) {
+        e[k] = v[k] - u[k];
+        w[k] = p[k] - u[k];
+        ee += e[k] * e[k];
+        we += w[k] * e[k];
+    }
+    const double s = ee > 0 ? fmin(1, fmax(0, we / ee)) : 0;
+    double d = 0;
+    for (int k = 0; k < 3; ++k)
+        d += (w[k] - s * e[k]) * (w[k] - s * e[k]);
+    return sqrt(d);
+}
+
+/* Zero-area faces at delta > 0 (issue 33: a face whose first two vertices were equal made the
+ * closest-point walk divide 0 by 0 and take a vertex for the closest point, and the query answered
+ * hit at t = 0 for a point 2.47 away). The face is then a segment (or a point), the union of its
+ * three edges: the reference is the distance to them, sampled at N + 1 times, with the most it can change between samples (the
+ * sum of the speeds) giving a lower bound; a delta below it must not hit, one above the sampled
+ * minimum must, no later than the first sample within delta. Every order of the face's vertices. */
+static int degenerate_face_check(const double p0[3], const double p1[3], const double f0[9], const double f1[9],
+                                 double delta)
+{
+    enum { N = 4096 };
+    double speed = 0, dmin = HUGE_VAL, lb = HUGE_VAL, first = HUGE_VAL;
+    for (int i = 0; i < 4; ++i) {
+        const double *a = i == 0 ? p0 : f0 + 3 * (i - 1), *b = i == 0 ? p1 : f1 + 3 * (i - 1);
+        speed += sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+    }
+    for (int q = 0; q <= N; ++q) {
+        const double t = (double)q / N;
+        double p[3], f[9];
+        for (int k = 0; k < 3; ++k)
+            p[k] = p0[k] + t * (p1[k] - p0[k]);
+        for (int k = 0; k < 9; ++k)
+            f[k] = f0[k] + t * (f1[k] - f0[k]);
+        const double d = fmin(dist_point_segment(p, f, f + 3),
+                              fmin(dist_point_segment(p, f + 3, f + 6), dist_point_segment(p, f + 6, f)));
+        dmin = fmin(dmin, d);
+        lb = fmin(lb, d - speed / N - 1e-12);
+        if (d <= delta && first == HUGE_VAL)
+            first = t;
+    }
+    if (!(delta < lb || delta > dmin))
+        return 0; /* too near the minimum for the sampled reference to tell */
+    static const int perm[6][3] = {{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 0, 1}, {1, 2, 0}, {2, 1, 0}};
+    for (int o = 0; o < 6; ++o) {
+        double x0[12], x1[12];
+        memcpy(x0, p0, 3 * sizeof(double));
+        memcpy(x1, p1, 3 * sizeof(double));
+        for (int i = 0; i < 3; ++i) {
+            memcpy(x0 + 3 + 3 * i, f0 + 3 * perm[o][i], 3 * sizeof(double));
+            memcpy(x1 + 3 + 3 * i, f1 + 3 * perm[o][i], 3 * sizeof(double));
+        }
+        const ttd_ccd_result r = run1(1, x0, x1, delta);
+        ENSURE_MSG(delta < lb ? r.hit == 0 : (r.hit == 1 && r.toi <= first),
+                   "order %d, delta %.17g, reference minimum in [%.17g, %.17g] (first within delta %g): hit %u toi %.17g",
+                   o, delta, lb, dmin, first, r.hit, r.toi);
+    }
+    return 0;
+}
+
+static int degenerate_faces(void)
+{
+    /* The reported case: the face's first two vertices equal, the third moving; the point comes no
+     * nearer than 1.114 to the segment they span (the reference below). */
+    const double p0[3] = {-0.25, 1.5, 0}, p1[3] = {-0.25, 0, 0};
+    const double f0[9] = {-1.5, 0.75, -2, -1.5, 0.75, -2, 0.75, 1, -0.5};
+    const double f1[9] = {-1.5, 0.75, -2, -1.5, 0.75, -2, 0.75, -2, -0.5};
+    const double deltas[] = {0, 0.375, 1, 1.5, 2, 3};
+    for (size_t i = 0; i < sizeof deltas / sizeof deltas[0]; ++i)
+        ENSURE(degenerate_face_check(p0, p1, f0, f1, deltas[i]) == 0);
+    /* Random ones: two vertices equal (a segment), all three equal (a point), or three on one
+     * axis-parallel line (exactly collinear in doubles). */
+    for (int it = 0; it < 600; ++it) {
+        double q0[3], q1[3], g0[9], g1[9];
+        for (int k = 0; k < 3; ++k) {
+            q0[k] = 2 * srand1();
+            q1[k] = 2 * srand1();
+        }
+        const int shape = it % 3;
+        if (shape < 2) {
+            for (int k = 0; k < 9; ++k) {
+                g0[k] = 2 * srand1();
+                g1[k] = 2 * srand1();
+            }
+            for (int k = 0; k < 3; ++k) {
+                g0[3 + k] = g0[k], g1[3 + k] = g1[k];
+                if (shape == 1)
+                    g0[6 + k] = g0[k], g1[6 + k] = g1[k];
+            }
+        } else {
+            /* Along x at fixed y, z: the third between the others at both ends (not in between
+             * where the outer two pass each other). */
+            const double y0 = srand1(), z0 = srand1(), y1 = srand1(), z1 = srand1();
+            double xs0[3] = {srand1(), srand1(), 0}, xs1[3] = {srand1(), srand1(), 0};
+            xs0[2] = xs0[0] + urand() * (xs0[1] - xs0[0]);
+            xs1[2] = xs1[0] + urand() * (xs1[1] - xs1[0]);
+            for (int i = 0; i < 3; ++i) {
+                g0[3 * i] = xs0[i], g0[3 * i + 1] = y0, g0[3 * i + 2] = z0;
+                g1[3 * i] = xs1[i], g1[3 * i + 1] = y1, g1[3 * i + 2] = z1;
+            }
+        }
+        ENSURE_MSG(degenerate_face_check(q0, q1, g0, g1, 1.5 * urand()) == 0, "case %d (shape %d)", it, shape);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -552,6 +663,7 @@ int main(int argc, char **argv)
     RUN_TEST(threads_and_precision);
     RUN_TEST(constructed);
     RUN_TEST(near_misses);
+    RUN_TEST(degenerate_faces);
 #ifdef TTD_HAVE_GMP
     RUN_TEST(families);
 #else

@@ -84,7 +84,10 @@ static void positions(const ccd_state *s, double t, double x[4][3])
 
 /* Closest points of a point p and a triangle abc (the Voronoi-region walk of Ericson's
  * "Real-Time Collision Detection", 5.1.5); the weights are clamped so q stays in the triangle up
- * to rounding even for a degenerate triangle. */
+ * to rounding even for a degenerate triangle. An edge region is taken only where its weight's
+ * denominator is positive: it is zero where the edge's two ends are equal (d1 = d3 = 0 when
+ * a = b), and 0/0 would put q at an end that need not be closest; the walk then goes on to the
+ * regions of the other edges, which for a zero-area face are the segment (or point) it is. */
 enum { R_A, R_B, R_C, R_AB, R_AC, R_BC, R_FACE };
 
 static int closest_point_triangle(const double p[3], const double a[3], const double b[3],
@@ -106,7 +109,7 @@ static int closest_point_triangle(const double p[3], const double a[3], const do
         return R_B;
     }
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) {
         double v = d1 / (d1 - d3);
         v = v > 0 ? (v < 1 ? v : 1) : 0;
         for (int k = 0; k < 3; ++k)
@@ -120,7 +123,7 @@ static int closest_point_triangle(const double p[3], const double a[3], const do
         return R_C;
     }
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) {
         double w = d2 / (d2 - d6);
         w = w > 0 ? (w < 1 ? w : 1) : 0;
         for (int k = 0; k < 3; ++k)
@@ -128,7 +131,7 @@ static int closest_point_triangle(const double p[3], const double a[3], const do
         return R_AC;
     }
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0) {
         double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
         w = w > 0 ? (w < 1 ? w : 1) : 0;
         for (int k = 0; k < 3; ++k)
