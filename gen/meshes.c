@@ -420,34 +420,6 @@ int ttd_gen_mesh_nonmanifold(ttd_gen_mesh *out)
     return mesh_from(out, v, 5, t, 3);
 }
 
-int ttd_gen_grid(size_t n, ttd_gen_mesh *out)
-{
-    if (!out)
-        return -1;
-    memset(out, 0, sizeof *out);
-    if (n < 1 || n >= 65535) /* (n+1)^2 < 2^32 */
-        return -1;
-    size_t w = n + 1;
-    if (mesh_alloc(out, w * w, 2 * n * n) != 0)
-        return -1;
-    for (size_t j = 0; j < w; ++j)
-        for (size_t i = 0; i < w; ++i) {
-            double *p = out->verts + 3 * (j * w + i);
-            p[0] = (double)i / (double)n;
-            p[1] = (double)j / (double)n;
-            p[2] = 0.0;
-        }
-    uint32_t *t = out->tris;
-    for (size_t j = 0; j < n; ++j)
-        for (size_t i = 0; i < n; ++i) {
-            uint32_t a = (uint32_t)(j * w + i), b = a + 1, c = (uint32_t)((j + 1) * w + i + 1), d = c - 1;
-            t[0] = a; t[1] = b; t[2] = c;
-            t[3] = a; t[4] = c; t[5] = d;
-            t += 6;
-        }
-    return 0;
-}
-
 /* An nx x ny grid of square quads of edge 1/nx (vertex (i, j) = index j*(nx+1) + i at (i/nx, j/nx, 0)),
  * each split along its diagonal from (i, j) to (i+1, j+1): ttd_gen_grid's layout for any width. */
 static int grid_rect(size_t nx, size_t ny, ttd_gen_mesh *out)
@@ -473,6 +445,14 @@ static int grid_rect(size_t nx, size_t ny, ttd_gen_mesh *out)
             t += 6;
         }
     return 0;
+}
+
+int ttd_gen_grid(size_t n, ttd_gen_mesh *out)
+{
+    if (!out)
+        return -1;
+    memset(out, 0, sizeof *out);
+    return grid_rect(n, n, out);
 }
 
 int ttd_gen_folded_sheet(size_t n, int layers, double gap, double t, ttd_gen_mesh *out)
