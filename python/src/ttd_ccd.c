@@ -104,12 +104,13 @@ PyDoc_STRVAR(mesh_ccd_doc,
              "a, b ttd.Mesh (b None: self); a1, b1 C-contiguous (nv, 3) arrays of the mesh's dtype.\n"
              "Private: use ttd.mesh_ccd, ttd.mesh_self_ccd.");
 
-/* A mesh's t = 1 array: an (nv, 3) C-contiguous array of the mesh's dtype (the wrapper made it so). */
+/* A mesh's t = 1 array: an (nv, 3) C-contiguous, aligned array of the mesh's dtype (the wrapper made it so). */
 static int t1_ok(const ttd_py_mesh *m, PyObject *o, const char *name)
 {
     if (!PyArray_Check(o) || PyArray_TYPE((PyArrayObject *)o) != m->type || !PyArray_IS_C_CONTIGUOUS((PyArrayObject *)o) ||
+        !PyArray_ISALIGNED((PyArrayObject *)o) ||
         PyArray_SIZE((PyArrayObject *)o) != 3 * PyArray_DIM(m->vertices, 0)) {
-        PyErr_Format(PyExc_ValueError, "ttd: %s must be a C-contiguous (%zd, 3) array of the mesh's dtype", name,
+        PyErr_Format(PyExc_ValueError, "ttd: %s must be a C-contiguous, aligned (%zd, 3) array of the mesh's dtype", name,
                      (Py_ssize_t)PyArray_DIM(m->vertices, 0));
         return 0;
     }

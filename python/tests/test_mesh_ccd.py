@@ -172,3 +172,18 @@ def test_errors():
         ttd.mesh_self_ccd(m, v, threads=-1)
     with pytest.raises(ValueError):
         ttd.mesh_ccd(m, v, ttd.Mesh(v.astype(np.float32), f), v)
+
+
+def test_unaligned_t1_array_is_copied():
+    # A (nv, 3) float64 view at an odd byte offset is C-contiguous but not aligned: the wrapper
+    # must hand C an aligned copy, with the same answer as the aligned array.
+    v, f = grid(3)
+    m = ttd.Mesh(v, f)
+    x1 = v + [0.0, 0.0, 0.0]
+    x1[:, 2] += 0.3 * np.sin(7 * x1[:, 0])
+    buf = bytearray(x1.nbytes + 1)
+    odd = np.frombuffer(buf, dtype=np.float64, count=x1.size, offset=1).reshape(x1.shape)
+    odd[...] = x1
+    assert not odd.flags.aligned and odd.flags.c_contiguous
+    r, r_odd = ttd.mesh_self_ccd(m, x1), ttd.mesh_self_ccd(m, odd)
+    assert r.toi == r_odd.toi and as_list(r) == as_list(r_odd)

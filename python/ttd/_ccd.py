@@ -102,7 +102,8 @@ def _t1(mesh, x, name):
     if a.shape != (mesh.vertex_count, 3):
         raise ValueError(f"ttd: {name} must have shape ({mesh.vertex_count}, 3) (the mesh's vertices at t = 1), "
                          f"not {a.shape}")
-    return np.ascontiguousarray(a, dtype=mesh.dtype)
+    # C-contiguous and aligned: an unaligned view (np.frombuffer at an odd offset) is copied.
+    return np.require(a, dtype=mesh.dtype, requirements=['C', 'A'])
 
 
 def _sep_threads(min_separation, threads):
