@@ -34,6 +34,8 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_scene_contacts" edges_made_on_first_use
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads
+# four self-contact queries at once on one mesh (its kept arrays taken by one at a time)
+"$build/tests/test_mesh_self" self_queries_concurrent
 "$build/tests/test_mesh_deform" refit_bits
 # the point data, winding moments and closedness made on first use by four threads at once, and
 # made again by four threads at once after ttd_mesh_set_vertices (a refit, then a rebuild)

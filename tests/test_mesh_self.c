@@ -16,6 +16,7 @@
  * force; bad input. */
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -510,6 +511,71 @@ static int self_queries_threads_isas_identical(void)
     return 0;
 }
 
+/* Four threads at once on one mesh, each query on one worker, two of them counting: the mesh's
+ * kept arrays (ttd_mesh.self_scratch) are taken by one query at a time and the others make their
+ * own; every answer equals the one-thread reference (run under ThreadSanitizer by
+ * scripts/test-tsan.sh). */
+#define CONC_SELF_THREADS 4
+typedef struct {
+    const ttd_mesh *m;
+    int counting;
+    const ttd_contacts_d *ref;
+    int ok;
+} conc_self_job;
+
+static void *conc_self_run(void *p)
+{
+    conc_self_job *j = p;
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    j->ok = 1;
+    for (int rep = 0; rep < 3; ++rep) {
+        if (j->counting) {
+            size_t n = 0;
+            if (ttd_mesh_self_contacts_count_d(&o, j->m, 0.012, TTD_SELF_SHARED_VERTEX, &n) != TTD_OK ||
+                n != j->ref->count)
+                j->ok = 0;
+        } else {
+            ttd_contacts_d got = {0};
+            if (ttd_mesh_self_contacts_d(&o, j->m, 0.012, TTD_SELF_SHARED_VERTEX, &got) != TTD_OK ||
+                got.count != j->ref->count ||
+                memcmp(got.pairs, j->ref->pairs, got.count * sizeof *got.pairs) != 0)
+                j->ok = 0;
+            ttd_contacts_free_d(&got);
+        }
+    }
+    return NULL;
+}
+
+static int self_queries_concurrent(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_folded_sheet(40, 4, 0.01, 1.0, &g) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    ttd_contacts_d ref = {0};
+    ENSURE(ttd_mesh_self_contacts_d(&o, m, 0.012, TTD_SELF_SHARED_VERTEX, &ref) == TTD_OK);
+    ENSURE(ref.count > 5000);
+    conc_self_job jobs[CONC_SELF_THREADS];
+    pthread_t th[CONC_SELF_THREADS];
+    for (int t = 0; t < CONC_SELF_THREADS; ++t) {
+        jobs[t] = (conc_self_job){m, t & 1, &ref, 0};
+        ENSURE(pthread_create(&th[t], NULL, conc_self_run, &jobs[t]) == 0);
+    }
+    for (int t = 0; t < CONC_SELF_THREADS; ++t)
+        ENSURE(pthread_join(th[t], NULL) == 0);
+    for (int t = 0; t < CONC_SELF_THREADS; ++t)
+        ENSURE_MSG(jobs[t].ok, "thread %d (%s): an answer differs from the one-thread reference", t,
+                   jobs[t].counting ? "count" : "contacts");
+    printf("  %d threads x 3 queries on one mesh: %zu pairs each\n", CONC_SELF_THREADS, ref.count);
+    ttd_contacts_free_d(&ref);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 static int bad_input_refused(void)
 {
     ttd_gen_mesh g;
@@ -563,6 +629,7 @@ int main(int argc, char **argv)
     RUN_TEST(grid_and_walk_match_brute_force);
     RUN_TEST(refitted_self_contacts_match_brute_force);
     RUN_TEST(self_queries_threads_isas_identical);
+    RUN_TEST(self_queries_concurrent);
     RUN_TEST(bad_input_refused);
     TEST_MAIN_END();
 }
