@@ -1032,7 +1032,8 @@ typedef struct ttd_mesh_ccd_result {
 /// Deforming meshes a and b (built in double), a's vertices at t = 1 in a_vertices_t1 (3 nv_a
 /// doubles), b's in b_vertices_t1: every vertex of a against every triangle of b, every vertex of
 /// b against every triangle of a, every edge of a against every edge of b. min_separation >= 0.
-/// Checks: out, a, b or an array NULL: TTD_ERR_NULL_POINTER; options as ttd_ccd_vertex_face_d;
+/// Checks: out, a, b or an array NULL: TTD_ERR_NULL_POINTER; options checked as the mesh queries'
+/// (TTD_ERR_BAD_OPTIONS; a forced instruction set this machine lacks: TTD_ERR_ISA_UNAVAILABLE);
 /// min_separation negative, NaN or infinite: TTD_ERR_BAD_OPTIONS; a mesh of the other precision:
 /// TTD_ERR_PRECISION_MISMATCH; a NaN or infinite t = 1 coordinate: TTD_ERR_NONFINITE_MESH (nothing
 /// computed). out->count is 0 and out->pairs NULL on any error.

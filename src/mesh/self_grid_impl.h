@@ -7,10 +7,11 @@
  * about 130 ns each). Here the tree's leaves are only groups of 8 nearby triangles:
  *   1. every triangle's axis-aligned box (its vertices' minima, and their maxima raised by the
  *      limit L = margin + the walk's rounding margin) and vertex indices, 8 lanes per leaf;
- *   2. the leaves' boxes counted into a uniform grid whose cell is at least the largest leaf box
- *      plus L, so that two leaves within L of each other lie in one cell or two neighbouring
- *      ones; each leaf meets itself, the leaves after it in its cell, and those of the 13 cells
- *      after its own (half of its 26 neighbours);
+ *   2. the leaves' boxes counted into a uniform grid whose cell, per axis, is at least the
+ *      largest box of the leaves in cells plus L, so that two such leaves within L of each other
+ *      lie in one cell or two neighbouring ones; each leaf meets itself, the leaves after it in
+ *      its cell, and those of the 13 cells after its own (half of its 26 neighbours); leaves
+ *      larger than 4 times the mean stay out of the cells and meet every leaf;
  *   3. two leaves whose boxes are within L screen their triangles 8 at a time (the row's
  *      self_screen: box and vertex-index comparisons); the pairs left go to the exact kernel by
  *      queue_self, as the walk's do, so each pair's distance and points are the same bits.
