@@ -553,6 +553,9 @@ enum {
 /// the set and its order depend on the mesh (its vertices and, through its tree, the history of
 /// its vertex updates) alone, not on threads or instruction set. Unknown flag bits, a margin
 /// out of range: TTD_ERR_BAD_OPTIONS. On an error out->count is 0.
+/// Memory: the query's grid arrays (about 180 bytes a triangle) stay with the mesh for the next
+/// self query until ttd_mesh_destroy; queries at once on one mesh are safe (one takes them, the
+/// others make their own).
 TTD_API ttd_status ttd_mesh_self_contacts_d(const ttd_options *opt, const ttd_mesh *mesh, double margin, unsigned flags,
                                             ttd_contacts_d *out);
 /// ttd_mesh_self_contacts_d in single precision (a mesh from ttd_mesh_create_f).
