@@ -177,6 +177,26 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* A set's figures from each query's time and answer: hits, false negatives and positives against
+ * the truth where the set has one, total, mean, median (times are sorted here) and worst. */
+static void set_stats(const qset *s, double *times, const unsigned char *hit, stats *st)
+{
+    memset(st, 0, sizeof *st);
+    st->n = s->n;
+    for (size_t q = 0; q < s->n; ++q) {
+        st->hits += hit[q];
+        if (s->truth) {
+            st->fn += s->truth[q] && !hit[q];
+            st->fp += !s->truth[q] && hit[q];
+        }
+        st->total += times[q];
+        st->worst = times[q] > st->worst ? times[q] : st->worst;
+    }
+    st->mean = st->total / (double)s->n;
+    qsort(times, s->n, sizeof *times, cmp_double);
+    st->median = times[s->n / 2];
+}
+
 /* Times every query alone (the fastest of reps runs), one thread. method 0 ttd, 1 naive. */
 static void time_set(const qset *s, int method, int reps, stats *st, double *times, unsigned char *hit)
 {
@@ -206,20 +226,7 @@ static void time_set(const qset *s, int method, int reps, stats *st, double *tim
         times[q] = best;
         hit[q] = (unsigned char)h;
     }
-    memset(st, 0, sizeof *st);
-    st->n = s->n;
-    for (size_t q = 0; q < s->n; ++q) {
-        st->hits += hit[q];
-        if (s->truth) {
-            st->fn += s->truth[q] && !hit[q];
-            st->fp += !s->truth[q] && hit[q];
-        }
-        st->total += times[q];
-        st->worst = times[q] > st->worst ? times[q] : st->worst;
-    }
-    st->mean = st->total / (double)s->n;
-    qsort(times, s->n, sizeof *times, cmp_double);
-    st->median = times[s->n / 2];
+    set_stats(s, times, hit, st);
 }
 
 /* ---- Tight-Inclusion, through its helper program (bench/ti/ti_ccd_bench.cpp) ------------------- */
@@ -284,18 +291,7 @@ static int ti_set(const char *program, const qset *s, int reps, stats *st, doubl
 {
     if (ti_run(program, s, reps, times, hit) != 0)
         return -1;
-    memset(st, 0, sizeof *st);
-    st->n = s->n;
-    for (size_t q = 0; q < s->n; ++q) {
-        st->hits += hit[q];
-        st->fn += s->truth[q] && !hit[q];
-        st->fp += !s->truth[q] && hit[q];
-        st->total += times[q];
-        st->worst = times[q] > st->worst ? times[q] : st->worst;
-    }
-    st->mean = st->total / (double)s->n;
-    qsort(times, s->n, sizeof *times, cmp_double);
-    st->median = times[s->n / 2];
+    set_stats(s, times, hit, st);
     return 0;
 }
 
