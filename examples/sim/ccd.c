@@ -311,12 +311,13 @@ int sim_ccd_limit(sim_world *w)
         limited = 1;
         ++w->ccd_rounds;
         /* each body hit goes back along its motion to the earliest toi of its pairs; the
-           bodies' new ends make new motions, asked again; after the last round a body still
-           hit stays where the step began */
+           bodies' new ends make new motions, asked again; when the last round still finds an
+           impact every moving body goes back to where the step began (a body alone sent back
+           would make pairs with the others' ends that no round asked about) */
         for (size_t k = 0; k < w->n; ++k) {
             sim_body *b = w->body + k;
-            double f = round == CCD_ROUNDS ? 0.0 : frac[k];
-            if (frac[k] >= 1 || b->is_static)
+            const double f = round == CCD_ROUNDS ? 0.0 : frac[k];
+            if (f >= 1 || b->is_static)
                 continue;
             const double *x0 = w->ccd_x0 + 7 * k, *q0 = x0 + 3;
             double q[4];

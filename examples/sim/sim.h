@@ -178,7 +178,7 @@ void sim_body_update(sim_body *b);
 /// come within the separation (half the margin for a pair not in the step's manifold, half the
 /// manifold's distance for one in it, plus the chord error of turning bodies; pairs touching or
 /// crossing at the start are the solver's) and moves each body hit back along its motion to its
-/// earliest toi; it asks again (up to 4 rounds), then leaves a body still hit at the step's
+/// earliest toi; it asks again (up to 4 rounds), then sends every moving body back to the step's
 /// start. Velocities are kept: the next step's manifold holds the pair. 0, or -1 when ttd
 /// refuses a call.
 int sim_ccd_begin(sim_world *w);
