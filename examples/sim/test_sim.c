@@ -319,12 +319,49 @@ static void test_ccd_spinning(void)
     }
 }
 
+/// Two icospheres (radius 0.2) flying at each other at 40 m/s each, no gravity, at 60 Hz (1.33 a
+/// step closing speed), from three distances: with CCD (both bodies moving) they never pass each other and end apart;
+/// without, they pass through each other.
+static void test_ccd_two_moving(void)
+{
+    for (int ccd = 0; ccd <= 1; ++ccd) {
+        for (int start = 0; start < 3; ++start) { /* starts 1.0, 1.17, 1.34 apart: each passes without CCD */
+            sim_settings set = sim_default_settings();
+            set.dt = 1.0 / 60;
+            set.ccd = ccd;
+            set.gravity[2] = 0;
+            sim_world w;
+            sim_shape ball;
+            const double id[4] = {1, 0, 0, 0}, gap = 1.0 + 0.17 * start;
+            const double xa[3] = {-gap, 0, 0}, xb[3] = {gap, 0.03, 0.02};
+            CHECK(sim_world_init(&w, &set) == 0 && sim_shape_icosphere(&ball, 0.2, 2) == 0, "built");
+            CHECK(sim_world_add(&w, &ball, xa, id, 0) == 0 && sim_world_add(&w, &ball, xb, id, 0) == 1, "added");
+            w.body[0].v[0] = 40;
+            w.body[1].v[0] = -40;
+            int passed = 0;
+            for (int step = 0; step < 20; ++step) {
+                CHECK(sim_world_step(&w) == 0, "step %d", step);
+                passed |= w.body[0].x[0] > w.body[1].x[0];
+            }
+            if (ccd) {
+                CHECK(!passed && w.ccd_steps >= 1, "start %d: with CCD the balls passed each other (CCD limited %zu steps)",
+                      start, w.ccd_steps);
+            } else {
+                CHECK(passed, "start %d: without CCD the balls did not pass each other", start);
+            }
+            sim_world_free(&w);
+            sim_shape_free(&ball);
+        }
+    }
+}
+
 int main(void)
 {
     test_mass();
     test_overlap();
     test_determinism();
     test_ccd_spinning();
+    test_ccd_two_moving();
     if (failures) {
         fprintf(stderr, "test_sim: %d failures\n", failures);
         return 1;
