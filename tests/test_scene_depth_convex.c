@@ -17,15 +17,14 @@
  * random points on a sphere, some stretched, at random orientations (a fixed generator): sunk
  * into each other by 0.01-0.25 along a random direction, crossing as rods (octahedra and hulls
  * stretched 8:1 at right angles, no vertex of either inside the other), and one nested inside a
- * bigger one. For every case, double and float, K = 0 and 4, solids:
- *   - a point below 0 wherever the depth is above 0, none deeper than the depth;
- *   - the deepest point's |d| equal to the deepest of the vertices inside the other and the
- *     edges' points inside it, on the edges that cross its surface (the docs' definition), from
- *     the reference;
- *   - where that deepest feature point reaches the penetration depth (the docs: the deepest
- *     point of the overlap on a vertex or an edge), the deepest point's |d| is the depth and its
- *     normal a direction along which B moves out of A by the depth (its overlap along the normal
- *     equals the depth). */
+ * bigger one, and pairs turned alike. For every case, double and float, K = 0 and 4, solids:
+ *   - a point below 0 wherever the depth is above 0;
+ *   - the deepest point's |d| equal to the penetration depth and its normal a direction along
+ *     which B moves out of A by the depth (its overlap along the normal equals the depth): the
+ *     convex pairs' point (docs/scenes.md 5b);
+ *   - at K = 0, a point at the deepest of the vertices inside the other and the edges' points
+ *     inside it, on the edges that cross its surface (the two rules beside it), from the
+ *     reference, unless the merge folded it into the depth's point (within 1e-3 of it). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
