@@ -226,6 +226,7 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
     size_t bt = 0, bv = 0, bea = 0, beb = 0;
     for (int side = 0; side < 2; ++side) {
         const sat_body *F = side ? &B : &A, *V = side ? &A : &B;
+        size_t hint = 0;
         for (size_t t = 0; t < F->nt; ++t) {
             const double *f = F->fn + 4 * t;
             if (f[0] == 0 && f[1] == 0 && f[2] == 0)
@@ -234,8 +235,15 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
             /* a face of i: j leaves along f by max over i - min over j; a face of j: along -f by
                max over j - min over i (the face's own plane where the body is convex; from the
                vertices, so that a flat edge bent within the flat angle makes no axis too short) */
-            const double mf[3] = {-f[0], -f[1], -f[2]};
-            const double D = -sat_low(F, mf, &top) - sat_low(V, f, &at);
+            /* any vertex of the other body bounds its support: faces facing away from it are
+               passed over without the search (the last face's lowest vertex as that vertex) */
+            if (!(f[3] - dot3d(f, V->x + 3 * hint) < best))
+                continue;
+            const double mf[3] = {-f[0], -f[1], -f[2]}, low = sat_low(V, f, &at);
+            hint = at;
+            if (!(f[3] - low < best))
+                continue; /* the face's own vertex is no higher than the support: no better */
+            const double D = -sat_low(F, mf, &top) - low;
             if (D < best) {
                 best = D;
                 kind = side;
@@ -246,21 +254,36 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
             }
         }
     }
+    /* each real edge of j: its two normals turned over (the Minkowski difference i - j), c and
+       d, and d x c, formed once */
+    double *arc = malloc(9 * (B.ne + 1) * sizeof *arc);
+    if (arc == NULL) {
+        sat_body_free(&A);
+        sat_body_free(&B);
+        return 0;
+    }
+    for (size_t eb = 0; eb < B.ne; ++eb) {
+        const uint32_t tb = B.edge[2 * eb] >> 2, ub = B.edge[2 * eb + 1];
+        double *g = arc + 9 * eb;
+        for (int r = 0; r < 3; ++r) {
+            g[r] = -B.fn[4 * (size_t)tb + (size_t)r];
+            g[3 + r] = -B.fn[4 * (size_t)ub + (size_t)r];
+        }
+        cross3d(g + 3, g, g + 6);
+    }
     for (size_t ea = 0; ea < A.ne; ++ea) {
         const uint32_t ta = A.edge[2 * ea] >> 2, ua = A.edge[2 * ea + 1];
         const double *a = A.fn + 4 * (size_t)ta, *b = A.fn + 4 * (size_t)ua;
         double bxa[3];
         cross3d(b, a, bxa);
         for (size_t eb = 0; eb < B.ne; ++eb) {
-            const uint32_t tb = B.edge[2 * eb] >> 2, ub = B.edge[2 * eb + 1];
-            /* j's normals turned over: the Minkowski difference i - j */
-            const double c[3] = {-B.fn[4 * (size_t)tb], -B.fn[4 * (size_t)tb + 1], -B.fn[4 * (size_t)tb + 2]};
-            const double d[3] = {-B.fn[4 * (size_t)ub], -B.fn[4 * (size_t)ub + 1], -B.fn[4 * (size_t)ub + 2]};
-            double dxc[3];
-            cross3d(d, c, dxc);
-            const double cba = dot3d(c, bxa), dba = dot3d(d, bxa), adc = dot3d(a, dxc), bdc = dot3d(b, dxc);
-            if (!(cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0))
+            const double *c = arc + 9 * eb, *d = c + 3, *dxc = c + 6;
+            const double cba = dot3d(c, bxa), dba = dot3d(d, bxa);
+            if (!(cba * dba < 0))
                 continue; /* the arcs do not cross: no face of the difference */
+            const double adc = dot3d(a, dxc), bdc = dot3d(b, dxc);
+            if (!(adc * bdc < 0 && cba * bdc > 0))
+                continue;
             double p0[3], p1[3], q0[3], q1[3], e[3], f[3], n[3], u[3];
             uint32_t t0;
             int k0;
@@ -280,6 +303,10 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
                touch (bodies turned alike: arcs meeting at their ends) rounding can pass the test
                for edges that do not support the bodies along u, and their n.(a0 - b0) would be
                too small. From the supports it is never below the depth. */
+            /* the edges' ends are vertices of the bodies, so the supports' overlap is at least
+               the edges' own: no better where that is not */
+            if (!(dot3d(u, p0) - dot3d(u, q0) < best))
+                continue;
             const double mu[3] = {-u[0], -u[1], -u[2]};
             size_t at_a, at_b;
             const double D = -sat_low(&A, mu, &at_a) - sat_low(&B, u, &at_b);
@@ -297,6 +324,7 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
             }
         }
     }
+    free(arc);
     int ok = 1;
     const double window = FEATURE_TOL * fmax(mi->radius, mj->radius);
     double have = 0; /* the depth of the pair's deepest point so far */
