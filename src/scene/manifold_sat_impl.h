@@ -234,15 +234,17 @@ static int solid_sat(const struct ttd_scene *s, const ttd_engine_config *cfg, ui
             size_t at, top;
             /* a face of i: j leaves along f by max over i - min over j; a face of j: along -f by
                max over j - min over i (the face's own plane where the body is convex; from the
-               vertices, so that a flat edge bent within the flat angle makes no axis too short) */
-            /* any vertex of the other body bounds its support: faces facing away from it are
-               passed over without the search (the last face's lowest vertex as that vertex) */
+               vertices, so that a flat edge bent within the flat angle makes no axis too short).
+               Both bounded below by the face's plane against any vertex of the other body, so
+               faces turned away from it are passed over without a search (the last face's
+               lowest vertex as that vertex), and by the face's plane against the other's
+               support before the face's own body is searched. */
             if (!(f[3] - dot3d(f, V->x + 3 * hint) < best))
                 continue;
             const double mf[3] = {-f[0], -f[1], -f[2]}, low = sat_low(V, f, &at);
             hint = at;
             if (!(f[3] - low < best))
-                continue; /* the face's own vertex is no higher than the support: no better */
+                continue;
             const double D = -sat_low(F, mf, &top) - low;
             if (D < best) {
                 best = D;
