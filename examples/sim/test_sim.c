@@ -255,8 +255,11 @@ static void turn_part(const double a[4], const double b[4], double f, double out
 /// vertex under the plate's top, and the chord error was added; without CCD it goes through.
 static void test_ccd_spinning(void)
 {
-    static const double starts[6] = {1.40, 1.60, 1.65, 1.70, 1.75, 1.80}; /* heights that go through without CCD */
-    for (int run = 0; run < 12; ++run) {
+    /* heights from which the box goes through the plate without CCD, and 1.40, from which it went
+       through until convex solids got their separating-axes depth point (the solver now pushes it
+       back out): kept for CCD, the run that limits the most steps */
+    static const double starts[7] = {1.40, 1.60, 1.65, 1.70, 1.75, 1.80, 1.85};
+    for (int run = 0; run < 14; ++run) {
         const int ccd = run % 2;
         const double start = starts[run / 2];
         sim_settings set = sim_default_settings();
@@ -310,7 +313,7 @@ static void test_ccd_spinning(void)
                    "sampled motion %.4f above the plate's top on the steps begun out of the margin, %.4f over the run; "
                    "largest chord error %.4f\n",
                    start, w.ccd_steps, w.ccd_max_pieces, lowest_free, lowest, w.ccd_max_chord);
-        } else {
+        } else if (start != 1.40) {
             CHECK(w.body[1].x[2] < -1, "start %g: without CCD it did not go through (ended at %g)", start, w.body[1].x[2]);
         }
         sim_world_free(&w);
