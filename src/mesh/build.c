@@ -1278,6 +1278,7 @@ typedef struct refit {
     const struct ttd_mesh *mesh;
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
     ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
+    ttd_leaf_axes_fn leaf_axes; /* the ISA's lane axes of up to 8 leaves, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
@@ -1401,9 +1402,9 @@ static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const
         node->u[i][j] = (float)b.u[i];
 }
 
-/* Refits slot j of node n (the node's child there refitted already, unless it is a leaf) and
- * returns its subtree's sums. A lone triangle and a leaf are fitted from their vertices (the
- * leaf's own slots too); a larger subtree around its children's boxes. */
+/* Refits slot j of node n (the node's child there refitted already; not a leaf: refit_node does
+ * those) and returns its subtree's sums. A lone triangle is fitted from its vertices; a larger
+ * subtree around its children's boxes. */
 static fitsum refit_slot(const refit *R, int32_t n, int j)
 {
     const struct ttd_mesh *m = R->mesh;
@@ -1431,56 +1432,127 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
         for (int i = 0; i < 9; ++i)
             old[i] = (double)((const ttd_node_f *)m->nodes)[n].u[i][j];
     }
-    if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
-        const int count = slot_count(m, (size_t)c);
-        uint32_t t[TTD_NODE_WIDTH];
-        for (int i = 0; i < count; ++i)
-            t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
-        gather(m, &L, t, count);
-        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit); a
-         * full leaf of a double mesh takes them straight into its node */
-        const double *const *pl = (const double *const *)L.B.p;
-        ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
-        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
-        double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
-        unsigned lanes = 0;
-        if (R->tri_fit != NULL)
-            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
-        for (int i = 0; i < count; ++i) {
-            if (lanes >> i & 1) {
-                if (leaf != NULL)
-                    continue; /* stored already */
-                for (int k = 0; k < 3; ++k) {
-                    b.c[k] = C[k][i];
-                    b.e[k] = E[k][i];
-                }
-                for (int k = 0; k < 9; ++k)
-                    b.u[k] = U[k][i];
-            } else {
-                double area2, p[3][3];
-                pos_vertices(&L.B, (size_t)i, p);
-                triangle_fit(p, m->radius, &b, &area2);
-                /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
-                fitsum_terms(T, i, L.B.p, b.u + 6, area2, R->tri_fit == NULL);
-            }
-            store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
-        }
-        sum = fitsum_leaf(T, count);
-        refit_axes(&sum, old, b.u);
-        if (R->leaf_span != NULL) {
-            double mn[3], mx[3];
-            R->leaf_span(pl, count, b.u, mn, mx);
-            span_extents(mn, mx, m->radius, &b);
-        } else {
-            fit_extents(&L.B, 0, (size_t)count, &b);
-        }
-        store_box(&L.B, n, j, &b, c, 0, (size_t)count);
-        return sum;
-    }
     sum = R->sums[c];
     refit_axes(&sum, old, b.u);
     store_box_of_boxes(m, n, j, b.u, c);
     return sum;
+}
+
+/* A leaf's part of a refit before its own axes: its triangles' boxes (in lanes where the ISA has
+ * them, the same bits as triangle_fit; a full leaf of a double mesh takes them straight into its
+ * node) and its sums. L keeps its vertices for its own extents (leaf_store). */
+static fitsum leaf_fit(const refit *R, int32_t c, local_tris *L)
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)c);
+    uint32_t t[TTD_NODE_WIDTH];
+    for (int i = 0; i < count; ++i)
+        t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
+    gather(m, L, t, count);
+    const double *const *pl = (const double *const *)L->B.p;
+    ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
+    double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
+    double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
+    unsigned lanes = 0;
+    obb b;
+    if (R->tri_fit != NULL)
+        lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
+    for (int i = 0; i < count; ++i) {
+        if (lanes >> i & 1) {
+            if (leaf != NULL)
+                continue; /* stored already */
+            for (int k = 0; k < 3; ++k) {
+                b.c[k] = C[k][i];
+                b.e[k] = E[k][i];
+            }
+            for (int k = 0; k < 9; ++k)
+                b.u[k] = U[k][i];
+        } else {
+            double area2, p[3][3];
+            pos_vertices(&L->B, (size_t)i, p);
+            triangle_fit(p, m->radius, &b, &area2);
+            /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
+            fitsum_terms(T, i, L->B.p, b.u + 6, area2, R->tri_fit == NULL);
+        }
+        store_box(&L->B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
+    }
+    return fitsum_leaf(T, count);
+}
+
+/* The rest of a leaf's refit: its box about axes u (from refit_axes or leaf_axes) around its
+ * vertices, stored in slot j of node n. */
+static void leaf_store(const refit *R, int32_t n, int j, int32_t c, const local_tris *L, const double u[9])
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)c);
+    obb b;
+    memcpy(b.u, u, sizeof b.u);
+    if (R->leaf_span != NULL) {
+        double mn[3], mx[3];
+        R->leaf_span((const double *const *)L->B.p, count, b.u, mn, mx);
+        span_extents(mn, mx, m->radius, &b);
+    } else {
+        fit_extents(&L->B, 0, (size_t)count, &b);
+    }
+    store_box(&L->B, n, j, &b, c, 0, (size_t)count);
+}
+
+/* Refits every slot of node n (its children refitted already, but for its leaves) into sum[j],
+ * each slot's subtree's sums. Its leaves in three passes: each leaf's triangles and sums
+ * (leaf_fit), then their axes, eight at once in lanes where the ISA has them (leaf_axes: the
+ * same bits as refit_axes, which does the leaves it leaves out and the scalar row's), then each
+ * leaf's box (leaf_store). The other slots by refit_slot. */
+static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)n);
+    local_tris L[TTD_NODE_WIDTH];
+    double S[14][TTD_NODE_WIDTH], old[9][TTD_NODE_WIDTH], u[9][TTD_NODE_WIDTH];
+    int32_t child[TTD_NODE_WIDTH];
+    unsigned leaves = 0;
+    for (int j = 0; j < count; ++j) {
+        child[j] = slot_child(m, (size_t)n, j);
+        if (child[j] < 0 || slot_child(m, (size_t)child[j], 0) >= 0) {
+            sum[j] = refit_slot(R, n, j);
+            continue;
+        }
+        leaves |= 1u << j;
+        sum[j] = leaf_fit(R, child[j], &L[j]);
+        for (int k = 0; k < 3; ++k)
+            S[k][j] = sum[j].n[k];
+        S[3][j] = sum[j].nlen;
+        for (int k = 0; k < 10; ++k)
+            S[4 + k][j] = sum[j].m[k];
+        for (int k = 0; k < 9; ++k)
+            old[k][j] = m->bytes == 8 ? ((const ttd_node_d *)m->nodes)[n].u[k][j]
+                                      : (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
+    }
+    if (leaves == 0)
+        return;
+    for (int j = count; j < TTD_NODE_WIDTH; ++j) /* defined numbers in the unused lanes */
+        for (int k = 0; k < 14; ++k)
+            S[k][j] = k == 4 ? 1 : 0;
+    for (int j = count; j < TTD_NODE_WIDTH; ++j)
+        for (int k = 0; k < 9; ++k)
+            old[k][j] = 0;
+    const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
+                                                               (const double(*)[TTD_NODE_WIDTH])old, leaves, u)
+                                                : 0;
+    for (int j = 0; j < count; ++j) {
+        if (!(leaves >> j & 1))
+            continue;
+        double uj[9];
+        if (lanes >> j & 1) {
+            for (int k = 0; k < 9; ++k)
+                uj[k] = u[k][j];
+        } else {
+            double oj[9];
+            for (int k = 0; k < 9; ++k)
+                oj[k] = old[k][j];
+            refit_axes(&sum[j], oj, uj);
+        }
+        leaf_store(R, n, j, child[j], &L[j], uj);
+    }
 }
 
 /* Refits the slots of the nodes first..last-1 that are not leaves, the last first (pre-order:
@@ -1502,12 +1574,11 @@ static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
         }
         if (slot_child(R->mesh, n, 0) < 0)
             continue; /* a leaf: its parent refits it */
-        fitsum sum;
+        fitsum sum, slot[TTD_NODE_WIDTH];
         memset(&sum, 0, sizeof sum);
-        for (int j = 0; j < slot_count(R->mesh, n); ++j) {
-            const fitsum s = refit_slot(R, (int32_t)n, j);
-            fitsum_add(&sum, &s);
-        }
+        refit_node(R, (int32_t)n, slot);
+        for (int j = 0; j < slot_count(R->mesh, n); ++j)
+            fitsum_add(&sum, &slot[j]);
         R->sums[n] = sum;
     }
 }
@@ -1551,7 +1622,8 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
         ttd_parallel_tasks(nlist, cfg->threads, refit_task, R);
         refit_nodes(R, 1, m->nnodes, nlist);
     }
-    (void)refit_slot(R, 0, 0);
+    fitsum root[TTD_NODE_WIDTH];
+    refit_node(R, 0, root); /* node 0's one slot: the root's box */
 }
 
 /* Everything derived from the vertex positions, recomputed after they moved, in this order:
@@ -1582,8 +1654,8 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
     const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
-    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
-               malloc(64 * sizeof(subtree))};
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
+               row != NULL ? row->leaf_axes : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)), malloc(64 * sizeof(subtree))};
     if (R.sums == NULL || R.list == NULL) {
         free(R.sums);
         free(R.list);
