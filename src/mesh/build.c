@@ -930,10 +930,16 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
-    if (m->bytes == 8)
+    if (vrel == NULL) {
+        /* the largest |x - origin| without a pass: x - origin rounds monotonically in x, so its
+         * extremes are those of the range's ends (the loop's bits) */
+        for (int c = 0; c < 3; ++c)
+            big = dmax(big, dmax(fabs(mx[c] - m->origin[c]), fabs(mn[c] - m->origin[c])));
+    } else if (m->bytes == 8) {
         PLACE_BIG(double);
-    else
+    } else {
         PLACE_BIG(float);
+    }
     /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
      * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
      * pair, at 1e-163) */
@@ -1143,7 +1149,8 @@ nomem:
  *     once, one per lane (tri_fit, simd/kernel_trifit.h: the same bits), with their terms of the
  *     leaf's sums (fitsum_terms, summed by fitsum_leaf in a fixed order);
  *   - a leaf's (a node of triangles) from its vertices, about axes found from its triangles' sums
- *     (refit_axes) and its axes before the move;
+ *     (refit_axes) and its axes before the move; a node's slots' axes at once, one per lane, on
+ *     the SIMD rows (leaf_axes, simd/kernel_trifit.h: the same bits), refit_node's middle pass;
  *   - a larger subtree's likewise, around its children's boxes instead of its vertices (a few
  *     corners per child instead of a pass over every vertex below it).
  * The sums a parent's axes need (fitsum) are the triangles' normals and the vertices' moments,
