@@ -764,29 +764,63 @@ static int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], d
     return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
 }
 
-void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
-                   ttd_ccd_result *out)
+/* The query's state from its inputs: the motions, S (the largest coordinate magnitude) and e_gap. */
+static double state_init(ccd_state *s, int kind, const double x0[12], const double x1[12], double t_tol)
 {
-    ccd_state s;
-    s.na = kind;
-    s.in0 = x0;
-    s.in1 = x1;
-    s.t_tol = p->t_tol;
-    s.near_miss = 0;
-    memset(s.made, 0, sizeof s.made);
-    s.last_t = NAN;
-    s.last_sign = 2;
+    s->na = kind;
+    s->in0 = x0;
+    s->in1 = x1;
+    s->t_tol = t_tol;
+    s->near_miss = 0;
+    memset(s->made, 0, sizeof s->made);
+    s->last_t = NAN;
+    s->last_sign = 2;
     double S = 0;
     for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k) {
-            s.x0[i][k] = x0[3 * i + k];
-            s.dx[i][k] = x1[3 * i + k] - x0[3 * i + k];
+            s->x0[i][k] = x0[3 * i + k];
+            s->dx[i][k] = x1[3 * i + k] - x0[3 * i + k];
             S = fmax(S, fmax(fabs(x0[3 * i + k]), fabs(x1[3 * i + k])));
         }
     /* Positions within 5uS; a projection on n (|n_k| <= 1) adds 3.01u sum |n_k x_k| <= 9.1uS and
      * carries 3 x 5uS of position error: 25uS each, 50uS for the difference of two, rounded up
      * to 64uS; the absolute term covers products that underflow (docs/ccd.md, section 3). */
-    s.e_gap = 64 * U_ROUND * S + 0x1p-1000;
+    s->e_gap = 64 * U_ROUND * S + 0x1p-1000;
+    return S;
+}
+
+int ttd_ccd_screen(int kind, const double x0[12], const double x1[12], double delta, double t_max)
+{
+    for (int i = 0; i < 12; ++i)
+        if (!isfinite(x0[i]) || !isfinite(x1[i]))
+            return 0;
+    ccd_state s;
+    const double S = state_init(&s, kind, x0, x1, TTD_CCD_DEFAULT_T_TOL);
+    if (!(S < TTD_CCD_SCREEN_MAX))
+        return 0;
+    double xa[4][3], xb[4][3], xm[4][3], n1[3], n2[3];
+    int vv[2];
+    s.ta = 0.0;
+    s.tb = t_max;
+    s.cand_g = -HUGE_VAL;
+    positions(&s, 0.0, xa);
+    positions(&s, t_max, xb);
+    if (delta == 0) {
+        cop_info ci;
+        never_coplanar(s.na, xa, xb, S, &ci);
+        if (ci.never)
+            return 1;
+    }
+    positions(&s, 0.5 * (0.0 + t_max), xm);
+    directions(s.na, xm, n1, n2, vv);
+    return separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta);
+}
+
+void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
+                   ttd_ccd_result *out)
+{
+    ccd_state s;
+    const double S = state_init(&s, kind, x0, x1, p->t_tol);
     const double delta = p->delta;
 
     out->hit = 0;
