@@ -415,6 +415,58 @@ static double cpu_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* ---- the slowest queries (docs/ccd-speed.md) ---------------------------------------------------
+ * --slowest K: every sample query timed again alone (CPU time of 10 calls, the fastest of reps), and
+ * the K slowest listed with the intervals their search examined. */
+typedef struct slow_query {
+    double us;
+    const qset *set;
+    size_t q;
+    ttd_ccd_result r;
+} slow_query;
+
+static void bench_slowest(const qset *sets, size_t ns, size_t k, int reps)
+{
+    slow_query *top = calloc(k + 1, sizeof *top);
+    if (top == NULL || k == 0) {
+        free(top);
+        return;
+    }
+    size_t have = 0;
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    for (size_t i = 0; i < ns; ++i) {
+        const qset *s = &sets[i];
+        const int na = s->kind;
+        for (size_t q = 0; q < s->n; ++q) {
+            const double *x0 = s->x0 + 12 * q, *x1 = s->x1 + 12 * q;
+            double best = INFINITY;
+            ttd_ccd_result r;
+            for (int rep = 0; rep < reps; ++rep) {
+                const double c0 = cpu_now();
+                for (int j = 0; j < 10; ++j) {
+                    if (na == 1)
+                        ttd_ccd_vertex_face_d(&o, 1, x0, x0 + 3 * na, x1, x1 + 3 * na, 0, &r);
+                    else
+                        ttd_ccd_edge_edge_d(&o, 1, x0, x0 + 3 * na, x1, x1 + 3 * na, 0, &r);
+                }
+                best = fmin(best, (cpu_now() - c0) / 10);
+            }
+            /* insert into the sorted list, slowest first */
+            size_t j = have < k ? have++ : k;
+            for (; j > 0 && top[j - 1].us < 1e6 * best; --j)
+                top[j] = top[j - 1];
+            if (j < k)
+                top[j] = (slow_query){1e6 * best, s, q, r};
+        }
+    }
+    printf("\nthe %zu slowest sample queries (CPU time, the fastest of %d runs of 10 calls; intervals: evals)\n", have, reps);
+    for (size_t j = 0; j < have; ++j)
+        printf("%8.1f us  %4u intervals  %s  %s query %zu (truth %d)\n", top[j].us, top[j].r.evals,
+               top[j].r.hit ? "hit " : "miss", top[j].set->name, top[j].q, top[j].set->truth ? top[j].set->truth[top[j].q] : -1);
+    free(top);
+}
+
 /* ---- batches: the screen in SIMD lanes against the scalar path ---------------------------------
  * (docs/ccd.md, section 11) A set as one batch call of the public entry: on the scalar row and on the
  * best instruction set here, one thread (CPU time a query, and their ratio), and on the best with all
@@ -620,7 +672,7 @@ int bench_ccd_main(int argc, char **argv)
 {
     const char *dir = TTD_CCD_SUBSET_DIR;
     int reps = 3, mesh_only = 0, steps = 60, use_ti = 1;
-    size_t fam_n = 2000, sheet = 224;
+    size_t fam_n = 2000, sheet = 224, slowest = 0;
     const char *ti_path = NULL;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--queries") == 0 && i + 1 < argc)
@@ -633,6 +685,8 @@ int bench_ccd_main(int argc, char **argv)
             sheet = (size_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc)
             steps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
+        else if (strcmp(argv[i], "--slowest") == 0 && i + 1 < argc)
+            slowest = (size_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--mesh-only") == 0)
             mesh_only = 1;
         else if (strcmp(argv[i], "--ti") == 0 && i + 1 < argc)
@@ -641,7 +695,7 @@ int bench_ccd_main(int argc, char **argv)
             use_ti = 0;
         else {
             printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
-                   "                     [--sheet N] [--steps K] [--mesh-only]\n"
+                   "                     [--sheet N] [--steps K] [--mesh-only] [--slowest K]\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
                    "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n"
@@ -650,7 +704,8 @@ int bench_ccd_main(int argc, char **argv)
                    "  scripts/get-tight-inclusion.sh); skipped with a message when it is absent.\n"
                    "  Then self-CCD of a folding sheet of 2 N^2 triangles (default N 224: 100,352), K closing\n"
                    "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
-                   "  through itself; --mesh-only: that alone.\n",
+                   "  through itself; --mesh-only: that alone. --slowest K: the K slowest sample queries\n"
+                   "  listed after their table (CPU time, intervals examined).\n",
                    TTD_CCD_SUBSET_DIR);
             return strcmp(argv[i], "--help") == 0 ? 0 : 2;
         }
@@ -751,6 +806,8 @@ int bench_ccd_main(int argc, char **argv)
     printf("(%zu files, %zu queries, %zu positive; the issue's targets: 0 FN, total time at most 50x the naive "
            "cubic's, no query over 50 us)\n",
            ns, total, positives);
+
+    bench_slowest(sets, ns, slowest, reps);
 
     printf("\ngenerated families (no truth: hits and time only)\n");
     static const char *fam[7] = {"random", "coplanar motion", "parallel edges", "touching at t = 1",

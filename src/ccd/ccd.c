@@ -701,8 +701,73 @@ static int jump_to_root(ccd_state *s, double ta, double tb, int zero_at_tb, doub
     return 1;
 }
 
+/* The guess r of f's first root in (ta, tb], moved onto a sign change of f found exactly: f's exact
+ * sign at r, then at r plus or minus 1, 4, 16, ... ulps until it differs from f(ta)'s, the bracket
+ * then halved to at most t_tol / 2; returns its end b (f(b) not of f(ta)'s sign, f of that sign at a
+ * point at most t_tol / 2 before b), so that the cut's piece [b - t_tol / 2, b + t_tol / 2] holds
+ * the sign change. The guess rounded from f's coefficients is off by an ulp or two where f is
+ * flat or has two roots close together, and a cut beside the root leaves a stretch starting at a
+ * contact, which only halving to t_tol ends. r unchanged where f(ta) has no strict sign, an exact
+ * sign is untrusted, or no change is found within 12 steps (the cut's order only: every
+ * guarantee stands whatever r is). */
+static double bracket_root(ccd_state *s, const ttd_ccd_xpoly *P, double ta, double tb, double r)
+{
+    if (!(r > ta && r <= tb))
+        return r;
+    const int s0 = ttd_ccd_xpoly_sign_at(P, ta);
+    if (s0 != 1 && s0 != -1)
+        return r;
+    const int sr = ttd_ccd_xpoly_sign_at(P, r);
+    if (sr == 2)
+        return r;
+    double a, b; /* f(a) of s0's sign, f(b) not */
+    double step = nextafter(r, HUGE_VAL) - r;
+    if (sr == s0) {
+        a = r;
+        for (int k = 0;; ++k) {
+            if (k == 12 || a >= tb)
+                return r;
+            b = a + step < tb ? a + step : tb;
+            const int sb = ttd_ccd_xpoly_sign_at(P, b);
+            if (sb == 2)
+                return r;
+            if (sb != s0)
+                break;
+            a = b;
+            step *= 4;
+        }
+    } else {
+        b = r;
+        for (int k = 0;; ++k) {
+            if (k == 12)
+                return r;
+            a = b - step > ta ? b - step : ta;
+            const int sa = a == ta ? s0 : ttd_ccd_xpoly_sign_at(P, a);
+            if (sa == 2)
+                return r;
+            if (sa == s0)
+                break;
+            b = a;
+            step *= 4;
+        }
+    }
+    while (b - a > 0.5 * s->t_tol) {
+        const double m = a + 0.5 * (b - a);
+        if (!(m > a && m < b))
+            break;
+        const int sm = ttd_ccd_xpoly_sign_at(P, m);
+        if (sm == 2)
+            return r;
+        if (sm == s0)
+            a = m;
+        else
+            b = m;
+    }
+    return b;
+}
+
 /* Where f changes sign on the interval (or may vanish at its end), its first root there guessed in
- * double; NAN otherwise. */
+ * double and bracketed exactly (bracket_root); NAN otherwise. */
 static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
 {
     if (ci->never)
@@ -716,7 +781,9 @@ static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
             return NAN;
     }
     const ttd_ccd_xpoly *P = xpoly(s, 0);
-    return P->bad ? (double)NAN : approx_first_root(P->a, ta, tb);
+    if (P->bad)
+        return NAN;
+    return bracket_root(s, P, ta, tb, approx_first_root(P->a, ta, tb));
 }
 
 /* The exact proofs of an interval free of contact at delta = 0 (ccd_exact.c): the coplanarity cubic
