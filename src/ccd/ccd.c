@@ -67,6 +67,8 @@ typedef struct ccd_state {
     double cand_n[3], cand_g; /* the exact test's direction for this interval, its rounded gap */
     double t_tol;      /* the search's resolution */
     int near_miss;     /* an exact contact condition proved a final interval free */
+    int cond_cuts;     /* cuts made at a contact condition's root (cond_root), at most COND_CUTS */
+    double cut_ta, cut_lo; /* the piece before the last such cut, where the conditions' exact test runs */
     int made[5];       /* whether poly[i] is formed: f, then the contact conditions */
     double last_t;     /* the last time f's exact sign was taken at, and that sign */
     int last_sign;
@@ -786,6 +788,68 @@ static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
     return bracket_root(s, P, ta, tb, approx_first_root(P->a, ta, tb));
 }
 
+/* The first root in (ta, tb] of the quartic c0 + c1 t + ... + c4 t^4 (negative at ta) guessed in double:
+ * the first of 16 equal pieces whose end is not negative, bisected. NAN if none. Only a guess. */
+static double approx_first_rise(const double c[5], double ta, double tb)
+{
+    double a = ta;
+    for (int i = 1; i <= 16; ++i) {
+        double b = i == 16 ? tb : ta + (tb - ta) * (i / 16.0);
+        const double fb = (((c[4] * b + c[3]) * b + c[2]) * b + c[1]) * b + c[0];
+        if (!(fb < 0)) {
+            for (int it = 0; it < 80; ++it) {
+                const double m = 0.5 * (a + b);
+                if (!(m > a && m < b))
+                    break;
+                const double fm = (((c[4] * m + c[3]) * m + c[2]) * m + c[1]) * m + c[0];
+                if (fm < 0)
+                    a = m;
+                else
+                    b = m;
+            }
+            return b;
+        }
+        a = b;
+    }
+    return NAN;
+}
+
+/* Where f is about 0 on the interval (no root of it to cut at; motion close to coplanar), the time
+ * before which no contact can come: a contact needs every contact condition >= 0, so where some are
+ * negative at ta (exactly), the latest of their first roots, guessed in double and bracketed exactly
+ * (bracket_root); NAN where none is negative at ta or one has no root guessed in the interval. At
+ * most COND_CUTS a query; the cut's order only (the conditions' exact test then runs on the piece
+ * before the root, which that condition's sign proves: try_conditions). */
+enum { COND_CUTS = 8 };
+static double cond_root(ccd_state *s, double ta, double tb)
+{
+    if (s->cond_cuts >= COND_CUTS)
+        return NAN;
+    ++s->cond_cuts;
+    const int nc = s->na == TTD_CCD_VF ? 3 : 4;
+    double r = NAN;
+    for (int c = 0; c < nc; ++c) {
+        const ttd_ccd_xpoly *P = xpoly(s, 1 + c);
+        if (P->bad)
+            return NAN;
+        if (ttd_ccd_xpoly_sign_at(P, ta) != -1)
+            continue;
+        const double rc = bracket_root(s, P, ta, tb, approx_first_rise(P->a, ta, tb));
+        if (!(rc > ta && rc <= tb))
+            return NAN;
+        r = r > rc ? r : rc;
+    }
+    return r;
+}
+
+/* Whether the conditions' exact test runs on the interval being tested: a final one (it would
+ * otherwise be the hit), every one once a near miss was proved, and the piece before a cut at a
+ * condition's root (the stretch that condition's sign proves). */
+static int try_conditions(const ccd_state *s)
+{
+    return s->tb - s->ta <= s->t_tol || s->near_miss || (s->ta == s->cut_ta && s->tb == s->cut_lo);
+}
+
 /* The exact proofs of an interval free of contact at delta = 0 (ccd_exact.c): the coplanarity cubic
  * of one strict sign (where the rounding bound left it undecided), or a contact condition negative
  * throughout (where the rounded one may be). */
@@ -793,13 +857,12 @@ static int exact_free(ccd_state *s, const cop_info *ci, const int csign[4])
 {
     /* The conditions only on an interval that would otherwise be the hit, and, once one proved such
      * an interval free (a near miss: the primitives slide past each other), on every interval. */
-    const int final = s->tb - s->ta <= s->t_tol;
     if (ci->undecided && !(ci->end_zero && f_sign_at(s, s->tb) == 0)) {
         const int r = ttd_ccd_xpoly_sign(xpoly(s, 0), s->ta, s->tb, ci->sgn);
         if (r == 1 || r == -1)
             return 1;
     }
-    if (csign == NULL || !(s->near_miss || final))
+    if (csign == NULL || !try_conditions(s))
         return 0;
     for (int c = 0; c < 4; ++c)
         if (csign[c] == -1 &&
@@ -839,6 +902,8 @@ static double state_init(ccd_state *s, int kind, const double x0[12], const doub
     s->in1 = x1;
     s->t_tol = t_tol;
     s->near_miss = 0;
+    s->cond_cuts = 0;
+    s->cut_ta = s->cut_lo = NAN;
     memset(s->made, 0, sizeof s->made);
     s->last_t = NAN;
     s->last_sign = 2;
@@ -929,6 +994,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
         double d = HUGE_VAL, root = NAN;
+        int from_cond = 0; /* root is a condition's (cond_root) */
         if (delta == 0) {
             cop_info ci;
             never_coplanar(s.na, xa, xb, S, &ci);
@@ -962,11 +1028,15 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             }
             if (directions_separate(&s, xa, xb, tm, delta, &d))
                 continue;
-            if (!(ci.change || ci.end_zero) && (s.near_miss || tb - ta <= p->t_tol))
+            if (!(ci.change || ci.end_zero) && try_conditions(&s))
                 conditions(s.na, xa, xb, S, csign); /* for the exact test: not formed above */
             if (exact_free(&s, &ci, csign))
                 continue;
             root = root_guess(&s, &ci, ta, tb);
+            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol) {
+                root = cond_root(&s, ta, tb);
+                from_cond = root > ta && root <= tb;
+            }
         } else if (directions_separate(&s, xa, xb, tm, delta, &d)) {
             continue;
         }
@@ -1009,6 +1079,10 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
                 st_ta[top] = ta;
                 st_tb[top] = lo;
                 ++top;
+                if (from_cond) {
+                    s.cut_ta = ta;
+                    s.cut_lo = lo;
+                }
                 continue;
             }
         }
