@@ -969,7 +969,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
     st_ta[0] = 0.0;
     st_tb[0] = p->t_max;
     top = 1;
-    int evals = 0;
+    int evals = 0, probes = 0;
+    enum { PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
         const double ta = st_ta[top - 1], tb = st_tb[top - 1];
@@ -1054,6 +1055,25 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             }
             out->gap = d;
             break;
+        }
+        /* Where the primitives seem in contact all along (the distance at the middle within the
+         * rounding bound, and no root to cut at), the contact is likely at ta already: its final
+         * interval [ta, ta + t_tol] first, then the rest (at most PROBES a query; the order only). */
+        if (!(root > ta && root <= tb) && d <= 4 * s.e_gap && probes < PROBES && tb - ta > 4 * p->t_tol &&
+            top + 2 <= STACK) {
+            double hi = ta + p->t_tol;
+            while (hi - ta > p->t_tol)
+                hi = nextafter(hi, ta);
+            if (hi > ta && hi < tb) {
+                ++probes;
+                st_ta[top] = hi;
+                st_tb[top] = tb;
+                ++top;
+                st_ta[top] = ta;
+                st_tb[top] = hi;
+                ++top;
+                continue;
+            }
         }
         /* Where f seems to have a root, the interval is cut at it: [ta, lo], [lo, lo + t_tol] and
          * the rest, so that the stretch before the root is tried whole and the contact (or the near
