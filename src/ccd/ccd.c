@@ -784,7 +784,7 @@ static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
     }
     const ttd_ccd_xpoly *P = xpoly(s, 0);
     if (P->bad)
-        return NAN;
+        return (double)NAN;
     return bracket_root(s, P, ta, tb, approx_first_root(P->a, ta, tb));
 }
 
@@ -811,7 +811,7 @@ static double approx_first_rise(const double c[5], double ta, double tb)
         }
         a = b;
     }
-    return NAN;
+    return (double)NAN;
 }
 
 /* Where f is about 0 on the interval (no root of it to cut at; motion close to coplanar), the time
@@ -824,19 +824,19 @@ enum { COND_CUTS = 8 };
 static double cond_root(ccd_state *s, double ta, double tb)
 {
     if (s->cond_cuts >= COND_CUTS)
-        return NAN;
+        return (double)NAN;
     ++s->cond_cuts;
     const int nc = s->na == TTD_CCD_VF ? 3 : 4;
-    double r = NAN;
+    double r = (double)NAN;
     for (int c = 0; c < nc; ++c) {
         const ttd_ccd_xpoly *P = xpoly(s, 1 + c);
         if (P->bad)
-            return NAN;
+            return (double)NAN;
         if (ttd_ccd_xpoly_sign_at(P, ta) != -1)
             continue;
         const double rc = bracket_root(s, P, ta, tb, approx_first_rise(P->a, ta, tb));
         if (!(rc > ta && rc <= tb))
-            return NAN;
+            return (double)NAN;
         r = r > rc ? r : rc;
     }
     return r;
@@ -903,7 +903,7 @@ static double state_init(ccd_state *s, int kind, const double x0[12], const doub
     s->t_tol = t_tol;
     s->near_miss = 0;
     s->cond_cuts = 0;
-    s->cut_ta = s->cut_lo = NAN;
+    s->cut_ta = s->cut_lo = (double)NAN;
     memset(s->made, 0, sizeof s->made);
     s->last_t = NAN;
     s->last_sign = 2;

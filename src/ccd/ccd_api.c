@@ -29,8 +29,8 @@ typedef struct ccd_batch {
 static void nonfinite(ttd_ccd_result *r)
 {
     r->hit = 0;
-    r->toi = NAN;
-    r->gap = NAN;
+    r->toi = (double)NAN;
+    r->gap = (double)NAN;
     r->flags = TTD_CCD_NONFINITE;
     r->sub = 0;
     r->evals = 0;
@@ -152,8 +152,8 @@ static void ccd_block(void *ctx, size_t block, int worker)
         }
         return;
     }
-    /* Vertex-face and edge-edge: groups of TTD_NODE_WIDTH queries, the screen on the group (in
-     * lanes where the row has them), the scalar search on the queries it does not prove free. */
+    /* Vertex-face and edge-edge: groups of TTD_NODE_WIDTH queries, the screen in lanes on the group
+     * where the row has it, the scalar search on the queries it does not prove free. */
     const int na = b->kind, nb = 4 - b->kind;
     for (size_t g = block * CCD_BLOCK; g < end; g += TTD_NODE_WIDTH) {
         const int count = end - g < TTD_NODE_WIDTH ? (int)(end - g) : TTD_NODE_WIDTH;
@@ -166,7 +166,9 @@ static void ccd_block(void *ctx, size_t block, int worker)
                           load(b, b->b1, q, nb, p1 + na);
             finite |= (unsigned)f << i;
         }
-        const unsigned proved = screen_mask(b->screen, na, count, x0[0], x1[0], p.delta, p.t_max);
+        /* The scalar row searches every query: its first interval runs the screen's tests itself
+         * (the same answer for a query the screen proves: no hit after one evaluation). */
+        const unsigned proved = b->screen != NULL ? b->screen(na, count, x0[0], x1[0], p.delta, p.t_max) : 0;
         for (int i = 0; i < count; ++i) {
             ttd_ccd_result *r = &b->out[g + (size_t)i];
             if (!((finite >> i) & 1u)) {
