@@ -408,14 +408,195 @@ static void print_row(const char *name, const stats *t, const stats *nv, int tru
 }
 
 
-/* ---- deforming meshes ----------------------------------------------------------------------- */
-
 static double cpu_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+
+/* ---- the slowest queries (docs/ccd-speed.md) ---------------------------------------------------
+ * --slowest K: every sample query timed again alone (CPU time of 10 calls, the fastest of reps), and
+ * the K slowest listed with the intervals their search examined. */
+typedef struct slow_query {
+    double us;
+    const qset *set;
+    size_t q;
+    ttd_ccd_result r;
+} slow_query;
+
+static void bench_slowest(const qset *sets, size_t ns, size_t k, int reps)
+{
+    slow_query *top = calloc(k + 1, sizeof *top);
+    if (top == NULL || k == 0) {
+        free(top);
+        return;
+    }
+    size_t have = 0;
+    ttd_options o = ttd_default_options();
+    o.threads = 1;
+    for (size_t i = 0; i < ns; ++i) {
+        const qset *s = &sets[i];
+        const int na = s->kind;
+        for (size_t q = 0; q < s->n; ++q) {
+            const double *x0 = s->x0 + 12 * q, *x1 = s->x1 + 12 * q;
+            double best = INFINITY;
+            ttd_ccd_result r;
+            for (int rep = 0; rep < reps; ++rep) {
+                const double c0 = cpu_now();
+                for (int j = 0; j < 10; ++j) {
+                    if (na == 1)
+                        ttd_ccd_vertex_face_d(&o, 1, x0, x0 + 3 * na, x1, x1 + 3 * na, 0, &r);
+                    else
+                        ttd_ccd_edge_edge_d(&o, 1, x0, x0 + 3 * na, x1, x1 + 3 * na, 0, &r);
+                }
+                best = fmin(best, (cpu_now() - c0) / 10);
+            }
+            /* insert into the sorted list, slowest first */
+            size_t j = have < k ? have++ : k;
+            for (; j > 0 && top[j - 1].us < 1e6 * best; --j)
+                top[j] = top[j - 1];
+            if (j < k)
+                top[j] = (slow_query){1e6 * best, s, q, r};
+        }
+    }
+    printf("\nthe %zu slowest sample queries (CPU time, the fastest of %d runs of 10 calls; intervals: evals)\n", have, reps);
+    for (size_t j = 0; j < have; ++j)
+        printf("%8.1f us  %4u intervals  %s  %s query %zu (truth %d)\n", top[j].us, top[j].r.evals,
+               top[j].r.hit ? "hit " : "miss", top[j].set->name, top[j].q, top[j].set->truth ? top[j].set->truth[top[j].q] : -1);
+    free(top);
+}
+
+/* ---- batches: the screen in SIMD lanes against the scalar path ---------------------------------
+ * (docs/ccd.md, section 11) A set as one batch call of the public entry: on the scalar row and on the
+ * best instruction set here, one thread (CPU time a query, and their ratio), and on the best with all
+ * cores (wall time a query, and the speedup: the one-thread wall time over it); each figure the
+ * fastest of reps, each run repeating the batch until it has taken 50 ms of wall time. The answers of
+ * the three are compared field by field. */
+
+/* The set in the entry's layout: A's points of every query, then B's. */
+static void lanes_layout(const qset *s, double *a0, double *a1)
+{
+    const size_t na = (size_t)s->kind, nb = 4 - na;
+    for (size_t q = 0; q < s->n; ++q)
+        for (size_t i = 0; i < 12; ++i) {
+            const size_t dst = i < 3 * na ? 3 * na * q + i : 3 * na * s->n + 3 * nb * q + (i - 3 * na);
+            a0[dst] = s->x0[12 * q + i];
+            a1[dst] = s->x1[12 * q + i];
+        }
+}
+
+static void lanes_call(const qset *s, const double *a0, const double *a1, ttd_isa isa, int threads, ttd_ccd_result *out)
+{
+    ttd_options o = ttd_default_options();
+    o.isa = isa;
+    o.threads = threads;
+    const size_t na = (size_t)s->kind, n = s->n;
+    if (s->kind == 1)
+        ttd_ccd_vertex_face_d(&o, n, a0, a0 + 3 * na * n, a1, a1 + 3 * na * n, 0, out);
+    else
+        ttd_ccd_edge_edge_d(&o, n, a0, a0 + 3 * na * n, a1, a1 + 3 * na * n, 0, out);
+}
+
+/* Seconds a query, CPU time and wall time, each the fastest of reps runs. */
+static void lanes_time(const qset *s, const double *a0, const double *a1, ttd_isa isa, int threads, int reps,
+                       ttd_ccd_result *out, double *cpu, double *wall)
+{
+    *cpu = *wall = INFINITY;
+    for (int r = 0; r < reps; ++r) {
+        const double w0 = bench_now(), c0 = cpu_now();
+        size_t calls = 0;
+        double w, c;
+        do {
+            lanes_call(s, a0, a1, isa, threads, out);
+            ++calls;
+            w = bench_now() - w0;
+            c = cpu_now() - c0;
+        } while (w < 0.05);
+        *cpu = fmin(*cpu, c / (double)(calls * s->n));
+        *wall = fmin(*wall, w / (double)(calls * s->n));
+    }
+}
+
+static int lanes_same(const ttd_ccd_result *a, const ttd_ccd_result *b, size_t n)
+{
+    for (size_t q = 0; q < n; ++q)
+        if (memcmp(&a[q].toi, &b[q].toi, sizeof(double)) != 0 || memcmp(&a[q].gap, &b[q].gap, sizeof(double)) != 0 ||
+            a[q].hit != b[q].hit || a[q].flags != b[q].flags || a[q].sub != b[q].sub || a[q].evals != b[q].evals)
+            return 0;
+    return 1;
+}
+
+static void lanes_row(const char *name, const qset *s, ttd_isa best, int reps)
+{
+    double *a0 = malloc(s->n * 12 * sizeof(double)), *a1 = malloc(s->n * 12 * sizeof(double));
+    ttd_ccd_result *r0 = malloc(s->n * sizeof *r0), *r1 = malloc(s->n * sizeof *r1), *r2 = malloc(s->n * sizeof *r2);
+    if (a0 == NULL || a1 == NULL || r0 == NULL || r1 == NULL || r2 == NULL) {
+        printf("%-44s out of memory\n", name);
+    } else {
+        lanes_layout(s, a0, a1);
+        double ts, tl, tt, ws, wl, wt;
+        lanes_time(s, a0, a1, TTD_ISA_SCALAR, 1, reps, r0, &ts, &ws);
+        lanes_time(s, a0, a1, best, 1, reps, r1, &tl, &wl);
+        lanes_time(s, a0, a1, best, 0, reps, r2, &tt, &wt);
+        size_t one = 0;
+        for (size_t q = 0; q < s->n; ++q)
+            one += !r0[q].hit && r0[q].evals == 1;
+        printf("%-44s %6zu %6.1f%% | %9.3f %9.3f %7.2fx | %9.3f %6.2fx | %s\n", name, s->n, 100.0 * (double)one / (double)s->n,
+               1e6 * ts, 1e6 * tl, ts / tl, 1e6 * wt, wl / wt, lanes_same(r0, r1, s->n) && lanes_same(r0, r2, s->n) ? "yes" : "NO");
+    }
+    free(a0), free(a1), free(r0), free(r1), free(r2);
+}
+
+/* The table: the sample queries (vertex-face and edge-edge, each as one batch) and the generated
+ * families (fam_n queries each, made again by make_family). */
+static void bench_lanes(const qset *sets, size_t ns, size_t fam_n, int reps)
+{
+    ttd_options o = ttd_default_options();
+    const ttd_isa best = ttd_isa_selected(&o);
+    printf("\nbatches: the screen in SIMD lanes (%s, %d doubles a vector) against the scalar path, one call a set\n",
+           ttd_isa_name(best), ttd_isa_lanes(best, 8));
+    printf("(us a query; one thread: CPU time; threads: all %d cores, wall time, speedup over one thread's wall time;\n"
+           " fastest of %d; '1 step': the scalar search's answers of no hit in one evaluation; 'same': every answer's bits equal)\n",
+           (int)sysconf(_SC_NPROCESSORS_ONLN), reps);
+    printf("%-44s %6s %7s | %9s %9s %8s | %9s %7s | %s\n", "queries", "n", "1 step", "scalar", "lanes", "ratio",
+           "threads", "speedup", "same");
+    for (int kind = 1; kind <= 2; ++kind) {
+        qset all = {"", kind, 0, NULL, NULL, NULL};
+        for (size_t i = 0; i < ns; ++i)
+            all.n += sets[i].kind == kind ? sets[i].n : 0;
+        if (all.n == 0)
+            continue;
+        all.x0 = malloc(all.n * 12 * sizeof(double));
+        all.x1 = malloc(all.n * 12 * sizeof(double));
+        size_t off = 0;
+        for (size_t i = 0; i < ns && all.x0 && all.x1; ++i)
+            if (sets[i].kind == kind) {
+                memcpy(all.x0 + 12 * off, sets[i].x0, sets[i].n * 12 * sizeof(double));
+                memcpy(all.x1 + 12 * off, sets[i].x1, sets[i].n * 12 * sizeof(double));
+                off += sets[i].n;
+            }
+        if (all.x0 && all.x1)
+            lanes_row(kind == 1 ? "sample queries, vertex-face" : "sample queries, edge-edge", &all, best, reps);
+        free(all.x0), free(all.x1);
+    }
+    static const char *fam[7] = {"random", "coplanar motion", "parallel edges", "touching at t = 1",
+                                 "scaled 1e-8..1e8", "offset 1e6", "near-degenerate 1e-12"};
+    for (int kind = 1; kind <= 2; ++kind)
+        for (int w = 0; w < 7; ++w) {
+            if (w == 2 && kind == 1)
+                continue;
+            qset s;
+            char name[128];
+            snprintf(name, sizeof name, "%s %s", kind == 1 ? "vertex-face" : "edge-edge", fam[w]);
+            make_family(&s, name, kind, fam_n, w);
+            lanes_row(name, &s, best, reps);
+            free(s.x0), free(s.x1);
+        }
+}
+
+/* ---- deforming meshes ----------------------------------------------------------------------- */
+
 
 /* Self-CCD of ttd_gen_folded_sheet(n) with 4 layers one grid edge (1/n) apart, the fold going from
  * 0.85 to 1 of flat in `steps` steps (the layers close in, no contact), then a step from 1 to 1.05
@@ -491,7 +672,7 @@ int bench_ccd_main(int argc, char **argv)
 {
     const char *dir = TTD_CCD_SUBSET_DIR;
     int reps = 3, mesh_only = 0, steps = 60, use_ti = 1;
-    size_t fam_n = 2000, sheet = 224;
+    size_t fam_n = 2000, sheet = 224, slowest = 0;
     const char *ti_path = NULL;
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--queries") == 0 && i + 1 < argc)
@@ -504,6 +685,8 @@ int bench_ccd_main(int argc, char **argv)
             sheet = (size_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc)
             steps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
+        else if (strcmp(argv[i], "--slowest") == 0 && i + 1 < argc)
+            slowest = (size_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--mesh-only") == 0)
             mesh_only = 1;
         else if (strcmp(argv[i], "--ti") == 0 && i + 1 < argc)
@@ -512,7 +695,7 @@ int bench_ccd_main(int argc, char **argv)
             use_ti = 0;
         else {
             printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
-                   "                     [--sheet N] [--steps K] [--mesh-only]\n"
+                   "                     [--sheet N] [--steps K] [--mesh-only] [--slowest K]\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
                    "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n"
@@ -521,7 +704,8 @@ int bench_ccd_main(int argc, char **argv)
                    "  scripts/get-tight-inclusion.sh); skipped with a message when it is absent.\n"
                    "  Then self-CCD of a folding sheet of 2 N^2 triangles (default N 224: 100,352), K closing\n"
                    "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
-                   "  through itself; --mesh-only: that alone.\n",
+                   "  through itself; --mesh-only: that alone. --slowest K: the K slowest sample queries\n"
+                   "  listed after their table (CPU time, intervals examined).\n",
                    TTD_CCD_SUBSET_DIR);
             return strcmp(argv[i], "--help") == 0 ? 0 : 2;
         }
@@ -623,6 +807,8 @@ int bench_ccd_main(int argc, char **argv)
            "cubic's, no query over 50 us)\n",
            ns, total, positives);
 
+    bench_slowest(sets, ns, slowest, reps);
+
     printf("\ngenerated families (no truth: hits and time only)\n");
     static const char *fam[7] = {"random", "coplanar motion", "parallel edges", "touching at t = 1",
                                  "scaled 1e-8..1e8", "offset 1e6", "near-degenerate 1e-12"};
@@ -642,6 +828,7 @@ int bench_ccd_main(int argc, char **argv)
             print_row(name, &t, &nv, 0, NULL);
             free(ft), free(fh), free(s.x0), free(s.x1);
         }
+    bench_lanes(sets, ns, fam_n, reps);
     if (sheet >= 2 && (bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
                        bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX) != 0))
         fprintf(stderr, "ttd bench ccd: the folding sheet failed\n");

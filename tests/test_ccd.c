@@ -414,7 +414,7 @@ static int sample_queries(void)
     const char *sets[] = {"unit-tests", "erleben-cube-cliff-edges", "erleben-cube-internal-edges",
                           "erleben-sliding-spike", "erleben-sliding-wedge", "erleben-spike-crack",
                           "erleben-spike-hole", "erleben-spike-wedge", "erleben-spikes",
-                          "erleben-wedge-crack", "erleben-wedges"};
+                          "erleben-wedge-crack", "erleben-wedges", "slow-queries"};
     size_t tot = 0, pos = 0, fp = 0, files = 0;
     for (size_t s = 0; s < sizeof sets / sizeof sets[0]; ++s)
         for (int kind = 1; kind <= 2; ++kind) {
@@ -438,7 +438,48 @@ static int sample_queries(void)
         }
     printf("  sample queries: %zu files, %zu queries, %zu positive, 0 missed, %zu false positives\n", files, tot,
            pos, fp);
-    ENSURE(files == 24 && tot > 500 && pos > 100);
+    ENSURE(files == 26 && tot > 500 && pos > 100);
+    return 0;
+}
+
+/* The queries the search once bisected to 2^-52 (tests/data/ccd/slow-queries; docs/ccd-speed.md):
+ * contacts just after a root of f guessed an ulp or two early, edges sliding in a plane (f about 0),
+ * edges touching all along. Each against the truth (sample_queries, with the exact reference), and
+ * each in at most 16 intervals (48 to 139 before the cuts at f's root bracketed exactly, at a
+ * condition's root, and the probe at the start; the unit tests' edge-edge data_0_1.csv queries 10,
+ * 12, 13 are the probe's, 53 intervals before it). */
+static int slow_queries(void)
+{
+    for (int kind = 1; kind <= 2; ++kind) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/slow-queries/%s/slow.csv", TTD_CCD_DATA, kind == 1 ? "vertex-face" : "edge-edge");
+        double *x0, *x1;
+        int *truth;
+        size_t n;
+        ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+        ENSURE(n == 6);
+        for (size_t q = 0; q < n; ++q) {
+            const ttd_ccd_result r = run1(kind, x0 + 12 * q, x1 + 12 * q, 0);
+            ENSURE_MSG(r.hit == (uint32_t)truth[q], "%s query %zu: hit %u, truth %d", path, q, r.hit, truth[q]);
+            ENSURE_MSG(r.evals <= 16, "%s query %zu: %u intervals", path, q, r.evals);
+        }
+        free(x0), free(x1), free(truth);
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/unit-tests/edge-edge/data_0_1.csv", TTD_CCD_DATA);
+    double *x0, *x1;
+    int *truth;
+    size_t n;
+    ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+    ENSURE(n == 20);
+    const size_t touching[3] = {10, 12, 13};
+    for (int i = 0; i < 3; ++i) {
+        const size_t q = touching[i];
+        const ttd_ccd_result r = run1(2, x0 + 12 * q, x1 + 12 * q, 0);
+        ENSURE_MSG(r.hit == 1 && truth[q] == 1 && r.toi == 0 && r.evals <= 16, "query %zu: hit %u toi %g, %u intervals", q,
+                   r.hit, r.toi, r.evals);
+    }
+    free(x0), free(x1), free(truth);
     return 0;
 }
 
@@ -670,6 +711,7 @@ int main(int argc, char **argv)
     printf("  families against the exact reference skipped: GMP (libgmp-dev) not found at configure time\n");
 #endif
     RUN_TEST(sample_queries);
+    RUN_TEST(slow_queries);
     RUN_TEST(triangles);
     TEST_MAIN_END();
 }

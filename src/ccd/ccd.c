@@ -67,6 +67,8 @@ typedef struct ccd_state {
     double cand_n[3], cand_g; /* the exact test's direction for this interval, its rounded gap */
     double t_tol;      /* the search's resolution */
     int near_miss;     /* an exact contact condition proved a final interval free */
+    int cond_cuts;     /* cuts made at a contact condition's root (cond_root), at most COND_CUTS */
+    double cut_ta, cut_lo; /* the piece before the last such cut, where the conditions' exact test runs */
     int made[5];       /* whether poly[i] is formed: f, then the contact conditions */
     double last_t;     /* the last time f's exact sign was taken at, and that sign */
     int last_sign;
@@ -701,8 +703,73 @@ static int jump_to_root(ccd_state *s, double ta, double tb, int zero_at_tb, doub
     return 1;
 }
 
+/* The guess r of f's first root in (ta, tb], moved onto a sign change of f found exactly: f's exact
+ * sign at r, then at r plus or minus 1, 4, 16, ... ulps until it differs from f(ta)'s, the bracket
+ * then halved to at most t_tol / 2; returns its end b (f(b) not of f(ta)'s sign, f of that sign at a
+ * point at most t_tol / 2 before b), so that the cut's piece [b - t_tol / 2, b + t_tol / 2] holds
+ * the sign change. The guess rounded from f's coefficients is off by an ulp or two where f is
+ * flat or has two roots close together, and a cut beside the root leaves a stretch starting at a
+ * contact, which only halving to t_tol ends. r unchanged where f(ta) has no strict sign, an exact
+ * sign is untrusted, or no change is found within 12 steps (the cut's order only: every
+ * guarantee stands whatever r is). */
+static double bracket_root(ccd_state *s, const ttd_ccd_xpoly *P, double ta, double tb, double r)
+{
+    if (!(r > ta && r <= tb))
+        return r;
+    const int s0 = ttd_ccd_xpoly_sign_at(P, ta);
+    if (s0 != 1 && s0 != -1)
+        return r;
+    const int sr = ttd_ccd_xpoly_sign_at(P, r);
+    if (sr == 2)
+        return r;
+    double a, b; /* f(a) of s0's sign, f(b) not */
+    double step = nextafter(r, HUGE_VAL) - r;
+    if (sr == s0) {
+        a = r;
+        for (int k = 0;; ++k) {
+            if (k == 12 || a >= tb)
+                return r;
+            b = a + step < tb ? a + step : tb;
+            const int sb = ttd_ccd_xpoly_sign_at(P, b);
+            if (sb == 2)
+                return r;
+            if (sb != s0)
+                break;
+            a = b;
+            step *= 4;
+        }
+    } else {
+        b = r;
+        for (int k = 0;; ++k) {
+            if (k == 12)
+                return r;
+            a = b - step > ta ? b - step : ta;
+            const int sa = a == ta ? s0 : ttd_ccd_xpoly_sign_at(P, a);
+            if (sa == 2)
+                return r;
+            if (sa == s0)
+                break;
+            b = a;
+            step *= 4;
+        }
+    }
+    while (b - a > 0.5 * s->t_tol) {
+        const double m = a + 0.5 * (b - a);
+        if (!(m > a && m < b))
+            break;
+        const int sm = ttd_ccd_xpoly_sign_at(P, m);
+        if (sm == 2)
+            return r;
+        if (sm == s0)
+            a = m;
+        else
+            b = m;
+    }
+    return b;
+}
+
 /* Where f changes sign on the interval (or may vanish at its end), its first root there guessed in
- * double; NAN otherwise. */
+ * double and bracketed exactly (bracket_root); NAN otherwise. */
 static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
 {
     if (ci->never)
@@ -716,7 +783,71 @@ static double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
             return NAN;
     }
     const ttd_ccd_xpoly *P = xpoly(s, 0);
-    return P->bad ? (double)NAN : approx_first_root(P->a, ta, tb);
+    if (P->bad)
+        return (double)NAN;
+    return bracket_root(s, P, ta, tb, approx_first_root(P->a, ta, tb));
+}
+
+/* The first root in (ta, tb] of the quartic c0 + c1 t + ... + c4 t^4 (negative at ta) guessed in double:
+ * the first of 16 equal pieces whose end is not negative, bisected. NAN if none. Only a guess. */
+static double approx_first_rise(const double c[5], double ta, double tb)
+{
+    double a = ta;
+    for (int i = 1; i <= 16; ++i) {
+        double b = i == 16 ? tb : ta + (tb - ta) * (i / 16.0);
+        const double fb = (((c[4] * b + c[3]) * b + c[2]) * b + c[1]) * b + c[0];
+        if (!(fb < 0)) {
+            for (int it = 0; it < 80; ++it) {
+                const double m = 0.5 * (a + b);
+                if (!(m > a && m < b))
+                    break;
+                const double fm = (((c[4] * m + c[3]) * m + c[2]) * m + c[1]) * m + c[0];
+                if (fm < 0)
+                    a = m;
+                else
+                    b = m;
+            }
+            return b;
+        }
+        a = b;
+    }
+    return (double)NAN;
+}
+
+/* Where f is about 0 on the interval (no root of it to cut at; motion close to coplanar), the time
+ * before which no contact can come: a contact needs every contact condition >= 0, so where some are
+ * negative at ta (exactly), the latest of their first roots, guessed in double and bracketed exactly
+ * (bracket_root); NAN where none is negative at ta or one has no root guessed in the interval. At
+ * most COND_CUTS a query; the cut's order only (the conditions' exact test then runs on the piece
+ * before the root, which that condition's sign proves: try_conditions). */
+enum { COND_CUTS = 8 };
+static double cond_root(ccd_state *s, double ta, double tb)
+{
+    if (s->cond_cuts >= COND_CUTS)
+        return (double)NAN;
+    ++s->cond_cuts;
+    const int nc = s->na == TTD_CCD_VF ? 3 : 4;
+    double r = (double)NAN;
+    for (int c = 0; c < nc; ++c) {
+        const ttd_ccd_xpoly *P = xpoly(s, 1 + c);
+        if (P->bad)
+            return (double)NAN;
+        if (ttd_ccd_xpoly_sign_at(P, ta) != -1)
+            continue;
+        const double rc = bracket_root(s, P, ta, tb, approx_first_rise(P->a, ta, tb));
+        if (!(rc > ta && rc <= tb))
+            return (double)NAN;
+        r = r > rc ? r : rc;
+    }
+    return r;
+}
+
+/* Whether the conditions' exact test runs on the interval being tested: a final one (it would
+ * otherwise be the hit), every one once a near miss was proved, and the piece before a cut at a
+ * condition's root (the stretch that condition's sign proves). */
+static int try_conditions(const ccd_state *s)
+{
+    return s->tb - s->ta <= s->t_tol || s->near_miss || (s->ta == s->cut_ta && s->tb == s->cut_lo);
 }
 
 /* The exact proofs of an interval free of contact at delta = 0 (ccd_exact.c): the coplanarity cubic
@@ -726,13 +857,12 @@ static int exact_free(ccd_state *s, const cop_info *ci, const int csign[4])
 {
     /* The conditions only on an interval that would otherwise be the hit, and, once one proved such
      * an interval free (a near miss: the primitives slide past each other), on every interval. */
-    const int final = s->tb - s->ta <= s->t_tol;
     if (ci->undecided && !(ci->end_zero && f_sign_at(s, s->tb) == 0)) {
         const int r = ttd_ccd_xpoly_sign(xpoly(s, 0), s->ta, s->tb, ci->sgn);
         if (r == 1 || r == -1)
             return 1;
     }
-    if (csign == NULL || !(s->near_miss || final))
+    if (csign == NULL || !try_conditions(s))
         return 0;
     for (int c = 0; c < 4; ++c)
         if (csign[c] == -1 &&
@@ -764,29 +894,65 @@ static int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], d
     return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
 }
 
-void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
-                   ttd_ccd_result *out)
+/* The query's state from its inputs: the motions, S (the largest coordinate magnitude) and e_gap. */
+static double state_init(ccd_state *s, int kind, const double x0[12], const double x1[12], double t_tol)
 {
-    ccd_state s;
-    s.na = kind;
-    s.in0 = x0;
-    s.in1 = x1;
-    s.t_tol = p->t_tol;
-    s.near_miss = 0;
-    memset(s.made, 0, sizeof s.made);
-    s.last_t = NAN;
-    s.last_sign = 2;
+    s->na = kind;
+    s->in0 = x0;
+    s->in1 = x1;
+    s->t_tol = t_tol;
+    s->near_miss = 0;
+    s->cond_cuts = 0;
+    s->cut_ta = s->cut_lo = (double)NAN;
+    memset(s->made, 0, sizeof s->made);
+    s->last_t = NAN;
+    s->last_sign = 2;
     double S = 0;
     for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k) {
-            s.x0[i][k] = x0[3 * i + k];
-            s.dx[i][k] = x1[3 * i + k] - x0[3 * i + k];
+            s->x0[i][k] = x0[3 * i + k];
+            s->dx[i][k] = x1[3 * i + k] - x0[3 * i + k];
             S = fmax(S, fmax(fabs(x0[3 * i + k]), fabs(x1[3 * i + k])));
         }
     /* Positions within 5uS; a projection on n (|n_k| <= 1) adds 3.01u sum |n_k x_k| <= 9.1uS and
      * carries 3 x 5uS of position error: 25uS each, 50uS for the difference of two, rounded up
      * to 64uS; the absolute term covers products that underflow (docs/ccd.md, section 3). */
-    s.e_gap = 64 * U_ROUND * S + 0x1p-1000;
+    s->e_gap = 64 * U_ROUND * S + 0x1p-1000;
+    return S;
+}
+
+int ttd_ccd_screen(int kind, const double x0[12], const double x1[12], double delta, double t_max)
+{
+    for (int i = 0; i < 12; ++i)
+        if (!isfinite(x0[i]) || !isfinite(x1[i]))
+            return 0;
+    ccd_state s;
+    const double S = state_init(&s, kind, x0, x1, TTD_CCD_DEFAULT_T_TOL);
+    if (!(S < TTD_CCD_SCREEN_MAX))
+        return 0;
+    double xa[4][3], xb[4][3], xm[4][3], n1[3], n2[3];
+    int vv[2];
+    s.ta = 0.0;
+    s.tb = t_max;
+    s.cand_g = -HUGE_VAL;
+    positions(&s, 0.0, xa);
+    positions(&s, t_max, xb);
+    if (delta == 0) {
+        cop_info ci;
+        never_coplanar(s.na, xa, xb, S, &ci);
+        if (ci.never)
+            return 1;
+    }
+    positions(&s, 0.5 * (0.0 + t_max), xm);
+    directions(s.na, xm, n1, n2, vv);
+    return separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta);
+}
+
+void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
+                   ttd_ccd_result *out)
+{
+    ccd_state s;
+    const double S = state_init(&s, kind, x0, x1, p->t_tol);
     const double delta = p->delta;
 
     out->hit = 0;
@@ -803,7 +969,8 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
     st_ta[0] = 0.0;
     st_tb[0] = p->t_max;
     top = 1;
-    int evals = 0;
+    int evals = 0, probes = 0;
+    enum { PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
         const double ta = st_ta[top - 1], tb = st_tb[top - 1];
@@ -828,6 +995,7 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
         double d = HUGE_VAL, root = NAN;
+        int from_cond = 0; /* root is a condition's (cond_root) */
         if (delta == 0) {
             cop_info ci;
             never_coplanar(s.na, xa, xb, S, &ci);
@@ -861,11 +1029,15 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             }
             if (directions_separate(&s, xa, xb, tm, delta, &d))
                 continue;
-            if (!(ci.change || ci.end_zero) && (s.near_miss || tb - ta <= p->t_tol))
+            if (!(ci.change || ci.end_zero) && try_conditions(&s))
                 conditions(s.na, xa, xb, S, csign); /* for the exact test: not formed above */
             if (exact_free(&s, &ci, csign))
                 continue;
             root = root_guess(&s, &ci, ta, tb);
+            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol) {
+                root = cond_root(&s, ta, tb);
+                from_cond = root > ta && root <= tb;
+            }
         } else if (directions_separate(&s, xa, xb, tm, delta, &d)) {
             continue;
         }
@@ -883,6 +1055,25 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
             }
             out->gap = d;
             break;
+        }
+        /* Where the primitives seem in contact all along (the distance at the middle within the
+         * rounding bound, and no root to cut at), the contact is likely at ta already: its final
+         * interval [ta, ta + t_tol] first, then the rest (at most PROBES a query; the order only). */
+        if (!(root > ta && root <= tb) && d <= 4 * s.e_gap && probes < PROBES && tb - ta > 4 * p->t_tol &&
+            top + 2 <= STACK) {
+            double hi = ta + p->t_tol;
+            while (hi - ta > p->t_tol)
+                hi = nextafter(hi, ta);
+            if (hi > ta && hi < tb) {
+                ++probes;
+                st_ta[top] = hi;
+                st_tb[top] = tb;
+                ++top;
+                st_ta[top] = ta;
+                st_tb[top] = hi;
+                ++top;
+                continue;
+            }
         }
         /* Where f seems to have a root, the interval is cut at it: [ta, lo], [lo, lo + t_tol] and
          * the rest, so that the stretch before the root is tried whole and the contact (or the near
@@ -908,6 +1099,10 @@ void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd
                 st_ta[top] = ta;
                 st_tb[top] = lo;
                 ++top;
+                if (from_cond) {
+                    s.cut_ta = ta;
+                    s.cut_lo = lo;
+                }
                 continue;
             }
         }

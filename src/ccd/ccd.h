@@ -9,6 +9,7 @@
 
 #include <stdint.h>
 
+#include "core/kernels.h"
 #include "ttd/ttd.h"
 
 /// Query kinds: how many of the 4 points belong to the first set.
@@ -36,5 +37,15 @@ ttd_ccd_params ttd_ccd_default_params(void);
 /// gap, flags and evals into *out (sub untouched).
 void ttd_ccd_query(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
                    ttd_ccd_result *out);
+
+/// The screen: the certified tests of a query's first interval [0, t_max] that a batch runs in
+/// SIMD lanes (simd/kernel_ccd.h computes the same bits): at delta = 0 the coplanarity cubic of
+/// one strict sign, then the separation along the closest points' difference and along the
+/// closest features' direction at t_max / 2. Returns 1 when one of them proves the query free of
+/// contact; ttd_ccd_query's answer is then no hit after 1 evaluation (its first interval runs
+/// these tests). 0 otherwise, for non-finite input, and where the largest coordinate magnitude
+/// is TTD_CCD_SCREEN_MAX (core/kernels.h) or more (the lanes' arithmetic then stays clear of
+/// overflow).
+int ttd_ccd_screen(int kind, const double x0[12], const double x1[12], double delta, double t_max);
 
 #endif /* TTD_CCD_CCD_H */

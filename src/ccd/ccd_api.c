@@ -2,12 +2,15 @@
 /* The public continuous-collision entries (ttd.h, the block "Continuous collision detection"):
  * argument checks, the batch over threads (blocks of queries; each query's answer depends on its
  * inputs alone, so not on the threads), the float entries widened to double, and the
- * triangle-triangle query as its 15 sub-queries. */
+ * triangle-triangle query as its 15 sub-queries. A batch screens its queries first, in SIMD lanes
+ * on the options' instruction set (simd/kernel_ccd.h; the scalar screen on the scalar row, the
+ * same bits), and searches only those the screen does not prove free (docs/ccd.md, section 11). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ccd/ccd.h"
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 
 enum { CCD_BLOCK = 64 };
@@ -20,7 +23,18 @@ typedef struct ccd_batch {
     size_t n;
     double delta;
     ttd_ccd_result *out;
+    ttd_ccd_screen_fn screen; /* the row's screen in lanes, NULL: the scalar screen */
 } ccd_batch;
+
+static void nonfinite(ttd_ccd_result *r)
+{
+    r->hit = 0;
+    r->toi = (double)NAN;
+    r->gap = (double)NAN;
+    r->flags = TTD_CCD_NONFINITE;
+    r->sub = 0;
+    r->evals = 0;
+}
 
 static double get(const ccd_batch *b, const void *arr, size_t i)
 {
@@ -39,40 +53,73 @@ static int load(const ccd_batch *b, const void *arr, size_t q, int np, double x[
     return finite;
 }
 
-/* The triangle-triangle query: 6 vertex-face and 9 edge-edge, each searched only up to the
- * earliest hit so far (a later contact cannot be the first). */
-static void triangles_one(double a0[3][3], double b0[3][3], double a1[3][3], double b1[3][3], const ttd_ccd_params *base, ttd_ccd_result *out)
+/* What the screen proves (ttd_ccd_screen, in lanes where the batch's row has them): no hit after
+ * one evaluation, ttd_ccd_query's answer. */
+static void screened(ttd_ccd_result *r)
+{
+    r->hit = 0;
+    r->toi = HUGE_VAL;
+    r->gap = HUGE_VAL;
+    r->flags = 0;
+    r->sub = 0;
+    r->evals = 1;
+}
+
+/* Bit i: query i of count (kind na; x0, x1 12 reals a query) proved free by the screen, the row's
+ * lanes or the scalar screen (the same bits). */
+static unsigned screen_mask(ttd_ccd_screen_fn screen, int na, int count, const double *x0, const double *x1,
+                            double delta, double t_max)
+{
+    if (screen != NULL)
+        return screen(na, count, x0, x1, delta, t_max);
+    unsigned m = 0;
+    for (int i = 0; i < count; ++i)
+        m |= (unsigned)ttd_ccd_screen(na, x0 + 12 * i, x1 + 12 * i, delta, t_max) << i;
+    return m;
+}
+
+/* The triangle-triangle query: 6 vertex-face and 9 edge-edge, the screen first on all 15 over
+ * [0, t_max] (one evaluation each for those it proves free), then the others searched in turn,
+ * each only up to the earliest hit so far (a later contact cannot be the first). */
+static void triangles_one(double a0[3][3], double b0[3][3], double a1[3][3], double b1[3][3], const ttd_ccd_params *base,
+                          ttd_ccd_screen_fn screen, ttd_ccd_result *out)
 {
     ttd_ccd_params p = *base;
     ttd_ccd_result best = {HUGE_VAL, HUGE_VAL, 0, 0, 0, 0};
     uint32_t evals = 0;
+    double x0[15][12], x1[15][12];
     for (int sub = 0; sub < 15; ++sub) {
-        double x0[12], x1[12];
-        int kind;
         if (sub < 6) {
             double(*p0)[3] = sub < 3 ? a0 : b0, (*p1)[3] = sub < 3 ? a1 : b1;
             double(*f0)[3] = sub < 3 ? b0 : a0, (*f1)[3] = sub < 3 ? b1 : a1;
             const int v = sub % 3;
-            kind = TTD_CCD_VF;
-            memcpy(x0, p0[v], sizeof(double) * 3);
-            memcpy(x1, p1[v], sizeof(double) * 3);
-            memcpy(x0 + 3, f0, sizeof(double) * 9);
-            memcpy(x1 + 3, f1, sizeof(double) * 9);
+            memcpy(x0[sub], p0[v], sizeof(double) * 3);
+            memcpy(x1[sub], p1[v], sizeof(double) * 3);
+            memcpy(x0[sub] + 3, f0, sizeof(double) * 9);
+            memcpy(x1[sub] + 3, f1, sizeof(double) * 9);
         } else {
             const int i = (sub - 6) / 3, j = (sub - 6) % 3;
-            kind = TTD_CCD_EE;
             const size_t d = sizeof(double) * 3;
-            memcpy(x0, a0[i], d);
-            memcpy(x0 + 3, a0[(i + 1) % 3], d);
-            memcpy(x0 + 6, b0[j], d);
-            memcpy(x0 + 9, b0[(j + 1) % 3], d);
-            memcpy(x1, a1[i], d);
-            memcpy(x1 + 3, a1[(i + 1) % 3], d);
-            memcpy(x1 + 6, b1[j], d);
-            memcpy(x1 + 9, b1[(j + 1) % 3], d);
+            memcpy(x0[sub], a0[i], d);
+            memcpy(x0[sub] + 3, a0[(i + 1) % 3], d);
+            memcpy(x0[sub] + 6, b0[j], d);
+            memcpy(x0[sub] + 9, b0[(j + 1) % 3], d);
+            memcpy(x1[sub], a1[i], d);
+            memcpy(x1[sub] + 3, a1[(i + 1) % 3], d);
+            memcpy(x1[sub] + 6, b1[j], d);
+            memcpy(x1[sub] + 9, b1[(j + 1) % 3], d);
+        }
+    }
+    const unsigned free_subs = screen_mask(screen, TTD_CCD_VF, 6, x0[0], x1[0], base->delta, base->t_max) |
+                               screen_mask(screen, TTD_CCD_EE, 8, x0[6], x1[6], base->delta, base->t_max) << 6 |
+                               screen_mask(screen, TTD_CCD_EE, 1, x0[14], x1[14], base->delta, base->t_max) << 14;
+    for (int sub = 0; sub < 15; ++sub) {
+        if ((free_subs >> sub) & 1u) {
+            ++evals;
+            continue;
         }
         ttd_ccd_result r;
-        ttd_ccd_query(kind, x0, x1, &p, &r);
+        ttd_ccd_query(sub < 6 ? TTD_CCD_VF : TTD_CCD_EE, x0[sub], x1[sub], &p, &r);
         evals += r.evals;
         /* A hit at toi strictly before the best so far replaces it (ties keep the lower sub). */
         if (r.hit && (!best.hit || r.toi < best.toi)) {
@@ -93,33 +140,45 @@ static void ccd_block(void *ctx, size_t block, int worker)
     ttd_ccd_params p = ttd_ccd_default_params();
     p.delta = b->delta;
     const size_t end = (block + 1) * CCD_BLOCK < b->n ? (block + 1) * CCD_BLOCK : b->n;
-    for (size_t q = block * CCD_BLOCK; q < end; ++q) {
-        ttd_ccd_result *r = &b->out[q];
-        int finite;
-        if (b->kind == 3) {
+    if (b->kind == 3) {
+        for (size_t q = block * CCD_BLOCK; q < end; ++q) {
             double a0[3][3], b0[3][3], a1[3][3], b1[3][3];
-            finite = load(b, b->a0, q, 3, a0) & load(b, b->b0, q, 3, b0) & load(b, b->a1, q, 3, a1) &
-                     load(b, b->b1, q, 3, b1);
+            const int finite = load(b, b->a0, q, 3, a0) & load(b, b->b0, q, 3, b0) & load(b, b->a1, q, 3, a1) &
+                               load(b, b->b1, q, 3, b1);
             if (finite)
-                triangles_one(a0, b0, a1, b1, &p, r);
-        } else {
-            const int na = b->kind, nb = 4 - b->kind;
-            double x0[12], x1[12];
-            double(*p0)[3] = (double(*)[3])x0, (*p1)[3] = (double(*)[3])x1;
-            finite = load(b, b->a0, q, na, p0) & load(b, b->b0, q, nb, p0 + na) &
-                     load(b, b->a1, q, na, p1) & load(b, b->b1, q, nb, p1 + na);
-            if (finite) {
-                ttd_ccd_query(b->kind, x0, x1, &p, r);
+                triangles_one(a0, b0, a1, b1, &p, b->screen, &b->out[q]);
+            else
+                nonfinite(&b->out[q]);
+        }
+        return;
+    }
+    /* Vertex-face and edge-edge: groups of TTD_NODE_WIDTH queries, the screen in lanes on the group
+     * where the row has it, the scalar search on the queries it does not prove free. */
+    const int na = b->kind, nb = 4 - b->kind;
+    for (size_t g = block * CCD_BLOCK; g < end; g += TTD_NODE_WIDTH) {
+        const int count = end - g < TTD_NODE_WIDTH ? (int)(end - g) : TTD_NODE_WIDTH;
+        double x0[TTD_NODE_WIDTH][12], x1[TTD_NODE_WIDTH][12];
+        unsigned finite = 0;
+        for (int i = 0; i < count; ++i) {
+            double(*p0)[3] = (double(*)[3])x0[i], (*p1)[3] = (double(*)[3])x1[i];
+            const size_t q = g + (size_t)i;
+            const int f = load(b, b->a0, q, na, p0) & load(b, b->b0, q, nb, p0 + na) & load(b, b->a1, q, na, p1) &
+                          load(b, b->b1, q, nb, p1 + na);
+            finite |= (unsigned)f << i;
+        }
+        /* The scalar row searches every query: its first interval runs the screen's tests itself
+         * (the same answer for a query the screen proves: no hit after one evaluation). */
+        const unsigned proved = b->screen != NULL ? b->screen(na, count, x0[0], x1[0], p.delta, p.t_max) : 0;
+        for (int i = 0; i < count; ++i) {
+            ttd_ccd_result *r = &b->out[g + (size_t)i];
+            if (!((finite >> i) & 1u)) {
+                nonfinite(r);
+            } else if ((proved >> i) & 1u) {
+                screened(r);
+            } else {
+                ttd_ccd_query(b->kind, x0[i], x1[i], &p, r);
                 r->sub = 0;
             }
-        }
-        if (!finite) {
-            r->hit = 0;
-            r->toi = NAN;
-            r->gap = NAN;
-            r->flags = TTD_CCD_NONFINITE;
-            r->sub = 0;
-            r->evals = 0;
         }
     }
 }
@@ -129,11 +188,16 @@ static ttd_status ccd_run(const ttd_options *opt, int kind, int is_float, size_t
                           ttd_ccd_result *out)
 {
     int threads = 0;
+    ttd_isa isa_req = TTD_ISA_AUTO, isa;
     if (opt != NULL) {
         if (opt->internal_cookie != ttd_default_options().internal_cookie || opt->threads < 0)
             return TTD_ERR_BAD_OPTIONS;
         threads = opt->threads;
+        isa_req = opt->isa;
     }
+    const ttd_status st = ttd_dispatch_resolve(isa_req, &isa);
+    if (st != TTD_OK)
+        return st;
     if (a0 == NULL || b0 == NULL || a1 == NULL || b1 == NULL || out == NULL)
         return TTD_ERR_NULL_POINTER;
     if (n == 0)
@@ -142,7 +206,8 @@ static ttd_status ccd_run(const ttd_options *opt, int kind, int is_float, size_t
         return TTD_ERR_BAD_OPTIONS;
     if (n > SIZE_MAX / (12 * sizeof(double)))
         return TTD_ERR_TOO_LARGE;
-    ccd_batch b = {kind, is_float, a0, b0, a1, b1, n, delta, out};
+    const ttd_kernels_d *row = ttd_dispatch_row_d(isa);
+    ccd_batch b = {kind, is_float, a0, b0, a1, b1, n, delta, out, row != NULL ? row->ccd_screen : NULL};
     const size_t blocks = (n + CCD_BLOCK - 1) / CCD_BLOCK;
     ttd_parallel_for(blocks, threads, ccd_block, &b);
     for (size_t q = 0; q < n; ++q)

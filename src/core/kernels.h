@@ -181,6 +181,15 @@ typedef struct ttd_self_block {
 typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
 
+/* ccd_screen (double rows only; NULL on the scalar row): the continuous-collision screen in lanes
+ * (simd/kernel_ccd.h), the bits of ccd/ccd.c's ttd_ccd_screen for queries 0..count-1 (count <=
+ * TTD_NODE_WIDTH) of kind na (1 vertex-face, 2 edge-edge), each 12 reals in x0 and in x1 (the four
+ * points at t = 0 and at t = 1); bit i set: query i proved free of contact on [0, t_max]. A query
+ * whose largest coordinate magnitude is TTD_CCD_SCREEN_MAX or more, or not finite, is not proved. */
+#define TTD_CCD_SCREEN_MAX 0x1p400
+typedef unsigned (*ttd_ccd_screen_fn)(int na, int count, const double *x0, const double *x1, double delta,
+                                      double t_max);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -196,6 +205,7 @@ typedef struct ttd_kernels_d {
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
+    ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

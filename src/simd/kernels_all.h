@@ -25,6 +25,7 @@
 #include "simd/kernel_point.h"
 #include "simd/kernel_trifit.h"
 #include "simd/kernel_selfscreen.h"
+#include "simd/kernel_ccd.h"
 #include "simd/probe_impl.h"
 
 /* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
@@ -40,6 +41,7 @@
         TTD_LANE_ROW_POINT_NODE                                                                 \
         TTD_LANE_ROW_TRI_FIT                                                                    \
         TTD_LANE_ROW_SELF_SCREEN                                                                \
+        TTD_LANE_ROW_CCD_SCREEN                                                                 \
         .point_block = point_block, .point_lanes = point_lanes,                                \
     }
 #ifdef TTD_PRECISION_DOUBLE
