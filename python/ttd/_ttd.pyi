@@ -484,3 +484,9 @@ def _ccd(
 def _mesh_ccd(
     a: Mesh, a1: Any, b: Optional[Mesh], b1: Any, min_separation: float, shared: int, threads: int, /
 ) -> Tuple[float, Any, Any, Any, Any, Any, Any, int, int, int]: ...
+
+# Rigid mesh CCD: the private entries behind ttd.mesh_ccd_rigid and ttd.rigid_pose_at (ttd/_rigid.py).
+def _mesh_ccd_rigid(
+    a: Mesh, a_poses: Any, b: Mesh, b_poses: Any, min_separation: float, /
+) -> Tuple[float, bool, float, float, int, int, int, int]: ...
+def _rigid_pose_at(p0: Tuple[float, ...], p1: Tuple[float, ...], t: float, /) -> Tuple[float, ...]: ...
