@@ -1120,6 +1120,33 @@ TTD_API ttd_status ttd_mesh_ccd_rigid_f(const ttd_options *opt, const ttd_mesh *
 /// (12 reals). NULL: TTD_ERR_NULL_POINTER; a NaN or infinite number: TTD_ERR_BAD_POSE; t outside
 /// [0, 1] or NaN: TTD_ERR_BAD_OPTIONS. The rotations are not checked (the queries do).
 TTD_API ttd_status ttd_rigid_pose_at_d(const double *pose_t0, const double *pose_t1, double t, double *pose);
+
+/// A body pair of a scene that comes within min_separation during a step (ttd_scene_ccd_d).
+typedef struct ttd_scene_ccd_hit {
+    uint32_t i, j;         ///< the bodies, i < j
+    uint32_t tri_i, tri_j; ///< the closest triangles at toi (UINT32_MAX with TTD_CCD_BUDGET)
+    uint32_t flags;        ///< TTD_CCD_BUDGET (ttd_mesh_ccd_rigid_result.flags)
+    uint32_t steps;        ///< the pair's conservative-advancement steps
+    double toi;            ///< the pair's conservative time of impact (ttd_mesh_ccd_rigid_d)
+    double distance;       ///< the exact distance computed at toi
+} ttd_scene_ccd_hit;
+
+/// Continuous collision over a scene's step: every body moves rigidly (the motion above) from its
+/// pose in the scene (t = 0) to its pose in poses_t1 (12 reals for each id below
+/// ttd_scene_id_limit, n that limit; removed ids' entries ignored). Every eligible body pair (the
+/// filters and exclusions, as for contacts; a pair of solids as solids) that comes within
+/// min_separation (>= 0, finite) during the step, with ttd_mesh_ccd_rigid_d's answer, into out
+/// as ttd_scene_ccd_hit items sorted by (i, j). The broad phase bounds each body's whole sweep by
+/// a world box (docs/ccd.md section 11), so no pair is missed; the pairs run on opt's threads
+/// and the answer does not depend on them. The scene is not changed (set the new poses after).
+/// Checks: those of the scene queries; n not the id limit: TTD_ERR_INDEX_OUT_OF_RANGE; a t = 1
+/// pose refused as by ttd_scene_set_pose_d (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE); out->count
+/// is 0 on an error. ttd_scene_get_stats: body_pairs (the broad phase's candidates) and results.
+TTD_API ttd_status ttd_scene_ccd_d(const ttd_options *opt, ttd_scene *scene, size_t n, const double *poses_t1,
+                                   double min_separation, ttd_scene_array *out);
+/// ttd_scene_ccd_d for a scene of single precision (float poses).
+TTD_API ttd_status ttd_scene_ccd_f(const ttd_options *opt, ttd_scene *scene, size_t n, const float *poses_t1,
+                                   double min_separation, ttd_scene_array *out);
 /* ==== end of continuous collision detection ==================================================== */
 
 /** @} */
