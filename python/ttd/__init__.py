@@ -114,7 +114,7 @@ try:
         mesh_ccd,
         mesh_self_ccd,
     )
-    from ._rigid import RigidCCDResult, mesh_ccd_rigid, rigid_pose_at
+    from ._rigid import RigidCCDResult, SceneCCDResult, mesh_ccd_rigid, rigid_pose_at
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -186,6 +186,7 @@ __all__ = [
     "mesh_ccd",
     "mesh_ccd_rigid",
     "RigidCCDResult",
+    "SceneCCDResult",
     "rigid_pose_at",
     "mesh_self_ccd",
     "CLOSEST_DTYPE_FLOAT32",

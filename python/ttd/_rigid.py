@@ -32,6 +32,23 @@ class RigidCCDResult(NamedTuple):
 RigidCCDResult.__module__ = "ttd"
 
 
+class SceneCCDResult(NamedTuple):
+    """Continuous collision over a scene's step (ttd.Scene.ccd): one entry per body pair that
+    comes within min_separation, sorted by (i, j)."""
+
+    i: np.ndarray  #: (n,) uint32: the first body
+    j: np.ndarray  #: (n,) uint32: the second body, j > i
+    toi: np.ndarray  #: (n,) float64: the pair's conservative time of impact (ttd.mesh_ccd_rigid's)
+    tri_i: np.ndarray  #: (n,) uint32: the closest triangle of body i at toi (2**32 - 1 with flags 1)
+    tri_j: np.ndarray  #: (n,) uint32: the closest triangle of body j at toi
+    flags: np.ndarray  #: (n,) uint32: 1: the step bound was reached (a conservative hit)
+    steps: np.ndarray  #: (n,) uint32: the pair's conservative-advancement steps
+    distance: np.ndarray  #: (n,) float64: the exact distance computed at toi
+
+
+SceneCCDResult.__module__ = "ttd"
+
+
 def _two_poses(mesh, p0, p1, name):
     if not isinstance(mesh, _ttd.Mesh):
         raise TypeError(f"ttd: the mesh must be a ttd.Mesh, not {type(mesh).__name__}")

@@ -389,6 +389,14 @@ class Scene:
         isa: Union[IsaName, str] = "auto",
         threads: int = 0,
     ) -> SceneManifold: ...
+    def ccd(
+        self,
+        poses_t1: npt.ArrayLike,
+        *,
+        min_separation: float = 0.0,
+        isa: Union[IsaName, str] = "auto",
+        threads: int = 0,
+    ) -> Any: ...
 
 # ---- point queries (python/src/ttd_points.c) -------------------------------------------------
 POINT_NONFINITE: int
