@@ -562,6 +562,7 @@ static int step_bound(void)
     ENSURE(ttd_mesh_ccd_rigid_d(NULL, c, pa, c, pb, delta, &r) == TTD_OK);
     ENSURE_MSG(r.hit && r.flags == TTD_CCD_BUDGET && r.steps == TTD_RIGID_CCD_MAX_STEPS && r.toi > 0 && r.toi < 1,
                "hit %u flags %u steps %u toi %g", r.hit, r.flags, r.steps, r.toi);
+    ENSURE(isinf(r.distance) && r.tri_a == UINT32_MAX && r.tri_b == UINT32_MAX);
     printf("  sliding at delta + 3 tolerances: conservative hit at %.3g after %u steps\n", r.toi, r.steps);
     ttd_mesh_destroy(c);
     ttd_gen_mesh_free(&cube);

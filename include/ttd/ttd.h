@@ -1098,7 +1098,7 @@ TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
 /// What a rigid continuous query answers.
 typedef struct ttd_mesh_ccd_rigid_result {
     double toi;       ///< conservative time of impact in [0, 1]; INFINITY when none
-    double distance;  ///< the exact mesh distance computed at toi; INFINITY without a hit
+    double distance;  ///< the exact mesh distance computed at toi; INFINITY without a hit or with TTD_CCD_BUDGET
     double tolerance; ///< eta: at toi the true distance is at most min_separation + tolerance
     uint32_t hit;     ///< 1 when the bodies come within min_separation (or within the tolerance of it)
     uint32_t flags;   ///< TTD_CCD_BUDGET: TTD_RIGID_CCD_MAX_STEPS used up (or a step below the times' resolution)

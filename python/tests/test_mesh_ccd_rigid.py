@@ -151,7 +151,7 @@ def test_degenerate_motions():
     up = lambda x: pose_of(np.eye(3), [x, 0, 1.25])
     tol = ttd.mesh_ccd_rigid(c, I, I, c, up(-0.5), up(0.5)).tolerance
     r = ttd.mesh_ccd_rigid(c, I, I, c, up(-0.5), up(0.5), min_separation=0.25 - 3 * tol)
-    assert r.hit and r.flags == 1 and 0 < r.toi < 1 and r.tri_a == -1
+    assert r.hit and r.flags == 1 and 0 < r.toi < 1 and r.tri_a == -1 and math.isinf(r.distance)
 
 
 def test_errors():

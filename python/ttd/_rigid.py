@@ -21,7 +21,7 @@ class RigidCCDResult(NamedTuple):
 
     toi: float  #: conservative time of impact in [0, 1]; inf when the bodies stay beyond min_separation
     hit: bool  #: they come within min_separation (or within ``tolerance`` of it)
-    distance: float  #: the exact mesh distance computed at toi; inf without a hit
+    distance: float  #: the exact mesh distance computed at toi; inf without a hit or with flags 1
     tolerance: float  #: at toi the distance is at most min_separation + tolerance
     flags: int  #: 1 (TTD_CCD_BUDGET): the step bound was reached; toi is then a conservative hit
     steps: int  #: mesh distance queries made (conservative advancement's steps)
