@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* `ttd bench ccd --rigid` (issue 34; docs/ccd.md section 11): rigid bodies between two poses,
+/* `ttd bench ccd --rigid` (issue 34; docs/ccd.md section 12): rigid bodies between two poses,
  * ttd's conservative advancement beside FCL 0.7's, and a scene's step. */
 #ifndef TTD_BENCH_CCD_RIGID_BENCH_H
 #define TTD_BENCH_CCD_RIGID_BENCH_H

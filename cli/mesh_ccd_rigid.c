@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* `ttd mesh-ccd-rigid`: continuous collision of two rigid meshes between two poses each
- * (docs/ccd.md, section 11): mesh files and a text file of the four poses. */
+ * (docs/ccd.md, section 12): mesh files and a text file of the four poses. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

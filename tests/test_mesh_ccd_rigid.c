@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Continuous collision of rigid bodies between two poses (ttd_mesh_ccd_rigid_d/f, ttd.h;
- * docs/ccd.md section 11). References: (a) pure translations against the deforming path
+ * docs/ccd.md section 12). References: (a) pure translations against the deforming path
  * (ttd_mesh_ccd_d on the world vertices, linear paths); (b) rotations against the exact mesh
  * distance sampled at 513 times along the motion built here independently (long double
  * Rodrigues from an axis and angle the test chose), with the most the distance can change

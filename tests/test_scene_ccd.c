@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Continuous collision over a scene (ttd_scene_ccd_d/f, ttd.h; docs/ccd.md section 11) against a
+/* Continuous collision over a scene (ttd_scene_ccd_d/f, ttd.h; docs/ccd.md section 12) against a
  * brute force over every body pair: each present pair that the test's own copy of the filters and
  * exclusions allows, run through ttd_mesh_ccd_rigid_d/f (a pair of solids as solids). The same
  * hits, to the bit, with 1, 2 and 3 threads; bodies whose meshes sit far from their origins

@@ -22,6 +22,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: ttd_sim [--scenario NAME]... [--seconds S] [--settle S] [--check] [--obj DIR] [--threads N]\n"
                "               [--jig S] [--vertical-normals] [--points K] [--hertz F] [--substeps N] [--iterations N] [--dt S] [--no-warm-start] [--surfaces]\n"
+               "               [--ccd | --no-ccd]\n"
                "scenarios:");
     for (int k = 0; sim_scenarios[k]; ++k)
         fprintf(f, " %s", sim_scenarios[k]);
@@ -103,6 +104,12 @@ int main(int argc, char **argv)
             continue;
         } else if (!strcmp(a, "--surfaces")) {
             set.solid = 0;
+            continue;
+        } else if (!strcmp(a, "--ccd")) {
+            set.ccd = 1;
+            continue;
+        } else if (!strcmp(a, "--no-ccd")) {
+            set.ccd = 0;
             continue;
         } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);

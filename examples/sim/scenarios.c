@@ -14,7 +14,7 @@
 const char *const sim_scenarios[] = {"stack-a",  "stack-b",   "stack-fan",    "stack-mixed", "pyramid",
                                      "bin",      "tower-a",   "tower-fan",    "tower-centre", "tower-cut",
                                      "dominoes", "rods",      "bowl",         "slope-slide", "slope-hold",
-                                     NULL};
+                                     "fast-sphere", NULL};
 
 static const double identity[4] = {1, 0, 0, 0};
 

@@ -129,6 +129,7 @@ typedef struct sim_settings {
     int threads;          ///< ttd's thread count (results do not depend on it)
     int vertical_normals; ///< diagnostic: every normal replaced by +z (a stack's exact normal)
     double jig;           ///< the stacks' offsets and turns are this times their defaults (1)
+    int ccd;              ///< continuous collision after the solver (ccd.c): 1 on, 0 off, -1 (default) the scenario's choice (off but fast-sphere)
 } sim_settings;
 
 sim_settings sim_default_settings(void);
@@ -148,6 +149,17 @@ typedef struct sim_world {
     double query_seconds, solve_seconds; ///< CPU time in the manifold query and in the rest
     size_t steps, points; ///< steps taken, manifold points summed over them
     double max_tilt;      ///< largest angle (rad) of a resting contact's normal from vertical, see sim_world_step
+    /* continuous collision (ccd.c), when set.ccd > 0 */
+    ttd_mesh **ccd_mesh;  ///< each body's world vertices at the step's start (static bodies: built once)
+    double *ccd_x0;       ///< 7 per body: centroid and orientation at the step's start
+    double *ccd_v, *ccd_box; ///< scratch: world vertices at both ends, each body's box around both
+    size_t ccd_cap;
+    double ccd_seconds;   ///< CPU time in the CCD pass
+    double ccd_last_toi;  ///< the earliest toi of the last step's first round (INFINITY: none)
+    double ccd_max_chord; ///< the largest chord error added to a pair's separation so far
+    size_t ccd_queries, ccd_steps, ccd_rounds; ///< mesh CCD calls; steps and rounds it limited
+    size_t ccd_skipped;   ///< pairs not asked: the chord error over the separation even in 64 pieces
+    size_t ccd_max_pieces; ///< the most pieces a pair's step was cut into
 } sim_world;
 
 /// A world with settings set (NULL: the defaults). 0 or -1.
@@ -159,6 +171,19 @@ long sim_world_add(sim_world *w, const sim_shape *shape, const double x[3], cons
 /// One step: manifold, contacts, solver, integration. 0, or -1 with a message on stderr when
 /// ttd refuses a call (which would be a bug here).
 int sim_world_step(sim_world *w);
+/// R and the world inverse inertia from b's q.
+void sim_body_update(sim_body *b);
+/// The CCD pass (ccd.c): sim_ccd_begin keeps the bodies' poses at a step's start; after the
+/// solver, sim_ccd_limit asks ttd_mesh_ccd_d of every body pair whose boxes around both ends
+/// come within the separation (half the margin for a pair not in the step's manifold, half the
+/// manifold's distance for one in it, plus the chord error of turning bodies; pairs touching or
+/// crossing at the start are the solver's) and moves each body hit back along its motion to its
+/// earliest toi; it asks again (up to 4 rounds), then sends every moving body back to the step's
+/// start. Velocities are kept: the next step's manifold holds the pair. 0, or -1 when ttd
+/// refuses a call.
+int sim_ccd_begin(sim_world *w);
+int sim_ccd_limit(sim_world *w);
+void sim_ccd_free(sim_world *w);
 /// Kinetic energy of the moving bodies (unit density).
 double sim_world_kinetic(const sim_world *w);
 /// The pose [R | x] of body k (12 doubles).
@@ -230,7 +255,7 @@ struct sim_run {
 
 /// The scenarios' names, NULL-terminated: stack-a, stack-b, stack-fan, stack-mixed, pyramid,
 /// bin, tower-a, tower-fan, tower-centre, tower-cut, dominoes, rods, bowl, slope-slide,
-/// slope-hold.
+/// slope-hold, fast-sphere.
 extern const char *const sim_scenarios[];
 /// Builds scenario name with settings set. 0, or -1 (unknown name, or a failure).
 int sim_run_build(sim_run *run, const char *name, const sim_settings *set);

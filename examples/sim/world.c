@@ -31,6 +31,7 @@ sim_settings sim_default_settings(void)
     s.solid = 1;
     s.threads = 1;
     s.jig = 1;
+    s.ccd = -1;
     return s;
 }
 
@@ -47,11 +48,13 @@ int sim_world_init(sim_world *w, const sim_settings *set)
     w->set = set ? *set : sim_default_settings();
     w->opt = ttd_default_options();
     w->opt.threads = w->set.threads;
+    w->ccd_last_toi = INFINITY;
     return ttd_scene_create_d(&w->scene) == TTD_OK ? 0 : -1;
 }
 
 void sim_world_free(sim_world *w)
 {
+    sim_ccd_free(w);
     ttd_scene_destroy(w->scene);
     ttd_scene_array_free(&w->manifold);
     free(w->body);
@@ -72,7 +75,7 @@ void sim_body_pose(const sim_body *b, double pose[12])
 }
 
 /// R from q, and the world inverse inertia R I^-1 R^T.
-static void body_update(sim_body *b)
+void sim_body_update(sim_body *b)
 {
     quat_to_m3(b->q, b->R);
     double tmp[9];
@@ -128,7 +131,7 @@ long sim_world_add(sim_world *w, const sim_shape *shape, const double x[3], cons
         b->inv_mass = 1 / shape->volume;
         m3_inverse(shape->inertia, b->inv_inertia);
     }
-    body_update(b);
+    sim_body_update(b);
     sim_body_pose(b, w->poses + 12 * w->n);
     uint32_t id;
     if (ttd_scene_add_d(w->scene, shape->mesh, w->poses + 12 * w->n, &id) != TTD_OK || id != w->n)
@@ -400,7 +403,7 @@ static void integrate_positions(sim_world *w, double h)
         norm = sqrt(norm);
         for (int i = 0; i < 4; ++i)
             b->q[i] /= norm;
-        body_update(b);
+        sim_body_update(b);
     }
 }
 
@@ -418,6 +421,8 @@ int sim_world_step(sim_world *w)
         return -1;
     w->points += w->ncontact;
     prepare_contacts(w);
+    if (set->ccd > 0 && sim_ccd_begin(w) != 0)
+        return -1;
     double h = set->dt / set->substeps;
     /* Box2D v3's choice: the contact spring at most a quarter of the substep rate */
     double hertz = fmin(set->contact_hertz, 0.25 / h);
@@ -434,6 +439,12 @@ int sim_world_step(sim_world *w)
         integrate_positions(w, h);
         for (int it = 0; it < set->iterations; ++it)
             solve_sweep(w, h, 0, soft, soft_static);
+    }
+    if (set->ccd > 0) { /* stops a body short of an impact the manifold did not see (ccd.c) */
+        double c0 = cpu_seconds();
+        if (sim_ccd_limit(w) != 0)
+            return -1;
+        w->ccd_seconds += cpu_seconds() - c0;
     }
     for (size_t k = 0; k < w->n; ++k)
         sim_body_pose(w->body + k, w->poses + 12 * k);
@@ -452,7 +463,7 @@ int sim_world_step(sim_world *w)
 int sim_world_sync(sim_world *w)
 {
     for (size_t k = 0; k < w->n; ++k) {
-        body_update(w->body + k);
+        sim_body_update(w->body + k);
         sim_body_pose(w->body + k, w->poses + 12 * k);
     }
     return ttd_scene_set_poses_d(w->scene, w->n, w->poses) == TTD_OK ? 0 : -1;

@@ -1062,7 +1062,7 @@ TTD_API ttd_status ttd_mesh_self_ccd_f(const ttd_options *opt, const ttd_mesh *m
 TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
 
 /* ---- Continuous collision of rigid bodies between two poses (issue 34; src/api/rigid_ccd_api.c,
- * src/meshccd/rigid_motion.c, docs/ccd.md section 11) ----
+ * src/meshccd/rigid_motion.c, docs/ccd.md section 12) ----
  * Each body has a world pose at t = 0 and one at t = 1 (12 reals each, [R | t] row by row as
  * for the mesh queries: x_world = R x_mesh + t; a body's 24 reals are the two poses one after
  * the other). Between them the body moves rigidly: its origin (the point x_mesh = 0) on a
@@ -1137,7 +1137,7 @@ typedef struct ttd_scene_ccd_hit {
 /// filters and exclusions, as for contacts; a pair of solids as solids) that comes within
 /// min_separation (>= 0, finite) during the step, with ttd_mesh_ccd_rigid_d's answer, into out
 /// as ttd_scene_ccd_hit items sorted by (i, j). The broad phase bounds each body's whole sweep by
-/// a world box (docs/ccd.md section 11), so no pair is missed; the pairs run on opt's threads
+/// a world box (docs/ccd.md section 12), so no pair is missed; the pairs run on opt's threads
 /// and the answer does not depend on them. The scene is not changed (set the new poses after).
 /// Checks: those of the scene queries; n not the id limit: TTD_ERR_INDEX_OUT_OF_RANGE; a t = 1
 /// pose refused as by ttd_scene_set_pose_d (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE); out->count

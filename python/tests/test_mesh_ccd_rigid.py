@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""ttd.mesh_ccd_rigid and ttd.rigid_pose_at (docs/ccd.md, section 11): pure translations against
+"""ttd.mesh_ccd_rigid and ttd.rigid_pose_at (docs/ccd.md, section 12): pure translations against
 ttd.mesh_ccd on the world vertices (linear vertex paths); rotations against the exact mesh
 distance (ttd.mesh_distance) sampled along the motion built here in numpy, with the most the
 distance can change between samples; the motion against Rodrigues' formula written here; float32;

@@ -410,7 +410,8 @@ def test_solids(dtype):
     deepest point at depth margin + 0.1 with normal +z (as surfaces: no point below 0); a half cube
     inside a cube is found by collide(0) (the inner body's triangle 0), distance 0, and its
     manifold's points are its 8 vertices at minus their exact distance to the outer cube
-    (ttd.closest_points with the outer body's pose); an open mesh cannot be a solid."""
+    (ttd.closest_points with the outer body's pose) and the pair's penetration depth, 0.75 along
+    an axis; an open mesh cannot be a solid."""
     unit = ttd.Mesh(*cube(), precision=dtype)
     v, f = cube()
     half = ttd.Mesh(0.5 * v, f, precision=dtype)
@@ -439,16 +440,23 @@ def test_solids(dtype):
     d = nest.distance(nearest=True)
     assert d.distance == 0 and np.all(d.nearest.distance == 0)
     m = nest.manifold(0.01, 0)
-    assert len(m.i) == 8 and np.all(m.distance < 0)
+    assert len(m.i) == 9 and np.all(m.distance < 0)
+    # the pair's penetration depth (two convex solids): the half cube leaves the cube by 0.75
+    # along an axis; the other 8 points are the half cube's corners
+    deep = m.distance < -0.5
+    assert np.sum(deep) == 1 and abs(float(m.distance[deep][0]) + 0.75) <= 1e-6
+    n = m.normal[deep][0].astype(np.float64)
+    assert sorted(np.abs(n).tolist()) == [0, 0, 1]
+    point_i, point_j, dist = m.point_i[~deep], m.point_j[~deep], m.distance[~deep]
     corners = move(half.vertices, inner)
     # the inner body's points are its corners; the outer's lie on its faces, -d from them
-    np.testing.assert_array_equal(sorted(map(tuple, m.point_j.astype(np.float64))),
+    np.testing.assert_array_equal(sorted(map(tuple, point_j.astype(np.float64))),
                                   sorted(map(tuple, corners.astype(dtype).astype(np.float64))))
-    out = m.point_i.astype(np.float64)
+    out = point_i.astype(np.float64)
     assert np.all(np.min(np.minimum(np.abs(out), np.abs(out - 1)), axis=1) <= 1e-6)
-    np.testing.assert_allclose(np.linalg.norm(out - m.point_j, axis=1), -m.distance.astype(np.float64), atol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(out - point_j, axis=1), -dist.astype(np.float64), atol=1e-6)
     want = ttd.closest_points(unit, corners, pose=np.eye(4)).distance
-    got = sorted(float(-x) for x in m.distance)
+    got = sorted(float(-x) for x in dist)
     assert got == sorted(float(x) for x in want)
     # an open mesh is no solid
     gv, gf = grid(2)

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""ttd.Scene.ccd (docs/ccd.md, section 11) against a brute force over every body pair: each
+"""ttd.Scene.ccd (docs/ccd.md, section 12) against a brute force over every body pair: each
 present pair the test's own copy of the filters and exclusions allows, through
 ttd.mesh_ccd_rigid (a pair of solids as solids is left to the C test). The same pairs and times
 to the bit, on 1, 2 and 3 threads; float32 scenes; a fast small body through a thin plate; errors."""

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""Continuous collision of rigid bodies between two poses (docs/ccd.md, section 11).
+"""Continuous collision of rigid bodies between two poses (docs/ccd.md, section 12).
 
 Each body has a world pose at t = 0 and one at t = 1 (``x_world = R x + t``, (3, 4) or (4, 4)
 arrays as ttd.pose makes them). Between them its origin moves on a straight line and it turns

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Continuous collision of two rigid meshes between two poses each (ttd.h, ttd_mesh_ccd_rigid_d;
- * docs/ccd.md section 11): conservative advancement. At time t the exact mesh distance d(t) under
+ * docs/ccd.md section 12): conservative advancement. At time t the exact mesh distance d(t) under
  * both bodies' poses; no point of either body moves faster than its speed bound, so the distance
  * cannot fall faster than the two bounds' sum V, and the interval [t, t + (d - mu - delta) / V]
  * is proved to stay above delta (mu bounds the rounding of the poses and of the distance). The

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Continuous collision over a scene's bodies (ttd.h, ttd_scene_ccd_d; docs/ccd.md section 11):
+/* Continuous collision over a scene's bodies (ttd.h, ttd_scene_ccd_d; docs/ccd.md section 12):
  * each body moves rigidly from its pose in the scene (t = 0) to a pose given for t = 1. Broad
  * phase: a world box around each body's whole sweep (below), sweep and prune along the axis of
  * largest spread, the scene's filters and exclusions; narrow phase: each candidate pair's

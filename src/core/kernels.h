@@ -155,6 +155,14 @@ typedef unsigned (*ttd_tri_fit_fn)(const double *const p[9], int count, double r
  * it, bit for bit. */
 typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const double u[9], double mn[3], double mx[3]);
 
+/* leaf_axes (double rows only; NULL on the scalar row): the refitted axes u[9][i] of up to 8 leaves'
+ * boxes (bit i of live), from their sums s[14][i] (mesh/build.c's fitsum: n[3], nlen, m[10]) and
+ * their axes before the move old[9][i], as mesh/build.c's refit_axes computes them, bit for bit,
+ * in its flat case. Returns the mask of the leaves it did (simd/kernel_trifit.h); the caller does
+ * the others itself. */
+typedef unsigned (*ttd_leaf_axes_fn)(const double s[14][TTD_NODE_WIDTH], const double old[9][TTD_NODE_WIDTH],
+                                     unsigned live, double u[9][TTD_NODE_WIDTH]);
+
 /* self_screen and box_screen (double rows only; NULL on the scalar row, whose loops are in
  * mesh/self_grid_impl.h): a self-contact query's screens, in double for both precisions (float
  * coordinates convert exactly). Boxes are axis-aligned: lo the minima of a triangle's vertices,
@@ -185,6 +193,7 @@ typedef struct ttd_kernels_d {
     ttd_point_lanes_d_fn point_lanes;   ///< never NULL
     ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
     ttd_leaf_span_fn leaf_span;         ///< NULL on the scalar row
+    ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
 } ttd_kernels_d;

@@ -533,11 +533,14 @@ static size_t count_nodes(size_t n)
 {
     if (n <= TTD_NODE_WIDTH)
         return 1;
-    size_t g[8], total = 1;
+    size_t g[8], total = 1, last = 0, below = 0;
     const int ng = group_sizes(n, g);
     for (int j = 0; j < ng; ++j)
-        if (g[j] > 1)
-            total += count_nodes(g[j]);
+        if (g[j] > 1) {
+            if (g[j] != last) /* groups are dealt evenly: one or two sizes, each counted once */
+                below = count_nodes(g[j]), last = g[j];
+            total += below;
+        }
     return total;
 }
 
@@ -927,10 +930,16 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel)
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
-    if (m->bytes == 8)
+    if (vrel == NULL) {
+        /* the largest |x - origin| without a pass: x - origin rounds monotonically in x, so its
+         * extremes are those of the range's ends (the loop's bits) */
+        for (int c = 0; c < 3; ++c)
+            big = dmax(big, dmax(fabs(mx[c] - m->origin[c]), fabs(mn[c] - m->origin[c])));
+    } else if (m->bytes == 8) {
         PLACE_BIG(double);
-    else
+    } else {
         PLACE_BIG(float);
+    }
     /* the squares at unit scale (a power of two, exact): below about 1e-154 they would underflow
      * (a radius of 0 collapsed a scene's world boxes to points, and its broad phase lost every
      * pair, at 1e-163) */
@@ -1000,33 +1009,56 @@ static double half_area(const double e[3])
  * triangles moved far from where it grouped them grows its boxes, and this ratio with them,
  * while the triangles' own boxes depend on the geometry alone (flat: each about twice its
  * triangle's area), so that a geometry whose fresh tree has thick boxes (a crumpled sheet) is
- * not held against one whose fresh tree has thin ones. Summed in node order; 0 when the
+ * not held against one whose fresh tree has thin ones. Each node's slots summed in slot order
+ * (node_areas), the nodes' sums in node order (quality_of gives the same bits); 0 when the
  * triangles have no area at all. */
-/* tree_quality's sums over nodes of type T, one pointer per precision (a branch on the
- * precision per slot and per extent was most of its time, a 12th of a refit) */
-#define QUALITY_SUMS(T)                                                                            \
+/* Node n's part of the measure: its slots' box areas (half_area) summed in slot order, those of
+ * subtrees into a[0], those of triangles into a[1]; one loop per precision (a branch on the
+ * precision per slot and per extent was most of the measure's time). A refit takes each node's
+ * part as it stores the node's boxes, while they are in cache (a pass over every node after the
+ * refit re-read a fifth of the tree); the build by tree_quality. */
+#define NODE_AREAS(T)                                                                              \
     do {                                                                                           \
-        const T *nd = (const T *)m->nodes;                                                         \
-        for (size_t n = 0; n < m->nnodes; ++n)                                                     \
-            for (int j = 0; j < nd[n].count; ++j) {                                                \
-                const double e[3] = {(double)nd[n].e[0][j], (double)nd[n].e[1][j], (double)nd[n].e[2][j]}; \
-                if (nd[n].child[j] >= 0)                                                           \
-                    sub += half_area(e);                                                           \
-                else                                                                               \
-                    tri += half_area(e);                                                           \
-            }                                                                                      \
+        const T *nd = (const T *)m->nodes + n;                                                     \
+        for (int j = 0; j < nd->count; ++j) {                                                      \
+            const double e[3] = {(double)nd->e[0][j], (double)nd->e[1][j], (double)nd->e[2][j]};   \
+            a[nd->child[j] >= 0 ? 0 : 1] += half_area(e);                                          \
+        }                                                                                          \
     } while (0)
+
+static void node_areas(const struct ttd_mesh *m, size_t n, double a[2])
+{
+    a[0] = a[1] = 0;
+    if (m->bytes == 8)
+        NODE_AREAS(ttd_node_d);
+    else
+        NODE_AREAS(ttd_node_f);
+}
+#undef NODE_AREAS
+
+/* The measure from every node's part (node_areas), summed in node order: the same bits however
+ * the parts were made (by the build, by a refit on any number of threads). */
+static double quality_of(const double (*area)[2], size_t nnodes)
+{
+    double sub = 0, tri = 0;
+    for (size_t n = 0; n < nnodes; ++n) {
+        sub += area[n][0];
+        tri += area[n][1];
+    }
+    return tri > 0 ? sub / tri : 0;
+}
 
 static double tree_quality(const struct ttd_mesh *m)
 {
     double sub = 0, tri = 0;
-    if (m->bytes == 8)
-        QUALITY_SUMS(ttd_node_d);
-    else
-        QUALITY_SUMS(ttd_node_f);
+    for (size_t n = 0; n < m->nnodes; ++n) {
+        double a[2];
+        node_areas(m, n, a);
+        sub += a[0];
+        tri += a[1];
+    }
     return tri > 0 ? sub / tri : 0;
 }
-#undef QUALITY_SUMS
 
 ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *verts, size_t nv,
                           const uint32_t *tris, size_t nt, struct ttd_mesh **out)
@@ -1117,7 +1149,8 @@ nomem:
  *     once, one per lane (tri_fit, simd/kernel_trifit.h: the same bits), with their terms of the
  *     leaf's sums (fitsum_terms, summed by fitsum_leaf in a fixed order);
  *   - a leaf's (a node of triangles) from its vertices, about axes found from its triangles' sums
- *     (refit_axes) and its axes before the move;
+ *     (refit_axes) and its axes before the move; a node's slots' axes at once, one per lane, on
+ *     the SIMD rows (leaf_axes, simd/kernel_trifit.h: the same bits), refit_node's middle pass;
  *   - a larger subtree's likewise, around its children's boxes instead of its vertices (a few
  *     corners per child instead of a pass over every vertex below it).
  * The sums a parent's axes need (fitsum) are the triangles' normals and the vertices' moments,
@@ -1278,7 +1311,9 @@ typedef struct refit {
     const struct ttd_mesh *mesh;
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
     ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
+    ttd_leaf_axes_fn leaf_axes; /* the ISA's lane axes of up to 8 leaves, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
+    double (*area)[2];    /* per node: its part of the tree's measure (node_areas) */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
 } refit;
 
@@ -1291,28 +1326,37 @@ typedef struct local_tris {
     uint32_t ord[TTD_NODE_WIDTH];
 } local_tris;
 
+#define GATHER(T)                                                                                  \
+    do {                                                                                           \
+        const T *v = m->verts;                                                                     \
+        for (int i = 0; i < count; ++i) {                                                          \
+            L->ord[i] = t[i];                                                                      \
+            const uint32_t *ix = m->tris + 3 * (size_t)t[i];                                       \
+            for (int k = 0; k < 3; ++k) {                                                          \
+                const T *x = v + 3 * (size_t)ix[k];                                                \
+                for (int c = 0; c < 3; ++c) /* as place() computes vrel */                         \
+                    L->p[3 * k + c][i] = (double)x[c] - o[c];                                      \
+            }                                                                                      \
+        }                                                                                          \
+    } while (0)
+
 static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, int count)
 {
-    L->B = (builder){.mesh = m, .ord = L->ord};
+    /* the builder's fields that its box functions read (the mesh, the positions), no others */
+    L->B.mesh = m;
+    L->B.ord = L->ord;
     for (int k = 0; k < 9; ++k)
         L->B.p[k] = L->p[k];
     const double o[3] = {m->origin[0], m->origin[1], m->origin[2]};
-    for (int i = 0; i < count; ++i) {
-        L->ord[i] = t[i];
-        const uint32_t *ix = m->tris + 3 * (size_t)t[i];
-        for (int k = 0; k < 3; ++k) {
-            const size_t at = 3 * (size_t)ix[k];
-            for (int c = 0; c < 3; ++c) { /* as place() computes vrel */
-                const double x = m->bytes == 8 ? ((const double *)m->verts)[at + (size_t)c]
-                                               : (double)((const float *)m->verts)[at + (size_t)c];
-                L->p[3 * k + c][i] = x - o[c];
-            }
-        }
-    }
+    if (m->bytes == 8)
+        GATHER(double);
+    else
+        GATHER(float);
     for (int k = 0; k < 9; ++k) /* lanes past the last triangle: defined numbers for tri_fit */
         for (int i = count; i < TTD_NODE_WIDTH; ++i)
             L->p[k][i] = 0;
 }
+#undef GATHER
 
 /* Child slot j of node n read back in double (the stored values, exactly). */
 static void slot_box(const struct ttd_mesh *m, size_t n, int j, obb *b)
@@ -1401,87 +1445,169 @@ static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const
         node->u[i][j] = (float)b.u[i];
 }
 
-/* Refits slot j of node n (the node's child there refitted already, unless it is a leaf) and
- * returns its subtree's sums. A lone triangle and a leaf are fitted from their vertices (the
- * leaf's own slots too); a larger subtree around its children's boxes. */
+/* Refits slot j of node n, a lone triangle, from its vertices, and returns its sums. */
 static fitsum refit_slot(const refit *R, int32_t n, int j)
 {
     const struct ttd_mesh *m = R->mesh;
     const int32_t c = slot_child(m, (size_t)n, j);
+    const uint32_t t = (uint32_t)(-1 - c);
     local_tris L;
     obb b;
-    double old[9]; /* the slot's axes before the move: where refit_axes starts */
+    double p[3][3], area2;
     fitsum sum;
     memset(&sum, 0, sizeof sum);
-    if (c < 0) {
-        const uint32_t t = (uint32_t)(-1 - c);
-        double p[3][3];
-        gather(m, &L, &t, 1);
-        pos_vertices(&L.B, 0, p);
-        double area2;
-        triangle_fit(p, m->radius, &b, &area2);
-        fitsum_triangle(&sum, p, b.u + 6, area2);
-        store_box(&L.B, n, j, &b, c, 0, 1);
-        return sum;
-    }
-    if (m->bytes == 8) {
-        for (int i = 0; i < 9; ++i)
-            old[i] = ((const ttd_node_d *)m->nodes)[n].u[i][j];
-    } else {
-        for (int i = 0; i < 9; ++i)
-            old[i] = (double)((const ttd_node_f *)m->nodes)[n].u[i][j];
-    }
-    if (slot_child(m, (size_t)c, 0) < 0) { /* a leaf: its triangles' boxes, then its own */
-        const int count = slot_count(m, (size_t)c);
-        uint32_t t[TTD_NODE_WIDTH];
-        for (int i = 0; i < count; ++i)
-            t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
-        gather(m, &L, t, count);
-        /* the triangles' boxes in lanes where the ISA has them (the same bits as triangle_fit); a
-         * full leaf of a double mesh takes them straight into its node */
-        const double *const *pl = (const double *const *)L.B.p;
-        ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
-        double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
-        double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
-        unsigned lanes = 0;
-        if (R->tri_fit != NULL)
-            lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
-        for (int i = 0; i < count; ++i) {
-            if (lanes >> i & 1) {
-                if (leaf != NULL)
-                    continue; /* stored already */
-                for (int k = 0; k < 3; ++k) {
-                    b.c[k] = C[k][i];
-                    b.e[k] = E[k][i];
-                }
-                for (int k = 0; k < 9; ++k)
-                    b.u[k] = U[k][i];
-            } else {
-                double area2, p[3][3];
-                pos_vertices(&L.B, (size_t)i, p);
-                triangle_fit(p, m->radius, &b, &area2);
-                /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
-                fitsum_terms(T, i, L.B.p, b.u + 6, area2, R->tri_fit == NULL);
-            }
-            store_box(&L.B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
-        }
-        sum = fitsum_leaf(T, count);
-        refit_axes(&sum, old, b.u);
-        if (R->leaf_span != NULL) {
-            double mn[3], mx[3];
-            R->leaf_span(pl, count, b.u, mn, mx);
-            span_extents(mn, mx, m->radius, &b);
-        } else {
-            fit_extents(&L.B, 0, (size_t)count, &b);
-        }
-        store_box(&L.B, n, j, &b, c, 0, (size_t)count);
-        return sum;
-    }
-    sum = R->sums[c];
-    refit_axes(&sum, old, b.u);
-    store_box_of_boxes(m, n, j, b.u, c);
+    gather(m, &L, &t, 1);
+    pos_vertices(&L.B, 0, p);
+    triangle_fit(p, m->radius, &b, &area2);
+    fitsum_triangle(&sum, p, b.u + 6, area2);
+    store_box(&L.B, n, j, &b, c, 0, 1);
     return sum;
 }
+
+/* A leaf's part of a refit before its own axes: its triangles' boxes (in lanes where the ISA has
+ * them, the same bits as triangle_fit; a full leaf of a double mesh takes them straight into its
+ * node) and its sums. L keeps its vertices for its own extents (leaf_store). */
+static fitsum leaf_fit(const refit *R, int32_t c, local_tris *L)
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)c);
+    uint32_t t[TTD_NODE_WIDTH];
+    for (int i = 0; i < count; ++i)
+        t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
+    gather(m, L, t, count);
+    const double *const *pl = (const double *const *)L->B.p;
+    ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
+    double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
+    double(*u)[TTD_NODE_WIDTH] = leaf != NULL ? leaf->u : U;
+    unsigned lanes = 0;
+    obb b;
+    if (R->tri_fit != NULL)
+        lanes = R->tri_fit(pl, count, m->radius, u, leaf != NULL ? leaf->c : C, leaf != NULL ? leaf->e : E, T);
+    for (int i = 0; i < count; ++i) {
+        if (lanes >> i & 1) {
+            if (leaf != NULL)
+                continue; /* stored already */
+            for (int k = 0; k < 3; ++k) {
+                b.c[k] = C[k][i];
+                b.e[k] = E[k][i];
+            }
+            for (int k = 0; k < 9; ++k)
+                b.u[k] = U[k][i];
+        } else {
+            double area2, p[3][3];
+            pos_vertices(&L->B, (size_t)i, p);
+            triangle_fit(p, m->radius, &b, &area2);
+            /* the lanes' vertex terms hold whatever the fit did (a row without lanes: none) */
+            fitsum_terms(T, i, L->B.p, b.u + 6, area2, R->tri_fit == NULL);
+        }
+        store_box(&L->B, c, i, &b, slot_child(m, (size_t)c, i), (size_t)i, (size_t)i + 1);
+    }
+    return fitsum_leaf(T, count);
+}
+
+/* The rest of a leaf's refit: its box about axes u (from refit_axes or leaf_axes) around its
+ * vertices, stored in slot j of node n. */
+static void leaf_store(const refit *R, int32_t n, int j, int32_t c, const local_tris *L, const double u[9])
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)c);
+    obb b;
+    memcpy(b.u, u, sizeof b.u);
+    if (R->leaf_span != NULL) {
+        double mn[3], mx[3];
+        R->leaf_span((const double *const *)L->B.p, count, b.u, mn, mx);
+        span_extents(mn, mx, m->radius, &b);
+    } else {
+        fit_extents(&L->B, 0, (size_t)count, &b);
+    }
+    store_box(&L->B, n, j, &b, c, 0, (size_t)count);
+}
+
+/* Refits every slot of node n (its children refitted already, but for its leaves) into sum[j],
+ * each slot's subtree's sums, in three passes: each slot's sums (a leaf's from its triangles,
+ * whose boxes leaf_fit refits; a larger subtree's kept by its node); every slot's axes, eight at
+ * once in lanes where the ISA has them (leaf_axes: the same bits as refit_axes, which does the
+ * slots it leaves out and the scalar row's); then each slot's box (a leaf's around its vertices,
+ * leaf_store; a larger subtree's around its children's boxes). A lone triangle by refit_slot. */
+static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
+{
+    const struct ttd_mesh *m = R->mesh;
+    const int count = slot_count(m, (size_t)n);
+    local_tris L[TTD_NODE_WIDTH];
+    double S[14][TTD_NODE_WIDTH], old[9][TTD_NODE_WIDTH], u[9][TTD_NODE_WIDTH];
+    int32_t child[TTD_NODE_WIDTH];
+    unsigned boxes = 0, leaves = 0;
+    /* defined numbers in the lanes no slot fills (a count of 1 where refit_axes divides by it) */
+    memset(S, 0, sizeof S);
+    memset(old, 0, sizeof old);
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+        S[4][j] = 1;
+    for (int j = 0; j < count; ++j) {
+        child[j] = slot_child(m, (size_t)n, j);
+        if (child[j] < 0) {
+            sum[j] = refit_slot(R, n, j);
+            continue;
+        }
+        boxes |= 1u << j;
+        if (slot_child(m, (size_t)child[j], 0) < 0) {
+            leaves |= 1u << j;
+            sum[j] = leaf_fit(R, child[j], &L[j]);
+            node_areas(m, (size_t)child[j], R->area[child[j]]);
+        } else {
+            sum[j] = R->sums[child[j]];
+        }
+        for (int k = 0; k < 3; ++k)
+            S[k][j] = sum[j].n[k];
+        S[3][j] = sum[j].nlen;
+        for (int k = 0; k < 10; ++k)
+            S[4 + k][j] = sum[j].m[k];
+        if (m->bytes == 8) {
+            for (int k = 0; k < 9; ++k)
+                old[k][j] = ((const ttd_node_d *)m->nodes)[n].u[k][j];
+        } else {
+            for (int k = 0; k < 9; ++k)
+                old[k][j] = (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
+        }
+    }
+    if (boxes != 0) {
+            const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
+                                                                   (const double(*)[TTD_NODE_WIDTH])old, boxes, u)
+                                                    : 0;
+        for (int j = 0; j < count; ++j) {
+            if (!(boxes >> j & 1))
+                continue;
+            double uj[9];
+            if (lanes >> j & 1) {
+                for (int k = 0; k < 9; ++k)
+                    uj[k] = u[k][j];
+            } else {
+                double oj[9];
+                for (int k = 0; k < 9; ++k)
+                    oj[k] = old[k][j];
+                refit_axes(&sum[j], oj, uj);
+            }
+            if (leaves >> j & 1)
+                leaf_store(R, n, j, child[j], &L[j], uj);
+            else
+                store_box_of_boxes(m, n, j, uj, child[j]);
+        }
+    }
+    node_areas(m, (size_t)n, R->area[n]);
+}
+
+/* Asks for the nodes below node n (by index) before they are needed: refit_nodes goes down the
+ * indices, and the next node it refits, with its leaves, lies just below n (pre-order puts a
+ * node's leaves right after it; the bottom nodes hold 2.7 leaves on average, so about 4 KB).
+ * Fetched as the refit reached them, a node's first lines (its leaves' children, its axes) had
+ * been a fifth of its time on a tree out of cache (docs/mesh-queries.md, section 6). */
+#define REFIT_AHEAD 4096
+static void node_prefetch(const struct ttd_mesh *m, size_t n)
+{
+    const size_t at = n * (m->bytes == 8 ? sizeof(ttd_node_d) : sizeof(ttd_node_f));
+    for (size_t k = 64; k <= REFIT_AHEAD && k <= at; k += 64)
+        __builtin_prefetch((const char *)m->nodes + (at - k), 1, 3);
+}
+#undef REFIT_AHEAD
 
 /* Refits the slots of the nodes first..last-1 that are not leaves, the last first (pre-order:
  * children after their parent), keeping each node's sums; skips the nodes of the first nlist
@@ -1489,25 +1615,27 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
 static void refit_nodes(const refit *R, size_t first, size_t last, size_t nlist)
 {
     size_t next = nlist; /* the listed subtree below the current node, from the last */
+    size_t end[64];      /* past each listed subtree's last node (count_nodes once each) */
+    for (size_t i = 0; i < nlist; ++i)
+        end[i] = (size_t)R->list[i].node + count_nodes(R->list[i].hi - R->list[i].lo);
     for (size_t n = last; n-- > first;) {
         while (next > 0 && (size_t)R->list[next - 1].node > n)
             --next;
         if (next > 0) {
             const subtree *t = &R->list[next - 1];
-            const size_t end = (size_t)t->node + count_nodes(t->hi - t->lo);
-            if (n < end) { /* inside a listed subtree: done */
+            if (n < end[next - 1]) { /* inside a listed subtree: done */
                 n = (size_t)t->node;
                 continue;
             }
         }
         if (slot_child(R->mesh, n, 0) < 0)
             continue; /* a leaf: its parent refits it */
-        fitsum sum;
+        fitsum sum, slot[TTD_NODE_WIDTH];
         memset(&sum, 0, sizeof sum);
-        for (int j = 0; j < slot_count(R->mesh, n); ++j) {
-            const fitsum s = refit_slot(R, (int32_t)n, j);
-            fitsum_add(&sum, &s);
-        }
+        node_prefetch(R->mesh, n);
+        refit_node(R, (int32_t)n, slot);
+        for (int j = 0; j < slot_count(R->mesh, n); ++j)
+            fitsum_add(&sum, &slot[j]);
         R->sums[n] = sum;
     }
 }
@@ -1551,13 +1679,15 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
         ttd_parallel_tasks(nlist, cfg->threads, refit_task, R);
         refit_nodes(R, 1, m->nnodes, nlist);
     }
-    (void)refit_slot(R, 0, 0);
+    fitsum root[TTD_NODE_WIDTH];
+    refit_node(R, 0, root); /* node 0's one slot: the root's box */
 }
 
 /* Everything derived from the vertex positions, recomputed after they moved, in this order:
  *   1. place: the origin and the radius (the boxes' frame, the spheres, the rounding margin);
  *   2. refit_boxes: the hierarchy's boxes;
- *   3. tree_quality: the measure that decides a rebuild (ttd_mesh_refit);
+ *   3. the measure that decides a rebuild (ttd_mesh_refit), from the nodes' parts refit_boxes
+ *      took (quality_of: tree_quality's bits);
  *   4. the edge information (mesh/edges.c: flat, convex and concave edges, corners, flat pieces,
  *      welded places, normals: all from the positions) is dropped, for the next manifold to make
  *      again from the new positions (ttd_mesh_edges_get): a refit that no manifold follows does
@@ -1570,7 +1700,7 @@ static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 {
     place(m, verts, NULL);
     refit_boxes(cfg, m, R);
-    m->quality = tree_quality(m);
+    m->quality = quality_of((const double(*)[2])R->area, m->nnodes);
     if (m->edges != NULL) {
         ttd_mesh_edges_free(m->edges);
         free(m->edges);
@@ -1582,10 +1712,12 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 {
     /* everything is allocated before the mesh changes: out of memory, it is as it was */
     const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
-    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
-               malloc(64 * sizeof(subtree))};
-    if (R.sums == NULL || R.list == NULL) {
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
+               row != NULL ? row->leaf_axes : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
+               ttd_big_alloc(m->nnodes * sizeof *R.area), malloc(64 * sizeof(subtree))};
+    if (R.sums == NULL || R.area == NULL || R.list == NULL) {
         free(R.sums);
+        free(R.area);
         free(R.list);
         return TTD_ERR_OUT_OF_MEMORY;
     }
@@ -1593,6 +1725,7 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
     m->generation++;
     refit_derived(cfg, m, verts, &R);
     free(R.sums);
+    free(R.area);
     free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* A rigid body's motion between two poses (ttd.h, ttd_rigid_pose_at_d; docs/ccd.md section 11):
+/* A rigid body's motion between two poses (ttd.h, ttd_rigid_pose_at_d; docs/ccd.md section 12):
  * its origin on a straight line, its rotation about one fixed axis at a constant rate. */
 #ifndef TTD_MESHCCD_RIGID_MOTION_H
 #define TTD_MESHCCD_RIGID_MOTION_H

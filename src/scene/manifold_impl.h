@@ -82,6 +82,7 @@ typedef struct manifold_work {
     uint32_t *pts_place;
     ttd_point_result *res;   /* 5b: their closest points */
     size_t queue_cap, pts_cap;
+    double sat_n[3];         /* 5b: a convex solid pair's separating direction (inside = 2) */
     struct corner_key *key; /* step 0's vertices and edges to ask, before each is asked once */
     size_t key_n, key_cap;
     struct corner_key *key_tmp; /* step 0: scratch of the keys' sort */
@@ -97,7 +98,8 @@ typedef struct manifold_work {
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
  * solid inside the other (inside 0: p, a vertex of body i inside body j; 1: q, a vertex of body j
- * inside body i; -1 for the others), whose distance is then negative. */
+ * inside body i; 2: a convex pair's point at its penetration depth, its normal w->sat_n; -1 for
+ * the others), whose distance is then negative. */
 typedef struct manifold_rec {
     ttd_scene_contact c;
     int inside;
@@ -239,6 +241,8 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
 
 #include "scene/manifold_inside_impl.h"
 
+#include "scene/manifold_sat_impl.h"
+
 #include "scene/manifold_reduce_impl.h"
 
 #include "scene/manifold_keys_impl.h"
@@ -281,6 +285,10 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         for (int side = 0; side < 2 && n0 > 0; ++side)
             if (!solid_edges(s, cfg, p->i, p->j, side, c0, n0, vdepth, w))
                 return 0;
+        /* a convex pair found overlapping: its penetration depth along the separating direction */
+        int added;
+        if (w->all_n > before && !solid_sat(s, cfg, p->i, p->j, before, w, &added))
+            return 0;
     }
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
@@ -359,7 +367,10 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const ttd_scene_contact *x = &xr->c;
         ttd_scene_point *pt = (ttd_scene_point *)out->data + out->count + k;
         double normal[3];
-        contact_normal(s, x, xr->inside, normal);
+        if (xr->inside == 2)
+            memcpy(normal, w->sat_n, sizeof normal);
+        else
+            contact_normal(s, x, xr->inside, normal);
         pt->i = x->i;
         pt->j = x->j;
         pt->tri_i = x->tri_i;

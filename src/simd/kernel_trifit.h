@@ -167,7 +167,102 @@ static void leaf_span(const double *const p[9], int count, const double u[9], do
     }
 }
 
-#define TTD_LANE_ROW_TRI_FIT .tri_fit = tri_fit, .leaf_span = leaf_span,
+/* normalize3 of mesh/build.c in its common case (a squared length within (2^-900, 2^900)), lane
+ * by lane; *ok loses the lanes outside it */
+TTDW_FN void trifit_normalize3(const ttdw_vd a[3], ttdw_vd out[3], ttdw_md *ok)
+{
+    const ttdw_vd d = trifit_dot3(a, a);
+    *ok = ttdw_mand_d(*ok, ttdw_mand_d(ttdw_gt_d(d, ttdw_set1_d(0x1p-900)), ttdw_lt_d(d, ttdw_set1_d(0x1p900))));
+    const ttdw_vd in = ttdw_set1_d(1.0) / ttdw_sqrt_d(d);
+    for (int q = 0; q < 3; ++q)
+        out[q] = a[q] * in;
+}
+
+/* The axes of up to 8 leaves' boxes at once, one leaf per lane (bit i of live): mesh/build.c's
+ * refit_axes in its flat case, the same operations in the same order (no FMA), so the same bits.
+ * s[q][i] is leaf i's sums (build.c's fitsum: n[0..2], nlen, m[0..9]), old[k][i] its axes before
+ * the move. A lane outside that case (a patch that is not flat, a normalisation that would need
+ * rescaling, an old first axis within 75 degrees of the normal) is left out of the returned mask
+ * for the caller's refit_axes, which handles every case. The flat case is a dependent chain of
+ * seven square roots and divisions a leaf: one leaf at a time it ran at their latency (a quarter of
+ * a refit); eight at a time at their throughput. */
+static unsigned leaf_axes(const double s[14][TTD_NODE_WIDTH], const double old[9][TTD_NODE_WIDTH], unsigned live,
+                          double u[9][TTD_NODE_WIDTH])
+{
+    static const int r6[6] = {0, 0, 0, 1, 1, 2}, c6[6] = {0, 1, 2, 1, 2, 2};
+    unsigned done = 0;
+    const ttdw_vd zero = ttdw_zero_d(), one = ttdw_set1_d(1.0);
+    for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D) {
+        if ((live >> j & ((1u << TTDW_LANES_D) - 1u)) == 0)
+            continue;
+        ttdw_vd n[3], cov[3][3], f0[3], f6[3];
+        for (int q = 0; q < 3; ++q)
+            n[q] = ttdw_loadu_d(s[q] + j);
+        const ttdw_vd nlen = ttdw_loadu_d(s[3] + j), k = ttdw_loadu_d(s[4] + j);
+        for (int q = 0; q < 6; ++q) {
+            const int r = r6[q], c = c6[q];
+            cov[r][c] = cov[c][r] = ttdw_loadu_d(s[8 + q] + j) / k - (ttdw_loadu_d(s[5 + r] + j) / k) * (ttdw_loadu_d(s[5 + c] + j) / k);
+        }
+        const ttdw_vd flat2 = ttdw_set1_d(0.9 * 0.9); /* build.c's REFIT_FLAT squared */
+        ttdw_md ok = ttdw_mand_d(ttdw_gt_d(nlen, zero), ttdw_ge_d(trifit_dot3(n, n), flat2 * nlen * nlen));
+        trifit_normalize3(n, f0, &ok);
+        for (int q = 0; q < 3; ++q)
+            f6[q] = ttdw_loadu_d(old[q] + j);
+        for (int pass = 0; pass < 2; ++pass) { /* orthogonalize */
+            const ttdw_vd d = trifit_dot3(f0, f6);
+            ttdw_vd w[3];
+            for (int q = 0; q < 3; ++q)
+                w[q] = f6[q] - d * f0[q];
+            ok = ttdw_mand_d(ok, ttdw_gt_d(trifit_dot3(w, w), ttdw_set1_d(0.0625)));
+            trifit_normalize3(w, f6, &ok);
+        }
+        ttdw_vd a[3], b[3], ca[3], cb[3];
+        for (int q = 0; q < 3; ++q)
+            a[q] = f6[q];
+        trifit_cross3(f0, a, b);
+        for (int i = 0; i < 3; ++i) {
+            ca[i] = cov[i][0] * a[0] + cov[i][1] * a[1] + cov[i][2] * a[2];
+            cb[i] = cov[i][0] * b[0] + cov[i][1] * b[1] + cov[i][2] * b[2];
+        }
+        ttdw_vd vaa = trifit_dot3(a, ca), vbb = trifit_dot3(b, cb);
+        const ttdw_vd vab = trifit_dot3(a, cb);
+        /* one Jacobi rotation where vab != 0 (computed in every lane, kept in those) */
+        const ttdw_md rot = ttdw_mnot_d(ttdw_eq_d(vab, zero));
+        const ttdw_vd theta = (vbb - vaa) / (ttdw_set1_d(2.0) * vab);
+        const ttdw_vd sg = ttdw_sel_d(ttdw_ge_d(theta, zero), one, ttdw_set1_d(-1.0));
+        const ttdw_vd t = sg / (ttdw_abs_d(theta) + ttdw_sqrt_d(theta * theta + one));
+        const ttdw_vd c = one / ttdw_sqrt_d(t * t + one), sn = t * c;
+        for (int q = 0; q < 3; ++q) {
+            const ttdw_vd aq = a[q], bq = b[q];
+            a[q] = ttdw_sel_d(rot, c * aq - sn * bq, aq);
+            b[q] = ttdw_sel_d(rot, sn * aq + c * bq, bq);
+        }
+        vaa = ttdw_sel_d(rot, vaa - t * vab, vaa);
+        vbb = ttdw_sel_d(rot, vbb + t * vab, vbb);
+        /* the larger spread first, then closed as refit_axes closes them */
+        const ttdw_md first = ttdw_ge_d(vaa, vbb);
+        ttdw_vd x[3], y[3], u0[3], u3[3], u6[3], w[3];
+        for (int q = 0; q < 3; ++q) {
+            x[q] = ttdw_sel_d(first, a[q], b[q]);
+            y[q] = ttdw_sel_d(first, b[q], a[q]);
+        }
+        trifit_normalize3(x, u0, &ok);
+        trifit_normalize3(y, u3, &ok);
+        trifit_cross3(u0, u3, w);
+        trifit_normalize3(w, u6, &ok);
+        trifit_cross3(u6, u0, w);
+        trifit_normalize3(w, u3, &ok);
+        for (int q = 0; q < 3; ++q) {
+            ttdw_storeu_d(u[q] + j, u0[q]);
+            ttdw_storeu_d(u[3 + q] + j, u3[q]);
+            ttdw_storeu_d(u[6 + q] + j, u6[q]);
+        }
+        done |= ttdw_mbits_d(ok) << j;
+    }
+    return done & live;
+}
+
+#define TTD_LANE_ROW_TRI_FIT .tri_fit = tri_fit, .leaf_span = leaf_span, .leaf_axes = leaf_axes,
 #else
 #define TTD_LANE_ROW_TRI_FIT
 #endif
