@@ -24,6 +24,7 @@
 
 #include "bench_internal.h"
 #include "ccd_bench.h"
+#include "ccd_rigid_bench.h"
 #include "cli.h"
 #include "meshes.h"
 
@@ -674,6 +675,9 @@ int bench_ccd_main(int argc, char **argv)
     int reps = 3, mesh_only = 0, steps = 60, use_ti = 1;
     size_t fam_n = 2000, sheet = 224, slowest = 0;
     const char *ti_path = NULL;
+    for (int i = 1; i < argc; ++i) /* rigid bodies between two poses: their own rows (ccd_rigid_bench.c) */
+        if (strcmp(argv[i], "--rigid") == 0)
+            return bench_ccd_rigid_main(argc, argv);
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--queries") == 0 && i + 1 < argc)
             dir = argv[++i];
@@ -696,6 +700,7 @@ int bench_ccd_main(int argc, char **argv)
         else {
             printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
                    "                     [--sheet N] [--steps K] [--mesh-only] [--slowest K]\n"
+                   "       ttd bench ccd --rigid [--help for its options]: rigid bodies between two poses\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
                    "  Each query is timed alone, one thread, the fastest of N runs (default 3).\n"

@@ -43,6 +43,8 @@ int ttd_cli_ccd_run(const ttd_options *o, int kind, size_t n, const double *x0, 
                     double delta, ttd_ccd_result *out);
 /// `ttd mesh-ccd A_T0 A_T1 [B_T0 B_T1]` (mesh_ccd.c): continuous collision of deforming meshes.
 int ttd_cli_mesh_ccd(int argc, char **argv);
+/// `ttd mesh-ccd-rigid A B POSES` (mesh_ccd_rigid.c): continuous collision of rigid meshes between two poses.
+int ttd_cli_mesh_ccd_rigid(int argc, char **argv);
 /// `ttd bench ...`, defined in bench/ when it exists.
 int ttd_bench_main(int argc, char **argv) __attribute__((weak));
 

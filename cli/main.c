@@ -46,6 +46,8 @@ static const char ttd_usage[] =
     "                          CSV file of the CCD benchmark's format (ttd ccd --help)\n"
     "  mesh-ccd A0 A1 [B0 B1]  continuous collision of deforming meshes (files at t = 0 and t = 1):\n"
     "                          the earliest time of impact and the pairs at it (ttd mesh-ccd --help)\n"
+    "  mesh-ccd-rigid A B POSES  continuous collision of rigid meshes between two poses each\n"
+    "                          (ttd mesh-ccd-rigid --help)\n"
     "  info                    version, instruction sets built and supported, the one chosen\n"
     "                          (ttd info --help)\n"
     "  bench [options]         the benchmark (ttd bench --help), when built in\n"
@@ -134,6 +136,8 @@ int main(int argc, char **argv)
         return ttd_cli_ccd(argc - 1, argv + 1);
     if (strcmp(cmd, "mesh-ccd") == 0)
         return ttd_cli_mesh_ccd(argc - 1, argv + 1);
+    if (strcmp(cmd, "mesh-ccd-rigid") == 0)
+        return ttd_cli_mesh_ccd_rigid(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0) {
         if (ttd_bench_main == NULL) {
             ttd_cli_error("bench: not built into this program");

@@ -24,7 +24,7 @@ fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
 cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform \
-    test_points_inside test_ccd test_ccd_lanes test_mesh_ccd
+    test_points_inside test_ccd test_ccd_lanes test_mesh_ccd test_scene_ccd
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
@@ -47,6 +47,8 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_ccd_lanes" triangles
 # mesh CCD's walk on 1, 2, 3 and 8 threads (each worker's hits and earliest, joined at the end)
 "$build/tests/test_mesh_ccd" threads
+# a scene's rigid CCD: body pairs on 1, 2 and 3 threads of the scene's pool
+"$build/tests/test_scene_ccd" against_brute
 
 # Python's threaded test of the point queries against a concurrent Mesh.set_vertices (the binding
 # refuses the overlap: python/tests/test_deform.py), its extension built with ThreadSanitizer

@@ -1060,6 +1060,93 @@ TTD_API ttd_status ttd_mesh_self_ccd_f(const ttd_options *opt, const ttd_mesh *m
                                        double min_separation, unsigned flags, ttd_mesh_ccd_result *out);
 /// Frees out->pairs and sets count 0 (NULL is fine).
 TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
+
+/* ---- Continuous collision of rigid bodies between two poses (issue 34; src/api/rigid_ccd_api.c,
+ * src/meshccd/rigid_motion.c, docs/ccd.md section 13) ----
+ * Each body has a world pose at t = 0 and one at t = 1 (12 reals each, [R | t] row by row as
+ * for the mesh queries: x_world = R x_mesh + t; a body's 24 reals are the two poses one after
+ * the other). Between them the body moves rigidly: its origin (the point x_mesh = 0) on a
+ * straight line, T(t) = (1 - t) T0 + t T1, and its rotation about one fixed world axis at a
+ * constant rate, R(t) = Rot(u, t theta) R0, where R1 R0^T = Rot(u, theta) with theta in
+ * [0, pi] (taken from its unit quaternion with w >= 0; at theta = pi, where both signs of u
+ * give R1, the sign that makes u's largest component positive, the first on a tie). R(1) is R1
+ * up to R1 R0^T's own distance from a rotation (within the poses' check of 1e-6, about 1e-16
+ * for orthonormal matrices). ttd_rigid_pose_at_d gives the pose at any t.
+ *
+ * The query is conservative advancement: the exact mesh distance d at time t, and a bound V on
+ * how fast it can fall (each body's |T1 - T0| + theta r, r the largest |x| over its mesh's
+ * vertices, rounded upward) prove [t, t + (d - mu - delta) / V] apart; mu bounds rounding. It
+ * stops with a hit at t once d comes within the tolerance eta of delta, and with no hit once
+ * the proved times reach 1. Guarantees: no contact is missed: every time before toi is proved at
+ * a distance above min_separation; toi is never after the true first time of distance <=
+ * min_separation, and at toi the distance is at most min_separation + tolerance (the result's
+ * tolerance: 2^-30 S in double, 2^-14 S in float, S = both meshes' r + both origins' largest
+ * |T| over the two poses). A pair that stays within a few tolerances of min_separation without
+ * coming nearer (sliding in contact) takes many steps: after TTD_RIGID_CCD_MAX_STEPS the query
+ * answers a hit at the last proved time, flagged TTD_CCD_BUDGET (conservative: nothing before
+ * it touches). With ttd_options.solid (closed meshes), a body inside the other counts as
+ * contact. Checks: out, a mesh or a pose array NULL: TTD_ERR_NULL_POINTER; options as the mesh
+ * queries' (TTD_ERR_BAD_OPTIONS, TTD_ERR_ISA_UNAVAILABLE); min_separation negative, NaN or
+ * infinite: TTD_ERR_BAD_OPTIONS; a mesh of the other precision: TTD_ERR_PRECISION_MISMATCH; a
+ * pose with a NaN or infinite number or whose R is no rotation (R^T R - I beyond 1e-6, det R
+ * <= 0): TTD_ERR_BAD_POSE; a mesh moved beyond the coordinate range: TTD_ERR_COORDINATE_RANGE.
+ * Nothing is computed on an error (toi INFINITY, hit 0). */
+
+/// Conservative-advancement intervals one rigid pair takes before it answers a conservative hit.
+#define TTD_RIGID_CCD_MAX_STEPS 10000
+
+/// What a rigid continuous query answers.
+typedef struct ttd_mesh_ccd_rigid_result {
+    double toi;       ///< conservative time of impact in [0, 1]; INFINITY when none
+    double distance;  ///< the exact mesh distance computed at toi; INFINITY without a hit or with TTD_CCD_BUDGET
+    double tolerance; ///< eta: at toi the true distance is at most min_separation + tolerance
+    uint32_t hit;     ///< 1 when the bodies come within min_separation (or within the tolerance of it)
+    uint32_t flags;   ///< TTD_CCD_BUDGET: TTD_RIGID_CCD_MAX_STEPS used up (or a step below the times' resolution)
+    uint32_t steps;   ///< mesh distance queries made
+    uint32_t tri_a, tri_b; ///< the closest triangles at toi (UINT32_MAX without a hit or with TTD_CCD_BUDGET)
+} ttd_mesh_ccd_rigid_result;
+
+/// Meshes a and b (built in double), each moving rigidly from its first pose to its second
+/// (a_poses, b_poses: 24 reals each) over t in [0, 1]: the earliest time their distance comes
+/// to min_separation (>= 0) or less. opt's threads do not apply (one pair, one thread).
+TTD_API ttd_status ttd_mesh_ccd_rigid_d(const ttd_options *opt, const ttd_mesh *a, const double *a_poses,
+                                        const ttd_mesh *b, const double *b_poses, double min_separation,
+                                        ttd_mesh_ccd_rigid_result *out);
+/// ttd_mesh_ccd_rigid_d for meshes built in float and float poses (the motion computed in double).
+TTD_API ttd_status ttd_mesh_ccd_rigid_f(const ttd_options *opt, const ttd_mesh *a, const float *a_poses,
+                                        const ttd_mesh *b, const float *b_poses, double min_separation,
+                                        ttd_mesh_ccd_rigid_result *out);
+/// The pose at time t in [0, 1] of the motion from pose_t0 to pose_t1 (12 reals each) into pose
+/// (12 reals). NULL: TTD_ERR_NULL_POINTER; a NaN or infinite number: TTD_ERR_BAD_POSE; t outside
+/// [0, 1] or NaN: TTD_ERR_BAD_OPTIONS. The rotations are not checked (the queries do).
+TTD_API ttd_status ttd_rigid_pose_at_d(const double *pose_t0, const double *pose_t1, double t, double *pose);
+
+/// A body pair of a scene that comes within min_separation during a step (ttd_scene_ccd_d).
+typedef struct ttd_scene_ccd_hit {
+    uint32_t i, j;         ///< the bodies, i < j
+    uint32_t tri_i, tri_j; ///< the closest triangles at toi (UINT32_MAX with TTD_CCD_BUDGET)
+    uint32_t flags;        ///< TTD_CCD_BUDGET (ttd_mesh_ccd_rigid_result.flags)
+    uint32_t steps;        ///< the pair's conservative-advancement steps
+    double toi;            ///< the pair's conservative time of impact (ttd_mesh_ccd_rigid_d)
+    double distance;       ///< the exact distance computed at toi
+} ttd_scene_ccd_hit;
+
+/// Continuous collision over a scene's step: every body moves rigidly (the motion above) from its
+/// pose in the scene (t = 0) to its pose in poses_t1 (12 reals for each id below
+/// ttd_scene_id_limit, n that limit; removed ids' entries ignored). Every eligible body pair (the
+/// filters and exclusions, as for contacts; a pair of solids as solids) that comes within
+/// min_separation (>= 0, finite) during the step, with ttd_mesh_ccd_rigid_d's answer, into out
+/// as ttd_scene_ccd_hit items sorted by (i, j). The broad phase bounds each body's whole sweep by
+/// a world box (docs/ccd.md section 13), so no pair is missed; the pairs run on opt's threads
+/// and the answer does not depend on them. The scene is not changed (set the new poses after).
+/// Checks: those of the scene queries; n not the id limit: TTD_ERR_INDEX_OUT_OF_RANGE; a t = 1
+/// pose refused as by ttd_scene_set_pose_d (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE); out->count
+/// is 0 on an error. ttd_scene_get_stats: body_pairs (the broad phase's candidates) and results.
+TTD_API ttd_status ttd_scene_ccd_d(const ttd_options *opt, ttd_scene *scene, size_t n, const double *poses_t1,
+                                   double min_separation, ttd_scene_array *out);
+/// ttd_scene_ccd_d for a scene of single precision (float poses).
+TTD_API ttd_status ttd_scene_ccd_f(const ttd_options *opt, ttd_scene *scene, size_t n, const float *poses_t1,
+                                   double min_separation, ttd_scene_array *out);
 /* ==== end of continuous collision detection ==================================================== */
 
 /** @} */

@@ -199,8 +199,96 @@ static PyObject *py_mesh_ccd(PyObject *self, PyObject *args)
     return res;
 }
 
+PyDoc_STRVAR(mesh_ccd_rigid_doc,
+             "_mesh_ccd_rigid(a, a_poses, b, b_poses, min_separation) -> (toi, hit, distance, tolerance, flags, steps,\n"
+             "tri_a, tri_b)\n"
+             "a, b ttd.Mesh of one dtype; a_poses, b_poses C-contiguous (2, 3, 4) arrays of that dtype (checked\n"
+             "poses at t = 0 and t = 1). Private: use ttd.mesh_ccd_rigid.");
+
+/* A body's two poses: a C-contiguous, aligned array of 24 reals of the mesh's dtype (the wrapper made it so). */
+static int poses_ok(const ttd_py_mesh *m, PyObject *o, const char *name)
+{
+    if (!PyArray_Check(o) || PyArray_TYPE((PyArrayObject *)o) != m->type || !PyArray_IS_C_CONTIGUOUS((PyArrayObject *)o) ||
+        !PyArray_ISALIGNED((PyArrayObject *)o) || PyArray_SIZE((PyArrayObject *)o) != 24) {
+        PyErr_Format(PyExc_ValueError, "ttd: %s must be a C-contiguous (2, 3, 4) array of the mesh's dtype", name);
+        return 0;
+    }
+    return 1;
+}
+
+static PyObject *py_mesh_ccd_rigid(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *a, *pa, *b, *pb;
+    double delta;
+    if (!PyArg_ParseTuple(args, "OOOOd", &a, &pa, &b, &pb, &delta))
+        return NULL;
+    if (!PyObject_TypeCheck(a, &ttd_py_MeshType) || !PyObject_TypeCheck(b, &ttd_py_MeshType)) {
+        PyErr_SetString(PyExc_TypeError, "ttd: the meshes must be ttd.Mesh objects");
+        return NULL;
+    }
+    const ttd_py_mesh *ma = (const ttd_py_mesh *)a, *mb = (const ttd_py_mesh *)b;
+    if (ma->type != mb->type) {
+        PyErr_SetString(PyExc_ValueError, "ttd: both meshes must have one dtype (float32 or float64)");
+        return NULL;
+    }
+    if (!poses_ok(ma, pa, "a's poses") || !poses_ok(mb, pb, "b's poses"))
+        return NULL;
+    ttd_options opt = ttd_default_options();
+    opt.threads = 1;
+    PyObject *meshes[2] = {a, b};
+    if (ttd_py_meshes_use(meshes, 2) < 0)
+        return NULL;
+    ttd_mesh_ccd_rigid_result r;
+    ttd_status st;
+    const void *p = PyArray_DATA((PyArrayObject *)pa), *q = PyArray_DATA((PyArrayObject *)pb);
+    const int d = ma->type == NPY_DOUBLE;
+    Py_BEGIN_ALLOW_THREADS
+    st = d ? ttd_mesh_ccd_rigid_d(&opt, ma->mesh, p, mb->mesh, q, delta, &r)
+           : ttd_mesh_ccd_rigid_f(&opt, ma->mesh, p, mb->mesh, q, delta, &r);
+    Py_END_ALLOW_THREADS
+    ttd_py_meshes_release(meshes, 2);
+    if (st == TTD_ERR_BAD_OPTIONS) {
+        PyErr_Format(PyExc_ValueError, "ttd: min_separation must be finite and >= 0 (got %g)", delta);
+        return NULL;
+    }
+    if (st != TTD_OK) {
+        if (ttd_py_raise_fatal(st, &opt) == 0)
+            PyErr_Format(PyExc_SystemError, "ttd: unexpected status %d from rigid mesh CCD", (int)st);
+        return NULL;
+    }
+    return Py_BuildValue("(dOddIIll)", r.toi, r.hit ? Py_True : Py_False, r.distance, r.tolerance, (unsigned)r.flags,
+                         (unsigned)r.steps, r.tri_a == UINT32_MAX ? -1L : (long)r.tri_a,
+                         r.tri_b == UINT32_MAX ? -1L : (long)r.tri_b);
+}
+
+PyDoc_STRVAR(rigid_pose_at_doc, "_rigid_pose_at(p0, p1, t) -> (12 floats)\n"
+                                "p0, p1 sequences of 12 floats. Private: use ttd.rigid_pose_at.");
+
+static PyObject *py_rigid_pose_at(PyObject *self, PyObject *args)
+{
+    (void)self;
+    double p0[12], p1[12], t, q[12];
+    if (!PyArg_ParseTuple(args, "(dddddddddddd)(dddddddddddd)d", &p0[0], &p0[1], &p0[2], &p0[3], &p0[4], &p0[5],
+                          &p0[6], &p0[7], &p0[8], &p0[9], &p0[10], &p0[11], &p1[0], &p1[1], &p1[2], &p1[3], &p1[4],
+                          &p1[5], &p1[6], &p1[7], &p1[8], &p1[9], &p1[10], &p1[11], &t))
+        return NULL;
+    const ttd_status st = ttd_rigid_pose_at_d(p0, p1, t, q);
+    if (st == TTD_ERR_BAD_OPTIONS) {
+        PyErr_Format(PyExc_ValueError, "ttd: t must lie in [0, 1] (got %g)", t);
+        return NULL;
+    }
+    if (st != TTD_OK) {
+        PyErr_SetString(PyExc_ValueError, "ttd: a pose holds a NaN or infinite number");
+        return NULL;
+    }
+    return Py_BuildValue("(dddddddddddd)", q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11]);
+}
+
 PyMethodDef ttd_py_ccd_methods[] = {
     {"_ccd", py_ccd, METH_VARARGS, ccd_doc},
     {"_mesh_ccd", py_mesh_ccd, METH_VARARGS, mesh_ccd_doc},
+    {"_mesh_ccd_rigid", py_mesh_ccd_rigid, METH_VARARGS, mesh_ccd_rigid_doc},
+    {"_rigid_pose_at", py_rigid_pose_at, METH_VARARGS, rigid_pose_at_doc},
     {NULL, NULL, 0, NULL},
 };

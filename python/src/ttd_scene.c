@@ -1248,6 +1248,126 @@ static PyGetSetDef ttd_py_scene_getset[] = {
     {NULL, NULL, NULL, NULL, NULL},
 };
 
+PyDoc_STRVAR(ttd_py_scene_ccd_doc,
+"ccd($self, poses_t1, *, min_separation=0.0, isa='auto', threads=0)\n--\n\n"
+"Continuous collision over one step: every body moves rigidly from its pose in the scene\n"
+"(t = 0) to poses_t1 (id_limit, 4, 4) or (id_limit, 3, 4) (t = 1): its origin on a straight\n"
+"line, its rotation about one fixed axis at a constant rate (ttd.rigid_pose_at). Every eligible\n"
+"body pair (filters, exclusions; solids as solids) that comes within min_separation (finite,\n"
+">= 0) during the step: a ttd.SceneCCDResult of (n,) arrays i, j (uint32, i < j), toi (float64:\n"
+"the pair's conservative time of impact, ttd.mesh_ccd_rigid's), tri_i, tri_j, flags, steps\n"
+"(uint32) and distance (float64), sorted by (i, j). The scene is not changed (set_poses after).\n"
+"isa, threads: as in collide; the result does not depend on them.");
+
+/* The fields of a SceneCCDResult, from the library's items. */
+static PyObject *ttd_py_scene_ccd_result(const ttd_scene_array *arr)
+{
+    const npy_intp n = (npy_intp)arr->count;
+    const ttd_scene_ccd_hit *h = arr->data;
+    PyArrayObject *a[8];
+    const int types[8] = {NPY_UINT32, NPY_UINT32, NPY_DOUBLE, NPY_UINT32, NPY_UINT32, NPY_UINT32, NPY_UINT32, NPY_DOUBLE};
+    for (int k = 0; k < 8; ++k)
+        a[k] = (PyArrayObject *)PyArray_SimpleNew(1, (npy_intp[]){n}, types[k]);
+    PyObject *res = NULL;
+    for (int k = 0; k < 8; ++k)
+        if (a[k] == NULL)
+            goto done;
+    for (npy_intp m = 0; m < n; ++m) {
+        ((uint32_t *)PyArray_DATA(a[0]))[m] = h[m].i;
+        ((uint32_t *)PyArray_DATA(a[1]))[m] = h[m].j;
+        ((double *)PyArray_DATA(a[2]))[m] = h[m].toi;
+        ((uint32_t *)PyArray_DATA(a[3]))[m] = h[m].tri_i;
+        ((uint32_t *)PyArray_DATA(a[4]))[m] = h[m].tri_j;
+        ((uint32_t *)PyArray_DATA(a[5]))[m] = h[m].flags;
+        ((uint32_t *)PyArray_DATA(a[6]))[m] = h[m].steps;
+        ((double *)PyArray_DATA(a[7]))[m] = h[m].distance;
+    }
+    PyObject *mod = PyImport_ImportModule("ttd._rigid");
+    PyObject *cls = mod ? PyObject_GetAttrString(mod, "SceneCCDResult") : NULL;
+    Py_XDECREF(mod);
+    if (cls != NULL)
+        res = PyObject_CallFunction(cls, "OOOOOOOO", a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]);
+    Py_XDECREF(cls);
+done:
+    for (int k = 0; k < 8; ++k)
+        Py_XDECREF(a[k]);
+    return res;
+}
+
+static PyObject *ttd_py_scene_ccd(PyObject *obj, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = {"poses_t1", "min_separation", "isa", "threads", NULL};
+    PyObject *poses = NULL, *sep = NULL, *isa = NULL, *threads = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|$OOO:ccd", kwlist, &poses, &sep, &isa, &threads))
+        return NULL;
+    double delta = 0;
+    if (ttd_py_real_arg(sep, "min_separation", &delta) < 0)
+        return NULL;
+    if (!(delta >= 0) || !isfinite(delta)) {
+        PyErr_Format(PyExc_ValueError, "min_separation=%g is out of range: finite and >= 0", delta);
+        return NULL;
+    }
+    ttd_options opt;
+    if (ttd_py_options(NULL, isa, threads, NULL, NULL, NULL, &opt) < 0)
+        return NULL;
+    ttd_py_scene *s = (ttd_py_scene *)obj;
+    const int type = s->type == NPY_NOTYPE ? NPY_DOUBLE : s->type;
+    PyArrayObject *p = ttd_py_scene_pose_array(poses, type, 0, "poses_t1");
+    if (p == NULL)
+        return NULL;
+    ttd_scene_array arr = {0};
+    ttd_status st = TTD_OK;
+    PyObject *result = NULL;
+    ttd_py_scene_lock(s);
+    const size_t limit = s->scene != NULL ? ttd_scene_id_limit(s->scene) : 0;
+    if ((size_t)PyArray_DIM(p, 0) != limit) {
+        PyErr_Format(PyExc_ValueError, "poses_t1 holds %zd poses: the scene takes one per body id, %zu (id_limit)",
+                     (Py_ssize_t)PyArray_DIM(p, 0), limit);
+        goto done;
+    }
+    if ((p = ttd_py_scene_pose_rows(p, type, 0, "poses_t1", s)) == NULL)
+        goto done;
+    if (s->scene != NULL) {
+        PyObject *const *items = PySequence_Fast_ITEMS(s->meshes);
+        const Py_ssize_t nm = PyList_GET_SIZE(s->meshes);
+        if (ttd_py_meshes_use(items, nm) < 0)
+            goto done;
+        Py_BEGIN_ALLOW_THREADS
+        st = type == NPY_DOUBLE ? ttd_scene_ccd_d(&opt, s->scene, limit, PyArray_DATA(p), delta, &arr)
+                                : ttd_scene_ccd_f(&opt, s->scene, limit, PyArray_DATA(p), delta, &arr);
+        Py_END_ALLOW_THREADS
+        ttd_py_meshes_release(items, nm);
+    }
+    if (st == TTD_ERR_BAD_POSE || st == TTD_ERR_COORDINATE_RANGE) {
+        /* the first body whose t = 1 pose the library's rule refuses */
+        const size_t bytes = type == NPY_DOUBLE ? sizeof(double) : sizeof(float);
+        int named = 0;
+        for (size_t id = 0; id < limit && !named; ++id) {
+            PyObject *m = PyList_GET_ITEM(s->meshes, id);
+            if (m == Py_None)
+                continue;
+            const void *pose = (const char *)PyArray_DATA(p) + id * 12 * bytes;
+            PyObject *what = PyUnicode_FromFormat("poses_t1[%zu] (body %zu)", id, id);
+            if (what == NULL)
+                break;
+            named = (st == TTD_ERR_BAD_POSE && ttd_py_scene_bad_rotation(pose, type, what)) ||
+                    (st == TTD_ERR_COORDINATE_RANGE && ttd_py_scene_bad_range(((ttd_py_mesh *)m)->mesh, pose, type, what));
+            Py_DECREF(what);
+        }
+        if (!named && !PyErr_Occurred())
+            PyErr_Format(PyExc_ValueError, "poses_t1: %s", ttd_status_string(st));
+    } else if (st != TTD_OK) {
+        ttd_py_scene_query_raise(st, TTD_PY_SCOLLIDE, &opt, delta, type);
+    } else {
+        result = ttd_py_scene_ccd_result(&arr);
+    }
+done:
+    ttd_py_scene_unlock(s);
+    Py_XDECREF(p);
+    ttd_scene_array_free(&arr);
+    return result;
+}
+
 static PyMethodDef ttd_py_scene_type_methods[] = {
     {"add", (PyCFunction)(void (*)(void))ttd_py_scene_add, METH_VARARGS | METH_KEYWORDS, ttd_py_scene_add_doc},
     {"remove", ttd_py_scene_remove, METH_O, ttd_py_scene_remove_doc},
@@ -1266,6 +1386,7 @@ static PyMethodDef ttd_py_scene_type_methods[] = {
      ttd_py_scene_contacts_doc},
     {"manifold", (PyCFunction)(void (*)(void))ttd_py_scene_manifold, METH_VARARGS | METH_KEYWORDS,
      ttd_py_scene_manifold_doc},
+    {"ccd", (PyCFunction)(void (*)(void))ttd_py_scene_ccd, METH_VARARGS | METH_KEYWORDS, ttd_py_scene_ccd_doc},
     {NULL, NULL, 0, NULL},
 };
 

@@ -114,6 +114,7 @@ try:
         mesh_ccd,
         mesh_self_ccd,
     )
+    from ._rigid import RigidCCDResult, SceneCCDResult, mesh_ccd_rigid, rigid_pose_at
 except ImportError as e:  # pragma: no cover - only without a built extension
     raise ImportError(
         "ttd's C extension (ttd._ttd) is not built or not importable: install the package with "
@@ -183,6 +184,10 @@ __all__ = [
     "MESH_CCD_FV",
     "MESH_CCD_EE",
     "mesh_ccd",
+    "mesh_ccd_rigid",
+    "RigidCCDResult",
+    "SceneCCDResult",
+    "rigid_pose_at",
     "mesh_self_ccd",
     "CLOSEST_DTYPE_FLOAT32",
     "CLOSEST_DTYPE_FLOAT64",

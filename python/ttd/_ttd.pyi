@@ -389,6 +389,14 @@ class Scene:
         isa: Union[IsaName, str] = "auto",
         threads: int = 0,
     ) -> SceneManifold: ...
+    def ccd(
+        self,
+        poses_t1: npt.ArrayLike,
+        *,
+        min_separation: float = 0.0,
+        isa: Union[IsaName, str] = "auto",
+        threads: int = 0,
+    ) -> Any: ...
 
 # ---- point queries (python/src/ttd_points.c) -------------------------------------------------
 POINT_NONFINITE: int
@@ -484,3 +492,9 @@ def _ccd(
 def _mesh_ccd(
     a: Mesh, a1: Any, b: Optional[Mesh], b1: Any, min_separation: float, shared: int, threads: int, /
 ) -> Tuple[float, Any, Any, Any, Any, Any, Any, int, int, int]: ...
+
+# Rigid mesh CCD: the private entries behind ttd.mesh_ccd_rigid and ttd.rigid_pose_at (ttd/_rigid.py).
+def _mesh_ccd_rigid(
+    a: Mesh, a_poses: Any, b: Mesh, b_poses: Any, min_separation: float, /
+) -> Tuple[float, bool, float, float, int, int, int, int]: ...
+def _rigid_pose_at(p0: Tuple[float, ...], p1: Tuple[float, ...], t: float, /) -> Tuple[float, ...]: ...

@@ -26,4 +26,11 @@ struct ttd_mesh;
 ttd_status ttd_check_poses(const struct ttd_mesh *b, size_t k, const void *poses, int bytes, double *defects,
                            size_t *bad);
 
+struct ttd_scene;
+/// The checks of every scene query (scene_api.c): pointers, options (the exact method), the
+/// precision, the margin or bound (>= 0; +inf only where inf_ok); then the bodies whose meshes
+/// moved get their poses checked and boxes recomputed.
+ttd_status ttd_scene_query_prepare(const ttd_options *opt, struct ttd_scene *s, int out_ok, int bytes, double limit,
+                                   int inf_ok, ttd_engine_config *cfg);
+
 #endif /* TTD_API_PREPARE_H */

@@ -298,6 +298,12 @@ static ttd_status query_prepare(const ttd_options *opt, ttd_scene *s, int out_ok
     return s->bytes == bytes ? refresh_moved_bodies(s) : TTD_ERR_PRECISION_MISMATCH;
 }
 
+ttd_status ttd_scene_query_prepare(const ttd_options *opt, ttd_scene *s, int out_ok, int bytes, double limit,
+                                   int inf_ok, ttd_engine_config *cfg)
+{
+    return query_prepare(opt, s, out_ok, bytes, limit, inf_ok, cfg);
+}
+
 #define TTD_SCENE_QUERY(bytes, out_ok, limit, inf_ok, call)                                         \
     ttd_engine_config cfg;                                                                     \
     const ttd_status st = query_prepare(opt, scene, out_ok, bytes, (double)(limit), inf_ok, &cfg); \
