@@ -1,4 +1,5 @@
 /* SPDX-License-Identifier: MIT */
+#define _POSIX_C_SOURCE 200809L
 /* The GPU's mesh pose queries (src/gpu/gpu_walk_impl.h, docs/gpu.md section 6) without a GPU: the
  * walk one CUDA thread runs, compiled for the host (tests/cuda_host/), on the CPU's own mesh
  * arrays, against the CPU's ttd_mesh_distance and ttd_mesh_collide, pose by pose, in double and
@@ -11,9 +12,17 @@
  * Meshes: icospheres (1,280 and 20,480 triangles), a torus, a grid of slivers 1e-6 thin, ttd's
  * mesh of degenerate triangles, one triangle; poses far, near, touching (a gap of 0, and a grid
  * against its copy moved by exactly 1/4: every facing pair ties), crossing, random, and refused
- * ones (NaN, inf, a scale, a reflection, beyond the coordinate range). */
+ * ones (NaN, inf, a scale, a reflection, beyond the coordinate range).
+ *
+ * The C entries (ttd_gpu_mesh_*): without a usable GPU they say why (the stub: NOT_BUILT), and
+ * refuse NULL arguments. With a GPU (built with CUDA, TTD_TEST_CUDA; scripts/test-gpu-device.sh):
+ * walk_device runs TTD_GPU_WALK_POSES poses (default 20,000; the device script asks 1,000,000) of
+ * a bunny-sized mesh (81,920 triangles, an icosphere with a rough surface) against itself through
+ * ttd_gpu_mesh_distance/collide_d/f on device memory, against ttd_mesh_distance/collide on the
+ * host's cores, with the checks above, and prints poses/s of both (not asserted). */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +34,11 @@
 #include "cuda_host/cuda_host.h"
 #include "mesh/mesh.h"
 #include "test_macros.h"
+#include <time.h>
+
+#ifdef TTD_TEST_CUDA
+#include <cuda_runtime.h>
+#endif
 
 typedef struct gw_case {
     const char *name;
@@ -151,6 +165,9 @@ static int run_case(int ia, int ib, size_t per, int single, gw_stats *st)
 static int walk_constants(void)
 {
     ENSURE(ttd_mesh_range(8) == 0x1p508 && ttd_mesh_range(4) == 0x1p60);
+    /* the record sizes python/ttd/cuda.py reads the device's results with */
+    ENSURE(sizeof(ttd_mesh_result_d) == 80 && sizeof(ttd_mesh_result_f) == 56 && sizeof(ttd_collision) == 24);
+    ENSURE(offsetof(ttd_mesh_result_d, distance) == 0 && offsetof(ttd_collision, hit) == 0);
     ENSURE(make_meshes() == 0);
     ttd_mesh *m = NULL;
     ENSURE(build(&gm[0], 0, &m) == 0);
@@ -216,10 +233,227 @@ static int walk_ties(void)
     return 0;
 }
 
+/* The entries without a usable GPU: NOT_BUILT from the stub, NO_DEVICE without a driver or GPU;
+ * NULL arguments refused first. */
+static int walk_entries_without_device(void)
+{
+    ttd_gpu_info info;
+    const ttd_gpu_status st = ttd_gpu_query(&info);
+    ttd_gpu_mesh *g = (ttd_gpu_mesh *)&info; /* must be overwritten */
+    ENSURE(make_meshes() == 0);
+    ttd_mesh *m = NULL;
+    ENSURE(build(&gm[0], 0, &m) == 0);
+    const double pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    ttd_mesh_result_d r;
+    ttd_collision c;
+    ttd_gpu_mesh_free(NULL);
+    if (st == TTD_GPU_ERR_NOT_BUILT) {
+        ENSURE(ttd_gpu_mesh_upload(m, &g) == TTD_GPU_ERR_NOT_BUILT && g == NULL);
+        ENSURE(ttd_gpu_mesh_distance_d(NULL, NULL, 1, pose, INFINITY, &r, NULL) == TTD_GPU_ERR_NOT_BUILT);
+        ENSURE(ttd_gpu_mesh_collide_f(NULL, NULL, 1, NULL, 0, &c, NULL) == TTD_GPU_ERR_NOT_BUILT);
+    } else {
+        ENSURE(ttd_gpu_mesh_upload(m, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        ENSURE(ttd_gpu_mesh_upload(NULL, &g) == TTD_GPU_ERR_NULL_POINTER && g == NULL);
+        ENSURE(ttd_gpu_mesh_distance_d(NULL, NULL, 1, pose, INFINITY, &r, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        ENSURE(ttd_gpu_mesh_collide_d(NULL, NULL, 1, pose, 0, &c, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        ENSURE(ttd_gpu_mesh_distance_f(NULL, NULL, 0, NULL, 0, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        if (st != TTD_GPU_OK) {
+            ENSURE(ttd_gpu_mesh_upload(m, &g) == TTD_GPU_ERR_NO_DEVICE && g == NULL);
+        }
+#ifdef TTD_TEST_CUDA
+        else { /* with a device: bad arguments on real meshes */
+            ttd_gpu_mesh *ga = NULL, *gf = NULL;
+            ttd_mesh *mf = NULL;
+            ENSURE(build(&gm[0], 1, &mf) == 0);
+            ENSURE(ttd_gpu_mesh_upload(m, &ga) == TTD_GPU_OK && ttd_gpu_mesh_upload(mf, &gf) == TTD_GPU_OK);
+            double *dp;
+            ttd_mesh_result_d *dr;
+            ENSURE(cudaMalloc((void **)&dp, sizeof pose) == cudaSuccess && cudaMalloc((void **)&dr, sizeof *dr) == cudaSuccess);
+            ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 1, dp, -1, dr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
+            ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 1, dp, NAN, dr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
+            ENSURE(ttd_gpu_mesh_distance_d(ga, gf, 1, dp, 1, dr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
+            ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 1, pose, 1, dr, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
+            ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 0, dp, 1, dr, NULL) == TTD_GPU_OK);
+            cudaFree(dp);
+            cudaFree(dr);
+            ttd_gpu_mesh_free(ga);
+            ttd_gpu_mesh_free(gf);
+            ttd_mesh_destroy(mf);
+        }
+#endif
+    }
+    printf("  %s: %s\n", ttd_gpu_status_string(st), st == TTD_GPU_OK ? info.name : info.message);
+    ttd_mesh_destroy(m);
+    return 0;
+}
+
+#ifdef TTD_TEST_CUDA
+#define CU(x) ENSURE_MSG((x) == cudaSuccess, "%s", cudaGetErrorString(cudaGetLastError()))
+
+static double seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A bunny-sized mesh: an icosphere of 81,920 triangles, each vertex moved radially by up to 3%
+ * (a fixed hash), normalized. */
+static int rough_sphere(ttd_gen_mesh *g)
+{
+    ENSURE(ttd_gen_icosphere(6, g) == 0);
+    for (size_t v = 0; v < g->nv; ++v) {
+        const double f = 1 + 0.03 * ((double)((v * 2654435761u) % 1000u) / 1000.0 - 0.5);
+        for (int k = 0; k < 3; ++k)
+            g->verts[3 * v + k] *= f;
+    }
+    ENSURE(ttd_gen_normalize(g) == 0);
+    return 0;
+}
+
+/* k poses, in precision `single` or not, through the device and the CPU; checks as check_poses_*
+ * (bits of distance and flags, ties through the batch, collide verdicts), and poses/s. */
+static int device_run(const gw_case *c, ttd_mesh *ma, size_t k, const double *posesd, int single)
+{
+    ttd_gpu_mesh *g = NULL;
+    ENSURE(ttd_gpu_mesh_upload(ma, &g) == TTD_GPU_OK);
+    const size_t rb = single ? sizeof(ttd_mesh_result_f) : sizeof(ttd_mesh_result_d), pb = single ? 4 : 8;
+    void *hp = malloc(12 * k * pb), *want = malloc(k * rb), *got = malloc(k * rb);
+    ttd_collision *cw = malloc(k * sizeof *cw), *cg = malloc(k * sizeof *cg);
+    ENSURE(hp && want && got && cw && cg);
+    for (size_t i = 0; i < 12 * k; ++i) {
+        if (single)
+            ((float *)hp)[i] = (float)posesd[i];
+        else
+            ((double *)hp)[i] = posesd[i];
+    }
+    void *dp, *dr, *dc;
+    CU(cudaMalloc(&dp, 12 * k * pb));
+    CU(cudaMalloc(&dr, k * rb));
+    CU(cudaMalloc(&dc, k * sizeof *cg));
+    CU(cudaMemcpy(dp, hp, 12 * k * pb, cudaMemcpyHostToDevice));
+    cudaEvent_t e0, e1, e2;
+    CU(cudaEventCreate(&e0));
+    CU(cudaEventCreate(&e1));
+    CU(cudaEventCreate(&e2));
+    const float ub = INFINITY, mg = 0.002f;
+    CU(cudaEventRecord(e0, NULL));
+    ENSURE((single ? ttd_gpu_mesh_distance_f(g, g, k, dp, ub, dr, NULL)
+                   : ttd_gpu_mesh_distance_d(g, g, k, dp, ub, dr, NULL)) == TTD_GPU_OK);
+    CU(cudaEventRecord(e1, NULL));
+    ENSURE((single ? ttd_gpu_mesh_collide_f(g, g, k, dp, mg, dc, NULL)
+                   : ttd_gpu_mesh_collide_d(g, g, k, dp, mg, dc, NULL)) == TTD_GPU_OK);
+    CU(cudaEventRecord(e2, NULL));
+    CU(cudaEventSynchronize(e2));
+    float msf_d = 0, msf_c = 0;
+    CU(cudaEventElapsedTime(&msf_d, e0, e1));
+    CU(cudaEventElapsedTime(&msf_c, e1, e2));
+    const double ms_d = (double)msf_d, ms_c = (double)msf_c;
+    CU(cudaMemcpy(got, dr, k * rb, cudaMemcpyDeviceToHost));
+    CU(cudaMemcpy(cg, dc, k * sizeof *cg, cudaMemcpyDeviceToHost));
+    ttd_options opt = ttd_default_options(); /* every core */
+    const double t0 = seconds();
+    ENSURE((single ? ttd_mesh_distance_f(&opt, ma, ma, k, hp, ub, 0, want)
+                   : ttd_mesh_distance_d(&opt, ma, ma, k, hp, ub, 0, want)) == TTD_OK);
+    const double t1 = seconds();
+    ENSURE((single ? ttd_mesh_collide_f(&opt, ma, ma, k, hp, mg, cw) : ttd_mesh_collide_d(&opt, ma, ma, k, hp, mg, cw)) ==
+           TTD_OK);
+    const double t2 = seconds();
+    size_t dist_diff = 0, flag_diff = 0, hit_diff = 0, ties = 0, tie_bad = 0, hits = 0;
+    for (size_t i = 0; i < k; ++i) {
+        double wd, gd;
+        unsigned wf, gf;
+        uint32_t wa, wb, ga, gb;
+        if (single) {
+            const ttd_mesh_result_f *w = (const ttd_mesh_result_f *)want + i, *x = (const ttd_mesh_result_f *)got + i;
+            dist_diff += memcmp(&w->distance, &x->distance, sizeof w->distance) != 0;
+            wd = w->distance, gd = x->distance, wf = w->flags, gf = x->flags, wa = w->tri_a, wb = w->tri_b, ga = x->tri_a,
+            gb = x->tri_b;
+        } else {
+            const ttd_mesh_result_d *w = (const ttd_mesh_result_d *)want + i, *x = (const ttd_mesh_result_d *)got + i;
+            dist_diff += memcmp(&w->distance, &x->distance, sizeof w->distance) != 0;
+            wd = w->distance, gd = x->distance, wf = w->flags, gf = x->flags, wa = w->tri_a, wb = w->tri_b, ga = x->tri_a,
+            gb = x->tri_b;
+        }
+        (void)gd;
+        flag_diff += wf != gf;
+        hit_diff += cw[i].hit != cg[i].hit;
+        hits += cg[i].hit != 0;
+        if (!(wf & TTD_MESH_ABOVE_BOUND) && (ga != wa || gb != wb)) {
+            ++ties;
+            if (single) {
+                ttd_result_f r;
+                ENSURE(pair_result_f(c, (const float *)hp + 12 * i, ga, gb, &r) == TTD_OK);
+                tie_bad += r.distance != (float)wd;
+            } else {
+                ttd_result_d r;
+                ENSURE(pair_result_d(c, (const double *)hp + 12 * i, ga, gb, &r) == TTD_OK);
+                tie_bad += r.distance != wd;
+            }
+        }
+    }
+    printf("  %s, %zu poses: distance %zu differing bits, %zu differing flags (%zu pairs another equally near one, "
+           "%zu of those not); collide (margin 0.002) %zu differing of %zu hits\n",
+           single ? "float " : "double", k, dist_diff, flag_diff, ties, tie_bad, hit_diff, hits);
+    printf("  %s poses/s: distance device %.3g, host (%d threads) %.3g: %.1fx; collide device %.3g, host %.3g: %.1fx\n",
+           single ? "float " : "double", (double)k / (ms_d * 1e-3), opt.threads, (double)k / (t1 - t0),
+           (t1 - t0) / (ms_d * 1e-3), (double)k / (ms_c * 1e-3), (double)k / (t2 - t1), (t2 - t1) / (ms_c * 1e-3));
+    ENSURE(dist_diff == 0 && flag_diff == 0 && hit_diff == 0 && tie_bad == 0);
+    cudaFree(dp);
+    cudaFree(dr);
+    cudaFree(dc);
+    cudaEventDestroy(e0);
+    cudaEventDestroy(e1);
+    cudaEventDestroy(e2);
+    free(hp);
+    free(want);
+    free(got);
+    free(cw);
+    free(cg);
+    ttd_gpu_mesh_free(g);
+    return 0;
+}
+
+static int walk_device(void)
+{
+    ttd_gpu_info info;
+    if (ttd_gpu_query(&info) != TTD_GPU_OK) {
+        printf("  skip: no usable GPU (%s)\n", info.message);
+        return 0;
+    }
+    const char *env = getenv("TTD_GPU_WALK_POSES");
+    const size_t k = env ? (size_t)strtoull(env, NULL, 10) : 20000;
+    ENSURE(k >= 16);
+    ttd_gen_mesh g = {0};
+    ENSURE(rough_sphere(&g) == 0);
+    const gw_case c = {"rough sphere", &g, &g};
+    double *poses = malloc(12 * k * sizeof *poses);
+    ENSURE(poses != NULL);
+    /* a quarter each: near (gap 0.01), touching (0.002), crossing (-0.02), random about the centre */
+    static const double gaps[] = {0.01, 0.002, -0.02};
+    for (size_t i = 0; i < k; ++i)
+        if (i % 4 == 3 || ttd_gen_pose_gap(&g, &g, 4242 + i % 4, i, NULL, gaps[i % 4], poses + 12 * i) != 0)
+            ttd_gen_pose(4343, i, 0.5, poses + 12 * i);
+    ttd_mesh *md = NULL, *mf = NULL;
+    ENSURE(build(&g, 0, &md) == 0 && build(&g, 1, &mf) == 0);
+    printf("  %s (%zu triangles) against itself on %s\n", c.name, g.nt, info.name);
+    const int fail = device_run(&c, md, k, poses, 0) || device_run(&c, mf, k, poses, 1);
+    ttd_mesh_destroy(md);
+    ttd_mesh_destroy(mf);
+    free(poses);
+    ttd_gen_mesh_free(&g);
+    return fail;
+}
+#endif
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(walk_constants);
+    RUN_TEST(walk_entries_without_device);
+#ifdef TTD_TEST_CUDA
+    RUN_TEST(walk_device);
+#endif
     RUN_TEST(walk_ties);
     RUN_TEST(walk_double);
     RUN_TEST(walk_float);
