@@ -233,6 +233,94 @@ static int walk_ties(void)
     return 0;
 }
 
+/* ---- closest points (src/gpu/gpu_points_impl.h) ------------------------------------------- */
+
+/* n points about mesh g: on its vertices (ties between the triangles that share them), near its
+ * surface, in its box, far, and 2 non-finite; seeded. */
+static void point_set(const ttd_gen_mesh *g, uint64_t seed, size_t n, double *p)
+{
+    uint64_t x = seed * 0x9e3779b97f4a7c15ull + 1;
+    for (size_t i = 0; i < n; ++i) {
+        double r[3];
+        for (int c = 0; c < 3; ++c) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            r[c] = (double)(x >> 11) * 0x1p-53 - 0.5;
+        }
+        const double *v = g->verts + 3 * ((x >> 20) % g->nv);
+        for (int c = 0; c < 3; ++c) {
+            switch (i % 5) {
+            case 0: p[3 * i + c] = v[c]; break;                /* a vertex */
+            case 1: p[3 * i + c] = v[c] + 0.01 * r[c]; break;  /* near */
+            case 2: p[3 * i + c] = 1.2 * r[c]; break;          /* in the box */
+            case 3: p[3 * i + c] = 1e3 * r[c]; break;          /* far */
+            default: p[3 * i + c] = v[c] + 1e-9 * r[c]; break; /* touching */
+            }
+        }
+    }
+    p[3 * (n - 1)] = NAN;
+    p[3 * (n - 2) + 1] = INFINITY;
+}
+
+#define SAME_FIELD(a, b, f) (memcmp(&(a).f, &(b).f, sizeof (a).f) == 0)
+#define SAME_POINT(a, b)                                                                                            \
+    (SAME_FIELD(a, b, distance) && SAME_FIELD(a, b, point) && SAME_FIELD(a, b, bary) && (a).triangle == (b).triangle && \
+     (a).feature == (b).feature && (a).flags == (b).flags)
+
+/* The device's closest-point walk on the host against ttd_points_closest_d/f, whole results (but
+ * the counts of tests) bit for bit. */
+static int points_closest(void)
+{
+    ENSURE(make_meshes() == 0);
+    const size_t n = 2000;
+    double *p = malloc(3 * n * sizeof *p);
+    float *pf = malloc(3 * n * sizeof *pf);
+    ttd_point_result_d *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
+    ttd_point_result_f *want_f = malloc(n * sizeof *want_f), *got_f = malloc(n * sizeof *got_f);
+    ENSURE(p && pf && want && got && want_f && got_f);
+    ttd_options opt = ttd_default_options();
+    opt.threads = 1;
+    size_t total = 0, above = 0, degenerate = 0;
+    for (int i = 0; i < MESHES; ++i) {
+        ttd_mesh *md = NULL, *mf = NULL;
+        ENSURE(build(&gm[i], 0, &md) == 0 && build(&gm[i], 1, &mf) == 0);
+        point_set(&gm[i], 77u + (uint64_t)i, n, p);
+        for (size_t k = 0; k < 3 * n; ++k)
+            pf[k] = (float)p[k];
+        static const double bounds[] = {INFINITY, 0.05, 0};
+        for (int b = 0; b < 3; ++b) {
+            const ttd_status sd = ttd_points_closest_d(&opt, md, n, p, NULL, bounds[b], want);
+            const ttd_status sf = ttd_points_closest_f(&opt, mf, n, pf, NULL, (float)bounds[b], want_f);
+            ENSURE(sd == TTD_ERR_NONFINITE_INPUT && sf == TTD_ERR_NONFINITE_INPUT);
+            ENSURE(ttd_cuda_host_closest_d(md, n, p, bounds[b], got) == 0);
+            ENSURE(ttd_cuda_host_closest_f(mf, n, pf, (float)bounds[b], got_f) == 0);
+            for (size_t k = 0; k < n; ++k) {
+                ENSURE_MSG(SAME_POINT(got[k], want[k]), "%s point %zu bound %g: walk %.17g (triangle %u), CPU %.17g (%u)",
+                           gm_name[i], k, bounds[b], got[k].distance, got[k].triangle, want[k].distance, want[k].triangle);
+                ENSURE_MSG(SAME_POINT(got_f[k], want_f[k]), "%s point %zu bound %g (float): walk %.9g (%u), CPU %.9g (%u)",
+                           gm_name[i], k, bounds[b], (double)got_f[k].distance, got_f[k].triangle,
+                           (double)want_f[k].distance, want_f[k].triangle);
+                above += (want[k].flags & TTD_POINT_ABOVE_BOUND) != 0;
+                degenerate += (want[k].flags & TTD_POINT_DEGENERATE) != 0;
+            }
+            total += 2 * n;
+        }
+        ttd_mesh_destroy(md);
+        ttd_mesh_destroy(mf);
+    }
+    printf("  %zu closest points (6 meshes, vertices, near, in the box, far, touching, NaN/inf; bounds inf, 0.05, 0; "
+           "double and float): 0 differing from ttd_points_closest (%zu above the bound, %zu on degenerate triangles "
+           "in double)\n",
+           total, above, degenerate);
+    ENSURE(above > 0 && degenerate > 0);
+    free(p);
+    free(pf);
+    free(want);
+    free(got);
+    free(want_f);
+    free(got_f);
+    return 0;
+}
+
 /* The entries without a usable GPU: NOT_BUILT from the stub, NO_DEVICE without a driver or GPU;
  * NULL arguments refused first. */
 static int walk_entries_without_device(void)
@@ -455,6 +543,7 @@ int main(int argc, char **argv)
     RUN_TEST(walk_device);
 #endif
     RUN_TEST(walk_ties);
+    RUN_TEST(points_closest);
     RUN_TEST(walk_double);
     RUN_TEST(walk_float);
     for (int i = 0; i < MESHES; ++i)

@@ -29,6 +29,12 @@ void ttd_cuda_host_mesh_collide_d(const struct ttd_mesh *a, const struct ttd_mes
                                   double margin, uint64_t vote, ttd_collision *out);
 void ttd_cuda_host_mesh_collide_f(const struct ttd_mesh *a, const struct ttd_mesh *b, size_t k, const float *poses,
                                   float margin, uint64_t vote, ttd_collision *out);
+/* The closest point on the host build of the device walk (src/gpu/gpu_points_impl.h), point i as
+ * thread i would, on the mesh's point data as the CPU made it; -1 when it cannot be made. */
+int ttd_cuda_host_closest_d(const struct ttd_mesh *m, size_t n, const double *points, double upper_bound,
+                            ttd_point_result_d *out);
+int ttd_cuda_host_closest_f(const struct ttd_mesh *m, size_t n, const float *points, float upper_bound,
+                            ttd_point_result_f *out);
 /* The node levels below a mesh's root box, as the device entries check them against the stack. */
 int ttd_cuda_host_mesh_height_d(const struct ttd_mesh *m);
 int ttd_cuda_host_mesh_height_f(const struct ttd_mesh *m);

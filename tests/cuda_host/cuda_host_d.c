@@ -10,7 +10,9 @@
 #include "simd/kernels_all.h"
 #include "gpu/gpu_pair_impl.h"
 #include "gpu/gpu_walk_impl.h"
+#include "gpu/gpu_points_impl.h"
 #include "mesh/mesh.h"
+#include "points/points.h"
 #include "cuda_host.h"
 
 const ttd_kernels_d ttd_kernels_cuda_host_d = TTD_LANE_ROW(TTD_ISA_SCALAR);
@@ -54,4 +56,17 @@ void ttd_cuda_host_mesh_collide_d(const struct ttd_mesh *a, const struct ttd_mes
     const gw_mesh ga = host_view(a), gb = host_view(b);
     for (size_t i = 0; i < k; ++i)
         gw_collide_pose(&ga, &gb, poses + 12 * i, margin, vote ? vote + i : 0, &out[i]);
+}
+
+int ttd_cuda_host_closest_d(const struct ttd_mesh *m, size_t n, const double *points, double upper_bound,
+                              ttd_point_result_d *out)
+{
+    const ttd_points_data *pd = ttd_points_data_get(m, 1); /* the CPU's point data, as an upload would copy */
+    if (pd == NULL)
+        return -1;
+    const gp_mesh g = {pd->pnodes, (const real *)pd->blocks, {m->origin[0], m->origin[1], m->origin[2]}, m->radius,
+                       pd->scale, pd->stretch};
+    for (size_t i = 0; i < n; ++i) /* what thread i of a device point kernel would run */
+        gp_closest(&g, points + 3 * i, upper_bound, &out[i]);
+    return 0;
 }
