@@ -17,9 +17,11 @@
 #      (default 1,000,000) of an 81,920-triangle rough sphere against itself through
 #      ttd_gpu_mesh_distance/collide in double and float, against ttd_mesh_distance/collide on this
 #      machine's cores, bit for bit (distance bits and flags; ties checked through the batch;
-#      collide verdicts), and poses/s of both in the same run; and the entries' argument checks on
-#      the device (the host walk's own tests need no device and run in scripts/test.sh).
-# Point queries (closest point, signed distance) have no device path yet: nothing to run for them.
+#      collide verdicts), and poses/s of both in the same run; then TTD_GPU_POINTS points (default
+#      10,000,000: on vertices, near, in the box, far) through ttd_gpu_points_closest_d/f against
+#      ttd_points_closest, whole results bit for bit, and points/s of both; and the entries'
+#      argument checks on the device (the host walks' own tests need no device: scripts/test.sh).
+# Signed distances have no device path yet: nothing to run for them.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -50,7 +52,8 @@ fi
 (
     rc=0
     for t in walk_entries_without_device walk_device; do
-        TTD_GPU_WALK_POSES=${TTD_GPU_WALK_POSES:-1000000} "$build/tests/test_gpu_walk" $t 2>&1 || rc=1
+        TTD_GPU_WALK_POSES=${TTD_GPU_WALK_POSES:-1000000} TTD_GPU_POINTS=${TTD_GPU_POINTS:-10000000} \
+            "$build/tests/test_gpu_walk" $t 2>&1 || rc=1
     done
     exit $rc
 ) | tee "$out/test_gpu_walk.txt" || status=1

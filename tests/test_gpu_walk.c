@@ -19,7 +19,9 @@
  * walk_device runs TTD_GPU_WALK_POSES poses (default 20,000; the device script asks 1,000,000) of
  * a bunny-sized mesh (81,920 triangles, an icosphere with a rough surface) against itself through
  * ttd_gpu_mesh_distance/collide_d/f on device memory, against ttd_mesh_distance/collide on the
- * host's cores, with the checks above, and prints poses/s of both (not asserted). */
+ * host's cores, with the checks above, and TTD_GPU_POINTS points (default 100,000; the script asks
+ * 10,000,000) through ttd_gpu_points_closest_d/f against ttd_points_closest, whole results; it
+ * prints poses/s and points/s of both (not asserted). */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
@@ -167,7 +169,9 @@ static int walk_constants(void)
     ENSURE(ttd_mesh_range(8) == 0x1p508 && ttd_mesh_range(4) == 0x1p60);
     /* the record sizes python/ttd/cuda.py reads the device's results with */
     ENSURE(sizeof(ttd_mesh_result_d) == 80 && sizeof(ttd_mesh_result_f) == 56 && sizeof(ttd_collision) == 24);
-    ENSURE(offsetof(ttd_mesh_result_d, distance) == 0 && offsetof(ttd_collision, hit) == 0);
+    ENSURE(sizeof(ttd_point_result_d) == 72 && sizeof(ttd_point_result_f) == 44);
+    ENSURE(offsetof(ttd_mesh_result_d, distance) == 0 && offsetof(ttd_collision, hit) == 0 &&
+           offsetof(ttd_point_result_d, distance) == 0);
     ENSURE(make_meshes() == 0);
     ttd_mesh *m = NULL;
     ENSURE(build(&gm[0], 0, &m) == 0);
@@ -339,12 +343,18 @@ static int walk_entries_without_device(void)
         ENSURE(ttd_gpu_mesh_upload(m, &g) == TTD_GPU_ERR_NOT_BUILT && g == NULL);
         ENSURE(ttd_gpu_mesh_distance_d(NULL, NULL, 1, pose, INFINITY, &r, NULL) == TTD_GPU_ERR_NOT_BUILT);
         ENSURE(ttd_gpu_mesh_collide_f(NULL, NULL, 1, NULL, 0, &c, NULL) == TTD_GPU_ERR_NOT_BUILT);
+        ttd_point_result_d pr;
+        ENSURE(ttd_gpu_points_closest_d(NULL, 1, pose, INFINITY, &pr, NULL) == TTD_GPU_ERR_NOT_BUILT);
+        ENSURE(ttd_gpu_points_closest_f(NULL, 0, NULL, 0, NULL, NULL) == TTD_GPU_ERR_NOT_BUILT);
     } else {
         ENSURE(ttd_gpu_mesh_upload(m, NULL) == TTD_GPU_ERR_NULL_POINTER);
         ENSURE(ttd_gpu_mesh_upload(NULL, &g) == TTD_GPU_ERR_NULL_POINTER && g == NULL);
         ENSURE(ttd_gpu_mesh_distance_d(NULL, NULL, 1, pose, INFINITY, &r, NULL) == TTD_GPU_ERR_NULL_POINTER);
         ENSURE(ttd_gpu_mesh_collide_d(NULL, NULL, 1, pose, 0, &c, NULL) == TTD_GPU_ERR_NULL_POINTER);
         ENSURE(ttd_gpu_mesh_distance_f(NULL, NULL, 0, NULL, 0, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        ttd_point_result_d pr;
+        ENSURE(ttd_gpu_points_closest_d(NULL, 1, pose, INFINITY, &pr, NULL) == TTD_GPU_ERR_NULL_POINTER);
+        ENSURE(ttd_gpu_points_closest_f(NULL, 0, NULL, 0, NULL, NULL) == TTD_GPU_ERR_NULL_POINTER);
         if (st != TTD_GPU_OK) {
             ENSURE(ttd_gpu_mesh_upload(m, &g) == TTD_GPU_ERR_NO_DEVICE && g == NULL);
         }
@@ -362,6 +372,22 @@ static int walk_entries_without_device(void)
             ENSURE(ttd_gpu_mesh_distance_d(ga, gf, 1, dp, 1, dr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
             ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 1, pose, 1, dr, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
             ENSURE(ttd_gpu_mesh_distance_d(ga, ga, 0, dp, 1, dr, NULL) == TTD_GPU_OK);
+            /* points: ga was uploaded before any point query (no point data); after one, accepted */
+            ttd_point_result_d *dpr;
+            ENSURE(cudaMalloc((void **)&dpr, sizeof *dpr) == cudaSuccess);
+            ENSURE(ttd_gpu_points_closest_d(ga, 1, dp, INFINITY, dpr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
+            ttd_point_result_d hr;
+            ENSURE(ttd_points_closest_d(NULL, m, 1, pose, NULL, INFINITY, &hr) == TTD_OK);
+            ttd_gpu_mesh *gp = NULL;
+            ENSURE(ttd_gpu_mesh_upload(m, &gp) == TTD_GPU_OK);
+            ENSURE(ttd_gpu_points_closest_d(gp, 1, dp, -1, dpr, NULL) == TTD_GPU_ERR_BAD_ARGUMENT);
+            ENSURE(ttd_gpu_points_closest_f(gp, 1, (const float *)dp, 1, (ttd_point_result_f *)dpr, NULL) ==
+                   TTD_GPU_ERR_BAD_ARGUMENT);
+            ENSURE(ttd_gpu_points_closest_d(gp, 1, pose, INFINITY, dpr, NULL) == TTD_GPU_ERR_NOT_DEVICE_MEMORY);
+            ENSURE(ttd_gpu_points_closest_d(gp, 1, dp, INFINITY, dpr, NULL) == TTD_GPU_OK);
+            ENSURE(cudaDeviceSynchronize() == cudaSuccess);
+            cudaFree(dpr);
+            ttd_gpu_mesh_free(gp);
             cudaFree(dp);
             cudaFree(dr);
             ttd_gpu_mesh_free(ga);
@@ -502,6 +528,73 @@ static int device_run(const gw_case *c, ttd_mesh *ma, size_t k, const double *po
     return 0;
 }
 
+/* n points near and far from g through ttd_gpu_points_closest on device memory against
+ * ttd_points_closest on the host's cores: whole results bit for bit, and points/s. */
+static int device_points(const ttd_gen_mesh *g, ttd_mesh *m, size_t n, int single)
+{
+    double *p = malloc(3 * n * sizeof *p);
+    ENSURE(p != NULL);
+    point_set(g, 99u, n, p);
+    p[3 * (n - 1)] = 0.5, p[3 * (n - 2) + 1] = 0.25; /* no NaN here: the CPU call is then TTD_OK */
+    const size_t pb = single ? 4 : 8, rb = single ? sizeof(ttd_point_result_f) : sizeof(ttd_point_result_d);
+    void *hp = malloc(3 * n * pb), *want = malloc(n * rb), *got = malloc(n * rb);
+    ENSURE(hp && want && got);
+    for (size_t i = 0; i < 3 * n; ++i) {
+        if (single)
+            ((float *)hp)[i] = (float)p[i];
+        else
+            ((double *)hp)[i] = p[i];
+    }
+    ttd_options opt = ttd_default_options();
+    ENSURE((single ? ttd_points_closest_f(&opt, m, 1, hp, NULL, INFINITY, want)
+                   : ttd_points_closest_d(&opt, m, 1, hp, NULL, INFINITY, want)) == TTD_OK); /* the point data */
+    ttd_gpu_mesh *gm_ = NULL;
+    ENSURE(ttd_gpu_mesh_upload(m, &gm_) == TTD_GPU_OK);
+    void *dp, *dr;
+    CU(cudaMalloc(&dp, 3 * n * pb));
+    CU(cudaMalloc(&dr, n * rb));
+    CU(cudaMemcpy(dp, hp, 3 * n * pb, cudaMemcpyHostToDevice));
+    cudaEvent_t e0, e1;
+    CU(cudaEventCreate(&e0));
+    CU(cudaEventCreate(&e1));
+    CU(cudaEventRecord(e0, NULL));
+    ENSURE((single ? ttd_gpu_points_closest_f(gm_, n, dp, INFINITY, dr, NULL)
+                   : ttd_gpu_points_closest_d(gm_, n, dp, INFINITY, dr, NULL)) == TTD_GPU_OK);
+    CU(cudaEventRecord(e1, NULL));
+    CU(cudaEventSynchronize(e1));
+    float msf = 0;
+    CU(cudaEventElapsedTime(&msf, e0, e1));
+    CU(cudaMemcpy(got, dr, n * rb, cudaMemcpyDeviceToHost));
+    const double t0 = seconds();
+    ENSURE((single ? ttd_points_closest_f(&opt, m, n, hp, NULL, INFINITY, want)
+                   : ttd_points_closest_d(&opt, m, n, hp, NULL, INFINITY, want)) == TTD_OK);
+    const double t1 = seconds();
+    size_t diff = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (single) {
+            const ttd_point_result_f *a = (const ttd_point_result_f *)got + i, *b = (const ttd_point_result_f *)want + i;
+            diff += !SAME_POINT(*a, *b);
+        } else {
+            const ttd_point_result_d *a = (const ttd_point_result_d *)got + i, *b = (const ttd_point_result_d *)want + i;
+            diff += !SAME_POINT(*a, *b);
+        }
+    }
+    const double gps = (double)n / ((double)msf * 1e-3), cps = (double)n / (t1 - t0);
+    printf("  %s closest points, %zu points: %zu differing results; points/s device %.3g, host (%d threads) %.3g: "
+           "%.1fx\n", single ? "float " : "double", n, diff, gps, opt.threads, cps, gps / cps);
+    ENSURE(diff == 0);
+    cudaFree(dp);
+    cudaFree(dr);
+    cudaEventDestroy(e0);
+    cudaEventDestroy(e1);
+    ttd_gpu_mesh_free(gm_);
+    free(p);
+    free(hp);
+    free(want);
+    free(got);
+    return 0;
+}
+
 static int walk_device(void)
 {
     ttd_gpu_info info;
@@ -525,7 +618,11 @@ static int walk_device(void)
     ttd_mesh *md = NULL, *mf = NULL;
     ENSURE(build(&g, 0, &md) == 0 && build(&g, 1, &mf) == 0);
     printf("  %s (%zu triangles) against itself on %s\n", c.name, g.nt, info.name);
-    const int fail = device_run(&c, md, k, poses, 0) || device_run(&c, mf, k, poses, 1);
+    const char *envp = getenv("TTD_GPU_POINTS");
+    const size_t np = envp ? (size_t)strtoull(envp, NULL, 10) : 100000;
+    ENSURE(np >= 16);
+    const int fail = device_run(&c, md, k, poses, 0) || device_run(&c, mf, k, poses, 1) ||
+                     device_points(&g, md, np, 0) || device_points(&g, mf, np, 1);
     ttd_mesh_destroy(md);
     ttd_mesh_destroy(mf);
     free(poses);

@@ -91,8 +91,9 @@ typedef struct ttd_gpu_mesh ttd_gpu_mesh;
 /// ttd_collision.hit (non-zero: read as a collision), instead of the CPU's error for the call.
 #define TTD_GPU_POSE_REFUSED 0x8000u
 
-/// Copies mesh (its vertices, triangles and hierarchy as built on the CPU, double or float) to
-/// the current device, once; *out is the handle (NULL on failure). TTD_GPU_ERR_NULL_POINTER,
+/// Copies mesh (its vertices, triangles and hierarchy as built on the CPU, double or float, and
+/// the point queries' data when the mesh has made it: after any point query on the CPU, such as
+/// ttd_points_closest_d on one point) to the current device, once; *out is the handle (NULL on failure). TTD_GPU_ERR_NULL_POINTER,
 /// TTD_GPU_ERR_NOT_BUILT, TTD_GPU_ERR_NO_DEVICE, TTD_GPU_ERR_CUDA (out of device memory). The
 /// device copy is a snapshot: a later ttd_mesh_set_vertices is not seen until uploaded again.
 TTD_API ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh **out);
@@ -123,6 +124,20 @@ TTD_API ttd_gpu_status ttd_gpu_mesh_collide_d(const ttd_gpu_mesh *a, const ttd_g
 /// ttd_gpu_mesh_collide_d in single precision.
 TTD_API ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
                                               const float *poses, float margin, ttd_collision *out, void *stream);
+
+/// For each of n points (3n reals in device memory, the mesh's frame), the closest point of the
+/// mesh into out[i] (device memory), one CUDA thread a point, asynchronous on stream: the whole
+/// result ttd_points_closest_d gives (pose NULL), bit for bit (its ties go to the smallest
+/// triangle index), but node_tests and triangle_tests, which count the device walk's work. A NaN
+/// or infinite point gets NaN and TTD_POINT_NONFINITE (not reported in the status). upper_bound
+/// as the CPU's. TTD_GPU_ERR_BAD_ARGUMENT for a NaN or negative bound, a mesh of the other
+/// precision, or one uploaded before its point data existed (run one point query on the CPU, then
+/// upload). n = 0 does nothing.
+TTD_API ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                double upper_bound, ttd_point_result_d *out, void *stream);
+/// ttd_gpu_points_closest_d in single precision.
+TTD_API ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                float upper_bound, ttd_point_result_f *out, void *stream);
 
 #ifdef __cplusplus
 }

@@ -171,3 +171,25 @@ def test_mesh_queries_refuse_bad_arguments_before_launching(gpu_library, query):
     for bad in (-1.0, float("nan")):
         with pytest.raises(ValueError, match="must be >= 0"):
             query(a, b, good, bad)
+
+
+def test_closest_points_refuse_bad_arguments_before_launching(gpu_library):
+    m = _NotUploaded()
+    good = FakeDeviceArray((5, 3))
+    with pytest.raises(TypeError, match="not an array in GPU memory"):
+        tc.closest_points(m, np.zeros((5, 3)))
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        tc.closest_points(m, FakeDeviceArray((5, 4)))
+    with pytest.raises(TypeError, match="float64 or float32"):
+        tc.closest_points(m, FakeDeviceArray((5, 3), "<i4"))
+    with pytest.raises(ValueError, match="C-contiguous"):
+        tc.closest_points(m, FakeDeviceArray((5, 3), "<f8", (48, 8)))
+    with pytest.raises(TypeError, match="ttd.cuda.Mesh"):
+        tc.closest_points(object(), good)
+    with pytest.raises(TypeError, match="need a mesh of that dtype"):
+        tc.closest_points(m, FakeDeviceArray((5, 3), "<f4"))
+    with pytest.raises(ValueError, match="closed"):
+        tc.closest_points(_NotUploaded(closed=True), good)
+    for bad in (-1.0, float("nan")):
+        with pytest.raises(ValueError, match="must be >= 0"):
+            tc.closest_points(m, good, bad)

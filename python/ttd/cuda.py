@@ -25,6 +25,7 @@ Meshes under many poses (docs/gpu.md, section 6):
     poses = cp.asarray(P)                        # (k, 3, 4) or (k, 12), the meshes' dtype
     r = ttd.cuda.mesh_distance(a, b, poses)      # r.distance: (k,), ttd.mesh_distance's bits
     c = ttd.cuda.mesh_collide(a, b, poses, 0.0)  # c.hit: (k,) int32, 0 or 1 (0x8000: pose refused)
+    p = ttd.cuda.closest_points(a, cp.asarray(X))  # (n, 3) points: p.distance (n,), ttd.closest_points' bits
 
 A Mesh needs libttd too (to build the hierarchy as the CPU does): TTD_LIBRARY (a path), else
 next to libttd_gpu, else the system's library path.
@@ -36,7 +37,7 @@ import os
 import pathlib
 
 __all__ = ["CudaUnavailableError", "available", "info", "distance", "Mesh", "mesh_distance", "mesh_collide",
-           "POSE_REFUSED"]
+           "closest_points", "POSE_REFUSED"]
 
 # include/ttd/ttd_gpu.h, TTD_GPU_POSE_REFUSED: a pose the CPU entry would refuse (flags bit; hit value)
 POSE_REFUSED = 0x8000
@@ -93,6 +94,10 @@ def _library():
         fn.restype = ctypes.c_int
     lib.ttd_gpu_mesh_upload.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
     lib.ttd_gpu_mesh_upload.restype = ctypes.c_int
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_gpu_points_closest_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, real, ctypes.c_void_p, ctypes.c_void_p]
+        fn.restype = ctypes.c_int
     lib.ttd_gpu_mesh_free.argtypes = [ctypes.c_void_p]
     lib.ttd_gpu_mesh_free.restype = None
     for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
@@ -135,6 +140,11 @@ def _cpu_library():
         fn = getattr(lib, f"ttd_mesh_create_{name}")
         fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_size_t,
                        ctypes.POINTER(ctypes.c_void_p)]
+        fn.restype = ctypes.c_int
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_points_closest_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, real,
+                       ctypes.c_void_p]
         fn.restype = ctypes.c_int
     lib.ttd_mesh_destroy.argtypes = [ctypes.c_void_p]
     lib.ttd_mesh_destroy.restype = None
@@ -328,6 +338,11 @@ class Mesh:
         if status != 0:
             raise ValueError(f"ttd_mesh_create: {cpu.ttd_status_string(status).decode(errors='replace')}")
         try:
+            # one point query makes the mesh's point data, so that the upload carries it
+            point = np.zeros(3, dtype=self.dtype)
+            result = np.zeros(_POINT_RESULT[self.dtype.str], dtype=np.uint8)
+            closest = cpu.ttd_points_closest_d if self.dtype == np.float64 else cpu.ttd_points_closest_f
+            closest(None, host, 1, point.ctypes.data, None, float("inf"), result.ctypes.data)
             handle = ctypes.c_void_p()
             status = gpu.ttd_gpu_mesh_upload(host, ctypes.byref(handle))
         finally:
@@ -367,6 +382,7 @@ class Mesh:
 # checks them); distance and hit are each record's first field
 _RESULT = {"<f8": 80, "<f4": 56}
 _COLLISION = 24
+_POINT_RESULT = {"<f8": 72, "<f4": 44}  # ttd_point_result_d/_f; distance first
 
 MeshDistanceGPU = collections.namedtuple("MeshDistanceGPU", ["distance", "records"])
 MeshDistanceGPU.__doc__ = """ttd.cuda.mesh_distance's result, on the device: distance (k,), and the k
@@ -463,3 +479,44 @@ def mesh_collide(a, b, poses, margin=0.0):
         if status != _OK:
             _raise_status(lib, status, "ttd_gpu_mesh_collide")
     return MeshCollisionGPU(_column(records, 0, 4, "i4"), records)
+
+
+MeshClosestGPU = collections.namedtuple("MeshClosestGPU", ["distance", "records"])
+MeshClosestGPU.__doc__ = """ttd.cuda.closest_points's result, on the device: distance (n,), and the n
+whole records (n, 72) uint8 (float32: (n, 44)) in ttd_point_result_d's (_f's) layout."""
+
+
+def closest_points(mesh, points, upper_bound=float("inf")):
+    """The closest point of Mesh mesh to each of n points (a GPU array (n, 3) of the mesh's dtype,
+    in the mesh's frame), one GPU thread a point, on the points' library's current stream: each
+    result has the bits ttd.closest_points gives (ties to the smallest triangle), NaN for a
+    non-finite point, inf past upper_bound."""
+    import numpy as np
+
+    lib = _library()
+    iface, holder = _interface(points, "points")
+    typestr, shape = iface["typestr"], tuple(iface["shape"])
+    if typestr not in ("<f8", "<f4"):
+        raise TypeError(f"points must hold float64 or float32, not {typestr}")
+    if len(shape) != 2 or shape[1] != 3:
+        raise ValueError(f"points must have shape (n, 3), not {shape}")
+    if not _contiguous(iface):
+        raise ValueError("points must be C-contiguous")
+    if not isinstance(mesh, Mesh):
+        raise TypeError("closest_points: mesh must be a ttd.cuda.Mesh")
+    if mesh._handle is None:
+        raise ValueError("closest_points: the mesh was closed")
+    if mesh.dtype != np.dtype(typestr):
+        raise TypeError(f"closest_points: points of {np.dtype(typestr)} need a mesh of that dtype (got {mesh.dtype})")
+    limit = float(upper_bound)
+    if not limit >= 0:
+        raise ValueError(f"closest_points: the bound must be >= 0 (inf for none), not {limit}")
+    n = shape[0]
+    records = _records(holder, n, _POINT_RESULT[typestr])
+    if n > 0:
+        rec_iface, _ = _interface(records, "records")
+        fn = lib.ttd_gpu_points_closest_d if typestr == "<f8" else lib.ttd_gpu_points_closest_f
+        status = fn(mesh._handle, n, iface["data"][0], limit, rec_iface["data"][0], _stream_of(holder))
+        if status != _OK:
+            _raise_status(lib, status, "ttd_gpu_points_closest")
+    return MeshClosestGPU(_column(records, 0, 8 if typestr == "<f8" else 4, typestr[1:]), records)

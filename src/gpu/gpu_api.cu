@@ -267,6 +267,7 @@ extern "C" ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const f
 struct ttd_gpu_mesh {
     ttd_gpu_mesh_view view;
     void *nodes, *verts, *tris;
+    void *pnodes, *blocks; /* the point data, when the mesh had it */
 };
 
 extern "C" void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
@@ -276,6 +277,8 @@ extern "C" void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
     cudaFree(mesh->nodes);
     cudaFree(mesh->verts);
     cudaFree(mesh->tris);
+    cudaFree(mesh->pnodes);
+    cudaFree(mesh->blocks);
     cudaGetLastError();
     free(mesh);
 }
@@ -298,11 +301,14 @@ extern "C" ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh
     if (!g)
         return TTD_GPU_ERR_CUDA;
     const size_t real_size = (size_t)h.bytes;
-    const size_t sizes[3] = {h.nnodes * h.node_size, 3 * h.nv * real_size, 3 * h.nt * sizeof(uint32_t)};
-    const void *src[3] = {h.nodes, h.verts, h.tris};
-    void **dst[3] = {&g->nodes, &g->verts, &g->tris};
+    const size_t sizes[5] = {h.nnodes * h.node_size, 3 * h.nv * real_size, 3 * h.nt * sizeof(uint32_t),
+                             h.npnodes * h.pnode_size, h.blocks_bytes};
+    const void *src[5] = {h.nodes, h.verts, h.tris, h.pnodes, h.blocks};
+    void **dst[5] = {&g->nodes, &g->verts, &g->tris, &g->pnodes, &g->blocks};
     cudaError_t err = cudaSuccess;
-    for (int i = 0; i < 3 && err == cudaSuccess; ++i) {
+    for (int i = 0; i < 5 && err == cudaSuccess; ++i) {
+        if (src[i] == NULL || sizes[i] == 0)
+            continue;
         err = cudaMalloc(dst[i], sizes[i]);
         if (err == cudaSuccess)
             err = cudaMemcpy(*dst[i], src[i], sizes[i], cudaMemcpyHostToDevice);
@@ -319,6 +325,10 @@ extern "C" ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh
         g->view.origin[i] = h.origin[i];
     g->view.radius = h.radius;
     g->view.height = h.height;
+    g->view.pnodes = g->pnodes;
+    g->view.blocks = g->blocks;
+    g->view.pscale = h.pscale;
+    g->view.pstretch = h.pstretch;
     *out = g;
     return TTD_GPU_OK;
 }
@@ -379,4 +389,40 @@ extern "C" ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const tt
     if (st != TTD_GPU_OK || k == 0)
         return st;
     return gpu_launched(ttd_gpu_launch_mesh_f(&a->view, &b->view, k, poses, margin, 1, out, stream));
+}
+
+/* The checks of a point query: pointers, the bound, the mesh's precision and point data, memory. */
+static ttd_gpu_status points_checks(const ttd_gpu_mesh *m, size_t n, const void *points, double upper_bound,
+                                    const void *out, int bytes)
+{
+    if (!m || !points || !out)
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (!(upper_bound >= 0) || m->view.bytes != bytes || m->view.pnodes == NULL)
+        return TTD_GPU_ERR_BAD_ARGUMENT;
+    if (n > SIZE_MAX / (3 * (size_t)bytes) / 2)
+        return TTD_GPU_ERR_NOT_DEVICE_MEMORY;
+    if (n == 0)
+        return TTD_GPU_OK;
+    ttd_gpu_status st = gpu_check_pointer(points);
+    if (st == TTD_GPU_OK)
+        st = gpu_check_pointer(out);
+    return st;
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                   double upper_bound, ttd_point_result_d *out, void *stream)
+{
+    const ttd_gpu_status st = points_checks(mesh, n, points, upper_bound, out, 8);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_points_d(&mesh->view, n, points, upper_bound, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                   float upper_bound, ttd_point_result_f *out, void *stream)
+{
+    const ttd_gpu_status st = points_checks(mesh, n, points, upper_bound, out, 4);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_points_f(&mesh->view, n, points, upper_bound, out, stream));
 }

@@ -15,6 +15,12 @@ extern "C" int ttd_gpu_launch_mesh_d(const ttd_gpu_mesh_view *a, const ttd_gpu_m
     return gpu_launch_mesh(a, b, k, poses, limit, collide, out, stream);
 }
 
+extern "C" int ttd_gpu_launch_points_d(const ttd_gpu_mesh_view *m, size_t n, const double *points,
+                                       double upper_bound, ttd_point_result_d *out, void *stream)
+{
+    return gpu_launch_points(m, n, points, upper_bound, out, stream);
+}
+
 extern "C" int ttd_gpu_launch_node_d(size_t k, const ttd_box_query_d *q, const ttd_node_d *y, double *lb2, double *sep,
                                      void *stream)
 {

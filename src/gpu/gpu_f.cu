@@ -15,6 +15,12 @@ extern "C" int ttd_gpu_launch_mesh_f(const ttd_gpu_mesh_view *a, const ttd_gpu_m
     return gpu_launch_mesh(a, b, k, poses, limit, collide, out, stream);
 }
 
+extern "C" int ttd_gpu_launch_points_f(const ttd_gpu_mesh_view *m, size_t n, const float *points,
+                                       float upper_bound, ttd_point_result_f *out, void *stream)
+{
+    return gpu_launch_points(m, n, points, upper_bound, out, stream);
+}
+
 extern "C" int ttd_gpu_launch_node_f(size_t k, const ttd_box_query_f *q, const ttd_node_f *y, float *lb2, float *sep,
                                      void *stream)
 {

@@ -34,6 +34,9 @@ typedef struct ttd_gpu_mesh_view {
     double origin[3];
     double radius;
     int32_t height;        /* node levels below the root's box */
+    const void *pnodes;    /* the point queries' data (points/points.h), or NULL when the mesh had none */
+    const void *blocks;
+    double pscale, pstretch;
 } ttd_gpu_mesh_view;
 
 /* A mesh on the host as an upload reads it (gpu_mesh.c, from mesh/mesh.h's struct ttd_mesh). */
@@ -45,6 +48,10 @@ typedef struct ttd_gpu_mesh_host {
     double origin[3];
     double radius;
     int32_t height;
+    /* the point data (ttd_points_data) when the mesh has made it (a point query ran), else NULL */
+    const void *pnodes, *blocks;
+    size_t npnodes, pnode_size, blocks_bytes;
+    double pscale, pstretch;
 } ttd_gpu_mesh_host;
 
 void ttd_gpu_mesh_describe(const ttd_mesh *m, ttd_gpu_mesh_host *d);
@@ -59,6 +66,12 @@ int ttd_gpu_launch_mesh_d(const ttd_gpu_mesh_view *a, const ttd_gpu_mesh_view *b
                           double limit, int collide, void *out, void *stream);
 int ttd_gpu_launch_mesh_f(const ttd_gpu_mesh_view *a, const ttd_gpu_mesh_view *b, size_t k, const float *poses,
                           float limit, int collide, void *out, void *stream);
+
+/* n points' closest points on mesh m (its point data uploaded), one thread each */
+int ttd_gpu_launch_points_d(const ttd_gpu_mesh_view *m, size_t n, const double *points, double upper_bound,
+                            ttd_point_result_d *out, void *stream);
+int ttd_gpu_launch_points_f(const ttd_gpu_mesh_view *m, size_t n, const float *points, float upper_bound,
+                            ttd_point_result_f *out, void *stream);
 
 /* 0 (cudaSuccess) when the current device runs the kernels built here, else the cudaError_t of
  * cudaFuncGetAttributes on one of them (no kernel image for the device, no driver, ...) */

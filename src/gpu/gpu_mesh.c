@@ -3,7 +3,9 @@
  * side never includes the library's internal headers): its arrays as they are, and the height of
  * its hierarchy, which the device walk's fixed stack must hold (gpu_walk_impl.h, GW_STACK). */
 #include "gpu/gpu_internal.h"
+#include "core/point_layout.h"
 #include "mesh/mesh.h"
+#include "points/points.h"
 
 /* node levels below slot 0 of node n (0: its children are triangles) */
 static int32_t tree_height_d(const ttd_node_d *nodes, int32_t n)
@@ -42,4 +44,13 @@ void ttd_gpu_mesh_describe(const ttd_mesh *m, ttd_gpu_mesh_host *d)
         d->origin[i] = m->origin[i];
     d->radius = m->radius;
     d->height = m->bytes == 8 ? tree_height_d(m->nodes, 0) : tree_height_f(m->nodes, 0);
+    /* the point data as the CPU made it (published atomically; NULL until a point query ran) */
+    const ttd_points_data *pd = __atomic_load_n((ttd_points_data *const *)&m->points, __ATOMIC_ACQUIRE);
+    d->pnodes = pd ? pd->pnodes : NULL;
+    d->blocks = pd ? pd->blocks : NULL;
+    d->npnodes = pd ? pd->nnodes : 0;
+    d->pnode_size = sizeof(ttd_pnode);
+    d->blocks_bytes = pd ? pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes : 0;
+    d->pscale = pd ? pd->scale : 0;
+    d->pstretch = pd ? pd->stretch : 0;
 }

@@ -13,8 +13,8 @@
  * tie rule is total (the smallest triangle index among the nearest), so the whole result is the
  * CPU's, bit for bit, but for the counts of tests.
  *
- * Built and tested on the host only (test_gpu_walk, points_*): no device kernel, entry or upload
- * calls it yet (docs/gpu.md, section 6). */
+ * The device kernel is gpu_kernels_impl.cuh's gpu_points_closest_kernel (ttd_gpu_points_closest_d/f);
+ * the tests run this body on the host (test_gpu_walk, points_closest; docs/gpu.md, section 6). */
 
 #ifdef TTD_PRECISION_DOUBLE
 typedef ttd_point_result_d gp_point_result;

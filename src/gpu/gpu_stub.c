@@ -82,3 +82,17 @@ ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh 
     (void)a, (void)b, (void)k, (void)poses, (void)margin, (void)out, (void)stream;
     return TTD_GPU_ERR_NOT_BUILT;
 }
+
+ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points, double upper_bound,
+                                        ttd_point_result_d *out, void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points, float upper_bound,
+                                        ttd_point_result_f *out, void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
