@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* Mesh against mesh under one pose, the walk one CUDA thread runs (src/gpu/gpu_walk_d.cu,
- * gpu_walk_f.cu) and the tests' cuda-host row runs on the host (tests/cuda_host/), from this one
- * source, precision-generic. Included after simd/kernel_exact.h and kernel_node.h for one
- * precision with TTDW_USE_CUDA (one lane); every function is TTDW_FN (__host__ __device__ under
- * nvcc), and nothing here allocates: the walk's stack and candidate buffer are fixed arrays.
+/* Mesh against mesh under one pose, the walk one CUDA thread runs (gpu_kernels_impl.cuh's pose
+ * kernels, compiled per precision by gpu_d.cu and gpu_f.cu) and the tests' cuda-host row runs on
+ * the host (tests/cuda_host/), from this one source, precision-generic. Included after
+ * simd/kernel_exact.h and kernel_node.h for one precision with TTDW_USE_CUDA (one lane); every
+ * function is TTDW_FN (__host__ __device__ under nvcc), and nothing here allocates: the walk's
+ * stack and candidate buffer are fixed arrays.
  *
  * What it computes is the CPU's (src/mesh/query_impl.h, ttd_mesh_distance_d / ttd_mesh_collide_d
  * on surfaces, rel_tol 0): the minimum of the exact kernel's distance over every triangle pair
