@@ -12,7 +12,16 @@
 #   3. the throughput again with each library of $build/gpu-variants/*/ (other block sizes and
 #      launch bounds, made by scripts/build-gpu-variants.sh), when there are any;
 #   4. python/tests/cuda_device_check.py: ttd.cuda on CuPy, PyTorch and DLPack arrays against the
-#      CPU's bits, when python3 has numpy.
+#      CPU's bits, when python3 has numpy;
+#   5. test_gpu_walk: mesh poses on the device (docs/gpu.md, section 6): TTD_GPU_WALK_POSES poses
+#      (default 1,000,000) of an 81,920-triangle rough sphere against itself through
+#      ttd_gpu_mesh_distance/collide in double and float, against ttd_mesh_distance/collide on this
+#      machine's cores, bit for bit (distance bits and flags; ties checked through the batch;
+#      collide verdicts), and poses/s of both in the same run; then TTD_GPU_POINTS points (default
+#      10,000,000: on vertices, near, in the box, far) through ttd_gpu_points_closest_d/f against
+#      ttd_points_closest, whole results bit for bit, and points/s of both; and the entries'
+#      argument checks on the device (the host walks' own tests need no device: scripts/test.sh).
+# Signed distances have no device path yet: nothing to run for them.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -39,6 +48,15 @@ if command -v python3 > /dev/null && python3 -c 'import numpy' 2> /dev/null; the
 else
     echo "test-gpu-device.sh: no python3 with numpy: ttd.cuda not checked" | tee "$out/python.txt"
 fi
+[ -x "$build/tests/test_gpu_walk" ] || { echo "test-gpu-device.sh: no $build/tests/test_gpu_walk" >&2; status=1; }
+(
+    rc=0
+    for t in walk_entries_without_device walk_device; do
+        TTD_GPU_WALK_POSES=${TTD_GPU_WALK_POSES:-1000000} TTD_GPU_POINTS=${TTD_GPU_POINTS:-10000000} \
+            "$build/tests/test_gpu_walk" $t 2>&1 || rc=1
+    done
+    exit $rc
+) | tee "$out/test_gpu_walk.txt" || status=1
 if [ "${TTD_NCU:-0}" = 1 ] && command -v ncu > /dev/null; then
     # the distance-only kernel's first launch in each precision, on 2^20 pairs: occupancy, pipes,
     # stalls (the kernels are told apart by their mangled names: ...PKd... double, ...PKf... float)

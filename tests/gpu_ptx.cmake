@@ -3,8 +3,9 @@
 # src/gpu/CMakeLists.txt compiles it, rounds each operation as the CPU rows do (docs/gpu.md,
 # section 2): no multiply-add or float FMA (contraction: the kernels' one explicit FMA is
 # double, in kx_prod_err), no approximate division, reciprocal or square root, no flush to
-# zero; and the double FMAs stay the explicit ones (12 per exact group, a few groups per file;
-# contraction would make hundreds).
+# zero; and the double FMAs stay the explicit ones (12 per exact group inlined: the pair kernels
+# and the mesh pose kernels of gpu_walk_impl.h inline 6 in gpu_d.ptx, 72 FMAs; contraction makes
+# hundreds: 790 in the pair kernels alone with -fmad=true).
 string(REPLACE "|" ";" files "${PTX}")
 foreach(f ${files})
   set(file_failed 0)
@@ -20,7 +21,7 @@ foreach(f ${files})
   endforeach()
   string(REGEX MATCHALL "fma\\.rn\\.f64" fmas "${text}")
   list(LENGTH fmas nfma)
-  if(nfma GREATER 48)
+  if(nfma GREATER 96)
     message(SEND_ERROR "${name}: ${nfma} fma.rn.f64: contraction?")
     set(file_failed 1)
   endif()

@@ -24,7 +24,8 @@ typedef enum ttd_gpu_status {
     TTD_GPU_ERR_NO_DEVICE = 2,         ///< no usable CUDA device: no driver, a driver older than the runtime, no GPU, or none that runs the built code
     TTD_GPU_ERR_NULL_POINTER = 3,      ///< s or t NULL, or both outputs NULL, or info NULL
     TTD_GPU_ERR_NOT_DEVICE_MEMORY = 4, ///< an array the device cannot access (plain host memory); nothing launched
-    TTD_GPU_ERR_CUDA = 5               ///< the CUDA runtime failed (a launch, the device); ttd_gpu_query's message says what
+    TTD_GPU_ERR_CUDA = 5,              ///< the CUDA runtime failed (a launch, the device); ttd_gpu_query's message says what
+    TTD_GPU_ERR_BAD_ARGUMENT = 6       ///< a NaN or negative bound or margin, meshes of two precisions, or a mesh whose hierarchy is deeper than the device walk takes
 } ttd_gpu_status;
 
 /// A short English description of status (never NULL).
@@ -77,6 +78,66 @@ TTD_API ttd_gpu_status ttd_gpu_batch_host_d(size_t n, const double *s, const dou
 /// ttd_gpu_batch_host_d in single precision.
 TTD_API ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const float *t, float *distance,
                                             ttd_result_f *results);
+
+/* ---- Meshes on the device: many poses (docs/gpu.md, section 6) ---------------------------- */
+
+/// A mesh and its hierarchy copied to the device (ttd_gpu_mesh_upload), read by the pose queries
+/// below; owned by the caller until ttd_gpu_mesh_free.
+typedef struct ttd_gpu_mesh ttd_gpu_mesh;
+
+/// A pose the CPU entry would refuse (not finite, not a rotation within ttd's tolerance, det <= 0,
+/// or b moved past the coordinate range): on the device each pose is checked alone, and such a
+/// pose gets this bit in ttd_mesh_result_d.flags (distance NaN, no triangles), or this value in
+/// ttd_collision.hit (non-zero: read as a collision), instead of the CPU's error for the call.
+#define TTD_GPU_POSE_REFUSED 0x8000u
+
+/// Copies mesh (its vertices, triangles and hierarchy as built on the CPU, double or float, and
+/// the point queries' data when the mesh has made it: after any point query on the CPU, such as
+/// ttd_points_closest_d on one point) to the current device, once; *out is the handle (NULL on failure). TTD_GPU_ERR_NULL_POINTER,
+/// TTD_GPU_ERR_NOT_BUILT, TTD_GPU_ERR_NO_DEVICE, TTD_GPU_ERR_CUDA (out of device memory). The
+/// device copy is a snapshot: a later ttd_mesh_set_vertices is not seen until uploaded again.
+TTD_API ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh **out);
+/// Frees an uploaded mesh (NULL: nothing). Waits for nothing: no query on it may be in flight.
+TTD_API void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh);
+
+/// Minimum distance between the surfaces of a and b under each of k poses (12k reals, as
+/// ttd_mesh_distance_d takes them), one CUDA thread a pose: poses and out (k records) in device
+/// or managed memory, asynchronous on stream (a cudaStream_t; NULL: the default stream). Each
+/// record's distance and flags have the bits ttd_mesh_distance_d gives (rel_tol 0, no solid
+/// option); where several pairs are equally near, tri_a/tri_b (and so p, q and the features) may
+/// be another of them; node_tests and pair_tests count the device walk's own work. upper_bound as
+/// the CPU's (INFINITY: none). k = 0 does nothing. TTD_GPU_ERR_BAD_ARGUMENT for a NaN or negative
+/// upper_bound, meshes not both double (a and b from ttd_mesh_create_d), or hierarchies too deep
+/// for the walk's stack (none of ttd's builds of up to millions of triangles).
+TTD_API ttd_gpu_status ttd_gpu_mesh_distance_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                               const double *poses, double upper_bound, ttd_mesh_result_d *out,
+                                               void *stream);
+/// ttd_gpu_mesh_distance_d in single precision (meshes from ttd_mesh_create_f).
+TTD_API ttd_gpu_status ttd_gpu_mesh_distance_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                               const float *poses, float upper_bound, ttd_mesh_result_f *out,
+                                               void *stream);
+/// Collision of a and b with margin >= 0 under each of k poses, as ttd_mesh_collide_d (surfaces):
+/// hit is the CPU's verdict for every pose; the witness pair may be another pair within the
+/// margin. Arrays and stream as ttd_gpu_mesh_distance_d.
+TTD_API ttd_gpu_status ttd_gpu_mesh_collide_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                              const double *poses, double margin, ttd_collision *out, void *stream);
+/// ttd_gpu_mesh_collide_d in single precision.
+TTD_API ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                              const float *poses, float margin, ttd_collision *out, void *stream);
+
+/// For each of n points (3n reals in device memory, the mesh's frame), the closest point of the
+/// mesh into out[i] (device memory), one CUDA thread a point, asynchronous on stream: the whole
+/// result ttd_points_closest_d gives (pose NULL), bit for bit (its ties go to the smallest
+/// triangle index), but node_tests and triangle_tests, which count the device walk's work. A NaN
+/// or infinite point gets NaN and TTD_POINT_NONFINITE (not reported in the status). upper_bound
+/// as the CPU's. TTD_GPU_ERR_BAD_ARGUMENT for a NaN or negative bound, a mesh of the other
+/// precision, or one uploaded before its point data existed (run one point query on the CPU, then
+/// upload). n = 0 does nothing.
+TTD_API ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                double upper_bound, ttd_point_result_d *out, void *stream);
+/// ttd_gpu_points_closest_d in single precision.
+TTD_API ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                float upper_bound, ttd_point_result_f *out, void *stream);
 
 #ifdef __cplusplus
 }

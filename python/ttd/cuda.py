@@ -17,12 +17,30 @@ module needs neither the compiled extension's CUDA support nor a CUDA Python pac
 it finds the library through the environment variable TTD_GPU_LIBRARY (a path), else the
 system's library path (``cmake --install`` puts libttd_gpu there). Without a library, a
 library built without CUDA, or a usable GPU, every call raises CudaUnavailableError saying why.
+
+Meshes under many poses (docs/gpu.md, section 6):
+
+    a = ttd.cuda.Mesh(verts_a, faces_a)          # built by ttd on the CPU, uploaded once
+    b = ttd.cuda.Mesh(verts_b, faces_b)
+    poses = cp.asarray(P)                        # (k, 3, 4) or (k, 12), the meshes' dtype
+    r = ttd.cuda.mesh_distance(a, b, poses)      # r.distance: (k,), ttd.mesh_distance's bits
+    c = ttd.cuda.mesh_collide(a, b, poses, 0.0)  # c.hit: (k,) int32, 0 or 1 (0x8000: pose refused)
+    p = ttd.cuda.closest_points(a, cp.asarray(X))  # (n, 3) points: p.distance (n,), ttd.closest_points' bits
+
+A Mesh needs libttd too (to build the hierarchy as the CPU does): TTD_LIBRARY (a path), else
+next to libttd_gpu, else the system's library path.
 """
+import collections
 import ctypes
 import ctypes.util
 import os
+import pathlib
 
-__all__ = ["CudaUnavailableError", "available", "info", "distance"]
+__all__ = ["CudaUnavailableError", "available", "info", "distance", "Mesh", "mesh_distance", "mesh_collide",
+           "closest_points", "POSE_REFUSED"]
+
+# include/ttd/ttd_gpu.h, TTD_GPU_POSE_REFUSED: a pose the CPU entry would refuse (flags bit; hit value)
+POSE_REFUSED = 0x8000
 
 
 class CudaUnavailableError(RuntimeError):
@@ -74,7 +92,65 @@ def _library():
         fn.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
                        ctypes.c_void_p]
         fn.restype = ctypes.c_int
+    lib.ttd_gpu_mesh_upload.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
+    lib.ttd_gpu_mesh_upload.restype = ctypes.c_int
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_gpu_points_closest_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, real, ctypes.c_void_p, ctypes.c_void_p]
+        fn.restype = ctypes.c_int
+    lib.ttd_gpu_mesh_free.argtypes = [ctypes.c_void_p]
+    lib.ttd_gpu_mesh_free.restype = None
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        for query in ("distance", "collide"):
+            fn = getattr(lib, f"ttd_gpu_mesh_{query}_{name}")
+            fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, real, ctypes.c_void_p,
+                           ctypes.c_void_p]
+            fn.restype = ctypes.c_int
     _loaded = lib
+    return lib
+
+
+_cpu_loaded = None
+
+
+def _cpu_library():
+    """libttd (the CPU library), for building a mesh's hierarchy as ttd does: TTD_LIBRARY, else next
+    to libttd_gpu (the same folder or the one above, as in a build tree), else the system's path."""
+    global _cpu_loaded
+    if _cpu_loaded is not None:
+        return _cpu_loaded
+    candidates = [os.environ.get("TTD_LIBRARY")]
+    gpu_path = os.environ.get("TTD_GPU_LIBRARY")
+    if gpu_path:
+        here = pathlib.Path(gpu_path).resolve().parent
+        for folder in (here, here.parent):
+            candidates += [str(p) for p in sorted(folder.glob("libttd.so*"))]
+    candidates.append(ctypes.util.find_library("ttd"))
+    errors = []
+    for path in filter(None, candidates):
+        try:
+            lib = ctypes.CDLL(path)
+            break
+        except OSError as e:
+            errors.append(f"{path}: {e}")
+    else:
+        raise CudaUnavailableError("libttd not found (ttd.cuda.Mesh builds the hierarchy with it): set TTD_LIBRARY "
+                                   "to its path" + (f" ({'; '.join(errors)})" if errors else ""))
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_mesh_create_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_size_t,
+                       ctypes.POINTER(ctypes.c_void_p)]
+        fn.restype = ctypes.c_int
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_points_closest_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, real,
+                       ctypes.c_void_p]
+        fn.restype = ctypes.c_int
+    lib.ttd_mesh_destroy.argtypes = [ctypes.c_void_p]
+    lib.ttd_mesh_destroy.restype = None
+    lib.ttd_status_string.argtypes = [ctypes.c_int]
+    lib.ttd_status_string.restype = ctypes.c_char_p
+    _cpu_loaded = lib
     return lib
 
 
@@ -209,3 +285,238 @@ def distance(s, t, out=None):
             raise CudaUnavailableError(f"{message}{': ' + detail if detail else ''}")
         raise RuntimeError(f"ttd_gpu_batch: {message}")
     return out
+
+
+def _raise_status(lib, status, what):
+    message = lib.ttd_gpu_status_string(status).decode(errors="replace")
+    if status in (_NOT_BUILT, _NO_DEVICE):
+        detail = info()["message"]
+        raise CudaUnavailableError(f"{message}{': ' + detail if detail else ''}")
+    if status == _BAD_ARGUMENT:
+        raise ValueError(f"{what}: {message}")
+    raise RuntimeError(f"{what}: {message}")
+
+
+_BAD_ARGUMENT = 6
+
+
+class Mesh:
+    """A triangle mesh on the GPU: built by ttd on the CPU (the same hierarchy as ttd.Mesh) and
+    copied to the current device once. vertices (n, 3) float64 or float32 (the precision of its
+    queries), faces (m, 3) integer indices; or a ttd.Mesh (its vertices and faces). Free it with
+    close() (or a with block); the device copy does not follow later changes of the arrays."""
+
+    def __init__(self, vertices, faces=None):
+        import numpy as np
+
+        if faces is None and hasattr(vertices, "faces") and hasattr(vertices, "vertices"):
+            vertices, faces = vertices.vertices, vertices.faces
+        if hasattr(vertices, "__cuda_array_interface__"):
+            raise TypeError("ttd.cuda.Mesh takes vertices and faces in host memory (numpy): the hierarchy is "
+                            "built on the CPU")
+        v = np.asarray(vertices)
+        if v.dtype not in (np.float64, np.float32):
+            v = v.astype(np.float64)
+        f = np.asarray(faces)
+        if v.ndim != 2 or v.shape[1] != 3 or len(v) == 0:
+            raise ValueError(f"vertices must have shape (n, 3), n >= 1, not {v.shape}")
+        if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0 or not np.issubdtype(f.dtype, np.integer):
+            raise ValueError(f"faces must be integer indices of shape (m, 3), m >= 1, not {f.dtype} {f.shape}")
+        if f.min() < 0 or f.max() >= len(v):
+            raise ValueError(f"faces index vertices 0..{len(v) - 1}: found {f.min()}..{f.max()}")
+        if not np.isfinite(v).all():
+            raise ValueError("vertices must be finite")
+        self._v = np.ascontiguousarray(v)
+        self._f = np.ascontiguousarray(f, dtype=np.uint32)
+        self.dtype = self._v.dtype
+        self._handle = None
+        gpu = _library()
+        cpu = _cpu_library()
+        host = ctypes.c_void_p()
+        create = cpu.ttd_mesh_create_d if self.dtype == np.float64 else cpu.ttd_mesh_create_f
+        status = create(None, self._v.ctypes.data, len(self._v), self._f.ctypes.data, len(self._f), ctypes.byref(host))
+        if status != 0:
+            raise ValueError(f"ttd_mesh_create: {cpu.ttd_status_string(status).decode(errors='replace')}")
+        try:
+            # one point query makes the mesh's point data, so that the upload carries it
+            point = np.zeros(3, dtype=self.dtype)
+            result = np.zeros(_POINT_RESULT[self.dtype.str], dtype=np.uint8)
+            closest = cpu.ttd_points_closest_d if self.dtype == np.float64 else cpu.ttd_points_closest_f
+            closest(None, host, 1, point.ctypes.data, None, float("inf"), result.ctypes.data)
+            handle = ctypes.c_void_p()
+            status = gpu.ttd_gpu_mesh_upload(host, ctypes.byref(handle))
+        finally:
+            cpu.ttd_mesh_destroy(host)
+        if status != _OK:
+            _raise_status(gpu, status, "ttd_gpu_mesh_upload")
+        self._handle = handle
+
+    @property
+    def vertex_count(self):
+        return len(self._v)
+
+    @property
+    def triangle_count(self):
+        return len(self._f)
+
+    def close(self):
+        """Frees the device copy (no query on it may still be running on a stream)."""
+        if self._handle is not None:
+            _library().ttd_gpu_mesh_free(self._handle)
+            self._handle = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+# the record sizes of include/ttd/ttd.h (ttd_mesh_result_d/_f, ttd_collision; tests/test_gpu_walk.c
+# checks them); distance and hit are each record's first field
+_RESULT = {"<f8": 80, "<f4": 56}
+_COLLISION = 24
+_POINT_RESULT = {"<f8": 72, "<f4": 44}  # ttd_point_result_d/_f; distance first
+
+MeshDistanceGPU = collections.namedtuple("MeshDistanceGPU", ["distance", "records"])
+MeshDistanceGPU.__doc__ = """ttd.cuda.mesh_distance's result, on the device: distance (k,), and the k
+whole records (k, 80) uint8 (float32: (k, 56)) in ttd_mesh_result_d's (_f's) layout."""
+MeshCollisionGPU = collections.namedtuple("MeshCollisionGPU", ["hit", "records"])
+MeshCollisionGPU.__doc__ = """ttd.cuda.mesh_collide's result, on the device: hit (k,) int32 (0, 1, or
+POSE_REFUSED), and the k records (k, 24) uint8 in ttd_collision's layout."""
+
+
+def _poses(poses):
+    iface, holder = _interface(poses, "poses")
+    typestr, shape = iface["typestr"], tuple(iface["shape"])
+    if typestr not in ("<f8", "<f4"):
+        raise TypeError(f"poses must hold float64 or float32, not {typestr}")
+    if not ((len(shape) == 3 and shape[1:] == (3, 4)) or (len(shape) == 2 and shape[1] == 12)):
+        raise ValueError(f"poses must have shape (k, 3, 4) or (k, 12), not {shape}")
+    if not _contiguous(iface):
+        raise ValueError("poses must be C-contiguous")
+    return holder, iface, typestr, shape[0]
+
+
+def _records(holder, k, size):
+    """k records of size bytes, allocated by the poses' library on its device."""
+    mod = type(holder).__module__.split(".")[0]
+    if mod == "torch":
+        import torch
+        return torch.empty((k, size), dtype=torch.uint8, device=holder.device)
+    try:
+        import cupy
+    except ImportError:
+        raise TypeError("the poses' library cannot allocate the result records, and CuPy is not installed") from None
+    return cupy.empty((k, size), dtype=cupy.uint8)
+
+
+def _column(records, offset, nbytes, kind):
+    """A (k,) array of one field of the records (a copy, contiguous): kind 'f8', 'f4' or 'i4'."""
+    mod = type(records).__module__.split(".")[0]
+    part = records[:, offset:offset + nbytes]
+    if mod == "torch":
+        import torch
+        dtype = {"f8": torch.float64, "f4": torch.float32, "i4": torch.int32}[kind]
+        return part.contiguous().view(dtype).reshape(-1)
+    return part.copy().view(kind).reshape(-1)
+
+
+def _mesh_args(a, b, poses, limit, what):
+    import numpy as np
+
+    holder, iface, typestr, k = _poses(poses)
+    if not isinstance(a, Mesh) or not isinstance(b, Mesh):
+        raise TypeError(f"{what}: a and b must be ttd.cuda.Mesh objects")
+    if a._handle is None or b._handle is None:
+        raise ValueError(f"{what}: a mesh was closed")
+    want = np.dtype(typestr)
+    if a.dtype != want or b.dtype != want:
+        raise TypeError(f"{what}: poses of {want} need meshes of {want} (got {a.dtype} and {b.dtype})")
+    limit = float(limit)
+    if not limit >= 0:
+        raise ValueError(f"{what}: the bound must be >= 0 (inf for none), not {limit}")
+    return holder, iface, typestr, k, limit
+
+
+def mesh_distance(a, b, poses, upper_bound=float("inf")):
+    """The minimum distance between the surfaces of Mesh a and Mesh b under each of k poses (GPU
+    arrays (k, 3, 4) or (k, 12), the meshes' dtype; a pose maps b into a's frame), one GPU thread a
+    pose, on the poses' library's current stream. Each distance has the bits ttd.mesh_distance
+    gives (rel_tol 0, surfaces); a pose past upper_bound reads inf, a pose the CPU would refuse
+    NaN (POSE_REFUSED in the record's flags)."""
+    lib = _library()
+    holder, iface, typestr, k, limit = _mesh_args(a, b, poses, upper_bound, "mesh_distance")
+    size = _RESULT[typestr]
+    records = _records(holder, k, size)
+    if k == 0:
+        return MeshDistanceGPU(_column(records, 0, 8 if typestr == "<f8" else 4, typestr[1:]), records)
+    rec_iface, _ = _interface(records, "records")
+    fn = lib.ttd_gpu_mesh_distance_d if typestr == "<f8" else lib.ttd_gpu_mesh_distance_f
+    status = fn(a._handle, b._handle, k, iface["data"][0], limit, rec_iface["data"][0], _stream_of(holder))
+    if status != _OK:
+        _raise_status(lib, status, "ttd_gpu_mesh_distance")
+    return MeshDistanceGPU(_column(records, 0, 8 if typestr == "<f8" else 4, typestr[1:]), records)
+
+
+def mesh_collide(a, b, poses, margin=0.0):
+    """Whether Mesh a and Mesh b come within margin (>= 0) under each of k poses (as
+    mesh_distance's): hit (k,) int32, ttd.mesh_collide's verdict for every pose (surfaces), or
+    POSE_REFUSED for a pose the CPU would refuse."""
+    lib = _library()
+    holder, iface, typestr, k, limit = _mesh_args(a, b, poses, margin, "mesh_collide")
+    records = _records(holder, k, _COLLISION)
+    if k > 0:
+        rec_iface, _ = _interface(records, "records")
+        fn = lib.ttd_gpu_mesh_collide_d if typestr == "<f8" else lib.ttd_gpu_mesh_collide_f
+        status = fn(a._handle, b._handle, k, iface["data"][0], limit, rec_iface["data"][0], _stream_of(holder))
+        if status != _OK:
+            _raise_status(lib, status, "ttd_gpu_mesh_collide")
+    return MeshCollisionGPU(_column(records, 0, 4, "i4"), records)
+
+
+MeshClosestGPU = collections.namedtuple("MeshClosestGPU", ["distance", "records"])
+MeshClosestGPU.__doc__ = """ttd.cuda.closest_points's result, on the device: distance (n,), and the n
+whole records (n, 72) uint8 (float32: (n, 44)) in ttd_point_result_d's (_f's) layout."""
+
+
+def closest_points(mesh, points, upper_bound=float("inf")):
+    """The closest point of Mesh mesh to each of n points (a GPU array (n, 3) of the mesh's dtype,
+    in the mesh's frame), one GPU thread a point, on the points' library's current stream: each
+    result has the bits ttd.closest_points gives (ties to the smallest triangle), NaN for a
+    non-finite point, inf past upper_bound."""
+    import numpy as np
+
+    lib = _library()
+    iface, holder = _interface(points, "points")
+    typestr, shape = iface["typestr"], tuple(iface["shape"])
+    if typestr not in ("<f8", "<f4"):
+        raise TypeError(f"points must hold float64 or float32, not {typestr}")
+    if len(shape) != 2 or shape[1] != 3:
+        raise ValueError(f"points must have shape (n, 3), not {shape}")
+    if not _contiguous(iface):
+        raise ValueError("points must be C-contiguous")
+    if not isinstance(mesh, Mesh):
+        raise TypeError("closest_points: mesh must be a ttd.cuda.Mesh")
+    if mesh._handle is None:
+        raise ValueError("closest_points: the mesh was closed")
+    if mesh.dtype != np.dtype(typestr):
+        raise TypeError(f"closest_points: points of {np.dtype(typestr)} need a mesh of that dtype (got {mesh.dtype})")
+    limit = float(upper_bound)
+    if not limit >= 0:
+        raise ValueError(f"closest_points: the bound must be >= 0 (inf for none), not {limit}")
+    n = shape[0]
+    records = _records(holder, n, _POINT_RESULT[typestr])
+    if n > 0:
+        rec_iface, _ = _interface(records, "records")
+        fn = lib.ttd_gpu_points_closest_d if typestr == "<f8" else lib.ttd_gpu_points_closest_f
+        status = fn(mesh._handle, n, iface["data"][0], limit, rec_iface["data"][0], _stream_of(holder))
+        if status != _OK:
+            _raise_status(lib, status, "ttd_gpu_points_closest")
+    return MeshClosestGPU(_column(records, 0, 8 if typestr == "<f8" else 4, typestr[1:]), records)

@@ -4,6 +4,7 @@
  * is linked statically and loads the driver (libcuda) when first called: without a driver or a
  * GPU every call here returns TTD_GPU_ERR_NO_DEVICE, and nothing else in ttd is affected. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cuda_runtime.h>
@@ -258,4 +259,170 @@ extern "C" ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const f
                                                ttd_result_f *results)
 {
     return host_batch(n, s, t, distance, results, ttd_gpu_launch_exact_f);
+}
+
+/* ---- meshes on the device: many poses -------------------------------------------------------- */
+
+/* An uploaded mesh: its arrays in device memory, and the walk's view of them. */
+struct ttd_gpu_mesh {
+    ttd_gpu_mesh_view view;
+    void *nodes, *verts, *tris;
+    void *pnodes, *blocks; /* the point data, when the mesh had it */
+};
+
+extern "C" void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
+{
+    if (!mesh)
+        return;
+    cudaFree(mesh->nodes);
+    cudaFree(mesh->verts);
+    cudaFree(mesh->tris);
+    cudaFree(mesh->pnodes);
+    cudaFree(mesh->blocks);
+    cudaGetLastError();
+    free(mesh);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh **out)
+{
+    if (!out)
+        return TTD_GPU_ERR_NULL_POINTER;
+    *out = NULL;
+    if (!mesh)
+        return TTD_GPU_ERR_NULL_POINTER;
+    int dev;
+    if (cudaGetDevice(&dev) != cudaSuccess || ttd_gpu_kernel_loads() != cudaSuccess) {
+        cudaGetLastError();
+        return TTD_GPU_ERR_NO_DEVICE;
+    }
+    ttd_gpu_mesh_host h;
+    ttd_gpu_mesh_describe(mesh, &h);
+    ttd_gpu_mesh *g = (ttd_gpu_mesh *)calloc(1, sizeof *g);
+    if (!g)
+        return TTD_GPU_ERR_CUDA;
+    const size_t real_size = (size_t)h.bytes;
+    const size_t sizes[5] = {h.nnodes * h.node_size, 3 * h.nv * real_size, 3 * h.nt * sizeof(uint32_t),
+                             h.npnodes * h.pnode_size, h.blocks_bytes};
+    const void *src[5] = {h.nodes, h.verts, h.tris, h.pnodes, h.blocks};
+    void **dst[5] = {&g->nodes, &g->verts, &g->tris, &g->pnodes, &g->blocks};
+    cudaError_t err = cudaSuccess;
+    for (int i = 0; i < 5 && err == cudaSuccess; ++i) {
+        if (src[i] == NULL || sizes[i] == 0)
+            continue;
+        err = cudaMalloc(dst[i], sizes[i]);
+        if (err == cudaSuccess)
+            err = cudaMemcpy(*dst[i], src[i], sizes[i], cudaMemcpyHostToDevice);
+    }
+    if (err != cudaSuccess) {
+        ttd_gpu_mesh_free(g);
+        return gpu_launched((int)err);
+    }
+    g->view.bytes = h.bytes;
+    g->view.nodes = g->nodes;
+    g->view.verts = g->verts;
+    g->view.tris = (const uint32_t *)g->tris;
+    for (int i = 0; i < 3; ++i)
+        g->view.origin[i] = h.origin[i];
+    g->view.radius = h.radius;
+    g->view.height = h.height;
+    g->view.pnodes = g->pnodes;
+    g->view.blocks = g->blocks;
+    g->view.pscale = h.pscale;
+    g->view.pstretch = h.pstretch;
+    *out = g;
+    return TTD_GPU_OK;
+}
+
+/* The checks of a pose query: pointers, the limit, the meshes' precision and heights, device
+ * memory. */
+static ttd_gpu_status mesh_checks(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k, const void *poses,
+                                  double limit, const void *out, int bytes)
+{
+    if (!a || !b || !poses || !out)
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (!(limit >= 0) || a->view.bytes != bytes || b->view.bytes != bytes ||
+        a->view.height + b->view.height > TTD_GPU_MAX_HEIGHTS)
+        return TTD_GPU_ERR_BAD_ARGUMENT;
+    if (k > SIZE_MAX / (12 * (size_t)bytes) / 2)
+        return TTD_GPU_ERR_NOT_DEVICE_MEMORY;
+    if (k == 0)
+        return TTD_GPU_OK;
+    ttd_gpu_status st = gpu_check_pointer(poses);
+    if (st == TTD_GPU_OK)
+        st = gpu_check_pointer(out);
+    return st;
+}
+
+extern "C" ttd_gpu_status ttd_gpu_mesh_distance_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                                  const double *poses, double upper_bound, ttd_mesh_result_d *out,
+                                                  void *stream)
+{
+    const ttd_gpu_status st = mesh_checks(a, b, k, poses, upper_bound, out, 8);
+    if (st != TTD_GPU_OK || k == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_mesh_d(&a->view, &b->view, k, poses, upper_bound, 0, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_mesh_distance_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                                  const float *poses, float upper_bound, ttd_mesh_result_f *out,
+                                                  void *stream)
+{
+    const ttd_gpu_status st = mesh_checks(a, b, k, poses, upper_bound, out, 4);
+    if (st != TTD_GPU_OK || k == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_mesh_f(&a->view, &b->view, k, poses, upper_bound, 0, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_mesh_collide_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                                 const double *poses, double margin, ttd_collision *out, void *stream)
+{
+    const ttd_gpu_status st = mesh_checks(a, b, k, poses, margin, out, 8);
+    if (st != TTD_GPU_OK || k == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_mesh_d(&a->view, &b->view, k, poses, margin, 1, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k,
+                                                 const float *poses, float margin, ttd_collision *out, void *stream)
+{
+    const ttd_gpu_status st = mesh_checks(a, b, k, poses, margin, out, 4);
+    if (st != TTD_GPU_OK || k == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_mesh_f(&a->view, &b->view, k, poses, margin, 1, out, stream));
+}
+
+/* The checks of a point query: pointers, the bound, the mesh's precision and point data, memory. */
+static ttd_gpu_status points_checks(const ttd_gpu_mesh *m, size_t n, const void *points, double upper_bound,
+                                    const void *out, int bytes)
+{
+    if (!m || !points || !out)
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (!(upper_bound >= 0) || m->view.bytes != bytes || m->view.pnodes == NULL)
+        return TTD_GPU_ERR_BAD_ARGUMENT;
+    if (n > SIZE_MAX / (3 * (size_t)bytes) / 2)
+        return TTD_GPU_ERR_NOT_DEVICE_MEMORY;
+    if (n == 0)
+        return TTD_GPU_OK;
+    ttd_gpu_status st = gpu_check_pointer(points);
+    if (st == TTD_GPU_OK)
+        st = gpu_check_pointer(out);
+    return st;
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                   double upper_bound, ttd_point_result_d *out, void *stream)
+{
+    const ttd_gpu_status st = points_checks(mesh, n, points, upper_bound, out, 8);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_points_d(&mesh->view, n, points, upper_bound, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                   float upper_bound, ttd_point_result_f *out, void *stream)
+{
+    const ttd_gpu_status st = points_checks(mesh, n, points, upper_bound, out, 4);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_points_f(&mesh->view, n, points, upper_bound, out, stream));
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The GPU kernels in double (gpu_kernels_impl.cuh) and their two exported launchers. */
+/* The GPU kernels in double (gpu_kernels_impl.cuh) and their exported launchers. */
 #define TTD_PRECISION_DOUBLE
 #include "gpu/gpu_kernels_impl.cuh"
 
@@ -7,6 +7,18 @@ extern "C" int ttd_gpu_launch_exact_d(size_t n, const double *s, const double *t
                                       void *stream)
 {
     return gpu_launch_exact(n, s, t, distance, results, stream);
+}
+
+extern "C" int ttd_gpu_launch_mesh_d(const ttd_gpu_mesh_view *a, const ttd_gpu_mesh_view *b, size_t k,
+                                     const double *poses, double limit, int collide, void *out, void *stream)
+{
+    return gpu_launch_mesh(a, b, k, poses, limit, collide, out, stream);
+}
+
+extern "C" int ttd_gpu_launch_points_d(const ttd_gpu_mesh_view *m, size_t n, const double *points,
+                                       double upper_bound, ttd_point_result_d *out, void *stream)
+{
+    return gpu_launch_points(m, n, points, upper_bound, out, stream);
 }
 
 extern "C" int ttd_gpu_launch_node_d(size_t k, const ttd_box_query_d *q, const ttd_node_d *y, double *lb2, double *sep,

@@ -12,12 +12,16 @@
 #define TTDW_USE_CUDA 1
 #include "core/precision.h"
 #include "core/kernels.h"
+#include "core/point_layout.h"
 #include "simd/lanes.h"
 #include "simd/lanes_precision.h"
 #include "simd/kernel_common.h"
 #include "simd/kernel_exact.h"
 #include "simd/kernel_node.h"
+#include "simd/kernel_point.h"
 #include "gpu/gpu_pair_impl.h"
+#include "gpu/gpu_walk_impl.h"
+#include "gpu/gpu_points_impl.h"
 #include "gpu/gpu_internal.h"
 
 /* Threads a block and the blocks an SM must hold at once (__launch_bounds__'s second argument,
@@ -67,6 +71,32 @@ __global__ void GPU_BOUNDS gpu_node_kernel(size_t k, const ttd_box_query *q, con
         node_test(&q[i], &y[i], lb2 + TTD_NODE_WIDTH * i, sep + TTD_NODE_WIDTH * i);
 }
 
+/* Mesh against mesh, one pose per thread (gpu_walk_impl.h): the minimum distance, or collision. */
+__global__ void GPU_BOUNDS gpu_mesh_distance_kernel(gw_mesh a, gw_mesh b, size_t k, const real *poses,
+                                                    real upper_bound, gw_mesh_result *out)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < k; i += stride)
+        gw_distance_pose(&a, &b, poses + 12 * i, upper_bound, 0, &out[i]);
+}
+
+__global__ void GPU_BOUNDS gpu_mesh_collide_kernel(gw_mesh a, gw_mesh b, size_t k, const real *poses, real margin,
+                                                   ttd_collision *out)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < k; i += stride)
+        gw_collide_pose(&a, &b, poses + 12 * i, margin, 0, &out[i]);
+}
+
+/* The closest point of a mesh, one point per thread (gpu_points_impl.h). */
+__global__ void GPU_BOUNDS gpu_points_closest_kernel(gp_mesh m, size_t n, const real *points, real upper_bound,
+                                                     gp_point_result *out)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < n; i += stride)
+        gp_closest(&m, points + 3 * i, upper_bound, &out[i]);
+}
+
 static unsigned gpu_grid(size_t n)
 {
     const size_t blocks = (n + GPU_BLOCK - 1) / GPU_BLOCK;
@@ -87,5 +117,47 @@ static int gpu_launch_exact(size_t n, const real *s, const real *t, real *distan
 static int gpu_launch_node(size_t k, const ttd_box_query *q, const ttd_node *y, real *lb2, real *sep, void *stream)
 {
     gpu_node_kernel<<<gpu_grid(k), GPU_BLOCK, 0, (cudaStream_t)stream>>>(k, q, y, lb2, sep);
+    return (int)cudaGetLastError();
+}
+
+/* The device walk's view of an uploaded mesh (gpu_internal.h's ttd_gpu_mesh_view). */
+static gw_mesh gpu_view(const ttd_gpu_mesh_view *v)
+{
+    gw_mesh g;
+    g.nodes = (const ttd_node *)v->nodes;
+    g.verts = (const real *)v->verts;
+    g.tris = v->tris;
+    for (int i = 0; i < 3; ++i)
+        g.origin[i] = v->origin[i];
+    g.radius = v->radius;
+    g.height = v->height;
+    return g;
+}
+
+static int gpu_launch_mesh(const ttd_gpu_mesh_view *a, const ttd_gpu_mesh_view *b, size_t k, const real *poses,
+                           real limit, int collide, void *out, void *stream)
+{
+    cudaStream_t st = (cudaStream_t)stream;
+    if (collide)
+        gpu_mesh_collide_kernel<<<gpu_grid(k), GPU_BLOCK, 0, st>>>(gpu_view(a), gpu_view(b), k, poses, limit,
+                                                                   (ttd_collision *)out);
+    else
+        gpu_mesh_distance_kernel<<<gpu_grid(k), GPU_BLOCK, 0, st>>>(gpu_view(a), gpu_view(b), k, poses, limit,
+                                                                    (gw_mesh_result *)out);
+    return (int)cudaGetLastError();
+}
+
+static int gpu_launch_points(const ttd_gpu_mesh_view *v, size_t n, const real *points, real upper_bound,
+                             gp_point_result *out, void *stream)
+{
+    gp_mesh m;
+    m.pnodes = (const ttd_pnode *)v->pnodes;
+    m.blocks = (const real *)v->blocks;
+    for (int i = 0; i < 3; ++i)
+        m.origin[i] = v->origin[i];
+    m.radius = v->radius;
+    m.scale = v->pscale;
+    m.stretch = v->pstretch;
+    gpu_points_closest_kernel<<<gpu_grid(n), GPU_BLOCK, 0, (cudaStream_t)stream>>>(m, n, points, upper_bound, out);
     return (int)cudaGetLastError();
 }

@@ -41,3 +41,58 @@ ttd_gpu_status ttd_gpu_batch_host_f(size_t n, const float *s, const float *t, fl
     (void)n, (void)s, (void)t, (void)distance, (void)results;
     return TTD_GPU_ERR_NOT_BUILT;
 }
+
+void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
+{
+    (void)mesh;
+}
+
+ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh **out)
+{
+    (void)mesh;
+    if (out)
+        *out = NULL;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_mesh_distance_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k, const double *poses,
+                                       double upper_bound, ttd_mesh_result_d *out, void *stream)
+{
+    (void)a, (void)b, (void)k, (void)poses, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_mesh_distance_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k, const float *poses,
+                                       float upper_bound, ttd_mesh_result_f *out, void *stream)
+{
+    (void)a, (void)b, (void)k, (void)poses, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_mesh_collide_d(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k, const double *poses,
+                                      double margin, ttd_collision *out, void *stream)
+{
+    (void)a, (void)b, (void)k, (void)poses, (void)margin, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_mesh_collide_f(const ttd_gpu_mesh *a, const ttd_gpu_mesh *b, size_t k, const float *poses,
+                                      float margin, ttd_collision *out, void *stream)
+{
+    (void)a, (void)b, (void)k, (void)poses, (void)margin, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t n, const double *points, double upper_bound,
+                                        ttd_point_result_d *out, void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points, float upper_bound,
+                                        ttd_point_result_f *out, void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)out, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
