@@ -234,10 +234,60 @@ static int sunk_and_nested(void)
     return 0;
 }
 
+/* Two unit cubes in one solid mesh, at x in [0, 1] and [3, 4], and a cube of side 0.6 at x in
+ * [0.9, 1.5]: every edge of the first mesh is convex, but it is two pieces, so its depth is not
+ * its hull's (0.8, along y or z): the penetration is 0.1 along x. No point deeper than that, one
+ * below 0. The code that took every convex-edged mesh as one convex body put a point at -0.8. */
+static int two_pieces(void)
+{
+    test_box cube, small;
+    ENSURE(test_box_make(1, 1, 1, 1, &cube) == 0 && test_box_make(0.6, 0.6, 0.6, 1, &small) == 0);
+    double v[2 * 3 * 8], vb[3 * 8];
+    uint32_t t[2 * 3 * 12];
+    ENSURE(cube.nv == 8 && cube.nt == 12);
+    for (int piece = 0; piece < 2; ++piece) {
+        for (size_t q = 0; q < 8; ++q)
+            for (int r = 0; r < 3; ++r)
+                v[24 * piece + 3 * q + (size_t)r] = cube.v[3 * q + (size_t)r] + (r == 0 ? 0.5 + 3 * piece : 0);
+        for (size_t q = 0; q < 36; ++q)
+            t[36 * piece + q] = cube.t[q] + 8u * (uint32_t)piece;
+    }
+    for (size_t q = 0; q < 8; ++q)
+        for (int r = 0; r < 3; ++r)
+            vb[3 * q + (size_t)r] = small.v[3 * q + (size_t)r] + (r == 0 ? 1.2 : 0);
+    for (size_t K = 0; K <= 4; K += 4) {
+        ttd_scene *s = NULL;
+        ttd_mesh *ma = NULL, *mb = NULL;
+        const double id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        uint32_t ia, ib;
+        ENSURE(ttd_scene_create_d(&s) == TTD_OK);
+        ENSURE(ttd_mesh_create_d(NULL, v, 16, t, 24, &ma) == TTD_OK && ttd_mesh_create_d(NULL, vb, 8, small.t, 12, &mb) == TTD_OK);
+        ENSURE(ttd_scene_add_d(s, ma, id, &ia) == TTD_OK && ttd_scene_add_d(s, mb, id, &ib) == TTD_OK);
+        ENSURE(ttd_scene_set_solid(s, ia, 1) == TTD_OK && ttd_scene_set_solid(s, ib, 1) == TTD_OK);
+        ttd_scene_array arr = {0};
+        ENSURE(ttd_scene_manifold_d(NULL, s, 0.005, K, &arr) == TTD_OK);
+        double dmin = INFINITY;
+        for (size_t q = 0; q < arr.count; ++q)
+            dmin = fmin(dmin, ((const ttd_scene_point_d *)arr.data)[q].distance);
+        ENSURE_MSG(dmin < 0 && -dmin <= 0.1 + 1e-12, "K %zu: deepest point %.9g, the penetration 0.1 (%zu points)", K, -dmin,
+                   arr.count);
+        printf("  two cubes in one mesh against a smaller one, K %zu: deepest point %.6f (penetration 0.1), %zu points\n", K, -dmin,
+               arr.count);
+        ttd_scene_array_free(&arr);
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(ma);
+        ttd_mesh_destroy(mb);
+    }
+    test_box_free(&cube);
+    test_box_free(&small);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(crossing_rods);
     RUN_TEST(sunk_and_nested);
+    RUN_TEST(two_pieces);
     TEST_MAIN_END();
 }

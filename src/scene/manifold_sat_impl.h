@@ -40,7 +40,11 @@ static void sat_body_free(sat_body *b)
 }
 
 /* Whether body id's mesh, as the solid sees it (inward meshes turned out), has only convex and
- * flat edges: then a closed surface bounds a convex body (to the flat angle). */
+ * flat edges and is one piece: then the closed surface bounds one convex body (to the flat
+ * angle). Each piece of a closed surface whose edges are all convex is a sphere (Euler
+ * characteristic V - E + F = 2, with E = 3F/2), so one piece is exactly 2 V - F = 4 over the
+ * places in use; two convex pieces in one mesh (4, or 3 where they share a place) would
+ * otherwise be searched as their hull, whose depth is not theirs. */
 static int sat_convex(const struct ttd_scene *s, uint32_t id, size_t *ne)
 {
     const struct ttd_mesh *m = s->body[id].mesh;
@@ -55,6 +59,11 @@ static int sat_convex(const struct ttd_scene *s, uint32_t id, size_t *ne)
             else if (cl != TTD_EDGE_FLAT)
                 return 0;
         }
+    size_t places = 0;
+    for (size_t pl = 0; pl < E->nw; ++pl)
+        places += E->ring_start[pl] < E->ring_start[pl + 1];
+    if (2 * places != m->nt + 4)
+        return 0;
     *ne = n / 2;
     return 1;
 }
