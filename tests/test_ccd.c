@@ -20,18 +20,8 @@
 /* The time tolerance of a toi against the true first time (docs/ccd.md, section 2). */
 #define TOI_TOL 1e-6
 
-static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
-static double urand(void) /* [0, 1) */
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
-static double srand1(void)
-{
-    return 2 * urand() - 1;
-}
+#define TEST_RAND_SEED 0x9e3779b97f4a7c15ull
+#include "test_rand.h"
 
 /* One query through the public entries: kind 1 vertex-face, 2 edge-edge; x0, x1 4 points. */
 static ttd_ccd_result run1(int kind, const double x0[12], const double x1[12], double delta)

@@ -15,18 +15,8 @@
 #include "test_macros.h"
 #include "ttd/ttd.h"
 
-static uint64_t rng_state = 0x243f6a8885a308d3ull;
-static double urand(void) /* [0, 1) */
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
-static double srand1(void)
-{
-    return 2 * urand() - 1;
-}
+#define TEST_RAND_SEED 0x243f6a8885a308d3ull
+#include "test_rand.h"
 
 static ttd_options opts(int threads)
 {
