@@ -14,6 +14,7 @@
 #include "mesh/mesh.h"
 #include "points/points.h"
 #include "cuda_host.h"
+#include "cuda_host_impl.h"
 
 const ttd_kernels_f ttd_kernels_cuda_host_f = TTD_LANE_ROW(TTD_ISA_SCALAR);
 
@@ -28,14 +29,6 @@ void ttd_cuda_host_batch_f(size_t n, const float *s, const float *t, float *dist
         gpu_pair(i, s, t, distance, results);
 }
 
-/* The device walk's view of a mesh: the CPU's arrays as they are (src/gpu/ copies them). */
-static gw_mesh host_view(const struct ttd_mesh *m)
-{
-    gw_mesh g = {(const ttd_node *)m->nodes, (const real *)m->verts, m->tris, {m->origin[0], m->origin[1], m->origin[2]},
-                 m->radius, 0};
-    g.height = gw_tree_height(g.nodes, 0);
-    return g;
-}
 
 int ttd_cuda_host_mesh_height_f(const struct ttd_mesh *m)
 {
@@ -45,28 +38,17 @@ int ttd_cuda_host_mesh_height_f(const struct ttd_mesh *m)
 void ttd_cuda_host_mesh_distance_f(const struct ttd_mesh *a, const struct ttd_mesh *b, size_t k, const float *poses,
                                      float upper_bound, uint64_t vote, ttd_mesh_result_f *out)
 {
-    const gw_mesh ga = host_view(a), gb = host_view(b);
-    for (size_t i = 0; i < k; ++i) /* what thread i of src/gpu/'s pose kernel runs */
-        gw_distance_pose(&ga, &gb, poses + 12 * i, upper_bound, vote ? vote + i : 0, &out[i]);
+    host_mesh_distance(a, b, k, poses, upper_bound, vote, out);
 }
 
 void ttd_cuda_host_mesh_collide_f(const struct ttd_mesh *a, const struct ttd_mesh *b, size_t k, const float *poses,
                                     float margin, uint64_t vote, ttd_collision *out)
 {
-    const gw_mesh ga = host_view(a), gb = host_view(b);
-    for (size_t i = 0; i < k; ++i)
-        gw_collide_pose(&ga, &gb, poses + 12 * i, margin, vote ? vote + i : 0, &out[i]);
+    host_mesh_collide(a, b, k, poses, margin, vote, out);
 }
 
 int ttd_cuda_host_closest_f(const struct ttd_mesh *m, size_t n, const float *points, float upper_bound,
                               ttd_point_result_f *out)
 {
-    const ttd_points_data *pd = ttd_points_data_get(m, 1); /* the CPU's point data, as an upload would copy */
-    if (pd == NULL)
-        return -1;
-    const gp_mesh g = {pd->pnodes, (const real *)pd->blocks, {m->origin[0], m->origin[1], m->origin[2]}, m->radius,
-                       pd->scale, pd->stretch};
-    for (size_t i = 0; i < n; ++i) /* what thread i of a device point kernel would run */
-        gp_closest(&g, points + 3 * i, upper_bound, &out[i]);
-    return 0;
+    return host_closest(m, n, points, upper_bound, out);
 }

@@ -1,0 +1,41 @@
+/* SPDX-License-Identifier: MIT */
+/* What the cuda-host row's mesh and point entries run, once per precision (cuda_host_d.c and
+ * cuda_host_f.c include it after the kernels and the device walks, and export the names): the
+ * device walks of src/gpu/ on the CPU's own arrays, one "thread" after another. */
+
+/* The device walk's view of a mesh: the CPU's arrays as they are (src/gpu/ copies them). */
+static gw_mesh host_view(const struct ttd_mesh *m)
+{
+    gw_mesh g = {(const ttd_node *)m->nodes, (const real *)m->verts, m->tris, {m->origin[0], m->origin[1], m->origin[2]},
+                 m->radius, 0};
+    g.height = gw_tree_height(g.nodes, 0);
+    return g;
+}
+
+static void host_mesh_distance(const struct ttd_mesh *a, const struct ttd_mesh *b, size_t k, const real *poses,
+                               real upper_bound, uint64_t vote, gw_mesh_result *out)
+{
+    const gw_mesh ga = host_view(a), gb = host_view(b);
+    for (size_t i = 0; i < k; ++i) /* what thread i of src/gpu/'s pose kernel runs */
+        gw_distance_pose(&ga, &gb, poses + 12 * i, upper_bound, vote ? vote + i : 0, &out[i]);
+}
+
+static void host_mesh_collide(const struct ttd_mesh *a, const struct ttd_mesh *b, size_t k, const real *poses, real margin,
+                              uint64_t vote, ttd_collision *out)
+{
+    const gw_mesh ga = host_view(a), gb = host_view(b);
+    for (size_t i = 0; i < k; ++i)
+        gw_collide_pose(&ga, &gb, poses + 12 * i, margin, vote ? vote + i : 0, &out[i]);
+}
+
+static int host_closest(const struct ttd_mesh *m, size_t n, const real *points, real upper_bound, gp_point_result *out)
+{
+    const ttd_points_data *pd = ttd_points_data_get(m, 1); /* the CPU's point data, as an upload would copy */
+    if (pd == NULL)
+        return -1;
+    const gp_mesh g = {pd->pnodes, (const real *)pd->blocks, {m->origin[0], m->origin[1], m->origin[2]}, m->radius,
+                       pd->scale, pd->stretch};
+    for (size_t i = 0; i < n; ++i) /* what thread i of a device point kernel would run */
+        gp_closest(&g, points + 3 * i, upper_bound, &out[i]);
+    return 0;
+}
