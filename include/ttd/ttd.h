@@ -1070,8 +1070,11 @@ TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
  * constant rate, R(t) = Rot(u, t theta) R0, where R1 R0^T = Rot(u, theta) with theta in
  * [0, pi] (taken from its unit quaternion with w >= 0; at theta = pi, where both signs of u
  * give R1, the sign that makes u's largest component positive, the first on a tie). R(1) is R1
- * up to R1 R0^T's own distance from a rotation (within the poses' check of 1e-6, about 1e-16
- * for orthonormal matrices). ttd_rigid_pose_at_d gives the pose at any t.
+ * up to R1 R0^T's own distance from a rotation (about 1e-16 for orthonormal matrices). A pose
+ * R further than 16 ulps from a rotation (the check allows R^T R - I up to 1e-6) is first
+ * replaced by its nearest rotation (the polar factor, within about defect |x| of R x): the query
+ * answers about the bodies moved by those rotations, not by the R given. ttd_rigid_pose_at_d
+ * gives the pose at any t (the same motion).
  *
  * The query is conservative advancement: the exact mesh distance d at time t, and a bound V on
  * how fast it can fall (each body's |T1 - T0| + theta r, r the largest |x| over its mesh's
