@@ -705,6 +705,47 @@ static int near_rotations(void)
     return near_rotations_at(8) || near_rotations_at(4);
 }
 
+/* toi never beyond 1: a triangle closing on a parallel one at speed 1 from D = 1 + mu + k ulps,
+ * k in [-64, 256] (around where the walk's first step reaches t = 1), double and float: every
+ * hit has toi in [0, 1]. A guard for the clamp of the step to t <= 1: it did not fail without
+ * the clamp (the upper bound handed to the first distance query already stops such steps). */
+static int toi_at_most_one(void)
+{
+    const double v[9] = {0, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t tri[3] = {0, 1, 2};
+    int beyond = 0, hits = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_mesh *m = test_mesh_of(bytes, v, 3, tri, 1);
+        ENSURE(m);
+        for (int k = -64; k <= 256; ++k) {
+            /* mu = S 2^-40 (S about 3 here) is 3 2^12 ulps of 1 in double, 3 2^6 in float */
+            const double D = bytes == 8 ? 1 + (3 * 4096 + k) * DBL_EPSILON : (double)(1.0f + (float)(192 + k) * FLT_EPSILON);
+            double pa[24] = {0}, pb[24] = {0};
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 3; ++i)
+                    pa[12 * j + 5 * i] = pb[12 * j + 5 * i] = 1;
+            pb[3] = D;
+            pb[12 + 3] = D - 1;
+            float fa[24], fb[24];
+            for (int i = 0; i < 24; ++i) {
+                fa[i] = (float)pa[i];
+                fb[i] = (float)pb[i];
+            }
+            ttd_mesh_ccd_rigid_result r;
+            ENSURE((bytes == 8 ? ttd_mesh_ccd_rigid_d(NULL, m, pa, m, pb, 0, &r) : ttd_mesh_ccd_rigid_f(NULL, m, fa, m, fb, 0, &r)) == TTD_OK);
+            hits += r.hit;
+            if (r.hit && !(r.toi >= 0 && r.toi <= 1)) {
+                ++beyond;
+                printf("  bytes %d D = 1 + %d ulps: toi 1 + %.3g\n", bytes, k, r.toi - 1);
+            }
+        }
+        ttd_mesh_destroy(m);
+    }
+    printf("  %d hits of %d, %d with toi beyond 1\n", hits, 2 * 321, beyond);
+    ENSURE(beyond == 0);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -716,5 +757,6 @@ int main(int argc, char **argv)
     RUN_TEST(scales);
     RUN_TEST(step_bound);
     RUN_TEST(near_rotations);
+    RUN_TEST(toi_at_most_one);
     TEST_MAIN_END();
 }

@@ -123,7 +123,9 @@ ttd_status ttd_rigid_ccd_pair(const ttd_options *opt, const rigid_body *a, const
         const double gap = (d - mu - delta) * (1 - 4 * DBL_EPSILON);
         if (!(V > 0) || gap >= V * (1 - t) * (1 + 8 * DBL_EPSILON))
             return TTD_OK; /* apart until t = 1 (V = 0: no motion, apart throughout) */
-        const double next = nextafter(t + (gap / V) * (1 - 4 * DBL_EPSILON), 0);
+        /* gap / V < (1 - t) (1 + 9 ulps) here, so t + the step can round a few ulps above 1:
+         * the motion ends at 1, and a toi must not lie beyond it. */
+        const double next = fmin(nextafter(t + (gap / V) * (1 - 4 * DBL_EPSILON), 0), 1);
         if (!(next > t)) {
             /* A step below the times' resolution: stop here, conservatively. */
             out->toi = t;
