@@ -634,6 +634,118 @@ static int checks(void)
     return 0;
 }
 
+/* Poses within the pose check's 1e-6 but not rotations to the last bits (R = Q diag(1 + e_k),
+ * Q exact): the motion uses their nearest rotations Q (docs/ccd.md section 13). (1) a triangle at
+ * z = 1000 under R = diag(1 + e) and a vertical one crossing z = 1000 by 2e-4, both still: under
+ * the nearest rotations they intersect, so both argument orders must answer a hit at t = 0 (with
+ * R^T taken for R's inverse, b lay 1000 e above a in a's frame: no hit; checked). (2) the same
+ * body under the same such pose twice: each pose passes ttd_mesh_check_poses, so the query must
+ * answer (the relative pose R^T R of the old code had twice the defect: TTD_ERR_BAD_POSE; checked). */
+static int near_rotations_at(int bytes)
+{
+    const double h = 1000;
+    const double va[9] = {-1, -1, h, 2, -1, h, -1, 2, h};
+    const double vb[9] = {0, 0, h - 2e-4, 0.5, 0, h + 2e-4, 0, 0.5, h + 2e-4};
+    const uint32_t tri[3] = {0, 1, 2};
+    ttd_mesh *a = test_mesh_of(bytes, va, 3, tri, 1);
+    ttd_mesh *b = test_mesh_of(bytes, vb, 3, tri, 1);
+    ENSURE(a && b);
+    const double ev[4][3] = {{4.9e-7, 4.9e-7, 4.9e-7}, {4.9e-7, -4.9e-7, 4.9e-7}, {-4.9e-7, 0, 3e-7}, {0, 0, 0}};
+    for (int c = 0; c < 4; ++c) {
+        for (int q = 0; q < 2; ++q) { /* Q = I, or a quarter turn about z (exact) */
+            double R[9] = {0};
+            for (int k = 0; k < 3; ++k)
+                R[4 * k] = 1 + ev[c][k];
+            if (q) { /* Q diag: rows (0, -1, 0), (1, 0, 0), (0, 0, 1) times the diagonal */
+                const double d0 = R[0], d1 = R[4];
+                R[0] = 0, R[1] = -d1, R[3] = d0, R[4] = 0;
+            }
+            double pa[24] = {0}, pb[24] = {0};
+            for (int k = 0; k < 2; ++k)
+                for (int i = 0; i < 3; ++i) {
+                    for (int j = 0; j < 3; ++j)
+                        pa[12 * k + 4 * i + j] = R[3 * i + j];
+                    pb[12 * k + 5 * i] = 1;
+                }
+            /* b's vertical triangle carried by Q too, so it still crosses a's plane */
+            if (q)
+                for (int k = 0; k < 2; ++k) {
+                    pb[12 * k + 0] = 0, pb[12 * k + 1] = -1, pb[12 * k + 4] = 1, pb[12 * k + 5] = 0;
+                }
+            float fa[24], fb[24];
+            for (int i = 0; i < 24; ++i) {
+                fa[i] = (float)pa[i];
+                fb[i] = (float)pb[i];
+            }
+            size_t bad;
+            ENSURE(bytes == 8 ? ttd_mesh_check_poses_d(a, a, 2, pa, &bad) == TTD_OK
+                              : ttd_mesh_check_poses_f(a, a, 2, fa, &bad) == TTD_OK);
+            for (int order = 0; order < 2; ++order) {
+                ttd_mesh_ccd_rigid_result r;
+                ttd_status st;
+                if (bytes == 8)
+                    st = order ? ttd_mesh_ccd_rigid_d(NULL, b, pb, a, pa, 0, &r) : ttd_mesh_ccd_rigid_d(NULL, a, pa, b, pb, 0, &r);
+                else
+                    st = order ? ttd_mesh_ccd_rigid_f(NULL, b, fb, a, fa, 0, &r) : ttd_mesh_ccd_rigid_f(NULL, a, fa, b, fb, 0, &r);
+                ENSURE_MSG(st == TTD_OK && r.hit && r.toi == 0, "bytes %d case %d q %d order %d: status %d hit %d toi %g",
+                           bytes, c, q, order, (int)st, r.hit, r.toi);
+                /* (2) a body against itself under the same near-rotation twice */
+                st = bytes == 8 ? ttd_mesh_ccd_rigid_d(NULL, a, pa, a, pa, 0, &r) : ttd_mesh_ccd_rigid_f(NULL, a, fa, a, fa, 0, &r);
+                ENSURE_MSG(st == TTD_OK && r.hit && r.toi == 0, "bytes %d case %d q %d self: status %d", bytes, c, q, (int)st);
+            }
+        }
+    }
+    ttd_mesh_destroy(a);
+    ttd_mesh_destroy(b);
+    return 0;
+}
+
+static int near_rotations(void)
+{
+    return near_rotations_at(8) || near_rotations_at(4);
+}
+
+/* toi never beyond 1: a triangle closing on a parallel one at speed 1 from D = 1 + mu + k ulps,
+ * k in [-64, 256] (around where the walk's first step reaches t = 1), double and float: every
+ * hit has toi in [0, 1]. A guard for the clamp of the step to t <= 1: it did not fail without
+ * the clamp (the upper bound handed to the first distance query already stops such steps). */
+static int toi_at_most_one(void)
+{
+    const double v[9] = {0, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t tri[3] = {0, 1, 2};
+    int beyond = 0, hits = 0;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_mesh *m = test_mesh_of(bytes, v, 3, tri, 1);
+        ENSURE(m);
+        for (int k = -64; k <= 256; ++k) {
+            /* mu = S 2^-40 (S about 3 here) is 3 2^12 ulps of 1 in double, 3 2^6 in float */
+            const double D = bytes == 8 ? 1 + (3 * 4096 + k) * DBL_EPSILON : (double)(1.0f + (float)(192 + k) * FLT_EPSILON);
+            double pa[24] = {0}, pb[24] = {0};
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 3; ++i)
+                    pa[12 * j + 5 * i] = pb[12 * j + 5 * i] = 1;
+            pb[3] = D;
+            pb[12 + 3] = D - 1;
+            float fa[24], fb[24];
+            for (int i = 0; i < 24; ++i) {
+                fa[i] = (float)pa[i];
+                fb[i] = (float)pb[i];
+            }
+            ttd_mesh_ccd_rigid_result r;
+            ENSURE((bytes == 8 ? ttd_mesh_ccd_rigid_d(NULL, m, pa, m, pb, 0, &r) : ttd_mesh_ccd_rigid_f(NULL, m, fa, m, fb, 0, &r)) == TTD_OK);
+            hits += r.hit;
+            if (r.hit && !(r.toi >= 0 && r.toi <= 1)) {
+                ++beyond;
+                printf("  bytes %d D = 1 + %d ulps: toi 1 + %.3g\n", bytes, k, r.toi - 1);
+            }
+        }
+        ttd_mesh_destroy(m);
+    }
+    printf("  %d hits of %d, %d with toi beyond 1\n", hits, 2 * 321, beyond);
+    ENSURE(beyond == 0);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -644,5 +756,7 @@ int main(int argc, char **argv)
     RUN_TEST(degenerate);
     RUN_TEST(scales);
     RUN_TEST(step_bound);
+    RUN_TEST(near_rotations);
+    RUN_TEST(toi_at_most_one);
     TEST_MAIN_END();
 }

@@ -401,6 +401,106 @@ static int checks(void)
     return 0;
 }
 
+/* Two overlapping cubes, each under the pose diag(1 + 4.9e-7) at both times (within the pose
+ * check's 1e-6, so the scene takes it): one hit at t = 0, double and float. The old pair query
+ * passed the relative pose R^T R (defect about 2e-6) to the checked mesh distance and the whole
+ * query failed with TTD_ERR_BAD_POSE (checked). */
+static int near_rotations(void)
+{
+    ttd_gen_mesh cube;
+    ENSURE(ttd_gen_mesh_cube(&cube) == 0);
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_mesh *m = test_mesh_of(bytes, cube.verts, cube.nv, cube.tris, cube.nt);
+        ENSURE(m);
+        double p[24] = {0};
+        float pf[24];
+        for (int k = 0; k < 2; ++k)
+            for (int i = 0; i < 3; ++i)
+                p[12 * k + 5 * i] = 1 + 4.9e-7;
+        p[12 + 3] = 0.5; /* the second body half a cube along x */
+        for (int i = 0; i < 24; ++i)
+            pf[i] = (float)p[i];
+        ttd_scene *s;
+        uint32_t a, b;
+        ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+        ENSURE(bytes == 8 ? ttd_scene_add_d(s, m, p, &a) == TTD_OK && ttd_scene_add_d(s, m, p + 12, &b) == TTD_OK
+                          : ttd_scene_add_f(s, m, pf, &a) == TTD_OK && ttd_scene_add_f(s, m, pf + 12, &b) == TTD_OK);
+        ttd_scene_array out = {0};
+        const ttd_status st = bytes == 8 ? ttd_scene_ccd_d(NULL, s, 2, p, 0, &out) : ttd_scene_ccd_f(NULL, s, 2, pf, 0, &out);
+        ENSURE_MSG(st == TTD_OK && out.count == 1, "bytes %d: status %d count %zu", bytes, (int)st, out.count);
+        const ttd_scene_ccd_hit *h = out.data;
+        ENSURE(h->i == a && h->j == b && h->toi == 0);
+        ttd_scene_array_free(&out);
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(m);
+    }
+    ttd_gen_mesh_free(&cube);
+    return 0;
+}
+
+/* Two parallel needle triangles (size 1e-7 / 1e-3) at x = 1000, a gap g apart (1e-6 in double, 0.05 in float:
+ * below the pair's tolerance, about 1.9e-6 and 0.12), one sliding along x: the pair query answers
+ * a hit at t = 0 (within delta + tolerance), so the scene must list the pair too. Its broad phase
+ * kept only boxes within delta and gave 0 hits (checked). Held still, the pair answers no hit
+ * (the upper bound handed to the distance query, delta + mu, cuts the band off): the scene too. */
+static int tolerance_band(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        const double g = bytes == 8 ? 1e-6 : 0.05;
+        const double L = bytes == 8 ? 1e-7 : 1e-3; /* the needles' size: their swept boxes stay thin in y */
+        const double va[9] = {1000, 0, 0, 1000 + L, 0, 0, 1000, 0, L};
+        const double vb[9] = {1000, g, 0, 1000 + L, g, 0, 1000, g, L};
+        const uint32_t tri[3] = {0, 1, 2};
+        ttd_mesh *a = test_mesh_of(bytes, va, 3, tri, 1), *b = test_mesh_of(bytes, vb, 3, tri, 1);
+        ENSURE(a && b);
+        for (int still = 0; still < 2; ++still) {
+            double p[24] = {0};
+            float pf[24];
+            for (int k = 0; k < 2; ++k)
+                for (int i = 0; i < 3; ++i)
+                    p[12 * k + 5 * i] = 1;
+            double q[24];
+            memcpy(q, p, sizeof q);
+            q[12 + 3] = still ? 0 : 0.5; /* b's second pose: half a unit along x */
+            ttd_mesh_ccd_rigid_result r;
+            float qf[24];
+            for (int i = 0; i < 24; ++i) {
+                pf[i] = (float)p[i];
+                qf[i] = (float)q[i];
+            }
+            ENSURE((bytes == 8 ? ttd_mesh_ccd_rigid_d(NULL, a, p, b, q, 0, &r) : ttd_mesh_ccd_rigid_f(NULL, a, pf, b, qf, 0, &r)) ==
+                   TTD_OK);
+            ENSURE_MSG(r.hit == !still && g < r.tolerance, "bytes %d still %d: hit %d tolerance %g", bytes, still, r.hit,
+                       r.tolerance);
+            ttd_scene *s;
+            uint32_t ia, ib;
+            ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+            ENSURE(bytes == 8 ? ttd_scene_add_d(s, a, p, &ia) == TTD_OK && ttd_scene_add_d(s, b, q, &ib) == TTD_OK
+                              : ttd_scene_add_f(s, a, pf, &ia) == TTD_OK && ttd_scene_add_f(s, b, qf, &ib) == TTD_OK);
+            double t1[24];
+            memcpy(t1, p, 12 * sizeof *t1);
+            memcpy(t1 + 12, q + 12, 12 * sizeof *t1);
+            float t1f[24];
+            for (int i = 0; i < 24; ++i)
+                t1f[i] = (float)t1[i];
+            ttd_scene_array out = {0};
+            ENSURE((bytes == 8 ? ttd_scene_ccd_d(NULL, s, 2, t1, 0, &out) : ttd_scene_ccd_f(NULL, s, 2, t1f, 0, &out)) ==
+                   TTD_OK);
+            ENSURE_MSG(out.count == (size_t)r.hit, "bytes %d still %d: scene %zu hits, pair query %d", bytes, still,
+                       out.count, r.hit);
+            if (r.hit) {
+                const ttd_scene_ccd_hit *h = out.data;
+                ENSURE(h->i == ia && h->j == ib && h->toi == r.toi && h->distance == r.distance);
+            }
+            ttd_scene_array_free(&out);
+            ttd_scene_destroy(s);
+        }
+        ttd_mesh_destroy(a);
+        ttd_mesh_destroy(b);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -409,5 +509,7 @@ int main(int argc, char **argv)
     RUN_TEST(pendulum_arc);
     RUN_TEST(against_brute);
     RUN_TEST(against_brute_float);
+    RUN_TEST(near_rotations);
+    RUN_TEST(tolerance_band);
     TEST_MAIN_END();
 }

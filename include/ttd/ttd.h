@@ -1070,8 +1070,11 @@ TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
  * constant rate, R(t) = Rot(u, t theta) R0, where R1 R0^T = Rot(u, theta) with theta in
  * [0, pi] (taken from its unit quaternion with w >= 0; at theta = pi, where both signs of u
  * give R1, the sign that makes u's largest component positive, the first on a tie). R(1) is R1
- * up to R1 R0^T's own distance from a rotation (within the poses' check of 1e-6, about 1e-16
- * for orthonormal matrices). ttd_rigid_pose_at_d gives the pose at any t.
+ * up to R1 R0^T's own distance from a rotation (about 1e-16 for orthonormal matrices). A pose
+ * R further than 16 ulps from a rotation (the check allows R^T R - I up to 1e-6) is first
+ * replaced by its nearest rotation (the polar factor, within about defect |x| of R x): the query
+ * answers about the bodies moved by those rotations, not by the R given. ttd_rigid_pose_at_d
+ * gives the pose at any t (the same motion).
  *
  * The query is conservative advancement: the exact mesh distance d at time t, and a bound V on
  * how fast it can fall (each body's |T1 - T0| + theta r, r the largest |x| over its mesh's
@@ -1081,7 +1084,8 @@ TTD_API void ttd_mesh_ccd_free(ttd_mesh_ccd_result *out);
  * a distance above min_separation; toi is never after the true first time of distance <=
  * min_separation, and at toi the distance is at most min_separation + tolerance (the result's
  * tolerance: 2^-30 S in double, 2^-14 S in float, S = both meshes' r + both origins' largest
- * |T| over the two poses). A pair that stays within a few tolerances of min_separation without
+ * |T| over the two poses); a pair where nothing moves answers no hit inside that band (the
+ * first distance query is bounded by min_separation + the rounding margin). A pair that stays within a few tolerances of min_separation without
  * coming nearer (sliding in contact) takes many steps: after TTD_RIGID_CCD_MAX_STEPS the query
  * answers a hit at the last proved time, flagged TTD_CCD_BUDGET (conservative: nothing before
  * it touches). With ttd_options.solid (closed meshes), a body inside the other counts as
@@ -1137,7 +1141,9 @@ typedef struct ttd_scene_ccd_hit {
 /// filters and exclusions, as for contacts; a pair of solids as solids) that comes within
 /// min_separation (>= 0, finite) during the step, with ttd_mesh_ccd_rigid_d's answer, into out
 /// as ttd_scene_ccd_hit items sorted by (i, j). The broad phase bounds each body's whole sweep by
-/// a world box (docs/ccd.md section 13), so no pair is missed; the pairs run on opt's threads
+/// a world box (docs/ccd.md section 13) and keeps the pairs within min_separation plus the pair
+/// query's tolerance, so the hits are those of ttd_mesh_ccd_rigid_d over every eligible pair
+/// (near contacts within the tolerance included); the pairs run on opt's threads
 /// and the answer does not depend on them. The scene is not changed (set the new poses after).
 /// Checks: those of the scene queries; n not the id limit: TTD_ERR_INDEX_OUT_OF_RANGE; a t = 1
 /// pose refused as by ttd_scene_set_pose_d (TTD_ERR_BAD_POSE, TTD_ERR_COORDINATE_RANGE); out->count

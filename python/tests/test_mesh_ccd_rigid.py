@@ -180,3 +180,10 @@ def test_errors():
         ttd.mesh_ccd_rigid(c, I, I, c, I, np.stack([I, I]))
     with pytest.raises(ValueError):
         ttd.rigid_pose_at(I, I, 1.5)
+    # A batch of poses (K, 3, 4) is refused: rigid_pose_at used its first pose silently (the
+    # second pose's turn below was dropped; checked with the old code).
+    turn = np.eye(4)
+    turn[:3, :3] = rot([0, 0, 1], 1.0)
+    for p0, p1 in ((np.stack([I, turn])[:, :3], I), (I, np.stack([I, turn])[:, :3])):
+        with pytest.raises(ValueError, match="one pose"):
+            ttd.rigid_pose_at(p0, p1, 0.5)

@@ -81,10 +81,13 @@ def mesh_ccd_rigid(a, pose_a0, pose_a1, b, pose_b0, pose_b1, *, min_separation=0
 
 
 def rigid_pose_at(pose0, pose1, t):
-    """The (3, 4) pose at time t in [0, 1] of the rigid motion from pose0 to pose1 (the motion
+    """The (3, 4) pose at time t in [0, 1] of the rigid motion from pose0 to pose1, each one pose
+    ((3, 4) or (4, 4); a batch raises ValueError) (the motion
     mesh_ccd_rigid and Scene.ccd assume)."""
-    R0, t0, _ = _world(pose0, "pose0")
-    R1, t1, _ = _world(pose1, "pose1")
+    R0, t0, single0 = _world(pose0, "pose0")
+    R1, t1, single1 = _world(pose1, "pose1")
+    if not (single0 and single1):  # a batch (K, 3, 4) would silently use its first pose
+        raise ValueError("ttd: pose0 and pose1 must each be one pose, (3, 4) or (4, 4)")
     p0 = np.concatenate([R0[0], t0[0][:, None]], axis=1).ravel()
     p1 = np.concatenate([R1[0], t1[0][:, None]], axis=1).ravel()
     return np.array(_ttd._rigid_pose_at(tuple(map(float, p0)), tuple(map(float, p1)), float(t))).reshape(3, 4)

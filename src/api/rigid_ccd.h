@@ -15,6 +15,15 @@ typedef struct rigid_body {
     double reach; ///< max(|T0|, |T1|): how far from the world origin its own origin goes
 } rigid_body;
 
+/// The body's share of a pair's tolerance eta and margin mu (ttd_rigid_ccd_pair: eta = 2^-30 S
+/// in double, 2^-14 S in float, mu at most eta / 8, S summed over the pair's bodies), with room
+/// for rounding: a pair may answer a hit while its bodies stay this much (summed) beyond delta,
+/// so the scene's broad phase widens its test by it.
+static inline double rigid_band(const rigid_body *b, int bytes)
+{
+    return (b->radius + b->reach) * (bytes == 8 ? 0x1p-30 : 0x1p-14) * 1.25;
+}
+
 /// The body's motion between two poses (checked already) of 12 reals of bytes each.
 void rigid_body_make(rigid_body *body, const struct ttd_mesh *mesh, const void *pose0, const void *pose1, int bytes);
 

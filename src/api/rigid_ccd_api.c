@@ -34,8 +34,10 @@ void rigid_body_make(rigid_body *body, const ttd_mesh *mesh, const void *pose0, 
     body->reach = sqrt(fmax(n0, n1)) * (1 + 4 * DBL_EPSILON);
 }
 
-/* b's pose in a's frame at time t: Ra^T Rb and Ra^T (Tb - Ta). Ra is a rotation up to its
- * defect (<= 1e-6), so Ra^T stands for its inverse within the margin mu (see the file's top). */
+/* b's pose in a's frame at time t: Ra^T Rb and Ra^T (Tb - Ta). The motions' rotations are
+ * orthonormal to a few ulps (rigid_motion_make replaces poses further off by their nearest
+ * rotations), so Ra^T stands for Ra's inverse within the margin mu and Ra^T Rb passes the mesh
+ * query's pose check. */
 static void relative_pose(const rigid_body *a, const rigid_body *b, double t, double rel[12])
 {
     double pa[12], pb[12];
@@ -121,7 +123,9 @@ ttd_status ttd_rigid_ccd_pair(const ttd_options *opt, const rigid_body *a, const
         const double gap = (d - mu - delta) * (1 - 4 * DBL_EPSILON);
         if (!(V > 0) || gap >= V * (1 - t) * (1 + 8 * DBL_EPSILON))
             return TTD_OK; /* apart until t = 1 (V = 0: no motion, apart throughout) */
-        const double next = nextafter(t + (gap / V) * (1 - 4 * DBL_EPSILON), 0);
+        /* gap / V < (1 - t) (1 + 9 ulps) here, so t + the step can round a few ulps above 1:
+         * the motion ends at 1, and a toi must not lie beyond it. */
+        const double next = fmin(nextafter(t + (gap / V) * (1 - 4 * DBL_EPSILON), 0), 1);
         if (!(next > t)) {
             /* A step below the times' resolution: stop here, conservatively. */
             out->toi = t;

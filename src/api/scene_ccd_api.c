@@ -90,9 +90,16 @@ static int pair_cmp(const void *x, const void *y)
     return a->i != b->i ? (a->i < b->i ? -1 : 1) : a->j < b->j ? -1 : a->j > b->j;
 }
 
-/* The eligible pairs whose swept boxes are within delta on every axis, sorted by (i, j). */
-static int sweep(const ttd_scene *s, const double *box, double delta, scene_pair **out, size_t *n)
+/* The eligible pairs whose swept boxes are within delta + band[i] + band[j] on every axis (the
+ * pair query also answers hits within its tolerance above delta: without the bands the scene
+ * would drop them), sorted by (i, j). */
+static int sweep(const ttd_scene *s, const double *box, const double *band, double delta, scene_pair **out,
+                 size_t *n)
 {
+    double band_max = 0;
+    for (size_t id = 0; id < s->nbody; ++id)
+        if (s->body[id].mesh != NULL)
+            band_max = fmax(band_max, band[id]);
     *out = NULL;
     *n = 0;
     size_t m = 0;
@@ -123,11 +130,13 @@ static int sweep(const ttd_scene *s, const double *box, double delta, scene_pair
     int ok = 1;
     for (size_t k = 0; ok && k < m; ++k) {
         const double *bk = box + 6 * (size_t)it[k].id;
-        for (size_t l = k + 1; l < m && it[l].lo <= bk[3 + axis] + delta; ++l) {
+        const double reach_k = (delta + band[it[k].id] + band_max) * (1 + 4 * DBL_EPSILON);
+        for (size_t l = k + 1; l < m && it[l].lo <= bk[3 + axis] + reach_k; ++l) {
             const double *bl = box + 6 * (size_t)it[l].id;
+            const double gap = (delta + band[it[k].id] + band[it[l].id]) * (1 + 4 * DBL_EPSILON);
             int near = 1;
             for (int c = 0; c < 3; ++c)
-                near &= bl[c] <= bk[3 + c] + delta && bk[c] <= bl[3 + c] + delta;
+                near &= bl[c] <= bk[3 + c] + gap && bk[c] <= bl[3 + c] + gap;
             const uint32_t x = it[k].id < it[l].id ? it[k].id : it[l].id, y = it[k].id ^ it[l].id ^ x;
             if (!near || !ttd_scene_eligible(s, x, y))
                 continue;
@@ -175,7 +184,7 @@ static ttd_status scene_ccd(const ttd_options *opt, ttd_scene *s, size_t n, cons
     }
     s->stats = (ttd_scene_stats){0};
     rigid_body *body = malloc((s->nbody ? s->nbody : 1) * sizeof *body);
-    double *box = malloc((s->nbody ? s->nbody : 1) * 6 * sizeof *box);
+    double *box = malloc((s->nbody ? s->nbody : 1) * 7 * sizeof *box); /* 6 per body, then the bands */
     int *solid = malloc((s->nbody ? s->nbody : 1) * sizeof *solid);
     scene_pair *pairs = NULL;
     size_t np = 0;
@@ -192,8 +201,9 @@ static ttd_status scene_ccd(const ttd_options *opt, ttd_scene *s, size_t n, cons
         const void *p0 = bytes == 8 ? (const void *)b->pose : (const void *)b->pose_f;
         rigid_body_make(&body[id], b->mesh, p0, (const char *)poses_t1 + id * stride, bytes);
         swept_box(&body[id], box + 6 * id);
+        box[6 * s->nbody + id] = rigid_band(&body[id], bytes);
     }
-    if (!sweep(s, box, delta, &pairs, &np))
+    if (!sweep(s, box, box + 6 * s->nbody, delta, &pairs, &np))
         goto done;
     res = malloc((np ? np : 1) * sizeof *res);
     pst = malloc((np ? np : 1) * sizeof *pst);

@@ -6,11 +6,45 @@
 
 #include <float.h>
 #include <math.h>
+#include <string.h>
+
+/* The largest entry of |R^T R - I|. */
+static double rotation_defect(const double r[9])
+{
+    double defect = 0;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
+            defect = fmax(defect, fabs(g - (a == b)));
+        }
+    return defect;
+}
+
+/* The pose checks accept R^T R - I up to 1e-6, but the queries use R^T as R's inverse within a
+ * margin of about 2^-40 of the scene's size: a rotation further off than a few ulps is replaced
+ * by the nearest rotation (its polar factor), by Newton-Schulz steps R <- R (3 I - R^T R) / 2,
+ * each squaring the defect (1e-6 -> 1e-12 -> rounding). Rotations already within 16 ulps are
+ * kept bit for bit. */
+static void orthonormalise(double r[9])
+{
+    for (int it = 0; it < 4 && rotation_defect(r) > 16 * DBL_EPSILON; ++it) {
+        double g[9], n[9];
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                g[3 * a + b] = 0.5 * ((a == b) * 3.0 - (r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b]));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                n[3 * i + j] = r[3 * i] * g[j] + r[3 * i + 1] * g[3 + j] + r[3 * i + 2] * g[6 + j];
+        memcpy(r, n, sizeof n);
+    }
+}
 
 void rigid_motion_make(const double p0[12], const double p1[12], rigid_motion *m)
 {
-    const double a[9] = {p0[0], p0[1], p0[2], p0[4], p0[5], p0[6], p0[8], p0[9], p0[10]};
-    const double b[9] = {p1[0], p1[1], p1[2], p1[4], p1[5], p1[6], p1[8], p1[9], p1[10]};
+    double a[9] = {p0[0], p0[1], p0[2], p0[4], p0[5], p0[6], p0[8], p0[9], p0[10]};
+    double b[9] = {p1[0], p1[1], p1[2], p1[4], p1[5], p1[6], p1[8], p1[9], p1[10]};
+    orthonormalise(a);
+    orthonormalise(b);
     for (int i = 0; i < 9; ++i)
         m->r0[i] = a[i];
     for (int i = 0; i < 3; ++i) {
@@ -113,13 +147,7 @@ double rigid_radius(const void *x, size_t n, int bytes)
 
 double rigid_speed(const rigid_motion *m, double radius)
 {
-    const double *r = m->r0;
-    double defect = 0;
-    for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            defect = fmax(defect, fabs(g - (a == b)));
-        }
+    const double defect = rotation_defect(m->r0);
     double d2 = 0;
     for (int i = 0; i < 3; ++i) {
         const double d = m->t1[i] - m->t0[i];

@@ -8,7 +8,7 @@
 
 /// One body's motion from pose p0 to pose p1 (12 reals each, [R | t] row by row).
 typedef struct rigid_motion {
-    double r0[9];     ///< R0, row by row
+    double r0[9];     ///< R0 (its nearest rotation if off by more than 16 ulps), row by row
     double t0[3], t1[3];
     double axis[3];   ///< unit axis u of R1 R0^T (world frame); 0 when theta is 0
     double theta;     ///< its angle in [0, pi]
