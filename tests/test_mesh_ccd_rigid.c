@@ -21,18 +21,8 @@
 
 #define M_PI 3.14159265358979323846
 
-static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
-static double urand(void) /* [0, 1) */
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
-static double srand1(void)
-{
-    return 2 * urand() - 1;
-}
+#define TEST_RAND_SEED 0x9e3779b97f4a7c15ull
+#include "test_rand.h"
 static void unit_vector(double u[3])
 {
     double n;

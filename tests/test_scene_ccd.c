@@ -18,18 +18,8 @@
 
 #define PI 3.14159265358979323846
 
-static uint64_t rng_state = 0x6a09e667f3bcc909ull;
-static double urand(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
-static double srand1(void)
-{
-    return 2 * urand() - 1;
-}
+#define TEST_RAND_SEED 0x6a09e667f3bcc909ull
+#include "test_rand.h"
 
 static void random_rotation(double R[9], double max_angle)
 {

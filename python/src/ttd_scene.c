@@ -701,6 +701,28 @@ PyDoc_STRVAR(ttd_py_scene_set_poses_doc,
 "entries of removed ids are ignored). Every pose is checked before any is set: a refused\n"
 "pose leaves the scene as it was (ValueError naming the body).");
 
+/* After a call on one pose per body id (p, the argument `arg`) refused with st: the exception
+ * naming the first body whose pose the library's rule refuses, and why. 1 if one was named, 0
+ * if none was (an exception may still be set, e.g. out of memory). Under the scene's lock. */
+static int ttd_py_scene_name_refused(ttd_py_scene *s, size_t limit, PyArrayObject *p, int type, ttd_status st, const char *arg)
+{
+    const size_t bytes = type == NPY_DOUBLE ? sizeof(double) : sizeof(float);
+    int named = 0;
+    for (size_t id = 0; id < limit && !named; ++id) {
+        PyObject *m = PyList_GET_ITEM(s->meshes, id);
+        if (m == Py_None)
+            continue;
+        const void *pose = (const char *)PyArray_DATA(p) + id * 12 * bytes;
+        PyObject *what = PyUnicode_FromFormat("%s[%zu] (body %zu)", arg, id, id);
+        if (what == NULL)
+            break;
+        named = (st == TTD_ERR_BAD_POSE && ttd_py_scene_bad_rotation(pose, type, what)) ||
+                (st == TTD_ERR_COORDINATE_RANGE && ttd_py_scene_bad_range(((ttd_py_mesh *)m)->mesh, pose, type, what));
+        Py_DECREF(what);
+    }
+    return named;
+}
+
 static PyObject *ttd_py_scene_set_poses(PyObject *obj, PyObject *arg)
 {
     ttd_py_scene *s = (ttd_py_scene *)obj;
@@ -733,22 +755,7 @@ static PyObject *ttd_py_scene_set_poses(PyObject *obj, PyObject *arg)
         ttd_py_meshes_release(items, n);
     }
     if (st != TTD_OK) {
-        /* the first body whose pose the library's rule refuses */
-        const size_t bytes = type == NPY_DOUBLE ? sizeof(double) : sizeof(float);
-        int named = 0;
-        for (size_t id = 0; id < limit && !named; ++id) {
-            PyObject *m = PyList_GET_ITEM(s->meshes, id);
-            if (m == Py_None)
-                continue;
-            const void *pose = (const char *)PyArray_DATA(p) + id * 12 * bytes;
-            PyObject *what = PyUnicode_FromFormat("poses[%zu] (body %zu)", id, id);
-            if (what == NULL)
-                break;
-            named = (st == TTD_ERR_BAD_POSE && ttd_py_scene_bad_rotation(pose, type, what)) ||
-                    (st == TTD_ERR_COORDINATE_RANGE && ttd_py_scene_bad_range(((ttd_py_mesh *)m)->mesh, pose, type, what));
-            Py_DECREF(what);
-        }
-        if (!named && !PyErr_Occurred()) {
+        if (!ttd_py_scene_name_refused(s, limit, p, type, st, "poses") && !PyErr_Occurred()) {
             if (st == TTD_ERR_OUT_OF_MEMORY)
                 PyErr_NoMemory();
             else
@@ -1339,22 +1346,7 @@ static PyObject *ttd_py_scene_ccd(PyObject *obj, PyObject *args, PyObject *kwarg
         ttd_py_meshes_release(items, nm);
     }
     if (st == TTD_ERR_BAD_POSE || st == TTD_ERR_COORDINATE_RANGE) {
-        /* the first body whose t = 1 pose the library's rule refuses */
-        const size_t bytes = type == NPY_DOUBLE ? sizeof(double) : sizeof(float);
-        int named = 0;
-        for (size_t id = 0; id < limit && !named; ++id) {
-            PyObject *m = PyList_GET_ITEM(s->meshes, id);
-            if (m == Py_None)
-                continue;
-            const void *pose = (const char *)PyArray_DATA(p) + id * 12 * bytes;
-            PyObject *what = PyUnicode_FromFormat("poses_t1[%zu] (body %zu)", id, id);
-            if (what == NULL)
-                break;
-            named = (st == TTD_ERR_BAD_POSE && ttd_py_scene_bad_rotation(pose, type, what)) ||
-                    (st == TTD_ERR_COORDINATE_RANGE && ttd_py_scene_bad_range(((ttd_py_mesh *)m)->mesh, pose, type, what));
-            Py_DECREF(what);
-        }
-        if (!named && !PyErr_Occurred())
+        if (!ttd_py_scene_name_refused(s, limit, p, type, st, "poses_t1") && !PyErr_Occurred())
             PyErr_Format(PyExc_ValueError, "poses_t1: %s", ttd_status_string(st));
     } else if (st != TTD_OK) {
         ttd_py_scene_query_raise(st, TTD_PY_SCOLLIDE, &opt, delta, type);
