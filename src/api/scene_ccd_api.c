@@ -157,7 +157,8 @@ static int sweep(const ttd_scene *s, const double *box, const double *band, doub
         free(v);
         return 0;
     }
-    qsort(v, count, sizeof *v, pair_cmp);
+    if (count > 1) /* v is NULL when no pair is near: qsort must not be given it */
+        qsort(v, count, sizeof *v, pair_cmp);
     *out = v;
     *n = count;
     return 1;
