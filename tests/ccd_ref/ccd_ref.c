@@ -252,10 +252,13 @@ static int isolate(const poly *p, root *out, poly *sq_out)
     p_squarefree(&sq, p);
     sturm st;
     sturm_make(&st, &sq);
-    /* A stack of intervals (lo, hi] with their counts. */
-    mpq_t los[64], his[64];
-    int top = 0;
-    for (int i = 0; i < 64; ++i) {
+    /* A stack of intervals (lo, hi]. Close roots need deep bisection (two roots 2^-k apart
+     * need k levels, and each level leaves one interval waiting), so the stack grows. */
+    int cap = 64, top = 0;
+    mpq_t *los = malloc((size_t)cap * sizeof(mpq_t)), *his = malloc((size_t)cap * sizeof(mpq_t));
+    if (!los || !his)
+        abort();
+    for (int i = 0; i < cap; ++i) {
         mpq_init(los[i]);
         mpq_init(his[i]);
     }
@@ -305,6 +308,19 @@ static int isolate(const poly *p, root *out, poly *sq_out)
             }
             ++n;
         } else if (c > 1) {
+            if (top + 2 > cap) {
+                const int ncap = 2 * cap;
+                /* GMP values move bitwise: their limbs stay where they are. */
+                los = realloc(los, (size_t)ncap * sizeof(mpq_t));
+                his = realloc(his, (size_t)ncap * sizeof(mpq_t));
+                if (!los || !his)
+                    abort();
+                for (int i = cap; i < ncap; ++i) {
+                    mpq_init(los[i]);
+                    mpq_init(his[i]);
+                }
+                cap = ncap;
+            }
             mpq_add(mid, lo, hi);
             mpq_div_2exp(mid, mid, 1);
             mpq_set(los[top], mid);
@@ -317,10 +333,12 @@ static int isolate(const poly *p, root *out, poly *sq_out)
         mpq_clear(lo);
         mpq_clear(hi);
     }
-    for (int i = 0; i < 64; ++i) {
+    for (int i = 0; i < cap; ++i) {
         mpq_clear(los[i]);
         mpq_clear(his[i]);
     }
+    free(los);
+    free(his);
     mpq_clear(zero);
     mpq_clear(one);
     mpq_clear(mid);
