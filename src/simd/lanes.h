@@ -46,14 +46,8 @@
 
 #include <stddef.h>
 
-/* Qualifiers of the functions a CUDA kernel calls (the lane vocabulary and the kernels' helpers):
- * host and device code under nvcc, plain C otherwise. TTDW_FN is `static inline` for both. */
-#if defined(__CUDACC__)
-#define TTD_DEVICE __host__ __device__
-#else
-#define TTD_DEVICE
-#endif
-#define TTDW_FN static inline TTD_DEVICE
+/* TTD_DEVICE and TTDW_FN: the qualifiers of functions the CPU and a CUDA kernel share. */
+#include "core/device_fn.h"
 
 #if defined(TTDW_USE_SSE2)
 #include "simd/lanes_sse2.h"
