@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "api/prepare.h"
+#include "core/rotation.h"
 #include "mesh/mesh.h"
 #include "points/points.h"
 #include "ttd/ttd.h"
@@ -141,16 +142,7 @@ static double pose_defect(const void *poses, size_t i, int bytes)
             return -1;
     }
     const double r[9] = {p[0], p[1], p[2], p[4], p[5], p[6], p[8], p[9], p[10]};
-    double defect = 0;
-    for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            const double dev = fabs(g - (a == b ? 1.0 : 0.0));
-            defect = dev > defect ? dev : defect;
-        }
-    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                       r[2] * (r[3] * r[7] - r[4] * r[6]);
-    return det > 0 ? defect : -1;
+    return ttd_rotation_det(r) > 0 ? ttd_rotation_defect(r) : -1;
 }
 
 /* A bound on |R x + t| over b's vertices x for pose i of defect `defect`: they lie within

@@ -27,6 +27,7 @@
  * of work. On the host the vote is a pseudo-random draw (gw_walk.vote), so the tests run the
  * same walk in several orders and require the same answers. */
 
+#include "core/rotation.h"
 #include "ttd/ttd_gpu.h"
 
 /* The walk's stack: a walk opens one box of an item into at most TTD_NODE_WIDTH children, each a
@@ -114,7 +115,7 @@ TTDW_FN int32_t gw_tree_height(const ttd_node *nodes, int32_t n)
 }
 
 /* How far the 3x3 part of pose p is from a rotation, max |R^T R - I|, or -1 when a number is
- * not finite or det R <= 0 (src/api/mesh_api.c's pose_defect, the same operations). */
+ * not finite or det R <= 0 (src/api/mesh_api.c's pose_defect: both through core/rotation.h). */
 TTDW_FN double gw_pose_defect(const real *pose)
 {
     double p[12];
@@ -124,16 +125,7 @@ TTDW_FN double gw_pose_defect(const real *pose)
             return -1;
     }
     const double r[9] = {p[0], p[1], p[2], p[4], p[5], p[6], p[8], p[9], p[10]};
-    double defect = 0;
-    for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            const double dev = fabs(g - (a == b ? 1.0 : 0.0));
-            defect = dev > defect ? dev : defect;
-        }
-    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                       r[2] * (r[3] * r[7] - r[4] * r[6]);
-    return det > 0 ? defect : -1;
+    return ttd_rotation_det(r) > 0 ? ttd_rotation_defect(r) : -1;
 }
 
 /* The CPU's pose check (ttd_check_poses): the defect, or -1 when the CPU entry refuses the pose

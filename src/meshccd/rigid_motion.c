@@ -4,21 +4,12 @@
  * any point's speed, so the motion only has to be this one, evaluated the same way everywhere. */
 #include "meshccd/rigid_motion.h"
 
+#include "core/rotation.h"
+
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
-/* The largest entry of |R^T R - I|. */
-static double rotation_defect(const double r[9])
-{
-    double defect = 0;
-    for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-            const double g = r[a] * r[b] + r[3 + a] * r[3 + b] + r[6 + a] * r[6 + b];
-            defect = fmax(defect, fabs(g - (a == b)));
-        }
-    return defect;
-}
 
 /* The pose checks accept R^T R - I up to 1e-6, but the queries use R^T as R's inverse within a
  * margin of about 2^-40 of the scene's size: a rotation further off than a few ulps is replaced
@@ -27,7 +18,7 @@ static double rotation_defect(const double r[9])
  * kept bit for bit. */
 static void orthonormalise(double r[9])
 {
-    for (int it = 0; it < 4 && rotation_defect(r) > 16 * DBL_EPSILON; ++it) {
+    for (int it = 0; it < 4 && ttd_rotation_defect(r) > 16 * DBL_EPSILON; ++it) {
         double g[9], n[9];
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
@@ -147,7 +138,7 @@ double rigid_radius(const void *x, size_t n, int bytes)
 
 double rigid_speed(const rigid_motion *m, double radius)
 {
-    const double defect = rotation_defect(m->r0);
+    const double defect = ttd_rotation_defect(m->r0);
     double d2 = 0;
     for (int i = 0; i < 3; ++i) {
         const double d = m->t1[i] - m->t0[i];
