@@ -219,7 +219,7 @@ static int signed_case(int gi, ttd_mesh *md, ttd_mesh *mf, size_t n, const doubl
     ttd_point_result_d *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
     ttd_point_result_f *want_f = malloc(n * sizeof *want_f), *got_f = malloc(n * sizeof *got_f);
     ENSURE(wd && gd && pf && wf && gf && want && got && want_f && got_f);
-    for (size_t k = 0; k < 3 * n; ++k)
+    for (size_t k = 0; gm_float[gi] && k < 3 * n; ++k) /* (the scaled cubes' points are past float's range) */
         pf[k] = (float)p[k];
     const double bounds[3] = {INFINITY, 0.05 * s, 0};
     for (int b = 0; b < 3; ++b) {
