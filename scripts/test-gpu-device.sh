@@ -21,7 +21,11 @@
 #      10,000,000: on vertices, near, in the box, far) through ttd_gpu_points_closest_d/f against
 #      ttd_points_closest, whole results bit for bit, and points/s of both; and the entries'
 #      argument checks on the device (the host walks' own tests need no device: scripts/test.sh).
-# Signed distances have no device path yet: nothing to run for them.
+#   6. test_gpu_signed: signed distances on the device (docs/gpu.md, section 6): the entries'
+#      argument checks on device meshes, then TTD_GPU_POINTS points (default 10,000,000) on the
+#      same rough sphere through ttd_gpu_points_signed_distance_d/f against
+#      ttd_points_signed_distance on this machine's cores, distances and whole results bit for bit
+#      (the inside flag included), and points/s of both.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -57,6 +61,14 @@ fi
     done
     exit $rc
 ) | tee "$out/test_gpu_walk.txt" || status=1
+[ -x "$build/tests/test_gpu_signed" ] || { echo "test-gpu-device.sh: no $build/tests/test_gpu_signed" >&2; status=1; }
+(
+    rc=0
+    for t in signed_entries_without_device signed_device; do
+        TTD_GPU_POINTS=${TTD_GPU_POINTS:-10000000} "$build/tests/test_gpu_signed" $t 2>&1 || rc=1
+    done
+    exit $rc
+) | tee "$out/test_gpu_signed.txt" || status=1
 if [ "${TTD_NCU:-0}" = 1 ] && command -v ncu > /dev/null; then
     # the distance-only kernel's first launch in each precision, on 2^20 pairs: occupancy, pipes,
     # stalls (the kernels are told apart by their mangled names: ...PKd... double, ...PKf... float)

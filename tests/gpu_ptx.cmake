@@ -4,8 +4,10 @@
 # section 2): no multiply-add or float FMA (contraction: the kernels' one explicit FMA is
 # double, in kx_prod_err), no approximate division, reciprocal or square root, no flush to
 # zero; and the double FMAs stay the explicit ones (12 per exact group inlined: the pair kernels
-# and the mesh pose kernels of gpu_walk_impl.h inline 6 in gpu_d.ptx, 72 FMAs; contraction makes
-# hundreds: 790 in the pair kernels alone with -fmad=true).
+# and the mesh pose kernels of gpu_walk_impl.h inline 6 in gpu_d.ptx, 72 FMAs; the signed-distance
+# kernel's ray count adds one in each file, its exact product error kept out of line,
+# points/ray_impl.h's ray_prod_err; contraction makes hundreds: 790 in the pair kernels alone with
+# -fmad=true).
 string(REPLACE "|" ";" files "${PTX}")
 foreach(f ${files})
   set(file_failed 0)

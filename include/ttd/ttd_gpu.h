@@ -139,6 +139,33 @@ TTD_API ttd_gpu_status ttd_gpu_points_closest_d(const ttd_gpu_mesh *mesh, size_t
 TTD_API ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
                                                 float upper_bound, ttd_point_result_f *out, void *stream);
 
+/* ---- Signed distances of points on the device (docs/gpu.md, section 6) -------------------- */
+
+/// A point whose side the device could not decide as the CPU does (the exact ray count could not
+/// be made exact: products below the subnormal range, or a hierarchy too deep for its stack;
+/// there the CPU goes on with the hierarchical winding number): set in its result's flags, its
+/// signed distance NaN (the result's distance and closest point are still the CPU's).
+#define TTD_GPU_POINT_SIDE_REFUSED 0x80u
+
+/// For each of n points (3n reals in device memory, the mesh's frame), the signed distance into
+/// distance[i] and/or the closest point into results[i] (device memory; either may be NULL, not
+/// both), one CUDA thread a point, asynchronous on stream: ttd_points_signed_distance_d's answer
+/// (pose NULL) bit for bit, TTD_POINT_INSIDE included (results as ttd_gpu_points_closest_d's:
+/// node_tests and triangle_tests count the device's work). The side is the CPU's exact ray count
+/// (points/ray_impl.h, one source): the mesh must be closed, or open with a boundary that cancels
+/// by coordinates, or one triangle (unsigned), and known to be so when uploaded (run one
+/// ttd_points_signed_distance_d on the CPU, then upload); any other mesh, like a NaN or negative
+/// upper_bound or the other precision, gives TTD_GPU_ERR_BAD_ARGUMENT (an open mesh's winding
+/// number goes through atan2, whose last bits differ between the host's libm and CUDA).
+/// A point the ray cannot count exactly gets TTD_GPU_POINT_SIDE_REFUSED. n = 0 does nothing.
+TTD_API ttd_gpu_status ttd_gpu_points_signed_distance_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                        double upper_bound, double *distance,
+                                                        ttd_point_result_d *results, void *stream);
+/// ttd_gpu_points_signed_distance_d in single precision.
+TTD_API ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                        float upper_bound, float *distance,
+                                                        ttd_point_result_f *results, void *stream);
+
 #ifdef __cplusplus
 }
 #endif

@@ -173,23 +173,32 @@ def test_mesh_queries_refuse_bad_arguments_before_launching(gpu_library, query):
             query(a, b, good, bad)
 
 
-def test_closest_points_refuse_bad_arguments_before_launching(gpu_library):
+@pytest.mark.parametrize("query", [tc.closest_points, tc.signed_distance])
+def test_point_queries_refuse_bad_arguments_before_launching(gpu_library, query):
     m = _NotUploaded()
     good = FakeDeviceArray((5, 3))
     with pytest.raises(TypeError, match="not an array in GPU memory"):
-        tc.closest_points(m, np.zeros((5, 3)))
+        query(m, np.zeros((5, 3)))
     with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
-        tc.closest_points(m, FakeDeviceArray((5, 4)))
+        query(m, FakeDeviceArray((5, 4)))
     with pytest.raises(TypeError, match="float64 or float32"):
-        tc.closest_points(m, FakeDeviceArray((5, 3), "<i4"))
+        query(m, FakeDeviceArray((5, 3), "<i4"))
     with pytest.raises(ValueError, match="C-contiguous"):
-        tc.closest_points(m, FakeDeviceArray((5, 3), "<f8", (48, 8)))
+        query(m, FakeDeviceArray((5, 3), "<f8", (48, 8)))
     with pytest.raises(TypeError, match="ttd.cuda.Mesh"):
-        tc.closest_points(object(), good)
+        query(object(), good)
     with pytest.raises(TypeError, match="need a mesh of that dtype"):
-        tc.closest_points(m, FakeDeviceArray((5, 3), "<f4"))
+        query(m, FakeDeviceArray((5, 3), "<f4"))
     with pytest.raises(ValueError, match="closed"):
-        tc.closest_points(_NotUploaded(closed=True), good)
+        query(_NotUploaded(closed=True), good)
     for bad in (-1.0, float("nan")):
         with pytest.raises(ValueError, match="must be >= 0"):
-            tc.closest_points(m, good, bad)
+            query(m, good, bad)
+
+
+def test_signed_distance_constants_match_the_header():
+    # include/ttd/ttd_gpu.h's TTD_GPU_POINT_SIDE_REFUSED; ttd.h's TTD_POINT_* flags use bits 0-4
+    import pathlib
+    header = pathlib.Path(__file__).resolve().parents[2] / "include" / "ttd" / "ttd_gpu.h"
+    assert f"#define TTD_GPU_POINT_SIDE_REFUSED 0x{tc.POINT_SIDE_REFUSED:x}u" in header.read_text()
+    assert tc.POINT_SIDE_REFUSED > 0x10

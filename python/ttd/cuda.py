@@ -26,6 +26,8 @@ Meshes under many poses (docs/gpu.md, section 6):
     r = ttd.cuda.mesh_distance(a, b, poses)      # r.distance: (k,), ttd.mesh_distance's bits
     c = ttd.cuda.mesh_collide(a, b, poses, 0.0)  # c.hit: (k,) int32, 0 or 1 (0x8000: pose refused)
     p = ttd.cuda.closest_points(a, cp.asarray(X))  # (n, 3) points: p.distance (n,), ttd.closest_points' bits
+    s = ttd.cuda.signed_distance(a, cp.asarray(X))  # s.distance (n,), ttd.signed_distance's bits
+                                                    # (a closed mesh, or one triangle; see signed_distance)
 
 A Mesh needs libttd too (to build the hierarchy as the CPU does): TTD_LIBRARY (a path), else
 next to libttd_gpu, else the system's library path.
@@ -37,10 +39,13 @@ import os
 import pathlib
 
 __all__ = ["CudaUnavailableError", "available", "info", "distance", "Mesh", "mesh_distance", "mesh_collide",
-           "closest_points", "POSE_REFUSED"]
+           "closest_points", "signed_distance", "POSE_REFUSED", "POINT_SIDE_REFUSED"]
 
 # include/ttd/ttd_gpu.h, TTD_GPU_POSE_REFUSED: a pose the CPU entry would refuse (flags bit; hit value)
 POSE_REFUSED = 0x8000
+# include/ttd/ttd_gpu.h, TTD_GPU_POINT_SIDE_REFUSED: a point whose side the device could not decide as
+# the CPU does (flags bit of its record; its signed distance NaN)
+POINT_SIDE_REFUSED = 0x80
 
 
 class CudaUnavailableError(RuntimeError):
@@ -101,6 +106,11 @@ def _library():
     lib.ttd_gpu_mesh_free.argtypes = [ctypes.c_void_p]
     lib.ttd_gpu_mesh_free.restype = None
     for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
+        fn = getattr(lib, f"ttd_gpu_points_signed_distance_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, real, ctypes.c_void_p, ctypes.c_void_p,
+                       ctypes.c_void_p]
+        fn.restype = ctypes.c_int
+    for name, real in (("d", ctypes.c_double), ("f", ctypes.c_float)):
         for query in ("distance", "collide"):
             fn = getattr(lib, f"ttd_gpu_mesh_{query}_{name}")
             fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, real, ctypes.c_void_p,
@@ -145,6 +155,10 @@ def _cpu_library():
         fn = getattr(lib, f"ttd_points_closest_{name}")
         fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, real,
                        ctypes.c_void_p]
+        fn.restype = ctypes.c_int
+        fn = getattr(lib, f"ttd_points_signed_distance_{name}")
+        fn.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, real,
+                       ctypes.c_void_p, ctypes.c_void_p]
         fn.restype = ctypes.c_int
     lib.ttd_mesh_destroy.argtypes = [ctypes.c_void_p]
     lib.ttd_mesh_destroy.restype = None
@@ -338,11 +352,12 @@ class Mesh:
         if status != 0:
             raise ValueError(f"ttd_mesh_create: {cpu.ttd_status_string(status).decode(errors='replace')}")
         try:
-            # one point query makes the mesh's point data, so that the upload carries it
+            # one signed distance makes the mesh's point data and finds whether it is closed (and an open
+            # mesh's caps), so that the upload carries what the point queries and their signs need
             point = np.zeros(3, dtype=self.dtype)
             result = np.zeros(_POINT_RESULT[self.dtype.str], dtype=np.uint8)
-            closest = cpu.ttd_points_closest_d if self.dtype == np.float64 else cpu.ttd_points_closest_f
-            closest(None, host, 1, point.ctypes.data, None, float("inf"), result.ctypes.data)
+            signed = cpu.ttd_points_signed_distance_d if self.dtype == np.float64 else cpu.ttd_points_signed_distance_f
+            signed(None, host, 1, point.ctypes.data, None, float("inf"), None, result.ctypes.data)
             handle = ctypes.c_void_p()
             status = gpu.ttd_gpu_mesh_upload(host, ctypes.byref(handle))
         finally:
@@ -486,14 +501,9 @@ MeshClosestGPU.__doc__ = """ttd.cuda.closest_points's result, on the device: dis
 whole records (n, 72) uint8 (float32: (n, 44)) in ttd_point_result_d's (_f's) layout."""
 
 
-def closest_points(mesh, points, upper_bound=float("inf")):
-    """The closest point of Mesh mesh to each of n points (a GPU array (n, 3) of the mesh's dtype,
-    in the mesh's frame), one GPU thread a point, on the points' library's current stream: each
-    result has the bits ttd.closest_points gives (ties to the smallest triangle), NaN for a
-    non-finite point, inf past upper_bound."""
+def _points_args(mesh, points, upper_bound, what):
     import numpy as np
 
-    lib = _library()
     iface, holder = _interface(points, "points")
     typestr, shape = iface["typestr"], tuple(iface["shape"])
     if typestr not in ("<f8", "<f4"):
@@ -503,15 +513,24 @@ def closest_points(mesh, points, upper_bound=float("inf")):
     if not _contiguous(iface):
         raise ValueError("points must be C-contiguous")
     if not isinstance(mesh, Mesh):
-        raise TypeError("closest_points: mesh must be a ttd.cuda.Mesh")
+        raise TypeError(f"{what}: mesh must be a ttd.cuda.Mesh")
     if mesh._handle is None:
-        raise ValueError("closest_points: the mesh was closed")
+        raise ValueError(f"{what}: the mesh was closed")
     if mesh.dtype != np.dtype(typestr):
-        raise TypeError(f"closest_points: points of {np.dtype(typestr)} need a mesh of that dtype (got {mesh.dtype})")
+        raise TypeError(f"{what}: points of {np.dtype(typestr)} need a mesh of that dtype (got {mesh.dtype})")
     limit = float(upper_bound)
     if not limit >= 0:
-        raise ValueError(f"closest_points: the bound must be >= 0 (inf for none), not {limit}")
-    n = shape[0]
+        raise ValueError(f"{what}: the bound must be >= 0 (inf for none), not {limit}")
+    return iface, holder, typestr, shape[0], limit
+
+
+def closest_points(mesh, points, upper_bound=float("inf")):
+    """The closest point of Mesh mesh to each of n points (a GPU array (n, 3) of the mesh's dtype,
+    in the mesh's frame), one GPU thread a point, on the points' library's current stream: each
+    result has the bits ttd.closest_points gives (ties to the smallest triangle), NaN for a
+    non-finite point, inf past upper_bound."""
+    lib = _library()
+    iface, holder, typestr, n, limit = _points_args(mesh, points, upper_bound, "closest_points")
     records = _records(holder, n, _POINT_RESULT[typestr])
     if n > 0:
         rec_iface, _ = _interface(records, "records")
@@ -520,3 +539,33 @@ def closest_points(mesh, points, upper_bound=float("inf")):
         if status != _OK:
             _raise_status(lib, status, "ttd_gpu_points_closest")
     return MeshClosestGPU(_column(records, 0, 8 if typestr == "<f8" else 4, typestr[1:]), records)
+
+
+MeshSignedGPU = collections.namedtuple("MeshSignedGPU", ["distance", "records"])
+MeshSignedGPU.__doc__ = """ttd.cuda.signed_distance's result, on the device: distance (n,), negative
+inside, and the n closest-point records (n, 72) uint8 (float32: (n, 44)) in ttd_point_result_d's
+(_f's) layout, TTD_POINT_INSIDE (4) set for the points inside."""
+
+
+def signed_distance(mesh, points, upper_bound=float("inf")):
+    """The signed distance of each of n points (a GPU array (n, 3) of the mesh's dtype, in the
+    mesh's frame) to Mesh mesh, negative inside, one GPU thread a point, on the points' library's
+    current stream: the bits ttd.signed_distance gives, the side decided by the CPU's exact ray
+    count. The mesh must be closed (or open with a boundary that cancels by coordinates, or one
+    triangle: unsigned); other open meshes raise ValueError (their winding number is a sum of
+    atan2 values whose last bits differ between the host's libm and CUDA). A point whose ray
+    count cannot be made exact reads NaN, with POINT_SIDE_REFUSED in its record's flags."""
+    lib = _library()
+    iface, holder, typestr, n, limit = _points_args(mesh, points, upper_bound, "signed_distance")
+    nbytes = 8 if typestr == "<f8" else 4
+    records = _records(holder, n, _POINT_RESULT[typestr])
+    out = _records(holder, n, nbytes)
+    if n > 0:
+        rec_iface, _ = _interface(records, "records")
+        out_iface, _ = _interface(out, "distances")
+        fn = lib.ttd_gpu_points_signed_distance_d if typestr == "<f8" else lib.ttd_gpu_points_signed_distance_f
+        status = fn(mesh._handle, n, iface["data"][0], limit, out_iface["data"][0], rec_iface["data"][0],
+                    _stream_of(holder))
+        if status != _OK:
+            _raise_status(lib, status, "ttd_gpu_points_signed_distance")
+    return MeshSignedGPU(_column(out, 0, nbytes, typestr[1:]), records)

@@ -268,6 +268,7 @@ struct ttd_gpu_mesh {
     ttd_gpu_mesh_view view;
     void *nodes, *verts, *tris;
     void *pnodes, *blocks; /* the point data, when the mesh had it */
+    void *rnodes;          /* signed distances: the ray nodes, with the point data */
 };
 
 extern "C" void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
@@ -279,6 +280,7 @@ extern "C" void ttd_gpu_mesh_free(ttd_gpu_mesh *mesh)
     cudaFree(mesh->tris);
     cudaFree(mesh->pnodes);
     cudaFree(mesh->blocks);
+    cudaFree(mesh->rnodes);
     cudaGetLastError();
     free(mesh);
 }
@@ -313,10 +315,19 @@ extern "C" ttd_gpu_status ttd_gpu_mesh_upload(const ttd_mesh *mesh, ttd_gpu_mesh
         if (err == cudaSuccess)
             err = cudaMemcpy(*dst[i], src[i], sizes[i], cudaMemcpyHostToDevice);
     }
+    /* signed distances: the ray nodes, one for each point node */
+    if (err == cudaSuccess && h.rnodes != NULL && h.npnodes > 0) {
+        err = cudaMalloc(&g->rnodes, h.npnodes * h.rnode_size);
+        if (err == cudaSuccess)
+            err = cudaMemcpy(g->rnodes, h.rnodes, h.npnodes * h.rnode_size, cudaMemcpyHostToDevice);
+    }
     if (err != cudaSuccess) {
         ttd_gpu_mesh_free(g);
         return gpu_launched((int)err);
     }
+    g->view.rnodes = g->rnodes;
+    g->view.coord_max = h.coord_max;
+    g->view.sign_mode = g->rnodes != NULL ? h.sign_mode : 0;
     g->view.bytes = h.bytes;
     g->view.nodes = g->nodes;
     g->view.verts = g->verts;
@@ -425,4 +436,47 @@ extern "C" ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, siz
     if (st != TTD_GPU_OK || n == 0)
         return st;
     return gpu_launched(ttd_gpu_launch_points_f(&mesh->view, n, points, upper_bound, out, stream));
+}
+
+/* ---- signed distances of points ---- */
+
+/* The checks of a signed distance: those of a point query, either output, and a mesh whose side
+ * the device decides as the CPU does (gpu_sign_mode.h). */
+static ttd_gpu_status signed_checks(const ttd_gpu_mesh *m, size_t n, const void *points, double upper_bound,
+                                    const void *distance, const void *results, int bytes)
+{
+    if (!m || !points || (!distance && !results))
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (!(upper_bound >= 0) || m->view.bytes != bytes || m->view.pnodes == NULL || m->view.sign_mode == 0)
+        return TTD_GPU_ERR_BAD_ARGUMENT;
+    if (n > SIZE_MAX / (3 * (size_t)bytes) / 2)
+        return TTD_GPU_ERR_NOT_DEVICE_MEMORY;
+    if (n == 0)
+        return TTD_GPU_OK;
+    ttd_gpu_status st = gpu_check_pointer(points);
+    if (st == TTD_GPU_OK && distance)
+        st = gpu_check_pointer(distance);
+    if (st == TTD_GPU_OK && results)
+        st = gpu_check_pointer(results);
+    return st;
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_signed_distance_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                           double upper_bound, double *distance,
+                                                           ttd_point_result_d *results, void *stream)
+{
+    const ttd_gpu_status st = signed_checks(mesh, n, points, upper_bound, distance, results, 8);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_signed_d(&mesh->view, n, points, upper_bound, distance, results, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                           float upper_bound, float *distance,
+                                                           ttd_point_result_f *results, void *stream)
+{
+    const ttd_gpu_status st = signed_checks(mesh, n, points, upper_bound, distance, results, 4);
+    if (st != TTD_GPU_OK || n == 0)
+        return st;
+    return gpu_launched(ttd_gpu_launch_signed_f(&mesh->view, n, points, upper_bound, distance, results, stream));
 }

@@ -48,3 +48,11 @@ extern "C" int ttd_gpu_min_blocks(void)
 {
     return TTD_GPU_MIN_BLOCKS;
 }
+
+/* ---- signed distances of points ---- */
+
+extern "C" int ttd_gpu_launch_signed_d(const ttd_gpu_mesh_view *m, size_t n, const double *points, double upper_bound,
+                                       double *distance, ttd_point_result_d *out, void *stream)
+{
+    return gpu_launch_signed(m, n, points, upper_bound, distance, out, stream);
+}

@@ -32,3 +32,11 @@ extern "C" int ttd_gpu_kernel_registers_f(void)
     cudaFuncAttributes a;
     return cudaFuncGetAttributes(&a, gpu_exact_dist_kernel) == cudaSuccess ? a.numRegs : 0;
 }
+
+/* ---- signed distances of points ---- */
+
+extern "C" int ttd_gpu_launch_signed_f(const ttd_gpu_mesh_view *m, size_t n, const float *points, float upper_bound,
+                                       float *distance, ttd_point_result_f *out, void *stream)
+{
+    return gpu_launch_signed(m, n, points, upper_bound, distance, out, stream);
+}

@@ -37,6 +37,11 @@ typedef struct ttd_gpu_mesh_view {
     const void *pnodes;    /* the point queries' data (points/points.h), or NULL when the mesh had none */
     const void *blocks;
     double pscale, pstretch;
+    /* signed distances (gpu_signed_impl.h): the ray nodes, the largest vertex coordinate, and how
+     * the side is decided (gpu_sign_mode.h: 0 refused, 1 unsigned, 2 the ray count) */
+    const void *rnodes;
+    double coord_max;
+    int sign_mode;
 } ttd_gpu_mesh_view;
 
 /* A mesh on the host as an upload reads it (gpu_mesh.c, from mesh/mesh.h's struct ttd_mesh). */
@@ -52,6 +57,11 @@ typedef struct ttd_gpu_mesh_host {
     const void *pnodes, *blocks;
     size_t npnodes, pnode_size, blocks_bytes;
     double pscale, pstretch;
+    /* signed distances: the ray nodes (npnodes of rnode_size), coord_max, sign_mode as the view's */
+    const void *rnodes;
+    size_t rnode_size;
+    double coord_max;
+    int sign_mode;
 } ttd_gpu_mesh_host;
 
 void ttd_gpu_mesh_describe(const ttd_mesh *m, ttd_gpu_mesh_host *d);
@@ -72,6 +82,13 @@ int ttd_gpu_launch_points_d(const ttd_gpu_mesh_view *m, size_t n, const double *
                             ttd_point_result_d *out, void *stream);
 int ttd_gpu_launch_points_f(const ttd_gpu_mesh_view *m, size_t n, const float *points, float upper_bound,
                             ttd_point_result_f *out, void *stream);
+
+/* n points' signed distances on mesh m (its point data and ray nodes uploaded, sign_mode 1 or 2),
+ * one thread each; distance or out may be NULL */
+int ttd_gpu_launch_signed_d(const ttd_gpu_mesh_view *m, size_t n, const double *points, double upper_bound,
+                            double *distance, ttd_point_result_d *out, void *stream);
+int ttd_gpu_launch_signed_f(const ttd_gpu_mesh_view *m, size_t n, const float *points, float upper_bound,
+                            float *distance, ttd_point_result_f *out, void *stream);
 
 /* 0 (cudaSuccess) when the current device runs the kernels built here, else the cudaError_t of
  * cudaFuncGetAttributes on one of them (no kernel image for the device, no driver, ...) */

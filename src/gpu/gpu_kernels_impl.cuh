@@ -22,6 +22,7 @@
 #include "gpu/gpu_pair_impl.h"
 #include "gpu/gpu_walk_impl.h"
 #include "gpu/gpu_points_impl.h"
+#include "gpu/gpu_signed_impl.h"
 #include "gpu/gpu_internal.h"
 
 /* Threads a block and the blocks an SM must hold at once (__launch_bounds__'s second argument,
@@ -159,5 +160,41 @@ static int gpu_launch_points(const ttd_gpu_mesh_view *v, size_t n, const real *p
     m.scale = v->pscale;
     m.stretch = v->pstretch;
     gpu_points_closest_kernel<<<gpu_grid(n), GPU_BLOCK, 0, (cudaStream_t)stream>>>(m, n, points, upper_bound, out);
+    return (int)cudaGetLastError();
+}
+
+/* ---- signed distances of points (gpu_signed_impl.h) ---- */
+
+__global__ void GPU_BOUNDS gpu_points_signed_kernel(gs_mesh m, size_t n, const real *points, real upper_bound,
+                                                    real *distance, gp_point_result *out)
+{
+    const size_t stride = (size_t)gridDim.x * blockDim.x;
+    for (size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x; i < n; i += stride) {
+        gp_point_result r;
+        gs_signed(&m, points + 3 * i, upper_bound, distance ? &distance[i] : NULL, &r);
+        if (out)
+            out[i] = r;
+    }
+}
+
+static int gpu_launch_signed(const ttd_gpu_mesh_view *v, size_t n, const real *points, real upper_bound,
+                             real *distance, gp_point_result *out, void *stream)
+{
+    gs_mesh m;
+    m.closest.pnodes = (const ttd_pnode *)v->pnodes;
+    m.closest.blocks = (const real *)v->blocks;
+    for (int i = 0; i < 3; ++i)
+        m.closest.origin[i] = m.ray.origin[i] = v->origin[i];
+    m.closest.radius = m.ray.radius = v->radius;
+    m.closest.scale = m.ray.scale = v->pscale;
+    m.closest.stretch = v->pstretch;
+    m.ray.rnodes = (const ttd_rnode *)v->rnodes;
+    m.ray.verts = v->verts;
+    m.ray.tris = v->tris;
+    m.ray.bytes = v->bytes;
+    m.ray.coord_max = v->coord_max;
+    m.mode = v->sign_mode;
+    gpu_points_signed_kernel<<<gpu_grid(n), GPU_BLOCK, 0, (cudaStream_t)stream>>>(m, n, points, upper_bound, distance,
+                                                                                  out);
     return (int)cudaGetLastError();
 }

@@ -6,6 +6,7 @@
 #include "core/point_layout.h"
 #include "mesh/mesh.h"
 #include "points/points.h"
+#include "gpu/gpu_sign_mode.h"
 
 /* node levels below slot 0 of node n (0: its children are triangles) */
 static int32_t tree_height_d(const ttd_node_d *nodes, int32_t n)
@@ -53,4 +54,9 @@ void ttd_gpu_mesh_describe(const ttd_mesh *m, ttd_gpu_mesh_host *d)
     d->blocks_bytes = pd ? pd->nblocks * TTD_PT_ROWS * TTD_PT_LANES * (size_t)m->bytes : 0;
     d->pscale = pd ? pd->scale : 0;
     d->pstretch = pd ? pd->stretch : 0;
+    /* signed distances: the ray nodes, and how the side is decided (gpu_sign_mode.h) */
+    d->rnodes = pd ? pd->rnodes : NULL;
+    d->rnode_size = sizeof(ttd_rnode);
+    d->coord_max = pd ? pd->coord_max : 0;
+    d->sign_mode = ttd_gpu_sign_mode(m, pd);
 }

@@ -11,7 +11,7 @@ const char *ttd_gpu_status_string(ttd_gpu_status status)
     case TTD_GPU_ERR_NULL_POINTER: return "a required pointer was NULL";
     case TTD_GPU_ERR_NOT_DEVICE_MEMORY: return "an array is not memory the current CUDA device can access";
     case TTD_GPU_ERR_CUDA: return "the CUDA runtime reported an error";
-    case TTD_GPU_ERR_BAD_ARGUMENT: return "a bad argument: a NaN or negative bound or margin, meshes of two precisions, or a hierarchy too deep for the device walk";
+    case TTD_GPU_ERR_BAD_ARGUMENT: return "a bad argument: a NaN or negative bound or margin, meshes of two precisions, a hierarchy too deep for the device walk, or a mesh whose side the device cannot decide as the CPU does";
     }
     return "unknown status";
 }

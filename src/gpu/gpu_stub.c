@@ -96,3 +96,21 @@ ttd_gpu_status ttd_gpu_points_closest_f(const ttd_gpu_mesh *mesh, size_t n, cons
     (void)mesh, (void)n, (void)points, (void)upper_bound, (void)out, (void)stream;
     return TTD_GPU_ERR_NOT_BUILT;
 }
+
+/* ---- signed distances of points (ttd_gpu.h) ---- */
+
+ttd_gpu_status ttd_gpu_points_signed_distance_d(const ttd_gpu_mesh *mesh, size_t n, const double *points,
+                                                double upper_bound, double *distance, ttd_point_result_d *results,
+                                                void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)distance, (void)results, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}
+
+ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *mesh, size_t n, const float *points,
+                                                float upper_bound, float *distance, ttd_point_result_f *results,
+                                                void *stream)
+{
+    (void)mesh, (void)n, (void)points, (void)upper_bound, (void)distance, (void)results, (void)stream;
+    return TTD_GPU_ERR_NOT_BUILT;
+}

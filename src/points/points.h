@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "core/point_layout.h"
+#include "points/point_math.h"
 #include "engine/batch.h"
 #include "mesh/mesh.h"
 
@@ -38,31 +39,6 @@ enum {
     WM_I = 17,
     WM_COUNT = 18
 };
-
-/* x rounded to float downwards, upwards (|x| <= 2^100). The round trip goes through a volatile: the
- * rounding must really happen (docs/mesh-queries.md, 4.1, saw gcc drop it). */
-static inline float ttd_float_down(double x)
-{
-    volatile float f = (float)x;
-    float r = f;
-    if ((double)r > x) { /* one float step down: r is finite and nonzero here unless x rounds to 0 */
-        uint32_t b;
-        memcpy(&b, &r, sizeof b);
-        if (r > 0)
-            --b;
-        else if (r < 0)
-            ++b;
-        else
-            b = 0x80000001u; /* -0 -> the smallest negative subnormal */
-        memcpy(&r, &b, sizeof r);
-    }
-    return r;
-}
-
-static inline float ttd_float_up(double x)
-{
-    return -ttd_float_down(-x);
-}
 
 /* Meshes of at most this many triangles measure their points 8 at a time, one per lane, against
  * every triangle (points/closest_impl.h; docs/points.md, section 4). */
@@ -144,12 +120,6 @@ void ttd_points_ray_direction(const struct ttd_mesh *mesh, const ttd_points_data
 int ttd_points_ray_count(const struct ttd_mesh *mesh, const ttd_points_data *pd, ttd_ray_node_fn ray_node,
                          const double x[3], int k, int sigma, int *count);
 
-/* The larger of two numbers neither of which is NaN: fmax is a call into libm wherever the compiler
- * must keep its NaN rule, and the ray's and the solid angle's scalings take several per triangle. */
-static inline double ttd_max_nn(double a, double b)
-{
-    return a > b ? a : b;
-}
 
 /* The n points (3n reals, double when bytes is 8, else float, in the mesh's frame) in order along
  * a Morton curve over the mesh's box (points/order.c): a malloc'd array of n indices (free it), or

@@ -35,6 +35,14 @@ int ttd_cuda_host_closest_d(const struct ttd_mesh *m, size_t n, const double *po
                             ttd_point_result_d *out);
 int ttd_cuda_host_closest_f(const struct ttd_mesh *m, size_t n, const float *points, float upper_bound,
                             ttd_point_result_f *out);
+/* The signed distance on the host build of the device code (src/gpu/gpu_signed_impl.h), point i as
+ * thread i would, on the mesh's point data as the CPU made it: the sign mode the device would use
+ * (1 unsigned, 2 the ray count), 0 where the device entry would refuse the mesh, -1 when the point
+ * data cannot be made. distance may be NULL. */
+int ttd_cuda_host_signed_d(const struct ttd_mesh *m, size_t n, const double *points, double upper_bound,
+                           double *distance, ttd_point_result_d *out);
+int ttd_cuda_host_signed_f(const struct ttd_mesh *m, size_t n, const float *points, float upper_bound,
+                           float *distance, ttd_point_result_f *out);
 /* The node levels below a mesh's root box, as the device entries check them against the stack. */
 int ttd_cuda_host_mesh_height_d(const struct ttd_mesh *m);
 int ttd_cuda_host_mesh_height_f(const struct ttd_mesh *m);

@@ -11,6 +11,8 @@
 #include "gpu/gpu_pair_impl.h"
 #include "gpu/gpu_walk_impl.h"
 #include "gpu/gpu_points_impl.h"
+#include "gpu/gpu_signed_impl.h"
+#include "gpu/gpu_sign_mode.h"
 #include "mesh/mesh.h"
 #include "points/points.h"
 #include "cuda_host.h"
@@ -51,4 +53,10 @@ int ttd_cuda_host_closest_d(const struct ttd_mesh *m, size_t n, const double *po
                               ttd_point_result_d *out)
 {
     return host_closest(m, n, points, upper_bound, out);
+}
+
+int ttd_cuda_host_signed_d(const struct ttd_mesh *m, size_t n, const double *points, double upper_bound, double *distance,
+                           ttd_point_result_d *out)
+{
+    return host_signed(m, n, points, upper_bound, distance, out);
 }

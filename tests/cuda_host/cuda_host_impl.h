@@ -39,3 +39,25 @@ static int host_closest(const struct ttd_mesh *m, size_t n, const real *points, 
         gp_closest(&g, points + 3 * i, upper_bound, &out[i]);
     return 0;
 }
+
+/* ---- signed distances (src/gpu/gpu_signed_impl.h) ---- */
+
+static int host_signed(const struct ttd_mesh *m, size_t n, const real *points, real upper_bound, real *distance,
+                       gp_point_result *out)
+{
+    const ttd_points_data *pd = ttd_points_data_get(m, 1);
+    if (pd == NULL)
+        return -1;
+    const int mode = ttd_gpu_sign_mode(m, pd); /* as the upload chooses it */
+    if (mode == TTD_GPU_SIGN_NONE)
+        return 0;
+    gs_mesh g;
+    g.closest = (gp_mesh){pd->pnodes, (const real *)pd->blocks, {m->origin[0], m->origin[1], m->origin[2]}, m->radius,
+                          pd->scale, pd->stretch};
+    g.ray = (ttd_ray_mesh){pd->rnodes, m->verts, m->tris, m->bytes, {m->origin[0], m->origin[1], m->origin[2]},
+                           m->radius, pd->scale, pd->coord_max};
+    g.mode = mode;
+    for (size_t i = 0; i < n; ++i) /* what thread i of the device's signed kernel runs */
+        gs_signed(&g, points + 3 * i, upper_bound, distance ? distance + i : NULL, &out[i]);
+    return mode;
+}
