@@ -180,6 +180,14 @@ typedef struct ttd_self_block {
 } ttd_self_block;
 typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
+/* self_fill (double rows only; NULL on the scalar row): a leaf's 8 triangles, v[3 k + c][lane] the
+ * coordinate c of vertex k, into their boxes (b->lo, b->hi: minima, and maxima + L) and their
+ * projections on the six diagonal directions x + y, x - y, x + z, x - z, y + z, y - z (dg[d]:
+ * minima, dg[6 + d]: maxima + R), by min(a, b) = a < b ? a : b and max(a, b) = a > b ? a : b
+ * over the vertices in order and one rounded sum or difference each: the scalar loops' numbers
+ * (what the screens compare; a zero's sign may differ, which no comparison sees). */
+typedef void (*ttd_self_fill_fn)(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b,
+                                 double dg[12][TTD_NODE_WIDTH]);
 
 /* ccd_screen (double rows only; NULL on the scalar row): the continuous-collision screen in lanes
  * (simd/kernel_ccd.h), the bits of ccd/ccd.c's ttd_ccd_screen for queries 0..count-1 (count <=
@@ -205,6 +213,7 @@ typedef struct ttd_kernels_d {
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
+    ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
 } ttd_kernels_d;
 

@@ -154,26 +154,39 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
 
 /* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
  * directions x +- y, x +- z, y +- z (diag_apart, from each triangle's projections made once per
- * query by diag_extents): the boxes' screen passes in-plane neighbours of a sheet whose
+ * query by self_fill): the boxes' screen passes in-plane neighbours of a sheet whose
  * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
  * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
  * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
  * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
  * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
  * and of the comparison's sum. In double for both precisions. */
-static void diag_extents(const qpose *P, const uint32_t *ix, double R, double dg[12][TTD_NODE_WIDTH], int lane)
+
+/* The scalar row's self_fill (core/kernels.h): a leaf's boxes and diagonal projections, a lane at a
+ * time, in the row's order of operations. */
+static void self_fill_scalar(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b,
+                             double dg[12][TTD_NODE_WIDTH])
 {
-    for (int k = 0; k < 3; ++k) {
-        const real *v = P->a.verts + 3 * (size_t)ix[k];
-        const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
-        const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
-        for (int d = 0; d < 6; ++d) {
-            dg[d][lane] = k == 0 || p[d] < dg[d][lane] ? p[d] : dg[d][lane];
-            dg[6 + d][lane] = k == 0 || p[d] > dg[6 + d][lane] ? p[d] : dg[6 + d][lane];
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+        for (int c = 0; c < 3; ++c) {
+            const double x0 = v[c][j], x1 = v[3 + c][j], x2 = v[6 + c][j];
+            double mn = x0 < x1 ? x0 : x1, mx = x1 > x0 ? x1 : x0;
+            mn = x2 < mn ? x2 : mn;
+            mx = x2 > mx ? x2 : mx;
+            b->lo[c][j] = mn;
+            b->hi[c][j] = mx + L;
         }
+        for (int k = 0; k < 3; ++k) {
+            const double x = v[3 * k][j], y = v[3 * k + 1][j], z = v[3 * k + 2][j];
+            const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
+            for (int d = 0; d < 6; ++d) {
+                dg[d][j] = k == 0 || p[d] < dg[d][j] ? p[d] : dg[d][j];
+                dg[6 + d][j] = k == 0 || p[d] > dg[6 + d][j] ? p[d] : dg[6 + d][j];
+            }
+        }
+        for (int d = 0; d < 6; ++d)
+            dg[6 + d][j] += R;
     }
-    for (int d = 0; d < 6; ++d)
-        dg[6 + d][lane] += R;
 }
 
 /* Whether lane i of leaf g and lane j of leaf h are apart along a diagonal direction. */
@@ -220,39 +233,34 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     double(*gbox)[6] = S->gbox;
     uint32_t *cell = S->cell;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
     for (size_t n = 0; n < nnodes; ++n) {
         const ttd_node *y = P->a.nodes + n;
         int k = 0;
         ttd_self_block *b = &G->blk[g];
-        double *gb = gbox[g];
-        for (int c = 0; c < 3; ++c)
-            gb[c] = INFINITY, gb[3 + c] = -INFINITY;
+        double v[9][TTD_NODE_WIDTH]; /* the leaf's vertices, lanes (vertex k, coordinate c at 3 k + c) */
         for (int j = 0; j < y->count; ++j) {
             if (y->child[j] >= 0)
                 continue;
             const uint32_t t = (uint32_t)(-1 - y->child[j]);
             const uint32_t *ix = P->a.tris + 3 * (size_t)t;
             G->tri[g][k] = (int32_t)t;
-            for (int c = 0; c < 3; ++c) {
-                const double x0 = (double)P->a.verts[3 * (size_t)ix[0] + c], x1 = (double)P->a.verts[3 * (size_t)ix[1] + c],
-                             x2 = (double)P->a.verts[3 * (size_t)ix[2] + c];
-                double mn = x0 < x1 ? x0 : x1, mx = x0 < x1 ? x1 : x0;
-                mn = x2 < mn ? x2 : mn;
-                mx = x2 > mx ? x2 : mx;
-                b->lo[c][k] = mn;
-                b->hi[c][k] = mx + L;
-                b->ix[c][k] = (double)ix[c];
-                gb[c] = mn < gb[c] ? mn : gb[c];
-                gb[3 + c] = b->hi[c][k] > gb[3 + c] ? b->hi[c][k] : gb[3 + c];
+            for (int q = 0; q < 3; ++q) {
+                const real *x = P->a.verts + 3 * (size_t)ix[q];
+                v[3 * q][k] = (double)x[0], v[3 * q + 1][k] = (double)x[1], v[3 * q + 2][k] = (double)x[2];
+                b->ix[q][k] = (double)ix[q];
             }
-            diag_extents(P, ix, 1.5 * L, G->dg[g], k);
             ++k;
         }
         if (k == 0)
             continue;
-        memcpy(b->box, gb, sizeof b->box);
-        for (; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
+        const int live = k;
+        for (; k < TTD_NODE_WIDTH; ++k) /* empty lanes: any finite numbers, replaced below */
+            for (int q = 0; q < 9; ++q)
+                v[q][k] = 0;
+        fill((const double(*)[TTD_NODE_WIDTH])v, L, 1.5 * L, b, G->dg[g]);
+        for (k = live; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
             G->tri[g][k] = -1;
             for (int d = 0; d < 12; ++d)
                 G->dg[g][d][k] = 0;
@@ -262,6 +270,16 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
                 b->ix[c][k] = -1;
             }
         }
+        double *gb = gbox[g]; /* the leaf's box: its lanes' (the empty ones' are +-inf) */
+        for (int c = 0; c < 3; ++c) {
+            double mn = b->lo[c][0], mx = b->hi[c][0];
+            for (int j = 1; j < TTD_NODE_WIDTH; ++j) {
+                mn = b->lo[c][j] < mn ? b->lo[c][j] : mn;
+                mx = b->hi[c][j] > mx ? b->hi[c][j] : mx;
+            }
+            gb[c] = mn, gb[3 + c] = mx;
+        }
+        memcpy(b->box, gb, sizeof b->box);
         double e = 0; /* the leaf's extent with L: its largest side */
         for (int c = 0; c < 3; ++c) {
             e = gb[3 + c] - gb[c] > e ? gb[3 + c] - gb[c] : e;
