@@ -40,6 +40,11 @@ typedef struct self_scratch {
     double (*gbox)[6];
     double *ext;               /* per leaf: its largest side with L */
     uint32_t *start;
+    /* The groups (below, self_topo_make): made by the first self query from the triangles alone,
+     * which no refit changes, so kept for the mesh's life. */
+    int32_t (*topo)[TTD_NODE_WIDTH]; /* group g's triangles, -1 past its count */
+    size_t ntopo;              /* groups in topo */
+    int topo_state;            /* 0 not made yet; 1 the groups are used; -1 the tree's leaves are */
 } self_scratch;
 
 static void self_scratch_free(void *p)
@@ -56,18 +61,25 @@ static void self_scratch_free(void *p)
     free(S->gbox);
     free(S->ext);
     free(S->start);
+    free(S->topo);
     free(S);
 }
 
-/* The mesh's scratch with room for ng leaves, or NULL out of memory. */
-static self_scratch *self_scratch_take(const struct ttd_mesh *mesh, size_t ng)
+/* The mesh's scratch (its arrays sized by self_scratch_room), or NULL out of memory. */
+static self_scratch *self_scratch_take(const struct ttd_mesh *mesh)
 {
     struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh; /* a cache, not a change to the mesh */
     self_scratch *S = __atomic_exchange_n((self_scratch **)&m->self_scratch, NULL, __ATOMIC_ACQ_REL);
     if (S == NULL && (S = calloc(1, sizeof *S)) != NULL)
         S->free_fn = self_scratch_free;
-    if (S == NULL || S->cap_g >= ng)
-        return S;
+    return S;
+}
+
+/* Room in S for ng groups: 1, or 0 out of memory (S freed). */
+static int self_scratch_room(self_scratch *S, size_t ng)
+{
+    if (S->cap_g >= ng)
+        return 1;
     free(S->blk), free(S->tri), free(S->sbox), free(S->dg), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
     const size_t n = ng ? ng : 1;
     S->blk = ttd_big_alloc(n * sizeof *S->blk);
@@ -81,9 +93,88 @@ static self_scratch *self_scratch_take(const struct ttd_mesh *mesh, size_t ng)
     S->cap_g = n;
     if (!S->blk || !S->tri || !S->sbox || !S->dg || !S->order || !S->cell || !S->gbox || !S->ext) {
         self_scratch_free(S);
-        return NULL;
+        return 0;
     }
-    return S;
+    return 1;
+}
+
+/* Groups of up to 8 triangles that share vertices (issue 36): the tree's leaves group triangles
+ * by the rank of their centroids, which on a sheet spreads a leaf over 6 to 9 quads, so that a
+ * leaf's box, raised by the margin, meets about 23 others; 8 triangles grown breadth-first over
+ * shared vertices are a patch about 2 x 2 quads wide, whose box meets about 8. Each group starts
+ * at the first triangle not yet grouped and takes triangles that share a vertex with one already
+ * in it, nearest in the breadth-first order first, in index order around each vertex, until it
+ * has 8 or no ungrouped neighbour is left. Made from the triangles alone (refits keep it), so the
+ * groups, like the leaves, depend on the mesh alone; any grouping gives the same pairs (only the
+ * work and the records' order depend on it). Around each vertex a cursor skips the triangles
+ * grouped already and at most TOPO_LOOK more are looked at per visit, so a vertex shared by many
+ * triangles costs no more than its own list over the whole making. Where the groups come out
+ * short (triangles with few neighbours: a soup), more than 5 in 4 of a full grouping's count,
+ * the tree's leaves are kept. 1 done (S->topo_state set), 0 out of memory. */
+#define TOPO_LOOK 32
+
+static int self_topo_make(const uint32_t *tris, size_t nt, size_t nv, self_scratch *S)
+{
+    size_t *off = calloc(nv + 1, sizeof *off), *cur = malloc((nv ? nv : 1) * sizeof *cur);
+    uint32_t *inc = malloc((nt ? 3 * nt : 1) * sizeof *inc);
+    int32_t *grp = malloc((nt ? nt : 1) * sizeof *grp), *mark = malloc((nt ? nt : 1) * sizeof *mark);
+    int32_t(*topo)[TTD_NODE_WIDTH] = malloc((nt ? nt : 1) * sizeof *topo); /* at most nt groups */
+    int ok = off && cur && inc && grp && mark && topo;
+    size_t ng = 0;
+    if (ok) {
+        for (size_t i = 0; i < 3 * nt; ++i) /* the triangles around each vertex, in index order */
+            off[tris[i] + 1]++;
+        for (size_t v = 0; v < nv; ++v)
+            off[v + 1] += off[v];
+        memcpy(cur, off, nv * sizeof *cur);
+        for (size_t i = 0; i < 3 * nt; ++i)
+            inc[cur[tris[i]]++] = (uint32_t)(i / 3);
+        memcpy(cur, off, nv * sizeof *cur);
+        for (size_t t = 0; t < nt; ++t)
+            grp[t] = mark[t] = -1;
+        for (size_t seed = 0; seed < nt; ++seed) {
+            if (grp[seed] >= 0)
+                continue;
+            int32_t q[TTD_NODE_WIDTH]; /* the group's queue: its members, then those waiting */
+            int qh = 0, qn = 1;
+            q[0] = (int32_t)seed;
+            mark[seed] = (int32_t)ng;
+            while (qh < qn) {
+                const uint32_t t = (uint32_t)q[qh++];
+                grp[t] = (int32_t)ng;
+                for (int k = 0; k < 3 && qn < TTD_NODE_WIDTH; ++k) {
+                    const uint32_t v = tris[3 * (size_t)t + k];
+                    while (cur[v] < off[v + 1] && grp[inc[cur[v]]] >= 0)
+                        cur[v]++;
+                    for (size_t i = cur[v], e = 0; i < off[v + 1] && e < TOPO_LOOK && qn < TTD_NODE_WIDTH; ++i, ++e) {
+                        const uint32_t u = inc[i];
+                        if (grp[u] < 0 && mark[u] != (int32_t)ng) {
+                            mark[u] = (int32_t)ng;
+                            q[qn++] = (int32_t)u;
+                        }
+                    }
+                }
+            }
+            for (int k = 0; k < TTD_NODE_WIDTH; ++k)
+                topo[ng][k] = k < qn ? q[k] : -1;
+            ++ng;
+        }
+    }
+    free(off), free(cur), free(inc), free(grp), free(mark);
+    if (!ok) {
+        free(topo);
+        return 0;
+    }
+    const size_t full = (nt + TTD_NODE_WIDTH - 1) / TTD_NODE_WIDTH;
+    if (4 * ng > 5 * full) {
+        free(topo);
+        S->topo_state = -1;
+        return 1;
+    }
+    S->topo = topo;
+    S->ntopo = ng;
+    S->topo_state = 1;
+    return 1;
 }
 
 /* Gives the scratch back to the mesh (or frees it where another query's is there already). */
@@ -214,17 +305,27 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     if (!isfinite(L))
         return 0;
     const size_t nnodes = mesh->nnodes;
-    size_t ng = 0;
-    for (size_t n = 0; n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
+    self_scratch *S = G->S = self_scratch_take(mesh);
+    if (S == NULL)
+        return -1;
+    if (S->topo_state == 0 && !self_topo_make(mesh->tris, mesh->nt, mesh->nv, S)) {
+        self_scratch_free(S);
+        G->S = NULL;
+        return -1;
+    }
+    const int topo = S->topo_state > 0;
+    size_t ng = topo ? S->ntopo : 0;
+    for (size_t n = 0; !topo && n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
         for (int j = 0; j < P->a.nodes[n].count; ++j)
             if (P->a.nodes[n].child[j] < 0) {
                 ++ng;
                 break;
             }
     G->ngroups = ng;
-    self_scratch *S = G->S = self_scratch_take(mesh, ng);
-    if (S == NULL)
+    if (!self_scratch_room(S, ng)) {
+        G->S = NULL;
         return -1;
+    }
     G->blk = S->blk;
     G->tri = S->tri;
     G->sbox = S->sbox;
@@ -235,15 +336,15 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
     const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
-    for (size_t n = 0; n < nnodes; ++n) {
-        const ttd_node *y = P->a.nodes + n;
+    for (size_t n = 0; n < (topo ? ng : nnodes); ++n) { /* group n, or node n's triangles */
+        const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
         ttd_self_block *b = &G->blk[g];
         double v[9][TTD_NODE_WIDTH]; /* the leaf's vertices, lanes (vertex k, coordinate c at 3 k + c) */
-        for (int j = 0; j < y->count; ++j) {
-            if (y->child[j] >= 0)
+        for (int j = 0; j < (topo ? TTD_NODE_WIDTH : y->count); ++j) {
+            if (topo ? S->topo[n][j] < 0 : y->child[j] >= 0)
                 continue;
-            const uint32_t t = (uint32_t)(-1 - y->child[j]);
+            const uint32_t t = topo ? (uint32_t)S->topo[n][j] : (uint32_t)(-1 - y->child[j]);
             const uint32_t *ix = P->a.tris + 3 * (size_t)t;
             G->tri[g][k] = (int32_t)t;
             for (int q = 0; q < 3; ++q) {
