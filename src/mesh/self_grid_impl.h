@@ -35,7 +35,6 @@ typedef struct self_scratch {
     ttd_self_block *blk;
     int32_t (*tri)[TTD_NODE_WIDTH];
     double *sbox;
-    double (*dg)[12][TTD_NODE_WIDTH];
     uint32_t *order, *cell;
     double (*gbox)[6];
     double *ext;               /* per leaf: its largest side with L */
@@ -55,7 +54,6 @@ static void self_scratch_free(void *p)
     free(S->blk);
     free(S->tri);
     free(S->sbox);
-    free(S->dg);
     free(S->order);
     free(S->cell);
     free(S->gbox);
@@ -80,18 +78,17 @@ static int self_scratch_room(self_scratch *S, size_t ng)
 {
     if (S->cap_g >= ng)
         return 1;
-    free(S->blk), free(S->tri), free(S->sbox), free(S->dg), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
+    free(S->blk), free(S->tri), free(S->sbox), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
     const size_t n = ng ? ng : 1;
     S->blk = ttd_big_alloc(n * sizeof *S->blk);
     S->tri = malloc(n * sizeof *S->tri);
     S->sbox = ttd_big_alloc(6 * (n + TTD_NODE_WIDTH) * sizeof *S->sbox);
-    S->dg = ttd_big_alloc(n * sizeof *S->dg);
     S->order = malloc(n * sizeof *S->order);
     S->cell = malloc(n * sizeof *S->cell);
     S->gbox = malloc(n * sizeof *S->gbox);
     S->ext = malloc(n * sizeof *S->ext);
     S->cap_g = n;
-    if (!S->blk || !S->tri || !S->sbox || !S->dg || !S->order || !S->cell || !S->gbox || !S->ext) {
+    if (!S->blk || !S->tri || !S->sbox || !S->order || !S->cell || !S->gbox || !S->ext) {
         self_scratch_free(S);
         return 0;
     }
@@ -199,8 +196,6 @@ typedef struct self_grid {
     size_t dim[3], ncells;
     size_t nsmall;             /* leaves in cells: positions [0, nsmall) of order; the large
                                   leaves after them, each tested against every leaf */
-    double (*dg)[12][TTD_NODE_WIDTH]; /* per leaf: its triangles' projections on the six diagonal
-                                  directions (diag_apart): minima, then maxima raised by 1.5 L */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
     self_scratch *S;           /* where the arrays are */
@@ -224,10 +219,13 @@ static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, 
                 near &= (h->lo[c][j] <= g->hi[c][i]) & (g->lo[c][i] <= h->hi[c][j]);
                 share |= (h->ix[c][j] == g->ix[0][i]) | (h->ix[c][j] == g->ix[1][i]) | (h->ix[c][j] == g->ix[2][i]);
             }
-            n |= (unsigned)near << j;
+            int diag = 1; /* the diagonal screen (pairs sharing a vertex: self_grid_leaves) */
+            for (int d = 0; d < 6; ++d)
+                diag &= (h->dg[d][j] <= g->dg[6 + d][i]) & (g->dg[d][i] <= h->dg[6 + d][j]);
+            n |= (unsigned)(near & !share & diag) << j;
             s |= (unsigned)(near & share) << j;
         }
-        out[i] = (uint16_t)((n & ~s) | s << 8);
+        out[i] = (uint16_t)(n | s << 8);
         any |= out[i];
     }
     return any != 0;
@@ -244,8 +242,8 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
 }
 
 /* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
- * directions x +- y, x +- z, y +- z (diag_apart, from each triangle's projections made once per
- * query by self_fill): the boxes' screen passes in-plane neighbours of a sheet whose
+ * directions x +- y, x +- z, y +- z (in self_screen, from each triangle's projections made once
+ * per query by self_fill): the boxes' screen passes in-plane neighbours of a sheet whose
  * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
  * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
  * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
@@ -255,9 +253,9 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
 
 /* The scalar row's self_fill (core/kernels.h): a leaf's boxes and diagonal projections, a lane at a
  * time, in the row's order of operations. */
-static void self_fill_scalar(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b,
-                             double dg[12][TTD_NODE_WIDTH])
+static void self_fill_scalar(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b)
 {
+    double(*dg)[TTD_NODE_WIDTH] = b->dg;
     for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
         for (int c = 0; c < 3; ++c) {
             const double x0 = v[c][j], x1 = v[3 + c][j], x2 = v[6 + c][j];
@@ -280,10 +278,10 @@ static void self_fill_scalar(const double v[9][TTD_NODE_WIDTH], double L, double
     }
 }
 
-/* Whether lane i of leaf g and lane j of leaf h are apart along a diagonal direction. */
+/* The diagonal screen between lane i of leaf g and lane j of leaf h: whether they are apart. */
 static int diag_apart(const self_grid *G, uint32_t g, int i, uint32_t h, int j)
 {
-    const double *a = &G->dg[g][0][i], *b = &G->dg[h][0][j]; /* direction d at [d * 8] */
+    const double *a = &G->blk[g].dg[0][i], *b = &G->blk[h].dg[0][j]; /* direction d at [d * 8] */
     int apart = 0;
     for (int d = 0; d < 6; ++d)
         apart |= (b[d * TTD_NODE_WIDTH] > a[(6 + d) * TTD_NODE_WIDTH]) | (a[d * TTD_NODE_WIDTH] > b[(6 + d) * TTD_NODE_WIDTH]);
@@ -329,7 +327,6 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     G->blk = S->blk;
     G->tri = S->tri;
     G->sbox = S->sbox;
-    G->dg = S->dg;
     G->order = S->order;
     double(*gbox)[6] = S->gbox;
     uint32_t *cell = S->cell;
@@ -360,11 +357,11 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
         for (; k < TTD_NODE_WIDTH; ++k) /* empty lanes: any finite numbers, replaced below */
             for (int q = 0; q < 9; ++q)
                 v[q][k] = 0;
-        fill((const double(*)[TTD_NODE_WIDTH])v, L, 1.5 * L, b, G->dg[g]);
+        fill((const double(*)[TTD_NODE_WIDTH])v, L, 1.5 * L, b);
         for (k = live; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
             G->tri[g][k] = -1;
             for (int d = 0; d < 12; ++d)
-                G->dg[g][d][k] = 0;
+                b->dg[d][k] = 0;
             for (int c = 0; c < 3; ++c) {
                 b->lo[c][k] = INFINITY;
                 b->hi[c][k] = -INFINITY;
@@ -502,7 +499,7 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
             uint32_t v = 0;
             const int kind = bit < 8 ? SELF_PAIR
                                      : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
-            if (kind != SELF_NONE && !diag_apart(G, g, i, h, j))
+            if (kind != SELF_NONE && (bit < 8 || !diag_apart(G, g, i, h, j))) /* the screen did bits 0-7's */
                 queue_self(C, P, W, w, ta, tb, kind, v);
         }
     }
