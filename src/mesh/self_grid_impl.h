@@ -528,26 +528,81 @@ static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, co
     }
 }
 
-/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
- * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
- * and the large leaves from itself on. */
-static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
+/* Leaf g (at grid position p) against the leaves gathered in nb (n of them, cap a bound's array;
+ * their positions in pos) whose boxes are near its own, 8 at a time: self_grid_range over a
+ * list. */
+static void self_grid_list(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                           const double *nb, size_t cap, const uint32_t *pos, size_t n)
 {
-    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2];
-    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
-        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
-        for (uint32_t p = G->start[c]; p < G->start[c + 1]; ++p) {
-            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
-            for (int dz = 0; dz <= 1; ++dz)
-                for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
-                    for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
-                        if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
-                            continue;
-                        const size_t d = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
-                        self_grid_range(C, P, W, w, G, p, G->start[d], G->start[d + 1]);
-                    }
+    const size_t stride = G->ngroups + TTD_NODE_WIDTH;
+    const double *s = G->sbox;
+    const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
+    const uint32_t g = G->order[p];
+    for (size_t r = 0; r < n; r += TTD_NODE_WIDTH) {
+        const double *const lo[3] = {nb + r, nb + cap + r, nb + 2 * cap + r};
+        const double *const hi[3] = {nb + 3 * cap + r, nb + 4 * cap + r, nb + 5 * cap + r};
+        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
+        if (n - r < TTD_NODE_WIDTH)
+            m &= (1u << (n - r)) - 1;
+        for (; m != 0; m &= m - 1) {
+            const uint32_t o = G->order[pos[r + (size_t)__builtin_ctz(m)]];
+            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
         }
     }
+}
+
+/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
+ * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
+ * and the large leaves from itself on. A cell's leaves meet the rest of their cell, then the
+ * leaves of the 13 cells after it, gathered once a cell into one list in the cells' order (so the
+ * pairs come in the order of a run at a time, with fewer and fuller row calls). */
+static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
+{
+    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2], stride = G->ngroups + TTD_NODE_WIDTH;
+    double *nb = NULL; /* the gathered boxes: 6 arrays of cap (lo x, y, z, raised hi x, y, z) */
+    uint32_t *pos = NULL;
+    size_t cap = 0;
+    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
+        if (G->start[c] == G->start[c + 1])
+            continue;
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        size_t d[13], nd = 0, n = 0;
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                    if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
+                        continue;
+                    d[nd] = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
+                    n += G->start[d[nd] + 1] - G->start[d[nd]];
+                    ++nd;
+                }
+        if (n + TTD_NODE_WIDTH > cap) {
+            free(nb), free(pos);
+            cap = 2 * (n + TTD_NODE_WIDTH);
+            nb = malloc(6 * cap * sizeof *nb);
+            pos = malloc(cap * sizeof *pos);
+            if (nb == NULL || pos == NULL) {
+                W->nomem = 1;
+                break;
+            }
+        }
+        size_t k = 0;
+        for (size_t e = 0; e < nd; ++e)
+            for (uint32_t r = G->start[d[e]]; r < G->start[d[e] + 1]; ++r, ++k) {
+                for (int b = 0; b < 6; ++b)
+                    nb[(size_t)b * cap + k] = G->sbox[(size_t)b * stride + r];
+                pos[k] = r;
+            }
+        for (; k < n + TTD_NODE_WIDTH; ++k) /* padding: never near */
+            for (int b = 0; b < 6; ++b)
+                nb[(size_t)b * cap + k] = b < 3 ? (double)INFINITY : -(double)INFINITY;
+        for (uint32_t p = G->start[c]; p < G->start[c + 1] && !W->nomem && !w->hit; ++p) {
+            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
+            self_grid_list(C, P, W, w, G, p, nb, cap, pos, n);
+        }
+    }
+    free(nb);
+    free(pos);
     for (size_t u = u1 > G->ncells ? (u0 > G->ncells ? u0 : G->ncells) : u1; u < u1 && !W->nomem && !w->hit; ++u) {
         const uint32_t p = (uint32_t)(G->nsmall + (u - G->ncells));
         self_grid_range(C, P, W, w, G, p, 0, (uint32_t)G->nsmall);
