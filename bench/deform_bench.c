@@ -39,6 +39,10 @@ typedef struct self_row {
     double ttd_cpu_ms;                 /* self-contacts' CPU time (the calling thread's), median */
     double pairs_mean, candidates_mean; /* contacts per step; the grid's candidate pairs per step */
     int agree;                         /* every step: the same pairs */
+    int grid_run;                      /* the grid brute force was run (not --no-self-grid) */
+    uint64_t fnv_set, fnv_ord;         /* FNV-1a 64 (a word at a time) of every step's records (pair,
+                                          distance, points: their bits): sorted by pair, and in the
+                                          order given */
 } self_row;
 
 typedef struct target {
@@ -67,6 +71,10 @@ int bench_deform_option(bench_deform_config *c, const char *a)
         c->only = c->refit_only = 1;
     else if (strcmp(a, "--self-only") == 0)
         c->only = c->self_only = 1;
+    else if (strcmp(a, "--sheet7-only") == 0)
+        c->only = c->self_only = c->sheet7_only = 1;
+    else if (strcmp(a, "--no-self-grid") == 0)
+        c->no_self_grid = 1;
     else
         return 0;
     return 1;
@@ -79,13 +87,19 @@ void bench_deform_usage(FILE *f)
           "                       against a uniform-grid brute force)\n"
           "  --deform-only        run that section alone\n"
           "  --refit-only         run that section's refit rows alone (no self-contacts)\n"
-          "  --self-only          run that section's self-contact rows alone (no refit rows)\n",
+          "  --self-only          run that section's self-contact rows alone (no refit rows)\n"
+          "  --sheet7-only        run the self-contact rows of the 7-layer sheet alone (issue 36)\n"
+          "  --no-self-grid       leave out the self-contact rows' grid brute force (its time and the\n"
+          "                       pair-for-pair check; the records' hashes are still printed)\n",
           f);
 }
 
 size_t bench_deform_row_count(const bench_deform_results *r)
 {
-    return r ? (size_t)(r->nrefit + r->nself) : 0;
+    size_t n = r ? (size_t)r->nrefit : 0;
+    for (int i = 0; r && i < r->nself; ++i)
+        n += r->self[i].workload != NULL;
+    return n;
 }
 
 void bench_deform_free(bench_deform_results *r)
@@ -379,13 +393,45 @@ static long grid_self_contacts(const double *v, const uint32_t *tri, size_t nt, 
     return (long)n;
 }
 
+/* FNV-1a 64 over a record's fields, a 64-bit word at a time (the word in place of the byte:
+ * quick enough for a million records a step). */
+static uint64_t fnv_word(uint64_t h, uint64_t w)
+{
+    return (h ^ w) * 0x100000001b3ull;
+}
+
+static uint64_t fnv_real(uint64_t h, double x)
+{
+    uint64_t w;
+    memcpy(&w, &x, sizeof w);
+    return fnv_word(h, w);
+}
+
+static uint64_t fnv_contact(uint64_t h, const ttd_contact_d *c)
+{
+    h = fnv_word(h, (uint64_t)c->tri_a << 32 | c->tri_b);
+    h = fnv_real(h, c->distance);
+    for (int k = 0; k < 3; ++k)
+        h = fnv_real(fnv_real(h, c->p[k]), c->q[k]);
+    return h;
+}
+
+static int cmp_contact(const void *x, const void *y)
+{
+    const ttd_contact_d *a = x, *b = y;
+    return a->tri_a != b->tri_a ? (a->tri_a > b->tri_a) - (a->tri_a < b->tri_a)
+                                : (a->tri_b > b->tri_b) - (a->tri_b < b->tri_b);
+}
+
 /* A sheet of nx x ny quads (edge 1/nx) folded into `layers`, the layers gap_over_margin margins
  * apart, margin half an edge; steps refits from fold0 of the fold to 1 (or, with fold0 = 1, the
  * sheet folded flat, refitted to itself), each followed by one self-contact query. */
 static void self_row_run(const bench_deform_env *env, const char *name, size_t nx, size_t ny, int layers, double fold0,
-                         double gap_over_margin, int steps, self_row *r)
+                         double gap_over_margin, int steps, int with_grid, self_row *r)
 {
     memset(r, 0, sizeof *r);
+    r->grid_run = with_grid;
+    r->fnv_set = r->fnv_ord = 0xcbf29ce484222325ull;
     r->workload = name;
     r->steps = steps;
     r->layers = layers;
@@ -422,16 +468,31 @@ static void self_row_run(const bench_deform_env *env, const char *name, size_t n
             st = ttd_mesh_self_contacts_d(&o, m, r->margin, 0, &set);
         tc[k] = (thread_cpu_s() - c0) * 1e3;
         tt[k] = (bench_now() - a) * 1e3;
+        if (st != TTD_OK) {
+            ttd_gen_mesh_free(&s);
+            goto done;
+        }
+        for (size_t e = 0; e < set.count; ++e)
+            r->fnv_ord = fnv_contact(r->fnv_ord, &set.pairs[e]);
+        if (set.count > 1)
+            qsort(set.pairs, set.count, sizeof *set.pairs, cmp_contact);
+        for (size_t e = 0; e < set.count; ++e)
+            r->fnv_set = fnv_contact(r->fnv_set, &set.pairs[e]);
+        r->pairs_mean += (double)set.count / steps;
+        tg[k] = BENCH_NAN;
+        if (!with_grid) {
+            ttd_gen_mesh_free(&s);
+            continue;
+        }
         size_t cand = 0;
         grid_pair *found = NULL;
         a = bench_now();
-        const long ng = st == TTD_OK ? grid_self_contacts(s.verts, s.tris, s.nt, r->margin, &G, &found, &cand) : -1;
+        const long ng = grid_self_contacts(s.verts, s.tris, s.nt, r->margin, &G, &found, &cand);
         tg[k] = (bench_now() - a) * 1e3;
         if (ng < 0) {
             ttd_gen_mesh_free(&s);
             goto done;
         }
-        r->pairs_mean += (double)set.count / steps;
         r->candidates_mean += (double)cand / steps;
         /* the same pairs? */
         grid_pair *v = realloc(mine, (set.count + 1) * sizeof *v);
@@ -449,7 +510,9 @@ static void self_row_run(const bench_deform_env *env, const char *name, size_t n
     r->ttd_ms = median(tt, steps);
     r->ttd_cpu_ms = median(tc, steps);
     r->refit_ms = median(tr, steps);
-    r->grid_ms = median(tg, steps);
+    r->grid_ms = with_grid ? median(tg, steps) : BENCH_NAN;
+    if (!with_grid)
+        r->candidates_mean = BENCH_NAN;
 done:
     free(mine);
     free(G.box), free(G.start), free(G.member), free(G.cand), free(G.s), free(G.t), free(G.d);
@@ -488,13 +551,23 @@ bench_deform_results *bench_deform_run(const bench_deform_config *c, const bench
         for (int i = 0; i < NSELF; ++i)
             R->self[i].ttd_ms = R->self[i].grid_ms = R->self[i].ttd_cpu_ms = BENCH_NAN;
     } else {
-        self_row_run(env, R->quick ? "sheet-20k, apart" : "sheet-100k, apart", n, n, 4, 0.85, 1.5, steps, &R->self[0]);
-        self_row_run(env, R->quick ? "sheet-20k, touching" : "sheet-100k, touching", n, n, 4, 0.85, 0.8, steps,
-                     &R->self[1]);
-        self_row_run(env, R->quick ? "sheet7-20k, apart" : "sheet7-101k, apart", nx7, ny7, 7, 1.0, 1.5, steps,
+        const int grid = !c->no_self_grid;
+        if (c->sheet7_only) {
+            for (int i = 0; i < 2; ++i) {
+                memset(&R->self[i], 0, sizeof R->self[i]);
+                R->self[i].workload = NULL; /* not run */
+                R->self[i].ttd_ms = R->self[i].grid_ms = R->self[i].ttd_cpu_ms = BENCH_NAN;
+            }
+        } else {
+            self_row_run(env, R->quick ? "sheet-20k, apart" : "sheet-100k, apart", n, n, 4, 0.85, 1.5, steps, grid,
+                         &R->self[0]);
+            self_row_run(env, R->quick ? "sheet-20k, touching" : "sheet-100k, touching", n, n, 4, 0.85, 0.8, steps, grid,
+                         &R->self[1]);
+        }
+        self_row_run(env, R->quick ? "sheet7-20k, apart" : "sheet7-101k, apart", nx7, ny7, 7, 1.0, 1.5, steps, grid,
                      &R->self[2]);
         self_row_run(env, R->quick ? "sheet7-20k, touching" : "sheet7-101k, touching", nx7, ny7, 7, 1.0, 0.8, steps,
-                     &R->self[3]);
+                     grid, &R->self[3]);
     }
 
     /* the issue's targets (issue 25) */
@@ -554,17 +627,24 @@ void bench_deform_write_table(FILE *f, const bench_deform_results *R)
                "queried at each step), margin half an edge, the layers 1.5 or 0.8 margins apart; per step: "
                "ttd_mesh_set_vertices_d, then ttd_mesh_self_contacts_d (pairs sharing no vertex); the grid: the same "
                "pairs by a uniform grid of triangles' boxes and the exact kernel on its candidates; medians per step; "
-               "self_cpu: the query's CPU time (the calling thread's), ns_pair: self_cpu per pair found\n");
-    fprintf(f, "\n%-22s %9s %5s %9s %9s %9s %9s %9s %9s %11s %8s %11s %7s\n", "workload", "tris", "steps", "margin",
-            "self_ms", "self_cpu", "refit_ms", "grid_ms", "x_grid", "pairs", "ns_pair", "grid_cand", "same");
+               "self_cpu: the query's CPU time (the calling thread's), ns_pair: self_cpu per pair found; fnv_set, "
+               "fnv_ord: FNV-1a 64 (a word at a time) of every step's records (pair, distance and points, their bits) sorted by pair and "
+               "in the order the query gave them\n");
+    fprintf(f, "\n%-22s %9s %5s %9s %9s %9s %9s %9s %9s %11s %8s %11s %7s %16s %16s\n", "workload", "tris", "steps",
+            "margin", "self_ms", "self_cpu", "refit_ms", "grid_ms", "x_grid", "pairs", "ns_pair", "grid_cand", "same",
+            "fnv_set", "fnv_ord");
     for (int i = 0; i < R->nself; ++i) {
         const self_row *r = &R->self[i];
-        fprintf(f, "%-22s %9zu %5d %9.3g %9s %9s %9s %9s %9s %11.0f %8s %11.0f %7s\n", r->workload, r->tris, r->steps,
+        if (r->workload == NULL)
+            continue;
+        fprintf(f, "%-22s %9zu %5d %9.3g %9s %9s %9s %9s %9s %11.0f %8s %11s %7s %016llx %016llx\n", r->workload,
+                r->tris, r->steps,
                 r->margin, bench_num(b[0], 40, r->ttd_ms, "%.2f"), bench_num(b[4], 40, r->ttd_cpu_ms, "%.2f"),
                 bench_num(b[1], 40, r->refit_ms, "%.2f"), bench_num(b[2], 40, r->grid_ms, "%.2f"),
                 bench_num(b[3], 40, r->grid_ms / r->ttd_ms, "%.2f"), r->pairs_mean,
                 bench_num(b[5], 40, r->pairs_mean > 0 ? r->ttd_cpu_ms * 1e6 / r->pairs_mean : BENCH_NAN, "%.0f"),
-                r->candidates_mean, r->agree ? "yes" : "NO");
+                bench_num(b[6], 40, r->candidates_mean, "%.0f"), !r->grid_run ? "-" : r->agree ? "yes" : "NO", (unsigned long long)r->fnv_set,
+                (unsigned long long)r->fnv_ord);
     }
     fprintf(f, "\ndeforming-mesh targets, issues 25 and 36 (ratios of this run; the benchmark measures, it does not fail on "
                "them):\n");
@@ -613,10 +693,13 @@ void bench_deform_write_json(FILE *f, const bench_deform_results *R)
         fprintf(f, ", \"rebuilds\": %llu}", r->rebuilds);
     }
     fputs("], \"self\": [", f);
-    for (int i = 0; i < R->nself; ++i) {
+    for (int i = 0, first = 1; i < R->nself; ++i) {
         const self_row *r = &R->self[i];
-        fprintf(f, "%s{\"workload\": \"%s\", \"triangles\": %zu, \"steps\": %d, ", i ? ", " : "", r->workload, r->tris,
-                r->steps);
+        if (r->workload == NULL)
+            continue;
+        fprintf(f, "%s{\"workload\": \"%s\", \"triangles\": %zu, \"steps\": %d, ", first ? "" : ", ", r->workload,
+                r->tris, r->steps);
+        first = 0;
         json_num(f, "margin", r->margin), fputs(", ", f);
         json_num(f, "gap", r->gap), fputs(", ", f);
         json_num(f, "self_ms", r->ttd_ms), fputs(", ", f);
@@ -626,7 +709,9 @@ void bench_deform_write_json(FILE *f, const bench_deform_results *R)
         json_num(f, "grid_ms", r->grid_ms), fputs(", ", f);
         json_num(f, "pairs", r->pairs_mean), fputs(", ", f);
         json_num(f, "grid_candidates", r->candidates_mean);
-        fprintf(f, ", \"same_pairs\": %s}", r->agree ? "true" : "false");
+        fprintf(f, ", \"same_pairs\": %s, \"fnv_set\": \"%016llx\", \"fnv_ord\": \"%016llx\"}",
+                !r->grid_run ? "null" : r->agree ? "true" : "false", (unsigned long long)r->fnv_set,
+                (unsigned long long)r->fnv_ord);
     }
     fputs("], \"targets\": [", f);
     for (int i = 0; i < NTARGET; ++i) {

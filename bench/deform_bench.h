@@ -25,6 +25,8 @@ typedef struct bench_deform_config {
     int only;     ///< --deform-only: the other sections are not run
     int refit_only; ///< --refit-only: --deform-only without the self-contact rows
     int self_only;  ///< --self-only: --deform-only without the refit rows
+    int sheet7_only; ///< --sheet7-only: the self rows of issue 36's 7-layer sheet alone
+    int no_self_grid; ///< --no-self-grid: the self rows without the grid brute force
 } bench_deform_config;
 
 /// What the rest of the benchmark decided, for this section.

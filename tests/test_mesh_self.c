@@ -442,6 +442,76 @@ static int grid_and_walk_match_brute_force(void)
     return 0;
 }
 
+/* The grid's groups of triangles that share vertices (mesh/self_grid_impl.h, self_topo_make) on
+ * meshes that stress their making, against the walk: a fan of 3,000 triangles around one vertex
+ * (each visit of the centre looks at a bounded part of its list) with a second small fan apart
+ * (a group cut short), with and without TTD_SELF_SHARED_VERTEX; and issue 36's 7-layer sheet with
+ * its triangles shuffled (groups that do not follow the index order). */
+static int topological_groups_match_walk(void)
+{
+    const int n = 3000, n2 = 5;
+    ttd_gen_mesh g = {0};
+    g.nv = (size_t)(n + 1 + n2 + 2);
+    g.nt = (size_t)(n + n2);
+    g.verts = malloc(3 * g.nv * sizeof *g.verts);
+    g.tris = malloc(3 * g.nt * sizeof *g.tris);
+    ENSURE(g.verts != NULL && g.tris != NULL);
+    memset(g.verts, 0, 3 * sizeof *g.verts); /* the centre */
+    for (int k = 0; k < n; ++k) {
+        const double a = 6.283185307179586 * k / n;
+        g.verts[3 * (size_t)(k + 1)] = cos(a);
+        g.verts[3 * (size_t)(k + 1) + 1] = sin(a);
+        g.verts[3 * (size_t)(k + 1) + 2] = 0;
+        g.tris[3 * (size_t)k] = 0;
+        g.tris[3 * (size_t)k + 1] = (uint32_t)k + 1;
+        g.tris[3 * (size_t)k + 2] = (uint32_t)((k + 1) % n) + 1;
+    }
+    const uint32_t c2 = (uint32_t)n + 1; /* the small fan, 0.003 above the big one's rim */
+    for (int k = 0; k <= n2 + 1; ++k) {
+        double *v = g.verts + 3 * (size_t)(c2 + (uint32_t)k);
+        v[0] = k == 0 ? 0.9 : 0.9 + 0.1 * cos(0.3 * k);
+        v[1] = k == 0 ? 0 : 0.1 * sin(0.3 * k);
+        v[2] = 0.003;
+    }
+    for (int k = 0; k < n2; ++k) {
+        uint32_t *t = g.tris + 3 * (size_t)(n + k);
+        t[0] = c2, t[1] = c2 + (uint32_t)k + 1, t[2] = c2 + (uint32_t)k + 2;
+    }
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    size_t np;
+    if (query_equals_walk("fan of 3,000", m, 0.005, TTD_SELF_SHARED_VERTEX, 0, &np))
+        return 1;
+    ENSURE(np > 3000);
+    if (query_equals_walk("fan of 3,000", m, 0.005, 0u, 0, &np))
+        return 1;
+    ENSURE(np > 0);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    const size_t nx = 70, ny = 10;
+    const double margin = 0.5 / (double)nx;
+    ENSURE(ttd_gen_folded_strip(nx, ny, 7, 0.8 * margin, 1.0, &g) == 0);
+    uint64_t r = 99;
+    for (size_t i = g.nt - 1; i > 0; --i) { /* Fisher-Yates */
+        r = r * 6364136223846793005u + 1442695040888963407u;
+        const size_t j = (size_t)((r >> 33) % (i + 1));
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t x = g.tris[3 * i + (size_t)k];
+            g.tris[3 * i + (size_t)k] = g.tris[3 * j + (size_t)k];
+            g.tris[3 * j + (size_t)k] = x;
+        }
+    }
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    for (int shared = 0; shared < 2; ++shared) {
+        if (query_equals_walk("7 layers, triangles shuffled", m, margin, shared ? TTD_SELF_SHARED_VERTEX : 0u, 0, &np))
+            return 1;
+        ENSURE(np > 1000);
+    }
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A sheet folding over 30 steps, refitted each step, against the brute force every step. */
 static int refitted_self_contacts_match_brute_force(void)
 {
@@ -627,6 +697,7 @@ int main(int argc, char **argv)
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(self_contacts_match_brute_force);
     RUN_TEST(grid_and_walk_match_brute_force);
+    RUN_TEST(topological_groups_match_walk);
     RUN_TEST(refitted_self_contacts_match_brute_force);
     RUN_TEST(self_queries_threads_isas_identical);
     RUN_TEST(self_queries_concurrent);

@@ -170,16 +170,27 @@ typedef unsigned (*ttd_leaf_axes_fn)(const double s[14][TTD_NODE_WIDTH], const d
  * -inf. A lane is near a box q (q[0..2] its lo, q[3..5] its raised hi) when on every axis lo[c] <=
  * q[3 + c] and q[c] <= hi[c]: comparisons only, the same bits on every row.
  * self_screen: every triangle i of leaf g against the 8 triangles of leaf h (with same, g is h and
- * only lanes j > i count; rows i whose box is not near h's leaf box are skipped, out[i] = 0): out[i] gets, bits 0-7, the lanes near triangle i that share no vertex
- * index with it, bits 8-15 the near lanes that share one or more; returns whether any out[i] is
- * not 0. box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
+ * only lanes j > i count; rows i whose box is not near h's leaf box are skipped, out[i] = 0):
+ * out[i] gets, bits 0-7, the lanes whose box is near triangle i's, that share no vertex index with
+ * it and are near it on each diagonal direction d (h's dg[d] <= g's dg[6 + d] and g's dg[d] <= h's
+ * dg[6 + d]); bits 8-15, the lanes whose box is near that share one or more (the caller applies
+ * the diagonal test to those it keeps); returns whether any out[i] is not 0. box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
 typedef struct ttd_self_block {
     double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
     double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
+    double dg[12][TTD_NODE_WIDTH]; /* projections on x + y, x - y, x + z, x - z, y + z, y - z:
+                                     minima (d), maxima raised by R (6 + d); 0 in padding lanes */
     double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
 } ttd_self_block;
 typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
+/* self_fill (double rows only; NULL on the scalar row): a leaf's 8 triangles, v[3 k + c][lane] the
+ * coordinate c of vertex k, into their boxes (b->lo, b->hi: minima, and maxima + L) and their
+ * projections on the six diagonal directions x + y, x - y, x + z, x - z, y + z, y - z (b->dg[d]:
+ * minima, b->dg[6 + d]: maxima + R), by min(a, b) = a < b ? a : b and max(a, b) = a > b ? a : b
+ * over the vertices in order and one rounded sum or difference each: the scalar loops' numbers
+ * (what the screens compare; a zero's sign may differ, which no comparison sees). */
+typedef void (*ttd_self_fill_fn)(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b);
 
 /* ccd_screen (double rows only; NULL on the scalar row): the continuous-collision screen in lanes
  * (simd/kernel_ccd.h), the bits of ccd/ccd.c's ttd_ccd_screen for queries 0..count-1 (count <=
@@ -205,6 +216,7 @@ typedef struct ttd_kernels_d {
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
+    ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
 } ttd_kernels_d;
 

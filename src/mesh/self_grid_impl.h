@@ -35,11 +35,15 @@ typedef struct self_scratch {
     ttd_self_block *blk;
     int32_t (*tri)[TTD_NODE_WIDTH];
     double *sbox;
-    double (*dg)[12][TTD_NODE_WIDTH];
     uint32_t *order, *cell;
     double (*gbox)[6];
     double *ext;               /* per leaf: its largest side with L */
     uint32_t *start;
+    /* The groups (below, self_topo_make): made by the first self query from the triangles alone,
+     * which no refit changes, so kept for the mesh's life. */
+    int32_t (*topo)[TTD_NODE_WIDTH]; /* group g's triangles, -1 past its count */
+    size_t ntopo;              /* groups in topo */
+    int topo_state;            /* 0 not made yet; 1 the groups are used; -1 the tree's leaves are */
 } self_scratch;
 
 static void self_scratch_free(void *p)
@@ -50,40 +54,124 @@ static void self_scratch_free(void *p)
     free(S->blk);
     free(S->tri);
     free(S->sbox);
-    free(S->dg);
     free(S->order);
     free(S->cell);
     free(S->gbox);
     free(S->ext);
     free(S->start);
+    free(S->topo);
     free(S);
 }
 
-/* The mesh's scratch with room for ng leaves, or NULL out of memory. */
-static self_scratch *self_scratch_take(const struct ttd_mesh *mesh, size_t ng)
+/* The mesh's scratch (its arrays sized by self_scratch_room), or NULL out of memory. */
+static self_scratch *self_scratch_take(const struct ttd_mesh *mesh)
 {
     struct ttd_mesh *m = (struct ttd_mesh *)(uintptr_t)mesh; /* a cache, not a change to the mesh */
     self_scratch *S = __atomic_exchange_n((self_scratch **)&m->self_scratch, NULL, __ATOMIC_ACQ_REL);
     if (S == NULL && (S = calloc(1, sizeof *S)) != NULL)
         S->free_fn = self_scratch_free;
-    if (S == NULL || S->cap_g >= ng)
-        return S;
-    free(S->blk), free(S->tri), free(S->sbox), free(S->dg), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
+    return S;
+}
+
+/* Room in S for ng groups: 1, or 0 out of memory (S freed). */
+static int self_scratch_room(self_scratch *S, size_t ng)
+{
+    if (S->cap_g >= ng)
+        return 1;
+    free(S->blk), free(S->tri), free(S->sbox), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
     const size_t n = ng ? ng : 1;
     S->blk = ttd_big_alloc(n * sizeof *S->blk);
     S->tri = malloc(n * sizeof *S->tri);
     S->sbox = ttd_big_alloc(6 * (n + TTD_NODE_WIDTH) * sizeof *S->sbox);
-    S->dg = ttd_big_alloc(n * sizeof *S->dg);
     S->order = malloc(n * sizeof *S->order);
     S->cell = malloc(n * sizeof *S->cell);
     S->gbox = malloc(n * sizeof *S->gbox);
     S->ext = malloc(n * sizeof *S->ext);
     S->cap_g = n;
-    if (!S->blk || !S->tri || !S->sbox || !S->dg || !S->order || !S->cell || !S->gbox || !S->ext) {
+    if (!S->blk || !S->tri || !S->sbox || !S->order || !S->cell || !S->gbox || !S->ext) {
         self_scratch_free(S);
-        return NULL;
+        return 0;
     }
-    return S;
+    return 1;
+}
+
+/* Groups of up to 8 triangles that share vertices (issue 36): the tree's leaves group triangles
+ * by the rank of their centroids, which on a sheet spreads a leaf over 6 to 9 quads, so that a
+ * leaf's box, raised by the margin, meets about 23 others; 8 triangles grown breadth-first over
+ * shared vertices are a patch about 2 x 2 quads wide, whose box meets about 8. Each group starts
+ * at the first triangle not yet grouped and takes triangles that share a vertex with one already
+ * in it, nearest in the breadth-first order first, in index order around each vertex, until it
+ * has 8 or no ungrouped neighbour is left. Made from the triangles alone (refits keep it), so the
+ * groups, like the leaves, depend on the mesh alone; any grouping gives the same pairs (only the
+ * work and the records' order depend on it). Around each vertex a cursor skips the triangles
+ * grouped already and at most TOPO_LOOK more are looked at per visit, so a vertex shared by many
+ * triangles costs no more than its own list over the whole making. Where the groups come out
+ * short (triangles with few neighbours: a soup), more than 5 in 4 of a full grouping's count,
+ * the tree's leaves are kept. 1 done (S->topo_state set), 0 out of memory. */
+#define TOPO_LOOK 32
+
+static int self_topo_make(const uint32_t *tris, size_t nt, size_t nv, self_scratch *S)
+{
+    size_t *off = calloc(nv + 1, sizeof *off), *cur = malloc((nv ? nv : 1) * sizeof *cur);
+    uint32_t *inc = malloc((nt ? 3 * nt : 1) * sizeof *inc);
+    int32_t *grp = malloc((nt ? nt : 1) * sizeof *grp), *mark = malloc((nt ? nt : 1) * sizeof *mark);
+    int32_t(*topo)[TTD_NODE_WIDTH] = malloc((nt ? nt : 1) * sizeof *topo); /* at most nt groups */
+    int ok = off && cur && inc && grp && mark && topo;
+    size_t ng = 0;
+    if (ok) {
+        for (size_t i = 0; i < 3 * nt; ++i) /* the triangles around each vertex, in index order */
+            off[tris[i] + 1]++;
+        for (size_t v = 0; v < nv; ++v)
+            off[v + 1] += off[v];
+        memcpy(cur, off, nv * sizeof *cur);
+        for (size_t i = 0; i < 3 * nt; ++i)
+            inc[cur[tris[i]]++] = (uint32_t)(i / 3);
+        memcpy(cur, off, nv * sizeof *cur);
+        for (size_t t = 0; t < nt; ++t)
+            grp[t] = mark[t] = -1;
+        for (size_t seed = 0; seed < nt; ++seed) {
+            if (grp[seed] >= 0)
+                continue;
+            int32_t q[TTD_NODE_WIDTH]; /* the group's queue: its members, then those waiting */
+            int qh = 0, qn = 1;
+            q[0] = (int32_t)seed;
+            mark[seed] = (int32_t)ng;
+            while (qh < qn) {
+                const uint32_t t = (uint32_t)q[qh++];
+                grp[t] = (int32_t)ng;
+                for (int k = 0; k < 3 && qn < TTD_NODE_WIDTH; ++k) {
+                    const uint32_t v = tris[3 * (size_t)t + k];
+                    while (cur[v] < off[v + 1] && grp[inc[cur[v]]] >= 0)
+                        cur[v]++;
+                    for (size_t i = cur[v], e = 0; i < off[v + 1] && e < TOPO_LOOK && qn < TTD_NODE_WIDTH; ++i, ++e) {
+                        const uint32_t u = inc[i];
+                        if (grp[u] < 0 && mark[u] != (int32_t)ng) {
+                            mark[u] = (int32_t)ng;
+                            q[qn++] = (int32_t)u;
+                        }
+                    }
+                }
+            }
+            for (int k = 0; k < TTD_NODE_WIDTH; ++k)
+                topo[ng][k] = k < qn ? q[k] : -1;
+            ++ng;
+        }
+    }
+    free(off), free(cur), free(inc), free(grp), free(mark);
+    if (!ok) {
+        free(topo);
+        return 0;
+    }
+    const size_t full = (nt + TTD_NODE_WIDTH - 1) / TTD_NODE_WIDTH;
+    if (4 * ng > 5 * full) {
+        free(topo);
+        S->topo_state = -1;
+        return 1;
+    }
+    S->topo = topo;
+    S->ntopo = ng;
+    S->topo_state = 1;
+    return 1;
 }
 
 /* Gives the scratch back to the mesh (or frees it where another query's is there already). */
@@ -108,8 +196,6 @@ typedef struct self_grid {
     size_t dim[3], ncells;
     size_t nsmall;             /* leaves in cells: positions [0, nsmall) of order; the large
                                   leaves after them, each tested against every leaf */
-    double (*dg)[12][TTD_NODE_WIDTH]; /* per leaf: its triangles' projections on the six diagonal
-                                  directions (diag_apart): minima, then maxima raised by 1.5 L */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
     self_scratch *S;           /* where the arrays are */
@@ -133,10 +219,13 @@ static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, 
                 near &= (h->lo[c][j] <= g->hi[c][i]) & (g->lo[c][i] <= h->hi[c][j]);
                 share |= (h->ix[c][j] == g->ix[0][i]) | (h->ix[c][j] == g->ix[1][i]) | (h->ix[c][j] == g->ix[2][i]);
             }
-            n |= (unsigned)near << j;
+            int diag = 1; /* the diagonal screen (pairs sharing a vertex: self_grid_leaves) */
+            for (int d = 0; d < 6; ++d)
+                diag &= (h->dg[d][j] <= g->dg[6 + d][i]) & (g->dg[d][i] <= h->dg[6 + d][j]);
+            n |= (unsigned)(near & !share & diag) << j;
             s |= (unsigned)(near & share) << j;
         }
-        out[i] = (uint16_t)((n & ~s) | s << 8);
+        out[i] = (uint16_t)(n | s << 8);
         any |= out[i];
     }
     return any != 0;
@@ -153,33 +242,46 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
 }
 
 /* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
- * directions x +- y, x +- z, y +- z (diag_apart, from each triangle's projections made once per
- * query by diag_extents): the boxes' screen passes in-plane neighbours of a sheet whose
+ * directions x +- y, x +- z, y +- z (in self_screen, from each triangle's projections made once
+ * per query by self_fill): the boxes' screen passes in-plane neighbours of a sheet whose
  * quads are split along a diagonal (five a triangle, 0.7 to 1.4 edges apart), which the exact
  * kernel would then compute in full. Along d = (e_a +- e_b) / sqrt 2 two triangles' projections
  * are at most their distance apart; so the test drops a pair only when the gap of the unscaled
  * projections exceeds R = 1.5 L >= sqrt 2 L + 0.086 L, where 0.086 L >= 0.086 delta = 5.5 eps S
  * (delta = 64 eps S, S >= every coordinate's magnitude) covers the rounding of a +- b (eps S each)
  * and of the comparison's sum. In double for both precisions. */
-static void diag_extents(const qpose *P, const uint32_t *ix, double R, double dg[12][TTD_NODE_WIDTH], int lane)
+
+/* The scalar row's self_fill (core/kernels.h): a leaf's boxes and diagonal projections, a lane at a
+ * time, in the row's order of operations. */
+static void self_fill_scalar(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b)
 {
-    for (int k = 0; k < 3; ++k) {
-        const real *v = P->a.verts + 3 * (size_t)ix[k];
-        const double x = (double)v[0], y = (double)v[1], z = (double)v[2];
-        const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
-        for (int d = 0; d < 6; ++d) {
-            dg[d][lane] = k == 0 || p[d] < dg[d][lane] ? p[d] : dg[d][lane];
-            dg[6 + d][lane] = k == 0 || p[d] > dg[6 + d][lane] ? p[d] : dg[6 + d][lane];
+    double(*dg)[TTD_NODE_WIDTH] = b->dg;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+        for (int c = 0; c < 3; ++c) {
+            const double x0 = v[c][j], x1 = v[3 + c][j], x2 = v[6 + c][j];
+            double mn = x0 < x1 ? x0 : x1, mx = x1 > x0 ? x1 : x0;
+            mn = x2 < mn ? x2 : mn;
+            mx = x2 > mx ? x2 : mx;
+            b->lo[c][j] = mn;
+            b->hi[c][j] = mx + L;
         }
+        for (int k = 0; k < 3; ++k) {
+            const double x = v[3 * k][j], y = v[3 * k + 1][j], z = v[3 * k + 2][j];
+            const double p[6] = {x + y, x - y, x + z, x - z, y + z, y - z};
+            for (int d = 0; d < 6; ++d) {
+                dg[d][j] = k == 0 || p[d] < dg[d][j] ? p[d] : dg[d][j];
+                dg[6 + d][j] = k == 0 || p[d] > dg[6 + d][j] ? p[d] : dg[6 + d][j];
+            }
+        }
+        for (int d = 0; d < 6; ++d)
+            dg[6 + d][j] += R;
     }
-    for (int d = 0; d < 6; ++d)
-        dg[6 + d][lane] += R;
 }
 
-/* Whether lane i of leaf g and lane j of leaf h are apart along a diagonal direction. */
+/* The diagonal screen between lane i of leaf g and lane j of leaf h: whether they are apart. */
 static int diag_apart(const self_grid *G, uint32_t g, int i, uint32_t h, int j)
 {
-    const double *a = &G->dg[g][0][i], *b = &G->dg[h][0][j]; /* direction d at [d * 8] */
+    const double *a = &G->blk[g].dg[0][i], *b = &G->blk[h].dg[0][j]; /* direction d at [d * 8] */
     int apart = 0;
     for (int d = 0; d < 6; ++d)
         apart |= (b[d * TTD_NODE_WIDTH] > a[(6 + d) * TTD_NODE_WIDTH]) | (a[d * TTD_NODE_WIDTH] > b[(6 + d) * TTD_NODE_WIDTH]);
@@ -201,67 +303,81 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     if (!isfinite(L))
         return 0;
     const size_t nnodes = mesh->nnodes;
-    size_t ng = 0;
-    for (size_t n = 0; n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
+    self_scratch *S = G->S = self_scratch_take(mesh);
+    if (S == NULL)
+        return -1;
+    if (S->topo_state == 0 && !self_topo_make(mesh->tris, mesh->nt, mesh->nv, S)) {
+        self_scratch_free(S);
+        G->S = NULL;
+        return -1;
+    }
+    const int topo = S->topo_state > 0;
+    size_t ng = topo ? S->ntopo : 0;
+    for (size_t n = 0; !topo && n < nnodes; ++n) /* a group: a node's triangle children (a leaf's) */
         for (int j = 0; j < P->a.nodes[n].count; ++j)
             if (P->a.nodes[n].child[j] < 0) {
                 ++ng;
                 break;
             }
     G->ngroups = ng;
-    self_scratch *S = G->S = self_scratch_take(mesh, ng);
-    if (S == NULL)
+    if (!self_scratch_room(S, ng)) {
+        G->S = NULL;
         return -1;
+    }
     G->blk = S->blk;
     G->tri = S->tri;
     G->sbox = S->sbox;
-    G->dg = S->dg;
     G->order = S->order;
     double(*gbox)[6] = S->gbox;
     uint32_t *cell = S->cell;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
-    for (size_t n = 0; n < nnodes; ++n) {
-        const ttd_node *y = P->a.nodes + n;
+    for (size_t n = 0; n < (topo ? ng : nnodes); ++n) { /* group n, or node n's triangles */
+        const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
         ttd_self_block *b = &G->blk[g];
-        double *gb = gbox[g];
-        for (int c = 0; c < 3; ++c)
-            gb[c] = INFINITY, gb[3 + c] = -INFINITY;
-        for (int j = 0; j < y->count; ++j) {
-            if (y->child[j] >= 0)
+        double v[9][TTD_NODE_WIDTH]; /* the leaf's vertices, lanes (vertex k, coordinate c at 3 k + c) */
+        for (int j = 0; j < (topo ? TTD_NODE_WIDTH : y->count); ++j) {
+            if (topo ? S->topo[n][j] < 0 : y->child[j] >= 0)
                 continue;
-            const uint32_t t = (uint32_t)(-1 - y->child[j]);
+            const uint32_t t = topo ? (uint32_t)S->topo[n][j] : (uint32_t)(-1 - y->child[j]);
             const uint32_t *ix = P->a.tris + 3 * (size_t)t;
             G->tri[g][k] = (int32_t)t;
-            for (int c = 0; c < 3; ++c) {
-                const double x0 = (double)P->a.verts[3 * (size_t)ix[0] + c], x1 = (double)P->a.verts[3 * (size_t)ix[1] + c],
-                             x2 = (double)P->a.verts[3 * (size_t)ix[2] + c];
-                double mn = x0 < x1 ? x0 : x1, mx = x0 < x1 ? x1 : x0;
-                mn = x2 < mn ? x2 : mn;
-                mx = x2 > mx ? x2 : mx;
-                b->lo[c][k] = mn;
-                b->hi[c][k] = mx + L;
-                b->ix[c][k] = (double)ix[c];
-                gb[c] = mn < gb[c] ? mn : gb[c];
-                gb[3 + c] = b->hi[c][k] > gb[3 + c] ? b->hi[c][k] : gb[3 + c];
+            for (int q = 0; q < 3; ++q) {
+                const real *x = P->a.verts + 3 * (size_t)ix[q];
+                v[3 * q][k] = (double)x[0], v[3 * q + 1][k] = (double)x[1], v[3 * q + 2][k] = (double)x[2];
+                b->ix[q][k] = (double)ix[q];
             }
-            diag_extents(P, ix, 1.5 * L, G->dg[g], k);
             ++k;
         }
         if (k == 0)
             continue;
-        memcpy(b->box, gb, sizeof b->box);
-        for (; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
+        const int live = k;
+        for (; k < TTD_NODE_WIDTH; ++k) /* empty lanes: any finite numbers, replaced below */
+            for (int q = 0; q < 9; ++q)
+                v[q][k] = 0;
+        fill((const double(*)[TTD_NODE_WIDTH])v, L, 1.5 * L, b);
+        for (k = live; k < TTD_NODE_WIDTH; ++k) { /* empty lanes: never near */
             G->tri[g][k] = -1;
             for (int d = 0; d < 12; ++d)
-                G->dg[g][d][k] = 0;
+                b->dg[d][k] = 0;
             for (int c = 0; c < 3; ++c) {
                 b->lo[c][k] = INFINITY;
                 b->hi[c][k] = -INFINITY;
                 b->ix[c][k] = -1;
             }
         }
+        double *gb = gbox[g]; /* the leaf's box: its lanes' (the empty ones' are +-inf) */
+        for (int c = 0; c < 3; ++c) {
+            double mn = b->lo[c][0], mx = b->hi[c][0];
+            for (int j = 1; j < TTD_NODE_WIDTH; ++j) {
+                mn = b->lo[c][j] < mn ? b->lo[c][j] : mn;
+                mx = b->hi[c][j] > mx ? b->hi[c][j] : mx;
+            }
+            gb[c] = mn, gb[3 + c] = mx;
+        }
+        memcpy(b->box, gb, sizeof b->box);
         double e = 0; /* the leaf's extent with L: its largest side */
         for (int c = 0; c < 3; ++c) {
             e = gb[3 + c] - gb[c] > e ? gb[3 + c] - gb[c] : e;
@@ -383,7 +499,7 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
             uint32_t v = 0;
             const int kind = bit < 8 ? SELF_PAIR
                                      : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
-            if (kind != SELF_NONE && !diag_apart(G, g, i, h, j))
+            if (kind != SELF_NONE && (bit < 8 || !diag_apart(G, g, i, h, j))) /* the screen did bits 0-7's */
                 queue_self(C, P, W, w, ta, tb, kind, v);
         }
     }
@@ -412,26 +528,81 @@ static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, co
     }
 }
 
-/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
- * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
- * and the large leaves from itself on. */
-static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
+/* Leaf g (at grid position p) against the leaves gathered in nb (n of them, cap a bound's array;
+ * their positions in pos) whose boxes are near its own, 8 at a time: self_grid_range over a
+ * list. */
+static void self_grid_list(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                           const double *nb, size_t cap, const uint32_t *pos, size_t n)
 {
-    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2];
-    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
-        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
-        for (uint32_t p = G->start[c]; p < G->start[c + 1]; ++p) {
-            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
-            for (int dz = 0; dz <= 1; ++dz)
-                for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
-                    for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
-                        if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
-                            continue;
-                        const size_t d = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
-                        self_grid_range(C, P, W, w, G, p, G->start[d], G->start[d + 1]);
-                    }
+    const size_t stride = G->ngroups + TTD_NODE_WIDTH;
+    const double *s = G->sbox;
+    const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
+    const uint32_t g = G->order[p];
+    for (size_t r = 0; r < n; r += TTD_NODE_WIDTH) {
+        const double *const lo[3] = {nb + r, nb + cap + r, nb + 2 * cap + r};
+        const double *const hi[3] = {nb + 3 * cap + r, nb + 4 * cap + r, nb + 5 * cap + r};
+        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
+        if (n - r < TTD_NODE_WIDTH)
+            m &= (1u << (n - r)) - 1;
+        for (; m != 0; m &= m - 1) {
+            const uint32_t o = G->order[pos[r + (size_t)__builtin_ctz(m)]];
+            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
         }
     }
+}
+
+/* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
+ * unit past them is a large leaf (position nsmall + u - ncells), which meets every leaf in a cell
+ * and the large leaves from itself on. A cell's leaves meet the rest of their cell, then the
+ * leaves of the 13 cells after it, gathered once a cell into one list in the cells' order (so the
+ * pairs come in the order of a run at a time, with fewer and fuller row calls). */
+static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, size_t u0, size_t u1)
+{
+    const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2], stride = G->ngroups + TTD_NODE_WIDTH;
+    double *nb = NULL; /* the gathered boxes: 6 arrays of cap (lo x, y, z, raised hi x, y, z) */
+    uint32_t *pos = NULL;
+    size_t cap = 0;
+    for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
+        if (G->start[c] == G->start[c + 1])
+            continue;
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        size_t d[13], nd = 0, n = 0;
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx) {
+                    if (x + (size_t)dx >= X || y + (size_t)dy >= Y || z + (size_t)dz >= Z)
+                        continue;
+                    d[nd] = ((z + (size_t)dz) * Y + (y + (size_t)dy)) * X + x + (size_t)dx;
+                    n += G->start[d[nd] + 1] - G->start[d[nd]];
+                    ++nd;
+                }
+        if (n + TTD_NODE_WIDTH > cap) {
+            free(nb), free(pos);
+            cap = 2 * (n + TTD_NODE_WIDTH);
+            nb = malloc(6 * cap * sizeof *nb);
+            pos = malloc(cap * sizeof *pos);
+            if (nb == NULL || pos == NULL) {
+                W->nomem = 1;
+                break;
+            }
+        }
+        size_t k = 0;
+        for (size_t e = 0; e < nd; ++e)
+            for (uint32_t r = G->start[d[e]]; r < G->start[d[e] + 1]; ++r, ++k) {
+                for (int b = 0; b < 6; ++b)
+                    nb[(size_t)b * cap + k] = G->sbox[(size_t)b * stride + r];
+                pos[k] = r;
+            }
+        for (; k < n + TTD_NODE_WIDTH; ++k) /* padding: never near */
+            for (int b = 0; b < 6; ++b)
+                nb[(size_t)b * cap + k] = b < 3 ? (double)INFINITY : -(double)INFINITY;
+        for (uint32_t p = G->start[c]; p < G->start[c + 1] && !W->nomem && !w->hit; ++p) {
+            self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
+            self_grid_list(C, P, W, w, G, p, nb, cap, pos, n);
+        }
+    }
+    free(nb);
+    free(pos);
     for (size_t u = u1 > G->ncells ? (u0 > G->ncells ? u0 : G->ncells) : u1; u < u1 && !W->nomem && !w->hit; ++u) {
         const uint32_t p = (uint32_t)(G->nsmall + (u - G->ncells));
         self_grid_range(C, P, W, w, G, p, 0, (uint32_t)G->nsmall);

@@ -38,7 +38,12 @@ static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int sam
                 const ttdw_vd x = ttdw_loadu_d(h->ix[c] + j);
                 share = ttdw_mor_d(share, ttdw_mor_d(ttdw_eq_d(x, i0), ttdw_mor_d(ttdw_eq_d(x, i1), ttdw_eq_d(x, i2))));
             }
-            n |= ttdw_mbits_d(near) << j;
+            ttdw_md pair = ttdw_mandnot_d(near, share); /* near, sharing no vertex */
+            if (ttdw_mbits_d(pair)) /* the diagonal directions (self_grid_impl.h, the diagonal screen) */
+                for (int d = 0; d < 6; ++d)
+                    pair = ttdw_mand_d(pair, ttdw_mand_d(ttdw_le_d(ttdw_loadu_d(h->dg[d] + j), ttdw_set1_d(g->dg[6 + d][i])),
+                                                         ttdw_le_d(ttdw_set1_d(g->dg[d][i]), ttdw_loadu_d(h->dg[6 + d] + j))));
+            n |= ttdw_mbits_d(pair) << j;
             s |= ttdw_mbits_d(ttdw_mand_d(near, share)) << j;
         }
         if (same) {
@@ -46,7 +51,7 @@ static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int sam
             n &= after;
             s &= after;
         }
-        out[i] = (uint16_t)((n & ~s) | s << 8);
+        out[i] = (uint16_t)(n | s << 8);
         any |= out[i];
     }
     return any != 0;
@@ -60,7 +65,34 @@ static unsigned box_screen(const double *const lo[3], const double *const hi[3],
     return n;
 }
 
-#define TTD_LANE_ROW_SELF_SCREEN .self_screen = self_screen, .box_screen = box_screen,
+/* A leaf's triangles' boxes and diagonal projections, 8 lanes (core/kernels.h, self_fill). */
+static void self_fill(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b)
+{
+    const ttdw_vd l = ttdw_set1_d(L), r = ttdw_set1_d(R);
+    for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D) {
+        ttdw_vd x[3][3]; /* vertex k, coordinate c */
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c)
+                x[k][c] = ttdw_loadu_d(v[3 * k + c] + j);
+        for (int c = 0; c < 3; ++c) {
+            /* the scalar loops: mn = x0 < x1 ? x0 : x1, mx = x0 < x1 ? x1 : x0, then x2 */
+            const ttdw_vd mn = ttdw_min_d(x[2][c], ttdw_min_d(x[0][c], x[1][c]));
+            const ttdw_vd mx = ttdw_max_d(x[2][c], ttdw_max_d(x[1][c], x[0][c]));
+            ttdw_storeu_d(b->lo[c] + j, mn);
+            ttdw_storeu_d(b->hi[c] + j, mx + l);
+        }
+        for (int d = 0; d < 6; ++d) {
+            const int a = d < 4 ? 0 : 1, e = d < 2 ? 1 : 2; /* x +- y, x +- z, y +- z */
+            ttdw_vd p[3];
+            for (int k = 0; k < 3; ++k)
+                p[k] = d % 2 ? x[k][a] - x[k][e] : x[k][a] + x[k][e];
+            ttdw_storeu_d(b->dg[d] + j, ttdw_min_d(p[2], ttdw_min_d(p[1], p[0])));
+            ttdw_storeu_d(b->dg[6 + d] + j, ttdw_max_d(p[2], ttdw_max_d(p[1], p[0])) + r);
+        }
+    }
+}
+
+#define TTD_LANE_ROW_SELF_SCREEN .self_screen = self_screen, .box_screen = box_screen, .self_fill = self_fill,
 #else
 #define TTD_LANE_ROW_SELF_SCREEN
 #endif
