@@ -742,6 +742,11 @@ static int thin_soup(ttd_gen_mesh *m)
     return 0;
 }
 
+/* The floor's cells a side (ttd_gen_grid) and the cube's size (times the others'):
+ * resting_cube_on_fine_floor makes both large. */
+static size_t floor_cells = 4;
+static double cube_size = 1;
+
 static int make_world(world *W, int bytes, size_t nbody, double spread, int with_floor)
 {
     memset(W, 0, sizeof *W);
@@ -750,9 +755,11 @@ static int make_world(world *W, int bytes, size_t nbody, double spread, int with
     ENSURE(ttd_gen_mesh_cube(&W->gm[1]) == 0);
     ENSURE(thin_soup(&W->gm[2]) == 0);
     ENSURE(ttd_gen_mesh_degenerate(&W->gm[3]) == 0);
-    ENSURE(ttd_gen_grid(4, &W->gm[4]) == 0); /* the floor, scaled below */
+    ENSURE(ttd_gen_grid(floor_cells, &W->gm[4]) == 0); /* the floor, scaled below */
     for (int k = 0; k < 4; ++k)
         ENSURE(ttd_gen_normalize(&W->gm[k]) == 0);
+    for (size_t i = 0; i < 3 * W->gm[1].nv; ++i)
+        W->gm[1].verts[i] *= cube_size;
     {
         const double big[12] = {20, 0, 0, 0, 0, 20, 0, 0, 0, 0, 20, 0};
         ENSURE(ttd_gen_normalize(&W->gm[4]) == 0);
@@ -941,6 +948,57 @@ static int stacked_cubes_match_brute_force(void)
         size_t n;
         ENSURE(check_world(&W, "stacked cubes", &n) == 0);
         ENSURE(n > 0 && npoints_corner > 0);
+        free_world(&W);
+    }
+    return 0;
+}
+
+/* A cube resting on a floor of many small cells, turned and just above it: one body pair with
+ * hundreds of contacts and corners at its deepest level, so that the reduction's depth order runs
+ * its radix sort (512 points or more, docs/scene-speed.md section 7), checked like every scene
+ * against the brute force's contacts and corners in the reference's depth order. */
+static int resting_cube_on_fine_floor(void)
+{
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        floor_cells = 64;
+        cube_size = 8; /* 4.6 wide on a floor 14.1 wide in cells of 0.22: about 440 cells under it */
+        const int made = make_world(&W, bytes, 3, 1.25, 1); /* an icosphere, a cube, the floor */
+        floor_cells = 4;
+        cube_size = 1;
+        ENSURE(made == 0);
+        ENSURE(ttd_scene_remove(W.scene, 0) == TTD_OK);
+        W.mesh_of[0] = -1;
+        double top = -HUGE_VAL, lo[3], hi[3];
+        for (size_t v = 0; v < W.gm[4].nv; ++v) {
+            double x[3];
+            world_vertex(&W, 2, v, x);
+            top = fmax(top, x[1]); /* the floor is the plane y = 0 (make_world's pose) */
+        }
+        ENSURE(ttd_gen_mesh_bounds(&W.gm[1], lo, hi) == 0);
+        const double a = 0.3, c = cos(a), sn = sin(a);
+        const double R[9] = {c, 0, sn, 0, 1, 0, -sn, 0, c}; /* turned about the floor's normal */
+        const double ctr[3] = {0.5 * (lo[0] + hi[0]), lo[1], 0.5 * (lo[2] + hi[2])};
+        const double at[3] = {0.137, top + 0.004, -1.3 - 0.211}; /* a face 0.004 off the floor, within the margin */
+        double *P = W.pose[1];
+        for (int r = 0; r < 3; ++r) {
+            for (int k = 0; k < 3; ++k)
+                P[4 * r + k] = R[3 * r + k];
+            P[4 * r + 3] = at[r] - (R[3 * r] * ctr[0] + R[3 * r + 1] * ctr[1] + R[3 * r + 2] * ctr[2]);
+        }
+        for (int k = 0; k < 12; ++k)
+            P[k] = round_to(bytes, P[k]);
+        if (bytes == 8) {
+            ENSURE(ttd_scene_set_pose_d(W.scene, 1, P) == TTD_OK);
+        } else {
+            float pf[12];
+            for (int k = 0; k < 12; ++k)
+                pf[k] = (float)P[k];
+            ENSURE(ttd_scene_set_pose_f(W.scene, 1, pf) == TTD_OK);
+        }
+        size_t n;
+        ENSURE(check_world(&W, "cube on a fine floor", &n) == 0);
+        ENSURE(n + npoints_corner >= 512);
         free_world(&W);
     }
     return 0;
@@ -1310,6 +1368,7 @@ int main(int argc, char **argv)
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(scenes_match_brute_force);
     RUN_TEST(stacked_cubes_match_brute_force);
+    RUN_TEST(resting_cube_on_fine_floor);
     RUN_TEST(sparse_scene_distances);
     RUN_TEST(scaled_scenes);
     RUN_TEST(resting_cube_normals);

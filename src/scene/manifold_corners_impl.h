@@ -277,6 +277,47 @@ static const corner_tri *corner_tri_get(const struct ttd_scene *s, manifold_work
     return e;
 }
 
+/* A vertex question of step 0 met in this pair (tag: manifold_work.ctri_pair): its key's place
+ * in w->key, or SIZE_MAX where its screens found no corner. A vertex is asked by every triangle
+ * around it that meets the other triangle (a sliver fan's corner by 24): its screens depend on
+ * the vertex's place and the other triangle alone, so they are run once, and one key is kept,
+ * that of the smallest asking triangles (the key the sort and its dedup kept before). */
+typedef struct corner_seen {
+    uint64_t tag, a, b;
+    uint32_t kind;
+    size_t at;
+} corner_seen;
+
+static size_t seen_slot(const corner_seen *t, size_t cap, uint64_t tag, uint32_t kind, uint64_t a, uint64_t b)
+{
+    uint64_t h = (a + 1) * 0x9e3779b97f4a7c15ULL ^ (b + 1) * 0xc2b2ae3d27d4eb4fULL ^ (uint64_t)kind * 0x165667b19e3779f9ULL;
+    h = (h ^ (h >> 29)) * 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 32;
+    size_t at = (size_t)h & (cap - 1);
+    while (t[at].tag == tag && !(t[at].kind == kind && t[at].a == a && t[at].b == b))
+        at = (at + 1) & (cap - 1);
+    return at;
+}
+
+/* The entry of vertex question q in this pair's table: found (its `tag` is the pair's), or a free
+ * slot to fill (the table grown to keep it at most half full). NULL out of memory. */
+static corner_seen *seen_get(manifold_work *w, const corner_key *q)
+{
+    if (2 * (w->seen_n + 1) > w->seen_cap) {
+        const size_t cap = w->seen_cap ? 2 * w->seen_cap : 1024;
+        corner_seen *t = calloc(cap, sizeof *t);
+        if (t == NULL)
+            return NULL;
+        for (size_t k = 0; k < w->seen_cap; ++k)
+            if (w->seen[k].tag == w->ctri_pair)
+                t[seen_slot(t, cap, w->ctri_pair, w->seen[k].kind, w->seen[k].a, w->seen[k].b)] = w->seen[k];
+        free(w->seen);
+        w->seen = t;
+        w->seen_cap = cap;
+    }
+    return &w->seen[seen_slot(w->seen, w->seen_cap, w->ctri_pair, q->kind, q->a, q->b)];
+}
+
 /* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
  * and a vertex or an edge may lie within the margin of the other triangle. rel: R_i^T R_j, body
  * j's rotation in body i's frame. 0 out of memory. */
@@ -314,11 +355,26 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
         for (int k = 0; k < 3; ++k) {
             if (h[side][k] != 0 || ttd_vertex_class(E[side], tri[side], k) == TTD_VERTEX_FLAT)
                 continue;
+            const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
+            corner_seen *seen = seen_get(w, &key);
+            if (seen == NULL)
+                return 0;
+            if (seen->tag == w->ctri_pair) { /* met before: keep the smallest asking triangles */
+                corner_key *e = seen->at == SIZE_MAX ? NULL : &w->key[seen->at];
+                if (e != NULL && (key.ti < e->ti || (key.ti == e->ti && key.tj < e->tj))) {
+                    e->ti = key.ti;
+                    e->tj = key.tj;
+                    e->k = key.k;
+                }
+                continue;
+            }
+            *seen = (corner_seen){w->ctri_pair, key.a, key.b, key.kind, SIZE_MAX};
+            w->seen_n++;
             screen_box vb;
             box_of(x[side] + 3 * k, 1, &vb);
             const double ext = boxes_ext(&vb, &T[!side]->box);
             if (!boxes_apart(&vb, &T[!side]->box, ext, margin) && !vertex_beside(x[side] + 3 * k, x[!side], ext, margin)) {
-                const corner_key key = {(uint32_t)side, E[side]->weld[tris[side][k]], tri[!side], c->tri_i, c->tri_j, k, 0};
+                seen->at = w->key_n;
                 if (!key_push(w, &key))
                     return 0;
             }
@@ -425,6 +481,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     if (w->ctri == NULL && (w->ctri = calloc(2 * CORNER_CACHE, sizeof *w->ctri)) == NULL)
         return 0;
     w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
+    w->seen_n = 0;  /* and so are the vertex questions met */
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
     for (int r = 0; r < 3; ++r)

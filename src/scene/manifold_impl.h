@@ -90,10 +90,13 @@ typedef struct manifold_work {
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
     struct manifold_rec *sorted; /* the points in depth order, before they trade places */
     size_t keys_cap, sorted_cap;
+    uint32_t *radix_count;   /* step 1: the radix sort's counts, 16 digits of 256 */
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
     struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
     uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
+    struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
+    size_t seen_n, seen_cap;
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -136,6 +139,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->inner[1]);
     free(w->queue);
     free(w->keys);
+    free(w->radix_count);
     free(w->sorted);
     free(w->pts);
     free(w->pts_place);
@@ -144,6 +148,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->key_tmp);
     free(w->near);
     free(w->ctri);
+    free(w->seen);
     memset(w, 0, sizeof *w);
 }
 

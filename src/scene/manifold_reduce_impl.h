@@ -47,6 +47,72 @@ static int key_before(const depth_key *a, const depth_key *b, const manifold_rec
     return depth_cmp(&rc[a->at], &rc[b->at]) < 0;
 }
 
+/* Step 1's sort by radix, where the points are many (a resting face's level holds hundreds a
+ * pair, whose merge sort's jumps on the comparison mispredict): the keys (d, t) a byte at a time
+ * from the lowest, stably, the bytes on which all keys agree (found first) skipped; then each run of keys with
+ * equal (d, t) (a triangle pair's corners at one distance: a few) put in depth_cmp's order by a
+ * stable insertion. A stable sort by key_before's order, as the merge sort is, so the same
+ * order to the point. 0 where a run is longer than RADIX_RUN (the insertion would grow with its
+ * square): the merge sort then runs on the keys as left, which hold equal points in their first
+ * order, so its stable result is the same. *a holds the keys, *b as many
+ * for scratch; the sorted keys end in *a (the two may trade places). */
+#define RADIX_MIN 512
+#define RADIX_RUN 32
+static int depth_radix(uint32_t *count, const manifold_rec *rc, size_t n, depth_key **a, depth_key **b)
+{
+    /* the bytes on which the keys differ (digit g: byte g of t, g < 8; byte g - 8 of d), counted */
+    const depth_key *x = *a;
+    uint64_t dt = 0, dd = 0;
+    for (size_t k = 1; k < n; ++k) {
+        dt |= x[k].t ^ x[0].t;
+        dd |= x[k].d ^ x[0].d;
+    }
+    int digit[16], nd = 0;
+    for (int g = 0; g < 16; ++g)
+        if (((g < 8 ? dt : dd) >> (8 * (g & 7))) & 255)
+            digit[nd++] = g;
+    memset(count, 0, (size_t)nd * 256 * sizeof *count);
+    for (size_t k = 0; k < n; ++k)
+        for (int e = 0; e < nd; ++e) {
+            const int g = digit[e];
+            count[256 * e + (((g < 8 ? x[k].t : x[k].d) >> (8 * (g & 7))) & 255)]++;
+        }
+    depth_key *src = *a, *dst = *b;
+    for (int e = 0; e < nd; ++e) {
+        uint32_t *c = count + 256 * e;
+        const int g = digit[e], shift = 8 * (g & 7);
+        uint32_t sum = 0;
+        for (int v = 0; v < 256; ++v) {
+            const uint32_t m = c[v];
+            c[v] = sum;
+            sum += m;
+        }
+        for (size_t k = 0; k < n; ++k) {
+            const uint64_t key = g < 8 ? src[k].t : src[k].d;
+            dst[c[(key >> shift) & 255]++] = src[k];
+        }
+        depth_key *t = src;
+        src = dst;
+        dst = t;
+    }
+    *a = src;
+    *b = dst;
+    for (size_t lo = 0, hi; lo < n; lo = hi) {
+        for (hi = lo + 1; hi < n && src[hi].d == src[lo].d && src[hi].t == src[lo].t; ++hi)
+            ;
+        if (hi - lo > RADIX_RUN)
+            return 0;
+        for (size_t k = lo + 1; k < hi; ++k) { /* stable: moved only past points strictly after it */
+            const depth_key v = src[k];
+            size_t m = k;
+            for (; m > lo && depth_cmp(&rc[v.at], &rc[src[m - 1].at]) < 0; --m)
+                src[m] = src[m - 1];
+            src[m] = v;
+        }
+    }
+    return 1;
+}
+
 /* Sorts the n points *buf (an array of *cap) into depth order (depth_cmp's; a merge sort of
  * 24-byte keys, stable, in place of qsort on the records): the points are written in order
  * into w->sorted, which then trades places with *buf. 0 out of memory. */
@@ -73,7 +139,13 @@ static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t 
         a[k].t = (uint64_t)rc[k].c.tri_i << 32 | rc[k].c.tri_j;
         a[k].at = k;
     }
-    for (size_t run = 1; run < n; run *= 2) {
+    int sorted = 0;
+    if (n >= RADIX_MIN && n <= UINT32_MAX) {
+        if (w->radix_count == NULL && (w->radix_count = malloc(16 * 256 * sizeof *w->radix_count)) == NULL)
+            return 0;
+        sorted = depth_radix(w->radix_count, rc, n, &a, &b);
+    }
+    for (size_t run = 1; !sorted && run < n; run *= 2) {
         for (size_t lo = 0; lo < n; lo += 2 * run) {
             const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
             size_t x = lo, y = mid, o = lo;
