@@ -21,6 +21,11 @@
 #      10,000,000: on vertices, near, in the box, far) through ttd_gpu_points_closest_d/f against
 #      ttd_points_closest, whole results bit for bit, and points/s of both; and the entries'
 #      argument checks on the device (the host walks' own tests need no device: scripts/test.sh).
+#   6. test_gpu_ccd: continuous collision on the device (docs/ccd.md, section 14): the argument
+#      checks, then every generated family (TTD_GPU_CCD_N queries a family and kind, default
+#      20,000: vertex-face, edge-edge, triangles; three separations; double and float) and the kept
+#      sample queries through ttd_gpu_ccd_* on device memory against the CPU batch, every field
+#      bit for bit, and queries/s of the device and of this machine's cores on random queries.
 # Signed distances have no device path yet: nothing to run for them.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -57,6 +62,10 @@ fi
     done
     exit $rc
 ) | tee "$out/test_gpu_walk.txt" || status=1
+# ---- continuous collision (step 6) ----
+[ -x "$build/tests/test_gpu_ccd" ] || { echo "test-gpu-device.sh: no $build/tests/test_gpu_ccd" >&2; status=1; }
+TTD_GPU_CCD_N=${TTD_GPU_CCD_N:-20000} "$build/tests/test_gpu_ccd" 2>&1 | tee "$out/test_gpu_ccd.txt" || status=1
+# ---- end of continuous collision ----
 if [ "${TTD_NCU:-0}" = 1 ] && command -v ncu > /dev/null; then
     # the distance-only kernel's first launch in each precision, on 2^20 pairs: occupancy, pipes,
     # stalls (the kernels are told apart by their mangled names: ...PKd... double, ...PKf... float)

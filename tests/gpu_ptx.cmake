@@ -5,7 +5,9 @@
 # double, in kx_prod_err), no approximate division, reciprocal or square root, no flush to
 # zero; and the double FMAs stay the explicit ones (12 per exact group inlined: the pair kernels
 # and the mesh pose kernels of gpu_walk_impl.h inline 6 in gpu_d.ptx, 72 FMAs; contraction makes
-# hundreds: 790 in the pair kernels alone with -fmad=true).
+# hundreds: 790 in the pair kernels alone with -fmad=true). gpu_ccd.ptx (continuous collision,
+# docs/ccd.md, section 14): its FMAs are the search's explicit fma() calls, each the exact error of
+# a product.
 string(REPLACE "|" ";" files "${PTX}")
 foreach(f ${files})
   set(file_failed 0)
