@@ -26,6 +26,11 @@
 #      same rough sphere through ttd_gpu_points_signed_distance_d/f against
 #      ttd_points_signed_distance on this machine's cores, distances and whole results bit for bit
 #      (the inside flag included), and points/s of both.
+#   7. test_gpu_ccd: continuous collision on the device (docs/ccd.md, section 14): the argument
+#      checks, then every generated family (TTD_GPU_CCD_N queries a family and kind, default
+#      20,000: vertex-face, edge-edge, triangles; three separations; double and float) and the kept
+#      sample queries through ttd_gpu_ccd_* on device memory against the CPU batch, every field
+#      bit for bit, and queries/s of the device and of this machine's cores on random queries.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${TTD_BUILD_DIR:-build}
@@ -69,6 +74,10 @@ fi
     done
     exit $rc
 ) | tee "$out/test_gpu_signed.txt" || status=1
+# ---- continuous collision (step 7) ----
+[ -x "$build/tests/test_gpu_ccd" ] || { echo "test-gpu-device.sh: no $build/tests/test_gpu_ccd" >&2; status=1; }
+TTD_GPU_CCD_N=${TTD_GPU_CCD_N:-20000} "$build/tests/test_gpu_ccd" 2>&1 | tee "$out/test_gpu_ccd.txt" || status=1
+# ---- end of continuous collision ----
 if [ "${TTD_NCU:-0}" = 1 ] && command -v ncu > /dev/null; then
     # the distance-only kernel's first launch in each precision, on 2^20 pairs: occupancy, pipes,
     # stalls (the kernels are told apart by their mangled names: ...PKd... double, ...PKf... float)

@@ -7,7 +7,8 @@
 # and the mesh pose kernels of gpu_walk_impl.h inline 6 in gpu_d.ptx, 72 FMAs; the signed-distance
 # kernel's ray count adds one in each file, its exact product error kept out of line,
 # points/ray_impl.h's ray_prod_err; contraction makes hundreds: 790 in the pair kernels alone with
-# -fmad=true).
+# -fmad=true). gpu_ccd.ptx (continuous collision, docs/ccd.md, section 14): its FMAs are the
+# search's explicit fma() calls, each the exact error of a product.
 string(REPLACE "|" ";" files "${PTX}")
 foreach(f ${files})
   set(file_failed 0)

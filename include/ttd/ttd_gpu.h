@@ -166,6 +166,40 @@ TTD_API ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *mesh
                                                         float upper_bound, float *distance,
                                                         ttd_point_result_f *results, void *stream);
 
+/* ---- Continuous collision of moving primitives on the device (issue 33; docs/ccd.md, section 14) ---- */
+/// The CPU's ttd_ccd_vertex_face_d on n queries in device (or managed) memory, one CUDA thread a
+/// query, asynchronous on stream (a cudaStream_t; NULL: the default stream): the arrays' layout
+/// is the CPU entry's (v_t0, v_t1 3n reals, f_t0, f_t1 9n), out n records in device memory, each
+/// the record ttd_ccd_vertex_face_d gives, bit for bit (hit, toi, gap, flags, sub, evals): the
+/// same search with its exact fallback runs on the device. A query with a NaN or infinite
+/// coordinate gets toi NaN and TTD_CCD_NONFINITE (not reported in the status, where the CPU
+/// returns TTD_ERR_NONFINITE_INPUT). TTD_GPU_ERR_BAD_ARGUMENT for a NaN, negative or infinite
+/// min_separation; n = 0 does nothing and returns TTD_GPU_OK.
+TTD_API ttd_gpu_status ttd_gpu_ccd_vertex_face_d(size_t n, const double *v_t0, const double *f_t0, const double *v_t1,
+                                                 const double *f_t1, double min_separation, ttd_ccd_result *out,
+                                                 void *stream);
+/// ttd_gpu_ccd_vertex_face_d on float arrays (widened to double exactly, as ttd_ccd_vertex_face_f).
+TTD_API ttd_gpu_status ttd_gpu_ccd_vertex_face_f(size_t n, const float *v_t0, const float *f_t0, const float *v_t1,
+                                                 const float *f_t1, double min_separation, ttd_ccd_result *out,
+                                                 void *stream);
+/// The CPU's ttd_ccd_edge_edge_d on device arrays (ea, eb 6n reals each), as ttd_gpu_ccd_vertex_face_d.
+TTD_API ttd_gpu_status ttd_gpu_ccd_edge_edge_d(size_t n, const double *ea_t0, const double *eb_t0, const double *ea_t1,
+                                               const double *eb_t1, double min_separation, ttd_ccd_result *out,
+                                               void *stream);
+/// ttd_gpu_ccd_edge_edge_d on float arrays.
+TTD_API ttd_gpu_status ttd_gpu_ccd_edge_edge_f(size_t n, const float *ea_t0, const float *eb_t0, const float *ea_t1,
+                                               const float *eb_t1, double min_separation, ttd_ccd_result *out,
+                                               void *stream);
+/// The CPU's ttd_ccd_triangles_d on device arrays (9n reals each), as ttd_gpu_ccd_vertex_face_d.
+TTD_API ttd_gpu_status ttd_gpu_ccd_triangles_d(size_t n, const double *ta_t0, const double *tb_t0, const double *ta_t1,
+                                               const double *tb_t1, double min_separation, ttd_ccd_result *out,
+                                               void *stream);
+/// ttd_gpu_ccd_triangles_d on float arrays.
+TTD_API ttd_gpu_status ttd_gpu_ccd_triangles_f(size_t n, const float *ta_t0, const float *tb_t0, const float *ta_t1,
+                                               const float *tb_t1, double min_separation, ttd_ccd_result *out,
+                                               void *stream);
+/* ---- end of continuous collision ---- */
+
 #ifdef __cplusplus
 }
 #endif

@@ -202,3 +202,28 @@ def test_signed_distance_constants_match_the_header():
     header = pathlib.Path(__file__).resolve().parents[2] / "include" / "ttd" / "ttd_gpu.h"
     assert f"#define TTD_GPU_POINT_SIDE_REFUSED 0x{tc.POINT_SIDE_REFUSED:x}u" in header.read_text()
     assert tc.POINT_SIDE_REFUSED > 0x10
+
+
+# ---- continuous collision (ttd.cuda.ccd_vertex_face, ccd_edge_edge) ---------------------------
+
+def test_ccd_refuses_bad_arguments_before_launching(gpu_library):
+    v, f = FakeDeviceArray((5, 3)), FakeDeviceArray((5, 3, 3))
+    e = FakeDeviceArray((5, 2, 3))
+    with pytest.raises(TypeError, match="not an array in GPU memory"):
+        tc.ccd_vertex_face(np.zeros((5, 3)), f, v, f)
+    with pytest.raises(ValueError, match=r"shape \(n, 3, 3\)"):
+        tc.ccd_vertex_face(v, FakeDeviceArray((5, 9)), v, f)
+    with pytest.raises(ValueError, match=r"shape \(n, 2, 3\)"):
+        tc.ccd_edge_edge(e, e, FakeDeviceArray((5, 3, 2)), e)
+    with pytest.raises(TypeError, match="float64 or float32"):
+        tc.ccd_edge_edge(e, e, e, FakeDeviceArray((5, 2, 3), "<i4"))
+    with pytest.raises(TypeError, match="same dtype"):
+        tc.ccd_vertex_face(v, f, FakeDeviceArray((5, 3), "<f4"), f)
+    with pytest.raises(ValueError, match="5 and 4 queries"):
+        tc.ccd_edge_edge(e, e, e, FakeDeviceArray((4, 2, 3)))
+    with pytest.raises(ValueError, match="C-contiguous"):
+        tc.ccd_vertex_face(v, f, FakeDeviceArray((5, 3), "<f8", (48, 8)), f)
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="min_separation"):
+            tc.ccd_edge_edge(e, e, e, e, min_separation=bad)
+

@@ -29,6 +29,11 @@ Meshes under many poses (docs/gpu.md, section 6):
     s = ttd.cuda.signed_distance(a, cp.asarray(X))  # s.distance (n,), ttd.signed_distance's bits
                                                     # (a closed mesh, or one triangle; see signed_distance)
 
+Continuous collision of moving primitives (docs/ccd.md, section 14):
+
+    r = ttd.cuda.ccd_vertex_face(v0, f0, v1, f1)   # v (n, 3), f (n, 3, 3): r.hit, r.toi, ttd.ccd_vertex_face's bits
+    r = ttd.cuda.ccd_edge_edge(a0, b0, a1, b1)     # each (n, 2, 3)
+
 A Mesh needs libttd too (to build the hierarchy as the CPU does): TTD_LIBRARY (a path), else
 next to libttd_gpu, else the system's library path.
 """
@@ -39,7 +44,8 @@ import os
 import pathlib
 
 __all__ = ["CudaUnavailableError", "available", "info", "distance", "Mesh", "mesh_distance", "mesh_collide",
-           "closest_points", "signed_distance", "POSE_REFUSED", "POINT_SIDE_REFUSED"]
+           "closest_points", "signed_distance", "POSE_REFUSED", "POINT_SIDE_REFUSED", "ccd_vertex_face",
+           "ccd_edge_edge"]
 
 # include/ttd/ttd_gpu.h, TTD_GPU_POSE_REFUSED: a pose the CPU entry would refuse (flags bit; hit value)
 POSE_REFUSED = 0x8000
@@ -569,3 +575,68 @@ def signed_distance(mesh, points, upper_bound=float("inf")):
         if status != _OK:
             _raise_status(lib, status, "ttd_gpu_points_signed_distance")
     return MeshSignedGPU(_column(out, 0, nbytes, typestr[1:]), records)
+
+
+# ---- continuous collision (docs/ccd.md, section 14) ----
+CCDResultGPU = collections.namedtuple("CCDResultGPU", ["hit", "toi", "records"])
+CCDResultGPU.__doc__ = """ttd.cuda.ccd_vertex_face's and ccd_edge_edge's result, on the device: hit (n,)
+int32, toi (n,) float64 (inf without a hit, NaN for a non-finite query), and the n whole records
+(n, 32) uint8 in ttd_ccd_result's layout (toi, gap, hit, flags, sub, evals), each the record the
+CPU's ttd.ccd_vertex_face / ttd.ccd_edge_edge computes, bit for bit."""
+
+
+def _ccd_fn(lib, name):
+    fn = getattr(lib, name)
+    fn.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
+                   ctypes.c_double, ctypes.c_void_p, ctypes.c_void_p]
+    fn.restype = ctypes.c_int
+    return fn
+
+
+def _ccd(kind, arrays, names, shapes, min_separation):
+    lib = _library()
+    ifaces, typestr, n, holder = [], None, None, None
+    for a, what, shape in zip(arrays, names, shapes):
+        iface, h = _interface(a, what)
+        ts, sh = iface["typestr"], tuple(iface["shape"])
+        if ts not in ("<f8", "<f4"):
+            raise TypeError(f"{what} must hold float64 or float32, not {ts}")
+        if typestr is not None and ts != typestr:
+            raise TypeError(f"{names[0]} and {what} must have the same dtype ({typestr} and {ts})")
+        if len(sh) != 1 + len(shape) or sh[1:] != shape:
+            raise ValueError(f"{what} must have shape (n, {', '.join(map(str, shape))}), not {sh}")
+        if n is not None and sh[0] != n:
+            raise ValueError(f"{names[0]} and {what} hold {n} and {sh[0]} queries")
+        if not _contiguous(iface):
+            raise ValueError(f"{what} must be C-contiguous")
+        typestr, n = ts, sh[0]
+        holder = h if holder is None else holder
+        ifaces.append(iface)
+    delta = float(min_separation)
+    if not (delta >= 0 and delta != float("inf")):
+        raise ValueError(f"min_separation must be finite and >= 0, not {delta}")
+    records = _records(holder, n, 32)
+    if n > 0:
+        rec_iface, _ = _interface(records, "records")
+        name = f"ttd_gpu_ccd_{kind}_{'d' if typestr == '<f8' else 'f'}"
+        status = _ccd_fn(lib, name)(n, *(i["data"][0] for i in ifaces), delta, rec_iface["data"][0],
+                                    _stream_of(holder))
+        if status != _OK:
+            _raise_status(lib, status, name)
+    return CCDResultGPU(_column(records, 16, 4, "i4"), _column(records, 0, 8, "f8"), records)
+
+
+def ccd_vertex_face(v_t0, f_t0, v_t1, f_t1, *, min_separation=0.0):
+    """Continuous collision of n moving vertices against n moving triangles in GPU memory (v (n, 3),
+    f (n, 3, 3), all float64 or all float32, C-contiguous), one GPU thread a query, on the arrays'
+    library's current stream: each answer is the one ttd.ccd_vertex_face gives, bit for bit."""
+    return _ccd("vertex_face", (v_t0, f_t0, v_t1, f_t1), ("v_t0", "f_t0", "v_t1", "f_t1"),
+                ((3,), (3, 3), (3,), (3, 3)), min_separation)
+
+
+def ccd_edge_edge(ea_t0, eb_t0, ea_t1, eb_t1, *, min_separation=0.0):
+    """Continuous collision of n moving edge pairs in GPU memory (each (n, 2, 3), all float64 or all
+    float32, C-contiguous), as ttd.ccd_edge_edge, bit for bit, one GPU thread a query."""
+    return _ccd("edge_edge", (ea_t0, eb_t0, ea_t1, eb_t1), ("ea_t0", "eb_t0", "ea_t1", "eb_t1"),
+                ((2, 3), (2, 3), (2, 3), (2, 3)), min_separation)
+# ---- end of continuous collision ----

@@ -4,12 +4,15 @@
  * inputs alone, so not on the threads), the float entries widened to double, and the
  * triangle-triangle query as its 15 sub-queries. A batch screens its queries first, in SIMD lanes
  * on the options' instruction set (simd/kernel_ccd.h; the scalar screen on the scalar row, the
- * same bits), and searches only those the screen does not prove free (docs/ccd.md, section 11). */
+ * same bits), and searches only those the screen does not prove free (docs/ccd.md, section 11). What
+ * a query of a batch does beside the screen (reading it, the non-finite answer, the 15 sub-queries) is
+ * ccd_batch_impl.h, which the device runs too (docs/ccd.md, section 14). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ccd/ccd.h"
+#include "ccd/ccd_batch_impl.h"
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
 
@@ -26,45 +29,6 @@ typedef struct ccd_batch {
     ttd_ccd_screen_fn screen; /* the row's screen in lanes, NULL: the scalar screen */
 } ccd_batch;
 
-static void nonfinite(ttd_ccd_result *r)
-{
-    r->hit = 0;
-    r->toi = (double)NAN;
-    r->gap = (double)NAN;
-    r->flags = TTD_CCD_NONFINITE;
-    r->sub = 0;
-    r->evals = 0;
-}
-
-static double get(const ccd_batch *b, const void *arr, size_t i)
-{
-    return b->is_float ? (double)((const float *)arr)[i] : ((const double *)arr)[i];
-}
-
-/* The numbers of a primitive (na points) of query q from arr into x. */
-static int load(const ccd_batch *b, const void *arr, size_t q, int np, double x[][3])
-{
-    int finite = 1;
-    for (int i = 0; i < np; ++i)
-        for (int k = 0; k < 3; ++k) {
-            x[i][k] = get(b, arr, (q * (size_t)np + (size_t)i) * 3 + (size_t)k);
-            finite &= isfinite(x[i][k]) != 0;
-        }
-    return finite;
-}
-
-/* What the screen proves (ttd_ccd_screen, in lanes where the batch's row has them): no hit after
- * one evaluation, ttd_ccd_query's answer. */
-static void screened(ttd_ccd_result *r)
-{
-    r->hit = 0;
-    r->toi = HUGE_VAL;
-    r->gap = HUGE_VAL;
-    r->flags = 0;
-    r->sub = 0;
-    r->evals = 1;
-}
-
 /* Bit i: query i of count (kind na; x0, x1 12 reals a query) proved free by the screen, the row's
  * lanes or the scalar screen (the same bits). */
 static unsigned screen_mask(ttd_ccd_screen_fn screen, int na, int count, const double *x0, const double *x1,
@@ -79,58 +43,17 @@ static unsigned screen_mask(ttd_ccd_screen_fn screen, int na, int count, const d
 }
 
 /* The triangle-triangle query: 6 vertex-face and 9 edge-edge, the screen first on all 15 over
- * [0, t_max] (one evaluation each for those it proves free), then the others searched in turn,
- * each only up to the earliest hit so far (a later contact cannot be the first). */
+ * [0, t_max] in the row's lanes (one evaluation each for those it proves free), then the others
+ * searched in turn (ccdb_tri_finish, the device's code too). */
 static void triangles_one(double a0[3][3], double b0[3][3], double a1[3][3], double b1[3][3], const ttd_ccd_params *base,
                           ttd_ccd_screen_fn screen, ttd_ccd_result *out)
 {
-    ttd_ccd_params p = *base;
-    ttd_ccd_result best = {HUGE_VAL, HUGE_VAL, 0, 0, 0, 0};
-    uint32_t evals = 0;
     double x0[15][12], x1[15][12];
-    for (int sub = 0; sub < 15; ++sub) {
-        if (sub < 6) {
-            double(*p0)[3] = sub < 3 ? a0 : b0, (*p1)[3] = sub < 3 ? a1 : b1;
-            double(*f0)[3] = sub < 3 ? b0 : a0, (*f1)[3] = sub < 3 ? b1 : a1;
-            const int v = sub % 3;
-            memcpy(x0[sub], p0[v], sizeof(double) * 3);
-            memcpy(x1[sub], p1[v], sizeof(double) * 3);
-            memcpy(x0[sub] + 3, f0, sizeof(double) * 9);
-            memcpy(x1[sub] + 3, f1, sizeof(double) * 9);
-        } else {
-            const int i = (sub - 6) / 3, j = (sub - 6) % 3;
-            const size_t d = sizeof(double) * 3;
-            memcpy(x0[sub], a0[i], d);
-            memcpy(x0[sub] + 3, a0[(i + 1) % 3], d);
-            memcpy(x0[sub] + 6, b0[j], d);
-            memcpy(x0[sub] + 9, b0[(j + 1) % 3], d);
-            memcpy(x1[sub], a1[i], d);
-            memcpy(x1[sub] + 3, a1[(i + 1) % 3], d);
-            memcpy(x1[sub] + 6, b1[j], d);
-            memcpy(x1[sub] + 9, b1[(j + 1) % 3], d);
-        }
-    }
+    ccdb_tri_subs(a0, b0, a1, b1, x0, x1);
     const unsigned free_subs = screen_mask(screen, TTD_CCD_VF, 6, x0[0], x1[0], base->delta, base->t_max) |
                                screen_mask(screen, TTD_CCD_EE, 8, x0[6], x1[6], base->delta, base->t_max) << 6 |
                                screen_mask(screen, TTD_CCD_EE, 1, x0[14], x1[14], base->delta, base->t_max) << 14;
-    for (int sub = 0; sub < 15; ++sub) {
-        if ((free_subs >> sub) & 1u) {
-            ++evals;
-            continue;
-        }
-        ttd_ccd_result r;
-        ttd_ccd_query(sub < 6 ? TTD_CCD_VF : TTD_CCD_EE, x0[sub], x1[sub], &p, &r);
-        evals += r.evals;
-        /* A hit at toi strictly before the best so far replaces it (ties keep the lower sub). */
-        if (r.hit && (!best.hit || r.toi < best.toi)) {
-            best = r;
-            best.sub = (uint32_t)sub;
-            p.t_max = r.toi;
-        }
-        best.flags |= r.flags;
-    }
-    best.evals = evals;
-    *out = best;
+    ccdb_tri_finish(x0, x1, free_subs, base, out);
 }
 
 static void ccd_block(void *ctx, size_t block, int worker)
@@ -143,12 +66,12 @@ static void ccd_block(void *ctx, size_t block, int worker)
     if (b->kind == 3) {
         for (size_t q = block * CCD_BLOCK; q < end; ++q) {
             double a0[3][3], b0[3][3], a1[3][3], b1[3][3];
-            const int finite = load(b, b->a0, q, 3, a0) & load(b, b->b0, q, 3, b0) & load(b, b->a1, q, 3, a1) &
-                               load(b, b->b1, q, 3, b1);
+            const int finite = ccdb_load(b->is_float, b->a0, q, 3, a0) & ccdb_load(b->is_float, b->b0, q, 3, b0) &
+                               ccdb_load(b->is_float, b->a1, q, 3, a1) & ccdb_load(b->is_float, b->b1, q, 3, b1);
             if (finite)
                 triangles_one(a0, b0, a1, b1, &p, b->screen, &b->out[q]);
             else
-                nonfinite(&b->out[q]);
+                ccdb_nonfinite(&b->out[q]);
         }
         return;
     }
@@ -162,8 +85,8 @@ static void ccd_block(void *ctx, size_t block, int worker)
         for (int i = 0; i < count; ++i) {
             double(*p0)[3] = (double(*)[3])x0[i], (*p1)[3] = (double(*)[3])x1[i];
             const size_t q = g + (size_t)i;
-            const int f = load(b, b->a0, q, na, p0) & load(b, b->b0, q, nb, p0 + na) & load(b, b->a1, q, na, p1) &
-                          load(b, b->b1, q, nb, p1 + na);
+            const int f = ccdb_load(b->is_float, b->a0, q, na, p0) & ccdb_load(b->is_float, b->b0, q, nb, p0 + na) &
+                          ccdb_load(b->is_float, b->a1, q, na, p1) & ccdb_load(b->is_float, b->b1, q, nb, p1 + na);
             finite |= (unsigned)f << i;
         }
         /* The scalar row searches every query: its first interval runs the screen's tests itself
@@ -172,9 +95,9 @@ static void ccd_block(void *ctx, size_t block, int worker)
         for (int i = 0; i < count; ++i) {
             ttd_ccd_result *r = &b->out[g + (size_t)i];
             if (!((finite >> i) & 1u)) {
-                nonfinite(r);
+                ccdb_nonfinite(r);
             } else if ((proved >> i) & 1u) {
-                screened(r);
+                ccdb_screened(r);
             } else {
                 ttd_ccd_query(b->kind, x0[i], x1[i], &p, r);
                 r->sub = 0;

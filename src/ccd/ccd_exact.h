@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Exact signs of polynomials in t over a time interval, for the continuous-collision search
- * (ccd.c; docs/ccd.md, section 3). A polynomial is a multilinear form of difference vectors of the
+ * (ccd_search_impl.h; docs/ccd.md, section 3). A polynomial is a multilinear form of difference vectors of the
  * query's four moving points; its coefficients in t are formed once, exactly, as floating-point
  * expansions (sums of doubles, no tolerance, no library), and its Bernstein coefficients on an
  * interval [ta, tb] from them, exactly. */
@@ -27,16 +27,13 @@ typedef struct ttd_ccd_xpoly {
     double a[5]; ///< the coefficients rounded to double (each within 4u of c[k]), for a first filter
 } ttd_ccd_xpoly;
 
-/// Forms the polynomial of a form over the query's motion.
-void ttd_ccd_xpoly_make(ttd_ccd_xpoly *p, int form, const int pts[4][2], const double x0[12], const double x1[12]);
-
-/// +1 when every Bernstein coefficient of p on [ta, tb] is > 0 (p is then > 0 on the whole
-/// interval), -1 when every one is < 0, 0 otherwise, 2 where the arithmetic cannot be trusted.
-/// want (+1 or -1) names the sign sought: the answer is 0 as soon as it cannot be that one; want 0
-/// seeks the sign of p(ta).
-int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *p, double ta, double tb, int want);
-
-/// The exact sign (-1, 0, +1) of p(t), or 2 where the arithmetic cannot be trusted.
-int ttd_ccd_xpoly_sign_at(const ttd_ccd_xpoly *p, double t);
+/* The operations (ccd_exact_impl.h, TTDW_FN, shared by the CPU and the device):
+ * ccdx_xpoly_make(p, form, pts, x0, x1) forms the polynomial of a form over the query's motion;
+ * ccdx_xpoly_sign(p, ta, tb, want): +1 when every Bernstein coefficient of p on [ta, tb] is > 0 (p is
+ * then > 0 on the whole interval), -1 when every one is < 0, 0 otherwise, 2 where the arithmetic
+ * cannot be trusted; want (+1 or -1) names the sign sought: the answer is 0 as soon as it cannot be
+ * that one; want 0 seeks the sign of p(ta);
+ * ccdx_xpoly_sign_at(p, t): the exact sign (-1, 0, +1) of p(t), or 2 where the arithmetic cannot be
+ * trusted. */
 
 #endif /* TTD_CCD_CCD_EXACT_H */

@@ -480,3 +480,72 @@ extern "C" ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *m
         return st;
     return gpu_launched(ttd_gpu_launch_signed_f(&mesh->view, n, points, upper_bound, distance, results, stream));
 }
+
+/* ---- continuous collision (gpu_ccd.cu; docs/ccd.md, section 14) ---- */
+#include <float.h>
+
+/* The checks of a CCD call: pointers, the separation (finite, >= 0, as the CPU's), sizes, device
+ * memory; then the launch. kind: 1 vertex-face, 2 edge-edge, 3 triangles. */
+static ttd_gpu_status ccd_call(int kind, size_t real_size, size_t n, const void *a0,
+                               const void *b0, const void *a1, const void *b1, double delta, ttd_ccd_result *out,
+                               void *stream)
+{
+    if (!a0 || !b0 || !a1 || !b1 || !out)
+        return TTD_GPU_ERR_NULL_POINTER;
+    if (!(delta >= 0 && delta <= DBL_MAX))
+        return TTD_GPU_ERR_BAD_ARGUMENT;
+    if (n > SIZE_MAX / (9 * real_size) / 2 || n > SIZE_MAX / sizeof(ttd_ccd_result) / 2)
+        return TTD_GPU_ERR_NOT_DEVICE_MEMORY; /* arrays that size exist nowhere */
+    if (n == 0)
+        return TTD_GPU_OK;
+    const void *ptrs[5] = {a0, b0, a1, b1, out};
+    for (int i = 0; i < 5; ++i) {
+        const ttd_gpu_status st = gpu_check_pointer(ptrs[i]);
+        if (st != TTD_GPU_OK)
+            return st;
+    }
+    return gpu_launched(ttd_gpu_launch_ccd(kind, real_size == sizeof(float), n, a0, b0, a1, b1, delta, out, stream));
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_vertex_face_d(size_t n, const double *v_t0, const double *f_t0,
+                                                    const double *v_t1, const double *f_t1, double min_separation,
+                                                    ttd_ccd_result *out, void *stream)
+{
+    return ccd_call(1, sizeof(double), n, v_t0, f_t0, v_t1, f_t1, min_separation, out, stream);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_vertex_face_f(size_t n, const float *v_t0, const float *f_t0, const float *v_t1,
+                                                    const float *f_t1, double min_separation, ttd_ccd_result *out,
+                                                    void *stream)
+{
+    return ccd_call(1, sizeof(float), n, v_t0, f_t0, v_t1, f_t1, min_separation, out, stream);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_edge_edge_d(size_t n, const double *ea_t0, const double *eb_t0,
+                                                  const double *ea_t1, const double *eb_t1, double min_separation,
+                                                  ttd_ccd_result *out, void *stream)
+{
+    return ccd_call(2, sizeof(double), n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out, stream);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_edge_edge_f(size_t n, const float *ea_t0, const float *eb_t0, const float *ea_t1,
+                                                  const float *eb_t1, double min_separation, ttd_ccd_result *out,
+                                                  void *stream)
+{
+    return ccd_call(2, sizeof(float), n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out, stream);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_triangles_d(size_t n, const double *ta_t0, const double *tb_t0,
+                                                  const double *ta_t1, const double *tb_t1, double min_separation,
+                                                  ttd_ccd_result *out, void *stream)
+{
+    return ccd_call(3, sizeof(double), n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out, stream);
+}
+
+extern "C" ttd_gpu_status ttd_gpu_ccd_triangles_f(size_t n, const float *ta_t0, const float *tb_t0, const float *ta_t1,
+                                                  const float *tb_t1, double min_separation, ttd_ccd_result *out,
+                                                  void *stream)
+{
+    return ccd_call(3, sizeof(float), n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out, stream);
+}
+/* ---- end of continuous collision ---- */

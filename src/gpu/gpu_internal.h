@@ -101,6 +101,13 @@ int ttd_gpu_kernel_registers_f(void);
 int ttd_gpu_block_threads(void);
 int ttd_gpu_min_blocks(void);
 
+/* ---- continuous collision (gpu_ccd.cu; docs/ccd.md, section 14) ---- */
+/* n queries of kind TTD_CCD_VF (1), TTD_CCD_EE (2) or triangles (3), the arrays float when is_float,
+ * else double (the layout of ttd_ccd_vertex_face_d etc.), one thread each */
+int ttd_gpu_launch_ccd(int kind, int is_float, size_t n, const void *a0, const void *b0, const void *a1,
+                       const void *b1, double delta, ttd_ccd_result *out, void *stream);
+/* ---- end of continuous collision ---- */
+
 #ifdef __cplusplus
 }
 #endif

@@ -114,3 +114,19 @@ ttd_gpu_status ttd_gpu_points_signed_distance_f(const ttd_gpu_mesh *mesh, size_t
     (void)mesh, (void)n, (void)points, (void)upper_bound, (void)distance, (void)results, (void)stream;
     return TTD_GPU_ERR_NOT_BUILT;
 }
+
+/* ---- continuous collision (docs/ccd.md, section 14) ---- */
+#define TTD_GPU_CCD_STUB(name, real)                                                                        \
+    ttd_gpu_status name(size_t n, const real *a0, const real *b0, const real *a1, const real *b1, double delta, \
+                        ttd_ccd_result *out, void *stream)                                                  \
+    {                                                                                                       \
+        (void)n, (void)a0, (void)b0, (void)a1, (void)b1, (void)delta, (void)out, (void)stream;              \
+        return TTD_GPU_ERR_NOT_BUILT;                                                                       \
+    }
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_vertex_face_d, double)
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_vertex_face_f, float)
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_edge_edge_d, double)
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_edge_edge_f, float)
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_triangles_d, double)
+TTD_GPU_CCD_STUB(ttd_gpu_ccd_triangles_f, float)
+/* ---- end of continuous collision ---- */

@@ -47,4 +47,11 @@ int ttd_cuda_host_signed_f(const struct ttd_mesh *m, size_t n, const float *poin
 int ttd_cuda_host_mesh_height_d(const struct ttd_mesh *m);
 int ttd_cuda_host_mesh_height_f(const struct ttd_mesh *m);
 
+/* ---- continuous collision (cuda_host_ccd.c) ---- */
+/* What the device's CCD kernels (src/gpu/gpu_ccd.cu) run, thread i for query i: kind 1 vertex-face,
+ * 2 edge-edge, 3 triangles; the arrays as the CPU entries take them, float when is_float. */
+void ttd_cuda_host_ccd(int kind, int is_float, size_t n, const void *a0, const void *b0, const void *a1,
+                       const void *b1, double delta, ttd_ccd_result *out);
+/* ---- end of continuous collision ---- */
+
 #endif /* TTD_TEST_CUDA_HOST_H */

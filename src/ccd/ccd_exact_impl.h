@@ -1,5 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* Exact Bernstein signs of the search's polynomials (ccd_exact.h; docs/ccd.md, section 3).
+/* Exact Bernstein signs of the search's polynomials (ccd_exact.h; docs/ccd.md, section 3), one
+ * source for the CPU (ccd.c includes it through ccd_search_impl.h) and the device (src/gpu/gpu_ccd.cu):
+ * every function TTDW_FN (__host__ __device__ under nvcc, static inline in C), nothing allocated, no
+ * recursion, every array bounded (an expansion longer than TTD_CCD_XE_CAP terms marks the
+ * polynomial bad, and its callers then take the untrusted answer 2: docs/ccd.md, section 14).
  *
  * A polynomial p(t) = F(v_0(t), ..., v_{m-1}(t)), F multilinear and each v_k affine in t, has on
  * [ta, tb] the Bernstein coefficients b_j = (1 / C(m, j)) sum over the sets K of j slots of
@@ -8,12 +12,34 @@
  * products of the inputs and the two doubles ta, tb, which is formed exactly as a floating-point
  * expansion (Shewchuk's nonoverlapping sums of doubles: each product split into two doubles by
  * fma, each sum by the error-free two_sum); its sign is the sign of its largest term. */
-#include "ccd/ccd_exact.h"
+#ifndef TTD_CCD_CCD_EXACT_IMPL_H
+#define TTD_CCD_CCD_EXACT_IMPL_H
 
 #include <math.h>
 
+#include "ccd/ccd_exact.h"
+
+/* The qualifiers of functions that a CUDA kernel calls (as simd/lanes.h defines them). */
+#ifndef TTDW_FN
+#if defined(__CUDACC__)
+#define TTD_DEVICE __host__ __device__
+#else
+#define TTD_DEVICE
+#endif
+#define TTDW_FN static inline TTD_DEVICE
+#endif
+/* The search's large functions: called, not inlined, on the device (each inlined copy of a query's
+ * search costs nvcc minutes and the thread's stack frame grows with it); static inline in C. */
+#ifndef TTDW_CALL
+#if defined(__CUDACC__)
+#define TTDW_CALL static __host__ __device__ __noinline__
+#else
+#define TTDW_CALL static inline
+#endif
+#endif
+
 /* The number of bits set in a 4-bit mask. */
-static inline int popcount4(int m)
+TTDW_FN int ccdx_popcount4(int m)
 {
     return (m & 1) + ((m >> 1) & 1) + ((m >> 2) & 1) + ((m >> 3) & 1);
 }
@@ -22,7 +48,7 @@ static inline int popcount4(int m)
 enum { XE_CAP = TTD_CCD_XE_CAP };
 typedef ttd_ccd_xe xe;
 
-static inline void two_sum(double a, double b, double *s, double *e)
+TTDW_FN void ccdx_two_sum(double a, double b, double *s, double *e)
 {
     const double x = a + b, bv = x - a, av = x - bv;
     *s = x;
@@ -31,7 +57,7 @@ static inline void two_sum(double a, double b, double *s, double *e)
 
 /* x += q exactly (Shewchuk's grow-expansion with zero elimination, which keeps the expansion
  * nonoverlapping and ordered for any q). */
-static void xe_grow(xe *x, double q)
+TTDW_FN void xe_grow(xe *x, double q)
 {
     if (q == 0)
         return;
@@ -42,7 +68,7 @@ static void xe_grow(xe *x, double q)
     int k = 0;
     for (int j = 0; j < x->n; ++j) {
         double s, e;
-        two_sum(q, x->v[j], &s, &e);
+        ccdx_two_sum(q, x->v[j], &s, &e);
         q = s;
         if (e != 0)
             x->v[k++] = e;
@@ -58,7 +84,7 @@ static void xe_grow(xe *x, double q)
 
 /* x += s a b exactly (s = +-1): each product of two terms split into two doubles by fma, exact
  * unless its rounding error falls below the normal range (then x is marked bad). */
-static void xe_mul_acc(xe *x, const xe *a, const xe *b, double s)
+TTDW_FN void xe_mul_acc(xe *x, const xe *a, const xe *b, double s)
 {
     x->bad |= a->bad | b->bad;
     for (int i = 0; i < a->n; ++i)
@@ -73,7 +99,7 @@ static void xe_mul_acc(xe *x, const xe *a, const xe *b, double s)
 
 /* Rewrites x with fewer, non-adjacent terms and the same value (Shewchuk's compression: a sweep down
  * from the largest term, then one up, each with the error-free fast two-sum). */
-static void xe_compress(xe *x)
+TTDW_FN void xe_compress(xe *x)
 {
     if (x->n < 2)
         return;
@@ -102,20 +128,20 @@ static void xe_compress(xe *x)
     x->n = top;
 }
 
-static void xe_add(xe *x, const xe *a)
+TTDW_FN void xe_add(xe *x, const xe *a)
 {
     x->bad |= a->bad;
     for (int i = 0; i < a->n; ++i)
         xe_grow(x, a->v[i]);
 }
 
-static int xe_sign(const xe *x)
+TTDW_FN int xe_sign(const xe *x)
 {
     return x->n == 0 ? 0 : (x->v[x->n - 1] > 0 ? 1 : -1);
 }
 
 /* r = s x exactly (r may not be x), compressed. */
-static void xe_scale(xe *r, const xe *x, double s)
+TTDW_FN void xe_scale(xe *r, const xe *x, double s)
 {
     r->n = 0;
     r->bad = x->bad;
@@ -130,7 +156,7 @@ static void xe_scale(xe *r, const xe *x, double s)
 }
 
 /* Point i minus point j as p + t q, exactly: p = x0_i - x0_j, q = x1_i - x0_i - x1_j + x0_j. */
-static void diff_line(xe p[3], xe q[3], const double x0[12], const double x1[12], int i, int j)
+TTDW_FN void diff_line(xe p[3], xe q[3], const double x0[12], const double x1[12], int i, int j)
 {
     for (int k = 0; k < 3; ++k) {
         p[k].n = p[k].bad = q[k].n = q[k].bad = 0;
@@ -144,7 +170,7 @@ static void diff_line(xe p[3], xe q[3], const double x0[12], const double x1[12]
     }
 }
 
-static void cross_x(xe r[3], const xe a[3], const xe b[3])
+TTDW_FN void cross_x(xe r[3], const xe a[3], const xe b[3])
 {
     for (int k = 0; k < 3; ++k) {
         const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
@@ -156,7 +182,7 @@ static void cross_x(xe r[3], const xe a[3], const xe b[3])
     }
 }
 
-static void dot_x(xe *r, const xe a[3], const xe b[3])
+TTDW_FN void dot_x(xe *r, const xe a[3], const xe b[3])
 {
     r->n = 0;
     r->bad = 0;
@@ -164,7 +190,7 @@ static void dot_x(xe *r, const xe a[3], const xe b[3])
         xe_mul_acc(r, &a[k], &b[k], 1.0);
 }
 
-void ttd_ccd_xpoly_make(ttd_ccd_xpoly *P, int form, const int pts[4][2], const double x0[12], const double x1[12])
+TTDW_CALL void ccdx_xpoly_make(ttd_ccd_xpoly *P, int form, const int pts[4][2], const double x0[12], const double x1[12])
 {
     const int m = form == TTD_CCD_FORM_DET ? 3 : 4;
     P->deg = m;
@@ -197,7 +223,7 @@ void ttd_ccd_xpoly_make(ttd_ccd_xpoly *P, int form, const int pts[4][2], const d
             dot_x(&val, c01[e0][e1], v[2][e2]);
         else
             dot_x(&val, c01[e0][e1], c23[e2][e3]);
-        xe_add(&P->c[popcount4(mask)], &val);
+        xe_add(&P->c[ccdx_popcount4(mask)], &val);
     }
     for (int j = 0; j <= 4; ++j) {
         xe_compress(&P->c[j]);
@@ -212,7 +238,7 @@ void ttd_ccd_xpoly_make(ttd_ccd_xpoly *P, int form, const int pts[4][2], const d
 
 /* p(t)'s sign from the rounded coefficients where their error and Horner's rounding cannot change
  * it (4u |c_k| each, gamma_8 < 8.1u of sum |a_k| |t|^k for Horner, 32u used), else 0. */
-static int approx_sign(const ttd_ccd_xpoly *P, double t)
+TTDW_FN int approx_sign(const ttd_ccd_xpoly *P, double t)
 {
     double v = P->a[P->deg], m = fabs(P->a[P->deg]);
     const double at = fabs(t);
@@ -225,7 +251,7 @@ static int approx_sign(const ttd_ccd_xpoly *P, double t)
 }
 
 /* r = p(t) exactly, by Horner's rule. */
-static void xpoly_value(const ttd_ccd_xpoly *P, double t, xe *r)
+TTDW_CALL void xpoly_value(const ttd_ccd_xpoly *P, double t, xe *r)
 {
     *r = P->c[P->deg];
     for (int k = P->deg - 1; k >= 0; --k) {
@@ -237,7 +263,7 @@ static void xpoly_value(const ttd_ccd_xpoly *P, double t, xe *r)
     }
 }
 
-int ttd_ccd_xpoly_sign_at(const ttd_ccd_xpoly *P, double t)
+TTDW_FN int ccdx_xpoly_sign_at(const ttd_ccd_xpoly *P, double t)
 {
     if (P->bad)
         return 2;
@@ -249,20 +275,20 @@ int ttd_ccd_xpoly_sign_at(const ttd_ccd_xpoly *P, double t)
     return r.bad ? 2 : xe_sign(&r);
 }
 
-int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
+TTDW_CALL int ccdx_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
 {
     if (P->bad)
         return 2;
     const int d = P->deg;
     /* b_0 = p(ta) and b_d = p(tb) first: they usually tell a "no". */
-    const int s0 = ttd_ccd_xpoly_sign_at(P, ta);
+    const int s0 = ccdx_xpoly_sign_at(P, ta);
     if (s0 == 2)
         return 2;
     if (want == 0)
         want = s0; /* either sign: the one of p(ta) */
     if (want == 0 || s0 != want)
         return 0;
-    const int s1 = ttd_ccd_xpoly_sign_at(P, tb);
+    const int s1 = ccdx_xpoly_sign_at(P, tb);
     if (s1 == 2)
         return 2;
     if (s1 != want)
@@ -272,7 +298,7 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
      * b_j = sum_k C(j,k) / C(d,k) a_k h^k, times L = 3 (d = 3) or 12 (d = 4) to keep the weights
      * integers. */
     double h, hl;
-    two_sum(tb, -ta, &h, &hl); /* h + hl = tb - ta exactly */
+    ccdx_two_sum(tb, -ta, &h, &hl); /* h + hl = tb - ta exactly */
     xe a[5];
     for (int k = 0; k <= d; ++k)
         a[k] = P->c[k];
@@ -295,7 +321,7 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
             }
             a[k] = s;
         }
-    static const double binom[5][5] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}};
+    const double binom[5][5] = {{1}, {1, 1}, {1, 2, 1}, {1, 3, 3, 1}, {1, 4, 6, 4, 1}};
     const double L = d == 3 ? 3 : 12;
     for (int j = 1; j < d; ++j) {
         xe b = {0, 0, {0}};
@@ -312,3 +338,4 @@ int ttd_ccd_xpoly_sign(const ttd_ccd_xpoly *P, double ta, double tb, int want)
     return want;
 }
 
+#endif /* TTD_CCD_CCD_EXACT_IMPL_H */
