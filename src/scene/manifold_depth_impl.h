@@ -12,18 +12,22 @@
  *     farthest corner;
  *   - phi(x) <= dist(x, g) for every triangle g of B (inside, phi is the least of those; outside
  *     it is negative), and dist(x, g) is convex in x, so over T it is at most its largest value
- *     at T's corners. g: the triangles nearest the cell's centroid and its parent's.
- * The second makes a face lying flat inside one triangle of B (a plateau, where the first never
- * settles) a single cell. Cells whose bound is at most L + eps are dropped (L: the best depth so
- * far, at least the floor below), the rest cut, best bound first; so when the search ends the
- * face's largest depth is at most max(L, floor) + eps, and the point reported is a real point of
- * F at exactly its distance to B (the point queries' exact distance of the point as rounded). */
+ *     at T's corners. g: the triangles nearest the cell's corners and centroid, and its parent's
+ *     (FACE_NEAR); two of them mixed (face_mix: a slab's two faces), and two coplanar neighbours
+ *     forming a convex quadrilateral as one (face_quad: a box's face cut along its diagonal).
+ * The second makes a face lying flat over B's face (a plateau, where the first never settles) a
+ * single cell. Cells whose bound is at most L + eps are dropped (L: the face's best depth so far,
+ * at least the floor below), the rest cut, best bound first over all the pair's faces; so when
+ * the search ends each face's largest depth is at most max(L, floor) + eps, and the point
+ * reported is a real point of F at exactly its distance to B (the point queries' exact distance
+ * of the point as rounded). */
 
 /* eps: this fraction of the smaller body's radius */
 #define DEPTH_FACE_TOL 0x1p-16
-/* The search's budget: at most this many evaluations of phi (one winding number and one closest
- * point query each) per body pair, over both bodies' faces; beyond it the search stops where it
- * is, the faces' points so far kept (real points, without the bound eps). */
+/* The search's budget: at most this many cells per body pair, over both bodies' faces (each a
+ * winding number and four closest-point queries: its centroid's phi, its corners' nearest
+ * triangles); beyond it the search stops where it is, the faces' points so far kept (real
+ * points, without the bound eps). */
 #define DEPTH_FACE_BUDGET 4096
 
 #define FACE_NEAR 6 /* triangles of B a cell keeps for its bound */
@@ -314,6 +318,8 @@ static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         return 1;
     if (depth_pair_convex(s, i, j))
         return 1;
+    if (s->body[i].mesh->nt >= (size_t)1 << 31 || s->body[j].mesh->nt >= (size_t)1 << 31)
+        return 1; /* a face is named by 31 bits below its side's */
     double floor = 0;
     for (size_t k = before; k < w->all_n; ++k)
         floor = fmax(floor, -(double)w->all[k].c.distance);
