@@ -248,6 +248,8 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
 
 #include "scene/manifold_sat_impl.h"
 
+#include "scene/manifold_depth_impl.h"
+
 #include "scene/manifold_reduce_impl.h"
 
 #include "scene/manifold_keys_impl.h"
@@ -293,6 +295,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         /* a convex pair found overlapping: its penetration depth along the separating direction */
         int added;
         if (w->all_n > before && !solid_sat(s, cfg, p->i, p->j, before, w, &added))
+            return 0;
+        /* other pairs: where the depth peaks inside a face */
+        if (!solid_faces(s, cfg, p->i, p->j, before, c0, n0, w))
             return 0;
     }
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
