@@ -188,7 +188,6 @@ typedef struct worker {
     size_t n, cap;
     double best;      /* the earliest toi this worker has seen */
     uint64_t tri_pairs, queries, searches;
-    uint64_t tri_apart; /* triangle pairs proved apart whole (tri_pair_apart) */
     struct node_pair *stack; /* the self walk's pairs of nodes still to visit */
     size_t stack_cap;
     int oom;
@@ -343,11 +342,10 @@ static int tri_pair_apart(const double x0[18], const double x1[18], double S, do
     for (int end = 0; end < 2; ++end) {
         const double *x = end ? x1 : x0;
         double e[2][3][3]; /* e[s][j]: edge j of triangle s, from its vertex j to j + 1 */
-        for (int sd = 0; sd < 2; ++sd)
+        for (int sd = 0; sd < 2; ++sd) {
             for (int j = 0; j < 3; ++j)
                 for (int k = 0; k < 3; ++k)
                     e[sd][j][k] = x[9 * sd + 3 * ((j + 1) % 3) + k] - x[9 * sd + 3 * j + k];
-        for (int sd = 0; sd < 2; ++sd)
             for (int j = 0; j < 3; ++j) {
                 double m[3];
                 /* within the plane: the edge's perpendicular towards the triangle's third vertex */
@@ -355,6 +353,7 @@ static int tri_pair_apart(const double x0[18], const double x1[18], double S, do
                 if (gap_proves(m, 3, 6, x0, x1, S, delta))
                     return 1;
             }
+        }
         for (int sd = 0; sd < 2; ++sd) {
             double n[3];
             cross3(e[sd][0], e[sd][1], n);
@@ -474,7 +473,8 @@ static int shared_count(const uint32_t *t, const uint32_t *u)
 }
 
 /* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
- * triangle): no index in common (the common case, nine comparisons at once), else by the count. */
+ * triangle): 0 no, 1 yes and they share no vertex, 2 yes and they share one (the shared-vertex
+ * rule). No index in common is the common case: nine comparisons at once. */
 static int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b)
 {
     const int any = (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) |
@@ -482,7 +482,7 @@ static int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b)
     if (!any)
         return 1;
     const int c = shared_count(a, b);
-    return c == 0 || (c == 1 && J->shared);
+    return c == 0 ? 1 : c == 1 && J->shared ? 2 : 0;
 }
 
 /* Whether the self rule keeps the triangle pair (t, u). */
@@ -527,8 +527,8 @@ static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint6
     return 1;
 }
 
-/* Triangle pair ta < tb, kept by the rule. */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
+/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex). */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, int disjoint)
 {
     const side_data *A = J->a;
     const uint32_t *T = A->s->tris;
@@ -536,7 +536,7 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
     const unsigned fa = A->flags[ta], fb = A->flags[tb];
     const uint32_t none = UINT32_MAX;
     ++w->tri_pairs;
-    {
+    if (disjoint) { /* (two triangles with a vertex in common are never apart) */
         double x0[18], x1[18], S = 0;
         for (int i = 0; i < 6; ++i) {
             const size_t v = i < 3 ? TA[i] : TB[i - 3];
@@ -544,10 +544,8 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
             memcpy(x1 + 3 * i, A->s->x1 + 3 * v, 3 * sizeof(double));
             S = A->vmag[v] > S ? A->vmag[v] : S;
         }
-        if (tri_pair_apart(x0, x1, S, J->params.delta)) {
-            ++w->tri_apart;
+        if (tri_pair_apart(x0, x1, S, J->params.delta))
             return;
-        }
     }
     /* vertices of one against the other's face */
     for (int side = 0; side < 2; ++side) {
@@ -602,13 +600,12 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
 
 /* ---- the walk ---- */
 
-/* The triangles of a at positions [gb, ge) of qorder (a leaf of a's tree, or of the tree itself in
- * a self query), by their unwidened boxes, against the tree of b's widened boxes; in a self query
- * only the pairs whose second triangle comes later in the order (each unordered pair once). One
- * walk serves the whole leaf: its box first, then each triangle at the tree's leaves. */
+/* Two meshes: the triangles of a at positions [gb, ge) of qorder (a leaf of a's tree), by their
+ * unwidened boxes, against the tree of b's widened boxes. One walk serves the whole leaf: its box
+ * first, then each triangle at the tree's leaves. (The tree's depth is at most 32, so the stack
+ * holds at most 2 per level.) */
 static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t gb, uint32_t ge)
 {
-    const int self = J->self;
     const sweep_box *tbox = J->a->tbox, *twide = J->b->twide;
     const sweep_tree *t = &J->tree;
     sweep_box R = tbox[qorder[gb]];
@@ -619,7 +616,7 @@ static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t
     stack[top++] = 0;
     while (top > 0) {
         const sweep_node *nd = &t->nodes[stack[--top]];
-        if ((self && nd->end <= gb + 1) || !sweep_overlap(&R, &nd->box))
+        if (!sweep_overlap(&R, &nd->box))
             continue;
         if (nd->left != 0) {
             stack[top++] = nd->left + 1;
@@ -630,14 +627,10 @@ static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t
             const uint32_t q = qorder[kq];
             if (!sweep_overlap(&tbox[q], &nd->box))
                 continue;
-            for (uint32_t k = self && nd->begin <= kq ? kq + 1 : nd->begin; k < nd->end; ++k) {
+            for (uint32_t k = nd->begin; k < nd->end; ++k) {
                 const uint32_t u = t->order[k];
-                if (!sweep_overlap(&tbox[q], &twide[u]) || (self && !sweep_overlap(&tbox[u], &twide[q])))
-                    continue;
-                if (!self)
+                if (sweep_overlap(&tbox[q], &twide[u]))
                     pair_two(J, w, q, u);
-                else if (eligible(J, q, u))
-                    pair_self(J, w, q < u ? q : u, q < u ? u : q);
             }
         }
     }
@@ -665,9 +658,10 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
         for (uint32_t k = a == b ? kq + 1 : b->begin; k < b->end; ++k) {
             if (!overlap_nb(&pbox[kq], &pwide[k]) || (wide && !overlap_nb(&pbox[k], &pwide[kq])))
                 continue;
-            if (eligible_tris(J, J->ptri + 3 * (size_t)kq, J->ptri + 3 * (size_t)k)) {
+            const int kept = eligible_tris(J, J->ptri + 3 * (size_t)kq, J->ptri + 3 * (size_t)k);
+            if (kept) {
                 const uint32_t q = order[kq], u = order[k];
-                pair_self(J, w, q < u ? q : u, q < u ? u : q);
+                pair_self(J, w, q < u ? q : u, q < u ? u : q, kept == 1);
             }
         }
     }
@@ -816,7 +810,7 @@ static void run_block(void *ctx, size_t block, int wi)
     worker *w = &J->workers[wi];
     if (w->oom)
         return;
-    const sweep_tree *qt = J->self ? &J->tree : &J->qtree;
+    const sweep_tree *qt = &J->qtree;
     const size_t end = (block + 1) * MCCD_BLOCK_LEAVES < J->nleaves ? (block + 1) * MCCD_BLOCK_LEAVES : J->nleaves;
     for (size_t i = block * MCCD_BLOCK_LEAVES; i < end; ++i) {
         const sweep_node *leaf = &qt->nodes[J->leaves[i]];
@@ -859,11 +853,11 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     J.a = &da;
     J.b = J.self ? &da : &db;
     ttd_status st = TTD_OK;
-    if (sweep_tree_build(J.b->twide, J.b->s->nt, &J.tree) != 0) {
+    if (sweep_tree_build(J.b->twide, J.b->s->nt, J.self ? SWEEP_LEAF_SELF : SWEEP_LEAF, &J.tree) != 0) {
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, &J.qtree) != 0) {
+    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, SWEEP_LEAF, &J.qtree) != 0) {
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
