@@ -527,13 +527,12 @@ static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint6
     return 1;
 }
 
-/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex). */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, int disjoint)
+/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex); TA, TB their vertex
+ * indices (the caller's copies in the tree's order, at hand: one random read less per pair). */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                      int disjoint)
 {
     const side_data *A = J->a;
-    const uint32_t *T = A->s->tris;
-    const uint32_t *TA = T + 3 * (size_t)ta, *TB = T + 3 * (size_t)tb;
-    const unsigned fa = A->flags[ta], fb = A->flags[tb];
     const uint32_t none = UINT32_MAX;
     ++w->tri_pairs;
     if (disjoint) { /* (two triangles with a vertex in common are never apart) */
@@ -547,6 +546,7 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, int dis
         if (tri_pair_apart(x0, x1, S, J->params.delta))
             return;
     }
+    const unsigned fa = A->flags[ta], fb = A->flags[tb];
     /* vertices of one against the other's face */
     for (int side = 0; side < 2; ++side) {
         const uint32_t *TV = side ? TB : TA, *TF = side ? TA : TB;
@@ -658,10 +658,14 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
         for (uint32_t k = a == b ? kq + 1 : b->begin; k < b->end; ++k) {
             if (!overlap_nb(&pbox[kq], &pwide[k]) || (wide && !overlap_nb(&pbox[k], &pwide[kq])))
                 continue;
-            const int kept = eligible_tris(J, J->ptri + 3 * (size_t)kq, J->ptri + 3 * (size_t)k);
+            const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
+            const int kept = eligible_tris(J, TQ, TU);
             if (kept) {
                 const uint32_t q = order[kq], u = order[k];
-                pair_self(J, w, q < u ? q : u, q < u ? u : q, kept == 1);
+                if (q < u)
+                    pair_self(J, w, q, u, TQ, TU, kept == 1);
+                else
+                    pair_self(J, w, u, q, TU, TQ, kept == 1);
             }
         }
     }
