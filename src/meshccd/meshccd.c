@@ -4,8 +4,13 @@
  * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
  *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
  * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
- *    triangle of a, by its unwidened box, walks it. A triangle pair whose boxes do not overlap is
- *    more than delta apart along an axis at every t, and so is every pair of their primitives.
+ *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query the tree is
+ *    walked against itself (pairs of nodes, each unordered pair of triangles once). A triangle
+ *    pair whose boxes do not overlap is more than delta apart along an axis at every t, and so is
+ *    every pair of their primitives. Self: a triangle pair that shares no vertex is first tried
+ *    whole by the concave-gap proof that precedes each primitive search (apart_cheaply, here
+ *    tri_pair_apart over the six points): proved, none of its 15 sub-queries can come within
+ *    delta, and the pair ends there (most pairs of a sheet do).
  * 3. Primitive pairs, each once: a vertex-face or edge-edge pair belongs to several triangle
  *    pairs (a vertex to every triangle around it, an edge to two); it is queried only from its
  *    owner, the smallest triangle pair (by index) that holds it and that the rule keeps. The
