@@ -604,7 +604,29 @@ static void bench_lanes(const qset *sets, size_t ns, size_t fam_n, int reps)
  * (the layers pass through one another; a long step, the ends moving about 0.02). Each step: ttd_mesh_self_ccd_d from the mesh at the
  * step's start to the next positions (the mesh moved there by ttd_mesh_set_vertices_d after,
  * untimed), one thread, the fastest of reps runs, in wall and CPU time. */
-static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
+/* A digest of a mesh CCD answer (toi, and every pair's kind, ids, toi, gap and flags, bit for bit):
+ * equal digests before and after a change to the query show it answers the same. FNV-1a. */
+static uint64_t mesh_ccd_digest(const ttd_mesh_ccd_result *r)
+{
+    uint64_t h = 1469598103934665603ull;
+    const unsigned char *p = (const unsigned char *)&r->toi;
+    for (size_t i = 0; i < sizeof r->toi; ++i)
+        h = (h ^ p[i]) * 1099511628211ull;
+    for (size_t k = 0; k < r->count; ++k) {
+        const ttd_mesh_ccd_pair *q = &r->pairs[k];
+        const uint64_t f[8] = {q->kind, q->a[0], q->a[1], q->b[0], q->b[1], q->flags, 0, 0};
+        double d[2] = {q->toi, q->gap};
+        uint64_t w[10];
+        memcpy(w, f, sizeof f);
+        memcpy(w + 8, d, sizeof d);
+        for (int j = 0; j < 10; ++j)
+            for (int b = 0; b < 8; ++b)
+                h = (h ^ ((w[j] >> (8 * b)) & 0xffu)) * 1099511628211ull;
+    }
+    return h;
+}
+
+static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags, int closing_only)
 {
     const int layers = 4;
     const double gap = 1.0 / (double)n;
@@ -621,11 +643,11 @@ static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
     printf("\nself-CCD of a folding sheet: %zu triangles, %d layers %.3g apart (one grid edge), %s; per step the "
            "fastest of %d runs, one thread\n",
            g.nt, layers, gap, flags ? "with the shared-vertex pairs" : "triangle pairs sharing no vertex", reps);
-    printf("%-18s %10s %10s %12s %12s %10s %6s %10s\n", "step (fold)", "wall_ms", "cpu_ms", "tri_pairs", "queries",
-           "searched", "pairs", "toi");
+    printf("%-18s %10s %10s %12s %12s %10s %6s %10s %8s\n", "step (fold)", "wall_ms", "cpu_ms", "tri_pairs", "queries",
+           "searched", "pairs", "toi", "digest");
     double sum_wall = 0, sum_cpu = 0;
     int rc = 0;
-    for (int k = 0; k <= steps && rc == 0; ++k) {
+    for (int k = 0; k <= (closing_only ? steps - 1 : steps) && rc == 0; ++k) {
         /* the last step from flat to 1.05: through the other layers, a long step */
         const double f0 = k < steps ? 0.85 + 0.15 * k / steps : 1.0;
         const double f1 = k < steps ? 0.85 + 0.15 * (k + 1) / steps : 1.05;
@@ -650,9 +672,10 @@ static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
         if (rc == 0) {
             char name[32];
             snprintf(name, sizeof name, "%.3f -> %.3f", f0, f1);
-            printf("%-18s %10.2f %10.2f %12llu %12llu %10llu %6zu %10.4g\n", name, best_w * 1e3, best_c * 1e3,
+            printf("%-18s %10.2f %10.2f %12llu %12llu %10llu %6zu %10.4g %08llx\n", name, best_w * 1e3, best_c * 1e3,
                    (unsigned long long)r.triangle_pairs, (unsigned long long)r.queries,
-                   (unsigned long long)r.searches, r.count, r.toi);
+                   (unsigned long long)r.searches, r.count, r.toi,
+                   (unsigned long long)(mesh_ccd_digest(&r) & 0xffffffffu));
             if (k < steps)
                 sum_wall += best_w, sum_cpu += best_c;
         }
@@ -672,7 +695,7 @@ static int bench_mesh_sheet(size_t n, int steps, int reps, unsigned flags)
 int bench_ccd_main(int argc, char **argv)
 {
     const char *dir = TTD_CCD_SUBSET_DIR;
-    int reps = 3, mesh_only = 0, steps = 60, use_ti = 1;
+    int reps = 3, mesh_only = 0, steps = 60, use_ti = 1, closing_only = 0;
     size_t fam_n = 2000, sheet = 224, slowest = 0;
     const char *ti_path = NULL;
     for (int i = 1; i < argc; ++i) /* rigid bodies between two poses: their own rows (ccd_rigid_bench.c) */
@@ -693,13 +716,15 @@ int bench_ccd_main(int argc, char **argv)
             slowest = (size_t)strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--mesh-only") == 0)
             mesh_only = 1;
+        else if (strcmp(argv[i], "--closing-only") == 0)
+            mesh_only = closing_only = 1;
         else if (strcmp(argv[i], "--ti") == 0 && i + 1 < argc)
             ti_path = argv[++i];
         else if (strcmp(argv[i], "--no-ti") == 0)
             use_ti = 0;
         else {
             printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
-                   "                     [--sheet N] [--steps K] [--mesh-only] [--slowest K]\n"
+                   "                     [--sheet N] [--steps K] [--mesh-only | --closing-only] [--slowest K]\n"
                    "       ttd bench ccd --rigid [--help for its options]: rigid bodies between two poses\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
@@ -709,8 +734,9 @@ int bench_ccd_main(int argc, char **argv)
                    "  scripts/get-tight-inclusion.sh); skipped with a message when it is absent.\n"
                    "  Then self-CCD of a folding sheet of 2 N^2 triangles (default N 224: 100,352), K closing\n"
                    "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
-                   "  through itself; --mesh-only: that alone. --slowest K: the K slowest sample queries\n"
-                   "  listed after their table (CPU time, intervals examined).\n",
+                   "  through itself; --mesh-only: that alone; --closing-only: the closing steps alone, pairs\n"
+                   "  sharing no vertex (for profiling). --slowest K: the K slowest sample queries listed\n"
+                   "  after their table (CPU time, intervals examined).\n",
                    TTD_CCD_SUBSET_DIR);
             return strcmp(argv[i], "--help") == 0 ? 0 : 2;
         }
@@ -720,8 +746,8 @@ int bench_ccd_main(int argc, char **argv)
     printf("ttd bench ccd: %s, %d cores, load %s, one thread, fastest of %d runs a query\n", m.cpu, m.cores,
            m.load_start, reps);
     if (mesh_only) {
-        const int rc = sheet < 2 || bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
-                       bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX) != 0;
+        const int rc = sheet < 2 || bench_mesh_sheet(sheet, steps, reps, 0, closing_only) != 0 ||
+                       (!closing_only && bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX, 0) != 0);
         char load_end[64];
         bench_load_average(load_end, sizeof load_end);
         printf("\nload at the end %s\n", load_end);
@@ -834,8 +860,8 @@ int bench_ccd_main(int argc, char **argv)
             free(ft), free(fh), free(s.x0), free(s.x1);
         }
     bench_lanes(sets, ns, fam_n, reps);
-    if (sheet >= 2 && (bench_mesh_sheet(sheet, steps, reps, 0) != 0 ||
-                       bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX) != 0))
+    if (sheet >= 2 && (bench_mesh_sheet(sheet, steps, reps, 0, 0) != 0 ||
+                       bench_mesh_sheet(sheet, steps, reps, TTD_SELF_SHARED_VERTEX, 0) != 0))
         fprintf(stderr, "ttd bench ccd: the folding sheet failed\n");
     char load_end[64];
     bench_load_average(load_end, sizeof load_end);

@@ -1026,7 +1026,8 @@ typedef struct ttd_mesh_ccd_result {
     ttd_mesh_ccd_pair *pairs;
     size_t count;
     uint64_t triangle_pairs; ///< triangle pairs whose swept boxes came within min_separation
-    uint64_t queries;        ///< primitive pairs whose swept boxes came within min_separation (each once)
+    uint64_t queries;        ///< primitive pairs whose swept boxes came within min_separation (each once;
+                             ///< in a self query, of the triangle pairs not proved apart whole first)
     uint64_t searches;       ///< of those, the ones not proved apart along a face normal or edge cross
                              ///< product at t = 0 and t = 1, searched by the primitive query
     uint32_t flags;          ///< TTD_CCD_BUDGET when some reported pair used up its budget

@@ -84,7 +84,7 @@ class MeshCCDResult(NamedTuple):
     gap: np.ndarray  #: (n,) float64: the distance computed near that time (approximate)
     flags: np.ndarray  #: (n,) uint32: 1 = the pair's search used up its budget (a conservative hit)
     triangle_pairs: int  #: triangle pairs whose swept boxes came within min_separation
-    queries: int  #: primitive pairs whose swept boxes came within min_separation (each once)
+    queries: int  #: primitive pairs whose swept boxes came within min_separation (each once; self: of the triangle pairs not proved apart whole)
     searches: int  #: of those, the ones not proved apart by a face normal / edge cross product: searched
 
 

@@ -4,8 +4,13 @@
  * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
  *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
  * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
- *    triangle of a, by its unwidened box, walks it. A triangle pair whose boxes do not overlap is
- *    more than delta apart along an axis at every t, and so is every pair of their primitives.
+ *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query the tree is
+ *    walked against itself (pairs of nodes, each unordered pair of triangles once). A triangle
+ *    pair whose boxes do not overlap is more than delta apart along an axis at every t, and so is
+ *    every pair of their primitives. Self: a triangle pair that shares no vertex is first tried
+ *    whole by the concave-gap proof that precedes each primitive search (apart_cheaply, here
+ *    tri_pair_apart over the six points): proved, none of its 15 sub-queries can come within
+ *    delta, and the pair ends there (most pairs of a sheet do).
  * 3. Primitive pairs, each once: a vertex-face or edge-edge pair belongs to several triangle
  *    pairs (a vertex to every triangle around it, an edge to two); it is queried only from its
  *    owner, the smallest triangle pair (by index) that holds it and that the rule keeps. The
@@ -35,8 +40,9 @@ enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
 /* What one side's primitives need. */
 typedef struct side_data {
     const meshccd_side *s;
-    sweep_box *vbox, *vwide;   /* per vertex: swept box, and widened by delta */
-    sweep_box *tbox, *twide;   /* per triangle */
+    sweep_box *vbox, *vwide;   /* per vertex: swept box, and widened by delta (vbox at delta 0) */
+    sweep_box *tbox, *twide;   /* per triangle (twide is tbox at delta 0: widening by 0 is exact) */
+    double *vmag;              /* per vertex: its largest coordinate magnitude at t = 0 and t = 1 */
     uint32_t *vt_start;        /* nv + 1: vertex v's triangles are vt_list[vt_start[v] .. vt_start[v+1]) */
     uint32_t *vt_list;         /* ascending (a triangle twice where it repeats the vertex) */
     uint16_t *flags;           /* per triangle */
@@ -44,10 +50,13 @@ typedef struct side_data {
 
 static void side_free(side_data *d)
 {
+    if (d->vwide != d->vbox)
+        free(d->vwide);
+    if (d->twide != d->tbox)
+        free(d->twide);
     free(d->vbox);
-    free(d->vwide);
     free(d->tbox);
-    free(d->twide);
+    free(d->vmag);
     free(d->vt_start);
     free(d->vt_list);
     free(d->flags);
@@ -73,28 +82,39 @@ static int side_make(const meshccd_side *s, double delta, side_data *d)
     memset(d, 0, sizeof *d);
     d->s = s;
     d->vbox = malloc(s->nv * sizeof *d->vbox);
-    d->vwide = malloc(s->nv * sizeof *d->vwide);
+    d->vwide = delta == 0 ? d->vbox : malloc(s->nv * sizeof *d->vwide);
     d->tbox = malloc(s->nt * sizeof *d->tbox);
-    d->twide = malloc(s->nt * sizeof *d->twide);
+    d->twide = delta == 0 ? d->tbox : malloc(s->nt * sizeof *d->twide);
+    d->vmag = malloc(s->nv * sizeof *d->vmag);
     d->vt_start = calloc(s->nv + 1, sizeof *d->vt_start);
     d->vt_list = malloc(3 * s->nt * sizeof *d->vt_list);
     d->flags = malloc(s->nt * sizeof *d->flags);
-    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vt_start || !d->vt_list || !d->flags) {
+    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vmag || !d->vt_start || !d->vt_list || !d->flags) {
         side_free(d);
         return -1;
     }
     for (size_t v = 0; v < s->nv; ++v) {
         sweep_point_box(s->x0 + 3 * v, s->x1 + 3 * v, &d->vbox[v]);
-        d->vwide[v] = d->vbox[v];
-        sweep_box_widen(&d->vwide[v], delta);
+        double m = 0;
+        for (int k = 0; k < 3; ++k) {
+            m = fabs(d->vbox[v].lo[k]) > m ? fabs(d->vbox[v].lo[k]) : m;
+            m = fabs(d->vbox[v].hi[k]) > m ? fabs(d->vbox[v].hi[k]) : m;
+        }
+        d->vmag[v] = m;
+        if (delta != 0) {
+            d->vwide[v] = d->vbox[v];
+            sweep_box_widen(&d->vwide[v], delta);
+        }
     }
     const uint32_t *T = s->tris;
     for (size_t t = 0; t < s->nt; ++t) {
         d->tbox[t] = d->vbox[T[3 * t]];
-        d->twide[t] = d->vwide[T[3 * t]];
-        for (int k = 1; k < 3; ++k) {
+        for (int k = 1; k < 3; ++k)
             sweep_box_join(&d->tbox[t], &d->vbox[T[3 * t + k]]);
-            sweep_box_join(&d->twide[t], &d->vwide[T[3 * t + k]]);
+        if (delta != 0) {
+            d->twide[t] = d->vwide[T[3 * t]];
+            for (int k = 1; k < 3; ++k)
+                sweep_box_join(&d->twide[t], &d->vwide[T[3 * t + k]]);
         }
     }
     /* vertex -> triangles, ascending */
@@ -156,15 +176,28 @@ typedef struct job {
     ttd_ccd_params params;
     struct worker *workers;
     int nworkers;
+    struct node_pair *tasks; /* self: the walk's starting pairs, shared out among the workers */
+    size_t ntasks;
+    sweep_box *pbox, *pwide; /* self: the triangles' boxes, widened, in the tree's order (pwide is
+                              * pbox at delta 0), read in turn at the leaves */
+    uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
 } job;
+
+/* Two nodes of the tree, a == b or a's range of the order before b's. */
+typedef struct node_pair {
+    uint32_t a, b;
+} node_pair;
 
 typedef struct worker {
     ttd_mesh_ccd_pair *hits;
     size_t n, cap;
     double best;      /* the earliest toi this worker has seen */
     uint64_t tri_pairs, queries, searches;
+    struct node_pair *stack; /* the self walk's pairs of nodes still to visit */
+    size_t stack_cap;
     int oom;
 } worker;
+
 
 /* Keeps a hit when it is at or before the worker's earliest + the tolerance; the list is thinned
  * to that window before it grows. */
@@ -203,19 +236,21 @@ static void keep_hit(worker *w, const ttd_mesh_ccd_pair *h)
  * points err by at most 3.01 u sum |n_k x_k| <= 3.01 u |n|_1 S each (S the largest coordinate),
  * a gap by twice that plus its own rounding: 8 u |n|_1 S + 2 u |g| covers it with the rounding of
  * the bound itself, and 2^-1000 products that underflow. */
-static int gap_proves(const double n[3], int na, const double x0[12], const double x1[12], double S, double delta)
+static int gap_proves(const double n[3], int na, int np, const double *x0, const double *x1, double S, double delta)
 {
     const double u = 0x1p-53;
     const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
     if (!(n1 > 0) || !isfinite(n1))
         return 0;
-    const double need = delta * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (1 + 0x1p-40);
+    /* (at delta 0: 0, or NaN, which proves nothing, where |n|^2 overflows, as delta |n| would give) */
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const double need = delta != 0 ? delta * sqrt(nn) * (1 + 0x1p-40) : 0 * nn;
     const double base = 8 * u * n1 * S + 0x1p-1000;
     int ok_pos = 1, ok_neg = 1; /* first set above the second along n, or below */
     for (int t = 0; t < 2; ++t) {
         const double *y = t ? x1 : x0;
         double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < np; ++i) {
             const double d = n[0] * y[3 * i] + n[1] * y[3 * i + 1] + n[2] * y[3 * i + 2];
             if (i < na) {
                 amin = d < amin ? d : amin;
@@ -270,7 +305,7 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
             e2[k] = na == 1 ? x[9 + k] - x[3 + k] : x[9 + k] - x[6 + k];
         }
         cross3(e1, e2, n);
-        if (gap_proves(n, na, x0, x1, S, delta))
+        if (gap_proves(n, na, 4, x0, x1, S, delta))
             return 1;
         if (na == 1) {
             for (int j = 0; j < 3; ++j) {
@@ -279,7 +314,7 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
                 for (int k = 0; k < 3; ++k)
                     e[k] = g[k] - f[k], w[k] = x[k] - f[k];
                 perp3(e, w, m);
-                if (gap_proves(m, na, x0, x1, S, delta))
+                if (gap_proves(m, na, 4, x0, x1, S, delta))
                     return 1;
             }
         } else {
@@ -287,12 +322,47 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
             for (int k = 0; k < 3; ++k)
                 w[k] = x[6 + k] - x[k];
             perp3(e1, w, m);
-            if (gap_proves(m, na, x0, x1, S, delta))
+            if (gap_proves(m, na, 4, x0, x1, S, delta))
                 return 1;
             for (int k = 0; k < 3; ++k)
                 w[k] = -w[k];
             perp3(e2, w, m);
-            if (gap_proves(m, na, x0, x1, S, delta))
+            if (gap_proves(m, na, 4, x0, x1, S, delta))
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* The same proof for a whole triangle pair (points x[0 .. 3) one triangle, x[3 .. 6) the other, at
+ * t = 0 and t = 1; S the largest coordinate magnitude among them): a direction along which the
+ * two triangles stay more than delta apart at both ends holds every primitive pair of theirs
+ * apart over the step (each primitive's points are among its triangle's), so none of their 15
+ * sub-queries can come within delta. The directions, from the positions at t = 0 and then at
+ * t = 1: the perpendicular of each triangle's edges within its own plane (neighbours in one flat
+ * piece, the most common pair of a sheet: two disjoint triangles in a plane have an edge whose
+ * line separates them), then each triangle's normal (layers one above another). */
+static int tri_pair_apart(const double x0[18], const double x1[18], double S, double delta)
+{
+    for (int end = 0; end < 2; ++end) {
+        const double *x = end ? x1 : x0;
+        double e[2][3][3]; /* e[s][j]: edge j of triangle s, from its vertex j to j + 1 */
+        for (int sd = 0; sd < 2; ++sd) {
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k)
+                    e[sd][j][k] = x[9 * sd + 3 * ((j + 1) % 3) + k] - x[9 * sd + 3 * j + k];
+            for (int j = 0; j < 3; ++j) {
+                double m[3];
+                /* within the plane: the edge's perpendicular towards the triangle's third vertex */
+                perp3(e[sd][j], e[sd][(j + 2) % 3], m);
+                if (gap_proves(m, 3, 6, x0, x1, S, delta))
+                    return 1;
+            }
+        }
+        for (int sd = 0; sd < 2; ++sd) {
+            double n[3];
+            cross3(e[sd][0], e[sd][1], n);
+            if (gap_proves(n, 3, 6, x0, x1, S, delta))
                 return 1;
         }
     }
@@ -407,14 +477,26 @@ static int shared_count(const uint32_t *t, const uint32_t *u)
     return c;
 }
 
-/* Whether the self rule keeps the triangle pair (t != u). */
+/* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
+ * triangle): 0 no, 1 yes and they share no vertex, 2 yes and they share one (the shared-vertex
+ * rule). No index in common is the common case: nine comparisons at once. */
+static int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b)
+{
+    const int any = (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) |
+                    (a[1] == b[2]) | (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
+    if (!any)
+        return 1;
+    const int c = shared_count(a, b);
+    return c == 0 ? 1 : c == 1 && J->shared ? 2 : 0;
+}
+
+/* Whether the self rule keeps the triangle pair (t, u). */
 static int eligible(const job *J, uint32_t t, uint32_t u)
 {
     if (t == u)
         return 0;
     const uint32_t *T = J->a->s->tris;
-    const int c = shared_count(T + 3 * (size_t)t, T + 3 * (size_t)u);
-    return c == 0 || (c == 1 && J->shared);
+    return eligible_tris(J, T + 3 * (size_t)t, T + 3 * (size_t)u);
 }
 
 /* Whether tv owns vertex v (not in f) against triangle f: no smaller triangle around v is one
@@ -450,15 +532,26 @@ static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint6
     return 1;
 }
 
-/* Triangle pair ta < tb, kept by the rule. */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
+/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex); TA, TB their vertex
+ * indices (the caller's copies in the tree's order, at hand: one random read less per pair). */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                      int disjoint)
 {
     const side_data *A = J->a;
-    const uint32_t *T = A->s->tris;
-    const uint32_t *TA = T + 3 * (size_t)ta, *TB = T + 3 * (size_t)tb;
-    const unsigned fa = A->flags[ta], fb = A->flags[tb];
     const uint32_t none = UINT32_MAX;
     ++w->tri_pairs;
+    if (disjoint) { /* (two triangles with a vertex in common are never apart) */
+        double x0[18], x1[18], S = 0;
+        for (int i = 0; i < 6; ++i) {
+            const size_t v = i < 3 ? TA[i] : TB[i - 3];
+            memcpy(x0 + 3 * i, A->s->x0 + 3 * v, 3 * sizeof(double));
+            memcpy(x1 + 3 * i, A->s->x1 + 3 * v, 3 * sizeof(double));
+            S = A->vmag[v] > S ? A->vmag[v] : S;
+        }
+        if (tri_pair_apart(x0, x1, S, J->params.delta))
+            return;
+    }
+    const unsigned fa = A->flags[ta], fb = A->flags[tb];
     /* vertices of one against the other's face */
     for (int side = 0; side < 2; ++side) {
         const uint32_t *TV = side ? TB : TA, *TF = side ? TA : TB;
@@ -512,13 +605,12 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb)
 
 /* ---- the walk ---- */
 
-/* The triangles of a at positions [gb, ge) of qorder (a leaf of a's tree, or of the tree itself in
- * a self query), by their unwidened boxes, against the tree of b's widened boxes; in a self query
- * only the pairs whose second triangle comes later in the order (each unordered pair once). One
- * walk serves the whole leaf: its box first, then each triangle at the tree's leaves. */
+/* Two meshes: the triangles of a at positions [gb, ge) of qorder (a leaf of a's tree), by their
+ * unwidened boxes, against the tree of b's widened boxes. One walk serves the whole leaf: its box
+ * first, then each triangle at the tree's leaves. (The tree's depth is at most 32, so the stack
+ * holds at most 2 per level.) */
 static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t gb, uint32_t ge)
 {
-    const int self = J->self;
     const sweep_box *tbox = J->a->tbox, *twide = J->b->twide;
     const sweep_tree *t = &J->tree;
     sweep_box R = tbox[qorder[gb]];
@@ -529,7 +621,7 @@ static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t
     stack[top++] = 0;
     while (top > 0) {
         const sweep_node *nd = &t->nodes[stack[--top]];
-        if ((self && nd->end <= gb + 1) || !sweep_overlap(&R, &nd->box))
+        if (!sweep_overlap(&R, &nd->box))
             continue;
         if (nd->left != 0) {
             stack[top++] = nd->left + 1;
@@ -540,17 +632,166 @@ static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t
             const uint32_t q = qorder[kq];
             if (!sweep_overlap(&tbox[q], &nd->box))
                 continue;
-            for (uint32_t k = self && nd->begin <= kq ? kq + 1 : nd->begin; k < nd->end; ++k) {
+            for (uint32_t k = nd->begin; k < nd->end; ++k) {
                 const uint32_t u = t->order[k];
-                if (!sweep_overlap(&tbox[q], &twide[u]) || (self && !sweep_overlap(&tbox[u], &twide[q])))
-                    continue;
-                if (!self)
+                if (sweep_overlap(&tbox[q], &twide[u]))
                     pair_two(J, w, q, u);
-                else if (eligible(J, q, u))
-                    pair_self(J, w, q < u ? q : u, q < u ? u : q);
             }
         }
     }
+}
+
+/* ---- the self walk: the tree against itself ---- */
+
+/* sweep_overlap without branches (about half the leaf tests pass: a branch per axis mispredicts). */
+static inline int overlap_nb(const sweep_box *a, const sweep_box *w)
+{
+    return (a->lo[0] <= w->hi[0]) & (w->lo[0] <= a->hi[0]) & (a->lo[1] <= w->hi[1]) & (w->lo[1] <= a->hi[1]) &
+           (a->lo[2] <= w->hi[2]) & (w->lo[2] <= a->hi[2]);
+}
+
+/* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
+ * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs). */
+static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
+{
+    const uint32_t *order = J->tree.order;
+    const sweep_box *pbox = J->pbox, *pwide = J->pwide;
+    const int wide = pwide != pbox; /* at delta 0 the two tests are one (the test is symmetric) */
+    for (uint32_t kq = a->begin; kq < a->end; ++kq) {
+        if (!sweep_overlap(&pbox[kq], &b->box))
+            continue;
+        for (uint32_t k = a == b ? kq + 1 : b->begin; k < b->end; ++k) {
+            if (!overlap_nb(&pbox[kq], &pwide[k]) || (wide && !overlap_nb(&pbox[k], &pwide[kq])))
+                continue;
+            const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
+            const int kept = eligible_tris(J, TQ, TU);
+            if (kept) {
+                const uint32_t q = order[kq], u = order[k];
+                if (q < u)
+                    pair_self(J, w, q, u, TQ, TU, kept == 1);
+                else
+                    pair_self(J, w, u, q, TU, TQ, kept == 1);
+            }
+        }
+    }
+}
+
+/* Pushes (a, b) on the worker's stack, grown as needed; 0, or -1 out of memory. */
+static int push_pair(worker *w, size_t *top, uint32_t a, uint32_t b)
+{
+    if (*top == w->stack_cap) {
+        const size_t cap = w->stack_cap ? 2 * w->stack_cap : 256;
+        node_pair *p = realloc(w->stack, cap * sizeof *p);
+        if (p == NULL) {
+            w->oom = 1;
+            return -1;
+        }
+        w->stack = p;
+        w->stack_cap = cap;
+    }
+    w->stack[(*top)++] = (node_pair){a, b};
+    return 0;
+}
+
+/* What a pair of nodes becomes: a == b splits into (l, l), (l, r), (r, r); two others whose boxes
+ * overlap, into the larger's children against the other (a's before b's in the order still).
+ * Returns how many pairs it wrote to out[0 .. 3), or -1 for a pair of leaves to test. A pair of
+ * nodes whose (widened) boxes do not overlap holds no triangle pair that walk_group would test:
+ * a triangle's own box lies inside its widened box, which lies inside its nodes'. */
+static int split_pair(const sweep_tree *t, node_pair p, node_pair out[3])
+{
+    const sweep_node *a = &t->nodes[p.a], *b = &t->nodes[p.b];
+    if (p.a == p.b) {
+        if (a->left == 0)
+            return -1;
+        out[0] = (node_pair){a->left, a->left};
+        out[1] = (node_pair){a->left, a->left + 1};
+        out[2] = (node_pair){a->left + 1, a->left + 1};
+        return 3;
+    }
+    if (!sweep_overlap(&a->box, &b->box))
+        return 0;
+    if (a->left == 0 && b->left == 0)
+        return -1;
+    if (b->left == 0 || (a->left != 0 && a->end - a->begin >= b->end - b->begin)) {
+        out[0] = (node_pair){a->left, p.b};
+        out[1] = (node_pair){a->left + 1, p.b};
+    } else {
+        out[0] = (node_pair){p.a, b->left};
+        out[1] = (node_pair){p.a, b->left + 1};
+    }
+    return 2;
+}
+
+/* The walk below one starting pair, depth first. */
+static void walk_self(const job *J, worker *w, node_pair start)
+{
+    size_t top = 0;
+    if (push_pair(w, &top, start.a, start.b) != 0)
+        return;
+    while (top > 0) {
+        const node_pair p = w->stack[--top];
+        node_pair kids[3];
+        const int nk = split_pair(&J->tree, p, kids);
+        if (nk < 0) {
+            leaf_pair_self(J, w, &J->tree.nodes[p.a], &J->tree.nodes[p.b]);
+            continue;
+        }
+        for (int i = nk - 1; i >= 0; --i)
+            if (push_pair(w, &top, kids[i].a, kids[i].b) != 0)
+                return;
+    }
+}
+
+/* The starting pairs of the self walk: the pairs of the walk's first levels, split (in order,
+ * breadth first) until both nodes of each hold at most SELF_TASK_TRIS triangles or are leaves;
+ * the workers share them out (their order does not matter to the result). 0, or -1 out of memory. */
+enum { SELF_TASK_TRIS = 256 };
+static int self_tasks(job *J)
+{
+    const sweep_tree *t = &J->tree;
+    size_t cap = 64, n = 0, head = 0;
+    node_pair *q = malloc(cap * sizeof *q);
+    if (q == NULL)
+        return -1;
+    q[n++] = (node_pair){0, 0};
+    size_t done = 0; /* q[0 .. done) are final tasks, q[head .. n) still to look at */
+    while (head < n) {
+        const node_pair p = q[head++];
+        const sweep_node *a = &t->nodes[p.a], *b = &t->nodes[p.b];
+        node_pair kids[3];
+        int nk;
+        if ((a->end - a->begin <= SELF_TASK_TRIS && b->end - b->begin <= SELF_TASK_TRIS) ||
+            (nk = split_pair(t, p, kids)) < 0) {
+            q[done++] = p; /* done <= head - 1: no entry still to look at is overwritten */
+            continue;
+        }
+        if (n + (size_t)nk > cap) {
+            cap *= 2;
+            node_pair *g = realloc(q, cap * sizeof *g);
+            if (g == NULL) {
+                free(q);
+                return -1;
+            }
+            q = g;
+        }
+        for (int i = 0; i < nk; ++i)
+            q[n++] = kids[i];
+    }
+    J->tasks = q;
+    J->ntasks = done;
+    return 0;
+}
+
+enum { SELF_BLOCK_TASKS = 4 };
+
+static void run_self_block(void *ctx, size_t block, int wi)
+{
+    job *J = ctx;
+    worker *w = &J->workers[wi];
+    const size_t end = (block + 1) * SELF_BLOCK_TASKS < J->ntasks ? (block + 1) * SELF_BLOCK_TASKS : J->ntasks;
+    for (size_t i = block * SELF_BLOCK_TASKS; i < end && !w->oom; ++i)
+        walk_self(J, w, J->tasks[i]);
 }
 
 /* The leaves of a tree (node indices), in order. */
@@ -578,7 +819,7 @@ static void run_block(void *ctx, size_t block, int wi)
     worker *w = &J->workers[wi];
     if (w->oom)
         return;
-    const sweep_tree *qt = J->self ? &J->tree : &J->qtree;
+    const sweep_tree *qt = &J->qtree;
     const size_t end = (block + 1) * MCCD_BLOCK_LEAVES < J->nleaves ? (block + 1) * MCCD_BLOCK_LEAVES : J->nleaves;
     for (size_t i = block * MCCD_BLOCK_LEAVES; i < end; ++i) {
         const sweep_node *leaf = &qt->nodes[J->leaves[i]];
@@ -621,22 +862,43 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     J.a = &da;
     J.b = J.self ? &da : &db;
     ttd_status st = TTD_OK;
-    if (sweep_tree_build(J.b->twide, J.b->s->nt, &J.tree) != 0) {
+    if (sweep_tree_build(J.b->twide, J.b->s->nt, J.self ? SWEEP_LEAF_SELF : SWEEP_LEAF, &J.tree) != 0) {
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, &J.qtree) != 0) {
+    if (!J.self && sweep_tree_build(J.a->tbox, a->nt, SWEEP_LEAF, &J.qtree) != 0) {
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    const sweep_tree *qt = J.self ? &J.tree : &J.qtree;
-    J.leaves = malloc(qt->nnodes * sizeof *J.leaves);
-    if (J.leaves == NULL) {
-        st = TTD_ERR_OUT_OF_MEMORY;
-        goto done;
+    size_t blocks;
+    if (J.self) {
+        /* the tree against itself from the pairs of its first levels */
+        const size_t nt = a->nt;
+        J.pbox = malloc(nt * sizeof *J.pbox);
+        J.pwide = delta == 0 ? J.pbox : malloc(nt * sizeof *J.pwide);
+        J.ptri = malloc(3 * nt * sizeof *J.ptri);
+        if (J.pbox == NULL || J.pwide == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            goto done;
+        }
+        for (size_t k = 0; k < nt; ++k) {
+            const uint32_t t = J.tree.order[k];
+            J.pbox[k] = da.tbox[t];
+            if (J.pwide != J.pbox)
+                J.pwide[k] = da.twide[t];
+            memcpy(J.ptri + 3 * k, a->tris + 3 * (size_t)t, 3 * sizeof *J.ptri);
+        }
+        blocks = (J.ntasks + SELF_BLOCK_TASKS - 1) / SELF_BLOCK_TASKS;
+    } else {
+        /* a walk of b's tree from each leaf of a's */
+        J.leaves = malloc(J.qtree.nnodes * sizeof *J.leaves);
+        if (J.leaves == NULL) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            goto done;
+        }
+        J.nleaves = tree_leaves(&J.qtree, J.leaves);
+        blocks = (J.nleaves + MCCD_BLOCK_LEAVES - 1) / MCCD_BLOCK_LEAVES;
     }
-    J.nleaves = tree_leaves(qt, J.leaves);
-    const size_t blocks = (J.nleaves + MCCD_BLOCK_LEAVES - 1) / MCCD_BLOCK_LEAVES;
     const int nw = ttd_parallel_workers(blocks, threads);
     J.workers = calloc((size_t)nw, sizeof *J.workers);
     J.nworkers = J.workers != NULL ? nw : 0;
@@ -646,7 +908,7 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     }
     for (int i = 0; i < nw; ++i)
         J.workers[i].best = HUGE_VAL;
-    ttd_parallel_for(blocks, threads, run_block, &J);
+    ttd_parallel_for(blocks, threads, J.self ? run_self_block : run_block, &J);
     /* the earliest over the workers, then their hits within the tolerance of it */
     double best = HUGE_VAL;
     size_t total = 0;
@@ -681,8 +943,10 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     out->toi = best;
 done:
     if (J.workers != NULL) {
-        for (int i = 0; i < J.nworkers; ++i)
+        for (int i = 0; i < J.nworkers; ++i) {
             free(J.workers[i].hits);
+            free(J.workers[i].stack);
+        }
         free(J.workers);
     }
     if (st != TTD_OK) {
@@ -693,6 +957,11 @@ done:
     sweep_tree_free(&J.tree);
     sweep_tree_free(&J.qtree);
     free(J.leaves);
+    free(J.tasks);
+    if (J.pwide != J.pbox)
+        free(J.pwide);
+    free(J.pbox);
+    free(J.ptri);
     side_free(&da);
     if (!J.self)
         side_free(&db);

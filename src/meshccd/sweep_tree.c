@@ -90,14 +90,14 @@ static int radix_order(const uint32_t *code, size_t n, uint32_t *order)
 }
 
 /* Node idx over order[begin, end), its children allocated from *used. */
-static void build_node(sweep_tree *t, const sweep_box *boxes, uint32_t idx, uint32_t begin, uint32_t end,
-                       size_t *used)
+static void build_node(sweep_tree *t, const sweep_box *boxes, uint32_t leaf, uint32_t idx, uint32_t begin,
+                       uint32_t end, size_t *used)
 {
     sweep_node *nd = &t->nodes[idx];
     nd->begin = begin;
     nd->end = end;
     nd->pad = 0;
-    if (end - begin <= SWEEP_LEAF) {
+    if (end - begin <= leaf) {
         nd->left = 0;
         nd->box = boxes[t->order[begin]];
         for (uint32_t k = begin + 1; k < end; ++k)
@@ -107,19 +107,20 @@ static void build_node(sweep_tree *t, const sweep_box *boxes, uint32_t idx, uint
     const uint32_t left = (uint32_t)*used;
     *used += 2;
     const uint32_t mid = begin + (end - begin) / 2;
-    build_node(t, boxes, left, begin, mid, used);
-    build_node(t, boxes, left + 1, mid, end, used);
+    build_node(t, boxes, leaf, left, begin, mid, used);
+    build_node(t, boxes, leaf, left + 1, mid, end, used);
     nd = &t->nodes[idx]; /* (the array does not move; kept for clarity after the calls) */
     nd->left = left;
     nd->box = t->nodes[left].box;
     sweep_box_join(&nd->box, &t->nodes[left + 1].box);
 }
 
-int sweep_tree_build(const sweep_box *boxes, size_t n, sweep_tree *t)
+int sweep_tree_build(const sweep_box *boxes, size_t n, uint32_t leaf, sweep_tree *t)
 {
     memset(t, 0, sizeof *t);
-    /* A binary tree with leaves of at least SWEEP_LEAF / 2 + 1 boxes (halves of more than
-     * SWEEP_LEAF) has fewer than 2 n / 2 nodes; 2 n + 1 is plenty. */
+    if (leaf < 1)
+        leaf = 1;
+    /* A binary tree whose leaves hold at least one box each has at most 2 n - 1 nodes. */
     const size_t cap = 2 * n + 1;
     t->nodes = malloc(cap * sizeof *t->nodes);
     t->order = malloc(n * sizeof *t->order);
@@ -140,7 +141,7 @@ int sweep_tree_build(const sweep_box *boxes, size_t n, sweep_tree *t)
     for (size_t k = 0; k < n; ++k)
         t->pos[t->order[k]] = (uint32_t)k;
     size_t used = 1;
-    build_node(t, boxes, 0, 0, (uint32_t)n, &used);
+    build_node(t, boxes, leaf, 0, 0, (uint32_t)n, &used);
     t->nnodes = used;
     t->n = n;
     return 0;

@@ -6,7 +6,8 @@
  * alone (exact); the tree's boxes are widened by delta with outward rounding, so that a box test
  * that fails proves the two primitives more than delta apart along an axis at every t.
  *
- * Binary tree, leaves of up to SWEEP_LEAF boxes, built per call: the boxes in Morton order of
+ * Binary tree, leaves of up to `leaf` boxes (SWEEP_LEAF for a walk per leaf of the other mesh's
+ * tree, SWEEP_LEAF_SELF for the tree against itself), built per call: the boxes in Morton order of
  * their centres (a radix sort, stable), split in halves. Each node covers a range of that order. */
 #ifndef TTD_MESHCCD_SWEEP_TREE_H
 #define TTD_MESHCCD_SWEEP_TREE_H
@@ -15,6 +16,9 @@
 #include <stdint.h>
 
 #define SWEEP_LEAF 4
+/* The self walk tests two leaves' boxes against each other in turn, in order and without
+ * branches, which costs less than the node pairs that smaller leaves add (docs/ccd-speed.md). */
+#define SWEEP_LEAF_SELF 8
 
 /// A box: lo[3], hi[3].
 typedef struct sweep_box {
@@ -65,9 +69,9 @@ static inline int sweep_overlap(const sweep_box *a, const sweep_box *w)
            a->lo[2] <= w->hi[2] && w->lo[2] <= a->hi[2];
 }
 
-/// Builds the tree over n >= 1 boxes (kept by pointer: they must outlive the tree). 0 on
-/// success, -1 out of memory (*t zeroed).
-int sweep_tree_build(const sweep_box *boxes, size_t n, sweep_tree *t);
+/// Builds the tree over n >= 1 boxes (kept by pointer: they must outlive the tree), leaves of
+/// up to leaf >= 1 boxes. 0 on success, -1 out of memory (*t zeroed).
+int sweep_tree_build(const sweep_box *boxes, size_t n, uint32_t leaf, sweep_tree *t);
 void sweep_tree_free(sweep_tree *t);
 
 #endif /* TTD_MESHCCD_SWEEP_TREE_H */
