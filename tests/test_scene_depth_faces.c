@@ -390,6 +390,66 @@ static int crossing_beams(void)
     return 0;
 }
 
+/* A solid torus of 16,384 faces nested in a solid box 10 on a side: more faces inside the other
+ * body than the search's budget of cells, so the search stops before it reaches every face. Every
+ * point must still come from real triangles with a real depth: the torus lies 3.7 to 5 inside the
+ * box's faces, the box nowhere inside the torus. (The faces the budget did not reach were read
+ * unset once: run under MALLOC_PERTURB_ by CTest, that read reported garbage or crashed.) */
+static int over_budget_nested_torus(void)
+{
+    ttd_gen_mesh tor;
+    test_box bx;
+    ENSURE(ttd_gen_torus(1.0, 0.3, 128, 64, &tor) == 0);
+    ENSURE(test_box_make(10, 10, 10, 1, &bx) == 0);
+    ENSURE(tor.nt == 16384);
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_mesh *ma = test_mesh_of(bytes, bx.v, bx.nv, bx.t, bx.nt);
+        ttd_mesh *mb = test_mesh_of(bytes, tor.verts, tor.nv, tor.tris, tor.nt);
+        ttd_scene *s = NULL;
+        ENSURE(ma != NULL && mb != NULL);
+        ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+        static const double I[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        static const float If[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        uint32_t id[2];
+        for (int k = 0; k < 2; ++k) {
+            ENSURE((bytes == 8 ? ttd_scene_add_d(s, k ? mb : ma, I, &id[k]) : ttd_scene_add_f(s, k ? mb : ma, If, &id[k])) ==
+                   TTD_OK);
+            ENSURE(ttd_scene_set_solid(s, id[k], 1) == TTD_OK);
+        }
+        for (size_t K = 0; K <= 4; K += 4) {
+            ttd_scene_array arr = {0};
+            ENSURE((bytes == 8 ? ttd_scene_manifold_d(NULL, s, 0.005, K, &arr)
+                               : ttd_scene_manifold_f(NULL, s, 0.005f, K, &arr)) == TTD_OK);
+            double deep = 0;
+            size_t bad = 0;
+            for (size_t q = 0; q < arr.count; ++q) {
+                uint32_t ti, tj;
+                double d;
+                if (bytes == 8) {
+                    const ttd_scene_point_d *p = (const ttd_scene_point_d *)arr.data + q;
+                    ti = p->tri_i, tj = p->tri_j, d = p->distance;
+                } else {
+                    const ttd_scene_point_f *p = (const ttd_scene_point_f *)arr.data + q;
+                    ti = p->tri_i, tj = p->tri_j, d = (double)p->distance;
+                }
+                bad += !(ti < bx.nt && tj < tor.nt && d >= -5.0 - 1e-5 && d <= 0);
+                deep = fmax(deep, -d);
+            }
+            printf("  %s K %zu: %zu points, deepest %.6f, %zu bad\n", bytes == 8 ? "double" : "float", K, arr.count,
+                   deep, bad);
+            ttd_scene_array_free(&arr);
+            ENSURE(bad == 0);
+            ENSURE(deep >= 3.7 - 1e-3);
+        }
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(ma);
+        ttd_mesh_destroy(mb);
+    }
+    test_box_free(&bx);
+    ttd_gen_mesh_free(&tor);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -398,5 +458,6 @@ int main(int argc, char **argv)
     RUN_TEST(box_into_ring_top);
     RUN_TEST(cube_into_corner);
     RUN_TEST(crossing_beams);
+    RUN_TEST(over_budget_nested_torus);
     TEST_MAIN_END();
 }

@@ -127,6 +127,9 @@ static void face_tri_dist(const struct ttd_scene *s, uint32_t a, uint32_t g, con
 static double face_mix(const double p[3], const double q[3])
 {
     double best = HUGE_VAL;
+    for (int k = 0; k < 3; ++k)
+        if (!(p[k] < HUGE_VAL && q[k] < HUGE_VAL))
+            return HUGE_VAL; /* a distance that failed: 0 * inf would be NaN, which fmax drops */
     double lam[5] = {0, 1, -1, -1, -1};
     for (int k = 0; k < 3; ++k) {
         const int l = (k + 1) % 3;
@@ -362,6 +365,10 @@ static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, 
     bx = malloc(3 * (ntl + 1) * sizeof *bx);
     br = malloc((ntl + 1) * sizeof *br);
     ok = best != NULL && bx != NULL && br != NULL;
+    /* Every face starts at the floor, also those the budget stops before reaching: the last
+     * loop reads every face's best (a fine torus nested in a box has more faces than the budget). */
+    for (size_t f = 0; f < ntl && ok; ++f)
+        best[f] = floor;
     /* every face's whole triangle first, then the cells of all faces, best bound first */
     for (size_t f = 0; f < ntl && ok && budget > 0; ++f) {
         const int side = (int)(tl[f] >> 31);
@@ -378,7 +385,6 @@ static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         if (!(ok = face_phi(s, cfg, a, cen, xr, &phi, &r)))
             break;
         --budget;
-        best[f] = floor;
         if (phi > best[f]) {
             best[f] = phi;
             br[f] = r;
