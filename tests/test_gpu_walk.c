@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boxes.h"
 #include "meshes.h"
 #include "ttd/ttd.h"
 #include "ttd/ttd_gpu.h"
@@ -117,17 +118,11 @@ static size_t make_poses(const ttd_gen_mesh *a, const ttd_gen_mesh *b, uint64_t 
     return k + 6;
 }
 
+/* g as a mesh in double, or in float (single: its vertices rounded to float). */
 static int build(const ttd_gen_mesh *g, int single, ttd_mesh **m)
 {
-    if (!single)
-        return ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, m) == TTD_OK ? 0 : 1;
-    float *v = malloc(3 * g->nv * sizeof *v);
-    ENSURE(v != NULL);
-    for (size_t i = 0; i < 3 * g->nv; ++i)
-        v[i] = (float)g->verts[i];
-    const ttd_status s = ttd_mesh_create_f(NULL, v, g->nv, g->tris, g->nt, m);
-    free(v);
-    return s == TTD_OK ? 0 : 1;
+    *m = test_mesh_of(single ? 4 : 8, g->verts, g->nv, g->tris, g->nt);
+    return *m != NULL ? 0 : 1;
 }
 
 static int run_case(int ia, int ib, size_t per, int single, gw_stats *st)

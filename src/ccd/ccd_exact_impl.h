@@ -19,15 +19,8 @@
 
 #include "ccd/ccd_exact.h"
 
-/* The qualifiers of functions that a CUDA kernel calls (as simd/lanes.h defines them). */
-#ifndef TTDW_FN
-#if defined(__CUDACC__)
-#define TTD_DEVICE __host__ __device__
-#else
-#define TTD_DEVICE
-#endif
-#define TTDW_FN static inline TTD_DEVICE
-#endif
+/* TTDW_FN: the qualifiers of functions that the CPU and a CUDA kernel share. */
+#include "core/device_fn.h"
 /* The search's large functions: called, not inlined, on the device (each inlined copy of a query's
  * search costs nvcc minutes and the thread's stack frame grows with it); static inline in C. */
 #ifndef TTDW_CALL
