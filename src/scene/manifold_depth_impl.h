@@ -311,6 +311,31 @@ static int u32_cmp(const void *x, const void *y)
  * search above), pushed into w->all where deeper than every point of the pair so far (from
  * w->all[before]) by more than the seed's window, so that where vertices or edges measure the
  * depth nothing changes. nested: n == 0 and one body inside the other. 0 out of memory. */
+/* One cell c of a face (its corners and face set; parent: its parent's triangles, NULL for a
+ * whole face): phi at its centroid, which raises the face's best (*best, its point's query *br
+ * and rounded place bx) where deeper, then its triangles and bound; the cell goes on the heap
+ * while the bound exceeds the best by more than eps. 0 out of memory or a failed query. */
+static int face_visit(const struct ttd_scene *s, const ttd_engine_config *cfg, uint32_t a, face_cell *c,
+                      const uint32_t *parent, double eps, double *best, ttd_point_result *br, real bx[3], face_heap *h)
+{
+    double cen[3], phi;
+    real xr[3];
+    ttd_point_result r;
+    for (int q = 0; q < 3; ++q)
+        cen[q] = (c->x[q] + c->x[3 + q] + c->x[6 + q]) / 3;
+    if (!face_phi(s, cfg, a, cen, xr, &phi, &r))
+        return 0;
+    if (phi > *best) {
+        *best = phi;
+        *br = r;
+        memcpy(bx, xr, sizeof xr);
+    }
+    if (!face_near(s, cfg, a, c, r.triangle, parent))
+        return 0;
+    face_cell_bound(s, a, c, cen, phi);
+    return c->ub > *best + eps ? face_heap_push(h, c) : 1;
+}
+
 static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, uint32_t i, uint32_t j, size_t before,
                        const ttd_scene_contact *c, size_t n, manifold_work *w)
 {
@@ -374,28 +399,13 @@ static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const int side = (int)(tl[f] >> 31);
         const uint32_t t = tl[f] & 0x7fffffffu, b = side ? j : i, a = side ? i : j;
         face_cell root;
-        real xt[9], xr[3];
+        real xt[9];
         world_triangle(s, b, t, xt);
         for (int k = 0; k < 9; ++k)
             root.x[k] = (double)xt[k];
-        double cen[3], phi;
-        ttd_point_result r;
-        for (int q = 0; q < 3; ++q)
-            cen[q] = (root.x[q] + root.x[3 + q] + root.x[6 + q]) / 3;
-        if (!(ok = face_phi(s, cfg, a, cen, xr, &phi, &r)))
-            break;
-        --budget;
-        if (phi > best[f]) {
-            best[f] = phi;
-            br[f] = r;
-            memcpy(bx + 3 * f, xr, sizeof xr);
-        }
         root.face = (uint32_t)f;
-        if (!(ok = face_near(s, cfg, a, &root, r.triangle, NULL)))
-            break;
-        face_cell_bound(s, a, &root, cen, phi);
-        if (root.ub > best[f] + eps)
-            ok = face_heap_push(&h, &root);
+        ok = face_visit(s, cfg, a, &root, NULL, eps, best + f, br + f, bx + 3 * f, &h);
+        --budget;
     }
     while (ok && h.n > 0 && budget > 0) {
         const face_cell cell = face_heap_pop(&h);
@@ -411,27 +421,11 @@ static int solid_faces(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const double *kids[4][3] = {{cell.x, m, m + 6}, {m, cell.x + 3, m + 3}, {m + 6, m + 3, cell.x + 6}, {m + 3, m + 6, m}};
         for (int kk = 0; kk < 4 && ok && budget > 0; ++kk) {
             face_cell ch;
-            double cen[3], phi;
-            real xr[3];
-            ttd_point_result r;
             for (int k = 0; k < 3; ++k)
                 memcpy(ch.x + 3 * k, kids[kk][k], 3 * sizeof(double));
-            for (int q = 0; q < 3; ++q)
-                cen[q] = (ch.x[q] + ch.x[3 + q] + ch.x[6 + q]) / 3;
-            if (!(ok = face_phi(s, cfg, a, cen, xr, &phi, &r)))
-                break;
-            --budget;
-            if (phi > best[f]) {
-                best[f] = phi;
-                br[f] = r;
-                memcpy(bx + 3 * f, xr, sizeof xr);
-            }
             ch.face = (uint32_t)f;
-            if (!(ok = face_near(s, cfg, a, &ch, r.triangle, cell.g)))
-                break;
-            face_cell_bound(s, a, &ch, cen, phi);
-            if (ch.ub > best[f] + eps)
-                ok = face_heap_push(&h, &ch);
+            ok = face_visit(s, cfg, a, &ch, cell.g, eps, best + f, br + f, bx + 3 * f, &h);
+            --budget;
         }
     }
     /* each face's point deeper than the floor, in the faces' order */
