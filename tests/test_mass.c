@@ -13,7 +13,9 @@
  *     converge to 2 pi^2 R r^2, m (R^2 + 3 r^2 / 4), m (R^2 / 2 + 5 r^2 / 8), the error at least
  *     3-fold smaller per doubling and below 1e-3 at the finest;
  *   - refusals: a box with a face reversed or missing, NULL pointers, density 0, -1, NaN, inf,
- *     the other precision's mesh; *out untouched.
+ *     the other precision's mesh; *out untouched;
+ *   - two SolidWorks parts' STL (tests/data/cad) against SolidWorks's figures for the parts,
+ *     within a tolerance derived from the tessellation (cad_parts, below).
  * Exact rational references over random tetrahedra and boxes: python/tests/test_mass.py. */
 #include <float.h>
 #include <math.h>
@@ -25,6 +27,7 @@
 #include "boxes.h"
 #include "meshes.h"
 #include "test_macros.h"
+#include <ttd/meshfile.h>
 #include <ttd/ttd.h>
 
 static const double PI = 3.14159265358979323846;
@@ -256,6 +259,168 @@ static int torus_converges(void)
     return 0;
 }
 
+/* Two parts exported from SolidWorks as STL, against the mass properties SolidWorks reported for
+ * the exact parts (tests/data/cad/README.md: source, licence, units). The figures are of the CAD
+ * solids, the mesh's are of the chords between its vertices, so they may differ by the
+ * tessellation's error; the tolerance is derived from the mesh itself (docs/mass-properties.md):
+ * every edge whose faces' normals turn by less than 20 degrees (these files' smooth turns are at
+ * most 15, their CAD edges at least 30) lies on a curved surface, which over the face beside it
+ * bulges by the sagitta h = (c / 2) tan(theta / 4) of an arc of angle theta over the face's chord
+ * c (its height over the edge). With h_f, theta_f the largest over a face's smooth edges:
+ *   volume: the solid and the mesh differ only within slabs h_f thick over the curved faces,
+ *     dV = sum A_f h_f (plus the float rounding of the vertices, u |x|max per unit area);
+ *   area: an arc is longer than its chord by (theta / 2) / sin(theta / 2), so the part's area
+ *     exceeds the mesh's by about dA = sum A_f ((theta_f / 2) / sin(theta_f / 2) - 1); allowed
+ *     2 dA (doubly curved corners add to it), and the part's must be the larger;
+ *   centre: g moves by (dS - g dV) / V', |dS - g dV| <= dV (r + h), r the farthest vertex from g;
+ *   inertia about the centre: rho dV (r + h)^2 about g, plus M' |dg|^2 for the centre's move;
+ * each plus half a unit of the figure's last printed digit. */
+typedef struct cad_part {
+    const char *file;
+    double density, mass, area, center[3], moments[3], p_yz; /* p_yz: SolidWorks's, +integral yz dm */
+    double printed;                                           /* the figures' last printed digit */
+} cad_part;
+
+static const cad_part CAD_PARTS[] = {
+    {"angle_block.STL", 0.036127, 0.041358, 9.388587, {0, 0.436105, -0.599006}, {0.008312, 0.012823, 0.009005},
+     0.000807, 1e-6},
+    {"idler_riser.STL", 0.09754366, 0.14522859, 18.13860637, {1.25, 1.21830489, 0.20084261},
+     {0.12108243, 0.09131981, 0.2057651}, 0.00013893, 1e-8},
+};
+
+static int edge_cmp(const void *a, const void *b)
+{
+    const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* dV, dA, the largest sagitta and the number of curved faces of closed mesh (v, t) as above. */
+static int tessellation_error(const double *v, const uint32_t *t, size_t nt, double *dV, double *dA, double *hmax,
+                             size_t *curved)
+{
+    /* (directed edge a << 32 | b, its face) pairs, sorted by edge: each edge's twin by bsearch */
+    uint64_t *e = malloc(2 * 3 * nt * sizeof *e);
+    double *h = calloc(nt, sizeof *h), *th = calloc(nt, sizeof *th);
+    ENSURE(e != NULL && h != NULL && th != NULL);
+    for (size_t f = 0; f < nt; ++f)
+        for (int k = 0; k < 3; ++k) {
+            e[2 * (3 * f + k)] = (uint64_t)t[3 * f + k] << 32 | t[3 * f + (k + 1) % 3];
+            e[2 * (3 * f + k) + 1] = f;
+        }
+    qsort(e, 3 * nt, 2 * sizeof *e, edge_cmp);
+    double umax = 0;
+    for (size_t c = 0; c < 3 * nt; ++c)
+        for (int k = 0; k < 3; ++k)
+            umax = fmax(umax, fabs(v[3 * (size_t)t[c] + (size_t)k]));
+    for (size_t f = 0; f < nt; ++f) {
+        const double *a = v + 3 * (size_t)t[3 * f], *b = v + 3 * (size_t)t[3 * f + 1], *c = v + 3 * (size_t)t[3 * f + 2];
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const double n2 = sqrt(test_dot(n, n));
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t p = t[3 * f + k], q = t[3 * f + (k + 1) % 3];
+            const uint64_t rev[2] = {(uint64_t)q << 32 | p, 0};
+            const uint64_t *hit = bsearch(rev, e, 3 * nt, 2 * sizeof *e, edge_cmp);
+            ENSURE(hit != NULL); /* closed: the mass properties accepted it */
+            const size_t g = (size_t)hit[1];
+            const double *x = v + 3 * (size_t)t[3 * g], *y = v + 3 * (size_t)t[3 * g + 1], *z = v + 3 * (size_t)t[3 * g + 2];
+            const double g1[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]}, g2[3] = {z[0] - x[0], z[1] - x[1], z[2] - x[2]};
+            const double m[3] = {g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]};
+            const double cosang = test_dot(n, m) / (n2 * sqrt(test_dot(m, m)));
+            const double theta = acos(fmax(-1.0, fmin(1.0, cosang)));
+            if (theta >= 20 * PI / 180)
+                continue; /* a CAD edge */
+            const double pq[3] = {v[3 * (size_t)q] - v[3 * (size_t)p], v[3 * (size_t)q + 1] - v[3 * (size_t)p + 1],
+                                  v[3 * (size_t)q + 2] - v[3 * (size_t)p + 2]};
+            const double chord = n2 / sqrt(test_dot(pq, pq)); /* the face's height over pq */
+            h[f] = fmax(h[f], chord / 2 * tan(theta / 4));
+            th[f] = fmax(th[f], theta);
+        }
+    }
+    *dV = *dA = *hmax = 0;
+    *curved = 0;
+    for (size_t f = 0; f < nt; ++f) {
+        const double *a = v + 3 * (size_t)t[3 * f], *b = v + 3 * (size_t)t[3 * f + 1], *c = v + 3 * (size_t)t[3 * f + 2];
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const double A = sqrt(test_dot(n, n)) / 2;
+        *dV += A * (h[f] + umax * (double)FLT_EPSILON / 2);
+        if (th[f] > 0)
+            *dA += A * (th[f] / 2 / sin(th[f] / 2) - 1);
+        *hmax = fmax(*hmax, h[f]);
+        *curved += h[f] > 0;
+    }
+    free(e);
+    free(h);
+    free(th);
+    return 0;
+}
+
+static int cad_parts(void)
+{
+    for (size_t k = 0; k < sizeof CAD_PARTS / sizeof *CAD_PARTS; ++k) {
+        const cad_part *P = &CAD_PARTS[k];
+        char path[512], err[256];
+        snprintf(path, sizeof path, "%s/%s", TTD_CAD_DATA, P->file);
+        ttd_meshfile f;
+        ENSURE_MSG(ttd_meshfile_read(path, TTD_MESHFILE_FLOAT, &f, err, sizeof err) == 0, "%s", err);
+        /* the exporter's copies of a corner differ by up to 5e-16 (its shortest edge: 1.1e-3) */
+        size_t dropped = 1;
+        ENSURE_MSG(ttd_meshfile_weld(&f, 1e-9, &dropped, err, sizeof err) == 0, "%s", err);
+        ENSURE(dropped == 0);
+        ttd_mesh *md = NULL, *mf = NULL;
+        ENSURE(ttd_mesh_create_d(NULL, f.verts, f.nv, f.tris, f.nt, &md) == TTD_OK);
+        ENSURE(ttd_mesh_create_f(NULL, f.verts_f, f.nv, f.tris, f.nt, &mf) == TTD_OK);
+        ttd_mass_properties p, pf;
+        ENSURE(ttd_mesh_mass_properties_d(md, P->density, &p) == TTD_OK);
+        ENSURE(ttd_mesh_mass_properties_f(mf, P->density, &pf) == TTD_OK);
+        /* an STL's coordinates are floats: the float mesh holds the same vertices, computed in double */
+        ENSURE(memcmp(&p, &pf, sizeof p) == 0);
+        double dV, dA, hmax;
+        size_t curved;
+        ENSURE(tessellation_error(f.verts, f.tris, f.nt, &dV, &dA, &hmax, &curved) == 0);
+        double r = 0;
+        for (size_t i = 0; i < f.nv; ++i) {
+            const double d[3] = {f.verts[3 * i] - p.center[0], f.verts[3 * i + 1] - p.center[1],
+                                 f.verts[3 * i + 2] - p.center[2]};
+            r = fmax(r, sqrt(test_dot(d, d)));
+        }
+        const double half = P->printed / 2, rho = P->density;
+        const double tol_m = rho * dV + half, tol_a = 2 * dA + half;
+        const double dg = dV * (r + hmax) / (fabs(p.volume) - dV), tol_g = dg + half;
+        const double tol_i = rho * dV * (r + hmax) * (r + hmax) + (p.mass + rho * dV) * dg * dg + half;
+        printf("  %s: %zu triangles (%zu on curved surfaces, sagitta up to %.3g), volume %.9g\n", P->file, f.nt, curved,
+               hmax, p.volume);
+        printf("    mass %.9g, SolidWorks %.9g: %+.3g (allowed %.3g)\n", p.mass, P->mass, p.mass - P->mass, tol_m);
+        printf("    area %.9g, SolidWorks %.9g: %+.3g (expected -%.3g from the chords, allowed -%.3g)\n", p.area, P->area,
+               p.area - P->area, dA, tol_a);
+        ENSURE_MSG(fabs(p.mass - P->mass) <= tol_m, "%s: mass %.9g, SolidWorks %.9g", P->file, p.mass, P->mass);
+        ENSURE_MSG(P->area - p.area >= -half && P->area - p.area <= tol_a, "%s: area %.9g, SolidWorks %.9g", P->file,
+                   p.area, P->area);
+        double worst_g = 0, worst_i = 0;
+        for (int i = 0; i < 3; ++i) {
+            worst_g = fmax(worst_g, fabs(p.center[i] - P->center[i]));
+            ENSURE_MSG(fabs(p.center[i] - P->center[i]) <= tol_g, "%s: centre %d %.9g, SolidWorks %.9g", P->file, i,
+                       p.center[i], P->center[i]);
+            for (int j = 0; j < 3; ++j) {
+                /* the tensor: the moments on the diagonal, minus SolidWorks's products off it */
+                const double want = i == j ? P->moments[i] : (i + j == 3 ? -P->p_yz : 0.0);
+                worst_i = fmax(worst_i, fabs(p.inertia[3 * i + j] - want));
+                ENSURE_MSG(fabs(p.inertia[3 * i + j] - want) <= tol_i, "%s: inertia %d %d %.9g, SolidWorks %.9g", P->file,
+                           i, j, p.inertia[3 * i + j], want);
+            }
+        }
+        printf("    centre (%.9g, %.9g, %.9g): off by up to %.3g (allowed %.3g)\n", p.center[0], p.center[1], p.center[2],
+               worst_g, tol_g);
+        printf("    inertia diagonal (%.9g, %.9g, %.9g), yz %.9g: off by up to %.3g (allowed %.3g)\n", p.inertia[0],
+               p.inertia[4], p.inertia[8], p.inertia[5], worst_i, tol_i);
+        ttd_mesh_destroy(md);
+        ttd_mesh_destroy(mf);
+        ttd_meshfile_free(&f);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -263,5 +428,6 @@ int main(int argc, char **argv)
     RUN_TEST(boxes_unshared_and_refused);
     RUN_TEST(sphere_between_balls);
     RUN_TEST(torus_converges);
+    RUN_TEST(cad_parts);
     TEST_MAIN_END();
 }
