@@ -25,6 +25,7 @@
 #include "ttd/ttd_gpu.h"
 #include "cuda_host/cuda_host.h"
 #include "test_macros.h"
+#include "gpu_test_util.h"
 #include "mesh_like_pairs.h"
 #include <unistd.h>
 
@@ -188,15 +189,6 @@ static int gpu_without_device(void)
 }
 
 #ifdef TTD_TEST_CUDA
-#define CU(x) ENSURE_MSG((x) == cudaSuccess, "%s", cudaGetErrorString(cudaGetLastError()))
-
-static double seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* One set of n pairs (s, t in double, sf, tf their float copies) through ttd_gpu_batch_d/f on
  * device memory, full results and then distances alone, against the CPU's scalar row on every
  * core (ttd_batch with TTD_ISA_SCALAR), bit for bit. Prints a line; the differing pairs go to

@@ -23,6 +23,7 @@
 
 #include "cuda_host/cuda_host.h"
 #include "test_macros.h"
+#include "gpu_test_util.h"
 #include "ttd/ttd.h"
 #include "ttd/ttd_gpu.h"
 
@@ -335,13 +336,6 @@ static int device_side(const ccd_arrays *A, int is_float, double delta, ttd_ccd_
     cudaFree(dr);
     ENSURE_MSG(!bad, "device run: %s, %s", ttd_gpu_status_string(st), cudaGetErrorString(cudaGetLastError()));
     return 0;
-}
-
-static double seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Queries a second on the device (data resident, CUDA events) and on the host's cores (wall clock),

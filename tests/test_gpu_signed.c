@@ -34,6 +34,7 @@
 #include "cuda_host/cuda_host.h"
 #include "mesh/mesh.h"
 #include "test_macros.h"
+#include "gpu_test_util.h"
 
 #ifdef TTD_TEST_CUDA
 #include <cuda_runtime.h>
@@ -357,15 +358,6 @@ static int signed_entries_without_device(void)
 }
 
 #ifdef TTD_TEST_CUDA
-#define CU(x) ENSURE_MSG((x) == cudaSuccess, "%s", cudaGetErrorString(cudaGetLastError()))
-
-static double seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* The entries' checks on real device meshes. */
 static int signed_entries_device(void)
 {

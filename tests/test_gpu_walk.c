@@ -37,6 +37,7 @@
 #include "cuda_host/cuda_host.h"
 #include "mesh/mesh.h"
 #include "test_macros.h"
+#include "gpu_test_util.h"
 #include <time.h>
 
 #ifdef TTD_TEST_CUDA
@@ -406,15 +407,6 @@ static int walk_entries_without_device(void)
 }
 
 #ifdef TTD_TEST_CUDA
-#define CU(x) ENSURE_MSG((x) == cudaSuccess, "%s", cudaGetErrorString(cudaGetLastError()))
-
-static double seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* A bunny-sized mesh: an icosphere of 81,920 triangles, each vertex moved radially by up to 3%
  * (a fixed hash), normalized. */
 static int rough_sphere(ttd_gen_mesh *g)
