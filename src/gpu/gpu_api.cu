@@ -507,45 +507,19 @@ static ttd_gpu_status ccd_call(int kind, size_t real_size, size_t n, const void 
     return gpu_launched(ttd_gpu_launch_ccd(kind, real_size == sizeof(float), n, a0, b0, a1, b1, delta, out, stream));
 }
 
-extern "C" ttd_gpu_status ttd_gpu_ccd_vertex_face_d(size_t n, const double *v_t0, const double *f_t0,
-                                                    const double *v_t1, const double *f_t1, double min_separation,
-                                                    ttd_ccd_result *out, void *stream)
-{
-    return ccd_call(1, sizeof(double), n, v_t0, f_t0, v_t1, f_t1, min_separation, out, stream);
-}
+/* The six entries (include/ttd/ttd_gpu.h): R the precision's coordinates, kind as ccd_call's. */
+#define TTD_GPU_CCD_ENTRY(name, kind, R)                                                                     \
+    extern "C" ttd_gpu_status name(size_t n, const R *a_t0, const R *b_t0, const R *a_t1, const R *b_t1,     \
+                                   double min_separation, ttd_ccd_result *out, void *stream)                 \
+    {                                                                                                        \
+        return ccd_call(kind, sizeof(R), n, a_t0, b_t0, a_t1, b_t1, min_separation, out, stream);            \
+    }
 
-extern "C" ttd_gpu_status ttd_gpu_ccd_vertex_face_f(size_t n, const float *v_t0, const float *f_t0, const float *v_t1,
-                                                    const float *f_t1, double min_separation, ttd_ccd_result *out,
-                                                    void *stream)
-{
-    return ccd_call(1, sizeof(float), n, v_t0, f_t0, v_t1, f_t1, min_separation, out, stream);
-}
-
-extern "C" ttd_gpu_status ttd_gpu_ccd_edge_edge_d(size_t n, const double *ea_t0, const double *eb_t0,
-                                                  const double *ea_t1, const double *eb_t1, double min_separation,
-                                                  ttd_ccd_result *out, void *stream)
-{
-    return ccd_call(2, sizeof(double), n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out, stream);
-}
-
-extern "C" ttd_gpu_status ttd_gpu_ccd_edge_edge_f(size_t n, const float *ea_t0, const float *eb_t0, const float *ea_t1,
-                                                  const float *eb_t1, double min_separation, ttd_ccd_result *out,
-                                                  void *stream)
-{
-    return ccd_call(2, sizeof(float), n, ea_t0, eb_t0, ea_t1, eb_t1, min_separation, out, stream);
-}
-
-extern "C" ttd_gpu_status ttd_gpu_ccd_triangles_d(size_t n, const double *ta_t0, const double *tb_t0,
-                                                  const double *ta_t1, const double *tb_t1, double min_separation,
-                                                  ttd_ccd_result *out, void *stream)
-{
-    return ccd_call(3, sizeof(double), n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out, stream);
-}
-
-extern "C" ttd_gpu_status ttd_gpu_ccd_triangles_f(size_t n, const float *ta_t0, const float *tb_t0, const float *ta_t1,
-                                                  const float *tb_t1, double min_separation, ttd_ccd_result *out,
-                                                  void *stream)
-{
-    return ccd_call(3, sizeof(float), n, ta_t0, tb_t0, ta_t1, tb_t1, min_separation, out, stream);
-}
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_vertex_face_d, 1, double)
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_vertex_face_f, 1, float)
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_edge_edge_d, 2, double)
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_edge_edge_f, 2, float)
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_triangles_d, 3, double)
+TTD_GPU_CCD_ENTRY(ttd_gpu_ccd_triangles_f, 3, float)
+#undef TTD_GPU_CCD_ENTRY
 /* ---- end of continuous collision ---- */
