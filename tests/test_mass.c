@@ -389,12 +389,16 @@ static int cad_parts(void)
         const double tol_m = rho * dV + half, tol_a = 2 * dA + half;
         const double dg = dV * (r + hmax) / (fabs(p.volume) - dV), tol_g = dg + half;
         const double tol_i = rho * dV * (r + hmax) * (r + hmax) + (p.mass + rho * dV) * dg * dg + half;
-        printf("  %s: %zu triangles (%zu on curved surfaces, sagitta up to %.3g), volume %.9g\n", P->file, f.nt, curved,
-               hmax, p.volume);
+        printf("  %s: %zu triangles (%zu on curved surfaces, sagitta up to %.3g)\n", P->file, f.nt, curved, hmax);
         printf("    mass %.9g, SolidWorks %.9g: %+.3g (allowed %.3g)\n", p.mass, P->mass, p.mass - P->mass, tol_m);
+        printf("    volume %.9g, SolidWorks (mass / density) %.9g: %+.3g (allowed %.3g)\n", p.volume, P->mass / rho,
+               p.volume - P->mass / rho, tol_m / rho);
         printf("    area %.9g, SolidWorks %.9g: %+.3g (expected -%.3g from the chords, allowed -%.3g)\n", p.area, P->area,
                p.area - P->area, dA, tol_a);
         ENSURE_MSG(fabs(p.mass - P->mass) <= tol_m, "%s: mass %.9g, SolidWorks %.9g", P->file, p.mass, P->mass);
+        /* the volume SolidWorks's mass and density imply */
+        ENSURE_MSG(fabs(p.volume - P->mass / rho) <= tol_m / rho, "%s: volume %.9g, SolidWorks %.9g", P->file, p.volume,
+                   P->mass / rho);
         ENSURE_MSG(P->area - p.area >= -half && P->area - p.area <= tol_a, "%s: area %.9g, SolidWorks %.9g", P->file,
                    p.area, P->area);
         double worst_g = 0, worst_i = 0;
