@@ -13,6 +13,9 @@
  *   - every query after a refit is identical on every instruction set and thread count;
  *   - bad input (NULL, NaN, coordinates beyond the range, the other precision, bad options) gets
  *     its status and leaves the mesh as it was;
+ *   - refits at 1e30, 1e-30 and mixed scales, of one triangle and of degenerate ones, twice in a
+ *     row, and a refit on a rebuilt tree: each as a fresh build (distance, contacts,
+ *     self-contacts) and the brute force;
  *   - solid queries see moved vertices (a sphere moved inside another is contained, and out);
  *   - scenes of deforming bodies: a scene's contacts, step after step of meshes moved (one of
  *     them shared by two bodies), against the brute force over every body pair in the world;
@@ -889,6 +892,168 @@ static int deforming_bodies_in_a_scene(void)
     return 0;
 }
 
+/* The same pairs, in any order, with the same bits (contacts sorted by contact_cmp_d). */
+static int same_sets_d(ttd_contacts_d *x, ttd_contacts_d *y)
+{
+    if (x->count != y->count)
+        return 0;
+    if (x->count > 1) {
+        qsort(x->pairs, x->count, sizeof *x->pairs, contact_cmp_d);
+        qsort(y->pairs, y->count, sizeof *y->pairs, contact_cmp_d);
+    }
+    return x->count == 0 || memcmp(x->pairs, y->pairs, x->count * sizeof *x->pairs) == 0;
+}
+
+/* m (refitted to g's vertices) against a mesh built afresh from them: the same distance, the same
+ * contacts and the same self-contacts, pair for pair with their bits; and every query against the
+ * brute force (check_d). */
+static int refitted_as_fresh(const char *what, const ttd_gen_mesh *g, const ttd_mesh *m)
+{
+    ttd_mesh *fresh;
+    ENSURE(ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, &fresh) == TTD_OK);
+    double lo[3], hi[3], pose[12];
+    ttd_gen_mesh_bounds(g, lo, hi);
+    const double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    ttd_gen_pose(53, 1, 0.3 * size, pose);
+    for (int c = 0; c < 3; ++c) /* near its own middle */
+        pose[4 * c + 3] += 0.5 * (lo[c] + hi[c]);
+    ttd_mesh_result_d r1, r2;
+    ENSURE(ttd_mesh_distance_d(NULL, m, m, 1, pose, HUGE_VAL, 0, &r1) == TTD_OK);
+    ENSURE(ttd_mesh_distance_d(NULL, fresh, fresh, 1, pose, HUGE_VAL, 0, &r2) == TTD_OK);
+    ENSURE_MSG(r1.distance == r2.distance, "%s: distance %.17g, fresh %.17g", what, r1.distance, r2.distance);
+    ttd_contacts_d s1 = {0}, s2 = {0};
+    const double margin = r1.distance + 0.1 * size;
+    ENSURE(ttd_mesh_contacts_d(NULL, m, m, 1, pose, margin, &s1) == TTD_OK);
+    ENSURE(ttd_mesh_contacts_d(NULL, fresh, fresh, 1, pose, margin, &s2) == TTD_OK);
+    ENSURE_MSG(same_sets_d(&s1, &s2), "%s: contacts %zu, fresh %zu", what, s1.count, s2.count);
+    ENSURE(ttd_mesh_self_contacts_d(NULL, m, 0.05 * size, 0, &s1) == TTD_OK);
+    ENSURE(ttd_mesh_self_contacts_d(NULL, fresh, 0.05 * size, 0, &s2) == TTD_OK);
+    ENSURE_MSG(same_sets_d(&s1, &s2), "%s: self-contacts %zu, fresh %zu", what, s1.count, s2.count);
+    ttd_contacts_free_d(&s1);
+    ttd_contacts_free_d(&s2);
+    ttd_mesh_destroy(fresh);
+    return check_d(what, g, g, m, m, pose);
+}
+
+/* Refits at the ends of the range and after a rebuild, each against a fresh build and the brute
+ * force: a torus, a mesh of degenerate triangles and a mesh of one triangle scaled to 1e30 and to
+ * 1e-30, and mixed (x scaled to 1e30, y and z to 1e-30; and a small shape at an offset of 1e30,
+ * whose triangles round to segments and points), each refitted twice in a row (a refit after a
+ * refit: the leaves' vertex indices kept from the first, docs/mesh-queries.md 2b); float vertices
+ * at 1e30 refused (beyond float's range) with the mesh as it was. After a rebuild (a soup
+ * scattered, as degraded_trees_rebuild), a small move is refitted on the rebuilt tree: its
+ * leaves' vertex indices must be the new tree's, not the old one's. */
+static int refit_extremes_and_after_rebuild(void)
+{
+    ttd_gen_mesh base[3];
+    ENSURE(ttd_gen_torus(1.0, 0.35, 16, 8, &base[0]) == 0 && ttd_gen_mesh_degenerate(&base[1]) == 0);
+    base[2].nv = 3;
+    base[2].nt = 1;
+    base[2].verts = malloc(9 * sizeof *base[2].verts);
+    base[2].tris = malloc(3 * sizeof *base[2].tris);
+    ENSURE(base[2].verts != NULL && base[2].tris != NULL);
+    const double one[9] = {0.1, 0.2, 0.3, 1.1, 0.25, -0.2, 0.4, 0.9, 0.6};
+    memcpy(base[2].verts, one, sizeof one);
+    for (uint32_t k = 0; k < 3; ++k)
+        base[2].tris[k] = k;
+    static const char *const names[3] = {"torus", "degenerate", "one triangle"};
+    static const char *const scales[4] = {"1e30", "1e-30", "x 1e30, y z 1e-30", "offset 1e30"};
+    int cases = 0;
+    for (int mi = 0; mi < 3; ++mi)
+        for (int sc = 0; sc < 4; ++sc) {
+            ttd_gen_mesh g;
+            ENSURE(ttd_gen_mesh_copy(&base[mi], &g) == 0);
+            ttd_mesh *m;
+            ENSURE(ttd_mesh_create_d(NULL, base[mi].verts, base[mi].nv, base[mi].tris, base[mi].nt, &m) == TTD_OK);
+            for (int step = 1; step <= 2; ++step) {
+                for (size_t i = 0; i < g.nv; ++i)
+                    for (int c = 0; c < 3; ++c) {
+                        const double x = base[mi].verts[3 * i + (size_t)c] * (step == 1 ? 1.0 : 1.0 + 0.1 * c);
+                        double *y = &g.verts[3 * i + (size_t)c];
+                        if (sc == 0)
+                            *y = 1e30 * x;
+                        else if (sc == 1)
+                            *y = 1e-30 * x;
+                        else if (sc == 2)
+                            *y = c == 0 ? 1e30 * x : 1e-30 * x;
+                        else
+                            *y = 1e30 + x;
+                    }
+                ENSURE(ttd_mesh_set_vertices_d(NULL, m, g.verts) == TTD_OK);
+                char what[96];
+                snprintf(what, sizeof what, "%s, %s, refit %d", names[mi], scales[sc], step);
+                if (refitted_as_fresh(what, &g, m))
+                    return 1;
+                ++cases;
+            }
+            ttd_mesh_refit_info info;
+            ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.generation == 2);
+            ttd_mesh_destroy(m);
+            if (sc == 0) { /* float: 1e30 is beyond its range */
+                mesh_f f0 = to_float(&base[mi]), f = to_float(&g);
+                ttd_mesh *mf;
+                ENSURE(ttd_mesh_create_f(NULL, f0.verts, f0.nv, f0.tris, f0.nt, &mf) == TTD_OK);
+                ENSURE(ttd_mesh_set_vertices_f(NULL, mf, f.verts) == TTD_ERR_COORDINATE_RANGE);
+                ttd_mesh_refit_info info_f;
+                ENSURE(ttd_mesh_get_refit_info(mf, &info_f) == TTD_OK && info_f.generation == 0);
+                ttd_mesh_destroy(mf);
+                free(f0.verts);
+                free(f.verts);
+            }
+            ttd_gen_mesh_free(&g);
+        }
+    for (int mi = 0; mi < 3; ++mi)
+        ttd_gen_mesh_free(&base[mi]);
+
+    /* a refit on a rebuilt tree */
+    ttd_gen_mesh ico, g, moved;
+    ENSURE(ttd_gen_icosphere(2, &ico) == 0);
+    g.nt = ico.nt;
+    g.nv = 3 * ico.nt;
+    g.verts = malloc(3 * g.nv * sizeof *g.verts);
+    g.tris = malloc(3 * g.nt * sizeof *g.tris);
+    ENSURE(g.verts != NULL && g.tris != NULL);
+    for (size_t t = 0; t < g.nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            g.tris[3 * t + (size_t)k] = (uint32_t)(3 * t + (size_t)k);
+            memcpy(g.verts + 9 * t + 3 * k, ico.verts + 3 * (size_t)ico.tris[3 * t + (size_t)k], 3 * sizeof(double));
+        }
+    ENSURE(ttd_gen_mesh_copy(&g, &moved) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
+    ENSURE(ttd_mesh_set_vertices_d(NULL, m, g.verts) == TTD_OK); /* the first tree's indices made */
+    rng = 7;
+    for (size_t t = g.nt; t > 1; --t) { /* triangles to one another's places */
+        const size_t u = (size_t)(urand() * (double)t);
+        double x[9];
+        memcpy(x, moved.verts + 9 * (t - 1), sizeof x);
+        memcpy(moved.verts + 9 * (t - 1), moved.verts + 9 * u, sizeof x);
+        memcpy(moved.verts + 9 * u, x, sizeof x);
+    }
+    ENSURE(ttd_mesh_set_vertices_d(NULL, m, moved.verts) == TTD_OK);
+    ttd_mesh_refit_info info;
+    ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.rebuilds == 1);
+    for (int step = 1; step <= 2; ++step) {
+        ttd_gen_mesh now;
+        ENSURE(ttd_gen_mesh_copy(&moved, &now) == 0);
+        for (size_t i = 0; i < now.nv; ++i)
+            now.verts[3 * i] *= 1 + 0.01 * step;
+        ENSURE(ttd_mesh_set_vertices_d(NULL, m, now.verts) == TTD_OK);
+        ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.rebuilds == 1); /* refitted, not rebuilt */
+        if (refitted_as_fresh("scattered soup, refitted after its rebuild", &now, m))
+            return 1;
+        ttd_gen_mesh_free(&now);
+        ++cases;
+    }
+    printf("  %d refits at 1e30, 1e-30, mixed and after a rebuild: each as a fresh build and the brute force\n",
+           cases);
+    ttd_mesh_destroy(m);
+    ttd_gen_mesh_free(&ico);
+    ttd_gen_mesh_free(&g);
+    ttd_gen_mesh_free(&moved);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -899,6 +1064,7 @@ int main(int argc, char **argv)
     RUN_TEST(refit_threads_isas_identical);
     RUN_TEST(refit_bits_every_isa);
     RUN_TEST(bad_vertices_refused);
+    RUN_TEST(refit_extremes_and_after_rebuild);
     RUN_TEST(solids_after_refit);
     RUN_TEST(derived_data_after_refit);
     RUN_TEST(deforming_bodies_in_a_scene);

@@ -268,7 +268,9 @@ TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
 /// built from them. The mesh stays the same object: every scene body of it moves with it (the
 /// scene updates their world boxes on its next call). Must not run while the mesh is used by
 /// anything else (see above). On an error (TTD_ERR_OUT_OF_MEMORY included) the mesh is as it
-/// was. opt's threads apply.
+/// was. opt's threads apply. Memory: the first refit of a hierarchy keeps its leaves' vertex
+/// indices in tree order with the mesh (96 bytes a node, about 17 bytes a triangle) for the next
+/// refits, until a rebuild or ttd_mesh_destroy.
 TTD_API ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices);
 /// ttd_mesh_set_vertices_d for a mesh built by ttd_mesh_create_f.
 TTD_API ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices);

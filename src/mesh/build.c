@@ -850,6 +850,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->verts);
     free(mesh->tris);
     free(mesh->nodes);
+    free(mesh->leaf_vix);
     if (mesh->edges != NULL) {
         ttd_mesh_edges_free(mesh->edges);
         free(mesh->edges);
@@ -1323,28 +1324,25 @@ typedef struct refit {
 typedef struct local_tris {
     builder B;
     double p[9][TTD_NODE_WIDTH];
-    uint32_t ord[TTD_NODE_WIDTH];
 } local_tris;
 
 #define GATHER(T)                                                                                  \
     do {                                                                                           \
         const T *v = m->verts;                                                                     \
-        for (int i = 0; i < count; ++i) {                                                          \
-            L->ord[i] = t[i];                                                                      \
-            const uint32_t *ix = m->tris + 3 * (size_t)t[i];                                       \
+        for (int i = 0; i < count; ++i)                                                            \
             for (int k = 0; k < 3; ++k) {                                                          \
-                const T *x = v + 3 * (size_t)ix[k];                                                \
+                const T *x = v + 3 * (size_t)ix[3 * i + k];                                        \
                 for (int c = 0; c < 3; ++c) /* as place() computes vrel */                         \
                     L->p[3 * k + c][i] = (double)x[c] - o[c];                                      \
             }                                                                                      \
-        }                                                                                          \
     } while (0)
 
-static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, int count)
+/* The vertices of count triangles whose vertex indices are ix[0..3 count) (three a triangle, in
+ * order: a leaf's from m->leaf_vix, a lone triangle's from m->tris). */
+static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *ix, int count)
 {
     /* the builder's fields that its box functions read (the mesh, the positions), no others */
     L->B.mesh = m;
-    L->B.ord = L->ord;
     for (int k = 0; k < 9; ++k)
         L->B.p[k] = L->p[k];
     const double o[3] = {m->origin[0], m->origin[1], m->origin[2]};
@@ -1357,6 +1355,30 @@ static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *t, i
             L->p[k][i] = 0;
 }
 #undef GATHER
+
+/* The vertex indices of every leaf's triangles, 24 a node (TTD_NODE_WIDTH triangles of 3), in
+ * slot order at the leaf's node index: the refit reads a leaf's from here, in the order it walks
+ * the nodes, instead of m->tris through each leaf's children, whose lines the triangles' order
+ * scatters (waiting on them was a fifth of a refit's node work on a tree out of cache:
+ * docs/mesh-queries.md, section 6). The entries of nodes that are not leaves are left unset.
+ * NULL out of memory. */
+static uint32_t *leaf_indices(const struct ttd_mesh *m)
+{
+    uint32_t *vix = ttd_big_alloc(m->nnodes * 3 * TTD_NODE_WIDTH * sizeof *vix);
+    if (vix == NULL)
+        return NULL;
+    for (size_t n = 0; n < m->nnodes; ++n) {
+        const int count = slot_count(m, n);
+        if (count == 0 || slot_child(m, n, 0) >= 0)
+            continue;
+        for (int i = 0; i < count; ++i) {
+            const uint32_t t = (uint32_t)(-1 - slot_child(m, n, i));
+            for (int k = 0; k < 3; ++k)
+                vix[3 * TTD_NODE_WIDTH * n + 3 * (size_t)i + (size_t)k] = m->tris[3 * (size_t)t + (size_t)k];
+        }
+    }
+    return vix;
+}
 
 /* Child slot j of node n read back in double (the stored values, exactly). */
 static void slot_box(const struct ttd_mesh *m, size_t n, int j, obb *b)
@@ -1456,7 +1478,7 @@ static fitsum refit_slot(const refit *R, int32_t n, int j)
     double p[3][3], area2;
     fitsum sum;
     memset(&sum, 0, sizeof sum);
-    gather(m, &L, &t, 1);
+    gather(m, &L, m->tris + 3 * (size_t)t, 1);
     pos_vertices(&L.B, 0, p);
     triangle_fit(p, m->radius, &b, &area2);
     fitsum_triangle(&sum, p, b.u + 6, area2);
@@ -1471,10 +1493,7 @@ static fitsum leaf_fit(const refit *R, int32_t c, local_tris *L)
 {
     const struct ttd_mesh *m = R->mesh;
     const int count = slot_count(m, (size_t)c);
-    uint32_t t[TTD_NODE_WIDTH];
-    for (int i = 0; i < count; ++i)
-        t[i] = (uint32_t)(-1 - slot_child(m, (size_t)c, i));
-    gather(m, L, t, count);
+    gather(m, L, m->leaf_vix + 3 * TTD_NODE_WIDTH * (size_t)c, count);
     const double *const *pl = (const double *const *)L->B.p;
     ttd_node_d *leaf = m->bytes == 8 && count == TTD_NODE_WIDTH ? (ttd_node_d *)m->nodes + c : NULL;
     double U[9][TTD_NODE_WIDTH], C[3][TTD_NODE_WIDTH], E[3][TTD_NODE_WIDTH], T[13][TTD_NODE_WIDTH];
@@ -1606,6 +1625,10 @@ static void node_prefetch(const struct ttd_mesh *m, size_t n)
     const size_t at = n * (m->bytes == 8 ? sizeof(ttd_node_d) : sizeof(ttd_node_f));
     for (size_t k = 64; k <= REFIT_AHEAD && k <= at; k += 64)
         __builtin_prefetch((const char *)m->nodes + (at - k), 1, 3);
+    /* and the leaves' vertex indices of the 8 nodes below (leaf_indices: 96 bytes a node) */
+    const size_t vat = n * 3 * TTD_NODE_WIDTH * sizeof *m->leaf_vix;
+    for (size_t k = 64; k <= 8 * 3 * TTD_NODE_WIDTH * sizeof *m->leaf_vix && k <= vat; k += 64)
+        __builtin_prefetch((const char *)m->leaf_vix + (vat - k), 0, 3);
 }
 #undef REFIT_AHEAD
 
@@ -1715,7 +1738,9 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
     refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
                row != NULL ? row->leaf_axes : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
                ttd_big_alloc(m->nnodes * sizeof *R.area), malloc(64 * sizeof(subtree))};
-    if (R.sums == NULL || R.area == NULL || R.list == NULL) {
+    if (m->leaf_vix == NULL) /* the first refit (of this tree) */
+        m->leaf_vix = leaf_indices(m);
+    if (R.sums == NULL || R.area == NULL || R.list == NULL || m->leaf_vix == NULL) {
         free(R.sums);
         free(R.area);
         free(R.list);

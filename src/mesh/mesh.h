@@ -47,6 +47,10 @@ struct ttd_mesh {
     uint64_t rebuilds;   /* of those, the ones whose refit triggered a rebuild */
     double quality;      /* the tree's quality measure (build.c, tree_quality), now */
     double quality_built; /* and when the tree was last built */
+    uint32_t *leaf_vix;   /* per node, 24: a leaf's triangles' vertex indices in slot order (build.c,
+                           * leaf_indices), for the refit to read in the order it walks the tree;
+                           * made by the first refit, dropped with the tree by a rebuild; NULL
+                           * until then (the entries of nodes that are not leaves are not set) */
 };
 
 /* A refit rebuilds the tree when its quality measure has grown past this factor of what it was
