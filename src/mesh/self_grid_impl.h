@@ -202,9 +202,10 @@ typedef struct self_grid {
 } self_grid;
 
 /* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
-static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
+static unsigned self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same,
+                                   uint16_t out[TTD_NODE_WIDTH])
 {
-    unsigned any = 0;
+    unsigned found = 0;
     for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
         unsigned n = 0, s = 0;
         out[i] = 0;
@@ -226,9 +227,9 @@ static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, 
             s |= (unsigned)(near & share) << j;
         }
         out[i] = (uint16_t)(n | s << 8);
-        any |= out[i];
+        found |= (unsigned)(n != 0) << i | (unsigned)(s != 0) << (8 + i);
     }
-    return any != 0;
+    return found;
 }
 
 static unsigned box_screen_scalar(const double *const lo[3], const double *const hi[3], const double q[6])
@@ -486,12 +487,14 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
                              uint32_t h)
 {
     uint16_t near[TTD_NODE_WIDTH];
-    const int any = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
-                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
-    if (!any)
-        return;
     const unsigned keep = P->self & SELF_SHARED ? 0xFFFFu : 0xFFu;
-    for (int i = 0; i < TTD_NODE_WIDTH && !w->hit; ++i) {
+    unsigned rows = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
+                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
+    rows &= keep; /* the rows with a pair kept (on a sheet most near rows have only pairs sharing a
+                     vertex, which a query without SELF_SHARED drops) */
+    rows = (rows | rows >> 8) & 0xFFu;
+    for (; rows != 0 && !w->hit; rows &= rows - 1) {
+        const int i = __builtin_ctz(rows);
         const int32_t ti = G->tri[g][i];
         for (unsigned m = near[i] & keep; m != 0; m &= m - 1) {
             const int bit = __builtin_ctz(m), j = bit & 7;
