@@ -44,6 +44,8 @@ typedef struct self_scratch {
     int32_t (*topo)[TTD_NODE_WIDTH]; /* group g's triangles, -1 past its count */
     size_t ntopo;              /* groups in topo */
     int topo_state;            /* 0 not made yet; 1 the groups are used; -1 the tree's leaves are */
+    int topo_filled;           /* with groups: tri and blk's ix (the triangles and their vertex
+                                  indices, which no refit changes) hold them already */
 } self_scratch;
 
 static void self_scratch_free(void *p)
@@ -78,6 +80,7 @@ static int self_scratch_room(self_scratch *S, size_t ng)
 {
     if (S->cap_g >= ng)
         return 1;
+    S->topo_filled = 0;
     free(S->blk), free(S->tri), free(S->sbox), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
     const size_t n = ng ? ng : 1;
     S->blk = ttd_big_alloc(n * sizeof *S->blk);
@@ -334,6 +337,8 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
     const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
+    /* the groups' triangles and vertex indices are the mesh's: written by its first query only */
+    const int fixed = topo && S->topo_filled;
     for (size_t n = 0; n < (topo ? ng : nnodes); ++n) { /* group n, or node n's triangles */
         const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
@@ -344,11 +349,14 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
                 continue;
             const uint32_t t = topo ? (uint32_t)S->topo[n][j] : (uint32_t)(-1 - y->child[j]);
             const uint32_t *ix = P->a.tris + 3 * (size_t)t;
-            G->tri[g][k] = (int32_t)t;
             for (int q = 0; q < 3; ++q) {
                 const real *x = P->a.verts + 3 * (size_t)ix[q];
                 v[3 * q][k] = (double)x[0], v[3 * q + 1][k] = (double)x[1], v[3 * q + 2][k] = (double)x[2];
-                b->ix[q][k] = (double)ix[q];
+            }
+            if (!fixed) {
+                G->tri[g][k] = (int32_t)t;
+                for (int q = 0; q < 3; ++q)
+                    b->ix[q][k] = (double)ix[q];
             }
             ++k;
         }
@@ -389,6 +397,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
         sum += e;
         ++g;
     }
+    S->topo_filled = topo;
     /* Leaves up to 4 times the mean extent go into cells as wide as the largest of them; two of
      * them within L on axis c have low corners at most that apart, and a cell a little wider
      * keeps their cells' indices within 1 despite the rounding of (lo - lo_min) / h. The larger
