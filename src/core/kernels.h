@@ -174,7 +174,8 @@ typedef unsigned (*ttd_leaf_axes_fn)(const double s[14][TTD_NODE_WIDTH], const d
  * out[i] gets, bits 0-7, the lanes whose box is near triangle i's, that share no vertex index with
  * it and are near it on each diagonal direction d (h's dg[d] <= g's dg[6 + d] and g's dg[d] <= h's
  * dg[6 + d]); bits 8-15, the lanes whose box is near that share one or more (the caller applies
- * the diagonal test to those it keeps); returns whether any out[i] is not 0. box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
+ * the diagonal test to those it keeps); returns the rows: bit i where out[i] has a bit 0-7, bit
+ * 8 + i where it has a bit 8-15 (the caller visits only the rows it keeps). box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
 typedef struct ttd_self_block {
     double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
     double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
@@ -182,7 +183,7 @@ typedef struct ttd_self_block {
                                      minima (d), maxima raised by R (6 + d); 0 in padding lanes */
     double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
 } ttd_self_block;
-typedef int (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
+typedef unsigned (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
 /* self_fill (double rows only; NULL on the scalar row): a leaf's 8 triangles, v[3 k + c][lane] the
  * coordinate c of vertex k, into their boxes (b->lo, b->hi: minima, and maxima + L) and their

@@ -44,6 +44,8 @@ typedef struct self_scratch {
     int32_t (*topo)[TTD_NODE_WIDTH]; /* group g's triangles, -1 past its count */
     size_t ntopo;              /* groups in topo */
     int topo_state;            /* 0 not made yet; 1 the groups are used; -1 the tree's leaves are */
+    int topo_filled;           /* with groups: tri and blk's ix (the triangles and their vertex
+                                  indices, which no refit changes) hold them already */
 } self_scratch;
 
 static void self_scratch_free(void *p)
@@ -78,6 +80,7 @@ static int self_scratch_room(self_scratch *S, size_t ng)
 {
     if (S->cap_g >= ng)
         return 1;
+    S->topo_filled = 0;
     free(S->blk), free(S->tri), free(S->sbox), free(S->order), free(S->cell), free(S->gbox), free(S->ext);
     const size_t n = ng ? ng : 1;
     S->blk = ttd_big_alloc(n * sizeof *S->blk);
@@ -202,9 +205,10 @@ typedef struct self_grid {
 } self_grid;
 
 /* The scalar row's screens (core/kernels.h): the same comparisons one lane at a time. */
-static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
+static unsigned self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, int same,
+                                   uint16_t out[TTD_NODE_WIDTH])
 {
-    unsigned any = 0;
+    unsigned found = 0;
     for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
         unsigned n = 0, s = 0;
         out[i] = 0;
@@ -226,9 +230,9 @@ static int self_screen_scalar(const ttd_self_block *g, const ttd_self_block *h, 
             s |= (unsigned)(near & share) << j;
         }
         out[i] = (uint16_t)(n | s << 8);
-        any |= out[i];
+        found |= (unsigned)(n != 0) << i | (unsigned)(s != 0) << (8 + i);
     }
-    return any != 0;
+    return found;
 }
 
 static unsigned box_screen_scalar(const double *const lo[3], const double *const hi[3], const double q[6])
@@ -333,6 +337,8 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
     const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
+    /* the groups' triangles and vertex indices are the mesh's: written by its first query only */
+    const int fixed = topo && S->topo_filled;
     for (size_t n = 0; n < (topo ? ng : nnodes); ++n) { /* group n, or node n's triangles */
         const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
@@ -343,11 +349,14 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
                 continue;
             const uint32_t t = topo ? (uint32_t)S->topo[n][j] : (uint32_t)(-1 - y->child[j]);
             const uint32_t *ix = P->a.tris + 3 * (size_t)t;
-            G->tri[g][k] = (int32_t)t;
             for (int q = 0; q < 3; ++q) {
                 const real *x = P->a.verts + 3 * (size_t)ix[q];
                 v[3 * q][k] = (double)x[0], v[3 * q + 1][k] = (double)x[1], v[3 * q + 2][k] = (double)x[2];
-                b->ix[q][k] = (double)ix[q];
+            }
+            if (!fixed) {
+                G->tri[g][k] = (int32_t)t;
+                for (int q = 0; q < 3; ++q)
+                    b->ix[q][k] = (double)ix[q];
             }
             ++k;
         }
@@ -388,6 +397,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
         sum += e;
         ++g;
     }
+    S->topo_filled = topo;
     /* Leaves up to 4 times the mean extent go into cells as wide as the largest of them; two of
      * them within L on axis c have low corners at most that apart, and a cell a little wider
      * keeps their cells' indices within 1 despite the rounding of (lo - lo_min) / h. The larger
@@ -486,12 +496,14 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
                              uint32_t h)
 {
     uint16_t near[TTD_NODE_WIDTH];
-    const int any = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
-                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
-    if (!any)
-        return;
     const unsigned keep = P->self & SELF_SHARED ? 0xFFFFu : 0xFFu;
-    for (int i = 0; i < TTD_NODE_WIDTH && !w->hit; ++i) {
+    unsigned rows = G->screen ? G->screen(&G->blk[g], &G->blk[h], g == h, near)
+                              : self_screen_scalar(&G->blk[g], &G->blk[h], g == h, near);
+    rows &= keep; /* the rows with a pair kept (on a sheet most near rows have only pairs sharing a
+                     vertex, which a query without SELF_SHARED drops) */
+    rows = (rows | rows >> 8) & 0xFFu;
+    for (; rows != 0 && !w->hit; rows &= rows - 1) {
+        const int i = __builtin_ctz(rows);
         const int32_t ti = G->tri[g][i];
         for (unsigned m = near[i] & keep; m != 0; m &= m - 1) {
             const int bit = __builtin_ctz(m), j = bit & 7;
@@ -505,50 +517,36 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
     }
 }
 
-/* Leaf g (at grid position p) against the leaves at positions [q0, q1) whose boxes are near its
- * own, 8 at a time. */
-static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
-                            uint32_t q0, uint32_t q1)
-{
-    const size_t stride = G->ngroups + TTD_NODE_WIDTH;
-    const double *s = G->sbox;
-    const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
-    const uint32_t g = G->order[p];
-    for (uint32_t r = q0; r < q1; r += TTD_NODE_WIDTH) {
-        const double *const lo[3] = {s + r, s + stride + r, s + 2 * stride + r};
-        const double *const hi[3] = {s + 3 * stride + r, s + 4 * stride + r, s + 5 * stride + r};
-        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
-        if (q1 - r < TTD_NODE_WIDTH)
-            m &= (1u << (q1 - r)) - 1;
-        for (; m != 0; m &= m - 1) {
-            const uint32_t o = G->order[r + (uint32_t)__builtin_ctz(m)];
-            /* the leaf pair as (smaller, larger) so that g == h is the only self case */
-            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
-        }
-    }
-}
-
-/* Leaf g (at grid position p) against the leaves gathered in nb (n of them, cap a bound's array;
- * their positions in pos) whose boxes are near its own, 8 at a time: self_grid_range over a
- * list. */
-static void self_grid_list(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
-                           const double *nb, size_t cap, const uint32_t *pos, size_t n)
+/* Leaf g (at grid position p) against n leaves whose boxes are near its own, 8 at a time: their
+ * boxes in the 6 arrays at b, c apart (lo x, y, z, raised hi x, y, z; readable 8 past n), their
+ * leaves in id. A cell's run of the grid (b = sbox + q0, c its stride, id = order + q0) and the
+ * gathered list of its 13 neighbouring cells take this one loop. */
+static inline __attribute__((always_inline)) void self_grid_near(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                           const double *b, size_t c, const uint32_t *id, size_t n)
 {
     const size_t stride = G->ngroups + TTD_NODE_WIDTH;
     const double *s = G->sbox;
     const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
     const uint32_t g = G->order[p];
     for (size_t r = 0; r < n; r += TTD_NODE_WIDTH) {
-        const double *const lo[3] = {nb + r, nb + cap + r, nb + 2 * cap + r};
-        const double *const hi[3] = {nb + 3 * cap + r, nb + 4 * cap + r, nb + 5 * cap + r};
+        const double *const lo[3] = {b + r, b + c + r, b + 2 * c + r};
+        const double *const hi[3] = {b + 3 * c + r, b + 4 * c + r, b + 5 * c + r};
         unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
         if (n - r < TTD_NODE_WIDTH)
             m &= (1u << (n - r)) - 1;
         for (; m != 0; m &= m - 1) {
-            const uint32_t o = G->order[pos[r + (size_t)__builtin_ctz(m)]];
+            const uint32_t o = id[r + (size_t)__builtin_ctz(m)];
+            /* the leaf pair as (smaller, larger) so that g == h is the only self case */
             self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
         }
     }
+}
+
+/* Leaf at grid position p against the leaves at positions [q0, q1). */
+static void self_grid_range(const qctx *C, const qpose *P, qwork *W, walk *w, const self_grid *G, uint32_t p,
+                            uint32_t q0, uint32_t q1)
+{
+    self_grid_near(C, P, W, w, G, p, G->sbox + q0, G->ngroups + TTD_NODE_WIDTH, G->order + q0, q1 - q0);
 }
 
 /* Units [u0, u1) into w's list: unit u < ncells is cell u, whose leaves meet their neighbours; a
@@ -560,7 +558,7 @@ static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, co
 {
     const size_t X = G->dim[0], Y = G->dim[1], Z = G->dim[2], stride = G->ngroups + TTD_NODE_WIDTH;
     double *nb = NULL; /* the gathered boxes: 6 arrays of cap (lo x, y, z, raised hi x, y, z) */
-    uint32_t *pos = NULL;
+    uint32_t *id = NULL; /* their leaves */
     size_t cap = 0;
     for (size_t c = u0; c < u1 && c < G->ncells && !W->nomem && !w->hit; ++c) {
         if (G->start[c] == G->start[c + 1])
@@ -577,11 +575,11 @@ static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, co
                     ++nd;
                 }
         if (n + TTD_NODE_WIDTH > cap) {
-            free(nb), free(pos);
+            free(nb), free(id);
             cap = 2 * (n + TTD_NODE_WIDTH);
             nb = malloc(6 * cap * sizeof *nb);
-            pos = malloc(cap * sizeof *pos);
-            if (nb == NULL || pos == NULL) {
+            id = malloc(cap * sizeof *id);
+            if (nb == NULL || id == NULL) {
                 W->nomem = 1;
                 break;
             }
@@ -591,18 +589,18 @@ static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, co
             for (uint32_t r = G->start[d[e]]; r < G->start[d[e] + 1]; ++r, ++k) {
                 for (int b = 0; b < 6; ++b)
                     nb[(size_t)b * cap + k] = G->sbox[(size_t)b * stride + r];
-                pos[k] = r;
+                id[k] = G->order[r];
             }
         for (; k < n + TTD_NODE_WIDTH; ++k) /* padding: never near */
             for (int b = 0; b < 6; ++b)
                 nb[(size_t)b * cap + k] = b < 3 ? (double)INFINITY : -(double)INFINITY;
         for (uint32_t p = G->start[c]; p < G->start[c + 1] && !W->nomem && !w->hit; ++p) {
             self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
-            self_grid_list(C, P, W, w, G, p, nb, cap, pos, n);
+            self_grid_near(C, P, W, w, G, p, nb, cap, id, n);
         }
     }
     free(nb);
-    free(pos);
+    free(id);
     for (size_t u = u1 > G->ncells ? (u0 > G->ncells ? u0 : G->ncells) : u1; u < u1 && !W->nomem && !w->hit; ++u) {
         const uint32_t p = (uint32_t)(G->nsmall + (u - G->ncells));
         self_grid_range(C, P, W, w, G, p, 0, (uint32_t)G->nsmall);

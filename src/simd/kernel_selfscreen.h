@@ -16,7 +16,7 @@ TTDW_FN ttdw_md screen_near(const double *const lo[3], const double *const hi[3]
     return m;
 }
 
-static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
+static unsigned self_screen(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH])
 {
     const double *const lo[3] = {h->lo[0], h->lo[1], h->lo[2]}, *const hi[3] = {h->hi[0], h->hi[1], h->hi[2]};
     /* the rows of g near h's leaf box (on a sheet, those along the leaves' common border) */
@@ -24,7 +24,7 @@ static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int sam
     unsigned rows = 0;
     for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D)
         rows |= ttdw_mbits_d(screen_near(glo, ghi, j, h->box)) << j;
-    unsigned any = 0;
+    unsigned found = 0; /* the rows with a pair of each kind (core/kernels.h) */
     memset(out, 0, TTD_NODE_WIDTH * sizeof *out);
     for (; rows != 0; rows &= rows - 1) {
         const int i = __builtin_ctz(rows);
@@ -52,9 +52,9 @@ static int self_screen(const ttd_self_block *g, const ttd_self_block *h, int sam
             s &= after;
         }
         out[i] = (uint16_t)(n | s << 8);
-        any |= out[i];
+        found |= (unsigned)(n != 0) << i | (unsigned)(s != 0) << (8 + i);
     }
-    return any != 0;
+    return found;
 }
 
 static unsigned box_screen(const double *const lo[3], const double *const hi[3], const double q[6])
