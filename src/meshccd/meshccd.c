@@ -31,6 +31,12 @@
 
 enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
 
+/* Called after each primitive search with its query and answer: nothing in the library;
+ * bench/mesh_ccd_searches.c, which compiles this file into itself, records and times them. */
+#ifndef MESHCCD_SEARCHED
+#define MESHCCD_SEARCHED(kind, x0, x1, prm, r) ((void)0)
+#endif
+
 /* Per-triangle slot flags. */
 #define FIRST_V(k) (1u << (k))        /* slot k's vertex index does not appear in an earlier slot */
 #define FIRST_E(k) (1u << (3 + (k)))  /* edge k (slot k to k + 1) is not an earlier slot's edge */
@@ -391,6 +397,7 @@ static void query(const job *J, worker *w, uint32_t kind, const side_data *P, co
     prm.t_stop = w->best + TTD_CCD_DEFAULT_T_TOL;
     ttd_ccd_result r;
     ttd_ccd_query(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &prm, &r);
+    MESHCCD_SEARCHED(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &prm, &r);
     if (!r.hit)
         return;
     ttd_mesh_ccd_pair h;
