@@ -526,19 +526,39 @@ static int shared_count(const uint32_t *t, const uint32_t *u)
     return c;
 }
 
-/* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
- * triangle): 0 no, 1 yes and they share no vertex, 2 yes and they share one (the shared-vertex
- * rule). No index in common is the common case: nine comparisons at once. */
-static inline int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b)
+/* Whether triangles a and b (their vertex indices) have an index in common: nine comparisons. */
+static inline int common_index(const uint32_t *a, const uint32_t *b)
 {
-    const int any = (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) |
-                    (a[1] == b[2]) | (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
+    return (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) | (a[1] == b[2]) |
+           (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
+}
+
+/* The same where b[3] may be read too (the self walk's copy in the tree's order has one index of
+ * padding): b's indices in one register against each of a's. */
+static inline int common_index_padded(const uint32_t *a, const uint32_t *b)
+{
+#if MESHCCD_SSE2_LEAVES
+    const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)b);
+    const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[0])),
+                                                 _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[1]))),
+                                    _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[2])));
+    return (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0;
+#else
+    return common_index(a, b);
+#endif
+}
+
+/* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
+ * triangle; any: whether they have an index in common): 0 no, 1 yes and they share no vertex, 2
+ * yes and they share one (the shared-vertex rule). */
+static inline int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b, int any)
+{
     if (!any)
         return 1;
     if (!J->shared)
         return 0; /* an index in common is a vertex in common: shared_count would be 1 or more */
     const int c = shared_count(a, b);
-    return c == 0 ? 1 : c == 1 && J->shared ? 2 : 0;
+    return c == 0 ? 1 : c == 1 ? 2 : 0;
 }
 
 /* Whether the self rule keeps the triangle pair (t, u). */
@@ -547,7 +567,8 @@ static int eligible(const job *J, uint32_t t, uint32_t u)
     if (t == u)
         return 0;
     const uint32_t *T = J->a->s->tris;
-    return eligible_tris(J, T + 3 * (size_t)t, T + 3 * (size_t)u);
+    const uint32_t *a = T + 3 * (size_t)t, *b = T + 3 * (size_t)u;
+    return eligible_tris(J, a, b, common_index(a, b));
 }
 
 /* Whether tv owns vertex v (not in f) against triangle f: no smaller triangle around v is one
@@ -756,7 +777,7 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
             const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
             m &= m - 1;
             const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
-            const int kept = eligible_tris(J, TQ, TU);
+            const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
             if (kept) {
                 const uint32_t qi = order[kq], u = order[k];
                 if (qi < u)
@@ -969,7 +990,7 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
         const size_t cols = nt + SWEEP_LEAF_SELF; /* padding: leaf_mask reads a whole leaf's width */
         J.pb[0] = calloc(6 * cols, sizeof(double));
         J.pw[0] = delta == 0 ? J.pb[0] : calloc(6 * cols, sizeof(double));
-        J.ptri = malloc(3 * nt * sizeof *J.ptri);
+        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: common_index_padded reads one more */
         if (J.pb[0] == NULL || J.pw[0] == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
             st = TTD_ERR_OUT_OF_MEMORY;
             goto done;
