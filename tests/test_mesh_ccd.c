@@ -236,6 +236,54 @@ static int random_self(void)
     return 0;
 }
 
+/* Self-CCD of a soup of separate triangles, one to a cell of a 5 x 4 x 3 grid of cells of side
+ * 1 (60 triangles: full and partial leaves of the self tree), each shrunk about its cell's corner
+ * at t = 0 and whole at t = 1, so that neighbours' swept boxes touch exactly (max of one = min of
+ * the next, on every axis) and their corners meet exactly at t = 1; every other triangle stays
+ * shrunk (those pairs never touch). The leaves' box test must count boxes that touch (closed
+ * boxes): with a strict test these contacts are lost and the brute force disagrees. At delta 0
+ * and 1/8 of a cell, and scaled by 2^100 and 2^-100 (about 1e30 and 1e-30: exact, dyadic). */
+static int self_boxes_touch(void)
+{
+    const int nx = 5, ny = 4, nz = 3, n = nx * ny * nz;
+    ttd_gen_mesh m = {malloc(9 * (size_t)n * sizeof(double)), 3 * (size_t)n, malloc(3 * (size_t)n * sizeof(uint32_t)),
+                      (size_t)n};
+    double *x1 = malloc(9 * (size_t)n * sizeof *x1);
+    const double corner[3][3] = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}}; /* spans the cell on every axis */
+    const double scales[3] = {1.0, 0x1p100, 0x1p-100};
+    int hits = 0;
+    for (int sc = 0; sc < 3; ++sc) {
+        int t = 0;
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i, ++t) {
+                    const double c[3] = {i, j, k};
+                    const int grows = (i + j + k) % 2 == 0 || t % 7 == 0;
+                    for (int v = 0; v < 3; ++v) {
+                        m.tris[3 * t + v] = (uint32_t)(3 * t + v);
+                        for (int a = 0; a < 3; ++a) {
+                            m.verts[9 * t + 3 * v + a] = scales[sc] * (c[a] + 0.25 + 0.5 * corner[v][a]);
+                            x1[9 * t + 3 * v + a] = scales[sc] * (grows ? c[a] + corner[v][a] : c[a] + 0.25 + 0.5 * corner[v][a]);
+                        }
+                    }
+                }
+        for (int d = 0; d < 2; ++d) {
+            char what[64];
+            snprintf(what, sizeof what, "touching boxes scale %d delta %d", sc, d);
+            if (check_self(&m, x1, d ? 0.125 * scales[sc] : 0.0, 0, what, &hits)) {
+                ttd_gen_mesh_free(&m);
+                free(x1);
+                return 1;
+            }
+        }
+    }
+    printf("  touching boxes: %d of 6 cases hit\n", hits);
+    ENSURE(hits == 6);
+    ttd_gen_mesh_free(&m);
+    free(x1);
+    return 0;
+}
+
 /* Contact exactly at t = 0 (a vertex of b on a's face, moving away: toi 0) and exactly at t = 1
  * (arriving: toi within the tolerance of 1, never after). */
 static int touching_ends(void)
@@ -450,6 +498,7 @@ int main(int argc, char **argv)
     RUN_TEST(folding_sheet);
     RUN_TEST(random_self);
     RUN_TEST(touching_ends);
+    RUN_TEST(self_boxes_touch);
     RUN_TEST(repeated_indices);
     RUN_TEST(float_matches_double);
     RUN_TEST(threads);

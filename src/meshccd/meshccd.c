@@ -24,12 +24,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The leaves' box tests in SSE2 registers where the compiler has them (every x86-64);
+ * MESHCCD_SCALAR_LEAVES keeps the plain loop (a test builds it so, against the same brute force). */
+#if defined(__SSE2__) && !defined(MESHCCD_SCALAR_LEAVES)
+#define MESHCCD_SSE2_LEAVES 1
+#include <emmintrin.h>
+#endif
+
 #include "ccd/ccd.h"
 #include "engine/parallel.h"
 #include "meshccd/meshccd.h"
 #include "meshccd/sweep_tree.h"
 
 enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
+
+/* Called after each primitive search with its query and answer: nothing in the library;
+ * bench/mesh_ccd_searches.c, which compiles this file into itself, records and times them. */
+#ifndef MESHCCD_SEARCHED
+#define MESHCCD_SEARCHED(kind, x0, x1, prm, r) ((void)0)
+#endif
 
 /* Per-triangle slot flags. */
 #define FIRST_V(k) (1u << (k))        /* slot k's vertex index does not appear in an earlier slot */
@@ -45,7 +58,7 @@ typedef struct side_data {
     double *vmag;              /* per vertex: its largest coordinate magnitude at t = 0 and t = 1 */
     uint32_t *vt_start;        /* nv + 1: vertex v's triangles are vt_list[vt_start[v] .. vt_start[v+1]) */
     uint32_t *vt_list;         /* ascending (a triangle twice where it repeats the vertex) */
-    uint16_t *flags;           /* per triangle */
+    uint16_t *flags;           /* per triangle; NULL where made per pair (tri_flags) */
 } side_data;
 
 static void side_free(side_data *d)
@@ -77,7 +90,39 @@ static int tri_has_edge(const uint32_t *t, uint32_t p, uint32_t q)
     return (t[0] == p) + (t[1] == p) + (t[2] == p) >= 2;
 }
 
-static int side_make(const meshccd_side *s, double delta, side_data *d)
+/* Triangle t's slot flags (FIRST_V .. OWN_E), from the vertex-triangle lists. */
+static unsigned tri_flags(const side_data *d, size_t t)
+{
+    const uint32_t *tr = d->s->tris + 3 * t;
+    unsigned f = 0;
+    for (int k = 0; k < 3; ++k) {
+        int first = 1;
+        for (int j = 0; j < k; ++j)
+            first &= tr[j] != tr[k];
+        if (first) {
+            f |= FIRST_V(k);
+            if (d->vt_list[d->vt_start[tr[k]]] == t)
+                f |= OWN_V(k);
+        }
+        const uint32_t p = tr[k], q = tr[(k + 1) % 3];
+        first = 1;
+        for (int j = 0; j < k; ++j) {
+            const uint32_t r = tr[j], w = tr[(j + 1) % 3];
+            first &= !((r == p && w == q) || (r == q && w == p));
+        }
+        if (first) {
+            f |= FIRST_E(k);
+            int own = 1;
+            for (uint32_t m = d->vt_start[p]; m < d->vt_start[p + 1] && d->vt_list[m] < t; ++m)
+                own &= !tri_has_edge(d->s->tris + 3 * (size_t)d->vt_list[m], p, q);
+            if (own)
+                f |= OWN_E(k);
+        }
+    }
+    return f;
+}
+
+static int side_make(const meshccd_side *s, double delta, int want_flags, side_data *d)
 {
     memset(d, 0, sizeof *d);
     d->s = s;
@@ -88,8 +133,9 @@ static int side_make(const meshccd_side *s, double delta, side_data *d)
     d->vmag = malloc(s->nv * sizeof *d->vmag);
     d->vt_start = calloc(s->nv + 1, sizeof *d->vt_start);
     d->vt_list = malloc(3 * s->nt * sizeof *d->vt_list);
-    d->flags = malloc(s->nt * sizeof *d->flags);
-    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vmag || !d->vt_start || !d->vt_list || !d->flags) {
+    d->flags = want_flags ? malloc(s->nt * sizeof *d->flags) : NULL;
+    if (!d->vbox || !d->vwide || !d->tbox || !d->twide || !d->vmag || !d->vt_start || !d->vt_list ||
+        (want_flags && !d->flags)) {
         side_free(d);
         return -1;
     }
@@ -131,36 +177,12 @@ static int side_make(const meshccd_side *s, double delta, side_data *d)
     for (size_t i = 0; i < 3 * s->nt; ++i)
         d->vt_list[fill[T[i]]++] = (uint32_t)(i / 3);
     free(fill);
-    /* slot flags */
-    for (size_t t = 0; t < s->nt; ++t) {
-        const uint32_t *tr = T + 3 * t;
-        unsigned f = 0;
-        for (int k = 0; k < 3; ++k) {
-            int first = 1;
-            for (int j = 0; j < k; ++j)
-                first &= tr[j] != tr[k];
-            if (first) {
-                f |= FIRST_V(k);
-                if (d->vt_list[d->vt_start[tr[k]]] == t)
-                    f |= OWN_V(k);
-            }
-            const uint32_t p = tr[k], q = tr[(k + 1) % 3];
-            first = 1;
-            for (int j = 0; j < k; ++j) {
-                const uint32_t r = tr[j], w = tr[(j + 1) % 3];
-                first &= !((r == p && w == q) || (r == q && w == p));
-            }
-            if (first) {
-                f |= FIRST_E(k);
-                int own = 1;
-                for (uint32_t m = d->vt_start[p]; m < d->vt_start[p + 1] && d->vt_list[m] < t; ++m)
-                    own &= !tri_has_edge(T + 3 * (size_t)d->vt_list[m], p, q);
-                if (own)
-                    f |= OWN_E(k);
-            }
-        }
-        d->flags[t] = (uint16_t)f;
-    }
+    /* slot flags: made here where most triangle pairs take the per-primitive path (two meshes,
+     * self with the shared-vertex pairs); else per pair when it needs them (tri_flags), since the
+     * whole-pair proof leaves few pairs to that path (docs/ccd-speed.md, change 8) */
+    if (d->flags != NULL)
+        for (size_t t = 0; t < s->nt; ++t)
+            d->flags[t] = (uint16_t)tri_flags(d, t);
     return 0;
 }
 
@@ -178,8 +200,9 @@ typedef struct job {
     int nworkers;
     struct node_pair *tasks; /* self: the walk's starting pairs, shared out among the workers */
     size_t ntasks;
-    sweep_box *pbox, *pwide; /* self: the triangles' boxes, widened, in the tree's order (pwide is
-                              * pbox at delta 0), read in turn at the leaves */
+    double *pb[6], *pw[6]; /* self: the triangles' boxes (lo x, y, z, hi x, y, z), and widened, as
+                            * columns in the tree's order (pw is pb at delta 0), read in turn at the
+                            * leaves; SWEEP_LEAF_SELF entries of padding after the last */
     uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
 } job;
 
@@ -236,7 +259,8 @@ static void keep_hit(worker *w, const ttd_mesh_ccd_pair *h)
  * points err by at most 3.01 u sum |n_k x_k| <= 3.01 u |n|_1 S each (S the largest coordinate),
  * a gap by twice that plus its own rounding: 8 u |n|_1 S + 2 u |g| covers it with the rounding of
  * the bound itself, and 2^-1000 products that underflow. */
-static int gap_proves(const double n[3], int na, int np, const double *x0, const double *x1, double S, double delta)
+static int gap_proves(const double n[3], int na, int np, const double *const *x0, const double *const *x1, double S,
+                      double delta)
 {
     const double u = 0x1p-53;
     const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
@@ -248,10 +272,10 @@ static int gap_proves(const double n[3], int na, int np, const double *x0, const
     const double base = 8 * u * n1 * S + 0x1p-1000;
     int ok_pos = 1, ok_neg = 1; /* first set above the second along n, or below */
     for (int t = 0; t < 2; ++t) {
-        const double *y = t ? x1 : x0;
+        const double *const *y = t ? x1 : x0;
         double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
         for (int i = 0; i < np; ++i) {
-            const double d = n[0] * y[3 * i] + n[1] * y[3 * i + 1] + n[2] * y[3 * i + 2];
+            const double d = n[0] * y[i][0] + n[1] * y[i][1] + n[2] * y[i][2];
             if (i < na) {
                 amin = d < amin ? d : amin;
                 amax = d > amax ? d : amax;
@@ -296,6 +320,9 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
         const double m = fabs(x0[i]) > fabs(x1[i]) ? fabs(x0[i]) : fabs(x1[i]);
         S = m > S ? m : S;
     }
+    const double *p0[4], *p1[4];
+    for (int i = 0; i < 4; ++i)
+        p0[i] = x0 + 3 * i, p1[i] = x1 + 3 * i;
     for (int end = 0; end < 2; ++end) {
         const double *x = end ? x1 : x0;
         double e1[3], e2[3], n[3];
@@ -305,7 +332,7 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
             e2[k] = na == 1 ? x[9 + k] - x[3 + k] : x[9 + k] - x[6 + k];
         }
         cross3(e1, e2, n);
-        if (gap_proves(n, na, 4, x0, x1, S, delta))
+        if (gap_proves(n, na, 4, p0, p1, S, delta))
             return 1;
         if (na == 1) {
             for (int j = 0; j < 3; ++j) {
@@ -314,7 +341,7 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
                 for (int k = 0; k < 3; ++k)
                     e[k] = g[k] - f[k], w[k] = x[k] - f[k];
                 perp3(e, w, m);
-                if (gap_proves(m, na, 4, x0, x1, S, delta))
+                if (gap_proves(m, na, 4, p0, p1, S, delta))
                     return 1;
             }
         } else {
@@ -322,12 +349,12 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
             for (int k = 0; k < 3; ++k)
                 w[k] = x[6 + k] - x[k];
             perp3(e1, w, m);
-            if (gap_proves(m, na, 4, x0, x1, S, delta))
+            if (gap_proves(m, na, 4, p0, p1, S, delta))
                 return 1;
             for (int k = 0; k < 3; ++k)
                 w[k] = -w[k];
             perp3(e2, w, m);
-            if (gap_proves(m, na, 4, x0, x1, S, delta))
+            if (gap_proves(m, na, 4, p0, p1, S, delta))
                 return 1;
         }
     }
@@ -342,16 +369,37 @@ static int apart_cheaply(int na, const double x0[12], const double x1[12], doubl
  * t = 1: the perpendicular of each triangle's edges within its own plane (neighbours in one flat
  * piece, the most common pair of a sheet: two disjoint triangles in a plane have an edge whose
  * line separates them), then each triangle's normal (layers one above another). */
-static int tri_pair_apart(const double x0[18], const double x1[18], double S, double delta)
+static int tri_pair_apart(const double *const x0[6], const double *const x1[6], double S, double delta)
 {
     for (int end = 0; end < 2; ++end) {
-        const double *x = end ? x1 : x0;
+        const double *const *x = end ? x1 : x0;
+        /* The edge most likely to separate first: the one facing the other triangle, opposite
+         * the vertex that lies furthest back along d, the difference of the two vertex sums
+         * (the centroids' times 3). Only the order of the directions changes, not which are
+         * tried, so what is proved is the same; on the folding sheet the first direction tried
+         * proves most pairs (docs/ccd-speed.md). */
+        double d[3];
+        for (int k = 0; k < 3; ++k)
+            d[k] = (x[3][k] + x[4][k] + x[5][k]) - (x[0][k] + x[1][k] + x[2][k]);
         double e[2][3][3]; /* e[s][j]: edge j of triangle s, from its vertex j to j + 1 */
         for (int sd = 0; sd < 2; ++sd) {
             for (int j = 0; j < 3; ++j)
                 for (int k = 0; k < 3; ++k)
-                    e[sd][j][k] = x[9 * sd + 3 * ((j + 1) % 3) + k] - x[9 * sd + 3 * j + k];
-            for (int j = 0; j < 3; ++j) {
+                    e[sd][j][k] = x[3 * sd + (j + 1) % 3][k] - x[3 * sd + j][k];
+            /* the vertex furthest back: least along d for the first triangle, most for the second */
+            const double sg = sd ? -1.0 : 1.0;
+            int back = 0;
+            double best = HUGE_VAL;
+            for (int i = 0; i < 3; ++i) {
+                const double *v = x[3 * sd + i];
+                const double a = sg * (v[0] * d[0] + v[1] * d[1] + v[2] * d[2]);
+                if (a < best) {
+                    best = a;
+                    back = i;
+                }
+            }
+            for (int jj = 0; jj < 3; ++jj) {
+                const int j = (back + 1 + jj) % 3; /* edge back + 1 is the one opposite vertex back */
                 double m[3];
                 /* within the plane: the edge's perpendicular towards the triangle's third vertex */
                 perp3(e[sd][j], e[sd][(j + 2) % 3], m);
@@ -391,6 +439,7 @@ static void query(const job *J, worker *w, uint32_t kind, const side_data *P, co
     prm.t_stop = w->best + TTD_CCD_DEFAULT_T_TOL;
     ttd_ccd_result r;
     ttd_ccd_query(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &prm, &r);
+    MESHCCD_SEARCHED(na == 1 ? TTD_CCD_VF : TTD_CCD_EE, x0, x1, &prm, &r);
     if (!r.hit)
         return;
     ttd_mesh_ccd_pair h;
@@ -477,17 +526,39 @@ static int shared_count(const uint32_t *t, const uint32_t *u)
     return c;
 }
 
-/* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
- * triangle): 0 no, 1 yes and they share no vertex, 2 yes and they share one (the shared-vertex
- * rule). No index in common is the common case: nine comparisons at once. */
-static int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b)
+/* Whether triangles a and b (their vertex indices) have an index in common: nine comparisons. */
+static inline int common_index(const uint32_t *a, const uint32_t *b)
 {
-    const int any = (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) |
-                    (a[1] == b[2]) | (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
+    return (a[0] == b[0]) | (a[0] == b[1]) | (a[0] == b[2]) | (a[1] == b[0]) | (a[1] == b[1]) | (a[1] == b[2]) |
+           (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
+}
+
+/* The same where b[3] may be read too (the self walk's copy in the tree's order has one index of
+ * padding): b's indices in one register against each of a's. */
+static inline int common_index_padded(const uint32_t *a, const uint32_t *b)
+{
+#if MESHCCD_SSE2_LEAVES
+    const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)b);
+    const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[0])),
+                                                 _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[1]))),
+                                    _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[2])));
+    return (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0;
+#else
+    return common_index(a, b);
+#endif
+}
+
+/* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
+ * triangle; any: whether they have an index in common): 0 no, 1 yes and they share no vertex, 2
+ * yes and they share one (the shared-vertex rule). */
+static inline int eligible_tris(const job *J, const uint32_t *a, const uint32_t *b, int any)
+{
     if (!any)
         return 1;
+    if (!J->shared)
+        return 0; /* an index in common is a vertex in common: shared_count would be 1 or more */
     const int c = shared_count(a, b);
-    return c == 0 ? 1 : c == 1 && J->shared ? 2 : 0;
+    return c == 0 ? 1 : c == 1 ? 2 : 0;
 }
 
 /* Whether the self rule keeps the triangle pair (t, u). */
@@ -496,7 +567,8 @@ static int eligible(const job *J, uint32_t t, uint32_t u)
     if (t == u)
         return 0;
     const uint32_t *T = J->a->s->tris;
-    return eligible_tris(J, T + 3 * (size_t)t, T + 3 * (size_t)u);
+    const uint32_t *a = T + 3 * (size_t)t, *b = T + 3 * (size_t)u;
+    return eligible_tris(J, a, b, common_index(a, b));
 }
 
 /* Whether tv owns vertex v (not in f) against triangle f: no smaller triangle around v is one
@@ -541,17 +613,18 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const u
     const uint32_t none = UINT32_MAX;
     ++w->tri_pairs;
     if (disjoint) { /* (two triangles with a vertex in common are never apart) */
-        double x0[18], x1[18], S = 0;
+        const double *x0[6], *x1[6]; /* the six points where they are (a copy costs more) */
+        double S = 0;
         for (int i = 0; i < 6; ++i) {
             const size_t v = i < 3 ? TA[i] : TB[i - 3];
-            memcpy(x0 + 3 * i, A->s->x0 + 3 * v, 3 * sizeof(double));
-            memcpy(x1 + 3 * i, A->s->x1 + 3 * v, 3 * sizeof(double));
+            x0[i] = A->s->x0 + 3 * v;
+            x1[i] = A->s->x1 + 3 * v;
             S = A->vmag[v] > S ? A->vmag[v] : S;
         }
         if (tri_pair_apart(x0, x1, S, J->params.delta))
             return;
     }
-    const unsigned fa = A->flags[ta], fb = A->flags[tb];
+    const unsigned fa = A->flags ? A->flags[ta] : tri_flags(A, ta), fb = A->flags ? A->flags[tb] : tri_flags(A, tb);
     /* vertices of one against the other's face */
     for (int side = 0; side < 2; ++side) {
         const uint32_t *TV = side ? TB : TA, *TF = side ? TA : TB;
@@ -643,34 +716,74 @@ static void walk_group(const job *J, worker *w, const uint32_t *qorder, uint32_t
 
 /* ---- the self walk: the tree against itself ---- */
 
-/* sweep_overlap without branches (about half the leaf tests pass: a branch per axis mispredicts). */
-static inline int overlap_nb(const sweep_box *a, const sweep_box *w)
+/* Which of the up to SWEEP_LEAF_SELF boxes k = kb, kb + 1, ... of the columns W overlap the box q
+ * (lo[3], hi[3]), as bits 0, 1, ...: a fixed count of comparisons without branches, which the
+ * compiler lays out in vector registers (about half the leaf tests pass, so a branch per test
+ * mispredicts); the caller masks off the padding. Exact (comparisons of the same doubles as
+ * sweep_overlap). */
+static inline unsigned leaf_mask(const double *const W[6], uint32_t kb, const double q[6])
 {
-    return (a->lo[0] <= w->hi[0]) & (w->lo[0] <= a->hi[0]) & (a->lo[1] <= w->hi[1]) & (w->lo[1] <= a->hi[1]) &
-           (a->lo[2] <= w->hi[2]) & (w->lo[2] <= a->hi[2]);
+    unsigned m = 0;
+#if MESHCCD_SSE2_LEAVES
+    /* two boxes a register (SSE2 is in every x86-64); the same comparisons, bit for bit */
+    __m128d ql[3], qh[3];
+    for (int c = 0; c < 3; ++c) {
+        ql[c] = _mm_set1_pd(q[c]);
+        qh[c] = _mm_set1_pd(q[3 + c]);
+    }
+    for (int i = 0; i < SWEEP_LEAF_SELF; i += 2) {
+        const uint32_t k = kb + (uint32_t)i;
+        __m128d ok = _mm_and_pd(_mm_cmple_pd(ql[0], _mm_loadu_pd(W[3] + k)), _mm_cmple_pd(_mm_loadu_pd(W[0] + k), qh[0]));
+        for (int c = 1; c < 3; ++c)
+            ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmple_pd(ql[c], _mm_loadu_pd(W[3 + c] + k)),
+                                           _mm_cmple_pd(_mm_loadu_pd(W[c] + k), qh[c])));
+        m |= (unsigned)_mm_movemask_pd(ok) << i;
+    }
+    return m;
+#else
+    for (int i = 0; i < SWEEP_LEAF_SELF; ++i) {
+        const uint32_t k = kb + (uint32_t)i;
+        const int ok = (q[0] <= W[3][k]) & (W[0][k] <= q[3]) & (q[1] <= W[4][k]) & (W[1][k] <= q[4]) &
+                       (q[2] <= W[5][k]) & (W[2][k] <= q[5]);
+        m |= (unsigned)ok << i;
+    }
+    return m;
+#endif
 }
 
 /* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
- * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs). */
+ * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs), in
+ * the same order (u ascending). */
 static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
 {
     const uint32_t *order = J->tree.order;
-    const sweep_box *pbox = J->pbox, *pwide = J->pwide;
-    const int wide = pwide != pbox; /* at delta 0 the two tests are one (the test is symmetric) */
+    const double *const *P = (const double *const *)J->pb, *const *W = (const double *const *)J->pw;
+    const int wide = J->pw[0] != J->pb[0]; /* at delta 0 the two tests are one (the test is symmetric) */
+    const uint32_t kb = b->begin;
+    const unsigned all = (2u << (b->end - b->begin - 1)) - 1; /* a leaf holds 1 to SWEEP_LEAF_SELF */
     for (uint32_t kq = a->begin; kq < a->end; ++kq) {
-        if (!sweep_overlap(&pbox[kq], &b->box))
+        const double q[6] = {P[0][kq], P[1][kq], P[2][kq], P[3][kq], P[4][kq], P[5][kq]};
+        if (!(q[0] <= b->box.hi[0] && b->box.lo[0] <= q[3] && q[1] <= b->box.hi[1] && b->box.lo[1] <= q[4] &&
+              q[2] <= b->box.hi[2] && b->box.lo[2] <= q[5]))
             continue;
-        for (uint32_t k = a == b ? kq + 1 : b->begin; k < b->end; ++k) {
-            if (!overlap_nb(&pbox[kq], &pwide[k]) || (wide && !overlap_nb(&pbox[k], &pwide[kq])))
-                continue;
+        unsigned m = leaf_mask(W, kb, q) & all;
+        if (a == b)
+            m &= ~((2u << (kq - kb)) - 1); /* u after q only */
+        if (wide && m) {
+            const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
+            m &= leaf_mask(P, kb, qw);
+        }
+        while (m) {
+            const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
+            m &= m - 1;
             const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
-            const int kept = eligible_tris(J, TQ, TU);
+            const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
             if (kept) {
-                const uint32_t q = order[kq], u = order[k];
-                if (q < u)
-                    pair_self(J, w, q, u, TQ, TU, kept == 1);
+                const uint32_t qi = order[kq], u = order[k];
+                if (qi < u)
+                    pair_self(J, w, qi, u, TQ, TU, kept == 1);
                 else
-                    pair_self(J, w, u, q, TU, TQ, kept == 1);
+                    pair_self(J, w, u, qi, TU, TQ, kept == 1);
             }
         }
     }
@@ -853,9 +966,9 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     J.shared = shared & TTD_SELF_SHARED_VERTEX;
     J.params = ttd_ccd_default_params();
     J.params.delta = delta;
-    if (side_make(a, delta, &da) != 0)
+    if (side_make(a, delta, !J.self || J.shared, &da) != 0)
         return TTD_ERR_OUT_OF_MEMORY;
-    if (!J.self && side_make(b, delta, &db) != 0) {
+    if (!J.self && side_make(b, delta, 1, &db) != 0) {
         side_free(&da);
         return TTD_ERR_OUT_OF_MEMORY;
     }
@@ -874,18 +987,26 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     if (J.self) {
         /* the tree against itself from the pairs of its first levels */
         const size_t nt = a->nt;
-        J.pbox = malloc(nt * sizeof *J.pbox);
-        J.pwide = delta == 0 ? J.pbox : malloc(nt * sizeof *J.pwide);
-        J.ptri = malloc(3 * nt * sizeof *J.ptri);
-        if (J.pbox == NULL || J.pwide == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
+        const size_t cols = nt + SWEEP_LEAF_SELF; /* padding: leaf_mask reads a whole leaf's width */
+        J.pb[0] = calloc(6 * cols, sizeof(double));
+        J.pw[0] = delta == 0 ? J.pb[0] : calloc(6 * cols, sizeof(double));
+        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: common_index_padded reads one more */
+        if (J.pb[0] == NULL || J.pw[0] == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
             st = TTD_ERR_OUT_OF_MEMORY;
             goto done;
         }
+        for (int c = 1; c < 6; ++c) {
+            J.pb[c] = J.pb[0] + c * cols;
+            J.pw[c] = J.pw[0] + c * cols;
+        }
         for (size_t k = 0; k < nt; ++k) {
             const uint32_t t = J.tree.order[k];
-            J.pbox[k] = da.tbox[t];
-            if (J.pwide != J.pbox)
-                J.pwide[k] = da.twide[t];
+            for (int c = 0; c < 3; ++c) {
+                J.pb[c][k] = da.tbox[t].lo[c];
+                J.pb[3 + c][k] = da.tbox[t].hi[c];
+                J.pw[c][k] = da.twide[t].lo[c];
+                J.pw[3 + c][k] = da.twide[t].hi[c];
+            }
             memcpy(J.ptri + 3 * k, a->tris + 3 * (size_t)t, 3 * sizeof *J.ptri);
         }
         blocks = (J.ntasks + SELF_BLOCK_TASKS - 1) / SELF_BLOCK_TASKS;
@@ -958,9 +1079,9 @@ done:
     sweep_tree_free(&J.qtree);
     free(J.leaves);
     free(J.tasks);
-    if (J.pwide != J.pbox)
-        free(J.pwide);
-    free(J.pbox);
+    if (J.pw[0] != J.pb[0])
+        free(J.pw[0]);
+    free(J.pb[0]);
     free(J.ptri);
     side_free(&da);
     if (!J.self)
