@@ -97,6 +97,10 @@ typedef struct manifold_work {
     uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
+    struct region_item *reg;  /* 5b regions: the pair's points below 0, by their first coordinate */
+    uint32_t *reg_par;        /* 5b regions: union-find parents, then each point's deepest */
+    double *reg_n;            /* 5b regions: each region's direction, by its number */
+    size_t reg_cap;
 } manifold_work;
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
@@ -110,6 +114,9 @@ typedef struct manifold_rec {
      * feature bits (a vertex: one bit; an edge: two; the face: three), or 0 where not yet known
      * (a contact: its triangle pair asked again for the points chosen, section 5c) */
     uint8_t feat[2];
+    /* 5b: the number of the contact region the point's direction is taken from (w->reg_n), or
+     * UINT32_MAX: its own normal (section 5a) */
+    uint32_t region;
 } manifold_rec;
 
 /* A vertex or a pair of edges step 0 asks about. A vertex: side 0 a vertex of body i (corner k of
@@ -149,6 +156,9 @@ static void manifold_work_free(manifold_work *w)
     free(w->near);
     free(w->ctri);
     free(w->seen);
+    free(w->reg);
+    free(w->reg_par);
+    free(w->reg_n);
     memset(w, 0, sizeof *w);
 }
 
@@ -214,6 +224,7 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside, un
     w->all[w->all_n].c = *c;
     w->all[w->all_n].feat[0] = (uint8_t)fi;
     w->all[w->all_n].feat[1] = (uint8_t)fj;
+    w->all[w->all_n].region = UINT32_MAX;
     w->all[w->all_n++].inside = inside;
     return 1;
 }
@@ -236,6 +247,7 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
     for (size_t k = 0; k < n; ++k) {
         w->all[k].c = c[k];
         w->all[k].inside = -1;
+        w->all[k].region = UINT32_MAX;
         w->all[k].feat[0] = w->all[k].feat[1] = 0;
     }
     w->all_n += n;
@@ -249,6 +261,8 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
 #include "scene/manifold_sat_impl.h"
 
 #include "scene/manifold_depth_impl.h"
+
+#include "scene/manifold_regions_impl.h"
 
 #include "scene/manifold_reduce_impl.h"
 
@@ -299,6 +313,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         /* other pairs: where the depth peaks inside a face */
         if (!solid_faces(s, cfg, p->i, p->j, before, c0, n0, w))
             return 0;
+        /* other pairs' points below 0: one direction per contact region */
+        if (!solid_regions(s, p->i, p->j, c0, n0, margin, before, w))
+            return 0;
     }
     const double ri = s->body[p->i].mesh->radius, rj = s->body[p->j].mesh->radius;
     const double big = fmax(ri, rj), small = fmin(ri, rj);
@@ -340,6 +357,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             if ((double)c0[k].distance - d0 <= reach[1]) {
                 w->near[m].c = c0[k];
                 w->near[m].feat[0] = w->near[m].feat[1] = 0;
+                w->near[m].region = UINT32_MAX;
                 w->near[m++].inside = -1;
             }
         for (size_t k = 0; k < w->all_n; ++k)
@@ -379,6 +397,8 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         double normal[3];
         if (xr->inside == 2)
             memcpy(normal, w->sat_n, sizeof normal);
+        else if (xr->region != UINT32_MAX)
+            memcpy(normal, w->reg_n + 3 * (size_t)xr->region, sizeof normal);
         else
             contact_normal(s, x, xr->inside, normal);
         pt->i = x->i;
