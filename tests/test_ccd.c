@@ -22,6 +22,16 @@
 
 #define TEST_RAND_SEED 0x9e3779b97f4a7c15ull
 #include "test_rand.h"
+#include "ccd_families.h"
+
+/* A benchmark CSV (ccd_families.h's reader) as separate arrays: the queries and their truth. */
+static int read_csv_arrays(const char *path, double **x0, double **x1, int **truth, size_t *nq)
+{
+    qset s = {0, 0, NULL, NULL};
+    const int rc = read_csv_truth(path, &s, truth);
+    *x0 = s.x0, *x1 = s.x1, *nq = s.n;
+    return rc;
+}
 
 /* One query through the public entries: kind 1 vertex-face, 2 edge-edge; x0, x1 4 points. */
 static ttd_ccd_result run1(int kind, const double x0[12], const double x1[12], double delta)
@@ -266,7 +276,6 @@ static int constructed(void)
  * truth is no contact: near misses by about 1e-17. At most one may stay a hit (a miss closer in
  * time than t_tol to a coplanar instant, where a contact condition changes sign inside the final
  * interval; none does with gcc 12 on x86-64). */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq);
 static int near_misses(void)
 {
     size_t n_all = 0, fp = 0;
@@ -276,7 +285,7 @@ static int near_misses(void)
         double *x0, *x1;
         int *truth;
         size_t n;
-        ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+        ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
         for (size_t q = 0; q < n; ++q) {
             ENSURE(truth[q] == 0);
             fp += run1(kind, x0 + 12 * q, x1 + 12 * q, 0).hit;
@@ -371,14 +380,13 @@ static int families(void)
 
 /* The kept sample queries: no false negative against the benchmark's truth; the reference
  * (where it decides) agrees with the truth. */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq);
 
 static int sample_file(const char *path, int kind, size_t *tot, size_t *pos, size_t *fp)
 {
     double *x0, *x1;
     int *truth;
     size_t n;
-    ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+    ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
     for (size_t q = 0; q < n; ++q) {
         const ttd_ccd_result r = run1(kind, x0 + 12 * q, x1 + 12 * q, 0);
         ENSURE(r.hit <= 1);
@@ -446,7 +454,7 @@ static int slow_queries(void)
         double *x0, *x1;
         int *truth;
         size_t n;
-        ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+        ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
         ENSURE(n == 6);
         for (size_t q = 0; q < n; ++q) {
             const ttd_ccd_result r = run1(kind, x0 + 12 * q, x1 + 12 * q, 0);
@@ -460,7 +468,7 @@ static int slow_queries(void)
     double *x0, *x1;
     int *truth;
     size_t n;
-    ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+    ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
     ENSURE(n == 20);
     const size_t touching[3] = {10, 12, 13};
     for (int i = 0; i < 3; ++i) {
@@ -471,51 +479,6 @@ static int slow_queries(void)
     }
     free(x0), free(x1), free(truth);
     return 0;
-}
-
-/* A benchmark CSV (8 rows a query, numerator,denominator pairs; the benchmark's denominators are
- * powers of two up to 2^110, read through strtod, exact for them). */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq)
-{
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return -1;
-    size_t cap = 256, rows = 0;
-    double *xyz = malloc(cap * 3 * sizeof(double));
-    int *tr = malloc(cap * sizeof(int));
-    char line[1024];
-    while (fgets(line, sizeof line, f) != NULL) {
-        if (line[0] == '\n')
-            continue;
-        if (rows == cap) {
-            cap *= 2;
-            xyz = realloc(xyz, cap * 3 * sizeof(double));
-            tr = realloc(tr, cap * sizeof(int));
-        }
-        char *p = line;
-        for (int k = 0; k < 3; ++k) {
-            const double num = strtod(p, &p);
-            ++p;
-            const double den = strtod(p, &p);
-            ++p;
-            xyz[rows * 3 + (size_t)k] = num / den;
-        }
-        tr[rows] = (int)strtol(p, NULL, 10);
-        ++rows;
-    }
-    fclose(f);
-    const size_t n = rows / 8;
-    *x0 = malloc(n * 12 * sizeof(double));
-    *x1 = malloc(n * 12 * sizeof(double));
-    *truth = malloc(n * sizeof(int));
-    for (size_t q = 0; q < n; ++q) {
-        memcpy(*x0 + 12 * q, xyz + 24 * q, 12 * sizeof(double));
-        memcpy(*x1 + 12 * q, xyz + 24 * q + 12, 12 * sizeof(double));
-        (*truth)[q] = tr[8 * q];
-    }
-    free(xyz), free(tr);
-    *nq = n;
-    return rows % 8 == 0 && n > 0 ? 0 : -1;
 }
 
 /* Triangle-triangle: the earliest of its 15 sub-queries, each run alone through the public
