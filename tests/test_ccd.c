@@ -378,6 +378,51 @@ static int families(void)
 }
 #endif
 
+#ifdef TTD_HAVE_GMP
+/* A point of A on a point of B, exactly, at t = 1 or at t = 0 (ccd_families.h's touching families,
+ * the bench's): the search's certificates (docs/ccd.md, section 3, item 6) answer toi 0 at once, or
+ * cut the final interval [1 - t_tol, 1] off at once and search [0, 1 - t_tol]. Against the exact
+ * reference: a contact is certain, none missed, toi never after the first contact and within
+ * TOI_TOL of it, earlier contacts included (a few in a hundred of the queries at t = 1 touch before);
+ * at separation 1e-3 a hit no later. And few intervals: before the certificates the search halved
+ * toward the contact, about 46 intervals toward t = 0 and over 100 toward t = 1. */
+static int vertex_on_vertex(void)
+{
+    for (int kind = 1; kind <= 2; ++kind)
+        for (int end = 0; end < 2; ++end) {
+            const qset s = make_set(end ? F_TOUCH_T1 : F_TOUCH_T0, kind, 1000);
+            int earlier = 0, undecided = 0;
+            uint32_t most = 0;
+            for (size_t q = 0; q < s.n; ++q) {
+                const double *x0 = s.x0 + 12 * q, *x1 = s.x1 + 12 * q;
+                double lo, hi;
+                const int ref = ttd_ccd_ref(kind, x0, x1, &lo, &hi);
+                const ttd_ccd_result r = run1(kind, x0, x1, 0), rd = run1(kind, x0, x1, 1e-3);
+                ENSURE_MSG(ref != TTD_CCD_REF_MISS, "query %zu: the reference finds no contact", q);
+                ENSURE_MSG(r.hit == 1 && rd.hit == 1, "query %zu: a contact at t = %d missed", q, end);
+                if (ref == TTD_CCD_REF_HIT) {
+                    ENSURE_MSG(r.toi <= hi && r.toi >= lo - TOI_TOL, "query %zu: toi %.17g, contact in [%.17g, %.17g]",
+                               q, r.toi, lo, hi);
+                    ENSURE(rd.toi <= hi);
+                    earlier += end == 1 && hi < 0.999;
+                } else {
+                    ++undecided;
+                }
+                if (end == 0)
+                    ENSURE_MSG(r.toi == 0 && rd.toi == 0 && r.evals == 1, "query %zu: toi %.17g, %u intervals", q,
+                               r.toi, r.evals);
+                most = r.evals > most ? r.evals : most;
+            }
+            printf("  vertex on vertex at t = %d %s: %zu queries, %d touching earlier, %d undecided, at most %u "
+                   "intervals\n",
+                   end, kind == 1 ? "vertex-face" : "edge-edge", s.n, earlier, undecided, most);
+            ENSURE(most <= 32 && (end == 0 || earlier >= 10));
+            free(s.x0), free(s.x1);
+        }
+    return 0;
+}
+#endif
+
 /* The kept sample queries: no false negative against the benchmark's truth; the reference
  * (where it decides) agrees with the truth. */
 
@@ -666,5 +711,8 @@ int main(int argc, char **argv)
     RUN_TEST(sample_queries);
     RUN_TEST(slow_queries);
     RUN_TEST(triangles);
+#ifdef TTD_HAVE_GMP
+    RUN_TEST(vertex_on_vertex);
+#endif
     TEST_MAIN_END();
 }
