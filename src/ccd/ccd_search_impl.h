@@ -846,6 +846,50 @@ TTDW_FN double cond_root(ccd_state *s, double ta, double tb)
     return r;
 }
 
+/* Edge-edge: whether the edges are parallel throughout the interval and their lines stay apart, in
+ * double: the conditions' common factor ea x eb within about its rounding of 0 at ta, tm and tb (it is
+ * quadratic in t, so about 0 all along), and the offset of b0 from a's line, perpendicular to it,
+ * farther than `near` from 0 on the segment between its values at ta and tb. Every condition is then
+ * about 0 and no contact is near, so a cut at a condition's root (cond_root) forms their exact
+ * quartics to save almost no interval (docs/ccd-speed.md, the parallel-edges family). Parallel
+ * edges whose lines meet (sliding along one line, as one kept slow query does) keep the cut, which
+ * finds the contact there. A guess: it decides whether cond_root is tried, the order only. */
+TTDW_FN int parallel_apart(const ccd_state *s, double xa[4][3], double xb[4][3], double tm, double S, double near)
+{
+    if (s->na != TTD_CCD_EE)
+        return 0;
+    double xm[4][3], w[2][3];
+    positions(s, tm, xm);
+    for (int e = 0; e < 3; ++e) {
+        double(*x)[3] = e == 0 ? xa : (e == 1 ? xm : xb);
+        double u[3], v[3], n[3], r[3];
+        sub3(u, x[1], x[0]);
+        sub3(v, x[3], x[2]);
+        cross3(n, u, v);
+        const double lu = fmax(fabs(u[0]), fmax(fabs(u[1]), fabs(u[2])));
+        const double lv = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+        const double ln = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+        const double uu = dot3(u, u);
+        if (!(ln <= 64 * U_ROUND * S * (lu + lv)) || !(uu > 0))
+            return 0;
+        if (e != 1) {
+            sub3(r, x[2], x[0]);
+            const double c = dot3(r, u) / uu;
+            for (int k = 0; k < 3; ++k)
+                w[e / 2][k] = r[k] - c * u[k];
+        }
+    }
+    /* The distance from 0 to the segment w[0] w[1]. */
+    double dw[3];
+    sub3(dw, w[1], w[0]);
+    const double dd = dot3(dw, dw);
+    const double c = dd > 0 ? clamp01(-dot3(w[0], dw) / dd) : 0;
+    double q[3];
+    for (int k = 0; k < 3; ++k)
+        q[k] = w[0][k] + c * dw[k];
+    return sqrt(dot3(q, q)) > near;
+}
+
 /* Whether the conditions' exact test runs on the interval being tested: a final one (it would
  * otherwise be the hit), every one once a near miss was proved, and the piece before a cut at a
  * condition's root (the stretch that condition's sign proves). */
@@ -1093,7 +1137,8 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             if (exact_free(&s, &ci, csign))
                 continue;
             root = root_guess(&s, &ci, ta, tb);
-            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol) {
+            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol &&
+                !parallel_apart(&s, xa, xb, tm, S, 4 * s.e_gap)) {
                 root = cond_root(&s, ta, tb);
                 from_cond = root > ta && root <= tb;
             }
