@@ -383,14 +383,14 @@ static int families(void)
  * missed, toi never after the first contact and within TOI_TOL of it, no hit where the reference
  * finds none; at separation 1e-3 a hit wherever there is one at 0, no later.
  * - A point of A on a point of B, exactly, at t = 1 or at t = 0 (the touching families): the
- *   search's certificates (docs/ccd.md, section 3, item 6) answer toi 0 at once, or cut the final
+ *   search's certificates (docs/ccd.md, section 3, item 7) answer toi 0 at once, or cut the final
  *   interval [1 - t_tol, 1] off at once and search [0, 1 - t_tol]; a contact is certain, earlier
  *   ones included (a few in a hundred queries at t = 1 touch before), and few intervals: before the
  *   certificates the search halved toward the contact, 46 or 47 intervals toward t = 0 and over 100
  *   toward t = 1.
- * - Parallel edges (up to the rounding of their construction): where the conditions' common factor
- *   vanishes throughout, no cut at a condition's root is tried (item 5 there; the order of the
- *   pieces only, so this checks the answers; slow_queries checks that coplanar motion keeps the cut). */
+ * - Parallel edges (up to the rounding of their construction) whose lines stay apart: no cut at a
+ *   condition's root is tried (item 5 there; the order of the pieces only, so this checks the
+ *   answers; slow_queries checks that edges sliding along one line keep the cut). */
 static int families_apart(void)
 {
     const int fams[3] = {F_TOUCH_T0, F_TOUCH_T1, F_PARALLEL};
