@@ -338,8 +338,18 @@ static int collect(const char *dir, size_t root, qset **sets, size_t *ns, size_t
     return 0;
 }
 
-/* Generated families (no truth): hits and time only. */
+/* Generated families (no truth): hits and time only. Each family draws from its own seed, so that
+ * a family's queries are the same whichever families a run selects (--families). */
 static uint64_t bench_rng = 88172645463325252ull;
+enum { CCD_FAMILIES = 8 };
+static const char *const ccd_family[CCD_FAMILIES] = {"random", "coplanar motion", "parallel edges",
+                                                    "touching at t = 1", "scaled 1e-8..1e8", "offset 1e6",
+                                                    "near-degenerate 1e-12", "touching at t = 0"};
+static const char *family_filter = NULL; /* --families SUBSTR: only the families whose name holds it */
+static int family_selected(const char *name)
+{
+    return family_filter == NULL || strstr(name, family_filter) != NULL;
+}
 static double brand(void)
 {
     bench_rng ^= bench_rng << 13;
@@ -351,6 +361,7 @@ static double brand(void)
 static void make_family(qset *s, const char *name, int kind, size_t n, int what)
 {
     snprintf(s->name, sizeof s->name, "%s", name);
+    bench_rng = 88172645463325252ull ^ (0x9e3779b97f4a7c15ull * (uint64_t)(16 * kind + what + 1));
     s->kind = kind;
     s->n = n;
     s->truth = NULL;
@@ -374,6 +385,9 @@ static void make_family(qset *s, const char *name, int kind, size_t n, int what)
         if (what == 3) /* touching at the end: B's first point at t = 1 is A's first */
             for (int k = 0; k < 3; ++k)
                 b[3 * kind + k] = b[k];
+        if (what == 7) /* touching at the start: B's first point at t = 0 is A's first */
+            for (int k = 0; k < 3; ++k)
+                a[3 * kind + k] = a[k];
         if (what == 4) /* scaled by 1e-8 .. 1e8 */ {
             const double sc = pow(10.0, 8 * brand());
             for (int i = 0; i < 12; ++i)
@@ -426,7 +440,7 @@ typedef struct slow_query {
     ttd_ccd_result r;
 } slow_query;
 
-static void bench_slowest(const qset *sets, size_t ns, size_t k, int reps)
+static void bench_slowest(const qset *sets, size_t ns, size_t k, int reps, const char *what)
 {
     slow_query *top = calloc(k + 1, sizeof *top);
     if (top == NULL || k == 0) {
@@ -461,9 +475,9 @@ static void bench_slowest(const qset *sets, size_t ns, size_t k, int reps)
                 top[j] = (slow_query){1e6 * best, s, q, r};
         }
     }
-    printf("\nthe %zu slowest sample queries (CPU time, the fastest of %d runs of 10 calls; intervals: evals)\n", have, reps);
+    printf("  the %zu slowest %s (CPU time, the fastest of %d runs of 10 calls; intervals: evals)\n", have, what, reps);
     for (size_t j = 0; j < have; ++j)
-        printf("%8.1f us  %4u intervals  %s  %s query %zu (truth %d)\n", top[j].us, top[j].r.evals,
+        printf("  %8.1f us  %4u intervals  %s  %s query %zu (truth %d)\n", top[j].us, top[j].r.evals,
                top[j].r.hit ? "hit " : "miss", top[j].set->name, top[j].q, top[j].set->truth ? top[j].set->truth[top[j].q] : -1);
     free(top);
 }
@@ -581,15 +595,13 @@ static void bench_lanes(const qset *sets, size_t ns, size_t fam_n, int reps)
             lanes_row(kind == 1 ? "sample queries, vertex-face" : "sample queries, edge-edge", &all, best, reps);
         free(all.x0), free(all.x1);
     }
-    static const char *fam[7] = {"random", "coplanar motion", "parallel edges", "touching at t = 1",
-                                 "scaled 1e-8..1e8", "offset 1e6", "near-degenerate 1e-12"};
     for (int kind = 1; kind <= 2; ++kind)
-        for (int w = 0; w < 7; ++w) {
-            if (w == 2 && kind == 1)
-                continue;
+        for (int w = 0; w < CCD_FAMILIES; ++w) {
             qset s;
             char name[128];
-            snprintf(name, sizeof name, "%s %s", kind == 1 ? "vertex-face" : "edge-edge", fam[w]);
+            snprintf(name, sizeof name, "%s %s", kind == 1 ? "vertex-face" : "edge-edge", ccd_family[w]);
+            if ((w == 2 && kind == 1) || !family_selected(name))
+                continue;
             make_family(&s, name, kind, fam_n, w);
             lanes_row(name, &s, best, reps);
             free(s.x0), free(s.x1);
@@ -714,6 +726,8 @@ int bench_ccd_main(int argc, char **argv)
             steps = atoi(argv[++i]) > 0 ? atoi(argv[i]) : 1;
         else if (strcmp(argv[i], "--slowest") == 0 && i + 1 < argc)
             slowest = (size_t)strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--families") == 0 && i + 1 < argc)
+            family_filter = argv[++i];
         else if (strcmp(argv[i], "--mesh-only") == 0)
             mesh_only = 1;
         else if (strcmp(argv[i], "--closing-only") == 0)
@@ -725,6 +739,7 @@ int bench_ccd_main(int argc, char **argv)
         else {
             printf("usage: ttd bench ccd [--queries DIR] [--reps N] [--family-size N] [--ti PROGRAM | --no-ti]\n"
                    "                     [--sheet N] [--steps K] [--mesh-only | --closing-only] [--slowest K]\n"
+                   "                     [--families SUBSTR]\n"
                    "       ttd bench ccd --rigid [--help for its options]: rigid bodies between two poses\n"
                    "  DIR: CSV files of the CCD benchmark's sample queries, searched recursively (a clone of\n"
                    "  Continuous-Collision-Detection/Sample-Queries; default the kept subset %s).\n"
@@ -736,7 +751,9 @@ int bench_ccd_main(int argc, char **argv)
                    "  steps (default 60: the sheet's ends move about half a grid edge a step) and one step\n"
                    "  through itself; --mesh-only: that alone; --closing-only: the closing steps alone, pairs\n"
                    "  sharing no vertex (for profiling). --slowest K: the K slowest sample queries listed\n"
-                   "  after their table (CPU time, intervals examined).\n",
+                   "  after their table, and each generated family's after its row (CPU time, intervals\n"
+                   "  examined). --families SUBSTR: only the generated families whose name holds SUBSTR\n"
+                   "  (\"touching\", \"edge-edge parallel\"; each family's queries are the same either way).\n",
                    TTD_CCD_SUBSET_DIR);
             return strcmp(argv[i], "--help") == 0 ? 0 : 2;
         }
@@ -838,18 +855,16 @@ int bench_ccd_main(int argc, char **argv)
            "cubic's, no query over 50 us)\n",
            ns, total, positives);
 
-    bench_slowest(sets, ns, slowest, reps);
+    bench_slowest(sets, ns, slowest, reps, "sample queries");
 
     printf("\ngenerated families (no truth: hits and time only)\n");
-    static const char *fam[7] = {"random", "coplanar motion", "parallel edges", "touching at t = 1",
-                                 "scaled 1e-8..1e8", "offset 1e6", "near-degenerate 1e-12"};
     for (int kind = 1; kind <= 2; ++kind)
-        for (int w = 0; w < 7; ++w) {
-            if (w == 2 && kind == 1)
-                continue;
+        for (int w = 0; w < CCD_FAMILIES; ++w) {
             qset s;
             char name[128];
-            snprintf(name, sizeof name, "%s %s", kind == 1 ? "vertex-face" : "edge-edge", fam[w]);
+            snprintf(name, sizeof name, "%s %s", kind == 1 ? "vertex-face" : "edge-edge", ccd_family[w]);
+            if ((w == 2 && kind == 1) || !family_selected(name))
+                continue;
             make_family(&s, name, kind, fam_n, w);
             double *ft = malloc(fam_n * sizeof(double));
             unsigned char *fh = malloc(fam_n);
@@ -857,6 +872,7 @@ int bench_ccd_main(int argc, char **argv)
             time_set(&s, 0, reps, &t, ft, fh);
             time_set(&s, 1, reps, &nv, ft, fh);
             print_row(name, &t, &nv, 0, NULL);
+            bench_slowest(&s, 1, slowest, reps, name);
             free(ft), free(fh), free(s.x0), free(s.x1);
         }
     bench_lanes(sets, ns, fam_n, reps);

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* The continuous-collision tests' generated query families and the benchmark CSV reader, shared by
- * test_ccd_lanes.c and test_gpu_ccd.c. Include after test_rand.h (srand1, urand). */
+ * test_ccd.c, test_ccd_lanes.c and test_gpu_ccd.c. Include after test_rand.h (srand1, urand). */
 #ifndef TTD_TESTS_CCD_FAMILIES_H
 #define TTD_TESTS_CCD_FAMILIES_H
 
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,7 +33,7 @@ static const char *const family_name[F_COUNT] = {
     "apart by about the rounding bound"};
 
 /* One query of a family (x0, x1: the four points at t = 0 and t = 1). */
-static void gen(int fam, int kind, double x0[12], double x1[12])
+static inline void gen(int fam, int kind, double x0[12], double x1[12])
 {
     for (int i = 0; i < 12; ++i) {
         x0[i] = srand1();
@@ -119,7 +120,7 @@ typedef struct qset {
     double *x0, *x1;
 } qset;
 
-static qset make_set(int fam, int kind, size_t n)
+static inline qset make_set(int fam, int kind, size_t n)
 {
     qset s = {kind, n, malloc(n * 12 * sizeof(double)), malloc(n * 12 * sizeof(double))};
     for (size_t q = 0; q < n; ++q)
@@ -127,14 +128,18 @@ static qset make_set(int fam, int kind, size_t n)
     return s;
 }
 
-/* A benchmark CSV (8 rows a query, numerator,denominator pairs); as test_ccd.c reads them. */
-static int read_csv(const char *path, qset *s)
+/* A benchmark CSV (8 rows a query, numerator,denominator pairs; the benchmark's denominators are
+ * powers of two up to 2^110, read through strtod, exact for them): its queries into s (x0, x1, n),
+ * and where truth is not NULL each query's truth (the last column of its first row) into a new array
+ * *truth. */
+static inline int read_csv_truth(const char *path, qset *s, int **truth)
 {
     FILE *f = fopen(path, "r");
     if (f == NULL)
         return -1;
     size_t cap = 256, rows = 0;
     double *xyz = malloc(cap * 3 * sizeof(double));
+    int *tr = malloc(cap * sizeof(int));
     char line[1024];
     while (fgets(line, sizeof line, f) != NULL) {
         if (line[0] == '\n')
@@ -142,6 +147,7 @@ static int read_csv(const char *path, qset *s)
         if (rows == cap) {
             cap *= 2;
             xyz = realloc(xyz, cap * 3 * sizeof(double));
+            tr = realloc(tr, cap * sizeof(int));
         }
         char *p = line;
         for (int k = 0; k < 3; ++k) {
@@ -151,18 +157,72 @@ static int read_csv(const char *path, qset *s)
             ++p;
             xyz[rows * 3 + (size_t)k] = num / den;
         }
+        tr[rows] = (int)strtol(p, NULL, 10);
         ++rows;
     }
     fclose(f);
     s->n = rows / 8;
     s->x0 = malloc(s->n * 12 * sizeof(double) + 1);
     s->x1 = malloc(s->n * 12 * sizeof(double) + 1);
+    if (truth != NULL)
+        *truth = malloc(s->n * sizeof(int) + 1);
     for (size_t q = 0; q < s->n; ++q) {
         memcpy(s->x0 + 12 * q, xyz + 24 * q, 12 * sizeof(double));
         memcpy(s->x1 + 12 * q, xyz + 24 * q + 12, 12 * sizeof(double));
+        if (truth != NULL)
+            (*truth)[q] = tr[8 * q];
     }
-    free(xyz);
+    free(xyz), free(tr);
     return rows % 8 == 0 && s->n > 0 ? 0 : -1;
+}
+
+static inline int read_csv(const char *path, qset *s)
+{
+    return read_csv_truth(path, s, NULL);
+}
+
+/* Every CSV file under dir (recursively) whose path names its kind (vertex-face or edge-edge): fn on
+ * its queries (the file's path, the set, ctx). Stops at the first nonzero answer of fn, or at a
+ * file that cannot be read, and returns nonzero then; *files counts the files fn was given. */
+typedef int (*csv_fn)(const char *path, const qset *s, void *ctx);
+static inline int walk_csv(const char *dir, csv_fn fn, void *ctx, size_t *files)
+{
+    DIR *d = opendir(dir);
+    if (d == NULL) {
+        fprintf(stderr, "  missing %s\n", dir);
+        return 1;
+    }
+    struct dirent *e;
+    int bad = 0;
+    while (!bad && (e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.')
+            continue;
+        char path[2048];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        const size_t len = strlen(path);
+        if (len < 4 || strcmp(path + len - 4, ".csv") != 0) {
+            DIR *sub = opendir(path);
+            if (sub != NULL) {
+                closedir(sub);
+                bad = walk_csv(path, fn, ctx, files);
+            }
+            continue;
+        }
+        const int kind = strstr(path, "vertex-face") ? 1 : strstr(path, "edge-edge") ? 2 : 0;
+        if (kind == 0)
+            continue;
+        qset s = {kind, 0, NULL, NULL};
+        if (read_csv(path, &s) != 0) {
+            fprintf(stderr, "  cannot read %s\n", path);
+            bad = 1;
+        } else {
+            bad = fn(path, &s, ctx);
+            ++*files;
+        }
+        free(s.x0), free(s.x1);
+    }
+    closedir(d);
+    return bad;
 }
 
 #endif /* TTD_TESTS_CCD_FAMILIES_H */

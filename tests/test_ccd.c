@@ -22,6 +22,16 @@
 
 #define TEST_RAND_SEED 0x9e3779b97f4a7c15ull
 #include "test_rand.h"
+#include "ccd_families.h"
+
+/* A benchmark CSV (ccd_families.h's reader) as separate arrays: the queries and their truth. */
+static int read_csv_arrays(const char *path, double **x0, double **x1, int **truth, size_t *nq)
+{
+    qset s = {0, 0, NULL, NULL};
+    const int rc = read_csv_truth(path, &s, truth);
+    *x0 = s.x0, *x1 = s.x1, *nq = s.n;
+    return rc;
+}
 
 /* One query through the public entries: kind 1 vertex-face, 2 edge-edge; x0, x1 4 points. */
 static ttd_ccd_result run1(int kind, const double x0[12], const double x1[12], double delta)
@@ -266,7 +276,6 @@ static int constructed(void)
  * truth is no contact: near misses by about 1e-17. At most one may stay a hit (a miss closer in
  * time than t_tol to a coplanar instant, where a contact condition changes sign inside the final
  * interval; none does with gcc 12 on x86-64). */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq);
 static int near_misses(void)
 {
     size_t n_all = 0, fp = 0;
@@ -276,7 +285,7 @@ static int near_misses(void)
         double *x0, *x1;
         int *truth;
         size_t n;
-        ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+        ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
         for (size_t q = 0; q < n; ++q) {
             ENSURE(truth[q] == 0);
             fp += run1(kind, x0 + 12 * q, x1 + 12 * q, 0).hit;
@@ -369,16 +378,73 @@ static int families(void)
 }
 #endif
 
+#ifdef TTD_HAVE_GMP
+/* ccd_families.h's families that the search treats apart, against the exact reference: no contact
+ * missed, toi never after the first contact and within TOI_TOL of it, no hit where the reference
+ * finds none; at separation 1e-3 a hit wherever there is one at 0, no later.
+ * - A point of A on a point of B, exactly, at t = 1 or at t = 0 (the touching families): the
+ *   search's certificates (docs/ccd.md, section 3, item 7) answer toi 0 at once, or cut the final
+ *   interval [1 - t_tol, 1] off at once and search [0, 1 - t_tol]; a contact is certain, earlier
+ *   ones included (a few in a hundred queries at t = 1 touch before), and few intervals: before the
+ *   certificates the search halved toward the contact, 46 or 47 intervals toward t = 0 and over 100
+ *   toward t = 1.
+ * - Parallel edges (up to the rounding of their construction) whose lines stay apart: no cut at a
+ *   condition's root is tried (item 5 there; the order of the pieces only, so this checks the
+ *   answers; slow_queries checks that edges sliding along one line keep the cut). */
+static int families_apart(void)
+{
+    const int fams[3] = {F_TOUCH_T0, F_TOUCH_T1, F_PARALLEL};
+    for (int kind = 1; kind <= 2; ++kind)
+        for (int fi = 0; fi < 3; ++fi) {
+            const int fam = fams[fi], touch = fam == F_TOUCH_T0 || fam == F_TOUCH_T1;
+            if (fam == F_PARALLEL && kind == 1)
+                continue;
+            const qset s = make_set(fam, kind, 1000);
+            int hits = 0, earlier = 0, undecided = 0;
+            uint32_t most = 0;
+            for (size_t q = 0; q < s.n; ++q) {
+                const double *x0 = s.x0 + 12 * q, *x1 = s.x1 + 12 * q;
+                double lo, hi;
+                const int ref = ttd_ccd_ref(kind, x0, x1, &lo, &hi);
+                const ttd_ccd_result r = run1(kind, x0, x1, 0), rd = run1(kind, x0, x1, 1e-3);
+                ENSURE(r.hit <= 1 && rd.hit <= 1);
+                ENSURE_MSG(!touch || ref != TTD_CCD_REF_MISS, "query %zu: the reference finds no contact", q);
+                if (ref == TTD_CCD_REF_HIT) {
+                    ++hits;
+                    ENSURE_MSG(r.hit == 1 && rd.hit == 1, "%s: query %zu: a contact missed", family_name[fam], q);
+                    ENSURE_MSG(r.toi <= hi && r.toi >= lo - TOI_TOL, "%s: query %zu: toi %.17g, contact in [%.17g, %.17g]",
+                               family_name[fam], q, r.toi, lo, hi);
+                    ENSURE(rd.toi <= hi);
+                    earlier += fam == F_TOUCH_T1 && hi < 0.999;
+                } else if (ref == TTD_CCD_REF_MISS) {
+                    ENSURE_MSG(r.hit == 0, "%s: query %zu: a hit at %.17g where there is none", family_name[fam], q, r.toi);
+                } else {
+                    ++undecided;
+                }
+                if (fam == F_TOUCH_T0)
+                    ENSURE_MSG(r.hit == 1 && r.toi == 0 && rd.toi == 0 && r.evals == 1, "query %zu: toi %.17g, %u intervals",
+                               q, r.toi, r.evals);
+                most = r.evals > most ? r.evals : most;
+            }
+            printf("  %-24s %s: %zu queries, %d hits (%d touching before t = 1), %d undecided, at most %u intervals\n",
+                   family_name[fam], kind == 1 ? "vertex-face" : "edge-edge", s.n, hits, earlier, undecided, most);
+            if (touch)
+                ENSURE(most <= 32 && (fam == F_TOUCH_T0 || earlier >= 10));
+            free(s.x0), free(s.x1);
+        }
+    return 0;
+}
+#endif
+
 /* The kept sample queries: no false negative against the benchmark's truth; the reference
  * (where it decides) agrees with the truth. */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq);
 
 static int sample_file(const char *path, int kind, size_t *tot, size_t *pos, size_t *fp)
 {
     double *x0, *x1;
     int *truth;
     size_t n;
-    ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+    ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
     for (size_t q = 0; q < n; ++q) {
         const ttd_ccd_result r = run1(kind, x0 + 12 * q, x1 + 12 * q, 0);
         ENSURE(r.hit <= 1);
@@ -446,7 +512,7 @@ static int slow_queries(void)
         double *x0, *x1;
         int *truth;
         size_t n;
-        ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+        ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
         ENSURE(n == 6);
         for (size_t q = 0; q < n; ++q) {
             const ttd_ccd_result r = run1(kind, x0 + 12 * q, x1 + 12 * q, 0);
@@ -460,7 +526,7 @@ static int slow_queries(void)
     double *x0, *x1;
     int *truth;
     size_t n;
-    ENSURE_MSG(read_csv(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
+    ENSURE_MSG(read_csv_arrays(path, &x0, &x1, &truth, &n) == 0, "cannot read %s", path);
     ENSURE(n == 20);
     const size_t touching[3] = {10, 12, 13};
     for (int i = 0; i < 3; ++i) {
@@ -471,51 +537,6 @@ static int slow_queries(void)
     }
     free(x0), free(x1), free(truth);
     return 0;
-}
-
-/* A benchmark CSV (8 rows a query, numerator,denominator pairs; the benchmark's denominators are
- * powers of two up to 2^110, read through strtod, exact for them). */
-static int read_csv(const char *path, double **x0, double **x1, int **truth, size_t *nq)
-{
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return -1;
-    size_t cap = 256, rows = 0;
-    double *xyz = malloc(cap * 3 * sizeof(double));
-    int *tr = malloc(cap * sizeof(int));
-    char line[1024];
-    while (fgets(line, sizeof line, f) != NULL) {
-        if (line[0] == '\n')
-            continue;
-        if (rows == cap) {
-            cap *= 2;
-            xyz = realloc(xyz, cap * 3 * sizeof(double));
-            tr = realloc(tr, cap * sizeof(int));
-        }
-        char *p = line;
-        for (int k = 0; k < 3; ++k) {
-            const double num = strtod(p, &p);
-            ++p;
-            const double den = strtod(p, &p);
-            ++p;
-            xyz[rows * 3 + (size_t)k] = num / den;
-        }
-        tr[rows] = (int)strtol(p, NULL, 10);
-        ++rows;
-    }
-    fclose(f);
-    const size_t n = rows / 8;
-    *x0 = malloc(n * 12 * sizeof(double));
-    *x1 = malloc(n * 12 * sizeof(double));
-    *truth = malloc(n * sizeof(int));
-    for (size_t q = 0; q < n; ++q) {
-        memcpy(*x0 + 12 * q, xyz + 24 * q, 12 * sizeof(double));
-        memcpy(*x1 + 12 * q, xyz + 24 * q + 12, 12 * sizeof(double));
-        (*truth)[q] = tr[8 * q];
-    }
-    free(xyz), free(tr);
-    *nq = n;
-    return rows % 8 == 0 && n > 0 ? 0 : -1;
 }
 
 /* Triangle-triangle: the earliest of its 15 sub-queries, each run alone through the public
@@ -703,5 +724,8 @@ int main(int argc, char **argv)
     RUN_TEST(sample_queries);
     RUN_TEST(slow_queries);
     RUN_TEST(triangles);
+#ifdef TTD_HAVE_GMP
+    RUN_TEST(families_apart);
+#endif
     TEST_MAIN_END();
 }

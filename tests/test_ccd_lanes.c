@@ -8,7 +8,6 @@
  * batch entries (vertex-face, edge-edge, triangles; double and float) on every instruction set and
  * thread count against the scalar search query by query, every output field to the bit. */
 #define _POSIX_C_SOURCE 200809L
-#include <dirent.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -91,51 +90,26 @@ static int screen_rows(void)
     return 0;
 }
 
-/* Every CSV file under dir (recursively) whose path names its kind: the screen on every row against
- * the scalar screen. */
-static int screen_dir(const char *dir, size_t *files, size_t *tot, size_t *proved)
+/* A sample file: the screen on every row against the scalar screen, at delta 0 and 1e-4 (walk_csv's
+ * fn; ctx: the counts). */
+typedef struct screen_counts {
+    size_t tot, proved;
+} screen_counts;
+
+static int screen_file(const char *path, const qset *s, void *ctx)
 {
-    DIR *d = opendir(dir);
-    ENSURE_MSG(d != NULL, "missing %s", dir);
-    struct dirent *e;
-    int bad = 0;
-    while (!bad && (e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.')
-            continue;
-        char path[2048];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        const size_t len = strlen(path);
-        if (len < 4 || strcmp(path + len - 4, ".csv") != 0) {
-            DIR *sub = opendir(path);
-            if (sub != NULL) {
-                closedir(sub);
-                bad = screen_dir(path, files, tot, proved);
-            }
-            continue;
-        }
-        const int kind = strstr(path, "vertex-face") ? 1 : strstr(path, "edge-edge") ? 2 : 0;
-        if (kind == 0)
-            continue;
-        qset s = {kind, 0, NULL, NULL};
-        if (read_csv(path, &s) != 0) {
-            fprintf(stderr, "  cannot read %s\n", path);
-            bad = 1;
-        } else {
-            bad = screen_set(path, &s, 0, 1, proved) || screen_set(path, &s, 1e-4, 1, proved);
-            *tot += 2 * s.n;
-            ++*files;
-        }
-        free(s.x0), free(s.x1);
-    }
-    closedir(d);
-    return bad;
+    screen_counts *c = ctx;
+    c->tot += 2 * s->n;
+    return screen_set(path, s, 0, 1, &c->proved) || screen_set(path, s, 1e-4, 1, &c->proved);
 }
 
 /* The kept sample queries of the CCD benchmark (tests/data/ccd), at delta 0 and 1e-4. */
 static int screen_samples(void)
 {
-    size_t files = 0, tot = 0, proved = 0;
-    ENSURE(screen_dir(TTD_CCD_DATA, &files, &tot, &proved) == 0);
+    size_t files = 0;
+    screen_counts c = {0, 0};
+    ENSURE(walk_csv(TTD_CCD_DATA, screen_file, &c, &files) == 0);
+    const size_t tot = c.tot, proved = c.proved;
     printf("  sample queries: %zu files, %zu queries at two deltas, the screen proves %zu\n", files, tot, proved);
     ENSURE(files >= 20 && proved > tot / 4);
     return 0;

@@ -12,7 +12,6 @@
  * (built with CUDA, TTD_TEST_CUDA; scripts/test-gpu-device.sh) `ccd_device` runs the same sets
  * through ttd_gpu_ccd_* on device memory against the CPU (TTD_GPU_CCD_N queries a family). */
 #define _POSIX_C_SOURCE 200809L
-#include <dirent.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -198,51 +197,28 @@ static int families(side_fn side, size_t n, size_t *queries, size_t *hits)
     return 0;
 }
 
-/* Every CSV file under dir (recursively) whose path names its kind, at separations 0 and 1e-4. */
-static int samples_dir(const char *dir, side_fn side, size_t *files, size_t *queries, size_t *hits)
+/* A sample file at separations 0 and 1e-4 (walk_csv's fn; ctx: the side and the counts). */
+typedef struct samples_ctx {
+    side_fn side;
+    size_t queries, hits;
+} samples_ctx;
+
+static int samples_file(const char *path, const qset *s, void *ctx)
 {
-    DIR *d = opendir(dir);
-    ENSURE_MSG(d != NULL, "missing %s", dir);
-    struct dirent *e;
-    int bad = 0;
-    while (!bad && (e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.')
-            continue;
-        char path[2048];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        const size_t len = strlen(path);
-        if (len < 4 || strcmp(path + len - 4, ".csv") != 0) {
-            DIR *sub = opendir(path);
-            if (sub != NULL) {
-                closedir(sub);
-                bad = samples_dir(path, side, files, queries, hits);
-            }
-            continue;
-        }
-        const int kind = strstr(path, "vertex-face") ? 1 : strstr(path, "edge-edge") ? 2 : 0;
-        if (kind == 0)
-            continue;
-        qset s = {kind, 0, NULL, NULL};
-        if (read_csv(path, &s) != 0) {
-            fprintf(stderr, "  cannot read %s\n", path);
-            bad = 1;
-        } else {
-            ccd_arrays A = split(kind, s.n, s.x0, s.x1);
-            const double deltas[2] = {0, 1e-4};
-            bad = check_set(path, &A, side, deltas, 2, queries, hits);
-            free_arrays(&A);
-            ++*files;
-        }
-        free(s.x0), free(s.x1);
-    }
-    closedir(d);
+    samples_ctx *c = ctx;
+    ccd_arrays A = split(s->kind, s->n, s->x0, s->x1);
+    const double deltas[2] = {0, 1e-4};
+    const int bad = check_set(path, &A, c->side, deltas, 2, &c->queries, &c->hits);
+    free_arrays(&A);
     return bad;
 }
 
 static int samples(side_fn side)
 {
-    size_t files = 0, queries = 0, hits = 0;
-    ENSURE(samples_dir(TTD_CCD_DATA, side, &files, &queries, &hits) == 0);
+    size_t files = 0;
+    samples_ctx c = {side, 0, 0};
+    ENSURE(walk_csv(TTD_CCD_DATA, samples_file, &c, &files) == 0);
+    const size_t queries = c.queries, hits = c.hits;
     printf("  sample queries: %zu files, %zu answers (two separations, double and float), %zu hits: equal\n", files,
            queries, hits);
     ENSURE(files >= 20 && hits > queries / 50);

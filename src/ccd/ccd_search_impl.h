@@ -846,6 +846,50 @@ TTDW_FN double cond_root(ccd_state *s, double ta, double tb)
     return r;
 }
 
+/* Edge-edge: whether the edges are parallel throughout the interval and their lines stay apart, in
+ * double: the conditions' common factor ea x eb within about its rounding of 0 at ta, tm and tb (it is
+ * quadratic in t, so about 0 all along), and the offset of b0 from a's line, perpendicular to it,
+ * farther than `near` from 0 on the segment between its values at ta and tb. Every condition is then
+ * about 0 and no contact is near, so a cut at a condition's root (cond_root) forms their exact
+ * quartics to save almost no interval (docs/ccd-speed.md, the parallel-edges family). Parallel
+ * edges whose lines meet (sliding along one line, as one kept slow query does) keep the cut, which
+ * finds the contact there. A guess: it decides whether cond_root is tried, the order only. */
+TTDW_FN int parallel_apart(const ccd_state *s, double xa[4][3], double xb[4][3], double tm, double S, double near)
+{
+    if (s->na != TTD_CCD_EE)
+        return 0;
+    double xm[4][3], w[2][3];
+    positions(s, tm, xm);
+    for (int e = 0; e < 3; ++e) {
+        double(*x)[3] = e == 0 ? xa : (e == 1 ? xm : xb);
+        double u[3], v[3], n[3], r[3];
+        sub3(u, x[1], x[0]);
+        sub3(v, x[3], x[2]);
+        cross3(n, u, v);
+        const double lu = fmax(fabs(u[0]), fmax(fabs(u[1]), fabs(u[2])));
+        const double lv = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+        const double ln = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+        const double uu = dot3(u, u);
+        if (!(ln <= 64 * U_ROUND * S * (lu + lv)) || !(uu > 0))
+            return 0;
+        if (e != 1) {
+            sub3(r, x[2], x[0]);
+            const double c = dot3(r, u) / uu;
+            for (int k = 0; k < 3; ++k)
+                w[e / 2][k] = r[k] - c * u[k];
+        }
+    }
+    /* The distance from 0 to the segment w[0] w[1]. */
+    double dw[3];
+    sub3(dw, w[1], w[0]);
+    const double dd = dot3(dw, dw);
+    const double c = dd > 0 ? clamp01(-dot3(w[0], dw) / dd) : 0;
+    double q[3];
+    for (int k = 0; k < 3; ++k)
+        q[k] = w[0][k] + c * dw[k];
+    return sqrt(dot3(q, q)) > near;
+}
+
 /* Whether the conditions' exact test runs on the interval being tested: a final one (it would
  * otherwise be the hit), every one once a near miss was proved, and the piece before a cut at a
  * condition's root (the stretch that condition's sign proves). */
@@ -896,6 +940,17 @@ TTDW_FN int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], 
     /* The closest direction at an end serves where the middle's cannot (a crossing). */
     directions(s->na, xa, n1, n2, vv);
     return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
+}
+
+/* Whether a point of A and a point of B are equal in the 12 coordinates x (exactly): the primitives
+ * touch there. */
+TTDW_FN int points_coincide(int na, const double x[12])
+{
+    for (int i = 0; i < na; ++i)
+        for (int j = na; j < 4; ++j)
+            if (x[3 * i] == x[3 * j] && x[3 * i + 1] == x[3 * j + 1] && x[3 * i + 2] == x[3 * j + 2])
+                return 1;
+    return 0;
 }
 
 /* The query's state from its inputs: the motions, S (the largest coordinate magnitude) and e_gap. */
@@ -975,8 +1030,26 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
     st_ta[0] = 0.0;
     st_tb[0] = p->t_max;
     top = 1;
-    int evals = 0, probes = 0;
-    enum { PROBES = 2 };
+    /* A point of A on a point of B at t_max = 1, exactly (a vertex reaching a vertex at the end):
+     * the contact there is certain, so the final interval [1 - t_tol, 1] is cut off at once and
+     * [0, 1 - t_tol] searched first; reached, the final piece is the hit without a test (no test
+     * could prove it free: it holds a contact). The answer is the one the halving would give. */
+    double end_cert = (double)NAN;
+    if (p->t_max == 1 && p->t_tol < 0.5 && points_coincide(s.na, x1)) {
+        double lo = 1 - p->t_tol;
+        while (1 - lo > p->t_tol)
+            lo = nextafter(lo, 1.0);
+        if (lo > 0 && lo < 1) {
+            st_ta[0] = lo;
+            st_tb[0] = 1;
+            st_ta[1] = 0;
+            st_tb[1] = lo;
+            top = 2;
+            end_cert = lo;
+        }
+    }
+    int evals = 0, probes = 0, end_probes = 0;
+    enum { PROBES = 2, END_PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
         const double ta = st_ta[top - 1], tb = st_tb[top - 1];
@@ -1000,6 +1073,25 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
         positions(&s, ta, xa);
         positions(&s, tb, xb);
         const double tm = 0.5 * (ta + tb);
+        if (ta == 0 && points_coincide(s.na, x0)) {
+            /* A point of A on a point of B at t = 0, exactly: distance 0 <= delta there, so toi = 0,
+             * the true first time, with nothing to search. */
+            double n1[3], n2[3];
+            int vv[2];
+            out->hit = 1;
+            out->toi = 0;
+            out->gap = directions(s.na, xa, n1, n2, vv);
+            break;
+        }
+        if (ta == end_cert && tb == 1) {
+            double n1[3], n2[3];
+            int vv[2];
+            positions(&s, tm, xm);
+            out->hit = 1;
+            out->toi = ta;
+            out->gap = directions(s.na, xm, n1, n2, vv);
+            break;
+        }
         double d = HUGE_VAL, root = NAN;
         int from_cond = 0; /* root is a condition's (cond_root) */
         if (delta == 0) {
@@ -1035,12 +1127,18 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             }
             if (directions_separate(&s, xa, xb, tm, delta, &d))
                 continue;
+            /* The candidate direction's exact test before the polynomials' (it needs no expansion
+             * of f or of a condition formed, which the tests below may form for nothing). */
+            if (s.cand_g > -HUGE_VAL && exact_separated(x0, x1, s.na, ta, tb, s.cand_n))
+                continue;
+            s.cand_g = -HUGE_VAL; /* tried */
             if (!(ci.change || ci.end_zero) && try_conditions(&s))
                 conditions(s.na, xa, xb, S, csign); /* for the exact test: not formed above */
             if (exact_free(&s, &ci, csign))
                 continue;
             root = root_guess(&s, &ci, ta, tb);
-            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol) {
+            if (!(root > ta && root <= tb) && ci.undecided && tb - ta > 4 * p->t_tol &&
+                !parallel_apart(&s, xa, xb, tm, S, 4 * s.e_gap)) {
                 root = cond_root(&s, ta, tb);
                 from_cond = root > ta && root <= tb;
             }
@@ -1062,11 +1160,42 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             out->gap = d;
             break;
         }
-        /* Where the primitives seem in contact all along (the distance at the middle within the
-         * rounding bound, and no root to cut at), the contact is likely at ta already: its final
-         * interval [ta, ta + t_tol] first, then the rest (at most PROBES a query; the order only). */
-        if (!(root > ta && root <= tb) && d <= 4 * s.e_gap && probes < PROBES && tb - ta > 4 * p->t_tol &&
-            top + 2 <= STACK) {
+        /* The distances at the ends where a probe may use them (below), in double. */
+        const int may_probe = !(root > ta && root <= tb) && tb - ta > 4 * p->t_tol && top + 2 <= STACK;
+        const double near = delta + 4 * s.e_gap;
+        double d_ta = HUGE_VAL, d_tb = HUGE_VAL;
+        if (may_probe && (probes < PROBES || end_probes < END_PROBES)) {
+            double n1[3], n2[3];
+            int vv[2];
+            d_ta = directions(s.na, xa, n1, n2, vv);
+            d_tb = directions(s.na, xb, n1, n2, vv);
+        }
+        /* Where the primitives seem in contact at tb (the distance there within the rounding bound:
+         * a contact at the query's end, as when a vertex reaches a vertex at t = 1), tb's final
+         * interval [tb - t_tol, tb] is cut off: the rest ends where the primitives are apart, so a
+         * direction's exact test can prove it whole, or its later part, where halving toward tb
+         * would take about 50 levels (two intervals each) to reach t_tol; at most END_PROBES a query
+         * (the order of the pieces only). */
+        if (may_probe && d_tb <= near && d_ta > near && end_probes < END_PROBES) {
+            double lo = tb - p->t_tol;
+            while (tb - lo > p->t_tol)
+                lo = nextafter(lo, tb);
+            if (lo > ta && lo < tb) {
+                ++end_probes;
+                st_ta[top] = lo;
+                st_tb[top] = tb;
+                ++top;
+                st_ta[top] = ta;
+                st_tb[top] = lo;
+                ++top;
+                continue;
+            }
+        }
+        /* Where the primitives seem in contact at ta or all along (the distance at ta or at the
+         * middle within the rounding bound, and no root to cut at), the contact is likely at ta
+         * already: its final interval [ta, ta + t_tol] first, then the rest (at most PROBES a query;
+         * the order only). */
+        if (may_probe && (d <= 4 * s.e_gap || d_ta <= near) && probes < PROBES) {
             double hi = ta + p->t_tol;
             while (hi - ta > p->t_tol)
                 hi = nextafter(hi, ta);
