@@ -87,21 +87,46 @@ static void p_mul(poly *r, const poly *a, const poly *b)
     mpq_clear(x);
     p_clear(&t);
 }
-static void p_eval(mpq_t r, const poly *p, const mpq_t t)
-{
-    mpq_set_ui(r, 0, 1);
-    for (int i = p->deg; i >= 0; --i) {
-        mpq_mul(r, r, t);
-        mpq_add(r, r, p->c[i]);
-    }
-}
+/* The sign of p at t = a/b (b > 0) in integers: the sign of p(a/b) b^deg D, where D > 0 is the
+ * product of the coefficients' denominators, is that of sum N_i a^i b^(deg-i) with the integers
+ * N_i = n_i prod_{j != i} d_j. No rational is formed, so no gcd is taken: evaluating at the deep
+ * bisection points of close roots in mpq spent most of its time canonicalising (gcd). */
 static int p_sign_at(const poly *p, const mpq_t t)
 {
-    mpq_t v;
-    mpq_init(v);
-    p_eval(v, p, t);
-    const int s = mpq_sgn(v);
-    mpq_clear(v);
+    if (p->deg < 0)
+        return 0;
+    const int d = p->deg;
+    mpz_t pre[MAXD + 2], v, term, bpow;
+    mpz_init_set_ui(pre[0], 1);
+    for (int i = 0; i <= d; ++i) {
+        mpz_init(pre[i + 1]);
+        mpz_mul(pre[i + 1], pre[i], mpq_denref(p->c[i]));
+    }
+    mpz_init(v);
+    mpz_init(term);
+    mpz_init_set_ui(bpow, 1);
+    mpz_t suf;
+    mpz_init_set_ui(suf, 1); /* prod_{j > i} d_j */
+    /* Horner from the top: v = N_d; v = v a + N_i b^(d-i). */
+    for (int i = d; i >= 0; --i) {
+        mpz_mul(term, mpq_numref(p->c[i]), pre[i]);
+        mpz_mul(term, term, suf);
+        if (i == d) {
+            mpz_set(v, term);
+        } else {
+            mpz_mul(bpow, bpow, mpq_denref(t));
+            mpz_mul(v, v, mpq_numref(t));
+            mpz_addmul(v, term, bpow);
+        }
+        mpz_mul(suf, suf, mpq_denref(p->c[i]));
+    }
+    const int s = mpz_sgn(v);
+    for (int i = 0; i <= d + 1; ++i)
+        mpz_clear(pre[i]);
+    mpz_clear(v);
+    mpz_clear(term);
+    mpz_clear(bpow);
+    mpz_clear(suf);
     return s;
 }
 static void p_deriv(poly *r, const poly *a)
@@ -391,19 +416,26 @@ static int sign_at_root(const poly *c, const poly *sq, root *r)
             result = p_sign_at(c, r->lo);
             break;
         }
-        mpq_add(mid, r->lo, r->hi);
-        mpq_div_2exp(mid, mid, 1);
-        const int sm = p_sign_at(sq, mid);
-        if (sm == 0) {
-            mpq_set(r->lo, mid);
-            r->exact = 1;
-            result = p_sign_at(c, mid);
-            break;
+        /* Four halvings (one sign of sq each) between the checks of c (a Sturm sequence of up to
+         * ten polynomials): roots of sq and c close together take hundreds of halvings. */
+        int exact = 0;
+        for (int h = 0; h < 4 && !exact; ++h) {
+            mpq_add(mid, r->lo, r->hi);
+            mpq_div_2exp(mid, mid, 1);
+            const int sm = p_sign_at(sq, mid);
+            if (sm == 0) {
+                mpq_set(r->lo, mid);
+                r->exact = 1;
+                result = p_sign_at(c, mid);
+                exact = 1;
+            } else if (sm == slo) {
+                mpq_set(r->lo, mid);
+            } else {
+                mpq_set(r->hi, mid);
+            }
         }
-        if (sm == slo)
-            mpq_set(r->lo, mid);
-        else
-            mpq_set(r->hi, mid);
+        if (exact)
+            break;
     }
     mpq_clear(mid);
     if (c->deg >= 1)
