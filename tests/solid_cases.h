@@ -223,4 +223,28 @@ static inline int make_beams(int bytes, int variant, body *a, body *b)
     return 0;
 }
 
+/* The manifold of solids a and b (world vertices, identity poses, margin 0.005) at K into arr
+ * (free it with ttd_scene_array_free), id[] the two bodies' ids; 0 on success. */
+static inline int solid_pair_manifold(int bytes, const body *a, const body *b, size_t K, ttd_scene_array *arr,
+                                      uint32_t id[2])
+{
+    ttd_mesh *ma = test_mesh_of(bytes, a->v, a->nv, a->t, a->nt), *mb = test_mesh_of(bytes, b->v, b->nv, b->t, b->nt);
+    ttd_scene *s = NULL;
+    int rc = ma == NULL || mb == NULL || (bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) != TTD_OK;
+    static const double I[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    static const float If[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    for (int k = 0; k < 2 && !rc; ++k) {
+        ttd_mesh *m = k ? mb : ma;
+        rc = (bytes == 8 ? ttd_scene_add_d(s, m, I, &id[k]) : ttd_scene_add_f(s, m, If, &id[k])) != TTD_OK ||
+             ttd_scene_set_solid(s, id[k], 1) != TTD_OK;
+    }
+    if (!rc)
+        rc = (bytes == 8 ? ttd_scene_manifold_d(NULL, s, 0.005, K, arr) : ttd_scene_manifold_f(NULL, s, 0.005f, K, arr)) !=
+             TTD_OK;
+    ttd_scene_destroy(s);
+    ttd_mesh_destroy(ma);
+    ttd_mesh_destroy(mb);
+    return rc;
+}
+
 #endif

@@ -87,21 +87,9 @@ static void bits_of(int bytes, const double n[3], const void *raw, uint32_t out[
 /* The manifold of solids a, b (world vertices, identity poses) at K, margin 0.005: its points. */
 static int manifold_points(int bytes, const body *a, const body *b, size_t K, mpoint **out, size_t *n)
 {
-    ttd_mesh *ma = test_mesh_of(bytes, a->v, a->nv, a->t, a->nt), *mb = test_mesh_of(bytes, b->v, b->nv, b->t, b->nt);
-    ttd_scene *s = NULL;
-    int rc = ma == NULL || mb == NULL || (bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) != TTD_OK;
-    static const double I[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-    static const float If[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     uint32_t id[2];
-    for (int k = 0; k < 2 && !rc; ++k) {
-        ttd_mesh *m = k ? mb : ma;
-        rc = (bytes == 8 ? ttd_scene_add_d(s, m, I, &id[k]) : ttd_scene_add_f(s, m, If, &id[k])) != TTD_OK ||
-             ttd_scene_set_solid(s, id[k], 1) != TTD_OK;
-    }
     ttd_scene_array arr = {0};
-    if (!rc)
-        rc = (bytes == 8 ? ttd_scene_manifold_d(NULL, s, 0.005, K, &arr) : ttd_scene_manifold_f(NULL, s, 0.005f, K, &arr)) !=
-             TTD_OK;
+    int rc = solid_pair_manifold(bytes, a, b, K, &arr, id);
     *out = NULL;
     *n = 0;
     if (!rc && arr.count > 0) {
@@ -135,9 +123,6 @@ static int manifold_points(int bytes, const body *a, const body *b, size_t K, mp
     }
     *n = arr.count;
     ttd_scene_array_free(&arr);
-    ttd_scene_destroy(s);
-    ttd_mesh_destroy(ma);
-    ttd_mesh_destroy(mb);
     return rc;
 }
 
