@@ -190,7 +190,8 @@ typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *c
  * projections on the six diagonal directions x + y, x - y, x + z, x - z, y + z, y - z (b->dg[d]:
  * minima, b->dg[6 + d]: maxima + R), by min(a, b) = a < b ? a : b and max(a, b) = a > b ? a : b
  * over the vertices in order and one rounded sum or difference each: the scalar loops' numbers
- * (what the screens compare; a zero's sign may differ, which no comparison sees). */
+ * (what the screens compare; a zero's sign may differ, which no comparison sees). It writes no
+ * other field of b: b->ix, filled once per mesh, is read by later queries (self_grid_impl.h). */
 typedef void (*ttd_self_fill_fn)(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd_self_block *b);
 
 /* ccd_screen (double rows only; NULL on the scalar row): the continuous-collision screen in lanes

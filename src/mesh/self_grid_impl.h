@@ -28,7 +28,10 @@
  * 100k-triangle mesh needs about 18 MB of them, and fresh memory each time cost it the clearing
  * of every page. Taken by one query at a time (an atomic exchange; a query that finds none, as
  * when two run at once, makes its own and keeps or frees it after); freed with the mesh by its
- * first member. Only arrays: nothing a query leaves in them is read by the next. */
+ * first member. What a query leaves in them is not read by the next, with one exception: the
+ * groups' triangle ids (tri) and vertex indices (blk[g].ix), which depend on the triangles alone,
+ * are written by the first query after the scratch is made (topo_filled) and read by later ones;
+ * so self_fill must never write ix, and nothing may reorder blk or tri. */
 typedef struct self_scratch {
     void (*free_fn)(void *);
     size_t cap_g, cap_c;       /* leaves and cells they hold */

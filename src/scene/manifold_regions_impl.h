@@ -22,10 +22,14 @@ typedef struct region_item {
     uint32_t k;  /* its number among the pair's points below 0 */
 } region_item;
 
+/* A total order even where a coordinate is NaN (NaN last): qsort needs a consistent comparator. */
 static int region_item_cmp(const void *a, const void *b)
 {
     const region_item *x = a, *y = b;
-    if (x->x0 != y->x0)
+    const int nx = x->x0 != x->x0, ny = y->x0 != y->x0;
+    if (nx != ny)
+        return nx - ny;
+    if (!nx && x->x0 != y->x0)
         return x->x0 < y->x0 ? -1 : 1;
     return x->k < y->k ? -1 : x->k > y->k;
 }
@@ -94,7 +98,7 @@ static int solid_regions(const struct ttd_scene *s, uint32_t bi, uint32_t bj, co
     for (size_t k = 0; k < n0; ++k)
         nc += c0[k].distance == 0;
     const size_t nn = n + nc;
-    if (nn > (UINT32_MAX - 1) / 9)
+    if (nn > (UINT32_MAX - 1) / 9 || nn > SIZE_MAX / (9 * sizeof(region_key)))
         return 1; /* beyond the numbers a region holds: the points keep their own normals */
     if (nn > w->reg_cap) {
         region_item *a = realloc(w->reg, nn * sizeof *a);
