@@ -16,6 +16,9 @@ at K = 2 and 4 only the pairs changed at K = 0 change. Exit 1 on a violation.
 import collections
 import sys
 
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from manifold_output import rows, same_run  # noqa: E402
+
 
 def runs(listing):
     out = []
@@ -24,20 +27,6 @@ def runs(listing):
             continue
         out.append(line.split()[2:])
     return out
-
-
-def rows(path):
-    g = collections.defaultdict(list)
-    for line in open(path):
-        f = line.split()
-        if len(f) >= 17:
-            g[(int(f[0]), int(f[1]))].append(line)
-    return g
-
-
-def same_run(args):
-    k = args.index("--max-points")
-    return tuple(args[:k] + args[k + 2:]), args[k + 1]
 
 
 def main():

@@ -22,38 +22,8 @@ normal already the pair's direction, to the bit). Exit 1 on a violation.
 import collections
 import sys
 
-
-def listing(path):
-    out = []
-    for line in open(path):
-        f = line.split()
-        if f[0] in ("all", "tower"):
-            continue
-        out.append((f[0], f[2:]))
-    return out
-
-
-def rows(path):
-    g = collections.defaultdict(list)
-    for line in open(path):
-        f = line.split()
-        if len(f) >= 17:
-            g[(int(f[0]), int(f[1]))].append(line)
-    return g
-
-
-def kinds(scene):
-    out = []
-    for line in open(scene):
-        f = line.split()
-        if f and f[0] == "body":
-            out.append(f[1])
-    return out
-
-
-def same_run(args):
-    k = args.index("--max-points")
-    return tuple(args[:k] + args[k + 2:]), args[k + 1]
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from manifold_output import listing, rows, same_run, solid_rows  # noqa: E402
 
 
 def main():
@@ -82,9 +52,7 @@ def main():
         if "--solid" not in args:
             continue
         key, K = same_run(args)
-        scene = args[1] if args[1].startswith("/") else f"{work}/{args[1]}"
-        body = kinds(scene)
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
+        body, o, w = solid_rows(n, args, work, old_dir, new_dir)
         diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
         if K != "0":
             continue
