@@ -53,9 +53,14 @@ def listings(old_path, new_path):
     return lo, ln
 
 
-def surface_or_tower_changes(lo, ln):
-    """(runs whose md5 changed, those of them that are surface or tower runs), each of the latter
-    said: changes that may touch only the solid runs' points below 0."""
+def solid_changes(old_path, new_path):
+    """For changes that may touch only the solid runs' points below 0: the old listing, the runs
+    whose md5 changed, and those of them that are surface or tower runs (each said); or None
+    after saying so when the listings hold different runs."""
+    both = listings(old_path, new_path)
+    if both is None:
+        return None
+    lo, ln = both
     changed = problems = 0
     for n, ((mo, args), (mn, _)) in enumerate(zip(lo, ln), 1):
         if mo != mn:
@@ -63,7 +68,28 @@ def surface_or_tower_changes(lo, ln):
             if "--solid" not in args or "tower-" in args[1]:
                 print(f"run {n} ({' '.join(args)}): a surface or tower run changed")
                 problems += 1
-    return changed, problems
+    return lo, changed, problems
+
+
+def changed_pairs(o, w):
+    """The body pairs whose rows differ between two runs' rows (as sets of lines, order aside)."""
+    return {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
+
+
+def beyond_k0(runs, pairs_at_0, old_dir, new_dir):
+    """Of runs, (n, args) each, those at K = 2 or 4 where a pair changed that did not change in the
+    K = 0 run of the same scene and options (pairs_at_0: same_run's key -> its changed pairs),
+    each said; their number."""
+    problems = 0
+    for n, args in runs:
+        key, K = same_run(args)
+        if K == "0":
+            continue
+        diff = changed_pairs(rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt"))
+        if not diff <= pairs_at_0.get(key, set()):
+            print(f"run {n}: pairs changed that did not change at K = 0: {sorted(diff - pairs_at_0.get(key, set()))}")
+            problems += 1
+    return problems
 
 
 def solid_rows(n, args, work, old_dir, new_dir):

@@ -20,16 +20,15 @@ Exit 1 on a violation.
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from manifold_output import listings, solid_rows, surface_or_tower_changes  # noqa: E402
+from manifold_output import solid_changes, solid_rows  # noqa: E402
 
 
 def main():
     old_list, new_list, old_dir, new_dir, work = sys.argv[1:6]
-    both = listings(old_list, new_list)
-    if both is None:
+    got = solid_changes(old_list, new_list)
+    if got is None:
         return 1
-    lo, ln = both
-    changed_runs, problems = surface_or_tower_changes(lo, ln)
+    lo, changed_runs, problems = got
     saved = sum("tower-" not in args[1] for _, args in lo)  # the tower's runs come last
     pairs = changed = normals = dirs_old = dirs_new = 0
     for n, (_, args) in enumerate(lo[:saved], 1):

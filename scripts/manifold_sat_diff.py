@@ -23,16 +23,16 @@ import collections
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from manifold_output import listing, rows, same_run, solid_rows  # noqa: E402
+from manifold_output import beyond_k0, changed_pairs, listings, same_run, solid_rows  # noqa: E402
 
 
 def main():
     old_list, new_list, old_dir, new_dir, work = sys.argv[1:6]
-    lo, ln = listing(old_list), listing(new_list)
-    problems = 0
-    if [a for _, a in lo] != [a for _, a in ln]:
-        print("the listings hold different runs")
+    both = listings(old_list, new_list)
+    if both is None:
         return 1
+    lo, ln = both
+    problems = 0
     saved = 0
     changed_md5 = 0
     for n, ((mo, args), (mn, _)) in enumerate(zip(lo, ln), 1):
@@ -53,7 +53,7 @@ def main():
             continue
         key, K = same_run(args)
         body, o, w = solid_rows(n, args, work, old_dir, new_dir)
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
+        diff = changed_pairs(o, w)
         if K != "0":
             continue
         pairs_at_0[key] = diff
@@ -105,17 +105,8 @@ def main():
                 far = sum((a - float(b)) ** 2 for a, b in zip(x, r.split()[2:5])) ** 0.5
                 lost_far = max(lost_far, far)
                 lost_n += 1
-    for n, (_, args) in enumerate(lo[:saved], 1):
-        if "--solid" not in args:
-            continue
-        key, K = same_run(args)
-        if K == "0":
-            continue
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
-        if not diff <= pairs_at_0.get(key, set()):
-            print(f"run {n}: pairs changed that did not change at K = 0: {sorted(diff - pairs_at_0.get(key, set()))}")
-            problems += 1
+    solid = ((n, args) for n, (_, args) in enumerate(lo[:saved], 1) if "--solid" in args)
+    problems += beyond_k0(solid, pairs_at_0, old_dir, new_dir)
     print(f"{len(lo)} runs, {changed_md5} changed (solid runs only); at K = 0 {pairs_changed} pairs changed: "
           f"{renormed} keeping their points, {normals} of them at the depth given the separating direction as normal; "
           f"{gained} gaining one point, {lost_n} old points folded into them by the merge (the farthest "
