@@ -27,6 +27,8 @@ int ttd_cli_dist(int argc, char **argv);
 int ttd_cli_dist_run(int argc, char **argv, FILE *in, FILE *out);
 /// `ttd mesh distance | contacts | collide A B [options]` (cli/mesh.c); argv[0] is "mesh".
 int ttd_cli_mesh(int argc, char **argv);
+/// `ttd mesh mass A [options]` (cli/mesh_mass.c): a closed mesh's mass properties; argv[0] is "mass".
+int ttd_cli_mesh_mass(int argc, char **argv);
 /// `ttd scene collide | distance | contacts | manifold SCENE [options]` (cli/scene.c); argv[0] is "scene".
 int ttd_cli_scene(int argc, char **argv);
 /// `ttd points closest|signed|winding|grid` (points.c).

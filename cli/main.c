@@ -30,6 +30,8 @@ static const char ttd_usage[] =
     "  mesh self-contacts A    every pair of A's triangles within --margin M that share no\n"
     "                          vertex (a mesh against itself: cloth, folded sheets)\n"
     "  mesh self-collide A     whether A intersects itself (or comes within --margin M)\n"
+    "  mesh mass A             mass, signed volume (its sign: the orientation), area, centre\n"
+    "                          and inertia of the solid a closed mesh bounds (--density, --json)\n"
     "                          (ttd mesh --help for the formats and options)\n"
     "  points closest MESH P   the exact closest point of the mesh to each point of the file P\n"
     "  points signed MESH P    signed distances (negative inside), points winding MESH P: winding\n"

@@ -2,7 +2,8 @@
 /* `ttd mesh distance | contacts | collide A B [options]`: the library's mesh queries on two
  * meshes read from files (ttd/meshfile.h), under one pose (--pose), many (--poses FILE) or the
  * identity; `ttd mesh self-contacts | self-collide A`: one mesh against itself (its pairs that
- * share no vertex), which run as a contacts or collide query of one pose. The usage text below is the reference for the output formats; docs/mesh-files.md
+ * share no vertex), which run as a contacts or collide query of one pose. `ttd mesh mass A` is
+ * handed to cli/mesh_mass.c. The usage text below is the reference for the output formats; docs/mesh-files.md
  * has a summary.
  *
  * Everything that can be checked is checked before anything is computed, so that a run either
@@ -180,6 +181,8 @@ static void ttd_mesh_print_usage(FILE *f, int cmd)
     for (int c = 0; c < TTD_MESH_NCMD; ++c)
         if (cmd < 0 || cmd == c)
             fprintf(f, "%s%s", c == (cmd < 0 ? 0 : cmd) ? "usage: " : "       ", ttd_mesh_synopsis[c]);
+    if (cmd < 0)
+        fputs("       ttd mesh mass A [--density RHO] [--json] [options]   (ttd mesh mass --help)\n", f);
     fputs(ttd_mesh_usage_head, f);
     if (cmd < 0 || cmd == TTD_MESH_DISTANCE)
         fputs(ttd_mesh_usage_distance, f);
@@ -966,6 +969,8 @@ int ttd_cli_mesh(int argc, char **argv)
         ttd_mesh_print_usage(stdout, -1);
         return TTD_EXIT_OK;
     }
+    if (strcmp(sub, "mass") == 0) /* one mesh, no pose, no query options: cli/mesh_mass.c */
+        return ttd_cli_mesh_mass(argc - 1, argv + 1);
     ttd_mesh_args a;
     memset(&a, 0, sizeof a);
     static const char *const full_names[] = {"mesh distance", "mesh contacts", "mesh collide", "mesh self-contacts",
@@ -975,8 +980,8 @@ int ttd_cli_mesh(int argc, char **argv)
         if (strcmp(sub, ttd_mesh_cmd_names[c]) == 0)
             cmd = c;
     if (cmd < 0) {
-        ttd_cli_error("mesh: unknown command '%s' (distance, contacts, collide, self-contacts or self-collide; see "
-                      "ttd mesh --help)",
+        ttd_cli_error("mesh: unknown command '%s' (distance, contacts, collide, self-contacts, self-collide or "
+                      "mass; see ttd mesh --help)",
                       sub);
         return TTD_EXIT_USAGE;
     }

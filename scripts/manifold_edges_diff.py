@@ -16,6 +16,9 @@ at K = 2 and 4 only the pairs changed at K = 0 change. Exit 1 on a violation.
 import collections
 import sys
 
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from manifold_output import beyond_k0, changed_pairs, rows, same_run  # noqa: E402
+
 
 def runs(listing):
     out = []
@@ -26,20 +29,6 @@ def runs(listing):
     return out
 
 
-def rows(path):
-    g = collections.defaultdict(list)
-    for line in open(path):
-        f = line.split()
-        if len(f) >= 17:
-            g[(int(f[0]), int(f[1]))].append(line)
-    return g
-
-
-def same_run(args):
-    k = args.index("--max-points")
-    return tuple(args[:k] + args[k + 2:]), args[k + 1]
-
-
 def main():
     listing, old_dir, new_dir = sys.argv[1:4]
     problems, changed, gained_points, lost_n, lost_far = 0, 0, 0, 0, 0.0
@@ -48,7 +37,7 @@ def main():
     for n, args in enumerate(every, 1):
         key, K = same_run(args)
         o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
+        diff = changed_pairs(o, w)
         changed += bool(diff)
         if K != "0":
             continue
@@ -71,15 +60,7 @@ def main():
                 near = min(sum((a - float(b)) ** 2 for a, b in zip(x, e.split()[2:5])) ** 0.5 for e in extra)
                 lost_far = max(lost_far, near)
                 lost_n += 1
-    for n, args in enumerate(every, 1):
-        key, K = same_run(args)
-        if K == "0":
-            continue
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
-        if not diff <= pairs_at_0.get(key, set()):
-            print(f"run {n}: pairs changed that did not change at K = 0: {sorted(diff - pairs_at_0.get(key, set()))}")
-            problems += 1
+    problems += beyond_k0(enumerate(every, 1), pairs_at_0, old_dir, new_dir)
     print(f"{len(every)} runs, {changed} changed; at K = 0 {gained_points} points added, {lost_n} folded into them by "
           f"the merge (the farthest {lost_far:.3g} from one); {problems} problems")
     return 1 if problems else 0

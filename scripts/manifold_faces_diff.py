@@ -20,30 +20,21 @@ import collections
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from manifold_sat_diff import kinds, listing, rows  # noqa: E402
+from manifold_output import solid_changes, solid_rows  # noqa: E402
 
 
 def main():
     old_list, new_list, old_dir, new_dir, work = sys.argv[1:6]
-    lo, ln = listing(old_list), listing(new_list)
-    if [a for _, a in lo] != [a for _, a in ln]:
-        print("the listings hold different runs")
+    got = solid_changes(old_list, new_list)
+    if got is None:
         return 1
-    problems = changed_runs = 0
-    for n, ((mo, args), (mn, _)) in enumerate(zip(lo, ln), 1):
-        if mo != mn:
-            changed_runs += 1
-            if "--solid" not in args or "tower-" in args[1]:
-                print(f"run {n} ({' '.join(args)}): a surface or tower run changed")
-                problems += 1
+    lo, changed_runs, problems = got
     pairs = changed = added = lost_n = 0
     gain, lost_far = 0.0, 0.0
     for n, (_, args) in enumerate(lo, 1):
         if "--solid" not in args or "tower-" in args[1] or args[args.index("--max-points") + 1] != "0":
             continue
-        scene = args[1] if args[1].startswith("/") else f"{work}/{args[1]}"
-        body = kinds(scene)
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
+        body, o, w = solid_rows(n, args, work, old_dir, new_dir)
         for p in set(o) | set(w):
             below = [float(r.split()[8]) for r in o.get(p, []) if float(r.split()[8]) < 0]
             torus = "torus" in (body[p[0]], body[p[1]])

@@ -10,7 +10,8 @@ double and float, with its own md5 over those ("tower").
     /usr/bin/python3 scripts/manifold_md5.py build/cli/ttd [WORKDIR] [--save DIR]
 
 --save DIR also writes each run's output to DIR/N.txt (N from 1, in the order printed), for
-scripts/manifold_edges_diff.py to compare two builds where the md5s differ.
+scripts/manifold_*_diff.py to compare two builds where the md5s differ (they read both through
+scripts/manifold_output.py).
 """
 import hashlib
 import math

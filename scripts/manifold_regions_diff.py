@@ -20,33 +20,22 @@ Exit 1 on a violation.
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from manifold_sat_diff import kinds, listing, rows  # noqa: E402
+from manifold_output import solid_changes, solid_rows  # noqa: E402
 
 
 def main():
     old_list, new_list, old_dir, new_dir, work = sys.argv[1:6]
-    lo, ln = listing(old_list), listing(new_list)
-    if [a for _, a in lo] != [a for _, a in ln]:
-        print("the listings hold different runs")
+    got = solid_changes(old_list, new_list)
+    if got is None:
         return 1
-    problems = changed_runs = 0
-    saved = 0
-    for n, ((mo, args), (mn, _)) in enumerate(zip(lo, ln), 1):
-        tower = "tower-" in args[1]
-        saved += not tower
-        if mo != mn:
-            changed_runs += 1
-            if "--solid" not in args or tower:
-                print(f"run {n} ({' '.join(args)}): a surface or tower run changed")
-                problems += 1
+    lo, changed_runs, problems = got
+    saved = sum("tower-" not in args[1] for _, args in lo)  # the tower's runs come last
     pairs = changed = normals = dirs_old = dirs_new = 0
     for n, (_, args) in enumerate(lo[:saved], 1):
         if "--solid" not in args:
             continue
         k0 = args[args.index("--max-points") + 1] == "0"
-        scene = args[1] if args[1].startswith("/") else f"{work}/{args[1]}"
-        body = kinds(scene)
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
+        body, o, w = solid_rows(n, args, work, old_dir, new_dir)
         for p in sorted(set(o) | set(w)):
             a, b = o.get(p, []), w.get(p, [])
             torus = "torus" in (body[p[0]], body[p[1]])

@@ -22,47 +22,17 @@ normal already the pair's direction, to the bit). Exit 1 on a violation.
 import collections
 import sys
 
-
-def listing(path):
-    out = []
-    for line in open(path):
-        f = line.split()
-        if f[0] in ("all", "tower"):
-            continue
-        out.append((f[0], f[2:]))
-    return out
-
-
-def rows(path):
-    g = collections.defaultdict(list)
-    for line in open(path):
-        f = line.split()
-        if len(f) >= 17:
-            g[(int(f[0]), int(f[1]))].append(line)
-    return g
-
-
-def kinds(scene):
-    out = []
-    for line in open(scene):
-        f = line.split()
-        if f and f[0] == "body":
-            out.append(f[1])
-    return out
-
-
-def same_run(args):
-    k = args.index("--max-points")
-    return tuple(args[:k] + args[k + 2:]), args[k + 1]
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from manifold_output import beyond_k0, changed_pairs, listings, same_run, solid_rows  # noqa: E402
 
 
 def main():
     old_list, new_list, old_dir, new_dir, work = sys.argv[1:6]
-    lo, ln = listing(old_list), listing(new_list)
-    problems = 0
-    if [a for _, a in lo] != [a for _, a in ln]:
-        print("the listings hold different runs")
+    both = listings(old_list, new_list)
+    if both is None:
         return 1
+    lo, ln = both
+    problems = 0
     saved = 0
     changed_md5 = 0
     for n, ((mo, args), (mn, _)) in enumerate(zip(lo, ln), 1):
@@ -82,10 +52,8 @@ def main():
         if "--solid" not in args:
             continue
         key, K = same_run(args)
-        scene = args[1] if args[1].startswith("/") else f"{work}/{args[1]}"
-        body = kinds(scene)
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
+        body, o, w = solid_rows(n, args, work, old_dir, new_dir)
+        diff = changed_pairs(o, w)
         if K != "0":
             continue
         pairs_at_0[key] = diff
@@ -137,17 +105,8 @@ def main():
                 far = sum((a - float(b)) ** 2 for a, b in zip(x, r.split()[2:5])) ** 0.5
                 lost_far = max(lost_far, far)
                 lost_n += 1
-    for n, (_, args) in enumerate(lo[:saved], 1):
-        if "--solid" not in args:
-            continue
-        key, K = same_run(args)
-        if K == "0":
-            continue
-        o, w = rows(f"{old_dir}/{n}.txt"), rows(f"{new_dir}/{n}.txt")
-        diff = {p for p in set(o) | set(w) if sorted(o.get(p, [])) != sorted(w.get(p, []))}
-        if not diff <= pairs_at_0.get(key, set()):
-            print(f"run {n}: pairs changed that did not change at K = 0: {sorted(diff - pairs_at_0.get(key, set()))}")
-            problems += 1
+    solid = ((n, args) for n, (_, args) in enumerate(lo[:saved], 1) if "--solid" in args)
+    problems += beyond_k0(solid, pairs_at_0, old_dir, new_dir)
     print(f"{len(lo)} runs, {changed_md5} changed (solid runs only); at K = 0 {pairs_changed} pairs changed: "
           f"{renormed} keeping their points, {normals} of them at the depth given the separating direction as normal; "
           f"{gained} gaining one point, {lost_n} old points folded into them by the merge (the farthest "

@@ -432,24 +432,54 @@ static int refit_bits(void)
     return 0;
 }
 
+/* A soup of the icosphere of that level: each triangle its own three vertices, in the
+ * icosphere's order; 0, or -1 (nothing to free). */
+static int icosphere_soup(int level, ttd_gen_mesh *soup)
+{
+    ttd_gen_mesh ico;
+    if (ttd_gen_icosphere(level, &ico) != 0)
+        return -1;
+    soup->nt = ico.nt;
+    soup->nv = 3 * ico.nt;
+    soup->verts = malloc(3 * soup->nv * sizeof *soup->verts);
+    soup->tris = malloc(3 * soup->nt * sizeof *soup->tris);
+    if (soup->verts == NULL || soup->tris == NULL) {
+        free(soup->verts);
+        free(soup->tris);
+        ttd_gen_mesh_free(&ico);
+        return -1;
+    }
+    for (size_t t = 0; t < soup->nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            soup->tris[3 * t + (size_t)k] = (uint32_t)(3 * t + (size_t)k);
+            memcpy(soup->verts + 9 * t + 3 * k, ico.verts + 3 * (size_t)ico.tris[3 * t + (size_t)k],
+                   3 * sizeof(double));
+        }
+    ttd_gen_mesh_free(&ico);
+    return 0;
+}
+
+/* Moves a soup's nt triangles (9 coordinates each) to one another's places: a shuffle drawn from
+ * rng, which leaves every triangle's box as it was but scatters the tree's groups. */
+static void scatter_soup(double *verts, size_t nt)
+{
+    for (size_t t = nt; t > 1; --t) {
+        const size_t u = (size_t)(urand() * (double)t);
+        double x[9];
+        memcpy(x, verts + 9 * (t - 1), sizeof x);
+        memcpy(verts + 9 * (t - 1), verts + 9 * u, sizeof x);
+        memcpy(verts + 9 * u, x, sizeof x);
+    }
+}
+
 /* A soup (each triangle its own three vertices) of an icosphere's triangles: triangles moved to
  * one another's places (a permutation) leave every triangle's box as it was but make every group
  * of the tree a scatter, so the measure grows and the tree is rebuilt; moved back, the tree built
  * for the scatter is as poor, and is rebuilt again. Jitter rebuilds nothing. */
 static int degraded_trees_rebuild(void)
 {
-    ttd_gen_mesh ico, g, moved;
-    ENSURE(ttd_gen_icosphere(3, &ico) == 0);
-    g.nt = ico.nt;
-    g.nv = 3 * ico.nt;
-    g.verts = malloc(3 * g.nv * sizeof *g.verts);
-    g.tris = malloc(3 * g.nt * sizeof *g.tris);
-    ENSURE(g.verts != NULL && g.tris != NULL);
-    for (size_t t = 0; t < g.nt; ++t)
-        for (int k = 0; k < 3; ++k) {
-            g.tris[3 * t + (size_t)k] = (uint32_t)(3 * t + (size_t)k);
-            memcpy(g.verts + 9 * t + 3 * k, ico.verts + 3 * (size_t)ico.tris[3 * t + (size_t)k], 3 * sizeof(double));
-        }
+    ttd_gen_mesh g, moved;
+    ENSURE(icosphere_soup(3, &g) == 0);
     ENSURE(ttd_gen_mesh_copy(&g, &moved) == 0);
     ttd_mesh *m;
     ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
@@ -461,13 +491,7 @@ static int degraded_trees_rebuild(void)
     ENSURE_MSG(info.generation == 1 && info.rebuilds == 0 && info.quality <= 2 * info.quality_built,
                "jitter: measure %.4g, built %.4g", info.quality, info.quality_built);
     const double built = info.quality_built;
-    for (size_t t = g.nt; t > 1; --t) { /* triangles to one another's places */
-        const size_t u = (size_t)(urand() * (double)t);
-        double x[9];
-        memcpy(x, moved.verts + 9 * (t - 1), sizeof x);
-        memcpy(moved.verts + 9 * (t - 1), moved.verts + 9 * u, sizeof x);
-        memcpy(moved.verts + 9 * u, x, sizeof x);
-    }
+    scatter_soup(moved.verts, g.nt); /* triangles to one another's places */
     ENSURE(ttd_mesh_set_vertices_d(NULL, m, moved.verts) == TTD_OK);
     ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK);
     ENSURE_MSG(info.generation == 2 && info.rebuilds == 1 && info.quality == info.quality_built,
@@ -484,7 +508,6 @@ static int degraded_trees_rebuild(void)
     printf("  icosphere soup: measure %.3g as built; scattered: rebuilt (measure %.3g), and back\n", built,
            info.quality_built);
     ttd_mesh_destroy(m);
-    ttd_gen_mesh_free(&ico);
     ttd_gen_mesh_free(&g);
     ttd_gen_mesh_free(&moved);
     return 0;
@@ -1006,30 +1029,14 @@ static int refit_extremes_and_after_rebuild(void)
         ttd_gen_mesh_free(&base[mi]);
 
     /* a refit on a rebuilt tree */
-    ttd_gen_mesh ico, g, moved;
-    ENSURE(ttd_gen_icosphere(2, &ico) == 0);
-    g.nt = ico.nt;
-    g.nv = 3 * ico.nt;
-    g.verts = malloc(3 * g.nv * sizeof *g.verts);
-    g.tris = malloc(3 * g.nt * sizeof *g.tris);
-    ENSURE(g.verts != NULL && g.tris != NULL);
-    for (size_t t = 0; t < g.nt; ++t)
-        for (int k = 0; k < 3; ++k) {
-            g.tris[3 * t + (size_t)k] = (uint32_t)(3 * t + (size_t)k);
-            memcpy(g.verts + 9 * t + 3 * k, ico.verts + 3 * (size_t)ico.tris[3 * t + (size_t)k], 3 * sizeof(double));
-        }
+    ttd_gen_mesh g, moved;
+    ENSURE(icosphere_soup(2, &g) == 0);
     ENSURE(ttd_gen_mesh_copy(&g, &moved) == 0);
     ttd_mesh *m;
     ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m) == TTD_OK);
     ENSURE(ttd_mesh_set_vertices_d(NULL, m, g.verts) == TTD_OK); /* the first tree's indices made */
     rng = 7;
-    for (size_t t = g.nt; t > 1; --t) { /* triangles to one another's places */
-        const size_t u = (size_t)(urand() * (double)t);
-        double x[9];
-        memcpy(x, moved.verts + 9 * (t - 1), sizeof x);
-        memcpy(moved.verts + 9 * (t - 1), moved.verts + 9 * u, sizeof x);
-        memcpy(moved.verts + 9 * u, x, sizeof x);
-    }
+    scatter_soup(moved.verts, g.nt); /* triangles to one another's places */
     ENSURE(ttd_mesh_set_vertices_d(NULL, m, moved.verts) == TTD_OK);
     ttd_mesh_refit_info info;
     ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.rebuilds == 1);
@@ -1048,7 +1055,6 @@ static int refit_extremes_and_after_rebuild(void)
     printf("  %d refits at 1e30, 1e-30, mixed and after a rebuild: each as a fresh build and the brute force\n",
            cases);
     ttd_mesh_destroy(m);
-    ttd_gen_mesh_free(&ico);
     ttd_gen_mesh_free(&g);
     ttd_gen_mesh_free(&moved);
     return 0;

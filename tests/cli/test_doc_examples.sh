@@ -1,34 +1,40 @@
 #!/bin/sh
-# The examples of docs/mesh-files.md run as written: every '$ ttd ...' line of its fenced blocks
-# is run in docs/examples/ (the files it names live there), and its output must be the lines
-# shown after it, up to the next '$' line or the end of the block.
+# The examples of docs/mesh-files.md and docs/mass-properties.md run as written: every '$ ttd ...'
+# line of their fenced blocks is run in docs/examples/ (the files they name live there), and its
+# output must be the lines shown after it, up to the next '$' line or the end of the block.
 # Usage: test_doc_examples.sh /path/to/ttd
 TTD=${1:?usage: test_doc_examples.sh /path/to/ttd}
 HERE=$(cd "$(dirname "$0")" && pwd)
-DOC="$HERE/../../docs/mesh-files.md"
 DIR=$(mktemp -d) || exit 1
 trap 'rm -rf "$DIR"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
-# Split the page into DIR/cmd.N (the command, without '$ ttd ') and DIR/want.N.
-awk -v dir="$DIR" '
-    /^```/ { inblock = !inblock; n_open = 0; next }
-    inblock && /^\$ ttd / { n++; sub(/^\$ ttd /, ""); print > (dir "/cmd." n); printf "" > (dir "/want." n); next }
-    inblock && n && !/^\$/ { print >> (dir "/want." n) }
-    END { print n + 0 > (dir "/count") }' "$DOC"
-count=$(cat "$DIR/count")
-[ "$count" -ge 3 ] || fail "found only $count examples in $DOC"
-i=1
-while [ "$i" -le "$count" ]; do
-    cmd=$(cat "$DIR/cmd.$i")
-    (cd "$HERE/../../docs/examples" && eval "\"\$TTD\" $cmd") > "$DIR/got.$i" 2> "$DIR/err.$i" ||
-        fail "ttd $cmd: status $?: $(cat "$DIR/err.$i")"
-    cmp -s "$DIR/got.$i" "$DIR/want.$i" || fail "ttd $cmd: printed
+# doc_examples PAGE MIN: runs the examples of docs/PAGE, which must hold at least MIN.
+doc_examples() {
+    DOC="$HERE/../../docs/$1"
+    rm -f "$DIR"/cmd.* "$DIR"/want.* "$DIR"/got.* "$DIR"/err.*
+    # Split the page into DIR/cmd.N (the command, without '$ ttd ') and DIR/want.N.
+    awk -v dir="$DIR" '
+        /^```/ { inblock = !inblock; n_open = 0; next }
+        inblock && /^\$ ttd / { n++; sub(/^\$ ttd /, ""); print > (dir "/cmd." n); printf "" > (dir "/want." n); next }
+        inblock && n && !/^\$/ { print >> (dir "/want." n) }
+        END { print n + 0 > (dir "/count") }' "$DOC"
+    count=$(cat "$DIR/count")
+    [ "$count" -ge "$2" ] || fail "found only $count examples in $DOC"
+    i=1
+    while [ "$i" -le "$count" ]; do
+        cmd=$(cat "$DIR/cmd.$i")
+        (cd "$HERE/../../docs/examples" && eval "\"\$TTD\" $cmd") > "$DIR/got.$i" 2> "$DIR/err.$i" ||
+            fail "ttd $cmd: status $?: $(cat "$DIR/err.$i")"
+        cmp -s "$DIR/got.$i" "$DIR/want.$i" || fail "ttd $cmd: printed
 $(cat "$DIR/got.$i")
-where docs/mesh-files.md shows
+where docs/$1 shows
 $(cat "$DIR/want.$i")"
-    i=$((i + 1))
-done
-echo "ok   $count examples of docs/mesh-files.md print what the page shows"
+        i=$((i + 1))
+    done
+    echo "ok   $count examples of docs/$1 print what the page shows"
+}
+doc_examples mesh-files.md 3
+doc_examples mass-properties.md 2
 
 # ---- README.md: every fenced block runs as written ------------------------------------------
 # Each block is cut out of the README as it stands. The C blocks are one program, app.c, in
