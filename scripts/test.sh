@@ -20,7 +20,8 @@ command -v pkg-config > /dev/null 2>&1 || missing+=(pkg-config)
 [ -f /usr/include/assimp/cimport.h ] || missing+=(libassimp-dev)
 # Optional: GMP (libgmp-dev) for the continuous-collision tests' exact rational reference
 # (tests/ccd_ref/); without it test_ccd runs its other checks and says what it skipped.
-ls /usr/include/gmp.h /usr/include/*/gmp.h > /dev/null 2>&1 || missing+=(libgmp-dev)
+# (the header lies in /usr/include or, on multiarch Debian, in /usr/include/<triplet>: either will do)
+[ -f /usr/include/gmp.h ] || compgen -G "/usr/include/*-linux-*/gmp.h" > /dev/null || missing+=(libgmp-dev)
 scripts/install-optional.sh test.sh "${missing[@]}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release ${TTD_CMAKE_ARGS:-}
 cmake --build "$build" -j "$jobs"
