@@ -40,6 +40,10 @@ typedef struct corner_mesh {
     unsigned char *flat_edge;   /* 3 nt: edge k of t, from corner k to k + 1 */
     uint32_t *across;           /* 3 nt: the triangle across a convex or concave edge, else UINT32_MAX */
     unsigned char *has_normal;  /* nt */
+    unsigned char *planar;      /* nt: the triangle's flat piece (triangles joined by flat edges) is
+                                 * planar: every vertex of it within 2^-36 of the mesh's scale (the
+                                 * power of two at or above its largest coordinate) of the plane of
+                                 * its largest triangle */
 } corner_mesh;
 
 static void corner_mesh_free(corner_mesh *m)
@@ -50,6 +54,7 @@ static void corner_mesh_free(corner_mesh *m)
     free(m->flat_edge);
     free(m->across);
     free(m->has_normal);
+    free(m->planar);
     memset(m, 0, sizeof *m);
 }
 
@@ -120,7 +125,12 @@ static int corner_mesh_make(const double *verts, const uint32_t *tris, size_t nt
     }
     const double cos_flat = cos(CORNER_REF_FLAT_ANGLE);
     int *cls = malloc(3 * nt * sizeof *cls); /* 0 flat, 1 real, 2 open */
-    if (cls == NULL) {
+    uint32_t *flat_to = malloc(3 * nt * sizeof *flat_to), *piece = malloc(nt * sizeof *piece);
+    m->planar = malloc(nt);
+    if (cls == NULL || flat_to == NULL || piece == NULL || m->planar == NULL) {
+        free(cls);
+        free(flat_to);
+        free(piece);
         free(n);
         free(x);
         free(has);
@@ -146,6 +156,7 @@ static int corner_mesh_make(const double *verts, const uint32_t *tris, size_t nt
             }
             int c = 2;
             m->across[3 * t + (size_t)k] = UINT32_MAX;
+            flat_to[3 * t + (size_t)k] = UINT32_MAX;
             if (count == 1 && reversed && has[found]) {
                 const double *nt_ = n + 3 * t, *nu = n + 3 * found;
                 double side = 0;
@@ -161,6 +172,8 @@ static int corner_mesh_make(const double *verts, const uint32_t *tris, size_t nt
                     c = 1;
                 if (c == 1)
                     m->across[3 * t + (size_t)k] = (uint32_t)found;
+                if (c == 0)
+                    flat_to[3 * t + (size_t)k] = (uint32_t)found;
             }
             cls[3 * t + (size_t)k] = c;
             m->flat_edge[3 * t + (size_t)k] = c == 0;
@@ -180,11 +193,85 @@ static int corner_mesh_make(const double *verts, const uint32_t *tris, size_t nt
             }
         m->flat_vertex[c] = (unsigned char)flat;
     }
+    /* pieces: the smallest triangle reached through flat edges, by relaxing until nothing moves */
+    for (size_t t = 0; t < nt; ++t)
+        piece[t] = (uint32_t)t;
+    for (int moved = 1; moved;) {
+        moved = 0;
+        for (size_t c = 0; c < 3 * nt; ++c)
+            if (flat_to[c] != UINT32_MAX && piece[flat_to[c]] != piece[c / 3]) {
+                const uint32_t lo = piece[flat_to[c]] < piece[c / 3] ? piece[flat_to[c]] : piece[c / 3];
+                piece[flat_to[c]] = piece[c / 3] = lo;
+                moved = 1;
+            }
+    }
+    /* planar pieces: the plane of the piece's largest triangle, every vertex of the piece near it */
+    double top = 0;
+    for (size_t c = 0; c < 9 * nt; ++c)
+        top = fmax(top, fabs(x[c]));
+    int es = 0;
+    if (top > 0)
+        frexp(top, &es);
+    const double tol = ldexp(1.0, es - 36);
+    for (size_t t = 0; t < nt; ++t) {
+        size_t big = t;
+        double best = -1;
+        for (size_t u = 0; u < nt; ++u) {
+            if (piece[u] != piece[t])
+                continue;
+            const double *y = x + 9 * u;
+            const double e1[3] = {y[3] - y[0], y[4] - y[1], y[5] - y[2]}, e2[3] = {y[6] - y[0], y[7] - y[1], y[8] - y[2]};
+            const double c3[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            const double a = sqrt(c3[0] * c3[0] + c3[1] * c3[1] + c3[2] * c3[2]);
+            if (a > best) {
+                best = a;
+                big = u;
+            }
+        }
+        double pn[3];
+        int planar = has[t] && corner_ref_normal(x + 9 * big, pn);
+        for (size_t u = 0; u < nt && planar; ++u)
+            for (int k = 0; k < 3 && piece[u] == piece[t]; ++k) {
+                const double *y = x + 9 * u + 3 * k, *o = x + 9 * big;
+                const double h = pn[0] * (y[0] - o[0]) + pn[1] * (y[1] - o[1]) + pn[2] * (y[2] - o[2]);
+                planar &= has[u] && fabs(h) <= tol;
+            }
+        m->planar[t] = (unsigned char)planar;
+    }
     free(cls);
+    free(flat_to);
+    free(piece);
     free(n);
     free(x);
     m->has_normal = has;
     return 1;
+}
+
+/* Which of a body pair's n contacts (triangles ti[k] of body i, tj[k] of body j, distance d[k];
+ * mi, mj their shapes, wi, wj their world triangles) are of flat contact (docs/scenes.md,
+ * section 5, step 0): face on face (as corner_refs tests it) with both triangles' pieces planar,
+ * none when one such contact has distance 0. Their region's corners stand for them: they are not
+ * points. Into flat[0..n); returns how many. For pairs of surfaces (a solid's pairs keep every
+ * contact; the callers' scenes have no solids). */
+static size_t corner_ref_flat(const corner_mesh *mi, const double *wi, const corner_mesh *mj, const double *wj, size_t n,
+                              const uint32_t *ti, const uint32_t *tj, const double *d, unsigned char *flat)
+{
+    size_t count = 0;
+    int touching = 0;
+    for (size_t k = 0; k < n; ++k) {
+        double na[3], nb[3];
+        flat[k] = mi->has_normal[ti[k]] && mj->has_normal[tj[k]] && corner_ref_normal(wi + 9 * (size_t)ti[k], na) &&
+                  corner_ref_normal(wj + 9 * (size_t)tj[k], nb) &&
+                  na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2] <= -cos(CORNER_REF_ANGLE) && mi->planar[ti[k]] &&
+                  mj->planar[tj[k]];
+        count += flat[k];
+        touching |= flat[k] && !(d[k] > 0);
+    }
+    if (touching) {
+        memset(flat, 0, n);
+        count = 0;
+    }
+    return count;
 }
 
 /* One point: triangles (ti of body i, tj of body j), distance d, p on i, q on j. */

@@ -523,6 +523,22 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
         corner_rec *corner;
         const size_t ncorner = corner_refs(&shape[W->mesh_of[P->i]], wi, &shape[W->mesh_of[P->j]], wj, in, m, W->bytes, &corner);
         ENSURE(ncorner != SIZE_MAX);
+        /* the contacts of flat contact are no points: their region's corners stand for them */
+        uint32_t *cti = malloc(nc * sizeof *cti), *ctj = malloc(nc * sizeof *ctj);
+        double *cdist = malloc(nc * sizeof *cdist);
+        unsigned char *flat = malloc(nc);
+        ENSURE(cti && ctj && cdist && flat);
+        size_t nin = 0;
+        for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
+            if (P->d[x] <= m) {
+                cti[nin] = (uint32_t)(x / P->nt_j);
+                ctj[nin] = (uint32_t)(x % P->nt_j);
+                cdist[nin++] = P->d[x];
+            }
+        corner_ref_flat(&shape[W->mesh_of[P->i]], wi, &shape[W->mesh_of[P->j]], wj, nin, cti, ctj, cdist, flat);
+        free(cti);
+        free(ctj);
+        free(cdist);
         free(in);
         free(wi);
         free(wj);
@@ -531,13 +547,15 @@ static int check_against_brute(const world *W, const brute *B, const answers *A)
         double (*mid)[3] = malloc((nc + ncorner) * sizeof *mid), (*exact_mid)[3] = malloc((nc + ncorner) * sizeof *exact_mid);
         ENSURE(rec && ord && kept && mid && exact_mid);
         nc = 0;
+        size_t ci = 0;
         for (size_t x = 0; x < P->nt_i * P->nt_j; ++x)
-            if (P->d[x] <= m) {
+            if (P->d[x] <= m && !flat[ci++]) {
                 corner_rec r = {(uint32_t)(x / P->nt_j), (uint32_t)(x % P->nt_j), P->d[x], {0}, {0}};
                 memcpy(r.p, P->p + 3 * x, sizeof r.p);
                 memcpy(r.q, P->q + 3 * x, sizeof r.q);
                 rec[nc++] = r;
             }
+        free(flat);
         if (ncorner > 0)
             memcpy(rec + nc, corner, ncorner * sizeof *rec);
         nc += ncorner;

@@ -328,19 +328,38 @@ static size_t merged_count(ttd_scene *s, const ttd_gen_mesh *g, const double (*p
     const size_t nc = corner_refs(&shape[0], w[0], &shape[1], w[1], in, margin, 8, &corner);
     if (nc == SIZE_MAX)
         return SIZE_MAX;
-    const size_t n = ca.count + nc;
+    /* the contacts of flat contact are no points: their region's corners stand for them */
+    uint32_t *ti = malloc((ca.count + 1) * sizeof *ti), *tj = malloc((ca.count + 1) * sizeof *tj);
+    double *cd = malloc((ca.count + 1) * sizeof *cd);
+    unsigned char *flat = malloc(ca.count + 1);
+    if (ti == NULL || tj == NULL || cd == NULL || flat == NULL)
+        return SIZE_MAX;
+    for (size_t a = 0; a < ca.count; ++a) {
+        ti[a] = c[a].tri_i;
+        tj[a] = c[a].tri_j;
+        cd[a] = c[a].distance;
+    }
+    const size_t nflat = corner_ref_flat(&shape[0], w[0], &shape[1], w[1], ca.count, ti, tj, cd, flat);
+    const size_t n = ca.count - nflat + nc;
     corner_rec *rec = malloc((n + 1) * sizeof *rec);
     double (*kept)[3] = malloc((n + 1) * sizeof *kept);
     if (rec == NULL || kept == NULL)
         return SIZE_MAX;
+    size_t at = 0;
     for (size_t a = 0; a < ca.count; ++a) {
+        if (flat[a])
+            continue;
         corner_rec r = {c[a].tri_i, c[a].tri_j, c[a].distance, {0}, {0}};
         memcpy(r.p, c[a].p, sizeof r.p);
         memcpy(r.q, c[a].q, sizeof r.q);
-        rec[a] = r;
+        rec[at++] = r;
     }
+    free(ti);
+    free(tj);
+    free(cd);
+    free(flat);
     if (nc > 0)
-        memcpy(rec + ca.count, corner, nc * sizeof *rec);
+        memcpy(rec + at, corner, nc * sizeof *rec);
     for (size_t a = 1; a < n; ++a) /* depth order: distance, triangles, midpoint */
         for (size_t b = a; b > 0; --b) {
             const corner_rec *x = &rec[b], *y = &rec[b - 1];

@@ -236,6 +236,60 @@ def corners(world, i, j, margin):
     return out
 
 
+def planar_triangles(mesh):
+    """Per triangle: whether its flat piece (the triangles joined by flat edges) is planar, every
+    vertex of the piece within 2^-36 of the mesh's scale (the power of two at or above its largest
+    coordinate) of the plane of the piece's largest triangle (docs/scenes.md 5, step 0)."""
+    X = mesh.vertices.astype(np.float64)[mesh.faces]
+    nt = len(X)
+    place, _, _, flat_edge, _, has = mesh_shape(mesh)
+    piece = list(range(nt))
+
+    def root(t):
+        while piece[t] != t:
+            t = piece[t]
+        return t
+    for t in range(nt):
+        for k in range(3):
+            if flat_edge[t, k]:
+                a, b = place[t, k], place[t, (k + 1) % 3]
+                for u in range(nt):
+                    if u != t and a in place[u] and b in place[u]:
+                        ra, rb = root(t), root(u)
+                        piece[max(ra, rb)] = min(ra, rb)
+    top = float(np.abs(X).max()) if nt else 0.0
+    tol = math.ldexp(1.0, math.frexp(top)[1] - 36) if top > 0 else math.ldexp(1.0, -36)
+    groups = {}
+    for t in range(nt):
+        groups.setdefault(root(t), []).append(t)
+    planar = np.zeros(nt, dtype=bool)
+    for ts in groups.values():
+        areas = [np.linalg.norm(np.cross(X[t, 1] - X[t, 0], X[t, 2] - X[t, 0])) for t in ts]
+        big = ts[int(np.argmax(areas))]
+        n = np.cross(X[big, 1] - X[big, 0], X[big, 2] - X[big, 0])
+        ok = all(has[t] for t in ts) and np.linalg.norm(n) > 0
+        if ok:
+            n = n / np.linalg.norm(n)
+            ok = all(abs((X[t, k] - X[big, 0]) @ n) <= tol for t in ts for k in range(3))
+        planar[ts] = ok
+    return planar
+
+
+def flat_contacts(world, i, j, cs):
+    """Which contacts cs [(a, b, d, p, q)] of body pair (i, j) are of flat contact (docs/scenes.md 5,
+    step 0): face on face (as corners() tests it), both triangles' pieces planar; none when one
+    such contact is at distance 0. Their region's corners stand for them. The scenes here are
+    surfaces (a solid's pairs keep every contact)."""
+    NS, NT = unit_normals(world.tris[i]), unit_normals(world.tris[j])
+    hi, hj = mesh_shape(world.ms[i])[5], mesh_shape(world.ms[j])[5]
+    pi, pj = planar_triangles(world.ms[i]), planar_triangles(world.ms[j])
+    flat = [bool(hi[c[0]] and hj[c[1]] and NS[c[0]] @ NT[c[1]] <= -math.cos(CORNER_ANGLE) and pi[c[0]] and pj[c[1]])
+            for c in cs]
+    if any(f and not c[2] > 0 for f, c in zip(flat, cs)):
+        return [False] * len(cs)
+    return flat
+
+
 def manifold_kept(world, margin):
     """The points a manifold draws from, re-done (docs/scenes.md, section 5): per body pair, its
     contacts and the corners they add, in depth order (distance, triangles, midpoint), a point
@@ -247,7 +301,8 @@ def manifold_kept(world, margin):
         by_pair.setdefault(row[:2], []).append(row[2:])
     out = {}
     for (i, j), cs in sorted(by_pair.items()):
-        cs = cs + corners(world, i, j, margin)
+        flat = flat_contacts(world, i, j, cs)
+        cs = [c for c, f in zip(cs, flat) if not f] + corners(world, i, j, margin)
 
         def mid(c):
             return 0.5 * np.asarray(c[3], dtype=np.float64) + 0.5 * np.asarray(c[4], dtype=np.float64)

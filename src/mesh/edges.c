@@ -151,6 +151,7 @@ void ttd_mesh_edges_free(ttd_mesh_edges *e)
     free(e->ring);
     free(e->piece);
     free(e->piece_area);
+    free(e->piece_planar);
     free(e->normal);
     free(e->shape_solid);
     memset(e, 0, sizeof *e);
@@ -324,13 +325,65 @@ int ttd_mesh_edges_build(int bytes, const void *verts, size_t nv, const uint32_t
         for (size_t t = 0; t < nt; ++t)
             E.piece[t] = num[t];
         E.piece_area = malloc((E.npieces + 1) * sizeof *E.piece_area);
-        if (E.piece_area == NULL) {
+        E.piece_planar = malloc(E.npieces + 1);
+        if (E.piece_area == NULL || E.piece_planar == NULL) {
             free(num);
             free(area);
             goto nomem;
         }
         for (size_t p = 0; p < E.npieces; ++p)
             E.piece_area[p] = area[p] > 0 ? log2(area[p]) + 2 * es : -HUGE_VAL;
+        /* planar pieces: each piece's largest triangle (the first of equals) gives the plane,
+         * every vertex of the piece within TTD_PLANAR_TOL of it (at the mesh's scale); num and
+         * area are reused as each piece's largest triangle and its doubled area */
+        for (size_t p = 0; p < E.npieces; ++p) {
+            area[p] = -1;
+            E.piece_planar[p] = 1;
+        }
+        double *plane = malloc((4 * E.npieces + 1) * sizeof *plane);
+        if (plane == NULL) {
+            free(num);
+            free(area);
+            goto nomem;
+        }
+        for (int pass = 0; pass < 2; ++pass)
+            for (size_t t = 0; t < nt; ++t) {
+                const size_t p = E.piece[t];
+                double x[3][3];
+                for (int k = 0; k < 3; ++k) {
+                    vertex_at(bytes, verts, tris[3 * t + (size_t)k], x[k]);
+                    for (int c = 0; c < 3; ++c)
+                        x[k][c] = ldexp(x[k][c], -es);
+                }
+                if (pass == 0) { /* the largest triangle */
+                    const double e1[3] = {x[1][0] - x[0][0], x[1][1] - x[0][1], x[1][2] - x[0][2]};
+                    const double e2[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
+                    const double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                          e1[0] * e2[1] - e1[1] * e2[0]};
+                    const double l = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+                    if (l > area[p]) {
+                        area[p] = l;
+                        num[p] = (uint32_t)t;
+                        for (int c = 0; c < 3; ++c)
+                            plane[4 * p + (size_t)c] = l > 0 ? cr[c] / l : 0;
+                        plane[4 * p + 3] = 0;
+                        for (int c = 0; c < 3; ++c)
+                            plane[4 * p + 3] += plane[4 * p + (size_t)c] * x[0][c];
+                    }
+                } else { /* every vertex near that plane */
+                    if (!(area[p] > 0) || !has_normal[t]) {
+                        E.piece_planar[p] = 0;
+                        continue;
+                    }
+                    for (int k = 0; k < 3; ++k) {
+                        const double h = plane[4 * p] * x[k][0] + plane[4 * p + 1] * x[k][1] +
+                                         plane[4 * p + 2] * x[k][2] - plane[4 * p + 3];
+                        if (!(fabs(h) <= TTD_PLANAR_TOL))
+                            E.piece_planar[p] = 0;
+                    }
+                }
+            }
+        free(plane);
         free(num);
         free(area);
     }

@@ -43,6 +43,10 @@ enum {
  * 1e-7 over the triangle's aspect ratio), far below the angle between neighbours of a curved
  * surface of any realistic tessellation (a 1M-triangle torus's are several 1e-3). */
 #define TTD_FLAT_ANGLE 1e-3
+/* A flat piece is planar when its vertices lie within this fraction of the mesh's largest
+ * coordinate (the scale its vertices are rounded at) of one plane: far above the rounding of a
+ * plane's points in double or float, far below any gap a contact margin measures. */
+#define TTD_PLANAR_TOL 0x1p-36
 /* At most this many triangles around a corner (its normal cone has one side per edge). */
 #define TTD_CORNER_MAX 16
 /* The triangle across an open edge. */
@@ -58,6 +62,10 @@ typedef struct ttd_mesh_edges {
     uint32_t *piece;      /* nt: the flat piece of each triangle (triangles joined by flat edges),
                            * numbered by their first triangle's turn */
     double *piece_area;   /* per piece: log2 of its area (-inf for none) */
+    unsigned char *piece_planar; /* per piece: 1 when every vertex of its triangles lies within
+                                  * TTD_PLANAR_TOL of the plane of its largest triangle (a flat
+                                  * piece may bend by up to TTD_FLAT_ANGLE at each flat edge:
+                                  * a finely cut cylinder is one piece, not planar) */
     size_t npieces;
     float *normal;        /* 3 nt: each triangle's unit normal in the mesh's frame (0 for none),
                            * for a cheap test of how two triangles face each other */

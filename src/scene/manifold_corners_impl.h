@@ -318,26 +318,12 @@ static corner_seen *seen_get(manifold_work *w, const corner_key *q)
     return &w->seen[seen_slot(w->seen, w->seen_cap, w->ctri_pair, q->kind, q->a, q->b)];
 }
 
-/* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face,
- * and a vertex or an edge may lie within the margin of the other triangle. rel: R_i^T R_j, body
- * j's rotation in body i's frame. 0 out of memory. */
-static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, const double rel[9],
-                           manifold_work *w)
+/* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face
+ * (pair_flat), and a vertex or an edge may lie within the margin of the other triangle. 0 out of
+ * memory. */
+static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c, real margin, manifold_work *w)
 {
     const uint32_t id[2] = {c->i, c->j}, tri[2] = {c->tri_i, c->tri_j};
-    /* face on face: the triangles' normals opposite within CORNER_ANGLE (the meshes' normals, in
-     * body i's frame) */
-    const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c->i].mesh), *Ej = ttd_mesh_edges_made(s->body[c->j].mesh);
-    const float *ni = Ei->normal + 3 * (size_t)c->tri_i;
-    const float *nj = Ej->normal + 3 * (size_t)c->tri_j;
-    double facing = 0;
-    for (int r = 0; r < 3; ++r)
-        facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
-    /* a solid of an inward mesh faces the other way (edges.h, inward) */
-    if ((Ei->inward && s->body[c->i].solid) != (Ej->inward && s->body[c->j].solid))
-        facing = -facing;
-    if (!(facing <= -cos(CORNER_ANGLE)))
-        return 1;
     const corner_tri *T[2] = {corner_tri_get(s, w, 0, c->i, c->tri_i), corner_tri_get(s, w, 1, c->j, c->tri_j)};
     const real *x[2] = {T[0]->x, T[1]->x};
     const ttd_mesh_edges *E[2];
@@ -417,6 +403,64 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     return 1;
 }
 
+/* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
+ * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
+ * CORNER_ANGLE (the meshes' normals, in body i's frame). Flat: face on face, both triangles' flat
+ * pieces planar (mesh/edges.h), neither body a solid, and no face-on-face contact of planar pieces
+ * in the pair at distance 0 (two pieces that touch or cross: the overlap's corners need not hold
+ * the deepest point, which may lie where they cross). 0 out of memory. */
+static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat)
+{
+    *nflat = 0;
+    if (n == 0)
+        return 1;
+    if (n > w->face_cap) {
+        unsigned char *f = realloc(w->face, n);
+        if (f == NULL)
+            return 0;
+        w->face = f;
+        w->face_cap = n;
+    }
+    double rel[9]; /* R_i^T R_j */
+    const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
+    for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q)
+            rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
+    const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c[0].i].mesh), *Ej = ttd_mesh_edges_made(s->body[c[0].j].mesh);
+    /* a solid of an inward mesh faces the other way (edges.h, inward) */
+    const double flip = (Ei->inward && s->body[c[0].i].solid) != (Ej->inward && s->body[c[0].j].solid) ? -1 : 1;
+    const double lim = -cos(CORNER_ANGLE);
+    /* a solid's pairs keep every contact (with them, examples/sim's bin of solid tori and balls
+     * drifted: docs/scene-speed.md, section 8) */
+    const int solid = s->body[c[0].i].solid || s->body[c[0].j].solid;
+    int touching = solid;
+    size_t m = 0;
+    for (size_t k = 0; k < n; ++k) {
+        const float *ni = Ei->normal + 3 * (size_t)c[k].tri_i;
+        const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
+        double facing = 0;
+        for (int r = 0; r < 3; ++r)
+            facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+        unsigned char f = 0;
+        if (flip * facing <= lim) {
+            f = FACE_ON_FACE;
+            if (Ei->piece_planar[Ei->piece[c[k].tri_i]] && Ej->piece_planar[Ej->piece[c[k].tri_j]]) {
+                f |= FACE_FLAT;
+                touching |= !(c[k].distance > 0);
+                ++m;
+            }
+        }
+        w->face[k] = f;
+    }
+    if (touching) {
+        for (size_t k = 0; k < n; ++k)
+            w->face[k] &= (unsigned char)~FACE_FLAT;
+        m = 0;
+    }
+    *nflat = m;
+    return 1;
+}
+
 /* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
 static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, uint32_t j, const corner_key *q,
                       real margin, ttd_scene_contact *out, uint8_t feat[2])
@@ -467,7 +511,7 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
     return 1;
 }
 
-/* Step 0: the corners the pair's n contacts c add, into w->all (a solid pair's vertices found
+/* Step 0: the corners the pair's n contacts c add (those face on face: w->face, pair_flat), into w->all (a solid pair's vertices found
  * inside the other body left out: they have their negative distances). reach: NULL, or those
  * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
  * than each contact that asks for it, so these are all the corners within that reach, each
@@ -482,13 +526,9 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         return 0;
     w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
     w->seen_n = 0;  /* and so are the vertex questions met */
-    double rel[9]; /* R_i^T R_j */
-    const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
-    for (int r = 0; r < 3; ++r)
-        for (int q = 0; q < 3; ++q)
-            rel[3 * r + q] = pi[r] * pj[q] + pi[4 + r] * pj[4 + q] + pi[8 + r] * pj[8 + q];
     for (size_t k = 0; k < n; ++k)
-        if ((reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) && !contact_corners(s, &c[k], margin, rel, w))
+        if ((w->face[k] & FACE_ON_FACE) && (reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) &&
+            !contact_corners(s, &c[k], margin, w))
             return 0;
     if (w->key_n == 0)
         return 1;

@@ -95,6 +95,8 @@ typedef struct manifold_work {
     size_t near_cap;
     struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
     uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
+    unsigned char *face;      /* step 0: per contact, FACE_ON_FACE and FACE_FLAT bits */
+    size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
     struct region_item *reg;  /* 5b regions: the pair's points below 0, by their first coordinate */
@@ -102,6 +104,12 @@ typedef struct manifold_work {
     double *reg_n;            /* 5b regions: each region's direction, by its number */
     size_t reg_cap;
 } manifold_work;
+
+/* Step 0's per-contact bits (manifold_work.face): the triangles lie face on face (the contact
+ * asks for its corners); and the contact is of flat contact (face on face, both flat pieces
+ * planar, in a pair whose flat contacts are all at a distance above 0): its region stands for
+ * it by the corners, and it does not enter the reduction as a point (docs/scenes.md, section 5). */
+enum { FACE_ON_FACE = 1, FACE_FLAT = 2 };
 
 /* A point of a pair: a contact (the triangle pair's closest points), a corner, or a point of a
  * solid inside the other (inside 0: p, a vertex of body i inside body j; 1: q, a vertex of body j
@@ -153,6 +161,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->res);
     free(w->key);
     free(w->key_tmp);
+    free(w->face);
     free(w->near);
     free(w->ctri);
     free(w->seen);
@@ -229,12 +238,17 @@ static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside, un
     return 1;
 }
 
-/* The n contacts c into w->all before the points already there. 0 out of memory. */
-static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
+/* The n contacts c into w->all before the points already there, but those of flat contact
+ * (drop: the mask w->face, bit FACE_FLAT set: left out, section 5 step 0; NULL: every contact).
+ * 0 out of memory. */
+static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n, const unsigned char *drop)
 {
-    if (w->all_n + n > w->all_cap) {
+    size_t m = n;
+    for (size_t k = 0; drop != NULL && k < n; ++k)
+        m -= (drop[k] & FACE_FLAT) != 0;
+    if (w->all_n + m > w->all_cap) {
         size_t cap = w->all_cap ? w->all_cap : 256;
-        while (cap < w->all_n + n)
+        while (cap < w->all_n + m)
             cap *= 2;
         manifold_rec *v = realloc(w->all, cap * sizeof *v);
         if (v == NULL)
@@ -242,15 +256,19 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n)
         w->all = v;
         w->all_cap = cap;
     }
-    if (w->all_n > 0)
-        memmove(w->all + n, w->all, w->all_n * sizeof *w->all);
+    if (w->all_n > 0 && m > 0)
+        memmove(w->all + m, w->all, w->all_n * sizeof *w->all);
+    size_t o = 0;
     for (size_t k = 0; k < n; ++k) {
-        w->all[k].c = c[k];
-        w->all[k].inside = -1;
-        w->all[k].region = UINT32_MAX;
-        w->all[k].feat[0] = w->all[k].feat[1] = 0;
+        if (drop != NULL && (drop[k] & FACE_FLAT))
+            continue;
+        w->all[o].c = c[k];
+        w->all[o].inside = -1;
+        w->all[o].region = UINT32_MAX;
+        w->all[o].feat[0] = w->all[o].feat[1] = 0;
+        ++o;
     }
-    w->all_n += n;
+    w->all_n += m;
     return 1;
 }
 
@@ -275,11 +293,18 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
                        const ttd_scene_contact *c0, size_t n0, real margin, size_t max, manifold_work *w,
                        ttd_scene_array *out)
 {
-    /* the points into w->all: the contacts (where max > 0, only when all the points are needed,
-     * below), a solid pair's inside points, the corners */
+    /* step 0's bits: which contacts are face on face, and which are of flat contact (their
+     * region's corners stand for them: they are not points); then the points into w->all: the
+     * contacts (where max > 0, only when all the points are needed, below), a solid pair's
+     * inside points, the corners */
+    size_t nflat;
+    if (!pair_flat(s, c0, n0, w, &nflat))
+        return 0;
+    const unsigned char *drop = nflat > 0 ? w->face : NULL;
+again:
     w->all_n = 0;
     for (size_t k = 0; max == 0 && k < n0; ++k)
-        if (!all_push(w, &c0[k], -1, 0, 0))
+        if (!(drop != NULL && (drop[k] & FACE_FLAT)) && !all_push(w, &c0[k], -1, 0, 0))
             return 0;
     w->solid = solid_pair(s, p->i, p->j);
     if (w->solid) {
@@ -349,12 +374,15 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         const double reach[2] = {d0, window > level ? window : level};
         if (!pair_corners(s, c0, n0, margin, reach, w))
             return 0;
-        const size_t n = n0 + w->all_n;
+        const size_t n = n0 - (drop != NULL ? nflat : 0) + w->all_n;
         if (!near_reserve(w, n))
             return 0;
         size_t m = 0; /* in the order of w->all were the contacts in it: contacts, inside points, corners */
+        size_t far_flat = 0; /* contacts of flat contact beyond the reach (not asked) */
         for (size_t k = 0; k < n0; ++k)
-            if ((double)c0[k].distance - d0 <= reach[1]) {
+            if (drop != NULL && (drop[k] & FACE_FLAT))
+                far_flat += (double)c0[k].distance - d0 <= reach[1] ? 0 : 1;
+            else if ((double)c0[k].distance - d0 <= reach[1]) {
                 w->near[m].c = c0[k];
                 w->near[m].feat[0] = w->near[m].feat[1] = 0;
                 w->near[m].region = UINT32_MAX;
@@ -363,8 +391,10 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
         for (size_t k = 0; k < w->all_n; ++k)
             if ((double)w->all[k].c.distance - d0 <= reach[1])
                 w->near[m++] = w->all[k];
-        corners = m == n; /* every contact asked */
-        if (m > 0 && m < n) {
+        corners = m == n && far_flat == 0; /* every contact asked */
+        /* points beyond the reach: the contacts and corners there, and the corners of the flat
+         * contacts there (not asked: they lie no nearer than their contacts) */
+        if (m > 0 && (m < n || far_flat > 0)) {
             if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
                 return 0;
             ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
@@ -374,13 +404,19 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
             /* all the points: the contacts before the others, step 0 again unless done for all */
             if (!corners)
                 w->all_n = n_pre;
-            if (!all_front(w, c0, n0))
+            if (!all_front(w, c0, n0, drop))
                 return 0;
         }
     }
     if (ns == 0) {
         if (!corners && !pair_corners(s, c0, n0, margin, NULL, w))
             return 0;
+        if (w->all_n == 0 && drop != NULL) {
+            /* flat contacts whose corners all lie beyond the margin by the exact method's
+             * rounding (the region at the margin's edge): the contacts stand for themselves */
+            drop = NULL;
+            goto again;
+        }
         if (w->all_n == 0)
             return 1;
         if ((nk = order_merge(w, &w->all, &w->all_cap, w->all_n, f1, f2, tol)) == 0)
