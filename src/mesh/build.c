@@ -839,6 +839,8 @@ static void prepare_vertices(void *ctx, size_t b, int worker)
     }
 }
 
+static void refit_scratch_free(void *scratch);
+
 void ttd_mesh_free(struct ttd_mesh *mesh)
 {
     if (mesh == NULL)
@@ -851,6 +853,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->tris);
     free(mesh->nodes);
     free(mesh->leaf_vix);
+    refit_scratch_free(mesh->refit_scratch);
     if (mesh->edges != NULL) {
         ttd_mesh_edges_free(mesh->edges);
         free(mesh->edges);
@@ -1308,6 +1311,51 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
     normalize3(u + 3, u + 3);
 }
 
+/* The refit's scratch, kept with the mesh (m->refit_scratch) from its first refit on, through
+ * rebuilds (sized again where the node count differs), freed with the mesh: each node's subtree
+ * sums (written before its parent reads them) and part of the measure (written for every node by
+ * every refit), and the list of the subtrees refitted in parallel; it carries nothing from one
+ * refit to the next. Allocated afresh by every refit, its pages were faulted in again each time
+ * (520 faults a refit at 1M triangles: docs/mesh-queries.md, section 6). */
+typedef struct refit_scratch {
+    size_t nnodes;     /* the tree it was made for */
+    fitsum *sums;      /* per node */
+    double (*area)[2]; /* per node */
+    subtree list[64];
+} refit_scratch;
+
+static void refit_scratch_free(void *scratch)
+{
+    refit_scratch *S = scratch;
+    if (S == NULL)
+        return;
+    free(S->sums);
+    free(S->area);
+    free(S);
+}
+
+/* m's scratch for a tree of m->nnodes nodes (made on the first call, kept after): NULL out of
+ * memory, m unchanged. */
+static refit_scratch *refit_scratch_get(struct ttd_mesh *m)
+{
+    refit_scratch *S = m->refit_scratch;
+    if (S != NULL && S->nnodes == m->nnodes)
+        return S;
+    S = malloc(sizeof *S);
+    if (S == NULL)
+        return NULL;
+    S->nnodes = m->nnodes;
+    S->sums = ttd_big_alloc(m->nnodes * sizeof *S->sums);
+    S->area = ttd_big_alloc(m->nnodes * sizeof *S->area);
+    if (S->sums == NULL || S->area == NULL) {
+        refit_scratch_free(S);
+        return NULL;
+    }
+    refit_scratch_free(m->refit_scratch);
+    m->refit_scratch = S;
+    return S;
+}
+
 typedef struct refit {
     const struct ttd_mesh *mesh;
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
@@ -1556,11 +1604,6 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
     double S[14][TTD_NODE_WIDTH], old[9][TTD_NODE_WIDTH], u[9][TTD_NODE_WIDTH];
     int32_t child[TTD_NODE_WIDTH];
     unsigned boxes = 0, leaves = 0;
-    /* defined numbers in the lanes no slot fills (a count of 1 where refit_axes divides by it) */
-    memset(S, 0, sizeof S);
-    memset(old, 0, sizeof old);
-    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
-        S[4][j] = 1;
     for (int j = 0; j < count; ++j) {
         child[j] = slot_child(m, (size_t)n, j);
         if (child[j] < 0) {
@@ -1589,7 +1632,16 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
         }
     }
     if (boxes != 0) {
-            const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
+        /* defined numbers in the lanes no box fills (a count of 1 where refit_axes divides by
+         * it): set here, lane by lane, instead of clearing both arrays first (1.3% of a refit) */
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+            if (!(boxes >> j & 1)) {
+                for (int k = 0; k < 14; ++k)
+                    S[k][j] = k == 4;
+                for (int k = 0; k < 9; ++k)
+                    old[k][j] = 0;
+            }
+        const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
                                                                    (const double(*)[TTD_NODE_WIDTH])old, boxes, u)
                                                     : 0;
         for (int j = 0; j < count; ++j) {
@@ -1687,6 +1739,8 @@ static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
     m->closed = old.closed;
     m->self_scratch = old.self_scratch; /* arrays only: sized again by the next self query */
     old.self_scratch = NULL;
+    m->refit_scratch = old.refit_scratch; /* no state: sized again by the next refit */
+    old.refit_scratch = NULL;
     *fresh = old;
     ttd_mesh_free(fresh);
 }
@@ -1733,25 +1787,19 @@ static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
-    /* everything is allocated before the mesh changes: out of memory, it is as it was */
+    /* everything is allocated before the mesh changes: out of memory, it is as it was (the
+     * scratch and leaf_vix, made for this tree, may stay: the next refit uses them) */
     const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
-    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
-               row != NULL ? row->leaf_axes : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
-               ttd_big_alloc(m->nnodes * sizeof *R.area), malloc(64 * sizeof(subtree))};
     if (m->leaf_vix == NULL) /* the first refit (of this tree) */
         m->leaf_vix = leaf_indices(m);
-    if (R.sums == NULL || R.area == NULL || R.list == NULL || m->leaf_vix == NULL) {
-        free(R.sums);
-        free(R.area);
-        free(R.list);
+    refit_scratch *S = refit_scratch_get(m);
+    if (S == NULL || m->leaf_vix == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    }
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
+               row != NULL ? row->leaf_axes : NULL, S->sums, S->area, S->list};
     memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
     m->generation++;
     refit_derived(cfg, m, verts, &R);
-    free(R.sums);
-    free(R.area);
-    free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);
     return TTD_OK;
