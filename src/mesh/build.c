@@ -883,15 +883,19 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
 }
 
 /* place's passes over vertices of type T (double or float): the range of each coordinate into
- * mn, mx; then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
+ * mn, mx (and, with COPY, the vertices into m->verts as they are read); then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
  * vrel unless NULL). One loop per precision, the coordinates unrolled: a branch on the precision
  * and an index modulo 3 per coordinate were most of place's instructions (a 10th of a refit). */
-#define PLACE_RANGE(T)                                                                             \
+#define PLACE_RANGE(T, COPY)                                                                       \
     do {                                                                                           \
         const T *v = verts;                                                                        \
+        T *to = m->verts;                                                                          \
         for (size_t i = 0; i < nv; ++i)                                                            \
             for (int c = 0; c < 3; ++c) {                                                          \
-                const double x = (double)v[3 * i + (size_t)c];                                     \
+                const T y = v[3 * i + (size_t)c];                                                  \
+                const double x = (double)y;                                                        \
+                if (COPY)                                                                          \
+                    to[3 * i + (size_t)c] = y;                                                     \
                 mn[c] = dmin(mn[c], x);                                                            \
                 mx[c] = dmax(mx[c], x);                                                            \
             }                                                                                      \
@@ -922,15 +926,21 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
     } while (0)
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
- * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL). */
-static void place(struct ttd_mesh *m, const void *verts, double *vrel)
+ * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL).
+ * With copy, verts is also copied into m->verts by the range's pass (a refit: a memcpy before it
+ * read the vertices once more, 2% of a refit's instructions at 10k triangles). */
+static void place(struct ttd_mesh *m, const void *verts, double *vrel, int copy)
 {
     const size_t nv = m->nv;
     double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    if (m->bytes == 8)
-        PLACE_RANGE(double);
+    if (m->bytes == 8 && copy)
+        PLACE_RANGE(double, 1);
+    else if (m->bytes == 8)
+        PLACE_RANGE(double, 0);
+    else if (copy)
+        PLACE_RANGE(float, 1);
     else
-        PLACE_RANGE(float);
+        PLACE_RANGE(float, 0);
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
@@ -1040,6 +1050,32 @@ static void node_areas(const struct ttd_mesh *m, size_t n, double a[2])
 }
 #undef NODE_AREAS
 
+/* node_areas of a leaf (every slot a triangle): the same sums without a branch per slot, the
+ * areas of all 8 lanes first (the lanes past count hold zeros, and are not summed) */
+#define LEAF_AREAS(T)                                                                              \
+    do {                                                                                           \
+        const T *nd = (const T *)m->nodes + n;                                                     \
+        count = nd->count;                                                                         \
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {                                                 \
+            const double e[3] = {(double)nd->e[0][j], (double)nd->e[1][j], (double)nd->e[2][j]};   \
+            h[j] = half_area(e);                                                                   \
+        }                                                                                          \
+    } while (0)
+
+static void leaf_areas(const struct ttd_mesh *m, size_t n, double a[2])
+{
+    double h[TTD_NODE_WIDTH];
+    int count;
+    if (m->bytes == 8)
+        LEAF_AREAS(ttd_node_d);
+    else
+        LEAF_AREAS(ttd_node_f);
+    a[0] = a[1] = 0;
+    for (int j = 0; j < count; ++j)
+        a[1] += h[j];
+}
+#undef LEAF_AREAS
+
 /* The measure from every node's part (node_areas), summed in node order: the same bits however
  * the parts were made (by the build, by a refit on any number of threads). */
 static double quality_of(const double (*area)[2], size_t nnodes)
@@ -1095,7 +1131,7 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-    place(m, verts, vrel);
+    place(m, verts, vrel, 0);
     B.vrel = vrel;
     int e;
     frexp(m->radius, &e);
@@ -1604,17 +1640,14 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
     double S[14][TTD_NODE_WIDTH], old[9][TTD_NODE_WIDTH], u[9][TTD_NODE_WIDTH];
     int32_t child[TTD_NODE_WIDTH];
     unsigned boxes = 0, leaves = 0;
-    /* the slots' axes before the move (those of lone triangles too, unused), read before the
-     * leaves are fitted: read after the first leaf's fit, their 9 lines were a first touch of the
-     * node that waited alone (12% of refit_node's samples at 100k); read here, they arrive while
-     * the first leaf's vertices do */
+    /* the slots' axes before the move (every lane's: those holding no box are set below), read
+     * before the leaves are fitted: read after the first leaf's fit, their 9 lines were a first
+     * touch of the node that waited alone (12% of refit_node's samples at 100k) */
     if (m->bytes == 8) {
-        for (int k = 0; k < 9; ++k)
-            for (int j = 0; j < count; ++j)
-                old[k][j] = ((const ttd_node_d *)m->nodes)[n].u[k][j];
+        memcpy(old, ((const ttd_node_d *)m->nodes)[n].u, sizeof old); /* every lane: a fixed copy */
     } else {
         for (int k = 0; k < 9; ++k)
-            for (int j = 0; j < count; ++j)
+            for (int j = 0; j < TTD_NODE_WIDTH; ++j)
                 old[k][j] = (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
     }
     for (int j = 0; j < count; ++j) {
@@ -1627,7 +1660,7 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
         if (slot_child(m, (size_t)child[j], 0) < 0) {
             leaves |= 1u << j;
             sum[j] = leaf_fit(R, child[j], &L[j]);
-            node_areas(m, (size_t)child[j], R->area[child[j]]);
+            leaf_areas(m, (size_t)child[j], R->area[child[j]]);
         } else {
             sum[j] = R->sums[child[j]];
         }
@@ -1781,7 +1814,7 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
  * flag, mesh/solid.c) stays as it is. */
 static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R)
 {
-    place(m, verts, NULL);
+    place(m, verts, NULL, 1); /* and the copy into m->verts */
     refit_boxes(cfg, m, R);
     m->quality = quality_of((const double(*)[2])R->area, m->nnodes);
     if (m->edges != NULL) {
@@ -1803,8 +1836,7 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
         return TTD_ERR_OUT_OF_MEMORY;
     refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
                row != NULL ? row->leaf_axes : NULL, S->sums, S->area, S->list};
-    memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
-    m->generation++;
+    m->generation++; /* the vertices are copied by refit_derived's place */
     refit_derived(cfg, m, verts, &R);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);
