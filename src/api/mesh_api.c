@@ -22,7 +22,6 @@
 
 /* ---- building ---------------------------------------------------------------------------- */
 
-/* The build's checks of vertex coordinates: finite, then within the range. */
 /* 1 where some coordinate of type T is not finite or beyond range (NaN fails the comparison): one
  * pass without a branch per coordinate, for the common case (every refit of a deforming mesh
  * checks its vertices: a branch and a test of the precision per coordinate were 4% of a refit). */
@@ -33,6 +32,7 @@
             out |= !(fabs((double)v[i]) <= range);                                                 \
     } while (0)
 
+/* The build's checks of vertex coordinates: finite, then within the range. */
 static ttd_status check_vertices(int bytes, const void *vertices, size_t nv)
 {
     const double range = ttd_mesh_range(bytes);

@@ -883,9 +883,10 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
 }
 
 /* place's passes over vertices of type T (double or float): the range of each coordinate into
- * mn, mx (and, with COPY, the vertices into m->verts as they are read); then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
- * vrel unless NULL). One loop per precision, the coordinates unrolled: a branch on the precision
- * and an index modulo 3 per coordinate were most of place's instructions (a 10th of a refit). */
+ * mn, mx (and, with COPY, the vertices into m->verts as they are read); then, with the origin o,
+ * the largest |x - o| of any coordinate into *big (and x - o into vrel unless NULL). One loop per
+ * precision, the coordinates unrolled: a branch on the precision and an index modulo 3 per
+ * coordinate were most of place's instructions (a 10th of a refit). */
 #define PLACE_RANGE(T, COPY)                                                                       \
     do {                                                                                           \
         const T *v = verts;                                                                        \
@@ -1676,7 +1677,7 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
         for (int j = 0; j < TTD_NODE_WIDTH; ++j)
             if (!(boxes >> j & 1)) {
                 for (int k = 0; k < 14; ++k)
-                    S[k][j] = k == 4;
+                    S[k][j] = k == 4 ? 1.0 : 0.0;
                 for (int k = 0; k < 9; ++k)
                     old[k][j] = 0;
             }
