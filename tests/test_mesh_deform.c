@@ -16,6 +16,8 @@
  *   - refits at 1e30, 1e-30 and mixed scales, of one triangle and of degenerate ones, twice in a
  *     row, and a refit on a rebuilt tree: each as a fresh build (distance, contacts,
  *     self-contacts) and the brute force;
+ *   - the refit's scratch kept with the mesh (through refused refits and a rebuild): the same
+ *     nodes and measure as without them, the measure the nodes' own;
  *   - solid queries see moved vertices (a sphere moved inside another is contained, and out);
  *   - scenes of deforming bodies: a scene's contacts, step after step of meshes moved (one of
  *     them shared by two bodies), against the brute force over every body pair in the world;
@@ -1060,6 +1062,126 @@ static int refit_extremes_and_after_rebuild(void)
     return 0;
 }
 
+/* The tree's measure as section 2b of docs/mesh-queries.md defines it, from the nodes' boxes as
+ * they are now: each node's slots' box areas (subtrees and triangles apart) in slot order, the
+ * nodes' sums in node order (the refit's own order, so the same bits). */
+static double measure_of_nodes(const ttd_mesh *m)
+{
+    double sub = 0, tri = 0;
+    for (size_t n = 0; n < m->nnodes; ++n) {
+        double a[2] = {0, 0};
+        const ttd_node_d *nd = (const ttd_node_d *)m->nodes + n;
+        for (int j = 0; j < nd->count; ++j) {
+            const double *e0 = nd->e[0], *e1 = nd->e[1], *e2 = nd->e[2];
+            a[nd->child[j] >= 0 ? 0 : 1] += 4 * (e0[j] * e1[j] + e1[j] * e2[j] + e2[j] * e0[j]);
+        }
+        sub += a[0];
+        tri += a[1];
+    }
+    return tri > 0 ? sub / tri : 0;
+}
+
+/* The refit's scratch (per-node sums and measure parts) is kept with the mesh from its first
+ * refit on, through a rebuild, and carries nothing from one refit to the next: a mesh refitted
+ * through a sequence with its scratch kept, and a refused refit (NaN, inf) in the middle, ends
+ * with the same nodes and measure, bit for bit, as a mesh given the same sequence without the
+ * refused refits, and its measure after every refit is the one the nodes define. A refused
+ * refit leaves everything as it was (nodes, vertices, generation, measure, scratch). After a
+ * rebuild (the scattered soup of refit_extremes_and_after_rebuild) the scratch is kept and the
+ * next refits' measure is again the nodes'. */
+static int refit_scratch_reused(void)
+{
+    ttd_gen_mesh g, moved;
+    ENSURE(ttd_gen_torus(1.0, 0.3, 40, 20, &g) == 0 && ttd_gen_mesh_copy(&g, &moved) == 0);
+    ttd_mesh *a, *b;
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &a) == TTD_OK);
+    ENSURE(ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &b) == TTD_OK);
+    ENSURE(a->refit_scratch == NULL);
+    const size_t node_bytes = a->nnodes * sizeof(ttd_node_d);
+    void *before = malloc(node_bytes);
+    double *bad = malloc(3 * g.nv * sizeof *bad);
+    ENSURE(before != NULL && bad != NULL);
+    const void *scratch = NULL;
+    int refits = 0;
+    for (int step = 0; step < 8; ++step) {
+        deform(&g, step % 2 ? DEF_BEND : DEF_TWIST, 0.1 * (step + 1), moved.verts);
+        ENSURE(ttd_mesh_set_vertices_d(NULL, a, moved.verts) == TTD_OK);
+        ENSURE(ttd_mesh_set_vertices_d(NULL, b, moved.verts) == TTD_OK);
+        ++refits;
+        if (scratch == NULL)
+            scratch = a->refit_scratch;
+        ENSURE_MSG(scratch != NULL && a->refit_scratch == scratch, "step %d: the scratch not kept", step);
+        ENSURE_MSG(a->quality == measure_of_nodes(a), "step %d: measure %.17g, the nodes' %.17g", step, a->quality,
+                   measure_of_nodes(a));
+        /* a refit refused: NaN, then inf, at a vertex the first leaf and the last read */
+        ttd_mesh_refit_info i0, i1;
+        ENSURE(ttd_mesh_get_refit_info(a, &i0) == TTD_OK);
+        memcpy(before, a->nodes, node_bytes);
+        memcpy(bad, moved.verts, 3 * g.nv * sizeof *bad);
+        bad[3 * (size_t)(step % 2 ? 0 : g.nv - 1) + 1] = step % 2 ? (double)INFINITY : (double)NAN;
+        ENSURE(ttd_mesh_set_vertices_d(NULL, a, bad) == TTD_ERR_NONFINITE_MESH);
+        ENSURE(ttd_mesh_get_refit_info(a, &i1) == TTD_OK);
+        ENSURE_MSG(i1.generation == i0.generation && i1.rebuilds == i0.rebuilds && i1.quality == i0.quality,
+                   "step %d: a refused refit changed the refit info", step);
+        ENSURE_MSG(memcmp(before, a->nodes, node_bytes) == 0, "step %d: a refused refit changed the nodes", step);
+        ENSURE(memcmp(a->verts, moved.verts, 3 * g.nv * sizeof *bad) == 0 && a->refit_scratch == scratch);
+        ENSURE_MSG(nodes_equal(a, b) && a->quality == b->quality, "step %d: nodes or measure differ", step);
+    }
+    ttd_mesh_destroy(a);
+    ttd_mesh_destroy(b);
+
+    /* through a rebuild: triangles of a soup moved to one another's places */
+    ttd_gen_mesh ico, soup, now;
+    ENSURE(ttd_gen_icosphere(2, &ico) == 0);
+    soup.nt = ico.nt;
+    soup.nv = 3 * ico.nt;
+    soup.verts = malloc(3 * soup.nv * sizeof *soup.verts);
+    soup.tris = malloc(3 * soup.nt * sizeof *soup.tris);
+    ENSURE(soup.verts != NULL && soup.tris != NULL);
+    for (size_t t = 0; t < soup.nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            soup.tris[3 * t + (size_t)k] = (uint32_t)(3 * t + (size_t)k);
+            memcpy(soup.verts + 9 * t + 3 * k, ico.verts + 3 * (size_t)ico.tris[3 * t + (size_t)k], 3 * sizeof(double));
+        }
+    ENSURE(ttd_gen_mesh_copy(&soup, &now) == 0);
+    ttd_mesh *m;
+    ENSURE(ttd_mesh_create_d(NULL, soup.verts, soup.nv, soup.tris, soup.nt, &m) == TTD_OK);
+    ENSURE(ttd_mesh_set_vertices_d(NULL, m, soup.verts) == TTD_OK);
+    scratch = m->refit_scratch;
+    rng = 11;
+    for (size_t t = soup.nt; t > 1; --t) {
+        const size_t u = (size_t)(urand() * (double)t);
+        double x[9];
+        memcpy(x, now.verts + 9 * (t - 1), sizeof x);
+        memcpy(now.verts + 9 * (t - 1), now.verts + 9 * u, sizeof x);
+        memcpy(now.verts + 9 * u, x, sizeof x);
+    }
+    ENSURE(ttd_mesh_set_vertices_d(NULL, m, now.verts) == TTD_OK);
+    ttd_mesh_refit_info info;
+    ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.rebuilds == 1);
+    ENSURE_MSG(m->refit_scratch == scratch, "the scratch not kept through the rebuild");
+    ENSURE(m->quality == measure_of_nodes(m) && m->quality == m->quality_built);
+    for (int step = 1; step <= 3; ++step) {
+        for (size_t i = 0; i < now.nv; ++i)
+            now.verts[3 * i + 1] *= 1 + 0.02 * step;
+        ENSURE(ttd_mesh_set_vertices_d(NULL, m, now.verts) == TTD_OK);
+        ENSURE(ttd_mesh_get_refit_info(m, &info) == TTD_OK && info.rebuilds == 1);
+        ENSURE_MSG(m->quality == measure_of_nodes(m), "after the rebuild, refit %d: measure %.17g, the nodes' %.17g",
+                   step, m->quality, measure_of_nodes(m));
+        ++refits;
+    }
+    printf("  %d refits with the scratch kept (and 8 refused between them): the same nodes and measure\n", refits);
+    ttd_mesh_destroy(m);
+    free(before);
+    free(bad);
+    ttd_gen_mesh_free(&ico);
+    ttd_gen_mesh_free(&soup);
+    ttd_gen_mesh_free(&now);
+    ttd_gen_mesh_free(&g);
+    ttd_gen_mesh_free(&moved);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -1071,6 +1193,7 @@ int main(int argc, char **argv)
     RUN_TEST(refit_bits_every_isa);
     RUN_TEST(bad_vertices_refused);
     RUN_TEST(refit_extremes_and_after_rebuild);
+    RUN_TEST(refit_scratch_reused);
     RUN_TEST(solids_after_refit);
     RUN_TEST(derived_data_after_refit);
     RUN_TEST(deforming_bodies_in_a_scene);

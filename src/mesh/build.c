@@ -839,6 +839,8 @@ static void prepare_vertices(void *ctx, size_t b, int worker)
     }
 }
 
+static void refit_scratch_free(void *scratch);
+
 void ttd_mesh_free(struct ttd_mesh *mesh)
 {
     if (mesh == NULL)
@@ -851,6 +853,7 @@ void ttd_mesh_free(struct ttd_mesh *mesh)
     free(mesh->tris);
     free(mesh->nodes);
     free(mesh->leaf_vix);
+    refit_scratch_free(mesh->refit_scratch);
     if (mesh->edges != NULL) {
         ttd_mesh_edges_free(mesh->edges);
         free(mesh->edges);
@@ -880,15 +883,20 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
 }
 
 /* place's passes over vertices of type T (double or float): the range of each coordinate into
- * mn, mx; then, with the origin o, the largest |x - o| of any coordinate into *big (and x - o into
- * vrel unless NULL). One loop per precision, the coordinates unrolled: a branch on the precision
- * and an index modulo 3 per coordinate were most of place's instructions (a 10th of a refit). */
-#define PLACE_RANGE(T)                                                                             \
+ * mn, mx (and, with COPY, the vertices into m->verts as they are read); then, with the origin o,
+ * the largest |x - o| of any coordinate into *big (and x - o into vrel unless NULL). One loop per
+ * precision, the coordinates unrolled: a branch on the precision and an index modulo 3 per
+ * coordinate were most of place's instructions (a 10th of a refit). */
+#define PLACE_RANGE(T, COPY)                                                                       \
     do {                                                                                           \
         const T *v = verts;                                                                        \
+        T *to = m->verts;                                                                          \
         for (size_t i = 0; i < nv; ++i)                                                            \
             for (int c = 0; c < 3; ++c) {                                                          \
-                const double x = (double)v[3 * i + (size_t)c];                                     \
+                const T y = v[3 * i + (size_t)c];                                                  \
+                const double x = (double)y;                                                        \
+                if (COPY)                                                                          \
+                    to[3 * i + (size_t)c] = y;                                                     \
                 mn[c] = dmin(mn[c], x);                                                            \
                 mx[c] = dmax(mx[c], x);                                                            \
             }                                                                                      \
@@ -919,15 +927,21 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
     } while (0)
 
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
- * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL). */
-static void place(struct ttd_mesh *m, const void *verts, double *vrel)
+ * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL).
+ * With copy, verts is also copied into m->verts by the range's pass (a refit: a memcpy before it
+ * read the vertices once more, 2% of a refit's instructions at 10k triangles). */
+static void place(struct ttd_mesh *m, const void *verts, double *vrel, int copy)
 {
     const size_t nv = m->nv;
     double mn[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, mx[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    if (m->bytes == 8)
-        PLACE_RANGE(double);
+    if (m->bytes == 8 && copy)
+        PLACE_RANGE(double, 1);
+    else if (m->bytes == 8)
+        PLACE_RANGE(double, 0);
+    else if (copy)
+        PLACE_RANGE(float, 1);
     else
-        PLACE_RANGE(float);
+        PLACE_RANGE(float, 0);
     for (int c = 0; c < 3; ++c)
         m->origin[c] = 0.5 * mn[c] + 0.5 * mx[c]; /* halves first: no overflow near DBL_MAX */
     double big = 0;
@@ -1037,6 +1051,32 @@ static void node_areas(const struct ttd_mesh *m, size_t n, double a[2])
 }
 #undef NODE_AREAS
 
+/* node_areas of a leaf (every slot a triangle): the same sums without a branch per slot, the
+ * areas of all 8 lanes first (the lanes past count hold zeros, and are not summed) */
+#define LEAF_AREAS(T)                                                                              \
+    do {                                                                                           \
+        const T *nd = (const T *)m->nodes + n;                                                     \
+        count = nd->count;                                                                         \
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {                                                 \
+            const double e[3] = {(double)nd->e[0][j], (double)nd->e[1][j], (double)nd->e[2][j]};   \
+            h[j] = half_area(e);                                                                   \
+        }                                                                                          \
+    } while (0)
+
+static void leaf_areas(const struct ttd_mesh *m, size_t n, double a[2])
+{
+    double h[TTD_NODE_WIDTH];
+    int count;
+    if (m->bytes == 8)
+        LEAF_AREAS(ttd_node_d);
+    else
+        LEAF_AREAS(ttd_node_f);
+    a[0] = a[1] = 0;
+    for (int j = 0; j < count; ++j)
+        a[1] += h[j];
+}
+#undef LEAF_AREAS
+
 /* The measure from every node's part (node_areas), summed in node order: the same bits however
  * the parts were made (by the build, by a refit on any number of threads). */
 static double quality_of(const double (*area)[2], size_t nnodes)
@@ -1092,7 +1132,7 @@ ttd_status ttd_mesh_build(const ttd_engine_config *cfg, int bytes, const void *v
     memcpy(m->verts, verts, 3 * nv * (size_t)bytes);
     memcpy(m->tris, tris, 3 * nt * sizeof(uint32_t));
     memset(m->nodes, 0, node_bytes); /* node 0: the root's box, slot 0 only */
-    place(m, verts, vrel);
+    place(m, verts, vrel, 0);
     B.vrel = vrel;
     int e;
     frexp(m->radius, &e);
@@ -1306,6 +1346,51 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
     normalize3(w, u + 6);
     cross3(u + 6, u, u + 3);
     normalize3(u + 3, u + 3);
+}
+
+/* The refit's scratch, kept with the mesh (m->refit_scratch) from its first refit on, through
+ * rebuilds (sized again where the node count differs), freed with the mesh: each node's subtree
+ * sums (written before its parent reads them) and part of the measure (written for every node by
+ * every refit), and the list of the subtrees refitted in parallel; it carries nothing from one
+ * refit to the next. Allocated afresh by every refit, its pages were faulted in again each time
+ * (520 faults a refit at 1M triangles: docs/mesh-queries.md, section 6). */
+typedef struct refit_scratch {
+    size_t nnodes;     /* the tree it was made for */
+    fitsum *sums;      /* per node */
+    double (*area)[2]; /* per node */
+    subtree list[64];
+} refit_scratch;
+
+static void refit_scratch_free(void *scratch)
+{
+    refit_scratch *S = scratch;
+    if (S == NULL)
+        return;
+    free(S->sums);
+    free(S->area);
+    free(S);
+}
+
+/* m's scratch for a tree of m->nnodes nodes (made on the first call, kept after): NULL out of
+ * memory, m unchanged. */
+static refit_scratch *refit_scratch_get(struct ttd_mesh *m)
+{
+    refit_scratch *S = m->refit_scratch;
+    if (S != NULL && S->nnodes == m->nnodes)
+        return S;
+    S = malloc(sizeof *S);
+    if (S == NULL)
+        return NULL;
+    S->nnodes = m->nnodes;
+    S->sums = ttd_big_alloc(m->nnodes * sizeof *S->sums);
+    S->area = ttd_big_alloc(m->nnodes * sizeof *S->area);
+    if (S->sums == NULL || S->area == NULL) {
+        refit_scratch_free(S);
+        return NULL;
+    }
+    refit_scratch_free(m->refit_scratch);
+    m->refit_scratch = S;
+    return S;
 }
 
 typedef struct refit {
@@ -1556,11 +1641,16 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
     double S[14][TTD_NODE_WIDTH], old[9][TTD_NODE_WIDTH], u[9][TTD_NODE_WIDTH];
     int32_t child[TTD_NODE_WIDTH];
     unsigned boxes = 0, leaves = 0;
-    /* defined numbers in the lanes no slot fills (a count of 1 where refit_axes divides by it) */
-    memset(S, 0, sizeof S);
-    memset(old, 0, sizeof old);
-    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
-        S[4][j] = 1;
+    /* the slots' axes before the move (every lane's: those holding no box are set below), read
+     * before the leaves are fitted: read after the first leaf's fit, their 9 lines were a first
+     * touch of the node that waited alone (12% of refit_node's samples at 100k) */
+    if (m->bytes == 8) {
+        memcpy(old, ((const ttd_node_d *)m->nodes)[n].u, sizeof old); /* every lane: a fixed copy */
+    } else {
+        for (int k = 0; k < 9; ++k)
+            for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+                old[k][j] = (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
+    }
     for (int j = 0; j < count; ++j) {
         child[j] = slot_child(m, (size_t)n, j);
         if (child[j] < 0) {
@@ -1571,7 +1661,7 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
         if (slot_child(m, (size_t)child[j], 0) < 0) {
             leaves |= 1u << j;
             sum[j] = leaf_fit(R, child[j], &L[j]);
-            node_areas(m, (size_t)child[j], R->area[child[j]]);
+            leaf_areas(m, (size_t)child[j], R->area[child[j]]);
         } else {
             sum[j] = R->sums[child[j]];
         }
@@ -1580,16 +1670,18 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
         S[3][j] = sum[j].nlen;
         for (int k = 0; k < 10; ++k)
             S[4 + k][j] = sum[j].m[k];
-        if (m->bytes == 8) {
-            for (int k = 0; k < 9; ++k)
-                old[k][j] = ((const ttd_node_d *)m->nodes)[n].u[k][j];
-        } else {
-            for (int k = 0; k < 9; ++k)
-                old[k][j] = (double)((const ttd_node_f *)m->nodes)[n].u[k][j];
-        }
     }
     if (boxes != 0) {
-            const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
+        /* defined numbers in the lanes no box fills (a count of 1 where refit_axes divides by
+         * it): set here, lane by lane, instead of clearing both arrays first (1.3% of a refit) */
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+            if (!(boxes >> j & 1)) {
+                for (int k = 0; k < 14; ++k)
+                    S[k][j] = k == 4 ? 1.0 : 0.0;
+                for (int k = 0; k < 9; ++k)
+                    old[k][j] = 0;
+            }
+        const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
                                                                    (const double(*)[TTD_NODE_WIDTH])old, boxes, u)
                                                     : 0;
         for (int j = 0; j < count; ++j) {
@@ -1687,6 +1779,8 @@ static void rebuild(const ttd_engine_config *cfg, struct ttd_mesh *m)
     m->closed = old.closed;
     m->self_scratch = old.self_scratch; /* arrays only: sized again by the next self query */
     old.self_scratch = NULL;
+    m->refit_scratch = old.refit_scratch; /* no state: sized again by the next refit */
+    old.refit_scratch = NULL;
     *fresh = old;
     ttd_mesh_free(fresh);
 }
@@ -1721,7 +1815,7 @@ static void refit_boxes(const ttd_engine_config *cfg, struct ttd_mesh *m, refit 
  * flag, mesh/solid.c) stays as it is. */
 static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts, refit *R)
 {
-    place(m, verts, NULL);
+    place(m, verts, NULL, 1); /* and the copy into m->verts */
     refit_boxes(cfg, m, R);
     m->quality = quality_of((const double(*)[2])R->area, m->nnodes);
     if (m->edges != NULL) {
@@ -1733,25 +1827,18 @@ static void refit_derived(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
 
 ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, const void *verts)
 {
-    /* everything is allocated before the mesh changes: out of memory, it is as it was */
+    /* everything is allocated before the mesh changes: out of memory, it is as it was (the
+     * scratch and leaf_vix, made for this tree, may stay: the next refit uses them) */
     const ttd_kernels_d *row = ttd_dispatch_row_d(cfg->isa);
-    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
-               row != NULL ? row->leaf_axes : NULL, ttd_big_alloc(m->nnodes * sizeof(fitsum)),
-               ttd_big_alloc(m->nnodes * sizeof *R.area), malloc(64 * sizeof(subtree))};
     if (m->leaf_vix == NULL) /* the first refit (of this tree) */
         m->leaf_vix = leaf_indices(m);
-    if (R.sums == NULL || R.area == NULL || R.list == NULL || m->leaf_vix == NULL) {
-        free(R.sums);
-        free(R.area);
-        free(R.list);
+    refit_scratch *S = refit_scratch_get(m);
+    if (S == NULL || m->leaf_vix == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
-    }
-    memcpy(m->verts, verts, 3 * m->nv * (size_t)m->bytes);
-    m->generation++;
+    refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
+               row != NULL ? row->leaf_axes : NULL, S->sums, S->area, S->list};
+    m->generation++; /* the vertices are copied by refit_derived's place */
     refit_derived(cfg, m, verts, &R);
-    free(R.sums);
-    free(R.area);
-    free(R.list);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
         rebuild(cfg, m);
     return TTD_OK;

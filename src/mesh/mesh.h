@@ -51,6 +51,10 @@ struct ttd_mesh {
                            * leaf_indices), for the refit to read in the order it walks the tree;
                            * made by the first refit, dropped with the tree by a rebuild; NULL
                            * until then (the entries of nodes that are not leaves are not set) */
+    void *refit_scratch;  /* the refit's per-node sums and measure parts (build.c, refit_scratch),
+                           * made by the mesh's first refit and kept for the next ones (a rebuild
+                           * keeps it; sized again where the node count differs), freed with the
+                           * mesh; NULL until then */
 };
 
 /* A refit rebuilds the tree when its quality measure has grown past this factor of what it was
