@@ -101,6 +101,7 @@ typedef struct bench_ctx {
     int fcl_ok;
     char fcl_path[512];
     const char *save_pairs;  /* --save-pairs DIR: each pair workload's input written there, or NULL */
+    int save_failed;         /* a --save-pairs file could not be written: exit status 1 */
     const char *pair_bunny;  /* the pair workloads' mesh file (the mesh section's bunny); NULL: an icosphere */
     ttd_gen_mesh pair_mesh, pair_mesh_coarse;
     char pair_mesh_desc[160];
@@ -615,7 +616,7 @@ static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
 /* --save-pairs DIR: the workload's pairs as `ttd dist --binary-in` reads them (18 numbers a
  * pair, S's 9 then T's 9), DIR/NAME.f64 in double and DIR/NAME.f32 rounded to float, so that a
  * row's kernel can be profiled on the very pairs it timed (bench/instr_mix.sh FAMILY file:PATH). */
-static void save_pairs(const bench_ctx *cx, const bench_data *d)
+static void save_pairs(bench_ctx *cx, const bench_data *d)
 {
     for (int p = 0; p < 2; ++p) {
         char path[1100];
@@ -626,9 +627,10 @@ static void save_pairs(const bench_ctx *cx, const bench_data *d)
             ok = p ? fwrite(d->sf + 9 * i, sizeof(float), 9, f) == 9 && fwrite(d->tf + 9 * i, sizeof(float), 9, f) == 9
                    : fwrite(d->sd + 9 * i, sizeof(double), 9, f) == 9 &&
                          fwrite(d->td + 9 * i, sizeof(double), 9, f) == 9;
-        if ((f && fclose(f) != 0) || !ok)
+        if ((f && fclose(f) != 0) || !ok) {
             fprintf(stderr, "ttd bench: cannot write %s: %s\n", path, strerror(errno));
-        else
+            cx->save_failed = 1;
+        } else
             progress(cx, "%s: %zu pairs written to %s", d->spec->name, d->n, path);
     }
 }
@@ -1080,6 +1082,8 @@ int ttd_bench_main(int argc, char **argv)
             rc = 1;
         }
     }
+    if (cx->save_failed)
+        rc = 1;
     if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0 && bench_scene_row_count(cx->st.scene) == 0 &&
         bench_deform_row_count(cx->st.deform) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "

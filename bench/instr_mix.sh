@@ -30,7 +30,7 @@
 set -euo pipefail
 if [ "${1:-}" = "--static" ] && [ $# -eq 2 ]; then
   objdump -d --no-show-raw-insn "$2" | awk '
-    /^[0-9a-f]+ <kernel_[a-z_]+>:$/ { name = $2; gsub(/[<>:]/, "", name); infn = 1; n = 0; st = 0; z = 0; y = 0; next }
+    /^[0-9a-f]+ <(kernel_[a-z_]+|kx_run_[a-z]+|kw_load_group)>:$/ { name = $2; gsub(/[<>:]/, "", name); infn = 1; n = 0; st = 0; z = 0; y = 0; next }
     infn && /^$/ { isa = z ? "avx512" : (y ? "avx2" : "sse2 or other")
       printf "%-22s %-13s static instructions %5d, touching the stack %5d (%.0f%%)\n", name, isa, n, st, n ? 100 * st / n : 0
       infn = 0; next }
