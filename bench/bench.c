@@ -100,6 +100,8 @@ typedef struct bench_ctx {
     unsigned isa_mask;
     int fcl_ok;
     char fcl_path[512];
+    const char *save_pairs;  /* --save-pairs DIR: each pair workload's input written there, or NULL */
+    int save_failed;         /* a --save-pairs file could not be written: exit status 1 */
     const char *pair_bunny;  /* the pair workloads' mesh file (the mesh section's bunny); NULL: an icosphere */
     ttd_gen_mesh pair_mesh, pair_mesh_coarse;
     char pair_mesh_desc[160];
@@ -611,6 +613,28 @@ static void measure_mesh(bench_ctx *cx, bench_data *d, int bytes)
     }
 }
 
+/* --save-pairs DIR: the workload's pairs as `ttd dist --binary-in` reads them (18 numbers a
+ * pair, S's 9 then T's 9), DIR/NAME.f64 in double and DIR/NAME.f32 rounded to float, so that a
+ * row's kernel can be profiled on the very pairs it timed (bench/instr_mix.sh FAMILY file:PATH). */
+static void save_pairs(bench_ctx *cx, const bench_data *d)
+{
+    for (int p = 0; p < 2; ++p) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/%s.%s", cx->save_pairs, d->spec->name, p ? "f32" : "f64");
+        FILE *f = fopen(path, "wb");
+        int ok = f != NULL;
+        for (size_t i = 0; ok && i < d->n; ++i)
+            ok = p ? fwrite(d->sf + 9 * i, sizeof(float), 9, f) == 9 && fwrite(d->tf + 9 * i, sizeof(float), 9, f) == 9
+                   : fwrite(d->sd + 9 * i, sizeof(double), 9, f) == 9 &&
+                         fwrite(d->td + 9 * i, sizeof(double), 9, f) == 9;
+        if ((f && fclose(f) != 0) || !ok) {
+            fprintf(stderr, "ttd bench: cannot write %s: %s\n", path, strerror(errno));
+            cx->save_failed = 1;
+        } else
+            progress(cx, "%s: %zu pairs written to %s", d->spec->name, d->n, path);
+    }
+}
+
 static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
 {
     bench_data d;
@@ -622,6 +646,8 @@ static void run_workload(bench_ctx *cx, const workload_spec *w, size_t n)
         return;
     }
     progress(cx, "%s: data and reference ready in %.2f s", w->name, bench_now() - t0);
+    if (cx->save_pairs)
+        save_pairs(cx, &d);
     ttd_isa best = best_simd();
     if (w->flags & W_CLI) {
         measure_cli(cx, &d);
@@ -732,6 +758,8 @@ static void usage(FILE *f)
           "  --seed N             generator seed (default 1)\n"
           "  --fcl PATH           the ttd_fcl_bench program (default: next to ttd, or $TTD_FCL_BENCH)\n"
           "  --no-fcl             leave FCL out\n"
+          "  --save-pairs DIR     also write each pair workload's pairs to DIR/NAME.f64 and NAME.f32 in the\n"
+          "                       format of `ttd dist --binary-in` (for bench/instr_mix.sh FAMILY file:PATH)\n"
           "  --no-probes          skip the clock, peak-arithmetic and bandwidth probes\n"
           "  --quiet              no progress on standard error\n"
           "\n"
@@ -896,6 +924,8 @@ int ttd_bench_main(int argc, char **argv)
             out_dir = v;
         } else if (strcmp(a, "--fcl") == 0) {
             fcl_arg = v;
+        } else if (strcmp(a, "--save-pairs") == 0) {
+            cx->save_pairs = v;
         } else if (strcmp(a, "--workloads") == 0) {
             rc = parse_list(v, "workload", &workload_mask, workload_name_of, (int)N_WORKLOADS) ? 2 : rc;
         } else if (strcmp(a, "--methods") == 0) {
@@ -1052,6 +1082,8 @@ int ttd_bench_main(int argc, char **argv)
             rc = 1;
         }
     }
+    if (cx->save_failed)
+        rc = 1;
     if (cx->nrows == 0 && bench_mesh_row_count(cx->st.mesh) == 0 && bench_scene_row_count(cx->st.scene) == 0 &&
         bench_deform_row_count(cx->st.deform) == 0) {
         fprintf(stderr, "ttd bench: no rows were measured: the chosen methods have no kernel of their own on the "

@@ -197,6 +197,29 @@ fi
   fail "ttd bench --csv exited with $?"
 head -n 1 "$tmp/out.csv" | grep -q '^workload,method,precision,isa,lanes,threads,pairs,' || fail "CSV header"
 [ "$(wc -l < "$tmp/out.csv")" -ge 3 ] || fail "CSV has no rows"
+# --save-pairs DIR: the paper workload's 1,000 pairs as `ttd dist --binary-in` reads them (18
+# numbers a pair, S then T; float64 and float32), each giving the paper pair's distance as text
+# input does; a folder that cannot be written: exit status 1, the file named.
+mkdir -p "$tmp/pairs"
+"$ttd" bench --quick --quiet --no-probes --no-fcl --workloads paper --methods exact --save-pairs "$tmp/pairs" \
+  > /dev/null || fail "ttd bench --save-pairs exited with $?"
+[ "$(stat -c %s "$tmp/pairs/paper.f64")" = 144000 ] || fail "--save-pairs: paper.f64 is not 1000 x 18 doubles"
+[ "$(stat -c %s "$tmp/pairs/paper.f32")" = 72000 ] || fail "--save-pairs: paper.f32 is not 1000 x 18 floats"
+echo "0 0 0 1 0 0 0 1 0 0.3 0.3 0.5 1 0.5 1.2 0.4 1.1 0.9" > "$tmp/paper.txt"
+for prec in double float; do
+  ext=f64; [ $prec = float ] && ext=f32
+  want=$("$ttd" dist --precision $prec "$tmp/paper.txt") || fail "ttd dist on the paper pair"
+  "$ttd" dist --precision $prec --binary-in "$tmp/pairs/paper.$ext" > "$tmp/saved.txt" ||
+    fail "ttd dist --binary-in on paper.$ext"
+  [ "$(wc -l < "$tmp/saved.txt")" = 1000 ] && [ "$(sort -u "$tmp/saved.txt")" = "$want" ] ||
+    fail "--save-pairs: paper.$ext does not hold the paper pair 1000 times ($prec)"
+done
+rc=0
+"$ttd" bench --quick --quiet --no-probes --no-fcl --workloads paper --methods exact \
+  --save-pairs "$tmp/no-such-dir" > /dev/null 2> "$tmp/err.txt" || rc=$?
+[ $rc = 1 ] && grep -q "cannot write $tmp/no-such-dir/paper.f64" "$tmp/err.txt" ||
+  fail "--save-pairs into a missing folder: exit $rc, $(cat "$tmp/err.txt")"
+
 # An instruction set this machine cannot run: exit 2 before anything is timed, naming the one
 # asked for and listing what the machine has (the "cpu:" line of ttd info).
 built=$("$ttd" info | sed -n 's/^built://p')
