@@ -3,13 +3,17 @@
  * brute force over every triangle pair (tests/mesh_ccd_brute.h): the same earliest toi and the
  * same pairs, bit for bit, on random deforming meshes, two meshes passing through each other, a
  * folding sheet (self, with and without the shared-vertex pairs), contact at t = 0 and t = 1,
- * min_separation > 0, degenerate triangles; threads and float against double; the checks. */
+ * min_separation > 0, degenerate triangles; threads, float against double, and the scalar row
+ * against the lanes; the whole-pair proof in every row's lanes against the scalar proof; the
+ * checks. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "isa_rows.h"
+#include "meshccd/meshccd.h"
 #include "meshes.h"
 #include "mesh_ccd_brute.h"
 #include "test_macros.h"
@@ -85,16 +89,20 @@ static int check_self(const ttd_gen_mesh *m, const double *x1, double delta, uns
 {
     ttd_mesh *mm = NULL;
     ENSURE(ttd_mesh_create_d(NULL, m->verts, m->nv, m->tris, m->nt, &mm) == TTD_OK);
-    ttd_mesh_ccd_result r1, r3, ref;
+    ttd_mesh_ccd_result r1, r3, rs, ref;
     const ttd_options o1 = opts(1), o3 = opts(3);
+    ttd_options os = opts(1);
+    os.isa = TTD_ISA_SCALAR; /* the whole-pair proof without lanes (o1: the best row's lanes) */
     ENSURE(ttd_mesh_self_ccd_d(&o1, mm, x1, delta, flags, &r1) == TTD_OK);
     ENSURE(ttd_mesh_self_ccd_d(&o3, mm, x1, delta, flags, &r3) == TTD_OK);
+    ENSURE(ttd_mesh_self_ccd_d(&os, mm, x1, delta, flags, &rs) == TTD_OK);
     ENSURE(brute_self_ccd(m->verts, x1, m->tris, m->nt, delta, (flags & TTD_SELF_SHARED_VERTEX) != 0, &ref) == 0);
-    int rc = same(&r1, &ref, what) || same(&r3, &r1, what) || well_formed(&r1);
+    int rc = same(&r1, &ref, what) || same(&r3, &r1, what) || same(&rs, &r1, what) || well_formed(&r1);
     if (hits)
         *hits += r1.count > 0;
     ttd_mesh_ccd_free(&r1);
     ttd_mesh_ccd_free(&r3);
+    ttd_mesh_ccd_free(&rs);
     free(ref.pairs);
     ttd_mesh_destroy(mm);
     return rc;
@@ -489,6 +497,198 @@ static int checks(void)
     return 0;
 }
 
+/* ---- the whole-pair proof in lanes (core/kernels.h, tri_apart) against the scalar proof ---- */
+
+enum { AP_FAMILIES = 7 };
+static const char *const ap_family[AP_FAMILIES] = {"random",   "sheet neighbours", "layers",    "touching",
+                                                   "degenerate", "scaled 2^-600..2^1000", "parallel motion"};
+
+/* A random rotation (rows), applied to every point: the pair's numbers rounded as a sheet's are. */
+static void ap_rotate(double p[2][6][3])
+{
+    double a = 6.283185307179586 * urand(), b = 6.283185307179586 * urand();
+    const double r[3][3] = {{cos(a), -sin(a), 0}, {sin(a) * cos(b), cos(a) * cos(b), -sin(b)},
+                            {sin(a) * sin(b), cos(a) * sin(b), cos(b)}};
+    for (int e = 0; e < 2; ++e)
+        for (int i = 0; i < 6; ++i) {
+            const double x[3] = {p[e][i][0], p[e][i][1], p[e][i][2]};
+            for (int c = 0; c < 3; ++c)
+                p[e][i][c] = r[c][0] * x[0] + r[c][1] * x[1] + r[c][2] * x[2];
+        }
+}
+
+/* Pair k of family f: p[e][i] point i (0..2 the first triangle, 3..5 the second) at t = e; *delta
+ * the separation asked; returns 1 where the triangles do touch (within delta) during the step, so
+ * that no proof may hold them apart. */
+static int ap_pair(int f, double p[2][6][3], double *delta)
+{
+    static const double deltas[4] = {0.0, 1e-3, 0.05, 0x1p-40};
+    *delta = deltas[(int)(4 * urand())];
+    int touches = 0;
+    switch (f) {
+    case 0: /* random: apart or not, moving far or little */
+    case 5: {
+        const double r = 3 * urand(), mv = urand() < 0.5 ? 0.1 : 1.0;
+        for (int i = 0; i < 6; ++i)
+            for (int c = 0; c < 3; ++c) {
+                p[0][i][c] = srand1() + (i >= 3 ? r * srand1() : 0);
+                p[1][i][c] = p[0][i][c] + mv * srand1();
+            }
+        if (f == 5) { /* exact powers of two: huge (products overflow: never proved), tiny (underflow) */
+            static const int sc[6] = {-600, -300, -60, 300, 500, 1000};
+            const double k = ldexp(1.0, sc[(int)(6 * urand())]);
+            for (int e = 0; e < 2; ++e)
+                for (int i = 0; i < 6; ++i)
+                    for (int c = 0; c < 3; ++c)
+                        p[e][i][c] *= k;
+            *delta *= k < 1 ? k : 1;
+        }
+        break;
+    }
+    case 1: { /* neighbours in a flat sheet across a gap g (0, around the rounding bound, or
+                 larger), the sheet moving and turning a little; rotated */
+        const double g = urand() < 0.2 ? 0.0 : ldexp(1.0, -(int)(60 * urand())) * (urand() < 0.1 ? -1 : 1);
+        const double a[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+        const double mv[3] = {srand1(), srand1(), srand1()}, tilt = urand() < 0.5 ? 0 : 0.01 * srand1();
+        for (int i = 0; i < 3; ++i)
+            for (int e = 0; e < 2; ++e) {
+                const double ax = a[i][0], ay = a[i][1];
+                const double bx = 1 + g - ax, by = 1 + g - ay; /* the second, across the line x + y = 1 */
+                p[e][i][0] = ax + e * mv[0];
+                p[e][i][1] = ay + e * mv[1];
+                p[e][i][2] = e * (mv[2] + tilt * ax);
+                p[e][3 + i][0] = bx + e * mv[0];
+                p[e][3 + i][1] = by + e * mv[1];
+                p[e][3 + i][2] = e * (mv[2] + tilt * bx);
+            }
+        touches = g == 0; /* (two points of one at two of the other's) */
+        ap_rotate(p);
+        if (urand() < 0.3)
+            *delta = 0;
+        break;
+    }
+    case 2: { /* one triangle above the other at height h (h - delta about 0 half the time) */
+        const double h = ldexp(urand() + 0.5, -(int)(30 * urand()));
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 3; ++c)
+                p[0][i][c] = c == 2 ? 0 : srand1();
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 3; ++c)
+                p[0][3 + i][c] = p[0][i][c] + (c == 2 ? h : 0.25 * srand1());
+        const double mv[3] = {srand1(), srand1(), srand1()};
+        for (int i = 0; i < 6; ++i)
+            for (int c = 0; c < 3; ++c)
+                p[1][i][c] = p[0][i][c] + mv[c];
+        if (urand() < 0.5)
+            *delta = h * (1 + ldexp(srand1(), -(int)(50 * urand())));
+        ap_rotate(p);
+        break;
+    }
+    case 3: { /* a vertex of each at one place, at t = 0 or at t = 1 (or an edge's point): must not be proved */
+        for (int e = 0; e < 2; ++e)
+            for (int i = 0; i < 6; ++i)
+                for (int c = 0; c < 3; ++c)
+                    p[e][i][c] = e == 0 ? srand1() : p[0][i][c] + 0.5 * srand1();
+        const int e = urand() < 0.5, i = (int)(3 * urand()), j = 3 + (int)(3 * urand());
+        const double w = urand() < 0.5 ? 0.0 : 0.5;
+        for (int c = 0; c < 3; ++c) /* point j at vertex i, or at the middle of edge (i, i + 1) */
+            p[e][j][c] = (1 - w) * p[e][i][c] + w * p[e][(i + 1) % 3][c];
+        touches = w == 0; /* (the middle is rounded: within an ulp of the edge, not on it) */
+        break;
+    }
+    case 4: { /* zero-area triangles: all three points at one place, or on one line */
+        for (int e = 0; e < 2; ++e)
+            for (int i = 0; i < 6; ++i)
+                for (int c = 0; c < 3; ++c)
+                    p[e][i][c] = srand1() + (i >= 3 ? 2 * urand() : 0);
+        const int t = urand() < 0.5 ? 0 : 3, kind = (int)(3 * urand());
+        for (int e = 0; e < 2; ++e)
+            for (int c = 0; c < 3; ++c) {
+                if (kind == 0)
+                    p[e][t + 1][c] = p[e][t + 2][c] = p[e][t][c];
+                else if (kind == 1)
+                    p[e][t + 2][c] = p[e][t][c] + 2 * (p[e][t + 1][c] - p[e][t][c]);
+                else
+                    p[e][t + 1][c] = p[e][t][c];
+            }
+        break;
+    }
+    default: { /* both translate by one vector (gap constant), offset far from the origin */
+        const double off = ldexp(1.0, (int)(40 * urand())), mv[3] = {srand1(), srand1(), srand1()};
+        for (int i = 0; i < 6; ++i)
+            for (int c = 0; c < 3; ++c) {
+                p[0][i][c] = off + srand1() + (i >= 3 && c == 0 ? 2.5 * urand() : 0);
+                p[1][i][c] = p[0][i][c] + mv[c];
+            }
+        break;
+    }
+    }
+    return touches;
+}
+
+static int tri_apart_lanes(void)
+{
+    enum { N = 6000 };
+    static double P[N][2][6][3], D[N];
+    static int want[N], touch[N];
+    int rows = 0;
+    for (int f = 0; f < AP_FAMILIES; ++f) {
+        int proved = 0;
+        for (int k = 0; k < N; ++k) {
+            touch[k] = ap_pair(f, P[k], &D[k]);
+            const double *x0[6], *x1[6];
+            double S = 0;
+            for (int i = 0; i < 6; ++i) {
+                x0[i] = P[k][0][i];
+                x1[i] = P[k][1][i];
+                for (int c = 0; c < 3; ++c)
+                    for (int e = 0; e < 2; ++e)
+                        S = fabs(P[k][e][i][c]) > S ? fabs(P[k][e][i][c]) : S;
+            }
+            want[k] = meshccd_tri_apart(x0, x1, S, D[k]) != 0;
+            ENSURE_MSG(!(want[k] && touch[k]), "%s pair %d: touching pair proved apart", ap_family[f], k);
+            proved += want[k];
+        }
+        printf("  whole-pair proof, %s: %d of %d pairs proved\n", ap_family[f], proved, N);
+        if (f != 3 && f != 4)
+            ENSURE_MSG(proved > N / 20 && proved < N - N / 20, "%s: too one-sided a family (%d proved)", ap_family[f], proved);
+        rows = 0;
+        for (const isa_row *row = isa_rows; row->name != NULL; ++row) {
+            const char *why = "";
+            if (!cpu_runs(row->name, &why) || row->d == NULL)
+                continue;
+            ENSURE_MSG(row->d->tri_apart != NULL, "row %s has no tri_apart", row->name);
+            ++rows;
+            /* groups of 1 to 8 pairs of one delta; the lanes past the group hold another pair */
+            for (int k = 0; k < N;) {
+                const int most = 1 + (int)(TTD_NODE_WIDTH * urand());
+                int count = 1;
+                while (count < most && k + count < N && D[k + count] == D[k])
+                    ++count;
+                double x[36 * TTD_NODE_WIDTH], S[TTD_NODE_WIDTH];
+                for (int l = 0; l < TTD_NODE_WIDTH; ++l) {
+                    const int q = l < count ? k + l : (int)(N * urand());
+                    S[l] = 0;
+                    for (int e = 0; e < 2; ++e)
+                        for (int i = 0; i < 6; ++i)
+                            for (int c = 0; c < 3; ++c) {
+                                x[(18 * e + 3 * i + c) * TTD_NODE_WIDTH + l] = P[q][e][i][c];
+                                S[l] = fabs(P[q][e][i][c]) > S[l] ? fabs(P[q][e][i][c]) : S[l];
+                            }
+                }
+                const unsigned m = row->d->tri_apart(count, x, S, D[k]);
+                ENSURE_MSG((m >> count) == 0, "%s, row %s: bits past the group", ap_family[f], row->name);
+                for (int l = 0; l < count; ++l)
+                    ENSURE_MSG(((m >> l) & 1u) == (unsigned)want[k + l], "%s, row %s, pair %d (delta %g): lanes %u, scalar %d",
+                               ap_family[f], row->name, k + l, D[k], (m >> l) & 1u, want[k + l]);
+                k += count;
+            }
+        }
+    }
+    ENSURE(rows >= 2); /* cuda-host and at least one SIMD row */
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -502,5 +702,6 @@ int main(int argc, char **argv)
     RUN_TEST(repeated_indices);
     RUN_TEST(float_matches_double);
     RUN_TEST(threads);
+    RUN_TEST(tri_apart_lanes); /* last: its draws leave the other tests' cases as they were */
     TEST_MAIN_END();
 }

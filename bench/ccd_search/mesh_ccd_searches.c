@@ -32,6 +32,7 @@ static void searched(int kind, const double *x0, const double *x1, const ttd_ccd
                      const ttd_ccd_result *r);
 #define MESHCCD_SEARCHED(kind, x0, x1, prm, r) searched(kind, x0, x1, prm, r)
 #define ttd_meshccd_run searches_meshccd_run
+#define meshccd_tri_apart searches_tri_apart /* (the library has its own copy of each) */
 #include "src/meshccd/meshccd.c"
 
 #include "gen/meshes.h"
@@ -201,7 +202,10 @@ int main(int argc, char **argv)
     const meshccd_side side = {a.verts, b.verts, a.tris, a.nv, a.nt};
     ttd_mesh_ccd_result out;
     const double c0 = thread_cpu();
-    const ttd_status st = searches_meshccd_run(1, &side, NULL, 0.0, 0, &out);
+    ttd_isa isa = TTD_ISA_SCALAR; /* TTD_ISA picks the row, as in the library */
+    if (ttd_dispatch_resolve(TTD_ISA_AUTO, &isa) != TTD_OK)
+        isa = TTD_ISA_SCALAR;
+    const ttd_status st = searches_meshccd_run(1, isa, &side, NULL, 0.0, 0, &out);
     const double total = thread_cpu() - c0;
     if (st != TTD_OK) {
         fprintf(stderr, "mesh_ccd_searches: status %d\n", (int)st);

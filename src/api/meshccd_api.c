@@ -68,7 +68,7 @@ static ttd_status mesh_ccd(const ttd_options *opt, int bytes, const ttd_mesh *a,
     if (st == TTD_OK && !self)
         st = side_of(b, b1, &sb, &wb);
     if (st == TTD_OK)
-        st = ttd_meshccd_run(cfg.threads, &sa, self ? NULL : &sb, delta, flags, out);
+        st = ttd_meshccd_run(cfg.threads, cfg.isa, &sa, self ? NULL : &sb, delta, flags, out);
     free(wa);
     free(wb);
     return st;

@@ -203,6 +203,15 @@ typedef void (*ttd_self_fill_fn)(const double v[9][TTD_NODE_WIDTH], double L, do
 typedef unsigned (*ttd_ccd_screen_fn)(int na, int count, const double *x0, const double *x1, double delta,
                                       double t_max);
 
+/* tri_apart (double rows only; NULL on the scalar row): mesh self-CCD's whole-pair proof
+ * (meshccd/meshccd.c, tri_pair_apart; simd/kernel_tri_apart.h) on triangle pairs 0..count-1
+ * (count <= TTD_NODE_WIDTH), one a lane: x[(18 e + 3 i + c) TTD_NODE_WIDTH + lane] is coordinate c
+ * of point i (0..2 the first triangle, 3..5 the second) at t = e (36 rows), S[lane] the largest
+ * coordinate magnitude among them; bit i set: pair i proved more than delta apart over the step,
+ * the same bits as the scalar proof's. Every lane of x and S is read (fill the lanes past count
+ * with finite numbers). */
+typedef unsigned (*ttd_tri_apart_fn)(int count, const double *x, const double *S, double delta);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -220,6 +229,7 @@ typedef struct ttd_kernels_d {
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
     ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
+    ttd_tri_apart_fn tri_apart;         ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

@@ -9,8 +9,9 @@
  *    pair whose boxes do not overlap is more than delta apart along an axis at every t, and so is
  *    every pair of their primitives. Self: a triangle pair that shares no vertex is first tried
  *    whole by the concave-gap proof that precedes each primitive search (apart_cheaply, here
- *    tri_pair_apart over the six points): proved, none of its 15 sub-queries can come within
- *    delta, and the pair ends there (most pairs of a sheet do).
+ *    tri_pair_apart over the six points; 8 pairs at a time in the ISA row's lanes where it has
+ *    them, the same bits): proved, none of its 15 sub-queries can come within delta, and the pair
+ *    ends there (most pairs of a sheet do).
  * 3. Primitive pairs, each once: a vertex-face or edge-edge pair belongs to several triangle
  *    pairs (a vertex to every triangle around it, an edge to two); it is queried only from its
  *    owner, the smallest triangle pair (by index) that holds it and that the rule keeps. The
@@ -32,11 +33,14 @@
 #endif
 
 #include "ccd/ccd.h"
+#include "core/kernels.h"
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "meshccd/meshccd.h"
 #include "meshccd/sweep_tree.h"
 
 enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
+_Static_assert(SWEEP_LEAF_SELF == TTD_NODE_WIDTH, "a self leaf's boxes are one box_screen call");
 
 /* Called after each primitive search with its query and answer: nothing in the library;
  * bench/mesh_ccd_searches.c, which compiles this file into itself, records and times them. */
@@ -204,6 +208,8 @@ typedef struct job {
                             * columns in the tree's order (pw is pb at delta 0), read in turn at the
                             * leaves; SWEEP_LEAF_SELF entries of padding after the last */
     uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
+    ttd_tri_apart_fn apart;  /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
+    ttd_box_screen_fn screen; /* self: the leaves' box tests on the row (8 boxes), or NULL: leaf_mask */
 } job;
 
 /* Two nodes of the tree, a == b or a's range of the order before b's. */
@@ -219,6 +225,12 @@ typedef struct worker {
     struct node_pair *stack; /* the self walk's pairs of nodes still to visit */
     size_t stack_cap;
     int oom;
+    /* self, with J->apart: disjoint triangle pairs waiting for the proof in lanes (their six
+     * points at both ends in the row's layout, core/kernels.h) */
+    int nq;
+    double qx[36 * TTD_NODE_WIDTH], qs[TTD_NODE_WIDTH];
+    uint32_t qa[TTD_NODE_WIDTH], qb[TTD_NODE_WIDTH];
+    const uint32_t *qta[TTD_NODE_WIDTH], *qtb[TTD_NODE_WIDTH];
 } worker;
 
 
@@ -399,7 +411,9 @@ static int tri_pair_apart(const double *const x0[6], const double *const x1[6], 
                 }
             }
             for (int jj = 0; jj < 3; ++jj) {
-                const int j = (back + 1 + jj) % 3; /* edge back + 1 is the one opposite vertex back */
+                /* edge back + 1 (the one opposite vertex back), then back, then back + 2: on the
+                 * folding sheet the third proves more pairs than the second (docs/ccd-speed.md) */
+                const int j = (back + 1 + 2 * jj) % 3;
                 double m[3];
                 /* within the plane: the edge's perpendicular towards the triangle's third vertex */
                 perp3(e[sd][j], e[sd][(j + 2) % 3], m);
@@ -415,6 +429,11 @@ static int tri_pair_apart(const double *const x0[6], const double *const x1[6], 
         }
     }
     return 0;
+}
+
+int meshccd_tri_apart(const double *const x0[6], const double *const x1[6], double S, double delta)
+{
+    return tri_pair_apart(x0, x1, S, delta);
 }
 
 /* Runs one primitive query: points pa[0 .. na) of side P, pb[0 .. 4 - na) of side Q. */
@@ -604,26 +623,13 @@ static int owns_ee(const job *J, const uint32_t e[2], const uint32_t g[2], uint6
     return 1;
 }
 
-/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex); TA, TB their vertex
- * indices (the caller's copies in the tree's order, at hand: one random read less per pair). */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
-                      int disjoint)
+/* Triangle pair ta < tb, kept by the rule, not proved apart whole: its primitive pairs that it
+ * owns. TA, TB its vertex indices (the caller's copies in the tree's order, at hand: one random
+ * read less per pair). */
+static void pair_prims(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB)
 {
     const side_data *A = J->a;
     const uint32_t none = UINT32_MAX;
-    ++w->tri_pairs;
-    if (disjoint) { /* (two triangles with a vertex in common are never apart) */
-        const double *x0[6], *x1[6]; /* the six points where they are (a copy costs more) */
-        double S = 0;
-        for (int i = 0; i < 6; ++i) {
-            const size_t v = i < 3 ? TA[i] : TB[i - 3];
-            x0[i] = A->s->x0 + 3 * v;
-            x1[i] = A->s->x1 + 3 * v;
-            S = A->vmag[v] > S ? A->vmag[v] : S;
-        }
-        if (tri_pair_apart(x0, x1, S, J->params.delta))
-            return;
-    }
     const unsigned fa = A->flags ? A->flags[ta] : tri_flags(A, ta), fb = A->flags ? A->flags[tb] : tri_flags(A, tb);
     /* vertices of one against the other's face */
     for (int side = 0; side < 2; ++side) {
@@ -674,6 +680,66 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const u
                 query(J, w, TTD_MESH_CCD_EE, A, ea, 2, A, g, ea, g);
         }
     }
+}
+
+/* The waiting pairs through the proof in lanes; those it does not prove, to the primitives. */
+static void flush_pairs(const job *J, worker *w)
+{
+    const int n = w->nq;
+    if (n == 0)
+        return;
+    w->nq = 0;
+    unsigned left = ~J->apart(n, w->qx, w->qs, J->params.delta) & ((2u << (n - 1)) - 1);
+    for (; left != 0; left &= left - 1) {
+        const int i = __builtin_ctz(left);
+        pair_prims(J, w, w->qa[i], w->qb[i], w->qta[i], w->qtb[i]);
+    }
+}
+
+/* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex); TA, TB their vertex
+ * indices (as pair_prims's). A disjoint pair is first tried whole (tri_pair_apart), in lanes
+ * where the row has them: it waits in the worker's queue, its six points copied in (which pairs
+ * the lanes prove is what the scalar proof proves, and the answer does not depend on the order in
+ * which pairs reach the primitive searches: t_stop's promise, ccd.h). */
+static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                      int disjoint)
+{
+    const side_data *A = J->a;
+    ++w->tri_pairs;
+    if (disjoint && J->apart != NULL) {
+        const int n = w->nq;
+        double S = 0;
+        for (int i = 0; i < 6; ++i) {
+            const size_t v = i < 3 ? TA[i] : TB[i - 3];
+            const double *p0 = A->s->x0 + 3 * v, *p1 = A->s->x1 + 3 * v;
+            for (int c = 0; c < 3; ++c) {
+                w->qx[(3 * i + c) * TTD_NODE_WIDTH + n] = p0[c];
+                w->qx[(18 + 3 * i + c) * TTD_NODE_WIDTH + n] = p1[c];
+            }
+            S = A->vmag[v] > S ? A->vmag[v] : S;
+        }
+        w->qs[n] = S;
+        w->qa[n] = ta;
+        w->qb[n] = tb;
+        w->qta[n] = TA;
+        w->qtb[n] = TB;
+        if (++w->nq == TTD_NODE_WIDTH)
+            flush_pairs(J, w);
+        return;
+    }
+    if (disjoint) { /* (two triangles with a vertex in common are never apart) */
+        const double *x0[6], *x1[6]; /* the six points where they are (a copy costs more) */
+        double S = 0;
+        for (int i = 0; i < 6; ++i) {
+            const size_t v = i < 3 ? TA[i] : TB[i - 3];
+            x0[i] = A->s->x0 + 3 * v;
+            x1[i] = A->s->x1 + 3 * v;
+            S = A->vmag[v] > S ? A->vmag[v] : S;
+        }
+        if (tri_pair_apart(x0, x1, S, J->params.delta))
+            return;
+    }
+    pair_prims(J, w, ta, tb, TA, TB);
 }
 
 /* ---- the walk ---- */
@@ -761,17 +827,20 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
     const int wide = J->pw[0] != J->pb[0]; /* at delta 0 the two tests are one (the test is symmetric) */
     const uint32_t kb = b->begin;
     const unsigned all = (2u << (b->end - b->begin - 1)) - 1; /* a leaf holds 1 to SWEEP_LEAF_SELF */
+    /* b's columns, for the row's box_screen (which reads TTD_NODE_WIDTH = SWEEP_LEAF_SELF boxes) */
+    const double *const wlo[3] = {W[0] + kb, W[1] + kb, W[2] + kb}, *const whi[3] = {W[3] + kb, W[4] + kb, W[5] + kb};
+    const double *const plo[3] = {P[0] + kb, P[1] + kb, P[2] + kb}, *const phi[3] = {P[3] + kb, P[4] + kb, P[5] + kb};
     for (uint32_t kq = a->begin; kq < a->end; ++kq) {
         const double q[6] = {P[0][kq], P[1][kq], P[2][kq], P[3][kq], P[4][kq], P[5][kq]};
         if (!(q[0] <= b->box.hi[0] && b->box.lo[0] <= q[3] && q[1] <= b->box.hi[1] && b->box.lo[1] <= q[4] &&
               q[2] <= b->box.hi[2] && b->box.lo[2] <= q[5]))
             continue;
-        unsigned m = leaf_mask(W, kb, q) & all;
+        unsigned m = (J->screen != NULL ? J->screen(wlo, whi, q) : leaf_mask(W, kb, q)) & all;
         if (a == b)
             m &= ~((2u << (kq - kb)) - 1); /* u after q only */
         if (wide && m) {
             const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
-            m &= leaf_mask(P, kb, qw);
+            m &= J->screen != NULL ? J->screen(plo, phi, qw) : leaf_mask(P, kb, qw);
         }
         while (m) {
             const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
@@ -854,6 +923,8 @@ static void walk_self(const job *J, worker *w, node_pair start)
             if (push_pair(w, &top, kids[i].a, kids[i].b) != 0)
                 return;
     }
+    if (J->apart != NULL)
+        flush_pairs(J, w);
 }
 
 /* The starting pairs of the self walk: the pairs of the walk's first levels, split (in order,
@@ -954,8 +1025,8 @@ static int pair_cmp(const void *x, const void *y)
     return 0;
 }
 
-ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_side *b, double delta, unsigned shared,
-                           ttd_mesh_ccd_result *out)
+ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, const meshccd_side *b, double delta,
+                           unsigned shared, ttd_mesh_ccd_result *out)
 {
     memset(out, 0, sizeof *out);
     out->toi = HUGE_VAL;
@@ -966,6 +1037,11 @@ ttd_status ttd_meshccd_run(int threads, const meshccd_side *a, const meshccd_sid
     J.shared = shared & TTD_SELF_SHARED_VERTEX;
     J.params = ttd_ccd_default_params();
     J.params.delta = delta;
+    const ttd_kernels_d *row = ttd_dispatch_row_d(isa);
+    J.apart = J.self && row != NULL ? row->tri_apart : NULL;
+#if !defined(MESHCCD_SCALAR_LEAVES)
+    J.screen = J.self && row != NULL ? row->box_screen : NULL;
+#endif
     if (side_make(a, delta, !J.self || J.shared, &da) != 0)
         return TTD_ERR_OUT_OF_MEMORY;
     if (!J.self && side_make(b, delta, 1, &db) != 0) {

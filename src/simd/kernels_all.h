@@ -26,6 +26,7 @@
 #include "simd/kernel_trifit.h"
 #include "simd/kernel_selfscreen.h"
 #include "simd/kernel_ccd.h"
+#include "simd/kernel_tri_apart.h"
 #include "simd/probe_impl.h"
 
 /* Methods without a lane kernel (the barrier method) are NULL: the engine uses the scalar row
@@ -42,6 +43,7 @@
         TTD_LANE_ROW_TRI_FIT                                                                    \
         TTD_LANE_ROW_SELF_SCREEN                                                                \
         TTD_LANE_ROW_CCD_SCREEN                                                                 \
+        TTD_LANE_ROW_TRI_APART                                                                  \
         .point_block = point_block, .point_lanes = point_lanes,                                \
     }
 #ifdef TTD_PRECISION_DOUBLE

@@ -1,0 +1,127 @@
+/* SPDX-License-Identifier: MIT */
+/* Mesh self-CCD's whole-pair proof in lanes (core/kernels.h, tri_apart; docs/ccd.md, section 10):
+ * one triangle pair a lane, meshccd.c's tri_pair_apart computed with the same operations in the
+ * same order (no FMA: the build has -ffp-contract=off; its ternary minima and maxima as selects of
+ * the same comparisons, so a NaN is passed over as there), so every row proves exactly the pairs
+ * that the scalar proof proves. Each lane tries its own directions (its facing edge first, chosen
+ * per lane as the scalar code chooses it); a group of lanes stops at the first direction after
+ * which every live lane is proved. Double rows only (the mesh query is in double). */
+#ifdef TTD_PRECISION_DOUBLE
+
+/* meshccd.c's gap_proves on lanes: the two triangles (points 0..2 and 3..5 of x0 and x1) apart
+ * by more than delta |n| along n at t = 0 and t = 1, beyond the rounding bound. */
+TTDW_FN ttdw_md tri_apart_gap(const ccdw3 n, ccdw3 *x0, ccdw3 *x1, ttdw_vd S, double delta)
+{
+    const double u = 0x1p-53;
+    const ttdw_vd huge = ttdw_set1_d(HUGE_VAL);
+    const ttdw_vd n1 = ttdw_abs_d(n[0]) + ttdw_abs_d(n[1]) + ttdw_abs_d(n[2]);
+    const ttdw_md ok = ttdw_mand_d(ttdw_gt_d(n1, ttdw_zero_d()), ttdw_lt_d(n1, huge));
+    const ttdw_vd nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const ttdw_vd need = delta != 0 ? ttdw_set1_d(delta) * ttdw_sqrt_d(nn) * ttdw_set1_d(1 + 0x1p-40)
+                                    : ttdw_zero_d() * nn;
+    const ttdw_vd base = ttdw_set1_d(8 * u) * n1 * S + ttdw_set1_d(0x1p-1000);
+    const ttdw_vd two_u = ttdw_set1_d(2 * u);
+    ttdw_md ok_pos = ok, ok_neg = ok;
+    for (int t = 0; t < 2; ++t) {
+        ccdw3 *y = t ? x1 : x0;
+        ttdw_vd amin = huge, amax = -huge, bmin = huge, bmax = -huge;
+        for (int i = 0; i < 6; ++i) {
+            const ttdw_vd d = n[0] * y[i][0] + n[1] * y[i][1] + n[2] * y[i][2];
+            if (i < 3) {
+                amin = ttdw_sel_d(ttdw_lt_d(d, amin), d, amin);
+                amax = ttdw_sel_d(ttdw_gt_d(d, amax), d, amax);
+            } else {
+                bmin = ttdw_sel_d(ttdw_lt_d(d, bmin), d, bmin);
+                bmax = ttdw_sel_d(ttdw_gt_d(d, bmax), d, bmax);
+            }
+        }
+        const ttdw_vd gp = amin - bmax, gn = bmin - amax;
+        ok_pos = ttdw_mand_d(ok_pos, ttdw_gt_d(gp - (base + two_u * ttdw_abs_d(gp)), need));
+        ok_neg = ttdw_mand_d(ok_neg, ttdw_gt_d(gn - (base + two_u * ttdw_abs_d(gn)), need));
+    }
+    return ttdw_mor_d(ok_pos, ok_neg);
+}
+
+/* e x (w x e), as meshccd.c's perp3. */
+TTDW_FN void tri_apart_perp(ccdw3 r, const ccdw3 e, const ccdw3 w)
+{
+    ccdw3 c;
+    ccdw_cross(c, w, e);
+    ccdw_cross(r, e, c);
+}
+
+/* The lanes j .. j + TTDW_LANES_D - 1 (live: those below count): the mask of those proved. The
+ * directions in the scalar order (end 0 then 1; per end the first triangle's three edges from its
+ * facing one, the second's likewise, then the two normals); a lane proved early is simply
+ * proved again by later ones, which changes nothing (which pairs are proved does not depend on
+ * the order at all: a pair is proved when any of its directions proves it). */
+TTDW_FN ttdw_md tri_apart_lanes(const double *x, const double *S_, int j, ttdw_md live, double delta)
+{
+    ccdw3 p0[6], p1[6];
+    for (int i = 0; i < 6; ++i)
+        for (int c = 0; c < 3; ++c) {
+            p0[i][c] = ttdw_loadu_d(x + (3 * i + c) * TTD_NODE_WIDTH + j);
+            p1[i][c] = ttdw_loadu_d(x + (18 + 3 * i + c) * TTD_NODE_WIDTH + j);
+        }
+    const ttdw_vd S = ttdw_loadu_d(S_ + j);
+    ttdw_md proved = ttdw_mnot_d(live); /* padding counts as done */
+    for (int end = 0; end < 2; ++end) {
+        ccdw3 *p = end ? p1 : p0;
+        ccdw3 d;
+        for (int k = 0; k < 3; ++k)
+            d[k] = (p[3][k] + p[4][k] + p[5][k]) - (p[0][k] + p[1][k] + p[2][k]);
+        ccdw3 e[2][3];
+        for (int sd = 0; sd < 2; ++sd) {
+            for (int q = 0; q < 3; ++q)
+                ccdw_sub(e[sd][q], p[3 * sd + (q + 1) % 3], p[3 * sd + q]);
+            /* the vertex furthest back along d (the first strictly least of sg (v . d)) */
+            const ttdw_vd sg = ttdw_set1_d(sd ? -1.0 : 1.0);
+            ttdw_vd back = ttdw_zero_d(), best = ttdw_set1_d(HUGE_VAL);
+            for (int i = 0; i < 3; ++i) {
+                const ttdw_vd a = sg * ccdw_dot(p[3 * sd + i], d);
+                const ttdw_md lt = ttdw_lt_d(a, best);
+                best = ttdw_sel_d(lt, a, best);
+                back = ttdw_sel_d(lt, ttdw_set1_d((double)i), back);
+            }
+            for (int jj = 0; jj < 3; ++jj) {
+                /* edge q = (back + 1 + 2 jj) mod 3, and edge (q + 2) mod 3 towards the third vertex */
+                ttdw_vd q = back + ttdw_set1_d((double)(1 + 2 * jj));
+                q = ttdw_sel_d(ttdw_ge_d(q, ttdw_set1_d(3.0)), q - ttdw_set1_d(3.0), q);
+                q = ttdw_sel_d(ttdw_ge_d(q, ttdw_set1_d(3.0)), q - ttdw_set1_d(3.0), q);
+                const ttdw_md is0 = ttdw_eq_d(q, ttdw_zero_d()), is1 = ttdw_eq_d(q, ttdw_set1_d(1.0));
+                ccdw3 E, W, m, t1, t2;
+                ccdw_sel3(t1, is1, e[sd][1], e[sd][2]);
+                ccdw_sel3(E, is0, e[sd][0], t1);
+                ccdw_sel3(t2, is1, e[sd][0], e[sd][1]);
+                ccdw_sel3(W, is0, e[sd][2], t2);
+                tri_apart_perp(m, E, W);
+                proved = ttdw_mor_d(proved, tri_apart_gap(m, p0, p1, S, delta));
+                if (ttdw_mbits_d(ttdw_mnot_d(proved)) == 0)
+                    return proved;
+            }
+        }
+        for (int sd = 0; sd < 2; ++sd) {
+            ccdw3 n;
+            ccdw_cross(n, e[sd][0], e[sd][1]);
+            proved = ttdw_mor_d(proved, tri_apart_gap(n, p0, p1, S, delta));
+            if (ttdw_mbits_d(ttdw_mnot_d(proved)) == 0)
+                return proved;
+        }
+    }
+    return proved;
+}
+
+static unsigned tri_apart(int count, const double *x, const double *S, double delta)
+{
+    unsigned out = 0;
+    for (int j = 0; j < count; j += TTDW_LANES_D) {
+        const ttdw_md live = ttdw_mfirst_d(count - j);
+        out |= ttdw_mbits_d(ttdw_mand_d(tri_apart_lanes(x, S, j, live, delta), live)) << j;
+    }
+    return out;
+}
+
+#define TTD_LANE_ROW_TRI_APART .tri_apart = tri_apart,
+#else
+#define TTD_LANE_ROW_TRI_APART
+#endif
