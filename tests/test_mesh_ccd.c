@@ -626,6 +626,61 @@ static int ap_pair(int f, double p[2][6][3], double *delta)
     return touches;
 }
 
+/* A direction whose dot products overflow proves nothing. Triangle A = (0, 0, 0), (X, -X, 0),
+ * (X, -X, e) with X = 2^530, e = 2^-30 has normal (-2^500, -2^500, 0): |n|^2 and the rounding
+ * bound (n1 S = 2^1031) are finite, but n.(X, -X, 0) is inf - inf = NaN. B has a vertex at A's
+ * (X, -X, 0) and two at x + y = -2^520, far along -n: passing over the NaN points, B's set lay
+ * 2^1020 beyond A's and the pair, which touches, was proved apart (the proof, each row's lanes,
+ * and a self-CCD whose t = 1 vertices are these: t = 1 coordinates need only be finite). */
+static int overflowing_directions(void)
+{
+    const double X = 0x1p530, Y = 0x1p520, e = 0x1p-30;
+    const double v[18] = {0, 0, 0, X, -X, 0, X, -X, e, X, -X, 0, -Y, 0, 0, 0, -Y, 1};
+    const double *x[6] = {v, v + 3, v + 6, v + 9, v + 12, v + 15};
+    ENSURE(meshccd_tri_apart(x, x, X, 0) == 0);
+    const double *y[6] = {v + 9, v + 12, v + 15, v, v + 3, v + 6}; /* B first */
+    ENSURE(meshccd_tri_apart(y, y, X, 0) == 0);
+    /* from t = 0 (within the meshes' range; B 2^490 along -n, beyond the bound there too) */
+    double v0[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, -0x1p490, 0, 0, 0, -0x1p490, 1};
+    v0[9] = -0x1p490, v0[10] = -0x1p490;
+    const uint32_t t[6] = {0, 1, 2, 3, 4, 5};
+    ttd_mesh *m = NULL;
+    ENSURE(ttd_mesh_create_d(NULL, v0, 6, t, 2, &m) == TTD_OK);
+    ttd_mesh_ccd_result ref;
+    ENSURE(brute_self_ccd(v0, v, t, 2, 0, 0, &ref) == 0 && ref.count > 0);
+    for (int scalar = 0; scalar < 2; ++scalar) { /* the best row's lanes, the scalar proof */
+        ttd_options o = opts(1);
+        if (scalar)
+            o.isa = TTD_ISA_SCALAR;
+        ttd_mesh_ccd_result r;
+        ENSURE(ttd_mesh_self_ccd_d(&o, m, v, 0, 0, &r) == TTD_OK);
+        /* (not the brute force's list bit for bit: at 2^530 the primitive search also reports a
+         * vertex 1 above a face as a conservative hit, which the walk's exact boxes rule out) */
+        ENSURE_MSG(r.count > 0 && r.toi == ref.toi, "toi %.17g, brute force %.17g", r.toi, ref.toi);
+        ENSURE(well_formed(&r) == 0);
+        ttd_mesh_ccd_free(&r);
+    }
+    free(ref.pairs);
+    ttd_mesh_destroy(m);
+    for (const isa_row *row = isa_rows; row->name != NULL; ++row) {
+        const char *why = "";
+        if (!cpu_runs(row->name, &why) || row->d == NULL || row->d->tri_apart == NULL)
+            continue;
+        for (int swap = 0; swap < 2; ++swap) {
+            double w[36 * TTD_NODE_WIDTH], S[TTD_NODE_WIDTH];
+            for (int l = 0; l < TTD_NODE_WIDTH; ++l) {
+                S[l] = X;
+                for (int k = 0; k < 2; ++k)
+                    for (int i = 0; i < 6; ++i)
+                        for (int c = 0; c < 3; ++c)
+                            w[(18 * k + 3 * i + c) * TTD_NODE_WIDTH + l] = (swap ? y : x)[i][c];
+            }
+            ENSURE_MSG(row->d->tri_apart(1, w, S, 0) == 0, "row %s: a touching pair proved apart", row->name);
+        }
+    }
+    return 0;
+}
+
 static int tri_apart_lanes(void)
 {
     enum { N = 6000 };
@@ -702,6 +757,7 @@ int main(int argc, char **argv)
     RUN_TEST(repeated_indices);
     RUN_TEST(float_matches_double);
     RUN_TEST(threads);
+    RUN_TEST(overflowing_directions);
     RUN_TEST(tri_apart_lanes); /* last: its draws leave the other tests' cases as they were */
     TEST_MAIN_END();
 }

@@ -276,7 +276,9 @@ static int gap_proves(const double n[3], int na, int np, const double *const *x0
 {
     const double u = 0x1p-53;
     const double n1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
-    if (!(n1 > 0) || !isfinite(n1))
+    /* |n.x| <= n1 S: below 2^1000 no dot product overflows; above it one could be inf - inf =
+     * NaN, which the minima below pass over, so a point would drop out of its set unseen */
+    if (!(n1 > 0) || !isfinite(n1) || !(n1 * S < 0x1p1000))
         return 0;
     /* (at delta 0: 0, or NaN, which proves nothing, where |n|^2 overflows, as delta |n| would give) */
     const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];

@@ -15,7 +15,8 @@ TTDW_FN ttdw_md tri_apart_gap(const ccdw3 n, ccdw3 *x0, ccdw3 *x1, ttdw_vd S, do
     const double u = 0x1p-53;
     const ttdw_vd huge = ttdw_set1_d(HUGE_VAL);
     const ttdw_vd n1 = ttdw_abs_d(n[0]) + ttdw_abs_d(n[1]) + ttdw_abs_d(n[2]);
-    const ttdw_md ok = ttdw_mand_d(ttdw_gt_d(n1, ttdw_zero_d()), ttdw_lt_d(n1, huge));
+    const ttdw_md ok = ttdw_mand_d(ttdw_mand_d(ttdw_gt_d(n1, ttdw_zero_d()), ttdw_lt_d(n1, huge)),
+                                   ttdw_lt_d(n1 * S, ttdw_set1_d(0x1p1000))); /* as gap_proves: no overflow */
     const ttdw_vd nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     const ttdw_vd need = delta != 0 ? ttdw_set1_d(delta) * ttdw_sqrt_d(nn) * ttdw_set1_d(1 + 0x1p-40)
                                     : ttdw_zero_d() * nn;
