@@ -466,6 +466,7 @@ typedef struct cop_info {
     int sgn;      /* then the sign a proof would have (0: either) */
     int change;   /* f(ta) and f(tb) of strict opposite signs: f has a root in the interval */
     int end_zero; /* f(ta) strict, f(tb) within its bound of 0 (maybe a root at tb) */
+    double B[4];  /* the rounded Bernstein coefficients (a guess of f's first root: prefix_cut) */
 } cop_info;
 
 TTDW_FN void never_coplanar(int na, double xa[4][3], double xb[4][3], double S, cop_info *ci)
@@ -494,6 +495,7 @@ TTDW_FN void never_coplanar(int na, double xa[4][3], double xb[4][3], double S, 
     B[3] = det3(w[1][0], w[1][1], w[1][2]);
     B[1] = (det3(w[1][0], w[0][1], w[0][2]) + det3(w[0][0], w[1][1], w[0][2]) + det3(w[0][0], w[0][1], w[1][2])) / 3;
     B[2] = (det3(w[1][0], w[1][1], w[0][2]) + det3(w[1][0], w[0][1], w[1][2]) + det3(w[0][0], w[1][1], w[1][2])) / 3;
+    memcpy(ci->B, B, sizeof B);
     int pos = 1, neg = 1, any_pos = 0, any_neg = 0, sg[4];
     for (int i = 0; i < 4; ++i) {
         const double e = err + 0x1p-51 * fabs(B[i]);
@@ -942,6 +944,44 @@ TTDW_FN int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], 
     return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
 }
 
+/* ---- the proved-free prefix (docs/ccd.md, section 3, "t_stop") ---------------------------------
+ * Where f changes sign on [ta, tb], the cut at its first root (root_guess) forms f exactly and
+ * brackets the root, and the piece before the root is then tested: exact work that a search with
+ * t_stop (mesh CCD) wastes when the root lies after t_stop. So before it, the stretch [ta, c] up to
+ * a point c before the root guessed in double from the rounded Bernstein coefficients is tried
+ * with the cheap certified tests; proved, [0, c] is free of contact (every time before ta already
+ * was), and no later step may report a hit before c - t_tol (free_to in ccd_query_one). Every
+ * search does this, with or without t_stop, so the intervals and the answers do not depend on
+ * t_stop; a search with t_stop stops there when c - t_tol is past it. */
+
+/* The end c of the prefix to try: 7/8 of the way from ta to the first root in (ta, tb) of the
+ * cubic with Bernstein coefficients B on [ta, tb] (in double: a guess); NAN where it finds none. */
+TTDW_FN double prefix_cut(const double B[4], double ta, double tb)
+{
+    const double a[4] = {B[0], 3 * (B[1] - B[0]), 3 * (B[2] - 2 * B[1] + B[0]), B[3] - 3 * B[2] + 3 * B[1] - B[0]};
+    const double r = approx_first_root(a, 0.0, 1.0);
+    const double c = ta + (tb - ta) * (0.875 * r);
+    return c > ta && c < tb ? c : (double)NAN;
+}
+
+/* Whether [ta, c] is certified free of contact at delta = 0: f of one strict sign there (rounded),
+ * or a direction's test (directions_separate). s's candidate for the exact test is left as found. */
+TTDW_FN int prefix_free(ccd_state *s, double xa[4][3], double ta, double c, double S)
+{
+    double xc[4][3];
+    positions(s, c, xc);
+    cop_info ci;
+    never_coplanar(s->na, xa, xc, S, &ci);
+    if (ci.never)
+        return 1;
+    const double cand_g = s->cand_g, cand_n[3] = {s->cand_n[0], s->cand_n[1], s->cand_n[2]};
+    double d;
+    const int apart = directions_separate(s, xa, xc, 0.5 * (ta + c), 0.0, &d);
+    s->cand_g = cand_g;
+    memcpy(s->cand_n, cand_n, sizeof cand_n);
+    return apart;
+}
+
 /* Whether a point of A and a point of B are equal in the 12 coordinates x (exactly): the primitives
  * touch there. */
 TTDW_FN int points_coincide(int na, const double x[12])
@@ -1049,6 +1089,11 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
         }
     }
     int evals = 0, probes = 0, end_probes = 0;
+    /* [0, free_to] proved free of contact by a prefix (prefix_free): an interval inside it that
+     * is not proved again is dropped, not a hit, and a hit's toi is at least free_to, except a
+     * contact's (jump_to_root, the final pieces), which lies after it and so starts after
+     * free_to - t_tol. */
+    double free_to = -HUGE_VAL;
     enum { PROBES = 2, END_PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
@@ -1059,7 +1104,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             /* Out of budget: answer hit at the earliest interval not yet separated. */
             out->hit = 1;
             out->flags |= TTD_CCD_BUDGET;
-            out->toi = ta;
+            out->toi = ta < free_to ? free_to : ta;
             positions(&s, 0.5 * (ta + tb), xm);
             double n1[3], n2[3];
             int vv[2];
@@ -1099,6 +1144,14 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             never_coplanar(s.na, xa, xb, S, &ci);
             if (ci.never)
                 continue;
+            if (ci.change && !(ta >= cert_ta && tb <= cert_tb)) {
+                const double c = prefix_cut(ci.B, ta, tb);
+                if (c > free_to && prefix_free(&s, xa, ta, c, S)) {
+                    free_to = c;
+                    if (free_to - p->t_stop > 4 * p->t_tol)
+                        break; /* every hit would start after t_stop (t_stop's promise, ccd.h) */
+                }
+            }
             if (ta >= cert_ta && tb <= cert_tb) {
                 /* Inside a certified interval only f's roots matter. */
                 if (exact_free(&s, &ci, NULL))
@@ -1149,8 +1202,10 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             continue;
     split:
         if (tb - ta <= p->t_tol || !(tm > ta && tm < tb) || top + 2 > STACK) {
+            if (tb <= free_to)
+                continue; /* inside the proved prefix: free */
             out->hit = 1;
-            out->toi = ta;
+            out->toi = ta < free_to ? free_to : ta;
             if (d == HUGE_VAL) {
                 double n1[3], n2[3];
                 int vv[2];
