@@ -1068,6 +1068,21 @@ TTDW_CALL int ccd_screen_one(int kind, const double x0[12], const double x1[12],
     return separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta);
 }
 
+/* The search's stack of open intervals (ccd_query_one): [a, b] pushed on top. */
+TTDW_FN void push_interval(double *st_ta, double *st_tb, int *top, double a, double b)
+{
+    st_ta[*top] = a;
+    st_tb[*top] = b;
+    ++*top;
+}
+
+/* [a, b] split at m: the later piece pushed first, so that the earlier one is on top. */
+TTDW_FN void push_split(double *st_ta, double *st_tb, int *top, double a, double m, double b)
+{
+    push_interval(st_ta, st_tb, top, m, b);
+    push_interval(st_ta, st_tb, top, a, m);
+}
+
 /* ttd_ccd_query (ccd/ccd.h): the search of one query. */
 TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
                            ttd_ccd_result *out)
@@ -1257,12 +1272,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 lo = nextafter(lo, tb);
             if (lo > ta && lo < tb) {
                 ++end_probes;
-                st_ta[top] = lo;
-                st_tb[top] = tb;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = lo;
-                ++top;
+                push_split(st_ta, st_tb, &top, ta, lo, tb);
                 continue;
             }
         }
@@ -1276,12 +1286,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 hi = nextafter(hi, ta);
             if (hi > ta && hi < tb) {
                 ++probes;
-                st_ta[top] = hi;
-                st_tb[top] = tb;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = hi;
-                ++top;
+                push_split(st_ta, st_tb, &top, ta, hi, tb);
                 continue;
             }
         }
@@ -1298,17 +1303,9 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             while (hi - lo > p->t_tol)
                 lo = nextafter(lo, hi);
             if (lo > ta && hi > lo) {
-                if (hi < tb) {
-                    st_ta[top] = hi;
-                    st_tb[top] = tb;
-                    ++top;
-                }
-                st_ta[top] = lo;
-                st_tb[top] = hi;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = lo;
-                ++top;
+                if (hi < tb)
+                    push_interval(st_ta, st_tb, &top, hi, tb);
+                push_split(st_ta, st_tb, &top, ta, lo, hi);
                 if (from_cond) {
                     s.cut_ta = ta;
                     s.cut_lo = lo;
@@ -1316,13 +1313,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 continue;
             }
         }
-        /* Later half first, so the earlier one is on top. */
-        st_ta[top] = tm;
-        st_tb[top] = tb;
-        ++top;
-        st_ta[top] = ta;
-        st_tb[top] = tm;
-        ++top;
+        push_split(st_ta, st_tb, &top, ta, tm, tb); /* the halves */
     }
     out->evals = (uint32_t)evals;
 }
