@@ -6,7 +6,9 @@
  * this holds. Every query of the generated families and of the kept CSV queries (the benchmark's
  * samples, and the step through the layers of `ttd bench ccd --mesh-only`), at delta 0 and 1e-6,
  * with t_stop at the toi itself, just after it, toi + t_tol / 2, + t_tol, + 2 t_tol, further on and
- * 1; and before the toi (just before, halfway, 0) and on a grid where it has none. */
+ * 1; and before the toi (just before, halfway, 0) and on a grid where it has none. Then that a
+ * search with t_stop stops before the exact work on a coplanarity root that lies well after t_stop
+ * (the proved-free prefix, ccd_search_impl.h): one interval, and no contact isolated after t_stop. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -88,9 +90,48 @@ static int check_file(const char *path, const qset *s, void *ctx)
     return check_set(s, ctx);
 }
 
+/* Two queries whose first interval the directions cannot prove (they touch at t_c): a vertex
+ * through a face's interior (certified contact, its root isolated exactly) and an edge sliding
+ * across another as it passes its plane (the conditions change sign on [0, 1]: a cut at f's
+ * root, then the piece before it tested). Searched whole: the contact, at most t_c. With t_stop
+ * 0.1: no hit and one interval (before the prefix, the first isolated the root, hit at t_c, and
+ * the second tested [0, lo] after the cut, two intervals). Each also through check_query. */
+static int stops_before_exact_work(counts *c)
+{
+    /* vertex (0.25, 0.25, 1) -> (0.25, 0.25, -0.6) onto the triangle z = 0: t_c = 1 / 1.6 */
+    const double vf0[12] = {0.25, 0.25, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const double vf1[12] = {0.25, 0.25, -0.6, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    /* edge (-2, 0, 1)-(-1, 0, 1) -> (2, 0, -1)-(3, 0, -1) across (0.5, -1, 0)-(0.5, 1, 0): at
+     * t = 0.5 it spans x in [0, 1] at z = 0: t_c = 0.5 */
+    const double ee0[12] = {-2, 0, 1, -1, 0, 1, 0.5, -1, 0, 0.5, 1, 0};
+    const double ee1[12] = {2, 0, -1, 3, 0, -1, 0.5, -1, 0, 0.5, 1, 0};
+    const struct {
+        int kind;
+        const double *x0, *x1;
+        double tc;
+    } q[2] = {{TTD_CCD_VF, vf0, vf1, 0.625}, {TTD_CCD_EE, ee0, ee1, 0.5}};
+    for (int i = 0; i < 2; ++i) {
+        ttd_ccd_params p = ttd_ccd_default_params();
+        ttd_ccd_result whole, r;
+        ttd_ccd_query(q[i].kind, q[i].x0, q[i].x1, &p, &whole);
+        ENSURE_MSG(whole.hit == 1 && whole.toi <= q[i].tc && whole.toi > q[i].tc - 1e-9,
+                   "query %d: whole search hit %u toi %.17g, contact at %g", i, whole.hit, whole.toi, q[i].tc);
+        p.t_stop = 0.1;
+        ttd_ccd_query(q[i].kind, q[i].x0, q[i].x1, &p, &r);
+        ENSURE_MSG(r.hit == 0 && r.evals == 1, "query %d, t_stop 0.1: hit %u toi %.17g, %u intervals", i, r.hit, r.toi,
+                   r.evals);
+        for (int d = 0; d < 2; ++d)
+            if (check_query(q[i].kind, q[i].x0, q[i].x1, d ? 1e-6 : 0, c))
+                return 1;
+    }
+    return 0;
+}
+
 int main(void)
 {
     counts c = {0, 0, 0};
+    if (stops_before_exact_work(&c))
+        return 1;
     for (int fam = 0; fam < F_COUNT; ++fam)
         for (int kind = 1; kind <= 2; ++kind) {
             qset s = make_set(fam, kind, 200);

@@ -10,18 +10,29 @@
  *   ./ccd_csv_time [-r REPS] [-s T_STOP] FILE.csv...
  *
  * A file's kind is taken from its path (vertex-face or edge-edge). Prints per file: queries, hits,
- * intervals, and the CPU time of the fastest of REPS passes (default 3), mean per query. T_STOP:
+ * intervals, the CPU time of the fastest of REPS passes (default 3), mean per query, and a digest
+ * of every answer (FNV-1a over hit, flags, the bits of toi and gap, and evals), so that two
+ * versions' answers can be compared bit for bit. T_STOP:
  * the params' t_stop (default HUGE_VAL), as the mesh query sets it once it has a hit (its earliest
  * toi + the tolerance: 0.116945 + 2^-20 or so on the step through the layers); versions of the
  * search before t_stop existed ignore it (their params struct lacks it: build with -DNO_T_STOP). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #include "ccd/ccd.h"
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t i = 0; i < n; ++i)
+        h = (h ^ c[i]) * 0x100000001b3ull;
+    return h;
+}
 
 static double cpu(void)
 {
@@ -92,21 +103,29 @@ int main(int argc, char **argv)
         double best = HUGE_VAL;
         size_t hits = 0;
         unsigned long long evals = 0;
+        uint64_t digest = 0;
         for (int r = 0; r < reps; ++r) {
             hits = 0;
             evals = 0;
+            digest = 0xcbf29ce484222325ull;
             const double c0 = cpu();
             for (size_t k = 0; k < n; ++k) {
                 ttd_ccd_result o;
                 ttd_ccd_query(kind, x0 + 12 * k, x1 + 12 * k, &p, &o);
                 hits += o.hit;
                 evals += o.evals;
+                digest = fnv(digest, &o.hit, sizeof o.hit);
+                digest = fnv(digest, &o.flags, sizeof o.flags);
+                digest = fnv(digest, &o.toi, sizeof o.toi);
+                digest = fnv(digest, &o.gap, sizeof o.gap);
+                digest = fnv(digest, &o.evals, sizeof o.evals);
             }
             const double c = cpu() - c0;
             best = c < best ? c : best;
         }
-        printf("%s: %zu queries (%s), %zu hits, %llu intervals, %.3f ms CPU, %.3f us a query\n", argv[i], n,
-               kind == TTD_CCD_VF ? "vertex-face" : "edge-edge", hits, evals, best * 1e3, best * 1e6 / (double)n);
+        printf("%s: %zu queries (%s), %zu hits, %llu intervals, %.3f ms CPU, %.3f us a query, digest %016llx\n", argv[i],
+               n, kind == TTD_CCD_VF ? "vertex-face" : "edge-edge", hits, evals, best * 1e3, best * 1e6 / (double)n,
+               (unsigned long long)digest);
         free(x0);
         free(x1);
     }

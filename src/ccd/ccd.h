@@ -21,10 +21,11 @@ typedef struct ttd_ccd_params {
     double t_max;     ///< search [0, t_max], t_max in [0, 1]
     double t_tol;     ///< a time interval this short that cannot be separated is a hit
     int max_evals;    ///< intervals examined before the query answers hit conservatively
-    /// Stop, answering no hit, at the first open interval that starts after t_stop (mesh CCD,
-    /// src/meshccd/: a pair whose contact comes after the earliest found cannot be reported).
-    /// The answer of a query whose toi is at most t_stop is the same as without (the same
-    /// intervals in the same order). Default HUGE_VAL.
+    /// Stop, answering no hit, at the first open interval that starts after t_stop, or once a
+    /// proved-free prefix reaches past it (mesh CCD, src/meshccd/: a pair whose contact comes
+    /// after the earliest found cannot be reported; docs/ccd.md, section 3, item 9). The answer
+    /// of a query whose toi is at most t_stop is the same as without (the same intervals in the
+    /// same order); one whose toi is later gets no hit at or before t_stop. Default HUGE_VAL.
     double t_stop;
 } ttd_ccd_params;
 

@@ -466,6 +466,7 @@ typedef struct cop_info {
     int sgn;      /* then the sign a proof would have (0: either) */
     int change;   /* f(ta) and f(tb) of strict opposite signs: f has a root in the interval */
     int end_zero; /* f(ta) strict, f(tb) within its bound of 0 (maybe a root at tb) */
+    double B[4];  /* the rounded Bernstein coefficients (a guess of f's first root: prefix_cut) */
 } cop_info;
 
 TTDW_FN void never_coplanar(int na, double xa[4][3], double xb[4][3], double S, cop_info *ci)
@@ -494,6 +495,7 @@ TTDW_FN void never_coplanar(int na, double xa[4][3], double xb[4][3], double S, 
     B[3] = det3(w[1][0], w[1][1], w[1][2]);
     B[1] = (det3(w[1][0], w[0][1], w[0][2]) + det3(w[0][0], w[1][1], w[0][2]) + det3(w[0][0], w[0][1], w[1][2])) / 3;
     B[2] = (det3(w[1][0], w[1][1], w[0][2]) + det3(w[1][0], w[0][1], w[1][2]) + det3(w[0][0], w[1][1], w[1][2])) / 3;
+    memcpy(ci->B, B, sizeof B);
     int pos = 1, neg = 1, any_pos = 0, any_neg = 0, sg[4];
     for (int i = 0; i < 4; ++i) {
         const double e = err + 0x1p-51 * fabs(B[i]);
@@ -942,6 +944,64 @@ TTDW_FN int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], 
     return separated_along(s, xa, xb, n1, delta) || separated_along(s, xa, xb, n2, delta);
 }
 
+/* ---- the proved-free prefix (docs/ccd.md, section 3, "t_stop") ---------------------------------
+ * Where f changes sign on [ta, tb], the cut at its first root (root_guess) forms f exactly and
+ * brackets the root, and the piece before the root is then tested: exact work that a search with
+ * t_stop (mesh CCD) wastes when the root lies after t_stop. So before it, the stretch [ta, c] up to
+ * a point c before the root guessed in double from the rounded Bernstein coefficients is tried
+ * with the cheap certified tests; proved, [0, c] is free of contact (every time before ta already
+ * was), and no later step may report a hit before c - t_tol (free_to in ccd_query_one). Every
+ * search does this, with or without t_stop, so the intervals and the answers do not depend on
+ * t_stop; a search with t_stop stops there when c - t_tol is past it. */
+
+/* The end c of the prefix to try: 7/8 of the way from ta to the first sign change in (ta, tb) of
+ * the cubic with Bernstein coefficients B on [ta, tb], a guess in double: the first of 8 equal
+ * pieces whose end differs in sign from B[0], bisected 8 times (1/2048 of the interval, far finer
+ * than the 1/8 kept back); NAN where none is found. */
+TTDW_FN double prefix_cut(const double B[4], double ta, double tb)
+{
+    const double a[4] = {B[0], 3 * (B[1] - B[0]), 3 * (B[2] - 2 * B[1] + B[0]), B[3] - 3 * B[2] + 3 * B[1] - B[0]};
+    const int neg = a[0] < 0;
+    double lo = 0, hi = (double)NAN;
+    for (int i = 1; i <= 8; ++i) {
+        const double u = i / 8.0, v = ((a[3] * u + a[2]) * u + a[1]) * u + a[0];
+        if ((v < 0) != neg || v == 0) {
+            hi = u;
+            break;
+        }
+        lo = u;
+    }
+    if (!(hi > 0))
+        return (double)NAN;
+    for (int it = 0; it < 8; ++it) {
+        const double m = 0.5 * (lo + hi), v = ((a[3] * m + a[2]) * m + a[1]) * m + a[0];
+        if ((v < 0) == neg && v != 0)
+            lo = m;
+        else
+            hi = m;
+    }
+    const double c = ta + (tb - ta) * (0.875 * lo);
+    return c > ta && c < tb ? c : (double)NAN;
+}
+
+/* Whether [ta, c] is certified free of contact at delta = 0: f of one strict sign there (rounded),
+ * or a direction's test (directions_separate). s's candidate for the exact test is left as found. */
+TTDW_FN int prefix_free(ccd_state *s, double xa[4][3], double ta, double c, double S)
+{
+    double xc[4][3];
+    positions(s, c, xc);
+    cop_info ci;
+    never_coplanar(s->na, xa, xc, S, &ci);
+    if (ci.never)
+        return 1;
+    const double cand_g = s->cand_g, cand_n[3] = {s->cand_n[0], s->cand_n[1], s->cand_n[2]};
+    double d;
+    const int apart = directions_separate(s, xa, xc, 0.5 * (ta + c), 0.0, &d);
+    s->cand_g = cand_g;
+    memcpy(s->cand_n, cand_n, sizeof cand_n);
+    return apart;
+}
+
 /* Whether a point of A and a point of B are equal in the 12 coordinates x (exactly): the primitives
  * touch there. */
 TTDW_FN int points_coincide(int na, const double x[12])
@@ -1008,6 +1068,21 @@ TTDW_CALL int ccd_screen_one(int kind, const double x0[12], const double x1[12],
     return separated_along(&s, xa, xb, n1, delta) || separated_along(&s, xa, xb, n2, delta);
 }
 
+/* The search's stack of open intervals (ccd_query_one): [a, b] pushed on top. */
+TTDW_FN void push_interval(double *st_ta, double *st_tb, int *top, double a, double b)
+{
+    st_ta[*top] = a;
+    st_tb[*top] = b;
+    ++*top;
+}
+
+/* [a, b] split at m: the later piece pushed first, so that the earlier one is on top. */
+TTDW_FN void push_split(double *st_ta, double *st_tb, int *top, double a, double m, double b)
+{
+    push_interval(st_ta, st_tb, top, m, b);
+    push_interval(st_ta, st_tb, top, a, m);
+}
+
 /* ttd_ccd_query (ccd/ccd.h): the search of one query. */
 TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12], const ttd_ccd_params *p,
                            ttd_ccd_result *out)
@@ -1049,6 +1124,11 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
         }
     }
     int evals = 0, probes = 0, end_probes = 0;
+    /* [0, free_to] proved free of contact by a prefix (prefix_free): an interval inside it that
+     * is not proved again is dropped, not a hit, and a hit's toi is at least free_to, except a
+     * contact's (jump_to_root, the final pieces), which lies after it and so starts after
+     * free_to - t_tol. */
+    double free_to = -HUGE_VAL;
     enum { PROBES = 2, END_PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
@@ -1059,7 +1139,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             /* Out of budget: answer hit at the earliest interval not yet separated. */
             out->hit = 1;
             out->flags |= TTD_CCD_BUDGET;
-            out->toi = ta;
+            out->toi = ta < free_to ? free_to : ta;
             positions(&s, 0.5 * (ta + tb), xm);
             double n1[3], n2[3];
             int vv[2];
@@ -1099,6 +1179,14 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             never_coplanar(s.na, xa, xb, S, &ci);
             if (ci.never)
                 continue;
+            if (ci.change && !(ta >= cert_ta && tb <= cert_tb)) {
+                const double c = prefix_cut(ci.B, ta, tb);
+                if (c > free_to && prefix_free(&s, xa, ta, c, S)) {
+                    free_to = c;
+                    if (free_to - p->t_stop > 4 * p->t_tol)
+                        break; /* every hit would start after t_stop (t_stop's promise, ccd.h) */
+                }
+            }
             if (ta >= cert_ta && tb <= cert_tb) {
                 /* Inside a certified interval only f's roots matter. */
                 if (exact_free(&s, &ci, NULL))
@@ -1149,8 +1237,10 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             continue;
     split:
         if (tb - ta <= p->t_tol || !(tm > ta && tm < tb) || top + 2 > STACK) {
+            if (tb <= free_to)
+                continue; /* inside the proved prefix: free */
             out->hit = 1;
-            out->toi = ta;
+            out->toi = ta < free_to ? free_to : ta;
             if (d == HUGE_VAL) {
                 double n1[3], n2[3];
                 int vv[2];
@@ -1182,12 +1272,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 lo = nextafter(lo, tb);
             if (lo > ta && lo < tb) {
                 ++end_probes;
-                st_ta[top] = lo;
-                st_tb[top] = tb;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = lo;
-                ++top;
+                push_split(st_ta, st_tb, &top, ta, lo, tb);
                 continue;
             }
         }
@@ -1201,12 +1286,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 hi = nextafter(hi, ta);
             if (hi > ta && hi < tb) {
                 ++probes;
-                st_ta[top] = hi;
-                st_tb[top] = tb;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = hi;
-                ++top;
+                push_split(st_ta, st_tb, &top, ta, hi, tb);
                 continue;
             }
         }
@@ -1223,17 +1303,9 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             while (hi - lo > p->t_tol)
                 lo = nextafter(lo, hi);
             if (lo > ta && hi > lo) {
-                if (hi < tb) {
-                    st_ta[top] = hi;
-                    st_tb[top] = tb;
-                    ++top;
-                }
-                st_ta[top] = lo;
-                st_tb[top] = hi;
-                ++top;
-                st_ta[top] = ta;
-                st_tb[top] = lo;
-                ++top;
+                if (hi < tb)
+                    push_interval(st_ta, st_tb, &top, hi, tb);
+                push_split(st_ta, st_tb, &top, ta, lo, hi);
                 if (from_cond) {
                     s.cut_ta = ta;
                     s.cut_lo = lo;
@@ -1241,13 +1313,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
                 continue;
             }
         }
-        /* Later half first, so the earlier one is on top. */
-        st_ta[top] = tm;
-        st_tb[top] = tb;
-        ++top;
-        st_ta[top] = ta;
-        st_tb[top] = tm;
-        ++top;
+        push_split(st_ta, st_tb, &top, ta, tm, tb); /* the halves */
     }
     out->evals = (uint32_t)evals;
 }
