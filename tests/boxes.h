@@ -2,7 +2,7 @@
 /* Boxes for the scene and mass tests: a box of sides a x b x c centred at the origin, faces wound
  * outward, each face cut n x n into squares of two triangles (n = 1: 12 triangles), vertices
  * shared by index; poses turned about z; the closest point of a triangle to a point (Ericson's
- * regions, written here, independent of the library); a ttd mesh of such vertices in double or
+ * regions, written here, independent of the library); a polygon clipped by a convex one; a ttd mesh of such vertices in double or
  * float. Header-only, static functions. */
 #ifndef TTD_TESTS_BOXES_H
 #define TTD_TESTS_BOXES_H
@@ -90,10 +90,11 @@ static inline double test_dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* The distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5). */
-static inline double test_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3])
+/* The point x of triangle (a, b, c) nearest p (Ericson, Real-Time Collision Detection 5.1.5). */
+static inline void test_closest_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
+                                            double x[3])
 {
-    double ab[3], ac[3], ap[3], bp[3], cp[3], x[3];
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
     for (int r = 0; r < 3; ++r) {
         ab[r] = b[r] - a[r];
         ac[r] = c[r] - a[r];
@@ -105,11 +106,11 @@ static inline double test_point_triangle(const double p[3], const double a[3], c
     const double d5 = test_dot(ab, cp), d6 = test_dot(ac, cp);
     const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
     if (d1 <= 0 && d2 <= 0)
-        memcpy(x, a, sizeof x);
+        memcpy(x, a, 3 * sizeof *x);
     else if (d3 >= 0 && d4 <= d3)
-        memcpy(x, b, sizeof x);
+        memcpy(x, b, 3 * sizeof *x);
     else if (d6 >= 0 && d5 <= d6)
-        memcpy(x, c, sizeof x);
+        memcpy(x, c, 3 * sizeof *x);
     else if (vc <= 0 && d1 >= 0 && d3 <= 0)
         for (int r = 0; r < 3; ++r)
             x[r] = a[r] + d1 / (d1 - d3) * ab[r];
@@ -124,8 +125,47 @@ static inline double test_point_triangle(const double p[3], const double a[3], c
         for (int r = 0; r < 3; ++r)
             x[r] = a[r] + ab[r] * v + ac[r] * w;
     }
+}
+
+/* The distance from p to triangle (a, b, c). */
+static inline double test_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    double x[3];
+    test_closest_on_triangle(p, a, b, c, x);
     const double d[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
     return sqrt(test_dot(d, d));
+}
+
+/* Polygon a[0..na) (counter-clockwise, xy; any shape) clipped by convex polygon b[0..nb)
+ * (counter-clockwise) by Sutherland-Hodgman into out; returns how many points (at most 128: the
+ * clipping stops adding there, far beyond what the tests' polygons make). */
+static inline size_t test_clip_polygon(const double (*a)[2], size_t na, const double (*b)[2], size_t nb,
+                                       double (*out)[2])
+{
+    double cur[128][2], next[128][2];
+    size_t nc = na < 128 ? na : 128;
+    memcpy(cur, a, nc * sizeof *a);
+    for (size_t e = 0; e < nb && nc > 0; ++e) {
+        const double *p = b[e], *q = b[(e + 1) % nb];
+        size_t nn = 0;
+        for (size_t k = 0; k < nc && nn + 2 <= 128; ++k) {
+            const double *x = cur[k], *y = cur[(k + 1) % nc];
+            const double sx = (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
+            const double sy = (q[0] - p[0]) * (y[1] - p[1]) - (q[1] - p[1]) * (y[0] - p[0]);
+            if (sx >= 0)
+                memcpy(next[nn++], x, sizeof next[0]);
+            if ((sx >= 0) != (sy >= 0)) {
+                const double t = sx / (sx - sy);
+                next[nn][0] = x[0] + t * (y[0] - x[0]);
+                next[nn][1] = x[1] + t * (y[1] - x[1]);
+                ++nn;
+            }
+        }
+        memcpy(cur, next, nn * sizeof *next);
+        nc = nn;
+    }
+    memcpy(out, cur, nc * sizeof *cur);
+    return nc;
 }
 
 /* The distance from p to segment (a, b). */

@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boxes.h"
 #include "meshes.h"
 #include "pairs.h"
 #include "scene_corners_ref.h"
@@ -670,36 +671,6 @@ static double hull_area_xy(const double (*x)[3], size_t n)
     return 0.5 * fabs(area);
 }
 
-/* Convex polygon a[0..na) (counter-clockwise, xy) clipped by convex polygon b[0..nb) (counter-
- * clockwise) into out (at most na + nb points); returns how many (Sutherland-Hodgman). */
-static size_t clip_convex(const double (*a)[2], size_t na, const double (*b)[2], size_t nb, double (*out)[2])
-{
-    double cur[16][2], next[16][2];
-    size_t nc = na;
-    memcpy(cur, a, na * sizeof *a);
-    for (size_t e = 0; e < nb && nc > 0; ++e) {
-        const double *p = b[e], *q = b[(e + 1) % nb];
-        size_t nn = 0;
-        for (size_t k = 0; k < nc; ++k) {
-            const double *x = cur[k], *y = cur[(k + 1) % nc];
-            const double sx = (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
-            const double sy = (q[0] - p[0]) * (y[1] - p[1]) - (q[1] - p[1]) * (y[0] - p[0]);
-            if (sx >= 0)
-                memcpy(next[nn++], x, sizeof next[0]);
-            if ((sx >= 0) != (sy >= 0)) {
-                const double t = sx / (sx - sy);
-                next[nn][0] = x[0] + t * (y[0] - x[0]);
-                next[nn][1] = x[1] + t * (y[1] - x[1]);
-                ++nn;
-            }
-        }
-        memcpy(cur, next, nn * sizeof *next);
-        nc = nn;
-    }
-    memcpy(out, cur, nc * sizeof *cur);
-    return nc;
-}
-
 /* The distance from xy point x to convex polygon v[0..n) (counter-clockwise; 0 inside). */
 static double polygon_distance(const double (*v)[2], size_t n, const double x[2])
 {
@@ -760,7 +731,7 @@ static int box_on_box_corners(void)
                             for (int k = 0; k < 4; ++k)
                                 for (int r = 0; r < 2; ++r)
                                     face[b][k][r] = pose[b][4 * r] * sq[k][0] + pose[b][4 * r + 1] * sq[k][1] + pose[b][4 * r + 3];
-                        const size_t nr = clip_convex((const double (*)[2])face[1], 4, (const double (*)[2])face[0], 4, region);
+                        const size_t nr = test_clip_polygon((const double (*)[2])face[1], 4, (const double (*)[2])face[0], 4, region);
                         ENSURE(nr >= 3);
                         ttd_scene *s;
                         ENSURE(ttd_scene_create_d(&s) == TTD_OK);
@@ -864,7 +835,7 @@ static int box_on_box_level(void)
                     for (int v = 0; v < 4; ++v)
                         for (int r = 0; r < 2; ++r)
                             face[b][v][r] = pose[b][4 * r] * sq[v][0] + pose[b][4 * r + 1] * sq[v][1] + pose[b][4 * r + 3];
-                const size_t nr = clip_convex((const double (*)[2])face[1], 4, (const double (*)[2])face[0], 4, region);
+                const size_t nr = test_clip_polygon((const double (*)[2])face[1], 4, (const double (*)[2])face[0], 4, region);
                 ENSURE(nr >= 3);
                 double area = 0;
                 for (size_t v = 0; v < nr; ++v)

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boxes.h"
 #include "test_macros.h"
 #include <ttd/ttd.h>
 
@@ -189,57 +190,6 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* The point of triangle (a, b, c) nearest p (Ericson, Real-Time Collision Detection 5.1.5). */
-static void closest_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3], double out[3])
-{
-    double ab[3], ac[3], ap[3], bp[3], cp[3];
-    for (int r = 0; r < 3; ++r) {
-        ab[r] = b[r] - a[r];
-        ac[r] = c[r] - a[r];
-        ap[r] = p[r] - a[r];
-        bp[r] = p[r] - b[r];
-        cp[r] = p[r] - c[r];
-    }
-    const double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp), d5 = dot3(ab, cp),
-                 d6 = dot3(ac, cp);
-    if (d1 <= 0 && d2 <= 0) {
-        memcpy(out, a, 3 * sizeof *a);
-        return;
-    }
-    if (d3 >= 0 && d4 <= d3) {
-        memcpy(out, b, 3 * sizeof *b);
-        return;
-    }
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        const double v = d1 / (d1 - d3);
-        for (int r = 0; r < 3; ++r)
-            out[r] = a[r] + v * ab[r];
-        return;
-    }
-    if (d6 >= 0 && d5 <= d6) {
-        memcpy(out, c, 3 * sizeof *c);
-        return;
-    }
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        const double w = d2 / (d2 - d6);
-        for (int r = 0; r < 3; ++r)
-            out[r] = a[r] + w * ac[r];
-        return;
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int r = 0; r < 3; ++r)
-            out[r] = b[r] + w * (c[r] - b[r]);
-        return;
-    }
-    const double den = 1 / (va + vb + vc), v = vb * den, w = vc * den;
-    for (int r = 0; r < 3; ++r)
-        out[r] = a[r] + ab[r] * v + ac[r] * w;
-}
-
 /* The distance between segments p1q1 and p2q2 (Ericson 5.1.9). */
 static double segment_distance(const double p1[3], const double q1[3], const double p2[3], const double q2[3])
 {
@@ -300,7 +250,7 @@ static double point_body(const double p[3], const double *w, size_t nt)
     double best = INFINITY;
     for (size_t t = 0; t < nt; ++t) {
         double c[3];
-        closest_on_triangle(p, w + 9 * t, w + 9 * t + 3, w + 9 * t + 6, c);
+        test_closest_on_triangle(p, w + 9 * t, w + 9 * t + 3, w + 9 * t + 6, c);
         const double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
         best = fmin(best, sqrt(dot3(d, d)));
     }
@@ -317,11 +267,11 @@ static double body_body(const double *a, size_t na, const double *b, size_t nb)
             const double *x = a + 9 * s, *y = b + 9 * t;
             for (int k = 0; k < 3; ++k) {
                 double c[3], d[3];
-                closest_on_triangle(x + 3 * k, y, y + 3, y + 6, c);
+                test_closest_on_triangle(x + 3 * k, y, y + 3, y + 6, c);
                 for (int r = 0; r < 3; ++r)
                     d[r] = x[3 * k + r] - c[r];
                 best = fmin(best, sqrt(dot3(d, d)));
-                closest_on_triangle(y + 3 * k, x, x + 3, x + 6, c);
+                test_closest_on_triangle(y + 3 * k, x, x + 3, x + 6, c);
                 for (int r = 0; r < 3; ++r)
                     d[r] = y[3 * k + r] - c[r];
                 best = fmin(best, sqrt(dot3(d, d)));
@@ -330,36 +280,6 @@ static double body_body(const double *a, size_t na, const double *b, size_t nb)
             }
         }
     return best;
-}
-
-/* Polygon a[0..na) (counter-clockwise, any shape) clipped by convex polygon b[0..nb) (counter-
- * clockwise), Sutherland-Hodgman, into out (room for 128); returns how many points. */
-static size_t clip(const double (*a)[2], size_t na, const double (*b)[2], size_t nb, double (*out)[2])
-{
-    double cur[128][2], next[128][2];
-    size_t nc = na;
-    memcpy(cur, a, na * sizeof *a);
-    for (size_t e = 0; e < nb && nc > 0; ++e) {
-        const double *p = b[e], *q = b[(e + 1) % nb];
-        size_t nn = 0;
-        for (size_t k = 0; k < nc && nn + 2 <= 128; ++k) {
-            const double *x = cur[k], *y = cur[(k + 1) % nc];
-            const double sx = (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
-            const double sy = (q[0] - p[0]) * (y[1] - p[1]) - (q[1] - p[1]) * (y[0] - p[0]);
-            if (sx >= 0)
-                memcpy(next[nn++], x, sizeof next[0]);
-            if ((sx >= 0) != (sy >= 0)) {
-                const double t = sx / (sx - sy);
-                next[nn][0] = x[0] + t * (y[0] - x[0]);
-                next[nn][1] = x[1] + t * (y[1] - x[1]);
-                ++nn;
-            }
-        }
-        memcpy(cur, next, nn * sizeof *next);
-        nc = nn;
-    }
-    memcpy(out, cur, nc * sizeof *cur);
-    return nc;
 }
 
 /* Whether local point x (2D) lies inside polygon o[0..n) (counter-clockwise) farther than tol
@@ -464,7 +384,7 @@ static int rest_case(const char *what, const pmesh *lo, double H0, const double 
     for (size_t k = 0; k < lo->nout; ++k)
         for (int r = 0; r < 2; ++r)
             b[k][r] = lo_pose[4 * r] * lo->outline[k][0] + lo_pose[4 * r + 1] * lo->outline[k][1] + lo_pose[4 * r + 3];
-    size_t nr = clip((const double (*)[2])a, up->nout, (const double (*)[2])b, lo->nout, region);
+    size_t nr = test_clip_polygon((const double (*)[2])a, up->nout, (const double (*)[2])b, lo->nout, region);
     /* its corners: the clipping also leaves points where the outline runs straight on (a cut
      * rim's points, the clip polygon's own points on a side), which are not corners */
     for (int again = 1; again && nr > 3;) {
