@@ -270,7 +270,8 @@ TTD_API size_t ttd_mesh_node_count(const ttd_mesh *mesh);
 /// anything else (see above). On an error (TTD_ERR_OUT_OF_MEMORY included) the mesh is as it
 /// was. opt's threads apply. Memory: the first refit of a hierarchy keeps its leaves' vertex
 /// indices in tree order with the mesh (96 bytes a node, about 17 bytes a triangle) for the next
-/// refits, until a rebuild or ttd_mesh_destroy.
+/// refits, until a rebuild or ttd_mesh_destroy; the mesh's first refit also keeps the refit's
+/// scratch (128 bytes a node) until ttd_mesh_destroy (through rebuilds).
 TTD_API ttd_status ttd_mesh_set_vertices_d(const ttd_options *opt, ttd_mesh *mesh, const double *vertices);
 /// ttd_mesh_set_vertices_d for a mesh built by ttd_mesh_create_f.
 TTD_API ttd_status ttd_mesh_set_vertices_f(const ttd_options *opt, ttd_mesh *mesh, const float *vertices);

@@ -45,7 +45,10 @@ enum {
 #define TTD_FLAT_ANGLE 1e-3
 /* A flat piece is planar when its vertices lie within this fraction of the mesh's largest
  * coordinate (the scale its vertices are rounded at) of one plane: far above the rounding of a
- * plane's points in double or float, far below any gap a contact margin measures. */
+ * plane's points in double (2^-53), below float's (2^-24: a float mesh's tilted plane is seldom
+ * planar, so its flat contacts mostly stay points), far below any gap a contact margin
+ * measures. A bump below it counts as flat: the manifold's deepest point can then be that much
+ * shallower than the pair's (docs/scenes.md, section 5, step 0). */
 #define TTD_PLANAR_TOL 0x1p-36
 /* At most this many triangles around a corner (its normal cone has one side per edge). */
 #define TTD_CORNER_MAX 16
