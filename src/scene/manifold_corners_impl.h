@@ -431,7 +431,8 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     const double flip = (Ei->inward && s->body[c[0].i].solid) != (Ej->inward && s->body[c[0].j].solid) ? -1 : 1;
     const double lim = -cos(CORNER_ANGLE);
     /* a solid's pairs keep every contact (with them, examples/sim's bin of solid tori and balls
-     * drifted: docs/scene-speed.md, section 8) */
+     * drifted, as it also does from 1e-12 nudges of the old rule's start: a chaotic check, not a
+     * wrong point; docs/scene-speed.md, section 8) */
     const int solid = s->body[c[0].i].solid || s->body[c[0].j].solid;
     int touching = solid;
     size_t m = 0;
