@@ -134,6 +134,58 @@ int ttd_cli_valued_option(const char *command, const char *const *valued, int ar
     return 0;
 }
 
+ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, const char *const *valued, int argc,
+                                char **argv)
+{
+    ttd_cli_args w;
+    memset(&w, 0, sizeof w);
+    w.command = command;
+    w.flags = flags;
+    w.valued = valued;
+    w.argc = argc;
+    w.argv = argv;
+    w.i = 1;
+    return w;
+}
+
+ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
+{
+    w->opt = w->val = NULL;
+    while (w->i < w->argc) {
+        const char *arg = w->argv[w->i++];
+        w->arg = arg;
+        const int option = w->long_only ? strncmp(arg, "--", 2) == 0 || strcmp(arg, "-h") == 0
+                                        : !w->only_operands && arg[0] == '-' && arg[1] != '\0';
+        if (!option)
+            return TTD_ARG_OPERAND;
+        if (!w->long_only && !w->no_end_marker && strcmp(arg, "--") == 0) {
+            w->only_operands = 1;
+            continue;
+        }
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0)
+            return TTD_ARG_HELP;
+        for (size_t k = 0; w->flags != NULL && w->flags[k] != NULL; ++k)
+            if (strcmp(arg, w->flags[k]) == 0) {
+                w->opt = w->flags[k];
+                return TTD_ARG_FLAG;
+            }
+        int i = w->i - 1;
+        if (ttd_cli_valued_option(w->command, w->valued, w->argc, w->argv, &i, &w->opt, &w->val) != 0)
+            return TTD_ARG_BAD;
+        w->i = i + 1;
+        return TTD_ARG_VALUE;
+    }
+    return TTD_ARG_END;
+}
+
+void ttd_cli_bad_value(const ttd_cli_args *w, const char *why)
+{
+    if (why != NULL)
+        ttd_cli_error("%s: bad value for %s: '%s' (%s)", w->command, w->opt, w->val, why);
+    else
+        ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", w->command, w->opt, w->val, w->command);
+}
+
 int ttd_cli_parse_weld(const char *s, double *out)
 {
     double v;
