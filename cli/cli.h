@@ -59,11 +59,6 @@ int ttd_cli_parse_isa(const char *s, ttd_isa *out);
 /// A whole decimal integer in [lo, hi]; 0 on success, -1 otherwise.
 int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
 
-/// An option that takes a value, argv[*i] as `--name value` or `--name=value`, among valued (a
-/// NULL-terminated list): 0 with *opt the name and *val the value (*i moved past a separate
-/// value), or -1 after a message naming the command (an unknown option, a missing value).
-int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
-                          const char **opt, const char **val);
 /// Walks a command's arguments, one ttd_cli_next_arg at a time, so that every command reads
 /// operands, --help, "--" and its options' names alike; what an option or operand means, and
 /// which go together, stays with the command. Start it with ttd_cli_args_start.
@@ -92,7 +87,9 @@ typedef enum ttd_cli_arg {
     TTD_ARG_HELP,    ///< --help or -h
     TTD_ARG_FLAG,    ///< an option of flags, in w->opt
     TTD_ARG_VALUE,   ///< an option of valued, in w->opt, with its value in w->val
-    TTD_ARG_BAD      ///< an unknown option or a missing value, said as ttd_cli_valued_option says it
+    /// An unknown option or a missing value, said on stderr ("COMMAND: unknown option 'ARG' (see
+    /// ttd COMMAND --help)", "COMMAND: OPT needs a value"): exit status 2.
+    TTD_ARG_BAD
 } ttd_cli_arg;
 
 /// A walker over argv[1..argc) (argv[0] is the command's own name) in the default style.

@@ -106,34 +106,6 @@ int ttd_cli_run_option(const char *opt, const char *val, ttd_options *o, int *us
     return 1;
 }
 
-int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
-                          const char **opt, const char **val)
-{
-    const char *arg = argv[*i];
-    *opt = NULL;
-    *val = NULL;
-    for (size_t k = 0; valued[k] != NULL; ++k) {
-        const size_t l = strlen(valued[k]);
-        if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
-            *opt = valued[k];
-            if (arg[l] == '=')
-                *val = arg + l + 1;
-            else if (*i + 1 < argc)
-                *val = argv[++*i];
-            break;
-        }
-    }
-    if (*opt == NULL) {
-        ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", command, arg, command);
-        return -1;
-    }
-    if (*val == NULL) {
-        ttd_cli_error("%s: %s needs a value", command, *opt);
-        return -1;
-    }
-    return 0;
-}
-
 ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, const char *const *valued, int argc,
                                 char **argv)
 {
@@ -148,6 +120,9 @@ ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, c
     return w;
 }
 
+/* The checks in the order every command made them when each had its own loop: operand, "--",
+ * --help, a flag (the whole argument), an option with a value (its name, then '=' or the next
+ * argument). */
 ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
 {
     w->opt = w->val = NULL;
@@ -169,10 +144,25 @@ ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
                 w->opt = w->flags[k];
                 return TTD_ARG_FLAG;
             }
-        int i = w->i - 1;
-        if (ttd_cli_valued_option(w->command, w->valued, w->argc, w->argv, &i, &w->opt, &w->val) != 0)
+        for (size_t k = 0; w->valued[k] != NULL; ++k) {
+            const size_t l = strlen(w->valued[k]);
+            if (strncmp(arg, w->valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
+                w->opt = w->valued[k];
+                if (arg[l] == '=')
+                    w->val = arg + l + 1;
+                else if (w->i < w->argc)
+                    w->val = w->argv[w->i++];
+                break;
+            }
+        }
+        if (w->opt == NULL) {
+            ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", w->command, arg, w->command);
             return TTD_ARG_BAD;
-        w->i = i + 1;
+        }
+        if (w->val == NULL) {
+            ttd_cli_error("%s: %s needs a value", w->command, w->opt);
+            return TTD_ARG_BAD;
+        }
         return TTD_ARG_VALUE;
     }
     return TTD_ARG_END;
