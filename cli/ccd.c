@@ -186,24 +186,25 @@ static double now_s(void)
 
 int ttd_cli_ccd(int argc, char **argv)
 {
+    static const char *const flags[] = {"--summary", NULL};
     static const char *const valued[] = {"--kind", "--min-separation", "--threads", NULL};
     ttd_options o = ttd_default_options();
     const char *path = NULL;
     int kind = 0, summary = 0;
     double delta = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+    ttd_cli_args w = ttd_cli_args_start("ccd", flags, valued, argc, argv);
+    w.long_only = 1;
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *opt = w.opt, *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return TTD_EXIT_USAGE;
+        if (k == TTD_ARG_HELP) {
             fputs(ccd_usage, stdout);
             return TTD_EXIT_OK;
         }
-        if (strcmp(argv[i], "--summary") == 0) {
+        if (k == TTD_ARG_FLAG) {
             summary = 1;
-            continue;
-        }
-        if (strncmp(argv[i], "--", 2) == 0) {
-            const char *opt, *val;
-            if (ttd_cli_valued_option("ccd", valued, argc, argv, &i, &opt, &val) != 0)
-                return TTD_EXIT_USAGE;
+        } else if (k == TTD_ARG_VALUE) {
             long v;
             if (strcmp(opt, "--kind") == 0 && (strcmp(val, "vf") == 0 || strcmp(val, "ee") == 0))
                 kind = val[0] == 'v' ? 1 : 2;
@@ -215,13 +216,12 @@ int ttd_cli_ccd(int argc, char **argv)
                 ttd_cli_error("ccd: bad value '%s' for %s", val, opt);
                 return TTD_EXIT_USAGE;
             }
-            continue;
-        }
-        if (path != NULL) {
+        } else if (path != NULL) {
             ttd_cli_error("ccd: one FILE only (see ttd ccd --help)");
             return TTD_EXIT_USAGE;
+        } else {
+            path = w.arg;
         }
-        path = argv[i];
     }
     if (path == NULL) {
         fputs(ccd_usage, stderr);

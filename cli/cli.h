@@ -59,11 +59,47 @@ int ttd_cli_parse_isa(const char *s, ttd_isa *out);
 /// A whole decimal integer in [lo, hi]; 0 on success, -1 otherwise.
 int ttd_cli_parse_int(const char *s, long lo, long hi, long *out);
 
-/// An option that takes a value, argv[*i] as `--name value` or `--name=value`, among valued (a
-/// NULL-terminated list): 0 with *opt the name and *val the value (*i moved past a separate
-/// value), or -1 after a message naming the command (an unknown option, a missing value).
-int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
-                          const char **opt, const char **val);
+/// Walks a command's arguments, one ttd_cli_next_arg at a time, so that every command reads
+/// operands, --help, "--" and its options' names alike; what an option or operand means, and
+/// which go together, stays with the command. Start it with ttd_cli_args_start.
+typedef struct ttd_cli_args {
+    const char *command;       ///< the command's name in messages, e.g. "mesh mass"
+    const char *const *flags;  ///< options without a value, NULL-terminated (NULL: none)
+    const char *const *valued; ///< options with a value, `--name value` or `--name=value`, NULL-terminated
+    /// 0 (the default): an argument starting with '-' is an option ("-" alone is an operand) and
+    /// "--" makes every later argument an operand. 1 (`ttd ccd`, `mesh-ccd`, `mesh-ccd-rigid`):
+    /// only "--..." and "-h" are options, so "-x" is an operand and "--" an unknown option.
+    int long_only;
+    /// 1 (`ttd points`): "--" is an unknown option rather than the end of the options.
+    int no_end_marker;
+    int argc;
+    char **argv;
+    int i;                     ///< the next argument's index in argv
+    int only_operands;         ///< "--" was read
+    const char *arg;           ///< the argument last read (an operand's text)
+    const char *opt, *val;     ///< the option last read: its entry in flags or valued, and its value
+} ttd_cli_args;
+
+/// What ttd_cli_next_arg read.
+typedef enum ttd_cli_arg {
+    TTD_ARG_END = 0, ///< no argument is left
+    TTD_ARG_OPERAND, ///< an operand, in w->arg
+    TTD_ARG_HELP,    ///< --help or -h
+    TTD_ARG_FLAG,    ///< an option of flags, in w->opt
+    TTD_ARG_VALUE,   ///< an option of valued, in w->opt, with its value in w->val
+    /// An unknown option or a missing value, said on stderr ("COMMAND: unknown option 'ARG' (see
+    /// ttd COMMAND --help)", "COMMAND: OPT needs a value"): exit status 2.
+    TTD_ARG_BAD
+} ttd_cli_arg;
+
+/// A walker over argv[1..argc) (argv[0] is the command's own name) in the default style.
+ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, const char *const *valued, int argc,
+                                char **argv);
+/// The next argument: what it is, with w->arg, w->opt and w->val set to match.
+ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w);
+/// "COMMAND: bad value for OPT: 'VAL' (WHY)" for the option w read last; WHY NULL says "see ttd
+/// COMMAND --help".
+void ttd_cli_bad_value(const ttd_cli_args *w, const char *why);
 /// The options every computing command takes alike: --precision double|float, --isa NAME,
 /// --threads N (0..2^20). 1 when opt is none of them; otherwise 0, or -1 when val is bad
 /// (nothing printed: the caller names its command).

@@ -106,32 +106,74 @@ int ttd_cli_run_option(const char *opt, const char *val, ttd_options *o, int *us
     return 1;
 }
 
-int ttd_cli_valued_option(const char *command, const char *const *valued, int argc, char **argv, int *i,
-                          const char **opt, const char **val)
+ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, const char *const *valued, int argc,
+                                char **argv)
 {
-    const char *arg = argv[*i];
-    *opt = NULL;
-    *val = NULL;
-    for (size_t k = 0; valued[k] != NULL; ++k) {
-        const size_t l = strlen(valued[k]);
-        if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
-            *opt = valued[k];
-            if (arg[l] == '=')
-                *val = arg + l + 1;
-            else if (*i + 1 < argc)
-                *val = argv[++*i];
-            break;
+    ttd_cli_args w;
+    memset(&w, 0, sizeof w);
+    w.command = command;
+    w.flags = flags;
+    w.valued = valued;
+    w.argc = argc;
+    w.argv = argv;
+    w.i = 1;
+    return w;
+}
+
+/* The checks in the order every command made them when each had its own loop: operand, "--",
+ * --help, a flag (the whole argument), an option with a value (its name, then '=' or the next
+ * argument). */
+ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
+{
+    w->opt = w->val = NULL;
+    while (w->i < w->argc) {
+        const char *arg = w->argv[w->i++];
+        w->arg = arg;
+        const int option = w->long_only ? strncmp(arg, "--", 2) == 0 || strcmp(arg, "-h") == 0
+                                        : !w->only_operands && arg[0] == '-' && arg[1] != '\0';
+        if (!option)
+            return TTD_ARG_OPERAND;
+        if (!w->long_only && !w->no_end_marker && strcmp(arg, "--") == 0) {
+            w->only_operands = 1;
+            continue;
         }
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0)
+            return TTD_ARG_HELP;
+        for (size_t k = 0; w->flags != NULL && w->flags[k] != NULL; ++k)
+            if (strcmp(arg, w->flags[k]) == 0) {
+                w->opt = w->flags[k];
+                return TTD_ARG_FLAG;
+            }
+        for (size_t k = 0; w->valued[k] != NULL; ++k) {
+            const size_t l = strlen(w->valued[k]);
+            if (strncmp(arg, w->valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
+                w->opt = w->valued[k];
+                if (arg[l] == '=')
+                    w->val = arg + l + 1;
+                else if (w->i < w->argc)
+                    w->val = w->argv[w->i++];
+                break;
+            }
+        }
+        if (w->opt == NULL) {
+            ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", w->command, arg, w->command);
+            return TTD_ARG_BAD;
+        }
+        if (w->val == NULL) {
+            ttd_cli_error("%s: %s needs a value", w->command, w->opt);
+            return TTD_ARG_BAD;
+        }
+        return TTD_ARG_VALUE;
     }
-    if (*opt == NULL) {
-        ttd_cli_error("%s: unknown option '%s' (see ttd %s --help)", command, arg, command);
-        return -1;
-    }
-    if (*val == NULL) {
-        ttd_cli_error("%s: %s needs a value", command, *opt);
-        return -1;
-    }
-    return 0;
+    return TTD_ARG_END;
+}
+
+void ttd_cli_bad_value(const ttd_cli_args *w, const char *why)
+{
+    if (why != NULL)
+        ttd_cli_error("%s: bad value for %s: '%s' (%s)", w->command, w->opt, w->val, why);
+    else
+        ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", w->command, w->opt, w->val, w->command);
 }
 
 int ttd_cli_parse_weld(const char *s, double *out)

@@ -107,56 +107,32 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
 {
     memset(a, 0, sizeof *a);
     a->opt = ttd_default_options();
-    int only_files = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (only_files || arg[0] != '-' || strcmp(arg, "-") == 0) {
-            if (a->path != NULL) {
-                ttd_cli_error("dist: more than one FILE given ('%s' and '%s')", a->path, arg);
-                return -1;
-            }
-            a->path = arg;
-            continue;
-        }
-        if (strcmp(arg, "--") == 0) {
-            only_files = 1;
-            continue;
-        }
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+    static const char *const flags[] = {"--points", "--detail", "--binary-in", "--binary-out", NULL};
+    static const char *const valued[] = {"--method", "--precision", "--rho", "--tol",
+                                         "--max-iter", "--isa", "--threads", NULL};
+    ttd_cli_args w = ttd_cli_args_start("dist", flags, valued, argc, argv);
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *name = w.opt, *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return -1;
+        if (k == TTD_ARG_HELP) {
             ttd_dist_print_usage(stdout);
             return 1;
         }
-        int *flag = strcmp(arg, "--points") == 0       ? &a->points
-                    : strcmp(arg, "--detail") == 0     ? &a->detail
-                    : strcmp(arg, "--binary-in") == 0  ? &a->binary_in
-                    : strcmp(arg, "--binary-out") == 0 ? &a->binary_out
-                                                       : NULL;
-        if (flag) {
-            *flag = 1;
+        if (k == TTD_ARG_OPERAND) {
+            if (a->path != NULL) {
+                ttd_cli_error("dist: more than one FILE given ('%s' and '%s')", a->path, w.arg);
+                return -1;
+            }
+            a->path = w.arg;
             continue;
         }
-        /* The rest take a value. */
-        static const char *const valued[] = {"--method", "--precision", "--rho", "--tol",
-                                             "--max-iter", "--isa", "--threads"};
-        const char *name = NULL, *val = NULL;
-        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; ++k) {
-            size_t l = strlen(valued[k]);
-            if (strncmp(arg, valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
-                name = valued[k];
-                if (arg[l] == '=')
-                    val = arg + l + 1;
-                else if (i + 1 < argc)
-                    val = argv[++i];
-                break;
-            }
-        }
-        if (name == NULL) {
-            ttd_cli_error("dist: unknown option '%s' (see ttd dist --help)", arg);
-            return -1;
-        }
-        if (val == NULL) {
-            ttd_cli_error("dist: %s needs a value", name);
-            return -1;
+        if (k == TTD_ARG_FLAG) {
+            *(strcmp(name, "--points") == 0      ? &a->points
+              : strcmp(name, "--detail") == 0    ? &a->detail
+              : strcmp(name, "--binary-in") == 0 ? &a->binary_in
+                                                 : &a->binary_out) = 1;
+            continue;
         }
         long iv;
         int bad = 0;
@@ -178,7 +154,7 @@ static int ttd_dist_parse_args(int argc, char **argv, ttd_dist_args *a)
             return -1;
         }
         if (bad) {
-            ttd_cli_error("dist: bad value for %s: '%s' (see ttd dist --help)", name, val);
+            ttd_cli_bad_value(&w, NULL);
             return -1;
         }
     }

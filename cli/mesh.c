@@ -233,10 +233,20 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
     const char *name = a->name;
     a->opt = ttd_default_options();
     a->upper = (double)INFINITY;
-    int only_operands = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (only_operands || arg[0] != '-' || strcmp(arg, "-") == 0) {
+    static const char *const flags[] = {"--per-triangle", "--count", "--shared-vertex", "--orthonormalize",
+                                        "--strict",       "--solid", NULL};
+    static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
+                                         "--rel-tol", "--precision", "--isa",    "--threads", "--weld", NULL};
+    ttd_cli_args w = ttd_cli_args_start(name, flags, valued, argc, argv);
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *arg = w.arg, *opt = w.opt, *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return -1;
+        if (k == TTD_ARG_HELP) {
+            ttd_mesh_print_usage(stdout, (int)a->cmd);
+            return 1;
+        }
+        if (k == TTD_ARG_OPERAND) {
             if (a->path_a == NULL)
                 a->path_a = arg;
             else if (a->path_b == NULL && !ttd_mesh_is_self(a->cmd))
@@ -248,50 +258,33 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             }
             continue;
         }
-        if (strcmp(arg, "--") == 0) {
-            only_operands = 1;
-            continue;
-        }
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            ttd_mesh_print_usage(stdout, (int)a->cmd);
-            return 1;
-        }
-        if (strcmp(arg, "--per-triangle") == 0 || strcmp(arg, "--count") == 0) {
-            const int ok = a->cmd == TTD_MESH_CONTACTS || (arg[2] == 'c' && a->cmd == TTD_MESH_SELF_CONTACTS);
-            if (!ok) {
-                ttd_cli_error("%s: %s is an option of mesh contacts%s only", name, arg,
-                              arg[2] == 'c' ? " and mesh self-contacts" : "");
-                return -1;
+        if (k == TTD_ARG_FLAG) {
+            if (strcmp(opt, "--per-triangle") == 0 || strcmp(opt, "--count") == 0) {
+                const int ok = a->cmd == TTD_MESH_CONTACTS || (opt[2] == 'c' && a->cmd == TTD_MESH_SELF_CONTACTS);
+                if (!ok) {
+                    ttd_cli_error("%s: %s is an option of mesh contacts%s only", name, opt,
+                                  opt[2] == 'c' ? " and mesh self-contacts" : "");
+                    return -1;
+                }
+                *(opt[2] == 'p' ? &a->per_triangle : &a->count) = 1;
+            } else if (strcmp(opt, "--shared-vertex") == 0) {
+                if (!ttd_mesh_is_self(a->cmd)) {
+                    ttd_cli_error("%s: --shared-vertex is an option of mesh self-contacts and self-collide", name);
+                    return -1;
+                }
+                a->self_flags = TTD_SELF_SHARED_VERTEX;
+            } else if (strcmp(opt, "--solid") == 0) {
+                if (a->cmd == TTD_MESH_CONTACTS || ttd_mesh_is_self(a->cmd)) {
+                    ttd_cli_error("%s: --solid is an option of mesh distance and collide (contacts are between "
+                                  "surfaces)", name);
+                    return -1;
+                }
+                a->opt.solid = 1;
+            } else {
+                *(opt[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
             }
-            *(arg[2] == 'p' ? &a->per_triangle : &a->count) = 1;
             continue;
         }
-        if (strcmp(arg, "--shared-vertex") == 0) {
-            if (!ttd_mesh_is_self(a->cmd)) {
-                ttd_cli_error("%s: --shared-vertex is an option of mesh self-contacts and self-collide", name);
-                return -1;
-            }
-            a->self_flags = TTD_SELF_SHARED_VERTEX;
-            continue;
-        }
-        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0) {
-            *(arg[2] == 'o' ? &a->orthonormalize : &a->strict) = 1;
-            continue;
-        }
-        if (strcmp(arg, "--solid") == 0) {
-            if (a->cmd == TTD_MESH_CONTACTS || ttd_mesh_is_self(a->cmd)) {
-                ttd_cli_error("%s: --solid is an option of mesh distance and collide (contacts are between surfaces)",
-                              name);
-                return -1;
-            }
-            a->opt.solid = 1;
-            continue;
-        }
-        static const char *const valued[] = {"--pose",   "--poses",     "--margin", "--upper-bound",
-                                             "--rel-tol", "--precision", "--isa",    "--threads", "--weld", NULL};
-        const char *opt, *val;
-        if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
-            return -1;
         int bad = 0;
         if ((strcmp(opt, "--pose") == 0 || strcmp(opt, "--poses") == 0) && ttd_mesh_is_self(a->cmd)) {
             ttd_cli_error("%s: %s does not apply (one mesh against itself)", name, opt);
@@ -319,7 +312,7 @@ static int ttd_mesh_parse_args(int argc, char **argv, ttd_mesh_args *a)
             bad = ttd_cli_run_option(opt, val, &a->opt, &a->use_float) < 0;
         }
         if (bad) {
-            ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", name, opt, val, name);
+            ttd_cli_bad_value(&w, NULL);
             return -1;
         }
     }

@@ -73,28 +73,28 @@ static long long id_or_none(uint32_t x)
 
 int ttd_cli_mesh_ccd(int argc, char **argv)
 {
+    static const char *const switches[] = {"--summary", "--float", "--shared-vertex", NULL};
     static const char *const valued[] = {"--min-separation", "--threads", NULL};
     ttd_options o = ttd_default_options();
     const char *paths[4];
     int np = 0, summary = 0, use_float = 0;
     unsigned flags = 0;
     double delta = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+    ttd_cli_args w = ttd_cli_args_start("mesh-ccd", switches, valued, argc, argv);
+    w.long_only = 1;
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *opt = w.opt, *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return TTD_EXIT_USAGE;
+        if (k == TTD_ARG_HELP) {
             fputs(mesh_ccd_usage, stdout);
             return TTD_EXIT_OK;
         }
-        if (strcmp(argv[i], "--summary") == 0 || strcmp(argv[i], "--float") == 0 ||
-            strcmp(argv[i], "--shared-vertex") == 0) {
-            summary |= argv[i][2] == 's' && argv[i][3] == 'u';
-            use_float |= argv[i][2] == 'f';
-            flags |= argv[i][2] == 's' && argv[i][3] == 'h' ? (unsigned)TTD_SELF_SHARED_VERTEX : 0u;
-            continue;
-        }
-        if (strncmp(argv[i], "--", 2) == 0) {
-            const char *opt, *val;
-            if (ttd_cli_valued_option("mesh-ccd", valued, argc, argv, &i, &opt, &val) != 0)
-                return TTD_EXIT_USAGE;
+        if (k == TTD_ARG_FLAG) {
+            summary |= strcmp(opt, "--summary") == 0;
+            use_float |= strcmp(opt, "--float") == 0;
+            flags |= strcmp(opt, "--shared-vertex") == 0 ? (unsigned)TTD_SELF_SHARED_VERTEX : 0u;
+        } else if (k == TTD_ARG_VALUE) {
             long v;
             if (strcmp(opt, "--min-separation") == 0 && ttd_cli_parse_real(val, &delta) == 0 && delta >= 0 &&
                 isfinite(delta))
@@ -105,13 +105,12 @@ int ttd_cli_mesh_ccd(int argc, char **argv)
                 ttd_cli_error("mesh-ccd: bad value '%s' for %s", val, opt);
                 return TTD_EXIT_USAGE;
             }
-            continue;
-        }
-        if (np == 4) {
+        } else if (np == 4) {
             ttd_cli_error("mesh-ccd: two or four files (see ttd mesh-ccd --help)");
             return TTD_EXIT_USAGE;
+        } else {
+            paths[np++] = w.arg;
         }
-        paths[np++] = argv[i];
     }
     if (np != 2 && np != 4) {
         ttd_cli_error("mesh-ccd: two or four files (see ttd mesh-ccd --help)");

@@ -55,34 +55,33 @@ static int read_poses(const char *path, double p[48])
 
 int ttd_cli_mesh_ccd_rigid(int argc, char **argv)
 {
+    static const char *const switches[] = {"--float", NULL};
     static const char *const valued[] = {"--min-separation", NULL};
     const char *paths[3];
     int np = 0, use_float = 0;
     double delta = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+    ttd_cli_args w = ttd_cli_args_start("mesh-ccd-rigid", switches, valued, argc, argv);
+    w.long_only = 1;
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        if (k == TTD_ARG_BAD)
+            return TTD_EXIT_USAGE;
+        if (k == TTD_ARG_HELP) {
             fputs(rigid_usage, stdout);
             return TTD_EXIT_OK;
         }
-        if (strcmp(argv[i], "--float") == 0) {
+        if (k == TTD_ARG_FLAG) {
             use_float = 1;
-            continue;
-        }
-        if (strncmp(argv[i], "--", 2) == 0) {
-            const char *opt, *val;
-            if (ttd_cli_valued_option("mesh-ccd-rigid", valued, argc, argv, &i, &opt, &val) != 0)
-                return TTD_EXIT_USAGE;
-            if (!(ttd_cli_parse_real(val, &delta) == 0 && delta >= 0 && isfinite(delta))) {
-                ttd_cli_error("mesh-ccd-rigid: bad value '%s' for %s", val, opt);
+        } else if (k == TTD_ARG_VALUE) {
+            if (!(ttd_cli_parse_real(w.val, &delta) == 0 && delta >= 0 && isfinite(delta))) {
+                ttd_cli_error("mesh-ccd-rigid: bad value '%s' for %s", w.val, w.opt);
                 return TTD_EXIT_USAGE;
             }
-            continue;
-        }
-        if (np == 3) {
+        } else if (np == 3) {
             ttd_cli_error("mesh-ccd-rigid: two mesh files and a poses file (see ttd mesh-ccd-rigid --help)");
             return TTD_EXIT_USAGE;
+        } else {
+            paths[np++] = w.arg;
         }
-        paths[np++] = argv[i];
     }
     if (np != 3) {
         ttd_cli_error("mesh-ccd-rigid: two mesh files and a poses file (see ttd mesh-ccd-rigid --help)");

@@ -63,50 +63,42 @@ typedef struct ttd_mass_args {
 static int ttd_mass_parse_args(int argc, char **argv, ttd_mass_args *a)
 {
     static const char name[] = "mesh mass";
+    static const char *const flags[] = {"--json", "--strict", NULL};
+    static const char *const valued[] = {"--density", "--precision", "--weld", NULL};
     a->density = 1.0;
-    int only_operands = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (only_operands || arg[0] != '-' || strcmp(arg, "-") == 0) {
-            if (a->path != NULL) {
-                ttd_cli_error("%s: unexpected argument '%s' (one mesh file A is taken)", name, arg);
-                return -1;
-            }
-            a->path = arg;
-            continue;
-        }
-        if (strcmp(arg, "--") == 0) {
-            only_operands = 1;
-            continue;
-        }
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+    ttd_cli_args w = ttd_cli_args_start(name, flags, valued, argc, argv);
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return -1;
+        if (k == TTD_ARG_HELP) {
             fputs(ttd_mass_usage, stdout);
             return 1;
         }
-        if (strcmp(arg, "--json") == 0 || strcmp(arg, "--strict") == 0) {
-            *(arg[2] == 'j' ? &a->json : &a->strict) = 1;
-            continue;
-        }
-        static const char *const valued[] = {"--density", "--precision", "--weld", NULL};
-        const char *opt, *val;
-        if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
-            return -1;
-        if (strcmp(opt, "--density") == 0) {
-            /* the library refuses the same (TTD_ERR_BAD_OPTIONS); checked here to say why */
-            if (ttd_cli_parse_real(val, &a->density) != 0 || !(a->density > 0)) {
-                ttd_cli_error("%s: bad value for --density: '%s' (a finite number > 0)", name, val);
+        if (k == TTD_ARG_OPERAND) {
+            if (a->path != NULL) {
+                ttd_cli_error("%s: unexpected argument '%s' (one mesh file A is taken)", name, w.arg);
                 return -1;
             }
-        } else if (strcmp(opt, "--weld") == 0) {
+            a->path = w.arg;
+        } else if (k == TTD_ARG_FLAG) {
+            *(w.opt[2] == 'j' ? &a->json : &a->strict) = 1;
+        } else if (strcmp(w.opt, "--density") == 0) {
+            /* the library refuses the same (TTD_ERR_BAD_OPTIONS); checked here to say why */
+            if (ttd_cli_parse_real(val, &a->density) != 0 || !(a->density > 0)) {
+                ttd_cli_bad_value(&w, "a finite number > 0");
+                return -1;
+            }
+        } else if (strcmp(w.opt, "--weld") == 0) {
             a->weld_s = val;
             if (ttd_cli_parse_weld(val, &a->weld) != 0) {
-                ttd_cli_error("%s: bad value for --weld: '%s' (a finite number >= 0)", name, val);
+                ttd_cli_bad_value(&w, "a finite number >= 0");
                 return -1;
             }
         } else if (strcmp(val, "double") == 0 || strcmp(val, "float") == 0) {
             a->use_float = val[0] == 'f';
         } else {
-            ttd_cli_error("%s: bad value for --precision: '%s' (double or float)", name, val);
+            ttd_cli_bad_value(&w, "double or float");
             return -1;
         }
     }

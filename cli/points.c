@@ -139,16 +139,22 @@ static int parse_args(int argc, char **argv, points_args *a)
         return TTD_EXIT_USAGE;
     }
     a->cmd = (points_cmd)cmd;
+    static const char *const flags[] = {"--progress", "--quiet", NULL};
     static const char *const valued[] = {"--pose", "--upper-bound", "--precision", "--isa", "--threads",
                                          "--origin", "--step", "--dims", "--out", "--weld", NULL};
     int operands = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (strcmp(arg, "--progress") == 0 || strcmp(arg, "--quiet") == 0) {
-            a->progress = arg[2] == 'p';
+    ttd_cli_args w = ttd_cli_args_start("points", flags, valued, argc, argv);
+    w.no_end_marker = 1;
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *arg = w.arg, *opt = w.opt, *val = w.val;
+        /* --help never comes here: ttd_cli_points answers it wherever it stands */
+        if (k == TTD_ARG_BAD || k == TTD_ARG_HELP)
+            return TTD_EXIT_USAGE;
+        if (k == TTD_ARG_FLAG) {
+            a->progress = opt[2] == 'p';
             continue;
         }
-        if (arg[0] != '-' || arg[1] == '\0') {
+        if (k == TTD_ARG_OPERAND) {
             if (operands == 0)
                 a->mesh_path = arg;
             else if (operands == 1 && a->cmd != CMD_GRID)
@@ -160,9 +166,6 @@ static int parse_args(int argc, char **argv, points_args *a)
             ++operands;
             continue;
         }
-        const char *opt, *val;
-        if (ttd_cli_valued_option("points", valued, argc, argv, &i, &opt, &val))
-            return TTD_EXIT_USAGE;
         const int r = ttd_cli_run_option(opt, val, &a->opt, &a->use_float);
         int bad = r < 0;
         if (r == 1) {

@@ -187,55 +187,45 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
     a->opt = ttd_default_options();
     a->max_points = 4;
     a->repeat = 1;
-    int only_operands = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        if (only_operands || arg[0] != '-' || strcmp(arg, "-") == 0) {
-            if (a->path != NULL) {
-                ttd_cli_error("%s: unexpected argument '%s' (one scene file is taken)", name, arg);
-                return -1;
-            }
-            a->path = arg;
-            continue;
-        }
-        if (strcmp(arg, "--") == 0) {
-            only_operands = 1;
-            continue;
-        }
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+    static const char *const flags[] = {"--nearest", "--count", "--orthonormalize", "--strict",
+                                        "--names",   "--stats", "--solid",          NULL};
+    static const char *const valued[] = {"--margin", "--max-points", "--motion", "--precision",
+                                         "--isa",    "--threads",    "--repeat", "--weld", NULL};
+    ttd_cli_args w = ttd_cli_args_start(name, flags, valued, argc, argv);
+    for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        const char *opt = w.opt, *val = w.val;
+        if (k == TTD_ARG_BAD)
+            return -1;
+        if (k == TTD_ARG_HELP) {
             ttd_scene_print_usage(stdout);
             return 1;
         }
-        if (strcmp(arg, "--nearest") == 0) {
-            if (a->cmd != TTD_SCENE_DISTANCE) {
+        if (k == TTD_ARG_OPERAND) {
+            if (a->path != NULL) {
+                ttd_cli_error("%s: unexpected argument '%s' (one scene file is taken)", name, w.arg);
+                return -1;
+            }
+            a->path = w.arg;
+            continue;
+        }
+        if (k == TTD_ARG_FLAG) {
+            if (strcmp(opt, "--nearest") == 0 && a->cmd != TTD_SCENE_DISTANCE) {
                 ttd_cli_error("%s: --nearest is an option of scene distance only", name);
                 return -1;
             }
-            a->nearest = 1;
-            continue;
-        }
-        if (strcmp(arg, "--count") == 0) {
-            if (a->cmd == TTD_SCENE_DISTANCE) {
+            if (strcmp(opt, "--count") == 0 && a->cmd == TTD_SCENE_DISTANCE) {
                 ttd_cli_error("%s: --count is an option of scene collide, contacts and manifold", name);
                 return -1;
             }
-            a->count = 1;
+            *(strcmp(opt, "--nearest") == 0         ? &a->nearest
+              : strcmp(opt, "--count") == 0         ? &a->count
+              : strcmp(opt, "--orthonormalize") == 0 ? &a->orthonormalize
+              : strcmp(opt, "--strict") == 0        ? &a->strict
+              : strcmp(opt, "--names") == 0         ? &a->names
+              : strcmp(opt, "--stats") == 0         ? &a->stats
+                                                    : &a->solid) = 1;
             continue;
         }
-        if (strcmp(arg, "--orthonormalize") == 0 || strcmp(arg, "--strict") == 0 || strcmp(arg, "--names") == 0 ||
-            strcmp(arg, "--stats") == 0 || strcmp(arg, "--solid") == 0) {
-            *(strcmp(arg, "--orthonormalize") == 0 ? &a->orthonormalize
-              : strcmp(arg, "--strict") == 0       ? &a->strict
-              : strcmp(arg, "--names") == 0        ? &a->names
-              : strcmp(arg, "--stats") == 0        ? &a->stats
-                                                   : &a->solid) = 1;
-            continue;
-        }
-        static const char *const valued[] = {"--margin", "--max-points", "--motion", "--precision",
-                                             "--isa",    "--threads",    "--repeat", "--weld", NULL};
-        const char *opt, *val;
-        if (ttd_cli_valued_option(name, valued, argc, argv, &i, &opt, &val) != 0)
-            return -1;
         long iv;
         int bad = 0;
         if (strcmp(opt, "--margin") == 0)
@@ -259,7 +249,7 @@ static int ttd_scene_parse_args(int argc, char **argv, ttd_scene_args *a)
             bad = ttd_cli_run_option(opt, val, &a->opt, &a->use_float) < 0;
         }
         if (bad) {
-            ttd_cli_error("%s: bad value for %s: '%s' (see ttd %s --help)", name, opt, val, name);
+            ttd_cli_bad_value(&w, NULL);
             return -1;
         }
     }

@@ -18,6 +18,18 @@ def listing(path):
     return out
 
 
+def saved_runs(path):
+    """The runs of a listing whose output --save writes (DIR/N.txt, N from 1 in this order): all
+    but the tower's, which manifold_md5.py prints after the "all" line and does not save."""
+    out = []
+    for line in open(path):
+        f = line.split()
+        if f[0] == "all":
+            break
+        out.append((f[0], f[2:]))
+    return out
+
+
 def rows(path):
     """A run's output lines (those of a manifold point: 17 or more columns), by body pair (i, j)."""
     g = collections.defaultdict(list)

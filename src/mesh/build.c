@@ -32,6 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/vec3.h"
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "mesh/memory.h"
@@ -95,13 +96,6 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* a / |a| into out; 0 when a is 0 (or so small that its square vanishes). */
 static int normalize3(const double a[3], double out[3])
 {
@@ -136,7 +130,7 @@ static void complete_frame(double u[9])
     const double d = dot3(w, a);
     double p[3] = {w[0] - d * a[0], w[1] - d * a[1], w[2] - d * a[2]};
     normalize3(p, u + 3);
-    cross3(u, u + 3, u + 6);
+    ttd_cross3(u, u + 3, u + 6);
 }
 
 /* u[6..8] (unit) made perpendicular to u[0..2] (unit) by Gram-Schmidt, twice: one pass leaves
@@ -183,7 +177,7 @@ static void triangle_axes(double p[3][3], double u[9], double *area2)
         return;
     }
     double n[3];
-    cross3(e[k], e[(k + 2) % 3], n);
+    ttd_cross3(e[k], e[(k + 2) % 3], n);
     if (!normalize3(n, u + 6)) {
         complete_frame(u);
         return;
@@ -193,11 +187,11 @@ static void triangle_axes(double p[3][3], double u[9], double *area2)
      * edge within 2 eps already, and so is their cross product, of length 1 within 3 u; the
      * frame is orthonormal to 2 eps as it is (half of a refit's time was these square roots) */
     if (fabs(dot3(u, u + 6)) <= 2 * DBL_EPSILON) {
-        cross3(u + 6, u, u + 3);
+        ttd_cross3(u + 6, u, u + 3);
         return;
     }
     if (orthogonalize(u)) {
-        cross3(u + 6, u, u + 3);
+        ttd_cross3(u + 6, u, u + 3);
         normalize3(u + 3, u + 3);
         return;
     }
@@ -281,9 +275,9 @@ static void eigen_sym3(double a[3][3], double u[9], const double *start)
     }
     /* the third axis exactly perpendicular to the first two (they are to rounding) */
     double w[3];
-    cross3(u, u + 3, w);
+    ttd_cross3(u, u + 3, w);
     normalize3(w, u + 6);
-    cross3(u + 6, u, u + 3);
+    ttd_cross3(u + 6, u, u + 3);
     normalize3(u + 3, u + 3);
 }
 
@@ -302,7 +296,7 @@ static void tri_moments(double p[3][3], moments *mo)
         e2[c] = p[2][c] - p[0][c];
         g[c] = (p[0][c] + p[1][c] + p[2][c]) / 3;
     }
-    cross3(e1, e2, x);
+    ttd_cross3(e1, e2, x);
     const double a = 0.5 * sqrt(dot3(x, x));
     double *m = mo->m;
     m[0] = a;
@@ -1318,7 +1312,7 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
     }
     double a[3], b[3];
     memcpy(a, f + 6, sizeof a);
-    cross3(f, a, b);
+    ttd_cross3(f, a, b);
     double ca[3], cb[3];
     for (int i = 0; i < 3; ++i) {
         ca[i] = cov[i][0] * a[0] + cov[i][1] * a[1] + cov[i][2] * a[2];
@@ -1342,9 +1336,9 @@ static void refit_axes(const fitsum *s, const double old[9], double u[9])
     normalize3(vaa >= vbb ? a : b, u);
     normalize3(vaa >= vbb ? b : a, u + 3);
     double w[3];
-    cross3(u, u + 3, w);
+    ttd_cross3(u, u + 3, w);
     normalize3(w, u + 6);
-    cross3(u + 6, u, u + 3);
+    ttd_cross3(u + 6, u, u + 3);
     normalize3(u + 3, u + 3);
 }
 

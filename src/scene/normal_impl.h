@@ -34,6 +34,7 @@
 #ifndef TTD_SCENE_NORMAL_IMPL_H
 #define TTD_SCENE_NORMAL_IMPL_H
 
+#include "core/vec3.h"
 #include "scene/body_impl.h"
 
 /* A barycentric weight this close to 0 is 0: the world coordinates' rounding (relative to the
@@ -109,11 +110,10 @@ static double dot3d(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* The scene's name for core/vec3.h's ttd_cross3 (the manifold's files call it too). */
 static void cross3d(const double a[3], const double b[3], double out[3])
 {
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
+    ttd_cross3(a, b, out);
 }
 
 /* Vertex v of body id's mesh in the world, as the kernel sees it. */
