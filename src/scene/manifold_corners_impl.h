@@ -115,41 +115,68 @@ static int boxes_apart(const screen_box *a, const screen_box *b, double ext, rea
  * around y and x (boxes_ext). Triangles whose normal is known poorly (thinner than SCREEN_THIN)
  * are not screened. */
 #define SCREEN_THIN 1e-3
-static int vertex_beside(const real *y, const real *x, double ext, real margin)
+/* Triangle x's part of that test, made once per triangle where many vertices are screened
+ * against it (piece_corners): its corners, each edge's outward direction and its length's
+ * factor; ok = 0 for a triangle not screened. The same operations as made per vertex, so the
+ * same bits. */
+typedef struct beside_tri {
+    double v[3][3], o[3][3], len[3];
+    int ok;
+} beside_tri;
+
+static void beside_prep(const real *x, beside_tri *B)
 {
-    double v[3][3], p[3], e[3][3];
+    double e[3][3];
+    B->ok = 0;
     for (int k = 0; k < 3; ++k)
         for (int r = 0; r < 3; ++r)
-            v[k][r] = (double)x[3 * k + r];
-    for (int r = 0; r < 3; ++r) {
-        p[r] = (double)y[r];
+            B->v[k][r] = (double)x[3 * k + r];
+    for (int r = 0; r < 3; ++r)
         for (int k = 0; k < 3; ++k)
-            e[k][r] = v[(k + 1) % 3][r] - v[k][r];
-    }
+            e[k][r] = B->v[(k + 1) % 3][r] - B->v[k][r];
     double N[3];
     cross3d(e[0], e[1], N);
     const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
     if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
+        return;
+    const double nl = sqrt(nn);
+    for (int k = 0; k < 3; ++k) {
+        cross3d(e[k], N, B->o[k]); /* outward from edge k for a counter-clockwise triangle about N */
+        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
+        B->len[k] = sqrt(lk) * nl;
+    }
+    B->ok = 1;
+}
+
+static int beside_test(const beside_tri *B, const real *y, double ext, real margin)
+{
+    if (!B->ok)
         return 0;
-    double far = 0;
-    for (int r = 0; r < 3; ++r)
-        far = fabs(p[r] - v[0][r]) > far ? fabs(p[r] - v[0][r]) : far;
+    double p[3], far = 0;
+    for (int r = 0; r < 3; ++r) {
+        p[r] = (double)y[r];
+        far = fabs(p[r] - B->v[0][r]) > far ? fabs(p[r] - B->v[0][r]) : far;
+    }
     const double lim = screen_lim(margin, ext);
     /* each height formed with a relative error of some 8 ulps of double per factor, the
      * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
     const double err = 0x1p-30 * (far + ext);
-    const double nl = sqrt(nn);
     for (int k = 0; k < 3; ++k) {
-        double o[3], d[3];
-        cross3d(e[k], N, o); /* outward from edge k for a counter-clockwise triangle about N */
+        double d[3];
         for (int r = 0; r < 3; ++r)
-            d[r] = p[r] - v[k][r];
-        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
-        const double h = dot3d(d, o) / (sqrt(lk) * nl);
+            d[r] = p[r] - B->v[k][r];
+        const double h = dot3d(d, B->o[k]) / B->len[k];
         if (h > lim + err)
             return 1;
     }
     return 0;
+}
+
+static int vertex_beside(const real *y, const real *x, double ext, real margin)
+{
+    beside_tri B;
+    beside_prep(x, &B);
+    return beside_test(&B, y, ext, margin);
 }
 
 /* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
@@ -481,7 +508,7 @@ static int piece_vslot_cmp(const void *x, const void *y)
 /* Vertex question q of step 0, its triangles' screens passed but the box's and the side's (asked
  * first by the caller), as contact_corners keeps it: once per pair, for the smallest triangles;
  * y the vertex, B the other triangle, ext their boxes' extent. 0 out of memory. */
-static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, const corner_tri *B, double ext, real margin)
+static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, const beside_tri *B, double ext, real margin)
 {
     corner_seen *seen = seen_get(w, key);
     if (seen == NULL)
@@ -497,7 +524,7 @@ static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, c
     }
     *seen = (corner_seen){w->ctri_pair, key->a, key->b, key->kind, SIZE_MAX};
     w->seen_n++;
-    if (!vertex_beside(y, B->x, ext, margin)) {
+    if (!beside_test(B, y, ext, margin)) {
         seen->at = w->key_n;
         if (!key_push(w, key))
             return 0;
@@ -549,6 +576,11 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
                 return 0;
             w->ptri[side] = v;
             v[nt[side]] = *corner_tri_get(s, w, side, id[side], t);
+            beside_tri *bv = piece_grow(w->pbes[side], &w->pbes_cap[side], nt[side] + 1, sizeof *bv);
+            if (bv == NULL)
+                return 0;
+            w->pbes[side] = bv;
+            beside_prep(v[nt[side]].x, &bv[nt[side]]);
             w->pstamp[side][t] = w->ptag;
             w->ploc[side][t] = (uint32_t)nt[side]++;
         }
@@ -578,8 +610,16 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
                 box_of(e, 2, &pe[ne[side]++].box);
             }
         }
-        if (nv[side] > 1)
+        if (nv[side] > 48)
             qsort(pv, nv[side], sizeof *pv, piece_vslot_cmp);
+        else /* a few: by insertion, without qsort's call per comparison */
+            for (size_t r = 1; r < nv[side]; ++r) {
+                const piece_vslot x = pv[r];
+                size_t q = r;
+                for (; q > 0 && piece_vslot_cmp(&pv[q - 1], &x) > 0; --q)
+                    pv[q] = pv[q - 1];
+                pv[q] = x;
+            }
         for (size_t r = 0; r < nv[side]; ++r)
             dv[side] += r == 0 || pv[r].v != pv[r - 1].v;
     }
@@ -624,7 +664,7 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
                     continue;
                 const uint32_t bt = (uint32_t)B->tag;
                 const corner_key key = {(uint32_t)side, pv[r].v, bt, side ? bt : pv[r].t, side ? pv[r].t : bt, pv[r].k, 0};
-                if (!vertex_keep(w, &key, y, B, ext, margin))
+                if (!vertex_keep(w, &key, y, &w->pbes[o][lb], ext, margin))
                     return 0;
             }
         }

@@ -109,6 +109,8 @@ typedef struct manifold_work {
     uint32_t ptag;
     struct corner_tri *ptri[2];
     size_t ptri_cap[2];
+    struct beside_tri *pbes[2];
+    size_t pbes_cap[2];
     struct piece_vslot *pv[2];
     size_t pv_cap[2];
     struct piece_eslot *pe[2];
@@ -187,6 +189,7 @@ static void manifold_work_free(manifold_work *w)
         free(w->pstamp[side]);
         free(w->ploc[side]);
         free(w->ptri[side]);
+        free(w->pbes[side]);
         free(w->pv[side]);
         free(w->pe[side]);
     }
