@@ -489,14 +489,48 @@ static int piece_item_cmp(const void *x, const void *y)
     return a->k < b->k ? -1 : a->k > b->k;
 }
 
-static int piece_vslot_cmp(const void *x, const void *y)
+/* Whether rim corner a comes before b: by place, triangle, corner. */
+static int piece_vslot_before(const piece_vslot *a, const piece_vslot *b)
 {
-    const piece_vslot *a = x, *b = y;
     if (a->v != b->v)
-        return a->v < b->v ? -1 : 1;
+        return a->v < b->v;
     if (a->t != b->t)
-        return a->t < b->t ? -1 : 1;
-    return a->k < b->k ? -1 : a->k > b->k;
+        return a->t < b->t;
+    return a->k < b->k;
+}
+
+/* w->pv[side][0..n) in piece_vslot_before's order: a merge sort with the comparison inline
+ * (qsort's call per comparison cost as much as the rest of a group's corners). 0 out of memory. */
+static int piece_vslots_sort(manifold_work *w, int side, size_t n)
+{
+    piece_vslot *t = piece_grow(w->pvtmp, &w->pvtmp_cap, n, sizeof *t);
+    if (t == NULL)
+        return 0;
+    w->pvtmp = t;
+    piece_vslot *a = w->pv[side], *b = t;
+    for (size_t run = 1; run < n; run *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * run) {
+            const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
+            size_t x = lo, y = mid, o = lo;
+            while (x < mid && y < hi)
+                b[o++] = piece_vslot_before(&a[y], &a[x]) ? a[y++] : a[x++];
+            while (x < mid)
+                b[o++] = a[x++];
+            while (y < hi)
+                b[o++] = a[y++];
+        }
+        piece_vslot *u = a;
+        a = b;
+        b = u;
+    }
+    if (a != w->pv[side]) { /* the sorted slots trade places with the scratch */
+        w->pvtmp = w->pv[side];
+        w->pv[side] = a;
+        const size_t c = w->pv_cap[side];
+        w->pv_cap[side] = w->pvtmp_cap;
+        w->pvtmp_cap = c;
+    }
+    return 1;
 }
 
 /* A group costs about one box screen per rim corner and triangle of the other side, per pair of
@@ -610,16 +644,9 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
                 box_of(e, 2, &pe[ne[side]++].box);
             }
         }
-        if (nv[side] > 48)
-            qsort(pv, nv[side], sizeof *pv, piece_vslot_cmp);
-        else /* a few: by insertion, without qsort's call per comparison */
-            for (size_t r = 1; r < nv[side]; ++r) {
-                const piece_vslot x = pv[r];
-                size_t q = r;
-                for (; q > 0 && piece_vslot_cmp(&pv[q - 1], &x) > 0; --q)
-                    pv[q] = pv[q - 1];
-                pv[q] = x;
-            }
+        if (!piece_vslots_sort(w, side, nv[side]))
+            return 0;
+        pv = w->pv[side];
         for (size_t r = 0; r < nv[side]; ++r)
             dv[side] += r == 0 || pv[r].v != pv[r - 1].v;
     }

@@ -111,8 +111,8 @@ typedef struct manifold_work {
     size_t ptri_cap[2];
     struct beside_tri *pbes[2];
     size_t pbes_cap[2];
-    struct piece_vslot *pv[2];
-    size_t pv_cap[2];
+    struct piece_vslot *pv[2], *pvtmp;
+    size_t pv_cap[2], pvtmp_cap;
     struct piece_eslot *pe[2];
     size_t pe_cap[2];
     unsigned char *pmat;
@@ -185,6 +185,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->seen);
     free(w->pitem);
     free(w->pmat);
+    free(w->pvtmp);
     for (int side = 0; side < 2; ++side) {
         free(w->pstamp[side]);
         free(w->ploc[side]);
