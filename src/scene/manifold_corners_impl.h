@@ -124,7 +124,7 @@ typedef struct beside_tri {
     int ok;
 } beside_tri;
 
-static void beside_prep(const real *x, beside_tri *B)
+static inline void beside_prep(const real *x, beside_tri *B)
 {
     double e[3][3];
     B->ok = 0;
@@ -148,7 +148,7 @@ static void beside_prep(const real *x, beside_tri *B)
     B->ok = 1;
 }
 
-static int beside_test(const beside_tri *B, const real *y, double ext, real margin)
+static inline int beside_test(const beside_tri *B, const real *y, double ext, real margin)
 {
     if (!B->ok)
         return 0;
@@ -538,6 +538,10 @@ static int piece_vslots_sort(manifold_work *w, int side, size_t n)
  * PIECE_GAIN box screens: a group whose pieces' rims are long beside its contacts (two finely cut
  * plates overlapping at their rims) goes contact by contact. */
 #define PIECE_GAIN 16
+/* A group goes contact by contact where it has fewer than this many contacts per triangle met:
+ * its set-up (each triangle's copy and screen part, the slots, the table) is per triangle. */
+#define PIECE_FEW 2
+#define PIECE_MIN (4 * PIECE_FEW * PIECE_FEW) /* fewer contacts in a group: contact by contact */
 
 /* Vertex question q of step 0, its triangles' screens passed but the box's and the side's (asked
  * first by the caller), as contact_corners keeps it: once per pair, for the smallest triangles;
@@ -567,7 +571,8 @@ static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, c
 }
 
 /* The questions of the m contacts of one group (c[it[q].k], flat contacts of one pair of planar
- * pieces, each asking), into w->key as contact_corners would put them. 0 out of memory. */
+ * pieces, each asking), into w->key as contact_corners would put them: 1; -1 where the group
+ * should go contact by contact (nothing added); 0 out of memory. */
 static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, const piece_item *it, size_t m,
                          real margin, manifold_work *w)
 {
@@ -599,25 +604,39 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
             w->pstamp_cap[side] = mesh->nt;
         }
     }
-    /* each side's triangles met, numbered in the order met, with their world triangles */
+    /* each side's triangles met, numbered in the order met */
     for (size_t q = 0; q < m; ++q)
         for (int side = 0; side < 2; ++side) {
             const uint32_t t = side ? c[it[q].k].tri_j : c[it[q].k].tri_i;
             if (w->pstamp[side][t] == w->ptag)
                 continue;
-            corner_tri *v = piece_grow(w->ptri[side], &w->ptri_cap[side], nt[side] + 1, sizeof *v);
+            uint32_t *v = piece_grow(w->ptid[side], &w->ptid_cap[side], nt[side] + 1, sizeof *v);
             if (v == NULL)
                 return 0;
-            w->ptri[side] = v;
-            v[nt[side]] = *corner_tri_get(s, w, side, id[side], t);
-            beside_tri *bv = piece_grow(w->pbes[side], &w->pbes_cap[side], nt[side] + 1, sizeof *bv);
-            if (bv == NULL)
-                return 0;
-            w->pbes[side] = bv;
-            beside_prep(v[nt[side]].x, &bv[nt[side]]);
+            w->ptid[side] = v;
+            v[nt[side]] = t;
             w->pstamp[side][t] = w->ptag;
             w->ploc[side][t] = (uint32_t)nt[side]++;
         }
+    /* few contacts for its triangles (two facing triangles of curved bodies, a face of two
+     * triangles on another): contact by contact costs less than the group's set-up */
+    if (m < PIECE_FEW * (nt[0] + nt[1]))
+        return -1;
+    /* their world triangles, and their part of the vertex screen */
+    for (int side = 0; side < 2; ++side) {
+        corner_tri *v = piece_grow(w->ptri[side], &w->ptri_cap[side], nt[side], sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->ptri[side] = v;
+        beside_tri *bv = piece_grow(w->pbes[side], &w->pbes_cap[side], nt[side], sizeof *bv);
+        if (bv == NULL)
+            return 0;
+        w->pbes[side] = bv;
+        for (size_t loc = 0; loc < nt[side]; ++loc) {
+            v[loc] = *corner_tri_get(s, w, side, id[side], w->ptid[side][loc]);
+            beside_prep(v[loc].x, &bv[loc]);
+        }
+    }
     /* their rim corners and real edges */
     for (int side = 0; side < 2; ++side) {
         piece_vslot *pv = piece_grow(w->pv[side], &w->pv_cap[side], 3 * nt[side], sizeof *pv);
@@ -654,12 +673,8 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
      * products in double) */
     const double cost = (double)dv[0] * (double)nt[1] + (double)dv[1] * (double)nt[0] + (double)ne[0] * (double)ne[1] +
                         (double)nt[0] * (double)nt[1];
-    if (cost > PIECE_GAIN * (double)m + 256) {
-        for (size_t q = 0; q < m; ++q)
-            if (!contact_corners(s, &c[it[q].k], margin, w))
-                return 0;
-        return 1;
-    }
+    if (cost > PIECE_GAIN * (double)m + 256)
+        return -1;
     /* the group's contacts by their triangles' local numbers */
     unsigned char *mat = piece_grow(w->pmat, &w->pmat_cap, nt[0] * nt[1], 1);
     if (mat == NULL)
@@ -734,13 +749,18 @@ static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, 
 static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin,
                           const double *reach, manifold_work *w)
 {
-    size_t m = 0;
+    /* the flat contacts asking into w->pitem[0..m), by pieces; the others' places into
+     * w->pone[0..one) (a single call of contact_corners below, which the compiler inlines) */
+    size_t m = 0, one = 0;
     for (size_t k = 0; k < n; ++k) {
         if (!(w->face[k] & FACE_ON_FACE) || !(reach == NULL || (double)c[k].distance - reach[0] <= reach[1]))
             continue;
         if (!(w->face[k] & FACE_FLAT)) {
-            if (!contact_corners(s, &c[k], margin, w))
+            size_t *v = piece_grow(w->pone, &w->pone_cap, one + 1, sizeof *v);
+            if (v == NULL)
                 return 0;
+            w->pone = v;
+            v[one++] = k;
             continue;
         }
         piece_item *v = piece_grow(w->pitem, &w->pitem_cap, m + 1, sizeof *v);
@@ -750,17 +770,31 @@ static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c,
         const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c[k].i].mesh), *Ej = ttd_mesh_edges_made(s->body[c[k].j].mesh);
         v[m++] = (piece_item){Ei->piece[c[k].tri_i], Ej->piece[c[k].tri_j], k};
     }
-    int one = 1; /* a single pair of pieces (the usual case): no sort */
-    for (size_t q = 1; q < m && one; ++q)
-        one = w->pitem[q].pi == w->pitem[0].pi && w->pitem[q].pj == w->pitem[0].pj;
-    if (!one)
+    /* a group takes its own path only with PIECE_FEW * (nt_i + nt_j) contacts or more, and its
+     * m contacts have nt_i + nt_j >= 2 sqrt(m) triangles: so with fewer than PIECE_MIN none does */
+    int same = 1; /* a single pair of pieces (the usual case): no sort */
+    for (size_t q = 1; q < m && same && m >= PIECE_MIN; ++q)
+        same = w->pitem[q].pi == w->pitem[0].pi && w->pitem[q].pj == w->pitem[0].pj;
+    if (!same)
         qsort(w->pitem, m, sizeof *w->pitem, piece_item_cmp);
     for (size_t q0 = 0, q1; q0 < m; q0 = q1) {
         for (q1 = q0 + 1; q1 < m && w->pitem[q1].pi == w->pitem[q0].pi && w->pitem[q1].pj == w->pitem[q0].pj;)
             ++q1;
-        if (!piece_corners(s, c, w->pitem + q0, q1 - q0, margin, w))
+        const int got = q1 - q0 < PIECE_MIN ? -1 : piece_corners(s, c, w->pitem + q0, q1 - q0, margin, w);
+        if (got == 0)
             return 0;
+        if (got < 0) { /* contact by contact */
+            size_t *v = piece_grow(w->pone, &w->pone_cap, one + (q1 - q0), sizeof *v);
+            if (v == NULL)
+                return 0;
+            w->pone = v;
+            for (size_t q = q0; q < q1; ++q)
+                v[one++] = w->pitem[q].k;
+        }
     }
+    for (size_t q = 0; q < one; ++q)
+        if (!contact_corners(s, &c[w->pone[q]], margin, w))
+            return 0;
     return 1;
 }
 

@@ -104,9 +104,13 @@ typedef struct manifold_work {
      * number), its rim corners and real edges; which triangle pairs of the group are contacts */
     struct piece_item *pitem;
     size_t pitem_cap;
+    size_t *pone; /* the contacts asking one by one */
+    size_t pone_cap;
     uint32_t *pstamp[2], *ploc[2];
     size_t pstamp_cap[2];
     uint32_t ptag;
+    uint32_t *ptid[2];
+    size_t ptid_cap[2];
     struct corner_tri *ptri[2];
     size_t ptri_cap[2];
     struct beside_tri *pbes[2];
@@ -184,11 +188,13 @@ static void manifold_work_free(manifold_work *w)
     free(w->ctri);
     free(w->seen);
     free(w->pitem);
+    free(w->pone);
     free(w->pmat);
     free(w->pvtmp);
     for (int side = 0; side < 2; ++side) {
         free(w->pstamp[side]);
         free(w->ploc[side]);
+        free(w->ptid[side]);
         free(w->ptri[side]);
         free(w->pbes[side]);
         free(w->pv[side]);
