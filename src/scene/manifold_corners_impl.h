@@ -115,41 +115,68 @@ static int boxes_apart(const screen_box *a, const screen_box *b, double ext, rea
  * around y and x (boxes_ext). Triangles whose normal is known poorly (thinner than SCREEN_THIN)
  * are not screened. */
 #define SCREEN_THIN 1e-3
-static int vertex_beside(const real *y, const real *x, double ext, real margin)
+/* Triangle x's part of that test, made once per triangle where many vertices are screened
+ * against it (piece_corners): its corners, each edge's outward direction and its length's
+ * factor; ok = 0 for a triangle not screened. The same operations as made per vertex, so the
+ * same bits. */
+typedef struct beside_tri {
+    double v[3][3], o[3][3], len[3];
+    int ok;
+} beside_tri;
+
+static inline void beside_prep(const real *x, beside_tri *B)
 {
-    double v[3][3], p[3], e[3][3];
+    double e[3][3];
+    B->ok = 0;
     for (int k = 0; k < 3; ++k)
         for (int r = 0; r < 3; ++r)
-            v[k][r] = (double)x[3 * k + r];
-    for (int r = 0; r < 3; ++r) {
-        p[r] = (double)y[r];
+            B->v[k][r] = (double)x[3 * k + r];
+    for (int r = 0; r < 3; ++r)
         for (int k = 0; k < 3; ++k)
-            e[k][r] = v[(k + 1) % 3][r] - v[k][r];
-    }
+            e[k][r] = B->v[(k + 1) % 3][r] - B->v[k][r];
     double N[3];
     cross3d(e[0], e[1], N);
     const double nn = dot3d(N, N), l0 = dot3d(e[0], e[0]), l1 = dot3d(e[1], e[1]), l2 = dot3d(e[2], e[2]);
     if (!(nn > SCREEN_THIN * SCREEN_THIN * l0 * l1))
+        return;
+    const double nl = sqrt(nn);
+    for (int k = 0; k < 3; ++k) {
+        cross3d(e[k], N, B->o[k]); /* outward from edge k for a counter-clockwise triangle about N */
+        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
+        B->len[k] = sqrt(lk) * nl;
+    }
+    B->ok = 1;
+}
+
+static inline int beside_test(const beside_tri *B, const real *y, double ext, real margin)
+{
+    if (!B->ok)
         return 0;
-    double far = 0;
-    for (int r = 0; r < 3; ++r)
-        far = fabs(p[r] - v[0][r]) > far ? fabs(p[r] - v[0][r]) : far;
+    double p[3], far = 0;
+    for (int r = 0; r < 3; ++r) {
+        p[r] = (double)y[r];
+        far = fabs(p[r] - B->v[0][r]) > far ? fabs(p[r] - B->v[0][r]) : far;
+    }
     const double lim = screen_lim(margin, ext);
     /* each height formed with a relative error of some 8 ulps of double per factor, the
      * normal's direction known to 1 / SCREEN_THIN of that: 2^-30 of the lengths covers it */
     const double err = 0x1p-30 * (far + ext);
-    const double nl = sqrt(nn);
     for (int k = 0; k < 3; ++k) {
-        double o[3], d[3];
-        cross3d(e[k], N, o); /* outward from edge k for a counter-clockwise triangle about N */
+        double d[3];
         for (int r = 0; r < 3; ++r)
-            d[r] = p[r] - v[k][r];
-        const double lk = k == 0 ? l0 : k == 1 ? l1 : l2;
-        const double h = dot3d(d, o) / (sqrt(lk) * nl);
+            d[r] = p[r] - B->v[k][r];
+        const double h = dot3d(d, B->o[k]) / B->len[k];
         if (h > lim + err)
             return 1;
     }
     return 0;
+}
+
+static int vertex_beside(const real *y, const real *x, double ext, real margin)
+{
+    beside_tri B;
+    beside_prep(x, &B);
+    return beside_test(&B, y, ext, margin);
 }
 
 /* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
@@ -403,6 +430,374 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
     return 1;
 }
 
+/* ---- step 0 once per pair of planar pieces ------------------------------------------------------ */
+
+/* The questions a contact asks depend on its two triangles alone: a vertex question on the vertex
+ * and the other triangle (its side of that triangle's plane, its screens), an edge question on the
+ * two edges and the two triangles' planes; each is kept for the smallest triangles asking it. On a
+ * face lying on a face nearly every triangle of one meets nearly every triangle of the other, so
+ * contact_corners met each vertex question about once per contact (docs/scene-speed.md, section 9).
+ * For the flat contacts of one pair of planar pieces (a group) the same questions are found from
+ * the pieces' rims instead: each rim corner (a vertex not inside a flat part) of a triangle met
+ * against each triangle of the other piece met, each real edge against each of the other's, a box
+ * screen first, then the group's contacts (a table by triangle pair) for the smallest triangles
+ * asking; every screen after that as contact_corners runs it. Same keys, same smallest triangles. */
+
+/* A group's flat contact: its pieces (body i's, body j's) and its place among the pair's contacts. */
+typedef struct piece_item {
+    uint32_t pi, pj;
+    size_t k;
+} piece_item;
+
+/* A rim corner: corner k of triangle t (local number loc) at place v. */
+typedef struct piece_vslot {
+    uint32_t v, t, loc;
+    int k;
+} piece_vslot;
+
+/* A real edge: edge k of the triangle of local number loc, its ends' places pa, pb, its box. */
+typedef struct piece_eslot {
+    uint32_t loc, pa, pb;
+    int k;
+    screen_box box;
+} piece_eslot;
+
+/* *p grown to hold n items of `size` bytes (its capacity *cap): the array, or NULL out of memory
+ * (*p kept). */
+static void *piece_grow(void *p, size_t *cap, size_t n, size_t size)
+{
+    if (n == 0)
+        n = 1;
+    if (p != NULL && n <= *cap)
+        return p;
+    size_t c = *cap > 0 ? *cap : 64;
+    while (c < n)
+        c *= 2;
+    void *q = realloc(p, c * size);
+    if (q != NULL)
+        *cap = c;
+    return q;
+}
+
+static int piece_item_cmp(const void *x, const void *y)
+{
+    const piece_item *a = x, *b = y;
+    if (a->pi != b->pi)
+        return a->pi < b->pi ? -1 : 1;
+    if (a->pj != b->pj)
+        return a->pj < b->pj ? -1 : 1;
+    return a->k < b->k ? -1 : a->k > b->k;
+}
+
+/* Whether rim corner a comes before b: by place, triangle, corner. */
+static int piece_vslot_before(const piece_vslot *a, const piece_vslot *b)
+{
+    if (a->v != b->v)
+        return a->v < b->v;
+    if (a->t != b->t)
+        return a->t < b->t;
+    return a->k < b->k;
+}
+
+/* w->pv[side][0..n) in piece_vslot_before's order: a merge sort with the comparison inline
+ * (qsort's call per comparison cost as much as the rest of a group's corners). 0 out of memory. */
+static int piece_vslots_sort(manifold_work *w, int side, size_t n)
+{
+    piece_vslot *t = piece_grow(w->pvtmp, &w->pvtmp_cap, n, sizeof *t);
+    if (t == NULL)
+        return 0;
+    w->pvtmp = t;
+    piece_vslot *a = w->pv[side], *b = t;
+    for (size_t run = 1; run < n; run *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * run) {
+            const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
+            size_t x = lo, y = mid, o = lo;
+            while (x < mid && y < hi)
+                b[o++] = piece_vslot_before(&a[y], &a[x]) ? a[y++] : a[x++];
+            while (x < mid)
+                b[o++] = a[x++];
+            while (y < hi)
+                b[o++] = a[y++];
+        }
+        piece_vslot *u = a;
+        a = b;
+        b = u;
+    }
+    if (a != w->pv[side]) { /* the sorted slots trade places with the scratch */
+        w->pvtmp = w->pv[side];
+        w->pv[side] = a;
+        const size_t c = w->pv_cap[side];
+        w->pv_cap[side] = w->pvtmp_cap;
+        w->pvtmp_cap = c;
+    }
+    return 1;
+}
+
+/* A group costs about one box screen per rim corner and triangle of the other side, per pair of
+ * real edges and per triangle pair; contact_corners some 800 instructions a contact, about
+ * PIECE_GAIN box screens: a group whose pieces' rims are long beside its contacts (two finely cut
+ * plates overlapping at their rims) goes contact by contact. */
+#define PIECE_GAIN 16
+/* A group goes contact by contact where it has fewer than this many contacts per triangle met:
+ * its set-up (each triangle's copy and screen part, the slots, the table) is per triangle. */
+#define PIECE_FEW 2
+#define PIECE_MIN (4 * PIECE_FEW * PIECE_FEW) /* fewer contacts in a group: contact by contact */
+
+/* Vertex question q of step 0, its triangles' screens passed but the box's and the side's (asked
+ * first by the caller), as contact_corners keeps it: once per pair, for the smallest triangles;
+ * y the vertex, B the other triangle, ext their boxes' extent. 0 out of memory. */
+static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, const beside_tri *B, double ext, real margin)
+{
+    corner_seen *seen = seen_get(w, key);
+    if (seen == NULL)
+        return 0;
+    if (seen->tag == w->ctri_pair) {
+        corner_key *e = seen->at == SIZE_MAX ? NULL : &w->key[seen->at];
+        if (e != NULL && (key->ti < e->ti || (key->ti == e->ti && key->tj < e->tj))) {
+            e->ti = key->ti;
+            e->tj = key->tj;
+            e->k = key->k;
+        }
+        return 1;
+    }
+    *seen = (corner_seen){w->ctri_pair, key->a, key->b, key->kind, SIZE_MAX};
+    w->seen_n++;
+    if (!beside_test(B, y, ext, margin)) {
+        seen->at = w->key_n;
+        if (!key_push(w, key))
+            return 0;
+    }
+    return 1;
+}
+
+/* The questions of the m contacts of one group (c[it[q].k], flat contacts of one pair of planar
+ * pieces, each asking), into w->key as contact_corners would put them: 1; -1 where the group
+ * should go contact by contact (nothing added); 0 out of memory. */
+static int piece_corners(const struct ttd_scene *s, const ttd_scene_contact *c, const piece_item *it, size_t m,
+                         real margin, manifold_work *w)
+{
+    const uint32_t id[2] = {c[it[0].k].i, c[it[0].k].j};
+    const ttd_mesh_edges *E[2];
+    const uint32_t *tris[2];
+    size_t nt[2] = {0, 0}, nv[2] = {0, 0}, ne[2] = {0, 0}, dv[2] = {0, 0};
+    if (++w->ptag == 0) { /* the stamps wrapped: clear them */
+        for (int side = 0; side < 2; ++side)
+            if (w->pstamp_cap[side] > 0)
+                memset(w->pstamp[side], 0, w->pstamp_cap[side] * sizeof *w->pstamp[side]);
+        w->ptag = 1;
+    }
+    for (int side = 0; side < 2; ++side) {
+        const struct ttd_mesh *mesh = s->body[id[side]].mesh;
+        E[side] = ttd_mesh_edges_made(mesh);
+        tris[side] = mesh->tris;
+        if (mesh->nt > w->pstamp_cap[side]) {
+            uint32_t *st = calloc(mesh->nt, sizeof *st), *lo = malloc(mesh->nt * sizeof *lo);
+            if (st == NULL || lo == NULL) {
+                free(st);
+                free(lo);
+                return 0;
+            }
+            free(w->pstamp[side]);
+            free(w->ploc[side]);
+            w->pstamp[side] = st;
+            w->ploc[side] = lo;
+            w->pstamp_cap[side] = mesh->nt;
+        }
+    }
+    /* each side's triangles met, numbered in the order met */
+    for (size_t q = 0; q < m; ++q)
+        for (int side = 0; side < 2; ++side) {
+            const uint32_t t = side ? c[it[q].k].tri_j : c[it[q].k].tri_i;
+            if (w->pstamp[side][t] == w->ptag)
+                continue;
+            uint32_t *v = piece_grow(w->ptid[side], &w->ptid_cap[side], nt[side] + 1, sizeof *v);
+            if (v == NULL)
+                return 0;
+            w->ptid[side] = v;
+            v[nt[side]] = t;
+            w->pstamp[side][t] = w->ptag;
+            w->ploc[side][t] = (uint32_t)nt[side]++;
+        }
+    /* few contacts for its triangles (two facing triangles of curved bodies, a face of two
+     * triangles on another): contact by contact costs less than the group's set-up */
+    if (m < PIECE_FEW * (nt[0] + nt[1]))
+        return -1;
+    /* their world triangles, and their part of the vertex screen */
+    for (int side = 0; side < 2; ++side) {
+        corner_tri *v = piece_grow(w->ptri[side], &w->ptri_cap[side], nt[side], sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->ptri[side] = v;
+        beside_tri *bv = piece_grow(w->pbes[side], &w->pbes_cap[side], nt[side], sizeof *bv);
+        if (bv == NULL)
+            return 0;
+        w->pbes[side] = bv;
+        for (size_t loc = 0; loc < nt[side]; ++loc) {
+            v[loc] = *corner_tri_get(s, w, side, id[side], w->ptid[side][loc]);
+            beside_prep(v[loc].x, &bv[loc]);
+        }
+    }
+    /* their rim corners and real edges */
+    for (int side = 0; side < 2; ++side) {
+        piece_vslot *pv = piece_grow(w->pv[side], &w->pv_cap[side], 3 * nt[side], sizeof *pv);
+        if (pv == NULL)
+            return 0;
+        w->pv[side] = pv;
+        piece_eslot *pe = piece_grow(w->pe[side], &w->pe_cap[side], 3 * nt[side], sizeof *pe);
+        if (pe == NULL)
+            return 0;
+        w->pe[side] = pe;
+        for (size_t loc = 0; loc < nt[side]; ++loc) {
+            const corner_tri *T = &w->ptri[side][loc];
+            const uint32_t t = (uint32_t)T->tag, *tv = tris[side] + 3 * (size_t)t;
+            for (int k = 0; k < 3; ++k)
+                if (ttd_vertex_class(E[side], t, k) != TTD_VERTEX_FLAT)
+                    pv[nv[side]++] = (piece_vslot){E[side]->weld[tv[k]], t, (uint32_t)loc, k};
+            for (int k = 0; k < 3; ++k) {
+                const int k1 = (k + 1) % 3;
+                const uint32_t pa = E[side]->weld[tv[k]], pb = E[side]->weld[tv[k1]];
+                if (ttd_edge_class(E[side], t, k) == TTD_EDGE_FLAT || pa == pb)
+                    continue;
+                const real e[6] = {T->x[3 * k], T->x[3 * k + 1], T->x[3 * k + 2], T->x[3 * k1], T->x[3 * k1 + 1], T->x[3 * k1 + 2]};
+                pe[ne[side]] = (piece_eslot){(uint32_t)loc, pa, pb, k, {{0, 0, 0}, {0, 0, 0}}};
+                box_of(e, 2, &pe[ne[side]++].box);
+            }
+        }
+        if (!piece_vslots_sort(w, side, nv[side]))
+            return 0;
+        pv = w->pv[side];
+        for (size_t r = 0; r < nv[side]; ++r)
+            dv[side] += r == 0 || pv[r].v != pv[r - 1].v;
+    }
+    /* what the group would cost, against contact by contact (all sizes below 2^32 here, the
+     * products in double) */
+    const double cost = (double)dv[0] * (double)nt[1] + (double)dv[1] * (double)nt[0] + (double)ne[0] * (double)ne[1] +
+                        (double)nt[0] * (double)nt[1];
+    if (cost > PIECE_GAIN * (double)m + 256)
+        return -1;
+    /* the group's contacts by their triangles' local numbers */
+    unsigned char *mat = piece_grow(w->pmat, &w->pmat_cap, nt[0] * nt[1], 1);
+    if (mat == NULL)
+        return 0;
+    w->pmat = mat;
+    memset(mat, 0, nt[0] * nt[1]);
+    for (size_t q = 0; q < m; ++q)
+        mat[(size_t)w->ploc[0][c[it[q].k].tri_i] * nt[1] + w->ploc[1][c[it[q].k].tri_j]] = 1;
+    /* vertex questions: each rim corner's place against each triangle of the other side met */
+    for (int side = 0; side < 2; ++side) {
+        const int o = !side;
+        const piece_vslot *pv = w->pv[side];
+        for (size_t r0 = 0, r1; r0 < nv[side]; r0 = r1) {
+            for (r1 = r0 + 1; r1 < nv[side] && pv[r1].v == pv[r0].v;)
+                ++r1;
+            real y[3];
+            memcpy(y, w->ptri[side][pv[r0].loc].x + 3 * pv[r0].k, sizeof y);
+            screen_box vb;
+            box_of(y, 1, &vb);
+            for (size_t lb = 0; lb < nt[o]; ++lb) {
+                const corner_tri *B = &w->ptri[o][lb];
+                const double ext = boxes_ext(&vb, &B->box);
+                if (boxes_apart(&vb, &B->box, ext, margin))
+                    continue;
+                size_t r = r0; /* the smallest triangle at the place that meets B: by (t, k) */
+                while (r < r1 && !mat[side ? lb * nt[1] + pv[r].loc : (size_t)pv[r].loc * nt[1] + lb])
+                    ++r;
+                if (r == r1 || corner_side(&B->P, y, (double)margin) != 0)
+                    continue;
+                const uint32_t bt = (uint32_t)B->tag;
+                const corner_key key = {(uint32_t)side, pv[r].v, bt, side ? bt : pv[r].t, side ? pv[r].t : bt, pv[r].k, 0};
+                if (!vertex_keep(w, &key, y, &w->pbes[o][lb], ext, margin))
+                    return 0;
+            }
+        }
+    }
+    /* edge questions: each real edge of body i's triangles met against each of body j's, in
+     * contact_corners' order within a triangle pair (k, then l) */
+    for (size_t a = 0; a < ne[0]; ++a) {
+        const piece_eslot *A = &w->pe[0][a];
+        const corner_tri *T0 = &w->ptri[0][A->loc];
+        const int k = A->k, k1 = (k + 1) % 3;
+        for (size_t b = 0; b < ne[1]; ++b) {
+            const piece_eslot *Bq = &w->pe[1][b];
+            if (!mat[(size_t)A->loc * nt[1] + Bq->loc] || boxes_apart(&A->box, &Bq->box, boxes_ext(&A->box, &Bq->box), margin))
+                continue;
+            const corner_tri *T1 = &w->ptri[1][Bq->loc];
+            const int l = Bq->k, l1 = (l + 1) % 3;
+            const int hk = corner_side(&T1->P, T0->x + 3 * k, (double)margin), hk1 = corner_side(&T1->P, T0->x + 3 * k1, (double)margin);
+            if (hk != 0 && hk == hk1)
+                continue;
+            const int hl = corner_side(&T0->P, T1->x + 3 * l, (double)margin), hl1 = corner_side(&T0->P, T1->x + 3 * l1, (double)margin);
+            if (hl != 0 && hl == hl1)
+                continue;
+            const real ek[6] = {T0->x[3 * k], T0->x[3 * k + 1], T0->x[3 * k + 2], T0->x[3 * k1], T0->x[3 * k1 + 1], T0->x[3 * k1 + 2]};
+            const real el[6] = {T1->x[3 * l], T1->x[3 * l + 1], T1->x[3 * l + 2], T1->x[3 * l1], T1->x[3 * l1 + 1], T1->x[3 * l1 + 2]};
+            if (edges_miss(ek, el))
+                continue;
+            const uint64_t pa = A->pa, pb = A->pb, qa = Bq->pa, qb = Bq->pb;
+            const corner_key key = {2, pa < pb ? pa << 32 | pb : pb << 32 | pa, qa < qb ? qa << 32 | qb : qb << 32 | qa,
+                                    (uint32_t)T0->tag, (uint32_t)T1->tag, k, l};
+            if (!key_push(w, &key))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Step 0's questions of the pair's n contacts c (those face on face and, with reach, within it;
+ * see pair_corners) into w->key: the flat contacts by pair of planar pieces (piece_corners), the
+ * others one by one. 0 out of memory. */
+static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, real margin,
+                          const double *reach, manifold_work *w)
+{
+    /* the flat contacts asking into w->pitem[0..m), by pieces; the others' places into
+     * w->pone[0..one) (a single call of contact_corners below, which the compiler inlines) */
+    size_t m = 0, one = 0;
+    for (size_t k = 0; k < n; ++k) {
+        if (!(w->face[k] & FACE_ON_FACE) || !(reach == NULL || (double)c[k].distance - reach[0] <= reach[1]))
+            continue;
+        if (!(w->face[k] & FACE_FLAT)) {
+            size_t *v = piece_grow(w->pone, &w->pone_cap, one + 1, sizeof *v);
+            if (v == NULL)
+                return 0;
+            w->pone = v;
+            v[one++] = k;
+            continue;
+        }
+        piece_item *v = piece_grow(w->pitem, &w->pitem_cap, m + 1, sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->pitem = v;
+        const ttd_mesh_edges *Ei = ttd_mesh_edges_made(s->body[c[k].i].mesh), *Ej = ttd_mesh_edges_made(s->body[c[k].j].mesh);
+        v[m++] = (piece_item){Ei->piece[c[k].tri_i], Ej->piece[c[k].tri_j], k};
+    }
+    /* a group takes its own path only with PIECE_FEW * (nt_i + nt_j) contacts or more, and its
+     * m contacts have nt_i + nt_j >= 2 sqrt(m) triangles: so with fewer than PIECE_MIN none does */
+    int same = 1; /* a single pair of pieces (the usual case): no sort */
+    for (size_t q = 1; q < m && same && m >= PIECE_MIN; ++q)
+        same = w->pitem[q].pi == w->pitem[0].pi && w->pitem[q].pj == w->pitem[0].pj;
+    if (!same)
+        qsort(w->pitem, m, sizeof *w->pitem, piece_item_cmp);
+    for (size_t q0 = 0, q1; q0 < m; q0 = q1) {
+        for (q1 = q0 + 1; q1 < m && w->pitem[q1].pi == w->pitem[q0].pi && w->pitem[q1].pj == w->pitem[q0].pj;)
+            ++q1;
+        const int got = q1 - q0 < PIECE_MIN ? -1 : piece_corners(s, c, w->pitem + q0, q1 - q0, margin, w);
+        if (got == 0)
+            return 0;
+        if (got < 0) { /* contact by contact */
+            size_t *v = piece_grow(w->pone, &w->pone_cap, one + (q1 - q0), sizeof *v);
+            if (v == NULL)
+                return 0;
+            w->pone = v;
+            for (size_t q = q0; q < q1; ++q)
+                v[one++] = w->pitem[q].k;
+        }
+    }
+    for (size_t q = 0; q < one; ++q)
+        if (!contact_corners(s, &c[w->pone[q]], margin, w))
+            return 0;
+    return 1;
+}
+
 /* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
  * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
  * CORNER_ANGLE (the meshes' normals, in body i's frame). Flat: face on face, both triangles' flat
@@ -527,10 +922,8 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         return 0;
     w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
     w->seen_n = 0;  /* and so are the vertex questions met */
-    for (size_t k = 0; k < n; ++k)
-        if ((w->face[k] & FACE_ON_FACE) && (reach == NULL || (double)c[k].distance - reach[0] <= reach[1]) &&
-            !contact_corners(s, &c[k], margin, w))
-            return 0;
+    if (!pair_questions(s, c, n, margin, reach, w))
+        return 0;
     if (w->key_n == 0)
         return 1;
     /* each question once, for its smallest triangles; each vertex kept once, at its smallest

@@ -99,6 +99,28 @@ typedef struct manifold_work {
     size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
+    /* step 0 per pair of planar pieces (piece_corners): the pair's flat contacts asking, by pieces;
+     * each side's triangles met in a group (local numbers: by triangle, stamped with the group's
+     * number), its rim corners and real edges; which triangle pairs of the group are contacts */
+    struct piece_item *pitem;
+    size_t pitem_cap;
+    size_t *pone; /* the contacts asking one by one */
+    size_t pone_cap;
+    uint32_t *pstamp[2], *ploc[2];
+    size_t pstamp_cap[2];
+    uint32_t ptag;
+    uint32_t *ptid[2];
+    size_t ptid_cap[2];
+    struct corner_tri *ptri[2];
+    size_t ptri_cap[2];
+    struct beside_tri *pbes[2];
+    size_t pbes_cap[2];
+    struct piece_vslot *pv[2], *pvtmp;
+    size_t pv_cap[2], pvtmp_cap;
+    struct piece_eslot *pe[2];
+    size_t pe_cap[2];
+    unsigned char *pmat;
+    size_t pmat_cap;
     struct region_item *reg;  /* 5b regions: the pair's points below 0, by their first coordinate */
     uint32_t *reg_par;        /* 5b regions: union-find parents, then each point's deepest */
     double *reg_n;            /* 5b regions: each region's direction, by its number */
@@ -165,6 +187,19 @@ static void manifold_work_free(manifold_work *w)
     free(w->near);
     free(w->ctri);
     free(w->seen);
+    free(w->pitem);
+    free(w->pone);
+    free(w->pmat);
+    free(w->pvtmp);
+    for (int side = 0; side < 2; ++side) {
+        free(w->pstamp[side]);
+        free(w->ploc[side]);
+        free(w->ptid[side]);
+        free(w->ptri[side]);
+        free(w->pbes[side]);
+        free(w->pv[side]);
+        free(w->pe[side]);
+    }
     free(w->reg);
     free(w->reg_par);
     free(w->reg_n);
