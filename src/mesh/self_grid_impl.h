@@ -215,6 +215,8 @@ static unsigned self_screen_scalar(const ttd_self_block *g, const ttd_self_block
     for (int i = 0; i < TTD_NODE_WIDTH; ++i) {
         unsigned n = 0, s = 0;
         out[i] = 0;
+        if (same && i == TTD_NODE_WIDTH - 1) /* no lane after it (as the rows') */
+            continue;
         int row = 1; /* triangle i near h's leaf box */
         for (int c = 0; c < 3; ++c)
             row &= (h->box[c] <= g->hi[c][i]) & (g->lo[c][i] <= h->box[3 + c]);

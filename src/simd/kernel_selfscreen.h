@@ -24,6 +24,8 @@ static unsigned self_screen(const ttd_self_block *g, const ttd_self_block *h, in
     unsigned rows = 0;
     for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D)
         rows |= ttdw_mbits_d(screen_near(glo, ghi, j, h->box)) << j;
+    if (same) /* only lanes j > i count: the last row has none */
+        rows &= (1u << (TTD_NODE_WIDTH - 1)) - 1;
     unsigned found = 0; /* the rows with a pair of each kind (core/kernels.h) */
     memset(out, 0, TTD_NODE_WIDTH * sizeof *out);
     for (; rows != 0; rows &= rows - 1) {
