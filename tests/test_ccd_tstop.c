@@ -8,7 +8,9 @@
  * with t_stop at the toi itself, just after it, toi + t_tol / 2, + t_tol, + 2 t_tol, further on and
  * 1; and before the toi (just before, halfway, 0) and on a grid where it has none. Then that a
  * search with t_stop stops before the exact work on a coplanarity root that lies well after t_stop
- * (the proved-free prefix, ccd_search_impl.h): one interval, and no contact isolated after t_stop. */
+ * (the proved-free prefix, ccd_search_impl.h): one interval, and no contact isolated after t_stop;
+ * and the same for motion in one plane (the prefixes before a condition's root and of a quarter)
+ * and a contact just after t_stop (the prefix's second step). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -127,10 +129,49 @@ static int stops_before_exact_work(counts *c)
     return 0;
 }
 
+/* Motion in one plane (f = 0 throughout: no root of f to cut at): edge b sweeping across edge a,
+ * which it meets at t_c. (1) b crosses a's line beyond a's end at first (a contact condition < 0
+ * at t = 0, its first root at t_c = 2/3): the prefix before the condition's root. (2) b parallel to
+ * a at t = 0 (every condition 0 there) and turning as it comes down onto a at t_c = 2/3: the
+ * prefix of a quarter. With t_stop 0.1: no hit after one interval (before these prefixes, the
+ * search formed the exact polynomials and cut at the condition's root, or halved [0, 1], and took
+ * two). (3) The vertex through the face of stops_before_exact_work with t_stop 0.6, past 7/8 of
+ * the way to its contact at 0.625: the prefix's second step (to 63/64 of the way) takes it past
+ * t_stop, so no hit after one interval (before, the contact isolated exactly: a hit at 0.625). */
+static int stops_in_prefix_steps(counts *c)
+{
+    const double cr0[12] = {0, 0, 0, 1, 0, 0, 2, -1, 0, 2, 1, 0};
+    const double cr1[12] = {0, 0, 0, 1, 0, 0, 0.5, -1, 0, 0.5, 1, 0};
+    const double pa0[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const double pa1[12] = {0, 0, 0, 1, 0, 0, 0.2, -0.5, 0, 1.2, 0.7, 0};
+    const double vf0[12] = {0.25, 0.25, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const double vf1[12] = {0.25, 0.25, -0.6, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const struct {
+        int kind;
+        const double *x0, *x1;
+        double tc, t_stop;
+    } q[3] = {{TTD_CCD_EE, cr0, cr1, 2.0 / 3, 0.1}, {TTD_CCD_EE, pa0, pa1, 2.0 / 3, 0.1}, {TTD_CCD_VF, vf0, vf1, 0.625, 0.6}};
+    for (int i = 0; i < 3; ++i) {
+        ttd_ccd_params p = ttd_ccd_default_params();
+        ttd_ccd_result whole, r;
+        ttd_ccd_query(q[i].kind, q[i].x0, q[i].x1, &p, &whole);
+        ENSURE_MSG(whole.hit == 1 && whole.toi <= q[i].tc && whole.toi > q[i].tc - 1e-9,
+                   "query %d: whole search hit %u toi %.17g, contact at %g", i, whole.hit, whole.toi, q[i].tc);
+        p.t_stop = q[i].t_stop;
+        ttd_ccd_query(q[i].kind, q[i].x0, q[i].x1, &p, &r);
+        ENSURE_MSG(r.hit == 0 && r.evals == 1, "query %d, t_stop %g: hit %u toi %.17g, %u intervals", i, q[i].t_stop,
+                   r.hit, r.toi, r.evals);
+        for (int d = 0; d < 2; ++d)
+            if (check_query(q[i].kind, q[i].x0, q[i].x1, d ? 1e-6 : 0, c))
+                return 1;
+    }
+    return 0;
+}
+
 int main(void)
 {
     counts c = {0, 0, 0};
-    if (stops_before_exact_work(&c))
+    if (stops_before_exact_work(&c) || stops_in_prefix_steps(&c))
         return 1;
     for (int fam = 0; fam < F_COUNT; ++fam)
         for (int kind = 1; kind <= 2; ++kind) {

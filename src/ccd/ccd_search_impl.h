@@ -534,13 +534,13 @@ TTDW_FN const int (*ccd_form_pts(int na, int which))[2]
     return pts[na - 1][which];
 }
 
-/* A condition's Bernstein coefficients on the interval in double from the rounded end positions:
- * +1 when all exceed their rounding bound (the condition is > 0 on the whole interval), -1 when
- * none is positive beyond it (it may be < 0 throughout: a candidate for the exact test), else 0.
- * The bound: each vector component within 21uS of the exact one (12uS, docs/ccd.md, section 3),
- * so |v| <= V and a value of the form moves by at most 4 (sqrt 3 21uS) V^3 from it, plus 40uV^4
- * of rounding; a coefficient sums at most 6 values (5.01uV^4 more). */
-TTDW_FN int condition_sign(const int pts[4][2], double xa[4][3], double xb[4][3], double S)
+/* A condition's Bernstein coefficients on the interval in double from the rounded end positions
+ * (B[j] the sum of the C(4, j) blossom values with j ends at tb: the quartic at s in [0, 1] is
+ * sum B[j] s^j (1 - s)^(4 - j)), and *bound on each one's rounding error; 0 where none can be
+ * bounded. The bound: each vector component within 21uS of the exact one (12uS, docs/ccd.md,
+ * section 3), so |v| <= V and a value of the form moves by at most 4 (sqrt 3 21uS) V^3 from it,
+ * plus 40uV^4 of rounding; a coefficient sums at most 6 values (5.01uV^4 more). */
+TTDW_FN int condition_bern(const int pts[4][2], double xa[4][3], double xb[4][3], double S, double B[5], double *bound)
 {
     double v[4][2][3], V = 0;
     for (int k = 0; k < 4; ++k)
@@ -552,8 +552,10 @@ TTDW_FN int condition_sign(const int pts[4][2], double xa[4][3], double xb[4][3]
     V = sqrt(V) * (1 + 4 * U_ROUND) + 37 * U_ROUND * S;
     if (!(V < 0x1p200))
         return 0;
-    const double bound = (6 * (8 * 21 * U_ROUND * S * V * V * V + 48 * U_ROUND * V * V * V * V)) * (1 + 0x1p-40) + 0x1p-1000;
-    double c01[2][2][3], c23[2][2][3], B[5] = {0, 0, 0, 0, 0};
+    *bound = (6 * (8 * 21 * U_ROUND * S * V * V * V + 48 * U_ROUND * V * V * V * V)) * (1 + 0x1p-40) + 0x1p-1000;
+    double c01[2][2][3], c23[2][2][3];
+    for (int j = 0; j < 5; ++j)
+        B[j] = 0;
     for (int e0 = 0; e0 < 2; ++e0)
         for (int e1 = 0; e1 < 2; ++e1) {
             cross3(c01[e0][e1], v[0][e0], v[1][e1]);
@@ -562,6 +564,17 @@ TTDW_FN int condition_sign(const int pts[4][2], double xa[4][3], double xb[4][3]
     for (int mask = 0; mask < 16; ++mask)
         B[ccdx_popcount4(mask)] +=
             dot3(c01[mask & 1][(mask >> 1) & 1], c23[(mask >> 2) & 1][(mask >> 3) & 1]);
+    return 1;
+}
+
+/* A condition's sign on the interval by its rounded Bernstein coefficients (condition_bern): +1 when
+ * all exceed their rounding bound (the condition is > 0 on the whole interval), -1 when none is
+ * positive beyond it (it may be < 0 throughout: a candidate for the exact test), else 0. */
+TTDW_FN int condition_sign(const int pts[4][2], double xa[4][3], double xb[4][3], double S)
+{
+    double B[5], bound;
+    if (!condition_bern(pts, xa, xb, S, B, &bound))
+        return 0;
     int pos = 1, mayneg = 1;
     for (int j = 0; j < 5; ++j) {
         pos &= B[j] > bound;
@@ -950,15 +963,20 @@ TTDW_FN int directions_separate(ccd_state *s, double xa[4][3], double xb[4][3], 
  * t_stop (mesh CCD) wastes when the root lies after t_stop. So before it, the stretch [ta, c] up to
  * a point c before the root guessed in double from the rounded Bernstein coefficients is tried
  * with the cheap certified tests; proved, [0, c] is free of contact (every time before ta already
- * was), and no later step may report a hit before c - t_tol (free_to in ccd_query_one). Every
- * search does this, with or without t_stop, so the intervals and the answers do not depend on
- * t_stop; a search with t_stop stops there when c - t_tol is past it. */
+ * was), and no later step may report a hit before c - t_tol (free_to in ccd_query_one); a second
+ * step [c, c2] closer to the root follows. The same where f is about 0 and the search would go on
+ * to f's exact tests and a cut at a condition's root (cond_root): the stretch before a condition's
+ * first rise guessed in double, proved by that condition's rounded coefficients or the same cheap
+ * tests; where no rise is guessed, a quarter of the interval, then its first half. Every search
+ * does these steps, with or without t_stop (they read no t_stop but to stop, push no interval and
+ * leave the state the later steps read as it was), so the intervals and the answers do not depend
+ * on t_stop; a search with t_stop stops once free_to - t_tol is past it. */
 
-/* The end c of the prefix to try: 7/8 of the way from ta to the first sign change in (ta, tb) of
- * the cubic with Bernstein coefficients B on [ta, tb], a guess in double: the first of 8 equal
- * pieces whose end differs in sign from B[0], bisected 8 times (1/2048 of the interval, far finer
- * than the 1/8 kept back); NAN where none is found. */
-TTDW_FN double prefix_cut(const double B[4], double ta, double tb)
+/* The prefix's guess: the fraction u of [ta, tb] where the cubic with Bernstein coefficients B on
+ * [ta, tb] first changes sign from B[0]'s, in double: the first of 8 equal pieces whose end differs
+ * in sign, bisected 8 times (1/2048 of the interval, far finer than the 1/8 kept back); u is the
+ * last point found of B[0]'s sign. NAN where none is found. */
+TTDW_FN double prefix_cut(const double B[4])
 {
     const double a[4] = {B[0], 3 * (B[1] - B[0]), 3 * (B[2] - 2 * B[1] + B[0]), B[3] - 3 * B[2] + 3 * B[1] - B[0]};
     const int neg = a[0] < 0;
@@ -980,26 +998,99 @@ TTDW_FN double prefix_cut(const double B[4], double ta, double tb)
         else
             hi = m;
     }
-    const double c = ta + (tb - ta) * (0.875 * lo);
-    return c > ta && c < tb ? c : (double)NAN;
+    return lo;
 }
 
-/* Whether [ta, c] is certified free of contact at delta = 0: f of one strict sign there (rounded),
- * or a direction's test (directions_separate). s's candidate for the exact test is left as found. */
-TTDW_FN int prefix_free(ccd_state *s, double xa[4][3], double ta, double c, double S)
+/* The quartic sum B[j] s^j (1 - s)^(4 - j) (a condition's, condition_bern) at s, in double. */
+TTDW_FN double bern4_at(const double B[5], double s)
 {
-    double xc[4][3];
-    positions(s, c, xc);
+    const double r = 1 - s;
+    return (((B[0] * r + B[1] * s) * r + B[2] * s * s) * r + B[3] * s * s * s) * r + B[4] * s * s * s * s;
+}
+
+/* The prefix's guess before a cut at a condition's root (cond_root), where f is about 0: for each
+ * contact condition that seems negative from ta on (its first rounded Bernstein coefficient not
+ * above the rounding bound, and it or the second below minus the bound: the layers' edges are
+ * often parallel at ta, where every condition is about 0), the fraction of [ta, tb] before its
+ * first rise, guessed in double as in prefix_cut (1 where none of the 8 pieces' ends is >= 0); the
+ * latest of them, as cond_root takes the latest root, and *which its condition. NAN where no
+ * condition seems negative. Only a guess: prefix_free proves the stretch or not. */
+TTDW_FN double cond_prefix_cut(int na, double xa[4][3], double xb[4][3], double S, int *which)
+{
+    const int nc = na == TTD_CCD_VF ? 3 : 4;
+    double best = (double)NAN;
+    for (int c = 0; c < nc; ++c) {
+        double B[5], bound;
+        if (!condition_bern(ccd_form_pts(na, 1 + c), xa, xb, S, B, &bound) || !(B[0] <= bound) ||
+            !(B[0] < -bound || B[1] < -bound))
+            continue;
+        double lo = 0, hi = (double)NAN;
+        for (int i = 1; i <= 8; ++i) {
+            const double u = i / 8.0;
+            if (!(bern4_at(B, u) < 0)) {
+                hi = u;
+                break;
+            }
+            lo = u;
+        }
+        if (hi > 0) {
+            for (int it = 0; it < 8; ++it) {
+                const double m = 0.5 * (lo + hi);
+                if (bern4_at(B, m) < 0)
+                    lo = m;
+                else
+                    hi = m;
+            }
+        }
+        if (!(best >= lo)) {
+            best = lo;
+            *which = c;
+        }
+    }
+    return best;
+}
+
+/* Whether [a, c] (positions xa, xc) is certified free of contact at delta = 0 without an exact
+ * test: contact condition `which` (when >= 0) below minus its rounding bound in every rounded
+ * Bernstein coefficient (< 0 throughout: no contact, docs/ccd.md section 3), f of one strict sign
+ * (rounded), or a direction's test (directions_separate). s's candidate for the exact test is left
+ * as found. */
+TTDW_FN int prefix_free(ccd_state *s, double xa[4][3], double xc[4][3], double a, double c, double S, int which)
+{
+    if (which >= 0) {
+        double B[5], bound;
+        if (condition_bern(ccd_form_pts(s->na, 1 + which), xa, xc, S, B, &bound) && B[0] < -bound &&
+            B[1] < -bound && B[2] < -bound && B[3] < -bound && B[4] < -bound)
+            return 1;
+    }
     cop_info ci;
     never_coplanar(s->na, xa, xc, S, &ci);
     if (ci.never)
         return 1;
     const double cand_g = s->cand_g, cand_n[3] = {s->cand_n[0], s->cand_n[1], s->cand_n[2]};
     double d;
-    const int apart = directions_separate(s, xa, xc, 0.5 * (ta + c), 0.0, &d);
+    const int apart = directions_separate(s, xa, xc, 0.5 * (a + c), 0.0, &d);
     s->cand_g = cand_g;
     memcpy(s->cand_n, cand_n, sizeof cand_n);
     return apart;
+}
+
+/* The prefix's steps on [ta, tb]: [ta, c], then [c, c2] (where ta < c < c2 < tb), each tried by
+ * prefix_free; returns the end of the stretch from ta proved free, free_to where none. Stops after
+ * the first step where that already passes the search's stop (t_stop's promise: below). */
+TTDW_FN double prefix_steps(ccd_state *s, double xa[4][3], double ta, double tb, double c, double c2, double S,
+                            int which, double free_to, const ttd_ccd_params *p)
+{
+    if (!(c > ta && c < tb && c > free_to))
+        return free_to;
+    double xc[4][3], xd[4][3];
+    positions(s, c, xc);
+    if (!prefix_free(s, xa, xc, ta, c, S, which))
+        return free_to;
+    if (c - p->t_stop > 4 * p->t_tol || !(c2 > c && c2 < tb))
+        return c;
+    positions(s, c2, xd);
+    return prefix_free(s, xc, xd, c, c2, S, which) ? c2 : c;
 }
 
 /* Whether a point of A and a point of B are equal in the 12 coordinates x (exactly): the primitives
@@ -1129,6 +1220,10 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
      * contact's (jump_to_root, the final pieces), which lies after it and so starts after
      * free_to - t_tol. */
     double free_to = -HUGE_VAL;
+    /* Prefixes tried where f is about 0 (below): at most 2 a query, since they serve a search with
+     * t_stop at its first intervals; deeper down the whole search would pay for them alone. */
+    enum { COND_PREFIXES = 2 };
+    int cond_prefixes = 0;
     enum { PROBES = 2, END_PROBES = 2 };
     double cert_ta = 1, cert_tb = 0; /* an interval certain to hold a contact (none yet) */
     while (top > 0) {
@@ -1180,12 +1275,11 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             if (ci.never)
                 continue;
             if (ci.change && !(ta >= cert_ta && tb <= cert_tb)) {
-                const double c = prefix_cut(ci.B, ta, tb);
-                if (c > free_to && prefix_free(&s, xa, ta, c, S)) {
-                    free_to = c;
-                    if (free_to - p->t_stop > 4 * p->t_tol)
-                        break; /* every hit would start after t_stop (t_stop's promise, ccd.h) */
-                }
+                const double u = prefix_cut(ci.B);
+                free_to = prefix_steps(&s, xa, ta, tb, ta + (tb - ta) * (0.875 * u), ta + (tb - ta) * (0.984375 * u), S,
+                                       -1, free_to, p);
+                if (free_to - p->t_stop > 4 * p->t_tol)
+                    break; /* every hit would start after t_stop (t_stop's promise, ccd.h) */
             }
             if (ta >= cert_ta && tb <= cert_tb) {
                 /* Inside a certified interval only f's roots matter. */
@@ -1215,6 +1309,20 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             }
             if (directions_separate(&s, xa, xb, tm, delta, &d))
                 continue;
+            /* f about 0 (no root of it to cut at): the prefix before a condition's root, before the
+             * exact work that a cut there (cond_root) or f's exact tests would do. */
+            if (ci.undecided && !ci.end_zero && tb - ta > 4 * p->t_tol && cond_prefixes < COND_PREFIXES) {
+                ++cond_prefixes;
+                int which = -1;
+                const double u = cond_prefix_cut(s.na, xa, xb, S, &which);
+                if (u > 0)
+                    free_to = prefix_steps(&s, xa, ta, tb, ta + (tb - ta) * (0.875 * u), ta + (tb - ta) * (0.984375 * u),
+                                           S, which, free_to, p);
+                else /* no root guessed (edges parallel at ta: every condition 0 there): a quarter, a half */
+                    free_to = prefix_steps(&s, xa, ta, tb, ta + 0.25 * (tb - ta), tm, S, -1, free_to, p);
+                if (free_to - p->t_stop > 4 * p->t_tol)
+                    break; /* as above */
+            }
             /* The candidate direction's exact test before the polynomials' (it needs no expansion
              * of f or of a condition formed, which the tests below may form for nothing). */
             if (s.cand_g > -HUGE_VAL && exact_separated(x0, x1, s.na, ta, tb, s.cand_n))
