@@ -676,6 +676,18 @@ static int overflowing_directions(void)
                             w[(18 * k + 3 * i + c) * TTD_NODE_WIDTH + l] = (swap ? y : x)[i][c];
             }
             ENSURE_MSG(row->d->tri_apart(1, w, S, 0) == 0, "row %s: a touching pair proved apart", row->name);
+            /* the same pair read from vertex arrays (tri_apart_at): vertices 0..5 in lane 0, the
+             * other lanes every vertex 0 */
+            double w0[18], vm[6];
+            uint32_t vi[6 * TTD_NODE_WIDTH] = {0};
+            for (int i = 0; i < 6; ++i) {
+                vm[i] = X;
+                vi[i * TTD_NODE_WIDTH] = (uint32_t)i;
+                for (int c = 0; c < 3; ++c)
+                    w0[3 * i + c] = (swap ? y : x)[i][c];
+            }
+            ENSURE_MSG(row->d->tri_apart_at(1, vi, w0, w0, vm, 0) == 0, "row %s: a touching pair proved apart (at)",
+                       row->name);
         }
     }
     return 0;
@@ -736,6 +748,36 @@ static int tri_apart_lanes(void)
                 for (int l = 0; l < count; ++l)
                     ENSURE_MSG(((m >> l) & 1u) == (unsigned)want[k + l], "%s, row %s, pair %d (delta %g): lanes %u, scalar %d",
                                ap_family[f], row->name, k + l, D[k], (m >> l) & 1u, want[k + l]);
+                /* the same lanes read from vertex arrays (tri_apart_at): the 6 points of each lane
+                 * at shuffled places among 6 TTD_NODE_WIDTH vertices, vmag their own magnitude,
+                 * so the lanes' S is the largest of the six as above */
+                enum { NV = 6 * TTD_NODE_WIDTH };
+                double v0[3 * NV], v1[3 * NV], vm[NV];
+                uint32_t perm[NV], vi[NV];
+                for (int i = 0; i < NV; ++i)
+                    perm[i] = (uint32_t)i;
+                for (int i = NV - 1; i > 0; --i) {
+                    const int r = (int)((i + 1) * urand());
+                    const uint32_t t = perm[i];
+                    perm[i] = perm[r];
+                    perm[r] = t;
+                }
+                for (int l = 0; l < TTD_NODE_WIDTH; ++l)
+                    for (int i = 0; i < 6; ++i) {
+                        const uint32_t v = perm[6 * l + i];
+                        vi[i * TTD_NODE_WIDTH + l] = v;
+                        vm[v] = 0;
+                        for (int c = 0; c < 3; ++c) {
+                            v0[3 * v + c] = x[(3 * i + c) * TTD_NODE_WIDTH + l];
+                            v1[3 * v + c] = x[(18 + 3 * i + c) * TTD_NODE_WIDTH + l];
+                            vm[v] = fabs(v0[3 * v + c]) > vm[v] ? fabs(v0[3 * v + c]) : vm[v];
+                            vm[v] = fabs(v1[3 * v + c]) > vm[v] ? fabs(v1[3 * v + c]) : vm[v];
+                        }
+                    }
+                ENSURE_MSG(row->d->tri_apart_at != NULL, "row %s has no tri_apart_at", row->name);
+                const unsigned ma = row->d->tri_apart_at(count, vi, v0, v1, vm, D[k]);
+                ENSURE_MSG(ma == m, "%s, row %s, pairs %d..%d (delta %g): read from the vertices %#x, copied in %#x",
+                           ap_family[f], row->name, k, k + count - 1, D[k], ma, m);
                 k += count;
             }
         }

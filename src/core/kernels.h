@@ -211,6 +211,13 @@ typedef unsigned (*ttd_ccd_screen_fn)(int na, int count, const double *x0, const
  * the same bits as the scalar proof's. Every lane of x and S is read (fill the lanes past count
  * with finite numbers). */
 typedef unsigned (*ttd_tri_apart_fn)(int count, const double *x, const double *S, double delta);
+/* tri_apart_at (double rows only; NULL on the scalar row): the same proof with the points read
+ * from the vertex arrays: pair l's point i (0..2 the first triangle, 3..5 the second) is vertex
+ * v[i TTD_NODE_WIDTH + l], at x0 + 3 v (t = 0) and x1 + 3 v (t = 1), and S the largest of the six
+ * vmag[v] (taken as a running maximum from 0 in the order i = 0..5); bit i as tri_apart's for those
+ * numbers. Every lane of v is read (fill the lanes past count with valid vertices). */
+typedef unsigned (*ttd_tri_apart_at_fn)(int count, const uint32_t *v, const double *x0, const double *x1,
+                                        const double *vmag, double delta);
 
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
@@ -230,6 +237,7 @@ typedef struct ttd_kernels_d {
     ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
     ttd_tri_apart_fn tri_apart;         ///< NULL on the scalar row
+    ttd_tri_apart_at_fn tri_apart_at;   ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

@@ -208,7 +208,7 @@ typedef struct job {
                             * columns in the tree's order (pw is pb at delta 0), read in turn at the
                             * leaves; SWEEP_LEAF_SELF entries of padding after the last */
     uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
-    ttd_tri_apart_fn apart;  /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
+    ttd_tri_apart_at_fn apart; /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
     ttd_box_screen_fn screen; /* self: the leaves' box tests on the row (8 boxes), or NULL: leaf_mask */
 } job;
 
@@ -225,10 +225,11 @@ typedef struct worker {
     struct node_pair *stack; /* the self walk's pairs of nodes still to visit */
     size_t stack_cap;
     int oom;
-    /* self, with J->apart: disjoint triangle pairs waiting for the proof in lanes (their six
-     * points at both ends in the row's layout, core/kernels.h) */
+    /* self, with J->apart: disjoint triangle pairs waiting for the proof in lanes, by their six
+     * vertex indices (core/kernels.h, tri_apart_at: the proof reads the points itself); lanes
+     * past nq hold an earlier pair's indices, or 0 (the workers are made zeroed), valid vertices */
     int nq;
-    double qx[36 * TTD_NODE_WIDTH], qs[TTD_NODE_WIDTH];
+    uint32_t qv[6 * TTD_NODE_WIDTH];
     uint32_t qa[TTD_NODE_WIDTH], qb[TTD_NODE_WIDTH];
     const uint32_t *qta[TTD_NODE_WIDTH], *qtb[TTD_NODE_WIDTH];
 } worker;
@@ -691,7 +692,8 @@ static void flush_pairs(const job *J, worker *w)
     if (n == 0)
         return;
     w->nq = 0;
-    unsigned left = ~J->apart(n, w->qx, w->qs, J->params.delta) & ((2u << (n - 1)) - 1);
+    const meshccd_side *X = J->a->s;
+    unsigned left = ~J->apart(n, w->qv, X->x0, X->x1, J->a->vmag, J->params.delta) & ((2u << (n - 1)) - 1);
     for (; left != 0; left &= left - 1) {
         const int i = __builtin_ctz(left);
         pair_prims(J, w, w->qa[i], w->qb[i], w->qta[i], w->qtb[i]);
@@ -700,7 +702,7 @@ static void flush_pairs(const job *J, worker *w)
 
 /* Triangle pair ta < tb, kept by the rule (disjoint: sharing no vertex); TA, TB their vertex
  * indices (as pair_prims's). A disjoint pair is first tried whole (tri_pair_apart), in lanes
- * where the row has them: it waits in the worker's queue, its six points copied in (which pairs
+ * where the row has them: it waits in the worker's queue by its six vertex indices (which pairs
  * the lanes prove is what the scalar proof proves, and the answer does not depend on the order in
  * which pairs reach the primitive searches: t_stop's promise, ccd.h). */
 static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
@@ -710,17 +712,10 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const u
     ++w->tri_pairs;
     if (disjoint && J->apart != NULL) {
         const int n = w->nq;
-        double S = 0;
-        for (int i = 0; i < 6; ++i) {
-            const size_t v = i < 3 ? TA[i] : TB[i - 3];
-            const double *p0 = A->s->x0 + 3 * v, *p1 = A->s->x1 + 3 * v;
-            for (int c = 0; c < 3; ++c) {
-                w->qx[(3 * i + c) * TTD_NODE_WIDTH + n] = p0[c];
-                w->qx[(18 + 3 * i + c) * TTD_NODE_WIDTH + n] = p1[c];
-            }
-            S = A->vmag[v] > S ? A->vmag[v] : S;
+        for (int i = 0; i < 3; ++i) {
+            w->qv[i * TTD_NODE_WIDTH + n] = TA[i];
+            w->qv[(3 + i) * TTD_NODE_WIDTH + n] = TB[i];
         }
-        w->qs[n] = S;
         w->qa[n] = ta;
         w->qb[n] = tb;
         w->qta[n] = TA;
@@ -1040,7 +1035,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
     J.params = ttd_ccd_default_params();
     J.params.delta = delta;
     const ttd_kernels_d *row = ttd_dispatch_row_d(isa);
-    J.apart = J.self && row != NULL ? row->tri_apart : NULL;
+    J.apart = J.self && row != NULL ? row->tri_apart_at : NULL;
 #if !defined(MESHCCD_SCALAR_LEAVES)
     J.screen = J.self && row != NULL ? row->box_screen : NULL;
 #endif

@@ -51,20 +51,13 @@ TTDW_FN void tri_apart_perp(ccdw3 r, const ccdw3 e, const ccdw3 w)
     ccdw_cross(r, e, c);
 }
 
-/* The lanes j .. j + TTDW_LANES_D - 1 (live: those below count): the mask of those proved. The
+/* The lanes of points p0, p1 (live: those below count): the mask of those proved. The
  * directions in the scalar order (end 0 then 1; per end the first triangle's three edges from its
  * facing one, the second's likewise, then the two normals); a lane proved early is simply
  * proved again by later ones, which changes nothing (which pairs are proved does not depend on
  * the order at all: a pair is proved when any of its directions proves it). */
-TTDW_FN ttdw_md tri_apart_lanes(const double *x, const double *S_, int j, ttdw_md live, double delta)
+TTDW_FN ttdw_md tri_apart_proof(ccdw3 *p0, ccdw3 *p1, const ttdw_vd S, ttdw_md live, double delta)
 {
-    ccdw3 p0[6], p1[6];
-    for (int i = 0; i < 6; ++i)
-        for (int c = 0; c < 3; ++c) {
-            p0[i][c] = ttdw_loadu_d(x + (3 * i + c) * TTD_NODE_WIDTH + j);
-            p1[i][c] = ttdw_loadu_d(x + (18 + 3 * i + c) * TTD_NODE_WIDTH + j);
-        }
-    const ttdw_vd S = ttdw_loadu_d(S_ + j);
     ttdw_md proved = ttdw_mnot_d(live); /* padding counts as done */
     for (int end = 0; end < 2; ++end) {
         ccdw3 *p = end ? p1 : p0;
@@ -112,6 +105,18 @@ TTDW_FN ttdw_md tri_apart_lanes(const double *x, const double *S_, int j, ttdw_m
     return proved;
 }
 
+/* The lanes j .. j + TTDW_LANES_D - 1 of points given in the row's layout (tri_apart). */
+TTDW_FN ttdw_md tri_apart_lanes(const double *x, const double *S_, int j, ttdw_md live, double delta)
+{
+    ccdw3 p0[6], p1[6];
+    for (int i = 0; i < 6; ++i)
+        for (int c = 0; c < 3; ++c) {
+            p0[i][c] = ttdw_loadu_d(x + (3 * i + c) * TTD_NODE_WIDTH + j);
+            p1[i][c] = ttdw_loadu_d(x + (18 + 3 * i + c) * TTD_NODE_WIDTH + j);
+        }
+    return tri_apart_proof(p0, p1, ttdw_loadu_d(S_ + j), live, delta);
+}
+
 static unsigned tri_apart(int count, const double *x, const double *S, double delta)
 {
     unsigned out = 0;
@@ -122,7 +127,71 @@ static unsigned tri_apart(int count, const double *x, const double *S, double de
     return out;
 }
 
-#define TTD_LANE_ROW_TRI_APART .tri_apart = tri_apart,
+/* A gather: lane l of the result is base[m * v[l]] (v: TTDW_LANES_D vertex indices, m 1 or 3).
+ * The ISA's gather instruction where it has one (64-bit offsets: 3 v may pass 2^32), else one
+ * lane at a time; the same numbers either way. */
+#if defined(TTDW_USE_AVX2)
+typedef __m256i tri_apart_ix;
+static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
+{
+    const __m256i i = _mm256_cvtepu32_epi64(_mm_loadu_si128((const __m128i *)(const void *)v));
+    return m == 3 ? _mm256_add_epi64(i, _mm256_add_epi64(i, i)) : i;
+}
+static inline ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i) { return _mm256_i64gather_pd(base, i, 8); }
+#elif defined(TTDW_USE_AVX512)
+typedef __m512i tri_apart_ix;
+static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
+{
+    const __m512i i = _mm512_cvtepu32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)v));
+    return m == 3 ? _mm512_add_epi64(i, _mm512_add_epi64(i, i)) : i;
+}
+static inline ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i) { return _mm512_i64gather_pd(i, base, 8); }
+#else
+typedef struct {
+    size_t k[TTDW_LANES_D];
+} tri_apart_ix;
+TTDW_FN tri_apart_ix tri_apart_index(const uint32_t *v, int m)
+{
+    tri_apart_ix i;
+    for (int l = 0; l < TTDW_LANES_D; ++l)
+        i.k[l] = (size_t)m * v[l];
+    return i;
+}
+TTDW_FN ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i)
+{
+    double t[TTDW_LANES_D];
+    for (int l = 0; l < TTDW_LANES_D; ++l)
+        t[l] = base[i.k[l]];
+    return ttdw_loadu_d(t);
+}
+#endif
+
+/* tri_apart with the points read from the vertex arrays (core/kernels.h, tri_apart_at): the
+ * points and S the numbers the caller would have copied in, S the same running maximum of the
+ * six vmag entries in the same order, so the same bits as tri_apart's. */
+static unsigned tri_apart_at(int count, const uint32_t *v, const double *x0, const double *x1, const double *vmag,
+                             double delta)
+{
+    unsigned out = 0;
+    for (int j = 0; j < count; j += TTDW_LANES_D) {
+        const ttdw_md live = ttdw_mfirst_d(count - j);
+        ccdw3 p0[6], p1[6];
+        ttdw_vd S = ttdw_zero_d();
+        for (int i = 0; i < 6; ++i) {
+            const tri_apart_ix k = tri_apart_index(v + i * TTD_NODE_WIDTH + j, 3);
+            for (int c = 0; c < 3; ++c) {
+                p0[i][c] = tri_apart_gather(x0 + c, k);
+                p1[i][c] = tri_apart_gather(x1 + c, k);
+            }
+            const ttdw_vd m = tri_apart_gather(vmag, tri_apart_index(v + i * TTD_NODE_WIDTH + j, 1));
+            S = ttdw_sel_d(ttdw_gt_d(m, S), m, S);
+        }
+        out |= ttdw_mbits_d(ttdw_mand_d(tri_apart_proof(p0, p1, S, live, delta), live)) << j;
+    }
+    return out;
+}
+
+#define TTD_LANE_ROW_TRI_APART .tri_apart = tri_apart, .tri_apart_at = tri_apart_at,
 #else
 #define TTD_LANE_ROW_TRI_APART
 #endif
