@@ -144,7 +144,7 @@ ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
                 w->opt = w->flags[k];
                 return TTD_ARG_FLAG;
             }
-        for (size_t k = 0; w->valued[k] != NULL; ++k) {
+        for (size_t k = 0; w->valued != NULL && w->valued[k] != NULL; ++k) {
             const size_t l = strlen(w->valued[k]);
             if (strncmp(arg, w->valued[k], l) == 0 && (arg[l] == '\0' || arg[l] == '=')) {
                 w->opt = w->valued[k];

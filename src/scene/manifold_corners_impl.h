@@ -470,6 +470,8 @@ static void *piece_grow(void *p, size_t *cap, size_t n, size_t size)
         n = 1;
     if (p != NULL && n <= *cap)
         return p;
+    if (n > SIZE_MAX / 2 / size) /* doubling and c * size below must not wrap */
+        return NULL;
     size_t c = *cap > 0 ? *cap : 64;
     while (c < n)
         c *= 2;
