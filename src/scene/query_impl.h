@@ -370,7 +370,9 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
         st = TTD_ERR_OUT_OF_MEMORY;
     if (st == TTD_OK) {
         join_job J = {&c, at, out->data};
-        ttd_pool_tasks(s->pool, c.n, cfg->threads, join_task, &J);
+        /* a copy under 64 KB (a few microseconds) on the caller alone: a job on the pool costs
+         * more than its half */
+        ttd_pool_tasks(s->pool, c.n, total * sizeof(ttd_scene_contact) < 65536 ? 1 : cfg->threads, join_task, &J);
         out->count = total;
     }
     free(at);
