@@ -146,42 +146,37 @@ static void ttd_pool_relax(void)
 #endif
 }
 
+/* The monotonic clock in nanoseconds, -1 without one (then no spinning). */
 static int64_t ttd_pool_now(void)
 {
     struct timespec t;
     if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
-        return INT64_MAX; /* no clock: no spinning */
+        return -1;
     return (int64_t)t.tv_sec * 1000000000 + t.tv_nsec;
 }
 
 /* Spins until *x != v or about TTD_POOL_SPIN_NS have passed; the clock is read every 64 pauses. */
 static void ttd_pool_spin_gen(_Atomic uint64_t *x, uint64_t v)
 {
-    const int64_t end = ttd_pool_now() + TTD_POOL_SPIN_NS;
-    for (;;) {
+    const int64_t t0 = ttd_pool_now();
+    for (int64_t t = t0; t >= 0 && t - t0 <= TTD_POOL_SPIN_NS; t = ttd_pool_now())
         for (int i = 0; i < 64; ++i) {
             if (atomic_load_explicit(x, memory_order_acquire) != v)
                 return;
             ttd_pool_relax();
         }
-        if (ttd_pool_now() > end)
-            return;
-    }
 }
 
 /* Spins until *x >= v or about TTD_POOL_SPIN_NS have passed. */
 static void ttd_pool_spin_count(atomic_uint *x, unsigned v)
 {
-    const int64_t end = ttd_pool_now() + TTD_POOL_SPIN_NS;
-    for (;;) {
+    const int64_t t0 = ttd_pool_now();
+    for (int64_t t = t0; t >= 0 && t - t0 <= TTD_POOL_SPIN_NS; t = ttd_pool_now())
         for (int i = 0; i < 64; ++i) {
             if (atomic_load_explicit(x, memory_order_acquire) >= v)
                 return;
             ttd_pool_relax();
         }
-        if (ttd_pool_now() > end)
-            return;
-    }
 }
 
 static void *ttd_pool_thread(void *arg)
