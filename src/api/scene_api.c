@@ -155,22 +155,32 @@ static ttd_status set_poses(ttd_scene *s, size_t n, const void *poses, int bytes
     if (s->bytes != bytes)
         return TTD_ERR_PRECISION_MISMATCH;
     const char *p = poses;
-    /* every pose checked before any is set */
+    /* every pose checked before any is set; the defects kept for the second pass (without room
+     * for them, checked again there: the same function of the pose) */
+    double *defects = malloc((n ? n : 1) * sizeof *defects);
     for (size_t id = 0; id < n; ++id) {
         if (s->body[id].mesh == NULL)
             continue;
         double defect;
         const ttd_status st = check_pose(s, s->body[id].mesh, p + 12 * (size_t)bytes * id, bytes, &defect);
-        if (st != TTD_OK)
+        if (st != TTD_OK) {
+            free(defects);
             return st;
+        }
+        if (defects != NULL)
+            defects[id] = defect;
     }
     for (size_t id = 0; id < n; ++id) {
         if (s->body[id].mesh == NULL)
             continue;
         double defect;
-        (void)check_pose(s, s->body[id].mesh, p + 12 * (size_t)bytes * id, bytes, &defect);
+        if (defects != NULL)
+            defect = defects[id];
+        else
+            (void)check_pose(s, s->body[id].mesh, p + 12 * (size_t)bytes * id, bytes, &defect);
         ttd_scene_place(s, (uint32_t)id, p + 12 * (size_t)bytes * id, defect);
     }
+    free(defects);
     return TTD_OK;
 }
 

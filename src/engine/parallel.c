@@ -9,6 +9,7 @@
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <time.h>
 #include <unistd.h>
 
 typedef struct ttd_pfor {
@@ -104,11 +105,15 @@ void ttd_parallel_tasks(size_t ntasks, int threads, ttd_block_fn fn, void *ctx)
 /* ---- a pool of threads kept between calls ------------------------------------------------- */
 
 /* A job is posted by bumping `gen` under the mutex; threads 1 .. want - 1 of the pool (pool
- * thread k is worker k + 1) take part, the others go back to waiting. The caller, worker 0, runs
- * its share and then waits until `busy` (the taking part still running) is 0, so the job, on the
- * caller's stack, outlives every use. A thread spins briefly on `gen` before it blocks: steps of
- * a simulation come back to back, and a wake-up through the scheduler costs tens of
- * microseconds on a busy machine. */
+ * thread k is worker k + 1) may take part, the others go back to waiting. A thread takes part by
+ * counting itself into `entered` under the mutex, unless the caller has closed the job: the
+ * caller, worker 0, runs its share, closes the job (the CLOSED bit) and then waits only for the
+ * threads that entered before that to finish (`finished`), so the job, on the caller's stack,
+ * outlives every use, and a query shorter than a thread's wake-up never waits for one that has
+ * not woken yet. A thread spins (pause, about TTD_POOL_SPIN_NS) on `gen` before it blocks: steps
+ * of a simulation and a scene's queries come back to back, and a wake-up through the scheduler
+ * costs tens of microseconds (more for a virtual machine's idle core), which was most of the
+ * second thread's loss on a query of half a millisecond (docs/scene-speed.md, section 13). */
 struct ttd_pool {
     pthread_mutex_t mu;
     pthread_cond_t wake, done;
@@ -118,8 +123,11 @@ struct ttd_pool {
     _Atomic uint64_t gen; /* the job's number */
     ttd_pfor *job;
     int want;             /* workers of the job, the caller included */
-    atomic_int busy;      /* pool threads of the job still running it */
+    atomic_uint entered;  /* pool threads that took the job, | CLOSED once the caller is done */
+    atomic_uint finished; /* pool threads that took the job and are done with it */
 };
+
+#define TTD_POOL_CLOSED 0x80000000u
 
 typedef struct ttd_pool_start {
     ttd_pool *pool;
@@ -127,14 +135,48 @@ typedef struct ttd_pool_start {
     uint64_t gen;         /* the job number when it started: it waits for the next */
 } ttd_pool_start;
 
-/* Spins before blocking: about 10-20 microseconds of pause instructions. */
-#define TTD_POOL_SPIN 256
+/* How long a thread spins before it blocks, in nanoseconds of the monotonic clock: idle pool
+ * threads burn at most this much CPU after each job; a waiting caller as much before it sleeps. */
+#define TTD_POOL_SPIN_NS 200000
 
 static void ttd_pool_relax(void)
 {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #endif
+}
+
+/* The monotonic clock in nanoseconds, -1 without one (then no spinning). */
+static int64_t ttd_pool_now(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_MONOTONIC, &t) != 0)
+        return -1;
+    return (int64_t)t.tv_sec * 1000000000 + t.tv_nsec;
+}
+
+/* Spins until *x != v or about TTD_POOL_SPIN_NS have passed; the clock is read every 64 pauses. */
+static void ttd_pool_spin_gen(_Atomic uint64_t *x, uint64_t v)
+{
+    const int64_t t0 = ttd_pool_now();
+    for (int64_t t = t0; t >= 0 && t - t0 <= TTD_POOL_SPIN_NS; t = ttd_pool_now())
+        for (int i = 0; i < 64; ++i) {
+            if (atomic_load_explicit(x, memory_order_acquire) != v)
+                return;
+            ttd_pool_relax();
+        }
+}
+
+/* Spins until *x >= v or about TTD_POOL_SPIN_NS have passed. */
+static void ttd_pool_spin_count(atomic_uint *x, unsigned v)
+{
+    const int64_t t0 = ttd_pool_now();
+    for (int64_t t = t0; t >= 0 && t - t0 <= TTD_POOL_SPIN_NS; t = ttd_pool_now())
+        for (int i = 0; i < 64; ++i) {
+            if (atomic_load_explicit(x, memory_order_acquire) >= v)
+                return;
+            ttd_pool_relax();
+        }
 }
 
 static void *ttd_pool_thread(void *arg)
@@ -144,8 +186,7 @@ static void *ttd_pool_thread(void *arg)
     ttd_pool *p = st.pool;
     uint64_t seen = st.gen;
     for (;;) {
-        for (int i = 0; i < TTD_POOL_SPIN && atomic_load_explicit(&p->gen, memory_order_acquire) == seen; ++i)
-            ttd_pool_relax();
+        ttd_pool_spin_gen(&p->gen, seen);
         pthread_mutex_lock(&p->mu);
         while (!p->quit && atomic_load_explicit(&p->gen, memory_order_relaxed) == seen)
             pthread_cond_wait(&p->wake, &p->mu);
@@ -155,16 +196,18 @@ static void *ttd_pool_thread(void *arg)
         }
         seen = atomic_load_explicit(&p->gen, memory_order_relaxed);
         ttd_pfor *job = p->job;
-        const int part = st.index < p->want;
+        /* under the mutex: the caller cannot post the next job (and reset the counts) between
+         * reading this job and counting in */
+        const int part = st.index < p->want &&
+                         !(atomic_fetch_add_explicit(&p->entered, 1, memory_order_acq_rel) & TTD_POOL_CLOSED);
         pthread_mutex_unlock(&p->mu);
         if (!part)
             continue;
         ttd_pfor_run(job, st.index);
-        if (atomic_fetch_sub_explicit(&p->busy, 1, memory_order_acq_rel) == 1) {
-            pthread_mutex_lock(&p->mu);
-            pthread_cond_signal(&p->done);
-            pthread_mutex_unlock(&p->mu);
-        }
+        atomic_fetch_add_explicit(&p->finished, 1, memory_order_release);
+        pthread_mutex_lock(&p->mu);
+        pthread_cond_signal(&p->done);
+        pthread_mutex_unlock(&p->mu);
     }
 }
 
@@ -189,7 +232,8 @@ ttd_pool *ttd_pool_create(void)
         return NULL;
     }
     atomic_init(&p->gen, 0);
-    atomic_init(&p->busy, 0);
+    atomic_init(&p->entered, 0);
+    atomic_init(&p->finished, 0);
     return p;
 }
 
@@ -199,6 +243,7 @@ void ttd_pool_destroy(ttd_pool *p)
         return;
     pthread_mutex_lock(&p->mu);
     p->quit = 1;
+    atomic_fetch_add_explicit(&p->gen, 1, memory_order_release); /* ends the threads' spins */
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->mu);
     for (int i = 0; i < p->nthreads; ++i)
@@ -242,17 +287,20 @@ void ttd_pool_tasks(ttd_pool *p, size_t ntasks, int threads, ttd_block_fn fn, vo
         pthread_mutex_lock(&p->mu);
         p->job = &job;
         p->want = workers;
-        atomic_store_explicit(&p->busy, workers - 1, memory_order_relaxed);
+        atomic_store_explicit(&p->entered, 0, memory_order_relaxed);
+        atomic_store_explicit(&p->finished, 0, memory_order_relaxed);
         atomic_fetch_add_explicit(&p->gen, 1, memory_order_release);
         pthread_cond_broadcast(&p->wake);
         pthread_mutex_unlock(&p->mu);
     }
     ttd_pfor_run(&job, 0);
     if (workers > 1) {
-        for (int i = 0; i < TTD_POOL_SPIN && atomic_load_explicit(&p->busy, memory_order_acquire) > 0; ++i)
-            ttd_pool_relax();
+        /* close the job: a thread not in by now finds it closed and leaves it alone */
+        const unsigned in = atomic_fetch_or_explicit(&p->entered, TTD_POOL_CLOSED, memory_order_acq_rel) &
+                            ~TTD_POOL_CLOSED;
+        ttd_pool_spin_count(&p->finished, in);
         pthread_mutex_lock(&p->mu);
-        while (atomic_load_explicit(&p->busy, memory_order_acquire) > 0)
+        while (atomic_load_explicit(&p->finished, memory_order_acquire) < in)
             pthread_cond_wait(&p->done, &p->mu);
         pthread_mutex_unlock(&p->mu);
     }

@@ -38,8 +38,10 @@ int ttd_parallel_task_workers(size_t ntasks, int threads);
 /// build, a query pose): ttd_parallel_task_workers(ntasks, threads) workers.
 void ttd_parallel_tasks(size_t ntasks, int threads, ttd_block_fn fn, void *ctx);
 
-/// Worker threads kept between calls: none at first; a call that wants more starts them, and they
-/// wait, blocked, between calls. Owned by one object whose calls do not overlap (a scene).
+/// Worker threads kept between calls: none at first; a call that wants more starts them, and
+/// between calls they spin for about 0.2 ms, then wait, blocked. A call waits only for the
+/// threads that joined it before its caller ran out of tasks. Owned by one object whose calls do
+/// not overlap (a scene).
 typedef struct ttd_pool ttd_pool;
 /// An empty pool (no thread yet), or NULL when out of memory.
 ttd_pool *ttd_pool_create(void);

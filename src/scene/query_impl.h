@@ -151,7 +151,7 @@ static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *
     s->stats = (ttd_scene_stats){0};
     scene_pair *pairs;
     size_t n;
-    if (!ttd_scene_sweep(s, (double)margin, NULL, &pairs, &n))
+    if (!ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &pairs, &n))
         return TTD_ERR_OUT_OF_MEMORY;
     pair_job J = {.s = s, .pairs = pairs, .mode = MODE_COLLIDE, .limit = margin};
     J.hit = malloc((n ? n : 1) * sizeof *J.hit);
@@ -311,7 +311,7 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
                                pair_contacts_set *c)
 {
     *c = (pair_contacts_set){NULL, 0, NULL, NULL};
-    if (!ttd_scene_sweep(s, (double)margin, NULL, &c->pairs, &c->n))
+    if (!ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &c->pairs, &c->n))
         return TTD_ERR_OUT_OF_MEMORY;
     const ttd_engine_config one = one_thread(cfg);
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
@@ -370,7 +370,9 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
         st = TTD_ERR_OUT_OF_MEMORY;
     if (st == TTD_OK) {
         join_job J = {&c, at, out->data};
-        ttd_pool_tasks(s->pool, c.n, cfg->threads, join_task, &J);
+        /* a copy under 64 KB (a few microseconds) on the caller alone: a job on the pool costs
+         * more than its half */
+        ttd_pool_tasks(s->pool, c.n, total * sizeof(ttd_scene_contact) < 65536 ? 1 : cfg->threads, join_task, &J);
         out->count = total;
     }
     free(at);

@@ -2,6 +2,7 @@
 /* A scene's bodies, their world boxes and the broad phase over them (scene/scene.h). */
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -172,12 +173,29 @@ static int sweep_order(struct ttd_scene *s)
     return 1;
 }
 
-static int pair_cmp(const void *x, const void *y)
+/* Sorts the n pairs of v (distinct, i < j < nbody) by (i, j): a radix sort on i nbody + j, a
+ * byte at a time up to the largest key's bytes, with tmp as scratch; returns the sorted array (v
+ * or tmp). It runs on the caller before the body pairs go to the threads: the comparison sort it
+ * replaces (qsort, a call per comparison) was 1.8% of the pile's motion step, all of it serial
+ * (docs/scene-speed.md, section 13). */
+static scene_pair *pair_sort(scene_pair *v, scene_pair *tmp, size_t n, uint64_t nbody)
 {
-    const scene_pair *a = x, *b = y;
-    if (a->i != b->i)
-        return a->i < b->i ? -1 : 1;
-    return (a->j > b->j) - (a->j < b->j);
+    const uint64_t largest = nbody * nbody - 1;
+    for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += 8) {
+        size_t count[257] = {0};
+        for (size_t k = 0; k < n; ++k)
+            count[(((uint64_t)v[k].i * nbody + v[k].j) >> shift & 255) + 1]++;
+        if (count[(((uint64_t)v[0].i * nbody + v[0].j) >> shift & 255) + 1] == n)
+            continue; /* one digit: this pass would not move anything */
+        for (int d = 0; d < 256; ++d)
+            count[d + 1] += count[d];
+        for (size_t k = 0; k < n; ++k)
+            tmp[count[((uint64_t)v[k].i * nbody + v[k].j) >> shift & 255]++] = v[k];
+        scene_pair *t = v;
+        v = tmp;
+        tmp = t;
+    }
+    return v;
 }
 
 /* Slabs along the second axis: how many, and their base and width. A sweep along one axis meets
@@ -236,7 +254,84 @@ static void *scratch(void **p, size_t *cap, size_t n, size_t size)
     return *p;
 }
 
+/* The sweep's inner loop in pieces: a piece is up to SWEEP_PIECE members of one slab (as body a)
+ * with the pairs it finds in its own array; pieces run on the scene's pool and are joined in piece
+ * order, then sorted, so the pairs do not depend on the threads. On the pile's motion the loop was
+ * most of the sweep, and the sweep most of what the caller does alone (docs/scene-speed.md,
+ * section 13). */
+#define SWEEP_PIECE 128
+
+typedef struct sweep_piece {
+    int slab;
+    size_t a0, a1;   /* members [a0, a1) of the slab */
+    scene_pair *v;   /* its pairs (malloc'd) */
+    size_t count, cap;
+} sweep_piece;
+
+typedef struct sweep_job {
+    const struct ttd_scene *s;
+    const unsigned char *only;
+    double margin, base, width;
+    int nslab;
+    const size_t *first, *member;
+    const double *sbox, *lo1; /* the members' boxes in sweep axes; lo along the second axis */
+    sweep_piece *piece;
+    atomic_int nomem;
+} sweep_job;
+
+static void sweep_task(void *ctx, size_t t, int worker)
+{
+    (void)worker;
+    sweep_job *J = ctx;
+    sweep_piece *P = &J->piece[t];
+    const int k = P->slab, nslab = J->nslab;
+    const double margin = J->margin, base = J->base, width = J->width;
+    const size_t *in = J->member + J->first[k], nin = J->first[k + 1] - J->first[k];
+    const double *box = J->sbox + 6 * J->first[k];
+    const struct ttd_scene *s = J->s;
+    for (size_t ia = P->a0; ia < P->a1; ++ia) {
+        /* the bodies after a whose boxes start within the margin of its end: one body that is
+         * huge (a floor) meets every other here once per slab. The bounds with the margin
+         * added are rounded, but rounding is monotone: a gap at most the margin passes. */
+        const size_t a = in[ia];
+        const double *xa = box + 6 * ia;
+        const double reach = xa[3] + margin;
+        const double l1 = xa[1] - margin, h1 = xa[4] + margin, l2 = xa[2] - margin, h2 = xa[5] + margin;
+        for (size_t ib = ia + 1; ib < nin && box[6 * ib] <= reach; ++ib) {
+            const double *xb = box + 6 * ib;
+            if (!(xb[1] <= h1 && xb[4] >= l1 && xb[2] <= h2 && xb[5] >= l2))
+                continue;
+            const size_t b = in[ib];
+            /* a pair is reported in one slab: the one holding the later start of their
+             * intervals, a point both intervals hold */
+            const double start = J->lo1[a] > J->lo1[b] ? J->lo1[a] : J->lo1[b];
+            if (slab_of(start - margin, base, width, nslab) != k)
+                continue;
+            const uint32_t x = s->order[a], y = s->order[b];
+            if ((J->only != NULL && !J->only[x] && !J->only[y]) || !ttd_scene_eligible(s, x, y))
+                continue;
+            if (P->count == P->cap) {
+                const size_t cap = P->cap ? 2 * P->cap : 64;
+                scene_pair *w = realloc(P->v, cap * sizeof *w);
+                if (w == NULL) {
+                    atomic_store(&J->nomem, 1);
+                    return;
+                }
+                P->v = w;
+                P->cap = cap;
+            }
+            P->v[P->count++] = (scene_pair){x < y ? x : y, x < y ? y : x};
+        }
+    }
+}
+
 int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *only, scene_pair **out, size_t *n)
+{
+    return ttd_scene_sweep_on(s, 1, margin, only, out, n);
+}
+
+int ttd_scene_sweep_on(struct ttd_scene *s, int threads, double margin, const unsigned char *only, scene_pair **out,
+                       size_t *n)
 {
     *out = NULL;
     *n = 0;
@@ -294,54 +389,53 @@ int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *onl
             x[0] = lo[0][a], x[1] = lo[1][a], x[2] = lo[2][a], x[3] = hi[0][a], x[4] = hi[1][a], x[5] = hi[2][a];
         }
     }
-    size_t cap = 0, count = 0;
-    scene_pair *v = NULL;
-    int ok = 1;
-    for (int k = 0; k < nslab && ok; ++k) {
-        const size_t *in = member + first[k], nin = first[k + 1] - first[k];
-        const double *box = sbox + 6 * first[k];
-        for (size_t ia = 0; ia < nin && ok; ++ia) {
-            /* the bodies after a whose boxes start within the margin of its end: one body that is
-             * huge (a floor) meets every other here once per slab. The bounds with the margin
-             * added are rounded, but rounding is monotone: a gap at most the margin passes. */
-            const size_t a = in[ia];
-            const double *xa = box + 6 * ia;
-            const double reach = xa[3] + margin;
-            const double l1 = xa[1] - margin, h1 = xa[4] + margin, l2 = xa[2] - margin, h2 = xa[5] + margin;
-            for (size_t ib = ia + 1; ib < nin && box[6 * ib] <= reach; ++ib) {
-                const double *xb = box + 6 * ib;
-                if (!(xb[1] <= h1 && xb[4] >= l1 && xb[2] <= h2 && xb[5] >= l2))
-                    continue;
-                const size_t b = in[ib];
-                /* a pair is reported in one slab: the one holding the later start of their
-                 * intervals, a point both intervals hold */
-                const double start = lo[1][a] > lo[1][b] ? lo[1][a] : lo[1][b];
-                if (slab_of(start - margin, base, width, nslab) != k)
-                    continue;
-                const uint32_t x = s->order[a], y = s->order[b];
-                if ((only != NULL && !only[x] && !only[y]) || !ttd_scene_eligible(s, x, y))
-                    continue;
-                if (count == cap) {
-                    cap = cap ? 2 * cap : 256;
-                    scene_pair *w = realloc(v, cap * sizeof *w);
-                    if (w == NULL) {
-                        ok = 0;
-                        break;
-                    }
-                    v = w;
-                }
-                v[count++] = (scene_pair){x < y ? x : y, x < y ? y : x};
-            }
-        }
+    size_t npiece = 0;
+    for (int k = 0; k < nslab; ++k)
+        npiece += (first[k + 1] - first[k] + SWEEP_PIECE - 1) / SWEEP_PIECE;
+    sweep_piece *piece = calloc(npiece ? npiece : 1, sizeof *piece);
+    if (piece == NULL) {
+        free(first);
+        free(fill);
+        return 0;
     }
+    npiece = 0;
+    for (int k = 0; k < nslab; ++k)
+        for (size_t a0 = 0; a0 < first[k + 1] - first[k]; a0 += SWEEP_PIECE) {
+            const size_t a1 = a0 + SWEEP_PIECE;
+            piece[npiece++] = (sweep_piece){k, a0, a1 < first[k + 1] - first[k] ? a1 : first[k + 1] - first[k], NULL, 0, 0};
+        }
+    sweep_job J = {s, only, margin, base, width, nslab, first, member, sbox, lo[1], piece, 0};
+    atomic_init(&J.nomem, 0);
+    ttd_pool_tasks(s->pool, npiece, threads, sweep_task, &J);
+    size_t count = 0;
+    for (size_t t = 0; t < npiece; ++t)
+        count += piece[t].count;
+    int ok = !atomic_load(&J.nomem);
+    scene_pair *v = ok ? malloc((count ? count : 1) * sizeof *v) : NULL;
+    ok = v != NULL;
+    for (size_t t = 0, at = 0; t < npiece; ++t) {
+        if (ok && piece[t].count)
+            memcpy(v + at, piece[t].v, piece[t].count * sizeof *v);
+        at += piece[t].count;
+        free(piece[t].v);
+    }
+    free(piece);
     free(first);
     free(fill);
     if (!ok) {
         free(v);
         return 0;
     }
-    if (count > 1)
-        qsort(v, count, sizeof *v, pair_cmp);
+    if (count > 1) {
+        scene_pair *tmp = malloc(count * sizeof *tmp);
+        if (tmp == NULL) {
+            free(v);
+            return 0;
+        }
+        scene_pair *sorted = pair_sort(v, tmp, count, (uint64_t)s->nbody);
+        free(sorted == v ? tmp : v);
+        v = sorted;
+    }
     *out = v;
     *n = count;
     return 1;

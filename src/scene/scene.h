@@ -64,6 +64,10 @@ void ttd_scene_place(struct ttd_scene *s, uint32_t id, const void *pose, double 
 /// bodies at distance <= margin), restricted to pairs with a body in `only` (NULL: all; else
 /// only[id] != 0), sorted by (i, j), into *out (malloc'd, *n of them). 0 when out of memory.
 int ttd_scene_sweep(struct ttd_scene *s, double margin, const unsigned char *only, scene_pair **out, size_t *n);
+/// ttd_scene_sweep with its inner loop on `threads` of the scene's pool (the same pairs in the same
+/// order); not from inside a task of that pool.
+int ttd_scene_sweep_on(struct ttd_scene *s, int threads, double margin, const unsigned char *only, scene_pair **out,
+                       size_t *n);
 
 /// Whether bodies i and j (both present) may touch: the filters and the exclusions.
 int ttd_scene_eligible(const struct ttd_scene *s, uint32_t i, uint32_t j);
