@@ -14,7 +14,8 @@
  *      larger than 4 times the mean stay out of the cells and meet every leaf;
  *   3. two leaves whose boxes are within L screen their triangles 8 at a time (the row's
  *      self_screen: box and vertex-index comparisons); the pairs left go to the exact kernel by
- *      queue_self, as the walk's do, so each pair's distance and points are the same bits.
+ *      the walk's queue (queue_entry, queue_self), as the walk's do, so each pair's distance and
+ *      points are the same bits.
  * Rounding: the screen compares exact minima with fl(max + L); where the exact gap between two
  * boxes on an axis is at most L, lo <= max + L exactly, so lo <= fl(max + L) (rounding is
  * monotone): no pair the walk would give the kernel within L is dropped, and L covers what the
