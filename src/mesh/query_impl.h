@@ -161,6 +161,9 @@ typedef struct walk {
     uint32_t node_tests;
     uint64_t pair_tests;
     clist *out;        /* contacts */
+    int bound_adapt;   /* self-contacts by the grid: the kernel's bound is left out (skip_bound)
+                          after a batch that recorded half of its entries or more */
+    int skip_bound;
 } walk;
 
 /* The items' limit from the kernel's bound. */
@@ -472,8 +475,14 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     }
     const ttd_params prm = {0, 0, 1};
     const ttd_out out = {W->dist, w->mode == MODE_CONTACTS ? W->pts : NULL, NULL};
-    C->kernel((size_t)n, W->s, W->t, &prm, w->limit, &out);
+    /* Without a bound the kernel computes every lane in place instead of screening them by a
+     * lower bound first: a lane the screen would rule out is farther than the limit either way,
+     * and the others get the same bits, so only the time changes (where nearly every candidate
+     * is a contact, the screen rules out almost none: docs/mesh-queries.md, issue 36's eighth
+     * session). */
+    C->kernel((size_t)n, W->s, W->t, &prm, w->skip_bound ? (real)INFINITY : w->limit, &out);
     w->pair_tests += (uint64_t)n;
+    int kept = 0;
     for (int i = 0; i < n; ++i) {
         real d = W->dist[i];
         int at = i; /* the entry whose points are the pair's */
@@ -508,8 +517,11 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
                 W->nomem = 1;
                 return;
             }
+            ++kept;
         }
     }
+    if (w->bound_adapt)
+        w->skip_bound = 2 * kept >= n;
 }
 
 static void queue_entry(qwork *W, int kind, int32_t ta, int32_t tb, uint32_t shared)

@@ -14,7 +14,8 @@
  *      larger than 4 times the mean stay out of the cells and meet every leaf;
  *   3. two leaves whose boxes are within L screen their triangles 8 at a time (the row's
  *      self_screen: box and vertex-index comparisons); the pairs left go to the exact kernel by
- *      queue_self, as the walk's do, so each pair's distance and points are the same bits.
+ *      the walk's queue (queue_entry, queue_self), as the walk's do, so each pair's distance and
+ *      points are the same bits.
  * Rounding: the screen compares exact minima with fl(max + L); where the exact gap between two
  * boxes on an axis is at most L, lo <= max + L exactly, so lo <= fl(max + L) (rounding is
  * monotone): no pair the walk would give the kernel within L is dropped, and L covers what the
@@ -513,13 +514,41 @@ static void self_grid_leaves(const qctx *C, const qpose *P, qwork *W, walk *w, c
         for (unsigned m = near[i] & keep; m != 0; m &= m - 1) {
             const int bit = __builtin_ctz(m), j = bit & 7;
             const int32_t tj = G->tri[h][j], ta = ti < tj ? ti : tj, tb = ti < tj ? tj : ti;
+            if (bit < 8) { /* a pair sharing no vertex, screened: queue_self's first case, inline */
+                queue_entry(W, ENTRY_PAIR, ta, tb, 0);
+                if (W->nb >= BATCH_MAX) /* the grid's walks are MODE_CONTACTS */
+                    flush(C, P, W, w);
+                continue;
+            }
             uint32_t v = 0;
-            const int kind = bit < 8 ? SELF_PAIR
-                                     : self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
-            if (kind != SELF_NONE && (bit < 8 || !diag_apart(G, g, i, h, j))) /* the screen did bits 0-7's */
+            const int kind = self_kind(P->self, P->a.tris + 3 * (size_t)ta, P->a.tris + 3 * (size_t)tb, &v);
+            if (kind != SELF_NONE && !diag_apart(G, g, i, h, j)) /* the screen did bits 0-7's */
                 queue_self(C, P, W, w, ta, tb, kind, v);
         }
     }
+}
+
+/* A leaf's block (22 cache lines) is read from memory or the last-level cache by its first
+ * screen: its loads are started as soon as the leaf is known (docs/mesh-queries.md, issue 36's
+ * eighth session). */
+static inline void self_block_prefetch(const ttd_self_block *b)
+{
+    const char *x = (const char *)b;
+#pragma GCC unroll 24
+    for (size_t k = 0; k < sizeof *b; k += 64)
+        __builtin_prefetch(x + k);
+    __builtin_prefetch(x + sizeof *b - 1);
+}
+
+#define SELF_NEAR_HITS 32
+
+/* Leaf g against the *nh leaves of hit, in their order; empties hit. */
+static inline __attribute__((always_inline)) void self_grid_hits(const qctx *C, const qpose *P, qwork *W, walk *w,
+                                                                 const self_grid *G, uint32_t g, const uint32_t *hit, int *nh)
+{
+    for (int k = 0; k < *nh; ++k) /* the leaf pair as (smaller, larger) so that g == h is the only self case */
+        self_grid_leaves(C, P, W, w, G, g < hit[k] ? g : hit[k], g < hit[k] ? hit[k] : g);
+    *nh = 0;
 }
 
 /* Leaf g (at grid position p) against n leaves whose boxes are near its own, 8 at a time: their
@@ -533,6 +562,8 @@ static inline __attribute__((always_inline)) void self_grid_near(const qctx *C, 
     const double *s = G->sbox;
     const double q[6] = {s[p], s[stride + p], s[2 * stride + p], s[3 * stride + p], s[4 * stride + p], s[5 * stride + p]};
     const uint32_t g = G->order[p];
+    uint32_t hit[SELF_NEAR_HITS]; /* the leaves found, their blocks' loads started */
+    int nh = 0;
     for (size_t r = 0; r < n; r += TTD_NODE_WIDTH) {
         const double *const lo[3] = {b + r, b + c + r, b + 2 * c + r};
         const double *const hi[3] = {b + 3 * c + r, b + 4 * c + r, b + 5 * c + r};
@@ -540,11 +571,13 @@ static inline __attribute__((always_inline)) void self_grid_near(const qctx *C, 
         if (n - r < TTD_NODE_WIDTH)
             m &= (1u << (n - r)) - 1;
         for (; m != 0; m &= m - 1) {
-            const uint32_t o = id[r + (size_t)__builtin_ctz(m)];
-            /* the leaf pair as (smaller, larger) so that g == h is the only self case */
-            self_grid_leaves(C, P, W, w, G, g < o ? g : o, g < o ? o : g);
+            hit[nh] = id[r + (size_t)__builtin_ctz(m)];
+            self_block_prefetch(&G->blk[hit[nh]]);
+            if (++nh == SELF_NEAR_HITS)
+                self_grid_hits(C, P, W, w, G, g, hit, &nh);
         }
     }
+    self_grid_hits(C, P, W, w, G, g, hit, &nh);
 }
 
 /* Leaf at grid position p against the leaves at positions [q0, q1). */
@@ -600,6 +633,8 @@ static void self_grid_cells(const qctx *C, const qpose *P, qwork *W, walk *w, co
             for (int b = 0; b < 6; ++b)
                 nb[(size_t)b * cap + k] = b < 3 ? (double)INFINITY : -(double)INFINITY;
         for (uint32_t p = G->start[c]; p < G->start[c + 1] && !W->nomem && !w->hit; ++p) {
+            if (p + 1 < G->start[c + 1]) /* the next leaf's own block, read by all its screens */
+                self_block_prefetch(&G->blk[G->order[p + 1]]);
             self_grid_range(C, P, W, w, G, p, p, G->start[c + 1]); /* itself, then the rest of its cell */
             self_grid_near(C, P, W, w, G, p, nb, cap, id, n);
         }
@@ -637,6 +672,7 @@ static void self_grid_task(void *ctx, size_t t, int worker)
     pose_forget(W);
     walk w;
     walk_init(&w, MODE_CONTACTS, J->P, J->margin, 0);
+    w.bound_adapt = 1;
     w.out = &J->lists[t];
     self_grid_cells(J->C, J->P, W, &w, J->G, J->cut[t], J->cut[t + 1]);
     if (W->nomem)
