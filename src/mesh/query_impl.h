@@ -155,6 +155,7 @@ typedef struct walk {
     real gate2;        /* and deferred to the second phase when it exceeds this (the minimum) */
     int ordered;       /* children come nearest last (depth-first walks) */
     int cutting;       /* a contact query's pose being cut into sub-walks: pairs stay items */
+    int any_order;     /* contacts for a caller that sorts them (query_contacts_walk): no walk order */
     real rel;          /* 1 + rel_tol (distance) */
     int found, hit;    /* distance: some pair within the bound; collide: a witness */
     uint32_t ta, tb;   /* the pair */
@@ -752,8 +753,8 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
             continue;
         const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
         /* a self query's contacts come in the walk's order whatever it is (it depends on the
-         * mesh alone): no nearest-first ordering there */
-        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS)) {
+         * mesh alone), and a scene's pair sorts its own: no nearest-first ordering there */
+        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS) || w->any_order) {
             dst[n++] = c;
             continue;
         }
@@ -1419,6 +1420,7 @@ static int walk_contacts_into(const ttd_engine_config *cfg, const struct ttd_mes
     walk w;
     walk_init(&w, MODE_CONTACTS, &P, margin, 0);
     w.out = l;
+    w.any_order = 1; /* the same set whatever the order, which the caller sorts (or counts) */
     if (!spheres_apart(&C, &P, &w)) {
         const item root = root_item();
         walk_run(&C, &P, &W, &w, &root);
