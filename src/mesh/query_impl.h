@@ -682,8 +682,15 @@ static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const i
 /* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
  * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
  * queue (item it: the leaf's slot and the triangle's). */
-static void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, int open_b,
-                                 int32_t t0, int32_t node, const real *lb2)
+#if defined(__GNUC__)
+#define WALK_INLINE inline __attribute__((always_inline))
+#else
+#define WALK_INLINE inline
+#endif
+/* inlined into its two callers, as the code it was cut from was (an out-of-line call per leaf
+ * opening cost the collision walk more than the change saved) */
+static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it,
+                                             int open_b, int32_t t0, int32_t node, const real *lb2)
 {
     const ttd_node *y = (open_b ? P->b.nodes : P->a.nodes) + node;
     for (int j = 0; j < y->count; ++j) {
