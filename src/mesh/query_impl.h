@@ -155,6 +155,7 @@ typedef struct walk {
     real gate2;        /* and deferred to the second phase when it exceeds this (the minimum) */
     int ordered;       /* children come nearest last (depth-first walks) */
     int cutting;       /* a contact query's pose being cut into sub-walks: pairs stay items */
+    int any_order;     /* contacts for a caller that sorts them (query_contacts_walk): no walk order */
     real rel;          /* 1 + rel_tol (distance) */
     int found, hit;    /* distance: some pair within the bound; collide: a witness */
     uint32_t ta, tb;   /* the pair */
@@ -690,6 +691,59 @@ static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const i
     return n;
 }
 
+/* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
+ * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
+ * queue (item it: the leaf's slot and the triangle's). */
+#if defined(__GNUC__)
+#define WALK_INLINE inline __attribute__((always_inline))
+#else
+#define WALK_INLINE inline
+#endif
+/* inlined into its two callers, as the code it was cut from was (an out-of-line call per leaf
+ * opening cost the collision walk more than the change saved) */
+static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it,
+                                             int open_b, int32_t t0, int32_t node, const real *lb2)
+{
+    const ttd_node *y = (open_b ? P->b.nodes : P->a.nodes) + node;
+    for (int j = 0; j < y->count; ++j) {
+        if (lb2[j] > w->limit2)
+            continue;
+        if (lb2[j] > w->gate2) {
+            const item c = child_item(it, open_b, node, j, lb2[j]);
+            defer_item(W, &c);
+            continue;
+        }
+        const int32_t t = -1 - y->child[j];
+        queue_pair(C, P, W, w, open_b ? t0 : t, open_b ? t : t0);
+    }
+    if (w->mode != MODE_CONTACTS && W->nb >= BATCH_LEAF)
+        flush(C, P, W, w);
+}
+
+/* A leaf pair's second step, for the depth-first contact and collision walks of two meshes: an
+ * item of two leaves opened the leaf of side b (open_b) or a, whose triangles within the limit
+ * are the items dst[0..n) facing leaf `other` of the other side. Each opens that leaf now, in the
+ * order the stack would pop them and under the walk's checks between two items, instead of going
+ * through the stack: the same node tests and pairs in the same order, without an item's push,
+ * pop and opening (docs/scene-speed.md 12). */
+static void leaf_pair_rest(const qctx *C, const qpose *P, qwork *W, walk *w, int open_b, int32_t other,
+                           const item *dst, int n)
+{
+    const ttd_node *y = (open_b ? P->a.nodes : P->b.nodes) + other;
+    for (int k = n - 1; k >= 0 && !W->nomem && !w->hit && !(w->found && w->limit == 0); --k) {
+        const item *c = &dst[k];
+        if (c->lb2 > w->limit2)
+            continue;
+        /* c's triangle (side b when open_b) against the other side's leaf */
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+        const ttd_box_query *q = open_b ? walk_box_query(P, W, 1, c->bn, c->bs) : walk_box_query(P, W, 0, c->an, c->as);
+        C->node_test(q, y, lb2, sep);
+        ++w->node_tests;
+        const int32_t t0 = open_b ? -1 - P->b.nodes[c->bn].child[c->bs] : -1 - P->a.nodes[c->an].child[c->as];
+        leaf_facing_triangle(C, P, W, w, c, !open_b, t0, other, lb2);
+    }
+}
+
 static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
 {
     if (P->self && it->an == it->bn && it->as == it->bs)
@@ -707,21 +761,7 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
     C->node_test(q, y, lb2, sep);
     ++w->node_tests;
     if (!w->cutting && y->child[0] < 0 && (open_b ? ca : cb) < 0) {
-        /* a leaf facing a triangle: its pairs within the gate go straight to the queue */
-        const int32_t t0 = open_b ? -1 - ca : -1 - cb;
-        for (int j = 0; j < y->count; ++j) {
-            if (lb2[j] > w->limit2)
-                continue;
-            if (lb2[j] > w->gate2) {
-                const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
-                defer_item(W, &c);
-                continue;
-            }
-            const int32_t t = -1 - y->child[j];
-            queue_pair(C, P, W, w, open_b ? t0 : t, open_b ? t : t0);
-        }
-        if (w->mode != MODE_CONTACTS && W->nb >= BATCH_LEAF)
-            flush(C, P, W, w);
+        leaf_facing_triangle(C, P, W, w, it, open_b, open_b ? -1 - ca : -1 - cb, open_b ? cb : ca, lb2);
         return 0;
     }
     /* walk order: nearest first, and among overlapping boxes the deepest overlap first */
@@ -732,8 +772,8 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
             continue;
         const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
         /* a self query's contacts come in the walk's order whatever it is (it depends on the
-         * mesh alone): no nearest-first ordering there */
-        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS)) {
+         * mesh alone), and a scene's pair sorts its own: no nearest-first ordering there */
+        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS) || w->any_order) {
             dst[n++] = c;
             continue;
         }
@@ -751,6 +791,12 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
         }
         dst[at] = c;
         key[at] = kj;
+    }
+    const int32_t other = open_b ? ca : cb;
+    if (w->ordered && w->mode != MODE_DISTANCE && !P->self && !w->cutting && y->child[0] < 0 && other >= 0 &&
+        (open_b ? P->a.nodes : P->b.nodes)[other].child[0] < 0) {
+        leaf_pair_rest(C, P, W, w, open_b, other, dst, n);
+        return 0;
     }
     return n;
 }
@@ -1393,6 +1439,7 @@ static int walk_contacts_into(const ttd_engine_config *cfg, const struct ttd_mes
     walk w;
     walk_init(&w, MODE_CONTACTS, &P, margin, 0);
     w.out = l;
+    w.any_order = 1; /* the same set whatever the order, which the caller sorts (or counts) */
     if (!spheres_apart(&C, &P, &w)) {
         const item root = root_item();
         walk_run(&C, &P, &W, &w, &root);
