@@ -97,6 +97,10 @@ ttd_cli_args ttd_cli_args_start(const char *command, const char *const *flags, c
                                 char **argv);
 /// The next argument: what it is, with w->arg, w->opt and w->val set to match.
 ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w);
+/// Where a walk of `ccd`, `mesh-ccd` or `mesh-ccd-rigid` stops early, its exit status: at --help
+/// (k TTD_ARG_HELP) usage printed on stdout and TTD_EXIT_OK; at a bad argument (TTD_ARG_BAD,
+/// already said on stderr) TTD_EXIT_USAGE; -1 for any other k, which the command reads on.
+int ttd_cli_stop_status(ttd_cli_arg k, const char *usage);
 /// "COMMAND: bad value for OPT: 'VAL' (WHY)" for the option w read last; WHY NULL says "see ttd
 /// COMMAND --help".
 void ttd_cli_bad_value(const ttd_cli_args *w, const char *why);

@@ -168,6 +168,15 @@ ttd_cli_arg ttd_cli_next_arg(ttd_cli_args *w)
     return TTD_ARG_END;
 }
 
+int ttd_cli_stop_status(ttd_cli_arg k, const char *usage)
+{
+    if (k == TTD_ARG_HELP) {
+        fputs(usage, stdout);
+        return TTD_EXIT_OK;
+    }
+    return k == TTD_ARG_BAD ? TTD_EXIT_USAGE : -1;
+}
+
 void ttd_cli_bad_value(const ttd_cli_args *w, const char *why)
 {
     if (why != NULL)

@@ -83,13 +83,9 @@ int ttd_cli_mesh_ccd(int argc, char **argv)
     ttd_cli_args w = ttd_cli_args_start("mesh-ccd", switches, valued, argc, argv);
     w.long_only = 1;
     for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
+        if (k == TTD_ARG_BAD || k == TTD_ARG_HELP)
+            return ttd_cli_stop_status(k, mesh_ccd_usage);
         const char *opt = w.opt, *val = w.val;
-        if (k == TTD_ARG_BAD)
-            return TTD_EXIT_USAGE;
-        if (k == TTD_ARG_HELP) {
-            fputs(mesh_ccd_usage, stdout);
-            return TTD_EXIT_OK;
-        }
         if (k == TTD_ARG_FLAG) {
             summary |= strcmp(opt, "--summary") == 0;
             use_float |= strcmp(opt, "--float") == 0;

@@ -63,12 +63,8 @@ int ttd_cli_mesh_ccd_rigid(int argc, char **argv)
     ttd_cli_args w = ttd_cli_args_start("mesh-ccd-rigid", switches, valued, argc, argv);
     w.long_only = 1;
     for (ttd_cli_arg k; (k = ttd_cli_next_arg(&w)) != TTD_ARG_END;) {
-        if (k == TTD_ARG_BAD)
-            return TTD_EXIT_USAGE;
-        if (k == TTD_ARG_HELP) {
-            fputs(rigid_usage, stdout);
-            return TTD_EXIT_OK;
-        }
+        if (k == TTD_ARG_BAD || k == TTD_ARG_HELP)
+            return ttd_cli_stop_status(k, rigid_usage);
         if (k == TTD_ARG_FLAG) {
             use_float = 1;
         } else if (k == TTD_ARG_VALUE) {

@@ -25,14 +25,7 @@
 #include <time.h>
 
 #include "ccd/ccd.h"
-
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t i = 0; i < n; ++i)
-        h = (h ^ c[i]) * 0x100000001b3ull;
-    return h;
-}
+#include "ccd_digest.h"
 
 static double cpu(void)
 {
@@ -107,18 +100,14 @@ int main(int argc, char **argv)
         for (int r = 0; r < reps; ++r) {
             hits = 0;
             evals = 0;
-            digest = 0xcbf29ce484222325ull;
+            digest = CCD_DIGEST_START;
             const double c0 = cpu();
             for (size_t k = 0; k < n; ++k) {
                 ttd_ccd_result o;
                 ttd_ccd_query(kind, x0 + 12 * k, x1 + 12 * k, &p, &o);
                 hits += o.hit;
                 evals += o.evals;
-                digest = fnv(digest, &o.hit, sizeof o.hit);
-                digest = fnv(digest, &o.flags, sizeof o.flags);
-                digest = fnv(digest, &o.toi, sizeof o.toi);
-                digest = fnv(digest, &o.gap, sizeof o.gap);
-                digest = fnv(digest, &o.evals, sizeof o.evals);
+                digest = ccd_digest_answer(digest, &o);
             }
             const double c = cpu() - c0;
             best = c < best ? c : best;

@@ -17,30 +17,23 @@
 #include <stdlib.h>
 
 #include "ccd/ccd.h"
+#include "ccd_digest.h"
 
 #define TEST_RAND_SEED 0x2545f4914f6cdd1dull
 #include "test_rand.h"
 #include "ccd_families.h"
-
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t i = 0; i < n; ++i)
-        h = (h ^ c[i]) * 0x100000001b3ull;
-    return h;
-}
 
 int main(int argc, char **argv)
 {
     const size_t n = argc > 1 ? (size_t)atol(argv[1]) : 3000;
     const double t_stop = argc > 2 ? atof(argv[2]) : HUGE_VAL;
     static const double deltas[2] = {0, 1e-6};
-    uint64_t all = 0xcbf29ce484222325ull;
+    uint64_t all = CCD_DIGEST_START;
     size_t queries = 0;
     for (int fam = 0; fam < F_COUNT; ++fam)
         for (int kind = 1; kind <= 2; ++kind) {
             qset s = make_set(fam, kind, n);
-            uint64_t h = 0xcbf29ce484222325ull;
+            uint64_t h = CCD_DIGEST_START;
             size_t hits = 0;
             unsigned long long evals = 0;
             for (int d = 0; d < 2; ++d)
@@ -52,16 +45,12 @@ int main(int argc, char **argv)
                     ttd_ccd_query(kind, s.x0 + 12 * q, s.x1 + 12 * q, &p, &o);
                     hits += o.hit;
                     evals += o.evals;
-                    h = fnv(h, &o.hit, sizeof o.hit);
-                    h = fnv(h, &o.flags, sizeof o.flags);
-                    h = fnv(h, &o.toi, sizeof o.toi);
-                    h = fnv(h, &o.gap, sizeof o.gap);
-                    h = fnv(h, &o.evals, sizeof o.evals);
+                    h = ccd_digest_answer(h, &o);
                     ++queries;
                 }
             printf("%-40s %s: %zu hits, %llu intervals, digest %016llx\n", family_name[fam],
                    kind == TTD_CCD_VF ? "vertex-face" : "edge-edge", hits, evals, (unsigned long long)h);
-            all = fnv(all, &h, sizeof h);
+            all = ccd_fnv(all, &h, sizeof h);
             free(s.x0);
             free(s.x1);
         }

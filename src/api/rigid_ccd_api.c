@@ -71,7 +71,7 @@ static ttd_status distance_at(const ttd_options *opt, const rigid_body *a, const
         ttd_mesh_result_f r;
         const float bf = bound < (double)FLT_MAX ? nextafterf((float)bound, INFINITY) : INFINITY;
         st = ttd_mesh_distance_f(opt, a->mesh, b->mesh, 1, relf, bf, 0, &r);
-        *d = r.distance;
+        *d = (double)r.distance; /* exact: a float widens to double without rounding */
         *tri_a = r.tri_a;
         *tri_b = r.tri_b;
     }

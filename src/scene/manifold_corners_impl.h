@@ -539,10 +539,14 @@ static int piece_vslots_sort(manifold_work *w, int side, size_t n)
  * real edges and per triangle pair; contact_corners some 800 instructions a contact, about
  * PIECE_GAIN box screens: a group whose pieces' rims are long beside its contacts (two finely cut
  * plates overlapping at their rims) goes contact by contact. */
+#ifndef PIECE_GAIN
 #define PIECE_GAIN 16
+#endif
 /* A group goes contact by contact where it has fewer than this many contacts per triangle met:
  * its set-up (each triangle's copy and screen part, the slots, the table) is per triangle. */
+#ifndef PIECE_FEW
 #define PIECE_FEW 2
+#endif
 #define PIECE_MIN (4 * PIECE_FEW * PIECE_FEW) /* fewer contacts in a group: contact by contact */
 
 /* Vertex question q of step 0, its triangles' screens passed but the box's and the side's (asked
