@@ -13,6 +13,9 @@
  * absolute. The method, the accuracy argument and notes for the SIMD port are in
  * docs/exact-method.md. */
 
+#include <stdint.h>
+#include <string.h>
+
 /* One triangle in normalised coordinates, with what every candidate shares. */
 typedef struct exact_tri {
     real v[3][3];     /* vertices */
@@ -378,6 +381,28 @@ static real exact_clamp_max(real x)
     return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
 }
 
+/* 2^k, as TTD_LDEXP(1, k) gives it (exactly), made from its bits where it is a normal number:
+ * ldexp is a call into libm, four a pair. */
+static real exact_pow2(int k)
+{
+#ifdef TTD_PRECISION_DOUBLE
+    if (k >= -1022 && k <= 1023) {
+        const uint64_t bits = (uint64_t)(k + 1023) << 52;
+        double x;
+        memcpy(&x, &bits, sizeof x);
+        return x;
+    }
+#else
+    if (k >= -126 && k <= 127) {
+        const uint32_t bits = (uint32_t)(k + 127) << 23;
+        float x;
+        memcpy(&x, &bits, sizeof x);
+        return x;
+    }
+#endif
+    return TTD_LDEXP((real)1, k);
+}
+
 /* exact_pair's frame: what step 4 scales back by */
 typedef struct exact_frame {
     real pre, o[3];
@@ -418,7 +443,7 @@ static void exact_normalise(const real s[9], const real t[9], exact_tri *S, exac
     int e = 0;
     (void)TTD_FREXP(m, &e);   /* m == 0 gives e == 0: all vertices equal, still handled */
     const int e1 = e / 2, e2 = e - e / 2;
-    const real f1 = TTD_LDEXP((real)1, -e1), f2 = TTD_LDEXP((real)1, -e2);
+    const real f1 = exact_pow2(-e1), f2 = exact_pow2(-e2);
 
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
@@ -456,7 +481,7 @@ static void exact_finish(const exact_best *best_in, const exact_tri *S, const ex
     }
 
     /* 4. Scale back and add the origin back. */
-    const real g1 = TTD_LDEXP((real)1, e1), g2 = TTD_LDEXP((real)1, e2);
+    const real g1 = exact_pow2(e1), g2 = exact_pow2(e2);
     const real unpre = (real)1 / pre;
     r->distance = d * g1 * g2 * unpre;
     for (int c = 0; c < 3; ++c) {
@@ -500,8 +525,6 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
  * candidate with an edge of zero length (its cross product is 0 or NaN, so s = -1), a vertex-face
  * candidate or crossing over a triangle without a face. A vertex left out of the vertex-face
  * candidates still gives its face coordinates to the crossings, as a copy of the earlier one's. */
-
-#include <string.h>
 
 static int exact_same3(const real a[3], const real b[3])
 {
