@@ -12,6 +12,11 @@ void ttd_exact_pair_d(const double s[9], const double t[9], ttd_result_d *r)
     exact_pair(s, t, r);
 }
 
+void ttd_exact_pair_dups_d(const double s[9], const double t[9], ttd_result_d *r)
+{
+    exact_pair_dups(s, t, r);
+}
+
 double ttd_exact_lower_bound_d(const double s[9], const double t[9])
 {
     return exact_lower_bound(s, t);

@@ -12,6 +12,11 @@ void ttd_exact_pair_f(const float s[9], const float t[9], ttd_result_f *r)
     exact_pair(s, t, r);
 }
 
+void ttd_exact_pair_dups_f(const float s[9], const float t[9], ttd_result_f *r)
+{
+    exact_pair_dups(s, t, r);
+}
+
 float ttd_exact_lower_bound_f(const float s[9], const float t[9])
 {
     return exact_lower_bound(s, t);

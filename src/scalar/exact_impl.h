@@ -13,6 +13,9 @@
  * absolute. The method, the accuracy argument and notes for the SIMD port are in
  * docs/exact-method.md. */
 
+#include <stdint.h>
+#include <string.h>
+
 /* One triangle in normalised coordinates, with what every candidate shares. */
 typedef struct exact_tri {
     real v[3][3];     /* vertices */
@@ -378,7 +381,36 @@ static real exact_clamp_max(real x)
     return x > TTD_REAL_MAX ? TTD_REAL_MAX : (x < -TTD_REAL_MAX ? -TTD_REAL_MAX : x);
 }
 
-static void exact_pair(const real s[9], const real t[9], ttd_result *r)
+/* 2^k, as TTD_LDEXP(1, k) gives it (exactly), made from its bits where it is a normal number:
+ * ldexp is a call into libm, four a pair. */
+static real exact_pow2(int k)
+{
+#ifdef TTD_PRECISION_DOUBLE
+    if (k >= -1022 && k <= 1023) {
+        const uint64_t bits = (uint64_t)(k + 1023) << 52;
+        double x;
+        memcpy(&x, &bits, sizeof x);
+        return x;
+    }
+#else
+    if (k >= -126 && k <= 127) {
+        const uint32_t bits = (uint32_t)(k + 127) << 23;
+        float x;
+        memcpy(&x, &bits, sizeof x);
+        return x;
+    }
+#endif
+    return TTD_LDEXP((real)1, k);
+}
+
+/* exact_pair's frame: what step 4 scales back by */
+typedef struct exact_frame {
+    real pre, o[3];
+    int e1, e2;
+} exact_frame;
+
+/* exact_pair's step 1: S and T normalised and prepared, and the frame to scale back by. */
+static void exact_normalise(const real s[9], const real t[9], exact_tri *S, exact_tri *T, exact_frame *F)
 {
     /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
      * differences cannot overflow; then translate to A and scale by 2^-e, 2^e the power of two
@@ -411,43 +443,45 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
     int e = 0;
     (void)TTD_FREXP(m, &e);   /* m == 0 gives e == 0: all vertices equal, still handled */
     const int e1 = e / 2, e2 = e - e / 2;
-    const real f1 = TTD_LDEXP((real)1, -e1), f2 = TTD_LDEXP((real)1, -e2);
+    const real f1 = exact_pow2(-e1), f2 = exact_pow2(-e2);
 
-    exact_tri S, T;
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) {
-            S.v[i][c] = rel[3 * i + c] * f1 * f2;
-            T.v[i][c] = rel[9 + 3 * i + c] * f1 * f2;
+            S->v[i][c] = rel[3 * i + c] * f1 * f2;
+            T->v[i][c] = rel[9 + 3 * i + c] * f1 * f2;
         }
-    exact_tri_init(&S);
-    exact_tri_init(&T);
+    exact_tri_init(S);
+    exact_tri_init(T);
+    F->pre = pre;
+    for (int c = 0; c < 3; ++c)
+        F->o[c] = o[c];
+    F->e1 = e1;
+    F->e2 = e2;
+}
 
-    /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
-    exact_best best = {TTD_REAL_MAX, 0, 0, 0, 0};
-    exact_fc fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
-    exact_vertex_edge(&S, &T, TTD_EXACT_VE_S, &best);
-    exact_vertex_edge(&T, &S, TTD_EXACT_VE_T, &best);
-    exact_edge_edge(&S, &T, &best);
-    exact_vertex_face(&S, &T, TTD_EXACT_VF_S, &best, fs);
-    exact_vertex_face(&T, &S, TTD_EXACT_VF_T, &best, ft);
-    exact_crossings(&T, TTD_EXACT_X_S, &best, fs);
-    exact_crossings(&S, TTD_EXACT_X_T, &best, ft);
+/* exact_pair's steps 3 and 4 on the winning candidate. */
+static void exact_finish(const exact_best *best_in, const exact_tri *S, const exact_tri *T, const exact_frame *F,
+                         ttd_result *r)
+{
+    const exact_best best = *best_in;
+    const real pre = F->pre, *o = F->o;
+    const int e1 = F->e1, e2 = F->e2;
     real bp[3], bq[3], wp[3], wq[3];
-    exact_rebuild(&best, &S, &T, bp, bq, wp, wq);
+    exact_rebuild(&best, S, T, bp, bq, wp, wq);
 
     /* 3. Touching within rounding counts as touching: a distance below 4 eps of the pair's
      * extent (which is ~1 here) is what a contact computes to, not a gap. */
     real d = TTD_SQRT(best.d2);
     uint32_t flags = 0;
-    if (!S.has_face) flags |= TTD_PAIR_DEGENERATE_S;
-    if (!T.has_face) flags |= TTD_PAIR_DEGENERATE_T;
+    if (!S->has_face) flags |= TTD_PAIR_DEGENERATE_S;
+    if (!T->has_face) flags |= TTD_PAIR_DEGENERATE_T;
     if (d <= (real)TTD_EXACT_TOUCH_EPS * TTD_REAL_EPS) {
         d = 0;
         flags |= TTD_PAIR_INTERSECTING;
     }
 
     /* 4. Scale back and add the origin back. */
-    const real g1 = TTD_LDEXP((real)1, e1), g2 = TTD_LDEXP((real)1, e2);
+    const real g1 = exact_pow2(e1), g2 = exact_pow2(e2);
     const real unpre = (real)1 / pre;
     r->distance = d * g1 * g2 * unpre;
     for (int c = 0; c < 3; ++c) {
@@ -460,6 +494,154 @@ static void exact_pair(const real s[9], const real t[9], ttd_result *r)
     r->feature_p = exact_features(wp);
     r->feature_q = exact_features(wq);
     r->iterations = 0;
+}
+
+static void exact_pair(const real s[9], const real t[9], ttd_result *r)
+{
+    exact_tri S, T;
+    exact_frame F;
+    exact_normalise(s, t, &S, &T, &F);
+
+    /* 2. Candidates, in the fixed order that breaks ties (ids in TTD_EXACT_*). */
+    exact_best best = {TTD_REAL_MAX, 0, 0, 0, 0};
+    exact_fc fs[3], ft[3];   /* S's vertices over T's face, and T's over S's */
+    exact_vertex_edge(&S, &T, TTD_EXACT_VE_S, &best);
+    exact_vertex_edge(&T, &S, TTD_EXACT_VE_T, &best);
+    exact_edge_edge(&S, &T, &best);
+    exact_vertex_face(&S, &T, TTD_EXACT_VF_S, &best, fs);
+    exact_vertex_face(&T, &S, TTD_EXACT_VF_T, &best, ft);
+    exact_crossings(&T, TTD_EXACT_X_S, &best, fs);
+    exact_crossings(&S, TTD_EXACT_X_T, &best, ft);
+    exact_finish(&best, &S, &T, &F, r);
+}
+
+/* ---- exact_pair with the candidates that cannot win left out ------------------------------ */
+/* For triangles with repeated vertices (a vertex or an edge asked as a triangle, as the scene's
+ * manifold asks them): the same result, every bit, as exact_pair. A candidate is left out only
+ * where exact_pair's own selection could not take it: it computes the same bits as an earlier
+ * candidate (its inputs are the same bits: a vertex equal to an earlier one of its triangle; an
+ * edge whose start and vector equal an earlier edge's), and the strict comparison keeps the
+ * first of equals; or it is rejected whatever it computes (REAL_MAX never wins): an edge-edge
+ * candidate with an edge of zero length (its cross product is 0 or NaN, so s = -1), a vertex-face
+ * candidate or crossing over a triangle without a face. A vertex left out of the vertex-face
+ * candidates still gives its face coordinates to the crossings, as a copy of the earlier one's. */
+
+static int exact_same3(const real a[3], const real b[3])
+{
+    return memcmp(a, b, 3 * sizeof(real)) == 0;
+}
+
+/* Bits of X: vertex i repeats an earlier vertex (vdup); edge i repeats an earlier edge, start
+ * and vector (edup); edge i is 0 (ezero). */
+static void exact_dups(const exact_tri *X, unsigned *vdup, unsigned *edup, unsigned *ezero)
+{
+    *vdup = *edup = *ezero = 0;
+    for (int i = 1; i < 3; ++i)
+        for (int j = 0; j < i; ++j) {
+            if (exact_same3(X->v[i], X->v[j]))
+                *vdup |= 1u << i;
+            if (exact_same3(X->v[i], X->v[j]) && exact_same3(X->e[i], X->e[j]))
+                *edup |= 1u << i;
+        }
+    for (int i = 0; i < 3; ++i)
+        if (X->e[i][0] == 0 && X->e[i][1] == 0 && X->e[i][2] == 0)
+            *ezero |= 1u << i;
+}
+
+/* exact_vertex_edge without X's repeated vertices (xs) and Y's repeated edges (ys). */
+static void exact_vertex_edge_some(const exact_tri *X, const exact_tri *Y, int id0, exact_best *best, unsigned xs,
+                                   unsigned ys)
+{
+    for (int i = 0; i < 3; ++i) {
+        if (xs >> i & 1)
+            continue;
+        for (int j = 0; j < 3; ++j) {
+            if (ys >> j & 1)
+                continue;
+            real r[3], d[3];
+            exact_sub(X->v[i], Y->v[j], r);
+            real t = exact_clamp01(exact_dot(r, Y->e[j]) * Y->inv_ee[j]);
+            for (int c = 0; c < 3; ++c)
+                d[c] = r[c] - t * Y->e[j][c];
+            exact_keep(best, exact_dot(d, d), id0 + 3 * i + j, t, 0, 0);
+        }
+    }
+}
+
+/* exact_edge_edge without the edges of zero length (zs of S, zt of T). */
+static void exact_edge_edge_some(const exact_tri *S, const exact_tri *T, exact_best *best, unsigned zs, unsigned zt)
+{
+    for (int i = 0; i < 3; ++i) {
+        if (zs >> i & 1)
+            continue;
+        const real *P = S->v[i], *d1 = S->e[i];
+        for (int j = 0; j < 3; ++j) {
+            if (zt >> j & 1)
+                continue;
+            const real *Q = T->v[j], *d2 = T->e[j];
+            real n[3], w[3], x[3], d[3];
+            exact_cross(d1, d2, n);
+            real nn = exact_dot(n, n);
+            int ok = nn >= TTD_REAL_MIN;
+            exact_sub(Q, P, w);
+            exact_cross(w, d2, x);
+            real s = ok ? exact_dot(x, n) / nn : (real)-1;
+            real sc = exact_clamp01(s);
+            real t = (sc * exact_dot(d1, d2) - exact_dot(w, d2)) * T->inv_ee[j];
+            real tc = exact_clamp01(t);
+            int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
+            for (int c = 0; c < 3; ++c)
+                d[c] = (sc * d1[c] - w[c]) - tc * d2[c];
+            real dd = accept ? exact_dot(d, d) : TTD_REAL_MAX;
+            exact_keep(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
+        }
+    }
+}
+
+/* exact_vertex_face without X's repeated vertices (xs; their face coordinates copied from the
+ * first equal vertex's), and nothing over a Y without a face (its crossings are skipped too). */
+static void exact_vertex_face_some(const exact_tri *X, const exact_tri *Y, int id0, exact_best *best, exact_fc f[3],
+                                   unsigned xs)
+{
+    if (!Y->has_face)
+        return;
+    for (int i = 0; i < 3; ++i) {
+        if (xs >> i & 1) {
+            for (int j = 0; j < i; ++j)
+                if (exact_same3(X->v[i], X->v[j])) {
+                    f[i] = f[j];
+                    break;
+                }
+            continue;
+        }
+        real b;
+        f[i] = exact_face_coords(Y, X->v[i]);
+        const real c = f[i].c, h = f[i].h;
+        int inside = exact_face_weights(Y, c, f[i].g, &b);
+        exact_keep(best, inside ? (h * Y->inv_nn) * h : TTD_REAL_MAX, id0 + i, b, c, 0);
+    }
+}
+
+static void exact_pair_dups(const real s[9], const real t[9], ttd_result *r)
+{
+    exact_tri S, T;
+    exact_frame F;
+    exact_normalise(s, t, &S, &T, &F);
+    unsigned vs, es, zs, vt, et, zt;
+    exact_dups(&S, &vs, &es, &zs);
+    exact_dups(&T, &vt, &et, &zt);
+    exact_best best = {TTD_REAL_MAX, 0, 0, 0, 0};
+    exact_fc fs[3], ft[3];
+    exact_vertex_edge_some(&S, &T, TTD_EXACT_VE_S, &best, vs, et);
+    exact_vertex_edge_some(&T, &S, TTD_EXACT_VE_T, &best, vt, es);
+    exact_edge_edge_some(&S, &T, &best, zs, zt);
+    exact_vertex_face_some(&S, &T, TTD_EXACT_VF_S, &best, fs, vs);
+    exact_vertex_face_some(&T, &S, TTD_EXACT_VF_T, &best, ft, vt);
+    if (T.has_face)
+        exact_crossings(&T, TTD_EXACT_X_S, &best, fs);
+    if (S.has_face)
+        exact_crossings(&S, TTD_EXACT_X_T, &best, ft);
+    exact_finish(&best, &S, &T, &F, r);
 }
 
 /* A lower bound on the distance between S and T, for a caller that only cares about pairs

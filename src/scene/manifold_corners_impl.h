@@ -874,7 +874,7 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
         const int side = (int)q->kind;
         const real *v = x[side] + 3 * q->k;
         const real pt[9] = {v[0], v[1], v[2], v[0], v[1], v[2], v[0], v[1], v[2]};
-        TTD_EXACT_PAIR(pt, x[!side], &r);
+        TTD_EXACT_PAIR_DUPS(pt, x[!side], &r);
         if (!(r.distance <= margin))
             return 0;
         out->distance = r.distance;
@@ -899,7 +899,7 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
     }
     const int second = point_after(seg[0], seg[1]) ||
                        (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 && point_after(seg[0] + 3, seg[1] + 3));
-    TTD_EXACT_PAIR(seg[second], seg[!second], &r);
+    TTD_EXACT_PAIR_DUPS(seg[second], seg[!second], &r);
     if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
         return 0;
     out->distance = r.distance;

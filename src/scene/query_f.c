@@ -23,6 +23,7 @@ typedef ttd_mesh_result_f ttd_mesh_result;
 #define TTD_QUERY(name) ttd_mesh_query_##name##_f
 #define TTD_CONTACTS_FREE ttd_contacts_free_f
 #define TTD_EXACT_PAIR ttd_exact_pair_f
+#define TTD_EXACT_PAIR_DUPS ttd_exact_pair_dups_f
 typedef ttd_result_f ttd_result;
 typedef ttd_point_result_f ttd_point_result;
 #define TTD_POINTS_CLOSEST ttd_points_query_closest_f

@@ -1,0 +1,115 @@
+/* SPDX-License-Identifier: MIT */
+/* ttd_exact_pair_dups_d/f, which the manifold's step 0 asks its vertex and edge questions with
+ * (a vertex as a triangle (v, v, v), an edge as (a, b, b)), against the exact method itself:
+ * every field of the result the same bits, on triangles with every pattern of repeated vertices
+ * (and none), both orders, coordinates on a small grid (where candidates tie exactly, so the
+ * first-of-equals choice is tested), random ones at several scales, and vertices shared between
+ * the two triangles. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "test_macros.h"
+#include "scalar/scalar.h"
+
+static uint64_t rng = 0x9e3779b97f4a7c15ULL;
+static uint64_t next_u64(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return rng;
+}
+static double uniform(void) /* [0, 1) */
+{
+    return (double)(next_u64() >> 11) * 0x1p-53;
+}
+
+/* A point: on the grid {-2..2} / 2 (mode 0), or random in [-1, 1) times scale. */
+static void point(double x[3], int mode, double scale)
+{
+    for (int r = 0; r < 3; ++r)
+        x[r] = mode == 0 ? (double)((int)(next_u64() % 5) - 2) * 0.5 : (2 * uniform() - 1) * scale;
+}
+
+/* Triangle x with repeat pattern k: 0 (a, b, c), 1 (a, a, a), 2 (a, b, b), 3 (a, a, b), 4 (a, b, a).
+ * share: the first vertex copied from other (when not NULL). */
+static void triangle(double x[9], int k, int mode, double scale, const double *other)
+{
+    double v[3][3];
+    for (int i = 0; i < 3; ++i)
+        point(v[i], mode, scale);
+    if (other != NULL)
+        memcpy(v[0], other + 3 * (next_u64() % 3), sizeof v[0]);
+    static const int pat[5][3] = {{0, 1, 2}, {0, 0, 0}, {0, 1, 1}, {0, 0, 1}, {0, 1, 0}};
+    for (int i = 0; i < 3; ++i)
+        memcpy(x + 3 * i, v[pat[k][i]], sizeof v[0]);
+}
+
+static int same_d(const ttd_result_d *a, const ttd_result_d *b)
+{
+    return memcmp(&a->distance, &b->distance, sizeof a->distance) == 0 && memcmp(a->p, b->p, sizeof a->p) == 0 &&
+           memcmp(a->q, b->q, sizeof a->q) == 0 && memcmp(a->bary_p, b->bary_p, sizeof a->bary_p) == 0 &&
+           memcmp(a->bary_q, b->bary_q, sizeof a->bary_q) == 0 && a->flags == b->flags &&
+           a->feature_p == b->feature_p && a->feature_q == b->feature_q && a->iterations == b->iterations;
+}
+
+static int same_f(const ttd_result_f *a, const ttd_result_f *b)
+{
+    return memcmp(&a->distance, &b->distance, sizeof a->distance) == 0 && memcmp(a->p, b->p, sizeof a->p) == 0 &&
+           memcmp(a->q, b->q, sizeof a->q) == 0 && memcmp(a->bary_p, b->bary_p, sizeof a->bary_p) == 0 &&
+           memcmp(a->bary_q, b->bary_q, sizeof a->bary_q) == 0 && a->flags == b->flags &&
+           a->feature_p == b->feature_p && a->feature_q == b->feature_q && a->iterations == b->iterations;
+}
+
+static int dups_same_bits(void)
+{
+    static const double scales[] = {1.0, 1e-7, 3e5, 0x1p-500, 0x1p500};
+    long n = 0, ties = 0;
+    for (int mode = 0; mode < 2; ++mode)
+        for (int sc = 0; sc < 5; ++sc)
+            for (int ks = 0; ks < 5; ++ks)
+                for (int kt = 0; kt < 5; ++kt)
+                    for (int rep = 0; rep < 400; ++rep) {
+                        const double scale = mode == 0 ? 1.0 : scales[sc];
+                        double s[9], t[9];
+                        triangle(t, kt, mode, scale, NULL);
+                        triangle(s, ks, mode, scale, rep % 4 == 0 ? t : NULL);
+                        for (int order = 0; order < 2; ++order) {
+                            const double *a = order ? t : s, *b = order ? s : t;
+                            ttd_result_d r0, r1;
+                            memset(&r0, 0x5a, sizeof r0);
+                            memset(&r1, 0x5a, sizeof r1);
+                            ttd_exact_pair_d(a, b, &r0);
+                            ttd_exact_pair_dups_d(a, b, &r1);
+                            ENSURE_MSG(same_d(&r0, &r1), "double: patterns %d %d, mode %d, scale %g, case %d", ks,
+                                       kt, mode, scale, rep);
+                            /* float: the scales 2^-500 and 2^500 brought to 2^-50 and 2^50 */
+                            const double to_f = sc == 3 ? 0x1p450 : sc == 4 ? 0x1p-450 : 1.0;
+                            float af[9], bf[9];
+                            for (int k = 0; k < 9; ++k) {
+                                af[k] = (float)(a[k] * to_f);
+                                bf[k] = (float)(b[k] * to_f);
+                            }
+                            ttd_result_f f0, f1;
+                            memset(&f0, 0x5a, sizeof f0);
+                            memset(&f1, 0x5a, sizeof f1);
+                            ttd_exact_pair_f(af, bf, &f0);
+                            ttd_exact_pair_dups_f(af, bf, &f1);
+                            ENSURE_MSG(same_f(&f0, &f1), "float: patterns %d %d, mode %d, scale %g, case %d", ks, kt,
+                                       mode, scale, rep);
+                            ++n;
+                            ties += r0.distance == 0;
+                        }
+                    }
+    printf("  %ld pairs (double and float) the same bits, %ld of them touching\n", n, ties);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    TEST_MAIN_BEGIN(argc, argv);
+    RUN_TEST(dups_same_bits);
+    TEST_MAIN_END();
+}
