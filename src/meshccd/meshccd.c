@@ -902,23 +902,51 @@ static int split_pair(const sweep_tree *t, node_pair p, node_pair out[3])
     return 2;
 }
 
-/* The walk below one starting pair, depth first. */
+/* The walk below one starting pair, depth first. Each pair of distinct nodes is tested before it
+ * is pushed, and two inner nodes split both at once into their four children's pairs (the pairs
+ * of a node and the other's parent that a one-sided split visits are skipped: a pair of boxes that
+ * overlaps lies inside such a pair, which then overlaps too). So the pairs of leaves reached are
+ * split_pair's, those whose boxes overlap, and their triangle pairs the same; only their order
+ * differs, which the answer does not depend on (pair_self). */
 static void walk_self(const job *J, worker *w, node_pair start)
 {
+    const sweep_node *N = J->tree.nodes;
     size_t top = 0;
-    if (push_pair(w, &top, start.a, start.b) != 0)
+    if ((start.a == start.b || sweep_overlap(&N[start.a].box, &N[start.b].box)) &&
+        push_pair(w, &top, start.a, start.b) != 0)
         return;
     while (top > 0) {
         const node_pair p = w->stack[--top];
-        node_pair kids[3];
-        const int nk = split_pair(&J->tree, p, kids);
-        if (nk < 0) {
-            leaf_pair_self(J, w, &J->tree.nodes[p.a], &J->tree.nodes[p.b]);
+        const sweep_node *a = &N[p.a], *b = &N[p.b];
+        const uint32_t al = a->left, bl = b->left;
+        if (al == 0 && bl == 0) {
+            leaf_pair_self(J, w, a, b);
             continue;
         }
-        for (int i = nk - 1; i >= 0; --i)
-            if (push_pair(w, &top, kids[i].a, kids[i].b) != 0)
-                return;
+        /* children pushed last first, so that they are visited as split_pair orders them */
+        int fail = 0;
+        if (p.a == p.b) {
+            fail |= push_pair(w, &top, al + 1, al + 1);
+            if (sweep_overlap(&N[al].box, &N[al + 1].box))
+                fail |= push_pair(w, &top, al, al + 1);
+            fail |= push_pair(w, &top, al, al);
+        } else if (al != 0 && bl != 0) {
+            for (int i = 3; i >= 0; --i) {
+                const uint32_t x = al + (uint32_t)(i >> 1), y = bl + (uint32_t)(i & 1);
+                if (sweep_overlap(&N[x].box, &N[y].box))
+                    fail |= push_pair(w, &top, x, y);
+            }
+        } else if (al != 0) {
+            for (int i = 1; i >= 0; --i)
+                if (sweep_overlap(&N[al + (uint32_t)i].box, &b->box))
+                    fail |= push_pair(w, &top, al + (uint32_t)i, p.b);
+        } else {
+            for (int i = 1; i >= 0; --i)
+                if (sweep_overlap(&a->box, &N[bl + (uint32_t)i].box))
+                    fail |= push_pair(w, &top, p.a, bl + (uint32_t)i);
+        }
+        if (fail)
+            return;
     }
     if (J->apart != NULL)
         flush_pairs(J, w);
