@@ -209,7 +209,7 @@ typedef struct job {
                             * leaves; SWEEP_LEAF_SELF entries of padding after the last */
     uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
     ttd_tri_apart_at_fn apart; /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
-    ttd_box_screen_fn screen; /* self: the leaves' box tests on the row (8 boxes), or NULL: leaf_mask */
+    ttd_leaf_screen_fn lscreen; /* self: a pair of leaves' box tests on the row, or NULL: leaf_mask */
 } job;
 
 /* Two nodes of the tree, a == b or a's range of the order before b's. */
@@ -814,44 +814,71 @@ static inline unsigned leaf_mask(const double *const W[6], uint32_t kb, const do
 #endif
 }
 
+/* Triangle pair (kq, k) of the self walk, by its places in the tree's order, whose boxes overlap:
+ * to pair_self if the rule keeps it. */
+static inline void leaf_pair_one(const job *J, worker *w, uint32_t kq, uint32_t k)
+{
+    const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
+    const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
+    if (kept) {
+        const uint32_t qi = J->tree.order[kq], u = J->tree.order[k];
+        if (qi < u)
+            pair_self(J, w, qi, u, TQ, TU, kept == 1);
+        else
+            pair_self(J, w, u, qi, TU, TQ, kept == 1);
+    }
+}
+
 /* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
  * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs), in
  * the same order (u ascending). */
 static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
 {
-    const uint32_t *order = J->tree.order;
     const double *const *P = (const double *const *)J->pb, *const *W = (const double *const *)J->pw;
     const int wide = J->pw[0] != J->pb[0]; /* at delta 0 the two tests are one (the test is symmetric) */
     const uint32_t kb = b->begin;
     const unsigned all = (2u << (b->end - b->begin - 1)) - 1; /* a leaf holds 1 to SWEEP_LEAF_SELF */
-    /* b's columns, for the row's box_screen (which reads TTD_NODE_WIDTH = SWEEP_LEAF_SELF boxes) */
-    const double *const wlo[3] = {W[0] + kb, W[1] + kb, W[2] + kb}, *const whi[3] = {W[3] + kb, W[4] + kb, W[5] + kb};
-    const double *const plo[3] = {P[0] + kb, P[1] + kb, P[2] + kb}, *const phi[3] = {P[3] + kb, P[4] + kb, P[5] + kb};
+    if (J->lscreen != NULL) {
+        /* the whole pair of leaves in one call of the row (a's rows against b's lanes; the same
+         * comparisons as the loop below, so the same bits): a row near a lane is near b's box */
+        const uint32_t ka = a->begin;
+        const int na = (int)(a->end - ka);
+        const double *const ra[6] = {P[0] + ka, P[1] + ka, P[2] + ka, P[3] + ka, P[4] + ka, P[5] + ka};
+        const double *const rw[6] = {W[0] + kb, W[1] + kb, W[2] + kb, W[3] + kb, W[4] + kb, W[5] + kb};
+        uint8_t m8[TTD_NODE_WIDTH];
+        unsigned rows = J->lscreen(ra, na, rw, m8);
+        if (wide && rows) {
+            const double *const rwa[6] = {W[0] + ka, W[1] + ka, W[2] + ka, W[3] + ka, W[4] + ka, W[5] + ka};
+            const double *const rp[6] = {P[0] + kb, P[1] + kb, P[2] + kb, P[3] + kb, P[4] + kb, P[5] + kb};
+            uint8_t w8[TTD_NODE_WIDTH];
+            J->lscreen(rwa, na, rp, w8);
+            for (int i = 0; i < na; ++i)
+                m8[i] &= w8[i];
+        }
+        for (; rows != 0; rows &= rows - 1) {
+            const int i = __builtin_ctz(rows);
+            unsigned m = m8[i] & all;
+            if (a == b)
+                m &= ~((2u << i) - 1); /* u after q only */
+            for (; m != 0; m &= m - 1)
+                leaf_pair_one(J, w, ka + (uint32_t)i, kb + (uint32_t)__builtin_ctz(m));
+        }
+        return;
+    }
     for (uint32_t kq = a->begin; kq < a->end; ++kq) {
         const double q[6] = {P[0][kq], P[1][kq], P[2][kq], P[3][kq], P[4][kq], P[5][kq]};
         if (!(q[0] <= b->box.hi[0] && b->box.lo[0] <= q[3] && q[1] <= b->box.hi[1] && b->box.lo[1] <= q[4] &&
               q[2] <= b->box.hi[2] && b->box.lo[2] <= q[5]))
             continue;
-        unsigned m = (J->screen != NULL ? J->screen(wlo, whi, q) : leaf_mask(W, kb, q)) & all;
+        unsigned m = leaf_mask(W, kb, q) & all;
         if (a == b)
             m &= ~((2u << (kq - kb)) - 1); /* u after q only */
         if (wide && m) {
             const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
-            m &= J->screen != NULL ? J->screen(plo, phi, qw) : leaf_mask(P, kb, qw);
+            m &= leaf_mask(P, kb, qw);
         }
-        while (m) {
-            const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
-            m &= m - 1;
-            const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
-            const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
-            if (kept) {
-                const uint32_t qi = order[kq], u = order[k];
-                if (qi < u)
-                    pair_self(J, w, qi, u, TQ, TU, kept == 1);
-                else
-                    pair_self(J, w, u, qi, TU, TQ, kept == 1);
-            }
-        }
+        for (; m != 0; m &= m - 1)
+            leaf_pair_one(J, w, kq, kb + (uint32_t)__builtin_ctz(m));
     }
 }
 
@@ -1065,7 +1092,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
     const ttd_kernels_d *row = ttd_dispatch_row_d(isa);
     J.apart = J.self && row != NULL ? row->tri_apart_at : NULL;
 #if !defined(MESHCCD_SCALAR_LEAVES)
-    J.screen = J.self && row != NULL ? row->box_screen : NULL;
+    J.lscreen = J.self && row != NULL ? row->leaf_screen : NULL;
 #endif
     if (side_make(a, delta, !J.self || J.shared, &da) != 0)
         return TTD_ERR_OUT_OF_MEMORY;
