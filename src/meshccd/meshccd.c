@@ -1127,14 +1127,18 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
             J.pb[c] = J.pb[0] + c * cols;
             J.pw[c] = J.pw[0] + c * cols;
         }
+        const int wide = J.pw[0] != J.pb[0]; /* at delta 0 they are one array */
         for (size_t k = 0; k < nt; ++k) {
             const uint32_t t = J.tree.order[k];
             for (int c = 0; c < 3; ++c) {
                 J.pb[c][k] = da.tbox[t].lo[c];
                 J.pb[3 + c][k] = da.tbox[t].hi[c];
-                J.pw[c][k] = da.twide[t].lo[c];
-                J.pw[3 + c][k] = da.twide[t].hi[c];
             }
+            if (wide)
+                for (int c = 0; c < 3; ++c) {
+                    J.pw[c][k] = da.twide[t].lo[c];
+                    J.pw[3 + c][k] = da.twide[t].hi[c];
+                }
             memcpy(J.ptri + 3 * k, a->tris + 3 * (size_t)t, 3 * sizeof *J.ptri);
         }
         blocks = (J.ntasks + SELF_BLOCK_TASKS - 1) / SELF_BLOCK_TASKS;
