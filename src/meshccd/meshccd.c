@@ -555,21 +555,6 @@ static inline int common_index(const uint32_t *a, const uint32_t *b)
            (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
 }
 
-/* The same where b[3] may be read too (the self walk's copy in the tree's order has one index of
- * padding): b's indices in one register against each of a's. */
-static inline int common_index_padded(const uint32_t *a, const uint32_t *b)
-{
-#if MESHCCD_SSE2_LEAVES
-    const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)b);
-    const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[0])),
-                                                 _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[1]))),
-                                    _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[2])));
-    return (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0;
-#else
-    return common_index(a, b);
-#endif
-}
-
 /* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
  * triangle; any: whether they have an index in common): 0 no, 1 yes and they share no vertex, 2
  * yes and they share one (the shared-vertex rule). */
@@ -814,12 +799,12 @@ static inline unsigned leaf_mask(const double *const W[6], uint32_t kb, const do
 #endif
 }
 
-/* Triangle pair (kq, k) of the self walk, by its places in the tree's order, whose boxes overlap:
- * to pair_self if the rule keeps it. */
-static inline void leaf_pair_one(const job *J, worker *w, uint32_t kq, uint32_t k)
+/* Triangle pair (kq, k) of the self walk, by its places in the tree's order, whose boxes overlap;
+ * any: whether they have an index in common. To pair_self if the rule keeps it. */
+static inline void leaf_pair_kept(const job *J, worker *w, uint32_t kq, uint32_t k, int any)
 {
     const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
-    const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
+    const int kept = eligible_tris(J, TQ, TU, any);
     if (kept) {
         const uint32_t qi = J->tree.order[kq], u = J->tree.order[k];
         if (qi < u)
@@ -827,6 +812,30 @@ static inline void leaf_pair_one(const job *J, worker *w, uint32_t kq, uint32_t 
         else
             pair_self(J, w, u, qi, TU, TQ, kept == 1);
     }
+}
+
+/* Row kq of a pair of leaves against the lanes k = kb + (bits of m) of the other, in order: the
+ * rule's index test, common_index's, in a register where SSE2 is: the other triangle's indices
+ * (and one of padding: the copy in the tree's order has one more) against each of kq's, which are
+ * broadcast once for the row. */
+static inline void leaf_row_pairs(const job *J, worker *w, uint32_t kq, uint32_t kb, unsigned m)
+{
+#if MESHCCD_SSE2_LEAVES
+    const uint32_t *TQ = J->ptri + 3 * (size_t)kq;
+    const __m128i q0 = _mm_set1_epi32((int)TQ[0]), q1 = _mm_set1_epi32((int)TQ[1]), q2 = _mm_set1_epi32((int)TQ[2]);
+    for (; m != 0; m &= m - 1) {
+        const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
+        const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)(J->ptri + 3 * (size_t)k));
+        const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, q0), _mm_cmpeq_epi32(u, q1)),
+                                        _mm_cmpeq_epi32(u, q2));
+        leaf_pair_kept(J, w, kq, k, (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0);
+    }
+#else
+    for (; m != 0; m &= m - 1) {
+        const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
+        leaf_pair_kept(J, w, kq, k, common_index(J->ptri + 3 * (size_t)kq, J->ptri + 3 * (size_t)k));
+    }
+#endif
 }
 
 /* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
@@ -860,8 +869,7 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
             unsigned m = m8[i] & all;
             if (a == b)
                 m &= ~((2u << i) - 1); /* u after q only */
-            for (; m != 0; m &= m - 1)
-                leaf_pair_one(J, w, ka + (uint32_t)i, kb + (uint32_t)__builtin_ctz(m));
+            leaf_row_pairs(J, w, ka + (uint32_t)i, kb, m);
         }
         return;
     }
@@ -877,8 +885,7 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
             const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
             m &= leaf_mask(P, kb, qw);
         }
-        for (; m != 0; m &= m - 1)
-            leaf_pair_one(J, w, kq, kb + (uint32_t)__builtin_ctz(m));
+        leaf_row_pairs(J, w, kq, kb, m);
     }
 }
 
@@ -1118,7 +1125,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
         const size_t cols = nt + SWEEP_LEAF_SELF; /* padding: leaf_mask reads a whole leaf's width */
         J.pb[0] = calloc(6 * cols, sizeof(double));
         J.pw[0] = delta == 0 ? J.pb[0] : calloc(6 * cols, sizeof(double));
-        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: common_index_padded reads one more */
+        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: leaf_row_pairs reads one more */
         if (J.pb[0] == NULL || J.pw[0] == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
             st = TTD_ERR_OUT_OF_MEMORY;
             goto done;
