@@ -786,6 +786,56 @@ static int tri_apart_lanes(void)
     return 0;
 }
 
+/* Every row's leaf_screen against the comparisons it stands for (core/kernels.h), on boxes whose
+ * bounds come from a few values (so that boxes touch and coincide often), with NaN bounds now and
+ * then (never near: a comparison with NaN is false), and 1 to 8 rows. */
+static int leaf_screen_lanes(void)
+{
+    static const double vals[] = {-1.5, -1, -0.25, 0, 0x1p-1074, 0.25, 1, 1.5, NAN};
+    int rows = 0;
+    for (const isa_row *row = isa_rows; row->name != NULL; ++row) {
+        const char *why = "";
+        if (!cpu_runs(row->name, &why) || row->d == NULL)
+            continue;
+        ENSURE_MSG(row->d->leaf_screen != NULL, "row %s has no leaf_screen", row->name);
+        ++rows;
+        long near = 0;
+        for (int it = 0; it < 4000; ++it) {
+            double A[6][TTD_NODE_WIDTH], B[6][TTD_NODE_WIDTH];
+            for (int c = 0; c < 6; ++c)
+                for (int l = 0; l < TTD_NODE_WIDTH; ++l) {
+                    const int nan = urand() < 0.01;
+                    const int ia = (int)(8 * urand()), ib = (int)(8 * urand());
+                    A[c][l] = nan ? NAN : vals[ia] + (c >= 3 ? 0.5 * (double)(it % 3) : 0);
+                    B[c][l] = urand() < 0.01 ? NAN : vals[ib] + (c >= 3 ? 0.5 * (double)((it / 3) % 3) : 0);
+                }
+            const int na = 1 + it % TTD_NODE_WIDTH;
+            const double *const ra[6] = {A[0], A[1], A[2], A[3], A[4], A[5]};
+            const double *const rb[6] = {B[0], B[1], B[2], B[3], B[4], B[5]};
+            uint8_t out[TTD_NODE_WIDTH];
+            const unsigned got = row->d->leaf_screen(ra, na, rb, out);
+            unsigned want_rows = 0;
+            for (int i = 0; i < na; ++i) {
+                unsigned want = 0;
+                for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+                    int ok = 1;
+                    for (int c = 0; c < 3; ++c)
+                        ok &= B[c][j] <= A[3 + c][i] && A[c][i] <= B[3 + c][j];
+                    want |= (unsigned)ok << j;
+                }
+                near += __builtin_popcount(want);
+                want_rows |= (unsigned)(want != 0) << i;
+                ENSURE_MSG(out[i] == want, "row %s, case %d, row %d: lanes %#x, loop %#x", row->name, it, i,
+                           (unsigned)out[i], want);
+            }
+            ENSURE_MSG(got == want_rows, "row %s, case %d: rows %#x, loop %#x", row->name, it, got, want_rows);
+        }
+        ENSURE_MSG(near > 1000, "row %s: too few near boxes (%ld)", row->name, near);
+    }
+    ENSURE(rows >= 2); /* cuda-host and at least one SIMD row */
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
@@ -800,6 +850,7 @@ int main(int argc, char **argv)
     RUN_TEST(float_matches_double);
     RUN_TEST(threads);
     RUN_TEST(overflowing_directions);
-    RUN_TEST(tri_apart_lanes); /* last: its draws leave the other tests' cases as they were */
+    RUN_TEST(tri_apart_lanes); /* after the others: its draws leave their cases as they were */
+    RUN_TEST(leaf_screen_lanes);
     TEST_MAIN_END();
 }

@@ -219,6 +219,15 @@ typedef unsigned (*ttd_tri_apart_fn)(int count, const double *x, const double *S
 typedef unsigned (*ttd_tri_apart_at_fn)(int count, const uint32_t *v, const double *x0, const double *x1,
                                         const double *vmag, double delta);
 
+/* leaf_screen (double rows only; NULL on the scalar row): mesh self-CCD's leaf pairs
+ * (meshccd/meshccd.c, leaf_pair_self; simd/kernel_tri_apart.h): boxes i = 0..na-1 (na <=
+ * TTD_NODE_WIDTH) of the columns ra[c][i] against the TTD_NODE_WIDTH boxes of the columns rb[c][j]
+ * (c = 0..2 the minima, 3..5 the maxima; every lane of rb is read): out[i] gets bit j where on
+ * every axis rb[c][j] <= ra[3 + c][i] and ra[c][i] <= rb[3 + c][j] (comparisons only: the same bits
+ * on every row); returns the rows i whose out[i] is not 0, as bits. */
+typedef unsigned (*ttd_leaf_screen_fn)(const double *const ra[6], int na, const double *const rb[6],
+                                       uint8_t out[TTD_NODE_WIDTH]);
+
 /// One instruction set's kernels for one precision, indexed by ttd_method, and its node test
 /// (one translation unit per ISA and precision defines each: src/isa/<isa>_d.c, _f.c;
 /// scalar/kernels.c).
@@ -238,6 +247,7 @@ typedef struct ttd_kernels_d {
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
     ttd_tri_apart_fn tri_apart;         ///< NULL on the scalar row
     ttd_tri_apart_at_fn tri_apart_at;   ///< NULL on the scalar row
+    ttd_leaf_screen_fn leaf_screen;     ///< NULL on the scalar row
 } ttd_kernels_d;
 
 /// ttd_kernels_d for float.

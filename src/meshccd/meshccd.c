@@ -209,7 +209,7 @@ typedef struct job {
                             * leaves; SWEEP_LEAF_SELF entries of padding after the last */
     uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
     ttd_tri_apart_at_fn apart; /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
-    ttd_box_screen_fn screen; /* self: the leaves' box tests on the row (8 boxes), or NULL: leaf_mask */
+    ttd_leaf_screen_fn lscreen; /* self: a pair of leaves' box tests on the row, or NULL: leaf_mask */
 } job;
 
 /* Two nodes of the tree, a == b or a's range of the order before b's. */
@@ -555,21 +555,6 @@ static inline int common_index(const uint32_t *a, const uint32_t *b)
            (a[2] == b[0]) | (a[2] == b[1]) | (a[2] == b[2]);
 }
 
-/* The same where b[3] may be read too (the self walk's copy in the tree's order has one index of
- * padding): b's indices in one register against each of a's. */
-static inline int common_index_padded(const uint32_t *a, const uint32_t *b)
-{
-#if MESHCCD_SSE2_LEAVES
-    const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)b);
-    const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[0])),
-                                                 _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[1]))),
-                                    _mm_cmpeq_epi32(u, _mm_set1_epi32((int)a[2])));
-    return (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0;
-#else
-    return common_index(a, b);
-#endif
-}
-
 /* Whether the self rule keeps the pair of triangles a and b (their vertex indices; not the same
  * triangle; any: whether they have an index in common): 0 no, 1 yes and they share no vertex, 2
  * yes and they share one (the shared-vertex rule). */
@@ -814,44 +799,93 @@ static inline unsigned leaf_mask(const double *const W[6], uint32_t kb, const do
 #endif
 }
 
+/* Triangle pair (kq, k) of the self walk, by its places in the tree's order, whose boxes overlap;
+ * any: whether they have an index in common. To pair_self if the rule keeps it. */
+static inline void leaf_pair_kept(const job *J, worker *w, uint32_t kq, uint32_t k, int any)
+{
+    const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
+    const int kept = eligible_tris(J, TQ, TU, any);
+    if (kept) {
+        const uint32_t qi = J->tree.order[kq], u = J->tree.order[k];
+        if (qi < u)
+            pair_self(J, w, qi, u, TQ, TU, kept == 1);
+        else
+            pair_self(J, w, u, qi, TU, TQ, kept == 1);
+    }
+}
+
+/* Row kq of a pair of leaves against the lanes k = kb + (bits of m) of the other, in order: the
+ * rule's index test, common_index's, in a register where SSE2 is: the other triangle's indices
+ * (and one of padding: the copy in the tree's order has one more) against each of kq's, which are
+ * broadcast once for the row. */
+static inline void leaf_row_pairs(const job *J, worker *w, uint32_t kq, uint32_t kb, unsigned m)
+{
+#if MESHCCD_SSE2_LEAVES
+    const uint32_t *TQ = J->ptri + 3 * (size_t)kq;
+    const __m128i q0 = _mm_set1_epi32((int)TQ[0]), q1 = _mm_set1_epi32((int)TQ[1]), q2 = _mm_set1_epi32((int)TQ[2]);
+    for (; m != 0; m &= m - 1) {
+        const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
+        const __m128i u = _mm_loadu_si128((const __m128i *)(const void *)(J->ptri + 3 * (size_t)k));
+        const __m128i eq = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(u, q0), _mm_cmpeq_epi32(u, q1)),
+                                        _mm_cmpeq_epi32(u, q2));
+        leaf_pair_kept(J, w, kq, k, (_mm_movemask_ps(_mm_castsi128_ps(eq)) & 7) != 0);
+    }
+#else
+    for (; m != 0; m &= m - 1) {
+        const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
+        leaf_pair_kept(J, w, kq, k, common_index(J->ptri + 3 * (size_t)kq, J->ptri + 3 * (size_t)k));
+    }
+#endif
+}
+
 /* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
  * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs), in
  * the same order (u ascending). */
 static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
 {
-    const uint32_t *order = J->tree.order;
     const double *const *P = (const double *const *)J->pb, *const *W = (const double *const *)J->pw;
     const int wide = J->pw[0] != J->pb[0]; /* at delta 0 the two tests are one (the test is symmetric) */
     const uint32_t kb = b->begin;
     const unsigned all = (2u << (b->end - b->begin - 1)) - 1; /* a leaf holds 1 to SWEEP_LEAF_SELF */
-    /* b's columns, for the row's box_screen (which reads TTD_NODE_WIDTH = SWEEP_LEAF_SELF boxes) */
-    const double *const wlo[3] = {W[0] + kb, W[1] + kb, W[2] + kb}, *const whi[3] = {W[3] + kb, W[4] + kb, W[5] + kb};
-    const double *const plo[3] = {P[0] + kb, P[1] + kb, P[2] + kb}, *const phi[3] = {P[3] + kb, P[4] + kb, P[5] + kb};
+    if (J->lscreen != NULL) {
+        /* the whole pair of leaves in one call of the row (a's rows against b's lanes; the same
+         * comparisons as the loop below, so the same bits): a row near a lane is near b's box */
+        const uint32_t ka = a->begin;
+        const int na = (int)(a->end - ka);
+        const double *const ra[6] = {P[0] + ka, P[1] + ka, P[2] + ka, P[3] + ka, P[4] + ka, P[5] + ka};
+        const double *const rw[6] = {W[0] + kb, W[1] + kb, W[2] + kb, W[3] + kb, W[4] + kb, W[5] + kb};
+        uint8_t m8[TTD_NODE_WIDTH];
+        unsigned rows = J->lscreen(ra, na, rw, m8);
+        if (wide && rows) {
+            const double *const rwa[6] = {W[0] + ka, W[1] + ka, W[2] + ka, W[3] + ka, W[4] + ka, W[5] + ka};
+            const double *const rp[6] = {P[0] + kb, P[1] + kb, P[2] + kb, P[3] + kb, P[4] + kb, P[5] + kb};
+            uint8_t w8[TTD_NODE_WIDTH];
+            J->lscreen(rwa, na, rp, w8);
+            for (int i = 0; i < na; ++i)
+                m8[i] &= w8[i];
+        }
+        for (; rows != 0; rows &= rows - 1) {
+            const int i = __builtin_ctz(rows);
+            unsigned m = m8[i] & all;
+            if (a == b)
+                m &= ~((2u << i) - 1); /* u after q only */
+            leaf_row_pairs(J, w, ka + (uint32_t)i, kb, m);
+        }
+        return;
+    }
     for (uint32_t kq = a->begin; kq < a->end; ++kq) {
         const double q[6] = {P[0][kq], P[1][kq], P[2][kq], P[3][kq], P[4][kq], P[5][kq]};
         if (!(q[0] <= b->box.hi[0] && b->box.lo[0] <= q[3] && q[1] <= b->box.hi[1] && b->box.lo[1] <= q[4] &&
               q[2] <= b->box.hi[2] && b->box.lo[2] <= q[5]))
             continue;
-        unsigned m = (J->screen != NULL ? J->screen(wlo, whi, q) : leaf_mask(W, kb, q)) & all;
+        unsigned m = leaf_mask(W, kb, q) & all;
         if (a == b)
             m &= ~((2u << (kq - kb)) - 1); /* u after q only */
         if (wide && m) {
             const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
-            m &= J->screen != NULL ? J->screen(plo, phi, qw) : leaf_mask(P, kb, qw);
+            m &= leaf_mask(P, kb, qw);
         }
-        while (m) {
-            const uint32_t k = kb + (uint32_t)__builtin_ctz(m);
-            m &= m - 1;
-            const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
-            const int kept = eligible_tris(J, TQ, TU, common_index_padded(TQ, TU));
-            if (kept) {
-                const uint32_t qi = order[kq], u = order[k];
-                if (qi < u)
-                    pair_self(J, w, qi, u, TQ, TU, kept == 1);
-                else
-                    pair_self(J, w, u, qi, TU, TQ, kept == 1);
-            }
-        }
+        leaf_row_pairs(J, w, kq, kb, m);
     }
 }
 
@@ -902,23 +936,51 @@ static int split_pair(const sweep_tree *t, node_pair p, node_pair out[3])
     return 2;
 }
 
-/* The walk below one starting pair, depth first. */
+/* The walk below one starting pair, depth first. Each pair of distinct nodes is tested before it
+ * is pushed, and two inner nodes split both at once into their four children's pairs (the pairs
+ * of a node and the other's parent that a one-sided split visits are skipped: a pair of boxes that
+ * overlaps lies inside such a pair, which then overlaps too). So the pairs of leaves reached are
+ * split_pair's, those whose boxes overlap, and their triangle pairs the same; only their order
+ * differs, which the answer does not depend on (pair_self). */
 static void walk_self(const job *J, worker *w, node_pair start)
 {
+    const sweep_node *N = J->tree.nodes;
     size_t top = 0;
-    if (push_pair(w, &top, start.a, start.b) != 0)
+    if ((start.a == start.b || sweep_overlap(&N[start.a].box, &N[start.b].box)) &&
+        push_pair(w, &top, start.a, start.b) != 0)
         return;
     while (top > 0) {
         const node_pair p = w->stack[--top];
-        node_pair kids[3];
-        const int nk = split_pair(&J->tree, p, kids);
-        if (nk < 0) {
-            leaf_pair_self(J, w, &J->tree.nodes[p.a], &J->tree.nodes[p.b]);
+        const sweep_node *a = &N[p.a], *b = &N[p.b];
+        const uint32_t al = a->left, bl = b->left;
+        if (al == 0 && bl == 0) {
+            leaf_pair_self(J, w, a, b);
             continue;
         }
-        for (int i = nk - 1; i >= 0; --i)
-            if (push_pair(w, &top, kids[i].a, kids[i].b) != 0)
-                return;
+        /* children pushed last first, so that they are visited as split_pair orders them */
+        int fail = 0;
+        if (p.a == p.b) {
+            fail |= push_pair(w, &top, al + 1, al + 1);
+            if (sweep_overlap(&N[al].box, &N[al + 1].box))
+                fail |= push_pair(w, &top, al, al + 1);
+            fail |= push_pair(w, &top, al, al);
+        } else if (al != 0 && bl != 0) {
+            for (int i = 3; i >= 0; --i) {
+                const uint32_t x = al + (uint32_t)(i >> 1), y = bl + (uint32_t)(i & 1);
+                if (sweep_overlap(&N[x].box, &N[y].box))
+                    fail |= push_pair(w, &top, x, y);
+            }
+        } else if (al != 0) {
+            for (int i = 1; i >= 0; --i)
+                if (sweep_overlap(&N[al + (uint32_t)i].box, &b->box))
+                    fail |= push_pair(w, &top, al + (uint32_t)i, p.b);
+        } else {
+            for (int i = 1; i >= 0; --i)
+                if (sweep_overlap(&a->box, &N[bl + (uint32_t)i].box))
+                    fail |= push_pair(w, &top, p.a, bl + (uint32_t)i);
+        }
+        if (fail)
+            return;
     }
     if (J->apart != NULL)
         flush_pairs(J, w);
@@ -1037,7 +1099,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
     const ttd_kernels_d *row = ttd_dispatch_row_d(isa);
     J.apart = J.self && row != NULL ? row->tri_apart_at : NULL;
 #if !defined(MESHCCD_SCALAR_LEAVES)
-    J.screen = J.self && row != NULL ? row->box_screen : NULL;
+    J.lscreen = J.self && row != NULL ? row->leaf_screen : NULL;
 #endif
     if (side_make(a, delta, !J.self || J.shared, &da) != 0)
         return TTD_ERR_OUT_OF_MEMORY;
@@ -1063,7 +1125,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
         const size_t cols = nt + SWEEP_LEAF_SELF; /* padding: leaf_mask reads a whole leaf's width */
         J.pb[0] = calloc(6 * cols, sizeof(double));
         J.pw[0] = delta == 0 ? J.pb[0] : calloc(6 * cols, sizeof(double));
-        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: common_index_padded reads one more */
+        J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: leaf_row_pairs reads one more */
         if (J.pb[0] == NULL || J.pw[0] == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
             st = TTD_ERR_OUT_OF_MEMORY;
             goto done;
@@ -1072,14 +1134,18 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
             J.pb[c] = J.pb[0] + c * cols;
             J.pw[c] = J.pw[0] + c * cols;
         }
+        const int wide = J.pw[0] != J.pb[0]; /* at delta 0 they are one array */
         for (size_t k = 0; k < nt; ++k) {
             const uint32_t t = J.tree.order[k];
             for (int c = 0; c < 3; ++c) {
                 J.pb[c][k] = da.tbox[t].lo[c];
                 J.pb[3 + c][k] = da.tbox[t].hi[c];
-                J.pw[c][k] = da.twide[t].lo[c];
-                J.pw[3 + c][k] = da.twide[t].hi[c];
             }
+            if (wide)
+                for (int c = 0; c < 3; ++c) {
+                    J.pw[c][k] = da.twide[t].lo[c];
+                    J.pw[3 + c][k] = da.twide[t].hi[c];
+                }
             memcpy(J.ptri + 3 * k, a->tris + 3 * (size_t)t, 3 * sizeof *J.ptri);
         }
         blocks = (J.ntasks + SELF_BLOCK_TASKS - 1) / SELF_BLOCK_TASKS;

@@ -44,6 +44,9 @@ static void morton_codes(const sweep_box *boxes, size_t n, uint32_t *code)
         const double ext = hi[k] - lo[k]; /* inf for extreme boxes: then every code is 0 there */
         scale[k] = ext > 0 && isfinite(ext) ? 1023.0 / ext : 0.0;
     }
+    uint32_t spread[1024]; /* spread3 of every 10-bit value: three lookups a box in place of the shifts */
+    for (uint32_t v = 0; v < 1024; ++v)
+        spread[v] = spread3(v);
     for (size_t i = 0; i < n; ++i) {
         uint32_t q[3];
         for (int k = 0; k < 3; ++k) {
@@ -52,15 +55,17 @@ static void morton_codes(const sweep_box *boxes, size_t n, uint32_t *code)
             g = g > 1023.0 ? 1023.0 : (g >= 0 ? g : 0.0); /* also catches NaN */
             q[k] = (uint32_t)g;
         }
-        code[i] = spread3(q[0]) | (spread3(q[1]) << 1) | (spread3(q[2]) << 2);
+        code[i] = spread[q[0]] | (spread[q[1]] << 1) | (spread[q[2]] << 2);
     }
 }
 
-/* order[] sorted by code, ties by index (stable LSD radix sort, 3 passes of 10 bits). */
+/* order[] sorted by code, ties by index (stable LSD radix sort, 2 passes of 15 bits: the codes
+ * have 30; a stable sort's result does not depend on the digits' width). */
+enum { RADIX_BITS = 15, RADIX = 1u << RADIX_BITS };
 static int radix_order(const uint32_t *code, size_t n, uint32_t *order)
 {
     uint32_t *tmp = malloc(n * sizeof *tmp);
-    size_t *count = malloc(1025 * sizeof *count);
+    size_t *count = malloc((RADIX + 1) * sizeof *count);
     if (tmp == NULL || count == NULL) {
         free(tmp);
         free(count);
@@ -69,15 +74,15 @@ static int radix_order(const uint32_t *code, size_t n, uint32_t *order)
     for (size_t i = 0; i < n; ++i)
         order[i] = (uint32_t)i;
     uint32_t *src = order, *dst = tmp;
-    for (int pass = 0; pass < 3; ++pass) {
-        const int shift = 10 * pass;
-        memset(count, 0, 1025 * sizeof *count);
+    for (int pass = 0; pass < 2; ++pass) {
+        const int shift = RADIX_BITS * pass;
+        memset(count, 0, (RADIX + 1) * sizeof *count);
         for (size_t i = 0; i < n; ++i)
-            ++count[((code[src[i]] >> shift) & 1023u) + 1];
-        for (int d = 0; d < 1024; ++d)
+            ++count[((code[src[i]] >> shift) & (RADIX - 1)) + 1];
+        for (uint32_t d = 0; d < RADIX; ++d)
             count[d + 1] += count[d];
         for (size_t i = 0; i < n; ++i)
-            dst[count[(code[src[i]] >> shift) & 1023u]++] = src[i];
+            dst[count[(code[src[i]] >> shift) & (RADIX - 1)]++] = src[i];
         uint32_t *s = src;
         src = dst;
         dst = s;
@@ -124,9 +129,8 @@ int sweep_tree_build(const sweep_box *boxes, size_t n, uint32_t leaf, sweep_tree
     const size_t cap = 2 * n + 1;
     t->nodes = malloc(cap * sizeof *t->nodes);
     t->order = malloc(n * sizeof *t->order);
-    t->pos = malloc(n * sizeof *t->pos);
     uint32_t *code = malloc(n * sizeof *code);
-    if (t->nodes == NULL || t->order == NULL || t->pos == NULL || code == NULL) {
+    if (t->nodes == NULL || t->order == NULL || code == NULL) {
         free(code);
         sweep_tree_free(t);
         return -1;
@@ -138,8 +142,6 @@ int sweep_tree_build(const sweep_box *boxes, size_t n, uint32_t leaf, sweep_tree
         return -1;
     }
     free(code);
-    for (size_t k = 0; k < n; ++k)
-        t->pos[t->order[k]] = (uint32_t)k;
     size_t used = 1;
     build_node(t, boxes, leaf, 0, 0, (uint32_t)n, &used);
     t->nnodes = used;
@@ -151,6 +153,5 @@ void sweep_tree_free(sweep_tree *t)
 {
     free(t->nodes);
     free(t->order);
-    free(t->pos);
     memset(t, 0, sizeof *t);
 }

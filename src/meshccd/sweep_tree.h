@@ -36,7 +36,6 @@ typedef struct sweep_node {
 typedef struct sweep_tree {
     sweep_node *nodes;
     uint32_t *order; /* box indices in Morton order */
-    uint32_t *pos;   /* pos[order[k]] = k */
     size_t n, nnodes;
 } sweep_tree;
 

@@ -191,7 +191,41 @@ static unsigned tri_apart_at(int count, const uint32_t *v, const double *x0, con
     return out;
 }
 
-#define TTD_LANE_ROW_TRI_APART .tri_apart = tri_apart, .tri_apart_at = tri_apart_at,
+/* Mesh self-CCD's leaf pair (core/kernels.h, leaf_screen): b's boxes held in registers across
+ * a's rows, one row's bounds broadcast against them (the pair of leaves in one call, where a call
+ * of box_screen a row loaded both again). */
+static unsigned leaf_screen(const double *const ra[6], int na, const double *const rb[6], uint8_t out[TTD_NODE_WIDTH])
+{
+    enum { NB = TTD_NODE_WIDTH / TTDW_LANES_D };
+    ttdw_vd lo[3][NB], hi[3][NB];
+    for (int c = 0; c < 3; ++c)
+        for (int j = 0; j < NB; ++j) {
+            lo[c][j] = ttdw_loadu_d(rb[c] + j * TTDW_LANES_D);
+            hi[c][j] = ttdw_loadu_d(rb[3 + c] + j * TTDW_LANES_D);
+        }
+    /* the columns' addresses in locals: out's bytes may alias ra[], so ra[c] would be read again
+     * after each row's store */
+    const double *const a0 = ra[0], *const a1 = ra[1], *const a2 = ra[2], *const a3 = ra[3], *const a4 = ra[4],
+                        *const a5 = ra[5];
+    unsigned rows = 0;
+    for (int i = 0; i < na; ++i) {
+        const ttdw_vd q0 = ttdw_set1_d(a0[i]), q1 = ttdw_set1_d(a1[i]), q2 = ttdw_set1_d(a2[i]);
+        const ttdw_vd q3 = ttdw_set1_d(a3[i]), q4 = ttdw_set1_d(a4[i]), q5 = ttdw_set1_d(a5[i]);
+        unsigned n = 0;
+        for (int j = 0; j < NB; ++j) {
+            const ttdw_md m = ttdw_mand_d(
+                ttdw_mand_d(ttdw_mand_d(ttdw_le_d(lo[0][j], q3), ttdw_le_d(q0, hi[0][j])),
+                            ttdw_mand_d(ttdw_le_d(lo[1][j], q4), ttdw_le_d(q1, hi[1][j]))),
+                ttdw_mand_d(ttdw_le_d(lo[2][j], q5), ttdw_le_d(q2, hi[2][j])));
+            n |= ttdw_mbits_d(m) << (j * TTDW_LANES_D);
+        }
+        out[i] = (uint8_t)n;
+        rows |= (unsigned)(n != 0) << i;
+    }
+    return rows;
+}
+
+#define TTD_LANE_ROW_TRI_APART .tri_apart = tri_apart, .tri_apart_at = tri_apart_at, .leaf_screen = leaf_screen,
 #else
 #define TTD_LANE_ROW_TRI_APART
 #endif
