@@ -820,6 +820,82 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
     flush(C, P, W, w);
 }
 
+/* The minimum's first limit when the first phase found nothing (rel_tol 0 only): one greedy
+ * descent from the least set-aside item, opening the larger box as expand does and following
+ * the child of least key (its bound, or its overlap depth where that is 0), to a triangle facing
+ * a leaf or a triangle; that row's pairs through the kernel, the least distance as the limit,
+ * not as found. A limit at or above the minimum drops only items whose pairs are all farther,
+ * and the items left keep their order: the first pair at the minimum in the walk's order is
+ * still the one returned (docs/kernel-speed.md 7.2). */
+static void greedy_limit(const qctx *C, const qpose *P, qwork *W, walk *w)
+{
+    if (W->ndef == 0 || W->nb != 0)
+        return;
+    size_t best = 0;
+    for (size_t i = 1; i < W->ndef; ++i)
+        if (item_before(&W->deferred[i], &W->deferred[best]))
+            best = i;
+    item it = W->deferred[best];
+    for (;;) {
+        const ttd_node *na = P->a.nodes + it.an, *nb = P->b.nodes + it.bn;
+        const int32_t ca = na->child[it.as], cb = nb->child[it.bs];
+        if (ca < 0 && cb < 0) {
+            queue_entry(W, ENTRY_PAIR, -1 - ca, -1 - cb, 0);
+            break;
+        }
+        const int open_b = ca < 0 || (cb >= 0 && box_size(nb, it.bs) > box_size(na, it.as));
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+        const ttd_node *y = open_b ? P->b.nodes + cb : P->a.nodes + ca;
+        const ttd_box_query *q = open_b ? walk_box_query(P, W, 0, it.an, it.as) : walk_box_query(P, W, 1, it.bn, it.bs);
+        C->node_test(q, y, lb2, sep);
+        ++w->node_tests;
+        if (y->child[0] < 0 && (open_b ? ca : cb) < 0) {
+            const int32_t t0 = open_b ? -1 - ca : -1 - cb;
+            for (int j = 0; j < y->count; ++j) {
+                const int32_t t = -1 - y->child[j];
+                queue_entry(W, ENTRY_PAIR, open_b ? t0 : t, open_b ? t : t0, 0);
+            }
+            break;
+        }
+        int jb = 0;
+        real kb = lb2[0] > 0 ? lb2[0] : sep[0];
+        for (int j = 1; j < y->count; ++j) {
+            const real kj = lb2[j] > 0 ? lb2[j] : sep[j];
+            if (kj < kb) {
+                kb = kj;
+                jb = j;
+            }
+        }
+        it = child_item(&it, open_b, open_b ? cb : ca, jb, lb2[jb]);
+    }
+    const int n = W->nb;
+    W->nb = 0;
+    for (int i = 0; i < n; ++i) {
+        moved_triangle(P, W, 0, W->ta[i], W->s + 9 * i);
+        moved_triangle(P, W, 1, W->tb[i], W->t + 9 * i);
+    }
+    const ttd_params prm = {0, 0, 1};
+    const ttd_out out = {W->dist, NULL, NULL};
+    C->kernel((size_t)n, W->s, W->t, &prm, w->limit, &out);
+    w->pair_tests += (uint64_t)n;
+    real d = w->limit;
+    for (int i = 0; i < n; ++i)
+        d = W->dist[i] < d ? W->dist[i] : d;
+    if (d < w->limit)
+        walk_set_limit(w, P, d);
+}
+
+/* Drops the set-aside items past the limit before the heap is built: the best-first walk would
+ * never open them (its limit only falls), and most of a near pose's are. */
+static void drop_deferred(qwork *W, const walk *w)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < W->ndef; ++i)
+        if (W->deferred[i].lb2 <= w->limit2)
+            W->deferred[m++] = W->deferred[i];
+    W->ndef = m;
+}
+
 /* The walk from item root. The minimum walks in two phases: first only boxes that overlap, as a
  * collision test would (where meshes cross, that finds a crossing pair quickly, and the
  * distance is 0; otherwise the overlapping region is where the nearest pairs are likely to be),
@@ -836,6 +912,9 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
     if (w->mode != MODE_DISTANCE || W->nomem || (w->found && w->limit == 0))
         return;
     w->gate2 = (real)INFINITY;
+    if (!w->found && w->rel == 1)
+        greedy_limit(C, P, W, w);
+    drop_deferred(W, w);
     walk_best_first(C, P, W, w);
 }
 
