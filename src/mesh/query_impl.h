@@ -232,7 +232,7 @@ static int grow_stack(qwork *W, size_t need)
 static int defer_item(qwork *W, const item *it)
 {
     if (W->ndef == W->defcap) {
-        const size_t cap = W->defcap ? 2 * W->defcap : 256;
+        const size_t cap = W->defcap ? 2 * W->defcap : 2048; /* a near pose sets aside 600-1,000: no copy */
         item *v = realloc(W->deferred, cap * sizeof *v);
         if (v == NULL) {
             W->nomem = 1;
