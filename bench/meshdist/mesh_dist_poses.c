@@ -8,7 +8,8 @@
  *   ./mesh_dist_poses BUNNY.obj place FILE        the 8 placements' poses (%a) into FILE
  *   ./mesh_dist_poses BUNNY.obj digest FILE       every result's bits, a line each: the 8 rows, each
  *                                                 placement's direction at 65 gaps from -0.1 to 0.1,
- *                                                 the 1,000 random poses of both meshes, and 2,592
+ *                                                 the 1,000 random poses of both meshes (also in
+ *                                                 float, the mesh against itself), and 2,592
  *                                                 poses with many pairs at one distance
  *   ./mesh_dist_poses BUNNY.obj time FILE ROWS N  N queries of each row in ROWS (0-7, e.g. 0123),
  *                                                 CPU seconds of each row
@@ -162,13 +163,32 @@ int main(int argc, char **argv)
                 print_result(tag, &r);
             }
         }
+        ttd_mesh *af[2];
+        for (int w = 0; w < 2; ++w) {
+            float *v = malloc(3 * g[w].nv * sizeof *v);
+            for (size_t i = 0; v && i < 3 * g[w].nv; ++i)
+                v[i] = (float)g[w].verts[i];
+            if (!v || ttd_mesh_create_f(&o, v, g[w].nv, g[w].tris, g[w].nt, &af[w]) != TTD_OK)
+                return 1;
+            free(v);
+        }
         for (int i = 0; i < 1000; ++i) {
             double p[12];
+            float pf[12];
             ttd_gen_pose(1, 1000 + (uint64_t)i, 0.5, p);
+            for (int k = 0; k < 12; ++k)
+                pf[k] = (float)p[k];
             for (int w = 0; w < 2; ++w) {
                 ttd_mesh_distance_d(&o, a[w], b[w], 1, p, INFINITY, 0.0, &r);
                 snprintf(tag, sizeof tag, "random%d.%d", w, i);
                 print_result(tag, &r);
+                /* float: the same walk compiled in single precision */
+                ttd_mesh_result_f rf;
+                ttd_mesh_distance_f(&o, af[w], af[w], 1, pf, INFINITY, 0.0f, &rf);
+                printf("float%d.%d %a %u %u %d %d %a %a %a %a %a %a %u %u %llu\n", w, i, (double)rf.distance, rf.tri_a,
+                       rf.tri_b, (int)rf.feature_a, (int)rf.feature_b, (double)rf.p[0], (double)rf.p[1], (double)rf.p[2],
+                       (double)rf.q[0], (double)rf.q[1], (double)rf.q[2], (unsigned)rf.flags, (unsigned)rf.node_tests,
+                       (unsigned long long)rf.pair_tests);
             }
         }
         /* ties: a grid over a copy of itself, an icosphere and a cube beside copies, moved without

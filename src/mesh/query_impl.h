@@ -116,8 +116,12 @@ typedef struct clist {
 #define STACK_INLINE 256
 /* Triangles kept moved by the pose, per side (direct-mapped by triangle index; a power of 2). */
 #define MOVED_SLOTS 64
-/* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2). */
-#define QUERY_SLOTS 32
+/* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2): all of them for the
+ * minimum's best-first walk, which meets a box again long after (a far pose's views were
+ * recomputed for 386 of 625 node tests with 32), the first QUERY_SLOTS_SHORT for the other walks,
+ * many of them short, which clear their keys each time. */
+#define QUERY_SLOTS 256
+#define QUERY_SLOTS_SHORT 32
 
 typedef struct qwork {
     /* workers' qwork lie side by side and are written all the time: a cache line each */
@@ -144,6 +148,7 @@ typedef struct qwork {
      * poses), at a third of the node test's own instructions. */
     uint64_t query_key[QUERY_SLOTS]; /* (node * 8 + slot) * 2 + side, or UINT64_MAX: empty */
     ttd_box_query query[QUERY_SLOTS];
+    unsigned query_mask;             /* slots in use - 1 */
     int nomem;
 } qwork;
 
@@ -183,6 +188,7 @@ static void qwork_init(qwork *W)
     W->deferred = NULL;
     W->ndef = W->defcap = 0;
     W->nb = W->nomem = 0;
+    W->query_mask = QUERY_SLOTS_SHORT - 1;
 }
 
 static void qwork_release(qwork *W)
@@ -396,7 +402,7 @@ static void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, r
 static void pose_forget(qwork *W)
 {
     memset(W->moved_key, 0xff, sizeof W->moved_key);
-    memset(W->query_key, 0xff, sizeof W->query_key);
+    memset(W->query_key, 0xff, ((size_t)W->query_mask + 1) * sizeof W->query_key[0]);
 }
 
 /* The node test's view of box (node n, slot j) of one side, with the other side's frame mapped
@@ -407,7 +413,7 @@ static const ttd_box_query *walk_box_query(const qpose *P, qwork *W, int side_b,
      * box's view is the same bits from either side, so it is kept once */
     side_b = P->self ? 0 : side_b;
     const uint64_t key = ((uint64_t)n * TTD_NODE_WIDTH + (uint64_t)j) * 2 + (uint64_t)side_b; /* exact: no two boxes share it */
-    const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & (QUERY_SLOTS - 1); /* Knuth's multiplier */
+    const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & W->query_mask; /* Knuth's multiplier */
     ttd_box_query *q = &W->query[slot];
     if (W->query_key[slot] != key) {
         if (side_b)
@@ -905,6 +911,7 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
 {
     if (!grow_stack(W, 64))
         return;
+    W->query_mask = (w->mode == MODE_DISTANCE ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
     pose_forget(W);
     W->ndef = 0;
     W->stack[0] = *root;
