@@ -116,8 +116,12 @@ typedef struct clist {
 #define STACK_INLINE 256
 /* Triangles kept moved by the pose, per side (direct-mapped by triangle index; a power of 2). */
 #define MOVED_SLOTS 64
-/* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2). */
-#define QUERY_SLOTS 32
+/* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2): all of them for the
+ * minimum's best-first walk, which meets a box again long after (a far pose's views were
+ * recomputed for 386 of 625 node tests with 32), the first QUERY_SLOTS_SHORT for the other walks,
+ * many of them short, which clear their keys each time. */
+#define QUERY_SLOTS 256
+#define QUERY_SLOTS_SHORT 32
 
 typedef struct qwork {
     /* workers' qwork lie side by side and are written all the time: a cache line each */
@@ -144,6 +148,7 @@ typedef struct qwork {
      * poses), at a third of the node test's own instructions. */
     uint64_t query_key[QUERY_SLOTS]; /* (node * 8 + slot) * 2 + side, or UINT64_MAX: empty */
     ttd_box_query query[QUERY_SLOTS];
+    unsigned query_mask;             /* slots in use - 1 */
     int nomem;
 } qwork;
 
@@ -187,6 +192,7 @@ static void qwork_init(qwork *W)
     W->deferred = NULL;
     W->ndef = W->defcap = 0;
     W->nb = W->nomem = 0;
+    W->query_mask = QUERY_SLOTS_SHORT - 1;
 }
 
 static void qwork_release(qwork *W)
@@ -236,7 +242,7 @@ static int grow_stack(qwork *W, size_t need)
 static int defer_item(qwork *W, const item *it)
 {
     if (W->ndef == W->defcap) {
-        const size_t cap = W->defcap ? 2 * W->defcap : 256;
+        const size_t cap = W->defcap ? 2 * W->defcap : 2048; /* a near pose sets aside 600-1,000: no copy */
         item *v = realloc(W->deferred, cap * sizeof *v);
         if (v == NULL) {
             W->nomem = 1;
@@ -400,7 +406,7 @@ static void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, r
 static void pose_forget(qwork *W)
 {
     memset(W->moved_key, 0xff, sizeof W->moved_key);
-    memset(W->query_key, 0xff, sizeof W->query_key);
+    memset(W->query_key, 0xff, ((size_t)W->query_mask + 1) * sizeof W->query_key[0]);
 }
 
 /* The node test's view of box (node n, slot j) of one side, with the other side's frame mapped
@@ -411,7 +417,7 @@ static const ttd_box_query *walk_box_query(const qpose *P, qwork *W, int side_b,
      * box's view is the same bits from either side, so it is kept once */
     side_b = P->self ? 0 : side_b;
     const uint64_t key = ((uint64_t)n * TTD_NODE_WIDTH + (uint64_t)j) * 2 + (uint64_t)side_b; /* exact: no two boxes share it */
-    const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & (QUERY_SLOTS - 1); /* Knuth's multiplier */
+    const unsigned slot = (((uint32_t)key * 2654435761u) >> 24) & W->query_mask; /* Knuth's multiplier */
     ttd_box_query *q = &W->query[slot];
     if (W->query_key[slot] != key) {
         if (side_b)
@@ -878,6 +884,82 @@ static void walk_best_first(const qctx *C, const qpose *P, qwork *W, walk *w)
     flush(C, P, W, w);
 }
 
+/* The minimum's first limit when the first phase found nothing (rel_tol 0 only): one greedy
+ * descent from the least set-aside item, opening the larger box as expand does and following
+ * the child of least key (its bound, or its overlap depth where that is 0), to a triangle facing
+ * a leaf or a triangle; that row's pairs through the kernel, the least distance as the limit,
+ * not as found. A limit at or above the minimum drops only items whose pairs are all farther,
+ * and the items left keep their order: the first pair at the minimum in the walk's order is
+ * still the one returned (docs/kernel-speed.md 7.2). */
+static void greedy_limit(const qctx *C, const qpose *P, qwork *W, walk *w)
+{
+    if (W->ndef == 0 || W->nb != 0)
+        return;
+    size_t best = 0;
+    for (size_t i = 1; i < W->ndef; ++i)
+        if (item_before(&W->deferred[i], &W->deferred[best]))
+            best = i;
+    item it = W->deferred[best];
+    for (;;) {
+        const ttd_node *na = P->a.nodes + it.an, *nb = P->b.nodes + it.bn;
+        const int32_t ca = na->child[it.as], cb = nb->child[it.bs];
+        if (ca < 0 && cb < 0) {
+            queue_entry(W, ENTRY_PAIR, -1 - ca, -1 - cb, 0);
+            break;
+        }
+        const int open_b = ca < 0 || (cb >= 0 && box_size(nb, it.bs) > box_size(na, it.as));
+        real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
+        const ttd_node *y = open_b ? P->b.nodes + cb : P->a.nodes + ca;
+        const ttd_box_query *q = open_b ? walk_box_query(P, W, 0, it.an, it.as) : walk_box_query(P, W, 1, it.bn, it.bs);
+        C->node_test(q, y, lb2, sep);
+        ++w->node_tests;
+        if (y->child[0] < 0 && (open_b ? ca : cb) < 0) {
+            const int32_t t0 = open_b ? -1 - ca : -1 - cb;
+            for (int j = 0; j < y->count; ++j) {
+                const int32_t t = -1 - y->child[j];
+                queue_entry(W, ENTRY_PAIR, open_b ? t0 : t, open_b ? t : t0, 0);
+            }
+            break;
+        }
+        int jb = 0;
+        real kb = lb2[0] > 0 ? lb2[0] : sep[0];
+        for (int j = 1; j < y->count; ++j) {
+            const real kj = lb2[j] > 0 ? lb2[j] : sep[j];
+            if (kj < kb) {
+                kb = kj;
+                jb = j;
+            }
+        }
+        it = child_item(&it, open_b, open_b ? cb : ca, jb, lb2[jb]);
+    }
+    const int n = W->nb;
+    W->nb = 0;
+    for (int i = 0; i < n; ++i) {
+        moved_triangle(P, W, 0, W->ta[i], W->s + 9 * i);
+        moved_triangle(P, W, 1, W->tb[i], W->t + 9 * i);
+    }
+    const ttd_params prm = {0, 0, 1};
+    const ttd_out out = {W->dist, NULL, NULL};
+    C->kernel((size_t)n, W->s, W->t, &prm, w->limit, &out);
+    w->pair_tests += (uint64_t)n;
+    real d = w->limit;
+    for (int i = 0; i < n; ++i)
+        d = W->dist[i] < d ? W->dist[i] : d;
+    if (d < w->limit)
+        walk_set_limit(w, P, d);
+}
+
+/* Drops the set-aside items past the limit before the heap is built: the best-first walk would
+ * never open them (its limit only falls), and most of a near pose's are. */
+static void drop_deferred(qwork *W, const walk *w)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < W->ndef; ++i)
+        if (W->deferred[i].lb2 <= w->limit2)
+            W->deferred[m++] = W->deferred[i];
+    W->ndef = m;
+}
+
 /* The walk from item root. The minimum walks in two phases: first only boxes that overlap, as a
  * collision test would (where meshes cross, that finds a crossing pair quickly, and the
  * distance is 0; otherwise the overlapping region is where the nearest pairs are likely to be),
@@ -887,6 +969,7 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
 {
     if (!grow_stack(W, 64))
         return;
+    W->query_mask = (w->mode == MODE_DISTANCE ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
     pose_forget(W);
     W->ndef = 0;
     W->stack[0] = *root;
@@ -894,6 +977,9 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
     if (w->mode != MODE_DISTANCE || W->nomem || (w->found && w->limit == 0))
         return;
     w->gate2 = (real)INFINITY;
+    if (!w->found && w->rel == 1)
+        greedy_limit(C, P, W, w);
+    drop_deferred(W, w);
     walk_best_first(C, P, W, w);
 }
 
