@@ -806,8 +806,8 @@ static int leaf_screen_lanes(void)
                 for (int l = 0; l < TTD_NODE_WIDTH; ++l) {
                     const int nan = urand() < 0.01;
                     const int ia = (int)(8 * urand()), ib = (int)(8 * urand());
-                    A[c][l] = nan ? NAN : vals[ia] + (c >= 3 ? 0.5 * (double)(it % 3) : 0);
-                    B[c][l] = urand() < 0.01 ? NAN : vals[ib] + (c >= 3 ? 0.5 * (double)((it / 3) % 3) : 0);
+                    A[c][l] = nan ? (double)NAN : vals[ia] + (c >= 3 ? 0.5 * (double)(it % 3) : 0);
+                    B[c][l] = urand() < 0.01 ? (double)NAN : vals[ib] + (c >= 3 ? 0.5 * (double)((it / 3) % 3) : 0);
                 }
             const int na = 1 + it % TTD_NODE_WIDTH;
             const double *const ra[6] = {A[0], A[1], A[2], A[3], A[4], A[5]};
