@@ -248,31 +248,36 @@ static void exact_vertex_edge(const exact_tri *X, const exact_tri *Y,
  * distance grows only to second order (error ~ eps^2 D / sin^2), and where that is large the
  * endpoint candidates are within L^2 sin^2 / D; the smaller of the two is below eps L
  * (docs/exact-method.md, "edge-edge"). Parallel edges (nn below REAL_MIN) are rejected:
- * their endpoints cover them. */
+ * their endpoints cover them. This is one candidate, S's edge i against T's edge j, shared by
+ * exact_edge_edge and exact_edge_edge_some so that both ask it with the same operations. */
+static inline void exact_ee_candidate(const exact_tri *S, const exact_tri *T, int i, int j,
+                                      exact_best *best)
+{
+    const real *P = S->v[i], *d1 = S->e[i];
+    const real *Q = T->v[j], *d2 = T->e[j];
+    real n[3], w[3], x[3], d[3];
+    exact_cross(d1, d2, n);
+    real nn = exact_dot(n, n);
+    int ok = nn >= TTD_REAL_MIN;
+    exact_sub(Q, P, w);
+    exact_cross(w, d2, x);
+    real s = ok ? exact_dot(x, n) / nn : (real)-1;
+    real sc = exact_clamp01(s);
+    real t = (sc * exact_dot(d1, d2) - exact_dot(w, d2)) * T->inv_ee[j];
+    real tc = exact_clamp01(t);
+    int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
+    for (int c = 0; c < 3; ++c)
+        d[c] = (sc * d1[c] - w[c]) - tc * d2[c];   /* (P + sc d1) - (Q + tc d2) */
+    real dd = accept ? exact_dot(d, d) : TTD_REAL_MAX;
+    exact_keep(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
+}
+
 static void exact_edge_edge(const exact_tri *S, const exact_tri *T,
                                      exact_best *best)
 {
-    for (int i = 0; i < 3; ++i) {
-        const real *P = S->v[i], *d1 = S->e[i];
-        for (int j = 0; j < 3; ++j) {
-            const real *Q = T->v[j], *d2 = T->e[j];
-            real n[3], w[3], x[3], d[3];
-            exact_cross(d1, d2, n);
-            real nn = exact_dot(n, n);
-            int ok = nn >= TTD_REAL_MIN;
-            exact_sub(Q, P, w);
-            exact_cross(w, d2, x);
-            real s = ok ? exact_dot(x, n) / nn : (real)-1;
-            real sc = exact_clamp01(s);
-            real t = (sc * exact_dot(d1, d2) - exact_dot(w, d2)) * T->inv_ee[j];
-            real tc = exact_clamp01(t);
-            int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
-            for (int c = 0; c < 3; ++c)
-                d[c] = (sc * d1[c] - w[c]) - tc * d2[c];   /* (P + sc d1) - (Q + tc d2) */
-            real dd = accept ? exact_dot(d, d) : TTD_REAL_MAX;
-            exact_keep(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
-        }
-    }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            exact_ee_candidate(S, T, i, j, best);
 }
 
 /* 3 vertex-face candidates: vertices of X against the face of Y. Also returns the vertices'
@@ -574,27 +579,9 @@ static void exact_edge_edge_some(const exact_tri *S, const exact_tri *T, exact_b
     for (int i = 0; i < 3; ++i) {
         if (zs >> i & 1)
             continue;
-        const real *P = S->v[i], *d1 = S->e[i];
-        for (int j = 0; j < 3; ++j) {
-            if (zt >> j & 1)
-                continue;
-            const real *Q = T->v[j], *d2 = T->e[j];
-            real n[3], w[3], x[3], d[3];
-            exact_cross(d1, d2, n);
-            real nn = exact_dot(n, n);
-            int ok = nn >= TTD_REAL_MIN;
-            exact_sub(Q, P, w);
-            exact_cross(w, d2, x);
-            real s = ok ? exact_dot(x, n) / nn : (real)-1;
-            real sc = exact_clamp01(s);
-            real t = (sc * exact_dot(d1, d2) - exact_dot(w, d2)) * T->inv_ee[j];
-            real tc = exact_clamp01(t);
-            int accept = s >= (real)0 && s <= (real)1 && t >= (real)0 && t <= (real)1;
-            for (int c = 0; c < 3; ++c)
-                d[c] = (sc * d1[c] - w[c]) - tc * d2[c];
-            real dd = accept ? exact_dot(d, d) : TTD_REAL_MAX;
-            exact_keep(best, dd, TTD_EXACT_EE + 3 * i + j, sc, tc, 0);
-        }
+        for (int j = 0; j < 3; ++j)
+            if (!(zt >> j & 1))
+                exact_ee_candidate(S, T, i, j, best);
     }
 }
 
