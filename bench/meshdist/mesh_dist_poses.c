@@ -96,6 +96,17 @@ static void print_result(const char *tag, const ttd_mesh_result_d *r)
            (unsigned)r->flags, (unsigned long long)r->node_tests, (unsigned long long)r->pair_tests);
 }
 
+/* The query, or the program stops: a failed query must not print a stale result. */
+static void query(const ttd_options *o, const ttd_mesh *a, const ttd_mesh *b, const double pose[12],
+                  ttd_mesh_result_d *r)
+{
+    const ttd_status st = ttd_mesh_distance_d(o, a, b, 1, pose, INFINITY, 0.0, r);
+    if (st != TTD_OK) {
+        fprintf(stderr, "mesh_dist_poses: ttd_mesh_distance_d failed (status %d)\n", (int)st);
+        exit(1);
+    }
+}
+
 static double cpu(void)
 {
     struct timespec t;
@@ -129,6 +140,10 @@ int main(int argc, char **argv)
     double poses[8][12];
     if (strcmp(argv[2], "place") == 0) {
         FILE *f = fopen(argv[3], "w");
+        if (!f) {
+            fprintf(stderr, "mesh_dist_poses: cannot write %s\n", argv[3]);
+            return 1;
+        }
         for (int w = 0; w < 2; ++w)
             for (int pl = 0; pl < 4; ++pl) {
                 double d = place(&g[w], a[w], b[w], (uint64_t)w, pl, poses[4 * w + pl]);
@@ -151,14 +166,14 @@ int main(int argc, char **argv)
     if (strcmp(argv[2], "digest") == 0) {
         char tag[64];
         for (int i = 0; i < 8; ++i) {
-            ttd_mesh_distance_d(&o, a[i / 4], b[i / 4], 1, poses[i], INFINITY, 0.0, &r);
+            query(&o, a[i / 4], b[i / 4], poses[i], &r);
             snprintf(tag, sizeof tag, "row%d", i);
             print_result(tag, &r);
             /* the same direction and rotation, other gaps: more ties and near misses */
             for (int s = 0; s <= 64; ++s) {
                 double p[12];
                 ttd_gen_pose_gap(&g[i / 4], &g[i / 4], 1, (uint64_t)(i / 4), NULL, -0.1 + 0.02 * s * s / 64.0, p);
-                ttd_mesh_distance_d(&o, a[i / 4], b[i / 4], 1, p, INFINITY, 0.0, &r);
+                query(&o, a[i / 4], b[i / 4], p, &r);
                 snprintf(tag, sizeof tag, "row%d.gap%d", i, s);
                 print_result(tag, &r);
             }
@@ -179,7 +194,7 @@ int main(int argc, char **argv)
             for (int k = 0; k < 12; ++k)
                 pf[k] = (float)p[k];
             for (int w = 0; w < 2; ++w) {
-                ttd_mesh_distance_d(&o, a[w], b[w], 1, p, INFINITY, 0.0, &r);
+                query(&o, a[w], b[w], p, &r);
                 snprintf(tag, sizeof tag, "random%d.%d", w, i);
                 print_result(tag, &r);
                 /* float: the same walk compiled in single precision */
@@ -209,7 +224,7 @@ int main(int argc, char **argv)
                             const double c = q == 0 ? 1 : q == 2 ? -1 : 0, sn = q == 1 ? 1 : q == 3 ? -1 : 0;
                             const double p[12] = {c, -sn, 0, i / 12.0 + (w ? 1.0 : 0.0), sn, c, 0, j / 24.0, 0, 0, 1,
                                                   dz[z]};
-                            ttd_mesh_distance_d(&o, m, m, 1, p, INFINITY, 0.0, &r);
+                            query(&o, m, m, p, &r);
                             snprintf(tag, sizeof tag, "tie%d.%d.%d.%d.%d", w, q, i, j, z);
                             print_result(tag, &r);
                         }
@@ -223,7 +238,7 @@ int main(int argc, char **argv)
             const int i = *c - '0';
             const double t0 = cpu();
             for (long k = 0; k < n; ++k)
-                ttd_mesh_distance_d(&o, a[i / 4], b[i / 4], 1, poses[i], INFINITY, 0.0, &r);
+                query(&o, a[i / 4], b[i / 4], poses[i], &r);
             printf("row%d %.6f us %llu nodes %llu pairs\n", i, (cpu() - t0) / (double)n * 1e6,
                    (unsigned long long)r.node_tests, (unsigned long long)r.pair_tests);
         }

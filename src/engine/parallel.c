@@ -59,6 +59,25 @@ int ttd_parallel_workers(size_t nblocks, int threads)
     return (int)(w < by_work ? w : by_work);
 }
 
+/* Worker threads run mesh walks whose working set lives on the stack (tens of KiB, query_impl.h's
+ * qwork): ask for at least 1 MiB where the platform's default is smaller (musl's is 128 KiB), and
+ * keep a larger default (glibc's 8 MiB). NULL (the default attributes) when that cannot be set. */
+enum { TTD_WORKER_STACK = 1 << 20 };
+
+static int ttd_thread_start(pthread_t *tid, void *(*fn)(void *), void *arg)
+{
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0)
+        return pthread_create(tid, NULL, fn, arg);
+    size_t size = 0;
+    int have = 1;
+    if (pthread_attr_getstacksize(&attr, &size) != 0 || size < TTD_WORKER_STACK)
+        have = pthread_attr_setstacksize(&attr, TTD_WORKER_STACK) == 0;
+    const int rc = pthread_create(tid, have ? &attr : NULL, fn, arg);
+    pthread_attr_destroy(&attr);
+    return rc;
+}
+
 static void ttd_parallel_run(size_t nblocks, int workers, ttd_block_fn fn, void *ctx)
 {
     if (workers <= 1) { /* no counter to share: a single pair or pose pays nothing for threads */
@@ -74,7 +93,7 @@ static void ttd_parallel_run(size_t nblocks, int workers, ttd_block_fn fn, void 
     /* A thread that fails to start leaves its index unused; the blocks still get done. */
     for (int i = 1; i < workers; ++i) {
         args[started] = (ttd_pfor_worker){.job = &job, .index = i};
-        if (pthread_create(&tid[started], NULL, ttd_pfor_thread, &args[started]) == 0)
+        if (ttd_thread_start(&tid[started], ttd_pfor_thread, &args[started]) == 0)
             ++started;
     }
     ttd_pfor_run(&job, 0);
@@ -262,7 +281,7 @@ static int ttd_pool_grow(ttd_pool *p, int need)
         if (st == NULL)
             break;
         *st = (ttd_pool_start){p, p->nthreads + 1, atomic_load(&p->gen)};
-        if (pthread_create(&p->tid[p->nthreads], NULL, ttd_pool_thread, st) != 0) {
+        if (ttd_thread_start(&p->tid[p->nthreads], ttd_pool_thread, st) != 0) {
             free(st);
             break;
         }

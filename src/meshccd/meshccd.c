@@ -40,7 +40,7 @@
 #include "meshccd/sweep_tree.h"
 
 enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
-_Static_assert(SWEEP_LEAF_SELF == TTD_NODE_WIDTH, "a self leaf's boxes are one box_screen call");
+_Static_assert(SWEEP_LEAF_SELF == TTD_NODE_WIDTH, "a self leaf's boxes are one leaf_screen call");
 
 /* Called after each primitive search with its query and answer: nothing in the library;
  * bench/mesh_ccd_searches.c, which compiles this file into itself, records and times them. */

@@ -5,7 +5,9 @@
  * the same comparisons, so a NaN is passed over as there), so every row proves exactly the pairs
  * that the scalar proof proves. Each lane tries its own directions (its facing edge first, chosen
  * per lane as the scalar code chooses it); a group of lanes stops at the first direction after
- * which every live lane is proved. Double rows only (the mesh query is in double). */
+ * which every live lane is proved. The file also holds leaf_screen, a pair of self leaves' boxes
+ * compared in one call (each row's box broadcast against the other leaf's 8). Double rows only
+ * (the mesh query is in double). */
 #ifdef TTD_PRECISION_DOUBLE
 
 /* meshccd.c's gap_proves on lanes: the two triangles (points 0..2 and 3..5 of x0 and x1) apart
