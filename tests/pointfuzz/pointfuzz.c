@@ -339,8 +339,12 @@ static void pf_scale(pf_src *s, pf_case *c)
         m = fmax(m, fabs(c->v[i]));
     for (size_t i = 0; i < 3 * c->n; ++i)
         m = fmax(m, fabs(c->p[i]));
+    const double small = c->tiny > 0 ? c->tiny : c->size;
+    /* ilogb of 0, inf or NaN is INT_MIN or INT_MAX: no scale to pick then (and no overflow) */
+    if (!(m > 0) || !isfinite(m) || !(small > 0) || !isfinite(small))
+        return;
     const int hi = (c->use_float ? 58 : 506) - (ilogb(m) + 2);
-    const int lo = (c->use_float ? -100 : -950) - ilogb(c->tiny > 0 ? c->tiny : c->size);
+    const int lo = (c->use_float ? -100 : -950) - ilogb(small);
     const int pick = pf_int(s, 8);
     if (lo >= hi)
         return;
