@@ -3,8 +3,9 @@
  * (a vertex as a triangle (v, v, v), an edge as (a, b, b)), against the exact method itself:
  * every field of the result the same bits, on triangles with every pattern of repeated vertices
  * (and none), both orders, coordinates on a small grid (where candidates tie exactly, so the
- * first-of-equals choice is tested), random ones at several scales, and vertices shared between
- * the two triangles. */
+ * first-of-equals choice is tested), random ones at scales from subnormal to 2^1000, needles
+ * (a third vertex 1e-15 off the other two's midpoint), and vertices shared between the two
+ * triangles. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -26,7 +27,7 @@ static double uniform(void) /* [0, 1) */
     return (double)(next_u64() >> 11) * 0x1p-53;
 }
 
-/* A point: on the grid {-2..2} / 2 (mode 0), or random in [-1, 1) times scale. */
+/* A point: on the grid {-2..2} / 2 (mode 0), or random in [-1, 1) times scale (modes 1, 2). */
 static void point(double x[3], int mode, double scale)
 {
     for (int r = 0; r < 3; ++r)
@@ -40,6 +41,9 @@ static void triangle(double x[9], int k, int mode, double scale, const double *o
     double v[3][3];
     for (int i = 0; i < 3; ++i)
         point(v[i], mode, scale);
+    if (mode == 2) /* a needle: the third vertex 1e-15 (relative) off the first two's midpoint */
+        for (int r = 0; r < 3; ++r)
+            v[2][r] = 0.5 * (v[0][r] + v[1][r]) + (r == 0 ? 1e-15 * scale : 0.0);
     if (other != NULL)
         memcpy(v[0], other + 3 * (next_u64() % 3), sizeof v[0]);
     static const int pat[5][3] = {{0, 1, 2}, {0, 0, 0}, {0, 1, 1}, {0, 0, 1}, {0, 1, 0}};
@@ -65,10 +69,10 @@ static int same_f(const ttd_result_f *a, const ttd_result_f *b)
 
 static int dups_same_bits(void)
 {
-    static const double scales[] = {1.0, 1e-7, 3e5, 0x1p-500, 0x1p500};
+    static const double scales[] = {1.0, 1e-7, 3e5, 0x1p-500, 0x1p500, 0x1p-1060, 0x1p1000};
     long n = 0, ties = 0;
-    for (int mode = 0; mode < 2; ++mode)
-        for (int sc = 0; sc < 5; ++sc)
+    for (int mode = 0; mode < 3; ++mode)
+        for (int sc = 0; sc < 7; ++sc)
             for (int ks = 0; ks < 5; ++ks)
                 for (int kt = 0; kt < 5; ++kt)
                     for (int rep = 0; rep < 400; ++rep) {
@@ -85,8 +89,10 @@ static int dups_same_bits(void)
                             ttd_exact_pair_dups_d(a, b, &r1);
                             ENSURE_MSG(same_d(&r0, &r1), "double: patterns %d %d, mode %d, scale %g, case %d", ks,
                                        kt, mode, scale, rep);
-                            /* float: the scales 2^-500 and 2^500 brought to 2^-50 and 2^50 */
-                            const double to_f = sc == 3 ? 0x1p450 : sc == 4 ? 0x1p-450 : 1.0;
+                            /* float: the scales 2^-500, 2^500, 2^-1060 and 2^1000 brought to
+                             * 2^-50, 2^50, 2^-140 (subnormal in float) and 2^100 */
+                            const double to_f = sc == 3 ? 0x1p450 : sc == 4 ? 0x1p-450 : sc == 5 ? 0x1p920
+                                              : sc == 6 ? 0x1p-900 : 1.0;
                             float af[9], bf[9];
                             for (int k = 0; k < 9; ++k) {
                                 af[k] = (float)(a[k] * to_f);
