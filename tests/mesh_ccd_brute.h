@@ -85,7 +85,7 @@ static int brute_run(brute_list *l, const double *x0a, const double *x1a, const 
                      const double *x1b, const uint32_t *tb, double delta, ttd_mesh_ccd_result *out)
 {
     memset(out, 0, sizeof *out);
-    out->toi = INFINITY;
+    out->toi = (double)INFINITY;
     if (l->n > 0)
         qsort(l->k, l->n, sizeof *l->k, brute_key_cmp);
     size_t m = 0;
@@ -183,7 +183,7 @@ static int brute_run(brute_list *l, const double *x0a, const double *x1a, const 
     }
     /* keys in the order the results were written: the VF/FV keys, then the EE keys */
     size_t q[2] = {0, nvf};
-    double best = INFINITY;
+    double best = (double)INFINITY;
     for (size_t i = 0; i < m; ++i) {
         const int vf = l->k[i].kind != TTD_MESH_CCD_EE;
         const ttd_ccd_result *ri = &r[q[!vf]++];

@@ -675,7 +675,7 @@ TTDW_FN double approx_first_root(const double c[4], double lo, double hi)
         }
         return b;
     }
-    return NAN;
+    return (double)NAN;
 }
 
 /* In an interval [ta, tb] certain to hold a contact, whose first contact is f's first root there
@@ -792,14 +792,14 @@ TTDW_FN double bracket_root(ccd_state *s, const ttd_ccd_xpoly *P, double ta, dou
 TTDW_FN double root_guess(ccd_state *s, const cop_info *ci, double ta, double tb)
 {
     if (ci->never)
-        return NAN;
+        return (double)NAN;
     if (!(ci->change || ci->end_zero)) {
         /* f too small for the rounded test (nearly coplanar motion): its exact signs. */
         if (!ci->undecided)
-            return NAN;
+            return (double)NAN;
         const int s0 = f_sign_at(s, ta), s1 = f_sign_at(s, tb);
         if (s0 == 2 || s1 == 2 || s0 == 0 || !(s1 == 0 || s1 == -s0))
-            return NAN;
+            return (double)NAN;
     }
     const ttd_ccd_xpoly *P = xpoly(s, 0);
     if (P->bad)
@@ -1115,7 +1115,7 @@ TTDW_FN double state_init(ccd_state *s, int kind, const double x0[12], const dou
     s->cond_cuts = 0;
     s->cut_ta = s->cut_lo = (double)NAN;
     memset(s->made, 0, sizeof s->made);
-    s->last_t = NAN;
+    s->last_t = (double)NAN;
     s->last_sign = 2;
     double S = 0;
     for (int i = 0; i < 4; ++i)
@@ -1267,7 +1267,7 @@ TTDW_CALL void ccd_query_one(int kind, const double x0[12], const double x1[12],
             out->gap = directions(s.na, xm, n1, n2, vv);
             break;
         }
-        double d = HUGE_VAL, root = NAN;
+        double d = HUGE_VAL, root = (double)NAN;
         int from_cond = 0; /* root is a condition's (cond_root) */
         if (delta == 0) {
             cop_info ci;

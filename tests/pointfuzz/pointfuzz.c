@@ -231,9 +231,9 @@ static double pf_ulps(double x, int m, int use_float)
         return (double)f;
     }
     for (; m > 0; --m)
-        x = nextafter(x, INFINITY);
+        x = nextafter(x, (double)INFINITY);
     for (; m < 0; ++m)
-        x = nextafter(x, -INFINITY);
+        x = nextafter(x, -(double)INFINITY);
     return x;
 }
 
@@ -469,7 +469,7 @@ static void pf_dump(FILE *out, const pf_case *c)
             ttd_point_result_##sfx *b = &ref[i];                                                       \
             b->distance = (real)INFINITY;                                                              \
             b->triangle = UINT32_MAX;                                                                  \
-            dpart[0][i] = dpart[1][i] = INFINITY;                                                      \
+            dpart[0][i] = dpart[1][i] = HUGE_VAL;                                                      \
             for (size_t t = 0; t < c.nt; ++t) {                                                        \
                 real tri[9];                                                                           \
                 for (int k = 0; k < 9; ++k)                                                            \
@@ -511,7 +511,7 @@ static void pf_dump(FILE *out, const pf_case *c)
                             (double)a->distance, a->triangle, (double)b->distance, b->triangle);       \
             }                                                                                          \
         }                                                                                              \
-        double vv[9 * PF_MAX_TRIS], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}; \
+        double vv[9 * PF_MAX_TRIS], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}; \
         for (size_t i = 0; i < 3 * c.nv; ++i) {                                                        \
             vv[i] = (double)v[i];                                                                      \
             lo[i % 3] = fmin(lo[i % 3], vv[i]);                                                        \
@@ -648,7 +648,7 @@ static int pf_weld(const pf_case *c, pf_case *w, FILE *out)
             vf[i] = (float)c->v[i];
         st = ttd_mesh_weld_f(vf, c->nv, c->t, c->nt, (float)tol, of, &nv, w->t, &nt, map);
         for (size_t i = 0; st == TTD_OK && i < 3 * nv; ++i)
-            w->v[i] = of[i];
+            w->v[i] = (double)of[i];
     } else {
         st = ttd_mesh_weld_d(c->v, c->nv, c->t, c->nt, tol, w->v, &nv, w->t, &nt, map);
     }
