@@ -4,8 +4,9 @@
  * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
  *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
  * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
- *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query the tree is
- *    walked against itself (pairs of nodes, each unordered pair of triangles once). A triangle
+ *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query a uniform grid
+ *    of groups of 8 triangles grown over shared vertices (grid_make), or where that does poorly the
+ *    tree walked against itself (pairs of nodes): each unordered pair of triangles once. A triangle
  *    pair whose boxes do not overlap is more than delta apart along an axis at every t, and so is
  *    every pair of their primitives. Self: a triangle pair that shares no vertex is first tried
  *    whole by the concave-gap proof that precedes each primitive search (apart_cheaply, here
