@@ -706,12 +706,13 @@ static void flush_pairs(const job *J, worker *w)
  * where the row has them: it waits in the worker's queue by its six vertex indices (which pairs
  * the lanes prove is what the scalar proof proves, and the answer does not depend on the order in
  * which pairs reach the primitive searches: t_stop's promise, ccd.h). */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
-                      int disjoint)
+static void pair_self_rest(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                           int disjoint);
+static inline void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                             int disjoint)
 {
-    const side_data *A = J->a;
     ++w->tri_pairs;
-    if (disjoint && J->apart != NULL) {
+    if (disjoint && J->apart != NULL) { /* the queue's path inline (most pairs), the rest a call */
         const int n = w->nq;
         for (int i = 0; i < 3; ++i) {
             w->qv[i * TTD_NODE_WIDTH + n] = TA[i];
@@ -725,6 +726,13 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const u
             flush_pairs(J, w);
         return;
     }
+    pair_self_rest(J, w, ta, tb, TA, TB, disjoint);
+}
+
+static void pair_self_rest(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                           int disjoint)
+{
+    const side_data *A = J->a;
     if (disjoint) { /* (two triangles with a vertex in common are never apart) */
         const double *x0[6], *x1[6]; /* the six points where they are (a copy costs more) */
         double S = 0;
