@@ -4,8 +4,9 @@
  * 1. Boxes: each vertex's swept box (its two ends), widened by delta; each triangle's, the join
  *    of its vertices'. All exact (min and max), the widening rounded outward (sweep_tree.h).
  * 2. Broad phase: a hierarchy over b's widened triangle boxes (over the mesh's own, self); each
- *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query the tree is
- *    walked against itself (pairs of nodes, each unordered pair of triangles once). A triangle
+ *    leaf of a's tree, by its triangles' unwidened boxes, walks it; in a self query a uniform grid
+ *    of groups of 8 triangles grown over shared vertices (grid_make), or where that does poorly the
+ *    tree walked against itself (pairs of nodes): each unordered pair of triangles once. A triangle
  *    pair whose boxes do not overlap is more than delta apart along an axis at every t, and so is
  *    every pair of their primitives. Self: a triangle pair that shares no vertex is first tried
  *    whole by the concave-gap proof that precedes each primitive search (apart_cheaply, here
@@ -38,6 +39,12 @@
 #include "engine/parallel.h"
 #include "meshccd/meshccd.h"
 #include "meshccd/sweep_tree.h"
+
+/* The self query's broad phase: -1 the grid of groups where it does better than the tree (the
+ * library's), 1 the grid wherever it can be made, 0 the tree always (tests build both). */
+#ifndef MESHCCD_GRID
+#define MESHCCD_GRID -1
+#endif
 
 enum { MCCD_BLOCK_LEAVES = 16, MCCD_STACK = 128 };
 _Static_assert(SWEEP_LEAF_SELF == TTD_NODE_WIDTH, "a self leaf's boxes are one leaf_screen call");
@@ -207,7 +214,16 @@ typedef struct job {
     double *pb[6], *pw[6]; /* self: the triangles' boxes (lo x, y, z, hi x, y, z), and widened, as
                             * columns in the tree's order (pw is pb at delta 0), read in turn at the
                             * leaves; SWEEP_LEAF_SELF entries of padding after the last */
-    uint32_t *ptri;          /* self: the triangles' vertex indices in the tree's order */
+    uint32_t *ptri;          /* self: the triangles' vertex indices in the columns' order */
+    const uint32_t *porder;  /* self: the columns' triangles (the tree's order, or the groups') */
+    /* self, by the grid (grid_make): ng groups of up to SWEEP_LEAF_SELF triangles, group g's at
+     * columns 8 g .. 8 g + gn[g]; their widened boxes' joins gbox; the small groups in cells
+     * (cell c's: gorder[gstart[c] .. gstart[c + 1]), nsmall in all), the large ones after them */
+    int grid;
+    size_t ng, nsmall, ncells, gdim[3];
+    uint8_t *gn;
+    sweep_box *gbox;
+    uint32_t *gtri, *gstart, *gorder;
     ttd_tri_apart_at_fn apart; /* self: the whole-pair proof in lanes (the row's), or NULL: scalar */
     ttd_leaf_screen_fn lscreen; /* self: a pair of leaves' box tests on the row, or NULL: leaf_mask */
 } job;
@@ -690,12 +706,13 @@ static void flush_pairs(const job *J, worker *w)
  * where the row has them: it waits in the worker's queue by its six vertex indices (which pairs
  * the lanes prove is what the scalar proof proves, and the answer does not depend on the order in
  * which pairs reach the primitive searches: t_stop's promise, ccd.h). */
-static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
-                      int disjoint)
+static void pair_self_rest(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                           int disjoint);
+static inline void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                             int disjoint)
 {
-    const side_data *A = J->a;
     ++w->tri_pairs;
-    if (disjoint && J->apart != NULL) {
+    if (disjoint && J->apart != NULL) { /* the queue's path inline (most pairs), the rest a call */
         const int n = w->nq;
         for (int i = 0; i < 3; ++i) {
             w->qv[i * TTD_NODE_WIDTH + n] = TA[i];
@@ -709,6 +726,13 @@ static void pair_self(const job *J, worker *w, uint32_t ta, uint32_t tb, const u
             flush_pairs(J, w);
         return;
     }
+    pair_self_rest(J, w, ta, tb, TA, TB, disjoint);
+}
+
+static void pair_self_rest(const job *J, worker *w, uint32_t ta, uint32_t tb, const uint32_t *TA, const uint32_t *TB,
+                           int disjoint)
+{
+    const side_data *A = J->a;
     if (disjoint) { /* (two triangles with a vertex in common are never apart) */
         const double *x0[6], *x1[6]; /* the six points where they are (a copy costs more) */
         double S = 0;
@@ -806,7 +830,7 @@ static inline void leaf_pair_kept(const job *J, worker *w, uint32_t kq, uint32_t
     const uint32_t *TQ = J->ptri + 3 * (size_t)kq, *TU = J->ptri + 3 * (size_t)k;
     const int kept = eligible_tris(J, TQ, TU, any);
     if (kept) {
-        const uint32_t qi = J->tree.order[kq], u = J->tree.order[k];
+        const uint32_t qi = J->porder[kq], u = J->porder[k];
         if (qi < u)
             pair_self(J, w, qi, u, TQ, TU, kept == 1);
         else
@@ -838,48 +862,48 @@ static inline void leaf_row_pairs(const job *J, worker *w, uint32_t kq, uint32_t
 #endif
 }
 
-/* Two leaves, a == b or a before b in the order: each triangle q of a against each triangle u
- * of b after it in the order, by the same tests as walk_group's (so the same triangle pairs), in
- * the same order (u ascending). */
-static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
+/* Two runs of the columns (a tree's leaves, or the grid's groups), ka .. ka + na and kb .. kb + nb
+ * (1 to SWEEP_LEAF_SELF each), the same run (same) or disjoint; box: a box that holds the second
+ * run's widened boxes. Each triangle q of the first against each triangle u of the second (after q
+ * in a run against itself), by the same tests as walk_group's (so the same triangle pairs), u
+ * ascending. */
+static void run_pair_self(const job *J, worker *w, uint32_t ka, uint32_t na, uint32_t kb, uint32_t nb, int same,
+                          const sweep_box *box)
 {
     const double *const *P = (const double *const *)J->pb, *const *W = (const double *const *)J->pw;
     const int wide = J->pw[0] != J->pb[0]; /* at delta 0 the two tests are one (the test is symmetric) */
-    const uint32_t kb = b->begin;
-    const unsigned all = (2u << (b->end - b->begin - 1)) - 1; /* a leaf holds 1 to SWEEP_LEAF_SELF */
+    const unsigned all = (2u << (nb - 1)) - 1;
     if (J->lscreen != NULL) {
-        /* the whole pair of leaves in one call of the row (a's rows against b's lanes; the same
+        /* the whole pair of runs in one call of the row (a's rows against b's lanes; the same
          * comparisons as the loop below, so the same bits): a row near a lane is near b's box */
-        const uint32_t ka = a->begin;
-        const int na = (int)(a->end - ka);
         const double *const ra[6] = {P[0] + ka, P[1] + ka, P[2] + ka, P[3] + ka, P[4] + ka, P[5] + ka};
         const double *const rw[6] = {W[0] + kb, W[1] + kb, W[2] + kb, W[3] + kb, W[4] + kb, W[5] + kb};
         uint8_t m8[TTD_NODE_WIDTH];
-        unsigned rows = J->lscreen(ra, na, rw, m8);
+        unsigned rows = J->lscreen(ra, (int)na, rw, m8);
         if (wide && rows) {
             const double *const rwa[6] = {W[0] + ka, W[1] + ka, W[2] + ka, W[3] + ka, W[4] + ka, W[5] + ka};
             const double *const rp[6] = {P[0] + kb, P[1] + kb, P[2] + kb, P[3] + kb, P[4] + kb, P[5] + kb};
             uint8_t w8[TTD_NODE_WIDTH];
-            J->lscreen(rwa, na, rp, w8);
-            for (int i = 0; i < na; ++i)
+            J->lscreen(rwa, (int)na, rp, w8);
+            for (uint32_t i = 0; i < na; ++i)
                 m8[i] &= w8[i];
         }
         for (; rows != 0; rows &= rows - 1) {
             const int i = __builtin_ctz(rows);
             unsigned m = m8[i] & all;
-            if (a == b)
+            if (same)
                 m &= ~((2u << i) - 1); /* u after q only */
             leaf_row_pairs(J, w, ka + (uint32_t)i, kb, m);
         }
         return;
     }
-    for (uint32_t kq = a->begin; kq < a->end; ++kq) {
+    for (uint32_t kq = ka; kq < ka + na; ++kq) {
         const double q[6] = {P[0][kq], P[1][kq], P[2][kq], P[3][kq], P[4][kq], P[5][kq]};
-        if (!(q[0] <= b->box.hi[0] && b->box.lo[0] <= q[3] && q[1] <= b->box.hi[1] && b->box.lo[1] <= q[4] &&
-              q[2] <= b->box.hi[2] && b->box.lo[2] <= q[5]))
+        if (!(q[0] <= box->hi[0] && box->lo[0] <= q[3] && q[1] <= box->hi[1] && box->lo[1] <= q[4] &&
+              q[2] <= box->hi[2] && box->lo[2] <= q[5]))
             continue;
         unsigned m = leaf_mask(W, kb, q) & all;
-        if (a == b)
+        if (same)
             m &= ~((2u << (kq - kb)) - 1); /* u after q only */
         if (wide && m) {
             const double qw[6] = {W[0][kq], W[1][kq], W[2][kq], W[3][kq], W[4][kq], W[5][kq]};
@@ -887,6 +911,12 @@ static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const s
         }
         leaf_row_pairs(J, w, kq, kb, m);
     }
+}
+
+/* Two leaves of the tree, a == b or a before b in the order. */
+static void leaf_pair_self(const job *J, worker *w, const sweep_node *a, const sweep_node *b)
+{
+    run_pair_self(J, w, a->begin, a->end - a->begin, b->begin, b->end - b->begin, a == b, &b->box);
 }
 
 /* Pushes (a, b) on the worker's stack, grown as needed; 0, or -1 out of memory. */
@@ -1070,6 +1100,313 @@ static void run_block(void *ctx, size_t block, int wi)
     }
 }
 
+/* ---- the self query by a grid of groups (docs/ccd-speed.md, ninth session) ---- */
+
+/* The tree's leaves group triangles by the rank of their centroids, which on a sheet spreads a
+ * leaf over 6 to 9 quads whose boxes meet about 23 leaves; 8 triangles grown over shared vertices
+ * are a patch of about 2 x 2 quads, whose box meets about 8 (as self-contacts' groups,
+ * docs/mesh-queries.md section 3b). Each group starts at the first triangle not yet grouped and
+ * takes those that share a vertex with one in it, in the breadth-first order and index order
+ * around each vertex, until it has 8 or none is left; around a vertex a cursor skips the grouped
+ * triangles and at most GROUP_LOOK more are looked at a visit. Any grouping gives the same
+ * triangle pairs (every pair whose boxes overlap, once); only the work depends on it. gtri: 8 a
+ * group (UINT32_MAX past its count gn). cur: nv, mark: nt (int32), done: nt zeroed. */
+enum { GROUP_LOOK = 32 };
+static size_t ccd_groups(const side_data *d, uint32_t *gtri, uint8_t *gn, uint32_t *cur, int32_t *mark,
+                         uint8_t *done)
+{
+    const uint32_t *T = d->s->tris, *vs = d->vt_start, *vl = d->vt_list;
+    const size_t nt = d->s->nt;
+    memcpy(cur, vs, d->s->nv * sizeof *cur);
+    for (size_t t = 0; t < nt; ++t)
+        mark[t] = -1;
+    size_t ng = 0;
+    for (size_t seed = 0; seed < nt; ++seed) {
+        if (done[seed])
+            continue;
+        uint32_t *q = gtri + SWEEP_LEAF_SELF * ng;
+        int qh = 0, qn = 1;
+        q[0] = (uint32_t)seed;
+        mark[seed] = (int32_t)ng;
+        while (qh < qn) {
+            const uint32_t t = q[qh++];
+            done[t] = 1;
+            for (int k = 0; k < 3 && qn < SWEEP_LEAF_SELF; ++k) {
+                const uint32_t v = T[3 * (size_t)t + k];
+                while (cur[v] < vs[v + 1] && done[vl[cur[v]]])
+                    cur[v]++;
+                for (uint32_t i = cur[v], e = 0; i < vs[v + 1] && e < GROUP_LOOK && qn < SWEEP_LEAF_SELF; ++i, ++e) {
+                    const uint32_t u = vl[i];
+                    if (!done[u] && mark[u] != (int32_t)ng) {
+                        mark[u] = (int32_t)ng;
+                        q[qn++] = u;
+                    }
+                }
+            }
+        }
+        gn[ng] = (uint8_t)qn;
+        for (int j = qn; j < SWEEP_LEAF_SELF; ++j)
+            q[j] = UINT32_MAX;
+        ++ng;
+    }
+    return ng;
+}
+
+/* Group pairs a group's box tests may reach, a group, above which the tree walks instead (a few
+ * huge groups put most of the mesh in a few cells). */
+#define GRID_WORK 256
+
+/* The grid of J (self): groups, their columns, boxes and cells. 1 made, 0 the tree is better (or
+ * a box is not finite), -1 out of memory. */
+static int grid_make(job *J)
+{
+    const side_data *A = J->a;
+    const size_t nt = A->s->nt, nv = A->s->nv;
+    J->gtri = malloc(SWEEP_LEAF_SELF * nt * sizeof *J->gtri);
+    J->gn = malloc(nt * sizeof *J->gn);
+    uint32_t *cur = malloc((nv ? nv : 1) * sizeof *cur);
+    int32_t *mark = malloc(nt * sizeof *mark);
+    uint8_t *done = calloc(nt, 1);
+    if (J->gtri == NULL || J->gn == NULL || cur == NULL || mark == NULL || done == NULL) {
+        free(cur), free(mark), free(done);
+        return -1;
+    }
+    const size_t ng = J->ng = ccd_groups(A, J->gtri, J->gn, cur, mark, done);
+    free(cur), free(mark), free(done);
+#if MESHCCD_GRID < 0
+    /* groups short (more than 5 in 4 of a full grouping's count: a soup of unconnected triangles,
+     * whose tree leaves group them better): the tree */
+    if (4 * ng > 5 * ((nt + SWEEP_LEAF_SELF - 1) / SWEEP_LEAF_SELF))
+        return 0;
+#endif
+    J->porder = J->gtri;
+    const size_t cols = SWEEP_LEAF_SELF * (ng + 1); /* + a group of padding: the rows read 8 lanes */
+    const int wide = J->params.delta != 0;
+    J->pb[0] = malloc(6 * cols * sizeof(double));
+    J->pw[0] = wide ? malloc(6 * cols * sizeof(double)) : J->pb[0];
+    J->ptri = calloc(3 * cols + 1, sizeof *J->ptri); /* + 1: leaf_row_pairs reads one more */
+    J->gbox = malloc((ng ? ng : 1) * sizeof *J->gbox);
+    J->gorder = malloc((ng ? ng : 1) * sizeof *J->gorder);
+    uint32_t *cell = malloc((ng ? ng : 1) * sizeof *cell);
+    double *ext = malloc((ng ? ng : 1) * sizeof *ext);
+    if (J->pb[0] == NULL || J->pw[0] == NULL || J->ptri == NULL || J->gbox == NULL || J->gorder == NULL ||
+        cell == NULL || ext == NULL) {
+        free(cell), free(ext);
+        return -1;
+    }
+    for (int c = 1; c < 6; ++c) {
+        J->pb[c] = J->pb[0] + c * cols;
+        J->pw[c] = J->pw[0] + c * cols;
+    }
+    /* the columns in the groups' order (padding lanes never near: lo +inf, hi -inf), the groups'
+     * boxes (joins of their widened boxes), their largest sides */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    for (size_t g = 0; g <= ng; ++g)
+        for (int j = 0; j < SWEEP_LEAF_SELF; ++j) {
+            const size_t k = SWEEP_LEAF_SELF * g + (size_t)j;
+            const uint32_t t = g < ng ? J->gtri[k] : UINT32_MAX;
+            if (t == UINT32_MAX) {
+                for (int c = 0; c < 3; ++c) {
+                    J->pb[c][k] = J->pw[c][k] = INFINITY;
+                    J->pb[3 + c][k] = J->pw[3 + c][k] = -INFINITY;
+                }
+                continue;
+            }
+            const sweep_box *b = &A->tbox[t], *bw = &A->twide[t];
+            for (int c = 0; c < 3; ++c) {
+                J->pb[c][k] = b->lo[c];
+                J->pb[3 + c][k] = b->hi[c];
+            }
+            if (wide)
+                for (int c = 0; c < 3; ++c) {
+                    J->pw[c][k] = bw->lo[c];
+                    J->pw[3 + c][k] = bw->hi[c];
+                }
+            memcpy(J->ptri + 3 * k, A->s->tris + 3 * (size_t)t, 3 * sizeof *J->ptri);
+            if (j == 0)
+                J->gbox[g] = *bw;
+            else
+                sweep_box_join(&J->gbox[g], bw);
+        }
+    for (size_t g = 0; g < ng; ++g) {
+        const sweep_box *b = &J->gbox[g];
+        double e = 0;
+        for (int c = 0; c < 3; ++c) {
+            e = b->hi[c] - b->lo[c] > e ? b->hi[c] - b->lo[c] : e;
+            lo[c] = b->lo[c] < lo[c] ? b->lo[c] : lo[c];
+            hi[c] = b->lo[c] > hi[c] ? b->lo[c] : hi[c];
+        }
+        ext[g] = e;
+        sum += e;
+    }
+    /* groups up to 4 times the mean side go into cells as wide as the largest of them on each axis
+     * (two whose boxes overlap have low corners at most that apart: cells within 1 of each other;
+     * a cell a little wider covers the rounding of (lo - lo_min) / h); the larger meet every group */
+    const double cut = 4 * sum / (double)(ng ? ng : 1);
+    double h[3] = {0, 0, 0};
+    size_t nbig = 0;
+    for (size_t g = 0; g < ng; ++g) {
+        if (ext[g] > cut) {
+            ++nbig;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c)
+            h[c] = J->gbox[g].hi[c] - J->gbox[g].lo[c] > h[c] ? J->gbox[g].hi[c] - J->gbox[g].lo[c] : h[c];
+    }
+    J->nsmall = ng - nbig;
+    for (int c = 0; c < 3; ++c)
+        h[c] *= 1 + 0x1p-20;
+    const double he = h[0] > h[1] ? (h[0] > h[2] ? h[0] : h[2]) : (h[1] > h[2] ? h[1] : h[2]);
+    int ok = ng > 0 && he > 0 && isfinite(he) && isfinite(sum);
+    for (int c = 0; c < 3; ++c) {
+        h[c] = h[c] > 0 ? h[c] : he; /* an axis the groups have no width on: cells of the largest */
+        ok &= isfinite(lo[c]) && isfinite(hi[c]);
+    }
+    if (!ok) {
+        free(cell), free(ext);
+        return 0;
+    }
+    for (;;) {
+        double cells = 1;
+        for (int c = 0; c < 3; ++c)
+            cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
+        if (cells <= 4.0 * (double)ng + 64)
+            break;
+        for (int c = 0; c < 3; ++c)
+            h[c] *= 1.5;
+    }
+    J->ncells = 1;
+    for (int c = 0; c < 3; ++c) {
+        J->gdim[c] = (size_t)floor((hi[c] - lo[c]) / h[c]) + 1;
+        J->ncells *= J->gdim[c];
+    }
+    J->gstart = calloc(J->ncells + 2, sizeof *J->gstart);
+    if (J->gstart == NULL) {
+        free(cell), free(ext);
+        return -1;
+    }
+    uint32_t *S = J->gstart;
+    for (size_t g = 0; g < ng; ++g) {
+        if (ext[g] > cut)
+            continue;
+        size_t at = 0;
+        for (int c = 2; c >= 0; --c) {
+            size_t q = (size_t)floor((J->gbox[g].lo[c] - lo[c]) / h[c]);
+            q = q < J->gdim[c] ? q : J->gdim[c] - 1;
+            at = at * J->gdim[c] + q;
+        }
+        cell[g] = (uint32_t)at;
+        S[at + 2]++;
+    }
+    for (size_t c = 0; c < J->ncells; ++c)
+        S[c + 2] += S[c + 1];
+    for (size_t g = 0, big = J->nsmall; g < ng; ++g) /* S[c + 1] runs through cell c, then is its end */
+        J->gorder[ext[g] > cut ? big++ : S[cell[g] + 1]++] = (uint32_t)g;
+    free(cell), free(ext);
+    /* the work: each group's box tests against its cell and the 13 after it */
+    const size_t X = J->gdim[0], Y = J->gdim[1], Z = J->gdim[2];
+    double work = 0;
+    for (size_t c = 0; c < J->ncells; ++c) {
+        const double nc = (double)(S[c + 1] - S[c]);
+        if (nc == 0)
+            continue;
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        double around = 0;
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx)
+                    if (x + (size_t)dx < X && y + (size_t)dy < Y && z + (size_t)dz < Z) /* -1 wraps past */
+                        around += (double)(S[((z + (size_t)dz) * Y + y + (size_t)dy) * X + x + (size_t)dx + 1] -
+                                           S[((z + (size_t)dz) * Y + y + (size_t)dy) * X + x + (size_t)dx]);
+        work += nc * (around + (nc + 1) / 2);
+    }
+    work += (double)nbig * (double)ng;
+    return MESHCCD_GRID > 0 || work <= GRID_WORK * (double)ng + 1024 ? 1 : 0;
+}
+
+/* Groups g and h (whose boxes overlap, g == h or not): their triangle pairs. */
+static inline void grid_pair(const job *J, worker *w, uint32_t g, uint32_t h)
+{
+    run_pair_self(J, w, SWEEP_LEAF_SELF * g, J->gn[g], SWEEP_LEAF_SELF * h, J->gn[h], g == h, &J->gbox[h]);
+}
+
+/* Group at position p of gorder against those at positions [q0, q1) whose boxes overlap its own. */
+static void grid_range(const job *J, worker *w, uint32_t p, uint32_t q0, uint32_t q1)
+{
+    const uint32_t g = J->gorder[p];
+    const sweep_box *b = &J->gbox[g];
+    for (uint32_t q = q0; q < q1; ++q) {
+        const uint32_t h = J->gorder[q];
+        if (sweep_overlap(b, &J->gbox[h]))
+            grid_pair(J, w, g, h);
+    }
+}
+
+enum { GRID_BLOCK_UNITS = 64 };
+
+/* Units [block * GRID_BLOCK_UNITS, ...): unit u < ncells is cell u, whose groups meet themselves,
+ * the rest of their cell and the 13 cells after it (so each pair of groups in cells once); a
+ * unit past them is a large group, which meets every group in a cell and the large ones from
+ * itself on. */
+static void run_grid_block(void *ctx, size_t block, int wi)
+{
+    job *J = ctx;
+    worker *w = &J->workers[wi];
+    const size_t X = J->gdim[0], Y = J->gdim[1], Z = J->gdim[2], units = J->ncells + (J->ng - J->nsmall);
+    const uint32_t *S = J->gstart;
+    const size_t u0 = block * GRID_BLOCK_UNITS, u1 = u0 + GRID_BLOCK_UNITS < units ? u0 + GRID_BLOCK_UNITS : units;
+    for (size_t c = u0; c < u1 && c < J->ncells && !w->oom; ++c) {
+        if (S[c] == S[c + 1])
+            continue;
+        const size_t x = c % X, y = c / X % Y, z = c / (X * Y);
+        size_t d[13];
+        int nd = 0;
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = dz ? -1 : 0; dy <= 1; ++dy)
+                for (int dx = dz || dy ? -1 : 1; dx <= 1; ++dx)
+                    if (x + (size_t)dx < X && y + (size_t)dy < Y && z + (size_t)dz < Z) {
+                        const size_t e = ((z + (size_t)dz) * Y + y + (size_t)dy) * X + x + (size_t)dx;
+                        if (S[e] != S[e + 1])
+                            d[nd++] = e;
+                    }
+        for (uint32_t p = S[c]; p < S[c + 1]; ++p) {
+            grid_pair(J, w, J->gorder[p], J->gorder[p]);
+            grid_range(J, w, p, p + 1, S[c + 1]);
+            for (int e = 0; e < nd; ++e)
+                grid_range(J, w, p, S[d[e]], S[d[e] + 1]);
+        }
+    }
+    for (size_t u = u1 > J->ncells ? (u0 > J->ncells ? u0 : J->ncells) : u1; u < u1 && !w->oom; ++u) {
+        const uint32_t p = (uint32_t)(J->nsmall + (u - J->ncells));
+        grid_range(J, w, p, 0, (uint32_t)J->nsmall);
+        grid_range(J, w, p, p, (uint32_t)J->ng);
+    }
+    if (J->apart != NULL)
+        flush_pairs(J, w);
+}
+
+
+/* Frees what grid_make made (the columns too). */
+static void grid_drop(job *J)
+{
+    if (J->pw[0] != J->pb[0])
+        free(J->pw[0]);
+    free(J->pb[0]);
+    free(J->ptri);
+    free(J->gtri);
+    free(J->gn);
+    free(J->gbox);
+    free(J->gorder);
+    free(J->gstart);
+    memset(J->pb, 0, sizeof J->pb);
+    memset(J->pw, 0, sizeof J->pw);
+    J->ptri = J->gtri = J->gorder = J->gstart = NULL;
+    J->gn = NULL;
+    J->gbox = NULL;
+    J->porder = NULL;
+    J->grid = 0;
+}
+
 static int pair_cmp(const void *x, const void *y)
 {
     const ttd_mesh_ccd_pair *p = x, *q = y;
@@ -1110,7 +1447,17 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
     J.a = &da;
     J.b = J.self ? &da : &db;
     ttd_status st = TTD_OK;
-    if (sweep_tree_build(J.b->twide, J.b->s->nt, J.self ? SWEEP_LEAF_SELF : SWEEP_LEAF, &J.tree) != 0) {
+    if (J.self && MESHCCD_GRID != 0) { /* the grid of groups where it does better than the tree */
+        const int made = grid_make(&J);
+        if (made < 0) {
+            st = TTD_ERR_OUT_OF_MEMORY;
+            goto done;
+        }
+        if (made == 0)
+            grid_drop(&J);
+        J.grid = made;
+    }
+    if (!J.grid && sweep_tree_build(J.b->twide, J.b->s->nt, J.self ? SWEEP_LEAF_SELF : SWEEP_LEAF, &J.tree) != 0) {
         st = TTD_ERR_OUT_OF_MEMORY;
         goto done;
     }
@@ -1119,13 +1466,16 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
         goto done;
     }
     size_t blocks;
-    if (J.self) {
+    if (J.grid) {
+        blocks = (J.ncells + (J.ng - J.nsmall) + GRID_BLOCK_UNITS - 1) / GRID_BLOCK_UNITS;
+    } else if (J.self) {
         /* the tree against itself from the pairs of its first levels */
         const size_t nt = a->nt;
         const size_t cols = nt + SWEEP_LEAF_SELF; /* padding: leaf_mask reads a whole leaf's width */
         J.pb[0] = calloc(6 * cols, sizeof(double));
         J.pw[0] = delta == 0 ? J.pb[0] : calloc(6 * cols, sizeof(double));
         J.ptri = calloc(3 * nt + 1, sizeof *J.ptri); /* + 1: leaf_row_pairs reads one more */
+        J.porder = J.tree.order;
         if (J.pb[0] == NULL || J.pw[0] == NULL || J.ptri == NULL || self_tasks(&J) != 0) {
             st = TTD_ERR_OUT_OF_MEMORY;
             goto done;
@@ -1168,7 +1518,7 @@ ttd_status ttd_meshccd_run(int threads, ttd_isa isa, const meshccd_side *a, cons
     }
     for (int i = 0; i < nw; ++i)
         J.workers[i].best = HUGE_VAL;
-    ttd_parallel_for(blocks, threads, J.self ? run_self_block : run_block, &J);
+    ttd_parallel_for(blocks, threads, J.grid ? run_grid_block : J.self ? run_self_block : run_block, &J);
     /* the earliest over the workers, then their hits within the tolerance of it */
     double best = HUGE_VAL;
     size_t total = 0;
@@ -1218,10 +1568,7 @@ done:
     sweep_tree_free(&J.qtree);
     free(J.leaves);
     free(J.tasks);
-    if (J.pw[0] != J.pb[0])
-        free(J.pw[0]);
-    free(J.pb[0]);
-    free(J.ptri);
+    grid_drop(&J); /* (the columns, made by the grid or the tree's path) */
     side_free(&da);
     if (!J.self)
         side_free(&db);

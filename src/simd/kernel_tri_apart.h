@@ -140,6 +140,25 @@ static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
     return m == 3 ? _mm256_add_epi64(i, _mm256_add_epi64(i, i)) : i;
 }
 static inline ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i) { return _mm256_i64gather_pd(base, i, 8); }
+/* The 4 lanes' points x[3 v[l] ..] (x, y with one 128-bit load, z with one 64-bit load, joined by
+ * unpacks) and vmag[v[l]]: the numbers of tri_apart_gather's, in the same lanes; on this project's
+ * AMD machines 7 four-lane gathers cost several times these loads (docs/ccd-speed.md, change 20). */
+#define TTD_TRI_APART_LOADS 1
+static inline void tri_apart_load(const double *x, const uint32_t *v, ttdw_vd p[3])
+{
+    const double *a = x + 3 * (size_t)v[0], *b = x + 3 * (size_t)v[1], *c = x + 3 * (size_t)v[2],
+                 *d = x + 3 * (size_t)v[3];
+    const __m128d xa = _mm_loadu_pd(a), xb = _mm_loadu_pd(b), xc = _mm_loadu_pd(c), xd = _mm_loadu_pd(d);
+    const __m128d zab = _mm_loadh_pd(_mm_load_sd(a + 2), b + 2), zcd = _mm_loadh_pd(_mm_load_sd(c + 2), d + 2);
+    p[0] = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpacklo_pd(xa, xb)), _mm_unpacklo_pd(xc, xd), 1);
+    p[1] = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpackhi_pd(xa, xb)), _mm_unpackhi_pd(xc, xd), 1);
+    p[2] = _mm256_insertf128_pd(_mm256_castpd128_pd256(zab), zcd, 1);
+}
+static inline ttdw_vd tri_apart_load1(const double *m, const uint32_t *v)
+{
+    return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadh_pd(_mm_load_sd(m + v[0]), m + v[1])),
+                                _mm_loadh_pd(_mm_load_sd(m + v[2]), m + v[3]), 1);
+}
 #elif defined(TTDW_USE_AVX512)
 typedef __m512i tri_apart_ix;
 static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
@@ -180,12 +199,18 @@ static unsigned tri_apart_at(int count, const uint32_t *v, const double *x0, con
         ccdw3 p0[6], p1[6];
         ttdw_vd S = ttdw_zero_d();
         for (int i = 0; i < 6; ++i) {
+#if defined(TTD_TRI_APART_LOADS)
+            tri_apart_load(x0, v + i * TTD_NODE_WIDTH + j, p0[i]);
+            tri_apart_load(x1, v + i * TTD_NODE_WIDTH + j, p1[i]);
+            const ttdw_vd m = tri_apart_load1(vmag, v + i * TTD_NODE_WIDTH + j);
+#else
             const tri_apart_ix k = tri_apart_index(v + i * TTD_NODE_WIDTH + j, 3);
             for (int c = 0; c < 3; ++c) {
                 p0[i][c] = tri_apart_gather(x0 + c, k);
                 p1[i][c] = tri_apart_gather(x1 + c, k);
             }
             const ttdw_vd m = tri_apart_gather(vmag, tri_apart_index(v + i * TTD_NODE_WIDTH + j, 1));
+#endif
             S = ttdw_sel_d(ttdw_gt_d(m, S), m, S);
         }
         out |= ttdw_mbits_d(ttdw_mand_d(tri_apart_proof(p0, p1, S, live, delta), live)) << j;
