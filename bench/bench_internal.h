@@ -63,6 +63,23 @@ typedef struct bench_timing {
 int bench_time_call(int (*fn)(void *arg), void *arg, double min_s, double max_row_s, int samples, int single_long,
                     bench_timing *out);
 
+/// What bench_time_alternating measured: rounds of one sample of a, then one of b beside it.
+typedef struct bench_alternation {
+    double ratio_med, ratio_lo, ratio_hi; ///< a's sample / b's in the same round: median, min, max
+    double a_med_s, a_min_s, b_med_s, b_min_s; ///< seconds per call of each
+    int rounds;
+    long passes[2];           ///< calls per sample of a and of b
+} bench_alternation;
+
+/// Times fa(a) and fb(b) alternately, a's sample then b's, in rounds, so that both see the same
+/// load; the ratio of two rows timed apart moves with whatever else the machine did between them.
+/// One warm-up call each, then samples of enough calls to last min_s (one call with min_s 0), at
+/// least min_rounds and at most max_rounds (at most 64) rounds, stopping once the samples
+/// took max_s. thread_cpu: the calling thread's CPU time instead of the monotonic clock (only
+/// for calls that run on the calling thread alone). Returns 0, or -1 when a call failed.
+int bench_time_alternating(int (*fa)(void *), void *a, int (*fb)(void *), void *b, int thread_cpu, double min_s,
+                           int min_rounds, int max_rounds, double max_s, bench_alternation *out);
+
 /// Path of ttd_fcl_bench: explicit (may be NULL), $TTD_FCL_BENCH, or next to this program.
 /// Returns 0 and writes path when found and executable.
 int bench_fcl_find(const char *explicit_path, char *path, size_t size);

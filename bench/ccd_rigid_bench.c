@@ -282,8 +282,24 @@ static int rigid_row(const char *name, const ttd_gen_mesh *g, size_t k, int reps
     return rc;
 }
 
+/* One scene step on the threads of o, for bench_time_alternating. */
+typedef struct step_arg {
+    ttd_options o;
+    ttd_scene *s;
+    size_t n;
+    const double *p1;
+    ttd_scene_array out;
+} step_arg;
+
+static int step_call(void *p)
+{
+    step_arg *a = p;
+    return ttd_scene_ccd_d(&a->o, a->s, a->n, a->p1, 0, &a->out) == TTD_OK ? 0 : -1;
+}
+
 /* A scene's step: n small spheres and tori in a box 10 wide, each moving up to 1 and turning up
- * to 0.9 pi; ttd_scene_ccd_d on 1 and 2 threads (CPU time on 1, wall time on 2). */
+ * to 0.9 pi; ttd_scene_ccd_d on 1 and 2 threads (CPU time on 1, wall time on 2), then two
+ * threads over one timed alternately (as `ttd bench`'s scene rows, docs/benchmark.md). */
 static int scene_row(size_t n, int reps)
 {
     ttd_gen_mesh g[2];
@@ -338,6 +354,17 @@ static int scene_row(size_t n, int reps)
                best_w * 1e3);
         ttd_scene_array_free(&out);
     }
+    step_arg a1 = {ttd_default_options(), s, n, p1, {0}}, a2 = a1;
+    a1.o.threads = 1;
+    a2.o.threads = 2;
+    bench_alternation alt;
+    const int bad = bench_time_alternating(step_call, &a1, step_call, &a2, 0, 0.0, 3, 15, 2.0, &alt);
+    ttd_scene_array_free(&a1.out);
+    ttd_scene_array_free(&a2.out);
+    if (bad)
+        return -1;
+    printf("scene step, %zu bodies: two threads over one, alternating: %.2fx (%d rounds, %.2f-%.2fx)\n", n,
+           alt.ratio_med, alt.rounds, alt.ratio_lo, alt.ratio_hi);
     free(p1);
     ttd_scene_destroy(s);
     ttd_mesh_destroy(m[0]);

@@ -87,6 +87,65 @@ int bench_time_call(int (*fn)(void *arg), void *arg, double min_s, double max_ro
     return 0;
 }
 
+static double thread_cpu_now(void)
+{
+    struct timespec t;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0)
+        return BENCH_NAN;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double median_sorted(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof t[0], cmp_seconds);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
+int bench_time_alternating(int (*fa)(void *), void *a, int (*fb)(void *), void *b, int thread_cpu, double min_s,
+                           int min_rounds, int max_rounds, double max_s, bench_alternation *out)
+{
+    double (*now)(void) = thread_cpu ? thread_cpu_now : bench_now;
+    int (*fn[2])(void *) = {fa, fb};
+    void *arg[2] = {a, b};
+    double t[2][64], ratio[64], spent = 0.0;
+    long passes[2];
+    if (max_rounds > 64)
+        max_rounds = 64;
+    if (min_rounds < 1)
+        min_rounds = 1;
+    for (int s = 0; s < 2; ++s) {
+        const double t0 = now();
+        if (fn[s](arg[s]))
+            return -1;
+        passes[s] = (long)fmin(fmax(ceil(min_s / fmax(now() - t0, 1e-9)), 1.0), 1e7);
+    }
+    int rounds = 0;
+    while (rounds < max_rounds && (rounds < min_rounds || spent < max_s)) {
+        for (int s = 0; s < 2; ++s) {
+            const double t0 = now();
+            for (long k = 0; k < passes[s]; ++k)
+                if (fn[s](arg[s]))
+                    return -1;
+            const double dt = now() - t0;
+            spent += dt;
+            t[s][rounds] = dt / (double)passes[s];
+        }
+        ratio[rounds] = t[0][rounds] / t[1][rounds];
+        ++rounds;
+    }
+    out->rounds = rounds;
+    out->passes[0] = passes[0];
+    out->passes[1] = passes[1];
+    out->ratio_med = median_sorted(ratio, rounds);
+    out->ratio_lo = ratio[0];
+    out->ratio_hi = ratio[rounds - 1];
+    out->a_med_s = median_sorted(t[0], rounds);
+    out->a_min_s = t[0][0];
+    out->b_med_s = median_sorted(t[1], rounds);
+    out->b_min_s = t[1][0];
+    return 0;
+}
+
 static void trim(char *s)
 {
     size_t n = strlen(s);

@@ -96,7 +96,9 @@ typedef struct srow {
     int samples;
     int fcl;               /* 1: an FCL time beside */
     double fcl_ms, fcl_ms_min, x_fcl;
-    double x_threads;      /* 2 threads: the 1-thread row / this */
+    double x_threads;      /* 2 threads: one thread's sample / two threads' beside it, median over rounds */
+    double x_threads_lo, x_threads_hi; /* and the rounds' range (bench_time_alternating) */
+    int thread_rounds;
     double x_ref;          /* manifold: this / contacts (double); distance+n: this / distance */
     double x_ref_cpu;      /* manifold: the same in CPU time, the two queries alternating (cpu_ratio) */
     double need;           /* the issue's target for this row's ratio, NaN if none */
@@ -187,7 +189,7 @@ static srow *new_row(sctx *M, const char *workload, size_t bodies, size_t tris, 
     r->threads = threads;
     r->margin = margin;
     r->value = r->ms = r->ms_min = r->fcl_ms = r->fcl_ms_min = r->x_fcl = r->x_threads = r->x_ref = r->need = BENCH_NAN;
-    r->x_ref_cpu = BENCH_NAN;
+    r->x_ref_cpu = r->x_threads_lo = r->x_threads_hi = BENCH_NAN;
     r->bullet_ms = r->bullet_ms_min = r->x_bullet = r->need_b = BENCH_NAN;
     r->met_b = -1;
     r->met = -1;
@@ -929,38 +931,69 @@ static int call_query(void *p)
     return q->st == TTD_OK ? 0 : -1;
 }
 
-/* The calling thread's CPU seconds (one-thread queries run on it). */
-static double thread_cpu_s(void)
+static int call_contacts(void *p)
 {
-    struct timespec t;
-    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0)
-        return BENCH_NAN;
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+    ((qarg *)p)->kind = Q_CONTACTS_D;
+    return call_query(p);
+}
+
+static int call_manifold(void *p)
+{
+    ((qarg *)p)->kind = Q_MANIFOLD;
+    return call_query(p);
 }
 
 /* The manifold's CPU time over the double contacts', one thread: the two queries alternately, the
  * fastest of each (up to 15 of each, about a second in all): on a loaded machine a core is lost
  * to others for whole samples, which moves the wall-clock medians of two rows timed apart far
  * more than the CPU time of one query. NaN when a query fails. */
-static double cpu_ratio(qarg *q, size_t max_points)
+static double cpu_ratio(qarg *q)
 {
-    double best[2] = {HUGE_VAL, HUGE_VAL}, spent = 0;
     const int kind = q->kind;
-    for (int rep = 0; rep < 15 && (rep < 3 || spent < 1.0); ++rep)
-        for (int m = 0; m < 2; ++m) {
-            q->kind = m ? Q_MANIFOLD : Q_CONTACTS_D;
-            q->max_points = max_points;
-            const double t0 = thread_cpu_s();
-            if (call_query(q) != 0) {
-                q->kind = kind;
-                return BENCH_NAN;
-            }
-            const double t = thread_cpu_s() - t0;
-            spent += t;
-            best[m] = t < best[m] ? t : best[m];
-        }
+    bench_alternation a;
+    const int bad = bench_time_alternating(call_contacts, q, call_manifold, q, 1, 0.0, 3, 15, 1.0, &a);
     q->kind = kind;
-    return best[1] / best[0];
+    return bad ? BENCH_NAN : a.b_min_s / a.a_min_s;
+}
+
+/* A query on a thread count of its own, for the two-thread ratio. */
+typedef struct on_threads {
+    qarg *q;
+    ttd_options o;
+} on_threads;
+
+static int call_on_threads(void *p)
+{
+    on_threads *t = p;
+    t->q->o = t->o;
+    return call_query(t->q);
+}
+
+/* Two threads over one (issue 26's and 36's target): samples of one thread and of two in turn
+ * (1, 2, 1, 2, ..., each at least --min-time), x_threads the median over the rounds of one
+ * thread's sample over the two threads' beside it, with the rounds' range: the ratio of two
+ * medians timed apart moved by tens of percent between runs on this VM, quiet or not. Fills r's
+ * two-thread time from the same samples; per divides the samples' time (motion: its steps).
+ * one_ms, the one-thread row's own median (timed apart), goes to the note for comparison. */
+static int thread_ratio(const sctx *M, int (*fn)(void *), void *one, void *two, double per, double one_ms, srow *r)
+{
+    bench_alternation a;
+    const int quick = M->env->st->quick;
+    if (bench_time_alternating(fn, one, fn, two, 0, M->min_s, quick ? 3 : 5, 15, M->max_row_s, &a) != 0)
+        return -1;
+    r->ms = a.b_med_s * 1e3 / per;
+    r->ms_min = a.b_min_s * 1e3 / per;
+    r->samples = a.rounds;
+    r->x_threads = a.ratio_med;
+    r->x_threads_lo = a.ratio_lo;
+    r->x_threads_hi = a.ratio_hi;
+    r->thread_rounds = a.rounds;
+    const size_t at = strlen(r->note);
+    snprintf(r->note + at, sizeof r->note - at,
+             "%s2 threads over 1 alternating: %.2fx (%d rounds of %ld+%ld calls, %.2f-%.2fx); rows timed apart %.2fx",
+             at ? "; " : "", a.ratio_med, a.rounds, a.passes[0], a.passes[1], a.ratio_lo, a.ratio_hi,
+             one_ms / r->ms);
+    return 0;
 }
 
 static int time_query(sctx *M, qarg *q, srow *r)
@@ -973,31 +1006,53 @@ static int time_query(sctx *M, qarg *q, srow *r)
     return 0;
 }
 
+/* One run of the motion: the scene set to its start, then `steps` steps (set_poses + collide at
+ * the margin), the steps' time in timed_s and each step's body pairs in counts (when given). */
+typedef struct motion_arg {
+    ttd_scene *scene;
+    const scene_def *s;
+    const double *motion;
+    int steps;
+    ttd_options o;
+    ttd_scene_array out;
+    uint64_t *counts;
+    double timed_s;
+} motion_arg;
+
+static int motion_run(void *p)
+{
+    motion_arg *m = p;
+    const size_t n = m->s->n;
+    m->timed_s = 0.0;
+    if (ttd_scene_set_poses_d(m->scene, n, m->s->poses) != TTD_OK)
+        return -1;
+    for (int k = 0; k < m->steps; ++k) {
+        const double a = bench_now();
+        if (ttd_scene_set_poses_d(m->scene, n, &m->motion[12 * n * (size_t)k]) != TTD_OK ||
+            ttd_scene_collide_d(&m->o, m->scene, m->s->margin, &m->out) != TTD_OK)
+            return -1;
+        m->timed_s += bench_now() - a;
+        if (m->counts)
+            m->counts[k] = m->out.count;
+    }
+    return 0;
+}
+
 /* The motion: runs of `steps` steps from the scene's start (set untimed); returns the median run's
  * ms per step (and the fastest) and each step's number of body pairs within the margin. */
 static int time_motion(sctx *M, ttd_scene *scene, const scene_def *s, const double *motion, int steps, int threads,
                        int runs, srow *r, uint64_t *counts)
 {
-    ttd_options o = options(M, threads);
-    ttd_scene_array out = {0};
+    motion_arg m = {scene, s, motion, steps, options(M, threads), {0}, counts, 0.0};
     double t[16];
     if (runs > 16)
         runs = 16;
     int ok = 1;
     for (int run = 0; run < runs && ok; ++run) {
-        ok = ttd_scene_set_poses_d(scene, s->n, s->poses) == TTD_OK;
-        double total = 0.0;
-        for (int k = 0; k < steps && ok; ++k) {
-            double a = bench_now();
-            ok = ttd_scene_set_poses_d(scene, s->n, &motion[12 * s->n * (size_t)k]) == TTD_OK &&
-                 ttd_scene_collide_d(&o, scene, s->margin, &out) == TTD_OK;
-            total += bench_now() - a;
-            if (counts)
-                counts[k] = out.count;
-        }
-        t[run] = total / steps;
+        ok = motion_run(&m) == 0;
+        t[run] = m.timed_s / steps;
     }
-    ttd_scene_array_free(&out);
+    ttd_scene_array_free(&m.out);
     ttd_scene_set_poses_d(scene, s->n, s->poses);
     if (!ok) {
         snprintf(r->note, sizeof r->note, "failed");
@@ -1008,6 +1063,23 @@ static int time_motion(sctx *M, ttd_scene *scene, const scene_def *s, const doub
     r->ms_min = t[0] * 1e3;
     r->samples = runs;
     return 0;
+}
+
+/* The two-thread motion row: runs on one thread and on two in turn (thread_ratio); a sample is a
+ * whole run, so here the set_poses to the start (one in steps + 1) is timed too. */
+static int time_motion_threads(const sctx *M, ttd_scene *scene, const scene_def *s, const double *motion, int steps,
+                               double one_ms, srow *r)
+{
+    motion_arg one = {scene, s, motion, steps, options(M, 1), {0}, NULL, 0.0};
+    motion_arg two = one;
+    two.o = options(M, 2);
+    const int st = thread_ratio(M, motion_run, &one, &two, steps, one_ms, r);
+    ttd_scene_array_free(&one.out);
+    ttd_scene_array_free(&two.out);
+    ttd_scene_set_poses_d(scene, s->n, s->poses);
+    if (st != 0)
+        snprintf(r->note, sizeof r->note, "failed");
+    return st;
 }
 
 /* ---- checks --------------------------------------------------------------------------- */
@@ -1278,11 +1350,12 @@ static void run_scene(sctx *M, int w, size_t n)
         r = new_row(M, name, s.n, s.tris, "contacts", 8, 2, s.margin);
         if (r) {
             q.kind = Q_CONTACTS_D;
-            q.o = options(M, 2);
-            if (time_query(M, &q, r) == 0) {
-                r->value = (double)q.out.count;
+            on_threads one = {&q, options(M, 1)}, two = {&q, options(M, 2)};
+            if (thread_ratio(M, call_on_threads, &one, &two, 1.0, contacts1_ms, r) == 0) {
+                r->value = (double)q.out.count; /* the last call was on two threads */
                 snprintf(r->result, sizeof r->result, "%zu triangle pairs", q.out.count);
-                r->x_threads = contacts1_ms / r->ms;
+            } else {
+                snprintf(r->note, sizeof r->note, "failed: %s", ttd_status_string(q.st));
             }
             set_need(r, 1.85, "x_threads");
             q.o = options(M, 1);
@@ -1301,7 +1374,7 @@ static void run_scene(sctx *M, int w, size_t n)
             snprintf(r->result, sizeof r->result, "%zu points", q.out.count);
             /* K = 4: 1.15x on the pile (issue 36), 1.2x elsewhere (issue 32); K = 0: 1.15x (issue 23) */
             set_need_at_most(r, contacts_ms, kk == 0 && w != SW_ICOSPHERES ? 1.2 : 1.15, "x_contacts");
-            r->x_ref_cpu = cpu_ratio(&q, q.max_points);
+            r->x_ref_cpu = cpu_ratio(&q);
             snprintf(r->note, sizeof r->note, "manifold / contacts (double) = %.2fx; in CPU time, alternating: %.2fx",
                      r->x_ref, r->x_ref_cpu);
             if (kk == 0 && have_bullet) {
@@ -1323,14 +1396,16 @@ static void run_scene(sctx *M, int w, size_t n)
             r = new_row(M, name, s.n, s.tris, "motion", 8, threads, s.margin);
             if (!r)
                 break;
-            if (time_motion(M, q.scene, &s, motion, steps, threads, M->env->st->quick ? 2 : 3, r,
-                            threads == 1 ? counts1 : NULL) != 0)
+            if (threads == 1 ? time_motion(M, q.scene, &s, motion, steps, threads, M->env->st->quick ? 2 : 3, r,
+                                           counts1) != 0
+                             : time_motion_threads(M, q.scene, &s, motion, steps, one_ms, r) != 0)
                 continue;
             snprintf(r->result, sizeof r->result, "%d steps, last %" PRIu64 " pairs", steps, counts1[steps - 1]);
             if (have_fcl) {
                 fcl_time(M, r, &fr.motion);
-                snprintf(r->note, sizeof r->note, "per step: set_poses + collide+m; FCL's update %.3g ms of %.3g",
-                         fr.motion_update_ms, fr.motion.ms);
+                const size_t at = strlen(r->note);
+                snprintf(r->note + at, sizeof r->note - at, "%sper step: set_poses + collide+m; FCL's update %.3g ms "
+                         "of %.3g", at ? "; " : "", fr.motion_update_ms, fr.motion.ms);
                 if (threads == 1)
                     for (int k = 0; k < steps; ++k)
                         if (fr.step_pairs[k] != counts1[k]) {
@@ -1343,7 +1418,6 @@ static void run_scene(sctx *M, int w, size_t n)
                 one_ms = r->ms;
                 set_need(r, 5.0, "x_fcl");
             } else {
-                r->x_threads = one_ms / r->ms;
                 set_need(r, 1.85, "x_threads");
             }
         }
@@ -1486,9 +1560,10 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
             snprintf(t + at, sizeof t - at, "%sblt>=%gx %s", isfinite(r->need) ? " " : "", r->need_b,
                      r->met_b < 0 ? "n/a" : r->met_b ? "yes" : "NO");
         }
-        char x[48];
+        char x[80];
         if (isfinite(r->x_threads))
-            snprintf(x, sizeof x, "%s (%.2fx thr)", num(c, sizeof c, r->x_fcl, "%.2f"), r->x_threads);
+            snprintf(x, sizeof x, "%s (%.2fx thr, %.2f-%.2f)", num(c, sizeof c, r->x_fcl, "%.2f"), r->x_threads,
+                     r->x_threads_lo, r->x_threads_hi);
         else if (isfinite(r->x_bullet))
             snprintf(x, sizeof x, "%.2f", r->x_bullet);
         else
@@ -1508,7 +1583,9 @@ void bench_scene_write_table(FILE *f, const bench_scene_results *R)
                "collide and distance >= 5x, contacts >= 3x double and >= 5x float, motion step >= 5x; (issue 23) "
                "manifold-0 (every point) within 1.15x the double contacts' time, distance+n (each "
                "body's nearest too) within 3x distance's; (issue 26) two threads >= 1.85x one (contacts on every "
-               "scene, the motion), manifold-4 >= 5x Bullet's GImpact ('blt'); manifold-4 (4 points per body pair) "
+               "scene, the motion: 'thr' = the median over rounds of one thread's sample / two threads' beside it, timed "
+               "alternately, and the rounds' range; the two-thread row's ms from the same samples), manifold-4 >= 5x "
+               "Bullet's GImpact ('blt'); manifold-4 (4 points per body pair) "
                "within 1.15x the contacts on the icospheres (issue 36) and 1.2x on every other scene (issue 32)\n");
     if (R->disagreements) {
         fprintf(f, "DISAGREEMENTS with FCL: %zu\n", R->disagreements);
@@ -1581,6 +1658,9 @@ void bench_scene_write_json(FILE *f, const bench_scene_results *R)
         json_num(f, "fcl_ms_min", r->fcl_ms_min);
         json_num(f, "x_fcl", r->x_fcl);
         json_num(f, "x_threads", r->x_threads);
+        json_num(f, "x_threads_lo", r->x_threads_lo);
+        json_num(f, "x_threads_hi", r->x_threads_hi);
+        fprintf(f, ", \"thread_rounds\": %d", r->thread_rounds);
         json_num(f, "x_ref", r->x_ref);
         json_num(f, "x_ref_cpu", r->x_ref_cpu);
         json_num(f, "bullet_ms", r->bullet_ms);
@@ -1611,7 +1691,7 @@ void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
 {
     fputs("workload,bodies,triangles,query,precision,threads,margin,value,ms,ms_min,fcl_ms,fcl_ms_min,x_fcl,"
           "x_threads,x_ref,bullet_ms,bullet_ms_min,x_bullet,bullet_target,bullet_met,target,target_of,met,disagree,"
-          "x_ref_cpu\n",
+          "x_ref_cpu,x_threads_lo,x_threads_hi,thread_rounds\n",
           f);
     if (!R)
         return;
@@ -1636,6 +1716,8 @@ void bench_scene_write_csv(FILE *f, const bench_scene_results *R)
         csv_num(f, r->need);
         fprintf(f, ",%s,%s,%d", r->need_of ? r->need_of : "", r->met < 0 ? "" : r->met ? "yes" : "no", r->disagree);
         csv_num(f, r->x_ref_cpu);
-        fputc('\n', f);
+        csv_num(f, r->x_threads_lo);
+        csv_num(f, r->x_threads_hi);
+        fprintf(f, ",%d\n", r->thread_rounds);
     }
 }

@@ -2,7 +2,8 @@
 # Builds the tests that call the library from several threads (test_determinism: six
 # concurrent callers with worker threads; test_api: threads_identical; test_scene's queries on
 # two threads of a scene's pool, kept across steps and scenes, each body's nearest best first
-# on them; test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
+# on them; test_pool: calls on the pool itself, back to back and after its threads slept;
+# test_scene_contacts: manifolds on four threads, their reductions and the meshes' edge
 # information made on first use; test_mesh_self: a self query's
 # sub-walks on 2 threads; test_mesh_deform: a refit's subtrees on 2 and 9 threads;
 # test_points_inside: four threads' first point queries on one fresh mesh and on one moved by
@@ -24,13 +25,15 @@ fi
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTTD_BUILD_CLI=OFF \
     -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
 cmake --build "$build" -j "$jobs" --target test_determinism test_api test_scene test_scene_contacts test_mesh_self test_mesh_deform \
-    test_points_inside test_ccd test_ccd_lanes test_mesh_ccd test_scene_ccd
+    test_points_inside test_ccd test_ccd_lanes test_mesh_ccd test_scene_ccd test_pool
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 "$build/tests/test_determinism"
 "$build/tests/test_api" threads
 "$build/tests/test_scene" collide_across_steps
 "$build/tests/test_scene" closest_pair_order
 "$build/tests/test_scene" sparse_scene_distances
+# the scene's pool itself: calls back to back, after its threads slept, pools destroyed at once
+"$build/tests/test_pool"
 "$build/tests/test_scene_contacts" edges_made_on_first_use
 # self-contacts' sub-walks on 2 threads, and refits of one tree's subtrees on 2 and 9 threads
 "$build/tests/test_mesh_self" self_queries_threads

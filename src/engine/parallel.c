@@ -123,30 +123,36 @@ void ttd_parallel_tasks(size_t ntasks, int threads, ttd_block_fn fn, void *ctx)
 
 /* ---- a pool of threads kept between calls ------------------------------------------------- */
 
-/* A job is posted by bumping `gen` under the mutex; threads 1 .. want - 1 of the pool (pool
- * thread k is worker k + 1) may take part, the others go back to waiting. A thread takes part by
- * counting itself into `entered` under the mutex, unless the caller has closed the job: the
- * caller, worker 0, runs its share, closes the job (the CLOSED bit) and then waits only for the
- * threads that entered before that to finish (`finished`), so the job, on the caller's stack,
- * outlives every use, and a query shorter than a thread's wake-up never waits for one that has
- * not woken yet. A thread spins (pause, about TTD_POOL_SPIN_NS) on `gen` before it blocks: steps
- * of a simulation and a scene's queries come back to back, and a wake-up through the scheduler
- * costs tens of microseconds (more for a virtual machine's idle core), which was most of the
- * second thread's loss on a query of half a millisecond (docs/scene-speed.md, section 13). */
+/* A job is posted by bumping `gen` under the mutex (for the threads blocked on `wake`); threads
+ * 1 .. want - 1 of the pool (pool thread k is worker k + 1) may take part, the others go back to
+ * waiting. A thread takes part by counting itself into `entry` with one compare-and-swap that
+ * also checks the job's number there, unless the caller has closed the job: the caller, worker 0,
+ * runs its share, closes the job (the CLOSED bit) and then waits only for the threads that
+ * entered before that to finish (`finished`), so the job, on the caller's stack, outlives every
+ * use, and a query shorter than a thread's wake-up never waits for one that has not woken yet.
+ * A thread spins (pause, about TTD_POOL_SPIN_NS) on `gen` before it blocks: steps of a
+ * simulation and a scene's queries come back to back, and a wake-up through the scheduler costs
+ * tens of microseconds (more for a virtual machine's idle core), which was most of the second
+ * thread's loss on a query of half a millisecond (docs/scene-speed.md, section 13). A spinning
+ * thread enters without the mutex: taking it as the job was posted found it held (the caller
+ * broadcasts under it) and slept in the kernel, the wake-up the spin is there to avoid (section 14). */
 struct ttd_pool {
     pthread_mutex_t mu;
     pthread_cond_t wake, done;
     pthread_t tid[TTD_MAX_WORKERS];
     int nthreads;
-    int quit;
+    atomic_int quit;
     _Atomic uint64_t gen; /* the job's number */
-    ttd_pfor *job;
-    int want;             /* workers of the job, the caller included */
-    atomic_uint entered;  /* pool threads that took the job, | CLOSED once the caller is done */
+    _Atomic(ttd_pfor *) job;
+    atomic_int want;      /* workers of the job, the caller included */
+    _Atomic uint64_t entry; /* the job's number (low 32 bits) << 32 | CLOSED once the caller is done |
+                             * pool threads that took the job */
     atomic_uint finished; /* pool threads that took the job and are done with it */
+    atomic_int sleeping;  /* the caller waits on `done` (past its spin) */
 };
 
 #define TTD_POOL_CLOSED 0x80000000u
+#define TTD_POOL_COUNT 0x7fffffffu
 
 typedef struct ttd_pool_start {
     ttd_pool *pool;
@@ -206,27 +212,36 @@ static void *ttd_pool_thread(void *arg)
     uint64_t seen = st.gen;
     for (;;) {
         ttd_pool_spin_gen(&p->gen, seen);
-        pthread_mutex_lock(&p->mu);
-        while (!p->quit && atomic_load_explicit(&p->gen, memory_order_relaxed) == seen)
-            pthread_cond_wait(&p->wake, &p->mu);
-        if (p->quit) {
+        if (atomic_load_explicit(&p->gen, memory_order_acquire) == seen) {
+            pthread_mutex_lock(&p->mu);
+            while (!atomic_load_explicit(&p->quit, memory_order_relaxed) &&
+                   atomic_load_explicit(&p->gen, memory_order_relaxed) == seen)
+                pthread_cond_wait(&p->wake, &p->mu);
             pthread_mutex_unlock(&p->mu);
-            return NULL;
         }
-        seen = atomic_load_explicit(&p->gen, memory_order_relaxed);
-        ttd_pfor *job = p->job;
-        /* under the mutex: the caller cannot post the next job (and reset the counts) between
-         * reading this job and counting in */
-        const int part = st.index < p->want &&
-                         !(atomic_fetch_add_explicit(&p->entered, 1, memory_order_acq_rel) & TTD_POOL_CLOSED);
-        pthread_mutex_unlock(&p->mu);
-        if (!part)
+        if (atomic_load_explicit(&p->quit, memory_order_acquire))
+            return NULL;
+        seen = atomic_load_explicit(&p->gen, memory_order_acquire);
+        /* count in only while `entry` still holds this job's number, open: the caller cannot
+         * post the next job (and reset the counts) before the threads counted in are done */
+        uint64_t e = atomic_load_explicit(&p->entry, memory_order_acquire);
+        int in = 0;
+        while (!in && (uint32_t)(e >> 32) == (uint32_t)seen && !(e & TTD_POOL_CLOSED))
+            in = atomic_compare_exchange_weak_explicit(&p->entry, &e, e + 1, memory_order_acq_rel,
+                                                       memory_order_acquire);
+        if (!in)
             continue;
-        ttd_pfor_run(job, st.index);
-        atomic_fetch_add_explicit(&p->finished, 1, memory_order_release);
-        pthread_mutex_lock(&p->mu);
-        pthread_cond_signal(&p->done);
-        pthread_mutex_unlock(&p->mu);
+        if (st.index < atomic_load_explicit(&p->want, memory_order_relaxed))
+            ttd_pfor_run(atomic_load_explicit(&p->job, memory_order_relaxed), st.index);
+        /* the caller, still spinning, reads `finished` and needs no signal; taking the mutex for
+         * one would meet the caller posting its next job under it. Both sequentially consistent:
+         * the caller sets `sleeping` and then reads `finished`, so one of them sees the other. */
+        atomic_fetch_add_explicit(&p->finished, 1, memory_order_seq_cst);
+        if (atomic_load_explicit(&p->sleeping, memory_order_seq_cst)) {
+            pthread_mutex_lock(&p->mu);
+            pthread_cond_signal(&p->done);
+            pthread_mutex_unlock(&p->mu);
+        }
     }
 }
 
@@ -250,9 +265,13 @@ ttd_pool *ttd_pool_create(void)
         free(p);
         return NULL;
     }
+    atomic_init(&p->quit, 0);
     atomic_init(&p->gen, 0);
-    atomic_init(&p->entered, 0);
+    atomic_init(&p->job, NULL);
+    atomic_init(&p->want, 0);
+    atomic_init(&p->entry, 0);
     atomic_init(&p->finished, 0);
+    atomic_init(&p->sleeping, 0);
     return p;
 }
 
@@ -261,7 +280,7 @@ void ttd_pool_destroy(ttd_pool *p)
     if (p == NULL)
         return;
     pthread_mutex_lock(&p->mu);
-    p->quit = 1;
+    atomic_store_explicit(&p->quit, 1, memory_order_release);
     atomic_fetch_add_explicit(&p->gen, 1, memory_order_release); /* ends the threads' spins */
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->mu);
@@ -304,23 +323,32 @@ void ttd_pool_tasks(ttd_pool *p, size_t ntasks, int threads, ttd_block_fn fn, vo
     atomic_init(&job.next, 0);
     if (workers > 1) {
         pthread_mutex_lock(&p->mu);
-        p->job = &job;
-        p->want = workers;
-        atomic_store_explicit(&p->entered, 0, memory_order_relaxed);
+        atomic_store_explicit(&p->job, &job, memory_order_relaxed);
+        atomic_store_explicit(&p->want, workers, memory_order_relaxed);
         atomic_store_explicit(&p->finished, 0, memory_order_relaxed);
-        atomic_fetch_add_explicit(&p->gen, 1, memory_order_release);
-        pthread_cond_broadcast(&p->wake);
+        const uint64_t gen = atomic_load_explicit(&p->gen, memory_order_relaxed) + 1;
+        /* the job, its workers and the zero count are published by this release; gen after it,
+         * so a thread that sees the new gen finds the entry open */
+        atomic_store_explicit(&p->entry, (uint64_t)(uint32_t)gen << 32, memory_order_release);
+        atomic_store_explicit(&p->gen, gen, memory_order_release);
         pthread_mutex_unlock(&p->mu);
+        /* after the unlock: a thread woken under it would block at once on the held mutex. A
+         * sleeper cannot miss the job: it reads gen under the mutex before it waits */
+        pthread_cond_broadcast(&p->wake);
     }
     ttd_pfor_run(&job, 0);
     if (workers > 1) {
         /* close the job: a thread not in by now finds it closed and leaves it alone */
-        const unsigned in = atomic_fetch_or_explicit(&p->entered, TTD_POOL_CLOSED, memory_order_acq_rel) &
-                            ~TTD_POOL_CLOSED;
+        const unsigned in =
+            (unsigned)(atomic_fetch_or_explicit(&p->entry, TTD_POOL_CLOSED, memory_order_acq_rel) & TTD_POOL_COUNT);
         ttd_pool_spin_count(&p->finished, in);
-        pthread_mutex_lock(&p->mu);
-        while (atomic_load_explicit(&p->finished, memory_order_acquire) < in)
-            pthread_cond_wait(&p->done, &p->mu);
-        pthread_mutex_unlock(&p->mu);
+        if (atomic_load_explicit(&p->finished, memory_order_acquire) < in) {
+            pthread_mutex_lock(&p->mu);
+            atomic_store_explicit(&p->sleeping, 1, memory_order_seq_cst);
+            while (atomic_load_explicit(&p->finished, memory_order_seq_cst) < in)
+                pthread_cond_wait(&p->done, &p->mu);
+            atomic_store_explicit(&p->sleeping, 0, memory_order_relaxed);
+            pthread_mutex_unlock(&p->mu);
+        }
     }
 }

@@ -79,6 +79,21 @@ grep -q '"pose": "random", .*"threads": 2,' "$tmp/mesh.rows" || fail "no 2-threa
 field() { sed "s/.*\"$1\": \([^,]*\),.*/\1/"; }
 bad=$(field ms < "$tmp/mesh.rows" | awk '!($1 + 0 > 0)' | wc -l)
 [ "$bad" -eq 0 ] || fail "$bad mesh rows without a positive time"
+# two threads over one timed alternately (issue 36 target 5): the median of at least 3 rounds'
+# ratios, within the rounds' range
+thread_ratio_ok() {
+  while read -r line; do
+    x=$(printf '%s\n' "$line" | field x_threads)
+    lo=$(printf '%s\n' "$line" | field x_threads_lo)
+    hi=$(printf '%s\n' "$line" | field x_threads_hi)
+    n=$(printf '%s\n' "$line" | field thread_rounds)
+    awk -v x="$x" -v lo="$lo" -v hi="$hi" -v n="$n" \
+      'BEGIN { exit !(lo + 0 > 0 && lo + 0 <= x + 0 && x + 0 <= hi + 0 && n + 0 >= 3) }' ||
+      fail "$2: two threads over one $x, range $lo-$hi, $n rounds: $line"
+  done < "$1"
+}
+grep '"pose": "random", .*"threads": 2,' "$tmp/mesh.rows" > "$tmp/poses2.rows"
+thread_ratio_ok "$tmp/poses2.rows" "mesh random poses"
 for pl in far:1 near:0.01 contact:0.002 overlap:0; do
   pose=${pl%%:*}; want=${pl#*:}
   grep "\"pose\": \"$pose\", \"query\": \"distance\"" "$tmp/mesh.rows" > "$tmp/pl.rows" || fail "no $pose rows"
@@ -143,6 +158,10 @@ for q in manifold-4 manifold-0 distance+n; do # issue 23's ratios: against ttd's
   grep "\"query\": \"$q\"" "$tmp/scene.rows" | grep -q '"x_ref": [0-9]' || fail "no $q row with its ratio"
 done
 grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread contacts row"
+grep '"threads": 2,' "$tmp/scene.rows" > "$tmp/scene2.rows"
+[ "$(grep -c '"target_of": "x_threads"' "$tmp/scene2.rows")" -eq "$(wc -l < "$tmp/scene2.rows")" ] ||
+  fail "a 2-thread scene row without its x_threads target"
+thread_ratio_ok "$tmp/scene2.rows" "scene"
 # with Bullet's program next to ttd: its time beside every manifold-4 row (issue 26)
 if [ -x "$(dirname "$ttd")/ttd_bullet_scene_bench" ]; then
   bad=$(grep '"query": "manifold-4"' "$tmp/scene.rows" | field bullet_ms | awk '!($1 + 0 > 0)' | wc -l)

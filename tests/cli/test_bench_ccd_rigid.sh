@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # `ttd bench ccd --rigid` on a few motions: its rows (an icosphere and two tori; the bunny row
 # skipped or measured), hits within the motions, the scene's step on 1 and 2 threads with the
-# same hits; with FCL's program beside ttd, every motion where ttd and FCL disagree settled by
+# same hits and their ratio timed alternately, within its rounds' range; with FCL's program beside ttd, every motion where ttd and FCL disagree settled by
 # the sampled distance never in FCL's favour (the "fcl" column of "right" is 0): a check on ttd.
 # Usage: sh test_bench_ccd_rigid.sh path/to/ttd
 set -u
@@ -16,6 +16,9 @@ rows=$(echo "$out" | awk -F'|' '/^(icosphere|torus)/ { n = split($1, f, " "); if
 [ "$rows" -eq 3 ] || fail "expected 3 rows of 6 motions: $out"
 hits=$(echo "$out" | awk '/^scene step/ { for (i = 1; i <= NF; ++i) if ($i == "hit;") print $(i - 1) }' | sort -u | wc -l)
 [ "$hits" -eq 1 ] || fail "the scene's step: 1 and 2 threads differ: $out"
+echo "$out" | awk '/^scene step, .* two threads over one, alternating: / {
+    split($0, a, "alternating: "); split(a[2], f, /[x( ,-]+/); ok = f[1] > 0 && f[2] >= 3 && f[4] <= f[1] + 0 && f[1] <= f[5] + 0 }
+  END { exit !ok }' || fail "the scene's step: no two-thread ratio within its rounds' range: $out"
 pass "rows and the scene's step"
 if [ -x "$(dirname "$TTD")/ttd_fcl_ccd_bench" ]; then
     # segments between the bars: 2 FCL (RSS) hits, ms, ratio; 3 hit only in ttd, FCL, max |dtoi|; 4 right: ttd,
