@@ -367,6 +367,13 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
         const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
         ttd_self_block *b = &G->blk[g];
+        if (g + 4 < ng) { /* the block written 4 groups on: its lines' loads for the stores started */
+            const char *x = (const char *)&G->blk[g + 4];
+#pragma GCC unroll 24
+            for (size_t o = 0; o < sizeof *b; o += 64)
+                __builtin_prefetch(x + o, 1);
+            __builtin_prefetch(x + sizeof *b - 1, 1);
+        }
         double v[9][TTD_NODE_WIDTH]; /* the leaf's vertices, lanes (vertex k, coordinate c at 3 k + c) */
         for (int j = 0; j < (topo ? TTD_NODE_WIDTH : y->count); ++j) {
             if (topo ? S->topo[n][j] < 0 : y->child[j] >= 0)
