@@ -179,12 +179,19 @@ typedef unsigned (*ttd_leaf_axes_fn)(const double s[14][TTD_NODE_WIDTH], const d
 typedef struct ttd_self_block {
     double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
     double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
+    uint32_t iv[3][TTD_NODE_WIDTH]; /* the same as 32-bit integers (0xFFFFFFFF in padding lanes), 8 to
+                                     a vector where a row compares them so (AVX2) */
     double dg[12][TTD_NODE_WIDTH]; /* projections on x + y, x - y, x + z, x - z, y + z, y - z:
                                      minima (d), maxima raised by R (6 + d); 0 in padding lanes */
     double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
 } ttd_self_block;
 typedef unsigned (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
 typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
+/* box_list (double rows only; NULL on the scalar row): box q (as box_screen's) against boxes 0..n-1,
+ * n <= 64, of the six arrays at b, c apart (lo x, y, z, raised hi x, y, z; readable to the next
+ * multiple of TTD_NODE_WIDTH past n): writes the near boxes' positions to at, in increasing order,
+ * and returns their count; box_screen's comparisons, 8 boxes at a time, in one call. */
+typedef unsigned (*ttd_box_list_fn)(const double *b, size_t c, unsigned n, const double q[6], uint8_t at[64]);
 /* self_fill (double rows only; NULL on the scalar row): a leaf's 8 triangles, v[3 k + c][lane] the
  * coordinate c of vertex k, into their boxes (b->lo, b->hi: minima, and maxima + L) and their
  * projections on the six diagonal directions x + y, x - y, x + z, x - z, y + z, y - z (b->dg[d]:
@@ -243,6 +250,7 @@ typedef struct ttd_kernels_d {
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
+    ttd_box_list_fn box_list;           ///< NULL on the scalar row
     ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row
     ttd_tri_apart_fn tri_apart;         ///< NULL on the scalar row

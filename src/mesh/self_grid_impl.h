@@ -205,6 +205,7 @@ typedef struct self_grid {
                                   leaves after them, each tested against every leaf */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
     ttd_box_screen_fn boxes;
+    ttd_box_list_fn list;      /* the row's, or NULL: box_list_scalar */
     self_scratch *S;           /* where the arrays are */
 } self_grid;
 
@@ -249,6 +250,22 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
                         (lo[2][j] <= q[5]) & (q[2] <= hi[2][j]))
              << j;
     return n;
+}
+
+/* The scalar row's box_list (core/kernels.h): box_screen's loop over up to 64 boxes. */
+static unsigned box_list_scalar(const double *b, size_t c, unsigned n, const double q[6], uint8_t at[64])
+{
+    unsigned k = 0;
+    for (unsigned r = 0; r < n; r += TTD_NODE_WIDTH) {
+        const double *const lo[3] = {b + r, b + c + r, b + 2 * c + r};
+        const double *const hi[3] = {b + 3 * c + r, b + 4 * c + r, b + 5 * c + r};
+        unsigned m = box_screen_scalar(lo, hi, q);
+        if (n - r < TTD_NODE_WIDTH)
+            m &= (1u << (n - r)) - 1;
+        for (; m != 0; m &= m - 1)
+            at[k++] = (uint8_t)(r + (unsigned)__builtin_ctz(m));
+    }
+    return k;
 }
 
 /* The diagonal screen: whether two triangles are farther apart than the limit along one of the six
@@ -310,6 +327,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     memset(G, 0, sizeof *G);
     G->screen = row != NULL ? row->self_screen : NULL;
     G->boxes = row != NULL ? row->box_screen : NULL;
+    G->list = row != NULL ? row->box_list : NULL;
     if (!isfinite(L))
         return 0;
     const size_t nnodes = mesh->nnodes;
@@ -349,6 +367,13 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
         const ttd_node *y = topo ? NULL : P->a.nodes + n;
         int k = 0;
         ttd_self_block *b = &G->blk[g];
+        if (g + 4 < ng) { /* the block written 4 groups on: its lines' loads for the stores started */
+            const char *x = (const char *)&G->blk[g + 4];
+#pragma GCC unroll 24
+            for (size_t o = 0; o < sizeof *b; o += 64)
+                __builtin_prefetch(x + o, 1);
+            __builtin_prefetch(x + sizeof *b - 1, 1);
+        }
         double v[9][TTD_NODE_WIDTH]; /* the leaf's vertices, lanes (vertex k, coordinate c at 3 k + c) */
         for (int j = 0; j < (topo ? TTD_NODE_WIDTH : y->count); ++j) {
             if (topo ? S->topo[n][j] < 0 : y->child[j] >= 0)
@@ -362,7 +387,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
             if (!fixed) {
                 G->tri[g][k] = (int32_t)t;
                 for (int q = 0; q < 3; ++q)
-                    b->ix[q][k] = (double)ix[q];
+                    b->ix[q][k] = (double)ix[q], b->iv[q][k] = ix[q];
             }
             ++k;
         }
@@ -381,6 +406,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
                 b->lo[c][k] = INFINITY;
                 b->hi[c][k] = -INFINITY;
                 b->ix[c][k] = -1;
+                b->iv[c][k] = UINT32_MAX;
             }
         }
         double *gb = gbox[g]; /* the leaf's box: its lanes' (the empty ones' are +-inf) */
@@ -551,7 +577,7 @@ static inline __attribute__((always_inline)) void self_grid_hits(const qctx *C, 
     *nh = 0;
 }
 
-/* Leaf g (at grid position p) against n leaves whose boxes are near its own, 8 at a time: their
+/* Leaf g (at grid position p) against n leaves whose boxes are near its own, 64 a row call (box_list): their
  * boxes in the 6 arrays at b, c apart (lo x, y, z, raised hi x, y, z; readable 8 past n), their
  * leaves in id. A cell's run of the grid (b = sbox + q0, c its stride, id = order + q0) and the
  * gathered list of its 13 neighbouring cells take this one loop. */
@@ -564,14 +590,12 @@ static inline __attribute__((always_inline)) void self_grid_near(const qctx *C, 
     const uint32_t g = G->order[p];
     uint32_t hit[SELF_NEAR_HITS]; /* the leaves found, their blocks' loads started */
     int nh = 0;
-    for (size_t r = 0; r < n; r += TTD_NODE_WIDTH) {
-        const double *const lo[3] = {b + r, b + c + r, b + 2 * c + r};
-        const double *const hi[3] = {b + 3 * c + r, b + 4 * c + r, b + 5 * c + r};
-        unsigned m = G->boxes ? G->boxes(lo, hi, q) : box_screen_scalar(lo, hi, q);
-        if (n - r < TTD_NODE_WIDTH)
-            m &= (1u << (n - r)) - 1;
-        for (; m != 0; m &= m - 1) {
-            hit[nh] = id[r + (size_t)__builtin_ctz(m)];
+    for (size_t r = 0; r < n; r += 64) { /* 64 boxes a row call (box_list) */
+        uint8_t at[64];
+        const unsigned cn = n - r < 64 ? (unsigned)(n - r) : 64;
+        const unsigned k = G->list ? G->list(b + r, c, cn, q, at) : box_list_scalar(b + r, c, cn, q, at);
+        for (unsigned e = 0; e < k; ++e) {
+            hit[nh] = id[r + at[e]];
             self_block_prefetch(&G->blk[hit[nh]]);
             if (++nh == SELF_NEAR_HITS)
                 self_grid_hits(C, P, W, w, G, g, hit, &nh);
