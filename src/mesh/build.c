@@ -31,6 +31,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/vec3.h"
 #include "engine/dispatch.h"
@@ -1257,13 +1260,29 @@ static void fitsum_terms(double terms[13][TTD_NODE_WIDTH], int i, double *const 
 /* The leaf's sums from its count triangles' terms (fitsum_terms), in the order described there. */
 static fitsum fitsum_leaf(double terms[13][TTD_NODE_WIDTH], int count)
 {
-    double x[13];
+    double x[14];
+    if (count < TTD_NODE_WIDTH)
+        for (int q = 0; q < 13; ++q)
+            for (int i = count; i < TTD_NODE_WIDTH; ++i)
+                terms[q][i] = 0;
+#if defined(__SSE2__) && TTD_NODE_WIDTH == 8
+    /* two terms at once (q, q + 1): the pairs' sums by unpacks, then the same additions in the
+     * same order (one term at a time these were 6% of a refit's instructions) */
+    for (int q = 0; q < 13; q += 2) {
+        const double *t = terms[q], *w = terms[q < 12 ? q + 1 : q];
+        __m128d s[4];
+        for (int i = 0; i < 4; ++i) {
+            const __m128d a = _mm_loadu_pd(t + 2 * i), b = _mm_loadu_pd(w + 2 * i);
+            s[i] = _mm_add_pd(_mm_unpacklo_pd(a, b), _mm_unpackhi_pd(a, b)); /* (t[2i] + t[2i+1], w's) */
+        }
+        _mm_storeu_pd(x + q, _mm_add_pd(_mm_add_pd(s[0], s[1]), _mm_add_pd(s[2], s[3])));
+    }
+#else
     for (int q = 0; q < 13; ++q) {
-        double *t = terms[q];
-        for (int i = count; i < TTD_NODE_WIDTH; ++i)
-            t[i] = 0;
+        const double *t = terms[q];
         x[q] = ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
     }
+#endif
     fitsum s;
     for (int k = 0; k < 3; ++k)
         s.n[k] = x[k];

@@ -82,16 +82,13 @@ static unsigned tri_fit(const double *const p[9], int count, double radius, doub
         trifit_cross3(w, a, b);
         const ttdw_vd *ax[3] = {a, b, w};
         /* the extents about those axes, as triangle_fit computes them */
+        /* the range starts at the first vertex's projection: triangle_fit's min(HUGE_VAL, d) is d */
         ttdw_vd mn[3], mx[3], cc[3];
-        for (int t = 0; t < 3; ++t) {
-            mn[t] = ttdw_set1_d(HUGE_VAL);
-            mx[t] = ttdw_set1_d(-HUGE_VAL);
-        }
         for (int k = 0; k < 3; ++k)
             for (int t = 0; t < 3; ++t) {
                 const ttdw_vd d = ax[t][0] * v[k][0] + ax[t][1] * v[k][1] + ax[t][2] * v[k][2];
-                mn[t] = trifit_min(mn[t], d);
-                mx[t] = trifit_max(mx[t], d);
+                mn[t] = k == 0 ? d : trifit_min(mn[t], d);
+                mx[t] = k == 0 ? d : trifit_max(mx[t], d);
             }
         for (int q = 0; q < 3; ++q)
             cc[q] = ttdw_zero_d();
@@ -139,9 +136,24 @@ static void leaf_span(const double *const p[9], int count, const double u[9], do
     ttdw_vd ua[9], lo[3], hi[3];
     for (int k = 0; k < 9; ++k)
         ua[k] = ttdw_set1_d(u[k]);
-    for (int a = 0; a < 3; ++a) {
-        lo[a] = ttdw_set1_d(HUGE_VAL);
-        hi[a] = ttdw_set1_d(-HUGE_VAL);
+    if (count >= TTD_NODE_WIDTH) {
+        /* a full leaf (most): every lane live, and the range starts at the first projection
+         * (min(HUGE_VAL, d) is d): the loop below's bits without its blends */
+        for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D)
+            for (int k = 0; k < 3; ++k) {
+                const ttdw_vd x = ttdw_loadu_d(p[3 * k] + j), y = ttdw_loadu_d(p[3 * k + 1] + j), z = ttdw_loadu_d(p[3 * k + 2] + j);
+                for (int a = 0; a < 3; ++a) {
+                    const ttdw_vd d = ua[3 * a] * x + ua[3 * a + 1] * y + ua[3 * a + 2] * z;
+                    lo[a] = j == 0 && k == 0 ? d : trifit_min(lo[a], d);
+                    hi[a] = j == 0 && k == 0 ? d : trifit_max(hi[a], d);
+                }
+            }
+        count = 0; /* the loop below does nothing */
+    } else {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = ttdw_set1_d(HUGE_VAL);
+            hi[a] = ttdw_set1_d(-HUGE_VAL);
+        }
     }
     for (int j = 0; j < TTD_NODE_WIDTH && j < count; j += TTDW_LANES_D) {
         const ttdw_md live = ttdw_mfirst_d(count - j);
