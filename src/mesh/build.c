@@ -923,6 +923,40 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
         }                                                                                          \
     } while (0)
 
+/* PLACE_R2(double) where scale > 0, two vertices a step on SSE2 (the same products and sums; the
+ * largest of sums of squares, +0 or more, does not depend on the order they are compared in) */
+static double place_r2(const double *v, size_t nv, const double o[3], double scale)
+{
+    double r2 = 0;
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128d s = _mm_set1_pd(scale), zero = _mm_setzero_pd();
+    const __m128d o01 = _mm_setr_pd(o[0], o[1]), o20 = _mm_setr_pd(o[2], o[0]), o12 = _mm_setr_pd(o[1], o[2]);
+    __m128d best = zero;
+    for (; i + 2 <= nv; i += 2) {
+        const double *x = v + 3 * i;
+        const __m128d a = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x), o01), s);     /* d of x0, y0 */
+        const __m128d b = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x + 2), o20), s); /* z0, x1 */
+        const __m128d c = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x + 4), o12), s); /* y1, z1 */
+        const __m128d a2 = _mm_mul_pd(a, a), b2 = _mm_mul_pd(b, b), c2 = _mm_mul_pd(c, c);
+        const __m128d dx = _mm_shuffle_pd(a2, b2, 2), dy = _mm_shuffle_pd(a2, c2, 1), dz = _mm_shuffle_pd(b2, c2, 2);
+        best = _mm_max_pd(best, _mm_add_pd(_mm_add_pd(_mm_add_pd(zero, dx), dy), dz));
+    }
+    double lanes[2];
+    _mm_storeu_pd(lanes, best);
+    r2 = dmax(lanes[0], lanes[1]);
+#endif
+    for (; i < nv; ++i) {
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = (v[3 * i + (size_t)c] - o[c]) * scale;
+            d2 += d * d;
+        }
+        r2 = dmax(r2, d2);
+    }
+    return r2;
+}
+
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
  * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL).
  * With copy, verts is also copied into m->verts by the range's pass (a refit: a memcpy before it
@@ -962,7 +996,9 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel, int copy)
      * coordinate (they were 5% of a refit); 2^-e overflows only for a subnormal big */
     const double scale = e >= -1023 ? ldexp(1.0, -e) : 0;
     double r2 = 0;
-    if (m->bytes == 8)
+    if (m->bytes == 8 && scale > 0)
+        r2 = place_r2(verts, nv, m->origin, scale);
+    else if (m->bytes == 8)
         PLACE_R2(double);
     else
         PLACE_R2(float);
@@ -1411,6 +1447,7 @@ typedef struct refit {
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
     ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
     ttd_leaf_axes_fn leaf_axes; /* the ISA's lane axes of up to 8 leaves, or NULL (scalar) */
+    ttd_box_span_fn box_span;   /* the ISA's lane pass of store_box_of_boxes, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     double (*area)[2];    /* per node: its part of the tree's measure (node_areas) */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
@@ -1501,7 +1538,8 @@ static void slot_box(const struct ttd_mesh *m, size_t n, int j, obb *b)
  * within 4 u; the slack 16 u (|y - c|_1 + |f|_1) covers them with the sums, and |u_a| <= 1 + eps
  * is folded into 8 (g + 4 u) (1 + 2^-20). A float mesh rounds the axes and centre to float first
  * and the extents up. */
-static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const double u0[9], int32_t c)
+static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const double u0[9], int32_t c,
+                               ttd_box_span_fn box_span)
 {
     const int f32 = m->bytes == 4;
     const int count = slot_count(m, (size_t)c);
@@ -1510,7 +1548,19 @@ static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const
     obb y[TTD_NODE_WIDTH];
     for (int i = 0; i < 9; ++i)
         u[i] = f32 ? round_to_float(u0[i]) : u0[i];
-    for (int k = 0; k < count; ++k) {
+    if (!f32 && box_span != NULL) {
+        /* the loop below in lanes, one child a lane (simd/kernel_trifit.h: the same bits) */
+        const ttd_node_d *cn = (const ttd_node_d *)m->nodes + c;
+        double sp[3][TTD_NODE_WIDTH];
+        box_span((const double(*)[TTD_NODE_WIDTH])cn->c, (const double(*)[TTD_NODE_WIDTH])cn->u,
+                 (const double(*)[TTD_NODE_WIDTH])cn->e, count, u, lo, hi, sp, slack);
+        for (int k = 0; k < count; ++k)
+            for (int a = 0; a < 3; ++a) {
+                y[k].c[a] = cn->c[a][k];
+                spread[k][a] = sp[a][k];
+            }
+    }
+    for (int k = 0; k < (!f32 && box_span != NULL ? 0 : count); ++k) {
         slot_box(m, (size_t)c, k, &y[k]);
         double g = 0;
         for (int a = 0; a < 3; ++a)
@@ -1713,7 +1763,7 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
             if (leaves >> j & 1)
                 leaf_store(R, n, j, child[j], &L[j], uj);
             else
-                store_box_of_boxes(m, n, j, uj, child[j]);
+                store_box_of_boxes(m, n, j, uj, child[j], R->box_span);
         }
     }
     node_areas(m, (size_t)n, R->area[n]);
@@ -1849,7 +1899,7 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
     if (S == NULL || m->leaf_vix == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
     refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
-               row != NULL ? row->leaf_axes : NULL, S->sums, S->area, S->list};
+               row != NULL ? row->leaf_axes : NULL, row != NULL ? row->box_span : NULL, S->sums, S->area, S->list};
     m->generation++; /* the vertices are copied by refit_derived's place */
     refit_derived(cfg, m, verts, &R);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
