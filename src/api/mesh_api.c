@@ -7,6 +7,9 @@
 #include <string.h>
 #include <stdint.h>
 #include <stdlib.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "api/prepare.h"
 #include "core/rotation.h"
@@ -32,13 +35,33 @@
             out |= !(fabs((double)v[i]) <= range);                                                 \
     } while (0)
 
+/* ANY_OUT(double) over n coordinates, two at a step where SSE2 is the baseline: !(|x| <= range)
+ * is cmpnle, true for NaN (scalar, 9 instructions a coordinate: 3% of a refit at 10k triangles) */
+static int any_out_d(const double *v, size_t n, double range)
+{
+    int out = 0;
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128d r = _mm_set1_pd(range), sign = _mm_set1_pd(-0.0);
+    __m128d bad0 = _mm_setzero_pd(), bad1 = _mm_setzero_pd();
+    for (; i + 4 <= n; i += 4) {
+        bad0 = _mm_or_pd(bad0, _mm_cmpnle_pd(_mm_andnot_pd(sign, _mm_loadu_pd(v + i)), r));
+        bad1 = _mm_or_pd(bad1, _mm_cmpnle_pd(_mm_andnot_pd(sign, _mm_loadu_pd(v + i + 2)), r));
+    }
+    out = _mm_movemask_pd(_mm_or_pd(bad0, bad1)) != 0;
+#endif
+    for (; i < n; ++i)
+        out |= !(fabs(v[i]) <= range);
+    return out;
+}
+
 /* The build's checks of vertex coordinates: finite, then within the range. */
 static ttd_status check_vertices(int bytes, const void *vertices, size_t nv)
 {
     const double range = ttd_mesh_range(bytes);
     int out = 0;
     if (bytes == 8)
-        ANY_OUT(double);
+        out = any_out_d(vertices, 3 * nv, range);
     else
         ANY_OUT(float);
     if (!out)

@@ -163,6 +163,14 @@ typedef void (*ttd_leaf_span_fn)(const double *const p[9], int count, const doub
 typedef unsigned (*ttd_leaf_axes_fn)(const double s[14][TTD_NODE_WIDTH], const double old[9][TTD_NODE_WIDTH],
                                      unsigned live, double u[9][TTD_NODE_WIDTH]);
 
+/* box_span (double rows only; NULL on the scalar row): for a double mesh's node whose rows are
+ * yc, yu, ye (count boxes), the first pass of mesh/build.c's store_box_of_boxes about axes ua, bit
+ * for bit: each child's slack[k] and spread[a][k], and the children's range [lo[a], hi[a]] along
+ * the axes (simd/kernel_trifit.h). */
+typedef void (*ttd_box_span_fn)(const double yc[3][TTD_NODE_WIDTH], const double yu[9][TTD_NODE_WIDTH],
+                                const double ye[3][TTD_NODE_WIDTH], int count, const double ua[9], double lo[3],
+                                double hi[3], double spread[3][TTD_NODE_WIDTH], double slack[TTD_NODE_WIDTH]);
+
 /* self_screen and box_screen (double rows only; NULL on the scalar row, whose loops are in
  * mesh/self_grid_impl.h): a self-contact query's screens, in double for both precisions (float
  * coordinates convert exactly). Boxes are axis-aligned: lo the minima of a triangle's vertices,
@@ -248,6 +256,7 @@ typedef struct ttd_kernels_d {
     ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
     ttd_leaf_span_fn leaf_span;         ///< NULL on the scalar row
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
+    ttd_box_span_fn box_span;           ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
     ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
     ttd_box_list_fn box_list;           ///< NULL on the scalar row

@@ -31,6 +31,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/vec3.h"
 #include "engine/dispatch.h"
@@ -920,6 +923,40 @@ const ttd_mesh_edges *ttd_mesh_edges_get(const struct ttd_mesh *mesh)
         }                                                                                          \
     } while (0)
 
+/* PLACE_R2(double) where scale > 0, two vertices a step on SSE2 (the same products and sums; the
+ * largest of sums of squares, +0 or more, does not depend on the order they are compared in) */
+static double place_r2(const double *v, size_t nv, const double o[3], double scale)
+{
+    double r2 = 0;
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128d s = _mm_set1_pd(scale), zero = _mm_setzero_pd();
+    const __m128d o01 = _mm_setr_pd(o[0], o[1]), o20 = _mm_setr_pd(o[2], o[0]), o12 = _mm_setr_pd(o[1], o[2]);
+    __m128d best = zero;
+    for (; i + 2 <= nv; i += 2) {
+        const double *x = v + 3 * i;
+        const __m128d a = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x), o01), s);     /* d of x0, y0 */
+        const __m128d b = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x + 2), o20), s); /* z0, x1 */
+        const __m128d c = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(x + 4), o12), s); /* y1, z1 */
+        const __m128d a2 = _mm_mul_pd(a, a), b2 = _mm_mul_pd(b, b), c2 = _mm_mul_pd(c, c);
+        const __m128d dx = _mm_shuffle_pd(a2, b2, 2), dy = _mm_shuffle_pd(a2, c2, 1), dz = _mm_shuffle_pd(b2, c2, 2);
+        best = _mm_max_pd(best, _mm_add_pd(_mm_add_pd(_mm_add_pd(zero, dx), dy), dz));
+    }
+    double lanes[2];
+    _mm_storeu_pd(lanes, best);
+    r2 = dmax(lanes[0], lanes[1]);
+#endif
+    for (; i < nv; ++i) {
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = (v[3 * i + (size_t)c] - o[c]) * scale;
+            d2 += d * d;
+        }
+        r2 = dmax(r2, d2);
+    }
+    return r2;
+}
+
 /* The origin (the centre of the vertices' bounding box) and radius (how far the farthest vertex
  * is, rounded up) of a mesh, and its vertices relative to the origin into vrel (unless NULL).
  * With copy, verts is also copied into m->verts by the range's pass (a refit: a memcpy before it
@@ -959,7 +996,9 @@ static void place(struct ttd_mesh *m, const void *verts, double *vrel, int copy)
      * coordinate (they were 5% of a refit); 2^-e overflows only for a subnormal big */
     const double scale = e >= -1023 ? ldexp(1.0, -e) : 0;
     double r2 = 0;
-    if (m->bytes == 8)
+    if (m->bytes == 8 && scale > 0)
+        r2 = place_r2(verts, nv, m->origin, scale);
+    else if (m->bytes == 8)
         PLACE_R2(double);
     else
         PLACE_R2(float);
@@ -1257,13 +1296,29 @@ static void fitsum_terms(double terms[13][TTD_NODE_WIDTH], int i, double *const 
 /* The leaf's sums from its count triangles' terms (fitsum_terms), in the order described there. */
 static fitsum fitsum_leaf(double terms[13][TTD_NODE_WIDTH], int count)
 {
-    double x[13];
+    double x[14];
+    if (count < TTD_NODE_WIDTH)
+        for (int q = 0; q < 13; ++q)
+            for (int i = count; i < TTD_NODE_WIDTH; ++i)
+                terms[q][i] = 0;
+#if defined(__SSE2__) && TTD_NODE_WIDTH == 8
+    /* two terms at once (q, q + 1): the pairs' sums by unpacks, then the same additions in the
+     * same order (one term at a time these were 6% of a refit's instructions) */
+    for (int q = 0; q < 13; q += 2) {
+        const double *t = terms[q], *w = terms[q < 12 ? q + 1 : q];
+        __m128d s[4];
+        for (int i = 0; i < 4; ++i) {
+            const __m128d a = _mm_loadu_pd(t + 2 * i), b = _mm_loadu_pd(w + 2 * i);
+            s[i] = _mm_add_pd(_mm_unpacklo_pd(a, b), _mm_unpackhi_pd(a, b)); /* (t[2i] + t[2i+1], w's) */
+        }
+        _mm_storeu_pd(x + q, _mm_add_pd(_mm_add_pd(s[0], s[1]), _mm_add_pd(s[2], s[3])));
+    }
+#else
     for (int q = 0; q < 13; ++q) {
-        double *t = terms[q];
-        for (int i = count; i < TTD_NODE_WIDTH; ++i)
-            t[i] = 0;
+        const double *t = terms[q];
         x[q] = ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
     }
+#endif
     fitsum s;
     for (int k = 0; k < 3; ++k)
         s.n[k] = x[k];
@@ -1392,6 +1447,7 @@ typedef struct refit {
     ttd_tri_fit_fn tri_fit; /* the ISA's lane fit of a leaf's triangles' boxes, or NULL (scalar) */
     ttd_leaf_span_fn leaf_span; /* the ISA's lane range of a leaf's vertices, or NULL (scalar) */
     ttd_leaf_axes_fn leaf_axes; /* the ISA's lane axes of up to 8 leaves, or NULL (scalar) */
+    ttd_box_span_fn box_span;   /* the ISA's lane pass of store_box_of_boxes, or NULL (scalar) */
     fitsum *sums;         /* per node: its subtree's sums, once the node is refitted */
     double (*area)[2];    /* per node: its part of the tree's measure (node_areas) */
     subtree *list;        /* the subtrees refitted in parallel (room for 64) */
@@ -1425,10 +1481,25 @@ static void gather(const struct ttd_mesh *m, local_tris *L, const uint32_t *ix, 
     for (int k = 0; k < 9; ++k)
         L->B.p[k] = L->p[k];
     const double o[3] = {m->origin[0], m->origin[1], m->origin[2]};
-    if (m->bytes == 8)
+    if (m->bytes == 8) {
+#if defined(__SSE2__)
+        /* x and y in one load and subtraction (the same differences), z alone */
+        const double *v = m->verts;
+        const __m128d oxy = _mm_setr_pd(o[0], o[1]);
+        for (int i = 0; i < count; ++i)
+            for (int k = 0; k < 3; ++k) {
+                const double *x = v + 3 * (size_t)ix[3 * i + k];
+                const __m128d d = _mm_sub_pd(_mm_loadu_pd(x), oxy);
+                _mm_storel_pd(&L->p[3 * k][i], d);
+                _mm_storeh_pd(&L->p[3 * k + 1][i], d);
+                L->p[3 * k + 2][i] = x[2] - o[2];
+            }
+#else
         GATHER(double);
-    else
+#endif
+    } else {
         GATHER(float);
+    }
     for (int k = 0; k < 9; ++k) /* lanes past the last triangle: defined numbers for tri_fit */
         for (int i = count; i < TTD_NODE_WIDTH; ++i)
             L->p[k][i] = 0;
@@ -1482,7 +1553,8 @@ static void slot_box(const struct ttd_mesh *m, size_t n, int j, obb *b)
  * within 4 u; the slack 16 u (|y - c|_1 + |f|_1) covers them with the sums, and |u_a| <= 1 + eps
  * is folded into 8 (g + 4 u) (1 + 2^-20). A float mesh rounds the axes and centre to float first
  * and the extents up. */
-static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const double u0[9], int32_t c)
+static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const double u0[9], int32_t c,
+                               ttd_box_span_fn box_span)
 {
     const int f32 = m->bytes == 4;
     const int count = slot_count(m, (size_t)c);
@@ -1491,7 +1563,19 @@ static void store_box_of_boxes(const struct ttd_mesh *m, int32_t n, int j, const
     obb y[TTD_NODE_WIDTH];
     for (int i = 0; i < 9; ++i)
         u[i] = f32 ? round_to_float(u0[i]) : u0[i];
-    for (int k = 0; k < count; ++k) {
+    if (!f32 && box_span != NULL) {
+        /* the loop below in lanes, one child a lane (simd/kernel_trifit.h: the same bits) */
+        const ttd_node_d *cn = (const ttd_node_d *)m->nodes + c;
+        double sp[3][TTD_NODE_WIDTH];
+        box_span((const double(*)[TTD_NODE_WIDTH])cn->c, (const double(*)[TTD_NODE_WIDTH])cn->u,
+                 (const double(*)[TTD_NODE_WIDTH])cn->e, count, u, lo, hi, sp, slack);
+        for (int k = 0; k < count; ++k)
+            for (int a = 0; a < 3; ++a) {
+                y[k].c[a] = cn->c[a][k];
+                spread[k][a] = sp[a][k];
+            }
+    }
+    for (int k = 0; k < (!f32 && box_span != NULL ? 0 : count); ++k) {
         slot_box(m, (size_t)c, k, &y[k]);
         double g = 0;
         for (int a = 0; a < 3; ++a)
@@ -1667,14 +1751,12 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
     }
     if (boxes != 0) {
         /* defined numbers in the lanes no box fills (a count of 1 where refit_axes divides by
-         * it): set here, lane by lane, instead of clearing both arrays first (1.3% of a refit) */
+         * it): set here, lane by lane, instead of clearing the array first (1.3% of a refit);
+         * old holds the node's rows in every lane, finite numbers already */
         for (int j = 0; j < TTD_NODE_WIDTH; ++j)
-            if (!(boxes >> j & 1)) {
+            if (!(boxes >> j & 1))
                 for (int k = 0; k < 14; ++k)
                     S[k][j] = k == 4 ? 1.0 : 0.0;
-                for (int k = 0; k < 9; ++k)
-                    old[k][j] = 0;
-            }
         const unsigned lanes = R->leaf_axes != NULL ? R->leaf_axes((const double(*)[TTD_NODE_WIDTH])S,
                                                                    (const double(*)[TTD_NODE_WIDTH])old, boxes, u)
                                                     : 0;
@@ -1694,7 +1776,7 @@ static void refit_node(const refit *R, int32_t n, fitsum sum[TTD_NODE_WIDTH])
             if (leaves >> j & 1)
                 leaf_store(R, n, j, child[j], &L[j], uj);
             else
-                store_box_of_boxes(m, n, j, uj, child[j]);
+                store_box_of_boxes(m, n, j, uj, child[j], R->box_span);
         }
     }
     node_areas(m, (size_t)n, R->area[n]);
@@ -1830,7 +1912,7 @@ ttd_status ttd_mesh_refit(const ttd_engine_config *cfg, struct ttd_mesh *m, cons
     if (S == NULL || m->leaf_vix == NULL)
         return TTD_ERR_OUT_OF_MEMORY;
     refit R = {m, row != NULL ? row->tri_fit : NULL, row != NULL ? row->leaf_span : NULL,
-               row != NULL ? row->leaf_axes : NULL, S->sums, S->area, S->list};
+               row != NULL ? row->leaf_axes : NULL, row != NULL ? row->box_span : NULL, S->sums, S->area, S->list};
     m->generation++; /* the vertices are copied by refit_derived's place */
     refit_derived(cfg, m, verts, &R);
     if (m->quality > TTD_MESH_REBUILD_RATIO * m->quality_built)
