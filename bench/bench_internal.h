@@ -76,7 +76,8 @@ typedef struct bench_alternation {
 /// One warm-up call each, then samples of enough calls to last min_s (one call with min_s 0), at
 /// least min_rounds and at most max_rounds (at most 64) rounds, stopping once the samples
 /// took max_s. thread_cpu: the calling thread's CPU time instead of the monotonic clock (only
-/// for calls that run on the calling thread alone). Returns 0, or -1 when a call failed.
+/// for calls that run on the calling thread alone). Returns 0, or -1 when a call failed or a
+/// sample read no time (a clock too coarse for it).
 int bench_time_alternating(int (*fa)(void *), void *a, int (*fb)(void *), void *b, int thread_cpu, double min_s,
                            int min_rounds, int max_rounds, double max_s, bench_alternation *out);
 

@@ -113,6 +113,8 @@ int bench_time_alternating(int (*fa)(void *), void *a, int (*fb)(void *), void *
         max_rounds = 64;
     if (min_rounds < 1)
         min_rounds = 1;
+    if (max_rounds < min_rounds)
+        max_rounds = min_rounds > 64 ? 64 : min_rounds;
     for (int s = 0; s < 2; ++s) {
         const double t0 = now();
         if (fn[s](arg[s]))
@@ -130,6 +132,8 @@ int bench_time_alternating(int (*fa)(void *), void *a, int (*fb)(void *), void *
             spent += dt;
             t[s][rounds] = dt / (double)passes[s];
         }
+        if (!(t[0][rounds] > 0.0 && t[1][rounds] > 0.0))
+            return -1; /* a clock too coarse for the sample: no ratio to sort */
         ratio[rounds] = t[0][rounds] / t[1][rounds];
         ++rounds;
     }

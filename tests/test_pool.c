@@ -19,15 +19,8 @@ typedef struct job {
     atomic_int runs[MAX_TASKS]; /* how many times each task ran */
     int value[MAX_TASKS];       /* a plain write per task, read by the caller after the call */
     int round;
+    long slow_us; /* a pool thread's task sleeps this long: the caller outlasts its spin and blocks */
 } job;
-
-static void task(void *ctx, size_t k, int worker)
-{
-    job *J = ctx;
-    (void)worker;
-    atomic_fetch_add_explicit(&J->runs[k], 1, memory_order_relaxed);
-    J->value[k] = J->round * 1000 + (int)k;
-}
 
 static void pause_us(long us)
 {
@@ -35,11 +28,21 @@ static void pause_us(long us)
     nanosleep(&t, NULL);
 }
 
+static void task(void *ctx, size_t k, int worker)
+{
+    job *J = ctx;
+    if (J->slow_us && worker != 0)
+        pause_us(J->slow_us);
+    atomic_fetch_add_explicit(&J->runs[k], 1, memory_order_relaxed);
+    J->value[k] = J->round * 1000 + (int)k;
+}
+
 /* rounds calls on one pool, task counts 0..MAX_TASKS in a fixed mix; every pause_every-th call
- * after a pause of pause us (0: none) */
-static int run_rounds(ttd_pool *p, int threads, int rounds, int pause_every, long pause)
+ * after a pause of pause us (0: none); tasks on pool threads sleep slow_us */
+static int run_rounds_slow(ttd_pool *p, int threads, int rounds, int pause_every, long pause, long slow_us)
 {
     static job J;
+    J.slow_us = slow_us;
     for (int r = 0; r < rounds; ++r) {
         const size_t n = (size_t)((r * 37 + 11) % (MAX_TASKS + 1));
         for (size_t k = 0; k < MAX_TASKS; ++k) {
@@ -60,6 +63,11 @@ static int run_rounds(ttd_pool *p, int threads, int rounds, int pause_every, lon
         }
     }
     return 0;
+}
+
+static int run_rounds(ttd_pool *p, int threads, int rounds, int pause_every, long pause)
+{
+    return run_rounds_slow(p, threads, rounds, pause_every, pause, 0);
 }
 
 static int calls_back_to_back(void)
@@ -86,6 +94,32 @@ static int calls_after_sleeps(void)
     return 0;
 }
 
+/* a pool grown to 8 threads, then calls that want 2 (the others must stay out and not be waited
+ * for), then 8 again */
+static int fewer_threads_than_the_pool(void)
+{
+    ttd_pool *p = ttd_pool_create();
+    ENSURE(p != NULL);
+    int bad = run_rounds(p, 8, 50, 0, 0);
+    bad |= run_rounds(p, 2, 1000, 0, 0);
+    bad |= run_rounds(p, 8, 50, 0, 0);
+    ttd_pool_destroy(p);
+    ENSURE(bad == 0);
+    return 0;
+}
+
+/* tasks on the pool's threads that take 0.5 ms, longer than the caller's spin: the caller sleeps
+ * and the last thread out wakes it */
+static int caller_sleeps(void)
+{
+    ttd_pool *p = ttd_pool_create();
+    ENSURE(p != NULL);
+    const int bad = run_rounds_slow(p, 2, 60, 0, 0, 500);
+    ttd_pool_destroy(p);
+    ENSURE(bad == 0);
+    return 0;
+}
+
 /* pools made, used once or a few times and destroyed at once, some while their threads spin */
 static int destroyed_after_calls(void)
 {
@@ -106,5 +140,7 @@ int main(int argc, char **argv)
     RUN_TEST(calls_back_to_back);
     RUN_TEST(calls_after_sleeps);
     RUN_TEST(destroyed_after_calls);
+    RUN_TEST(fewer_threads_than_the_pool);
+    RUN_TEST(caller_sleeps);
     TEST_MAIN_END();
 }

@@ -225,6 +225,13 @@ static void *ttd_pool_thread(void *arg)
         /* count in only while `entry` still holds this job's number, open: the caller cannot
          * post the next job (and reset the counts) before the threads counted in are done */
         uint64_t e = atomic_load_explicit(&p->entry, memory_order_acquire);
+        /* a thread the job does not want stays out (the caller would wait for it, and its
+         * compare-and-swap would contend with the others'): `want` is stored before `entry`
+         * (release), so an entry with this job's number shows this job's `want` or a later one's,
+         * and a later job's number makes the compare-and-swap below fail anyway */
+        if ((uint32_t)(e >> 32) == (uint32_t)seen &&
+            st.index >= atomic_load_explicit(&p->want, memory_order_relaxed))
+            continue;
         int in = 0;
         while (!in && (uint32_t)(e >> 32) == (uint32_t)seen && !(e & TTD_POOL_CLOSED))
             in = atomic_compare_exchange_weak_explicit(&p->entry, &e, e + 1, memory_order_acq_rel,

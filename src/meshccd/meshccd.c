@@ -1260,18 +1260,24 @@ static int grid_make(job *J)
     int ok = ng > 0 && he > 0 && isfinite(he) && isfinite(sum);
     for (int c = 0; c < 3; ++c) {
         h[c] = h[c] > 0 ? h[c] : he; /* an axis the groups have no width on: cells of the largest */
-        ok &= isfinite(lo[c]) && isfinite(hi[c]);
+        ok &= isfinite(lo[c]) && isfinite(hi[c]) && isfinite(hi[c] - lo[c]);
     }
     if (!ok) {
         free(cell), free(ext);
         return 0;
     }
-    for (;;) {
+    /* finite spans and positive h: h grows by 1.5 until the count fits (a span 2^2098 times the
+     * cell, the most doubles allow, needs about 3,590 rounds); the cap only guards that reasoning */
+    for (int round = 0;; ++round) {
         double cells = 1;
         for (int c = 0; c < 3; ++c)
             cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
         if (cells <= 4.0 * (double)ng + 64)
             break;
+        if (round == 4096) {
+            free(cell), free(ext);
+            return 0;
+        }
         for (int c = 0; c < 3; ++c)
             h[c] *= 1.5;
     }

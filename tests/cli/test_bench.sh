@@ -158,6 +158,11 @@ for q in manifold-4 manifold-0 distance+n; do # issue 23's ratios: against ttd's
   grep "\"query\": \"$q\"" "$tmp/scene.rows" | grep -q '"x_ref": [0-9]' || fail "no $q row with its ratio"
 done
 grep '"query": "contacts"' "$tmp/scene.rows" | grep -q '"threads": 2,' || fail "no 2-thread contacts row"
+# the manifold's verdict is read from the alternating CPU-time ratio where it was measured
+bad=$(grep '"query": "manifold-4"' "$tmp/scene.rows" | grep '"x_ref_cpu": [0-9]' |
+  sed 's/.*"x_ref_cpu": \([^,]*\),.*"target": \([^,]*\),.*"met": \([a-z]*\),.*/\1 \2 \3/' |
+  awk '{ want = ($1 + 0 <= $2 + 0) ? "true" : "false"; if ($3 != want) print }' | wc -l)
+[ "$bad" -eq 0 ] || fail "$bad manifold-4 rows whose verdict disagrees with their CPU-time ratio"
 grep '"threads": 2,' "$tmp/scene.rows" > "$tmp/scene2.rows"
 [ "$(grep -c '"target_of": "x_threads"' "$tmp/scene2.rows")" -eq "$(wc -l < "$tmp/scene2.rows")" ] ||
   fail "a 2-thread scene row without its x_threads target"
