@@ -8,6 +8,7 @@
 #include <string.h>
 
 #define TTD_PRECISION_DOUBLE
+#include "core/grid_cells.h"
 #include "core/precision.h"
 #include "engine/dispatch.h"
 #include "engine/parallel.h"

@@ -447,27 +447,9 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     }
     G->nsmall = ng - nbig;
     double h[3];
-    for (int c = 0; c < 3; ++c)
-        h[c] = hc[c] * (1 + 0x1p-20);
-    const double ext = h[0] > h[1] ? (h[0] > h[2] ? h[0] : h[2]) : (h[1] > h[2] ? h[1] : h[2]);
-    if (!(ext > 0) || !isfinite(ext))
+    G->ncells = ttd_grid_cells(hc, lo, hi, ng, h, G->dim);
+    if (G->ncells == 0)
         return 0;
-    for (int c = 0; c < 3; ++c) /* an axis the leaves have no width on: cells of the largest */
-        h[c] = h[c] > 0 ? h[c] : ext;
-    for (;;) {
-        double cells = 1;
-        for (int c = 0; c < 3; ++c)
-            cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
-        if (cells <= 4.0 * (double)ng + 64)
-            break;
-        for (int c = 0; c < 3; ++c)
-            h[c] *= 1.5;
-    }
-    G->ncells = 1;
-    for (int c = 0; c < 3; ++c) {
-        G->dim[c] = (size_t)floor((hi[c] - lo[c]) / h[c]) + 1;
-        G->ncells *= G->dim[c];
-    }
     if (S->cap_c < G->ncells + 2) {
         free(S->start);
         S->start = malloc((G->ncells + 2) * sizeof *S->start);

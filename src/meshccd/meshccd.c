@@ -34,6 +34,7 @@
 #endif
 
 #include "ccd/ccd.h"
+#include "core/grid_cells.h"
 #include "core/kernels.h"
 #include "engine/dispatch.h"
 #include "engine/parallel.h"
@@ -1243,7 +1244,7 @@ static int grid_make(job *J)
      * (two whose boxes overlap have low corners at most that apart: cells within 1 of each other;
      * a cell a little wider covers the rounding of (lo - lo_min) / h); the larger meet every group */
     const double cut = 4 * sum / (double)(ng ? ng : 1);
-    double h[3] = {0, 0, 0};
+    double side[3] = {0, 0, 0}, h[3];
     size_t nbig = 0;
     for (size_t g = 0; g < ng; ++g) {
         if (ext[g] > cut) {
@@ -1251,40 +1252,13 @@ static int grid_make(job *J)
             continue;
         }
         for (int c = 0; c < 3; ++c)
-            h[c] = J->gbox[g].hi[c] - J->gbox[g].lo[c] > h[c] ? J->gbox[g].hi[c] - J->gbox[g].lo[c] : h[c];
+            side[c] = J->gbox[g].hi[c] - J->gbox[g].lo[c] > side[c] ? J->gbox[g].hi[c] - J->gbox[g].lo[c] : side[c];
     }
     J->nsmall = ng - nbig;
-    for (int c = 0; c < 3; ++c)
-        h[c] *= 1 + 0x1p-20;
-    const double he = h[0] > h[1] ? (h[0] > h[2] ? h[0] : h[2]) : (h[1] > h[2] ? h[1] : h[2]);
-    int ok = ng > 0 && he > 0 && isfinite(he) && isfinite(sum);
-    for (int c = 0; c < 3; ++c) {
-        h[c] = h[c] > 0 ? h[c] : he; /* an axis the groups have no width on: cells of the largest */
-        ok &= isfinite(lo[c]) && isfinite(hi[c]) && isfinite(hi[c] - lo[c]);
-    }
-    if (!ok) {
+    J->ncells = isfinite(sum) ? ttd_grid_cells(side, lo, hi, ng, h, J->gdim) : 0;
+    if (J->ncells == 0) {
         free(cell), free(ext);
         return 0;
-    }
-    /* finite spans and positive h: h grows by 1.5 until the count fits (a span 2^2098 times the
-     * cell, the most doubles allow, needs about 3,590 rounds); the cap only guards that reasoning */
-    for (int round = 0;; ++round) {
-        double cells = 1;
-        for (int c = 0; c < 3; ++c)
-            cells *= floor((hi[c] - lo[c]) / h[c]) + 1;
-        if (cells <= 4.0 * (double)ng + 64)
-            break;
-        if (round == 4096) {
-            free(cell), free(ext);
-            return 0;
-        }
-        for (int c = 0; c < 3; ++c)
-            h[c] *= 1.5;
-    }
-    J->ncells = 1;
-    for (int c = 0; c < 3; ++c) {
-        J->gdim[c] = (size_t)floor((hi[c] - lo[c]) / h[c]) + 1;
-        J->ncells *= J->gdim[c];
     }
     J->gstart = calloc(J->ncells + 2, sizeof *J->gstart);
     if (J->gstart == NULL) {
