@@ -171,7 +171,7 @@ typedef void (*ttd_box_span_fn)(const double yc[3][TTD_NODE_WIDTH], const double
                                 const double ye[3][TTD_NODE_WIDTH], int count, const double ua[9], double lo[3],
                                 double hi[3], double spread[3][TTD_NODE_WIDTH], double slack[TTD_NODE_WIDTH]);
 
-/* self_screen and box_screen (double rows only; NULL on the scalar row, whose loops are in
+/* self_screen (double rows only; NULL on the scalar row, whose loops are in
  * mesh/self_grid_impl.h): a self-contact query's screens, in double for both precisions (float
  * coordinates convert exactly). Boxes are axis-aligned: lo the minima of a triangle's vertices,
  * hi the maxima raised by the query's limit L (fl(hi + L)); padding lanes hold lo = +inf, hi =
@@ -183,7 +183,7 @@ typedef void (*ttd_box_span_fn)(const double yc[3][TTD_NODE_WIDTH], const double
  * it and are near it on each diagonal direction d (h's dg[d] <= g's dg[6 + d] and g's dg[d] <= h's
  * dg[6 + d]); bits 8-15, the lanes whose box is near that share one or more (the caller applies
  * the diagonal test to those it keeps); returns the rows: bit i where out[i] has a bit 0-7, bit
- * 8 + i where it has a bit 8-15 (the caller visits only the rows it keeps). box_screen: box q against 8 boxes lo[c][0..7], hi[c][0..7]; returns the near lanes. */
+ * 8 + i where it has a bit 8-15 (the caller visits only the rows it keeps). */
 typedef struct ttd_self_block {
     double lo[3][TTD_NODE_WIDTH], hi[3][TTD_NODE_WIDTH];
     double ix[3][TTD_NODE_WIDTH]; /* vertex indices (exact in double); -1 in padding lanes */
@@ -194,11 +194,10 @@ typedef struct ttd_self_block {
     double box[6];                /* the leaf's box: its lanes' lo minima and raised hi maxima */
 } ttd_self_block;
 typedef unsigned (*ttd_self_screen_fn)(const ttd_self_block *g, const ttd_self_block *h, int same, uint16_t out[TTD_NODE_WIDTH]);
-typedef unsigned (*ttd_box_screen_fn)(const double *const lo[3], const double *const hi[3], const double q[6]);
-/* box_list (double rows only; NULL on the scalar row): box q (as box_screen's) against boxes 0..n-1,
+/* box_list (double rows only; NULL on the scalar row): box q (as self_screen's boxes) against boxes 0..n-1,
  * n <= 64, of the six arrays at b, c apart (lo x, y, z, raised hi x, y, z; readable to the next
  * multiple of TTD_NODE_WIDTH past n): writes the near boxes' positions to at, in increasing order,
- * and returns their count; box_screen's comparisons, 8 boxes at a time, in one call. */
+ * and returns their count; 8 boxes a step, all in one call. */
 typedef unsigned (*ttd_box_list_fn)(const double *b, size_t c, unsigned n, const double q[6], uint8_t at[64]);
 /* self_fill (double rows only; NULL on the scalar row): a leaf's 8 triangles, v[3 k + c][lane] the
  * coordinate c of vertex k, into their boxes (b->lo, b->hi: minima, and maxima + L) and their
@@ -258,7 +257,6 @@ typedef struct ttd_kernels_d {
     ttd_leaf_axes_fn leaf_axes;         ///< NULL on the scalar row
     ttd_box_span_fn box_span;           ///< NULL on the scalar row
     ttd_self_screen_fn self_screen;     ///< NULL on the scalar row
-    ttd_box_screen_fn box_screen;       ///< NULL on the scalar row
     ttd_box_list_fn box_list;           ///< NULL on the scalar row
     ttd_self_fill_fn self_fill;         ///< NULL on the scalar row
     ttd_ccd_screen_fn ccd_screen;       ///< NULL on the scalar row

@@ -204,7 +204,6 @@ typedef struct self_grid {
     size_t nsmall;             /* leaves in cells: positions [0, nsmall) of order; the large
                                   leaves after them, each tested against every leaf */
     ttd_self_screen_fn screen; /* the row's, or NULL: the scalar loops */
-    ttd_box_screen_fn boxes;
     ttd_box_list_fn list;      /* the row's, or NULL: box_list_scalar */
     self_scratch *S;           /* where the arrays are */
 } self_grid;
@@ -252,7 +251,7 @@ static unsigned box_screen_scalar(const double *const lo[3], const double *const
     return n;
 }
 
-/* The scalar row's box_list (core/kernels.h): box_screen's loop over up to 64 boxes. */
+/* The scalar row's box_list (core/kernels.h): box_screen_scalar's loop over up to 64 boxes. */
 static unsigned box_list_scalar(const double *b, size_t c, unsigned n, const double q[6], uint8_t at[64])
 {
     unsigned k = 0;
@@ -326,7 +325,6 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
 {
     memset(G, 0, sizeof *G);
     G->screen = row != NULL ? row->self_screen : NULL;
-    G->boxes = row != NULL ? row->box_screen : NULL;
     G->list = row != NULL ? row->box_list : NULL;
     if (!isfinite(L))
         return 0;

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* A self-contact query's screens (core/kernels.h, self_screen and box_screen; mesh/self_grid_impl.h):
+/* A self-contact query's screens (core/kernels.h, self_screen and box_list; mesh/self_grid_impl.h):
  * a triangle's box against a leaf's 8 triangles' boxes with their vertex indices, and a leaf's box
- * against 8 leaves' boxes, a lane each. Comparisons only (no arithmetic), so every row gives the
+ * against up to 64 leaves' boxes, a lane each. Comparisons only (no arithmetic), so every row gives the
  * scalar loops' bits. Double rows only: both precisions screen in double. */
 #ifdef TTD_PRECISION_DOUBLE
 
@@ -99,14 +99,6 @@ static unsigned self_screen(const ttd_self_block *g, const ttd_self_block *h, in
     return found;
 }
 
-static unsigned box_screen(const double *const lo[3], const double *const hi[3], const double q[6])
-{
-    unsigned n = 0;
-    for (int j = 0; j < TTD_NODE_WIDTH; j += TTDW_LANES_D)
-        n |= ttdw_mbits_d(screen_near(lo, hi, j, q)) << j;
-    return n;
-}
-
 /* Box q against up to 64 boxes (core/kernels.h, box_list): q's bounds broadcast once a call. */
 static unsigned box_list(const double *b, size_t c, unsigned n, const double q[6], uint8_t at[64])
 {
@@ -158,7 +150,7 @@ static void self_fill(const double v[9][TTD_NODE_WIDTH], double L, double R, ttd
     }
 }
 
-#define TTD_LANE_ROW_SELF_SCREEN .self_screen = self_screen, .box_screen = box_screen, .box_list = box_list, .self_fill = self_fill,
+#define TTD_LANE_ROW_SELF_SCREEN .self_screen = self_screen, .box_list = box_list, .self_fill = self_fill,
 #else
 #define TTD_LANE_ROW_SELF_SCREEN
 #endif
