@@ -129,22 +129,14 @@ static unsigned tri_apart(int count, const double *x, const double *S, double de
     return out;
 }
 
-/* A gather: lane l of the result is base[m * v[l]] (v: TTDW_LANES_D vertex indices, m 1 or 3).
- * The ISA's gather instruction where it has one (64-bit offsets: 3 v may pass 2^32), else one
- * lane at a time; the same numbers either way. */
-#if defined(TTDW_USE_AVX2)
-typedef __m256i tri_apart_ix;
-static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
-{
-    const __m256i i = _mm256_cvtepu32_epi64(_mm_loadu_si128((const __m128i *)(const void *)v));
-    return m == 3 ? _mm256_add_epi64(i, _mm256_add_epi64(i, i)) : i;
-}
-static inline ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i) { return _mm256_i64gather_pd(base, i, 8); }
-/* The 4 lanes' points x[3 v[l] ..] (x, y with one 128-bit load, z with one 64-bit load, joined by
- * unpacks) and vmag[v[l]]: the numbers of tri_apart_gather's, in the same lanes; on this project's
- * AMD machines 7 four-lane gathers cost several times these loads (docs/ccd-speed.md, change 20). */
+/* The points of TTDW_LANES_D vertices, x[3 v[l] ..], and vmag[v[l]], lane l from vertex v[l].
+ * On AVX2 and AVX-512 by loads, 4 lanes at a time (x, y with one 128-bit load, z with one 64-bit
+ * load, joined by unpacks): on this project's AMD machines the four- and eight-lane gathers cost
+ * several times these loads (docs/ccd-speed.md, changes 20 and 22). Elsewhere one lane at a time.
+ * The same numbers in the same lanes either way. */
+#if defined(TTDW_USE_AVX2) || defined(TTDW_USE_AVX512)
 #define TTD_TRI_APART_LOADS 1
-static inline void tri_apart_load(const double *x, const uint32_t *v, ttdw_vd p[3])
+static inline void tri_apart_load4(const double *x, const uint32_t *v, __m256d p[3])
 {
     const double *a = x + 3 * (size_t)v[0], *b = x + 3 * (size_t)v[1], *c = x + 3 * (size_t)v[2],
                  *d = x + 3 * (size_t)v[3];
@@ -154,19 +146,28 @@ static inline void tri_apart_load(const double *x, const uint32_t *v, ttdw_vd p[
     p[1] = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpackhi_pd(xa, xb)), _mm_unpackhi_pd(xc, xd), 1);
     p[2] = _mm256_insertf128_pd(_mm256_castpd128_pd256(zab), zcd, 1);
 }
-static inline ttdw_vd tri_apart_load1(const double *m, const uint32_t *v)
+static inline __m256d tri_apart_load1x4(const double *m, const uint32_t *v)
 {
     return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadh_pd(_mm_load_sd(m + v[0]), m + v[1])),
                                 _mm_loadh_pd(_mm_load_sd(m + v[2]), m + v[3]), 1);
 }
-#elif defined(TTDW_USE_AVX512)
-typedef __m512i tri_apart_ix;
-static inline tri_apart_ix tri_apart_index(const uint32_t *v, int m)
+#if defined(TTDW_USE_AVX2)
+static inline void tri_apart_load(const double *x, const uint32_t *v, ttdw_vd p[3]) { tri_apart_load4(x, v, p); }
+static inline ttdw_vd tri_apart_load1(const double *m, const uint32_t *v) { return tri_apart_load1x4(m, v); }
+#else
+static inline void tri_apart_load(const double *x, const uint32_t *v, ttdw_vd p[3])
 {
-    const __m512i i = _mm512_cvtepu32_epi64(_mm256_loadu_si256((const __m256i *)(const void *)v));
-    return m == 3 ? _mm512_add_epi64(i, _mm512_add_epi64(i, i)) : i;
+    __m256d lo[3], hi[3];
+    tri_apart_load4(x, v, lo);
+    tri_apart_load4(x, v + 4, hi);
+    for (int c = 0; c < 3; ++c)
+        p[c] = _mm512_insertf64x4(_mm512_castpd256_pd512(lo[c]), hi[c], 1);
 }
-static inline ttdw_vd tri_apart_gather(const double *base, tri_apart_ix i) { return _mm512_i64gather_pd(i, base, 8); }
+static inline ttdw_vd tri_apart_load1(const double *m, const uint32_t *v)
+{
+    return _mm512_insertf64x4(_mm512_castpd256_pd512(tri_apart_load1x4(m, v)), tri_apart_load1x4(m, v + 4), 1);
+}
+#endif
 #else
 typedef struct {
     size_t k[TTDW_LANES_D];
