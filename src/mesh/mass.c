@@ -130,9 +130,9 @@ ttd_status ttd_mesh_mass_compute(const struct ttd_mesh *m, double density, ttd_m
     r.mass = density * fabs(r.volume);
     if (!(V != 0)) {
         for (int k = 0; k < 3; ++k)
-            r.center[k] = NAN;
+            r.center[k] = (double)NAN;
         for (int k = 0; k < 9; ++k)
-            r.inertia[k] = NAN;
+            r.inertia[k] = (double)NAN;
         *out = r;
         return TTD_OK;
     }

@@ -356,7 +356,7 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
     G->order = S->order;
     double(*gbox)[6] = S->gbox;
     uint32_t *cell = S->cell;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, sum = 0;
     const ttd_self_fill_fn fill = row != NULL && row->self_fill != NULL ? row->self_fill : self_fill_scalar;
     size_t g = 0;
     /* the groups' triangles and vertex indices are the mesh's: written by its first query only */
@@ -401,8 +401,8 @@ static int self_grid_make(const qpose *P, const struct ttd_mesh *mesh, double L,
             for (int d = 0; d < 12; ++d)
                 b->dg[d][k] = 0;
             for (int c = 0; c < 3; ++c) {
-                b->lo[c][k] = INFINITY;
-                b->hi[c][k] = -INFINITY;
+                b->lo[c][k] = HUGE_VAL;
+                b->hi[c][k] = -HUGE_VAL;
                 b->ix[c][k] = -1;
                 b->iv[c][k] = UINT32_MAX;
             }

@@ -1201,15 +1201,15 @@ static int grid_make(job *J)
     }
     /* the columns in the groups' order (padding lanes never near: lo +inf, hi -inf), the groups'
      * boxes (joins of their widened boxes), their largest sides */
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, sum = 0;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, sum = 0;
     for (size_t g = 0; g <= ng; ++g)
         for (int j = 0; j < SWEEP_LEAF_SELF; ++j) {
             const size_t k = SWEEP_LEAF_SELF * g + (size_t)j;
             const uint32_t t = g < ng ? J->gtri[k] : UINT32_MAX;
             if (t == UINT32_MAX) {
                 for (int c = 0; c < 3; ++c) {
-                    J->pb[c][k] = J->pw[c][k] = INFINITY;
-                    J->pb[3 + c][k] = J->pw[3 + c][k] = -INFINITY;
+                    J->pb[c][k] = J->pw[c][k] = HUGE_VAL;
+                    J->pb[3 + c][k] = J->pw[3 + c][k] = -HUGE_VAL;
                 }
                 continue;
             }

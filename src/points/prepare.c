@@ -248,7 +248,7 @@ static void triangle_moments(const struct ttd_mesh *m, double scale, size_t t, d
      * of |w| = 1/2 wrong, proven (the point fuzzer's tiny boxes). Such a triangle is measured
      * exactly instead (its solid angle from the mesh's own coordinates), as a tiny slot is. */
     if (!(w[WM_RADIUS * TTD_NODE_WIDTH] >= WM_TINY) || !(w[WM_RADIUS * TTD_NODE_WIDTH] >= 0x1p-20 * big))
-        w[WM_I * TTD_NODE_WIDTH] = INFINITY;
+        w[WM_I * TTD_NODE_WIDTH] = HUGE_VAL;
 }
 
 /* The moments of node c's slots summed into one slot (w, stride TTD_NODE_WIDTH): the area vectors

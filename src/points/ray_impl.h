@@ -364,7 +364,7 @@ TTD_RAY_FN void ttd_ray_direction(const ttd_ray_mesh *m, const double x[3], int 
     /* the axis and sense along which the point leaves the mesh's box soonest */
     *k = 0;
     *sigma = 1;
-    double best = INFINITY;
+    double best = HUGE_VAL;
     for (int c = 0; c < 3; ++c)
         for (int sg = 1; sg >= -1; sg -= 2) {
             const double exit = sg > 0 ? (double)rn[0].hi[c][0] - xs[c] : xs[c] - (double)rn[0].lo[c][0];

@@ -99,7 +99,7 @@ static double wn_solid_angle(const struct ttd_mesh *m, size_t t, const double x[
         else if (amb)
             *amb = 1;
         else
-            *aerr = INFINITY;
+            *aerr = HUGE_VAL;
     }
     return 2 * atan2(det, den);
 }
@@ -230,8 +230,8 @@ double ttd_points_winding(const struct ttd_mesh *mesh, const ttd_points_data *pd
 {
     if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) {
         if (bound)
-            *bound = NAN;
-        return NAN;
+            *bound = (double)NAN;
+        return (double)NAN;
     }
     double err;
     const double w = wn_walk(mesh, pd, x, WN_BETA, -1, &err, NULL);
@@ -420,8 +420,8 @@ double ttd_points_winding_value(const struct ttd_mesh *mesh, const ttd_points_da
     *bound = 0;
     *proven = 0;
     if (!(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) {
-        *bound = NAN;
-        return NAN;
+        *bound = (double)NAN;
+        return (double)NAN;
     }
     if (mesh->nt == 1) { /* a triangle's solid angle is below 2 pi: |w| < 1/2, outside (w given as 0) */
         *proven = 1;
