@@ -443,6 +443,10 @@ again:
                     return 0;
                 ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
                 rc = w->near;
+                /* the level holds the same touching points kept (nt of choose_points), and they
+                 * are at most the nk kept here: it can find K of them only where nk = K */
+                if (ns == 0 && nk != max)
+                    break;
             }
         }
         if (ns == 0) {
