@@ -443,6 +443,13 @@ again:
                     return 0;
                 ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
                 rc = w->near;
+                /* choose_points measures the touching points from the deepest kept: this pass
+                 * holds all of them only where that is the d0 of its reach (with flat contacts
+                 * left out, their corners may lie a rounding farther than the deepest contact) */
+                if (pass == 0 && (double)rc[w->kept[0]].c.distance != d0) {
+                    ns = 0;
+                    continue;
+                }
                 /* the level holds the same touching points kept (nt of choose_points), and they
                  * are at most the nk kept here: it can find K of them only where nk = K */
                 if (ns == 0 && nk != max)
