@@ -406,34 +406,55 @@ again:
             if ((double)w->all[k].c.distance < d0)
                 d0 = (double)w->all[k].c.distance;
         const double window = FEATURE_TOL * big, level = LEVEL_FRACTION * ((double)margin - d0);
-        const double reach[2] = {d0, window > level ? window : level};
-        if (!pair_corners(s, c0, n0, margin, reach, w))
-            return 0;
-        const size_t n = n0 - (drop != NULL ? nflat : 0) + w->all_n;
-        if (!near_reserve(w, n))
-            return 0;
-        size_t m = 0; /* in the order of w->all were the contacts in it: contacts, inside points, corners */
-        size_t far_flat = 0; /* contacts of flat contact beyond the reach (not asked) */
-        for (size_t k = 0; k < n0; ++k)
-            if (drop != NULL && (drop[k] & FACE_FLAT))
-                far_flat += (double)c0[k].distance - d0 <= reach[1] ? 0 : 1;
-            else if ((double)c0[k].distance - d0 <= reach[1]) {
-                w->near[m].c = c0[k];
-                w->near[m].feat[0] = w->near[m].feat[1] = 0;
-                w->near[m].region = UINT32_MAX;
-                w->near[m++].inside = -1;
-            }
-        for (size_t k = 0; k < w->all_n; ++k)
-            if ((double)w->all[k].c.distance - d0 <= reach[1])
-                w->near[m++] = w->all[k];
-        corners = m == n && far_flat == 0; /* every contact asked */
-        /* points beyond the reach: the contacts and corners there, and the corners of the flat
-         * contacts there (not asked: they lie no nearer than their contacts) */
-        if (m > 0 && (m < n || far_flat > 0)) {
-            if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
+        const double touch = TOUCH_FRACTION * ((double)margin - d0);
+        /* first the touching points alone (within the seed's window or TOUCH_FRACTION): where K
+         * or more of them are kept on the level, step 4 spreads over them alone, and the merge,
+         * the seed and each one's slope test look only at deeper points, so the level's points
+         * above them change nothing (on a curved pile's pair, about a sixteenth of the level's
+         * points); else the level's, as below */
+        const double reaches[2] = {window > touch ? window : touch, window > level ? window : level};
+        for (int pass = reaches[0] < reaches[1] ? 0 : 1; pass < 2 && ns == 0 && !corners; ++pass) {
+            const double reach[2] = {d0, reaches[pass]};
+            w->all_n = n_pre;
+            if (!pair_corners(s, c0, n0, margin, reach, w))
                 return 0;
-            ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
-            rc = w->near;
+            const size_t n = n0 - (drop != NULL ? nflat : 0) + w->all_n;
+            if (!near_reserve(w, n))
+                return 0;
+            size_t m = 0; /* in the order of w->all were the contacts in it: contacts, inside points, corners */
+            size_t far_flat = 0; /* contacts of flat contact beyond the reach (not asked) */
+            for (size_t k = 0; k < n0; ++k)
+                if (drop != NULL && (drop[k] & FACE_FLAT))
+                    far_flat += (double)c0[k].distance - d0 <= reach[1] ? 0 : 1;
+                else if ((double)c0[k].distance - d0 <= reach[1]) {
+                    w->near[m].c = c0[k];
+                    w->near[m].feat[0] = w->near[m].feat[1] = 0;
+                    w->near[m].region = UINT32_MAX;
+                    w->near[m++].inside = -1;
+                }
+            for (size_t k = 0; k < w->all_n; ++k)
+                if ((double)w->all[k].c.distance - d0 <= reach[1])
+                    w->near[m++] = w->all[k];
+            corners = m == n && far_flat == 0; /* every contact asked */
+            /* points beyond the reach: the contacts and corners there, and the corners of the flat
+             * contacts there (not asked: they lie no nearer than their contacts) */
+            if (m > 0 && (m < n || far_flat > 0)) {
+                if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
+                    return 0;
+                ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
+                rc = w->near;
+                /* choose_points measures the touching points from the deepest kept: this pass
+                 * holds all of them only where that is the d0 of its reach (with flat contacts
+                 * left out, their corners may lie a rounding farther than the deepest contact) */
+                if (pass == 0 && (double)rc[w->kept[0]].c.distance != d0) {
+                    ns = 0;
+                    continue;
+                }
+                /* the level holds the same touching points kept (nt of choose_points), and they
+                 * are at most the nk kept here: it can find K of them only where nk = K */
+                if (ns == 0 && nk != max)
+                    break;
+            }
         }
         if (ns == 0) {
             /* all the points: the contacts before the others, step 0 again unless done for all */

@@ -186,7 +186,10 @@ typedef struct contact_job {
     uint64_t *tests;              /* per pair: node tests and pair tests */
     int walk_order;               /* a manifold's: pairs not of solids in the walk's order (pair_contacts) */
     atomic_int nomem;
+    struct reduce_job *reduce;    /* a manifold's: each pair reduced in its task, its contacts freed */
 } contact_job;
+
+static int reduce_found(struct reduce_job *R, size_t k, int worker, const ttd_scene_contact *c, size_t n);
 
 /* A contact's place in its body pair's order, and where it is in the walk's order. */
 typedef struct sort_item {
@@ -285,6 +288,14 @@ static void contact_task(void *ctx, size_t k, int worker)
     if (!pair_contacts(J->cfg, J->s, p, J->margin, J->walk_order && !solid_pair(J->s, p->i, p->j), &J->sets[worker],
                        &J->found[k], &J->nfound[k], J->tests + 2 * k))
         atomic_store(&J->nomem, 1);
+    else if (J->reduce != NULL) {
+        /* reduced at once, while the pair's contacts are in the cache (read back after every
+         * pair's walk, they came from memory: the pile's 37 MB), and freed */
+        if (!reduce_found(J->reduce, k, worker, J->found[k], J->nfound[k]))
+            atomic_store(&J->nomem, 1);
+        free(J->found[k]);
+        J->found[k] = NULL;
+    }
 }
 
 /* Every eligible body pair within a margin and its contacts: pairs[0..n), with found[k] and
@@ -307,17 +318,28 @@ static void pair_contacts_free(pair_contacts_set *c)
 
 /* The set of every eligible body pair's contacts within margin (the caller frees it with
  * pair_contacts_free, whatever the status); walk_order: see contact_job. */
+static ttd_status contacts_run(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, int walk_order,
+                               struct reduce_job *reduce, pair_contacts_set *c);
+
 static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, int walk_order,
                                pair_contacts_set *c)
 {
     *c = (pair_contacts_set){NULL, 0, NULL, NULL};
     if (!ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &c->pairs, &c->n))
         return TTD_ERR_OUT_OF_MEMORY;
+    return contacts_run(cfg, s, margin, walk_order, NULL, c);
+}
+
+/* The walks of the pairs c->pairs[0..c->n) (swept), into c; with reduce, each pair reduced in its
+ * task (reduce_found) and its contacts not kept. */
+static ttd_status contacts_run(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, int walk_order,
+                               struct reduce_job *reduce, pair_contacts_set *c)
+{
     const ttd_engine_config one = one_thread(cfg);
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
     contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
                      calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)),
-                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), walk_order, 0};
+                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), walk_order, 0, reduce};
     atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
     if (!atomic_load(&J.nomem))
         ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
@@ -458,48 +480,43 @@ typedef struct reduce_job {
     atomic_int nomem;
 } reduce_job;
 
-static void reduce_task(void *ctx, size_t k, int worker)
+static int reduce_found(reduce_job *J, size_t k, int worker, const ttd_scene_contact *c, size_t n)
 {
-    reduce_job *J = ctx;
     const scene_pair *p = &J->c->pairs[k];
     ttd_scene_array *part = &J->part[worker];
     J->by[k] = worker;
     J->at[k] = part->count;
     J->count[k] = 0;
-    if (atomic_load(&J->nomem) || (J->c->nfound[k] == 0 && !solid_pair(J->s, p->i, p->j)))
-        return;
-    if (!reduce_pair(J->s, J->one, p, J->c->found[k], J->c->nfound[k], J->margin, J->max_points, &J->w[worker], part))
-        atomic_store(&J->nomem, 1);
-    else
-        J->count[k] = part->count - J->at[k];
+    if (n == 0 && !solid_pair(J->s, p->i, p->j))
+        return 1;
+    if (!reduce_pair(J->s, J->one, p, c, n, J->margin, J->max_points, &J->w[worker], part))
+        return 0;
+    J->count[k] = part->count - J->at[k];
+    return 1;
 }
 
 static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, size_t max_points,
                                  ttd_scene_array *out)
 {
     out->count = 0;
-    pair_contacts_set c;
+    pair_contacts_set c = {NULL, 0, NULL, NULL};
     const ttd_engine_config one = one_thread(cfg);
-    ttd_status st = all_contacts(cfg, s, margin, 1, &c);
+    ttd_status st = ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &c.pairs, &c.n) ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;
     /* the meshes' edge information, made on their first manifold (mesh/mesh.h), before the
-     * threads read it */
+     * threads read it: for every pair swept, as the reductions run in the walks' tasks */
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
-        if (c.nfound[k] > 0 || solid_pair(s, c.pairs[k].i, c.pairs[k].j))
-            if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
-                st = TTD_ERR_OUT_OF_MEMORY;
+        if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
+            st = TTD_ERR_OUT_OF_MEMORY;
     const size_t np = c.n ? c.n : 1;
     const int workers = st == TTD_OK ? ttd_parallel_task_workers(c.n, cfg->threads) : 0;
     reduce_job J = {s, &one, &c, margin, max_points, calloc((size_t)workers + 1, sizeof(manifold_work)),
-                    calloc((size_t)workers + 1, sizeof(ttd_scene_array)), malloc(np * sizeof(size_t)),
-                    malloc(np * sizeof(size_t)), malloc(np * sizeof(int)), 0};
+                    calloc((size_t)workers + 1, sizeof(ttd_scene_array)), calloc(np, sizeof(size_t)),
+                    calloc(np, sizeof(size_t)), calloc(np, sizeof(int)), 0};
     atomic_init(&J.nomem, J.w == NULL || J.part == NULL || J.at == NULL || J.count == NULL || J.by == NULL);
     if (st == TTD_OK && atomic_load(&J.nomem))
         st = TTD_ERR_OUT_OF_MEMORY;
-    if (st == TTD_OK) {
-        ttd_pool_tasks(s->pool, c.n, cfg->threads, reduce_task, &J);
-        if (atomic_load(&J.nomem))
-            st = TTD_ERR_OUT_OF_MEMORY;
-    }
+    if (st == TTD_OK)
+        st = contacts_run(cfg, s, margin, 1, &J, &c);
     size_t total = 0;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
         total += J.count[k];
