@@ -1253,6 +1253,91 @@ static int collide_across_steps(void)
     return 0;
 }
 
+/* One query of a scene's contacts (K < 0) or manifold (at most K points, 0 all) into *out, and
+ * its element size; 0 on failure. */
+static size_t ask_one(ttd_scene *s, int bytes, int threads, double margin, int K, ttd_scene_array *out)
+{
+    ttd_options o = ttd_default_options();
+    o.threads = threads;
+    ttd_status st;
+    if (K < 0)
+        st = bytes == 8 ? ttd_scene_contacts_d(&o, s, margin, out) : ttd_scene_contacts_f(&o, s, (float)margin, out);
+    else
+        st = bytes == 8 ? ttd_scene_manifold_d(&o, s, margin, (size_t)K, out)
+                        : ttd_scene_manifold_f(&o, s, (float)margin, (size_t)K, out);
+    if (st != TTD_OK)
+        return 0;
+    return K < 0 ? (bytes == 8 ? sizeof(ttd_scene_contact_d) : sizeof(ttd_scene_contact_f))
+                 : (bytes == 8 ? sizeof(ttd_scene_point_d) : sizeof(ttd_scene_point_f));
+}
+
+/* A scene keeps its workers' contact blocks, contact sets, sort and manifold scratch between
+ * queries (docs/scenes.md section 9), and frees them after a run of queries that need far less:
+ * a scene asked in turn large and small queries (margins 0.3 and 0), contacts and manifolds,
+ * on 1, 2 and 3 threads, some solid bodies (their manifold sorts its contacts), bodies moved
+ * between queries, gives at each query the bytes a fresh scene in that state gives. */
+static int scratch_across_queries(void)
+{
+    static const struct {
+        double margin;
+        int threads, K; /* K < 0: contacts */
+    } step[] = {
+        {0.3, 2, -1},    {0.3, 3, 4},     {0.0, 1, -1}, {0.3, 1, 0},     {0.0, 3, 4},  {0.0, 2, -1},
+        {0.0, 1, 0},   {0.0, 3, -1},  {0.0, 2, 2},  {0.0, 1, -1},  {0.0, 3, 4},  {0.0, 2, 0},
+        {0.0, 1, -1},  {0.0, 2, 4},   {0.3, 3, 0},    {0.3, 1, -1},    {0.0, 2, 4},  {0.3, 2, 4},
+    };
+    const size_t nstep = sizeof step / sizeof step[0];
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        world W;
+        ENSURE(make_world(&W, bytes, 24, 1.25, 1) == 0);
+        for (uint32_t id = 0; id < W.nbody; id += 5)
+            if (W.mesh_of[id] <= 1) /* the icospheres and cubes: closed */
+                ENSURE(ttd_scene_set_solid(W.scene, id, 1) == TTD_OK);
+        size_t most = 0, least = SIZE_MAX;
+        for (size_t k = 0; k < nstep; ++k) {
+            if (k % 4 == 3) { /* every body moved a little */
+                for (size_t id = 0; id < W.nbody; ++id)
+                    for (int r = 0; r < 3; ++r)
+                        W.pose[id][4 * r + 3] =
+                            round_to(bytes, W.pose[id][4 * r + 3] + 0.002 * (double)((id * 7 + k + (size_t)r) % 5) - 0.004);
+                ENSURE(set_all_poses(&W) == 0);
+            }
+            ttd_scene *fresh;
+            ENSURE((bytes == 8 ? ttd_scene_create_d(&fresh) : ttd_scene_create_f(&fresh)) == TTD_OK);
+            for (size_t id = 0; id < W.nbody; ++id) {
+                float pf[12];
+                for (int r = 0; r < 12; ++r)
+                    pf[r] = (float)W.pose[id][r];
+                uint32_t got;
+                ENSURE((bytes == 8 ? ttd_scene_add_d(fresh, W.mesh[W.mesh_of[id]], W.pose[id], &got)
+                                   : ttd_scene_add_f(fresh, W.mesh[W.mesh_of[id]], pf, &got)) == TTD_OK);
+                if (id % 5 == 0 && W.mesh_of[id] <= 1)
+                    ENSURE(ttd_scene_set_solid(fresh, got, 1) == TTD_OK);
+            }
+            ttd_scene_array x = {0}, y = {0};
+            const size_t size = ask_one(W.scene, bytes, step[k].threads, step[k].margin, step[k].K, &x);
+            ENSURE(size > 0 && ask_one(fresh, bytes, step[k].threads, step[k].margin, step[k].K, &y) == size);
+            ENSURE_MSG(x.count == y.count && (x.count == 0 || memcmp(x.data, y.data, x.count * size) == 0),
+                       "%s, query %zu (%s, K %d, margin %g, %d threads): %zu items after earlier queries, %zu from "
+                       "a fresh scene",
+                       bytes == 8 ? "double" : "float", k, step[k].K < 0 ? "contacts" : "manifold", step[k].K,
+                       step[k].margin, step[k].threads, x.count, y.count);
+            if (step[k].K < 0) {
+                most = x.count > most ? x.count : most;
+                least = x.count < least ? x.count : least;
+            }
+            ttd_scene_array_free(&x);
+            ttd_scene_array_free(&y);
+            ttd_scene_destroy(fresh);
+        }
+        /* the large queries far larger than the small ones (the scratch's bound frees it) */
+        ENSURE_MSG(least > 0 && most > 8 * least, "contacts from %zu to %zu: want small ones under an eighth", least,
+                   most);
+        free_world(&W);
+    }
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -1393,6 +1478,7 @@ int main(int argc, char **argv)
     RUN_TEST(small_scenes);
     RUN_TEST(closest_pair_order);
     RUN_TEST(collide_across_steps);
+    RUN_TEST(scratch_across_queries);
     RUN_TEST(bad_input);
     TEST_MAIN_END();
 }

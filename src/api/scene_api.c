@@ -48,6 +48,8 @@ void ttd_scene_destroy(ttd_scene *scene)
     free(scene->sweep_b);
     free(scene->order);
     free(scene->excluded);
+    if (scene->scratch_free != NULL)
+        scene->scratch_free(scene->scratch);
     ttd_pool_destroy(scene->pool);
     free(scene);
 }

@@ -927,6 +927,11 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     if (w->ctri == NULL && (w->ctri = calloc(2 * CORNER_CACHE, sizeof *w->ctri)) == NULL)
         return 0;
     w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
+    if ((uint32_t)w->ctri_pair == 0) { /* the tags' 32 bits of it wrapped (a scene keeps w across
+                                        * queries): forget the triangles, tagged 0 as when new */
+        memset(w->ctri, 0, 2 * CORNER_CACHE * sizeof *w->ctri);
+        w->ctri_pair++;
+    }
     w->seen_n = 0;  /* and so are the vertex questions met */
     if (!pair_questions(s, c, n, margin, reach, w))
         return 0;

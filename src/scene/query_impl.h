@@ -175,22 +175,6 @@ static ttd_status query_collide(const ttd_engine_config *cfg, struct ttd_scene *
 
 /* ---- contacts: every pair within the margin, per body pair ---------------------------------- */
 
-typedef struct contact_job {
-    const ttd_engine_config *cfg;
-    struct ttd_scene *s;
-    const scene_pair *pairs;
-    real margin;
-    ttd_mesh_contacts *sets;      /* one per worker, reused */
-    ttd_scene_contact **found;    /* per pair: its contacts, sorted by triangles (or see walk_order) */
-    size_t *nfound;
-    uint64_t *tests;              /* per pair: node tests and pair tests */
-    int walk_order;               /* a manifold's: pairs not of solids in the walk's order (pair_contacts) */
-    atomic_int nomem;
-    struct reduce_job *reduce;    /* a manifold's: each pair reduced in its task, its contacts freed */
-} contact_job;
-
-static int reduce_found(struct reduce_job *R, size_t k, int worker, const ttd_scene_contact *c, size_t n);
-
 /* A contact's place in its body pair's order, and where it is in the walk's order. */
 typedef struct sort_item {
     uint64_t key; /* tri_i * (triangles of j) + tri_j */
@@ -220,15 +204,140 @@ static sort_item *radix_sort(sort_item *x, sort_item *y, size_t n, uint64_t larg
     return x;
 }
 
-/* The contacts of body pair p within margin, sorted by (tri_i, tri_j), into a new array; with
- * walk_order, in the walk's order (a manifold's pair that is not a pair of solids: its reduction
- * orders its points itself by a total order, the questions of step 0 too, so it gives the same
- * bits from contacts in any order; the sort was a few percent of the contacts' cost). */
-static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
-                         int walk_order, ttd_mesh_contacts *set, ttd_scene_contact **out, size_t *n, uint64_t tests[2])
+/* What a scene keeps between its contact and manifold queries (s->scratch; docs/scenes.md section
+ * 9, docs/scene-buffers.md): per worker, the memory it used for its body pairs, and per body pair
+ * where its contacts and points went. Made and freed every query, these left glibc a free heap top
+ * above its trim threshold: every query gave the pages back and faulted them in again (the sliver
+ * tower: 21 brk calls and 939 faults a query). A query resets the fill marks alone: every pair
+ * writes what it reads (its contacts, then its points), and the manifold's scratch already
+ * serves many pairs a query. */
+typedef struct scratch_worker {
+    ttd_mesh_contacts set;      /* the walk's contacts of the pair at hand */
+    ttd_scene_contact *block;   /* the contacts of the pairs this worker walked this query, a pair
+                                 * after another (a pair keeps its offset: the block may move); a
+                                 * manifold gives a pair's room back once the pair is reduced */
+    size_t used, cap;
+    size_t peak;                /* the most of the block this query held at once */
+    sort_item *sort;            /* the radix sort's items and scratch, 2 per contact */
+    size_t sort_cap;
+    manifold_work mw;
+    ttd_scene_array part;       /* the points of the pairs this worker reduced this query */
+} scratch_worker;
+
+typedef struct scratch_pair {
+    const ttd_scene_contact *found; /* its contacts (none: NULL), once the walks are done */
+    size_t at, n;                   /* their offset in their walker's block, their number */
+    int by;                         /* their walker */
+    int red_by;                     /* manifold: the worker that reduced it, */
+    size_t red_at, red_n;           /* its first point in that worker's part, its points */
+    size_t out;                     /* contacts: its first contact in the caller's array */
+    uint64_t tests[2];              /* node tests and pair tests */
+} scratch_pair;
+
+typedef struct query_scratch {
+    scratch_worker *w;
+    int nw;                 /* workers made: the most a query has used */
+    scratch_pair *pair;
+    size_t pair_cap;
+    int thin;               /* queries in a row that used under a quarter of the blocks held */
+} query_scratch;
+
+/* Queries in a row that fill under a quarter of the contact blocks held, after which a scene
+ * frees its scratch: it holds memory for the largest query of a recent run of queries, not for
+ * the largest ever. Blocks of SCRATCH_SMALL contacts or fewer in all are kept whatever the
+ * queries use (a worker's first block is 1,024 contacts: a small scene's would be freed and made
+ * again every few queries). */
+#define SCRATCH_THIN_QUERIES 8
+#define SCRATCH_SMALL 4096
+
+static void scratch_worker_free(scratch_worker *w)
 {
-    *out = NULL;
+    TTD_CONTACTS_FREE(&w->set);
+    free(w->block);
+    free(w->sort);
+    manifold_work_free(&w->mw);
+    free(w->part.data);
+    memset(w, 0, sizeof *w);
+}
+
+static void scratch_free(void *p)
+{
+    query_scratch *q = p;
+    for (int k = 0; q != NULL && k < q->nw; ++k)
+        scratch_worker_free(&q->w[k]);
+    if (q != NULL) {
+        free(q->w);
+        free(q->pair);
+    }
+    free(q);
+}
+
+/* The scene's scratch with room for `workers` workers and n body pairs, the workers' fill marks
+ * reset; NULL out of memory (what the scene held stays, for the destroy). */
+static query_scratch *scratch_get(struct ttd_scene *s, int workers, size_t n)
+{
+    query_scratch *q = s->scratch;
+    if (q == NULL) {
+        if ((q = calloc(1, sizeof *q)) == NULL)
+            return NULL;
+        s->scratch = q;
+        s->scratch_free = scratch_free;
+    }
+    if (workers > q->nw) {
+        scratch_worker *w = realloc(q->w, (size_t)workers * sizeof *w);
+        if (w == NULL)
+            return NULL;
+        memset(w + q->nw, 0, (size_t)(workers - q->nw) * sizeof *w);
+        q->w = w;
+        q->nw = workers;
+    }
+    if (n > q->pair_cap) {
+        const size_t cap = n > 2 * q->pair_cap ? n : 2 * q->pair_cap;
+        scratch_pair *p = realloc(q->pair, cap * sizeof *p);
+        if (p == NULL)
+            return NULL;
+        q->pair = p;
+        q->pair_cap = cap;
+    }
+    for (int k = 0; k < q->nw; ++k) {
+        q->w[k].used = 0;
+        q->w[k].peak = 0;
+        q->w[k].part.count = 0;
+    }
+    return q;
+}
+
+/* After a query: the scratch freed when it has been far larger than the queries' need for
+ * SCRATCH_THIN_QUERIES queries in a row (the contact blocks, most of it, measure it; the rest is
+ * per pair or per worker, the largest pair's). */
+static void scratch_done(struct ttd_scene *s)
+{
+    query_scratch *q = s->scratch;
+    if (q == NULL)
+        return;
+    size_t used = 0, held = 0;
+    for (int k = 0; k < q->nw; ++k) {
+        used += q->w[k].peak;
+        held += q->w[k].cap;
+    }
+    q->thin = held > SCRATCH_SMALL && 4 * used < held ? q->thin + 1 : 0;
+    if (q->thin >= SCRATCH_THIN_QUERIES) {
+        scratch_free(q);
+        s->scratch = NULL;
+    }
+}
+
+/* The contacts of body pair p within margin, sorted by (tri_i, tri_j), appended to w's block: at
+ * *at, *n of them (the block may move: an offset, not a pointer); with walk_order, in the walk's
+ * order (a manifold's pair that is not a pair of solids: its reduction orders its points itself
+ * by a total order, the questions of step 0 too, so it gives the same bits from contacts in any
+ * order; the sort was a few percent of the contacts' cost). */
+static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real margin,
+                         int walk_order, scratch_worker *w, size_t *at, size_t *n, uint64_t tests[2])
+{
+    *at = w->used;
     *n = 0;
+    ttd_mesh_contacts *set = &w->set;
     const double defect = pair_defect(s, p->i, p->j);
     /* one walk from the root: this pair's contacts are sorted below, and the pairs spread over
      * the threads, so the mesh query's cut into sub-walks (for an order independent of the
@@ -236,37 +345,36 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     if (TTD_QUERY(contacts_walk)(cfg, s->body[p->i].mesh, s->body[p->j].mesh, body_pose(s, p->j), body_pose(s, p->i),
                                  defect, margin, set, tests) != TTD_OK)
         return 0;
-    if (set->count == 0)
+    const size_t m = set->count;
+    if (m == 0)
         return 1;
-    ttd_scene_contact *v = malloc(set->count * sizeof *v);
-    if (v != NULL && walk_order) {
-        for (size_t k = 0; k < set->count; ++k) {
-            const ttd_mesh_contact *c = &set->pairs[k];
-            v[k].i = p->i;
-            v[k].j = p->j;
-            v[k].tri_i = c->tri_a;
-            v[k].tri_j = c->tri_b;
-            v[k].distance = c->distance;
-            memcpy(v[k].p, c->p, sizeof v[k].p);
-            memcpy(v[k].q, c->q, sizeof v[k].q);
+    if (m > w->cap - w->used) {
+        size_t cap = w->cap ? 2 * w->cap : 1024;
+        while (cap - w->used < m)
+            cap *= 2;
+        ttd_scene_contact *b = realloc(w->block, cap * sizeof *b);
+        if (b == NULL)
+            return 0;
+        w->block = b;
+        w->cap = cap;
+    }
+    ttd_scene_contact *v = w->block + w->used;
+    const sort_item *sorted = NULL;
+    if (!walk_order) {
+        if (2 * m > w->sort_cap) {
+            sort_item *o = realloc(w->sort, 2 * m * sizeof *o);
+            if (o == NULL)
+                return 0;
+            w->sort = o;
+            w->sort_cap = 2 * m;
         }
-        *out = v;
-        *n = set->count;
-        return 1;
+        const uint64_t ntj = (uint64_t)s->body[p->j].mesh->nt;
+        for (size_t k = 0; k < m; ++k)
+            w->sort[k] = (sort_item){(uint64_t)set->pairs[k].tri_a * ntj + set->pairs[k].tri_b, k};
+        sorted = radix_sort(w->sort, w->sort + m, m, (uint64_t)s->body[p->i].mesh->nt * ntj - 1);
     }
-    sort_item *order = malloc(2 * set->count * sizeof *order);
-    if (v == NULL || order == NULL) {
-        free(v);
-        free(order);
-        return 0;
-    }
-    const uint64_t ntj = (uint64_t)s->body[p->j].mesh->nt;
-    for (size_t k = 0; k < set->count; ++k)
-        order[k] = (sort_item){(uint64_t)set->pairs[k].tri_a * ntj + set->pairs[k].tri_b, k};
-    const sort_item *sorted =
-        radix_sort(order, order + set->count, set->count, (uint64_t)s->body[p->i].mesh->nt * ntj - 1);
-    for (size_t k = 0; k < set->count; ++k) {
-        const ttd_mesh_contact *c = &set->pairs[sorted[k].at];
+    for (size_t k = 0; k < m; ++k) {
+        const ttd_mesh_contact *c = &set->pairs[sorted != NULL ? sorted[k].at : k];
         v[k].i = p->i;
         v[k].j = p->j;
         v[k].tri_i = c->tri_a;
@@ -275,45 +383,61 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
         memcpy(v[k].p, c->p, sizeof v[k].p);
         memcpy(v[k].q, c->q, sizeof v[k].q);
     }
-    free(order);
-    *out = v;
-    *n = set->count;
+    w->used += m;
+    w->peak = w->used > w->peak ? w->used : w->peak;
+    *n = m;
     return 1;
 }
+
+typedef struct contact_job {
+    const ttd_engine_config *cfg;
+    struct ttd_scene *s;
+    const scene_pair *pairs;
+    real margin;
+    query_scratch *q;
+    int walk_order;               /* a manifold's: pairs not of solids in the walk's order (pair_contacts) */
+    atomic_int nomem;
+    struct reduce_job *reduce;    /* a manifold's: each pair reduced in its task, its contacts' room given back */
+} contact_job;
+
+static int reduce_found(struct reduce_job *R, size_t k, int worker, scratch_pair *r, scratch_worker *w);
 
 static void contact_task(void *ctx, size_t k, int worker)
 {
     contact_job *J = ctx;
     const scene_pair *p = &J->pairs[k];
-    if (!pair_contacts(J->cfg, J->s, p, J->margin, J->walk_order && !solid_pair(J->s, p->i, p->j), &J->sets[worker],
-                       &J->found[k], &J->nfound[k], J->tests + 2 * k))
+    scratch_pair *r = &J->q->pair[k];
+    scratch_worker *w = &J->q->w[worker];
+    r->by = worker;
+    if (!pair_contacts(J->cfg, J->s, p, J->margin, J->walk_order && !solid_pair(J->s, p->i, p->j), w, &r->at, &r->n,
+                       r->tests))
         atomic_store(&J->nomem, 1);
     else if (J->reduce != NULL) {
         /* reduced at once, while the pair's contacts are in the cache (read back after every
-         * pair's walk, they came from memory: the pile's 37 MB), and freed */
-        if (!reduce_found(J->reduce, k, worker, J->found[k], J->nfound[k]))
+         * pair's walk, they came from memory: the pile's 37 MB), and their room given back, so
+         * that the next pair's contacts go where these were */
+        if (!reduce_found(J->reduce, k, worker, r, w))
             atomic_store(&J->nomem, 1);
-        free(J->found[k]);
-        J->found[k] = NULL;
+        w->used = r->at;
+        r->n = 0;
     }
 }
 
-/* Every eligible body pair within a margin and its contacts: pairs[0..n), with found[k] and
- * nfound[k] for pair k (sorted by triangles). */
+/* Every eligible body pair within a margin and its contacts: pairs[0..n), with pair[k].found and
+ * pair[k].n for pair k (sorted by triangles), in the scene's scratch (valid until its next query). */
 typedef struct pair_contacts_set {
     scene_pair *pairs;
     size_t n;
-    ttd_scene_contact **found;
-    size_t *nfound;
+    query_scratch *q;
+    scratch_pair *pair;
 } pair_contacts_set;
 
-static void pair_contacts_free(pair_contacts_set *c)
+/* Frees what the set owns (the pairs: the contacts are the scene's), then lets the scene judge
+ * the scratch's size. */
+static void pair_contacts_free(struct ttd_scene *s, pair_contacts_set *c)
 {
-    for (size_t k = 0; c->found != NULL && k < c->n; ++k)
-        free(c->found[k]);
-    free(c->found);
-    free(c->nfound);
     free(c->pairs);
+    scratch_done(s);
 }
 
 /* The set of every eligible body pair's contacts within margin (the caller frees it with
@@ -325,44 +449,43 @@ static ttd_status all_contacts(const ttd_engine_config *cfg, struct ttd_scene *s
                                pair_contacts_set *c)
 {
     *c = (pair_contacts_set){NULL, 0, NULL, NULL};
+    s->stats = (ttd_scene_stats){0};
     if (!ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &c->pairs, &c->n))
         return TTD_ERR_OUT_OF_MEMORY;
     return contacts_run(cfg, s, margin, walk_order, NULL, c);
 }
 
 /* The walks of the pairs c->pairs[0..c->n) (swept), into c; with reduce, each pair reduced in its
- * task (reduce_found) and its contacts not kept. */
+ * task (reduce_found) and its contacts not kept (pair[k].n 0). */
 static ttd_status contacts_run(const ttd_engine_config *cfg, struct ttd_scene *s, real margin, int walk_order,
                                struct reduce_job *reduce, pair_contacts_set *c)
 {
     const ttd_engine_config one = one_thread(cfg);
     const int workers = ttd_parallel_task_workers(c->n, cfg->threads);
-    contact_job J = {&one, s, c->pairs, margin, calloc((size_t)workers, sizeof(ttd_mesh_contacts)),
-                     calloc(c->n ? c->n : 1, sizeof(ttd_scene_contact *)), calloc(c->n ? c->n : 1, sizeof(size_t)),
-                     calloc(2 * (c->n ? c->n : 1), sizeof(uint64_t)), walk_order, 0, reduce};
-    atomic_init(&J.nomem, J.sets == NULL || J.found == NULL || J.nfound == NULL || J.tests == NULL);
-    if (!atomic_load(&J.nomem))
-        ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
-    s->stats = (ttd_scene_stats){0};
+    query_scratch *q = scratch_get(s, workers, c->n);
+    if (q == NULL)
+        return TTD_ERR_OUT_OF_MEMORY;
+    contact_job J = {&one, s, c->pairs, margin, q, walk_order, 0, reduce};
+    atomic_init(&J.nomem, 0);
+    ttd_pool_tasks(s->pool, c->n, cfg->threads, contact_task, &J);
+    if (atomic_load(&J.nomem))
+        return TTD_ERR_OUT_OF_MEMORY;
     s->stats.body_pairs = c->n;
-    for (size_t k = 0; J.tests != NULL && k < c->n; ++k) {
-        s->stats.node_tests += J.tests[2 * k];
-        s->stats.pair_tests += J.tests[2 * k + 1];
+    for (size_t k = 0; k < c->n; ++k) {
+        scratch_pair *r = &q->pair[k];
+        r->found = r->n ? q->w[r->by].block + r->at : NULL;
+        s->stats.node_tests += r->tests[0];
+        s->stats.pair_tests += r->tests[1];
     }
-    free(J.tests);
-    for (int w = 0; J.sets != NULL && w < workers; ++w)
-        TTD_CONTACTS_FREE(&J.sets[w]);
-    free(J.sets);
-    c->found = J.found;
-    c->nfound = J.nfound;
-    return atomic_load(&J.nomem) ? TTD_ERR_OUT_OF_MEMORY : TTD_OK;
+    c->q = q;
+    c->pair = q->pair;
+    return TTD_OK;
 }
 
 /* Copies body pairs' contacts into the caller's array at their offsets, a pair per task: on the
  * threads, as a serial copy of the pile's 33 MB would hold the second thread up. */
 typedef struct join_job {
     const pair_contacts_set *c;
-    const size_t *at;
     ttd_scene_contact *dst;
 } join_job;
 
@@ -370,8 +493,9 @@ static void join_task(void *ctx, size_t k, int worker)
 {
     (void)worker;
     const join_job *J = ctx;
-    if (J->c->nfound[k])
-        memcpy(J->dst + J->at[k], J->c->found[k], J->c->nfound[k] * sizeof(ttd_scene_contact));
+    const scratch_pair *r = &J->c->pair[k];
+    if (r->n)
+        memcpy(J->dst + r->out, r->found, r->n * sizeof(ttd_scene_contact));
 }
 
 static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, real margin,
@@ -381,24 +505,20 @@ static ttd_status query_contacts(const ttd_engine_config *cfg, struct ttd_scene 
     pair_contacts_set c;
     ttd_status st = all_contacts(cfg, s, margin, 0, &c);
     size_t total = 0;
-    size_t *at = st == TTD_OK ? malloc((c.n ? c.n : 1) * sizeof *at) : NULL;
-    if (st == TTD_OK && at == NULL)
-        st = TTD_ERR_OUT_OF_MEMORY;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
-        at[k] = total;
-        total += c.nfound[k];
+        c.pair[k].out = total;
+        total += c.pair[k].n;
     }
     if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_contact)))
         st = TTD_ERR_OUT_OF_MEMORY;
     if (st == TTD_OK) {
-        join_job J = {&c, at, out->data};
+        join_job J = {&c, out->data};
         /* a copy under 64 KB (a few microseconds) on the caller alone: a job on the pool costs
          * more than its half */
         ttd_pool_tasks(s->pool, c.n, total * sizeof(ttd_scene_contact) < 65536 ? 1 : cfg->threads, join_task, &J);
         out->count = total;
     }
-    free(at);
-    pair_contacts_free(&c);
+    pair_contacts_free(s, &c);
     s->stats.results = out->count;
     if (st != TTD_OK)
         s->stats = (ttd_scene_stats){0};
@@ -463,7 +583,6 @@ static ttd_status query_contacts_count(const ttd_engine_config *cfg, struct ttd_
 
 /* ---- manifolds: each body pair's contacts reduced to a few points --------------------------- */
 
-
 /* Body pairs' reductions on the threads: each worker appends to its own array with its own
  * scratch, and the pairs' points are joined in pair order afterwards, so the answer does not
  * depend on the threads. */
@@ -473,25 +592,22 @@ typedef struct reduce_job {
     const pair_contacts_set *c;
     real margin;
     size_t max_points;
-    manifold_work *w;      /* per worker */
-    ttd_scene_array *part; /* per worker */
-    size_t *at, *count;    /* per pair: its first point in its worker's array, its points */
-    int *by;               /* per pair: the worker that reduced it */
-    atomic_int nomem;
 } reduce_job;
 
-static int reduce_found(reduce_job *J, size_t k, int worker, const ttd_scene_contact *c, size_t n)
+/* Pair k's reduction, in its walk's task (contact_task), from its contacts in w's block, into
+ * w's points; 0 out of memory. */
+static int reduce_found(reduce_job *J, size_t k, int worker, scratch_pair *r, scratch_worker *w)
 {
     const scene_pair *p = &J->c->pairs[k];
-    ttd_scene_array *part = &J->part[worker];
-    J->by[k] = worker;
-    J->at[k] = part->count;
-    J->count[k] = 0;
-    if (n == 0 && !solid_pair(J->s, p->i, p->j))
+    ttd_scene_array *part = &w->part;
+    r->red_by = worker;
+    r->red_at = part->count;
+    r->red_n = 0;
+    if (r->n == 0 && !solid_pair(J->s, p->i, p->j))
         return 1;
-    if (!reduce_pair(J->s, J->one, p, c, n, J->margin, J->max_points, &J->w[worker], part))
+    if (!reduce_pair(J->s, J->one, p, w->block + r->at, r->n, J->margin, J->max_points, &w->mw, part))
         return 0;
-    J->count[k] = part->count - J->at[k];
+    r->red_n = part->count - r->red_at;
     return 1;
 }
 
@@ -501,43 +617,30 @@ static ttd_status query_manifold(const ttd_engine_config *cfg, struct ttd_scene 
     out->count = 0;
     pair_contacts_set c = {NULL, 0, NULL, NULL};
     const ttd_engine_config one = one_thread(cfg);
+    s->stats = (ttd_scene_stats){0};
     ttd_status st = ttd_scene_sweep_on(s, cfg->threads, (double)margin, NULL, &c.pairs, &c.n) ? TTD_OK : TTD_ERR_OUT_OF_MEMORY;
     /* the meshes' edge information, made on their first manifold (mesh/mesh.h), before the
      * threads read it: for every pair swept, as the reductions run in the walks' tasks */
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
         if (ttd_mesh_edges_get(s->body[c.pairs[k].i].mesh) == NULL || ttd_mesh_edges_get(s->body[c.pairs[k].j].mesh) == NULL)
             st = TTD_ERR_OUT_OF_MEMORY;
-    const size_t np = c.n ? c.n : 1;
-    const int workers = st == TTD_OK ? ttd_parallel_task_workers(c.n, cfg->threads) : 0;
-    reduce_job J = {s, &one, &c, margin, max_points, calloc((size_t)workers + 1, sizeof(manifold_work)),
-                    calloc((size_t)workers + 1, sizeof(ttd_scene_array)), calloc(np, sizeof(size_t)),
-                    calloc(np, sizeof(size_t)), calloc(np, sizeof(int)), 0};
-    atomic_init(&J.nomem, J.w == NULL || J.part == NULL || J.at == NULL || J.count == NULL || J.by == NULL);
-    if (st == TTD_OK && atomic_load(&J.nomem))
-        st = TTD_ERR_OUT_OF_MEMORY;
+    reduce_job J = {s, &one, &c, margin, max_points};
     if (st == TTD_OK)
         st = contacts_run(cfg, s, margin, 1, &J, &c);
     size_t total = 0;
     for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
-        total += J.count[k];
+        total += c.pair[k].red_n;
     if (st == TTD_OK && !array_reserve(out, total, sizeof(ttd_scene_point)))
         st = TTD_ERR_OUT_OF_MEMORY;
-    for (size_t k = 0; st == TTD_OK && k < c.n; ++k)
-        if (J.count[k]) {
-            memcpy((ttd_scene_point *)out->data + out->count, (const ttd_scene_point *)J.part[J.by[k]].data + J.at[k],
-                   J.count[k] * sizeof(ttd_scene_point));
-            out->count += J.count[k];
+    for (size_t k = 0; st == TTD_OK && k < c.n; ++k) {
+        const scratch_pair *r = &c.pair[k];
+        if (r->red_n) {
+            memcpy((ttd_scene_point *)out->data + out->count, (const ttd_scene_point *)c.q->w[r->red_by].part.data + r->red_at,
+                   r->red_n * sizeof(ttd_scene_point));
+            out->count += r->red_n;
         }
-    for (int k = 0; J.w != NULL && J.part != NULL && k < workers; ++k) {
-        manifold_work_free(&J.w[k]);
-        free(J.part[k].data);
     }
-    free(J.w);
-    free(J.part);
-    free(J.at);
-    free(J.count);
-    free(J.by);
-    pair_contacts_free(&c);
+    pair_contacts_free(s, &c);
     s->stats.results = out->count;
     if (st != TTD_OK) {
         out->count = 0;
@@ -559,18 +662,15 @@ static ttd_scene_contact no_contact(uint32_t i)
 static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const scene_pair *p, real d, uint32_t first,
                        ttd_scene_contact *rec)
 {
-    ttd_mesh_contacts set = {0};
-    ttd_scene_contact *v;
-    size_t n;
+    scratch_worker w = {0}; /* one pair's: not the scene's, which a query's contacts may be in */
+    size_t at, n;
     const ttd_engine_config one = one_thread(cfg);
     uint64_t tests[2];
-    const int ok = pair_contacts(&one, s, p, d, 0, &set, &v, &n, tests);
-    TTD_CONTACTS_FREE(&set);
-    if (!ok)
-        return 0;
+    const int ok = pair_contacts(&one, s, p, d, 0, &w, &at, &n, tests);
+    const ttd_scene_contact *v = n ? w.block + at : NULL;
     const int swap = first != p->i;
     size_t best = n;
-    for (size_t k = 0; k < n; ++k) {
+    for (size_t k = 0; ok && k < n; ++k) {
         if (v[k].distance != d)
             continue;
         if (best == n)
@@ -579,26 +679,28 @@ static int pair_record(const ttd_engine_config *cfg, struct ttd_scene *s, const 
             best = k;
         /* not swapped: v is sorted by (tri_i, tri_j), the first at d is the smallest */
     }
+    if (ok && best < n) {
+        *rec = v[best];
+        if (swap) {
+            *rec = (ttd_scene_contact){p->j, p->i, v[best].tri_j, v[best].tri_i, d, {0, 0, 0}, {0, 0, 0}};
+            memcpy(rec->p, v[best].q, sizeof rec->p);
+            memcpy(rec->q, v[best].p, sizeof rec->q);
+        }
+    }
+    scratch_worker_free(&w);
+    if (!ok)
+        return 0;
     if (best == n) { /* no triangle pair at d: one solid inside the other (else cannot happen) */
-        free(v);
-        real at[3];
-        const int side = d == 0 && solid_pair(s, p->i, p->j) ? solid_nested(s, p->i, p->j, at) : 0;
+        real at3[3];
+        const int side = d == 0 && solid_pair(s, p->i, p->j) ? solid_nested(s, p->i, p->j, at3) : 0;
         if (side == 0)
             return 0;
         const uint32_t ti = side == 2 ? 0 : UINT32_MAX, tj = side == 1 ? 0 : UINT32_MAX;
         *rec = swap ? (ttd_scene_contact){p->j, p->i, tj, ti, 0, {0, 0, 0}, {0, 0, 0}}
                     : (ttd_scene_contact){p->i, p->j, ti, tj, 0, {0, 0, 0}, {0, 0, 0}};
-        memcpy(rec->p, at, sizeof rec->p);
-        memcpy(rec->q, at, sizeof rec->q);
-        return 1;
+        memcpy(rec->p, at3, sizeof rec->p);
+        memcpy(rec->q, at3, sizeof rec->q);
     }
-    *rec = v[best];
-    if (swap) {
-        *rec = (ttd_scene_contact){p->j, p->i, v[best].tri_j, v[best].tri_i, d, {0, 0, 0}, {0, 0, 0}};
-        memcpy(rec->p, v[best].q, sizeof rec->p);
-        memcpy(rec->q, v[best].p, sizeof rec->q);
-    }
-    free(v);
     return 1;
 }
 

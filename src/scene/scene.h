@@ -49,6 +49,9 @@ struct ttd_scene {
     size_t nexcluded, excluded_cap;
     ttd_scene_stats stats;       /* what the last query did (ttd_scene_get_stats) */
     struct ttd_pool *pool;       /* worker threads kept between queries (engine/parallel.h) */
+    void *scratch;               /* the contact and manifold queries' per-worker memory, kept
+                                  * between queries (scene/query_impl.h, of the scene's precision) */
+    void (*scratch_free)(void *); /* frees it: set with it */
 };
 
 /// A candidate body pair (i < j) of a sweep.
