@@ -605,7 +605,7 @@ static int reduce_found(reduce_job *J, size_t k, int worker, scratch_pair *r, sc
     r->red_n = 0;
     if (r->n == 0 && !solid_pair(J->s, p->i, p->j))
         return 1;
-    if (!reduce_pair(J->s, J->one, p, w->block + r->at, r->n, J->margin, J->max_points, &w->mw, part))
+    if (!reduce_pair(J->s, J->one, p, r->n ? w->block + r->at : NULL, r->n, J->margin, J->max_points, &w->mw, part))
         return 0;
     r->red_n = part->count - r->red_at;
     return 1;
