@@ -16,6 +16,14 @@ TTDW_FN ttdw_md screen_near(const double *const lo[3], const double *const hi[3]
     return m;
 }
 
+/* The lanes j.. of h whose diagonal projection e (self_grid_impl.h, the diagonal screen) overlaps
+ * g's triangle i's. */
+TTDW_FN ttdw_md screen_diagonal(const ttd_self_block *g, const ttd_self_block *h, int i, int j, int e)
+{
+    return ttdw_mand_d(ttdw_le_d(ttdw_loadu_d(h->dg[e] + j), ttdw_set1_d(g->dg[6 + e][i])),
+                       ttdw_le_d(ttdw_set1_d(g->dg[e][i]), ttdw_loadu_d(h->dg[6 + e] + j)));
+}
+
 #if defined(__AVX2__) && !defined(__AVX512F__) && TTDW_LANES_D == 4
 #include <immintrin.h>
 #define SELF_SHARE_I32 1
@@ -62,8 +70,7 @@ static unsigned self_screen(const ttd_self_block *g, const ttd_self_block *h, in
             unsigned p = (nb & ~sb) >> j & ((1u << TTDW_LANES_D) - 1); /* near, sharing no vertex */
             for (int d = 0; d < 6 && p != 0; d += 2) /* the diagonal stages, as below */
                 for (int e = d; e < d + 2; ++e)
-                    p &= ttdw_mbits_d(ttdw_mand_d(ttdw_le_d(ttdw_loadu_d(h->dg[e] + j), ttdw_set1_d(g->dg[6 + e][i])),
-                                                  ttdw_le_d(ttdw_set1_d(g->dg[e][i]), ttdw_loadu_d(h->dg[6 + e] + j))));
+                    p &= ttdw_mbits_d(screen_diagonal(g, h, i, j, e));
             n |= p << j;
         }
 #else
@@ -82,8 +89,7 @@ static unsigned self_screen(const ttd_self_block *g, const ttd_self_block *h, in
                once no lane is left: on a flat sheet the in-plane pair (x +- y) parts most lanes */
             for (int d = 0; d < 6 && ttdw_mbits_d(pair); d += 2)
                 for (int e = d; e < d + 2; ++e)
-                    pair = ttdw_mand_d(pair, ttdw_mand_d(ttdw_le_d(ttdw_loadu_d(h->dg[e] + j), ttdw_set1_d(g->dg[6 + e][i])),
-                                                         ttdw_le_d(ttdw_set1_d(g->dg[e][i]), ttdw_loadu_d(h->dg[6 + e] + j))));
+                    pair = ttdw_mand_d(pair, screen_diagonal(g, h, i, j, e));
             n |= ttdw_mbits_d(pair) << j;
             s |= ttdw_mbits_d(ttdw_mand_d(near, share)) << j;
         }
