@@ -58,7 +58,7 @@ static PyObject *py_ccd(PyObject *self, PyObject *args)
                      : ttd_ccd_triangles_d(&opt, (size_t)n, p[0], p[1], p[2], p[3], delta, r);
     Py_END_ALLOW_THREADS
     if (st == TTD_ERR_BAD_OPTIONS) {
-        PyErr_Format(PyExc_ValueError, "ttd: min_separation must be finite and >= 0 (got %g) and threads >= 0", delta);
+        ttd_py_value_error("ttd: min_separation must be finite and >= 0 (got %R)", delta);
         PyMem_RawFree(r);
         goto done;
     }
@@ -157,8 +157,7 @@ static PyObject *py_mesh_ccd(PyObject *self, PyObject *args)
     Py_END_ALLOW_THREADS
     ttd_py_meshes_release(meshes, 2);
     if (st == TTD_ERR_BAD_OPTIONS) {
-        PyErr_Format(PyExc_ValueError, "ttd: min_separation must be finite and >= 0 (got %g) and threads >= 0", delta);
-        return NULL;
+        return ttd_py_value_error("ttd: min_separation must be finite and >= 0 (got %R)", delta);
     }
     if (st == TTD_ERR_NONFINITE_MESH) {
         PyErr_SetString(PyExc_ValueError, "ttd: the vertices at t = 1 hold NaN or infinite coordinates");
@@ -249,8 +248,7 @@ static PyObject *py_mesh_ccd_rigid(PyObject *self, PyObject *args)
     Py_END_ALLOW_THREADS
     ttd_py_meshes_release(meshes, 2);
     if (st == TTD_ERR_BAD_OPTIONS) {
-        PyErr_Format(PyExc_ValueError, "ttd: min_separation must be finite and >= 0 (got %g)", delta);
-        return NULL;
+        return ttd_py_value_error("ttd: min_separation must be finite and >= 0 (got %R)", delta);
     }
     if (st != TTD_OK) {
         if (ttd_py_raise_fatal(st, &opt) == 0)
@@ -275,8 +273,7 @@ static PyObject *py_rigid_pose_at(PyObject *self, PyObject *args)
         return NULL;
     const ttd_status st = ttd_rigid_pose_at_d(p0, p1, t, q);
     if (st == TTD_ERR_BAD_OPTIONS) {
-        PyErr_Format(PyExc_ValueError, "ttd: t must lie in [0, 1] (got %g)", t);
-        return NULL;
+        return ttd_py_value_error("ttd: t must lie in [0, 1] (got %R)", t);
     }
     if (st != TTD_OK) {
         PyErr_SetString(PyExc_ValueError, "ttd: a pose holds a NaN or infinite number");

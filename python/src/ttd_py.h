@@ -62,6 +62,10 @@ PyArrayObject *ttd_py_as_real(PyArrayObject *a, const char *name, int type_num);
  * statuses, which the caller reports as warnings with the counts only it knows. */
 int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt);
 
+/* Raises ValueError with format, whose one %R is value as Python writes a float (PyErr_Format
+ * has no %g: it would print the letters). Returns NULL, for `return ttd_py_value_error(...)`. */
+PyObject *ttd_py_value_error(const char *format, double value);
+
 /* The array's shape as a tuple, for messages; NULL with an exception on failure. */
 PyObject *ttd_py_shape(PyArrayObject *a);
 

@@ -479,6 +479,16 @@ static void ttd_py_raise_isa_unavailable(const ttd_options *opt)
     Py_DECREF(avail);
 }
 
+PyObject *ttd_py_value_error(const char *format, double value)
+{
+    PyObject *v = PyFloat_FromDouble(value);
+    if (v != NULL) {
+        PyErr_Format(PyExc_ValueError, format, v);
+        Py_DECREF(v);
+    }
+    return NULL;
+}
+
 int ttd_py_raise_fatal(ttd_status st, const ttd_options *opt)
 {
     if (st == TTD_PY_INTERRUPTED) /* raised already (ttd_py_run_pieces) */

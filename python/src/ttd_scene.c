@@ -1311,8 +1311,7 @@ static PyObject *ttd_py_scene_ccd(PyObject *obj, PyObject *args, PyObject *kwarg
     if (ttd_py_real_arg(sep, "min_separation", &delta) < 0)
         return NULL;
     if (!(delta >= 0) || !isfinite(delta)) {
-        PyErr_Format(PyExc_ValueError, "min_separation=%g is out of range: finite and >= 0", delta);
-        return NULL;
+        return ttd_py_value_error("min_separation=%R is out of range: finite and >= 0", delta);
     }
     ttd_options opt;
     if (ttd_py_options(NULL, isa, threads, NULL, NULL, NULL, &opt) < 0)

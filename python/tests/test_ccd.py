@@ -48,7 +48,7 @@ def test_errors_and_nonfinite():
         ttd.ccd_vertex_face(np.zeros((2, 3)), np.zeros((3, 3, 3)), np.zeros((2, 3)), np.zeros((2, 3, 3)))
     with pytest.raises(ValueError):
         ttd.ccd_edge_edge(np.zeros((1, 3, 3)), np.zeros((1, 2, 3)), np.zeros((1, 2, 3)), np.zeros((1, 2, 3)))
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"\(got -1\.0\)"):  # the value itself, not a format's letters
         ttd.ccd_vertex_face([0, 0, 1], TRI, [0, 0, -1], TRI, min_separation=-1.0)
     with pytest.raises(ValueError):
         ttd.ccd_vertex_face([0, 0, 1], TRI, [0, 0, -1], TRI, min_separation=float("nan"))

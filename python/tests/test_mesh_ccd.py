@@ -152,7 +152,7 @@ def test_errors():
     m = ttd.Mesh(v, f)
     with pytest.raises(ValueError):
         ttd.mesh_self_ccd(m, v[:-1])
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"\(got -1\.0\)"):
         ttd.mesh_self_ccd(m, v, min_separation=-1.0)
     with pytest.raises(ValueError):
         ttd.mesh_self_ccd(m, v, min_separation=float("nan"))

@@ -178,7 +178,7 @@ def test_errors():
         ttd.mesh_ccd_rigid(v, I, I, c, I, I)
     with pytest.raises(ValueError):
         ttd.mesh_ccd_rigid(c, I, I, c, I, np.stack([I, I]))
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"\(got 1\.5\)"):
         ttd.rigid_pose_at(I, I, 1.5)
     # A batch of poses (K, 3, 4) is refused: rigid_pose_at used its first pose silently (the
     # second pose's turn below was dropped; checked with the old code).

@@ -89,7 +89,7 @@ def test_errors_and_empty():
     scene = ttd.Scene([ttd.Mesh(v, f)] * 2, np.stack([np.eye(4)] * 2))
     with pytest.raises(ValueError, match="id_limit"):
         scene.ccd(np.stack([np.eye(4)] * 3))
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"min_separation=-1\.0 "):
         scene.ccd(np.stack([np.eye(4)] * 2), min_separation=-1)
     with pytest.raises(ValueError):
         scene.ccd(np.stack([np.eye(4)] * 2), min_separation=math.inf)
