@@ -1457,6 +1457,13 @@ static int bad_input(void)
     ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
     ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 1 && stats.results == 1 &&
            stats.pair_tests >= 1);
+    /* a query refused at its checks leaves the stats at 0, not the last query's (ttd.h) */
+    ENSURE(ttd_scene_collide_d(NULL, s, -1, &out) == TTD_ERR_BAD_OPTIONS);
+    ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 0 && stats.node_tests == 0 &&
+           stats.pair_tests == 0 && stats.results == 0);
+    ENSURE(ttd_scene_collide_d(NULL, s, 0, &out) == TTD_OK && out.count == 1);
+    ENSURE(ttd_scene_contacts_f(NULL, s, 0, &out) == TTD_ERR_PRECISION_MISMATCH);
+    ENSURE(ttd_scene_get_stats(s, &stats) == TTD_OK && stats.body_pairs == 0 && stats.results == 0);
     ENSURE(ttd_scene_distance_d(NULL, s, INFINITY, &c, NULL) == TTD_OK && c.distance == 0 && c.i == 0 && c.j == 1);
     ttd_scene_array_free(&out);
     ttd_scene_destroy(s);

@@ -302,6 +302,8 @@ static ttd_status refresh_moved_bodies(ttd_scene *s)
 static ttd_status query_prepare(const ttd_options *opt, ttd_scene *s, int out_ok, int bytes, double limit,
                                 int inf_ok, ttd_engine_config *cfg)
 {
+    if (s != NULL) /* a query refused below leaves no stats of the last one (ttd_scene_get_stats) */
+        s->stats = (ttd_scene_stats){0};
     const ttd_status st = ttd_prepare(opt, s != NULL && out_ok, 1, 0, cfg);
     if (st != TTD_OK)
         return st;
