@@ -25,7 +25,7 @@ static const char ccd_usage[] =
     "  --min-separation D       report distances of D or less (default 0)\n"
     "  --threads N              worker threads (default 0: all cores)\n"
     "  --summary                only the totals, not a line per query\n"
-    "output: a line per query 'i hit toi truth' (toi inf without a hit), then the totals: queries,\n"
+    "output: a line per query 'i hit toi truth gap evals' (toi inf without a hit), then the totals: queries,\n"
     "hits, false negatives and positives against the file's truth, time.\n";
 
 /* A decimal integer as the nearest double; *exact when that double is the integer itself (glibc

@@ -56,7 +56,7 @@ static const char ttd_usage[] =
     "  --help                  this text\n"
     "  --version               version and instruction sets\n"
     "\n"
-    "The environment variable TTD_ISA (scalar, sse2, avx2, avx512, neon) forces an instruction\n"
+    "The environment variable TTD_ISA (scalar, sse2, avx2, avx512, neon, portable) forces an instruction\n"
     "set wherever the options say auto.\n";
 
 static void ttd_print_version(FILE *f)

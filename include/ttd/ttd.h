@@ -422,7 +422,7 @@ typedef struct ttd_mesh_result_f {
 /// upper_bound >= 0 (INFINITY for none): a pose whose distance exceeds it may stop early and
 /// reports +inf with TTD_MESH_ABOVE_BOUND. rel_tol >= 0 (0 for exact): the reported pair may be
 /// up to a factor 1 + rel_tol farther than the minimum (fewer pairs tested). NaN or negative
-/// upper_bound or rel_tol: TTD_ERR_BAD_OPTIONS.
+/// upper_bound, or rel_tol NaN, negative or infinite: TTD_ERR_BAD_OPTIONS.
 TTD_API ttd_status ttd_mesh_distance_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                        const double *poses, double upper_bound, double rel_tol,
                                        ttd_mesh_result_d *out);
@@ -523,8 +523,8 @@ typedef struct ttd_collision {
     uint64_t pair_tests;
 } ttd_collision;
 
-/// Collision of a and b with a margin >= 0 (0: do they touch or cross?) under each of k poses;
-/// each pose stops at its first witness pair.
+/// Collision of a and b with a margin >= 0 and finite (0: do they touch or cross?) under each of
+/// k poses; each pose stops at its first witness pair.
 TTD_API ttd_status ttd_mesh_collide_d(const ttd_options *opt, const ttd_mesh *a, const ttd_mesh *b, size_t k,
                                       const double *poses, double margin, ttd_collision *out);
 /// ttd_mesh_collide_d in single precision.
@@ -782,7 +782,7 @@ TTD_API size_t ttd_scene_body_count(const ttd_scene *scene);
 TTD_API size_t ttd_scene_id_limit(const ttd_scene *scene);
 
 /// A growable array the library manages: start from {0} (or reuse one), free with
-/// ttd_scene_array_free. count items of item_size bytes at data.
+/// ttd_scene_array_free. count items at data, of the type the query that filled it names.
 typedef struct ttd_scene_array {
     void *data;
     size_t count;
