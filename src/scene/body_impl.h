@@ -87,6 +87,24 @@ static int scene_contact_cmp(const void *x, const void *y)
     return (a->tri_j > b->tri_j) - (a->tri_j < b->tri_j);
 }
 
+/* p grown to hold n > *cap items of `size` bytes, its capacity *cap (items) doubled from *cap, or
+ * from `first` when 0, until it holds them: the new array, or NULL out of memory or where n items
+ * do not fit a size_t (then p and *cap are kept). The one grow of the scene's growable arrays: a
+ * caller's array, a worker's contact block, the manifold's records and scratch. */
+static void *array_grow(void *p, size_t *cap, size_t n, size_t size, size_t first)
+{
+    const size_t most = SIZE_MAX / size;
+    if (n > most)
+        return NULL;
+    size_t c = *cap ? *cap : first;
+    while (c < n)
+        c = c > most / 2 ? n : 2 * c; /* doubled, but never past what c * size can count */
+    void *q = realloc(p, c * size);
+    if (q != NULL)
+        *cap = c;
+    return q;
+}
+
 /* Room for n items of `size` bytes in a caller's array. Its capacity counts bytes: one array
  * may serve queries whose items differ in size (contacts, then a manifold's larger points), and
  * a capacity in items of the last query's size overflowed the next one's (issue 32). */
@@ -97,14 +115,10 @@ static int array_reserve(ttd_scene_array *a, size_t n, size_t size)
     const size_t need = n * size;
     if (need <= a->capacity)
         return 1;
-    size_t cap = a->capacity ? a->capacity : 64 * size;
-    while (cap < need)
-        cap = cap > SIZE_MAX / 2 ? need : 2 * cap;
-    void *v = realloc(a->data, cap);
+    void *v = array_grow(a->data, &a->capacity, need, 1, 64 * size);
     if (v == NULL)
         return 0;
     a->data = v;
-    a->capacity = cap;
     return 1;
 }
 

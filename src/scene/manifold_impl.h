@@ -258,12 +258,10 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
 static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside, unsigned fi, unsigned fj)
 {
     if (w->all_n == w->all_cap) {
-        const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
-        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        manifold_rec *v = array_grow(w->all, &w->all_cap, w->all_n + 1, sizeof *v, 256);
         if (v == NULL)
             return 0;
         w->all = v;
-        w->all_cap = cap;
     }
     w->all[w->all_n].c = *c;
     w->all[w->all_n].feat[0] = (uint8_t)fi;
@@ -282,14 +280,10 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n, con
     for (size_t k = 0; drop != NULL && k < n; ++k)
         m -= (drop[k] & FACE_FLAT) != 0;
     if (w->all_n + m > w->all_cap) {
-        size_t cap = w->all_cap ? w->all_cap : 256;
-        while (cap < w->all_n + m)
-            cap *= 2;
-        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        manifold_rec *v = array_grow(w->all, &w->all_cap, w->all_n + m, sizeof *v, 256);
         if (v == NULL)
             return 0;
         w->all = v;
-        w->all_cap = cap;
     }
     if (w->all_n > 0 && m > 0)
         memmove(w->all + m, w->all, w->all_n * sizeof *w->all);

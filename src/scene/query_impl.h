@@ -349,14 +349,10 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     if (m == 0)
         return 1;
     if (m > w->cap - w->used) {
-        size_t cap = w->cap ? 2 * w->cap : 1024;
-        while (cap - w->used < m)
-            cap *= 2;
-        ttd_scene_contact *b = realloc(w->block, cap * sizeof *b);
+        ttd_scene_contact *b = array_grow(w->block, &w->cap, w->used + m, sizeof *b, 1024);
         if (b == NULL)
             return 0;
         w->block = b;
-        w->cap = cap;
     }
     ttd_scene_contact *v = w->block + w->used;
     const sort_item *sorted = NULL;
