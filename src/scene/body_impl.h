@@ -6,6 +6,17 @@
 #ifndef TTD_SCENE_BODY_IMPL_H
 #define TTD_SCENE_BODY_IMPL_H
 
+#ifdef TTD_SCENE_ALLOC_HOOK
+/* Tests only (tests/CMakeLists.txt, test_scene_nomem): the scene queries' allocations through the
+ * test's hooks, which can fail any one of them; the library's build has no hook. */
+void *ttd_scene_hook_malloc(size_t n);
+void *ttd_scene_hook_calloc(size_t n, size_t size);
+void *ttd_scene_hook_realloc(void *p, size_t n);
+#define malloc(n) ttd_scene_hook_malloc(n)
+#define calloc(n, size) ttd_scene_hook_calloc(n, size)
+#define realloc(p, n) ttd_scene_hook_realloc(p, n)
+#endif
+
 /* The pose of body id in the scene's precision. */
 static const real *body_pose(const struct ttd_scene *s, uint32_t id)
 {
