@@ -57,6 +57,11 @@
  * deepest contact (M = 0.04 and a rest gap of 0.01: 4.7e-4; a resting body's supports agree to
  * far less, and a point a millimetre above them holds nothing) */
 #define TOUCH_FRACTION (1.0 / 64)
+/* The touching points' pass before the level's (reduce_pair); 0 only in a test's build
+ * (tests/CMakeLists.txt, ttd_manifold_no_touch), whose answers must be the same bits. */
+#ifndef MANIFOLD_TOUCH_PASS
+#define MANIFOLD_TOUCH_PASS 1
+#endif
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -407,7 +412,8 @@ again:
          * above them change nothing (on a curved pile's pair, about a sixteenth of the level's
          * points); else the level's, as below */
         const double reaches[2] = {window > touch ? window : touch, window > level ? window : level};
-        for (int pass = reaches[0] < reaches[1] ? 0 : 1; pass < 2 && ns == 0 && !corners; ++pass) {
+        const int first = MANIFOLD_TOUCH_PASS && reaches[0] < reaches[1] ? 0 : 1;
+        for (int pass = first; pass < 2 && ns == 0 && !corners; ++pass) {
             const double reach[2] = {d0, reaches[pass]};
             w->all_n = n_pre;
             if (!pair_corners(s, c0, n0, margin, reach, w))
