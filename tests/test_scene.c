@@ -24,6 +24,7 @@
 
 #include "meshes.h"
 #include "pairs.h"
+#include "scene/scene.h" /* the scratch's bound and its held bytes (ttd_scene_scratch_held) */
 #include "scene_corners_ref.h"
 #include "test_macros.h"
 #include <ttd/ttd.h>
@@ -1338,6 +1339,74 @@ static int scratch_across_queries(void)
     return 0;
 }
 
+/* The scratch's bound (docs/scenes.md section 9): after a large query, the scene keeps its
+ * contact blocks through SCRATCH_THIN_QUERIES - 1 queries that fill under a quarter of them, and
+ * frees them at the SCRATCH_THIN_QUERIES-th; a query that fills more starts the count again; a
+ * query after the free gives the bytes it gave before. Two icospheres 0.05 apart (1,280
+ * triangles each): 22,450 contacts within 0.2, 210 within 0.06, on one thread, contacts and
+ * manifolds. */
+static int scratch_thin_bound(void)
+{
+    ttd_gen_mesh g;
+    ENSURE(ttd_gen_icosphere(3, &g) == 0 && ttd_gen_normalize(&g) == 0);
+    double lo[3], hi[3];
+    ENSURE(ttd_gen_mesh_bounds(&g, lo, hi) == 0);
+    const double gap = hi[2] - lo[2] + 0.05;
+    for (int bytes = 8; bytes >= 4; bytes -= 4) {
+        ttd_mesh *m;
+        ttd_scene *s;
+        float v[3 * 642];
+        ENSURE(g.nv <= 642);
+        for (size_t i = 0; i < 3 * g.nv; ++i)
+            v[i] = (float)g.verts[i];
+        ENSURE((bytes == 8 ? ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m)
+                           : ttd_mesh_create_f(NULL, v, g.nv, g.tris, g.nt, &m)) == TTD_OK);
+        ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
+        for (int b = 0; b < 2; ++b) {
+            const double pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, b * gap};
+            float pf[12];
+            for (int r = 0; r < 12; ++r)
+                pf[r] = (float)pose[r];
+            uint32_t id;
+            ENSURE((bytes == 8 ? ttd_scene_add_d(s, m, pose, &id) : ttd_scene_add_f(s, m, pf, &id)) == TTD_OK);
+        }
+        const size_t csize = bytes == 8 ? sizeof(ttd_scene_contact_d) : sizeof(ttd_scene_contact_f);
+        ttd_scene_array x = {0}, first = {0};
+        ENSURE(ask_one(s, bytes, 1, 0.06, -1, &first) > 0 && first.count > 0);
+        ENSURE(ttd_scene_scratch_held(s) > 0);
+        for (int round = 0; round < 3; ++round) {
+            ENSURE(ask_one(s, bytes, 1, 0.2, round == 1 ? 4 : -1, &x) > 0);
+            const size_t held = ttd_scene_scratch_held(s);
+            /* the test's premise: the large query's blocks are past the small ones' exemption,
+             * and the small queries fill under a quarter of them */
+            ENSURE_MSG(held > SCRATCH_SMALL * csize && 4 * first.count * csize < held,
+                       "%zu bytes held after the large query, %zu contacts in a small one", held, first.count);
+            /* rounds 0 and 1: one small query fewer than the bound, then the count starts again */
+            const int small = round < 2 ? SCRATCH_THIN_QUERIES - 1 : SCRATCH_THIN_QUERIES;
+            for (int k = 1; k <= small; ++k) {
+                ENSURE(ask_one(s, bytes, 1, 0.06, k % 2 ? -1 : 4, &x) > 0);
+                const size_t now = ttd_scene_scratch_held(s);
+                if (k < SCRATCH_THIN_QUERIES)
+                    ENSURE_MSG(now == held, "%s, round %d: %zu bytes held after %d small queries, %zu before",
+                               bytes == 8 ? "double" : "float", round, now, k, held);
+                else
+                    ENSURE_MSG(now == 0, "%s: %zu bytes held after %d small queries (of %zu), want them freed",
+                               bytes == 8 ? "double" : "float", now, k, held);
+            }
+        }
+        /* made again, to the small query's size, and the same bytes */
+        ENSURE(ask_one(s, bytes, 1, 0.06, -1, &x) > 0 && x.count == first.count);
+        ENSURE(memcmp(x.data, first.data, x.count * csize) == 0);
+        ENSURE(ttd_scene_scratch_held(s) > 0 && ttd_scene_scratch_held(s) <= SCRATCH_SMALL * csize);
+        ttd_scene_array_free(&x);
+        ttd_scene_array_free(&first);
+        ttd_scene_destroy(s);
+        ttd_mesh_destroy(m);
+    }
+    ttd_gen_mesh_free(&g);
+    return 0;
+}
+
 /* A scene of one body, and of none: nothing collides, no closest pair. */
 static int small_scenes(void)
 {
@@ -1486,6 +1555,7 @@ int main(int argc, char **argv)
     RUN_TEST(closest_pair_order);
     RUN_TEST(collide_across_steps);
     RUN_TEST(scratch_across_queries);
+    RUN_TEST(scratch_thin_bound);
     RUN_TEST(bad_input);
     TEST_MAIN_END();
 }

@@ -215,12 +215,10 @@ static int point_after(const real *x, const real *y)
 static int key_push(manifold_work *w, const corner_key *k)
 {
     if (w->key_n == w->key_cap) {
-        const size_t cap = w->key_cap ? 2 * w->key_cap : 64;
-        corner_key *v = realloc(w->key, cap * sizeof *v);
+        corner_key *v = array_grow(w->key, &w->key_cap, w->key_n + 1, sizeof *v, 64);
         if (v == NULL)
             return 0;
         w->key = v;
-        w->key_cap = cap;
     }
     w->key[w->key_n++] = *k;
     return 1;
@@ -468,17 +466,7 @@ static void *piece_grow(void *p, size_t *cap, size_t n, size_t size)
 {
     if (n == 0)
         n = 1;
-    if (p != NULL && n <= *cap)
-        return p;
-    if (n > SIZE_MAX / 2 / size) /* doubling and c * size below must not wrap */
-        return NULL;
-    size_t c = *cap > 0 ? *cap : 64;
-    while (c < n)
-        c *= 2;
-    void *q = realloc(p, c * size);
-    if (q != NULL)
-        *cap = c;
-    return q;
+    return p != NULL && n <= *cap ? p : array_grow(p, cap, n, size, 64);
 }
 
 static int piece_item_cmp(const void *x, const void *y)

@@ -48,12 +48,10 @@ typedef struct face_heap {
 static int face_heap_push(face_heap *h, const face_cell *x)
 {
     if (h->n == h->cap) {
-        const size_t cap = h->cap ? 2 * h->cap : 64;
-        face_cell *v = realloc(h->c, cap * sizeof *v);
+        face_cell *v = array_grow(h->c, &h->cap, h->n + 1, sizeof *v, 64);
         if (v == NULL)
             return 0;
         h->c = v;
-        h->cap = cap;
     }
     size_t k = h->n++;
     while (k > 0 && h->c[(k - 1) / 2].ub < x->ub) {

@@ -57,6 +57,11 @@
  * deepest contact (M = 0.04 and a rest gap of 0.01: 4.7e-4; a resting body's supports agree to
  * far less, and a point a millimetre above them holds nothing) */
 #define TOUCH_FRACTION (1.0 / 64)
+/* The touching points' pass before the level's (reduce_pair); 0 only in a test's build
+ * (tests/CMakeLists.txt, ttd_manifold_no_touch), whose answers must be the same bits. */
+#ifndef MANIFOLD_TOUCH_PASS
+#define MANIFOLD_TOUCH_PASS 1
+#endif
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -258,12 +263,10 @@ static int manifold_work_reserve(manifold_work *w, size_t n)
 static int all_push(manifold_work *w, const ttd_scene_contact *c, int inside, unsigned fi, unsigned fj)
 {
     if (w->all_n == w->all_cap) {
-        const size_t cap = w->all_cap ? 2 * w->all_cap : 256;
-        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        manifold_rec *v = array_grow(w->all, &w->all_cap, w->all_n + 1, sizeof *v, 256);
         if (v == NULL)
             return 0;
         w->all = v;
-        w->all_cap = cap;
     }
     w->all[w->all_n].c = *c;
     w->all[w->all_n].feat[0] = (uint8_t)fi;
@@ -282,14 +285,10 @@ static int all_front(manifold_work *w, const ttd_scene_contact *c, size_t n, con
     for (size_t k = 0; drop != NULL && k < n; ++k)
         m -= (drop[k] & FACE_FLAT) != 0;
     if (w->all_n + m > w->all_cap) {
-        size_t cap = w->all_cap ? w->all_cap : 256;
-        while (cap < w->all_n + m)
-            cap *= 2;
-        manifold_rec *v = realloc(w->all, cap * sizeof *v);
+        manifold_rec *v = array_grow(w->all, &w->all_cap, w->all_n + m, sizeof *v, 256);
         if (v == NULL)
             return 0;
         w->all = v;
-        w->all_cap = cap;
     }
     if (w->all_n > 0 && m > 0)
         memmove(w->all + m, w->all, w->all_n * sizeof *w->all);
@@ -413,7 +412,8 @@ again:
          * above them change nothing (on a curved pile's pair, about a sixteenth of the level's
          * points); else the level's, as below */
         const double reaches[2] = {window > touch ? window : touch, window > level ? window : level};
-        for (int pass = reaches[0] < reaches[1] ? 0 : 1; pass < 2 && ns == 0 && !corners; ++pass) {
+        const int first = MANIFOLD_TOUCH_PASS && reaches[0] < reaches[1] ? 0 : 1;
+        for (int pass = first; pass < 2 && ns == 0 && !corners; ++pass) {
             const double reach[2] = {d0, reaches[pass]};
             w->all_n = n_pre;
             if (!pair_corners(s, c0, n0, margin, reach, w))

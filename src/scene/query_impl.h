@@ -242,13 +242,10 @@ typedef struct query_scratch {
     int thin;               /* queries in a row that used under a quarter of the blocks held */
 } query_scratch;
 
-/* Queries in a row that fill under a quarter of the contact blocks held, after which a scene
- * frees its scratch: it holds memory for the largest query of a recent run of queries, not for
- * the largest ever. Blocks of SCRATCH_SMALL contacts or fewer in all are kept whatever the
- * queries use (a worker's first block is 1,024 contacts: a small scene's would be freed and made
- * again every few queries). */
-#define SCRATCH_THIN_QUERIES 8
-#define SCRATCH_SMALL 4096
+/* The bound (SCRATCH_THIN_QUERIES, SCRATCH_SMALL: scene/scene.h): the scratch holds memory for
+ * the largest query of a recent run of queries, not for the largest ever; small blocks are kept
+ * (a worker's first block is 1,024 contacts: a small scene's would be freed and made again every
+ * few queries). */
 
 static void scratch_worker_free(scratch_worker *w)
 {
@@ -258,6 +255,16 @@ static void scratch_worker_free(scratch_worker *w)
     manifold_work_free(&w->mw);
     free(w->part.data);
     memset(w, 0, sizeof *w);
+}
+
+/* The bytes of the workers' contact blocks (scene/scene.h, ttd_scene_scratch_held). */
+static size_t scratch_held(const void *p)
+{
+    const query_scratch *q = p;
+    size_t held = 0;
+    for (int k = 0; k < q->nw; ++k)
+        held += q->w[k].cap * sizeof(ttd_scene_contact);
+    return held;
 }
 
 static void scratch_free(void *p)
@@ -282,6 +289,7 @@ static query_scratch *scratch_get(struct ttd_scene *s, int workers, size_t n)
             return NULL;
         s->scratch = q;
         s->scratch_free = scratch_free;
+        s->scratch_held = scratch_held;
     }
     if (workers > q->nw) {
         scratch_worker *w = realloc(q->w, (size_t)workers * sizeof *w);
@@ -349,14 +357,10 @@ static int pair_contacts(const ttd_engine_config *cfg, struct ttd_scene *s, cons
     if (m == 0)
         return 1;
     if (m > w->cap - w->used) {
-        size_t cap = w->cap ? 2 * w->cap : 1024;
-        while (cap - w->used < m)
-            cap *= 2;
-        ttd_scene_contact *b = realloc(w->block, cap * sizeof *b);
+        ttd_scene_contact *b = array_grow(w->block, &w->cap, w->used + m, sizeof *b, 1024);
         if (b == NULL)
             return 0;
         w->block = b;
-        w->cap = cap;
     }
     ttd_scene_contact *v = w->block + w->used;
     const sort_item *sorted = NULL;

@@ -440,3 +440,8 @@ int ttd_scene_sweep_on(struct ttd_scene *s, int threads, double margin, const un
     *n = count;
     return 1;
 }
+
+size_t ttd_scene_scratch_held(const struct ttd_scene *s)
+{
+    return s->scratch != NULL ? s->scratch_held(s->scratch) : 0;
+}

@@ -52,7 +52,18 @@ struct ttd_scene {
     void *scratch;               /* the contact and manifold queries' per-worker memory, kept
                                   * between queries (scene/query_impl.h, of the scene's precision) */
     void (*scratch_free)(void *); /* frees it: set with it */
+    size_t (*scratch_held)(const void *); /* the bytes of contact blocks it holds: set with it */
 };
+
+/* The bound on s->scratch (scene/query_impl.h, scratch_done): after SCRATCH_THIN_QUERIES queries
+ * in a row that each fill under a quarter of the contact blocks held, the scene frees it; blocks
+ * of SCRATCH_SMALL contacts or fewer in all are kept whatever the queries use. */
+#define SCRATCH_THIN_QUERIES 8
+#define SCRATCH_SMALL 4096
+
+/// The bytes of contact blocks the scene's query scratch holds (0: none held): what its bound
+/// measures; for the tests.
+size_t ttd_scene_scratch_held(const struct ttd_scene *s);
 
 /// A candidate body pair (i < j) of a sweep.
 typedef struct scene_pair {
