@@ -242,11 +242,6 @@ typedef struct query_scratch {
     int thin;               /* queries in a row that used under a quarter of the blocks held */
 } query_scratch;
 
-/* The bound (SCRATCH_THIN_QUERIES, SCRATCH_SMALL: scene/scene.h): the scratch holds memory for
- * the largest query of a recent run of queries, not for the largest ever; small blocks are kept
- * (a worker's first block is 1,024 contacts: a small scene's would be freed and made again every
- * few queries). */
-
 static void scratch_worker_free(scratch_worker *w)
 {
     TTD_CONTACTS_FREE(&w->set);
@@ -317,7 +312,10 @@ static query_scratch *scratch_get(struct ttd_scene *s, int workers, size_t n)
 
 /* After a query: the scratch freed when it has been far larger than the queries' need for
  * SCRATCH_THIN_QUERIES queries in a row (the contact blocks, most of it, measure it; the rest is
- * per pair or per worker, the largest pair's). */
+ * per pair or per worker, the largest pair's). So it holds memory for the largest query of a
+ * recent run of queries, not for the largest ever; blocks of SCRATCH_SMALL contacts or fewer in
+ * all are kept (scene/scene.h: a worker's first block is 1,024 contacts, and a small scene's would
+ * be freed and made again every few queries). */
 static void scratch_done(struct ttd_scene *s)
 {
     query_scratch *q = s->scratch;
