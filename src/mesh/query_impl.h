@@ -382,22 +382,36 @@ static real box_size(const ttd_node *node, int j)
     return node->e[0][j] + node->e[1][j] + node->e[2][j];
 }
 
+#if defined(__GNUC__)
+#define WALK_INLINE inline __attribute__((always_inline))
+#define WALK_NOINLINE __attribute__((noinline))
+#else
+#define WALK_INLINE inline
+#define WALK_NOINLINE
+#endif
+
+/* Fills the cache's slot m with triangle tri of one side, moved (moved_triangle's miss). */
+static WALK_NOINLINE void moved_fill(const qpose *P, qwork *W, int side_b, uint32_t tri, real *m)
+{
+    const uint32_t *ix = (side_b ? P->b.tris : P->a.tris) + 3 * (size_t)tri;
+    for (int k = 0; k < 3; ++k) {
+        if (side_b && !P->self) /* a self query's b is a as given, not moved by the identity */
+            pose_apply(P->pose, P->b.verts + 3 * (size_t)ix[k], m + 3 * k);
+        else
+            side_vertex(P, ix[k], m + 3 * k);
+    }
+    W->moved_key[side_b][tri & (MOVED_SLOTS - 1)] = tri;
+}
+
 /* Triangle tri of b (side 1) moved by the pose, or of a (side 0) as side_vertex gives it, into
- * out[9], through the walk's cache of moved triangles. */
-static void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, real out[9])
+ * out[9], through the walk's cache of moved triangles. Inlined with the miss out of line: most
+ * calls hit, and a call with the miss's saved registers was most of a hit's 45 instructions. */
+static WALK_INLINE void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, real out[9])
 {
     const unsigned slot = tri & (MOVED_SLOTS - 1);
     real *m = W->moved[side_b][slot];
-    if (W->moved_key[side_b][slot] != tri) {
-        const uint32_t *ix = (side_b ? P->b.tris : P->a.tris) + 3 * (size_t)tri;
-        for (int k = 0; k < 3; ++k) {
-            if (side_b && !P->self) /* a self query's b is a as given, not moved by the identity */
-                pose_apply(P->pose, P->b.verts + 3 * (size_t)ix[k], m + 3 * k);
-            else
-                side_vertex(P, ix[k], m + 3 * k);
-        }
-        W->moved_key[side_b][slot] = tri;
-    }
+    if (W->moved_key[side_b][slot] != tri)
+        moved_fill(P, W, side_b, tri, m);
     memcpy(out, m, 9 * sizeof(real));
 }
 
@@ -700,11 +714,6 @@ static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const i
 /* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
  * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
  * queue (item it: the leaf's slot and the triangle's). */
-#if defined(__GNUC__)
-#define WALK_INLINE inline __attribute__((always_inline))
-#else
-#define WALK_INLINE inline
-#endif
 /* inlined into its two callers, as the code it was cut from was (an out-of-line call per leaf
  * opening cost the collision walk more than the change saved) */
 static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it,
