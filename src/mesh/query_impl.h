@@ -115,7 +115,7 @@ typedef struct clist {
 /* Items a walk holds without allocating (most walks need fewer). */
 #define STACK_INLINE 256
 /* Triangles kept moved by the pose, per side (direct-mapped by triangle index; a power of 2). */
-#define MOVED_SLOTS 64
+#define MOVED_SLOTS 256
 /* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2): all of them for the
  * minimum's best-first walk, which meets a box again long after (a far pose's views were
  * recomputed for 386 of 625 node tests with 32), the first QUERY_SLOTS_SHORT for the other walks,
@@ -978,7 +978,7 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
 {
     if (!grow_stack(W, 64))
         return;
-    W->query_mask = (w->mode == MODE_DISTANCE ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
+    W->query_mask = (w->mode == MODE_DISTANCE || w->mode == MODE_CONTACTS ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
     pose_forget(W);
     W->ndef = 0;
     W->stack[0] = *root;
