@@ -114,8 +114,11 @@ typedef struct clist {
 /* A thread's working memory, reused across the walks it runs. */
 /* Items a walk holds without allocating (most walks need fewer). */
 #define STACK_INLINE 256
-/* Triangles kept moved by the pose, per side (direct-mapped by triangle index; a power of 2). */
-#define MOVED_SLOTS 64
+/* Triangles kept moved by the pose, per side (direct-mapped by triangle index; a power of 2): all
+ * of them for a contact walk (the pile's: 64 slots moved 0.41M triangles, 256 0.36M), the first
+ * MOVED_SLOTS_SHORT for the other walks, many of them short, which clear their keys each time. */
+#define MOVED_SLOTS 256
+#define MOVED_SLOTS_SHORT 64
 /* Node-test views of boxes kept per walk (direct-mapped by box; a power of 2): all of them for the
  * minimum's best-first walk, which meets a box again long after (a far pose's views were
  * recomputed for 386 of 625 node tests with 32), the first QUERY_SLOTS_SHORT for the other walks,
@@ -149,6 +152,7 @@ typedef struct qwork {
     uint64_t query_key[QUERY_SLOTS]; /* (node * 8 + slot) * 2 + side, or UINT64_MAX: empty */
     ttd_box_query query[QUERY_SLOTS];
     unsigned query_mask;             /* slots in use - 1 */
+    unsigned moved_mask;             /* moved-triangle slots in use - 1 */
     int nomem;
 } qwork;
 
@@ -193,6 +197,7 @@ static void qwork_init(qwork *W)
     W->ndef = W->defcap = 0;
     W->nb = W->nomem = 0;
     W->query_mask = QUERY_SLOTS_SHORT - 1;
+    W->moved_mask = MOVED_SLOTS_SHORT - 1;
 }
 
 static void qwork_release(qwork *W)
@@ -382,30 +387,51 @@ static real box_size(const ttd_node *node, int j)
     return node->e[0][j] + node->e[1][j] + node->e[2][j];
 }
 
-/* Triangle tri of b (side 1) moved by the pose, or of a (side 0) as side_vertex gives it, into
- * out[9], through the walk's cache of moved triangles. */
-static void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, real out[9])
+#if defined(__GNUC__)
+#define WALK_INLINE inline __attribute__((always_inline))
+#define WALK_NOINLINE __attribute__((noinline))
+#else
+#define WALK_INLINE inline
+#define WALK_NOINLINE
+#endif
+
+/* Fills the cache's slot m with triangle tri of one side, moved (moved_triangle's miss). */
+static WALK_NOINLINE void moved_fill(const qpose *P, qwork *W, int side_b, uint32_t tri, real *m)
 {
-    const unsigned slot = tri & (MOVED_SLOTS - 1);
-    real *m = W->moved[side_b][slot];
-    if (W->moved_key[side_b][slot] != tri) {
-        const uint32_t *ix = (side_b ? P->b.tris : P->a.tris) + 3 * (size_t)tri;
-        for (int k = 0; k < 3; ++k) {
-            if (side_b && !P->self) /* a self query's b is a as given, not moved by the identity */
-                pose_apply(P->pose, P->b.verts + 3 * (size_t)ix[k], m + 3 * k);
-            else
-                side_vertex(P, ix[k], m + 3 * k);
-        }
-        W->moved_key[side_b][slot] = tri;
+    const uint32_t *ix = (side_b ? P->b.tris : P->a.tris) + 3 * (size_t)tri;
+    for (int k = 0; k < 3; ++k) {
+        if (side_b && !P->self) /* a self query's b is a as given, not moved by the identity */
+            pose_apply(P->pose, P->b.verts + 3 * (size_t)ix[k], m + 3 * k);
+        else
+            side_vertex(P, ix[k], m + 3 * k);
     }
+    W->moved_key[side_b][tri & W->moved_mask] = tri;
+}
+
+/* Triangle tri of b (side 1) moved by the pose, or of a (side 0) as side_vertex gives it, into
+ * out[9], through the walk's cache of moved triangles. Inlined with the miss out of line: most
+ * calls hit, and a call with the miss's saved registers was most of a hit's 45 instructions. */
+static WALK_INLINE void moved_triangle(const qpose *P, qwork *W, int side_b, uint32_t tri, real out[9])
+{
+    const unsigned slot = tri & W->moved_mask;
+    real *m = W->moved[side_b][slot];
+    if (W->moved_key[side_b][slot] != tri)
+        moved_fill(P, W, side_b, tri, m);
     memcpy(out, m, 9 * sizeof(real));
+}
+
+/* The moved-triangle slots a walk of this mode uses (before its pose_forget). */
+static void moved_slots(qwork *W, int mode)
+{
+    W->moved_mask = (mode == MODE_CONTACTS ? MOVED_SLOTS : MOVED_SLOTS_SHORT) - 1;
 }
 
 /* A walk's pose may differ from the last walk's on this thread: the moved triangles and the
  * boxes' views go. */
 static void pose_forget(qwork *W)
 {
-    memset(W->moved_key, 0xff, sizeof W->moved_key);
+    for (int sd = 0; sd < 2; ++sd)
+        memset(W->moved_key[sd], 0xff, ((size_t)W->moved_mask + 1) * sizeof W->moved_key[0][0]);
     memset(W->query_key, 0xff, ((size_t)W->query_mask + 1) * sizeof W->query_key[0]);
 }
 
@@ -700,11 +726,6 @@ static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const i
 /* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
  * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
  * queue (item it: the leaf's slot and the triangle's). */
-#if defined(__GNUC__)
-#define WALK_INLINE inline __attribute__((always_inline))
-#else
-#define WALK_INLINE inline
-#endif
 /* inlined into its two callers, as the code it was cut from was (an out-of-line call per leaf
  * opening cost the collision walk more than the change saved) */
 static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it,
@@ -969,7 +990,8 @@ static void walk_run(const qctx *C, const qpose *P, qwork *W, walk *w, const ite
 {
     if (!grow_stack(W, 64))
         return;
-    W->query_mask = (w->mode == MODE_DISTANCE ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
+    W->query_mask = (w->mode == MODE_DISTANCE || w->mode == MODE_CONTACTS ? QUERY_SLOTS : QUERY_SLOTS_SHORT) - 1;
+    moved_slots(W, w->mode);
     pose_forget(W);
     W->ndef = 0;
     W->stack[0] = *root;
@@ -1300,6 +1322,7 @@ static int contact_pose_prepare(contact_job *J, size_t i, qwork *W)
     walk w;
     walk_init(&w, MODE_CONTACTS, &cp->P, J->margin, 0);
     w.cutting = 1;
+    moved_slots(W, MODE_CONTACTS);
     pose_forget(W);
     if (!contact_tasks(J->C, W, cp, &w))
         return 0;

@@ -673,6 +673,7 @@ static void self_grid_task(void *ctx, size_t t, int worker)
     qwork *W = &J->work[worker];
     if (atomic_load_explicit(&J->nomem, memory_order_relaxed))
         return;
+    W->moved_mask = MOVED_SLOTS_SHORT - 1; /* the grid's cells meet few triangles each: not measured with more */
     pose_forget(W);
     walk w;
     walk_init(&w, MODE_CONTACTS, J->P, J->margin, 0);

@@ -114,6 +114,25 @@ TTDW_FN void kw_store_points(const kw_out *o, int live, real *distance, real *po
         kw_store_distance(o->distance, live, distance);
 }
 
+/* kw_store_points with lane i's outputs at index idx[i] of points (6 reals an index) and, when
+ * not NULL, of distance. */
+TTDW_FN void kw_store_points_at(const kw_out *o, int live, const size_t *idx, real *distance, real *points)
+{
+    real buf[7][TTDW_LANES] TTDW_ALIGN(64);
+    for (int k = 0; k < 3; ++k) {
+        vstoreu(buf[k], o->p[k]);
+        vstoreu(buf[3 + k], o->q[k]);
+    }
+    vstoreu(buf[6], o->distance);
+    for (int i = 0; i < live; ++i) {
+        real *pt = points + 6 * idx[i];
+        for (int k = 0; k < 6; ++k)
+            pt[k] = buf[k][i];
+        if (distance)
+            distance[idx[i]] = buf[6][i];
+    }
+}
+
 /* Writes the first `live` lanes of o to the outputs out names, at pair offset i0: distances,
  * points (p then q, 6 reals a pair) and results. feature bits follow the scalar code: bit i
  * when weight i > 0. */

@@ -665,7 +665,9 @@ static TTD_DEVICE void kx_run_dist(size_t n, const real *s, const real *t, real 
     }
 }
 
-static TTD_DEVICE void kx_run_points(size_t n, const real *s, const real *t, real *distance, real *points)
+/* idx: where not NULL, pair i's outputs go to index idx[i] of distance and points (kx_flush). */
+static TTD_DEVICE void kx_run_points(size_t n, const real *s, const real *t, real *distance, real *points,
+                                     const size_t *idx)
 {
     for (size_t i0 = 0; i0 < n; i0 += TTDW_LANES) {
         const int live = n - i0 < (size_t)TTDW_LANES ? (int)(n - i0) : TTDW_LANES;
@@ -673,7 +675,10 @@ static TTD_DEVICE void kx_run_points(size_t n, const real *s, const real *t, rea
         kw_load_group(s + 9 * i0, t + 9 * i0, live, S, T);
         kw_out o;
         kx_group(S, T, &o, KX_POINTS);
-        kw_store_points(&o, live, distance ? distance + i0 : NULL, points + 6 * i0);
+        if (idx)
+            kw_store_points_at(&o, live, idx + i0, distance, points);
+        else
+            kw_store_points(&o, live, distance ? distance + i0 : NULL, points + 6 * i0);
     }
 }
 
@@ -695,7 +700,7 @@ static TTD_DEVICE void kx_run(size_t n, const real *s, const real *t, const ttd_
     if (out->results)
         kx_run_full(n, s, t, out);
     else if (out->points)
-        kx_run_points(n, s, t, out->distance, out->points);
+        kx_run_points(n, s, t, out->distance, out->points, NULL);
     else
         kx_run_dist(n, s, t, out->distance);
 }
@@ -747,9 +752,16 @@ static TTD_DEVICE void kx_write_far(const ttd_out *out, size_t i0, int live, vre
     lb = vmax(lb, vzero());
     if (out->distance)
         kw_store_distance(lb, live, out->distance + i0);
-    if (out->points)
-        for (size_t k = 0; k < 6 * (size_t)live; ++k)
-            out->points[6 * i0 + k] = nan;
+    if (out->points) {
+        if (live == TTDW_LANES) { /* a whole group's 6 W reals by vectors: the same bytes */
+            const vreal vnan = vset1(nan);
+            for (int k = 0; k < 6; ++k)
+                vstoreu(out->points + 6 * i0 + (size_t)k * TTDW_LANES, vnan);
+        } else {
+            for (size_t k = 0; k < 6 * (size_t)live; ++k)
+                out->points[6 * i0 + k] = nan;
+        }
+    }
     if (out->results) {
         real buf[TTDW_LANES];
         vstoreu(buf, lb);
@@ -768,6 +780,12 @@ static TTD_DEVICE void kx_write_far(const ttd_out *out, size_t i0, int live, vre
 /* Runs the nf gathered pairs of bs, bt and scatters their outputs to the indices idx of out. */
 static TTD_DEVICE void kx_flush(int nf, const real *bs, const real *bt, const size_t *idx, const ttd_out *out)
 {
+    if (out->points && !out->results) {
+        /* each lane's points and distance written straight to its index, not through a buffer
+         * copied after: the same values to the same places */
+        kx_run_points((size_t)nf, bs, bt, out->distance, out->points, idx);
+        return;
+    }
     real bd[KX_CHUNK + TTDW_LANES], bp[6 * (KX_CHUNK + TTDW_LANES)];
     ttd_result br[KX_CHUNK + TTDW_LANES];
     const ttd_out bout = {out->distance ? bd : NULL, out->points ? bp : NULL, out->results ? br : NULL};
