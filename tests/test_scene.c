@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boxes.h" /* test_mesh_of */
 #include "meshes.h"
 #include "pairs.h"
 #include "scene/scene.h" /* the scratch's bound and its held bytes (ttd_scene_scratch_held) */
@@ -1353,14 +1354,9 @@ static int scratch_thin_bound(void)
     ENSURE(ttd_gen_mesh_bounds(&g, lo, hi) == 0);
     const double gap = hi[2] - lo[2] + 0.05;
     for (int bytes = 8; bytes >= 4; bytes -= 4) {
-        ttd_mesh *m;
+        ttd_mesh *m = test_mesh_of(bytes, g.verts, g.nv, g.tris, g.nt);
         ttd_scene *s;
-        float v[3 * 642];
-        ENSURE(g.nv <= 642);
-        for (size_t i = 0; i < 3 * g.nv; ++i)
-            v[i] = (float)g.verts[i];
-        ENSURE((bytes == 8 ? ttd_mesh_create_d(NULL, g.verts, g.nv, g.tris, g.nt, &m)
-                           : ttd_mesh_create_f(NULL, v, g.nv, g.tris, g.nt, &m)) == TTD_OK);
+        ENSURE(m != NULL);
         ENSURE((bytes == 8 ? ttd_scene_create_d(&s) : ttd_scene_create_f(&s)) == TTD_OK);
         for (int b = 0; b < 2; ++b) {
             const double pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, b * gap};

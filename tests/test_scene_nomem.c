@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "boxes.h" /* test_mesh_of */
 #include "meshes.h"
 #include "test_macros.h"
 #include <ttd/ttd.h>
@@ -101,16 +102,8 @@ static int make_meshes(world *W, int bytes)
     W->bytes = bytes;
     for (int k = 0; k < 2; ++k) {
         const ttd_gen_mesh *g = &G[k];
-        if (bytes == 8) {
-            ENSURE(ttd_mesh_create_d(NULL, g->verts, g->nv, g->tris, g->nt, &W->mesh[k]) == TTD_OK);
-        } else {
-            float *v = malloc(3 * g->nv * sizeof *v);
-            ENSURE(v != NULL);
-            for (size_t i = 0; i < 3 * g->nv; ++i)
-                v[i] = (float)g->verts[i];
-            ENSURE(ttd_mesh_create_f(NULL, v, g->nv, g->tris, g->nt, &W->mesh[k]) == TTD_OK);
-            free(v);
-        }
+        W->mesh[k] = test_mesh_of(bytes, g->verts, g->nv, g->tris, g->nt);
+        ENSURE(W->mesh[k] != NULL);
     }
     return 0;
 }
