@@ -723,6 +723,17 @@ static int expand_self(const qctx *C, const qpose *P, qwork *W, walk *w, const i
     return n;
 }
 
+/* The lanes j < count of a node test whose bound is not past lim (bit j): the same test as a
+ * branch per lane, without the branch, which which lanes pass (2 of 8 on the pile) made a
+ * mispredicted one (docs/scene-speed.md 18). */
+static WALK_INLINE unsigned lanes_within(const real *lb2, int count, real lim)
+{
+    unsigned m = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+        m |= (unsigned)!(lb2[j] > lim) << j;
+    return m & ((1u << count) - 1u);
+}
+
 /* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
  * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
  * queue (item it: the leaf's slot and the triangle's). */
@@ -732,8 +743,11 @@ static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwor
                                              int open_b, int32_t t0, int32_t node, const real *lb2)
 {
     const ttd_node *y = (open_b ? P->b.nodes : P->a.nodes) + node;
-    for (int j = 0; j < y->count; ++j) {
-        if (lb2[j] > w->limit2)
+    for (unsigned m = lanes_within(lb2, y->count, w->limit2); m != 0; m &= m - 1) {
+        const int j = __builtin_ctz(m);
+        /* the minimum's limit falls as the queue goes through the kernel, so its lanes are
+         * asked again as the lane loop asked them (the other walks' limit stays) */
+        if (w->mode == MODE_DISTANCE && lb2[j] > w->limit2)
             continue;
         if (lb2[j] > w->gate2) {
             const item c = child_item(it, open_b, node, j, lb2[j]);
@@ -794,16 +808,19 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
     /* walk order: nearest first, and among overlapping boxes the deepest overlap first */
     real key[TTD_NODE_WIDTH];
     int n = 0;
-    for (int j = 0; j < y->count; ++j) {
-        if (lb2[j] > w->limit2)
-            continue;
-        const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
-        /* a self query's contacts come in the walk's order whatever it is (it depends on the
-         * mesh alone), and a scene's pair sorts its own: no nearest-first ordering there */
-        if (!w->ordered || (P->self && w->mode == MODE_CONTACTS) || w->any_order) {
-            dst[n++] = c;
-            continue;
+    const real lim = w->limit2;
+    /* a self query's contacts come in the walk's order whatever it is (it depends on the mesh
+     * alone), and a scene's pair sorts its own: no nearest-first ordering there, and the
+     * children within the limit are written without a branch per child (each is written, and
+     * kept by the count: dst has room for EXPAND_MAX) */
+    if (!w->ordered || (P->self && w->mode == MODE_CONTACTS) || w->any_order) {
+        for (int j = 0; j < y->count; ++j) {
+            dst[n] = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
+            n += !(lb2[j] > lim);
         }
+    } else for (unsigned m = lanes_within(lb2, y->count, lim); m != 0; m &= m - 1) {
+        const int j = __builtin_ctz(m);
+        const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
         if (c.lb2 > w->gate2) {
             defer_item(W, &c);
             continue;
