@@ -516,7 +516,7 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     C->kernel((size_t)n, W->s, W->t, &prm, w->skip_bound ? (real)INFINITY : w->limit, &out);
     w->pair_tests += (uint64_t)n;
     int kept = 0;
-    ttd_contacts *o = w->out != NULL ? w->out->direct : NULL;
+    ttd_contacts *o = w->out != NULL && !w->out->count_only ? w->out->direct : NULL;
     if (w->mode == MODE_CONTACTS && !P->self && o != NULL && o->capacity - o->count >= (size_t)n) {
         /* a two-mesh contact walk into a set with room for the whole batch (a scene's pair):
          * every pair is written at the set's end and kept by the count, without a branch on its
