@@ -901,6 +901,22 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
     return 1;
 }
 
+/* An answer of step 0 (corner_ask's) to question q: ok, and where ok the corner and its features.
+ * It depends on q whole (its triangles too) and the pair alone, so a pair's later pass takes it
+ * from the memo of its last pass where it asks the same key (the same bits as asked again). */
+typedef struct corner_memo {
+    corner_key q;
+    ttd_scene_contact got;
+    uint8_t f[2];
+    int ok;
+} corner_memo;
+
+static int corner_key_same(const corner_key *u, const corner_key *v)
+{
+    return u->kind == v->kind && u->a == v->a && u->b == v->b && u->ti == v->ti && u->tj == v->tj && u->k == v->k &&
+           u->l == v->l;
+}
+
 /* Step 0: the corners the pair's n contacts c add (those face on face: w->face, pair_flat), into w->all (a solid pair's vertices found
  * inside the other body left out: they have their negative distances). reach: NULL, or those
  * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
@@ -933,6 +949,17 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     ttd_scene_contact best = c[0];
     uint8_t best_f[2] = {0, 0};
     const corner_key *best_q = NULL;
+    /* this pass's answers into w->memo_next (at most one per key), the last pass's looked up in
+     * w->memo: both in corner_key_before's order, so one cursor mc walks it */
+    if (w->key_n > w->memo_next_cap) {
+        corner_memo *v = realloc(w->memo_next, w->key_n * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->memo_next = v;
+        w->memo_next_cap = w->key_n;
+    }
+    w->memo_next_n = 0;
+    size_t mc = 0;
     for (size_t k = 0; k < w->key_n; ++k) {
         const corner_key *q = &w->key[k];
         if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
@@ -944,10 +971,22 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
                 return 0;
             have = 0;
         }
-        ttd_scene_contact got;
-        uint8_t f[2];
-        if (!corner_ask(s, w, c[0].i, c[0].j, q, margin, &got, f))
+        while (mc < w->memo_n && corner_key_before(&w->memo[mc].q, q))
+            ++mc;
+        size_t at = mc; /* keys equal in that order but for k, l: a triangle with a corner twice */
+        while (at < w->memo_n && !corner_key_before(q, &w->memo[at].q) && !corner_key_same(&w->memo[at].q, q))
+            ++at;
+        corner_memo *e = &w->memo_next[w->memo_next_n++];
+        if (at < w->memo_n && !corner_key_before(q, &w->memo[at].q))
+            *e = w->memo[at];
+        else {
+            e->q = *q;
+            e->ok = corner_ask(s, w, c[0].i, c[0].j, q, margin, &e->got, e->f);
+        }
+        if (!e->ok)
             continue;
+        const ttd_scene_contact got = e->got;
+        const uint8_t f[2] = {e->f[0], e->f[1]};
         if (q->kind == 2) {
             if (!all_push(w, &got, -1, f[0], f[1]))
                 return 0;
@@ -959,5 +998,14 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
             have = 1;
         }
     }
+    /* this pass's answers are the next pass's memo (a later pass asks a superset of the questions,
+     * each for the same or smaller triangles) */
+    corner_memo *t = w->memo;
+    const size_t tc = w->memo_cap;
+    w->memo = w->memo_next;
+    w->memo_cap = w->memo_next_cap;
+    w->memo_n = w->memo_next_n;
+    w->memo_next = t;
+    w->memo_next_cap = tc;
     return !have || all_push(w, &best, -1, best_f[0], best_f[1]);
 }

@@ -104,6 +104,10 @@ typedef struct manifold_work {
     size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
+    /* step 0: the answers of the pair's last pass that asked (pair_corners), in the keys' order,
+     * and this pass's; a later pass of the pair asks most of them again (reduce_pair) */
+    struct corner_memo *memo, *memo_next;
+    size_t memo_n, memo_cap, memo_next_n, memo_next_cap;
     /* step 0 per pair of planar pieces (piece_corners): the pair's flat contacts asking, by pieces;
      * each side's triangles met in a group (local numbers: by triangle, stamped with the group's
      * number), its rim corners and real edges; which triangle pairs of the group are contacts */
@@ -192,6 +196,8 @@ static void manifold_work_free(manifold_work *w)
     free(w->near);
     free(w->ctri);
     free(w->seen);
+    free(w->memo);
+    free(w->memo_next);
     free(w->pitem);
     free(w->pone);
     free(w->pmat);
@@ -332,6 +338,7 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
      * contacts (where max > 0, only when all the points are needed, below), a solid pair's
      * inside points, the corners */
     size_t nflat;
+    w->memo_n = 0; /* step 0's answers are of this pair's triangles */
     if (!pair_flat(s, c0, n0, w, &nflat))
         return 0;
     const unsigned char *drop = nflat > 0 ? w->face : NULL;
