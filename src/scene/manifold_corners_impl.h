@@ -798,6 +798,14 @@ static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c,
  * pieces planar (mesh/edges.h), neither body a solid, and no face-on-face contact of planar pieces
  * in the pair at distance 0 (two pieces that touch or cross: the overlap's corners need not hold
  * the deepest point, which may lie where they cross). 0 out of memory. */
+/* A triangle of body j's normal turned into body i's frame (R_i^T R_j n_j), kept for the pair's
+ * other contacts on it: a direct-mapped table by triangle, stamped with the pair's number. */
+#define FLAT_CACHE 256
+typedef struct flat_normal {
+    uint32_t pair, tri;
+    double u[3];
+} flat_normal;
+
 static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat)
 {
     *nflat = 0;
@@ -809,6 +817,12 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
             return 0;
         w->face = f;
         w->face_cap = n;
+    }
+    if (w->fnorm == NULL && (w->fnorm = calloc(FLAT_CACHE, sizeof *w->fnorm)) == NULL)
+        return 0;
+    if (++w->fnorm_pair == 0) { /* the stamps wrapped (w is kept across queries): all stale */
+        memset(w->fnorm, 0, FLAT_CACHE * sizeof *w->fnorm);
+        w->fnorm_pair = 1;
     }
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
@@ -827,10 +841,18 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     size_t m = 0;
     for (size_t k = 0; k < n; ++k) {
         const float *ni = Ei->normal + 3 * (size_t)c[k].tri_i;
-        const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
+        /* n_i . (R_i^T R_j n_j), n_j turned once per triangle j (the same products, the same bits) */
+        flat_normal *e = &w->fnorm[c[k].tri_j & (FLAT_CACHE - 1)];
+        if (e->pair != w->fnorm_pair || e->tri != c[k].tri_j) {
+            const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
+            for (int r = 0; r < 3; ++r)
+                e->u[r] = rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2];
+            e->pair = w->fnorm_pair;
+            e->tri = c[k].tri_j;
+        }
         double facing = 0;
         for (int r = 0; r < 3; ++r)
-            facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+            facing += (double)ni[r] * e->u[r];
         unsigned char f = 0;
         if (flip * facing <= lim) {
             f = FACE_ON_FACE;

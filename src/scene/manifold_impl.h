@@ -101,6 +101,8 @@ typedef struct manifold_work {
     struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
     uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
     unsigned char *face;      /* step 0: per contact, FACE_ON_FACE and FACE_FLAT bits */
+    struct flat_normal *fnorm; /* step 0 (pair_flat): body j's triangles' normals in body i's frame */
+    uint32_t fnorm_pair;       /* their stamp: the pair's number */
     size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
@@ -193,6 +195,7 @@ static void manifold_work_free(manifold_work *w)
     free(w->key);
     free(w->key_tmp);
     free(w->face);
+    free(w->fnorm);
     free(w->near);
     free(w->ctri);
     free(w->seen);
