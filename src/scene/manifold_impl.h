@@ -62,6 +62,12 @@
 #ifndef MANIFOLD_TOUCH_PASS
 #define MANIFOLD_TOUCH_PASS 1
 #endif
+/* A pair of at most this many contacts is reduced whole at once (K > 0), without the passes over
+ * its deepest points first: on the pile such pairs failed the touching pass 412 times in 417 and
+ * paid both (docs/scene-speed.md, section 17); the answer is the same either way. */
+#ifndef MANIFOLD_PASS_SMALL
+#define MANIFOLD_PASS_SMALL 64
+#endif
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -423,7 +429,8 @@ again:
          * points); else the level's, as below */
         const double reaches[2] = {window > touch ? window : touch, window > level ? window : level};
         const int first = MANIFOLD_TOUCH_PASS && reaches[0] < reaches[1] ? 0 : 1;
-        for (int pass = first; pass < 2 && ns == 0 && !corners; ++pass) {
+        const int few = n0 <= MANIFOLD_PASS_SMALL;
+        for (int pass = first; pass < 2 && ns == 0 && !corners && !few; ++pass) {
             const double reach[2] = {d0, reaches[pass]};
             w->all_n = n_pre;
             if (!pair_corners(s, c0, n0, margin, reach, w))
