@@ -792,12 +792,6 @@ static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c,
     return 1;
 }
 
-/* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
- * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
- * CORNER_ANGLE (the meshes' normals, in body i's frame). Flat: face on face, both triangles' flat
- * pieces planar (mesh/edges.h), neither body a solid, and no face-on-face contact of planar pieces
- * in the pair at distance 0 (two pieces that touch or cross: the overlap's corners need not hold
- * the deepest point, which may lie where they cross). 0 out of memory. */
 /* A triangle of body j's normal turned into body i's frame (R_i^T R_j n_j), kept for the pair's
  * other contacts on it: a direct-mapped table by triangle, stamped with the pair's number. */
 #define FLAT_CACHE 256
@@ -806,9 +800,18 @@ typedef struct flat_normal {
     double u[3];
 } flat_normal;
 
-static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat)
+/* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
+ * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
+ * CORNER_ANGLE (the meshes' normals, in body i's frame). Flat: face on face, both triangles' flat
+ * pieces planar (mesh/edges.h), neither body a solid, and no face-on-face contact of planar pieces
+ * in the pair at distance 0 (two pieces that touch or cross: the overlap's corners need not hold
+ * the deepest point, which may lie where they cross). The smallest distance into *dmin (HUGE_VAL:
+ * none; read here rather than in a scan of its own). 0 out of memory. */
+static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat,
+                     double *dmin)
 {
     *nflat = 0;
+    *dmin = HUGE_VAL;
     if (n == 0)
         return 1;
     if (n > w->face_cap) {
@@ -839,7 +842,10 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     const int solid = s->body[c[0].i].solid || s->body[c[0].j].solid;
     int touching = solid;
     size_t m = 0;
+    double d0 = HUGE_VAL;
     for (size_t k = 0; k < n; ++k) {
+        if ((double)c[k].distance < d0)
+            d0 = (double)c[k].distance;
         const float *ni = Ei->normal + 3 * (size_t)c[k].tri_i;
         /* n_i . (R_i^T R_j n_j), n_j turned once per triangle j (the same products, the same bits) */
         flat_normal *e = &w->fnorm[c[k].tri_j & (FLAT_CACHE - 1)];
@@ -870,6 +876,7 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
         m = 0;
     }
     *nflat = m;
+    *dmin = d0;
     return 1;
 }
 

@@ -347,8 +347,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
      * contacts (where max > 0, only when all the points are needed, below), a solid pair's
      * inside points, the corners */
     size_t nflat;
+    double dc; /* the contacts' smallest distance */
     w->memo_n = 0; /* step 0's answers are of this pair's triangles */
-    if (!pair_flat(s, c0, n0, w, &nflat))
+    if (!pair_flat(s, c0, n0, w, &nflat, &dc))
         return 0;
     const unsigned char *drop = nflat > 0 ? w->face : NULL;
 again:
@@ -413,10 +414,7 @@ again:
          * max are on the level, the points beyond it change nothing; else all of them, as
          * without this. The smallest distance is a contact's or an inside point's: a corner
          * lies no nearer than the contact asking for it. */
-        double d0 = HUGE_VAL;
-        for (size_t k = 0; k < n0; ++k)
-            if ((double)c0[k].distance < d0)
-                d0 = (double)c0[k].distance;
+        double d0 = dc;
         for (size_t k = 0; k < n_pre; ++k)
             if ((double)w->all[k].c.distance < d0)
                 d0 = (double)w->all[k].c.distance;
