@@ -792,15 +792,26 @@ static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c,
     return 1;
 }
 
+/* A triangle of body j's normal turned into body i's frame (R_i^T R_j n_j), kept for the pair's
+ * other contacts on it: a direct-mapped table by triangle, stamped with the pair's number. */
+#define FLAT_CACHE 256
+typedef struct flat_normal {
+    uint32_t pair, tri;
+    double u[3];
+} flat_normal;
+
 /* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
  * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
  * CORNER_ANGLE (the meshes' normals, in body i's frame). Flat: face on face, both triangles' flat
  * pieces planar (mesh/edges.h), neither body a solid, and no face-on-face contact of planar pieces
  * in the pair at distance 0 (two pieces that touch or cross: the overlap's corners need not hold
- * the deepest point, which may lie where they cross). 0 out of memory. */
-static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat)
+ * the deepest point, which may lie where they cross). The smallest distance into *dmin (HUGE_VAL:
+ * none; read here rather than in a scan of its own). 0 out of memory. */
+static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size_t n, manifold_work *w, size_t *nflat,
+                     double *dmin)
 {
     *nflat = 0;
+    *dmin = HUGE_VAL;
     if (n == 0)
         return 1;
     if (n > w->face_cap) {
@@ -809,6 +820,12 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
             return 0;
         w->face = f;
         w->face_cap = n;
+    }
+    if (w->fnorm == NULL && (w->fnorm = calloc(FLAT_CACHE, sizeof *w->fnorm)) == NULL)
+        return 0;
+    if (++w->fnorm_pair == 0) { /* the stamps wrapped (w is kept across queries): all stale */
+        memset(w->fnorm, 0, FLAT_CACHE * sizeof *w->fnorm);
+        w->fnorm_pair = 1;
     }
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
@@ -825,12 +842,23 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     const int solid = s->body[c[0].i].solid || s->body[c[0].j].solid;
     int touching = solid;
     size_t m = 0;
+    double d0 = HUGE_VAL;
     for (size_t k = 0; k < n; ++k) {
+        if ((double)c[k].distance < d0)
+            d0 = (double)c[k].distance;
         const float *ni = Ei->normal + 3 * (size_t)c[k].tri_i;
-        const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
+        /* n_i . (R_i^T R_j n_j), n_j turned once per triangle j (the same products, the same bits) */
+        flat_normal *e = &w->fnorm[c[k].tri_j & (FLAT_CACHE - 1)];
+        if (e->pair != w->fnorm_pair || e->tri != c[k].tri_j) {
+            const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
+            for (int r = 0; r < 3; ++r)
+                e->u[r] = rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2];
+            e->pair = w->fnorm_pair;
+            e->tri = c[k].tri_j;
+        }
         double facing = 0;
         for (int r = 0; r < 3; ++r)
-            facing += (double)ni[r] * (rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2]);
+            facing += (double)ni[r] * e->u[r];
         unsigned char f = 0;
         if (flip * facing <= lim) {
             f = FACE_ON_FACE;
@@ -848,6 +876,7 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
         m = 0;
     }
     *nflat = m;
+    *dmin = d0;
     return 1;
 }
 
@@ -901,6 +930,22 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
     return 1;
 }
 
+/* An answer of step 0 (corner_ask's) to question q: ok, and where ok the corner and its features.
+ * It depends on q whole (its triangles too) and the pair alone, so a pair's later pass takes it
+ * from the memo of its last pass where it asks the same key (the same bits as asked again). */
+typedef struct corner_memo {
+    corner_key q;
+    ttd_scene_contact got;
+    uint8_t f[2];
+    int ok;
+} corner_memo;
+
+static int corner_key_same(const corner_key *u, const corner_key *v)
+{
+    return u->kind == v->kind && u->a == v->a && u->b == v->b && u->ti == v->ti && u->tj == v->tj && u->k == v->k &&
+           u->l == v->l;
+}
+
 /* Step 0: the corners the pair's n contacts c add (those face on face: w->face, pair_flat), into w->all (a solid pair's vertices found
  * inside the other body left out: they have their negative distances). reach: NULL, or those
  * of the contacts alone whose distance is within reach[1] of reach[0] (a corner lies no nearer
@@ -933,6 +978,17 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
     ttd_scene_contact best = c[0];
     uint8_t best_f[2] = {0, 0};
     const corner_key *best_q = NULL;
+    /* this pass's answers into w->memo_next (at most one per key), the last pass's looked up in
+     * w->memo: both in corner_key_before's order, so one cursor mc walks it */
+    if (w->key_n > w->memo_next_cap) {
+        corner_memo *v = realloc(w->memo_next, w->key_n * sizeof *v);
+        if (v == NULL)
+            return 0;
+        w->memo_next = v;
+        w->memo_next_cap = w->key_n;
+    }
+    w->memo_next_n = 0;
+    size_t mc = 0;
     for (size_t k = 0; k < w->key_n; ++k) {
         const corner_key *q = &w->key[k];
         if (k > 0 && q->kind == q[-1].kind && q->a == q[-1].a && q->b == q[-1].b)
@@ -944,10 +1000,22 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
                 return 0;
             have = 0;
         }
-        ttd_scene_contact got;
-        uint8_t f[2];
-        if (!corner_ask(s, w, c[0].i, c[0].j, q, margin, &got, f))
+        while (mc < w->memo_n && corner_key_before(&w->memo[mc].q, q))
+            ++mc;
+        size_t at = mc; /* keys equal in that order but for k, l: a triangle with a corner twice */
+        while (at < w->memo_n && !corner_key_before(q, &w->memo[at].q) && !corner_key_same(&w->memo[at].q, q))
+            ++at;
+        corner_memo *e = &w->memo_next[w->memo_next_n++];
+        if (at < w->memo_n && !corner_key_before(q, &w->memo[at].q))
+            *e = w->memo[at];
+        else {
+            e->q = *q;
+            e->ok = corner_ask(s, w, c[0].i, c[0].j, q, margin, &e->got, e->f);
+        }
+        if (!e->ok)
             continue;
+        const ttd_scene_contact got = e->got;
+        const uint8_t f[2] = {e->f[0], e->f[1]};
         if (q->kind == 2) {
             if (!all_push(w, &got, -1, f[0], f[1]))
                 return 0;
@@ -959,5 +1027,14 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
             have = 1;
         }
     }
+    /* this pass's answers are the next pass's memo (a later pass asks a superset of the questions,
+     * each for the same or smaller triangles) */
+    corner_memo *t = w->memo;
+    const size_t tc = w->memo_cap;
+    w->memo = w->memo_next;
+    w->memo_cap = w->memo_next_cap;
+    w->memo_n = w->memo_next_n;
+    w->memo_next = t;
+    w->memo_next_cap = tc;
     return !have || all_push(w, &best, -1, best_f[0], best_f[1]);
 }

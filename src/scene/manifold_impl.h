@@ -62,6 +62,12 @@
 #ifndef MANIFOLD_TOUCH_PASS
 #define MANIFOLD_TOUCH_PASS 1
 #endif
+/* A pair of at most this many contacts is reduced whole at once (K > 0), without the passes over
+ * its deepest points first: on the pile such pairs failed the touching pass 412 times in 417 and
+ * paid both (docs/scene-speed.md, section 17); the answer is the same either way. */
+#ifndef MANIFOLD_PASS_SMALL
+#define MANIFOLD_PASS_SMALL 64
+#endif
 #define HULL_MAX 64 /* the polygon of step 4 follows up to this many points; farthest points beyond */
 
 /* Scratch kept across body pairs. */
@@ -101,9 +107,15 @@ typedef struct manifold_work {
     struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
     uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
     unsigned char *face;      /* step 0: per contact, FACE_ON_FACE and FACE_FLAT bits */
+    struct flat_normal *fnorm; /* step 0 (pair_flat): body j's triangles' normals in body i's frame */
+    uint32_t fnorm_pair;       /* their stamp: the pair's number */
     size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
+    /* step 0: the answers of the pair's last pass that asked (pair_corners), in the keys' order,
+     * and this pass's; a later pass of the pair asks most of them again (reduce_pair) */
+    struct corner_memo *memo, *memo_next;
+    size_t memo_n, memo_cap, memo_next_n, memo_next_cap;
     /* step 0 per pair of planar pieces (piece_corners): the pair's flat contacts asking, by pieces;
      * each side's triangles met in a group (local numbers: by triangle, stamped with the group's
      * number), its rim corners and real edges; which triangle pairs of the group are contacts */
@@ -189,9 +201,12 @@ static void manifold_work_free(manifold_work *w)
     free(w->key);
     free(w->key_tmp);
     free(w->face);
+    free(w->fnorm);
     free(w->near);
     free(w->ctri);
     free(w->seen);
+    free(w->memo);
+    free(w->memo_next);
     free(w->pitem);
     free(w->pone);
     free(w->pmat);
@@ -332,7 +347,9 @@ static int reduce_pair(const struct ttd_scene *s, const ttd_engine_config *cfg, 
      * contacts (where max > 0, only when all the points are needed, below), a solid pair's
      * inside points, the corners */
     size_t nflat;
-    if (!pair_flat(s, c0, n0, w, &nflat))
+    double dc; /* the contacts' smallest distance */
+    w->memo_n = 0; /* step 0's answers are of this pair's triangles */
+    if (!pair_flat(s, c0, n0, w, &nflat, &dc))
         return 0;
     const unsigned char *drop = nflat > 0 ? w->face : NULL;
 again:
@@ -397,10 +414,7 @@ again:
          * max are on the level, the points beyond it change nothing; else all of them, as
          * without this. The smallest distance is a contact's or an inside point's: a corner
          * lies no nearer than the contact asking for it. */
-        double d0 = HUGE_VAL;
-        for (size_t k = 0; k < n0; ++k)
-            if ((double)c0[k].distance < d0)
-                d0 = (double)c0[k].distance;
+        double d0 = dc;
         for (size_t k = 0; k < n_pre; ++k)
             if ((double)w->all[k].c.distance < d0)
                 d0 = (double)w->all[k].c.distance;
@@ -413,7 +427,8 @@ again:
          * points); else the level's, as below */
         const double reaches[2] = {window > touch ? window : touch, window > level ? window : level};
         const int first = MANIFOLD_TOUCH_PASS && reaches[0] < reaches[1] ? 0 : 1;
-        for (int pass = first; pass < 2 && ns == 0 && !corners; ++pass) {
+        const int few = n0 <= MANIFOLD_PASS_SMALL;
+        for (int pass = first; pass < 2 && ns == 0 && !corners && !few; ++pass) {
             const double reach[2] = {d0, reaches[pass]};
             w->all_n = n_pre;
             if (!pair_corners(s, c0, n0, margin, reach, w))

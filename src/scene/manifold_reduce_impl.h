@@ -245,8 +245,17 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
 {
     const double tol2 = tol * tol;
     size_t nk = 0;
+    /* a point at the place of the one before it (a vertex's contact with each triangle around it:
+     * a seventh of the pile's) is dropped as the search would drop it: that one kept lies at 0,
+     * and dropped, the same search found a kept point within tol of the same place */
+    const int same_drops = tol2 >= 0;
+#define SAME_AS_BEFORE(k) \
+    ((k) > 0 && same_drops && w->z[3 * (k)] == w->z[3 * (k) - 3] && w->z[3 * (k) + 1] == w->z[3 * (k) - 2] && \
+     w->z[3 * (k) + 2] == w->z[3 * (k) - 1])
     if (!use_grid) {
         for (size_t k = 0; k < n; ++k) {
+            if (SAME_AS_BEFORE(k))
+                continue;
             int near = 0;
             for (size_t a = 0; a < nk && !near; ++a)
                 near = dist2(w->z + 3 * k, w->z + 3 * w->kept[a]) <= tol2;
@@ -262,6 +271,8 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
     /* (a tolerance of 0 merges equal points only: any width) */
     const double inv = 1 / (tol > 0 ? CELL_TOLS * tol : 1);
     for (size_t k = 0; k < n; ++k) {
+        if (SAME_AS_BEFORE(k))
+            continue;
         int64_t c[3];
         int side[3];
         uint64_t x[3][2];
@@ -290,6 +301,7 @@ static size_t merge_points(manifold_work *w, size_t n, double tol, int use_grid)
         w->next[k] = w->cell_head[at];
         w->cell_head[at] = k;
     }
+#undef SAME_AS_BEFORE
     return nk;
 }
 

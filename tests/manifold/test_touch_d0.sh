@@ -1,7 +1,8 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # The manifold's touching pass (src/scene/manifold_impl.h, reduce_pair) must give the bits of the
-# manifold without it: TTD_NO_TOUCH is ttd built with MANIFOLD_TOUCH_PASS=0. On the scene of
+# manifold without it: TTD_NO_TOUCH is ttd built with MANIFOLD_TOUCH_PASS=0, TTD one built with
+# MANIFOLD_PASS_SMALL=0 (the passes also on a pair of few contacts, as this scene's). On the scene of
 # tests/data/manifold_touch_d0 the deepest kept point (a corner) lies a rounding farther than the
 # deepest contact (d0), and a corner lies between the pass's reach from d0 and choose_points'
 # from the deepest kept: without the check that the deepest kept is d0, the touching pass
