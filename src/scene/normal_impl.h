@@ -453,10 +453,13 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
             }
             for (int t = 0; t < nc; ++t) {
                 double v[3];
-                if (!unit3(c[t], v) || !in_cone(g, n, neq, v, tol))
+                if (!unit3(c[t], v))
                     continue;
+                /* kept when in the cone and nearer u than the best: the nearness first, as it is
+                 * cheaper and most candidates fail it once u or a near one is in (in_cone reads
+                 * and writes nothing else, so the same candidate is kept) */
                 const double x = dot3d(u, v);
-                if (x > best) {
+                if (x > best && in_cone(g, n, neq, v, tol)) {
                     best = x;
                     memcpy(out, v, sizeof v);
                     found = 1;
