@@ -435,6 +435,11 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
  * dot3d(u, v) <= 7.3 e < best. Else, with q = best - 2^-40 (rounded: within 1.01 e), p p <=
  * (q q) d as computed gives p <= q S (1 + 3.02 e), so P + 4.1 e S <= S (best - 2^-40 + 11.3 e)
  * and dot3d(u, v) <= (best - 2^-40 + 11.3 e) / (1 - 2.51 e) < best. */
+/* The screen on (1); 0 only in a test's build (tests/CMakeLists.txt, ttd_manifold_no_screen), whose
+ * answers must be the same bits. */
+#ifndef NORMAL_CONE_SCREEN
+#define NORMAL_CONE_SCREEN 1
+#endif
 static int beyond_best(double p, double d, double best)
 {
     if (!(d > 0x1p-900 && d < 0x1p900))
@@ -472,7 +477,7 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
                 nc = 2;
             }
             /* c[0]'s p and d for beyond_best; c[1] = -c[0]'s are -p and d, exactly */
-            const int screen = best >= 0.5;
+            const int screen = NORMAL_CONE_SCREEN && best >= 0.5;
             double cp = 0, cd = 0;
             if (screen) {
                 cp = dot3d(u, c[0]);
