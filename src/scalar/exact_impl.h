@@ -121,7 +121,8 @@ static float exact_cross_acc(const float a[3], const float b[3], float aa, float
 }
 #endif
 
-static void exact_tri_init(exact_tri *T)
+/* exact_tri_init's edges: e, ee, inv_ee. */
+static void exact_tri_edges(exact_tri *T)
 {
     for (int i = 0; i < 3; ++i) {
         exact_sub(T->v[(i + 1) % 3], T->v[i], T->e[i]);
@@ -129,6 +130,11 @@ static void exact_tri_init(exact_tri *T)
         /* Guard: an edge shorter than sqrt(REAL_MIN) of the pair's extent is a point. */
         T->inv_ee[i] = T->ee[i] >= TTD_REAL_MIN ? (real)1 / T->ee[i] : (real)0;
     }
+}
+
+/* exact_tri_init's face frame, after exact_tri_edges. */
+static void exact_tri_face(exact_tri *T)
+{
     int k = 0;   /* longest edge, first on ties (a selection, not a decision tree) */
     if (T->ee[1] > T->ee[k]) k = 1;
     if (T->ee[2] > T->ee[k]) k = 2;
@@ -145,6 +151,12 @@ static void exact_tri_init(exact_tri *T)
     exact_cross(T->n, T->L, T->u);
     for (int c = 0; c < 3; ++c)
         T->u[c] *= T->inv_nn;
+}
+
+static void exact_tri_init(exact_tri *T)
+{
+    exact_tri_edges(T);
+    exact_tri_face(T);
 }
 
 /* The face coordinates of a point P relative to T: c = the weight of v[k+2] (across the
@@ -414,8 +426,9 @@ typedef struct exact_frame {
     int e1, e2;
 } exact_frame;
 
-/* exact_pair's step 1: S and T normalised and prepared, and the frame to scale back by. */
-static void exact_normalise(const real s[9], const real t[9], exact_tri *S, exact_tri *T, exact_frame *F)
+/* exact_pair's step 1: S's and T's vertices normalised (not yet prepared), and the frame to scale
+ * back by. */
+static void exact_normalise_v(const real s[9], const real t[9], exact_tri *S, exact_tri *T, exact_frame *F)
 {
     /* 1. Normalise. Inputs near the overflow limit are first halved twice (exact) so that
      * differences cannot overflow; then translate to A and scale by 2^-e, 2^e the power of two
@@ -455,13 +468,19 @@ static void exact_normalise(const real s[9], const real t[9], exact_tri *S, exac
             S->v[i][c] = rel[3 * i + c] * f1 * f2;
             T->v[i][c] = rel[9 + 3 * i + c] * f1 * f2;
         }
-    exact_tri_init(S);
-    exact_tri_init(T);
     F->pre = pre;
     for (int c = 0; c < 3; ++c)
         F->o[c] = o[c];
     F->e1 = e1;
     F->e2 = e2;
+}
+
+/* exact_pair's step 1 with both triangles prepared. */
+static void exact_normalise(const real s[9], const real t[9], exact_tri *S, exact_tri *T, exact_frame *F)
+{
+    exact_normalise_v(s, t, S, T, F);
+    exact_tri_init(S);
+    exact_tri_init(T);
 }
 
 /* exact_pair's steps 3 and 4 on the winning candidate. */
@@ -609,14 +628,36 @@ static void exact_vertex_face_some(const exact_tri *X, const exact_tri *Y, int i
     }
 }
 
+/* X prepared as exact_tri_init prepares it, with its repeats (exact_dups). A triangle with a
+ * repeated vertex (the same bits) gets no face frame: its nn is exactly 0, so it has no face, and
+ * without one nothing below reads the frame (the vertex-face candidates and crossings over it are
+ * not asked, exact_rebuild rebuilds none of them, exact_finish reads has_face). nn is 0: the edge
+ * between the equal vertices is 0 and the other two are each other's exact negation (rounding is
+ * symmetric), so L is the longer (first of equals) and M = -e[k+2] is either 0 or L itself; the
+ * cross product of L with 0 is 0, and with L each component is a product minus the same product
+ * (FMA's error terms, where exact_cross_acc redoes it, the same too). */
+static void exact_tri_dups(exact_tri *X, unsigned *vdup, unsigned *edup, unsigned *ezero)
+{
+    exact_tri_edges(X);
+    exact_dups(X, vdup, edup, ezero);
+    if (*vdup == 0) {
+        exact_tri_face(X);
+        return;
+    }
+    X->k = 0;
+    X->nn = 0;
+    X->has_face = 0;
+    X->inv_nn = 0;
+}
+
 static void exact_pair_dups(const real s[9], const real t[9], ttd_result *r)
 {
     exact_tri S, T;
     exact_frame F;
-    exact_normalise(s, t, &S, &T, &F);
+    exact_normalise_v(s, t, &S, &T, &F);
     unsigned vs, es, zs, vt, et, zt;
-    exact_dups(&S, &vs, &es, &zs);
-    exact_dups(&T, &vt, &et, &zt);
+    exact_tri_dups(&S, &vs, &es, &zs);
+    exact_tri_dups(&T, &vt, &et, &zt);
     exact_best best = {TTD_REAL_MAX, 0, 0, 0, 0};
     exact_fc fs[3], ft[3];
     exact_vertex_edge_some(&S, &T, TTD_EXACT_VE_S, &best, vs, et);

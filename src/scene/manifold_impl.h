@@ -520,8 +520,8 @@ again:
         }
         pt->distance = x->distance;
         pt->depth = margin - x->distance;
-        pt->key = point_key(s, xr);
     }
+    points_keys(s, cfg, rc, w->kept, w->sel, (ttd_scene_point *)out->data + out->count, ns);
     out->count += ns;
     return 1;
 }

@@ -51,21 +51,59 @@ static uint32_t feature_key(const struct ttd_mesh *m, const ttd_mesh_edges *E, u
     return (uint32_t)KEY_EDGE << 30 | key_fold(id);
 }
 
-/* Point x's key (section 5c): body i's feature in the high half, body j's in the low. A contact
- * whose features are not known (a triangle pair's closest points) asks its pair again. */
-static uint64_t point_key(const struct ttd_scene *s, const manifold_rec *x)
+/* Point x's key (section 5c) from the features fi of tri_i and fj of tri_j: body i's feature in
+ * the high half, body j's in the low. */
+static uint64_t features_key(const struct ttd_scene *s, const manifold_rec *x, unsigned fi, unsigned fj)
 {
-    unsigned fi = x->feat[0], fj = x->feat[1];
-    if (fi == 0 || fj == 0) {
-        real a[9], b[9];
-        ttd_result r;
-        world_triangle(s, x->c.i, x->c.tri_i, a);
-        world_triangle(s, x->c.j, x->c.tri_j, b);
-        TTD_EXACT_PAIR(a, b, &r);
-        fi = r.feature_p;
-        fj = r.feature_q;
-    }
     const struct ttd_mesh *mi = s->body[x->c.i].mesh, *mj = s->body[x->c.j].mesh;
     return (uint64_t)feature_key(mi, ttd_mesh_edges_made(mi), x->c.tri_i, fi) << 32 |
            feature_key(mj, ttd_mesh_edges_made(mj), x->c.tri_j, fj);
+}
+
+/* The keys' triangle pairs asked through the ISA row's exact kernel (1), or one exact_pair call
+ * each (0: only in a test's build, tests/CMakeLists.txt, ttd_manifold_no_screen, whose answers
+ * must be the same bits). */
+#ifndef MANIFOLD_KEY_LANES
+#define MANIFOLD_KEY_LANES 1
+#endif
+#define KEY_BLOCK 16
+
+/* The keys of the ns points pt chosen (pt[k] from rc[kept[sel[k]]]). A contact whose features are
+ * not known (a triangle pair's closest points) asks its pair again: in blocks through the exact
+ * kernel of the query's ISA, whose whole results (features too) are the scalar row's bits on
+ * every row (tests/test_isa_kernels.c, rows_exact_bits_on_families), so exact_pair's features. */
+static void points_keys(const struct ttd_scene *s, const ttd_engine_config *cfg, const manifold_rec *rc,
+                        const size_t *kept, const size_t *sel, ttd_scene_point *pt, size_t ns)
+{
+    real a[9 * KEY_BLOCK], b[9 * KEY_BLOCK];
+    ttd_result r[KEY_BLOCK];
+    size_t at[KEY_BLOCK];
+    size_t m = 0;
+    const ttd_exact_kernel_fn kern = MANIFOLD_KEY_LANES ? TTD_EXACT_KERNEL(cfg->isa) : NULL;
+    for (size_t k = 0; k <= ns; ++k) {
+        if (k < ns) {
+            const manifold_rec *x = &rc[kept[sel[k]]];
+            unsigned fi = x->feat[0], fj = x->feat[1];
+            if (fi == 0 || fj == 0) {
+                world_triangle(s, x->c.i, x->c.tri_i, a + 9 * m);
+                world_triangle(s, x->c.j, x->c.tri_j, b + 9 * m);
+                if (kern != NULL) {
+                    at[m++] = k;
+                } else {
+                    TTD_EXACT_PAIR(a, b, &r[0]);
+                    fi = r[0].feature_p;
+                    fj = r[0].feature_q;
+                }
+            }
+            if ((fi != 0 && fj != 0) || kern == NULL)
+                pt[k].key = features_key(s, x, fi, fj);
+        }
+        if (m > 0 && (m == KEY_BLOCK || k == ns)) {
+            const ttd_kernel_out o = {NULL, NULL, r};
+            kern(m, a, b, &cfg->params, (real)INFINITY, &o);
+            for (size_t q = 0; q < m; ++q)
+                pt[at[q]].key = features_key(s, &rc[kept[sel[at[q]]]], r[q].feature_p, r[q].feature_q);
+            m = 0;
+        }
+    }
 }

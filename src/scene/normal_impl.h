@@ -425,6 +425,31 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
     return 1;
 }
 
+/* Whether candidate c of cone_nearest, made unit by unit3 (v), surely has dot3d(u, v) <= best
+ * (unit u; best >= 1/2), so that it cannot be kept, from p = dot3d(u, c) and d = dot3d(c, c).
+ * Only where unit3 takes its unscaled path: d, unit3's own sum, in (2^-900, 2^900), so S = |c| >
+ * 2^-450 and underflow's absolute errors (2^-1075 an operation) are far below e S. With e = 2^-53
+ * and P = u . c exactly: d = S^2 (1 + 3.01 e at most), len = sqrt(d) rounded = S (1 + l), |l| <=
+ * 2.51 e; v_r = c_r / len (1 + d_r), |d_r| <= e; with the dot's rounding (3 e) and |u| <= 1 +
+ * 3.6 e, dot3d(u, v) <= (P + 4.1 e S) / len. Where the computed p (within 3.1 e S of P) is <= 0,
+ * dot3d(u, v) <= 7.3 e < best. Else, with q = best - 2^-40 (rounded: within 1.01 e), p p <=
+ * (q q) d as computed gives p <= q S (1 + 3.02 e), so P + 4.1 e S <= S (best - 2^-40 + 11.3 e)
+ * and dot3d(u, v) <= (best - 2^-40 + 11.3 e) / (1 - 2.51 e) < best. */
+/* The screen on (1); 0 only in a test's build (tests/CMakeLists.txt, ttd_manifold_no_screen), whose
+ * answers must be the same bits. */
+#ifndef NORMAL_CONE_SCREEN
+#define NORMAL_CONE_SCREEN 1
+#endif
+static int beyond_best(double p, double d, double best)
+{
+    if (!(d > 0x1p-900 && d < 0x1p900))
+        return 0;
+    if (p <= 0)
+        return 1;
+    const double q = best - 0x1p-40;
+    return p * p <= (q * q) * d;
+}
+
 /* The unit direction nearest u in the polyhedral cone of g[0..n): u itself, or on a side (u
  * projected onto a constraint's plane), or on an edge (where two planes meet): whichever of
  * these lies in the cone and is nearest u (the first of equals, in this order). 0 when the
@@ -451,12 +476,24 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
                     c[1][r] = -c[0][r];
                 nc = 2;
             }
+            /* c[0]'s p and d for beyond_best; c[1] = -c[0]'s are -p and d, exactly */
+            const int screen = NORMAL_CONE_SCREEN && best >= 0.5;
+            double cp = 0, cd = 0;
+            if (screen) {
+                cp = dot3d(u, c[0]);
+                cd = dot3d(c[0], c[0]);
+            }
             for (int t = 0; t < nc; ++t) {
                 double v[3];
-                if (!unit3(c[t], v) || !in_cone(g, n, neq, v, tol))
+                if (screen && beyond_best(t ? -cp : cp, cd, best))
                     continue;
+                if (!unit3(c[t], v))
+                    continue;
+                /* kept when in the cone and nearer u than the best: the nearness first, as it is
+                 * cheaper and most candidates fail it once u or a near one is in (in_cone reads
+                 * and writes nothing else, so the same candidate is kept) */
                 const double x = dot3d(u, v);
-                if (x > best) {
+                if (x > best && in_cone(g, n, neq, v, tol)) {
                     best = x;
                     memcpy(out, v, sizeof v);
                     found = 1;

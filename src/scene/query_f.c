@@ -9,6 +9,7 @@
 
 #define TTD_PRECISION_FLOAT
 #include "core/precision.h"
+#include "engine/dispatch.h"
 #include "engine/parallel.h"
 #include "mesh/mesh.h"
 #include "points/points.h"
@@ -24,6 +25,9 @@ typedef ttd_mesh_result_f ttd_mesh_result;
 #define TTD_CONTACTS_FREE ttd_contacts_free_f
 #define TTD_EXACT_PAIR ttd_exact_pair_f
 #define TTD_EXACT_PAIR_DUPS ttd_exact_pair_dups_f
+#define TTD_EXACT_KERNEL(isa) ttd_dispatch_kernel_f(isa, TTD_METHOD_EXACT)
+typedef ttd_kernel_f_fn ttd_exact_kernel_fn;
+typedef ttd_out_f ttd_kernel_out;
 typedef ttd_result_f ttd_result;
 typedef ttd_point_result_f ttd_point_result;
 #define TTD_POINTS_CLOSEST ttd_points_query_closest_f
