@@ -811,6 +811,9 @@ static void leaf_pair_rest(const qctx *C, const qpose *P, qwork *W, walk *w, int
 
 static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it, item *dst)
 {
+    /* it may be dst[0] (walk_stack's popped slot): read first, field by field (docs/scene-speed.md 18) */
+    const item cur = *it;
+    it = &cur;
     if (P->self && it->an == it->bn && it->as == it->bs)
         return expand_self(C, P, W, w, it, dst);
     const ttd_node *na = P->a.nodes + it->an, *nb = P->b.nodes + it->bn;
@@ -875,12 +878,14 @@ static void walk_stack(const qctx *C, const qpose *P, qwork *W, walk *w, size_t 
 {
     w->ordered = 1;
     while (top > 0 && !W->nomem && !w->hit && !(w->found && w->limit == 0)) {
-        const item it = W->stack[--top];
-        if (it.lb2 > w->limit2)
+        /* the popped item is not copied whole: expand reads its fields, each from the store
+         * that wrote it (a copy's 16-byte load spanned three stores and could not be
+         * forwarded, docs/scene-speed.md 18), and its children overwrite it */
+        if (W->stack[--top].lb2 > w->limit2)
             continue;
         if (!grow_stack(W, top + EXPAND_MAX))
             return;
-        top += (size_t)expand(C, P, W, w, &it, W->stack + top);
+        top += (size_t)expand(C, P, W, w, W->stack + top, W->stack + top);
     }
     flush(C, P, W, w);
 }
