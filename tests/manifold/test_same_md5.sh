@@ -1,12 +1,15 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# A variant build of ttd (TTD_VARIANT: a path of the manifold turned off at compile time, which
+# Variant builds of ttd (each a path of the manifold forced or turned off at compile time, which
 # must change no bit) against the default build TTD: every run of scripts/manifold_md5.py (its
-# scenes, tower included) must print the same md5 with both.
-#   sh test_same_md5.sh TTD TTD_VARIANT
+# scenes, tower included) must print the same md5 with each variant as with TTD. Used by
+# ttd.manifold_piece_paths (step 0 per pair of planar pieces and contact by contact,
+# docs/scene-speed.md section 9) and ttd.manifold_cone_screen (the normals' screen and the keys'
+# lanes, section 19).
+#   sh test_same_md5.sh TTD TTD_VARIANT [TTD_VARIANT...]
 # Exit 77 (skipped) without a python3 that has numpy ($PYTHON, python3, /usr/bin/python3 tried).
 set -eu
-[ $# -eq 2 ] || { echo "usage: $0 TTD TTD_VARIANT" >&2; exit 2; }
+[ $# -ge 2 ] || { echo "usage: $0 TTD TTD_VARIANT [TTD_VARIANT...]" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
 md5py="$here/../../scripts/manifold_md5.py"
 py=
@@ -23,9 +26,10 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 i=0
-for ttd in "$1" "$2"; do
+for ttd in "$@"; do
     i=$((i + 1))
     mkdir "$tmp/w$i"
+    # the work folder's name is taken out of the printed commands by the script itself
     "$py" "$md5py" "$ttd" "$tmp/w$i" > "$tmp/out$i"
 done
 runs=$(grep -c . "$tmp/out1")
@@ -35,9 +39,16 @@ if [ "$runs" -ne 90 ]; then
     cat "$tmp/out1" >&2
     exit 1
 fi
-if ! cmp -s "$tmp/out1" "$tmp/out2"; then
-    echo "FAIL: the variant's md5s differ from the default build's:" >&2
-    diff "$tmp/out1" "$tmp/out2" >&2 || true
-    exit 1
-fi
-echo "ok: $runs lines, the same md5s: $(grep '^all\|^tower' "$tmp/out1" | tr '\n' ' ')"
+fail=0
+i=1
+shift
+for ttd in "$@"; do
+    i=$((i + 1))
+    if ! cmp -s "$tmp/out1" "$tmp/out$i"; then
+        echo "FAIL: $(basename "$ttd"): md5s differ from the default build's:" >&2
+        diff "$tmp/out1" "$tmp/out$i" >&2 || true
+        fail=1
+    fi
+done
+[ $fail -eq 0 ] && echo "ok: $runs lines, the same md5s with every variant: $(grep '^all\|^tower' "$tmp/out1" | tr '\n' ' ')"
+exit $fail
