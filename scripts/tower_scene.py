@@ -108,7 +108,7 @@ def main():
     if len(sys.argv) > 2 or (len(sys.argv) == 2 and sys.argv[1].startswith("-")):
         # an option is not a folder to write into (--help wrote a folder named --help)
         print(__doc__.strip(), file=sys.stderr if sys.argv[1] not in ("-h", "--help") else sys.stdout)
-        sys.exit(0 if sys.argv[1] in ("-h", "--help") and len(sys.argv) == 2 else 2)
+        sys.exit(0 if sys.argv[1] in ("-h", "--help") else 2)
     out = sys.argv[1] if len(sys.argv) > 1 else "."
     os.makedirs(out, exist_ok=True)
     write_obj(f"{out}/tower-floor.obj", *box_mesh([20.0, 20.0, 1.0], "plain"))
