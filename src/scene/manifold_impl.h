@@ -99,8 +99,7 @@ typedef struct manifold_work {
     struct corner_key *key_tmp; /* step 0: scratch of the keys' sort */
     size_t key_tmp_cap;
     struct depth_key *keys;  /* step 1: the points' sort keys, and room to merge them */
-    struct manifold_rec *sorted; /* the points in depth order, before they trade places */
-    size_t keys_cap, sorted_cap;
+    size_t keys_cap;
     uint32_t *radix_count;   /* step 1: the radix sort's counts, 16 digits of 256 */
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
@@ -194,7 +193,6 @@ static void manifold_work_free(manifold_work *w)
     free(w->queue);
     free(w->keys);
     free(w->radix_count);
-    free(w->sorted);
     free(w->pts);
     free(w->pts_place);
     free(w->res);
@@ -454,7 +452,7 @@ again:
             /* points beyond the reach: the contacts and corners there, and the corners of the flat
              * contacts there (not asked: they lie no nearer than their contacts) */
             if (m > 0 && (m < n || far_flat > 0)) {
-                if ((nk = order_merge(w, &w->near, &w->near_cap, m, f1, f2, tol)) == 0)
+                if ((nk = order_merge(w, w->near, m, f1, f2, tol)) == 0)
                     return 0;
                 ns = choose_points(w, w->near, nk, margin, max, big, f1, f2, 1);
                 rc = w->near;
@@ -490,7 +488,7 @@ again:
         }
         if (w->all_n == 0)
             return 1;
-        if ((nk = order_merge(w, &w->all, &w->all_cap, w->all_n, f1, f2, tol)) == 0)
+        if ((nk = order_merge(w, w->all, w->all_n, f1, f2, tol)) == 0)
             return 0;
         rc = w->all;
         ns = choose_points(w, rc, nk, margin, max, big, f1, f2, 0);

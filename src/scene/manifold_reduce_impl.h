@@ -113,26 +113,19 @@ static int depth_radix(uint32_t *count, const manifold_rec *rc, size_t n, depth_
     return 1;
 }
 
-/* Sorts the n points *buf (an array of *cap) into depth order (depth_cmp's; a merge sort of
- * 24-byte keys, stable, in place of qsort on the records): the points are written in order
- * into w->sorted, which then trades places with *buf. 0 out of memory. */
-static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n)
+/* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
+ * place of qsort on the records): returns the keys in that order (in w->keys; key k's `at` the
+ * point's index in rc), the points left where they are (a copy of each record in order was a
+ * tenth of the sort and merge). NULL out of memory. */
+static const depth_key *depth_sort(manifold_work *w, const manifold_rec *rc, size_t n)
 {
     if (2 * n > w->keys_cap) {
         depth_key *k = realloc(w->keys, 2 * n * sizeof *k);
         if (k == NULL)
-            return 0;
+            return NULL;
         w->keys = k;
         w->keys_cap = 2 * n;
     }
-    if (n > w->sorted_cap) {
-        manifold_rec *r = realloc(w->sorted, n * sizeof *r);
-        if (r == NULL)
-            return 0;
-        w->sorted = r;
-        w->sorted_cap = n;
-    }
-    const manifold_rec *rc = *buf;
     depth_key *a = w->keys, *b = w->keys + n;
     for (size_t k = 0; k < n; ++k) {
         a[k].d = order_bits((double)rc[k].c.distance);
@@ -142,7 +135,7 @@ static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t 
     int sorted = 0;
     if (n >= RADIX_MIN && n <= UINT32_MAX) {
         if (w->radix_count == NULL && (w->radix_count = malloc(16 * 256 * sizeof *w->radix_count)) == NULL)
-            return 0;
+            return NULL;
         sorted = depth_radix(w->radix_count, rc, n, &a, &b);
     }
     for (size_t run = 1; !sorted && run < n; run *= 2) {
@@ -160,15 +153,7 @@ static int depth_sort(manifold_work *w, manifold_rec **buf, size_t *cap, size_t 
         a = b;
         b = t;
     }
-    for (size_t k = 0; k < n; ++k)
-        w->sorted[k] = rc[a[k].at];
-    manifold_rec *t = *buf;
-    const size_t tc = *cap;
-    *buf = w->sorted;
-    *cap = w->sorted_cap;
-    w->sorted = t;
-    w->sorted_cap = tc;
-    return 1;
+    return a;
 }
 
 /* ---- steps 2 to 4: merge, seed, spread ------------------------------------------------------- */
@@ -445,27 +430,29 @@ static int near_reserve(manifold_work *w, size_t n)
     return 1;
 }
 
-/* Steps 1 and 2 on the n points *buf (n > 0, an array of *cap): *buf into depth order (another
- * array of scratch), their points relative to the
- * first and scaled by f1 f2 into w->z, the kept (merge tolerance tol, scaled) into w->kept with
- * z compacted to them. Returns how many are kept; 0 out of memory. */
-static size_t order_merge(manifold_work *w, manifold_rec **buf, size_t *cap, size_t n, double f1, double f2, double tol)
+/* Steps 1 and 2 on the n points rc (n > 0): their points in depth order, relative to the first
+ * and scaled by f1 f2, into w->z, the kept (merge tolerance tol, scaled) into w->kept (indices
+ * into rc, in depth order) with z compacted to them. Returns how many are kept; 0 out of memory. */
+static size_t order_merge(manifold_work *w, const manifold_rec *rc, size_t n, double f1, double f2, double tol)
 {
-    if (!manifold_work_reserve(w, n) || !depth_sort(w, buf, cap, n))
+    const depth_key *o;
+    if (!manifold_work_reserve(w, n) || (o = depth_sort(w, rc, n)) == NULL)
         return 0;
-    const manifold_rec *rc = *buf;
     double *z = w->z, origin[3] = {0, 0, 0};
     for (size_t k = 0; k < n; ++k)
         for (int r = 0; r < 3; ++r) {
-            const double x = (double)(real)(0.5 * (double)rc[k].c.p[r] + 0.5 * (double)rc[k].c.q[r]);
+            const manifold_rec *x = &rc[o[k].at];
+            const double v = (double)(real)(0.5 * (double)x->c.p[r] + 0.5 * (double)x->c.q[r]);
             if (k == 0)
-                origin[r] = x;
-            z[3 * k + (size_t)r] = (x - origin[r]) * f1 * f2;
+                origin[r] = v;
+            z[3 * k + (size_t)r] = (v - origin[r]) * f1 * f2;
         }
     const size_t nk = merge_points(w, n, tol, n > 32);
-    for (size_t a = 0; a < nk; ++a) /* compact: kept[a] >= a, increasing */
+    for (size_t a = 0; a < nk; ++a) { /* compact: kept[a] >= a, increasing; then into rc */
         for (int r = 0; r < 3; ++r)
             z[3 * a + (size_t)r] = z[3 * w->kept[a] + (size_t)r];
+        w->kept[a] = o[w->kept[a]].at;
+    }
     return nk;
 }
 
