@@ -113,6 +113,28 @@ static int depth_radix(uint32_t *count, const manifold_rec *rc, size_t n, depth_
     return 1;
 }
 
+/* A compare-exchange of keys *x and *y (x first) without a jump where their (d, t) differ (the
+ * merge sort's first levels mispredict one comparison in two): y goes first where key_before puts
+ * it first, or where it ties x and came later in the points (so equals stay in the input's
+ * order, as the stable merge leaves them). */
+static void key_cswap(depth_key *x, depth_key *y, const manifold_rec *rc)
+{
+    const depth_key p = *x, q = *y;
+    uint64_t sw = (uint64_t)((q.d < p.d) | ((q.d == p.d) & (q.t < p.t)));
+    if (q.d == p.d && q.t == p.t) {
+        const int c = depth_cmp(&rc[q.at], &rc[p.at]);
+        sw = c < 0 || (c == 0 && q.at < p.at);
+    }
+    const uint64_t m = 0 - sw, dd = (p.d ^ q.d) & m, dt = (p.t ^ q.t) & m;
+    const size_t da = (p.at ^ q.at) & (size_t)m;
+    x->d = p.d ^ dd;
+    y->d = q.d ^ dd;
+    x->t = p.t ^ dt;
+    y->t = q.t ^ dt;
+    x->at = p.at ^ da;
+    y->at = q.at ^ da;
+}
+
 /* Sorts the n points rc into depth order (depth_cmp's; a merge sort of 24-byte keys, stable, in
  * place of qsort on the records): returns the keys in that order (in w->keys; key k's `at` the
  * point's index in rc), the points left where they are (a copy of each record in order was a
@@ -138,7 +160,28 @@ static const depth_key *depth_sort(manifold_work *w, const manifold_rec *rc, siz
             return NULL;
         sorted = depth_radix(w->radix_count, rc, n, &a, &b);
     }
-    for (size_t run = 1; !sorted && run < n; run *= 2) {
+    /* the merge sort's runs of 8 first, each by a sorting network (19 compare-exchanges: the
+     * keys in depth_cmp's order, equals by their place, as the merges would leave them), the last
+     * (under 8) by insertion */
+    size_t run0 = 1;
+    if (!sorted) {
+        static const unsigned char net[19][2] = {{0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6},
+                                                 {3, 7}, {0, 1}, {2, 3}, {4, 5}, {6, 7}, {2, 4}, {3, 5},
+                                                 {1, 4}, {3, 6}, {1, 2}, {3, 4}, {5, 6}};
+        size_t lo = 0;
+        for (; lo + 8 <= n; lo += 8)
+            for (int e = 0; e < 19; ++e)
+                key_cswap(&a[lo + net[e][0]], &a[lo + net[e][1]], rc);
+        for (size_t k = lo + 1; k < n; ++k) {
+            const depth_key v = a[k];
+            size_t m = k;
+            for (; m > lo && key_before(&v, &a[m - 1], rc); --m)
+                a[m] = a[m - 1];
+            a[m] = v;
+        }
+        run0 = 8;
+    }
+    for (size_t run = run0; !sorted && run < n; run *= 2) {
         for (size_t lo = 0; lo < n; lo += 2 * run) {
             const size_t mid = lo + run < n ? lo + run : n, hi = lo + 2 * run < n ? lo + 2 * run : n;
             size_t x = lo, y = mid, o = lo;
