@@ -280,7 +280,7 @@ static int corner_keys_sort(manifold_work *w)
 /* A triangle of a body in the world, its plane and box, kept for the pair's other contacts on it
  * (a face on a face meets many triangles of the other face: in a tower of sliver-cut boxes each
  * triangle was made and measured again for every contact, a fifth of step 0). Direct-mapped by
- * triangle, a table a side; tag: the pair's number (manifold_work.ctri_pair) and the triangle. */
+ * triangle, a table a side; tag: the pass's number (manifold_work.stamp) and the triangle. */
 #define CORNER_CACHE 256
 typedef struct corner_tri {
     uint64_t tag;
@@ -292,7 +292,7 @@ typedef struct corner_tri {
 static const corner_tri *corner_tri_get(const struct ttd_scene *s, manifold_work *w, int side, uint32_t id, uint32_t tri)
 {
     corner_tri *e = &w->ctri[(size_t)side * CORNER_CACHE + (tri & (CORNER_CACHE - 1))];
-    const uint64_t tag = w->ctri_pair << 32 | tri;
+    const uint64_t tag = w->stamp << 32 | tri;
     if (e->tag != tag) {
         world_triangle(s, id, tri, e->x);
         corner_plane_make(e->x, &e->P);
@@ -302,7 +302,7 @@ static const corner_tri *corner_tri_get(const struct ttd_scene *s, manifold_work
     return e;
 }
 
-/* A vertex question of step 0 met in this pair (tag: manifold_work.ctri_pair): its key's place
+/* A vertex question of step 0 met in this pass (tag: manifold_work.stamp): its key's place
  * in w->key, or SIZE_MAX where its screens found no corner. A vertex is asked by every triangle
  * around it that meets the other triangle (a sliver fan's corner by 24): its screens depend on
  * the vertex's place and the other triangle alone, so they are run once, and one key is kept,
@@ -334,13 +334,13 @@ static corner_seen *seen_get(manifold_work *w, const corner_key *q)
         if (t == NULL)
             return NULL;
         for (size_t k = 0; k < w->seen_cap; ++k)
-            if (w->seen[k].tag == w->ctri_pair)
-                t[seen_slot(t, cap, w->ctri_pair, w->seen[k].kind, w->seen[k].a, w->seen[k].b)] = w->seen[k];
+            if (w->seen[k].tag == w->stamp)
+                t[seen_slot(t, cap, w->stamp, w->seen[k].kind, w->seen[k].a, w->seen[k].b)] = w->seen[k];
         free(w->seen);
         w->seen = t;
         w->seen_cap = cap;
     }
-    return &w->seen[seen_slot(w->seen, w->seen_cap, w->ctri_pair, q->kind, q->a, q->b)];
+    return &w->seen[seen_slot(w->seen, w->seen_cap, w->stamp, q->kind, q->a, q->b)];
 }
 
 /* The questions contact c asks (step 0), into w->key: the contact's triangles lie face on face
@@ -370,7 +370,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
             corner_seen *seen = seen_get(w, &key);
             if (seen == NULL)
                 return 0;
-            if (seen->tag == w->ctri_pair) { /* met before: keep the smallest asking triangles */
+            if (seen->tag == w->stamp) { /* met before: keep the smallest asking triangles */
                 corner_key *e = seen->at == SIZE_MAX ? NULL : &w->key[seen->at];
                 if (e != NULL && (key.ti < e->ti || (key.ti == e->ti && key.tj < e->tj))) {
                     e->ti = key.ti;
@@ -379,7 +379,7 @@ static int contact_corners(const struct ttd_scene *s, const ttd_scene_contact *c
                 }
                 continue;
             }
-            *seen = (corner_seen){w->ctri_pair, key.a, key.b, key.kind, SIZE_MAX};
+            *seen = (corner_seen){w->stamp, key.a, key.b, key.kind, SIZE_MAX};
             w->seen_n++;
             screen_box vb;
             box_of(x[side] + 3 * k, 1, &vb);
@@ -545,7 +545,7 @@ static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, c
     corner_seen *seen = seen_get(w, key);
     if (seen == NULL)
         return 0;
-    if (seen->tag == w->ctri_pair) {
+    if (seen->tag == w->stamp) {
         corner_key *e = seen->at == SIZE_MAX ? NULL : &w->key[seen->at];
         if (e != NULL && (key->ti < e->ti || (key->ti == e->ti && key->tj < e->tj))) {
             e->ti = key->ti;
@@ -554,7 +554,7 @@ static int vertex_keep(manifold_work *w, const corner_key *key, const real *y, c
         }
         return 1;
     }
-    *seen = (corner_seen){w->ctri_pair, key->a, key->b, key->kind, SIZE_MAX};
+    *seen = (corner_seen){w->stamp, key->a, key->b, key->kind, SIZE_MAX};
     w->seen_n++;
     if (!beside_test(B, y, ext, margin)) {
         seen->at = w->key_n;
@@ -793,12 +793,28 @@ static int pair_questions(const struct ttd_scene *s, const ttd_scene_contact *c,
 }
 
 /* A triangle of body j's normal turned into body i's frame (R_i^T R_j n_j), kept for the pair's
- * other contacts on it: a direct-mapped table by triangle, stamped with the pair's number. */
+ * other contacts on it: a direct-mapped table by triangle, stamped with the pair's number
+ * (work_stamp's low 32 bits). */
 #define FLAT_CACHE 256
 typedef struct flat_normal {
     uint32_t pair, tri;
     double u[3];
 } flat_normal;
+
+/* A new number for step 0's stamps (each pass's triangles, vertex questions and turned normals:
+ * one counter for the three tables), whose low 32 bits are never 0 (an entry never filled). Where
+ * those wrap (a scene keeps w across queries), the tables stamped with 32 bits forget all. */
+static uint64_t work_stamp(manifold_work *w)
+{
+    if ((uint32_t)++w->stamp == 0) {
+        if (w->ctri != NULL)
+            memset(w->ctri, 0, 2 * CORNER_CACHE * sizeof *w->ctri);
+        if (w->fnorm != NULL)
+            memset(w->fnorm, 0, FLAT_CACHE * sizeof *w->fnorm);
+        ++w->stamp;
+    }
+    return w->stamp;
+}
 
 /* Step 0's bits of the pair's n contacts c into w->face (FACE_ON_FACE, FACE_FLAT); the number of
  * contacts of flat contact into *nflat. Face on face: the triangles' normals opposite within
@@ -823,10 +839,7 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     }
     if (w->fnorm == NULL && (w->fnorm = calloc(FLAT_CACHE, sizeof *w->fnorm)) == NULL)
         return 0;
-    if (++w->fnorm_pair == 0) { /* the stamps wrapped (w is kept across queries): all stale */
-        memset(w->fnorm, 0, FLAT_CACHE * sizeof *w->fnorm);
-        w->fnorm_pair = 1;
-    }
+    const uint32_t stamp = (uint32_t)work_stamp(w);
     double rel[9]; /* R_i^T R_j */
     const double *pi = s->body[c[0].i].pose, *pj = s->body[c[0].j].pose;
     for (int r = 0; r < 3; ++r)
@@ -849,11 +862,11 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
         const float *ni = Ei->normal + 3 * (size_t)c[k].tri_i;
         /* n_i . (R_i^T R_j n_j), n_j turned once per triangle j (the same products, the same bits) */
         flat_normal *e = &w->fnorm[c[k].tri_j & (FLAT_CACHE - 1)];
-        if (e->pair != w->fnorm_pair || e->tri != c[k].tri_j) {
+        if (e->pair != stamp || e->tri != c[k].tri_j) {
             const float *nj = Ej->normal + 3 * (size_t)c[k].tri_j;
             for (int r = 0; r < 3; ++r)
                 e->u[r] = rel[3 * r] * (double)nj[0] + rel[3 * r + 1] * (double)nj[1] + rel[3 * r + 2] * (double)nj[2];
-            e->pair = w->fnorm_pair;
+            e->pair = stamp;
             e->tri = c[k].tri_j;
         }
         double facing = 0;
@@ -959,12 +972,7 @@ static int pair_corners(const struct ttd_scene *s, const ttd_scene_contact *c, s
         return 1;
     if (w->ctri == NULL && (w->ctri = calloc(2 * CORNER_CACHE, sizeof *w->ctri)) == NULL)
         return 0;
-    w->ctri_pair++; /* the triangles kept are another pair's (or another pose's) */
-    if ((uint32_t)w->ctri_pair == 0) { /* the tags' 32 bits of it wrapped (a scene keeps w across
-                                        * queries): forget the triangles, tagged 0 as when new */
-        memset(w->ctri, 0, 2 * CORNER_CACHE * sizeof *w->ctri);
-        w->ctri_pair++;
-    }
+    work_stamp(w); /* the triangles kept are another pair's (or another pose's) */
     w->seen_n = 0;  /* and so are the vertex questions met */
     if (!pair_questions(s, c, n, margin, reach, w))
         return 0;

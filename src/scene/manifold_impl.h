@@ -104,10 +104,10 @@ typedef struct manifold_work {
     struct manifold_rec *near; /* the points of the deepest level (reduce_pair) */
     size_t near_cap;
     struct corner_tri *ctri; /* step 0: each side's world triangles and planes, by triangle */
-    uint64_t ctri_pair;      /* step 0: the number of the pair those are of (tags) */
+    uint64_t stamp;          /* step 0: the number of the pass those are of (work_stamp; tags) */
     unsigned char *face;      /* step 0: per contact, FACE_ON_FACE and FACE_FLAT bits */
-    struct flat_normal *fnorm; /* step 0 (pair_flat): body j's triangles' normals in body i's frame */
-    uint32_t fnorm_pair;       /* their stamp: the pair's number */
+    struct flat_normal *fnorm; /* step 0 (pair_flat): body j's triangles' normals in body i's frame,
+                                * stamped with stamp's low 32 bits */
     size_t face_cap;
     struct corner_seen *seen; /* step 0: each vertex question met in this pair, screened once */
     size_t seen_n, seen_cap;
