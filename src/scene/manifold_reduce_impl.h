@@ -463,7 +463,8 @@ static size_t spread_points(const double *y, size_t nk, size_t seed, size_t max,
     return ns;
 }
 
-static int near_reserve(manifold_work *w, size_t n)
+/* Room for n points in w->near and n0 contacts' indices in w->pick. 0 out of memory. */
+static int near_reserve(manifold_work *w, size_t n, size_t n0)
 {
     if (n > w->near_cap) {
         manifold_rec *f = realloc(w->near, n * sizeof *f);
@@ -471,6 +472,13 @@ static int near_reserve(manifold_work *w, size_t n)
             return 0;
         w->near = f;
         w->near_cap = n;
+    }
+    if (n0 > w->pick_cap) {
+        size_t *p = realloc(w->pick, n0 * sizeof *p);
+        if (p == NULL)
+            return 0;
+        w->pick = p;
+        w->pick_cap = n0;
     }
     return 1;
 }
