@@ -445,8 +445,9 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
     return 1;
 }
 
-/* Whether candidate c of cone_nearest, made unit by unit3 (v), surely has dot3d(u, v) <= best
- * (unit u; best >= 1/2), so that it cannot be kept, from p = dot3d(u, c) and d = dot3d(c, c).
+/* beyond_best: whether candidate c of cone_nearest, made unit by unit3 (v), surely has dot3d(u, v)
+ * <= best (unit u; best >= 1/2), so that it cannot be kept, from p = dot3d(u, c) and d = dot3d(c,
+ * c).
  * Only where unit3 takes its unscaled path: d, unit3's own sum, in (2^-900, 2^900), so S = |c| >
  * 2^-450 and underflow's absolute errors (2^-1075 an operation) are far below e S. With e = 2^-53
  * and P = u . c exactly: d = S^2 (1 + 3.01 e at most), len = sqrt(d) rounded = S (1 + l), |l| <=
@@ -460,14 +461,16 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
 #ifndef NORMAL_CONE_SCREEN
 #define NORMAL_CONE_SCREEN 1
 #endif
-static int beyond_best(double p, double d, double best)
+/* beyond_best (where d is in range, p <= 0 or p p <= (q q) d) for candidate c (p, d) in bit 0 and
+ * for -c (-p, d) in bit 1 at once: the two share d, its range test and p p (the same
+ * bits: rounding is symmetric), so each is asked once a pair of cross candidates. */
+static unsigned beyond_best_pair(double p, double d, double best)
 {
     if (!(d > 0x1p-900 && d < 0x1p900))
         return 0;
-    if (p <= 0)
-        return 1;
     const double q = best - 0x1p-40;
-    return p * p <= (q * q) * d;
+    const int far = p * p <= (q * q) * d;
+    return (unsigned)(p <= 0 || far) | (unsigned)(-p <= 0 || far) << 1;
 }
 
 /* The unit direction nearest u in the polyhedral cone of g[0..n): u itself, or on a side (u
@@ -497,15 +500,12 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
                 nc = 2;
             }
             /* c[0]'s p and d for beyond_best; c[1] = -c[0]'s are -p and d, exactly */
-            const int screen = NORMAL_CONE_SCREEN && best >= 0.5;
-            double cp = 0, cd = 0;
-            if (screen) {
-                cp = dot3d(u, c[0]);
-                cd = dot3d(c[0], c[0]);
-            }
+            unsigned beyond = 0;
+            if (NORMAL_CONE_SCREEN && best >= 0.5)
+                beyond = beyond_best_pair(dot3d(u, c[0]), dot3d(c[0], c[0]), best);
             for (int t = 0; t < nc; ++t) {
                 double v[3];
-                if (screen && beyond_best(t ? -cp : cp, cd, best))
+                if (beyond >> t & 1)
                     continue;
                 if (!unit3(c[t], v))
                     continue;
