@@ -14,6 +14,22 @@
 #include "test_macros.h"
 #include "scalar/scalar.h"
 
+/* step 0's screen of edge questions on axis-aligned edges, once per precision */
+#define real double
+#define edge_axis edge_axis_d
+#define edges_axis_apart edges_axis_apart_d
+#include "scene/edge_axis_impl.h"
+#undef real
+#undef edge_axis
+#undef edges_axis_apart
+#define real float
+#define edge_axis edge_axis_f
+#define edges_axis_apart edges_axis_apart_f
+#include "scene/edge_axis_impl.h"
+#undef real
+#undef edge_axis
+#undef edges_axis_apart
+
 static uint64_t rng = 0x9e3779b97f4a7c15ULL;
 static uint64_t next_u64(void)
 {
@@ -113,9 +129,74 @@ static int dups_same_bits(void)
     return 0;
 }
 
+/* An axis-aligned segment as the manifold asks it, (a, b, b): along axis ax, its ends' coordinate
+ * on each axis from a few values (so that ends and the other segment's coordinates tie exactly)
+ * or, for half the segments, any, times scale, plus offset. */
+static void axis_segment(double x[9], int ax, double scale, double offset)
+{
+    const int grid = next_u64() % 2; /* else any value in [-1, 1) */
+    for (int r = 0; r < 3; ++r) {
+        const double u = grid ? (double)((int)(next_u64() % 7) - 3) / 3 : 2 * uniform() - 1;
+        x[r] = u * scale + offset;
+        x[3 + r] = r == ax ? (double)((int)(next_u64() % 7) - 3) / 3 * scale + offset : x[r];
+    }
+    memcpy(x + 6, x + 3, 3 * sizeof *x);
+}
+
+/* Step 0's edge screen (scene/edge_axis_impl.h, edges_axis_apart): where it says no corner, the
+ * exact method (exact_pair_dups, as corner_ask asks it) puts a closest point at an end of one
+ * segment (corner_ask's test: both first weights strictly inside (0, 1)), in double and float,
+ * near the origin and far from it; and the questions it leaves do find corners (so that a screen
+ * too wide fails here). */
+static int edge_axis_screen(void)
+{
+    static const double scales[] = {1.0, 1e-3, 0x1p-400, 0x1p400};
+    static const double offsets[] = {0.0, 0.7, 1e6, -3e3};
+    long screened = 0, left = 0, corners = 0;
+    for (int sc = 0; sc < 4; ++sc)
+        for (int of = 0; of < 4; ++of)
+            for (int rep = 0; rep < 20000; ++rep) {
+                const double scale = scales[sc], offset = offsets[of] * (sc == 3 ? 0x1p400 : 1.0);
+                double s[9], t[9];
+                axis_segment(s, (int)(next_u64() % 3), scale, offset);
+                axis_segment(t, (int)(next_u64() % 3), scale, offset);
+                if (rep % 8 == 0) /* the other's axis coordinate at an end of s */
+                    for (int r = 0; r < 3; ++r)
+                        if (s[r] != s[3 + r])
+                            t[r] = t[3 + r] = t[6 + r] = s[3 * (int)(next_u64() % 2) + r];
+                ttd_result_d r;
+                ttd_exact_pair_dups_d(s, t, &r);
+                const int corner = r.bary_p[0] > 0 && r.bary_p[0] < 1 && r.bary_q[0] > 0 && r.bary_q[0] < 1;
+                if (edges_axis_apart_d(s, t)) {
+                    ENSURE_MSG(!corner, "double: scale %g, offset %g, case %d", scale, offset, rep);
+                    ++screened;
+                } else {
+                    ++left;
+                    corners += corner;
+                }
+                if (sc < 2 && (of == 0 || of == 1)) { /* float: the same segments */
+                    float sf[9], tf[9];
+                    for (int k = 0; k < 9; ++k) {
+                        sf[k] = (float)s[k];
+                        tf[k] = (float)t[k];
+                    }
+                    ttd_result_f f;
+                    ttd_exact_pair_dups_f(sf, tf, &f);
+                    const int fc = f.bary_p[0] > 0 && f.bary_p[0] < 1 && f.bary_q[0] > 0 && f.bary_q[0] < 1;
+                    ENSURE_MSG(!(edges_axis_apart_f(sf, tf) && fc), "float: scale %g, offset %g, case %d", scale,
+                               offset, rep);
+                }
+            }
+    printf("  %ld edge questions screened (no corner), %ld left, %ld of those with a corner\n", screened, left,
+           corners);
+    ENSURE(screened > 0 && corners > 0);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     TEST_MAIN_BEGIN(argc, argv);
     RUN_TEST(dups_same_bits);
+    RUN_TEST(edge_axis_screen);
     TEST_MAIN_END();
 }

@@ -893,6 +893,8 @@ static int pair_flat(const struct ttd_scene *s, const ttd_scene_contact *c, size
     return 1;
 }
 
+#include "scene/edge_axis_impl.h"
+
 /* Asks the question of key q (step 0): a corner within the margin into *out (1), or none (0). */
 static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, uint32_t j, const corner_key *q,
                       real margin, ttd_scene_contact *out, uint8_t feat[2])
@@ -929,6 +931,8 @@ static int corner_ask(const struct ttd_scene *s, manifold_work *w, uint32_t i, u
     }
     const int second = point_after(seg[0], seg[1]) ||
                        (memcmp(seg[0], seg[1], 3 * sizeof(real)) == 0 && point_after(seg[0] + 3, seg[1] + 3));
+    if (MANIFOLD_EDGE_AXIS_SCREEN && edges_axis_apart(seg[second], seg[!second]))
+        return 0; /* box edges side by side or meeting at an end (docs/scene-speed.md, section 22) */
     TTD_EXACT_PAIR_DUPS(seg[second], seg[!second], &r);
     if (!(r.distance <= margin) || !(r.bary_p[0] > 0 && r.bary_p[0] < 1) || !(r.bary_q[0] > 0 && r.bary_q[0] < 1))
         return 0;

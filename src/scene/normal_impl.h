@@ -81,6 +81,29 @@ static double scale2(double x, int e)
     return x * f;
 }
 
+/* fmax(a, b)'s value inline (libm's fmax is a call on the baseline ISA): the other operand where
+ * one is NaN, else the larger. Called here on non-negative operands only (|x| and maxima of
+ * them, from +0), so no zeros of two signs to order. */
+static inline double max_nn(double a, double b)
+{
+    return a != a ? b : b > a ? b : a;
+}
+
+/* frexp(x, &e)'s e, from x's bits where x is a normal number (frexp is a call into libm): x =
+ * 1.f 2^(b - 1023) = 0.1f 2^(b - 1022), b its biased exponent; frexp itself beyond. */
+static inline int frexp_e(double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    const int b = (int)(u >> 52 & 0x7ff);
+    if (b == 0 || b == 0x7ff) {
+        int e;
+        frexp(x, &e);
+        return e;
+    }
+    return b - 1022;
+}
+
 /* a / |a| into out, formed at unit scale; 0 when a is 0. */
 static int unit3(const double a[3], double out[3])
 {
@@ -91,11 +114,10 @@ static int unit3(const double a[3], double out[3])
             out[r] = a[r] / len;
         return 1;
     }
-    const double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    const double m = max_nn(fabs(a[0]), max_nn(fabs(a[1]), fabs(a[2])));
     if (!(m > 0) || !isfinite(m))
         return 0;
-    int e;
-    frexp(m, &e);
+    const int e = frexp_e(m);
     double b[3];
     for (int r = 0; r < 3; ++r)
         b[r] = scale2(a[r], -e);
@@ -146,13 +168,12 @@ static int unit_cross(const double v[3][3], double cr[3], double *e11, double *e
     for (int r = 0; r < 3; ++r) {
         e1[r] = v[1][r] - v[0][r];
         e2[r] = v[2][r] - v[0][r];
-        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
+        m = max_nn(m, max_nn(fabs(e1[r]), fabs(e2[r])));
     }
     *extent = m;
     if (!(m > 0) || !isfinite(m))
         return 0;
-    int ex;
-    frexp(m, &ex);
+    const int ex = frexp_e(m);
     for (int r = 0; r < 3; ++r) {
         e1[r] = scale2(e1[r], -ex);
         e2[r] = scale2(e2[r], -ex);
@@ -171,12 +192,11 @@ static int weights_in(const double v[3][3], const double x[3], double w[3])
         e1[r] = v[1][r] - v[0][r];
         e2[r] = v[2][r] - v[0][r];
         d[r] = x[r] - v[0][r];
-        m = fmax(m, fmax(fabs(e1[r]), fabs(e2[r])));
+        m = max_nn(m, max_nn(fabs(e1[r]), fabs(e2[r])));
     }
     if (!(m > 0) || !isfinite(m))
         return 0;
-    int ex;
-    frexp(m, &ex);
+    const int ex = frexp_e(m);
     for (int r = 0; r < 3; ++r) {
         e1[r] = scale2(e1[r], -ex);
         e2[r] = scale2(e2[r], -ex);
@@ -351,10 +371,10 @@ static int face_rim(const struct ttd_scene *s, const body_feature *f, const doub
     double m = 0; /* one scale for every candidate: f's triangle's */
     for (int k = 1; k < 3; ++k)
         for (int r = 0; r < 3; ++r)
-            m = fmax(m, fabs(f->v[k][r] - f->v[0][r]));
+            m = max_nn(m, fabs(f->v[k][r] - f->v[0][r]));
     int ex = 0;
     if (m > 0 && isfinite(m))
-        frexp(m, &ex);
+        ex = frexp_e(m);
     double best = HUGE_VAL, best_w[3] = {1, 0, 0};
     uint32_t best_t = f->tri;
     for (int k = -1; k < 3; ++k) { /* f's triangle, then the rings of its feature's vertices */
@@ -425,8 +445,9 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
     return 1;
 }
 
-/* Whether candidate c of cone_nearest, made unit by unit3 (v), surely has dot3d(u, v) <= best
- * (unit u; best >= 1/2), so that it cannot be kept, from p = dot3d(u, c) and d = dot3d(c, c).
+/* beyond_best: whether candidate c of cone_nearest, made unit by unit3 (v), surely has dot3d(u, v)
+ * <= best (unit u; best >= 1/2), so that it cannot be kept, from p = dot3d(u, c) and d = dot3d(c,
+ * c).
  * Only where unit3 takes its unscaled path: d, unit3's own sum, in (2^-900, 2^900), so S = |c| >
  * 2^-450 and underflow's absolute errors (2^-1075 an operation) are far below e S. With e = 2^-53
  * and P = u . c exactly: d = S^2 (1 + 3.01 e at most), len = sqrt(d) rounded = S (1 + l), |l| <=
@@ -440,14 +461,16 @@ static int in_cone(const double (*g)[3], int n, int neq, const double v[3], doub
 #ifndef NORMAL_CONE_SCREEN
 #define NORMAL_CONE_SCREEN 1
 #endif
-static int beyond_best(double p, double d, double best)
+/* beyond_best (where d is in range, p <= 0 or p p <= (q q) d) for candidate c (p, d) in bit 0 and
+ * for -c (-p, d) in bit 1 at once: the two share d, its range test and p p (the same
+ * bits: rounding is symmetric), so each is asked once a pair of cross candidates. */
+static unsigned beyond_best_pair(double p, double d, double best)
 {
     if (!(d > 0x1p-900 && d < 0x1p900))
         return 0;
-    if (p <= 0)
-        return 1;
     const double q = best - 0x1p-40;
-    return p * p <= (q * q) * d;
+    const int far = p * p <= (q * q) * d;
+    return (unsigned)(p <= 0 || far) | (unsigned)(-p <= 0 || far) << 1;
 }
 
 /* The unit direction nearest u in the polyhedral cone of g[0..n): u itself, or on a side (u
@@ -477,15 +500,12 @@ static int cone_nearest(const double (*g)[3], int n, int neq, const double u[3],
                 nc = 2;
             }
             /* c[0]'s p and d for beyond_best; c[1] = -c[0]'s are -p and d, exactly */
-            const int screen = NORMAL_CONE_SCREEN && best >= 0.5;
-            double cp = 0, cd = 0;
-            if (screen) {
-                cp = dot3d(u, c[0]);
-                cd = dot3d(c[0], c[0]);
-            }
+            unsigned beyond = 0;
+            if (NORMAL_CONE_SCREEN && best >= 0.5)
+                beyond = beyond_best_pair(dot3d(u, c[0]), dot3d(c[0], c[0]), best);
             for (int t = 0; t < nc; ++t) {
                 double v[3];
-                if (screen && beyond_best(t ? -cp : cp, cd, best))
+                if (beyond >> t & 1)
                     continue;
                 if (!unit3(c[t], v))
                     continue;
@@ -667,11 +687,10 @@ static void contact_normal(const struct ttd_scene *s, const ttd_scene_contact *c
     for (int k = 0; k < 2; ++k)
         for (int l = 0; l < 9; ++l) {
             tt[k][l] = (double)x[k][l] - (double)pt[0][l % 3];
-            m = fmax(m, fabs(tt[k][l]));
+            m = max_nn(m, fabs(tt[k][l]));
         }
     if (m > 0 && isfinite(m)) {
-        int ex;
-        frexp(m, &ex);
+        const int ex = frexp_e(m);
         for (int k = 0; k < 2; ++k)
             for (int l = 0; l < 9; ++l)
                 tt[k][l] = scale2(tt[k][l], -ex);
