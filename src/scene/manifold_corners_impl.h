@@ -182,9 +182,12 @@ static int vertex_beside(const real *y, const real *x, double ext, real margin)
 /* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
  * the closest points of their lines lie beyond an end of one of them by SCREEN_OUT of its
  * length, the edges far from parallel (at least SCREEN_THIN in sine) and their distance apart
- * within 1 / SCREEN_THIN of the shorter, so that the parameters are known to 2^-30. The exact
- * method then finds no pair of closest points inside both (its edge-edge candidate needs both
- * parameters in [0, 1]; its others are at an end). */
+ * within 1 / SCREEN_THIN of the shorter. u, v and w are each one correctly rounded difference
+ * (relative error 2^-53 of itself, however far from the origin), so den's cancellation costs at
+ * most 2^-53 / SCREEN_THIN^2 of uu vv and the numerators' 2^-53 |u| |v|^2 |w|: the parameters
+ * are known to about 2^-19, leaving most of SCREEN_OUT (2^-6.6) for the
+ * exact method's own rounding of the same parameters. It then finds no pair inside both
+ * (its edge-edge candidate needs both parameters in [0, 1]; its others are at an end). */
 #define SCREEN_OUT 0.01
 static int edges_miss(const real *a, const real *b)
 {
