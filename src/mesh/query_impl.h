@@ -501,6 +501,8 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         moved_triangle(P, W, 0, W->ta[i], W->s + 9 * i);
         moved_triangle(P, W, 1, W->tb[i], W->t + 9 * i);
+        if (!P->self) /* two meshes: pairs only, whose kind may be left unwritten */
+            continue;
         if (W->kind[i] == ENTRY_EDGE_A)
             opposite_edge(P->a.tris + 3 * (size_t)W->ta[i], W->shared[i], W->s + 9 * i);
         else if (W->kind[i] == ENTRY_EDGE_B)
@@ -543,7 +545,7 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         real d = W->dist[i];
         int at = i; /* the entry whose points are the pair's */
-        if (W->kind[i] == ENTRY_EDGE_A && w->mode == MODE_CONTACTS) {
+        if (P->self && W->kind[i] == ENTRY_EDGE_A && w->mode == MODE_CONTACTS) {
             /* a pair sharing a vertex: its two entries, the nearer (the first when as near) */
             ++i;
             if (W->dist[i] < d) {
@@ -767,7 +769,28 @@ static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwor
                                              int open_b, int32_t t0, int32_t node, const real *lb2)
 {
     const ttd_node *y = (open_b ? P->b.nodes : P->a.nodes) + node;
-    for (unsigned m = lanes_within(lb2, y->count, w->limit2); m != 0; m &= m - 1) {
+    const unsigned within = lanes_within(lb2, y->count, w->limit2);
+    if (!P->self && w->mode == MODE_CONTACTS && W->nb + TTD_NODE_WIDTH <= BATCH_MAX) {
+        /* a two-mesh contact walk (gate at infinity, limit fixed) with room for the whole row:
+         * every lane's pair written, only its two triangles (a two-mesh flush reads no kind),
+         * and kept by the count, without a loop that ends on how many lanes pass (about 2 of 8,
+         * in no pattern: docs/scene-speed.md 20); the same pairs in the same order, and the
+         * batch full at the same pair */
+        uint32_t *fixed = open_b ? W->ta : W->tb, *var = open_b ? W->tb : W->ta;
+        int32_t child[TTD_NODE_WIDTH]; /* read before the stores, which may alias it as far as C knows */
+        memcpy(child, y->child, sizeof child);
+        int nb = W->nb;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            fixed[nb] = (uint32_t)t0;
+            var[nb] = (uint32_t)(-1 - child[j]);
+            nb += (int)(within >> j & 1u);
+        }
+        W->nb = nb;
+        if (nb >= BATCH_MAX)
+            flush(C, P, W, w);
+        return;
+    }
+    for (unsigned m = within; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         /* the minimum's limit falls as the queue goes through the kernel, so its lanes are
          * asked again as the lane loop asked them (the other walks' limit stays) */
