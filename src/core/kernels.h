@@ -112,6 +112,12 @@ typedef void (*ttd_node_test_d_fn)(const ttd_box_query_d *x, const ttd_node_d *y
                                    double sep[TTD_NODE_WIDTH]);
 typedef void (*ttd_node_test_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y, float lb2[TTD_NODE_WIDTH],
                                    float sep[TTD_NODE_WIDTH]);
+/// The node test, and the mask of the children j whose lb2[j] is not past lim2 (bit j, NaN within):
+/// the same bits on every row.
+typedef unsigned (*ttd_node_within_d_fn)(const ttd_box_query_d *x, const ttd_node_d *y, double lim2,
+                                     double lb2[TTD_NODE_WIDTH], double sep[TTD_NODE_WIDTH]);
+typedef unsigned (*ttd_node_within_f_fn)(const ttd_box_query_f *x, const ttd_node_f *y, float lim2,
+                                     float lb2[TTD_NODE_WIDTH], float sep[TTD_NODE_WIDTH]);
 
 /* ---- The point queries' kernels (src/points/, docs/points.md) ------------------------------
  * point_node (float rows only; the double walk calls the float row's): lb2[j] = a lower bound on
@@ -250,6 +256,7 @@ typedef struct ttd_kernels_d {
     int lanes;                          ///< double lanes per vector (1 for scalar)
     ttd_kernel_d_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_d_fn node_test;       ///< never NULL
+    ttd_node_within_d_fn node_within;   ///< never NULL
     ttd_point_block_d_fn point_block;   ///< never NULL
     ttd_point_lanes_d_fn point_lanes;   ///< never NULL
     ttd_tri_fit_fn tri_fit;             ///< NULL on the scalar row
@@ -271,6 +278,7 @@ typedef struct ttd_kernels_f {
     int lanes;                          ///< float lanes per vector (1 for scalar)
     ttd_kernel_f_fn fn[TTD_METHOD_COUNT];
     ttd_node_test_f_fn node_test;
+    ttd_node_within_f_fn node_within;
     ttd_point_node_fn point_node;         ///< never NULL; the double walk's too
     ttd_ray_node_fn ray_node;             ///< never NULL
     ttd_point_block_f_fn point_block;

@@ -17,6 +17,7 @@
 
 typedef ttd_kernels_d ttd_row;
 typedef ttd_node_test_d_fn ttd_node_test_fn;
+typedef ttd_node_within_d_fn ttd_node_within_fn;
 typedef ttd_mesh_result_d ttd_mesh_result;
 typedef ttd_contact_d ttd_contact;
 typedef ttd_contacts_d ttd_contacts;

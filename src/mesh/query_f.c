@@ -17,6 +17,7 @@
 
 typedef ttd_kernels_f ttd_row;
 typedef ttd_node_test_f_fn ttd_node_test_fn;
+typedef ttd_node_within_f_fn ttd_node_within_fn;
 typedef ttd_mesh_result_f ttd_mesh_result;
 typedef ttd_contact_f ttd_contact;
 typedef ttd_contacts_f ttd_contacts;

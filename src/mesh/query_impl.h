@@ -90,6 +90,7 @@ typedef struct qctx {
     int threads;
     unsigned self;     /* 0, or SELF_QUERY (ma == mb) with SELF_SHARED or not */
     ttd_isa isa;       /* the row's (self-contacts by the grid take the double row's screens) */
+    ttd_node_within_fn node_within;
 } qctx;
 
 /* A contact found, before it is copied into the caller's set. */
@@ -501,6 +502,8 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         moved_triangle(P, W, 0, W->ta[i], W->s + 9 * i);
         moved_triangle(P, W, 1, W->tb[i], W->t + 9 * i);
+        if (!P->self) /* two meshes: pairs only, whose kind may be left unwritten */
+            continue;
         if (W->kind[i] == ENTRY_EDGE_A)
             opposite_edge(P->a.tris + 3 * (size_t)W->ta[i], W->shared[i], W->s + 9 * i);
         else if (W->kind[i] == ENTRY_EDGE_B)
@@ -543,7 +546,7 @@ static void flush(const qctx *C, const qpose *P, qwork *W, walk *w)
     for (int i = 0; i < n; ++i) {
         real d = W->dist[i];
         int at = i; /* the entry whose points are the pair's */
-        if (W->kind[i] == ENTRY_EDGE_A && w->mode == MODE_CONTACTS) {
+        if (P->self && W->kind[i] == ENTRY_EDGE_A && w->mode == MODE_CONTACTS) {
             /* a pair sharing a vertex: its two entries, the nearer (the first when as near) */
             ++i;
             if (W->dist[i] < d) {
@@ -758,16 +761,48 @@ static WALK_INLINE unsigned lanes_within(const real *lb2, int count, real lim)
     return m & ((1u << count) - 1u);
 }
 
+/* The node test of an item's opening and its lanes within the limit (lanes_within's mask): a
+ * scene pair's contacts (any_order) take both from node_within, which compares in the vector
+ * registers (docs/scene-speed.md 20); the same bounds and the same mask. */
+static WALK_INLINE unsigned walk_node_test(const qctx *C, const walk *w, const ttd_box_query *q, const ttd_node *y,
+                                           real *lb2, real *sep)
+{
+    if (w->any_order)
+        return C->node_within(q, y, w->limit2, lb2, sep) & ((1u << y->count) - 1u);
+    C->node_test(q, y, lb2, sep);
+    return lanes_within(lb2, y->count, w->limit2);
+}
+
 /* A leaf (node `node` of side b when open_b, else of a) facing triangle t0 of the other side, with
  * the node test's bounds lb2 of its triangles: its pairs within the gate go straight to the
  * queue (item it: the leaf's slot and the triangle's). */
 /* inlined into its two callers, as the code it was cut from was (an out-of-line call per leaf
  * opening cost the collision walk more than the change saved) */
 static WALK_INLINE void leaf_facing_triangle(const qctx *C, const qpose *P, qwork *W, walk *w, const item *it,
-                                             int open_b, int32_t t0, int32_t node, const real *lb2)
+                                             int open_b, int32_t t0, int32_t node, const real *lb2, unsigned within)
 {
     const ttd_node *y = (open_b ? P->b.nodes : P->a.nodes) + node;
-    for (unsigned m = lanes_within(lb2, y->count, w->limit2); m != 0; m &= m - 1) {
+    if (!P->self && w->mode == MODE_CONTACTS && W->nb + TTD_NODE_WIDTH <= BATCH_MAX) {
+        /* a two-mesh contact walk (gate at infinity, limit fixed) with room for the whole row:
+         * every lane's pair written, only its two triangles (a two-mesh flush reads no kind),
+         * and kept by the count, without a loop that ends on how many lanes pass (about 2 of 8,
+         * in no pattern: docs/scene-speed.md 20); the same pairs in the same order, and the
+         * batch full at the same pair */
+        uint32_t *fixed = open_b ? W->ta : W->tb, *var = open_b ? W->tb : W->ta;
+        int32_t child[TTD_NODE_WIDTH]; /* read before the stores, which may alias it as far as C knows */
+        memcpy(child, y->child, sizeof child);
+        int nb = W->nb;
+        for (int j = 0; j < TTD_NODE_WIDTH; ++j) {
+            fixed[nb] = (uint32_t)t0;
+            var[nb] = (uint32_t)(-1 - child[j]);
+            nb += (int)(within >> j & 1u);
+        }
+        W->nb = nb;
+        if (nb >= BATCH_MAX)
+            flush(C, P, W, w);
+        return;
+    }
+    for (unsigned m = within; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         /* the minimum's limit falls as the queue goes through the kernel, so its lanes are
          * asked again as the lane loop asked them (the other walks' limit stays) */
@@ -802,10 +837,10 @@ static void leaf_pair_rest(const qctx *C, const qpose *P, qwork *W, walk *w, int
         /* c's triangle (side b when open_b) against the other side's leaf */
         real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
         const ttd_box_query *q = open_b ? walk_box_query(P, W, 1, c->bn, c->bs) : walk_box_query(P, W, 0, c->an, c->as);
-        C->node_test(q, y, lb2, sep);
+        const unsigned within = walk_node_test(C, w, q, y, lb2, sep);
         ++w->node_tests;
         const int32_t t0 = open_b ? -1 - P->b.nodes[c->bn].child[c->bs] : -1 - P->a.nodes[c->an].child[c->as];
-        leaf_facing_triangle(C, P, W, w, c, !open_b, t0, other, lb2);
+        leaf_facing_triangle(C, P, W, w, c, !open_b, t0, other, lb2, within);
     }
 }
 
@@ -826,16 +861,15 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
     real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH];
     const ttd_node *y = open_b ? P->b.nodes + cb : P->a.nodes + ca;
     const ttd_box_query *q = open_b ? walk_box_query(P, W, 0, it->an, it->as) : walk_box_query(P, W, 1, it->bn, it->bs);
-    C->node_test(q, y, lb2, sep);
+    const unsigned within = walk_node_test(C, w, q, y, lb2, sep);
     ++w->node_tests;
     if (!w->cutting && y->child[0] < 0 && (open_b ? ca : cb) < 0) {
-        leaf_facing_triangle(C, P, W, w, it, open_b, open_b ? -1 - ca : -1 - cb, open_b ? cb : ca, lb2);
+        leaf_facing_triangle(C, P, W, w, it, open_b, open_b ? -1 - ca : -1 - cb, open_b ? cb : ca, lb2, within);
         return 0;
     }
     /* walk order: nearest first, and among overlapping boxes the deepest overlap first */
     real key[TTD_NODE_WIDTH];
     int n = 0;
-    const real lim = w->limit2;
     /* a self query's contacts come in the walk's order whatever it is (it depends on the mesh
      * alone), and a scene's pair sorts its own: no nearest-first ordering there, and the
      * children within the limit are written without a branch per child (each is written, and
@@ -843,9 +877,9 @@ static int expand(const qctx *C, const qpose *P, qwork *W, walk *w, const item *
     if (!w->ordered || (P->self && w->mode == MODE_CONTACTS) || w->any_order) {
         for (int j = 0; j < y->count; ++j) {
             dst[n] = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
-            n += !(lb2[j] > lim);
+            n += (int)(within >> j & 1u);
         }
-    } else for (unsigned m = lanes_within(lb2, y->count, lim); m != 0; m &= m - 1) {
+    } else for (unsigned m = within; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         const item c = child_item(it, open_b, open_b ? cb : ca, j, lb2[j]);
         if (c.lb2 > w->gate2) {
@@ -1149,7 +1183,8 @@ static void walk_init(walk *w, int mode, const qpose *P, real limit, real rel_to
 static qctx qctx_make(const ttd_engine_config *cfg, const struct ttd_mesh *a, const struct ttd_mesh *b)
 {
     const TTD_ROW *row = TTD_DISPATCH_ROW(cfg->isa);
-    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads, 0, cfg->isa};
+    qctx C = {a, b, row->node_test, TTD_DISPATCH_KERNEL(cfg->isa, TTD_METHOD_EXACT), cfg->threads, 0, cfg->isa,
+              row->node_within};
     return C;
 }
 

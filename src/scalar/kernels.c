@@ -72,6 +72,7 @@ const ttd_kernels_d ttd_kernels_scalar_d = {
            [TTD_METHOD_BARRIER] = ttd_scalar_barrier_d,
            [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_d},
     .node_test = ttd_node_test_scalar_d,
+    .node_within = ttd_node_within_scalar_d,
     .point_block = ttd_point_block_scalar_d,
     .point_lanes = ttd_point_lanes_scalar_d,
 };
@@ -85,6 +86,7 @@ const ttd_kernels_f ttd_kernels_scalar_f = {
            [TTD_METHOD_BARRIER] = ttd_scalar_barrier_f,
            [TTD_METHOD_CERTIFIED] = ttd_scalar_certified_f},
     .node_test = ttd_node_test_scalar_f,
+    .node_within = ttd_node_within_scalar_f,
     .point_node = ttd_point_node_scalar,
     .ray_node = ttd_ray_node_scalar,
     .point_block = ttd_point_block_scalar_f,

@@ -11,3 +11,9 @@ void ttd_node_test_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, doubl
 {
     node_test(x, y, lb2, sep);
 }
+
+unsigned ttd_node_within_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH],
+                              double sep[TTD_NODE_WIDTH])
+{
+    return node_within(x, y, lim2, lb2, sep);
+}

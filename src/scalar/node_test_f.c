@@ -11,3 +11,9 @@ void ttd_node_test_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float
 {
     node_test(x, y, lb2, sep);
 }
+
+unsigned ttd_node_within_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH],
+                              float sep[TTD_NODE_WIDTH])
+{
+    return node_within(x, y, lim2, lb2, sep);
+}

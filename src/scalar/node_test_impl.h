@@ -50,3 +50,14 @@ static void node_test(const ttd_box_query *x, const ttd_node *y, real lb2[TTD_NO
         sep[j] = gmax;
     }
 }
+
+/* node_within (core/kernels.h): node_test, and the mask of the lanes whose bound is not past lim2. */
+static unsigned node_within(const ttd_box_query *x, const ttd_node *y, real lim2, real lb2[TTD_NODE_WIDTH],
+                            real sep[TTD_NODE_WIDTH])
+{
+    node_test(x, y, lb2, sep);
+    unsigned bits = 0;
+    for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+        bits |= (unsigned)!(lb2[j] > lim2) << j;
+    return bits;
+}

@@ -40,6 +40,10 @@ void ttd_node_test_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, doubl
                             double sep[TTD_NODE_WIDTH]);
 void ttd_node_test_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float lb2[TTD_NODE_WIDTH],
                             float sep[TTD_NODE_WIDTH]);
+unsigned ttd_node_within_scalar_d(const ttd_box_query_d *x, const ttd_node_d *y, double lim2, double lb2[TTD_NODE_WIDTH],
+                              double sep[TTD_NODE_WIDTH]);
+unsigned ttd_node_within_scalar_f(const ttd_box_query_f *x, const ttd_node_f *y, float lim2, float lb2[TTD_NODE_WIDTH],
+                              float sep[TTD_NODE_WIDTH]);
 
 /* The exact distance from a point to a triangle (scalar/point_impl.h, the point queries'
  * reference): the triangle v (9 reals) prepared once into f (core/point_layout.h's fields, field i

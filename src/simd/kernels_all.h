@@ -38,7 +38,7 @@
                [TTD_METHOD_PENALTY] = kernel_penalty,                                          \
                [TTD_METHOD_PENALTY_REFERENCE] = kernel_penalty_ref,                            \
                [TTD_METHOD_CERTIFIED] = kernel_certified},                                     \
-        .node_test = node_test,                                                                \
+        .node_test = node_test, .node_within = node_within,                                    \
         TTD_LANE_ROW_POINT_NODE                                                                 \
         TTD_LANE_ROW_TRI_FIT                                                                    \
         TTD_LANE_ROW_SELF_SCREEN                                                                \
