@@ -445,7 +445,12 @@ static void TTD_SFX(random_frame)(ttd_gen_rng *st, real m[9])
 
 typedef void (*TTD_SFX(node_fn))(const TTD_SFX(ttd_box_query) *x, const TTD_SFX(ttd_node) *y, real *lb2, real *sep);
 
-static int TTD_SFX(check_node_bits)(TTD_SFX(node_fn) node_test, TTD_SFX(node_fn) ref, size_t trials, size_t *diff)
+typedef unsigned (*TTD_SFX(within_fn))(const TTD_SFX(ttd_box_query) *x, const TTD_SFX(ttd_node) *y, real lim2, real *lb2,
+                                        real *sep);
+
+/* node_test (or, where within is not NULL, node_within with its mask) against ref's bits */
+static int TTD_SFX(check_node_bits)(TTD_SFX(node_fn) node_test, TTD_SFX(within_fn) within, TTD_SFX(node_fn) ref,
+                                    size_t trials, size_t *diff)
 {
     ttd_gen_rng st = ttd_gen_rng_make(20, 26);
     *diff = 0;
@@ -475,8 +480,19 @@ static int TTD_SFX(check_node_bits)(TTD_SFX(node_fn) node_test, TTD_SFX(node_fn)
                     y.c[i][j] = -x.v[i]; /* near x's centre */
         }
         real lb2[TTD_NODE_WIDTH], sep[TTD_NODE_WIDTH], lb2r[TTD_NODE_WIDTH], sepr[TTD_NODE_WIDTH];
-        node_test(&x, &y, lb2, sep);
         ref(&x, &y, lb2r, sepr);
+        if (within) {
+            /* the limit one of the children's own bounds half the time (a tie must count as
+             * within), else anywhere in their range; the mask is the reference's comparison */
+            const int jt = (int)(ttd_gen_rng_u64(&st) % TTD_NODE_WIDTH);
+            const real lim2 = trial % 2 ? lb2r[jt] : (real)(ttd_gen_rng_uniform(&st) * (double)lb2r[jt] * 2);
+            const unsigned bits = within(&x, &y, lim2, lb2, sep);
+            unsigned want = 0;
+            for (int j = 0; j < TTD_NODE_WIDTH; ++j)
+                want |= (unsigned)!(lb2r[j] > lim2) << j;
+            *diff += (size_t)(bits != want);
+        } else
+            node_test(&x, &y, lb2, sep);
         for (int j = 0; j < TTD_NODE_WIDTH; ++j)
             *diff += (size_t)(memcmp(&lb2[j], &lb2r[j], sizeof(real)) != 0 || memcmp(&sep[j], &sepr[j], sizeof(real)) != 0);
     }

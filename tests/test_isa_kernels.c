@@ -369,10 +369,17 @@ static int rows_node_test_bits(void)
         if (!cpu_runs(r->name, &why))
             continue;
         size_t diff_d = 0, diff_f = 0;
-        ENSURE(check_node_bits_d(r->d->node_test, ttd_kernels_scalar_d.node_test, 20000, &diff_d) == 0);
-        ENSURE(check_node_bits_f(r->f->node_test, ttd_kernels_scalar_f.node_test, 20000, &diff_f) == 0);
+        ENSURE(check_node_bits_d(r->d->node_test, NULL, ttd_kernels_scalar_d.node_test, 20000, &diff_d) == 0);
+        ENSURE(check_node_bits_f(r->f->node_test, NULL, ttd_kernels_scalar_f.node_test, 20000, &diff_f) == 0);
         printf("  %s node test: 20000 nodes x 8 children, differing from the scalar row's bits: %zu double, %zu "
                "float\n",
+               r->name, diff_d, diff_f);
+        ENSURE(diff_d == 0 && diff_f == 0);
+        /* node_within: the same bounds, and the mask the walk takes instead of comparing them */
+        ENSURE(check_node_bits_d(NULL, r->d->node_within, ttd_kernels_scalar_d.node_test, 20000, &diff_d) == 0);
+        ENSURE(check_node_bits_f(NULL, r->f->node_within, ttd_kernels_scalar_f.node_test, 20000, &diff_f) == 0);
+        printf("  %s node within: 20000 nodes x 8 children, bounds or mask differing from the scalar node test's: "
+               "%zu double, %zu float\n",
                r->name, diff_d, diff_f);
         ENSURE(diff_d == 0 && diff_f == 0);
     }
