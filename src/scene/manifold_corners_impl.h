@@ -109,12 +109,13 @@ static int boxes_apart(const screen_box *a, const screen_box *b, double ext, rea
     return 0;
 }
 
+#include "scene/edges_miss_impl.h" /* SCREEN_THIN, and the edge questions' screen */
+
 /* Whether vertex y lies beyond an edge of triangle x (outward in the triangle's plane) by more
  * than the margin, so surely that the exact method finds it farther than the margin from the
  * triangle (the triangle lies inside each edge's half-space). ext: the largest side of the box
  * around y and x (boxes_ext). Triangles whose normal is known poorly (thinner than SCREEN_THIN)
  * are not screened. */
-#define SCREEN_THIN 1e-3
 /* Triangle x's part of that test, made once per triangle where many vertices are screened
  * against it (piece_corners): its corners, each edge's outward direction and its length's
  * factor; ok = 0 for a triangle not screened. The same operations as made per vertex, so the
@@ -177,33 +178,6 @@ static int vertex_beside(const real *y, const real *x, double ext, real margin)
     beside_tri B;
     beside_prep(x, &B);
     return beside_test(&B, y, ext, margin);
-}
-
-/* Whether edges a and b (2 points each) surely have no pair of closest points inside both:
- * the closest points of their lines lie beyond an end of one of them by SCREEN_OUT of its
- * length, the edges far from parallel (at least SCREEN_THIN in sine) and their distance apart
- * within 1 / SCREEN_THIN of the shorter. u, v and w are each one correctly rounded difference
- * (relative error 2^-53 of itself, however far from the origin), so den's cancellation costs at
- * most 2^-53 / SCREEN_THIN^2 of uu vv and the numerators' 2^-53 |u| |v|^2 |w|: the parameters
- * are known to about 2^-19, leaving most of SCREEN_OUT (2^-6.6) for the
- * exact method's own rounding of the same parameters. It then finds no pair inside both
- * (its edge-edge candidate needs both parameters in [0, 1]; its others are at an end). */
-#define SCREEN_OUT 0.01
-static int edges_miss(const real *a, const real *b)
-{
-    double u[3], v[3], w[3];
-    for (int r = 0; r < 3; ++r) {
-        u[r] = (double)a[3 + r] - (double)a[r];
-        v[r] = (double)b[3 + r] - (double)b[r];
-        w[r] = (double)a[r] - (double)b[r];
-    }
-    const double uu = dot3d(u, u), vv = dot3d(v, v), uv = dot3d(u, v), uw = dot3d(u, w), vw = dot3d(v, w);
-    const double ww = dot3d(w, w), den = uu * vv - uv * uv, shorter = uu < vv ? uu : vv, longer = uu < vv ? vv : uu;
-    if (!(den > SCREEN_THIN * SCREEN_THIN * uu * vv) || !(ww < shorter / (SCREEN_THIN * SCREEN_THIN)) ||
-        !(longer < shorter / (SCREEN_THIN * SCREEN_THIN)))
-        return 0;
-    const double s = (uv * vw - vv * uw) / den, t = (uu * vw - uv * uw) / den;
-    return s < -SCREEN_OUT || s > 1 + SCREEN_OUT || t < -SCREEN_OUT || t > 1 + SCREEN_OUT;
 }
 
 /* Whether 3 reals x come after y (lexicographically). */
