@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* Step 0's screen of edge questions far from a corner (scene/manifold_corners_impl.h, corner_ask's
  * callers), precision-generic on `real`, with dot3d from its includer (scene/normal_impl.h's). No
- * include guard: scene/manifold_corners_impl.h includes it once per precision's translation unit. */
+ * include guard: scene/manifold_corners_impl.h includes it once per precision's translation unit,
+ * tests/test_manifold_exact_dups.c once per precision under other names. */
 
 /* How thin a triangle or how near parallel two edges may be and still be screened (sine). */
 #define SCREEN_THIN 1e-3
@@ -14,10 +15,15 @@
  * most 2^-53 / SCREEN_THIN^2 of uu vv and the numerators' 2^-53 |u| |v|^2 |w|: the parameters
  * are known to about 2^-19, leaving most of SCREEN_OUT (2^-6.6) for the
  * exact method's own rounding of the same parameters. It then finds no pair inside both
- * (its edge-edge candidate needs both parameters in [0, 1]; its others are at an end). */
+ * (its edge-edge candidate needs both parameters in [0, 1]; its others are at an end).
+ * Double only: the float method's parameters carry 2^-24 where this carries 2^-53, times the
+ * same conditioning (up to 1e12), far beyond SCREEN_OUT; tests/test_manifold_exact_dups.c found
+ * float edges it screened where the float method put a pair inside both. */
 #define SCREEN_OUT 0.01
 static int edges_miss(const real *a, const real *b)
 {
+    if (sizeof(real) < sizeof(double))
+        return 0;
     double u[3], v[3], w[3];
     for (int r = 0; r < 3; ++r) {
         u[r] = (double)a[3 + r] - (double)a[r];
