@@ -166,6 +166,27 @@ static void axis_segment(double x[9], int ax, double scale, double offset)
  * segment (corner_ask's test: both first weights strictly inside (0, 1)), in double and float,
  * near the origin and far from it; and the questions it leaves do find corners (so that a screen
  * too wide fails here). */
+/* Whether the exact method puts the closest points of edges s and t (each (a, b, b)) inside
+ * both, strictly (corner_ask's test: a corner). */
+static int corner_d(const double s[9], const double t[9])
+{
+    ttd_result_d r;
+    ttd_exact_pair_dups_d(s, t, &r);
+    return r.bary_p[0] > 0 && r.bary_p[0] < 1 && r.bary_q[0] > 0 && r.bary_q[0] < 1;
+}
+
+/* The same in float, on s and t rounded (into sf and tf, for the screen to be asked the same). */
+static int corner_f(const double s[9], const double t[9], float sf[9], float tf[9])
+{
+    for (int k = 0; k < 9; ++k) {
+        sf[k] = (float)s[k];
+        tf[k] = (float)t[k];
+    }
+    ttd_result_f f;
+    ttd_exact_pair_dups_f(sf, tf, &f);
+    return f.bary_p[0] > 0 && f.bary_p[0] < 1 && f.bary_q[0] > 0 && f.bary_q[0] < 1;
+}
+
 static int edge_axis_screen(void)
 {
     static const double scales[] = {1.0, 1e-3, 0x1p-400, 0x1p400};
@@ -182,9 +203,7 @@ static int edge_axis_screen(void)
                     for (int r = 0; r < 3; ++r)
                         if (s[r] != s[3 + r])
                             t[r] = t[3 + r] = t[6 + r] = s[3 * (int)(next_u64() % 2) + r];
-                ttd_result_d r;
-                ttd_exact_pair_dups_d(s, t, &r);
-                const int corner = r.bary_p[0] > 0 && r.bary_p[0] < 1 && r.bary_q[0] > 0 && r.bary_q[0] < 1;
+                const int corner = corner_d(s, t);
                 if (edges_axis_apart_d(s, t)) {
                     ENSURE_MSG(!corner, "double: scale %g, offset %g, case %d", scale, offset, rep);
                     ++screened;
@@ -194,13 +213,7 @@ static int edge_axis_screen(void)
                 }
                 if (sc < 2 && (of == 0 || of == 1)) { /* float: the same segments */
                     float sf[9], tf[9];
-                    for (int k = 0; k < 9; ++k) {
-                        sf[k] = (float)s[k];
-                        tf[k] = (float)t[k];
-                    }
-                    ttd_result_f f;
-                    ttd_exact_pair_dups_f(sf, tf, &f);
-                    const int fc = f.bary_p[0] > 0 && f.bary_p[0] < 1 && f.bary_q[0] > 0 && f.bary_q[0] < 1;
+                    const int fc = corner_f(s, t, sf, tf);
                     ENSURE_MSG(!(edges_axis_apart_f(sf, tf) && fc), "float: scale %g, offset %g, case %d", scale,
                                offset, rep);
                 }
@@ -225,7 +238,7 @@ static int edges_miss_screen(void)
     for (int sc = 0; sc < 4; ++sc)
         for (int of = 0; of < 4; ++of)
             for (int rep = 0; rep < 20000; ++rep) {
-                const double len = scales[sc], off = offsets[of] * scales[sc] * (of == 3 ? 1e-3 : 1) / 1e-3;
+                const double len = scales[sc], off = offsets[of] * len; /* in lengths */
                 double s[9], t[9], u[3], v[3], n[3];
                 for (int r = 0; r < 3; ++r) {
                     u[r] = len * (uniform() - 0.5);
@@ -247,9 +260,7 @@ static int edges_miss_screen(void)
                     t[r] = base + p * u[r] + h * n[r] - q * v[r];
                     t[3 + r] = t[6 + r] = t[r] + v[r];
                 }
-                ttd_result_d r;
-                ttd_exact_pair_dups_d(s, t, &r);
-                const int corner = r.bary_p[0] > 0 && r.bary_p[0] < 1 && r.bary_q[0] > 0 && r.bary_q[0] < 1;
+                const int corner = corner_d(s, t);
                 if (edges_miss_d(s, t)) {
                     ENSURE_MSG(!corner, "double: length %g, offset %g, case %d", len, off, rep);
                     ++fired;
@@ -259,13 +270,7 @@ static int edges_miss_screen(void)
                 }
                 if (sc < 2 && of < 3) { /* float: the same edges rounded */
                     float sf[9], tf[9];
-                    for (int k = 0; k < 9; ++k) {
-                        sf[k] = (float)s[k];
-                        tf[k] = (float)t[k];
-                    }
-                    ttd_result_f f;
-                    ttd_exact_pair_dups_f(sf, tf, &f);
-                    const int fc = f.bary_p[0] > 0 && f.bary_p[0] < 1 && f.bary_q[0] > 0 && f.bary_q[0] < 1;
+                    const int fc = corner_f(s, t, sf, tf);
                     ENSURE_MSG(!(edges_miss_f(sf, tf) && fc), "float: length %g, offset %g, case %d", len, off, rep);
                 }
             }
